@@ -1,0 +1,114 @@
+# Sylva — build, test, bench, demo and install. `make help` lists the targets.
+CC      = gcc
+BUILD   = build
+PREFIX  = /usr/local
+SAN     =
+JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
+
+VERSION := $(shell sed -n 's/^#define SYLVA_VERSION "\(.*\)"/\1/p' include/sylva/sylva.h)
+WARN    := -Wall -Wextra -Werror
+ifeq ($(SAN),1)
+OPT     := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+else
+OPT     := -O2 -g
+endif
+CFLAGS  := -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
+           -Iinclude -Isrc -I$(BUILD)/gen
+LDLIBS  := -lm -pthread
+
+LIB_SRC := $(wildcard src/util/*.c src/lang/*.c src/lsys/*.c)
+CLI_SRC := $(wildcard src/cli/*.c)
+GEN_SRC := $(BUILD)/gen/parser.c $(BUILD)/gen/lexer.c
+LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(GEN_SRC:.c=.o)
+CLI_OBJ := $(CLI_SRC:%.c=$(BUILD)/%.o)
+UNIT_SRC := $(wildcard tests/unit/test_*.c)
+UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+DEPS_OK := $(BUILD)/.deps-ok
+
+.PHONY: all deps test test-fast test-asan fuzz bench demo gallery install clean help units
+all: $(BUILD)/sylva $(BUILD)/libsylva.a
+
+help:
+	@echo "make            build build/sylva and build/libsylva.a"
+	@echo "make deps       install missing Debian packages (as root)"
+	@echo "make test       unit, case and golden tests, again under ASan+UBSan, and a fuzz run"
+	@echo "make test-fast  the same tests once, without sanitizers and fuzzing"
+	@echo "make bench      speed figures against peer tools"
+	@echo "make demo       derive every example and print its statistics"
+	@echo "make install PREFIX=/usr/local"
+
+deps:
+	@tools/deps.sh
+$(DEPS_OK):
+	@mkdir -p $(BUILD)
+	@tools/deps.sh
+	@touch $@
+
+$(BUILD)/gen/parser.c: grammar/parser.y | $(DEPS_OK)
+	@mkdir -p $(@D)
+	bison -Wall -Werror -d -o $@ $<
+$(BUILD)/gen/parser.h: $(BUILD)/gen/parser.c
+$(BUILD)/gen/lexer.c: grammar/lexer.l $(BUILD)/gen/parser.h | $(DEPS_OK)
+	@mkdir -p $(@D)
+	flex --header-file=$(BUILD)/gen/lexer.h -o $@ $<
+$(BUILD)/gen/lexer.h: $(BUILD)/gen/lexer.c
+
+# Generated code is not ours to lint.
+$(BUILD)/gen/%.o: $(BUILD)/gen/%.c
+	$(CC) $(CFLAGS) -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter -c -o $@ $<
+$(BUILD)/src/lang/parse.o: $(BUILD)/gen/lexer.h $(BUILD)/gen/parser.h
+$(BUILD)/%.o: %.c | $(DEPS_OK) $(BUILD)/gen/parser.h
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -c -o $@ $<
+
+$(BUILD)/libsylva.a: $(LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+$(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva.a
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+
+# ---- tests ----
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva.a
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(BUILD)/libsylva.a $(LDLIBS) -lcmocka
+units: $(UNIT_BIN)
+
+test-fast: all units
+	@tests/run-all $(BUILD)
+test-asan:
+	@$(MAKE) --no-print-directory BUILD=build-asan SAN=1 all units
+	@tests/run-all build-asan
+test: all units
+	@$(MAKE) --no-print-directory BUILD=build-asan SAN=1 all units
+	@$(MAKE) --no-print-directory build-fuzz/fuzz_compile
+	@tests/run-all $(BUILD) build-asan --fuzz build-fuzz/fuzz_compile
+
+# ---- fuzzing (clang + libFuzzer) ----
+FUZZ_CFLAGS := -std=c11 -O1 -g -Wall -Wextra -D_GNU_SOURCE -pthread -Iinclude -Isrc -Ibuild-fuzz/gen \
+               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
+build-fuzz/fuzz_compile: tests/fuzz/fuzz_compile.c $(LIB_SRC) grammar/lexer.l grammar/parser.y | $(DEPS_OK)
+	@$(MAKE) --no-print-directory BUILD=build-fuzz build-fuzz/gen/lexer.c
+	clang $(FUZZ_CFLAGS) -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter -o $@ \
+	    tests/fuzz/fuzz_compile.c $(LIB_SRC) build-fuzz/gen/parser.c build-fuzz/gen/lexer.c -lm
+fuzz: build-fuzz/fuzz_compile
+	@tests/fuzz/run build-fuzz/fuzz_compile $${FUZZ_SECONDS:-300}
+
+# ---- user-facing ----
+bench: all
+	@bench/run
+
+demo: all
+	@tools/demo $(BUILD)/sylva
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/sylva
+	install -m 755 $(BUILD)/sylva $(DESTDIR)$(PREFIX)/bin/sylva
+	install -m 644 $(BUILD)/libsylva.a $(DESTDIR)$(PREFIX)/lib/libsylva.a
+	install -m 644 include/sylva/*.h $(DESTDIR)$(PREFIX)/include/sylva/
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' tools/sylva.pc.in \
+	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sylva.pc
+
+clean:
+	rm -rf build build-asan build-fuzz out
+
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

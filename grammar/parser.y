@@ -1,0 +1,281 @@
+/* Grammar of .syl files (LANGUAGE.md). One statement per line; the parser only builds the
+ * syntax tree, everything else (names, arities, modules in words) is the checker's job. */
+%define api.pure full
+%define parse.error verbose
+%locations
+%define api.location.type {SylLoc}
+%param {void *scanner}
+%parse-param {ParseState *ps}
+
+%code requires {
+#include "lang/parse_state.h"
+}
+
+%code {
+#include <stdlib.h>
+#include <string.h>
+
+int yylex(YYSTYPE *lval, SylLoc *lloc, void *scanner);
+static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg) {
+    (void)scanner;
+    diag_error(ps->diag, *loc, "%s", msg);
+}
+
+static SylLoc span(SylLoc a, SylLoc b) {
+    SylLoc l = a;
+    l.last_line = b.last_line;
+    l.last_column = b.last_column;
+    return l;
+}
+
+static Expr *mk(ParseState *ps, ExprKind k, SylLoc loc) {
+    Expr *e = arena_alloc(ps->arena, sizeof *e);
+    e->kind = k;
+    e->loc = loc;
+    return e;
+}
+static Expr *mk_bin(ParseState *ps, ExprKind k, int op, Expr *a, Expr *b, SylLoc oploc) {
+    Expr *e = mk(ps, k, oploc);
+    e->op = op;
+    e->a = a;
+    e->b = b;
+    return e;
+}
+static Stmt *add_stmt(ParseState *ps, StmtKind kind, SylLoc loc) {
+    Stmt *s = VEC_PUSH(ps->arena, ps->model->v, ps->model->n, ps->model->cap);
+    s->kind = kind;
+    s->loc = loc;
+    s->block = ps->block;
+    return s;
+}
+static Item item(const char *text, ItemKind kind, SylLoc loc) {
+    Item it;
+    memset(&it, 0, sizeof it);
+    it.kind = kind;
+    it.text = text;
+    it.loc = loc;
+    return it;
+}
+}
+
+%union {
+    char *str;
+    Expr *expr;
+    ExprList exprs;
+    Item item;
+    Items items;
+    NameList names;
+    Production rule;
+}
+
+%token <str> WORD "name" DIGITS "integer" NUMBER "number" SPECIAL "turtle symbol" SETTING "setting" STRING "string"
+%token ARROW "->" NEWLINE "end of line" ANDAND "&&" OROR "||" EQ "==" NE "!=" LE "<=" GE ">="
+%token KW_LSYSTEM "lsystem" KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
+%token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
+%token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret"
+
+%type <expr> expr cond_opt weight_opt
+%type <exprs> exprs exprs_opt args_opt points
+%type <item> item hitem sym
+%type <items> items hitems
+%type <names> names names_opt
+%type <rule> rule lhs
+
+%right '?' ':'
+%left OROR
+%left ANDAND
+%left EQ NE
+%left '<' '>' LE GE
+%left '+' '-'
+%left '*' '/' '%'
+%precedence UMINUS '!'
+%right '^'
+
+%%
+
+file: %empty
+    | file top
+    ;
+
+top: NEWLINE
+   | decl NEWLINE
+   | KW_LSYSTEM WORD '{' {
+         Model *m = VEC_PUSH(ps->arena, ps->ast->models, ps->ast->nmodels, ps->ast->cap);
+         m->name = $2;
+         m->loc = @2;
+         ps->model = m;
+     } body '}' { ps->model = &ps->ast->top; }
+   | error NEWLINE { yyerrok; ps->model = ps->model ? ps->model : &ps->ast->top; }
+   ;
+
+body: %empty
+    | body stmt
+    ;
+
+stmt: NEWLINE
+    | decl NEWLINE
+    | SETTING exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $2; }
+    | KW_IGNORE items NEWLINE { add_stmt(ps, ST_IGNORE, @1)->items = $2; }
+    | KW_CONSIDER items NEWLINE { add_stmt(ps, ST_CONSIDER, @1)->items = $2; }
+    | KW_AXIOM items NEWLINE { add_stmt(ps, ST_AXIOM, @1)->items = $2; }
+    | rule NEWLINE { add_stmt(ps, ST_RULE, $1.loc)->rule = $1; }
+    | KW_DECOMPOSE '{' { ps->block = BLOCK_DECOMPOSE; } body '}' { ps->block = BLOCK_PRODUCE; }
+    | KW_INTERPRET '{' { ps->block = BLOCK_INTERPRET; } body '}' { ps->block = BLOCK_PRODUCE; }
+    | error NEWLINE { yyerrok; }
+    ;
+
+decl: KW_CONST { ps->decl = ST_CONST; } defs
+    | KW_PARAM { ps->decl = ST_PARAM; } defs
+    | KW_FN WORD '(' names_opt ')' '=' expr {
+          Stmt *s = add_stmt(ps, ST_FN, @2);
+          s->name = $2; s->params = $4; s->has_params = true; s->value = $7;
+      }
+    | KW_CURVE WORD '=' points {
+          Stmt *s = add_stmt(ps, ST_CURVE, @2);
+          s->name = $2; s->args = $4;
+      }
+    | KW_MODULE mdecls
+    ;
+
+defs: def
+    | defs ',' def
+    ;
+def: WORD '=' expr { Stmt *s = add_stmt(ps, ps->decl, @1); s->name = $1; s->value = $3; }
+   ;
+
+mdecls: mdecl
+      | mdecls ',' mdecl
+      ;
+mdecl: WORD { add_stmt(ps, ST_MODULE, @1)->name = $1; }
+     | WORD '(' names_opt ')' {
+           Stmt *s = add_stmt(ps, ST_MODULE, @1);
+           s->name = $1; s->params = $3; s->has_params = true;
+       }
+     ;
+
+names_opt: %empty { memset(&$$, 0, sizeof $$); }
+         | names
+         ;
+names: WORD { memset(&$$, 0, sizeof $$);
+              *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $1;
+              $$.n--; *VEC_PUSH(ps->arena, $$.locs, $$.n, $$.lcap) = @1; }
+     | names ',' WORD { $$ = $1;
+              *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $3;
+              $$.n--; *VEC_PUSH(ps->arena, $$.locs, $$.n, $$.lcap) = @3; }
+     ;
+
+points: '(' expr ',' expr ')' { memset(&$$, 0, sizeof $$);
+              *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2;
+              *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $4; }
+      | points ',' '(' expr ',' expr ')' { $$ = $1;
+              *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $4;
+              *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $6; }
+      ;
+
+/* ---- productions ---- */
+
+rule: lhs cond_opt ARROW items weight_opt {
+          $$ = $1; $$.cond = $2; $$.succ = $4; $$.weight = $5; $$.arrow_loc = @3;
+      }
+    | lhs cond_opt ARROW '*' weight_opt {
+          $$ = $1; $$.cond = $2; $$.star = true; $$.weight = $5; $$.arrow_loc = @3;
+      }
+    ;
+
+lhs: hitems { memset(&$$, 0, sizeof $$); $$.pred = $1; $$.loc = @1; }
+   | hitems '<' hitems { memset(&$$, 0, sizeof $$); $$.left = $1; $$.has_left = true;
+                         $$.pred = $3; $$.loc = @3; }
+   | hitems '>' hitems { memset(&$$, 0, sizeof $$); $$.pred = $1; $$.right = $3;
+                         $$.has_right = true; $$.loc = @1; }
+   | hitems '<' hitems '>' hitems { memset(&$$, 0, sizeof $$); $$.left = $1; $$.has_left = true;
+                         $$.pred = $3; $$.right = $5; $$.has_right = true; $$.loc = @3; }
+   ;
+
+cond_opt: %empty { $$ = NULL; }
+        | ':' expr { $$ = $2; }
+        ;
+weight_opt: %empty { $$ = NULL; }
+          | ':' expr { $$ = $2; }
+          ;
+
+/* Module sequences. Braces are polygon modules in successors and axioms, but never in
+ * a rule's head, so that a `}` at the start of a line always closes a block. */
+items: %empty { memset(&$$, 0, sizeof $$); }
+     | items item { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }
+     | items ANDAND { $$ = $1;
+           *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("&", IT_SYMBOL, @2);
+           *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("&", IT_SYMBOL, @2); }
+     | items OROR { $$ = $1;
+           *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("|", IT_SYMBOL, @2);
+           *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("|", IT_SYMBOL, @2); }
+     ;
+item: hitem
+    | '{' args_opt { $$ = item("{", IT_SYMBOL, @1); $$.args = $2; $$.parens = @2.first_line > 0; }
+    | '}' args_opt { $$ = item("}", IT_SYMBOL, @1); $$.args = $2; $$.parens = @2.first_line > 0; }
+    ;
+hitems: hitem { memset(&$$, 0, sizeof $$); *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $1; }
+      | hitems hitem { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }
+      ;
+hitem: WORD args_opt { $$ = item($1, IT_WORD, @1); $$.args = $2; $$.parens = @2.first_line > 0; }
+     | DIGITS args_opt { $$ = item($1, IT_DIGITS, @1); $$.args = $2; $$.parens = @2.first_line > 0; }
+     | sym args_opt { $$ = $1; $$.args = $2; $$.parens = @2.first_line > 0; }
+     | '[' { $$ = item("[", IT_SYMBOL, @1); }
+     | ']' { $$ = item("]", IT_SYMBOL, @1); }
+     ;
+sym: '+' { $$ = item("+", IT_SYMBOL, @1); }
+   | '-' { $$ = item("-", IT_SYMBOL, @1); }
+   | '&' { $$ = item("&", IT_SYMBOL, @1); }
+   | '^' { $$ = item("^", IT_SYMBOL, @1); }
+   | '\\' { $$ = item("\\", IT_SYMBOL, @1); }
+   | '/' { $$ = item("/", IT_SYMBOL, @1); }
+   | '|' { $$ = item("|", IT_SYMBOL, @1); }
+   | '!' { $$ = item("!", IT_SYMBOL, @1); }
+   | '\'' { $$ = item("'", IT_SYMBOL, @1); }
+   | '$' { $$ = item("$", IT_SYMBOL, @1); }
+   | '%' { $$ = item("%", IT_SYMBOL, @1); }
+   | '.' { $$ = item(".", IT_SYMBOL, @1); }
+   | ';' { $$ = item(";", IT_SYMBOL, @1); }
+   | ',' { $$ = item(",", IT_SYMBOL, @1); }
+   | '~' { $$ = item("~", IT_SYMBOL, @1); }
+   | SPECIAL { $$ = item($1, IT_SYMBOL, @1); }
+   ;
+/* An empty location (line 0) tells "no parentheses" from "()". */
+args_opt: %empty { memset(&$$, 0, sizeof $$); @$.first_line = 0; }
+        | '(' exprs_opt ')' { $$ = $2; }
+        ;
+
+/* ---- expressions ---- */
+
+exprs_opt: %empty { memset(&$$, 0, sizeof $$); }
+         | exprs
+         ;
+exprs: expr { memset(&$$, 0, sizeof $$); *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $1; }
+     | exprs ',' expr { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $3; }
+     ;
+
+expr: NUMBER { $$ = mk(ps, EX_NUM, @1); $$->num = strtod($1, NULL); }
+    | DIGITS { $$ = mk(ps, EX_NUM, @1); $$->num = strtod($1, NULL); }
+    | WORD { $$ = mk(ps, EX_NAME, @1); $$->name = $1; }
+    | WORD '(' exprs_opt ')' { $$ = mk(ps, EX_CALL, span(@1, @4)); $$->name = $1; $$->args = $3; }
+    | '(' expr ')' { $$ = $2; }
+    | expr '+' expr { $$ = mk_bin(ps, EX_BINARY, '+', $1, $3, @2); }
+    | expr '-' expr { $$ = mk_bin(ps, EX_BINARY, '-', $1, $3, @2); }
+    | expr '*' expr { $$ = mk_bin(ps, EX_BINARY, '*', $1, $3, @2); }
+    | expr '/' expr { $$ = mk_bin(ps, EX_BINARY, '/', $1, $3, @2); }
+    | expr '%' expr { $$ = mk_bin(ps, EX_BINARY, '%', $1, $3, @2); }
+    | expr '^' expr { $$ = mk_bin(ps, EX_BINARY, '^', $1, $3, @2); }
+    | expr '<' expr { $$ = mk_bin(ps, EX_BINARY, '<', $1, $3, @2); }
+    | expr '>' expr { $$ = mk_bin(ps, EX_BINARY, '>', $1, $3, @2); }
+    | expr LE expr { $$ = mk_bin(ps, EX_BINARY, BIN_LE, $1, $3, @2); }
+    | expr GE expr { $$ = mk_bin(ps, EX_BINARY, BIN_GE, $1, $3, @2); }
+    | expr EQ expr { $$ = mk_bin(ps, EX_BINARY, BIN_EQ, $1, $3, @2); }
+    | expr NE expr { $$ = mk_bin(ps, EX_BINARY, BIN_NE, $1, $3, @2); }
+    | expr ANDAND expr { $$ = mk_bin(ps, EX_AND, 0, $1, $3, @2); }
+    | expr OROR expr { $$ = mk_bin(ps, EX_OR, 0, $1, $3, @2); }
+    | expr '?' expr ':' expr { $$ = mk_bin(ps, EX_COND, 0, $1, $3, @2); $$->c = $5; }
+    | '-' expr %prec UMINUS { $$ = mk(ps, EX_UNARY, @1); $$->op = '-'; $$->a = $2; }
+    | '+' expr %prec UMINUS { $$ = $2; }
+    | '!' expr { $$ = mk(ps, EX_UNARY, @1); $$->op = '!'; $$->a = $2; }
+    ;
+
+%%

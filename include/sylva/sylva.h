@@ -1,0 +1,83 @@
+/* libsylva: compile .syl models and derive their module strings.
+ *
+ * Every function reports problems through the FILE * it is given (diagnostics in the form
+ * `file:line:col: error: message`) and returns one of the SYL_* status codes, which are also
+ * the exit codes of the `sylva` command. */
+#ifndef SYLVA_H
+#define SYLVA_H
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#define SYLVA_VERSION "0.1.0"
+
+enum {
+    SYL_OK = 0,
+    SYL_EMODEL = 1, /* the model is wrong: syntax, names, or a runtime error in an expression */
+    SYL_EUSAGE = 2, /* bad command line or option */
+    SYL_ELIMIT = 3, /* a resource limit was hit (--max-modules, --max-memory) */
+    SYL_EIO = 4,    /* a file could not be read or written */
+};
+
+typedef struct SylProgram SylProgram;
+typedef struct SylString SylString;
+
+typedef struct SylOverride {
+    const char *name;
+    double value;
+} SylOverride;
+
+typedef struct SylCompileOptions {
+    const char *model;            /* model name; NULL: the file's first lsystem */
+    const SylOverride *overrides; /* --set name=value */
+    int noverrides;
+    FILE *diag;                   /* where diagnostics go; NULL: nowhere */
+    int lint;                     /* also report warnings of `sylva check` */
+} SylCompileOptions;
+
+/* Compile source text (path is used in messages only). On failure *status is set and NULL
+ * is returned; a NULL text reads the file at path ("-": standard input). */
+SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
+                        int *status);
+void syl_program_free(SylProgram *p);
+/* Names of the models in a file, for listing; returns how many, writes at most max. */
+int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,
+                    char *buf, size_t bufsize);
+
+const char *syl_program_name(const SylProgram *p);
+int syl_program_steps(const SylProgram *p);        /* the model's `derive` */
+uint64_t syl_program_seed(const SylProgram *p);
+int syl_program_symbol_count(const SylProgram *p);
+const char *syl_program_symbol_name(const SylProgram *p, int sym);
+int syl_program_symbol_find(const SylProgram *p, const char *name); /* -1 if absent */
+double syl_program_setting(const SylProgram *p, const char *name);  /* angle, step, width */
+/* Print modules, constants, parameters, rules and their bytecode. */
+void syl_program_dump(const SylProgram *p, FILE *out);
+
+typedef struct SylDeriveOptions {
+    int steps;            /* < 0: the model's `derive` */
+    int use_seed;         /* nonzero: use seed instead of the model's */
+    uint64_t seed;
+    int threads;          /* <= 0: all cores */
+    uint64_t max_modules; /* 0: default (200 million) */
+    uint64_t max_memory;  /* bytes; 0: default (half the machine's memory, at most 16 GiB) */
+    FILE *diag;
+    /* Called with step 0 (the axiom, decomposed) and after every step; may be NULL. */
+    void (*on_step)(void *user, int step, const SylString *s);
+    void *user;
+} SylDeriveOptions;
+
+int syl_derive(const SylProgram *p, const SylDeriveOptions *opt, SylString **out);
+/* Apply the model's `interpret` rules: the string the turtle reads (never stored). */
+int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out);
+
+size_t syl_string_length(const SylString *s);
+/* Module i: its symbol id, parameter count and a pointer to its parameters. */
+int syl_string_module(const SylString *s, size_t i, int *nparams, const double **params);
+/* Canonical form: modules concatenated, parameters as %g separated by commas. */
+int syl_string_write(const SylProgram *p, const SylString *s, FILE *out);
+/* Count modules per symbol: counts must hold syl_program_symbol_count(p) entries. */
+void syl_string_count(const SylString *s, uint64_t *counts);
+void syl_string_free(SylString *s);
+
+#endif

@@ -1,0 +1,95 @@
+/* sylva check: report errors and warnings without deriving. */
+#include <getopt.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+
+static const char usage[] =
+    "usage: sylva check FILE[:Model]...\n"
+    "\n"
+    "Compile every model of each file (or the one named) and report errors and warnings:\n"
+    "unknown names, rules that can never apply, weights that are not positive, modules,\n"
+    "constants and functions that are never used. Exit code 0 when there is no error, 1\n"
+    "otherwise (warnings alone do not fail).\n"
+    "\n"
+    "  --werror   treat warnings as errors\n";
+
+static char *slurp(const char *path, size_t *len) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    size_t cap = 1 << 16, n = 0, got;
+    char *buf = malloc(cap);
+    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0)
+        if ((n += got) == cap) {
+            char *nb = realloc(buf, cap *= 2);
+            if (!nb) free(buf);
+            buf = nb;
+        }
+    fclose(f);
+    *len = n;
+    return buf;
+}
+
+int cmd_check(int argc, char **argv) {
+    static const struct option opts[] = {{"werror", no_argument, 0, 'W'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
+    bool werror = false;
+    int c;
+    optind = 1;
+    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
+        if (c == 'W') werror = true;
+        else if (c == 'h') {
+            fputs(usage, stdout);
+            return SYL_OK;
+        } else {
+            fputs(usage, stderr);
+            return SYL_EUSAGE;
+        }
+    }
+    if (optind >= argc) {
+        fputs(usage, stderr);
+        return SYL_EUSAGE;
+    }
+    int worst = SYL_OK, models = 0;
+    for (int a = optind; a < argc; a++) {
+        ModelArgs m = {0};
+        cli_model_spec(&m, argv[a]);
+        size_t len = 0;
+        char *text = slurp(m.path, &len);
+        if (!text) {
+            fprintf(stderr, "sylva: error: cannot read '%s'\n", m.path);
+            worst = SYL_EIO;
+            continue;
+        }
+        const char *names[256];
+        char buf[8192];
+        int n = m.model ? 0 : syl_list_models(m.path, text, len, names, 256, buf, sizeof buf);
+        if (n == 0) { /* one model named, or a file that does not parse: report as is */
+            names[0] = m.model;
+            n = 1;
+        }
+        for (int i = 0; i < n; i++) {
+            /* collect into memory to count warnings, then pass them on */
+            char *msg = NULL;
+            size_t msglen = 0;
+            FILE *mem = open_memstream(&msg, &msglen);
+            SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1};
+            int status;
+            SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
+            if (mem) fclose(mem);
+            if (msg) fputs(msg, stderr);
+            bool warned = msg && strstr(msg, ": warning: ");
+            free(msg);
+            models++;
+            if (!p) {
+                if (status > worst) worst = status;
+            } else if (werror && warned && worst == SYL_OK) {
+                worst = SYL_EMODEL;
+            }
+            syl_program_free(p);
+        }
+        free(text);
+    }
+    if (worst == SYL_OK) fprintf(stderr, "sylva check: %d model%s ok\n", models, models == 1 ? "" : "s");
+    return worst;
+}

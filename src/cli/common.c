@@ -1,0 +1,134 @@
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "cli.h"
+
+void cli_model_spec(ModelArgs *m, const char *spec) {
+    struct stat st;
+    m->spec = spec;
+    snprintf(m->path, sizeof m->path, "%s", spec);
+    m->model = NULL;
+    char *colon = strrchr(m->path, ':');
+    if (colon && colon[1] && stat(m->path, &st) != 0) {
+        *colon = 0;
+        m->model = colon + 1;
+    }
+}
+
+bool cli_number(const char *opt, const char *arg, double min, double max, double *out) {
+    char *end;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (!*arg || *end || errno || !isfinite(v) || v < min || v > max) {
+        fprintf(stderr, "sylva: error: %s expects a number from %g to %g, not '%s'\n", opt, min, max, arg);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+bool cli_size(const char *opt, const char *arg, unsigned long long *out) {
+    char *end;
+    errno = 0;
+    double v = strtod(arg, &end);
+    double unit = 1;
+    if (*end == 'k' || *end == 'K') unit = 1024.0, end++;
+    else if (*end == 'm' || *end == 'M') unit = 1024.0 * 1024, end++;
+    else if (*end == 'g' || *end == 'G') unit = 1024.0 * 1024 * 1024, end++;
+    if (*end == 'B' || *end == 'b') end++;
+    if (!*arg || *end || errno || !(v > 0) || v * unit > 1e18) {
+        fprintf(stderr, "sylva: error: %s expects a size such as 512M or 4G, not '%s'\n", opt, arg);
+        return false;
+    }
+    *out = (unsigned long long)(v * unit);
+    return true;
+}
+
+bool cli_set(ModelArgs *m, const char *arg) {
+    const char *eq = strchr(arg, '=');
+    if (!eq || eq == arg) {
+        fprintf(stderr, "sylva: error: --set expects name=value, not '%s'\n", arg);
+        return false;
+    }
+    if (m->nsets == MAX_SETS) {
+        fprintf(stderr, "sylva: error: at most %d --set options\n", MAX_SETS);
+        return false;
+    }
+    double v;
+    if (!cli_number("--set", eq + 1, -1e300, 1e300, &v)) return false;
+    size_t n = (size_t)(eq - arg);
+    char *name = malloc(n + 1);
+    if (!name) return false;
+    memcpy(name, arg, n);
+    name[n] = 0;
+    m->sets[m->nsets].name = name;
+    m->sets[m->nsets++].value = v;
+    return true;
+}
+
+SylProgram *cli_compile(ModelArgs *m, int lint, int *status) {
+    SylCompileOptions opt = {.model = m->model, .overrides = m->sets, .noverrides = m->nsets,
+                             .diag = stderr, .lint = lint};
+    return syl_compile(m->path, NULL, 0, &opt, status);
+}
+
+bool out_open(OutFile *o, const char *path) {
+    memset(o, 0, sizeof *o);
+    if (!path || !strcmp(path, "-")) {
+        o->f = stdout;
+        return true;
+    }
+    size_t n = strlen(path) + 32;
+    o->path = strdup(path);
+    o->tmp = malloc(n);
+    if (!o->path || !o->tmp) return false;
+    snprintf(o->tmp, n, "%s.tmp%ld", path, (long)getpid());
+    o->f = fopen(o->tmp, "wb");
+    if (!o->f) {
+        fprintf(stderr, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
+        free(o->path);
+        free(o->tmp);
+        return false;
+    }
+    return true;
+}
+
+int out_close(OutFile *o, int status) {
+    if (o->f == stdout) {
+        if (fflush(stdout) && !status) {
+            fprintf(stderr, "sylva: error: cannot write the output: %s\n", strerror(errno));
+            status = SYL_EIO;
+        }
+        return status;
+    }
+    if (fclose(o->f) && !status) {
+        fprintf(stderr, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno));
+        status = SYL_EIO;
+    }
+    if (!status && rename(o->tmp, o->path)) {
+        fprintf(stderr, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno));
+        status = SYL_EIO;
+    }
+    if (status) unlink(o->tmp);
+    free(o->path);
+    free(o->tmp);
+    return status;
+}
+
+double cli_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+double cli_peak_mb(void) {
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    return (double)ru.ru_maxrss / 1024.0;
+}

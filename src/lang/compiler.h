@@ -1,0 +1,75 @@
+/* Internal to src/lang: the state of one compilation and the pieces that share it. */
+#ifndef SYL_COMPILER_H
+#define SYL_COMPILER_H
+#include "ast.h"
+#include "program.h"
+#include "sylva/sylva.h"
+#include "../util/namemap.h"
+
+/* A named value known at compile time: a const or a param. */
+typedef struct Value {
+    const char *name;
+    SylLoc loc;
+    bool is_param, known, used;
+    bool top; /* defined outside any model: shared, so not reported as unused */
+    double v;
+} Value;
+
+/* Names bound inside one expression: rule parameters or function parameters. */
+typedef struct Scope {
+    const char **names;
+    int n;
+    bool *used;
+} Scope;
+
+/* One expression's code, built apart and appended whole (a nested function compile may
+ * append in the middle); jump operands are relative to the chunk until then. */
+typedef struct Emitter {
+    uint32_t *code;
+    SylLoc *loc;
+    int n, cap, loccap;
+    int depth, maxdepth;
+} Emitter;
+
+/* A module after words were split: symbol id and its argument expressions. */
+typedef struct Mod {
+    int sym;
+    SylLoc loc;
+    ExprList args;
+} Mod;
+typedef struct Mods {
+    Mod *v;
+    int n, cap;
+} Mods;
+
+typedef struct Compiler {
+    SylProgram *p;
+    Diag *d;
+    Arena *tmp; /* AST and scratch, freed after compilation */
+    const SylCompileOptions *opt;
+    NameMap values, fns, curves, syms, declared;
+    Value *vals;
+    int nvals, valcap;
+    int max_declared_len;
+    Stmt **fn_stmts; /* per function: its definition */
+    bool *fn_random; /* per function: its body draws random numbers */
+    bool *fn_used, *curve_used;
+    bool *sym_used;  /* per symbol: appears in an axiom or a rule */
+} Compiler;
+
+/* expr.c */
+Expr *cc_fold(Compiler *c, Expr *e, Scope *s, bool *random);
+bool cc_const(Compiler *c, Expr *e, double *out); /* compile-time value or an error */
+/* Fold, emit and append; returns its pc. *random (may be NULL) tells whether it draws. */
+int32_t cc_expr(Compiler *c, Expr *e, Scope *s, bool *random);
+void cc_function(Compiler *c, int fn);
+bool cc_code_constant(const SylProgram *p, int32_t pc, double *v); /* PUSHK k; RET */
+
+/* modules.c */
+int cc_symbol(Compiler *c, const char *name, SylLoc loc);
+void cc_split(Compiler *c, const Items *items, Mods *out);
+
+/* lint.c */
+void cc_lint(Compiler *c);
+
+#endif

@@ -1,0 +1,131 @@
+/* The disassembler behind `sylva compile --dump`: what each rule became. */
+#include <stdio.h>
+
+#include "builtins.h"
+#include "opcodes.h"
+#include "program.h"
+#include "sylva/sylva.h"
+
+static void module(FILE *out, const SylProgram *p, uint16_t code) {
+    int ar = CODE_ARITY(code);
+    fprintf(out, "%s", p->syms[CODE_SYM(code)].name);
+    if (ar) fprintf(out, "/%d", ar);
+}
+
+/* Print the expression at pc up to its RET (jumps only go forward). */
+static void expression(FILE *out, const SylProgram *p, uint32_t pc, const char **names, const char *indent) {
+    uint32_t end = pc;
+    for (uint32_t i = pc;; i++) {
+        Opcode op = INSTR_OP(p->code[i]);
+        if (syl_op_kinds[op] == 'J' && INSTR_A(p->code[i]) > end) end = INSTR_A(p->code[i]);
+        if (op == OP_RET && i >= end) {
+            end = i;
+            break;
+        }
+    }
+    for (uint32_t i = pc; i <= end; i++) {
+        uint32_t ins = p->code[i], a = INSTR_A(ins);
+        Opcode op = INSTR_OP(ins);
+        fprintf(out, "%s%04u  %-6s", indent, i, syl_op_names[op]);
+        switch (syl_op_kinds[op]) {
+        case 'K': fprintf(out, " %g", p->consts[a]); break;
+        case 'L': fprintf(out, " %s", names ? names[a] : "?"); break;
+        case 'J': fprintf(out, " -> %04u", a); break;
+        case 'B': fprintf(out, " %s/%d", syl_builtins[a].name, syl_builtins[a].nargs); break;
+        case 'F': fprintf(out, " %s/%d", p->fns[a].name, p->fns[a].nparams); break;
+        case 'C': fprintf(out, " %s", p->curves[a].name); break;
+        }
+        fputc('\n', out);
+    }
+}
+
+static void pattern(FILE *out, const SylProgram *p, const PatElem *pe, int n, const char **names) {
+    for (int i = 0; i < n; i++) {
+        if (i) fputc(' ', out);
+        module(out, p, pe[i].code);
+        int ar = CODE_ARITY(pe[i].code);
+        if (pe[i].kind == PAT_MODULE && ar) {
+            fputc('(', out);
+            for (int k = 0; k < ar; k++) fprintf(out, "%s%s", k ? "," : "", names[pe[i].local + k]);
+            fputc(')', out);
+        }
+    }
+}
+
+static void rule(FILE *out, const SylProgram *p, const Rule *r, int index) {
+    if (index >= 0) {
+        fprintf(out, "  rule %d, line %d: ", index + 1, r->line);
+        if (r->nleft) {
+            pattern(out, p, r->left, r->nleft, r->names);
+            fprintf(out, " < ");
+        }
+        module(out, p, r->pred);
+        if (r->pred_arity) {
+            fputc('(', out);
+            for (int k = 0; k < r->pred_arity; k++) fprintf(out, "%s%s", k ? "," : "", r->names[k]);
+            fputc(')', out);
+        }
+        if (r->nright) {
+            fprintf(out, " > ");
+            pattern(out, p, r->right, r->nright, r->names);
+        }
+        fputc('\n', out);
+        if (r->cond >= 0) {
+            fprintf(out, "    condition:\n");
+            expression(out, p, (uint32_t)r->cond, r->names, "      ");
+        }
+        if (r->weighted && r->weight < 0) fprintf(out, "    weight: %g\n", r->const_weight);
+        if (r->weight >= 0) {
+            fprintf(out, "    weight:\n");
+            expression(out, p, (uint32_t)r->weight, r->names, "      ");
+        }
+    }
+    fprintf(out, "    successor (%d module%s):", r->nsucc, r->nsucc == 1 ? "" : "s");
+    for (int i = 0; i < r->nsucc; i++) {
+        fputc(' ', out);
+        module(out, p, r->succ[i]);
+    }
+    fputc('\n', out);
+    for (int k = 0; k < r->nslots; k++) {
+        const Slot *s = &r->slots[k];
+        fprintf(out, "      parameter %d: ", k + 1);
+        if (s->kind == SLOT_CONST) fprintf(out, "constant %g\n", s->k);
+        else if (s->kind == SLOT_LOCAL) fprintf(out, "copy %s\n", r->names[s->local]);
+        else {
+            fprintf(out, "code\n");
+            expression(out, p, s->pc, r->names, "        ");
+        }
+    }
+}
+
+void syl_program_dump(const SylProgram *p, FILE *out) {
+    fprintf(out, "lsystem %s\n", p->name);
+    fprintf(out, "settings: derive %d, angle %g, step %g, width %g, seed %llu\n", p->derive, p->angle, p->step,
+            p->width, (unsigned long long)p->seed);
+    fprintf(out, "modules (%d):", p->nsyms);
+    for (int i = 0; i < p->nsyms; i++) fprintf(out, " %s%s", p->syms[i].name, p->skip[i] ? "(ignored)" : "");
+    fputc('\n', out);
+    for (int i = 0; i < p->nparams; i++)
+        fprintf(out, "param %s = %g%s\n", p->params[i].name, p->params[i].value,
+                p->params[i].overridden ? " (set on the command line)" : "");
+    fprintf(out, "axiom:\n");
+    rule(out, p, &p->axiom, -1);
+    static const char *const table_names[TABLE_COUNT] = {"productions", "decomposition", "interpretation"};
+    for (int t = 0; t < TABLE_COUNT; t++) {
+        const RuleTable *tb = &p->tables[t];
+        if (!tb->nrules) continue;
+        fprintf(out, "%s (%d rule%s", table_names[t], tb->nrules, tb->nrules == 1 ? "" : "s");
+        if (t != TABLE_PRODUCE) fprintf(out, ", maxdepth %d", tb->maxdepth);
+        fprintf(out, "):\n");
+        for (int i = 0; i < tb->nrules; i++) rule(out, p, &tb->rules[i], i);
+    }
+    for (int i = 0; i < p->nfns; i++) {
+        fprintf(out, "fn %s/%d:\n", p->fns[i].name, p->fns[i].nparams);
+        expression(out, p, p->fns[i].pc, p->fns[i].names, "    ");
+    }
+    for (int i = 0; i < p->ncurves; i++) {
+        fprintf(out, "curve %s:", p->curves[i].name);
+        for (int k = 0; k < p->curves[i].n; k++) fprintf(out, " (%g, %g)", p->curves[i].x[k], p->curves[i].y[k]);
+        fputc('\n', out);
+    }
+}

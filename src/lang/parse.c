@@ -1,0 +1,28 @@
+/* Runs the flex scanner and the bison parser over one source text. */
+#include <string.h>
+
+#include "lang/parse_state.h"
+#include "parser.h"
+#include "lexer.h"
+
+const char *const syl_setting_names[] = {"derive", "angle", "step", "width", "seed", "maxdepth", NULL};
+
+int yyparse(void *scanner, ParseState *ps);
+
+int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
+    memset(ast, 0, sizeof *ast);
+    int before = diag->errors;
+    LexState ls = {.line = 1, .col = 1, .arena = arena, .diag = diag};
+    ParseState ps = {.arena = arena, .diag = diag, .ast = ast, .model = &ast->top};
+    yyscan_t scanner;
+    if (yylex_init_extra(&ls, &scanner)) {
+        diag_error(diag, (SylLoc){0}, "cannot start the lexer");
+        return 1;
+    }
+    YY_BUFFER_STATE buf = yy_scan_bytes(src->text, (int)src->len, scanner);
+    int rc = yyparse(scanner, &ps);
+    yy_delete_buffer(buf, scanner);
+    yylex_destroy(scanner);
+    if (rc && diag->errors == before) diag_error(diag, (SylLoc){0}, "could not parse the file");
+    return diag->errors - before;
+}

@@ -1,0 +1,26 @@
+/* State shared by the flex lexer and the bison parser (internal to src/lang). */
+#ifndef SYL_PARSE_STATE_H
+#define SYL_PARSE_STATE_H
+#include "ast.h"
+
+typedef struct LexState {
+    int line, col, paren;
+    int eof_done; /* a final NEWLINE was sent, so a file may end without one */
+    Arena *arena;
+    Diag *diag;
+    SylLoc comment_loc;
+} LexState;
+
+typedef struct ParseState {
+    Arena *arena;
+    Diag *diag;
+    FileAst *ast;
+    Model *model; /* where statements go: a model, or the file's top level */
+    int block;    /* BLOCK_* */
+    StmtKind decl; /* ST_CONST or ST_PARAM while reading a definition list */
+} ParseState;
+
+/* Words the lexer returns as SETTING rather than as a name (NULL-terminated). */
+extern const char *const syl_setting_names[];
+
+#endif

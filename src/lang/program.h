@@ -1,0 +1,150 @@
+/* Program: everything the compiler produces for one model. Immutable once built; the
+ * derivation engine, the disassembler and (later) the turtle read it. */
+#ifndef SYL_PROGRAM_H
+#define SYL_PROGRAM_H
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "../util/arena.h"
+#include "../util/diag.h"
+#include "sylva/sylva.h"
+
+/* A module code packs the symbol id (low 11 bits) and the parameter count (high 5 bits):
+ * a rule for A(x) and one for A(x, y) are different entries of the dispatch table. */
+enum { SYM_BITS = 11, MAX_SYMBOLS = 1 << SYM_BITS, MAX_ARITY = 31, CODE_COUNT = 1 << 16 };
+#define CODE(sym, arity) ((uint16_t)((sym) | ((arity) << SYM_BITS)))
+#define CODE_SYM(c) ((c) & (MAX_SYMBOLS - 1))
+#define CODE_ARITY(c) ((c) >> SYM_BITS)
+
+/* Symbols every program has, at fixed ids, because the engine treats them specially. */
+enum { SYM_OPEN = 0, SYM_CLOSE = 1 };
+
+enum { MAX_LOCALS = 255, VM_STACK = 64 };
+
+typedef struct Symbol {
+    const char *name;
+    int declared_arity; /* -1: not declared with a parameter list */
+    bool declared;
+    SylLoc decl_loc;
+} Symbol;
+
+/* One element of a context pattern: a module to match (binding its parameters to locals
+ * starting at `local`), or a bracket of a branch written in a right context. */
+typedef enum { PAT_MODULE, PAT_OPEN, PAT_CLOSE } PatKind;
+typedef struct PatElem {
+    uint8_t kind;
+    uint8_t local;
+    uint16_t code;
+    int32_t match; /* PAT_OPEN: index of its PAT_CLOSE */
+} PatElem;
+
+/* How a successor parameter gets its value. */
+typedef enum { SLOT_CONST, SLOT_LOCAL, SLOT_CODE } SlotKind;
+typedef struct Slot {
+    uint8_t kind;
+    uint8_t local;
+    uint32_t pc;
+    double k;
+} Slot;
+
+typedef struct Rule {
+    uint16_t pred;            /* module code of the predecessor */
+    uint8_t nlocals;          /* predecessor, then left, then right context parameters */
+    uint8_t pred_arity;
+    PatElem *left, *right;    /* left stored as written; matched from its end */
+    int nleft, nright;
+    int32_t cond, weight;     /* code addresses, -1 when absent */
+    double const_weight;      /* weight when it is a constant */
+    bool weighted;
+    uint16_t *succ;           /* module codes of the successor */
+    int nsucc;
+    Slot *slots;              /* one per successor parameter, in order */
+    int nslots;
+    SylLoc loc;               /* the predecessor */
+    int line;
+    const char **names;       /* of the locals, for the disassembler */
+} Rule;
+
+/* Per module code: which rules to try. A plain entry is one unconditional context-free
+ * unweighted rule, emitted without any matching. */
+typedef struct Dispatch {
+    uint32_t first; /* index into RuleTable.order */
+    uint16_t count;
+    uint8_t plain;
+} Dispatch;
+
+typedef struct RuleTable {
+    Rule *rules;
+    int nrules;
+    uint16_t *order;     /* rule indices grouped by predecessor code, source order kept */
+    Dispatch *dispatch;  /* CODE_COUNT entries, NULL when the table is empty */
+    bool has_context;
+    int max_succ;        /* longest successor in modules */
+    int max_succ_params; /* most parameters a successor emits */
+    int maxdepth;        /* decomposition / interpretation passes */
+} RuleTable;
+
+typedef struct Function {
+    const char *name;
+    const char **names; /* of the parameters */
+    int nparams;
+    uint32_t pc;
+    SylLoc loc;
+    int state; /* 0 not compiled, 1 compiling, 2 compiled */
+} Function;
+
+typedef struct Curve {
+    const char *name;
+    SylLoc loc;
+    double *x, *y;
+    int n;
+} Curve;
+
+static inline double curve_eval(const Curve *c, double x) {
+    if (x <= c->x[0]) return c->y[0];
+    if (x >= c->x[c->n - 1]) return c->y[c->n - 1];
+    int i = 1;
+    while (c->x[i] < x) i++;
+    double t = (x - c->x[i - 1]) / (c->x[i] - c->x[i - 1]);
+    return c->y[i - 1] + t * (c->y[i] - c->y[i - 1]);
+}
+
+typedef struct ParamInfo {
+    const char *name;
+    double value;
+    bool overridden;
+} ParamInfo;
+
+enum { TABLE_PRODUCE, TABLE_DECOMPOSE, TABLE_INTERPRET, TABLE_COUNT };
+
+struct SylProgram {
+    Arena arena;
+    Source src;
+    char *text; /* owned copy of the source */
+    const char *name;
+
+    Symbol *syms;
+    int nsyms, symcap;
+
+    uint32_t *code;  /* bytecode of every expression */
+    SylLoc *code_loc; /* source location per instruction, for runtime errors */
+    int ncode, codecap;
+    double *consts;
+    int nconsts, constcap;
+    Function *fns;
+    int nfns, fncap;
+    Curve *curves;
+    int ncurves, curvecap;
+    ParamInfo *params;
+    int nparams, paramcap;
+
+    RuleTable tables[TABLE_COUNT];
+    Rule axiom;          /* the axiom, as a rule with no predecessor */
+    bool skip[MAX_SYMBOLS]; /* ignored in context matching */
+
+    int derive;
+    double angle, step, width;
+    uint64_t seed;
+};
+
+#endif

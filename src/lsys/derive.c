@@ -1,0 +1,416 @@
+/* The derivation engine: parallel rewriting of a module string, one table at a time.
+ *
+ * A step reads one string and writes the next. The input is cut into chunks that threads
+ * rewrite independently; every random draw comes from a stream keyed by (seed, step,
+ * table, module position), so the result is the same for any number of threads. */
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "../lang/builtins.h"
+#include "match.h"
+#include "modstr.h"
+#include "sylva/sylva.h"
+#include "vm.h"
+
+enum { PARALLEL_MIN = 1 << 16, MAX_CHOICES = 1024, MAX_THREADS = 256 };
+
+typedef struct Fault {
+    int status;      /* SYL_OK, SYL_EMODEL or SYL_ELIMIT */
+    VmFault vm;
+    size_t pos;      /* the module being rewritten */
+    const Rule *rule;
+} Fault;
+
+/* One chunk of one pass. */
+typedef struct Work {
+    const SylProgram *p;
+    const RuleTable *t;
+    const View *in;
+    size_t lo, hi;
+    uint32_t plo;     /* offset of module lo's parameters */
+    SylString *out;
+    uint64_t key;     /* step and pass, for the random streams */
+    int table;
+    uint64_t seed;
+    bool applied;     /* a rule other than identity was used */
+    Fault fault;
+} Work;
+
+static void copy_module(Work *w, uint16_t c, const double *args) {
+    SylString *o = w->out;
+    int ar = CODE_ARITY(c);
+    o->code[o->n++] = c;
+    if (ar) {
+        memcpy(o->par + o->np, args, sizeof(double) * (size_t)ar);
+        o->np += (size_t)ar;
+    }
+}
+
+static int fail(Work *w, size_t pos, const Rule *r, int status) {
+    w->fault.status = SYL_EMODEL;
+    w->fault.pos = pos;
+    w->fault.rule = r;
+    if (status != EVAL_OK && !w->fault.vm.status) w->fault.vm.status = status;
+    return SYL_EMODEL;
+}
+
+static int emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready) {
+    SylString *o = w->out;
+    memcpy(o->code + o->n, r->succ, sizeof(uint16_t) * (size_t)r->nsucc);
+    o->n += (size_t)r->nsucc;
+    double *dst = o->par + o->np;
+    for (int k = 0; k < r->nslots; k++) {
+        const Slot *s = &r->slots[k];
+        switch (s->kind) {
+        case SLOT_CONST: dst[k] = s->k; break;
+        case SLOT_LOCAL: dst[k] = locals[s->local]; break;
+        default:
+            if (!*rng_ready) {
+                *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, pos);
+                *rng_ready = true;
+            }
+            if (vm_run(w->p, s->pc, locals, rng, &dst[k], &w->fault.vm)) return fail(w, pos, r, EVAL_OK);
+        }
+    }
+    o->np += (size_t)r->nslots;
+    w->applied = true;
+    return SYL_OK;
+}
+
+/* Try the rules for module i in order: the first applicable one decides. If it is weighted,
+ * the choice is among every applicable weighted rule, in proportion to its weight. */
+static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, Rng *rng, bool *rng_ready,
+                          int *status) {
+    const RuleTable *t = w->t;
+    const View *in = w->in;
+    const Rule *cand[MAX_CHOICES];
+    double weight[MAX_CHOICES], total = 0;
+    int nc = 0;
+    *status = SYL_OK;
+    for (uint32_t k = 0; k < d->count; k++) {
+        const Rule *r = &t->rules[t->order[d->first + k]];
+        if (nc && !r->weighted) continue;
+        if (r->nleft && !match_left(in, i, r, locals)) continue;
+        if (r->nright && !match_right(in, i, r, locals)) continue;
+        if (r->cond >= 0 || r->weight >= 0) {
+            if (!*rng_ready) {
+                *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
+                *rng_ready = true;
+            }
+        }
+        if (r->cond >= 0) {
+            double v;
+            if (vm_run(w->p, (uint32_t)r->cond, locals, rng, &v, &w->fault.vm)) {
+                *status = fail(w, i, r, EVAL_OK);
+                return NULL;
+            }
+            if (v == 0) continue;
+        }
+        if (!r->weighted) return r;
+        double wt = r->const_weight;
+        if (r->weight >= 0 && vm_run(w->p, (uint32_t)r->weight, locals, rng, &wt, &w->fault.vm)) {
+            *status = fail(w, i, r, EVAL_OK);
+            return NULL;
+        }
+        if (wt < 0) {
+            w->fault.vm.pc = (uint32_t)r->weight;
+            *status = fail(w, i, r, EVAL_NEG_WEIGHT);
+            return NULL;
+        }
+        if (nc < MAX_CHOICES) {
+            cand[nc] = r;
+            weight[nc++] = wt;
+            total += wt;
+        }
+    }
+    if (!nc || total <= 0) return NULL;
+    if (!*rng_ready) {
+        *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
+        *rng_ready = true;
+    }
+    double u = rng_unit(rng) * total;
+    int pick = 0;
+    while (pick < nc - 1 && (u -= weight[pick]) >= 0) pick++;
+    while (weight[pick] == 0) pick--; /* u landed exactly on a boundary before a zero */
+    const Rule *r = cand[pick];
+    /* the contexts bound last may be another candidate's: bind the chosen rule's again */
+    if (r->nleft) match_left(in, i, r, locals);
+    if (r->nright) match_right(in, i, r, locals);
+    return r;
+}
+
+static void run_chunk(Work *w) {
+    const RuleTable *t = w->t;
+    const View *in = w->in;
+    SylString *o = w->out;
+    const uint16_t *code = in->code;
+    const double *par = in->par + w->plo;
+    const size_t need = (size_t)(t->max_succ > 1 ? t->max_succ : 1);
+    const size_t pneed = (size_t)t->max_succ_params + MAX_ARITY;
+    double locals[MAX_LOCALS + MAX_ARITY];
+    w->fault.status = SYL_OK;
+    for (size_t i = w->lo; i < w->hi; i++) {
+        uint16_t c = code[i];
+        const double *args = par;
+        par += CODE_ARITY(c);
+        if (o->n + need > o->cap || o->np + pneed > o->pcap) {
+            size_t left = w->hi - i;
+            if (ms_reserve(o, need + left, pneed)) {
+                w->fault.status = SYL_ELIMIT;
+                w->fault.pos = i;
+                return;
+            }
+        }
+        const Dispatch *d = &t->dispatch[c];
+        if (!d->count) {
+            copy_module(w, c, args);
+            continue;
+        }
+        Rng rng;
+        bool rng_ready = false;
+        if (d->plain) {
+            if (emit(w, &t->rules[t->order[d->first]], args, i, &rng, &rng_ready)) return;
+            continue;
+        }
+        memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
+        int status;
+        const Rule *r = choose(w, d, i, locals, &rng, &rng_ready, &status);
+        if (status) return;
+        if (!r) copy_module(w, c, args);
+        else if (emit(w, r, locals, i, &rng, &rng_ready)) return;
+    }
+}
+
+static void *run_thread(void *arg) {
+    run_chunk(arg);
+    return NULL;
+}
+
+/* ---- one pass over a string ---- */
+
+typedef struct Engine {
+    const SylProgram *p;
+    Budget budget;
+    int threads;
+    uint64_t seed;
+    FILE *diag;
+    int32_t *pair;
+    size_t paircap;
+} Engine;
+
+static void report(Engine *e, const Work *w, int step, const char *what) {
+    if (!e->diag) return;
+    const SylProgram *p = e->p;
+    Diag d = {.out = e->diag, .src = &p->src};
+    if (w->fault.status == SYL_ELIMIT) {
+        fprintf(e->diag,
+                "sylva: error: %s %d would exceed the limit of %llu modules or %llu MB of memory; "
+                "raise it with --max-modules or --max-memory\n",
+                what, step, (unsigned long long)e->budget.max_modules,
+                (unsigned long long)(e->budget.max_bytes >> 20));
+        return;
+    }
+    SylLoc loc = w->fault.rule ? w->fault.rule->loc : (SylLoc){0};
+    if (w->fault.vm.status && w->fault.vm.pc < (uint32_t)p->ncode) loc = p->code_loc[w->fault.vm.pc];
+    diag_error(&d, loc, "%s (%s %d, module %zu)", syl_eval_error_text(w->fault.vm.status), what, step,
+               w->fault.pos);
+}
+
+/* Rewrite `in` with table t into `out` (emptied first). Returns a SYL_* status. */
+static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *out, bool *applied, int step,
+                const char *what) {
+    const SylProgram *p = e->p;
+    const RuleTable *t = &p->tables[table];
+    out->n = out->np = 0;
+    out->poff_n = SIZE_MAX; /* the offset cache describes the old contents */
+    View v = {.code = in->code, .par = in->par, .n = in->n, .skip = p->skip};
+    if (t->has_context) {
+        if (in->np) {
+            v.poff = ms_offsets(in);
+            if (!v.poff) return SYL_ELIMIT;
+        }
+        if (e->paircap < in->n) {
+            free(e->pair);
+            e->paircap = in->n + in->n / 2;
+            e->pair = malloc(e->paircap * sizeof *e->pair);
+            if (!e->pair) return SYL_ELIMIT;
+        }
+        match_pairs(in->code, in->n, e->pair);
+        v.pair = e->pair;
+    }
+    int nt = e->threads;
+    if (in->n < PARALLEL_MIN) nt = 1;
+    Work works[MAX_THREADS];
+    SylString parts[MAX_THREADS];
+    memset(parts, 0, sizeof parts);
+    /* where each chunk's parameters start */
+    uint32_t plo = 0;
+    size_t lo = 0;
+    for (int k = 0; k < nt; k++) {
+        size_t hi = k == nt - 1 ? in->n : in->n / (size_t)nt * (size_t)(k + 1);
+        works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
+                          .table = table, .seed = e->seed, .out = k ? &parts[k] : out};
+        parts[k].budget = &e->budget;
+        for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(in->code[i]);
+        lo = hi;
+    }
+    pthread_t tid[MAX_THREADS];
+    bool started[MAX_THREADS] = {false};
+    for (int k = 1; k < nt; k++) started[k] = !pthread_create(&tid[k], NULL, run_thread, &works[k]);
+    run_chunk(&works[0]);
+    for (int k = 1; k < nt; k++) {
+        if (started[k]) pthread_join(tid[k], NULL);
+        else run_chunk(&works[k]);
+    }
+    int status = SYL_OK;
+    for (int k = 0; k < nt && !status; k++) {
+        *applied |= works[k].applied;
+        if (works[k].fault.status) {
+            report(e, &works[k], step, what);
+            status = works[k].fault.status;
+        }
+    }
+    for (int k = 1; k < nt; k++) { /* append the other chunks in order */
+        if (!status && !(status = ms_reserve(out, parts[k].n, parts[k].np))) {
+            memcpy(out->code + out->n, parts[k].code, parts[k].n * sizeof *out->code);
+            memcpy(out->par + out->np, parts[k].par, parts[k].np * sizeof *out->par);
+            out->n += parts[k].n;
+            out->np += parts[k].np;
+        }
+        ms_release(&parts[k]);
+    }
+    if (status == SYL_ELIMIT && !works[0].fault.status) {
+        Work w = {.fault.status = SYL_ELIMIT};
+        report(e, &w, step, what);
+    }
+    return status;
+}
+
+/* Apply a table repeatedly until no rule applies or its maxdepth is reached. */
+static int passes(Engine *e, int table, int step, SylString **cur, SylString **spare) {
+    const RuleTable *t = &e->p->tables[table];
+    if (!t->nrules) return SYL_OK;
+    for (int d = 0; d < t->maxdepth; d++) {
+        bool applied = false;
+        int st = pass(e, table, (uint64_t)step << 16 | (uint64_t)d, *cur, *spare, &applied, step,
+                      table == TABLE_DECOMPOSE ? "decomposition after step" : "interpretation of step");
+        if (st) return st;
+        if (!applied) break;
+        SylString *x = *cur;
+        *cur = *spare;
+        *spare = x;
+    }
+    return SYL_OK;
+}
+
+static uint64_t default_memory(void) {
+    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    uint64_t half = pages > 0 && size > 0 ? (uint64_t)pages * (uint64_t)size / 2 : (4ull << 30);
+    return half < (16ull << 30) ? half : (16ull << 30);
+}
+
+static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *opt) {
+    memset(e, 0, sizeof *e);
+    e->p = p;
+    e->diag = opt->diag;
+    e->seed = opt->use_seed ? opt->seed : p->seed;
+    e->threads = opt->threads;
+    if (e->threads <= 0) {
+        long n = sysconf(_SC_NPROCESSORS_ONLN);
+        e->threads = n > 0 ? (int)n : 1;
+    }
+    if (e->threads > MAX_THREADS) e->threads = MAX_THREADS;
+    e->budget.max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
+    if (e->budget.max_modules > INT32_MAX) e->budget.max_modules = INT32_MAX;
+    e->budget.max_bytes = opt->max_memory ? opt->max_memory : default_memory();
+}
+
+static SylString *new_string(Engine *e) {
+    SylString *s = calloc(1, sizeof *s);
+    if (s) s->budget = &e->budget;
+    return s;
+}
+
+/* Strings handed to the caller no longer count against a derivation's budget. */
+static SylString *detach(SylString *s) {
+    s->budget = NULL;
+    s->charged = 0;
+    return s;
+}
+
+/* The axiom: a successor with no predecessor, evaluated in a stream of step 0. */
+static int axiom(Engine *e, SylString *out) {
+    const SylProgram *p = e->p;
+    const Rule *r = &p->axiom;
+    if (ms_reserve(out, (size_t)r->nsucc + 1, (size_t)r->nslots + 1)) return SYL_ELIMIT;
+    Work w = {.p = p, .out = out, .seed = e->seed, .table = TABLE_COUNT};
+    Rng rng;
+    bool ready = false;
+    double none[1] = {0};
+    if (emit(&w, r, none, 0, &rng, &ready)) {
+        report(e, &w, 0, "axiom, step");
+        return SYL_EMODEL;
+    }
+    return SYL_OK;
+}
+
+int syl_derive(const SylProgram *p, const SylDeriveOptions *opt, SylString **out) {
+    static const SylDeriveOptions defaults = {.steps = -1};
+    if (!opt) opt = &defaults;
+    Engine e;
+    engine_init(&e, p, opt);
+    SylString *cur = new_string(&e), *spare = new_string(&e);
+    int steps = opt->steps >= 0 ? opt->steps : p->derive;
+    int st = cur && spare ? axiom(&e, cur) : SYL_ELIMIT;
+    if (!st) st = passes(&e, TABLE_DECOMPOSE, 0, &cur, &spare);
+    if (!st && opt->on_step) opt->on_step(opt->user, 0, cur);
+    for (int step = 1; step <= steps && !st; step++) {
+        bool applied = false;
+        if (p->tables[TABLE_PRODUCE].nrules) {
+            st = pass(&e, TABLE_PRODUCE, (uint64_t)step << 16, cur, spare, &applied, step, "step");
+            if (st) break;
+            SylString *x = cur;
+            cur = spare;
+            spare = x;
+        }
+        st = passes(&e, TABLE_DECOMPOSE, step, &cur, &spare);
+        if (!st && opt->on_step) opt->on_step(opt->user, step, cur);
+    }
+    syl_string_free(spare);
+    free(e.pair);
+    if (st) {
+        syl_string_free(cur);
+        *out = NULL;
+        return st;
+    }
+    *out = detach(cur);
+    return SYL_OK;
+}
+
+int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out) {
+    static const SylDeriveOptions defaults = {.steps = -1};
+    if (!opt) opt = &defaults;
+    Engine e;
+    engine_init(&e, p, opt);
+    SylString *cur = new_string(&e), *spare = new_string(&e);
+    int st = cur && spare ? ms_reserve(cur, in->n, in->np) : SYL_ELIMIT;
+    if (!st) {
+        memcpy(cur->code, in->code, in->n * sizeof *in->code);
+        memcpy(cur->par, in->par, in->np * sizeof *in->par);
+        cur->n = in->n;
+        cur->np = in->np;
+        st = passes(&e, TABLE_INTERPRET, 0, &cur, &spare);
+    }
+    syl_string_free(spare);
+    free(e.pair);
+    if (st) {
+        syl_string_free(cur);
+        *out = NULL;
+        return st;
+    }
+    *out = detach(cur);
+    return SYL_OK;
+}

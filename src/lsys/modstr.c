@@ -1,0 +1,119 @@
+#include "modstr.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sylva/sylva.h"
+
+static int charge(SylString *s, int64_t delta) {
+    if (!s->budget) return SYL_OK;
+    uint64_t now = atomic_fetch_add(&s->budget->bytes, (uint64_t)delta) + (uint64_t)delta;
+    s->charged += (uint64_t)delta;
+    return delta > 0 && now > s->budget->max_bytes ? SYL_ELIMIT : SYL_OK;
+}
+
+int ms_reserve(SylString *s, size_t n, size_t np) {
+    if (s->budget && s->n + n > s->budget->max_modules) return SYL_ELIMIT;
+    if (s->np + np >= UINT32_MAX) return SYL_ELIMIT; /* offsets are 32-bit */
+    if (s->n + n > s->cap) {
+        size_t cap = s->cap + s->cap / 2 + 1024;
+        if (cap < s->n + n) cap = s->n + n;
+        if (charge(s, (int64_t)((cap - s->cap) * sizeof *s->code))) return SYL_ELIMIT;
+        uint16_t *c = realloc(s->code, cap * sizeof *c);
+        if (!c) return SYL_ELIMIT;
+        s->code = c;
+        s->cap = cap;
+    }
+    if (s->np + np > s->pcap) {
+        size_t cap = s->pcap + s->pcap / 2 + 256;
+        if (cap < s->np + np) cap = s->np + np;
+        if (charge(s, (int64_t)((cap - s->pcap) * sizeof *s->par))) return SYL_ELIMIT;
+        double *p = realloc(s->par, cap * sizeof *p);
+        if (!p) return SYL_ELIMIT;
+        s->par = p;
+        s->pcap = cap;
+    }
+    return SYL_OK;
+}
+
+const uint32_t *ms_offsets(SylString *s) {
+    if (s->poff && s->poff_n == s->n) return s->poff; /* poff_n is SIZE_MAX once stale */
+    uint32_t *o = realloc(s->poff, (s->n + 1) * sizeof *o);
+    if (!o) return NULL;
+    s->poff = o;
+    uint32_t at = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        o[i] = at;
+        at += CODE_ARITY(s->code[i]);
+    }
+    o[s->n] = at;
+    s->poff_n = s->n;
+    return o;
+}
+
+void ms_release(SylString *s) {
+    charge(s, -(int64_t)s->charged);
+    free(s->code);
+    free(s->par);
+    free(s->poff);
+    s->code = NULL;
+    s->par = NULL;
+    s->poff = NULL;
+    s->n = s->cap = s->np = s->pcap = s->poff_n = 0;
+}
+
+/* ---- public access ---- */
+
+size_t syl_string_length(const SylString *s) { return s->n; }
+
+int syl_string_module(const SylString *cs, size_t i, int *nparams, const double **params) {
+    SylString *s = (SylString *)cs; /* the offset index is a cache */
+    const uint32_t *o = ms_offsets(s);
+    if (nparams) *nparams = CODE_ARITY(s->code[i]);
+    if (params) *params = o ? s->par + o[i] : NULL;
+    return CODE_SYM(s->code[i]);
+}
+
+void syl_string_count(const SylString *s, uint64_t *counts) {
+    for (size_t i = 0; i < s->n; i++) counts[CODE_SYM(s->code[i])]++;
+}
+
+void syl_string_free(SylString *s) {
+    if (!s) return;
+    ms_release(s);
+    free(s);
+}
+
+int syl_string_write(const SylProgram *p, const SylString *s, FILE *out) {
+    const double *par = s->par;
+    size_t nl[MAX_SYMBOLS];
+    for (int i = 0; i < p->nsyms; i++) nl[i] = strlen(p->syms[i].name);
+    char buf[1 << 16];
+    size_t at = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        uint16_t c = s->code[i];
+        int sym = CODE_SYM(c), ar = CODE_ARITY(c);
+        if (at > sizeof buf - 1024) {
+            if (fwrite(buf, 1, at, out) != at) return SYL_EIO;
+            at = 0;
+        }
+        if (nl[sym] < 256) {
+            memcpy(buf + at, p->syms[sym].name, nl[sym]);
+            at += nl[sym];
+        }
+        if (!ar) continue;
+        buf[at++] = '(';
+        for (int k = 0; k < ar; k++) {
+            if (k) buf[at++] = ',';
+            at += (size_t)snprintf(buf + at, 32, "%g", *par++);
+            if (at > sizeof buf - 64) {
+                if (fwrite(buf, 1, at, out) != at) return SYL_EIO;
+                at = 0;
+            }
+        }
+        buf[at++] = ')';
+    }
+    if (at && fwrite(buf, 1, at, out) != at) return SYL_EIO;
+    return ferror(out) ? SYL_EIO : SYL_OK;
+}

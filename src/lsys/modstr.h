@@ -1,0 +1,35 @@
+/* Module strings in struct-of-arrays form: one 16-bit code per module (symbol and
+ * parameter count), and the parameters of all modules, in order, in one array. */
+#ifndef SYL_MODSTR_H
+#define SYL_MODSTR_H
+#include <stdatomic.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "../lang/program.h"
+#include "sylva/sylva.h"
+
+/* Memory and size limits of one derivation, shared by every thread that grows a string. */
+typedef struct Budget {
+    _Atomic uint64_t bytes;
+    uint64_t max_bytes, max_modules;
+} Budget;
+
+struct SylString {
+    uint16_t *code;
+    double *par;
+    size_t n, cap;   /* modules */
+    size_t np, pcap; /* parameters */
+    uint32_t *poff;  /* parameter offset per module (n + 1), built on demand */
+    size_t poff_n;
+    uint64_t charged; /* bytes counted against a budget */
+    Budget *budget;
+};
+
+/* Make room for n more modules and np more parameters. Returns SYL_OK or SYL_ELIMIT. */
+int ms_reserve(SylString *s, size_t n, size_t np);
+/* Offsets of every module's parameters, built once per string (NULL if out of memory). */
+const uint32_t *ms_offsets(SylString *s);
+void ms_release(SylString *s); /* free the arrays, keep the struct */
+
+#endif

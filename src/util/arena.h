@@ -1,0 +1,26 @@
+/* Arena: bump allocation for data that lives and dies together (an AST, a program).
+ * Nothing is freed one by one; arena_free releases every block at once, which is also
+ * what keeps error paths leak-free. */
+#ifndef SYL_ARENA_H
+#define SYL_ARENA_H
+#include <stddef.h>
+
+typedef struct ArenaBlock ArenaBlock;
+typedef struct Arena {
+    ArenaBlock *head;
+    size_t used;  /* bytes handed out, for statistics */
+} Arena;
+
+void *arena_alloc(Arena *a, size_t size);            /* zeroed, 16-byte aligned */
+void *arena_grow(Arena *a, void *old, size_t old_size, size_t new_size);
+char *arena_strndup(Arena *a, const char *s, size_t n);
+char *arena_printf(Arena *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void arena_free(Arena *a);
+
+/* Growable array in an arena: VEC_PUSH(arena, ptr, n, cap) returns a pointer to a new
+ * zeroed slot at the end (n and cap are ints). */
+void *arena_vec_grow(Arena *a, void *ptr, int *cap, size_t elem);
+#define VEC_PUSH(ar, ptr, n, cap) \
+    ((n) == (cap) ? (void)((ptr) = arena_vec_grow((ar), (ptr), &(cap), sizeof *(ptr))) : (void)0, &(ptr)[(n)++])
+
+#endif

@@ -1,0 +1,35 @@
+/* Diagnostics: `file:line:col: error: message`, the source line and a caret. */
+#ifndef SYL_DIAG_H
+#define SYL_DIAG_H
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+/* Field names follow bison's YYLTYPE so the parser can use SylLoc directly. Columns count
+ * bytes from 1. A zero line means "no location". */
+typedef struct SylLoc {
+    int first_line, first_column, last_line, last_column;
+} SylLoc;
+
+typedef struct Source {
+    const char *path; /* as the user named it */
+    const char *text;
+    size_t len;
+} Source;
+
+enum { DIAG_ERROR, DIAG_WARNING, DIAG_NOTE };
+
+typedef struct Diag {
+    FILE *out;          /* NULL: count only, print nothing */
+    const Source *src;
+    int errors, warnings;
+    int max_shown;      /* stop printing after this many errors (0: 20) */
+} Diag;
+
+void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+#define diag_error(d, loc, ...) diag_report((d), DIAG_ERROR, (loc), __VA_ARGS__)
+#define diag_warning(d, loc, ...) diag_report((d), DIAG_WARNING, (loc), __VA_ARGS__)
+#define diag_note(d, loc, ...) diag_report((d), DIAG_NOTE, (loc), __VA_ARGS__)
+
+#endif
