@@ -17,6 +17,7 @@ static const char usage[] =
     "  --steps               print every step on its own line, step 0 being the axiom\n"
     "  --interpret           apply the model's `interpret` rules before printing\n"
     "  --stats               print module counts, time and peak memory to stderr\n"
+    "  -q, --quiet           do not print the string (with --stats: figures only)\n"
     "  -o, --output FILE     write to FILE instead of standard output\n"
     "  -j, --threads N       threads (default: all cores); the output never depends on N\n"
     "  --max-modules N       stop with exit code 3 beyond N modules (default 200000000)\n"
@@ -61,17 +62,18 @@ int cmd_derive(int argc, char **argv) {
         {"interpret", no_argument, 0, 'I'},       {"stats", no_argument, 0, 't'},
         {"output", required_argument, 0, 'o'},    {"threads", required_argument, 0, 'j'},
         {"max-modules", required_argument, 0, 'M'}, {"max-memory", required_argument, 0, 'm'},
+        {"quiet", no_argument, 0, 'q'},
         {"help", no_argument, 0, 'h'},            {0, 0, 0, 0},
     };
     ModelArgs m = {0};
     SylDeriveOptions d = {.steps = -1, .diag = stderr};
     const char *output = NULL;
-    bool all_steps = false, interpret = false, stats = false;
+    bool all_steps = false, interpret = false, stats = false, quiet = false;
     double v;
     unsigned long long size;
     int c;
     optind = 1;
-    while ((c = getopt_long(argc, argv, "n:o:j:h", opts, NULL)) != -1) {
+    while ((c = getopt_long(argc, argv, "n:o:j:qh", opts, NULL)) != -1) {
         switch (c) {
         case 'n':
             if (!cli_number("-n", optarg, 0, 1e6, &v)) return SYL_EUSAGE;
@@ -88,6 +90,7 @@ int cmd_derive(int argc, char **argv) {
         case 'A': all_steps = true; break;
         case 'I': interpret = true; break;
         case 't': stats = true; break;
+        case 'q': quiet = true; break;
         case 'o': output = optarg; break;
         case 'j':
             if (!cli_number("-j", optarg, 1, 256, &v)) return SYL_EUSAGE;
@@ -123,7 +126,7 @@ int cmd_derive(int argc, char **argv) {
         return SYL_EIO;
     }
     StepPrinter sp = {.p = p, .out = out.f};
-    if (all_steps) {
+    if (all_steps && !quiet) {
         d.on_step = print_step;
         d.user = &sp;
     }
@@ -138,7 +141,7 @@ int cmd_derive(int argc, char **argv) {
         s = t;
     }
     if (!status) status = sp.status;
-    if (!status && !all_steps) {
+    if (!status && !all_steps && !quiet) {
         status = syl_string_write(p, s, out.f);
         if (!status && fputc('\n', out.f) == EOF) status = SYL_EIO;
     }

@@ -277,7 +277,7 @@ bool cc_code_constant(const SylProgram *p, int32_t pc, double *v) {
 static void successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, SylLoc where) {
     SylProgram *p = c->p;
     r->nsucc = ms->n;
-    r->succ = arena_alloc(&p->arena, sizeof *r->succ * (size_t)(ms->n ? ms->n : 1));
+    r->succ = arena_alloc(&p->arena, sizeof *r->succ * (size_t)(ms->n + SUCC_PAD));
     int nslots = 0, depth = 0;
     for (int i = 0; i < ms->n; i++) nslots += ms->v[i].args.n;
     r->slots = arena_alloc(&p->arena, sizeof *r->slots * (size_t)(nslots ? nslots : 1));
@@ -302,6 +302,12 @@ static void successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, SylLoc whe
             } else if (e->kind == EX_LOCAL) {
                 sl->kind = SLOT_LOCAL;
                 sl->local = (uint8_t)e->op;
+            } else if (e->kind == EX_BINARY && e->a->kind == EX_LOCAL && e->b->kind == EX_NUM &&
+                       (e->op == '+' || e->op == '-' || e->op == '*' || e->op == '/')) {
+                sl->kind = e->op == '+' ? SLOT_ADDK : e->op == '-' ? SLOT_SUBK : e->op == '*' ? SLOT_MULK : SLOT_DIVK;
+                sl->local = (uint8_t)e->a->op;
+                sl->k = e->b->num;
+                sl->pc = (uint32_t)cc_expr(c, e, s, NULL); /* where a non-finite result is reported */
             } else {
                 sl->kind = SLOT_CODE;
                 int32_t pc = cc_expr(c, e, s, NULL);
@@ -373,14 +379,22 @@ static void build_table(Compiler *c, RuleTable *t) {
         Dispatch *d = &t->dispatch[r->pred];
         t->order[d->first + d->count++] = (uint16_t)i;
         if (r->nleft || r->nright) t->has_context = true;
+        if (r->nleft) t->ctx_left = true;
+        for (int k = 0; k < r->nright; k++)
+            if (r->right[k].kind != PAT_MODULE) t->ctx_branches = true;
+        if (r->nright) t->ctx_right = true;
+        if (r->nslots) t->emits_params = true;
         if (r->nsucc > t->max_succ) t->max_succ = r->nsucc;
         if (r->nslots > t->max_succ_params) t->max_succ_params = r->nslots;
     }
+    t->all_plain = true;
     for (int code = 0; code < CODE_COUNT; code++) {
         Dispatch *d = &t->dispatch[code];
+        if (d->count > 1) t->all_plain = false;
         if (d->count != 1) continue;
         const Rule *r = &t->rules[t->order[d->first]];
-        d->plain = !r->nleft && !r->nright && r->cond < 0 && !r->weighted;
+        if (!r->nleft && !r->nright && r->cond < 0 && !r->weighted) d->plain = r;
+        else t->all_plain = false;
     }
 }
 

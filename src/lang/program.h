@@ -19,7 +19,7 @@ enum { SYM_BITS = 11, MAX_SYMBOLS = 1 << SYM_BITS, MAX_ARITY = 31, CODE_COUNT = 
 /* Symbols every program has, at fixed ids, because the engine treats them specially. */
 enum { SYM_OPEN = 0, SYM_CLOSE = 1 };
 
-enum { MAX_LOCALS = 255, VM_STACK = 64 };
+enum { MAX_LOCALS = 255, VM_STACK = 64, SUCC_PAD = 16 };
 
 typedef struct Symbol {
     const char *name;
@@ -38,8 +38,9 @@ typedef struct PatElem {
     int32_t match; /* PAT_OPEN: index of its PAT_CLOSE */
 } PatElem;
 
-/* How a successor parameter gets its value. */
-typedef enum { SLOT_CONST, SLOT_LOCAL, SLOT_CODE } SlotKind;
+/* How a successor parameter gets its value: the common shapes `x`, `x * k`, `x / k`,
+ * `x + k`, `x - k` skip the VM. */
+typedef enum { SLOT_CONST, SLOT_LOCAL, SLOT_ADDK, SLOT_SUBK, SLOT_MULK, SLOT_DIVK, SLOT_CODE } SlotKind;
 typedef struct Slot {
     uint8_t kind;
     uint8_t local;
@@ -56,7 +57,7 @@ typedef struct Rule {
     int32_t cond, weight;     /* code addresses, -1 when absent */
     double const_weight;      /* weight when it is a constant */
     bool weighted;
-    uint16_t *succ;           /* module codes of the successor */
+    uint16_t *succ;           /* module codes of the successor (padded: SUCC_PAD readable) */
     int nsucc;
     Slot *slots;              /* one per successor parameter, in order */
     int nslots;
@@ -68,9 +69,9 @@ typedef struct Rule {
 /* Per module code: which rules to try. A plain entry is one unconditional context-free
  * unweighted rule, emitted without any matching. */
 typedef struct Dispatch {
-    uint32_t first; /* index into RuleTable.order */
-    uint16_t count;
-    uint8_t plain;
+    const struct Rule *plain; /* or NULL */
+    uint32_t first;           /* index into RuleTable.order */
+    uint32_t count;
 } Dispatch;
 
 typedef struct RuleTable {
@@ -79,6 +80,9 @@ typedef struct RuleTable {
     uint16_t *order;     /* rule indices grouped by predecessor code, source order kept */
     Dispatch *dispatch;  /* CODE_COUNT entries, NULL when the table is empty */
     bool has_context;
+    bool ctx_left, ctx_right, ctx_branches; /* kinds of contexts its rules use */
+    bool emits_params;   /* some successor has parameters */
+    bool all_plain;      /* every rule is plain: no matching, no choice */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */

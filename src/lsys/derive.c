@@ -36,10 +36,11 @@ typedef struct Work {
     int table;
     uint64_t seed;
     bool applied;     /* a rule other than identity was used */
+    bool codes_only;  /* no parameters in or out: run_chunk_codes */
     Fault fault;
 } Work;
 
-static void copy_module(Work *w, uint16_t c, const double *args) {
+static inline void copy_module(Work *w, uint16_t c, const double *args) {
     SylString *o = w->out;
     int ar = CODE_ARITY(c);
     o->code[o->n++] = c;
@@ -57,23 +58,40 @@ static int fail(Work *w, size_t pos, const Rule *r, int status) {
     return SYL_EMODEL;
 }
 
-static int emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready) {
+/* Copy a successor's codes: short ones with one fixed-size move (both sides are padded). */
+static inline void put_codes(uint16_t *dst, const Rule *r) {
+    if (r->nsucc <= SUCC_PAD) memcpy(dst, r->succ, SUCC_PAD * sizeof *dst);
+    else memcpy(dst, r->succ, (size_t)r->nsucc * sizeof *dst);
+}
+
+static inline int emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready) {
     SylString *o = w->out;
-    memcpy(o->code + o->n, r->succ, sizeof(uint16_t) * (size_t)r->nsucc);
+    put_codes(o->code + o->n, r);
     o->n += (size_t)r->nsucc;
     double *dst = o->par + o->np;
     for (int k = 0; k < r->nslots; k++) {
         const Slot *s = &r->slots[k];
+        double v;
         switch (s->kind) {
-        case SLOT_CONST: dst[k] = s->k; break;
-        case SLOT_LOCAL: dst[k] = locals[s->local]; break;
+        case SLOT_CONST: dst[k] = s->k; continue;
+        case SLOT_LOCAL: dst[k] = locals[s->local]; continue;
+        case SLOT_ADDK: v = locals[s->local] + s->k; break;
+        case SLOT_SUBK: v = locals[s->local] - s->k; break;
+        case SLOT_MULK: v = locals[s->local] * s->k; break;
+        case SLOT_DIVK: v = locals[s->local] / s->k; break;
         default:
             if (!*rng_ready) {
                 *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, pos);
                 *rng_ready = true;
             }
             if (vm_run(w->p, s->pc, locals, rng, &dst[k], &w->fault.vm)) return fail(w, pos, r, EVAL_OK);
+            continue;
         }
+        if (!isfinite(v)) {
+            w->fault.vm.pc = s->pc;
+            return fail(w, pos, r, EVAL_NONFINITE);
+        }
+        dst[k] = v;
     }
     o->np += (size_t)r->nslots;
     w->applied = true;
@@ -142,13 +160,42 @@ static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, 
     return r;
 }
 
+/* Strings without parameters under rules that make none: codes only, no checks per slot. */
+static void run_chunk_codes(Work *w) {
+    const RuleTable *t = w->t;
+    const uint16_t *code = w->in->code;
+    SylString *o = w->out;
+    const size_t need = (size_t)t->max_succ + SUCC_PAD;
+    size_t n = o->n;
+    for (size_t i = w->lo; i < w->hi; i++) {
+        if (n + need > o->cap) {
+            o->n = n;
+            if (ms_reserve(o, need + (w->hi - i), 0)) {
+                w->fault.status = SYL_ELIMIT;
+                w->fault.pos = i;
+                return;
+            }
+        }
+        uint16_t c = code[i];
+        const Rule *r = t->dispatch[c].plain;
+        if (r) {
+            put_codes(o->code + n, r);
+            n += (size_t)r->nsucc;
+            w->applied = true;
+        } else {
+            o->code[n++] = c;
+        }
+    }
+    o->n = n;
+}
+
 static void run_chunk(Work *w) {
     const RuleTable *t = w->t;
     const View *in = w->in;
     SylString *o = w->out;
     const uint16_t *code = in->code;
     const double *par = in->par + w->plo;
-    const size_t need = (size_t)(t->max_succ > 1 ? t->max_succ : 1);
+    const size_t need = (size_t)t->max_succ + SUCC_PAD;
     const size_t pneed = (size_t)t->max_succ_params + MAX_ARITY;
     double locals[MAX_LOCALS + MAX_ARITY];
     w->fault.status = SYL_OK;
@@ -157,22 +204,21 @@ static void run_chunk(Work *w) {
         const double *args = par;
         par += CODE_ARITY(c);
         if (o->n + need > o->cap || o->np + pneed > o->pcap) {
-            size_t left = w->hi - i;
-            if (ms_reserve(o, need + left, pneed)) {
+            if (ms_reserve(o, need + (w->hi - i), pneed)) {
                 w->fault.status = SYL_ELIMIT;
                 w->fault.pos = i;
                 return;
             }
         }
         const Dispatch *d = &t->dispatch[c];
-        if (!d->count) {
-            copy_module(w, c, args);
-            continue;
-        }
         Rng rng;
         bool rng_ready = false;
         if (d->plain) {
-            if (emit(w, &t->rules[t->order[d->first]], args, i, &rng, &rng_ready)) return;
+            if (emit(w, d->plain, args, i, &rng, &rng_ready)) return;
+            continue;
+        }
+        if (!d->count) {
+            copy_module(w, c, args);
             continue;
         }
         memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
@@ -185,7 +231,8 @@ static void run_chunk(Work *w) {
 }
 
 static void *run_thread(void *arg) {
-    run_chunk(arg);
+    Work *w = arg;
+    w->codes_only ? run_chunk_codes(w) : run_chunk(w);
     return NULL;
 }
 
@@ -197,8 +244,9 @@ typedef struct Engine {
     int threads;
     uint64_t seed;
     FILE *diag;
-    int32_t *pair;
-    size_t paircap;
+    int32_t *links;   /* left, right and pair links and a stack: 4 arrays of linkcap */
+    size_t linkcap;
+    double growth[TABLE_COUNT], pgrowth[TABLE_COUNT]; /* last pass: out/in modules, params */
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
@@ -232,17 +280,38 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
             v.poff = ms_offsets(in);
             if (!v.poff) return SYL_ELIMIT;
         }
-        if (e->paircap < in->n) {
-            free(e->pair);
-            e->paircap = in->n + in->n / 2;
-            e->pair = malloc(e->paircap * sizeof *e->pair);
-            if (!e->pair) return SYL_ELIMIT;
+        if (e->linkcap < in->n) {
+            free(e->links);
+            e->linkcap = in->n + in->n / 2;
+            e->links = malloc(4 * e->linkcap * sizeof *e->links);
+            if (!e->links) {
+                e->linkcap = 0;
+                return SYL_ELIMIT;
+            }
         }
-        match_pairs(in->code, in->n, e->pair);
-        v.pair = e->pair;
+        int32_t *left = e->links, *right = left + e->linkcap, *pair = right + e->linkcap;
+        int32_t *stack = pair + e->linkcap;
+        if (t->ctx_left) {
+            match_link_left(in->code, in->n, p->skip, left, stack);
+            v.left = left;
+        }
+        if (t->ctx_branches) {
+            match_pairs(in->code, in->n, pair);
+            v.pair = pair;
+        } else if (t->ctx_right) {
+            match_link_right(in->code, in->n, p->skip, right, stack);
+            v.right = right;
+        }
     }
     int nt = e->threads;
     if (in->n < PARALLEL_MIN) nt = 1;
+    /* size the output from the last pass's growth, so that it is rarely moved */
+    if (nt == 1 && e->growth[table] > 0) {
+        size_t want = (size_t)((double)in->n * e->growth[table] * 1.02) + 64;
+        size_t pwant = (size_t)((double)(in->np + 1) * e->pgrowth[table] * 1.02) + 64;
+        if (want > e->budget.max_modules) want = (size_t)e->budget.max_modules;
+        ms_reserve(out, want, pwant); /* a refusal here is met again, and reported, below */
+    }
     Work works[MAX_THREADS];
     SylString parts[MAX_THREADS];
     memset(parts, 0, sizeof parts);
@@ -252,7 +321,8 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     for (int k = 0; k < nt; k++) {
         size_t hi = k == nt - 1 ? in->n : in->n / (size_t)nt * (size_t)(k + 1);
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
-                          .table = table, .seed = e->seed, .out = k ? &parts[k] : out};
+                          .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
+                          .codes_only = !in->np && !t->emits_params && t->all_plain};
         parts[k].budget = &e->budget;
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(in->code[i]);
         lo = hi;
@@ -260,10 +330,10 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     pthread_t tid[MAX_THREADS];
     bool started[MAX_THREADS] = {false};
     for (int k = 1; k < nt; k++) started[k] = !pthread_create(&tid[k], NULL, run_thread, &works[k]);
-    run_chunk(&works[0]);
+    run_thread(&works[0]);
     for (int k = 1; k < nt; k++) {
         if (started[k]) pthread_join(tid[k], NULL);
-        else run_chunk(&works[k]);
+        else run_thread(&works[k]);
     }
     int status = SYL_OK;
     for (int k = 0; k < nt && !status; k++) {
@@ -275,12 +345,16 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     }
     for (int k = 1; k < nt; k++) { /* append the other chunks in order */
         if (!status && !(status = ms_reserve(out, parts[k].n, parts[k].np))) {
-            memcpy(out->code + out->n, parts[k].code, parts[k].n * sizeof *out->code);
-            memcpy(out->par + out->np, parts[k].par, parts[k].np * sizeof *out->par);
+            if (parts[k].n) memcpy(out->code + out->n, parts[k].code, parts[k].n * sizeof *out->code);
+            if (parts[k].np) memcpy(out->par + out->np, parts[k].par, parts[k].np * sizeof *out->par);
             out->n += parts[k].n;
             out->np += parts[k].np;
         }
         ms_release(&parts[k]);
+    }
+    if (!status && in->n) {
+        e->growth[table] = (double)out->n / (double)in->n;
+        e->pgrowth[table] = (double)(out->np + 1) / (double)(in->np + 1);
     }
     if (status == SYL_ELIMIT && !works[0].fault.status) {
         Work w = {.fault.status = SYL_ELIMIT};
@@ -380,7 +454,7 @@ int syl_derive(const SylProgram *p, const SylDeriveOptions *opt, SylString **out
         if (!st && opt->on_step) opt->on_step(opt->user, step, cur);
     }
     syl_string_free(spare);
-    free(e.pair);
+    free(e.links);
     if (st) {
         syl_string_free(cur);
         *out = NULL;
@@ -398,14 +472,14 @@ int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptio
     SylString *cur = new_string(&e), *spare = new_string(&e);
     int st = cur && spare ? ms_reserve(cur, in->n, in->np) : SYL_ELIMIT;
     if (!st) {
-        memcpy(cur->code, in->code, in->n * sizeof *in->code);
-        memcpy(cur->par, in->par, in->np * sizeof *in->par);
+        if (in->n) memcpy(cur->code, in->code, in->n * sizeof *in->code);
+        if (in->np) memcpy(cur->par, in->par, in->np * sizeof *in->par);
         cur->n = in->n;
         cur->np = in->np;
         st = passes(&e, TABLE_INTERPRET, 0, &cur, &spare);
     }
     syl_string_free(spare);
-    free(e.pair);
+    free(e.links);
     if (st) {
         syl_string_free(cur);
         *out = NULL;

@@ -1,27 +1,6 @@
 #include "match.h"
 
-#include <stdlib.h>
 #include <string.h>
-
-static void bind(const View *v, size_t pos, const PatElem *pe, double *locals) {
-    int ar = CODE_ARITY(pe->code);
-    if (ar) memcpy(locals + pe->local, v->par + v->poff[pos], sizeof(double) * (size_t)ar);
-}
-
-bool match_left(const View *v, size_t i, const Rule *r, double *locals) {
-    size_t pos = i;
-    for (int j = r->nleft - 1; j >= 0; j--) {
-        for (;;) { /* step back to the previous module on the path to the root */
-            if (pos == 0) return false;
-            int s = CODE_SYM(v->code[--pos]);
-            if (s == SYM_CLOSE) pos = (size_t)v->pair[pos]; /* skip a whole side branch */
-            else if (s != SYM_OPEN && !v->skip[s]) break;  /* '[': go on into the parent */
-        }
-        if (v->code[pos] != r->left[j].code) return false;
-        bind(v, pos, &r->left[j], locals);
-    }
-    return true;
-}
 
 /* Skip modules ignored in contexts (never brackets). */
 static size_t skip_ignored(const View *v, size_t pos) {
@@ -52,18 +31,47 @@ static bool match_seq(const View *v, const PatElem *pat, int j, int end, size_t 
             else break;
         }
         if (v->code[pos] != pe->code) return false;
-        bind(v, pos, pe, locals);
+        match_bind(v, pos, pe, locals);
         pos++;
         j++;
     }
     return true;
 }
 
-bool match_right(const View *v, size_t i, const Rule *r, double *locals) {
+bool match_branches(const View *v, size_t i, const Rule *r, double *locals) {
     return match_seq(v, r->right, 0, r->nright, i + 1, locals);
 }
 
-bool match_pairs(const uint16_t *code, size_t n, int32_t *pair) {
+void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *left, int32_t *stack) {
+    int32_t last = -1;
+    size_t sp = 0;
+    for (size_t i = 0; i < n; i++) {
+        int s = CODE_SYM(code[i]);
+        left[i] = last;
+        if (s == SYM_OPEN) stack[sp++] = last; /* a branch starts from its parent's module */
+        else if (s == SYM_CLOSE) last = sp ? stack[--sp] : -1;
+        else if (!skip[s]) last = (int32_t)i;
+    }
+}
+
+void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, int32_t *stack) {
+    int32_t next = -1;
+    size_t sp = 0;
+    for (size_t i = n; i-- > 0;) {
+        int s = CODE_SYM(code[i]);
+        right[i] = next;
+        if (s == SYM_CLOSE) { /* entering a branch from its end: nothing follows its last module */
+            stack[sp++] = next;
+            next = -1;
+        } else if (s == SYM_OPEN) {
+            next = sp ? stack[--sp] : -1;
+        } else if (!skip[s]) {
+            next = (int32_t)i;
+        }
+    }
+}
+
+void match_pairs(const uint16_t *code, size_t n, int32_t *pair) {
     /* pair[] doubles as the stack of open brackets: each '[' links to the enclosing one
      * until its ']' is found. */
     int32_t top = -1;
@@ -72,13 +80,11 @@ bool match_pairs(const uint16_t *code, size_t n, int32_t *pair) {
         if (s == SYM_OPEN) {
             pair[i] = top;
             top = (int32_t)i;
-        } else if (s == SYM_CLOSE) {
-            if (top < 0) return false;
+        } else if (s == SYM_CLOSE && top >= 0) {
             int32_t open = top;
             top = pair[open];
             pair[open] = (int32_t)i;
             pair[i] = open;
         }
     }
-    return top < 0;
 }

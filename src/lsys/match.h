@@ -1,5 +1,10 @@
 /* Branch-aware context matching (ABOP §1.8): a left context looks back along the path to
- * the root, a right context looks forward along the axis and into branches it names. */
+ * the root, a right context looks forward along the axis and into branches it names.
+ *
+ * Two linear passes per step give every module its neighbours: left[i], the previous
+ * module on the path to the root, and right[i], the next one along its axis (skipping
+ * side branches and ignored symbols). Contexts then follow these links instead of walking
+ * the string; only right contexts that name branches walk, using the bracket pairs. */
 #ifndef SYL_MATCH_H
 #define SYL_MATCH_H
 #include <stdbool.h>
@@ -8,21 +13,50 @@
 
 #include "../lang/program.h"
 
-/* What the matcher reads: the string, its bracket pairs and parameter offsets. */
+/* What the matcher reads: the string, its links and parameter offsets. */
 typedef struct View {
     const uint16_t *code;
     const double *par;
-    const uint32_t *poff; /* NULL when no module has parameters */
-    const int32_t *pair;  /* for '[' the index of its ']' and the other way round */
+    const uint32_t *poff;  /* NULL when no module has parameters */
+    const int32_t *left;   /* -1: none */
+    const int32_t *right;  /* -1: none */
+    const int32_t *pair;   /* for '[' the index of its ']' and the other way round */
     size_t n;
-    const bool *skip;     /* symbols ignored in contexts */
+    const bool *skip;      /* symbols ignored in contexts */
 } View;
 
-/* Match rule r's contexts around module i, binding their parameters into locals. */
-bool match_left(const View *v, size_t i, const Rule *r, double *locals);
-bool match_right(const View *v, size_t i, const Rule *r, double *locals);
+static inline void match_bind(const View *v, size_t pos, const PatElem *pe, double *locals) {
+    int ar = CODE_ARITY(pe->code);
+    for (int k = 0; k < ar; k++) locals[pe->local + k] = v->par[v->poff[pos] + (uint32_t)k];
+}
 
-/* Fill pair[] for a string whose brackets balance; returns false if they do not. */
-bool match_pairs(const uint16_t *code, size_t n, int32_t *pair);
+/* Match rule r's contexts around module i, binding their parameters into locals. */
+static inline bool match_left(const View *v, size_t i, const Rule *r, double *locals) {
+    int32_t pos = (int32_t)i;
+    for (int j = r->nleft - 1; j >= 0; j--) {
+        pos = v->left[pos];
+        if (pos < 0 || v->code[pos] != r->left[j].code) return false;
+        match_bind(v, (size_t)pos, &r->left[j], locals);
+    }
+    return true;
+}
+
+bool match_branches(const View *v, size_t i, const Rule *r, double *locals); /* walks, with pair[] */
+
+static inline bool match_right(const View *v, size_t i, const Rule *r, double *locals) {
+    if (v->pair) return match_branches(v, i, r, locals);
+    int32_t pos = (int32_t)i;
+    for (int j = 0; j < r->nright; j++) {
+        pos = v->right[pos];
+        if (pos < 0 || v->code[pos] != r->right[j].code) return false;
+        match_bind(v, (size_t)pos, &r->right[j], locals);
+    }
+    return true;
+}
+
+/* Fill the links; stack must hold n entries. Strings always have balanced brackets. */
+void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *left, int32_t *stack);
+void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, int32_t *stack);
+void match_pairs(const uint16_t *code, size_t n, int32_t *pair);
 
 #endif
