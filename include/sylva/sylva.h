@@ -65,9 +65,10 @@ typedef struct SylDeriveOptions {
     /* Called with step 0 (the axiom, decomposed) and after every step; may be NULL. */
     void (*on_step)(void *user, int step, const SylString *s);
     void *user;
+    uint64_t rewritten;   /* out: modules read by all passes of all steps (throughput) */
 } SylDeriveOptions;
 
-int syl_derive(const SylProgram *p, const SylDeriveOptions *opt, SylString **out);
+int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);
 /* Apply the model's `interpret` rules: the string the turtle reads (never stored). */
 int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out);
 

@@ -39,12 +39,15 @@ static void print_step(void *user, int step, const SylString *s) {
     if (!sp->status && fputc('\n', sp->out) == EOF) sp->status = SYL_EIO;
 }
 
-static void print_stats(const SylProgram *p, const SylString *s, int steps, double seconds) {
+static void print_stats(const SylProgram *p, const SylString *s, int steps, double seconds, uint64_t rewritten) {
     int ns = syl_program_symbol_count(p);
     uint64_t *counts = calloc((size_t)ns, sizeof *counts);
     size_t n = syl_string_length(s);
     fprintf(stderr, "steps: %d\nmodules: %zu\nderive time: %.6f s\n", steps, n, seconds);
     if (seconds > 0) fprintf(stderr, "rate: %.2f M modules/s\n", (double)n / seconds / 1e6);
+    fprintf(stderr, "rewritten: %llu modules in all steps", (unsigned long long)rewritten);
+    if (seconds > 0) fprintf(stderr, " (%.2f M/s)", (double)rewritten / seconds / 1e6);
+    fputc('\n', stderr);
     fprintf(stderr, "peak memory: %.2f MB\n", cli_peak_mb());
     if (!counts) return;
     syl_string_count(s, counts);
@@ -147,7 +150,7 @@ int cmd_derive(int argc, char **argv) {
     }
     if (status == SYL_EIO) fprintf(stderr, "sylva: error: cannot write the output\n");
     status = out_close(&out, status);
-    if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0);
+    if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, d.rewritten);
     syl_string_free(s);
     syl_program_free(p);
     for (int i = 0; i < m.nsets; i++) free((char *)m.sets[i].name);

@@ -244,9 +244,10 @@ typedef struct Engine {
     int threads;
     uint64_t seed;
     FILE *diag;
-    int32_t *links;   /* left, right and pair links and a stack: 4 arrays of linkcap */
+    int32_t *links;   /* left, right, pair, lcode+rcode and a 2-wide stack: 6 int32 per module */
     size_t linkcap;
     double growth[TABLE_COUNT], pgrowth[TABLE_COUNT]; /* last pass: out/in modules, params */
+    uint64_t rewritten;
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
@@ -272,6 +273,7 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
                 const char *what) {
     const SylProgram *p = e->p;
     const RuleTable *t = &p->tables[table];
+    e->rewritten += in->n;
     out->n = out->np = 0;
     out->poff_n = SIZE_MAX; /* the offset cache describes the old contents */
     View v = {.code = in->code, .par = in->par, .n = in->n, .skip = p->skip};
@@ -283,24 +285,27 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
         if (e->linkcap < in->n) {
             free(e->links);
             e->linkcap = in->n + in->n / 2;
-            e->links = malloc(4 * e->linkcap * sizeof *e->links);
+            e->links = malloc(6 * e->linkcap * sizeof *e->links);
             if (!e->links) {
                 e->linkcap = 0;
                 return SYL_ELIMIT;
             }
         }
         int32_t *left = e->links, *right = left + e->linkcap, *pair = right + e->linkcap;
-        int32_t *stack = pair + e->linkcap;
+        uint16_t *lcode = (uint16_t *)(pair + e->linkcap), *rcode = lcode + e->linkcap;
+        int32_t *stack = (int32_t *)(rcode + e->linkcap);
         if (t->ctx_left) {
-            match_link_left(in->code, in->n, p->skip, left, stack);
+            match_link_left(in->code, in->n, p->skip, left, lcode, stack);
             v.left = left;
+            v.lcode = lcode;
         }
         if (t->ctx_branches) {
             match_pairs(in->code, in->n, pair);
             v.pair = pair;
         } else if (t->ctx_right) {
-            match_link_right(in->code, in->n, p->skip, right, stack);
+            match_link_right(in->code, in->n, p->skip, right, rcode, stack);
             v.right = right;
+            v.rcode = rcode;
         }
     }
     int nt = e->threads;
@@ -431,8 +436,8 @@ static int axiom(Engine *e, SylString *out) {
     return SYL_OK;
 }
 
-int syl_derive(const SylProgram *p, const SylDeriveOptions *opt, SylString **out) {
-    static const SylDeriveOptions defaults = {.steps = -1};
+int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
+    SylDeriveOptions defaults = {.steps = -1};
     if (!opt) opt = &defaults;
     Engine e;
     engine_init(&e, p, opt);
@@ -455,6 +460,7 @@ int syl_derive(const SylProgram *p, const SylDeriveOptions *opt, SylString **out
     }
     syl_string_free(spare);
     free(e.links);
+    opt->rewritten = e.rewritten;
     if (st) {
         syl_string_free(cur);
         *out = NULL;

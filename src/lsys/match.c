@@ -42,31 +42,51 @@ bool match_branches(const View *v, size_t i, const Rule *r, double *locals) {
     return match_seq(v, r->right, 0, r->nright, i + 1, locals);
 }
 
-void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *left, int32_t *stack) {
+void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *left, uint16_t *lcode,
+                     int32_t *stack) {
+    /* the stack keeps (index, code) pairs so that no neighbour is looked up far away */
     int32_t last = -1;
+    uint16_t lastcode = CODE_NONE;
     size_t sp = 0;
     for (size_t i = 0; i < n; i++) {
-        int s = CODE_SYM(code[i]);
+        uint16_t c = code[i];
+        int s = CODE_SYM(c);
         left[i] = last;
-        if (s == SYM_OPEN) stack[sp++] = last; /* a branch starts from its parent's module */
-        else if (s == SYM_CLOSE) last = sp ? stack[--sp] : -1;
-        else if (!skip[s]) last = (int32_t)i;
+        lcode[i] = lastcode;
+        if (s == SYM_OPEN) { /* a branch starts from its parent's module */
+            stack[sp++] = last;
+            stack[sp++] = lastcode;
+        } else if (s == SYM_CLOSE) {
+            lastcode = sp ? (uint16_t)stack[--sp] : CODE_NONE;
+            last = sp ? stack[--sp] : -1;
+        } else if (!skip[s]) {
+            last = (int32_t)i;
+            lastcode = c;
+        }
     }
 }
 
-void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, int32_t *stack) {
+void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, uint16_t *rcode,
+                      int32_t *stack) {
     int32_t next = -1;
+    uint16_t nextcode = CODE_NONE;
     size_t sp = 0;
     for (size_t i = n; i-- > 0;) {
-        int s = CODE_SYM(code[i]);
+        uint16_t c = code[i];
+        int s = CODE_SYM(c);
         right[i] = next;
+        rcode[i] = nextcode;
         if (s == SYM_CLOSE) { /* entering a branch from its end: nothing follows its last module */
             stack[sp++] = next;
+            stack[sp++] = nextcode;
             next = -1;
+            nextcode = CODE_NONE;
         } else if (s == SYM_OPEN) {
+            nextcode = sp ? (uint16_t)stack[--sp] : CODE_NONE;
             next = sp ? stack[--sp] : -1;
         } else if (!skip[s]) {
             next = (int32_t)i;
+            nextcode = c;
         }
     }
 }

@@ -20,6 +20,7 @@ typedef struct View {
     const uint32_t *poff;  /* NULL when no module has parameters */
     const int32_t *left;   /* -1: none */
     const int32_t *right;  /* -1: none */
+    const uint16_t *lcode, *rcode; /* the codes of those neighbours (CODE_NONE: none) */
     const int32_t *pair;   /* for '[' the index of its ']' and the other way round */
     size_t n;
     const bool *skip;      /* symbols ignored in contexts */
@@ -31,7 +32,12 @@ static inline void match_bind(const View *v, size_t pos, const PatElem *pe, doub
 }
 
 /* Match rule r's contexts around module i, binding their parameters into locals. */
+/* A code no module has (symbol 0 is '[', which never has parameters). */
+#define CODE_NONE CODE(SYM_OPEN, MAX_ARITY)
+
 static inline bool match_left(const View *v, size_t i, const Rule *r, double *locals) {
+    /* the neighbour's code sits beside module i: most rules are rejected without a jump */
+    if (v->lcode[i] != r->left[r->nleft - 1].code) return false;
     int32_t pos = (int32_t)i;
     for (int j = r->nleft - 1; j >= 0; j--) {
         pos = v->left[pos];
@@ -45,6 +51,7 @@ bool match_branches(const View *v, size_t i, const Rule *r, double *locals); /* 
 
 static inline bool match_right(const View *v, size_t i, const Rule *r, double *locals) {
     if (v->pair) return match_branches(v, i, r, locals);
+    if (v->rcode[i] != r->right[0].code) return false;
     int32_t pos = (int32_t)i;
     for (int j = 0; j < r->nright; j++) {
         pos = v->right[pos];
@@ -54,9 +61,12 @@ static inline bool match_right(const View *v, size_t i, const Rule *r, double *l
     return true;
 }
 
-/* Fill the links; stack must hold n entries. Strings always have balanced brackets. */
-void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *left, int32_t *stack);
-void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, int32_t *stack);
+/* Fill the links and neighbour codes; stack must hold n entries. Strings always have
+ * balanced brackets. */
+void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *left, uint16_t *lcode,
+                     int32_t *stack);
+void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, uint16_t *rcode,
+                      int32_t *stack);
 void match_pairs(const uint16_t *code, size_t n, int32_t *pair);
 
 #endif
