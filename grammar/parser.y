@@ -18,7 +18,22 @@
 int yylex(YYSTYPE *lval, SylLoc *lloc, void *scanner);
 static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg) {
     (void)scanner;
-    diag_error(ps->diag, *loc, "%s", msg);
+    bool at_eof = strstr(msg, "unexpected end of file") != NULL;
+    if (at_eof && ps->lex->eof_reported) return; /* the lexer said why already */
+    if (ps->lex->paren > 0 && loc->first_line > ps->lex->paren_loc.first_line) {
+        /* newlines are skipped inside parentheses: the real mistake is the open one */
+        if (!ps->lex->eof_reported) diag_error(ps->diag, ps->lex->paren_loc, "'(' is never closed");
+        ps->lex->eof_reported = 1;
+        return;
+    }
+    if (at_eof && ps->model != &ps->ast->top)
+        diag_error(ps->diag, *loc, "unexpected end of file: '}' missing to close lsystem '%s' (line %d)",
+                   ps->model->name, ps->model->loc.first_line);
+    else if (strstr(msg, "unexpected end of line, expecting ->"))
+        diag_error(ps->diag, *loc, "%s (a rule needs '->'; the settings are derive, angle, step, width, seed)",
+                   msg);
+    else
+        diag_error(ps->diag, *loc, "%s", msg);
 }
 
 static SylLoc span(SylLoc a, SylLoc b) {
@@ -100,6 +115,10 @@ file: %empty
 top: NEWLINE
    | decl NEWLINE
    | KW_LSYSTEM WORD '{' {
+         for (int i = 0; i < ps->ast->nmodels; i++)
+             if (!strcmp(ps->ast->models[i].name, $2))
+                 diag_error(ps->diag, @2, "lsystem '%s' is already defined at line %d", $2,
+                            ps->ast->models[i].loc.first_line);
          Model *m = VEC_PUSH(ps->arena, ps->ast->models, ps->ast->nmodels, ps->ast->cap);
          m->name = $2;
          m->loc = @2;
@@ -202,12 +221,14 @@ weight_opt: %empty { $$ = NULL; }
  * a rule's head, so that a `}` at the start of a line always closes a block. */
 items: %empty { memset(&$$, 0, sizeof $$); }
      | items item { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }
-     | items ANDAND { $$ = $1;
+     | items ANDAND args_opt { $$ = $1; /* `&&` here is two pitch-down modules */
            *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("&", IT_SYMBOL, @2);
-           *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("&", IT_SYMBOL, @2); }
-     | items OROR { $$ = $1;
+           Item *it = VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap);
+           *it = item("&", IT_SYMBOL, @2); it->args = $3; it->parens = @3.first_line > 0; }
+     | items OROR args_opt { $$ = $1;
            *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("|", IT_SYMBOL, @2);
-           *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = item("|", IT_SYMBOL, @2); }
+           Item *it = VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap);
+           *it = item("|", IT_SYMBOL, @2); it->args = $3; it->parens = @3.first_line > 0; }
      ;
 item: hitem
     | '{' args_opt { $$ = item("{", IT_SYMBOL, @1); $$.args = $2; $$.parens = @2.first_line > 0; }

@@ -1,4 +1,5 @@
 /* sylva check: report errors and warnings without deriving. */
+#include <errno.h>
 #include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,7 @@ static const char usage[] =
 static char *slurp(const char *path, size_t *len) {
     FILE *f = fopen(path, "rb");
     if (!f) return NULL;
+    errno = 0;
     size_t cap = 1 << 16, n = 0, got;
     char *buf = malloc(cap);
     while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0)
@@ -26,7 +28,13 @@ static char *slurp(const char *path, size_t *len) {
             if (!nb) free(buf);
             buf = nb;
         }
+    int err = ferror(f) ? (errno ? errno : EIO) : 0;
     fclose(f);
+    if (err) {
+        free(buf);
+        errno = err;
+        return NULL;
+    }
     *len = n;
     return buf;
 }
@@ -57,7 +65,7 @@ int cmd_check(int argc, char **argv) {
         size_t len = 0;
         char *text = slurp(m.path, &len);
         if (!text) {
-            fprintf(stderr, "sylva: error: cannot read '%s'\n", m.path);
+            fprintf(stderr, "sylva: error: cannot read '%s': %s\n", m.path, strerror(errno));
             worst = SYL_EIO;
             continue;
         }

@@ -79,11 +79,11 @@ int cmd_derive(int argc, char **argv) {
     while ((c = getopt_long(argc, argv, "n:o:j:qh", opts, NULL)) != -1) {
         switch (c) {
         case 'n':
-            if (!cli_number("-n", optarg, 0, 1e6, &v)) return SYL_EUSAGE;
+            if (!cli_integer("-n", optarg, 0, 1e6, &v)) return SYL_EUSAGE;
             d.steps = (int)v;
             break;
         case 's':
-            if (!cli_number("--seed", optarg, 0, 9007199254740991.0, &v)) return SYL_EUSAGE;
+            if (!cli_integer("--seed", optarg, 0, 9007199254740991.0, &v)) return SYL_EUSAGE;
             d.use_seed = 1;
             d.seed = (uint64_t)v;
             break;
@@ -96,11 +96,11 @@ int cmd_derive(int argc, char **argv) {
         case 'q': quiet = true; break;
         case 'o': output = optarg; break;
         case 'j':
-            if (!cli_number("-j", optarg, 1, 256, &v)) return SYL_EUSAGE;
+            if (!cli_integer("-j", optarg, 1, 256, &v)) return SYL_EUSAGE;
             d.threads = (int)v;
             break;
         case 'M':
-            if (!cli_number("--max-modules", optarg, 1, 2147483647.0, &v)) return SYL_EUSAGE;
+            if (!cli_integer("--max-modules", optarg, 1, 2147483647.0, &v)) return SYL_EUSAGE;
             d.max_modules = (uint64_t)v;
             break;
         case 'm':

@@ -33,6 +33,18 @@ bool cli_number(const char *opt, const char *arg, double min, double max, double
     return true;
 }
 
+bool cli_integer(const char *opt, const char *arg, double min, double max, double *out) {
+    char *end;
+    errno = 0;
+    double v = strtod(arg, &end);
+    if (!*arg || *end || errno || !isfinite(v) || v < min || v > max || v != floor(v)) {
+        fprintf(stderr, "sylva: error: %s expects a whole number from %.0f to %.0f, not '%s'\n", opt, min, max, arg);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
 bool cli_size(const char *opt, const char *arg, unsigned long long *out) {
     char *end;
     errno = 0;

@@ -45,7 +45,12 @@ int main(int argc, char **argv) {
         return SYL_OK;
     }
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-        if (!strcmp(commands[i].name, cmd)) return commands[i].run(argc - 1, argv + 1);
+        if (!strcmp(commands[i].name, cmd)) {
+            char name[64]; /* getopt's messages begin with argv[0]: "sylva derive: ..." */
+            snprintf(name, sizeof name, "sylva %s", cmd);
+            argv[1] = name;
+            return commands[i].run(argc - 1, argv + 1);
+        }
     fprintf(stderr, "sylva: unknown command '%s'\n\n", cmd);
     help(stderr);
     return SYL_EUSAGE;

@@ -12,6 +12,7 @@
 static char *read_all(const char *path, size_t *len) {
     FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
     if (!f) return NULL;
+    errno = 0;
     size_t cap = 1 << 16, n = 0;
     char *buf = malloc(cap);
     for (size_t got; buf && (got = fread(buf + n, 1, cap - n, f)) > 0;) {
@@ -22,11 +23,11 @@ static char *read_all(const char *path, size_t *len) {
             buf = nb;
         }
     }
-    int err = ferror(f);
+    int err = ferror(f) ? (errno ? errno : EIO) : 0;
     if (f != stdin) fclose(f);
     if (err || !buf) {
         free(buf);
-        errno = err ? EIO : ENOMEM;
+        errno = err ? err : ENOMEM;
         return NULL;
     }
     *len = n;
@@ -52,9 +53,11 @@ static void declare(Compiler *c, Stmt *s, bool top) {
         int sym = cc_symbol(c, s->name, s->loc);
         Symbol *y = &p->syms[sym];
         int arity = s->has_params ? s->params.n : -1;
-        if (y->declared && arity >= 0 && y->declared_arity >= 0 && arity != y->declared_arity)
-            diag_error(c->d, s->loc, "module '%s' was declared with %d parameters at line %d", s->name,
-                       y->declared_arity, y->decl_loc.first_line);
+        if (y->declared && arity >= 0 && y->declared_arity >= 0 && arity != y->declared_arity) {
+            diag_error(c->d, s->loc, "module '%s' was declared with %d parameter%s at line %d", s->name,
+                       y->declared_arity, y->declared_arity == 1 ? "" : "s", y->decl_loc.first_line);
+            arity = y->declared_arity; /* keep the first, so its uses are not reported again */
+        }
         if (arity > MAX_ARITY) diag_error(c->d, s->loc, "a module has at most %d parameters", MAX_ARITY);
         if (!y->declared || arity >= 0) y->declared_arity = arity;
         if (!y->declared) y->decl_loc = s->loc;
@@ -103,7 +106,7 @@ static void declare(Compiler *c, Stmt *s, bool top) {
 }
 
 static const SylOverride *find_override(Compiler *c, const char *name) {
-    for (int i = 0; i < c->opt->noverrides; i++)
+    for (int i = c->opt->noverrides - 1; i >= 0; i--) /* the last one given wins */
         if (!strcmp(c->opt->overrides[i].name, name)) return &c->opt->overrides[i];
     return NULL;
 }
@@ -122,7 +125,8 @@ static void evaluate(Compiler *c, Stmt *s) {
         bool ok = cc_const(c, s->value, &x);
         if (o) x = o->value, ok = true;
         v->v = x;
-        v->known = ok;
+        v->known = true; /* even when it failed: its uses are not errors of their own */
+        (void)ok;
         if (s->kind == ST_PARAM) {
             ParamInfo *pi = VEC_PUSH(&p->arena, p->params, p->nparams, p->paramcap);
             pi->name = arena_strndup(&p->arena, s->name, strlen(s->name));
@@ -131,8 +135,10 @@ static void evaluate(Compiler *c, Stmt *s) {
         }
     } else if (s->kind == ST_CURVE) {
         int id = namemap_get(&c->curves, s->name, -1);
+        if (id < 0 || p->curves[id].loc.first_line != s->loc.first_line ||
+            p->curves[id].loc.first_column != s->loc.first_column)
+            return; /* a duplicate name, already reported */
         Curve *cv = &p->curves[id];
-        if (cv->n) return;
         int n = s->args.n / 2;
         cv->x = arena_alloc(&p->arena, sizeof(double) * (size_t)n);
         cv->y = arena_alloc(&p->arena, sizeof(double) * (size_t)n);
@@ -274,18 +280,19 @@ bool cc_code_constant(const SylProgram *p, int32_t pc, double *v) {
     return true;
 }
 
-static void successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, SylLoc where) {
+static void successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *what) {
     SylProgram *p = c->p;
     r->nsucc = ms->n;
     r->succ = arena_alloc(&p->arena, sizeof *r->succ * (size_t)(ms->n + SUCC_PAD));
     int nslots = 0, depth = 0;
+    SylLoc open[64];
     for (int i = 0; i < ms->n; i++) nslots += ms->v[i].args.n;
     r->slots = arena_alloc(&p->arena, sizeof *r->slots * (size_t)(nslots ? nslots : 1));
     r->nslots = 0;
     for (int i = 0; i < ms->n; i++) {
         const Mod *m = &ms->v[i];
         r->succ[i] = module_code(c, m);
-        if (m->sym == SYM_OPEN) depth++;
+        if (m->sym == SYM_OPEN) open[depth++ & 63] = m->loc;
         if (m->sym == SYM_CLOSE && --depth < 0) {
             diag_error(c->d, m->loc, "']' closes no branch");
             depth = 0;
@@ -315,7 +322,7 @@ static void successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, SylLoc whe
             }
         }
     }
-    if (depth) diag_error(c->d, where, "a '[' in this successor is never closed");
+    if (depth) diag_error(c->d, open[(depth - 1) & 63], "a '[' in %s is never closed", what);
 }
 
 static void compile_rule(Compiler *c, const Stmt *s, Rule *out) {
@@ -359,7 +366,7 @@ static void compile_rule(Compiler *c, const Stmt *s, Rule *out) {
             out->weight = pc;
         }
     }
-    successor(c, &succ, &scope, out, s->rule.arrow_loc);
+    successor(c, &succ, &scope, out, "this successor");
 }
 
 static void build_table(Compiler *c, RuleTable *t) {
@@ -426,6 +433,7 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
         }
     for (int i = 0; i < c->opt->noverrides; i++) {
         int id = namemap_get(&c->values, c->opt->overrides[i].name, -1);
+        if (id < 0 || !c->vals[id].is_param) c->usage_error = true;
         if (id < 0 || !c->vals[id].is_param)
             diag_error(c->d, (SylLoc){0}, "--set %s: model '%s' has no parameter '%s'%s",
                        c->opt->overrides[i].name, p->name, c->opt->overrides[i].name,
@@ -486,7 +494,7 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
             cc_split(c, &s->items, &ms);
             Scope none = {0};
             p->axiom.loc = s->loc;
-            successor(c, &ms, &none, &p->axiom, s->loc);
+            successor(c, &ms, &none, &p->axiom, "the axiom");
         }
     }
     if (!axioms) diag_error(c->d, model->loc, "model '%s' has no axiom", model->name);
@@ -555,7 +563,7 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
     }
     arena_free(&tmp);
     if (d.errors) {
-        if (!*status) *status = SYL_EMODEL;
+        if (!*status) *status = c.usage_error ? SYL_EUSAGE : SYL_EMODEL;
         syl_program_free(p);
         return NULL;
     }

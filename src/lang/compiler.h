@@ -51,6 +51,7 @@ typedef struct Compiler {
     Value *vals;
     int nvals, valcap;
     int max_declared_len;
+    bool usage_error; /* an error of the command line (--set), not of the model */
     Stmt **fn_stmts; /* per function: its definition */
     bool *fn_random; /* per function: its body draws random numbers */
     bool *fn_used, *curve_used;

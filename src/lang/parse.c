@@ -13,7 +13,7 @@ int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     memset(ast, 0, sizeof *ast);
     int before = diag->errors;
     LexState ls = {.line = 1, .col = 1, .arena = arena, .diag = diag};
-    ParseState ps = {.arena = arena, .diag = diag, .ast = ast, .model = &ast->top};
+    ParseState ps = {.lex = &ls, .arena = arena, .diag = diag, .ast = ast, .model = &ast->top};
     yyscan_t scanner;
     if (yylex_init_extra(&ls, &scanner)) {
         diag_error(diag, (SylLoc){0}, "cannot start the lexer");

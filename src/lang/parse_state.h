@@ -6,12 +6,15 @@
 typedef struct LexState {
     int line, col, paren;
     int eof_done; /* a final NEWLINE was sent, so a file may end without one */
+    int eof_reported; /* an error at the end of the file was reported already */
+    SylLoc paren_loc; /* the outermost open parenthesis */
     Arena *arena;
     Diag *diag;
     SylLoc comment_loc;
 } LexState;
 
 typedef struct ParseState {
+    LexState *lex;
     Arena *arena;
     Diag *diag;
     FileAst *ast;

@@ -17,8 +17,11 @@
 
 enum { PARALLEL_MIN = 1 << 16, MAX_CHOICES = 1024, MAX_THREADS = 256 };
 
+enum { LIMIT_MODULES = 1, LIMIT_MEMORY };
+
 typedef struct Fault {
     int status;      /* SYL_OK, SYL_EMODEL or SYL_ELIMIT */
+    int limit;       /* with SYL_ELIMIT: LIMIT_* */
     VmFault vm;
     size_t pos;      /* the module being rewritten */
     const Rule *rule;
@@ -160,6 +163,15 @@ static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, 
     return r;
 }
 
+/* Checked whenever an output buffer grows: the exact module count is checked after the pass. */
+static bool over_limit(Work *w, size_t pos, int reserve_status) {
+    if (w->out->n <= w->out->budget->max_modules && !reserve_status) return false;
+    w->fault.status = SYL_ELIMIT;
+    w->fault.limit = reserve_status ? LIMIT_MEMORY : LIMIT_MODULES;
+    w->fault.pos = pos;
+    return true;
+}
+
 /* Strings without parameters under rules that make none: codes only, no checks per slot. */
 static void run_chunk_codes(Work *w) {
     const RuleTable *t = w->t;
@@ -170,11 +182,7 @@ static void run_chunk_codes(Work *w) {
     for (size_t i = w->lo; i < w->hi; i++) {
         if (n + need > o->cap) {
             o->n = n;
-            if (ms_reserve(o, need + (w->hi - i), 0)) {
-                w->fault.status = SYL_ELIMIT;
-                w->fault.pos = i;
-                return;
-            }
+            if (over_limit(w, i, ms_reserve(o, need + (w->hi - i), 0))) return;
         }
         uint16_t c = code[i];
         const Rule *r = t->dispatch[c].plain;
@@ -204,11 +212,7 @@ static void run_chunk(Work *w) {
         const double *args = par;
         par += CODE_ARITY(c);
         if (o->n + need > o->cap || o->np + pneed > o->pcap) {
-            if (ms_reserve(o, need + (w->hi - i), pneed)) {
-                w->fault.status = SYL_ELIMIT;
-                w->fault.pos = i;
-                return;
-            }
+            if (over_limit(w, i, ms_reserve(o, need + (w->hi - i), pneed))) return;
         }
         const Dispatch *d = &t->dispatch[c];
         Rng rng;
@@ -246,8 +250,9 @@ typedef struct Engine {
     FILE *diag;
     int32_t *links;   /* left, right, pair, lcode+rcode and a 2-wide stack: 6 int32 per module */
     size_t linkcap;
-    double growth[TABLE_COUNT], pgrowth[TABLE_COUNT]; /* last pass: out/in modules, params */
+    double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
+    bool warned_depth;
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
@@ -255,17 +260,24 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
     const SylProgram *p = e->p;
     Diag d = {.out = e->diag, .src = &p->src};
     if (w->fault.status == SYL_ELIMIT) {
-        fprintf(e->diag,
-                "sylva: error: %s %d would exceed the limit of %llu modules or %llu MB of memory; "
-                "raise it with --max-modules or --max-memory\n",
-                what, step, (unsigned long long)e->budget.max_modules,
-                (unsigned long long)(e->budget.max_bytes >> 20));
+        if (w->fault.limit == LIMIT_MODULES)
+            fprintf(e->diag, "sylva: error: %s %d would exceed the limit of %llu modules; raise it with --max-modules\n",
+                    what, step, (unsigned long long)e->budget.max_modules);
+        else
+            fprintf(e->diag,
+                    "sylva: error: %s %d would need more than %llu MB for its strings; raise the limit with "
+                    "--max-memory\n",
+                    what, step, (unsigned long long)(e->budget.max_bytes >> 20));
         return;
     }
     SylLoc loc = w->fault.rule ? w->fault.rule->loc : (SylLoc){0};
     if (w->fault.vm.status && w->fault.vm.pc < (uint32_t)p->ncode) loc = p->code_loc[w->fault.vm.pc];
-    diag_error(&d, loc, "%s (%s %d, module %zu)", syl_eval_error_text(w->fault.vm.status), what, step,
-               w->fault.pos);
+    const char *name = w->fault.rule ? p->syms[CODE_SYM(w->fault.rule->pred)].name : NULL;
+    if (name)
+        diag_error(&d, loc, "%s (%s %d, module %zu '%s')", syl_eval_error_text(w->fault.vm.status), what, step,
+                   w->fault.pos + 1, name);
+    else
+        diag_error(&d, loc, "%s (%s %d)", syl_eval_error_text(w->fault.vm.status), what, step);
 }
 
 /* Rewrite `in` with table t into `out` (emptied first). Returns a SYL_* status. */
@@ -313,7 +325,7 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     /* size the output from the last pass's growth, so that it is rarely moved */
     if (nt == 1 && e->growth[table] > 0) {
         size_t want = (size_t)((double)in->n * e->growth[table] * 1.02) + 64;
-        size_t pwant = (size_t)((double)(in->np + 1) * e->pgrowth[table] * 1.02) + 64;
+        size_t pwant = (size_t)((double)want * e->density[table] * 1.02) + 64;
         if (want > e->budget.max_modules) want = (size_t)e->budget.max_modules;
         ms_reserve(out, want, pwant); /* a refusal here is met again, and reported, below */
     }
@@ -341,11 +353,13 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
         else run_thread(&works[k]);
     }
     int status = SYL_OK;
+    bool reported = false;
     for (int k = 0; k < nt && !status; k++) {
         *applied |= works[k].applied;
         if (works[k].fault.status) {
             report(e, &works[k], step, what);
             status = works[k].fault.status;
+            reported = true;
         }
     }
     for (int k = 1; k < nt; k++) { /* append the other chunks in order */
@@ -357,12 +371,17 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
         }
         ms_release(&parts[k]);
     }
+    if (!status && out->n > e->budget.max_modules) {
+        Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MODULES}};
+        report(e, &w, step, what);
+        return SYL_ELIMIT;
+    }
     if (!status && in->n) {
         e->growth[table] = (double)out->n / (double)in->n;
-        e->pgrowth[table] = (double)(out->np + 1) / (double)(in->np + 1);
+        e->density[table] = out->n ? (double)out->np / (double)out->n : 0;
     }
-    if (status == SYL_ELIMIT && !works[0].fault.status) {
-        Work w = {.fault.status = SYL_ELIMIT};
+    if (status == SYL_ELIMIT && !reported) {
+        Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MEMORY}};
         report(e, &w, step, what);
     }
     return status;
@@ -381,6 +400,12 @@ static int passes(Engine *e, int table, int step, SylString **cur, SylString **s
         SylString *x = *cur;
         *cur = *spare;
         *spare = x;
+        if (d == t->maxdepth - 1 && !e->warned_depth && e->diag) {
+            e->warned_depth = true;
+            fprintf(e->diag, "sylva: warning: %s rules may still apply after maxdepth %d passes (step %d); "
+                             "raise `maxdepth` in the block if more are meant\n",
+                    table == TABLE_DECOMPOSE ? "decomposition" : "interpretation", t->maxdepth, step);
+        }
     }
     return SYL_OK;
 }
@@ -482,7 +507,7 @@ int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptio
         if (in->np) memcpy(cur->par, in->par, in->np * sizeof *in->par);
         cur->n = in->n;
         cur->np = in->np;
-        st = passes(&e, TABLE_INTERPRET, 0, &cur, &spare);
+        st = passes(&e, TABLE_INTERPRET, opt->steps >= 0 ? opt->steps : p->derive, &cur, &spare);
     }
     syl_string_free(spare);
     free(e.links);

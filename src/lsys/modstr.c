@@ -19,12 +19,15 @@ static void hint_huge(void *p, size_t bytes) {
 static int charge(SylString *s, int64_t delta) {
     if (!s->budget) return SYL_OK;
     uint64_t now = atomic_fetch_add(&s->budget->bytes, (uint64_t)delta) + (uint64_t)delta;
+    if (delta > 0 && now > s->budget->max_bytes) {
+        atomic_fetch_sub(&s->budget->bytes, (uint64_t)delta);
+        return SYL_ELIMIT;
+    }
     s->charged += (uint64_t)delta;
-    return delta > 0 && now > s->budget->max_bytes ? SYL_ELIMIT : SYL_OK;
+    return SYL_OK;
 }
 
 int ms_reserve(SylString *s, size_t n, size_t np) {
-    if (s->budget && s->n + n > s->budget->max_modules) return SYL_ELIMIT;
     if (s->np + np >= UINT32_MAX) return SYL_ELIMIT; /* offsets are 32-bit */
     if (s->n + n > s->cap) {
         size_t cap = s->cap + s->cap / 2 + 1024;
