@@ -20,7 +20,7 @@ typedef struct ModelArgs {
 /* Split FILE:Model. */
 void cli_model_spec(ModelArgs *m, const char *spec);
 /* Parse `name=value` for --set; prints the problem and returns false on error. */
-bool cli_set(ModelArgs *m, const char *arg);
+bool cli_set(ModelArgs *m, char *arg);
 bool cli_number(const char *opt, const char *arg, double min, double max, double *out);
 bool cli_integer(const char *opt, const char *arg, double min, double max, double *out);
 bool cli_size(const char *opt, const char *arg, unsigned long long *out); /* 512M, 2G */

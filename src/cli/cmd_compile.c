@@ -38,6 +38,5 @@ int cmd_compile(int argc, char **argv) {
     SylProgram *p = cli_compile(&m, 0, &status);
     if (p && dump) syl_program_dump(p, stdout);
     syl_program_free(p);
-    for (int i = 0; i < m.nsets; i++) free((char *)m.sets[i].name);
     return p ? SYL_OK : status;
 }

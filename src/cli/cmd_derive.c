@@ -153,6 +153,5 @@ int cmd_derive(int argc, char **argv) {
     if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, d.rewritten);
     syl_string_free(s);
     syl_program_free(p);
-    for (int i = 0; i < m.nsets; i++) free((char *)m.sets[i].name);
     return status;
 }

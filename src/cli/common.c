@@ -62,8 +62,8 @@ bool cli_size(const char *opt, const char *arg, unsigned long long *out) {
     return true;
 }
 
-bool cli_set(ModelArgs *m, const char *arg) {
-    const char *eq = strchr(arg, '=');
+bool cli_set(ModelArgs *m, char *arg) {
+    char *eq = strchr(arg, '=');
     if (!eq || eq == arg) {
         fprintf(stderr, "sylva: error: --set expects name=value, not '%s'\n", arg);
         return false;
@@ -74,12 +74,8 @@ bool cli_set(ModelArgs *m, const char *arg) {
     }
     double v;
     if (!cli_number("--set", eq + 1, -1e300, 1e300, &v)) return false;
-    size_t n = (size_t)(eq - arg);
-    char *name = malloc(n + 1);
-    if (!name) return false;
-    memcpy(name, arg, n);
-    name[n] = 0;
-    m->sets[m->nsets].name = name;
+    *eq = 0; /* the name stays in argv: nothing to free */
+    m->sets[m->nsets].name = arg;
     m->sets[m->nsets++].value = v;
     return true;
 }

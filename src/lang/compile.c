@@ -314,7 +314,8 @@ static void successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char
                 sl->kind = e->op == '+' ? SLOT_ADDK : e->op == '-' ? SLOT_SUBK : e->op == '*' ? SLOT_MULK : SLOT_DIVK;
                 sl->local = (uint8_t)e->a->op;
                 sl->k = e->b->num;
-                sl->pc = (uint32_t)cc_expr(c, e, s, NULL); /* where a non-finite result is reported */
+                int32_t pc = cc_expr(c, e, s, NULL); /* LOCAL x; op k; RET */
+                sl->pc = pc < 0 ? 0 : (uint32_t)pc + 1; /* the operator: where an overflow is reported */
             } else {
                 sl->kind = SLOT_CODE;
                 int32_t pc = cc_expr(c, e, s, NULL);

@@ -91,9 +91,12 @@ static void rule(FILE *out, const SylProgram *p, const Rule *r, int index) {
         fprintf(out, "      parameter %d: ", k + 1);
         if (s->kind == SLOT_CONST) fprintf(out, "constant %g\n", s->k);
         else if (s->kind == SLOT_LOCAL) fprintf(out, "copy %s\n", r->names[s->local]);
-        else {
+        else if (s->kind == SLOT_CODE) {
             fprintf(out, "code\n");
             expression(out, p, s->pc, r->names, "        ");
+        } else { /* x op k: run without the VM; its code (from LOCAL x) reports errors */
+            fprintf(out, "%s %c %g, code\n", r->names[s->local], "+-*/"[s->kind - SLOT_ADDK], s->k);
+            expression(out, p, s->pc - 1, r->names, "        ");
         }
     }
 }
