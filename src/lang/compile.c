@@ -391,6 +391,11 @@ static void build_table(Compiler *c, RuleTable *t) {
         for (int k = 0; k < r->nright; k++)
             if (r->right[k].kind != PAT_MODULE) t->ctx_branches = true;
         if (r->nright) t->ctx_right = true;
+        if (r->nleft > 1 || r->nright > 1) t->ctx_index = true;
+        for (int k = 0; k < r->nleft; k++)
+            if (CODE_ARITY(r->left[k].code)) t->ctx_index = true;
+        for (int k = 0; k < r->nright; k++)
+            if (CODE_ARITY(r->right[k].code)) t->ctx_index = true;
         if (r->nslots) t->emits_params = true;
         if (r->nsucc > t->max_succ) t->max_succ = r->nsucc;
         if (r->nslots > t->max_succ_params) t->max_succ_params = r->nslots;
@@ -403,6 +408,26 @@ static void build_table(Compiler *c, RuleTable *t) {
         const Rule *r = &t->rules[t->order[d->first]];
         if (!r->nleft && !r->nright && r->cond < 0 && !r->weighted) d->plain = r;
         else t->all_plain = false;
+    }
+    for (int code = 0; code < CODE_COUNT; code++) {
+        Dispatch *d = &t->dispatch[code];
+        if (!d->count || d->plain) continue;
+        bool fast = true;
+        for (uint32_t k = 0; k < d->count && fast; k++) {
+            const Rule *r = &t->rules[t->order[d->first + k]];
+            fast = r->nleft <= 1 && r->nright <= 1 && r->cond < 0 && !r->weighted &&
+                   (!r->nleft || !CODE_ARITY(r->left[0].code)) &&
+                   (!r->nright || (r->right[0].kind == PAT_MODULE && !CODE_ARITY(r->right[0].code)));
+        }
+        if (!fast) continue;
+        FastRule *f = arena_alloc(&p->arena, sizeof *f * d->count);
+        for (uint32_t k = 0; k < d->count; k++) {
+            const Rule *r = &t->rules[t->order[d->first + k]];
+            f[k].left = r->nleft ? r->left[0].code : CODE_ANY;
+            f[k].right = r->nright ? r->right[0].code : CODE_ANY;
+            f[k].rule = r;
+        }
+        d->fast = f;
     }
 }
 

@@ -9,8 +9,8 @@ int cc_symbol(Compiler *c, const char *name, SylLoc loc) {
     int id = namemap_get(&c->syms, name, -1);
     if (id >= 0) return id;
     SylProgram *p = c->p;
-    if (p->nsyms >= MAX_SYMBOLS) {
-        diag_error(c->d, loc, "too many different modules (at most %d)", MAX_SYMBOLS);
+    if (p->nsyms >= MAX_SYMBOLS - 1) { /* the last id is kept for CODE_ANY */
+        diag_error(c->d, loc, "too many different modules (at most %d)", MAX_SYMBOLS - 1);
         return SYM_OPEN;
     }
     Symbol *s = VEC_PUSH(&p->arena, p->syms, p->nsyms, p->symcap);

@@ -66,10 +66,19 @@ typedef struct Rule {
     const char **names;       /* of the locals, for the disassembler */
 } Rule;
 
+/* A rule whose contexts are at most one module without parameters on each side, with no
+ * condition and no weight: matched by comparing the neighbours' codes alone. */
+#define CODE_ANY ((uint16_t)0xffff) /* no context on that side (symbol 2047 is never made) */
+typedef struct FastRule {
+    uint16_t left, right; /* codes, or CODE_ANY */
+    const struct Rule *rule;
+} FastRule;
+
 /* Per module code: which rules to try. A plain entry is one unconditional context-free
- * unweighted rule, emitted without any matching. */
+ * unweighted rule, emitted without any matching; fast entries are all FastRules. */
 typedef struct Dispatch {
     const struct Rule *plain; /* or NULL */
+    const FastRule *fast;     /* count entries, or NULL */
     uint32_t first;           /* index into RuleTable.order */
     uint32_t count;
 } Dispatch;
@@ -81,6 +90,7 @@ typedef struct RuleTable {
     Dispatch *dispatch;  /* CODE_COUNT entries, NULL when the table is empty */
     bool has_context;
     bool ctx_left, ctx_right, ctx_branches; /* kinds of contexts its rules use */
+    bool ctx_index;      /* some context binds parameters or spans several modules */
     bool emits_params;   /* some successor has parameters */
     bool all_plain;      /* every rule is plain: no matching, no choice */
     int max_succ;        /* longest successor in modules */

@@ -15,7 +15,7 @@
 #include "sylva/sylva.h"
 #include "vm.h"
 
-enum { PARALLEL_MIN = 1 << 16, MAX_CHOICES = 1024, MAX_THREADS = 256 };
+enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256 };
 
 enum { LIMIT_MODULES = 1, LIMIT_MEMORY };
 
@@ -40,6 +40,9 @@ typedef struct Work {
     uint64_t seed;
     bool applied;     /* a rule other than identity was used */
     bool codes_only;  /* no parameters in or out: run_chunk_codes */
+    const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
+    double *weight;
+    int ncap;
     Fault fault;
 } Work;
 
@@ -107,8 +110,7 @@ static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, 
                           int *status) {
     const RuleTable *t = w->t;
     const View *in = w->in;
-    const Rule *cand[MAX_CHOICES];
-    double weight[MAX_CHOICES], total = 0;
+    double total = 0;
     int nc = 0;
     *status = SYL_OK;
     for (uint32_t k = 0; k < d->count; k++) {
@@ -141,11 +143,24 @@ static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, 
             *status = fail(w, i, r, EVAL_NEG_WEIGHT);
             return NULL;
         }
-        if (nc < MAX_CHOICES) {
-            cand[nc] = r;
-            weight[nc++] = wt;
-            total += wt;
+        if (nc == w->ncap) { /* grows once per chunk at most a few times */
+            int cap = w->ncap ? 2 * w->ncap : 16;
+            const Rule **c = realloc(w->cand, sizeof *c * (size_t)cap);
+            double *wt2 = c ? realloc(w->weight, sizeof *wt2 * (size_t)cap) : NULL;
+            if (c) w->cand = c;
+            if (!c || !wt2) {
+                w->fault.status = SYL_ELIMIT;
+                w->fault.limit = LIMIT_MEMORY;
+                w->fault.pos = i;
+                *status = SYL_ELIMIT;
+                return NULL;
+            }
+            w->weight = wt2;
+            w->ncap = cap;
         }
+        w->cand[nc] = r;
+        w->weight[nc++] = wt;
+        total += wt;
     }
     if (!nc || total <= 0) return NULL;
     if (!*rng_ready) {
@@ -154,9 +169,9 @@ static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, 
     }
     double u = rng_unit(rng) * total;
     int pick = 0;
-    while (pick < nc - 1 && (u -= weight[pick]) >= 0) pick++;
-    while (weight[pick] == 0) pick--; /* u landed exactly on a boundary before a zero */
-    const Rule *r = cand[pick];
+    while (pick < nc - 1 && (u -= w->weight[pick]) >= 0) pick++;
+    while (w->weight[pick] == 0) pick--; /* u landed exactly on a boundary before a zero */
+    const Rule *r = w->cand[pick];
     /* the contexts bound last may be another candidate's: bind the chosen rule's again */
     if (r->nleft) match_left(in, i, r, locals);
     if (r->nright) match_right(in, i, r, locals);
@@ -225,6 +240,15 @@ static void run_chunk(Work *w) {
             copy_module(w, c, args);
             continue;
         }
+        if (d->fast) { /* neighbours' codes against each rule's, in order */
+            uint16_t lc = in->lcode ? in->lcode[i] : CODE_NONE, rc = in->rcode ? in->rcode[i] : CODE_NONE;
+            const FastRule *f = d->fast, *end = f + d->count;
+            while (f < end && !((f->left == CODE_ANY || f->left == lc) && (f->right == CODE_ANY || f->right == rc)))
+                f++;
+            if (f == end) copy_module(w, c, args);
+            else if (emit(w, f->rule, args, i, &rng, &rng_ready)) return;
+            continue;
+        }
         memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
         int status;
         const Rule *r = choose(w, d, i, locals, &rng, &rng_ready, &status);
@@ -248,8 +272,10 @@ typedef struct Engine {
     int threads;
     uint64_t seed;
     FILE *diag;
-    int32_t *links;   /* left, right, pair, lcode+rcode and a 2-wide stack: 6 int32 per module */
-    size_t linkcap;
+    /* context links of the string being read, each grown as needed and kept for the next step */
+    int32_t *left, *right, *pair, *stack;
+    uint16_t *lcode, *rcode;
+    size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
     bool warned_depth;
@@ -280,6 +306,27 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
         diag_error(&d, loc, "%s (%s %d)", syl_eval_error_text(w->fault.vm.status), what, step);
 }
 
+/* Make *p hold at least n elements, keeping what it has (pages once touched stay). */
+static bool grow(void *pp, size_t *cap, size_t elem, size_t n) {
+    void **p = pp;
+    if (*cap >= n) return true;
+    size_t c = n + n / 2 + 1024;
+    void *q = realloc(*p, c * elem);
+    if (!q) return false;
+    *p = q;
+    *cap = c;
+    return true;
+}
+
+static void engine_free(Engine *e) {
+    free(e->left);
+    free(e->right);
+    free(e->pair);
+    free(e->stack);
+    free(e->lcode);
+    free(e->rcode);
+}
+
 /* Rewrite `in` with table t into `out` (emptied first). Returns a SYL_* status. */
 static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *out, bool *applied, int step,
                 const char *what) {
@@ -294,30 +341,33 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
             v.poff = ms_offsets(in);
             if (!v.poff) return SYL_ELIMIT;
         }
-        if (e->linkcap < in->n) {
-            free(e->links);
-            e->linkcap = in->n + in->n / 2;
-            e->links = malloc(6 * e->linkcap * sizeof *e->links);
-            if (!e->links) {
-                e->linkcap = 0;
-                return SYL_ELIMIT;
-            }
-        }
-        int32_t *left = e->links, *right = left + e->linkcap, *pair = right + e->linkcap;
-        uint16_t *lcode = (uint16_t *)(pair + e->linkcap), *rcode = lcode + e->linkcap;
-        int32_t *stack = (int32_t *)(rcode + e->linkcap);
-        if (t->ctx_left) {
-            match_link_left(in->code, in->n, p->skip, left, lcode, stack);
-            v.left = left;
-            v.lcode = lcode;
-        }
+        size_t n = in->n;
+        /* indices are needed to bind context parameters or follow longer contexts;
+         * rules of the fast kind compare neighbour codes only */
+        bool idx = t->ctx_index;
         if (t->ctx_branches) {
-            match_pairs(in->code, in->n, pair);
-            v.pair = pair;
-        } else if (t->ctx_right) {
-            match_link_right(in->code, in->n, p->skip, right, rcode, stack);
-            v.right = right;
-            v.rcode = rcode;
+            if (!grow(&e->pair, &e->cap_pair, sizeof *e->pair, n)) return SYL_ELIMIT;
+            match_pairs(in->code, n, e->pair);
+            v.pair = e->pair;
+        }
+        if ((t->ctx_left || (t->ctx_right && !t->ctx_branches)) &&
+            !grow(&e->stack, &e->cap_stack, sizeof *e->stack, 2 * n + 2))
+            return SYL_ELIMIT;
+        if (t->ctx_left) {
+            if (!grow(&e->lcode, &e->cap_lcode, sizeof *e->lcode, n) ||
+                (idx && !grow(&e->left, &e->cap_left, sizeof *e->left, n)))
+                return SYL_ELIMIT;
+            match_link_left(in->code, n, p->skip, idx ? e->left : NULL, e->lcode, e->stack);
+            v.left = idx ? e->left : NULL;
+            v.lcode = e->lcode;
+        }
+        if (t->ctx_right && !t->ctx_branches) {
+            if (!grow(&e->rcode, &e->cap_rcode, sizeof *e->rcode, n) ||
+                (idx && !grow(&e->right, &e->cap_right, sizeof *e->right, n)))
+                return SYL_ELIMIT;
+            match_link_right(in->code, n, p->skip, idx ? e->right : NULL, e->rcode, e->stack);
+            v.right = idx ? e->right : NULL;
+            v.rcode = e->rcode;
         }
     }
     int nt = e->threads;
@@ -351,6 +401,10 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     for (int k = 1; k < nt; k++) {
         if (started[k]) pthread_join(tid[k], NULL);
         else run_thread(&works[k]);
+    }
+    for (int k = 0; k < nt; k++) {
+        free(works[k].cand);
+        free(works[k].weight);
     }
     int status = SYL_OK;
     bool reported = false;
@@ -484,7 +538,7 @@ int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
         if (!st && opt->on_step) opt->on_step(opt->user, step, cur);
     }
     syl_string_free(spare);
-    free(e.links);
+    engine_free(&e);
     opt->rewritten = e.rewritten;
     if (st) {
         syl_string_free(cur);
@@ -510,7 +564,7 @@ int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptio
         st = passes(&e, TABLE_INTERPRET, opt->steps >= 0 ? opt->steps : p->derive, &cur, &spare);
     }
     syl_string_free(spare);
-    free(e.links);
+    engine_free(&e);
     if (st) {
         syl_string_free(cur);
         *out = NULL;

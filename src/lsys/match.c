@@ -51,7 +51,7 @@ void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *
     for (size_t i = 0; i < n; i++) {
         uint16_t c = code[i];
         int s = CODE_SYM(c);
-        left[i] = last;
+        if (left) left[i] = last;
         lcode[i] = lastcode;
         if (s == SYM_OPEN) { /* a branch starts from its parent's module */
             stack[sp++] = last;
@@ -74,7 +74,7 @@ void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t 
     for (size_t i = n; i-- > 0;) {
         uint16_t c = code[i];
         int s = CODE_SYM(c);
-        right[i] = next;
+        if (right) right[i] = next;
         rcode[i] = nextcode;
         if (s == SYM_CLOSE) { /* entering a branch from its end: nothing follows its last module */
             stack[sp++] = next;

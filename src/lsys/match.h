@@ -38,6 +38,7 @@ static inline void match_bind(const View *v, size_t pos, const PatElem *pe, doub
 static inline bool match_left(const View *v, size_t i, const Rule *r, double *locals) {
     /* the neighbour's code sits beside module i: most rules are rejected without a jump */
     if (v->lcode[i] != r->left[r->nleft - 1].code) return false;
+    if (!v->left) return true; /* no links: every left context is one module without parameters */
     int32_t pos = (int32_t)i;
     for (int j = r->nleft - 1; j >= 0; j--) {
         pos = v->left[pos];
@@ -52,6 +53,7 @@ bool match_branches(const View *v, size_t i, const Rule *r, double *locals); /* 
 static inline bool match_right(const View *v, size_t i, const Rule *r, double *locals) {
     if (v->pair) return match_branches(v, i, r, locals);
     if (v->rcode[i] != r->right[0].code) return false;
+    if (!v->right) return true; /* likewise */
     int32_t pos = (int32_t)i;
     for (int j = 0; j < r->nright; j++) {
         pos = v->right[pos];
