@@ -50,10 +50,9 @@ static inline void copy_module(Work *w, uint16_t c, const double *args) {
     SylString *o = w->out;
     int ar = CODE_ARITY(c);
     o->code[o->n++] = c;
-    if (ar) {
-        memcpy(o->par + o->np, args, sizeof(double) * (size_t)ar);
-        o->np += (size_t)ar;
-    }
+    double *dst = o->par + o->np;
+    for (int k = 0; k < ar; k++) dst[k] = args[k]; /* mostly 0 or 1: no call to memcpy */
+    o->np += (size_t)ar;
 }
 
 static int fail(Work *w, size_t pos, const Rule *r, int status) {
