@@ -16,29 +16,6 @@ static const char usage[] =
     "\n"
     "  --werror   treat warnings as errors\n";
 
-static char *slurp(const char *path, size_t *len) {
-    FILE *f = fopen(path, "rb");
-    if (!f) return NULL;
-    errno = 0;
-    size_t cap = 1 << 16, n = 0, got;
-    char *buf = malloc(cap);
-    while (buf && (got = fread(buf + n, 1, cap - n, f)) > 0)
-        if ((n += got) == cap) {
-            char *nb = realloc(buf, cap *= 2);
-            if (!nb) free(buf);
-            buf = nb;
-        }
-    int err = ferror(f) ? (errno ? errno : EIO) : 0;
-    fclose(f);
-    if (err) {
-        free(buf);
-        errno = err;
-        return NULL;
-    }
-    *len = n;
-    return buf;
-}
-
 int cmd_check(int argc, char **argv) {
     static const struct option opts[] = {{"werror", no_argument, 0, 'W'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
     bool werror = false;
@@ -63,7 +40,7 @@ int cmd_check(int argc, char **argv) {
         ModelArgs m = {0};
         cli_model_spec(&m, argv[a]);
         size_t len = 0;
-        char *text = slurp(m.path, &len);
+        char *text = syl_read_file(m.path, &len);
         if (!text) {
             fprintf(stderr, "sylva: error: cannot read '%s': %s\n", m.path, strerror(errno));
             worst = SYL_EIO;

@@ -9,7 +9,7 @@
 
 /* ---- reading sources ---- */
 
-static char *read_all(const char *path, size_t *len) {
+char *syl_read_file(const char *path, size_t *len) {
     FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
     if (!f) return NULL;
     errno = 0;
@@ -551,7 +551,7 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         p->text = malloc(len + 1);
         if (p->text) memcpy(p->text, text, len);
     } else {
-        p->text = read_all(path, &len);
+        p->text = syl_read_file(path, &len);
         if (!p->text) {
             if (opt->diag) fprintf(opt->diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
             free(p);
