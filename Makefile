@@ -12,11 +12,14 @@ OPT     := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sani
 else
 OPT     := -O2 -g
 endif
-CFLAGS  := -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
-           -Iinclude -Isrc -I$(BUILD)/gen
-LDLIBS  := -lm -pthread
+CFLAGS   = -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
+           -Iinclude -Isrc -I$(BUILD)/gen $(PKG_CFLAGS)
+PKGS    := cglm libpng libxml-2.0
+PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
+PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
+LDLIBS   = $(PKG_LIBS) -lembree3 -lm -pthread
 
-LIB_SRC := $(wildcard src/util/*.c src/lang/*.c src/lsys/*.c)
+LIB_SRC := $(filter-out src/cli/%,$(wildcard src/*/*.c))
 CLI_SRC := $(wildcard src/cli/*.c)
 GEN_SRC := $(BUILD)/gen/parser.c $(BUILD)/gen/lexer.c
 LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(GEN_SRC:.c=.o)
@@ -84,12 +87,12 @@ test: all units
 	@tests/run-all $(BUILD) build-asan --fuzz build-fuzz/fuzz_compile
 
 # ---- fuzzing (clang + libFuzzer) ----
-FUZZ_CFLAGS := -std=c11 -O1 -g -Wall -Wextra -D_GNU_SOURCE -pthread -Iinclude -Isrc -Ibuild-fuzz/gen \
+FUZZ_CFLAGS = -std=c11 -O1 -g -Wall -Wextra -D_GNU_SOURCE -pthread -Iinclude -Isrc -Ibuild-fuzz/gen $(PKG_CFLAGS) \
                -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
 build-fuzz/fuzz_compile: tests/fuzz/fuzz_compile.c $(LIB_SRC) grammar/lexer.l grammar/parser.y | $(DEPS_OK)
 	@$(MAKE) --no-print-directory BUILD=build-fuzz build-fuzz/gen/lexer.c
 	clang $(FUZZ_CFLAGS) -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter -o $@ \
-	    tests/fuzz/fuzz_compile.c $(LIB_SRC) build-fuzz/gen/parser.c build-fuzz/gen/lexer.c -lm
+	    tests/fuzz/fuzz_compile.c $(LIB_SRC) build-fuzz/gen/parser.c build-fuzz/gen/lexer.c $(LDLIBS)
 fuzz: build-fuzz/fuzz_compile
 	@tests/fuzz/run build-fuzz/fuzz_compile $${FUZZ_SECONDS:-300}
 

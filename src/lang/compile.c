@@ -157,12 +157,20 @@ typedef struct SettingDef {
     int block; /* -1: the model's level; else only in decompose/interpret blocks */
     double min, max;
     bool integer;
+    int nargs;       /* values it takes */
+    bool repeatable; /* colour: once per index */
 } SettingDef;
 
 static const SettingDef settings[] = {
-    {"derive", -1, 0, 1e6, true},  {"angle", -1, -1e9, 1e9, false}, {"step", -1, -1e9, 1e9, false},
-    {"width", -1, 0, 1e9, false},  {"seed", -1, 0, 9007199254740991.0, true},
-    {"maxdepth", 1, 1, 1000, true},
+    {"derive", -1, 0, 1e6, true, 1, false},
+    {"angle", -1, -1e9, 1e9, false, 1, false},
+    {"step", -1, -1e9, 1e9, false, 1, false},
+    {"width", -1, 0, 1e9, false, 1, false},
+    {"seed", -1, 0, 9007199254740991.0, true, 1, false},
+    {"maxdepth", 1, 1, 1000, true, 1, false},
+    {"widthfactor", -1, 0, 1e9, false, 1, false},
+    {"tropism", -1, -1e9, 1e9, false, 4, false}, /* direction x, y, z and elasticity */
+    {"colour", -1, 0, 255, false, 4, true},      /* index, then red, green, blue in 0..1 */
 };
 
 static void setting(Compiler *c, Stmt *s, SylLoc *seen) {
@@ -177,29 +185,53 @@ static void setting(Compiler *c, Stmt *s, SylLoc *seen) {
                    s->name);
         return;
     }
-    if (s->args.n != 1) {
-        diag_error(c->d, s->loc, "'%s' takes one value", s->name);
+    if (s->args.n != def->nargs) {
+        if (def->nargs == 1) diag_error(c->d, s->loc, "'%s' takes one value", s->name);
+        else diag_error(c->d, s->loc, "'%s' takes %d values separated by commas", s->name, def->nargs);
         return;
     }
     int slot = def->block < 0 ? i : i + s->block; /* maxdepth per block */
-    if (seen[slot].first_line) {
-        diag_error(c->d, s->loc, "'%s' is set twice (first at line %d)", s->name, seen[slot].first_line);
+    if (!def->repeatable) {
+        if (seen[slot].first_line) {
+            diag_error(c->d, s->loc, "'%s' is set twice (first at line %d)", s->name, seen[slot].first_line);
+            return;
+        }
+        seen[slot] = s->loc;
+    }
+    double v[4];
+    for (int k = 0; k < def->nargs; k++)
+        if (!cc_const(c, s->args.v[k], &v[k])) return;
+    if (!strcmp(s->name, "colour")) {
+        if (v[0] != floor(v[0]) || v[0] < 0 || v[0] > 255) {
+            diag_error(c->d, s->args.v[0]->loc, "a colour index is a whole number from 0 to 255");
+            return;
+        }
+        for (int k = 1; k < 4; k++)
+            if (v[k] < 0 || v[k] > 1) {
+                diag_error(c->d, s->args.v[k]->loc, "colour components go from 0 to 1");
+                return;
+            }
+        int idx = (int)v[0];
+        for (int k = 0; k < 3; k++) p->colours[idx][k] = (float)v[k + 1];
+        p->colour_set[idx] = true;
         return;
     }
-    seen[slot] = s->loc;
-    double v;
-    if (!cc_const(c, s->args.v[0], &v)) return;
-    if (v < def->min || v > def->max || (def->integer && v != floor(v))) {
+    if (!strcmp(s->name, "tropism")) {
+        for (int k = 0; k < 4; k++) p->tropism[k] = v[k];
+        return;
+    }
+    if (v[0] < def->min || v[0] > def->max || (def->integer && v[0] != floor(v[0]))) {
         diag_error(c->d, s->args.v[0]->loc, "'%s' must be %s from %g to %g", s->name,
                    def->integer ? "a whole number" : "a number", def->min, def->max);
         return;
     }
-    if (!strcmp(s->name, "derive")) p->derive = (int)v;
-    else if (!strcmp(s->name, "angle")) p->angle = v;
-    else if (!strcmp(s->name, "step")) p->step = v;
-    else if (!strcmp(s->name, "width")) p->width = v;
-    else if (!strcmp(s->name, "seed")) p->seed = (uint64_t)v;
-    else p->tables[s->block == BLOCK_DECOMPOSE ? TABLE_DECOMPOSE : TABLE_INTERPRET].maxdepth = (int)v;
+    if (!strcmp(s->name, "derive")) p->derive = (int)v[0];
+    else if (!strcmp(s->name, "angle")) p->angle = v[0];
+    else if (!strcmp(s->name, "step")) p->step = v[0];
+    else if (!strcmp(s->name, "width")) p->width = v[0];
+    else if (!strcmp(s->name, "seed")) p->seed = (uint64_t)v[0];
+    else if (!strcmp(s->name, "widthfactor")) p->widthfactor = v[0];
+    else p->tables[s->block == BLOCK_DECOMPOSE ? TABLE_DECOMPOSE : TABLE_INTERPRET].maxdepth = (int)v[0];
 }
 
 /* ---- rules ---- */
@@ -444,6 +476,7 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
     p->angle = 45;
     p->step = 1;
     p->width = 0.1;
+    p->widthfactor = 0.7;
     p->tables[TABLE_DECOMPOSE].maxdepth = p->tables[TABLE_INTERPRET].maxdepth = 16;
 
     for (int i = 0; i < n; i++) declare(c, all[i], i < top->n);
@@ -466,7 +499,7 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
                        id >= 0 ? " (it is a const; declare it with `param` to set it)" : "");
     }
 
-    SylLoc seen[8] = {{0}};
+    SylLoc seen[16] = {{0}};
     for (int i = 0; i < n; i++) {
         Stmt *s = all[i];
         if (s->block != BLOCK_PRODUCE && s->kind != ST_RULE && s->kind != ST_SETTING) {
@@ -640,5 +673,6 @@ double syl_program_setting(const SylProgram *p, const char *name) {
     if (!strcmp(name, "step")) return p->step;
     if (!strcmp(name, "width")) return p->width;
     if (!strcmp(name, "derive")) return p->derive;
+    if (!strcmp(name, "widthfactor")) return p->widthfactor;
     return NAN;
 }

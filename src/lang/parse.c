@@ -5,7 +5,8 @@
 #include "parser.h"
 #include "lexer.h"
 
-const char *const syl_setting_names[] = {"derive", "angle", "step", "width", "seed", "maxdepth", NULL};
+const char *const syl_setting_names[] = {"derive", "angle", "step", "width", "seed", "maxdepth",
+                                          "widthfactor", "tropism", "colour", NULL};
 
 int yyparse(void *scanner, ParseState *ps);
 

@@ -157,7 +157,10 @@ struct SylProgram {
     bool skip[MAX_SYMBOLS]; /* ignored in context matching */
 
     int derive;
-    double angle, step, width;
+    double angle, step, width, widthfactor;
+    double tropism[4];      /* direction and elasticity; elasticity 0: none */
+    float colours[256][3];  /* `colour` settings, where colour_set */
+    bool colour_set[256];
     uint64_t seed;
 };
 

@@ -1,0 +1,49 @@
+/* Mesh: triangles made from a skeleton — generalized cylinders along each axis, organs and
+ * polygons — with smooth normals, UVs and one group of triangles per material. */
+#ifndef SYLVA_MESH_H
+#define SYLVA_MESH_H
+#include <stddef.h>
+#include <stdint.h>
+
+#include "skeleton.h"
+
+typedef struct SylMeshGroup {
+    uint32_t first, count; /* a range of SylMesh.idx (a multiple of 3) */
+    uint8_t material;
+} SylMeshGroup;
+
+typedef struct SylMesh {
+    float *pos, *nrm, *uv; /* 3, 3 and 2 floats per vertex */
+    size_t nverts, vert_cap;
+    uint32_t *idx;         /* triangles, counter-clockwise seen from outside */
+    size_t nidx, idx_cap;
+    SylMeshGroup *groups;  /* sorted by material, no two with the same material */
+    int ngroups;
+    SylMaterial materials[256];
+    int nmaterials;
+    char name[64];
+} SylMesh;
+
+enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };
+
+typedef struct SylMeshOptions {
+    int sides;            /* around a cylinder; 0: 8 */
+    int min_sides;        /* thin branches get fewer, down to this; 0: 3 */
+    int radius;           /* SYL_RADIUS_MODEL: the turtle's widths; SYL_RADIUS_PIPE */
+    float pipe_exponent;  /* 0: 2.0 (da Vinci) */
+    float tip_radius;     /* pipe model: radius of a tip; 0: the model's tip radius */
+    int caps;             /* close axis ends (default on: set -1 for off) */
+    int threads;
+} SylMeshOptions;
+
+int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out);
+void syl_mesh_free(SylMesh *m);
+
+/* Files. Each writes to a temporary file and renames it, so a failure leaves nothing.
+ * Textures (PNG) are written beside the file and referenced by its materials. */
+int syl_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
+int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
+int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
+int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
+
+#endif

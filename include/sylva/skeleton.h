@@ -1,0 +1,106 @@
+/* Skeleton: the common currency of Sylva. The turtle emits it from an L-system string, the
+ * growth engine grows it, and the mesher, renderer, exporters and metrics read it; nothing
+ * downstream knows which engine made it.
+ *
+ * Frame convention: Y is up. Every node carries the turtle frame at its position: H heading,
+ * L left, U up, with H x L = U. Lengths are model units (1 unit = 1 metre for exporters). */
+#ifndef SYLVA_SKELETON_H
+#define SYLVA_SKELETON_H
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sylva.h"
+
+typedef enum {
+    SYL_KIND_ROOT,      /* where an axis starts without a parent segment */
+    SYL_KIND_INTERNODE, /* the end of a drawn segment (F, G) */
+    SYL_KIND_LEAF,      /* organs: ~leaf */
+    SYL_KIND_FLOWER,    /* ~petal, flowers */
+    SYL_KIND_NEEDLE,    /* ~needle */
+    SYL_KIND_SPHERE,    /* @O */
+    SYL_KIND_BUD,
+    SYL_KIND_COUNT
+} SylKind;
+
+extern const char *const syl_kind_names[SYL_KIND_COUNT]; /* "root", "internode", ... */
+
+enum {
+    SYL_NODE_SMOOTH = 1, /* inside @Gc ... @Ge: the mesher smooths the axis through it */
+};
+
+/* A node: the root of an axis, or the end of one drawn segment whose start is its parent. */
+typedef struct SylNode {
+    float pos[3];
+    float h[3], l[3], u[3];
+    float radius;      /* of the segment ending here (half the turtle's width) */
+    int32_t parent;    /* -1 for a root */
+    int32_t axis;      /* axes are maximal chains; a lateral branch starts a new one */
+    uint16_t order;    /* branch order: 0 trunk, 1 its branches, ... */
+    uint8_t kind;      /* SylKind */
+    uint8_t material;  /* index into SylSkeleton.materials */
+    uint8_t flags;     /* SYL_NODE_* */
+    uint32_t module;   /* index of the module that made it, in the string the turtle read */
+} SylNode;
+
+/* An organ placed at a point with a frame: a predefined surface or a sphere. */
+typedef struct SylOrgan {
+    float pos[3];
+    float h[3], l[3], u[3];
+    float size;       /* scale of the surface; diameter of a sphere */
+    int32_t node;     /* the node it is attached to (-1: none) */
+    uint8_t kind;     /* SYL_KIND_LEAF, _FLOWER, _NEEDLE or _SPHERE */
+    uint8_t material;
+    uint32_t module;
+} SylOrgan;
+
+/* A polygon drawn with { . } : vertices in order, outline closed implicitly. */
+typedef struct SylPolygon {
+    uint32_t first, count; /* into SylSkeleton.poly_verts */
+    int32_t node;          /* the node current when it was closed (-1: none) */
+    uint8_t material;
+    uint32_t module;
+} SylPolygon;
+
+enum { SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, SYL_MATERIAL_PLAIN };
+
+typedef struct SylMaterial {
+    float rgb[3];   /* base colour, 0..1 */
+    uint8_t kind;   /* SYL_MATERIAL_*: chooses the procedural texture */
+} SylMaterial;
+
+typedef struct SylSkeleton {
+    SylNode *nodes;
+    size_t nnodes, node_cap;
+    SylOrgan *organs;
+    size_t norgans, organ_cap;
+    SylPolygon *polys;
+    size_t npolys, poly_cap;
+    float (*poly_verts)[3];
+    size_t nverts, vert_cap;
+    SylMaterial materials[256];
+    int nmaterials;  /* indices below this are in use */
+    char name[64];
+} SylSkeleton;
+
+SylSkeleton *syl_skeleton_new(const char *name); /* default palette: bark, leaf, flower, ... */
+void syl_skeleton_free(SylSkeleton *s);
+int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n);   /* returns its index; -1 out of memory */
+int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o);
+int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32_t n, int32_t node,
+                                 uint8_t material, uint32_t module);
+/* Axis-aligned bounds of nodes, organs and polygons. */
+void syl_skeleton_bounds(const SylSkeleton *s, float lo[3], float hi[3]);
+/* id,parent,x,y,z,radius,order,kind — nodes, then organs (parent: their node). */
+int syl_skeleton_write_csv(const SylSkeleton *s, FILE *out);
+int syl_skeleton_write_json(const SylSkeleton *s, FILE *out);
+
+typedef struct SylTurtleOptions {
+    FILE *diag;
+} SylTurtleOptions;
+
+/* Interpret a derived string (after `interpret` rules, see syl_interpret) with the 3D
+ * turtle of docs/turtle.md and return its skeleton. */
+int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out);
+
+#endif

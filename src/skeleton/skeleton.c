@@ -1,0 +1,143 @@
+/* Skeleton storage, bounds and export. */
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sylva/skeleton.h"
+
+const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf", "flower",
+                                                   "needle", "sphere", "bud"};
+
+/* A default palette: what the renderer draws when a model sets no colours. Index 0 is bark,
+ * 1 leaf, 2 flower, then plain colours for models that count with ' ; , */
+static const SylMaterial palette[] = {
+    {{0.40f, 0.28f, 0.18f}, SYL_MATERIAL_BARK},   {{0.22f, 0.50f, 0.14f}, SYL_MATERIAL_LEAF},
+    {{0.92f, 0.55f, 0.70f}, SYL_MATERIAL_FLOWER}, {{0.85f, 0.75f, 0.25f}, SYL_MATERIAL_PLAIN},
+    {{0.30f, 0.45f, 0.80f}, SYL_MATERIAL_PLAIN},  {{0.80f, 0.30f, 0.25f}, SYL_MATERIAL_PLAIN},
+    {{0.55f, 0.70f, 0.30f}, SYL_MATERIAL_LEAF},   {{0.95f, 0.95f, 0.90f}, SYL_MATERIAL_FLOWER},
+};
+
+SylSkeleton *syl_skeleton_new(const char *name) {
+    SylSkeleton *s = calloc(1, sizeof *s);
+    if (!s) return NULL;
+    snprintf(s->name, sizeof s->name, "%s", name ? name : "plant");
+    int np = (int)(sizeof palette / sizeof *palette);
+    for (int i = 0; i < 256; i++) s->materials[i] = palette[i % np];
+    s->nmaterials = 1;
+    return s;
+}
+
+void syl_skeleton_free(SylSkeleton *s) {
+    if (!s) return;
+    free(s->nodes);
+    free(s->organs);
+    free(s->polys);
+    free(s->poly_verts);
+    free(s);
+}
+
+/* Grow an array to hold one more element; false when out of memory. */
+static bool reserve(void **arr, size_t *cap, size_t n, size_t elem) {
+    if (n < *cap) return true;
+    size_t c = *cap ? *cap * 2 : 256;
+    while (c < n + 1) c *= 2;
+    void *p = realloc(*arr, c * elem);
+    if (!p) return false;
+    *arr = p;
+    *cap = c;
+    return true;
+}
+
+static void note_material(SylSkeleton *s, uint8_t m) {
+    if (m >= s->nmaterials) s->nmaterials = m + 1;
+}
+
+int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
+    if (s->nnodes >= INT32_MAX || !reserve((void **)&s->nodes, &s->node_cap, s->nnodes, sizeof *n)) return -1;
+    s->nodes[s->nnodes] = *n;
+    note_material(s, n->material);
+    return (int32_t)s->nnodes++;
+}
+
+int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o) {
+    if (s->norgans >= INT32_MAX || !reserve((void **)&s->organs, &s->organ_cap, s->norgans, sizeof *o))
+        return -1;
+    s->organs[s->norgans] = *o;
+    note_material(s, o->material);
+    return (int32_t)s->norgans++;
+}
+
+int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32_t n, int32_t node,
+                                 uint8_t material, uint32_t module) {
+    if (s->npolys >= INT32_MAX || !reserve((void **)&s->polys, &s->poly_cap, s->npolys, sizeof *s->polys))
+        return -1;
+    for (uint32_t i = 0; i < n; i++) {
+        if (!reserve((void **)&s->poly_verts, &s->vert_cap, s->nverts, sizeof *s->poly_verts)) return -1;
+        memcpy(s->poly_verts[s->nverts++], verts[i], sizeof *verts);
+    }
+    SylPolygon *p = &s->polys[s->npolys];
+    p->first = (uint32_t)(s->nverts - n);
+    p->count = n;
+    p->node = node;
+    p->material = material;
+    p->module = module;
+    note_material(s, material);
+    return (int32_t)s->npolys++;
+}
+
+static void extend(float lo[3], float hi[3], const float p[3], float r) {
+    for (int k = 0; k < 3; k++) {
+        if (p[k] - r < lo[k]) lo[k] = p[k] - r;
+        if (p[k] + r > hi[k]) hi[k] = p[k] + r;
+    }
+}
+
+void syl_skeleton_bounds(const SylSkeleton *s, float lo[3], float hi[3]) {
+    for (int k = 0; k < 3; k++) {
+        lo[k] = INFINITY;
+        hi[k] = -INFINITY;
+    }
+    for (size_t i = 0; i < s->nnodes; i++) extend(lo, hi, s->nodes[i].pos, s->nodes[i].radius);
+    for (size_t i = 0; i < s->norgans; i++) extend(lo, hi, s->organs[i].pos, s->organs[i].size);
+    for (size_t i = 0; i < s->nverts; i++) extend(lo, hi, s->poly_verts[i], 0);
+    if (lo[0] > hi[0])
+        for (int k = 0; k < 3; k++) lo[k] = hi[k] = 0;
+}
+
+int syl_skeleton_write_csv(const SylSkeleton *s, FILE *out) {
+    fprintf(out, "id,parent,x,y,z,radius,order,kind\n");
+    for (size_t i = 0; i < s->nnodes; i++) {
+        const SylNode *n = &s->nodes[i];
+        fprintf(out, "%zu,%d,%.6g,%.6g,%.6g,%.6g,%u,%s\n", i, n->parent, n->pos[0], n->pos[1], n->pos[2],
+                n->radius, n->order, syl_kind_names[n->kind]);
+    }
+    for (size_t i = 0; i < s->norgans; i++) {
+        const SylOrgan *o = &s->organs[i];
+        unsigned order = o->node >= 0 ? s->nodes[o->node].order : 0;
+        fprintf(out, "%zu,%d,%.6g,%.6g,%.6g,%.6g,%u,%s\n", s->nnodes + i, o->node, o->pos[0], o->pos[1],
+                o->pos[2], o->size / 2, order, syl_kind_names[o->kind]);
+    }
+    return ferror(out) ? SYL_EIO : SYL_OK;
+}
+
+int syl_skeleton_write_json(const SylSkeleton *s, FILE *out) {
+    fprintf(out, "{\"name\":\"%s\",\"nodes\":[", s->name);
+    for (size_t i = 0; i < s->nnodes; i++) {
+        const SylNode *n = &s->nodes[i];
+        fprintf(out, "%s\n{\"id\":%zu,\"parent\":%d,\"x\":%.6g,\"y\":%.6g,\"z\":%.6g,\"radius\":%.6g,"
+                     "\"order\":%u,\"axis\":%d,\"kind\":\"%s\",\"material\":%u}",
+                i ? "," : "", i, n->parent, n->pos[0], n->pos[1], n->pos[2], n->radius, n->order, n->axis,
+                syl_kind_names[n->kind], n->material);
+    }
+    fprintf(out, "\n],\"organs\":[");
+    for (size_t i = 0; i < s->norgans; i++) {
+        const SylOrgan *o = &s->organs[i];
+        fprintf(out, "%s\n{\"id\":%zu,\"parent\":%d,\"x\":%.6g,\"y\":%.6g,\"z\":%.6g,\"size\":%.6g,"
+                     "\"kind\":\"%s\",\"material\":%u}",
+                i ? "," : "", s->nnodes + i, o->node, o->pos[0], o->pos[1], o->pos[2], o->size,
+                syl_kind_names[o->kind], o->material);
+    }
+    fprintf(out, "\n],\"polygons\":%zu}\n", s->npolys);
+    return ferror(out) ? SYL_EIO : SYL_OK;
+}
