@@ -83,6 +83,10 @@ static void declare(Compiler *c, Stmt *s, bool top) {
             for (int j = 0; j < i; j++)
                 if (!strcmp(s->params.v[i], s->params.v[j]))
                     diag_error(c->d, s->params.locs[i], "parameter '%s' is named twice", s->params.v[i]);
+        if (s->params.n > MAX_LOCALS) {
+            diag_error(c->d, s->loc, "a function has at most %d parameters", MAX_LOCALS);
+            break;
+        }
         Function *f = VEC_PUSH(&p->arena, p->fns, p->nfns, p->fncap);
         f->name = arena_strndup(&p->arena, s->name, strlen(s->name));
         f->nparams = s->params.n;
@@ -490,6 +494,14 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
             int id = namemap_get(&c->fns, all[i]->name, -1);
             if (id >= 0 && !c->fn_stmts[id]) c->fn_stmts[id] = all[i];
         }
+    /* what the file's top level declares is shared by its models: never "unused" in one */
+    for (int i = 0; i < top->n; i++) {
+        Stmt *s = &top->v[i];
+        int id;
+        if (s->kind == ST_FN && (id = namemap_get(&c->fns, s->name, -1)) >= 0) c->fn_used[id] = true;
+        if (s->kind == ST_CURVE && (id = namemap_get(&c->curves, s->name, -1)) >= 0) c->curve_used[id] = true;
+        if (s->kind == ST_MODULE && (id = namemap_get(&c->syms, s->name, -1)) >= 0) c->sym_used[id] = true;
+    }
     for (int i = 0; i < c->opt->noverrides; i++) {
         int id = namemap_get(&c->values, c->opt->overrides[i].name, -1);
         if (id < 0 || !c->vals[id].is_param) c->usage_error = true;

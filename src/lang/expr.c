@@ -77,6 +77,10 @@ static Expr *fold_call(Compiler *c, Expr *e, Scope *s, bool *random) {
             diag_error(c->d, e->loc, "curve '%s' takes 1 argument, not %d", e->name, n);
             return number(c, e, 0);
         }
+        if (!c->p->curves[id].n) {
+            diag_error(c->d, e->loc, "curve '%s' is used before its points are known", e->name);
+            return number(c, e, 0);
+        }
         return all_const ? number(c, e, curve_eval(&c->p->curves[id], e->args.v[0]->num)) : e;
     }
     if ((id = syl_builtin_find(e->name)) >= 0) {

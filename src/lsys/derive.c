@@ -297,12 +297,13 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
     }
     SylLoc loc = w->fault.rule ? w->fault.rule->loc : (SylLoc){0};
     if (w->fault.vm.status && w->fault.vm.pc < (uint32_t)p->ncode) loc = p->code_loc[w->fault.vm.pc];
-    const char *name = w->fault.rule ? p->syms[CODE_SYM(w->fault.rule->pred)].name : NULL;
+    const char *name = w->fault.rule && w->fault.rule != &p->axiom ? p->syms[CODE_SYM(w->fault.rule->pred)].name : NULL;
     if (name)
         diag_error(&d, loc, "%s (%s %d, module %zu '%s')", syl_eval_error_text(w->fault.vm.status), what, step,
                    w->fault.pos + 1, name);
     else
-        diag_error(&d, loc, "%s (%s %d)", syl_eval_error_text(w->fault.vm.status), what, step);
+        diag_error(&d, loc, "%s (%s %d, module %zu)", syl_eval_error_text(w->fault.vm.status), what, step,
+                   w->fault.pos + 1);
 }
 
 /* Make *p hold at least n elements, keeping what it has (pages once touched stay). */
