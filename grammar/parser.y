@@ -30,7 +30,7 @@ static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg)
         diag_error(ps->diag, *loc, "unexpected end of file: '}' missing to close lsystem '%s' (line %d)",
                    ps->model->name, ps->model->loc.first_line);
     else if (strstr(msg, "unexpected end of line, expecting ->"))
-        diag_error(ps->diag, *loc, "%s (a rule needs '->'; the settings are derive, angle, step, width, seed)",
+        diag_error(ps->diag, *loc, "%s (a rule needs '->'; the settings are derive, angle, step, width, widthfactor, seed, tropism, colour)",
                    msg);
     else
         diag_error(ps->diag, *loc, "%s", msg);
