@@ -40,7 +40,8 @@ typedef struct SylCompileOptions {
 SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
                         int *status);
 void syl_program_free(SylProgram *p);
-/* Read a whole file ("-": standard input); NULL with errno set on failure. Free with free(). */
+/* Read a whole file ("-": standard input), NUL-terminated; NULL with errno set on failure.
+ * Free with free(). */
 char *syl_read_file(const char *path, size_t *len);
 /* Names of the models in a file, for listing; returns how many, writes at most max. */
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,

@@ -30,6 +30,7 @@ char *syl_read_file(const char *path, size_t *len) {
         errno = err ? err : ENOMEM;
         return NULL;
     }
+    buf[n] = 0; /* n < cap: the loop grows the buffer when it fills */
     *len = n;
     return buf;
 }
