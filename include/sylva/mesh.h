@@ -4,6 +4,7 @@
 #define SYLVA_MESH_H
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "skeleton.h"
 
@@ -13,7 +14,8 @@ typedef struct SylMeshGroup {
 } SylMeshGroup;
 
 typedef struct SylMesh {
-    float *pos, *nrm, *uv; /* 3, 3 and 2 floats per vertex */
+    float *pos, *nrm, *uv; /* 3, 3 and 2 floats per vertex; uv as in glTF: v = 0 is the
+                              top row of a texture */
     size_t nverts, vert_cap;
     uint32_t *idx;         /* triangles, counter-clockwise seen from outside */
     size_t nidx, idx_cap;
@@ -31,16 +33,20 @@ typedef struct SylMeshOptions {
     int min_sides;        /* thin branches get fewer, down to this; 0: 3 */
     int radius;           /* SYL_RADIUS_MODEL: the turtle's widths; SYL_RADIUS_PIPE */
     float pipe_exponent;  /* 0: 2.0 (da Vinci) */
-    float tip_radius;     /* pipe model: radius of a tip; 0: the model's tip radius */
+    float tip_radius;     /* pipe model: radius of a tip; 0: the mean of the model's tips */
     int caps;             /* close axis ends (default on: set -1 for off) */
-    int threads;
+    int threads;          /* <= 0: all cores; the mesh never depends on it */
+    FILE *diag;           /* where problems are reported; NULL: nowhere */
 } SylMeshOptions;
 
 int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out);
 void syl_mesh_free(SylMesh *m);
+/* The radius the mesher gives the segment ending at each node (s->nnodes floats): the
+ * model's, or the pipe model's. SYL_EMODEL when a parent does not precede its child. */
+int syl_mesh_radii(const SylSkeleton *s, const SylMeshOptions *opt, float *radius);
 
-/* Files. Each writes to a temporary file and renames it, so a failure leaves nothing.
- * Textures (PNG) are written beside the file and referenced by its materials. */
+/* Files (docs/mesh.md). Each writes to a temporary file and renames it, so a failure leaves
+ * nothing. OBJ writes its textures (PNG) beside the file; GLB embeds them. */
 int syl_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
 int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */

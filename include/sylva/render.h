@@ -14,7 +14,7 @@ typedef struct SylRenderOptions {
     int width, height;   /* 0: 1024 x 1024 */
     SylView view;
     int samples;         /* anti-aliasing samples per pixel; 0: 4 */
-    int ao_samples;      /* ambient occlusion rays per hit; 0: 8; -1: none */
+    int ao_samples;      /* ambient occlusion rays per pixel, shared by its samples; 0: 8; -1: none */
     int shadows;         /* 0: on; -1: off */
     int threads;         /* 0: all cores */
     FILE *diag;
@@ -22,14 +22,32 @@ typedef struct SylRenderOptions {
     void *user;
 } SylRenderOptions;
 
-/* Render into rgb (width * height * 3 bytes, rows top to bottom). */
+/* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and
+ * m->pos too when vert_cap > nverts (it reads a little past the last vertex; otherwise the
+ * positions are copied). The ground is at the mesh's lowest point; the camera is framed
+ * from the mesh's vertices. */
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
 /* Render and write a PNG (via a temporary file). */
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
+/* path "-": standard output. */
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
 
 /* Procedural textures after Picek 2015 (bark with cracks along the branch, leaf with veins,
- * grass): size x size RGB. Kind is SYL_MATERIAL_*, or -1 for grass. */
+ * grass): size x size RGB, rows top to bottom. Kind is SYL_MATERIAL_*, or -1 for grass.
+ * The texture is a pattern times rgb (in linear light); rgb NULL: white (grass: its green).
+ * Image x is u: around a branch, across a leaf or petal (main vein at u = 0.5); image y is
+ * v (row 0 first, as in glTF): along a branch, from a leaf's base (v = 0) to its tip (1).
+ * Every texture tiles. SYL_MATERIAL_PLAIN is flat. */
 void syl_texture(int kind, const float rgb[3], int size, uint8_t *out);
+/* "bark", "leaf", "flower", "grass" (kind -1); NULL for kinds without a texture. */
+const char *syl_texture_name(int kind);
+
+enum { SYL_TEXTURE_SIZE = 512 };
+/* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if
+ * a material group of m has that kind (m NULL: all of them and PREFIX_grass.png), as
+ * SYL_TEXTURE_SIZE squares. They are white-based patterns: the material's colour goes in
+ * the material (glTF baseColorFactor, MTL Kd), which multiplies them — as the renderer does.
+ * Each file is written through a temporary file. Returns SYL_OK, SYL_EIO or SYL_ELIMIT. */
+int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag);
 
 #endif

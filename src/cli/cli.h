@@ -26,6 +26,28 @@ bool cli_integer(const char *opt, const char *arg, double min, double max, doubl
 bool cli_size(const char *opt, const char *arg, unsigned long long *out); /* 512M, 2G */
 SylProgram *cli_compile(ModelArgs *m, int lint, int *status);
 
+/* Options of every command that derives a model: -n, --seed, --set, -j, --max-modules and
+ * --max-memory. Put CLI_DERIVE_OPTIONS in the getopt_long table, CLI_DERIVE_SHORT in the short
+ * options, and hand every option to cli_derive_option. */
+#define CLI_DERIVE_OPTIONS                                                                     \
+    {"derive", required_argument, 0, 'n'}, {"seed", required_argument, 0, 's'},                \
+        {"set", required_argument, 0, 'S'}, {"threads", required_argument, 0, 'j'},            \
+        {"max-modules", required_argument, 0, 'M'}, {"max-memory", required_argument, 0, 'm'}
+#define CLI_DERIVE_SHORT "n:j:"
+#define CLI_DERIVE_HELP                                                                        \
+    "  -n, --derive N        derivation steps (default: the model's `derive`)\n"               \
+    "  --seed S              random seed (default: the model's `seed`)\n"                      \
+    "  --set NAME=VALUE      override a `param` of the model (repeatable)\n"                   \
+    "  -j, --threads N       threads (default: all cores); the output never depends on N\n"    \
+    "  --max-modules N       stop with exit code 3 beyond N modules (default 200000000)\n"     \
+    "  --max-memory SIZE     stop with exit code 3 beyond SIZE of strings, e.g. 2G\n"          \
+    "                        (default: half the machine's memory, at most 16G)\n"
+/* 1: c is one of those options and was applied; 0: it is not; -1: bad value (reported). */
+int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d);
+/* Compile m, derive it and apply its `interpret` rules: the string a turtle reads. On
+ * success *p and *s are set (free both); otherwise they are NULL. */
+int cli_derive_interpreted(ModelArgs *m, SylDeriveOptions *d, SylProgram **p, SylString **s);
+
 /* Write through a temporary file renamed into place, so a failed run leaves nothing. */
 typedef struct OutFile {
     FILE *f;
@@ -40,5 +62,8 @@ double cli_peak_mb(void);
 int cmd_derive(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_compile(int argc, char **argv);
+int cmd_skeleton(int argc, char **argv);
+int cmd_mesh(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 
 #endif

@@ -11,18 +11,12 @@ static const char usage[] =
     "Derive the model and print the final string in canonical form: modules one after\n"
     "another, parameters in parentheses printed with %g and separated by commas.\n"
     "\n"
-    "  -n, --derive N        derivation steps (default: the model's `derive`)\n"
-    "  --seed S              random seed (default: the model's `seed`)\n"
-    "  --set NAME=VALUE      override a `param` of the model (repeatable)\n"
     "  --steps               print every step on its own line, step 0 being the axiom\n"
     "  --interpret           apply the model's `interpret` rules before printing\n"
     "  --stats               print module counts, time and peak memory to stderr\n"
     "  -q, --quiet           do not print the string (with --stats: figures only)\n"
     "  -o, --output FILE     write to FILE instead of standard output\n"
-    "  -j, --threads N       threads (default: all cores); the output never depends on N\n"
-    "  --max-modules N       stop with exit code 3 beyond N modules (default 200000000)\n"
-    "  --max-memory SIZE     stop with exit code 3 beyond SIZE of strings, e.g. 2G\n"
-    "                        (default: half the machine's memory, at most 16G)\n"
+    CLI_DERIVE_HELP
     "\n"
     "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n";
 
@@ -60,53 +54,28 @@ static void print_stats(const SylProgram *p, const SylString *s, int steps, doub
 
 int cmd_derive(int argc, char **argv) {
     static const struct option opts[] = {
-        {"derive", required_argument, 0, 'n'},    {"seed", required_argument, 0, 's'},
-        {"set", required_argument, 0, 'S'},       {"steps", no_argument, 0, 'A'},
-        {"interpret", no_argument, 0, 'I'},       {"stats", no_argument, 0, 't'},
-        {"output", required_argument, 0, 'o'},    {"threads", required_argument, 0, 'j'},
-        {"max-modules", required_argument, 0, 'M'}, {"max-memory", required_argument, 0, 'm'},
-        {"quiet", no_argument, 0, 'q'},
-        {"help", no_argument, 0, 'h'},            {0, 0, 0, 0},
+        CLI_DERIVE_OPTIONS,
+        {"steps", no_argument, 0, 'A'},           {"interpret", no_argument, 0, 'I'},
+        {"stats", no_argument, 0, 't'},           {"output", required_argument, 0, 'o'},
+        {"quiet", no_argument, 0, 'q'},           {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0},
     };
     ModelArgs m = {0};
     SylDeriveOptions d = {.steps = -1, .diag = stderr};
     const char *output = NULL;
     bool all_steps = false, interpret = false, stats = false, quiet = false;
-    double v;
-    unsigned long long size;
     int c;
     optind = 1;
-    while ((c = getopt_long(argc, argv, "n:o:j:qh", opts, NULL)) != -1) {
+    while ((c = getopt_long(argc, argv, CLI_DERIVE_SHORT "o:qh", opts, NULL)) != -1) {
+        int done = cli_derive_option(c, optarg, &m, &d);
+        if (done < 0) return SYL_EUSAGE;
+        if (done) continue;
         switch (c) {
-        case 'n':
-            if (!cli_integer("-n", optarg, 0, 1e6, &v)) return SYL_EUSAGE;
-            d.steps = (int)v;
-            break;
-        case 's':
-            if (!cli_integer("--seed", optarg, 0, 9007199254740991.0, &v)) return SYL_EUSAGE;
-            d.use_seed = 1;
-            d.seed = (uint64_t)v;
-            break;
-        case 'S':
-            if (!cli_set(&m, optarg)) return SYL_EUSAGE;
-            break;
         case 'A': all_steps = true; break;
         case 'I': interpret = true; break;
         case 't': stats = true; break;
         case 'q': quiet = true; break;
         case 'o': output = optarg; break;
-        case 'j':
-            if (!cli_integer("-j", optarg, 1, 256, &v)) return SYL_EUSAGE;
-            d.threads = (int)v;
-            break;
-        case 'M':
-            if (!cli_integer("--max-modules", optarg, 1, 2147483647.0, &v)) return SYL_EUSAGE;
-            d.max_modules = (uint64_t)v;
-            break;
-        case 'm':
-            if (!cli_size("--max-memory", optarg, &size)) return SYL_EUSAGE;
-            d.max_memory = size;
-            break;
         case 'h': fputs(usage, stdout); return SYL_OK;
         default: fputs(usage, stderr); return SYL_EUSAGE;
         }

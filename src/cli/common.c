@@ -86,6 +86,54 @@ SylProgram *cli_compile(ModelArgs *m, int lint, int *status) {
     return syl_compile(m->path, NULL, 0, &opt, status);
 }
 
+int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d) {
+    double v;
+    unsigned long long size;
+    switch (c) {
+    case 'n':
+        if (!cli_integer("-n", arg, 0, 1e6, &v)) return -1;
+        d->steps = (int)v;
+        return 1;
+    case 's':
+        if (!cli_integer("--seed", arg, 0, 9007199254740991.0, &v)) return -1;
+        d->use_seed = 1;
+        d->seed = (uint64_t)v;
+        return 1;
+    case 'S': return cli_set(m, arg) ? 1 : -1;
+    case 'j':
+        if (!cli_integer("-j", arg, 1, 256, &v)) return -1;
+        d->threads = (int)v;
+        return 1;
+    case 'M':
+        if (!cli_integer("--max-modules", arg, 1, 2147483647.0, &v)) return -1;
+        d->max_modules = (uint64_t)v;
+        return 1;
+    case 'm':
+        if (!cli_size("--max-memory", arg, &size)) return -1;
+        d->max_memory = size;
+        return 1;
+    default: return 0;
+    }
+}
+
+int cli_derive_interpreted(ModelArgs *m, SylDeriveOptions *d, SylProgram **p, SylString **s) {
+    int status;
+    *s = NULL;
+    *p = cli_compile(m, 0, &status);
+    if (!*p) return status;
+    SylString *derived = NULL;
+    status = syl_derive(*p, d, &derived);
+    if (!status) status = syl_interpret(*p, derived, d, s);
+    syl_string_free(derived);
+    if (status) {
+        syl_string_free(*s);
+        syl_program_free(*p);
+        *s = NULL;
+        *p = NULL;
+    }
+    return status;
+}
+
 bool out_open(OutFile *o, const char *path) {
     memset(o, 0, sizeof *o);
     if (!path || !strcmp(path, "-")) {

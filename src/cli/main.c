@@ -12,6 +12,9 @@ static const struct {
     {"derive", cmd_derive, "derive a model and print the resulting string"},
     {"check", cmd_check, "report errors and warnings in model files"},
     {"compile", cmd_compile, "compile a model; --dump prints rules and bytecode"},
+    {"skeleton", cmd_skeleton, "draw a model with the turtle and export its skeleton (CSV, JSON)"},
+    {"mesh", cmd_mesh, "draw a model and write a triangle mesh (.glb, .obj, .ply)"},
+    {"render", cmd_render, "draw a model and ray-trace a PNG picture of it"},
 };
 
 static void help(FILE *out) {

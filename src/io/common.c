@@ -1,0 +1,217 @@
+/* Mesh writers: temporary files, buffers, numbers, material names, PNG in memory, and the
+ * choice of format by extension. */
+#include <errno.h>
+#include <math.h>
+#include <png.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#include "io/io_internal.h"
+#include "sylva/render.h"
+
+bool io_open(IoFile *o, const char *path, FILE *diag) {
+    memset(o, 0, sizeof *o);
+    size_t n = strlen(path) + 32;
+    o->path = strdup(path);
+    o->tmp = malloc(n);
+    if (!o->path || !o->tmp) {
+        if (diag) fprintf(diag, "sylva: error: out of memory\n");
+        free(o->path);
+        free(o->tmp);
+        return false;
+    }
+    snprintf(o->tmp, n, "%s.tmp%ld", path, (long)getpid());
+    o->f = fopen(o->tmp, "wb");
+    if (!o->f) {
+        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
+        free(o->path);
+        free(o->tmp);
+        return false;
+    }
+    return true;
+}
+
+int io_rename(IoFile *o, FILE *diag) {
+    int status = SYL_OK;
+    if (rename(o->tmp, o->path)) {
+        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno));
+        unlink(o->tmp);
+        status = SYL_EIO;
+    }
+    free(o->path);
+    free(o->tmp);
+    o->path = o->tmp = NULL;
+    return status;
+}
+
+void io_discard(IoFile *o) {
+    if (o->tmp) unlink(o->tmp);
+    free(o->path);
+    free(o->tmp);
+    o->path = o->tmp = NULL;
+}
+
+int io_close(IoFile *o, int status, bool rename_now, FILE *diag) {
+    bool bad = ferror(o->f) != 0;
+    if (fclose(o->f)) bad = true;
+    o->f = NULL;
+    if (bad && !status) {
+        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno ? errno : EIO));
+        status = SYL_EIO;
+    }
+    if (status) io_discard(o);
+    else if (rename_now) status = io_rename(o, diag);
+    return status;
+}
+
+void io_put(IoBuf *b, const void *p, size_t n) {
+    if (b->failed) return;
+    if (b->len + n > b->cap) {
+        size_t c = b->cap ? b->cap : 4096;
+        while (c < b->len + n) c *= 2;
+        uint8_t *d = realloc(b->data, c);
+        if (!d) {
+            b->failed = true;
+            return;
+        }
+        b->data = d;
+        b->cap = c;
+    }
+    memcpy(b->data + b->len, p, n);
+    b->len += n;
+}
+
+void io_printf(IoBuf *b, const char *fmt, ...) {
+    char small[256];
+    va_list ap;
+    va_start(ap, fmt);
+    int n = vsnprintf(small, sizeof small, fmt, ap);
+    va_end(ap);
+    if (n < 0) {
+        b->failed = true;
+        return;
+    }
+    if ((size_t)n < sizeof small) {
+        io_put(b, small, (size_t)n);
+        return;
+    }
+    char *big = malloc((size_t)n + 1);
+    if (!big) {
+        b->failed = true;
+        return;
+    }
+    va_start(ap, fmt);
+    vsnprintf(big, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+    io_put(b, big, (size_t)n);
+    free(big);
+}
+
+void io_json_string(IoBuf *b, const char *s) {
+    io_put(b, "\"", 1);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') io_printf(b, "\\%c", c);
+        else if (c < 0x20) io_printf(b, "\\u%04x", c);
+        else io_put(b, s, 1);
+    }
+    io_put(b, "\"", 1);
+}
+
+void io_free(IoBuf *b) {
+    free(b->data);
+    *b = (IoBuf){0};
+}
+
+static const double pow10[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
+char *io_float(char *p, float xf, int sig) {
+    double x = isfinite(xf) ? xf : 0;
+    if (x == 0) {
+        *p++ = '0';
+        return p;
+    }
+    if (x < 0) *p++ = '-', x = -x;
+    if (x >= 1e9 || x < 1e-4) return p + sprintf(p, "%.*g", sig, x);
+    int e = 0; /* digits before the point, minus one */
+    while (e < 9 && x >= pow10[e + 1]) e++;
+    while (e > -4 && x < (e >= 0 ? pow10[e] : 1.0 / pow10[-e])) e--;
+    int dec = sig - 1 - e;
+    if (dec < 0) dec = 0;
+    if (dec > 9) dec = 9;
+    uint64_t v = (uint64_t)llround(x * pow10[dec]), scale = (uint64_t)pow10[dec];
+    uint64_t ip = v / scale, fp = v % scale;
+    char tmp[24];
+    int n = 0;
+    do tmp[n++] = (char)('0' + ip % 10), ip /= 10;
+    while (ip);
+    while (n) *p++ = tmp[--n];
+    if (fp) {
+        *p++ = '.';
+        for (int i = dec - 1; i >= 0; i--) tmp[i] = (char)('0' + fp % 10), fp /= 10;
+        int last = dec;
+        while (last > 0 && tmp[last - 1] == '0') last--;
+        memcpy(p, tmp, (size_t)last);
+        p += last;
+    }
+    return p;
+}
+
+const char *io_texture_kind(const SylMesh *m, int material) {
+    return syl_texture_name(m->materials[material].kind);
+}
+
+void io_material_name(const SylMesh *m, int material, char *buf, size_t n) {
+    const char *kind = io_texture_kind(m, material);
+    snprintf(buf, n, "%s%d", kind ? kind : "plain", material);
+}
+
+/* ---- PNG into memory ---- */
+
+static void png_mem_write(png_structp png, png_bytep data, png_size_t n) {
+    io_put(png_get_io_ptr(png), data, n);
+}
+static void png_mem_flush(png_structp png) { (void)png; }
+static void png_quiet(png_structp png, png_const_charp msg) {
+    (void)msg;
+    png_longjmp(png, 1);
+}
+static void png_no_warning(png_structp png, png_const_charp msg) {
+    (void)png;
+    (void)msg;
+}
+
+bool io_png(IoBuf *b, const uint8_t *rgb, int size) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_quiet, png_no_warning);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    volatile bool ok = false;
+    if (info && !setjmp(png_jmpbuf(png))) {
+        png_set_write_fn(png, b, png_mem_write, png_mem_flush);
+        png_set_IHDR(png, info, (png_uint_32)size, (png_uint_32)size, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_set_compression_level(png, 6);
+        png_write_info(png, info);
+        for (int y = 0; y < size; y++) png_write_row(png, (png_const_bytep)(rgb + (size_t)y * (size_t)size * 3));
+        png_write_end(png, info);
+        ok = !b->failed;
+    }
+    png_destroy_write_struct(&png, info ? &info : NULL);
+    return ok;
+}
+
+/* ---- by extension ---- */
+
+int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag) {
+    const char *dot = strrchr(path, '.');
+    if (dot && !strchr(dot, '/')) {
+        if (!strcasecmp(dot, ".obj")) return syl_write_obj(m, path, diag);
+        if (!strcasecmp(dot, ".ply")) return syl_write_ply(m, path, diag);
+        if (!strcasecmp(dot, ".glb")) return syl_write_glb(m, path, diag);
+    }
+    if (diag) fprintf(diag, "sylva: error: cannot tell the format of '%s': name it *.glb, *.obj or *.ply\n", path);
+    return SYL_EUSAGE;
+}

@@ -1,0 +1,138 @@
+/* Wavefront OBJ with its MTL library and textures: PATH (NAME.obj), NAME.mtl and
+ * NAME_bark.png, NAME_leaf.png, NAME_flower.png for the kinds of material it uses. One
+ * `usemtl` per material group. OBJ's v runs up the picture, so v is written as 1 - v. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/io_internal.h"
+#include "sylva/render.h"
+
+/* "dir/NAME.obj" -> "dir/NAME" (the caller frees). */
+static char *strip_extension(const char *path) {
+    char *s = strdup(path);
+    if (!s) return NULL;
+    char *dot = strrchr(s, '.');
+    if (dot && !strchr(dot, '/')) *dot = 0;
+    return s;
+}
+
+static const char *base_name(const char *path) {
+    const char *slash = strrchr(path, '/');
+    return slash ? slash + 1 : path;
+}
+
+static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
+    fprintf(f, "# Sylva %s: materials of %s\n", SYLVA_VERSION, m->name);
+    for (int g = 0; g < m->ngroups; g++) {
+        int k = m->groups[g].material;
+        char name[32];
+        io_material_name(m, k, name, sizeof name);
+        const float *c = m->materials[k].rgb;
+        fprintf(f, "\nnewmtl %s\nKa 0 0 0\nKd %.4f %.4f %.4f\nKs 0 0 0\nNs 1\nd 1\nillum 1\n", name, c[0], c[1], c[2]);
+        const char *tex = io_texture_kind(m, k);
+        if (tex) fprintf(f, "map_Kd %s_%s.png\n", stem, tex);
+    }
+}
+
+/* Vertices, UVs, normals and faces, through a buffer. */
+static void write_obj_body(const SylMesh *m, FILE *f, const char *stem) {
+    fprintf(f, "# Sylva %s: %s, %zu vertices, %zu triangles\nmtllib %s.mtl\no %s\n", SYLVA_VERSION, m->name, m->nverts,
+            m->nidx / 3, stem, m->name[0] ? m->name : "plant");
+    enum { CHUNK = 1 << 16 };
+    char *buf = malloc(CHUNK + 256), *p = buf;
+    if (!buf) {
+        fputs("# out of memory\n", f);
+        return;
+    }
+#define FLUSH()                                      \
+    do {                                             \
+        if (p - buf > CHUNK) {                       \
+            fwrite(buf, 1, (size_t)(p - buf), f);    \
+            p = buf;                                 \
+        }                                            \
+    } while (0)
+    for (size_t i = 0; i < m->nverts; i++) {
+        const float *v = m->pos + 3 * i;
+        *p++ = 'v';
+        for (int k = 0; k < 3; k++) *p++ = ' ', p = io_float(p, v[k], 7);
+        *p++ = '\n';
+        FLUSH();
+    }
+    for (size_t i = 0; i < m->nverts; i++) {
+        const float *t = m->uv + 2 * i;
+        *p++ = 'v', *p++ = 't', *p++ = ' ';
+        p = io_float(p, t[0], 6);
+        *p++ = ' ';
+        p = io_float(p, 1.0f - t[1], 6);
+        *p++ = '\n';
+        FLUSH();
+    }
+    for (size_t i = 0; i < m->nverts; i++) {
+        const float *n = m->nrm + 3 * i;
+        *p++ = 'v', *p++ = 'n';
+        for (int k = 0; k < 3; k++) *p++ = ' ', p = io_float(p, n[k], 6);
+        *p++ = '\n';
+        FLUSH();
+    }
+    for (int g = 0; g < m->ngroups; g++) {
+        char name[32];
+        io_material_name(m, m->groups[g].material, name, sizeof name);
+        p += sprintf(p, "usemtl %s\n", name);
+        const uint32_t *ix = m->idx + m->groups[g].first;
+        for (uint32_t t = 0; t < m->groups[g].count; t += 3) {
+            *p++ = 'f';
+            for (int k = 0; k < 3; k++) {
+                char num[12];
+                int n = 0;
+                uint32_t x = ix[t + (uint32_t)k] + 1;
+                do num[n++] = (char)('0' + x % 10), x /= 10;
+                while (x);
+                *p++ = ' ';
+                for (int r = 0; r < 3; r++) {
+                    for (int d = n - 1; d >= 0; d--) *p++ = num[d];
+                    if (r < 2) *p++ = '/';
+                }
+            }
+            *p++ = '\n';
+            FLUSH();
+        }
+    }
+#undef FLUSH
+    fwrite(buf, 1, (size_t)(p - buf), f);
+    free(buf);
+}
+
+int syl_write_obj(const SylMesh *m, const char *path, FILE *diag) {
+    char *prefix = strip_extension(path);
+    size_t n = prefix ? strlen(prefix) + 8 : 0;
+    char *mtl = prefix ? malloc(n) : NULL;
+    if (!prefix || !mtl) {
+        free(prefix);
+        if (diag) fprintf(diag, "sylva: error: out of memory\n");
+        return SYL_ELIMIT;
+    }
+    snprintf(mtl, n, "%s.mtl", prefix);
+    const char *stem = base_name(prefix);
+    IoFile fo, fm;
+    int status = SYL_EIO;
+    if (io_open(&fo, path, diag)) {
+        write_obj_body(m, fo.f, stem);
+        status = io_close(&fo, SYL_OK, false, diag);
+        if (!status) {
+            if (io_open(&fm, mtl, diag)) {
+                write_mtl(m, fm.f, stem);
+                status = io_close(&fm, SYL_OK, false, diag);
+                if (!status) status = syl_write_textures(m, prefix, diag);
+                if (!status) status = io_rename(&fm, diag);
+                else io_discard(&fm);
+            } else {
+                status = SYL_EIO;
+            }
+            if (!status) status = io_rename(&fo, diag);
+            else io_discard(&fo);
+        }
+    }
+    free(prefix);
+    free(mtl);
+    return status;
+}

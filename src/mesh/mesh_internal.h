@@ -1,0 +1,89 @@
+/* The mesher's parts: a plan (tubes, organs and polygons with exact vertex and triangle
+ * counts, and where each run of triangles goes in SylMesh.idx), then emission into arrays
+ * sized once. Emission of one piece touches only its own ranges, so pieces can be written
+ * by any thread in any order and the mesh is the same. */
+#ifndef SYL_MESH_INTERNAL_H
+#define SYL_MESH_INTERNAL_H
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sylva/mesh.h"
+
+enum { MESH_MAX_SIDES = 256 };
+
+/* A point on a tube's centre line. */
+typedef struct MeshPt {
+    float p[3];
+    float r;
+    uint8_t mat; /* of the segment ending here (the first point: of the first segment) */
+} MeshPt;
+
+/* Triangles of one material, written from SylMesh.idx[idx] on. */
+typedef struct MeshRun {
+    size_t idx;
+    uint32_t tris;
+    uint8_t mat;
+} MeshRun;
+
+typedef struct MeshTube {
+    size_t vert;           /* first vertex */
+    uint32_t first, count; /* points, into MeshPlan.pts */
+    uint32_t run;          /* first run; a tube has one run per change of material */
+    uint16_t sides;
+    float rmax;            /* its largest radius */
+    float ref[3];          /* the frame's first normal, perpendicular to the first tangent */
+} MeshTube;
+
+/* An organ or a polygon: one run. */
+typedef struct MeshItem {
+    size_t vert;
+    uint32_t index; /* into SylSkeleton.organs or MeshPlan.polys */
+    uint32_t run;
+    uint32_t verts;
+    bool poly;
+} MeshItem;
+
+/* A polygon after cleaning and triangulation. */
+typedef struct MeshPoly {
+    uint32_t first, count; /* kept vertices: MeshPlan.pv[first..] index SylSkeleton.poly_verts */
+    uint32_t tri, ntris;   /* MeshPlan.ptri[3 * tri ..]: local vertex numbers */
+    float n[3], e1[3], e2[3]; /* unit normal and plane axes (e1 x e2 = n) */
+    float uv0[2], uvscale;
+} MeshPoly;
+
+typedef struct MeshTrig {
+    float c[MESH_MAX_SIDES + 1], s[MESH_MAX_SIDES + 1], u[MESH_MAX_SIDES + 1]; /* cos, sin, j / sides */
+} MeshTrig;
+
+typedef struct MeshPlan {
+    const SylSkeleton *skel;
+    int sides, min_sides, sphere_stacks;
+    bool caps;
+    MeshPt *pts;
+    size_t npts, pts_cap;
+    MeshTube *tubes;
+    size_t ntubes, tubes_cap;
+    MeshRun *runs;
+    size_t nruns, runs_cap;
+    MeshItem *items;
+    size_t nitems, items_cap;
+    MeshPoly *polys;
+    size_t npolys, polys_cap;
+    uint32_t *pv, *ptri;
+    size_t npv, pv_cap, nptri, ptri_cap;
+    MeshTrig *trig[MESH_MAX_SIDES + 1]; /* by number of sides, as needed */
+    size_t nverts;
+} MeshPlan;
+
+/* Grow *arr to hold n + more elements; false when out of memory. */
+bool mesh_reserve(void **arr, size_t *cap, size_t n, size_t more, size_t elem);
+/* Add a run of tris triangles of material mat. */
+bool mesh_add_run(MeshPlan *pl, uint8_t mat, uint32_t tris);
+const MeshTrig *mesh_trig(MeshPlan *pl, int sides);
+
+/* Organs and polygons (shapes.c). Planning adds items and runs; emission fills them. */
+bool mesh_plan_shapes(MeshPlan *pl);
+void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m);
+
+#endif

@@ -1,0 +1,346 @@
+/* Organs and polygons. Leaves, petals and polygons are thin: both sides are made, each with
+ * its own normals, so they shade right from either side without a double-sided material.
+ * Needles and spheres are closed.
+ *
+ * Organ frame: H along the organ, L across, U = H x L its face. A leaf is a blade of length
+ * size along H, a fifth as wide each way along L, with UVs 0..1 over the blade (v along the
+ * main vein, u across). A flower is five such petals around H, tilted forward. A needle is a
+ * slender three-sided spike. A sphere is a UV sphere of diameter size about H. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cglm/cglm.h>
+
+#include "mesh/mesh_internal.h"
+
+/* The blade: x along 0..1, y across -1..1; triangles counter-clockwise in (x, y). */
+static const float blade_xy[8][2] = {{0, 0},    {0.3f, 0},  {0.7f, 0},     {1, 0},
+                                     {0.3f, 1}, {0.7f, 0.75f}, {0.3f, -1}, {0.7f, -0.75f}};
+static const uint8_t blade_tri[8][3] = {{0, 6, 1}, {0, 1, 4}, {1, 6, 7}, {1, 7, 2},
+                                        {1, 2, 5}, {1, 5, 4}, {2, 7, 3}, {2, 3, 5}};
+enum { BLADE_V = 16, BLADE_T = 16, PETALS = 5, NEEDLE_V = 7, NEEDLE_T = 4 };
+#define LEAF_WIDTH 0.22f  /* half width / length */
+#define PETAL_LENGTH 0.5f /* of the flower's size */
+#define PETAL_WIDTH 0.36f /* half width / petal length */
+#define PETAL_TILT 0.45f  /* radians towards H */
+#define NEEDLE_WIDTH 0.03f
+
+static bool organ_frame(const SylOrgan *o, vec3 h, vec3 l, vec3 u) {
+    if (!(o->size > 0) || !isfinite(o->size) || !isfinite(o->pos[0]) || !isfinite(o->pos[1]) ||
+        !isfinite(o->pos[2]))
+        return false;
+    memcpy(h, o->h, sizeof(vec3));
+    memcpy(l, o->l, sizeof(vec3));
+    float hn = glm_vec3_norm(h);
+    if (!(hn > 1e-6f) || !isfinite(hn)) return false;
+    glm_vec3_scale(h, 1.0f / hn, h);
+    glm_vec3_muladds(h, -glm_vec3_dot(l, h), l);
+    float ln = glm_vec3_norm(l);
+    if (!(ln > 1e-6f) || !isfinite(ln)) {
+        vec3 a = {1, 0, 0};
+        if (fabsf(h[0]) > 0.9f) a[0] = 0, a[1] = 1;
+        glm_vec3_cross(h, a, l);
+        ln = glm_vec3_norm(l);
+    }
+    glm_vec3_scale(l, 1.0f / ln, l);
+    glm_vec3_cross(h, l, u);
+    return true;
+}
+
+static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts, uint32_t *tris) {
+    vec3 h, l, u;
+    *verts = *tris = 0;
+    if (!organ_frame(o, h, l, u)) return;
+    uint32_t st = (uint32_t)pl->sphere_stacks, sl = (uint32_t)pl->sides;
+    switch (o->kind) {
+    case SYL_KIND_LEAF: *verts = BLADE_V, *tris = BLADE_T; break;
+    case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T; break;
+    case SYL_KIND_NEEDLE: *verts = NEEDLE_V, *tris = NEEDLE_T; break;
+    case SYL_KIND_SPHERE: *verts = (st + 1) * (sl + 1), *tris = 2 * sl * (st - 1); break;
+    default: break;
+    }
+}
+
+/* ------------------------------------------------------------------ polygons */
+
+static float cross2(const float *a, const float *b, const float *c) {
+    return (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+}
+
+/* p inside or on triangle abc (counter-clockwise)? */
+static bool in_triangle(const float *p, const float *a, const float *b, const float *c) {
+    return cross2(a, b, p) >= 0 && cross2(b, c, p) >= 0 && cross2(c, a, p) >= 0;
+}
+
+/* Triangulate a counter-clockwise polygon of k points (2D): a fan when it is convex, ear
+ * clipping otherwise. Writes local vertex triples to tri; returns how many. */
+static uint32_t triangulate(const float (*xy)[2], uint32_t k, uint32_t *tri, uint32_t *ring) {
+    uint32_t nt = 0;
+    bool convex = true;
+    for (uint32_t i = 0; i < k && convex; i++)
+        if (cross2(xy[(i + k - 1) % k], xy[i], xy[(i + 1) % k]) < 0) convex = false;
+    if (convex) {
+        for (uint32_t i = 1; i + 1 < k; i++) tri[3 * nt] = 0, tri[3 * nt + 1] = i, tri[3 * nt + 2] = i + 1, nt++;
+        return nt;
+    }
+    for (uint32_t i = 0; i < k; i++) ring[i] = i;
+    uint32_t n = k, i = 0, misses = 0;
+    while (n > 3) {
+        uint32_t a = ring[(i + n - 1) % n], b = ring[i], c = ring[(i + 1) % n];
+        float cr = cross2(xy[a], xy[b], xy[c]);
+        bool ear = false, drop = cr == 0; /* a straight or folded-back point: nothing to fill */
+        if (cr > 0) {
+            ear = true;
+            for (uint32_t q = 0; q < n && ear; q++) {
+                uint32_t p = ring[q];
+                if (p == a || p == b || p == c || !memcmp(xy[p], xy[a], sizeof xy[0]) ||
+                    !memcmp(xy[p], xy[b], sizeof xy[0]) || !memcmp(xy[p], xy[c], sizeof xy[0]))
+                    continue;
+                if (in_triangle(xy[p], xy[a], xy[b], xy[c])) ear = false;
+            }
+        }
+        if (!ear && !drop && misses > n) ear = true; /* self-intersecting: clip anyway */
+        if (ear || drop) {
+            if (ear) tri[3 * nt] = a, tri[3 * nt + 1] = b, tri[3 * nt + 2] = c, nt++;
+            memmove(ring + i, ring + i + 1, (n - i - 1) * sizeof *ring);
+            n--;
+            if (i >= n) i = 0;
+            misses = 0;
+        } else {
+            i = (i + 1) % n;
+            misses++;
+        }
+    }
+    if (cross2(xy[ring[0]], xy[ring[1]], xy[ring[2]]) != 0)
+        tri[3 * nt] = ring[0], tri[3 * nt + 1] = ring[1], tri[3 * nt + 2] = ring[2], nt++;
+    return nt;
+}
+
+typedef struct PolyScratch {
+    float (*xy)[2];
+    uint32_t *ring;
+    size_t cap;
+} PolyScratch;
+
+static bool plan_polygon(MeshPlan *pl, const SylPolygon *sp, PolyScratch *sc) {
+    const SylSkeleton *s = pl->skel;
+    if (sp->count < 3 || (size_t)sp->first + sp->count > s->nverts) return true;
+    if (!mesh_reserve((void **)&pl->pv, &pl->pv_cap, pl->npv, sp->count, sizeof *pl->pv)) return false;
+    uint32_t *kept = pl->pv + pl->npv, k = 0;
+    for (uint32_t i = 0; i < sp->count; i++) {
+        uint32_t vi = sp->first + i;
+        const float *p = s->poly_verts[vi];
+        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) continue;
+        if (k && !memcmp(s->poly_verts[kept[k - 1]], p, sizeof(float[3]))) continue;
+        kept[k++] = vi;
+    }
+    while (k > 1 && !memcmp(s->poly_verts[kept[k - 1]], s->poly_verts[kept[0]], sizeof(float[3]))) k--;
+    if (k < 3) return true;
+    /* Newell's normal about the centroid */
+    vec3 c = {0}, nn = {0};
+    for (uint32_t i = 0; i < k; i++) glm_vec3_add(c, (float *)s->poly_verts[kept[i]], c);
+    glm_vec3_scale(c, 1.0f / (float)k, c);
+    for (uint32_t i = 0; i < k; i++) {
+        vec3 a, b, x;
+        glm_vec3_sub((float *)s->poly_verts[kept[i]], c, a);
+        glm_vec3_sub((float *)s->poly_verts[kept[(i + 1) % k]], c, b);
+        glm_vec3_cross(a, b, x);
+        glm_vec3_add(nn, x, nn);
+    }
+    float len = glm_vec3_norm(nn), ext = 0;
+    for (uint32_t i = 0; i < k; i++) ext = fmaxf(ext, glm_vec3_distance(c, (float *)s->poly_verts[kept[i]]));
+    if (!(len > 1e-10f * ext * ext) || !isfinite(len)) return true; /* no area */
+    MeshPoly mp = {.first = (uint32_t)pl->npv, .count = k};
+    glm_vec3_scale(nn, 1.0f / len, mp.n);
+    vec3 a = {1, 0, 0};
+    if (fabsf(mp.n[0]) > 0.9f) a[0] = 0, a[1] = 1;
+    glm_vec3_cross(a, mp.n, mp.e1);
+    glm_vec3_normalize(mp.e1);
+    glm_vec3_cross(mp.n, mp.e1, mp.e2);
+    if (k > sc->cap) {
+        void *x = realloc(sc->xy, k * sizeof *sc->xy), *r = x ? realloc(sc->ring, k * sizeof *sc->ring) : NULL;
+        if (x) sc->xy = x;
+        if (r) sc->ring = r;
+        if (!x || !r) return false;
+        sc->cap = k;
+    }
+    float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (uint32_t i = 0; i < k; i++) {
+        vec3 d;
+        glm_vec3_sub((float *)s->poly_verts[kept[i]], c, d);
+        sc->xy[i][0] = glm_vec3_dot(d, mp.e1);
+        sc->xy[i][1] = glm_vec3_dot(d, mp.e2);
+        for (int q = 0; q < 2; q++) lo[q] = fminf(lo[q], sc->xy[i][q]), hi[q] = fmaxf(hi[q], sc->xy[i][q]);
+    }
+    float span = fmaxf(hi[0] - lo[0], hi[1] - lo[1]);
+    mp.uvscale = span > 0 ? 1.0f / span : 1.0f;
+    mp.uv0[0] = lo[0], mp.uv0[1] = lo[1];
+    /* the plane offset of the centroid is folded into uv0 */
+    float co1 = glm_vec3_dot(c, mp.e1), co2 = glm_vec3_dot(c, mp.e2);
+    mp.uv0[0] += co1, mp.uv0[1] += co2;
+    if (!mesh_reserve((void **)&pl->ptri, &pl->ptri_cap, pl->nptri, 3 * (size_t)(k - 2), sizeof *pl->ptri))
+        return false;
+    mp.tri = (uint32_t)(pl->nptri / 3);
+    mp.ntris = triangulate((const float(*)[2])sc->xy, k, pl->ptri + pl->nptri, sc->ring);
+    if (!mp.ntris) return true;
+    pl->nptri += 3 * (size_t)mp.ntris;
+    pl->npv += k;
+    if (!mesh_reserve((void **)&pl->polys, &pl->polys_cap, pl->npolys, 1, sizeof *pl->polys) ||
+        !mesh_reserve((void **)&pl->items, &pl->items_cap, pl->nitems, 1, sizeof *pl->items) ||
+        !mesh_add_run(pl, sp->material, 2 * mp.ntris))
+        return false;
+    pl->items[pl->nitems++] = (MeshItem){.vert = pl->nverts, .index = (uint32_t)pl->npolys,
+                                         .run = (uint32_t)pl->nruns - 1, .verts = 2 * k, .poly = true};
+    pl->polys[pl->npolys++] = mp;
+    pl->nverts += 2 * (size_t)k;
+    return true;
+}
+
+bool mesh_plan_shapes(MeshPlan *pl) {
+    const SylSkeleton *s = pl->skel;
+    for (size_t i = 0; i < s->norgans; i++) {
+        uint32_t nv, nt;
+        organ_counts(pl, &s->organs[i], &nv, &nt);
+        if (!nt) continue;
+        if (s->organs[i].kind == SYL_KIND_SPHERE && !mesh_trig(pl, pl->sides)) return false;
+        if (!mesh_reserve((void **)&pl->items, &pl->items_cap, pl->nitems, 1, sizeof *pl->items) ||
+            !mesh_add_run(pl, s->organs[i].material, nt))
+            return false;
+        pl->items[pl->nitems++] = (MeshItem){.vert = pl->nverts, .index = (uint32_t)i,
+                                             .run = (uint32_t)pl->nruns - 1, .verts = nv};
+        pl->nverts += nv;
+    }
+    PolyScratch sc = {0};
+    bool ok = true;
+    for (size_t i = 0; i < s->npolys && ok; i++) ok = plan_polygon(pl, &s->polys[i], &sc);
+    free(sc.xy);
+    free(sc.ring);
+    return ok;
+}
+
+/* ------------------------------------------------------------------ emission */
+
+typedef struct Out {
+    float *pos, *nrm, *uv;
+    uint32_t *ix;
+    uint32_t v0, nv; /* first vertex of the item, vertices written so far */
+} Out;
+
+static uint32_t put(Out *o, const float *p, const float *n, float u, float v) {
+    memcpy(o->pos + 3 * o->nv, p, 3 * sizeof(float));
+    memcpy(o->nrm + 3 * o->nv, n, 3 * sizeof(float));
+    o->uv[2 * o->nv] = u;
+    o->uv[2 * o->nv + 1] = v;
+    return o->v0 + o->nv++;
+}
+
+static void tri(Out *o, uint32_t a, uint32_t b, uint32_t c) {
+    *o->ix++ = a, *o->ix++ = b, *o->ix++ = c;
+}
+
+/* A double-sided blade from origin along x (length len) and y (half width w). */
+static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w) {
+    vec3 n, nb;
+    glm_vec3_cross((float *)x, (float *)y, n);
+    glm_vec3_normalize(n);
+    glm_vec3_negate_to(n, nb);
+    uint32_t f[8], b[8];
+    float p[8][3];
+    for (int i = 0; i < 8; i++)
+        for (int q = 0; q < 3; q++) p[i][q] = origin[q] + blade_xy[i][0] * len * x[q] + blade_xy[i][1] * w * y[q];
+    for (int i = 0; i < 8; i++) f[i] = put(o, p[i], n, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
+    for (int i = 0; i < 8; i++) b[i] = put(o, p[i], nb, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
+    for (int t = 0; t < 8; t++) tri(o, f[blade_tri[t][0]], f[blade_tri[t][1]], f[blade_tri[t][2]]);
+    for (int t = 0; t < 8; t++) tri(o, b[blade_tri[t][0]], b[blade_tri[t][2]], b[blade_tri[t][1]]);
+}
+
+static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
+    vec3 h, l, u;
+    organ_frame(og, h, l, u);
+    const float *c = og->pos, size = og->size;
+    switch (og->kind) {
+    case SYL_KIND_LEAF: blade(o, c, h, l, size, LEAF_WIDTH * size); break;
+    case SYL_KIND_FLOWER:
+        for (int k = 0; k < PETALS; k++) {
+            float a = 6.28318530718f * (float)k / PETALS, ca = cosf(a), sa = sinf(a);
+            vec3 radial, across, x;
+            for (int q = 0; q < 3; q++) {
+                radial[q] = ca * l[q] + sa * u[q];
+                across[q] = -sa * l[q] + ca * u[q];
+                x[q] = cosf(PETAL_TILT) * radial[q] + sinf(PETAL_TILT) * h[q];
+            }
+            float len = PETAL_LENGTH * size;
+            blade(o, c, x, across, len, PETAL_WIDTH * len);
+        }
+        break;
+    case SYL_KIND_NEEDLE: {
+        float r = NEEDLE_WIDTH * size, tip[3], p[3][3], nb[3];
+        uint32_t base[3], cap[3];
+        for (int j = 0; j < 3; j++) {
+            float a = 6.28318530718f * (float)j / 3, w[3];
+            for (int q = 0; q < 3; q++) {
+                w[q] = cosf(a) * l[q] + sinf(a) * u[q];
+                p[j][q] = c[q] + r * w[q];
+            }
+            base[j] = put(o, p[j], w, (float)j / 3, 0);
+        }
+        for (int q = 0; q < 3; q++) tip[q] = c[q] + size * h[q], nb[q] = -h[q];
+        uint32_t t = put(o, tip, h, 0.5f, 1);
+        for (int j = 0; j < 3; j++) cap[j] = put(o, p[j], nb, (float)j / 3, 0);
+        for (int j = 0; j < 3; j++) tri(o, base[j], base[(j + 1) % 3], t);
+        tri(o, cap[0], cap[2], cap[1]);
+        break;
+    }
+    case SYL_KIND_SPHERE: {
+        const int st = pl->sphere_stacks, sl = pl->sides;
+        const MeshTrig *tr = pl->trig[sl];
+        const float rad = 0.5f * size;
+        for (int i = 0; i <= st; i++) {
+            float phi = 3.14159265359f * (float)i / (float)st, cp = -cosf(phi), sp = sinf(phi);
+            if (i == 0 || i == st) sp = 0;
+            for (int j = 0; j <= sl; j++) {
+                float n[3], p[3];
+                for (int q = 0; q < 3; q++) {
+                    n[q] = cp * h[q] + sp * (tr->c[j] * l[q] + tr->s[j] * u[q]);
+                    p[q] = c[q] + rad * n[q];
+                }
+                glm_vec3_normalize(n);
+                put(o, p, n, (float)j / (float)sl, (float)i / (float)st);
+            }
+        }
+        for (int i = 0; i < st; i++) {
+            uint32_t a = o->v0 + (uint32_t)(i * (sl + 1)), b = a + (uint32_t)(sl + 1);
+            for (uint32_t j = 0; j < (uint32_t)sl; j++) {
+                if (i > 0) tri(o, a + j, a + j + 1, b + j);
+                if (i + 1 < st) tri(o, a + j + 1, b + j + 1, b + j);
+            }
+        }
+        break;
+    }
+    default: break;
+    }
+}
+
+static void emit_polygon(const MeshPlan *pl, const MeshPoly *mp, Out *o) {
+    const SylSkeleton *s = pl->skel;
+    float nb[3] = {-mp->n[0], -mp->n[1], -mp->n[2]};
+    for (int side = 0; side < 2; side++)
+        for (uint32_t i = 0; i < mp->count; i++) {
+            const float *p = s->poly_verts[pl->pv[mp->first + i]];
+            float u = (glm_vec3_dot((float *)p, (float *)mp->e1) - mp->uv0[0]) * mp->uvscale;
+            float v = (glm_vec3_dot((float *)p, (float *)mp->e2) - mp->uv0[1]) * mp->uvscale;
+            put(o, p, side ? nb : mp->n, u, v);
+        }
+    const uint32_t *t = pl->ptri + 3 * (size_t)mp->tri, k = mp->count;
+    for (uint32_t i = 0; i < mp->ntris; i++) tri(o, o->v0 + t[3 * i], o->v0 + t[3 * i + 1], o->v0 + t[3 * i + 2]);
+    for (uint32_t i = 0; i < mp->ntris; i++)
+        tri(o, o->v0 + k + t[3 * i], o->v0 + k + t[3 * i + 2], o->v0 + k + t[3 * i + 1]);
+}
+
+void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m) {
+    Out o = {m->pos + 3 * it->vert, m->nrm + 3 * it->vert, m->uv + 2 * it->vert, m->idx + pl->runs[it->run].idx,
+             (uint32_t)it->vert, 0};
+    if (it->poly) emit_polygon(pl, &pl->polys[it->index], &o);
+    else emit_organ(pl, &pl->skel->organs[it->index], &o);
+}

@@ -1,0 +1,62 @@
+/* Perlin's gradient noise in two dimensions, periodic so that textures tile, and its sum of
+ * octaves as in Picek 2015, equations (2.16)-(2.18). Gradients come from a hash of the
+ * lattice point, so there is no table to initialise and every call is reproducible. */
+#include <math.h>
+
+#include "render/render_internal.h"
+
+static inline uint32_t hash3(uint32_t x, uint32_t y, uint32_t seed) {
+    uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ seed * 0xcb1ab31fu;
+    h ^= h >> 16;
+    h *= 0x7feb352du;
+    h ^= h >> 15;
+    h *= 0x846ca68bu;
+    h ^= h >> 16;
+    return h;
+}
+
+/* Eight unit gradients, 45 degrees apart. */
+static const float grad[8][2] = {
+    {1, 0}, {0.70710678f, 0.70710678f}, {0, 1}, {-0.70710678f, 0.70710678f},
+    {-1, 0}, {-0.70710678f, -0.70710678f}, {0, -1}, {0.70710678f, -0.70710678f},
+};
+
+static inline float fade(float t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+
+static inline int wrap(int i, int period) {
+    if (period <= 0) return i;
+    i %= period;
+    return i < 0 ? i + period : i;
+}
+
+static inline float corner(uint32_t hx, uint32_t hy, float dx, float dy, uint32_t seed) {
+    const float *g = grad[hash3(hx, hy, seed) & 7];
+    return g[0] * dx + g[1] * dy;
+}
+
+float noise2(float x, float y, int px, int py, uint32_t seed) {
+    float fx = floorf(x), fy = floorf(y);
+    int ix = (int)fx, iy = (int)fy;
+    float dx = x - fx, dy = y - fy;
+    int x0 = wrap(ix, px), y0 = wrap(iy, py);
+    int x1 = px > 0 && x0 + 1 == px ? 0 : x0 + 1, y1 = py > 0 && y0 + 1 == py ? 0 : y0 + 1;
+    float n00 = corner((uint32_t)x0, (uint32_t)y0, dx, dy, seed);
+    float n10 = corner((uint32_t)x1, (uint32_t)y0, dx - 1, dy, seed);
+    float n01 = corner((uint32_t)x0, (uint32_t)y1, dx, dy - 1, seed);
+    float n11 = corner((uint32_t)x1, (uint32_t)y1, dx - 1, dy - 1, seed);
+    float u = fade(dx), v = fade(dy);
+    float a = n00 + u * (n10 - n00), b = n01 + u * (n11 - n01);
+    return 1.41421356f * (a + v * (b - a)); /* 2D gradient noise peaks at 1/sqrt(2) */
+}
+
+float fbm2(float x, float y, int fx, int fy, float p, int octaves, uint32_t seed) {
+    float sum = 0, norm = 0, a = 1;
+    for (int i = 0; i < octaves; i++) {
+        sum += a * noise2(x * (float)fx, y * (float)fy, fx, fy, seed + (uint32_t)i * 101u);
+        norm += a;
+        a *= p;
+        fx *= 2;
+        fy *= 2;
+    }
+    return norm > 0 ? sum / norm : 0;
+}

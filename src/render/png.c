@@ -1,0 +1,83 @@
+/* PNG output through libpng, written to PATH.tmpPID and renamed into place. */
+#include <errno.h>
+#include <png.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "sylva/render.h"
+
+typedef struct PngErr {
+    FILE *diag;
+    const char *path;
+} PngErr;
+
+static void png_error_fn(png_structp png, png_const_charp msg) {
+    PngErr *e = png_get_error_ptr(png);
+    if (e->diag) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->path, msg);
+    png_longjmp(png, 1);
+}
+
+static void png_warning_fn(png_structp png, png_const_charp msg) {
+    (void)png;
+    (void)msg;
+}
+
+/* Encode into an open file; false on failure (reported). */
+static bool encode(FILE *f, const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
+    PngErr err = {diag, path};
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, png_error_fn, png_warning_fn);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    volatile bool ok = false;
+    if (info && !setjmp(png_jmpbuf(png))) {
+        png_init_io(png, f);
+        png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_set_compression_level(png, 1); /* fast: pictures are big, and noisy */
+        png_write_info(png, info);
+        for (int y = 0; y < height; y++) png_write_row(png, (png_const_bytep)(rgb + (size_t)y * (size_t)width * 3));
+        png_write_end(png, info);
+        ok = true;
+    }
+    png_destroy_write_struct(&png, info ? &info : NULL);
+    return ok;
+}
+
+int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
+    if (width <= 0 || height <= 0) {
+        if (diag) fprintf(diag, "sylva: error: cannot write '%s': empty picture\n", path);
+        return SYL_EUSAGE;
+    }
+    if (!strcmp(path, "-")) { /* standard output: no temporary file */
+        bool ok = encode(stdout, "standard output", rgb, width, height, diag);
+        if (fflush(stdout) && ok) {
+            if (diag) fprintf(diag, "sylva: error: cannot write the picture: %s\n", strerror(errno));
+            ok = false;
+        }
+        return ok ? SYL_OK : SYL_EIO;
+    }
+    size_t n = strlen(path) + 32;
+    char *tmp = malloc(n);
+    if (!tmp) return SYL_ELIMIT;
+    snprintf(tmp, n, "%s.tmp%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "wb");
+    if (!f) {
+        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
+        free(tmp);
+        return SYL_EIO;
+    }
+    bool ok = encode(f, path, rgb, width, height, diag);
+    if (fclose(f) && ok) {
+        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
+        ok = false;
+    }
+    if (ok && rename(tmp, path)) {
+        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
+        ok = false;
+    }
+    if (!ok) unlink(tmp);
+    free(tmp);
+    return ok ? SYL_OK : SYL_EIO;
+}

@@ -1,0 +1,226 @@
+/* Procedural textures after Picek 2015 (§3.4, §4.7): bark whose cracks run along the branch
+ * (stripes made by noise with the along-the-branch coordinate zeroed, which then distort a
+ * second noise), a leaf with a bright main vein, sine side veins and darker edges, and grass
+ * from two noises, the second shifted against the first.
+ *
+ * A texture is a pattern in linear light (0..1) that multiplies the material's colour. Image
+ * x is texture u (around a branch, across a leaf with its main vein at u = 0.5), image y is
+ * v (along a branch, from a leaf's base at v = 0 to its tip at v = 1). Every pattern tiles. */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "render/render_internal.h"
+
+float srgb_to_linear(float c) {
+    if (c <= 0) return 0;
+    if (c >= 1) return 1;
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float linear_to_srgb(float c) {
+    if (c <= 0) return 0;
+    if (c >= 1) return 1;
+    return c <= 0.0031308f ? c * 12.92f : 1.055f * powf(c, 1 / 2.4f) - 0.055f;
+}
+
+static inline float clamp01(float x) { return x < 0 ? 0 : x > 1 ? 1 : x; }
+
+static inline float smoothstep(float a, float b, float x) {
+    float t = clamp01((x - a) / (b - a));
+    return t * t * (3 - 2 * t);
+}
+
+static void bark(float s, float t, float out[3]) {
+    /* Stripes: noise across the branch only (the thesis zeroes the y component). */
+    float stripes = fbm2(s, 0, 6, 0, 0.5f, 3, 11);
+    /* They distort a noise stretched along the branch; its zero lines are the cracks. */
+    float n = fbm2(s + 0.06f * stripes, t, 12, 2, 0.5f, 4, 23);
+    float crack = 1 - smoothstep(0.0f, 0.12f, fabsf(n));
+    float grain = fbm2(s, t, 32, 4, 0.5f, 3, 37);
+    float blotch = fbm2(s, t, 3, 1, 0.5f, 2, 51);
+    float l = (0.80f + 0.14f * grain + 0.10f * blotch + 0.06f * stripes) * (1 - 0.72f * crack);
+    out[0] = clamp01(l);
+    out[1] = clamp01(l * (1 - 0.04f * crack));
+    out[2] = clamp01(l * (1 - 0.08f * crack));
+}
+
+static void leaf(float s, float t, float out[3]) {
+    float d = fabsf(s - 0.5f) * 2;                 /* 0 on the main vein, 1 at the edge */
+    float w = 0.025f + 0.03f * (1 - t);            /* the main vein thins toward the tip */
+    float main_vein = expf(-(d / w) * (d / w));
+    float f = sinf(6.2831853f * 7 * (t - 0.35f * d)); /* side veins slant toward the tip */
+    float side = smoothstep(0.80f, 1.0f, f) * (1 - 0.7f * d) * smoothstep(w, 2 * w, d);
+    float edge = smoothstep(0.5f, 1.0f, d);
+    float n = fbm2(s, t, 8, 8, 0.5f, 3, 71);
+    float l = (0.70f + 0.06f * n) * (1 - 0.45f * edge * edge);
+    out[0] = clamp01(l + 0.28f * main_vein + 0.16f * side);
+    out[1] = clamp01(l + 0.28f * main_vein + 0.16f * side);
+    out[2] = clamp01(l + 0.10f * main_vein + 0.06f * side);
+}
+
+static void flower(float s, float t, float out[3]) {
+    float d = fabsf(s - 0.5f) * 2;
+    float streak = powf(0.5f + 0.5f * sinf(6.2831853f * 9 * s), 6);
+    float n = fbm2(s, t, 6, 6, 0.5f, 3, 81);
+    float l = (0.82f + 0.12f * t + 0.04f * n - 0.10f * streak * (1 - t)) * (1 - 0.15f * smoothstep(0.7f, 1, d));
+    float base = 0.5f * (1 - smoothstep(0.0f, 0.25f, t)); /* a yellowish heart */
+    out[0] = clamp01(l);
+    out[1] = clamp01(l * (1 - 0.15f * base));
+    out[2] = clamp01(l * (1 - 0.55f * base));
+}
+
+static void grass(float s, float t, float out[3]) {
+    /* The same noise twice, the second shifted, so no lattice pattern shows. */
+    float n1 = fbm2(s, t, 8, 8, 0.5f, 4, 91);
+    float n2 = fbm2(s + 0.37f, t + 0.61f, 8, 8, 0.5f, 4, 91);
+    float blades = fbm2(s, t, 64, 64, 0.6f, 2, 93);
+    float l = 0.72f + 0.16f * n1 + 0.16f * n2 + 0.16f * blades;
+    float dry = smoothstep(0.05f, 0.45f, n2 - n1);
+    out[0] = clamp01(l * (1 + 0.30f * dry) * 0.92f);
+    out[1] = clamp01(l * 0.95f);
+    out[2] = clamp01(l * (1 - 0.35f * dry) * 0.90f);
+}
+
+void texture_pattern(int kind, int size, float *out) {
+    for (int y = 0; y < size; y++)
+        for (int x = 0; x < size; x++) {
+            float s = ((float)x + 0.5f) / (float)size, t = ((float)y + 0.5f) / (float)size;
+            float *o = out + 3 * ((size_t)y * (size_t)size + (size_t)x);
+            switch (kind) {
+            case SYL_MATERIAL_BARK: bark(s, t, o); break;
+            case SYL_MATERIAL_LEAF: leaf(s, t, o); break;
+            case SYL_MATERIAL_FLOWER: flower(s, t, o); break;
+            case -1: grass(s, t, o); break;
+            default: o[0] = o[1] = o[2] = 1; break;
+            }
+        }
+}
+
+static const float grass_rgb[3] = {0.42f, 0.56f, 0.22f};
+
+const float *texture_grass_rgb(void) { return grass_rgb; }
+
+void syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
+    if (size <= 0) return;
+    static const float white[3] = {1, 1, 1};
+    if (!rgb) rgb = kind == -1 ? grass_rgb : white;
+    float *p = malloc((size_t)size * (size_t)size * 3 * sizeof *p);
+    float lin[3];
+    for (int c = 0; c < 3; c++) lin[c] = srgb_to_linear(rgb[c]);
+    if (!p) { /* out of memory: a flat texture is still a texture */
+        for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
+            out[i] = (uint8_t)lrintf(255 * linear_to_srgb(lin[i % 3]));
+        return;
+    }
+    texture_pattern(kind, size, p);
+    for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
+        out[i] = (uint8_t)lrintf(255 * linear_to_srgb(p[i] * lin[i % 3]));
+    free(p);
+}
+
+const char *syl_texture_name(int kind) {
+    switch (kind) {
+    case SYL_MATERIAL_BARK: return "bark";
+    case SYL_MATERIAL_LEAF: return "leaf";
+    case SYL_MATERIAL_FLOWER: return "flower";
+    case -1: return "grass";
+    default: return NULL;
+    }
+}
+
+int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
+    static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
+    const int size = SYL_TEXTURE_SIZE;
+    uint8_t *img = malloc((size_t)size * size * 3);
+    size_t n = strlen(prefix) + 16;
+    char *path = malloc(n);
+    if (!img || !path) {
+        free(img);
+        free(path);
+        if (diag) fprintf(diag, "sylva: error: out of memory writing textures\n");
+        return SYL_ELIMIT;
+    }
+    int status = SYL_OK;
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds && !status; k++) {
+        bool used = !m;
+        for (int g = 0; m && g < m->ngroups && !used; g++) used = m->materials[m->groups[g].material].kind == kinds[k];
+        if (!used) continue;
+        snprintf(path, n, "%s_%s.png", prefix, syl_texture_name(kinds[k]));
+        syl_texture(kinds[k], NULL, size, img);
+        status = syl_write_png(path, img, size, size, diag);
+    }
+    free(img);
+    free(path);
+    return status;
+}
+
+/* ---- mip-mapped patterns for the renderer ---- */
+
+bool texture_build(Texture *t, int kind, int size) {
+    memset(t, 0, sizeof *t);
+    if (size < 1 || (size & (size - 1))) return false; /* a power of two */
+    t->level[0] = malloc((size_t)size * size * 3 * sizeof(float));
+    if (!t->level[0]) return false;
+    texture_pattern(kind, size, t->level[0]);
+    t->size[0] = size;
+    t->levels = 1;
+    while (t->size[t->levels - 1] > 1 && t->levels < 16) {
+        int ps = t->size[t->levels - 1], s = ps / 2;
+        const float *src = t->level[t->levels - 1];
+        float *dst = malloc((size_t)s * s * 3 * sizeof(float));
+        if (!dst) break; /* coarser levels are a nicety */
+        for (int y = 0; y < s; y++)
+            for (int x = 0; x < s; x++)
+                for (int c = 0; c < 3; c++) {
+                    const float *a = src + 3 * ((size_t)(2 * y) * ps + 2 * x) + c;
+                    dst[3 * ((size_t)y * s + x) + c] = 0.25f * (a[0] + a[3] + a[3 * ps] + a[3 * ps + 3]);
+                }
+        t->level[t->levels] = dst;
+        t->size[t->levels++] = s;
+    }
+    return true;
+}
+
+void texture_free(Texture *t) {
+    for (int i = 0; i < t->levels; i++) free(t->level[i]);
+    memset(t, 0, sizeof *t);
+}
+
+/* Sizes are powers of two, so wrapping is a mask. */
+static void bilinear(const float *img, int size, float u, float v, float out[3]) {
+    float x = u * (float)size - 0.5f, y = v * (float)size - 0.5f;
+    float fx = floorf(x), fy = floorf(y);
+    float ax = x - fx, ay = y - fy;
+    int mask = size - 1;
+    int x0 = (int)fx & mask, y0 = (int)fy & mask, x1 = (x0 + 1) & mask, y1 = (y0 + 1) & mask;
+    const float *p00 = img + 3 * ((size_t)y0 * size + x0), *p10 = img + 3 * ((size_t)y0 * size + x1);
+    const float *p01 = img + 3 * ((size_t)y1 * size + x0), *p11 = img + 3 * ((size_t)y1 * size + x1);
+    for (int c = 0; c < 3; c++) {
+        float a = p00[c] + ax * (p10[c] - p00[c]), b = p01[c] + ax * (p11[c] - p01[c]);
+        out[c] = a + ay * (b - a);
+    }
+}
+
+void texture_sample(const Texture *t, float u, float v, float lod, float out[3]) {
+    if (!t->levels) {
+        out[0] = out[1] = out[2] = 1;
+        return;
+    }
+    if (!(fabsf(u) < 1e6f) || !(fabsf(v) < 1e6f)) u = v = 0; /* also NaN */
+    if (!(lod > 0)) lod = 0;
+    if (lod >= (float)(t->levels - 1)) {
+        bilinear(t->level[t->levels - 1], t->size[t->levels - 1], u, v, out);
+        return;
+    }
+    int l = (int)lod;
+    float f = lod - (float)l, a[3], b[3];
+    bilinear(t->level[l], t->size[l], u, v, a);
+    if (f <= 0) {
+        memcpy(out, a, sizeof a);
+        return;
+    }
+    bilinear(t->level[l + 1], t->size[l + 1], u, v, b);
+    for (int c = 0; c < 3; c++) out[c] = a[c] + f * (b[c] - a[c]);
+}

@@ -1,0 +1,623 @@
+/* The 3D turtle: reads a module string and emits a Skeleton. docs/turtle.md describes every
+ * symbol; LANGUAGE.md §5 is the contract.
+ *
+ * The program's symbols are resolved once into a table of turtle commands, so reading a module
+ * is one table look-up and one switch. The state is kept in floats (cglm); turns by multiples
+ * of 90 degrees are exact, and the frame is re-orthonormalised before it is used after a turn. */
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdbool.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/program.h"
+#include "lsys/modstr.h"
+#include "sylva/skeleton.h"
+#include "turtle.h"
+
+typedef enum {
+    T_NONE, /* not a turtle symbol: ignored */
+    T_F, T_G, T_f, T_g,
+    T_LEFT, T_RIGHT, T_DOWN, T_UP, T_ROLL_LEFT, T_ROLL_RIGHT, T_TURN_AROUND, T_LEVEL,
+    T_PUSH, T_POP, T_CUT,
+    T_WIDTH, T_MATERIAL, T_MATERIAL_NEXT, T_MATERIAL_PREV,
+    T_POLY_OPEN, T_VERTEX, T_POLY_CLOSE,
+    T_LEAF, T_PETAL, T_NEEDLE, T_SURFACE_UNKNOWN, T_SPHERE,
+    T_TROPISM, T_ELASTICITY, T_MOVE_TO, T_HEADING, T_SCALE, T_SMOOTH_ON, T_SMOOTH_OFF,
+    T_QUERY_P, T_QUERY_H, T_QUERY_L, T_QUERY_U,
+} TCmd;
+
+static const struct {
+    const char *name;
+    uint8_t cmd;
+} names[] = {
+    {"F", T_F},           {"G", T_G},           {"f", T_f},           {"g", T_g},
+    {"+", T_LEFT},        {"-", T_RIGHT},       {"&", T_DOWN},        {"^", T_UP},
+    {"\\", T_ROLL_LEFT},  {"/", T_ROLL_RIGHT},  {"|", T_TURN_AROUND}, {"$", T_LEVEL},
+    {"@v", T_LEVEL},      {"[", T_PUSH},        {"]", T_POP},         {"%", T_CUT},
+    {"!", T_WIDTH},       {"'", T_MATERIAL},    {";", T_MATERIAL_NEXT}, {",", T_MATERIAL_PREV},
+    {"{", T_POLY_OPEN},   {".", T_VERTEX},      {"}", T_POLY_CLOSE},
+    {"~leaf", T_LEAF},    {"~petal", T_PETAL},  {"~flower", T_PETAL}, {"~needle", T_NEEDLE},
+    {"@O", T_SPHERE},     {"@Tp", T_TROPISM},   {"@Ts", T_ELASTICITY}, {"@M", T_MOVE_TO},
+    {"@R", T_HEADING},    {"@D", T_SCALE},      {"@Gc", T_SMOOTH_ON}, {"@Gs", T_SMOOTH_ON},
+    {"@Ge", T_SMOOTH_OFF},
+    {"?P", T_QUERY_P},    {"?H", T_QUERY_H},    {"?L", T_QUERY_L},    {"?U", T_QUERY_U},
+};
+
+/* Everything `[` saves and `]` restores. */
+typedef struct TState {
+    vec3 pos, h, l, u;
+    vec3 trop;        /* unit tropism direction */
+    float elasticity; /* 0: no tropism */
+    float width;      /* diameter, before scaling */
+    float scale;      /* @D */
+    int32_t node;     /* the last node on this path, -1 before the first */
+    uint64_t gen;     /* nonzero: moved away from `node` without drawing (the move's number) */
+    int32_t axis;
+    uint16_t order;
+    uint8_t material;
+    bool branch;      /* after `[`, before the first segment: the next segment starts an axis */
+    bool smooth;      /* inside @Gc ... @Ge */
+    uint8_t dirty;    /* turns since the frame was last orthonormalised */
+} TState;
+
+typedef struct Poly {
+    size_t first; /* into Turtle.verts */
+} Poly;
+
+typedef struct Turtle {
+    const SylProgram *p;
+    SylSkeleton *sk;
+    FILE *diag;
+    TState st;
+    TState *stack;
+    size_t depth, cap;
+    Poly *polys;
+    size_t npolys, polycap;
+    vec3 *verts;
+    size_t nverts, vertcap;
+    uint64_t gens;      /* moves so far */
+    int32_t axes;       /* axis ids handed out */
+    double angle, step, widthfactor;
+    double last_deg;    /* the last angle turned by, and its sine and cosine */
+    float last_sin, last_cos;
+    uint64_t bad;       /* modules skipped for non-finite parameters */
+    uint8_t cmd[MAX_SYMBOLS];
+    bool warned[MAX_SYMBOLS];
+    bool oom;
+} Turtle;
+
+/* ---- small helpers ---- */
+
+static const vec3 vertical = {0, 1, 0};
+
+/* Parameter k of sane size (a float can hold it), or def when absent. */
+static inline double argd(const double *a, int na, int k, double def) {
+    double v = k < na ? a[k] : def;
+    if (v > 1e30) v = 1e30;
+    if (v < -1e30) v = -1e30;
+    return v;
+}
+static inline float arg(const double *a, int na, int k, double def) { return (float)argd(a, na, k, def); }
+
+/* sin and cos of an angle in degrees, exact at multiples of 90. */
+static void sincos_exact(double deg, float *s, float *c) {
+    double r = fmod(deg, 360.0);
+    if (r < 0) r += 360.0;
+    if (r == 0 || r == 90 || r == 180 || r == 270) {
+        static const float sn[4] = {0, 1, 0, -1}, cs[4] = {1, 0, -1, 0};
+        int q = (int)(r / 90);
+        *s = sn[q];
+        *c = cs[q];
+        return;
+    }
+    double rad = r * (GLM_PI / 180.0);
+    *s = (float)sin(rad);
+    *c = (float)cos(rad);
+}
+
+/* Rotate the pair (a, b) in its plane: a' = a cos + b sin, b' = b cos - a sin. */
+static void rotate_pair(vec3 a, vec3 b, float s, float c) {
+    vec3 a2, b2;
+    glm_vec3_scale(a, c, a2);
+    glm_vec3_muladds(b, s, a2);
+    glm_vec3_scale(b, c, b2);
+    glm_vec3_muladds(a, -s, b2);
+    glm_vec3_copy(a2, a);
+    glm_vec3_copy(b2, b);
+}
+
+/* Make H, L, U orthonormal again, keeping H's direction and L's plane. */
+static void orthonormalise(TState *st) {
+    glm_vec3_normalize(st->h);
+    glm_vec3_muladds(st->h, -glm_vec3_dot(st->l, st->h), st->l);
+    glm_vec3_normalize(st->l);
+    glm_vec3_cross(st->h, st->l, st->u);
+    st->dirty = 0;
+}
+
+/* After a turn: float rounding builds up over many turns, so tidy up now and then. */
+static inline void turned(TState *st) {
+    if (++st->dirty >= 32) orthonormalise(st);
+}
+
+/* Turn the frame so that H points along h (unit), by the smallest rotation. */
+static void aim(TState *st, vec3 h) {
+    vec3 axis;
+    glm_vec3_cross(st->h, h, axis);
+    float sn = glm_vec3_norm(axis), cs = glm_vec3_dot(st->h, h);
+    if (sn < 1e-7f) {
+        if (cs < 0) { /* opposite: half a turn about U */
+            glm_vec3_negate(st->h);
+            glm_vec3_negate(st->l);
+        }
+        return;
+    }
+    float a = atan2f(sn, cs);
+    glm_vec3_rotate(st->h, a, axis);
+    glm_vec3_rotate(st->l, a, axis);
+    glm_vec3_rotate(st->u, a, axis);
+    orthonormalise(st);
+}
+
+/* ABOP §2.2: bend H toward T by e |H x T|, carrying L and U along. */
+static void tropism(TState *st) {
+    if (st->elasticity == 0) return;
+    vec3 axis;
+    glm_vec3_cross(st->h, st->trop, axis);
+    float sn = glm_vec3_norm(axis);
+    if (sn < 1e-7f) return;
+    float a = st->elasticity * sn;
+    float max = atan2f(sn, glm_vec3_dot(st->h, st->trop)); /* never past T */
+    if (a > max) a = max;
+    glm_vec3_rotate(st->h, a, axis);
+    glm_vec3_rotate(st->l, a, axis);
+    glm_vec3_rotate(st->u, a, axis);
+    orthonormalise(st);
+}
+
+static void warn_once(Turtle *t, int sym, const char *what) {
+    if (t->warned[sym] || !t->diag) return;
+    t->warned[sym] = true;
+    fprintf(t->diag, "sylva: warning: %s '%s': ignored\n", what, t->p->syms[sym].name);
+}
+
+/* ---- emitting ---- */
+
+static int32_t add_node(Turtle *t, uint8_t kind, int32_t parent, uint32_t module) {
+    if (!t->sk) return -1; /* filling queries: no geometry */
+    TState *st = &t->st;
+    SylNode n;
+    glm_vec3_copy(st->pos, n.pos);
+    glm_vec3_copy(st->h, n.h);
+    glm_vec3_copy(st->l, n.l);
+    glm_vec3_copy(st->u, n.u);
+    n.radius = fabsf(st->width * st->scale) * 0.5f;
+    n.parent = parent;
+    n.axis = st->axis;
+    n.order = st->order;
+    n.kind = kind;
+    n.material = st->material;
+    n.flags = st->smooth ? SYL_NODE_SMOOTH : 0;
+    n.module = module;
+    int32_t id = syl_skeleton_add_node(t->sk, &n);
+    if (id < 0) t->oom = true;
+    return id;
+}
+
+/* How far a move of len goes, at the current scale. */
+static inline float distance(const TState *st, float len) { return fmaxf(-1e30f, fminf(1e30f, len * st->scale)); }
+
+/* The turtle moved without drawing: the next segment starts from a new root. */
+static void detach(Turtle *t) { t->st.gen = ++t->gens; }
+
+static void draw(Turtle *t, float len, uint32_t module) {
+    TState *st = &t->st;
+    if (st->dirty) orthonormalise(st);
+    if (st->gen) {
+        /* A root where the turtle stands. Saved states that moved with this same move stand
+         * here too: they share it (the stack's moves never decrease toward its top). */
+        st->axis = t->axes++;
+        int32_t root = add_node(t, SYL_KIND_ROOT, -1, module);
+        for (size_t k = t->depth; k-- && t->stack[k].gen == st->gen;) {
+            t->stack[k].node = root;
+            t->stack[k].axis = st->axis;
+            t->stack[k].gen = 0;
+        }
+        st->node = root;
+        st->gen = 0;
+    }
+    if (st->branch) {
+        st->axis = t->axes++;
+        if (st->order < UINT16_MAX) st->order++;
+        st->branch = false;
+    }
+    glm_vec3_muladds(st->h, distance(st, len), st->pos);
+    st->node = add_node(t, SYL_KIND_INTERNODE, st->node, module);
+    tropism(st);
+}
+
+static void add_vertex(Turtle *t) {
+    if (!t->npolys || !t->sk) return;
+    if (t->nverts == t->vertcap) {
+        size_t c = t->vertcap ? t->vertcap * 2 : 64;
+        vec3 *v = realloc(t->verts, c * sizeof *v);
+        if (!v) {
+            t->oom = true;
+            return;
+        }
+        t->verts = v;
+        t->vertcap = c;
+    }
+    glm_vec3_copy(t->st.pos, t->verts[t->nverts++]);
+}
+
+static void move(Turtle *t, float len, bool vertex) {
+    TState *st = &t->st;
+    glm_vec3_muladds(st->h, distance(st, len), st->pos);
+    detach(t);
+    if (vertex) add_vertex(t);
+}
+
+static void open_poly(Turtle *t) {
+    if (t->npolys == t->polycap) {
+        size_t c = t->polycap ? t->polycap * 2 : 16;
+        Poly *p = realloc(t->polys, c * sizeof *p);
+        if (!p) {
+            t->oom = true;
+            return;
+        }
+        t->polys = p;
+        t->polycap = c;
+    }
+    t->polys[t->npolys++].first = t->nverts;
+}
+
+static void close_poly(Turtle *t, uint32_t module) {
+    if (!t->npolys) return;
+    size_t first = t->polys[--t->npolys].first;
+    size_t n = t->nverts - first;
+    if (t->sk && n >= 3 && n <= UINT32_MAX &&
+        syl_skeleton_add_polygon(t->sk, (const float(*)[3])t->verts + first, (uint32_t)n, t->st.node,
+                                 t->st.material, module) < 0)
+        t->oom = true;
+    t->nverts = first;
+}
+
+static void add_organ(Turtle *t, uint8_t kind, float size, uint32_t module) {
+    TState *st = &t->st;
+    if (!t->sk) return;
+    if (st->dirty) orthonormalise(st);
+    SylOrgan o;
+    glm_vec3_copy(st->pos, o.pos);
+    glm_vec3_copy(st->h, o.h);
+    glm_vec3_copy(st->l, o.l);
+    glm_vec3_copy(st->u, o.u);
+    o.size = size * st->scale;
+    o.node = st->node;
+    o.kind = kind;
+    o.material = st->material;
+    /* Material 0 is bark, the default: a leaf or a flower nobody coloured gets its own. */
+    if (o.material == 0 && (kind == SYL_KIND_LEAF || kind == SYL_KIND_NEEDLE)) o.material = SYL_MATERIAL_LEAF;
+    if (o.material == 0 && kind == SYL_KIND_FLOWER) o.material = SYL_MATERIAL_FLOWER;
+    o.module = module;
+    if (syl_skeleton_add_organ(t->sk, &o) < 0) t->oom = true;
+}
+
+static void push(Turtle *t) {
+    if (t->depth == t->cap) {
+        size_t c = t->cap ? t->cap * 2 : 64;
+        TState *s = realloc(t->stack, c * sizeof *s);
+        if (!s) {
+            t->oom = true;
+            return;
+        }
+        t->stack = s;
+        t->cap = c;
+    }
+    t->stack[t->depth++] = t->st;
+    t->st.branch = true;
+}
+
+static void pop(Turtle *t) {
+    if (t->depth) t->st = t->stack[--t->depth];
+}
+
+static uint8_t clamp_material(double v) {
+    if (!(v > 0)) return 0;
+    if (v >= 255) return 255;
+    return (uint8_t)v;
+}
+
+static void set_heading(Turtle *t, const double *a, int na) {
+    TState *st = &t->st;
+    if (na < 3) return;
+    vec3 h = {arg(a, na, 0, 0), arg(a, na, 1, 0), arg(a, na, 2, 0)};
+    if (!(glm_vec3_norm(h) > 1e-12f)) return;
+    glm_vec3_normalize(h);
+    if (st->dirty) orthonormalise(st);
+    if (na >= 6) {
+        vec3 u = {arg(a, na, 3, 0), arg(a, na, 4, 0), arg(a, na, 5, 0)};
+        glm_vec3_muladds(h, -glm_vec3_dot(u, h), u); /* the part of u across h */
+        if (glm_vec3_norm(u) > 1e-6f) {
+            glm_vec3_normalize(u);
+            glm_vec3_copy(h, st->h);
+            glm_vec3_copy(u, st->u);
+            glm_vec3_cross(u, h, st->l); /* H x L = U */
+            return;
+        }
+    }
+    aim(st, h);
+}
+
+/* `$`: roll about H so that L is horizontal (ABOP: L = V x H / |V x H|). */
+static void level(TState *st) {
+    if (st->dirty) orthonormalise(st);
+    vec3 l;
+    glm_vec3_cross((float *)vertical, st->h, l);
+    if (glm_vec3_norm(l) < 1e-6f) return; /* heading vertical: any roll is level */
+    glm_vec3_normalize(l);
+    glm_vec3_copy(l, st->l);
+    glm_vec3_cross(st->h, st->l, st->u);
+}
+
+/* Index of the `]` closing the branch module i is in (n when i is on the main axis); *off is
+ * advanced past the parameters of the skipped modules. */
+static size_t branch_end(const SylString *s, size_t i, size_t *off) {
+    size_t depth = 0;
+    for (i++; i < s->n; i++) {
+        unsigned sym = CODE_SYM(s->code[i]);
+        if (sym == SYM_CLOSE) {
+            if (depth == 0) return i;
+            depth--;
+        } else if (sym == SYM_OPEN) {
+            depth++;
+        }
+        *off += CODE_ARITY(s->code[i]);
+    }
+    return i;
+}
+
+static void resolve(Turtle *t) {
+    memset(t->cmd, T_NONE, sizeof t->cmd);
+    for (int i = 0; i < t->p->nsyms && i < MAX_SYMBOLS; i++) {
+        const char *name = t->p->syms[i].name;
+        if (!name) continue;
+        for (size_t k = 0; k < sizeof names / sizeof *names; k++)
+            if (!strcmp(name, names[k].name)) {
+                t->cmd[i] = names[k].cmd;
+                break;
+            }
+        if (t->cmd[i] == T_NONE && name[0] == '~' && name[1]) t->cmd[i] = T_SURFACE_UNKNOWN;
+    }
+}
+
+static void init(Turtle *t, const SylProgram *p, SylSkeleton *sk, FILE *diag) {
+    memset(t, 0, sizeof *t);
+    t->p = p;
+    t->sk = sk;
+    t->diag = diag;
+    t->angle = p->angle;
+    t->last_cos = 1; /* last_deg 0 */
+    t->step = p->step;
+    t->widthfactor = p->widthfactor;
+    TState *st = &t->st;
+    glm_vec3_copy((vec3){0, 1, 0}, st->h);
+    glm_vec3_copy((vec3){-1, 0, 0}, st->l);
+    glm_vec3_copy((vec3){0, 0, 1}, st->u);
+    st->width = (float)fmax(0, fmin(p->width, 1e30));
+    st->scale = 1;
+    st->node = -1;
+    st->gen = ++t->gens; /* the start counts as a move: the first segment makes the root */
+    vec3 tr = {arg(p->tropism, 4, 0, 0), arg(p->tropism, 4, 1, 0), arg(p->tropism, 4, 2, 0)};
+    if (glm_vec3_norm(tr) > 0 && isfinite(p->tropism[3])) {
+        glm_vec3_normalize_to(tr, st->trop);
+        st->elasticity = arg(p->tropism, 4, 3, 0);
+    }
+    resolve(t);
+}
+
+static void release(Turtle *t) {
+    free(t->stack);
+    free(t->polys);
+    free(t->verts);
+}
+
+/* Reserve the node array once: segments, plus at most one root per move or per segment. A
+ * guess good enough that the array rarely grows (`%` is not followed here). */
+static void reserve_nodes(Turtle *t, const SylString *s) {
+    uint64_t draws = 0, moves = 1, polys = 0;
+    for (size_t i = 0; i < s->n; i++) {
+        switch (t->cmd[CODE_SYM(s->code[i])]) {
+        case T_F: case T_G: *(polys ? &moves : &draws) += 1; break;
+        case T_f: case T_g: case T_MOVE_TO: moves++; break;
+        case T_POLY_OPEN: polys++; break;
+        case T_POLY_CLOSE: polys -= polys > 0; break;
+        default: break;
+        }
+    }
+    uint64_t want = draws + (moves < draws ? moves : draws);
+    if (want == 0 || want > INT32_MAX) return;
+    SylSkeleton *sk = t->sk;
+    SylNode *nodes = realloc(sk->nodes, want * sizeof *nodes);
+    if (!nodes) return; /* grow as needed instead */
+    sk->nodes = nodes;
+    sk->node_cap = want;
+}
+
+/* The value of one query module: position or a frame vector. */
+static void query(const TState *st, TCmd c, double *out, int na) {
+    const float *v = c == T_QUERY_P ? st->pos : c == T_QUERY_H ? st->h : c == T_QUERY_L ? st->l : st->u;
+    for (int k = 0; k < na && k < 3; k++) out[k] = v[k];
+}
+
+/* Read the string; when fill is set, write the turtle state into query modules instead of
+ * building the skeleton's geometry (fill->par is s->par, writable). */
+static int run(Turtle *t, const SylString *s, double *fill) {
+    TState *st = &t->st;
+    const uint16_t *code = s->code;
+    const double *par = s->par;
+    size_t off = 0;
+    for (size_t i = 0; i < s->n && !t->oom; i++) {
+        uint16_t c = code[i];
+        int sym = CODE_SYM(c), na = CODE_ARITY(c);
+        const double *a = par + off;
+        off += (size_t)na;
+        TCmd cmd = t->cmd[sym];
+        if (cmd == T_NONE) continue;
+        if (na) {
+            bool finite = true;
+            for (int k = 0; k < na; k++) finite &= isfinite(a[k]) != 0;
+            if (!finite && cmd < T_QUERY_P) {
+                t->bad++;
+                continue;
+            }
+        }
+        uint32_t module = (uint32_t)i;
+        float sn = 0, cs = 1;
+        if (cmd >= T_LEFT && cmd <= T_ROLL_RIGHT) { /* most turns are by the model's angle */
+            double deg = argd(a, na, 0, t->angle);
+            if (deg != t->last_deg) {
+                sincos_exact(deg, &t->last_sin, &t->last_cos);
+                t->last_deg = deg;
+            }
+            sn = t->last_sin;
+            cs = t->last_cos;
+        }
+        switch (cmd) {
+        case T_NONE: break;
+        case T_F:
+        case T_G:
+            if (t->npolys) move(t, arg(a, na, 0, t->step), cmd == T_F);
+            else draw(t, arg(a, na, 0, t->step), module);
+            break;
+        case T_f:
+        case T_g: move(t, arg(a, na, 0, t->step), cmd == T_f && t->npolys); break;
+        case T_LEFT:
+        case T_RIGHT:
+            rotate_pair(st->h, st->l, cmd == T_LEFT ? sn : -sn, cs); /* H toward L */
+            turned(st);
+            break;
+        case T_DOWN:
+        case T_UP:
+            rotate_pair(st->u, st->h, cmd == T_DOWN ? sn : -sn, cs); /* H toward -U */
+            turned(st);
+            break;
+        case T_ROLL_LEFT:
+        case T_ROLL_RIGHT:
+            rotate_pair(st->u, st->l, cmd == T_ROLL_LEFT ? sn : -sn, cs); /* L toward -U */
+            turned(st);
+            break;
+        case T_TURN_AROUND:
+            glm_vec3_negate(st->h);
+            glm_vec3_negate(st->l);
+            break;
+        case T_LEVEL: level(st); break;
+        case T_PUSH: push(t); break;
+        case T_POP: pop(t); break;
+        case T_CUT:
+            i = branch_end(s, i, &off);
+            if (i < s->n) pop(t);
+            break;
+        case T_WIDTH:
+            if (na) st->width = fmaxf(0, arg(a, na, 0, 0));
+            else st->width = (float)fmin(st->width * t->widthfactor, 1e30);
+            break;
+        case T_MATERIAL:
+        case T_MATERIAL_NEXT:
+            st->material = na ? clamp_material(a[0]) : clamp_material(st->material + 1.0);
+            break;
+        case T_MATERIAL_PREV:
+            st->material = na ? clamp_material(a[0]) : clamp_material(st->material - 1.0);
+            break;
+        case T_POLY_OPEN: open_poly(t); break;
+        case T_VERTEX: add_vertex(t); break;
+        case T_POLY_CLOSE: close_poly(t, module); break;
+        case T_LEAF: add_organ(t, SYL_KIND_LEAF, arg(a, na, 0, t->step), module); break;
+        case T_PETAL: add_organ(t, SYL_KIND_FLOWER, arg(a, na, 0, t->step), module); break;
+        case T_NEEDLE: add_organ(t, SYL_KIND_NEEDLE, arg(a, na, 0, t->step), module); break;
+        case T_SURFACE_UNKNOWN:
+            if (!fill) warn_once(t, sym, "not a predefined surface (~leaf, ~petal, ~flower, ~needle)");
+            break;
+        case T_SPHERE: add_organ(t, SYL_KIND_SPHERE, arg(a, na, 0, st->width), module); break;
+        case T_TROPISM:
+            if (na >= 3) {
+                vec3 tr = {arg(a, na, 0, 0), arg(a, na, 1, 0), arg(a, na, 2, 0)};
+                if (glm_vec3_norm(tr) > 1e-12f) glm_vec3_normalize_to(tr, st->trop);
+                else glm_vec3_zero(st->trop);
+            }
+            if (na >= 4) st->elasticity = arg(a, na, 3, 0);
+            if (glm_vec3_norm(st->trop) == 0) st->elasticity = 0;
+            break;
+        case T_ELASTICITY:
+            st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0;
+            break;
+        case T_MOVE_TO:
+            for (int k = 0; k < na && k < 3; k++) st->pos[k] = arg(a, na, k, 0);
+            detach(t);
+            break;
+        case T_HEADING: set_heading(t, a, na); break;
+        case T_SCALE: st->scale = arg(a, na, 0, 1); break;
+        case T_SMOOTH_ON: st->smooth = true; break;
+        case T_SMOOTH_OFF: st->smooth = false; break;
+        case T_QUERY_P:
+        case T_QUERY_H:
+        case T_QUERY_L:
+        case T_QUERY_U:
+            if (fill) {
+                if (st->dirty) orthonormalise(st);
+                query(st, cmd, fill + (a - par), na);
+            }
+            break;
+        }
+    }
+    return t->oom ? SYL_ELIMIT : SYL_OK;
+}
+
+int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out) {
+    *out = NULL;
+    FILE *diag = opt ? opt->diag : NULL;
+    SylSkeleton *sk = syl_skeleton_new(p->name);
+    Turtle *t = malloc(sizeof *t);
+    if (!sk || !t) {
+        free(t);
+        syl_skeleton_free(sk);
+        if (diag) fprintf(diag, "sylva: error: out of memory in the turtle\n");
+        return SYL_ELIMIT;
+    }
+    for (int i = 0; i < 256; i++)
+        if (p->colour_set[i]) {
+            memcpy(sk->materials[i].rgb, p->colours[i], sizeof sk->materials[i].rgb);
+            sk->materials[i].kind = i == 0 ? SYL_MATERIAL_BARK
+                                    : i == 1 ? SYL_MATERIAL_LEAF
+                                    : i == 2 ? SYL_MATERIAL_FLOWER
+                                             : SYL_MATERIAL_PLAIN;
+        }
+    init(t, p, sk, diag);
+    reserve_nodes(t, s);
+    int status = run(t, s, NULL);
+    if (status == SYL_OK && t->bad && diag)
+        fprintf(diag, "sylva: warning: the turtle skipped %llu module%s with a parameter that is not a finite number\n",
+                (unsigned long long)t->bad, t->bad == 1 ? "" : "s");
+    if (status != SYL_OK) {
+        if (diag) fprintf(diag, "sylva: error: out of memory in the turtle\n");
+        syl_skeleton_free(sk);
+        sk = NULL;
+    }
+    release(t);
+    free(t);
+    *out = sk;
+    return status;
+}
+
+int syl_turtle_query(const SylProgram *p, SylString *s) {
+    Turtle *t = malloc(sizeof *t);
+    if (!t) return SYL_ELIMIT;
+    init(t, p, NULL, NULL);
+    bool any = false;
+    for (int i = 0; i < p->nsyms && i < MAX_SYMBOLS; i++) any |= t->cmd[i] >= T_QUERY_P;
+    int status = any ? run(t, s, s->par) : SYL_OK;
+    release(t);
+    free(t);
+    return status;
+}

@@ -1,0 +1,12 @@
+/* Turtle internals the derivation engine may use. */
+#ifndef SYL_TURTLE_H
+#define SYL_TURTLE_H
+#include "sylva/sylva.h"
+
+/* Fill the query modules ?P(x,y,z), ?H, ?L and ?U of s with the turtle's position and frame
+ * where each one stands (LANGUAGE.md §5), in place. Nothing else is changed; strings without
+ * query modules are left alone at the cost of one look-up per symbol. Returns SYL_OK, or
+ * SYL_ELIMIT when out of memory. */
+int syl_turtle_query(const SylProgram *p, SylString *s);
+
+#endif

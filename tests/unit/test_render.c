@@ -1,0 +1,481 @@
+/* The renderer and the procedural textures: reproducible pictures of the right size, framing,
+ * shadows on the ground, and textures with the structure seed 001 describes. Pictures are
+ * small so the suite stays fast under the sanitizers. */
+#include <math.h>
+#include <stdbool.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "unit.h"
+#include "render/render_internal.h"
+
+enum { W = 128, H = 128, MAT_RED = 3 };
+
+static uint8_t *render(const SylMesh *m, SylRenderOptions o) {
+    int w = o.width ? o.width : W, h = o.height ? o.height : H;
+    o.width = w;
+    o.height = h;
+    uint8_t *rgb = malloc((size_t)w * h * 3);
+    assert_non_null(rgb);
+    assert_int_equal(syl_render(m, &o, rgb), SYL_OK);
+    return rgb;
+}
+
+static SylMesh *red_box(const float lo[3], const float hi[3]) {
+    SylMesh *m = synth_new();
+    assert_non_null(m);
+    assert_true(synth_box(m, lo, hi, MAT_RED));
+    return m;
+}
+
+/* Pixels that are clearly the red test material (the ground is green, the sky blue). */
+static int red_pixels(const uint8_t *rgb, int n) {
+    int count = 0;
+    for (int i = 0; i < n; i++) {
+        int r = rgb[3 * i], g = rgb[3 * i + 1], b = rgb[3 * i + 2];
+        count += r > 40 && r > 2 * g && r > 2 * b;
+    }
+    return count;
+}
+
+static double luma_at(const uint8_t *rgb, int w, int h, float x, float y, int radius) {
+    double sum = 0;
+    int n = 0;
+    for (int dy = -radius; dy <= radius; dy++)
+        for (int dx = -radius; dx <= radius; dx++) {
+            int px = (int)x + dx, py = (int)y + dy;
+            if (px < 0 || py < 0 || px >= w || py >= h) continue;
+            const uint8_t *p = rgb + 3 * ((size_t)py * w + px);
+            sum += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            n++;
+        }
+    assert_true(n > 0);
+    return sum / n;
+}
+
+/* ---- pictures ---- */
+
+static void same_picture_every_time(void **state) {
+    (void)state;
+    SylMesh *m = synth_tree(4000);
+    assert_non_null(m);
+    uint8_t *a = render(m, (SylRenderOptions){.threads = 2});
+    uint8_t *b = render(m, (SylRenderOptions){.threads = 2});
+    assert_memory_equal(a, b, (size_t)W * H * 3);
+    free(a);
+    free(b);
+    synth_free(m);
+}
+
+static void thread_count_does_not_matter(void **state) {
+    (void)state;
+    SylMesh *m = synth_tree(4000);
+    /* an odd size: partial tiles and blocks at the right and bottom edges */
+    SylRenderOptions o = {.width = 101, .height = 75, .view = SYL_VIEW_FRONT, .threads = 1};
+    uint8_t *a = render(m, o);
+    o.threads = 4;
+    uint8_t *b = render(m, o);
+    o.threads = 3;
+    uint8_t *c = render(m, o);
+    assert_memory_equal(a, b, (size_t)101 * 75 * 3);
+    assert_memory_equal(a, c, (size_t)101 * 75 * 3);
+    free(a);
+    free(b);
+    free(c);
+    synth_free(m);
+}
+
+static void png_has_the_requested_size(void **state) {
+    (void)state;
+    SylMesh *m = synth_tree(1000);
+    char dir[] = "/tmp/sylva-render-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[128];
+    snprintf(path, sizeof path, "%s/p.png", dir);
+    SylRenderOptions o = {.width = 96, .height = 64, .samples = 1};
+    assert_int_equal(syl_render_png(m, &o, path), SYL_OK);
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    uint8_t head[24];
+    assert_int_equal(fread(head, 1, sizeof head, f), sizeof head);
+    fclose(f);
+    assert_memory_equal(head, "\x89PNG\r\n\x1a\n", 8);
+    assert_memory_equal(head + 12, "IHDR", 4);
+    uint32_t w = (uint32_t)head[16] << 24 | head[17] << 16 | head[18] << 8 | head[19];
+    uint32_t h = (uint32_t)head[20] << 24 | head[21] << 16 | head[22] << 8 | head[23];
+    assert_int_equal(w, 96);
+    assert_int_equal(h, 64);
+    /* no temporary file is left behind */
+    char tmp[160];
+    snprintf(tmp, sizeof tmp, "%s/p.png.tmp%ld", dir, (long)getpid());
+    assert_int_not_equal(access(tmp, F_OK), 0);
+    unlink(path);
+    rmdir(dir);
+    synth_free(m);
+}
+
+static void bad_sizes_are_refused(void **state) {
+    (void)state;
+    uint8_t px[3];
+    FILE *null = fopen("/dev/null", "w");
+    SylRenderOptions o = {.width = -1, .height = 10, .diag = null};
+    assert_int_equal(syl_render(NULL, &o, px), SYL_EUSAGE);
+    assert_int_equal(syl_write_png("/nonexistent-dir/x.png", px, 1, 1, null), SYL_EIO);
+    fclose(null);
+}
+
+static void box_covers_a_plausible_share(void **state) {
+    (void)state;
+    SylMesh *m = red_box((float[3]){-1, 0, -1}, (float[3]){1, 2, 1});
+    for (int v = SYL_VIEW_ISO; v <= SYL_VIEW_TOP; v++) {
+        uint8_t *rgb = render(m, (SylRenderOptions){.view = (SylView)v, .samples = 2, .ao_samples = 4});
+        double share = (double)red_pixels(rgb, W * H) / (W * H);
+        /* fitted to 80% of the frame: a square face 0.8^2 = 0.64 at most, the iso view's
+         * hexagon about half of the frame */
+        if (share < 0.25 || share > 0.75) fail_msg("view %d: the box covers %.3f of the frame", v, share);
+        free(rgb);
+    }
+    synth_free(m);
+}
+
+static void tree_covers_a_plausible_share(void **state) {
+    (void)state;
+    SylMesh *m = synth_tree(6000);
+    for (int i = 0; i < 3; i++) m->materials[i] = (SylMaterial){{0.9f, 0.05f, 0.05f}, SYL_MATERIAL_PLAIN};
+    uint8_t *rgb = render(m, (SylRenderOptions){0});
+    double share = (double)red_pixels(rgb, W * H) / (W * H);
+    if (share < 0.08 || share > 0.75) fail_msg("the tree covers %.3f of the frame", share);
+    free(rgb);
+    synth_free(m);
+}
+
+static void framing_fills_about_80_percent(void **state) {
+    (void)state;
+    SylMesh *m = synth_tree(3000);
+    for (int v = SYL_VIEW_ISO; v <= SYL_VIEW_TOP; v++) {
+        RenderCamera cam;
+        render_camera(m, (SylView)v, 200, 100, &cam);
+        float x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+        for (size_t i = 0; i < m->nverts; i++) {
+            float x, y;
+            assert_true(render_project(&cam, m->pos + 3 * i, &x, &y));
+            x0 = fminf(x0, x), x1 = fmaxf(x1, x), y0 = fminf(y0, y), y1 = fmaxf(y1, y);
+        }
+        /* inside the frame, centred, and 80% of it in the tighter direction */
+        assert_true(x0 >= 0 && x1 <= 200 && y0 >= 0 && y1 <= 100);
+        double fx = (x1 - x0) / 200, fy = (y1 - y0) / 100, fill = fmax(fx, fy);
+        if (fill < 0.78 || fill > 0.802) fail_msg("view %d fills %.3f", v, fill);
+        assert_near((x0 + x1) / 2, 100, 2);
+        assert_near((y0 + y1) / 2, 50, 1);
+    }
+    synth_free(m);
+}
+
+/* A table: a slab held up by a leg; the slab's shadow lies on the ground behind the leg,
+ * away from the sun (0.4, 1, 0.3). */
+static SylMesh *table(void) {
+    SylMesh *m = synth_new();
+    assert_true(synth_box(m, (float[3]){-0.1f, 0, -0.1f}, (float[3]){0.1f, 1, 0.1f}, 0));
+    assert_true(synth_box(m, (float[3]){-1, 1, -1}, (float[3]){1, 1.15f, 1}, 0));
+    return m;
+}
+
+static void shadow_on_the_ground(void **state) {
+    (void)state;
+    SylMesh *m = table();
+    SylRenderOptions o = {.view = SYL_VIEW_FRONT, .ao_samples = -1};
+    uint8_t *lit = render(m, o);
+    o.shadows = -1;
+    uint8_t *unshadowed = render(m, o);
+    RenderCamera cam;
+    render_camera(m, SYL_VIEW_FRONT, W, H, &cam);
+    /* in the slab's shadow (under it, offset by -0.4, -0.3 per unit of height) and far from it */
+    float shade[3] = {-0.45f, 0, 0.5f}, sunny[3] = {0.9f, 0, 1.6f}, x, y;
+    assert_true(render_project(&cam, shade, &x, &y));
+    double in_shadow = luma_at(lit, W, H, x, y, 1), without = luma_at(unshadowed, W, H, x, y, 1);
+    assert_true(render_project(&cam, sunny, &x, &y));
+    assert_true(x >= 0 && x < W && y >= 0 && y < H);
+    double in_sun = luma_at(lit, W, H, x, y, 1);
+    if (!(in_shadow < 0.8 * in_sun)) fail_msg("shadow %.1f, sunlit ground %.1f", in_shadow, in_sun);
+    if (!(in_shadow < 0.8 * without)) fail_msg("shadow %.1f, the same spot without shadows %.1f", in_shadow, without);
+    free(lit);
+    free(unshadowed);
+    synth_free(m);
+}
+
+static void ambient_occlusion_darkens_the_foot(void **state) {
+    (void)state;
+    /* Beside a wall's foot the sky is half hidden; the same spot without AO is brighter. */
+    SylMesh *m = red_box((float[3]){-0.2f, 0, -1}, (float[3]){0.2f, 1.5f, 1});
+    SylRenderOptions o = {.view = SYL_VIEW_FRONT, .shadows = -1, .ao_samples = 16, .samples = 4};
+    uint8_t *with = render(m, o);
+    o.ao_samples = -1;
+    uint8_t *without = render(m, o);
+    RenderCamera cam;
+    render_camera(m, SYL_VIEW_FRONT, W, H, &cam);
+    float foot[3] = {0.3f, 0, 0.9f}, x, y;
+    assert_true(render_project(&cam, foot, &x, &y));
+    double a = luma_at(with, W, H, x, y, 1), b = luma_at(without, W, H, x, y, 1);
+    if (!(a < b - 3)) fail_msg("with AO %.1f, without %.1f", a, b);
+    free(with);
+    free(without);
+    synth_free(m);
+}
+
+static void empty_mesh_draws_ground_and_sky(void **state) {
+    (void)state;
+    SylMesh *m = synth_new();
+    uint8_t *rgb = render(m, (SylRenderOptions){.view = SYL_VIEW_FRONT, .samples = 1});
+    /* top row: sky (blue above green); bottom row: grass (green above blue) */
+    const uint8_t *top = rgb + 3 * (W / 2), *bottom = rgb + 3 * ((size_t)(H - 1) * W + W / 2);
+    assert_true(top[2] > top[1] && top[2] > top[0]);
+    assert_true(bottom[1] > bottom[2] && bottom[1] > bottom[0]);
+    free(rgb);
+    synth_free(m);
+}
+
+static void bare_meshes_render(void **state) {
+    (void)state;
+    /* no normals and no uvs: flat shading, untextured */
+    SylMesh *m = synth_tree(1000);
+    free(m->nrm);
+    free(m->uv);
+    m->nrm = m->uv = NULL;
+    m->vert_cap = m->nverts; /* and no room past the last vertex: Embree gets a padded copy */
+    uint8_t *rgb = render(m, (SylRenderOptions){.width = 48, .height = 48, .samples = 1});
+    free(rgb);
+    synth_free(m);
+    /* no mesh at all */
+    rgb = render(NULL, (SylRenderOptions){.width = 16, .height = 16, .samples = 1});
+    free(rgb);
+    /* an index past the last vertex is refused */
+    m = red_box((float[3]){0, 0, 0}, (float[3]){1, 1, 1});
+    m->idx[5] = (uint32_t)m->nverts;
+    uint8_t px[16 * 16 * 3];
+    FILE *null = fopen("/dev/null", "w");
+    assert_int_equal(syl_render(m, &(SylRenderOptions){.width = 16, .height = 16, .diag = null}, px), SYL_EUSAGE);
+    fclose(null);
+    synth_free(m);
+}
+
+static void materials_set_the_colours(void **state) {
+    (void)state;
+    SylMesh *m = red_box((float[3]){-1, 0, -1}, (float[3]){1, 2, 1});
+    uint8_t *red = render(m, (SylRenderOptions){.samples = 1, .ao_samples = -1});
+    m->materials[MAT_RED].rgb[0] = 0.05f, m->materials[MAT_RED].rgb[2] = 0.9f;
+    uint8_t *blue = render(m, (SylRenderOptions){.samples = 1, .ao_samples = -1});
+    const uint8_t *r = red + 3 * (H / 2 * W + W / 2), *b = blue + 3 * (H / 2 * W + W / 2);
+    assert_true(r[0] > r[2] + 40);
+    assert_true(b[2] > b[0] + 40);
+    free(red);
+    free(blue);
+    synth_free(m);
+}
+
+typedef struct ProgressLog {
+    double last;
+    int calls;
+    bool backwards;
+} ProgressLog;
+
+static void log_progress(void *user, double f) {
+    ProgressLog *p = user;
+    if (f < p->last) p->backwards = true;
+    p->last = f;
+    p->calls++;
+}
+
+static void progress_is_reported(void **state) {
+    (void)state;
+    SylMesh *m = synth_tree(1000);
+    ProgressLog log = {.last = -1};
+    uint8_t *rgb = render(m, (SylRenderOptions){.width = 100, .height = 100, .samples = 1, .threads = 3,
+                                                 .progress = log_progress, .user = &log});
+    assert_true(log.calls >= 2);
+    assert_false(log.backwards);
+    assert_near(log.last, 1.0, 1e-12);
+    free(rgb);
+    synth_free(m);
+}
+
+/* ---- textures ---- */
+
+enum { TS = 128 };
+
+static double luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+static void textures_are_reproducible(void **state) {
+    (void)state;
+    static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
+    uint8_t *a = malloc(TS * TS * 3), *b = malloc(TS * TS * 3), *prev = malloc(TS * TS * 3);
+    for (int k = 0; k < 4; k++) {
+        syl_texture(kinds[k], NULL, TS, a);
+        syl_texture(kinds[k], NULL, TS, b);
+        assert_memory_equal(a, b, TS * TS * 3);
+        if (k) assert_memory_not_equal(a, prev, TS * TS * 3);
+        memcpy(prev, a, TS * TS * 3);
+    }
+    /* a colour multiplies the pattern */
+    syl_texture(SYL_MATERIAL_BARK, (float[3]){1, 0, 0}, TS, a);
+    for (int i = 0; i < TS * TS; i++) assert_true(a[3 * i + 1] == 0 && a[3 * i + 2] == 0);
+    free(a);
+    free(b);
+    free(prev);
+}
+
+/* Mean absolute difference between neighbours across (x) and along (y). */
+static void gradients(const uint8_t *img, int size, double *across, double *along) {
+    double gx = 0, gy = 0;
+    for (int y = 0; y < size; y++)
+        for (int x = 0; x < size; x++) {
+            const uint8_t *p = img + 3 * (y * size + x);
+            gx += fabs(luma(p) - luma(img + 3 * (y * size + (x + 1) % size)));
+            gy += fabs(luma(p) - luma(img + 3 * (((y + 1) % size) * size + x)));
+        }
+    *across = gx / (size * size);
+    *along = gy / (size * size);
+}
+
+static void bark_cracks_run_along_the_branch(void **state) {
+    (void)state;
+    uint8_t *img = malloc(TS * TS * 3);
+    syl_texture(SYL_MATERIAL_BARK, NULL, TS, img);
+    double across, along;
+    gradients(img, TS, &across, &along);
+    if (!(across > 1.8 * along)) fail_msg("bark varies %.2f across, %.2f along", across, along);
+    /* there are dark cracks: a real spread of brightness */
+    double lo = 255, hi = 0;
+    for (int i = 0; i < TS * TS; i++) lo = fmin(lo, luma(img + 3 * i)), hi = fmax(hi, luma(img + 3 * i));
+    assert_true(hi - lo > 100);
+    free(img);
+}
+
+static void leaf_is_brightest_along_its_vein(void **state) {
+    (void)state;
+    uint8_t *img = malloc(TS * TS * 3);
+    syl_texture(SYL_MATERIAL_LEAF, NULL, TS, img);
+    double column[TS] = {0}, mean = 0;
+    for (int y = 0; y < TS; y++)
+        for (int x = 0; x < TS; x++) column[x] += luma(img + 3 * (y * TS + x)) / TS;
+    for (int x = 0; x < TS; x++) mean += column[x] / TS;
+    double vein = fmax(column[TS / 2 - 1], column[TS / 2]);
+    for (int x = 0; x < TS; x++)
+        if (abs(x - TS / 2) > 3 && column[x] >= vein) fail_msg("column %d (%.1f) outshines the vein (%.1f)", x, column[x], vein);
+    assert_true(vein > mean + 15);
+    /* darker edges */
+    assert_true(column[0] < mean - 10 && column[TS - 1] < mean - 10);
+    /* side veins: along the blade, halfway to the edge, brightness rises and falls */
+    double lo = 255, hi = 0;
+    for (int y = 0; y < TS; y++) {
+        double l = luma(img + 3 * (y * TS + TS / 4));
+        lo = fmin(lo, l), hi = fmax(hi, l);
+    }
+    assert_true(hi - lo > 12);
+    free(img);
+}
+
+static void textures_tile(void **state) {
+    (void)state;
+    static const int kinds[] = {SYL_MATERIAL_BARK, -1};
+    uint8_t *img = malloc(TS * TS * 3);
+    for (int k = 0; k < 2; k++) {
+        syl_texture(kinds[k], NULL, TS, img);
+        double across, along, seam_x = 0, seam_y = 0;
+        gradients(img, TS, &across, &along);
+        for (int i = 0; i < TS; i++) {
+            seam_x += fabs(luma(img + 3 * (i * TS + TS - 1)) - luma(img + 3 * (i * TS))) / TS;
+            seam_y += fabs(luma(img + 3 * ((TS - 1) * TS + i)) - luma(img + 3 * i)) / TS;
+        }
+        /* across the seams no bigger a step than between any two neighbours */
+        assert_true(seam_x < 2.5 * across + 1);
+        assert_true(seam_y < 2.5 * along + 1);
+    }
+    free(img);
+}
+
+static void grass_is_green_and_varied(void **state) {
+    (void)state;
+    uint8_t *img = malloc(TS * TS * 3);
+    syl_texture(-1, NULL, TS, img);
+    double r = 0, g = 0, b = 0, lo = 255, hi = 0;
+    for (int i = 0; i < TS * TS; i++) {
+        r += img[3 * i], g += img[3 * i + 1], b += img[3 * i + 2];
+        lo = fmin(lo, luma(img + 3 * i)), hi = fmax(hi, luma(img + 3 * i));
+    }
+    assert_true(g > r && g > b);
+    assert_true(hi - lo > 20);
+    free(img);
+}
+
+static void noise_is_bounded_and_periodic(void **state) {
+    (void)state;
+    double sum = 0, sq = 0;
+    int n = 0;
+    for (int i = 0; i < 200; i++)
+        for (int j = 0; j < 200; j++) {
+            float x = (float)i * 0.037f, y = (float)j * 0.041f, v = noise2(x, y, 4, 4, 7);
+            assert_true(v >= -1.0001f && v <= 1.0001f);
+            assert_near(v, noise2(x + 4, y - 8, 4, 4, 7), 1e-4);
+            sum += v, sq += (double)v * v, n++;
+        }
+    assert_near(sum / n, 0, 0.1);
+    assert_true(sq / n > 0.02); /* not flat */
+    assert_near(noise2(3, 5, 0, 0, 1), 0, 1e-6); /* zero on the lattice */
+}
+
+static void textures_written_for_exporters(void **state) {
+    (void)state;
+    char dir[] = "/tmp/sylva-tex-XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char prefix[64], path[96];
+    snprintf(prefix, sizeof prefix, "%s/plant", dir);
+    static const char *const names[] = {"bark", "leaf", "flower", "grass"};
+    /* a mesh with bark only: only the bark texture */
+    SylMesh *m = synth_new();
+    assert_true(synth_box(m, (float[3]){0, 0, 0}, (float[3]){1, 1, 1}, 0));
+    assert_int_equal(syl_write_textures(m, prefix, NULL), SYL_OK);
+    for (int k = 0; k < 4; k++) {
+        snprintf(path, sizeof path, "%s_%s.png", prefix, names[k]);
+        assert_int_equal(access(path, F_OK) == 0, k == 0);
+        unlink(path);
+    }
+    /* NULL: all four */
+    assert_int_equal(syl_write_textures(NULL, prefix, NULL), SYL_OK);
+    for (int k = 0; k < 4; k++) {
+        snprintf(path, sizeof path, "%s_%s.png", prefix, names[k]);
+        struct stat st;
+        assert_int_equal(stat(path, &st), 0);
+        assert_true(st.st_size > 1000);
+        unlink(path);
+    }
+    assert_string_equal(syl_texture_name(SYL_MATERIAL_LEAF), "leaf");
+    assert_null(syl_texture_name(SYL_MATERIAL_PLAIN));
+    rmdir(dir);
+    synth_free(m);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(same_picture_every_time),
+        cmocka_unit_test(thread_count_does_not_matter),
+        cmocka_unit_test(png_has_the_requested_size),
+        cmocka_unit_test(bad_sizes_are_refused),
+        cmocka_unit_test(box_covers_a_plausible_share),
+        cmocka_unit_test(tree_covers_a_plausible_share),
+        cmocka_unit_test(framing_fills_about_80_percent),
+        cmocka_unit_test(shadow_on_the_ground),
+        cmocka_unit_test(ambient_occlusion_darkens_the_foot),
+        cmocka_unit_test(empty_mesh_draws_ground_and_sky),
+        cmocka_unit_test(bare_meshes_render),
+        cmocka_unit_test(materials_set_the_colours),
+        cmocka_unit_test(progress_is_reported),
+        cmocka_unit_test(textures_are_reproducible),
+        cmocka_unit_test(bark_cracks_run_along_the_branch),
+        cmocka_unit_test(leaf_is_brightest_along_its_vein),
+        cmocka_unit_test(textures_tile),
+        cmocka_unit_test(grass_is_green_and_varied),
+        cmocka_unit_test(noise_is_bounded_and_periodic),
+        cmocka_unit_test(textures_written_for_exporters),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
