@@ -8,7 +8,8 @@
 
 #include "mesh.h"
 
-typedef enum { SYL_VIEW_ISO, SYL_VIEW_FRONT, SYL_VIEW_SIDE, SYL_VIEW_TOP } SylView;
+/* AUTO: front for a plant drawn in a plane (2D models), iso otherwise. */
+typedef enum { SYL_VIEW_ISO, SYL_VIEW_FRONT, SYL_VIEW_SIDE, SYL_VIEW_TOP, SYL_VIEW_AUTO } SylView;
 
 typedef struct SylRenderOptions {
     int width, height;   /* 0: 1024 x 1024 */

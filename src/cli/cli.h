@@ -4,6 +4,9 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "sylva/mesh.h"
+#include "sylva/render.h"
+#include "sylva/skeleton.h"
 #include "sylva/sylva.h"
 
 enum { MAX_SETS = 64 };
@@ -48,6 +51,28 @@ int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d);
  * success *p and *s are set (free both); otherwise they are NULL. */
 int cli_derive_interpreted(ModelArgs *m, SylDeriveOptions *d, SylProgram **p, SylString **s);
 
+/* A progress bar on stderr, shown only when stderr is a terminal and the work has taken
+ * more than a second. */
+typedef struct Progress {
+    const char *label;
+    double start, last;
+    bool enabled, shown;
+} Progress;
+void cli_progress_start(Progress *p, const char *label);
+void cli_progress(void *progress, double fraction); /* 0..1; 1 clears the line */
+
+/* The whole way from a model to a skeleton and (if mo is not NULL) a mesh, with a progress
+ * bar per derivation step. Free with cli_plant_free. */
+typedef struct Plant {
+    SylSkeleton *sk;
+    SylMesh *mesh;
+    size_t modules;
+    char name[64];  /* the model's name */
+    double derive_s, turtle_s, mesh_s;
+} Plant;
+int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
+void cli_plant_free(Plant *pl);
+
 /* Write through a temporary file renamed into place, so a failed run leaves nothing. */
 typedef struct OutFile {
     FILE *f;
@@ -55,6 +80,13 @@ typedef struct OutFile {
 } OutFile;
 bool out_open(OutFile *o, const char *path); /* NULL or "-": standard output */
 int out_close(OutFile *o, int status);       /* commit when status is SYL_OK */
+
+bool cli_view(const char *arg, SylView *v);                 /* --view */
+bool cli_picture_size(const char *arg, int *w, int *h);    /* --size WxH */
+
+/* [DIR/]NAME.EXT where NAME is the model named in FILE:Model, else the file's name without
+ * its extension (free it). */
+char *cli_output_name(const ModelArgs *m, const char *dir, const char *ext);
 
 double cli_now(void);
 double cli_peak_mb(void);
@@ -65,5 +97,6 @@ int cmd_compile(int argc, char **argv);
 int cmd_skeleton(int argc, char **argv);
 int cmd_mesh(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_plant(int argc, char **argv); /* sylva FILE */
 
 #endif

@@ -109,35 +109,24 @@ int cmd_mesh(int argc, char **argv) {
     }
     mo.threads = d.threads;
     cli_model_spec(&m, argv[optind]);
-    SylProgram *p;
-    SylString *s;
-    double t0 = cli_now();
-    int status = cli_derive_interpreted(&m, &d, &p, &s);
+    Plant pl;
+    int status = cli_plant(&m, &d, &mo, &pl);
     if (status) return status;
-    double t1 = cli_now();
-    SylSkeleton *sk = NULL;
-    SylTurtleOptions topt = {.diag = stderr};
-    status = syl_turtle(p, s, &topt, &sk);
-    size_t modules = syl_string_length(s);
-    syl_string_free(s);
-    syl_program_free(p);
-    if (status) return status;
-    double t2 = cli_now();
-    SylMesh *mesh = NULL;
-    status = syl_mesh_build(sk, &mo, &mesh);
+    const SylSkeleton *sk = pl.sk;
+    const SylMesh *mesh = pl.mesh;
     double t3 = cli_now();
-    if (!status) status = syl_write_mesh(mesh, output, stderr);
+    status = syl_write_mesh(mesh, output, stderr);
     double t4 = cli_now();
     if (!status && stats) {
         size_t tris = mesh->nidx / 3;
-        fprintf(stderr, "modules: %zu\nnodes: %zu\norgans: %zu\npolygons: %zu\n", modules, sk->nnodes, sk->norgans,
-                sk->npolys);
+        fprintf(stderr, "modules: %zu\nnodes: %zu\norgans: %zu\npolygons: %zu\n", pl.modules, sk->nnodes,
+                sk->norgans, sk->npolys);
         fprintf(stderr, "vertices: %zu\ntriangles: %zu\nmaterial groups: %d\n", mesh->nverts, tris, mesh->ngroups);
-        fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", t1 - t0, t2 - t1, t3 - t2);
-        if (t3 > t2) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / (t3 - t2) / 1e6);
+        fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", pl.derive_s, pl.turtle_s,
+                pl.mesh_s);
+        if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
         fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
     }
-    syl_mesh_free(mesh);
-    syl_skeleton_free(sk);
+    cli_plant_free(&pl);
     return status;
 }

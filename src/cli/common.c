@@ -134,6 +134,89 @@ int cli_derive_interpreted(ModelArgs *m, SylDeriveOptions *d, SylProgram **p, Sy
     return status;
 }
 
+void cli_progress_start(Progress *p, const char *label) {
+    memset(p, 0, sizeof *p);
+    p->label = label;
+    p->start = cli_now();
+    p->enabled = isatty(2);
+}
+
+void cli_progress(void *progress, double fraction) {
+    Progress *p = progress;
+    if (!p->enabled) return;
+    double now = cli_now();
+    if (fraction < 1 && (now - p->start < 1.0 || now - p->last < 0.1)) return;
+    if (fraction >= 1) {
+        if (p->shown) fputs("\r\033[K", stderr);
+        p->shown = false;
+        return;
+    }
+    p->last = now;
+    p->shown = true;
+    enum { WIDTH = 40 };
+    char bar[WIDTH + 1];
+    int fill = (int)(fraction * WIDTH + 0.5);
+    for (int i = 0; i < WIDTH; i++) bar[i] = i < fill ? '#' : '.';
+    bar[WIDTH] = 0;
+    fprintf(stderr, "\r%-10s [%s] %3d%%", p->label, bar, (int)(fraction * 100 + 0.5));
+    fflush(stderr);
+}
+
+typedef struct StepProgress {
+    Progress bar;
+    int steps;
+} StepProgress;
+
+static void on_step(void *user, int step, const SylString *s) {
+    (void)s;
+    StepProgress *sp = user;
+    if (sp->steps > 0) cli_progress(&sp->bar, step >= sp->steps ? 1.0 : (double)step / sp->steps);
+}
+
+int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out) {
+    memset(out, 0, sizeof *out);
+    double t0 = cli_now();
+    int status;
+    SylProgram *p = cli_compile(m, 0, &status);
+    if (!p) return status;
+    snprintf(out->name, sizeof out->name, "%s", syl_program_name(p));
+    StepProgress sp = {.steps = d->steps >= 0 ? d->steps : syl_program_steps(p)};
+    cli_progress_start(&sp.bar, "deriving");
+    if (!d->on_step) {
+        d->on_step = on_step;
+        d->user = &sp;
+    }
+    SylString *derived = NULL, *s = NULL;
+    status = syl_derive(p, d, &derived);
+    cli_progress(&sp.bar, 1);
+    if (d->on_step == on_step) d->on_step = NULL;
+    if (!status) status = syl_interpret(p, derived, d, &s);
+    syl_string_free(derived);
+    double t1 = cli_now();
+    if (!status) {
+        SylTurtleOptions topt = {.diag = stderr};
+        out->modules = syl_string_length(s);
+        status = syl_turtle(p, s, &topt, &out->sk);
+    }
+    syl_string_free(s);
+    syl_program_free(p);
+    double t2 = cli_now();
+    if (!status && mo) status = syl_mesh_build(out->sk, mo, &out->mesh);
+    double t3 = cli_now();
+    out->derive_s = t1 - t0;
+    out->turtle_s = t2 - t1;
+    out->mesh_s = t3 - t2;
+    if (status) cli_plant_free(out);
+    return status;
+}
+
+void cli_plant_free(Plant *pl) {
+    syl_mesh_free(pl->mesh);
+    syl_skeleton_free(pl->sk);
+    pl->mesh = NULL;
+    pl->sk = NULL;
+}
+
 bool out_open(OutFile *o, const char *path) {
     memset(o, 0, sizeof *o);
     if (!path || !strcmp(path, "-")) {
@@ -187,4 +270,52 @@ double cli_peak_mb(void) {
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     return (double)ru.ru_maxrss / 1024.0;
+}
+
+bool cli_view(const char *arg, SylView *v) {
+    static const struct { const char *name; SylView view; } views[] = {
+        {"iso", SYL_VIEW_ISO}, {"front", SYL_VIEW_FRONT}, {"side", SYL_VIEW_SIDE},
+        {"top", SYL_VIEW_TOP}, {"auto", SYL_VIEW_AUTO},
+    };
+    for (size_t i = 0; i < sizeof views / sizeof *views; i++)
+        if (!strcmp(arg, views[i].name)) {
+            *v = views[i].view;
+            return true;
+        }
+    fprintf(stderr, "sylva: error: --view expects iso, front, side, top or auto, not '%s'\n", arg);
+    return false;
+}
+
+bool cli_picture_size(const char *arg, int *w, int *h) {
+    char *end;
+    long a = strtol(arg, &end, 10), b = a;
+    if (end != arg && (*end == 'x' || *end == 'X')) {
+        const char *s = end + 1;
+        b = strtol(s, &end, 10);
+        if (end == s) b = 0;
+    }
+    if (end == arg || *end || a < 1 || b < 1 || a > 16384 || b > 16384) {
+        fprintf(stderr, "sylva: error: --size expects WIDTHxHEIGHT, each from 1 to 16384, not '%s'\n", arg);
+        return false;
+    }
+    *w = (int)a;
+    *h = (int)b;
+    return true;
+}
+
+char *cli_output_name(const ModelArgs *m, const char *dir, const char *ext) {
+    const char *name = m->model;
+    size_t len;
+    if (name) len = strlen(name);
+    else {
+        const char *slash = strrchr(m->path, '/');
+        name = slash ? slash + 1 : m->path;
+        if (!strcmp(name, "-") || !*name) name = "plant";
+        const char *dot = strrchr(name, '.');
+        len = dot && dot != name ? (size_t)(dot - name) : strlen(name);
+    }
+    size_t n = (dir ? strlen(dir) + 1 : 0) + len + strlen(ext) + 2;
+    char *out = malloc(n);
+    if (out) snprintf(out, n, "%s%s%.*s.%s", dir ? dir : "", dir ? "/" : "", (int)len, name, ext);
+    return out;
 }

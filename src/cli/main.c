@@ -1,6 +1,7 @@
 /* sylva: the command line. Each subcommand lives in its own file. */
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -22,7 +23,8 @@ static void help(FILE *out) {
             SYLVA_VERSION);
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
         fprintf(out, "  %-9s %s\n", commands[i].name, commands[i].what);
-    fprintf(out, "\n`sylva COMMAND --help` describes a command. A model is named FILE or FILE:Model\n"
+    fprintf(out, "\n`sylva FILE` alone writes out/NAME.png and out/NAME.glb (see `sylva FILE --help`).\n"
+                 "`sylva COMMAND --help` describes a command. A model is named FILE or FILE:Model\n"
                  "when a file holds several. Exit codes: 0 ok, 1 the model is wrong, 2 bad command\n"
                  "line, 3 a resource limit was hit, 4 an I/O error.\n");
 }
@@ -54,6 +56,9 @@ int main(int argc, char **argv) {
             argv[1] = name;
             return commands[i].run(argc - 1, argv + 1);
         }
+    ModelArgs m; /* `sylva FILE[:Model]`: a picture and a mesh in out/ */
+    cli_model_spec(&m, cmd);
+    if (access(m.path, R_OK) == 0 || !strcmp(cmd, "-")) return cmd_plant(argc, argv);
     fprintf(stderr, "sylva: unknown command '%s'\n\n", cmd);
     help(stderr);
     return SYL_EUSAGE;

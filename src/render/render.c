@@ -113,6 +113,7 @@ void render_camera(const SylMesh *m, SylView view, int width, int height, Render
     glm_vec3_copy(hi, cam->hi);
     float size = fmaxf(hi[0] - lo[0], fmaxf(hi[1] - lo[1], hi[2] - lo[2]));
     if (!(size > 0)) size = 1;
+    if (view == SYL_VIEW_AUTO) view = hi[2] - lo[2] < 0.05f * size ? SYL_VIEW_FRONT : SYL_VIEW_ISO;
 
     vec3 back, upref = {0, 1, 0};
     float el = glm_rad(35), az = glm_rad(45);
