@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include "cli.h"
-#include "render/render_internal.h"
 #include "sylva/mesh.h"
 #include "sylva/render.h"
 
@@ -34,7 +33,7 @@ static const char usage[] =
     "\n"
     "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n";
 
-enum { OPT_VIEW = 1000, OPT_SIZE, OPT_SAMPLES, OPT_AO, OPT_NO_SHADOWS, OPT_STATS, OPT_SYNTHETIC };
+enum { OPT_VIEW = 1000, OPT_SIZE, OPT_SAMPLES, OPT_AO, OPT_NO_SHADOWS, OPT_STATS };
 
 int cmd_render(int argc, char **argv) {
     static const struct option opts[] = {
@@ -42,7 +41,7 @@ int cmd_render(int argc, char **argv) {
         {"output", required_argument, 0, 'o'},        {"view", required_argument, 0, OPT_VIEW},
         {"size", required_argument, 0, OPT_SIZE},      {"samples", required_argument, 0, OPT_SAMPLES},
         {"ao", required_argument, 0, OPT_AO},          {"no-shadows", no_argument, 0, OPT_NO_SHADOWS},
-        {"stats", no_argument, 0, OPT_STATS},          {"synthetic", required_argument, 0, OPT_SYNTHETIC},
+        {"stats", no_argument, 0, OPT_STATS},
         {"help", no_argument, 0, 'h'},                 {0, 0, 0, 0},
     };
     ModelArgs m = {0};
@@ -50,7 +49,6 @@ int cmd_render(int argc, char **argv) {
     SylRenderOptions ro = {.diag = stderr, .view = SYL_VIEW_AUTO};
     const char *output = NULL;
     bool stats = false;
-    long synthetic = 0; /* hidden: render a synthetic tree of about N triangles (benchmarks) */
     double v;
     int c;
     optind = 1;
@@ -76,15 +74,11 @@ int cmd_render(int argc, char **argv) {
             break;
         case OPT_NO_SHADOWS: ro.shadows = -1; break;
         case OPT_STATS: stats = true; break;
-        case OPT_SYNTHETIC:
-            if (!cli_integer("--synthetic", optarg, 500, 1e8, &v)) return SYL_EUSAGE;
-            synthetic = (long)v;
-            break;
         case 'h': fputs(usage, stdout); return SYL_OK;
         default: fputs(usage, stderr); return SYL_EUSAGE;
         }
     }
-    if (optind != argc - (synthetic ? 0 : 1)) {
+    if (optind != argc - 1) {
         fprintf(stderr, "sylva render: expects one model file\n%s", usage);
         return SYL_EUSAGE;
     }
@@ -94,24 +88,15 @@ int cmd_render(int argc, char **argv) {
     SylMesh *mesh = NULL;
     double t3;
     char *out_path = NULL;
-    if (synthetic) {
-        mesh = synth_tree(synthetic);
-        if (!mesh) {
-            fprintf(stderr, "sylva: error: out of memory\n");
-            return SYL_ELIMIT;
-        }
-        out_path = strdup(output ? output : "synthetic.png");
-    } else {
-        cli_model_spec(&m, argv[optind]);
-        out_path = output ? strdup(output) : cli_output_name(&m, NULL, "png");
-        SylMeshOptions mo = {.threads = d.threads, .diag = stderr};
-        status = cli_plant(&m, &d, &mo, &pl);
-        if (status) {
-            free(out_path);
-            return status;
-        }
-        mesh = pl.mesh;
+    cli_model_spec(&m, argv[optind]);
+    out_path = output ? strdup(output) : cli_output_name(&m, NULL, "png");
+    SylMeshOptions mo = {.threads = d.threads, .diag = stderr};
+    status = cli_plant(&m, &d, &mo, &pl);
+    if (status) {
+        free(out_path);
+        return status;
     }
+    mesh = pl.mesh;
     t3 = cli_now();
     if (!out_path && !status) {
         fprintf(stderr, "sylva: error: out of memory\n");
@@ -138,15 +123,13 @@ int cmd_render(int argc, char **argv) {
     }
     double t6 = cli_now();
     if (!status && stats) {
-        if (!synthetic)
-            fprintf(stderr, "modules: %zu\nderive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n",
+        fprintf(stderr, "modules: %zu\nderive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n",
                     pl.modules, pl.derive_s, pl.turtle_s, pl.mesh_s);
         fprintf(stderr, "vertices: %zu\ntriangles: %zu\n", mesh->nverts, mesh->nidx / 3);
         fprintf(stderr, "render time: %.6f s\nwrite time: %.6f s\npeak memory: %.2f MB\n", t5 - t4, t6 - t5,
                 cli_peak_mb());
     }
     free(out_path);
-    if (synthetic) synth_free(mesh);
-    else cli_plant_free(&pl);
+    cli_plant_free(&pl);
     return status;
 }
