@@ -3,6 +3,9 @@
 %define api.pure full
 %define parse.error verbose
 %locations
+/* One known conflict: in a directive, `~leaf (0.1)` could be a symbol followed by a tuple;
+ * bison shifts, so the parentheses are the symbol's parameters, as in a successor. */
+%expect 1
 %define api.location.type {SylLoc}
 %param {void *scanner}
 %parse-param {ParseState *ps}
@@ -16,6 +19,7 @@
 #include <string.h>
 
 int yylex(YYSTYPE *lval, SylLoc *lloc, void *scanner);
+static const char *const model_kinds[] = {"lsystem", "grow", "scene"};
 static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg) {
     (void)scanner;
     bool at_eof = strstr(msg, "unexpected end of file") != NULL;
@@ -27,8 +31,8 @@ static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg)
         return;
     }
     if (at_eof && ps->model != &ps->ast->top)
-        diag_error(ps->diag, *loc, "unexpected end of file: '}' missing to close lsystem '%s' (line %d)",
-                   ps->model->name, ps->model->loc.first_line);
+        diag_error(ps->diag, *loc, "unexpected end of file: '}' missing to close %s '%s' (line %d)",
+                   model_kinds[ps->model->kind], ps->model->name, ps->model->loc.first_line);
     else if (strstr(msg, "unexpected end of line, expecting ->"))
         diag_error(ps->diag, *loc, "%s (a rule needs '->'; the settings are derive, angle, step, width, widthfactor, seed, tropism, colour)",
                    msg);
@@ -63,6 +67,32 @@ static Stmt *add_stmt(ParseState *ps, StmtKind kind, SylLoc loc) {
     s->block = ps->block;
     return s;
 }
+static void begin_model(ParseState *ps, ModelKind kind, const char *name, SylLoc loc) {
+    for (int i = 0; i < ps->ast->nmodels; i++)
+        if (!strcmp(ps->ast->models[i].name, name)) {
+            if (kind == MODEL_SCENE)
+                diag_error(ps->diag, loc, "a file holds one scene (the first is at line %d)",
+                           ps->ast->models[i].loc.first_line);
+            else
+                diag_error(ps->diag, loc, "%s '%s' is already defined at line %d", model_kinds[kind], name,
+                           ps->ast->models[i].loc.first_line);
+        }
+    Model *m = VEC_PUSH(ps->arena, ps->ast->models, ps->ast->nmodels, ps->ast->cap);
+    m->kind = kind;
+    m->name = name;
+    m->loc = loc;
+    ps->model = m;
+}
+
+static DirArg darg(DirArgKind kind, const char *text, SylLoc loc) {
+    DirArg a;
+    memset(&a, 0, sizeof a);
+    a.kind = kind;
+    a.text = text;
+    a.loc = loc;
+    return a;
+}
+
 static Item item(const char *text, ItemKind kind, SylLoc loc) {
     Item it;
     memset(&it, 0, sizeof it);
@@ -81,13 +111,15 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
     Items items;
     NameList names;
     Production rule;
+    DirArg darg;
+    DirArgs dargs;
 }
 
 %token <str> WORD "name" DIGITS "integer" NUMBER "number" SPECIAL "turtle symbol" SETTING "setting" STRING "string"
 %token ARROW "->" NEWLINE "end of line" ANDAND "&&" OROR "||" EQ "==" NE "!=" LE "<=" GE ">="
 %token KW_LSYSTEM "lsystem" KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
 %token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
-%token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret"
+%token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROW "grow" KW_SCENE "scene"
 
 %type <expr> expr cond_opt weight_opt
 %type <exprs> exprs exprs_opt args_opt points
@@ -95,6 +127,8 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 %type <items> items hitems
 %type <names> names names_opt
 %type <rule> rule lhs
+%type <darg> darg
+%type <dargs> dargs
 
 %right '?' ':'
 %left OROR
@@ -114,18 +148,35 @@ file: %empty
 
 top: NEWLINE
    | decl NEWLINE
-   | KW_LSYSTEM WORD '{' {
-         for (int i = 0; i < ps->ast->nmodels; i++)
-             if (!strcmp(ps->ast->models[i].name, $2))
-                 diag_error(ps->diag, @2, "lsystem '%s' is already defined at line %d", $2,
-                            ps->ast->models[i].loc.first_line);
-         Model *m = VEC_PUSH(ps->arena, ps->ast->models, ps->ast->nmodels, ps->ast->cap);
-         m->name = $2;
-         m->loc = @2;
-         ps->model = m;
-     } body '}' { ps->model = &ps->ast->top; }
+   | KW_LSYSTEM WORD '{' { begin_model(ps, MODEL_LSYSTEM, $2, @2); } body '}' { ps->model = &ps->ast->top; }
+   | KW_GROW WORD '{' { begin_model(ps, MODEL_GROW, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
+   | KW_SCENE '{' { begin_model(ps, MODEL_SCENE, "scene", @1); } gbody '}' { ps->model = &ps->ast->top; }
    | error NEWLINE { yyerrok; ps->model = ps->model ? ps->model : &ps->ast->top; }
    ;
+
+/* grow and scene blocks: lines of directives, read by the growth engine and the scene */
+gbody: %empty
+     | gbody gstmt
+     ;
+gstmt: NEWLINE
+     | decl NEWLINE
+     | WORD dargs NEWLINE { Stmt *s = add_stmt(ps, ST_DIRECTIVE, @1); s->name = $1; s->dargs = $2; }
+     | SETTING dargs NEWLINE { Stmt *s = add_stmt(ps, ST_DIRECTIVE, @1); s->name = $1; s->dargs = $2; }
+     | error NEWLINE { yyerrok; }
+     ;
+dargs: %empty { memset(&$$, 0, sizeof $$); }
+     | dargs darg { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }
+     ;
+darg: WORD { $$ = darg(DARG_WORD, $1, @1); }
+    | SETTING { $$ = darg(DARG_WORD, $1, @1); }
+    | STRING { $$ = darg(DARG_STRING, $1, @1); }
+    | NUMBER { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = strtod($1, NULL); }
+    | DIGITS { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = strtod($1, NULL); }
+    | '-' NUMBER { $$ = darg(DARG_NUMBER, $2, @2); $$.value = mk(ps, EX_NUM, @2); $$.value->num = -strtod($2, NULL); }
+    | '-' DIGITS { $$ = darg(DARG_NUMBER, $2, @2); $$.value = mk(ps, EX_NUM, @2); $$.value->num = -strtod($2, NULL); }
+    | SPECIAL args_opt { $$ = darg(DARG_SYMBOL, $1, @1); $$.args = $2; }
+    | '(' exprs ')' { $$ = darg(DARG_TUPLE, "(", @1); $$.args = $2; }
+    ;
 
 body: %empty
     | body stmt

@@ -47,6 +47,36 @@ char *syl_read_file(const char *path, size_t *len);
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,
                     char *buf, size_t bufsize);
 
+/* What a compiled model is: an L-system, or a `grow` block (self-organizing tree). */
+typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW } SylModelKind;
+SylModelKind syl_program_kind(const SylProgram *p);
+
+/* The lines of a `grow` block (its directives) and of the file's `scene` block, with values
+ * evaluated: numbers, words, strings, turtle symbols with parameters, and tuples. */
+typedef enum { SYL_DARG_WORD, SYL_DARG_NUMBER, SYL_DARG_STRING, SYL_DARG_SYMBOL, SYL_DARG_TUPLE } SylDirArgKind;
+typedef struct SylDirArg {
+    SylDirArgKind kind;
+    const char *text;     /* word, string, or symbol name (~leaf) */
+    double num;           /* SYL_DARG_NUMBER */
+    const double *values; /* SYL_DARG_TUPLE and the parameters of SYL_DARG_SYMBOL */
+    int nvalues;
+    int line, col;
+} SylDirArg;
+typedef struct SylDirective {
+    const char *name;
+    int line, col;
+    const SylDirArg *args;
+    int nargs;
+} SylDirective;
+const SylDirective *syl_program_directives(const SylProgram *p, int *n); /* of a grow block */
+const SylDirective *syl_program_scene(const SylProgram *p, int *n);      /* NULL: no scene */
+/* Report an error about the program's source at line:col (0: none), with the source line
+ * and a caret, in the form of every other diagnostic. */
+void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+/* The path the program was read from (for files a model names, such as obstacles). */
+const char *syl_program_path(const SylProgram *p);
+
 const char *syl_program_name(const SylProgram *p);
 int syl_program_steps(const SylProgram *p);        /* the model's `derive` */
 uint64_t syl_program_seed(const SylProgram *p);

@@ -65,7 +65,23 @@ typedef struct Production {
     SylLoc loc, arrow_loc;
 } Production;
 
+/* One argument of a directive line in a grow or scene block: a word, a number, a string, a
+ * turtle symbol with parameters (~leaf(0.06)) or a parenthesised tuple of expressions. */
+typedef enum { DARG_WORD, DARG_NUMBER, DARG_STRING, DARG_SYMBOL, DARG_TUPLE } DirArgKind;
+typedef struct DirArg {
+    DirArgKind kind;
+    const char *text;
+    Expr *value;   /* DARG_NUMBER */
+    ExprList args; /* DARG_TUPLE, DARG_SYMBOL */
+    SylLoc loc;
+} DirArg;
+typedef struct DirArgs {
+    DirArg *v;
+    int n, cap;
+} DirArgs;
+
 typedef enum {
+    ST_DIRECTIVE, /* name args: a line of a grow or scene block */
     ST_CONST,     /* name = value */
     ST_PARAM,     /* name = value, overridable */
     ST_FN,        /* name(params) = value */
@@ -91,10 +107,14 @@ typedef struct Stmt {
     bool has_params;
     Items items;
     Production rule;
+    DirArgs dargs;
 } Stmt;
 
+typedef enum { MODEL_LSYSTEM, MODEL_GROW, MODEL_SCENE } ModelKind;
+
 typedef struct Model {
-    const char *name; /* NULL for the file's top level */
+    ModelKind kind;
+    const char *name; /* NULL for the file's top level; "scene" for the scene */
     SylLoc loc;
     Stmt *v;
     int n, cap;

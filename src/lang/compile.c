@@ -1,5 +1,6 @@
 /* The compiler's driver: from a parsed file to the Program of one model. */
 #include <errno.h>
+#include <stdarg.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -569,7 +570,7 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
             successor(c, &ms, &none, &p->axiom, "the axiom");
         }
     }
-    if (!axioms) diag_error(c->d, model->loc, "model '%s' has no axiom", model->name);
+    if (!axioms && model->kind == MODEL_LSYSTEM) diag_error(c->d, model->loc, "model '%s' has no axiom", model->name);
     if (consider)
         for (int s = 0; s < p->nsyms; s++) p->skip[s] = !is_bracket(s) && !considered[s];
     for (int t = 0; t < TABLE_COUNT; t++) build_table(c, &p->tables[t]);
@@ -578,10 +579,54 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
 
 /* ---- entry points ---- */
 
+/* The named model, or the file's first lsystem or grow block (a scene is not a model). */
 static Model *find_model(FileAst *ast, const char *name) {
     for (int i = 0; i < ast->nmodels; i++)
-        if (!name || !strcmp(ast->models[i].name, name)) return &ast->models[i];
+        if (ast->models[i].kind != MODEL_SCENE && (!name || !strcmp(ast->models[i].name, name)))
+            return &ast->models[i];
     return NULL;
+}
+
+static Model *find_scene(FileAst *ast) {
+    for (int i = 0; i < ast->nmodels; i++)
+        if (ast->models[i].kind == MODEL_SCENE) return &ast->models[i];
+    return NULL;
+}
+
+/* Evaluate the directive lines of a grow or scene block. Numbers and tuples may use the
+ * constants and parameters known so far. */
+static void directives(Compiler *c, Model *m, SylDirective **out, int *nout) {
+    SylProgram *p = c->p;
+    int n = 0;
+    for (int i = 0; i < m->n; i++) n += m->v[i].kind == ST_DIRECTIVE;
+    *out = arena_alloc(&p->arena, sizeof **out * (size_t)(n ? n : 1));
+    *nout = 0;
+    for (int i = 0; i < m->n; i++) {
+        Stmt *s = &m->v[i];
+        if (s->kind != ST_DIRECTIVE) continue;
+        SylDirective *d = &(*out)[(*nout)++];
+        d->name = arena_strndup(&p->arena, s->name, strlen(s->name));
+        d->line = s->loc.first_line;
+        d->col = s->loc.first_column;
+        d->nargs = s->dargs.n;
+        SylDirArg *args = arena_alloc(&p->arena, sizeof *args * (size_t)(s->dargs.n ? s->dargs.n : 1));
+        d->args = args;
+        for (int k = 0; k < s->dargs.n; k++) {
+            const DirArg *a = &s->dargs.v[k];
+            SylDirArg *o = &args[k];
+            o->kind = (SylDirArgKind)a->kind;
+            o->text = arena_strndup(&p->arena, a->text, strlen(a->text));
+            o->line = a->loc.first_line;
+            o->col = a->loc.first_column;
+            if (a->kind == DARG_NUMBER) o->num = a->value->num;
+            if (a->args.n) {
+                double *vals = arena_alloc(&p->arena, sizeof *vals * (size_t)a->args.n);
+                for (int j = 0; j < a->args.n; j++) cc_const(c, a->args.v[j], &vals[j]);
+                o->values = vals;
+                o->nvalues = a->args.n;
+            }
+        }
+    }
 }
 
 SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
@@ -630,7 +675,14 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
             diag_error(&d, (SylLoc){0}, "this file holds no lsystem");
         } else {
             p->name = arena_strndup(&p->arena, m->name, strlen(m->name));
+            p->kind = m->kind == MODEL_GROW ? SYL_MODEL_GROW : SYL_MODEL_LSYSTEM;
             compile_model(&c, &ast.top, m);
+            if (m->kind == MODEL_GROW) directives(&c, m, &p->directives, &p->ndirectives);
+            Model *scene = find_scene(&ast);
+            if (scene) {
+                p->has_scene = true;
+                directives(&c, scene, &p->scene, &p->nscene);
+            }
         }
     }
     arena_free(&tmp);
@@ -652,6 +704,7 @@ int syl_list_models(const char *path, const char *text, size_t len, const char *
     size_t used = 0;
     if (syl_parse(&src, &tmp, &d, &ast) == 0)
         for (int i = 0; i < ast.nmodels && n < max; i++) {
+            if (ast.models[i].kind == MODEL_SCENE) continue;
             size_t l = strlen(ast.models[i].name) + 1;
             if (used + l > bufsize) break;
             memcpy(buf + used, ast.models[i].name, l);
@@ -670,6 +723,28 @@ void syl_program_free(SylProgram *p) {
 }
 
 const char *syl_program_name(const SylProgram *p) { return p->name; }
+SylModelKind syl_program_kind(const SylProgram *p) { return p->kind; }
+const char *syl_program_path(const SylProgram *p) { return p->src.path; }
+
+const SylDirective *syl_program_directives(const SylProgram *p, int *n) {
+    *n = p->ndirectives;
+    return p->directives;
+}
+
+const SylDirective *syl_program_scene(const SylProgram *p, int *n) {
+    *n = p->nscene;
+    return p->has_scene ? p->scene : NULL;
+}
+
+void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    Diag d = {.out = out, .src = &p->src};
+    diag_error(&d, ((SylLoc){line, col, line, col}), "%s", msg);
+}
 int syl_program_steps(const SylProgram *p) { return p->derive; }
 uint64_t syl_program_seed(const SylProgram *p) { return p->seed; }
 int syl_program_symbol_count(const SylProgram *p) { return p->nsyms; }

@@ -132,6 +132,10 @@ typedef struct ParamInfo {
 enum { TABLE_PRODUCE, TABLE_DECOMPOSE, TABLE_INTERPRET, TABLE_COUNT };
 
 struct SylProgram {
+    SylModelKind kind;
+    SylDirective *directives, *scene;
+    int ndirectives, nscene;
+    bool has_scene;
     Arena arena;
     Source src;
     char *text; /* owned copy of the source */

@@ -518,6 +518,13 @@ static int axiom(Engine *e, SylString *out) {
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
     SylDeriveOptions defaults = {.steps = -1};
     if (!opt) opt = &defaults;
+    if (p->kind != SYL_MODEL_LSYSTEM) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' is a grow block, not an lsystem: grow it with `sylva grow`\n",
+                    p->name);
+        *out = NULL;
+        return SYL_EUSAGE;
+    }
     Engine e;
     engine_init(&e, p, opt);
     SylString *cur = new_string(&e), *spare = new_string(&e);
