@@ -136,6 +136,7 @@ struct SylProgram {
     SylDirective *directives, *scene;
     int ndirectives, nscene;
     bool has_scene;
+    bool uses_queries;      /* ?P ?H ?L ?U appear: the turtle fills them after every step */
     Arena arena;
     Source src;
     char *text; /* owned copy of the source */

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "../lang/builtins.h"
+#include "../turtle/turtle.h"
 #include "match.h"
 #include "modstr.h"
 #include "sylva/sylva.h"
@@ -515,6 +516,41 @@ static int axiom(Engine *e, SylString *out) {
     return SYL_OK;
 }
 
+/* Query modules (?P ?H ?L ?U) take the turtle's state after every step, as the turtle sees
+ * the string: through the `interpret` rules when there are any. Those rules keep query
+ * modules as they are, so the k-th query module read is the k-th of the string. */
+static bool is_query(const SylProgram *p, uint16_t code) {
+    const char *n = p->syms[CODE_SYM(code)].name;
+    return n[0] == '?' && (n[1] == 'P' || n[1] == 'H' || n[1] == 'L' || n[1] == 'U') && !n[2];
+}
+
+static int fill_queries(Engine *e, SylString *s, int step) {
+    const SylProgram *p = e->p;
+    if (!p->uses_queries) return SYL_OK;
+    if (!p->tables[TABLE_INTERPRET].nrules) return syl_turtle_query(p, s);
+    SylString *cur = new_string(e), *spare = new_string(e);
+    int st = cur && spare ? ms_reserve(cur, s->n, s->np) : SYL_ELIMIT;
+    if (!st) {
+        memcpy(cur->code, s->code, s->n * sizeof *s->code);
+        if (s->np) memcpy(cur->par, s->par, s->np * sizeof *s->par);
+        cur->n = s->n;
+        cur->np = s->np;
+        st = passes(e, TABLE_INTERPRET, step, &cur, &spare);
+    }
+    if (!st) st = syl_turtle_query(p, cur);
+    /* copy the filled values back, query module by query module */
+    for (size_t i = 0, j = 0, pi = 0, pj = 0; !st && i < s->n; pi += CODE_ARITY(s->code[i]), i++) {
+        if (!is_query(p, s->code[i])) continue;
+        while (j < cur->n && !(cur->code[j] == s->code[i] && is_query(p, cur->code[j]))) pj += CODE_ARITY(cur->code[j++]);
+        if (j == cur->n) break; /* an interpret rule removed it: it keeps its values */
+        memcpy(s->par + pi, cur->par + pj, sizeof(double) * CODE_ARITY(s->code[i]));
+        pj += CODE_ARITY(cur->code[j++]);
+    }
+    syl_string_free(cur);
+    syl_string_free(spare);
+    return st;
+}
+
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
     SylDeriveOptions defaults = {.steps = -1};
     if (!opt) opt = &defaults;
@@ -531,6 +567,7 @@ int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
     int steps = opt->steps >= 0 ? opt->steps : p->derive;
     int st = cur && spare ? axiom(&e, cur) : SYL_ELIMIT;
     if (!st) st = passes(&e, TABLE_DECOMPOSE, 0, &cur, &spare);
+    if (!st) st = fill_queries(&e, cur, 0);
     if (!st && opt->on_step) opt->on_step(opt->user, 0, cur);
     for (int step = 1; step <= steps && !st; step++) {
         bool applied = false;
@@ -542,6 +579,7 @@ int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
             spare = x;
         }
         st = passes(&e, TABLE_DECOMPOSE, step, &cur, &spare);
+        if (!st) st = fill_queries(&e, cur, step);
         if (!st && opt->on_step) opt->on_step(opt->user, step, cur);
     }
     syl_string_free(spare);

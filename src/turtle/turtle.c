@@ -448,7 +448,8 @@ static void reserve_nodes(Turtle *t, const SylString *s) {
 /* The value of one query module: position or a frame vector. */
 static void query(const TState *st, TCmd c, double *out, int na) {
     const float *v = c == T_QUERY_P ? st->pos : c == T_QUERY_H ? st->h : c == T_QUERY_L ? st->l : st->u;
-    for (int k = 0; k < na && k < 3; k++) out[k] = v[k];
+    /* the turtle computes in float: residues of rotations (6e-17, -0) read as 0 */
+    for (int k = 0; k < na && k < 3; k++) out[k] = fabsf(v[k]) < 1e-6f ? 0.0 : (double)v[k];
 }
 
 /* Read the string; when fill is set, write the turtle state into query modules instead of
