@@ -37,7 +37,8 @@ help:
 	@echo "make test       unit, case and golden tests, again under ASan+UBSan, and a fuzz run"
 	@echo "make test-fast  the same tests once, without sanitizers and fuzzing"
 	@echo "make bench      speed figures against peer tools"
-	@echo "make demo       derive every example and print its statistics"
+	@echo "make demo       render every example into out/: pictures, meshes and out/gallery.md"
+	@echo "make gallery    render every example into docs/gallery/ and write docs/gallery.md"
 	@echo "make install PREFIX=/usr/local"
 
 deps:
@@ -102,6 +103,10 @@ bench: all
 
 demo: all
 	@tools/demo $(BUILD)/sylva
+
+# The pictures are kept small for the repository: 384 x 384, quantized when pngquant is there.
+gallery: all
+	@tools/gallery --sylva $(BUILD)/sylva --size 384 --small --md docs/gallery.md docs/gallery
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/sylva

@@ -411,7 +411,8 @@ def parse_modules(text, declared):
 # --------------------------------------------------------------------------------------------
 # Models
 
-SETTINGS = ("derive", "angle", "step", "width", "seed")
+# (the turtle settings are read and ignored: they do not change a derivation)
+SETTINGS = ("derive", "angle", "step", "width", "seed", "widthfactor", "tropism", "colour")
 
 
 class Rule:

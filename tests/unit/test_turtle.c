@@ -184,7 +184,7 @@ static void bracketed_plant_node_count(void **state) {
         /* a segment is one step long, along its heading */
         const float *a = d.sk->nodes[n->parent].pos;
         for (int k = 0; k < 3; k++) assert_near(n->pos[k] - a[k], n->h[k], 1e-5);
-        assert_near(n->radius, 0.05, 1e-7);
+        assert_near(n->radius, 0.6, 1e-6); /* half the model's `width 1.2` */
     }
     drawn_free(&d);
     free(text);
