@@ -217,15 +217,15 @@ static void run_chunk(Work *w) {
     const View *in = w->in;
     SylString *o = w->out;
     const uint16_t *code = in->code;
-    const double *par = in->par + w->plo;
+    size_t pi = w->plo; /* an index, not a pointer: a string without parameters has none */
     const size_t need = (size_t)t->max_succ + SUCC_PAD;
     const size_t pneed = (size_t)t->max_succ_params + MAX_ARITY;
     double locals[MAX_LOCALS + MAX_ARITY];
     w->fault.status = SYL_OK;
     for (size_t i = w->lo; i < w->hi; i++) {
         uint16_t c = code[i];
-        const double *args = par;
-        par += CODE_ARITY(c);
+        const double *args = in->par ? in->par + pi : NULL;
+        pi += CODE_ARITY(c);
         if (o->n + need > o->cap || o->np + pneed > o->pcap) {
             if (over_limit(w, i, ms_reserve(o, need + (w->hi - i), pneed))) return;
         }
@@ -556,8 +556,8 @@ int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
     if (!opt) opt = &defaults;
     if (p->kind != SYL_MODEL_LSYSTEM) {
         if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is a grow block, not an lsystem: grow it with `sylva grow`\n",
-                    p->name);
+            fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: grow it with `sylva grow`\n",
+                    p->name, p->kind == SYL_MODEL_GROW ? "grow block" : "scene");
         *out = NULL;
         return SYL_EUSAGE;
     }
