@@ -41,6 +41,9 @@ typedef struct SylMeshOptions {
 
 int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out);
 void syl_mesh_free(SylMesh *m);
+/* Add src's vertices and triangles to dst (groups stay one per material, sorted; src's
+ * materials replace dst's of the same index). SYL_OK or SYL_ELIMIT. */
+int syl_mesh_append(SylMesh *dst, const SylMesh *src);
 /* The radius the mesher gives the segment ending at each node (s->nnodes floats): the
  * model's, or the pipe model's. SYL_EMODEL when a parent does not precede its child. */
 int syl_mesh_radii(const SylSkeleton *s, const SylMeshOptions *opt, float *radius);

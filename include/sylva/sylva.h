@@ -47,8 +47,9 @@ char *syl_read_file(const char *path, size_t *len);
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,
                     char *buf, size_t bufsize);
 
-/* What a compiled model is: an L-system, or a `grow` block (self-organizing tree). */
-typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW } SylModelKind;
+/* What a compiled model is: an L-system, a `grow` block (self-organizing tree), or — for a
+ * file that holds only a `scene` block — the scene. */
+typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW, SYL_MODEL_SCENE } SylModelKind;
 SylModelKind syl_program_kind(const SylProgram *p);
 
 /* The lines of a `grow` block (its directives) and of the file's `scene` block, with values
@@ -76,6 +77,8 @@ void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const 
     __attribute__((format(printf, 5, 6)));
 /* The path the program was read from (for files a model names, such as obstacles). */
 const char *syl_program_path(const SylProgram *p);
+/* The source text it was compiled from. */
+const char *syl_program_source(const SylProgram *p, size_t *len);
 
 const char *syl_program_name(const SylProgram *p);
 int syl_program_steps(const SylProgram *p);        /* the model's `derive` */

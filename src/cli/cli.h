@@ -4,6 +4,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "sylva/grow.h"
 #include "sylva/mesh.h"
 #include "sylva/render.h"
 #include "sylva/skeleton.h"
@@ -69,9 +70,14 @@ typedef struct Plant {
     size_t modules;
     char name[64];  /* the model's name */
     double derive_s, turtle_s, mesh_s;
+    bool grown;          /* a grow block or a scene: see grow */
+    SylGrowStats grow;   /* its counts and times (derive_s is then the growth) */
 } Plant;
 int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
 void cli_plant_free(Plant *pl);
+/* cli_plant's way for grow blocks and scenes (grow_plant.c): -n is the years and
+ * --max-modules the most metamers; takes p. */
+int cli_grow_plant(SylProgram *p, bool scene, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
 
 /* Write through a temporary file renamed into place, so a failed run leaves nothing. */
 typedef struct OutFile {
@@ -98,5 +104,7 @@ int cmd_skeleton(int argc, char **argv);
 int cmd_mesh(int argc, char **argv);
 int cmd_render(int argc, char **argv);
 int cmd_plant(int argc, char **argv); /* sylva FILE */
+int cmd_grow(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
 
 #endif

@@ -180,6 +180,10 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     SylProgram *p = cli_compile(m, 0, &status);
     if (!p) return status;
     snprintf(out->name, sizeof out->name, "%s", syl_program_name(p));
+    /* grow blocks grow; a file with a scene, named without a model, makes its scene */
+    int nscene = 0;
+    bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!m->model && syl_program_scene(p, &nscene));
+    if (scene || syl_program_kind(p) == SYL_MODEL_GROW) return cli_grow_plant(p, scene, d, mo, out);
     StepProgress sp = {.steps = d->steps >= 0 ? d->steps : syl_program_steps(p)};
     cli_progress_start(&sp.bar, "deriving");
     if (!d->on_step) {

@@ -16,6 +16,8 @@ static const struct {
     {"skeleton", cmd_skeleton, "draw a model with the turtle and export its skeleton (CSV, JSON)"},
     {"mesh", cmd_mesh, "draw a model and write a triangle mesh (.glb, .obj, .ply)"},
     {"render", cmd_render, "draw a model and ray-trace a PNG picture of it"},
+    {"grow", cmd_grow, "grow a self-organizing tree or a scene; picture, mesh or skeleton"},
+    {"compare", cmd_compare, "print a table of metrics of several models; --image draws them side by side"},
 };
 
 static void help(FILE *out) {

@@ -7,6 +7,7 @@
 
 #include "compiler.h"
 #include "opcodes.h"
+#include "sot/params.h" /* the growth engine checks grow and scene directives (see below) */
 
 /* ---- reading sources ---- */
 
@@ -673,9 +674,18 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
     *status = SYL_OK;
     if (syl_parse(&p->src, &tmp, &d, &ast) == 0) {
         Model *m = find_model(&ast, opt->model);
+        Model *scene = find_scene(&ast);
         if (!m && opt->model) {
             diag_error(&d, (SylLoc){0}, "no lsystem '%s' in this file", opt->model);
             *status = SYL_EUSAGE;
+        } else if (!m && scene) {
+            /* A file with a scene and no model of its own: its plants come from other files. */
+            p->name = "scene";
+            p->kind = SYL_MODEL_SCENE;
+            compile_model(&c, &ast.top, scene);
+            p->has_scene = true;
+            directives(&c, scene, &p->scene, &p->nscene);
+            if (!d.errors) d.errors += sot_check_scene(p, opt->diag);
         } else if (!m) {
             diag_error(&d, (SylLoc){0}, "this file holds no lsystem");
         } else {
@@ -683,11 +693,15 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
             p->kind = m->kind == MODEL_GROW ? SYL_MODEL_GROW : SYL_MODEL_LSYSTEM;
             compile_model(&c, &ast.top, m);
             if (m->kind == MODEL_GROW) directives(&c, m, &p->directives, &p->ndirectives);
-            Model *scene = find_scene(&ast);
             if (scene) {
                 p->has_scene = true;
                 directives(&c, scene, &p->scene, &p->nscene);
             }
+            /* Growth directives are checked here, by the growth engine's own table
+             * (src/sot/params.c), so `sylva check` reports them. The scene is checked with
+             * the file's first model only, so that checking every model reports it once. */
+            if (!d.errors && m->kind == MODEL_GROW) d.errors += sot_check_grow(p, opt->diag);
+            if (!d.errors && scene && m == find_model(&ast, NULL)) d.errors += sot_check_scene(p, opt->diag);
         }
     }
     arena_free(&tmp);
@@ -730,6 +744,10 @@ void syl_program_free(SylProgram *p) {
 const char *syl_program_name(const SylProgram *p) { return p->name; }
 SylModelKind syl_program_kind(const SylProgram *p) { return p->kind; }
 const char *syl_program_path(const SylProgram *p) { return p->src.path; }
+const char *syl_program_source(const SylProgram *p, size_t *len) {
+    *len = p->src.len;
+    return p->src.text;
+}
 
 const SylDirective *syl_program_directives(const SylProgram *p, int *n) {
     *n = p->ndirectives;

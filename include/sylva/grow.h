@@ -1,0 +1,51 @@
+/* Self-organizing growth (docs/growth.md): grow the tree a `grow` block describes, or every
+ * plant of a file's `scene` in one shared environment, into a skeleton — the same skeleton
+ * the turtle draws, so the mesher, renderer and exporters take it as it is. */
+#ifndef SYLVA_GROW_H
+#define SYLVA_GROW_H
+#include <stdint.h>
+#include <stdio.h>
+
+#include "mesh.h"
+#include "skeleton.h"
+#include "sylva.h"
+
+/* Counts at the end and seconds per phase (comparable with Tázlar 2018, Table 5.2). */
+typedef struct SylGrowStats {
+    int plants, years;
+    uint64_t metamers;        /* living at the end, every plant */
+    uint64_t grown;           /* metamers ever grown (shed ones too) */
+    uint64_t buds;            /* living buds at the end */
+    uint64_t shed_branches, shed_metamers;
+    uint64_t organs;
+    double light_s;           /* light per bud, and the shadow grid's updates */
+    double space_s;           /* space colonization rounds and occupancy */
+    double alloc_s;           /* demand, Borchert–Honda or priority, shoot lengths */
+    double growth_s;          /* directions, obstacle tests, new metamers and buds */
+    double shed_s;            /* shedding */
+    double other_s;           /* L-system plants of a scene, obstacles, the skeleton */
+    double total_s;
+} SylGrowStats;
+
+typedef struct SylGrowOptions {
+    int years;                /* < 0: the model's `years` (in a scene: each plant's) */
+    int use_seed;             /* nonzero: seed replaces the model's (in a scene: seed + plant number) */
+    uint64_t seed;
+    int threads;              /* <= 0: all cores; the result never depends on it */
+    uint64_t max_metamers;    /* stop with SYL_ELIMIT beyond; 0: 20 million */
+    FILE *diag;
+    void (*progress)(void *user, double fraction); /* after every year; may be NULL */
+    void *user;
+    SylGrowStats stats;       /* out */
+} SylGrowOptions;
+
+/* Grow a `grow` model alone, its base at the origin. */
+int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out);
+/* Grow the file's scene (p: any model of the file, or the scene itself): every plant, year
+ * by year in lockstep, in one environment; L-system plants are derived, drawn and take part
+ * as shadow casters and occupants. One skeleton holds every plant, each where the scene puts
+ * it. *obstacles (if not NULL) receives the obstacles' triangles as a mesh, to draw with the
+ * plants (NULL when there are none). */
+int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, SylMesh **obstacles);
+
+#endif

@@ -1,0 +1,65 @@
+/* Metrics: figures that describe a plant's form, computed from its skeleton (and, for light
+ * interception, its mesh). They are what `sylva compare` prints; docs/compare.md defines each
+ * one. Lengths are model units (metres), angles degrees. A figure that does not exist for a
+ * plant (the branching angle of an unbranched pole) is NaN. */
+#ifndef SYLVA_METRICS_H
+#define SYLVA_METRICS_H
+#include <stddef.h>
+#include <stdio.h>
+
+#include "mesh.h"
+#include "skeleton.h"
+
+enum { SYL_METRICS_MAX_STRAHLER = 64 };
+
+typedef struct SylMetrics {
+    double height;             /* highest point - ground (the lowest root) */
+    double crown_width;        /* largest horizontal distance between two crown points */
+    double crown_depth;        /* highest crown point - crown base */
+    double crown_volume;       /* of the convex hull of the crown points */
+    double internodes;         /* drawn segments */
+    double tips;               /* segments that no segment continues */
+    double max_order;          /* largest branch order */
+    double strahler;           /* Horton-Strahler order of the plant */
+    double bifurcation;        /* Horton's ratio (N_1 / N_S)^(1 / (S - 1)); NaN when S < 2 */
+    double total_length;       /* sum of the segments' lengths */
+    double branching_angle;    /* mean angle of a lateral to its parent's continuation, degrees */
+    double box_dimension;      /* box-counting dimension of the segments */
+    double light_interception; /* share of sky rays from under the crown that the mesh stops */
+    double biomass;            /* sum of radius^2 x length over the segments */
+    /* Also of use: */
+    double ground;             /* y of the lowest root */
+    double crown_base;         /* y of the lowest branching node (the ground when none) */
+    double streams[SYL_METRICS_MAX_STRAHLER + 1]; /* streams[i]: Strahler streams of order i */
+} SylMetrics;
+
+typedef struct SylMetricsOptions {
+    const SylMesh *mesh; /* for light interception; NULL: meshed here with default options */
+    int directions;      /* sky directions per ray origin; 0: 1024 */
+    int grid;            /* ray origins: grid x grid under the crown; 0: 16 */
+    int threads;         /* <= 0: all cores; the figures never depend on it */
+    FILE *diag;          /* where problems are reported; NULL: nowhere */
+} SylMetricsOptions;
+
+/* All the metrics of a skeleton. SYL_EMODEL when a parent does not precede its child,
+ * SYL_ELIMIT when out of memory (reported to opt->diag). */
+int syl_metrics(const SylSkeleton *s, const SylMetricsOptions *opt, SylMetrics *out);
+
+/* The metrics in the order tools print them, each listed once here for every output. */
+typedef struct SylMetricInfo {
+    const char *key;         /* for CSV and JSON: "crown_width" */
+    const char *label;       /* for people: "crown width" */
+    const char *unit;        /* "m", "m^3", "deg" or "" */
+    const char *description; /* one line */
+    int integer;             /* a count */
+    int per_order;           /* one value per Strahler order i = 1 .. S - 1: key_i, "label i:i+1" */
+} SylMetricInfo;
+
+extern const SylMetricInfo syl_metric_info[];
+extern const int syl_metric_count;
+
+/* The value of metric `metric` (an index into syl_metric_info); order is the Strahler order
+ * i of a per-order metric (R_b = N_i / N_(i+1)), ignored by the others. NaN when undefined. */
+double syl_metric_value(const SylMetrics *m, int metric, int order);
+
+#endif

@@ -1,0 +1,470 @@
+/* sylva compare: metrics of several models side by side (docs/compare.md). */
+#include <getopt.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli.h"
+#include "lineup.h"
+#include "sylva/metrics.h"
+
+static const char usage[] =
+    "usage: sylva compare FILE[:Model]... [--csv | --json] [--seeds N] [--image OUT.png] [options]\n"
+    "\n"
+    "Grow every model and print a table of metrics computed from its skeleton, one column per\n"
+    "model and one row per metric (docs/compare.md defines them). The output is the same on\n"
+    "every run and with any number of threads.\n"
+    "\n"
+    "  --csv                 comma-separated values instead of the aligned table\n"
+    "  --json                JSON instead of the aligned table\n"
+    "  -o, --output FILE     write the table to FILE (default: standard output)\n"
+    "  --seeds N             grow each model with N seeds (its seed, +1, +2, ...) and print\n"
+    "                        mean +- sample standard deviation (default 1)\n"
+    "  --image FILE          also render the plants side by side at one scale, with a height\n"
+    "                        ruler, into the PNG FILE (the first seed of each model)\n"
+    "  --size WxH            size of the picture (default 1600x900)\n"
+    "  --view V              iso, front, side or top (default front)\n"
+    CLI_DERIVE_HELP
+    "\n"
+    "--set applies to every model. Metrics:\n";
+
+enum { OPT_CSV = 1000, OPT_JSON, OPT_SEEDS, OPT_IMAGE, OPT_SIZE, OPT_VIEW };
+enum { FORMAT_TEXT, FORMAT_CSV, FORMAT_JSON };
+
+static void print_usage(FILE *out) {
+    fputs(usage, out);
+    for (int i = 0; i < syl_metric_count; i++) {
+        const SylMetricInfo *mi = &syl_metric_info[i];
+        char name[64];
+        snprintf(name, sizeof name, "%s%s%s%s", mi->label, mi->per_order ? " i:i+1" : "", *mi->unit ? ", " : "",
+                 mi->unit);
+        fprintf(out, "  %-28s %s\n", name, mi->description);
+    }
+    fputs("\nExit codes: 0 ok, 1 a model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n", out);
+}
+
+/* One model: its runs' metrics. */
+typedef struct Column {
+    ModelArgs args;
+    char name[64];      /* the model's */
+    const char *label;  /* the column's: the model's name, or as typed when two share it */
+    uint64_t seed0;
+    SylMetrics *runs;
+    SylMesh *mesh; /* of the first run, for --image */
+    double ground;
+} Column;
+
+/* One line of the table: a metric, and the order of a per-order one. */
+typedef struct Row {
+    int metric, order;
+    char key[64], label[64];
+} Row;
+
+/* Mean and sample standard deviation of the runs where the value exists. */
+typedef struct Stat {
+    double mean, sd;
+    int n;
+} Stat;
+
+static Stat stat(const Column *c, int nruns, const Row *r) {
+    Stat s = {NAN, NAN, 0};
+    double sum = 0;
+    for (int i = 0; i < nruns; i++) {
+        double v = syl_metric_value(&c->runs[i], r->metric, r->order);
+        if (!isnan(v)) sum += v, s.n++;
+    }
+    if (!s.n) return s;
+    s.mean = sum / s.n;
+    bool same = true; /* then exactly that value, and 0 */
+    double first = NAN;
+    for (int i = 0; i < nruns; i++) {
+        double v = syl_metric_value(&c->runs[i], r->metric, r->order);
+        if (isnan(v)) continue;
+        if (isnan(first)) first = v;
+        else if (v != first) same = false;
+    }
+    if (same) {
+        s.mean = first;
+        s.sd = 0;
+        return s;
+    }
+    double ss = 0;
+    for (int i = 0; i < nruns; i++) {
+        double v = syl_metric_value(&c->runs[i], r->metric, r->order);
+        if (!isnan(v)) ss += (v - s.mean) * (v - s.mean);
+    }
+    s.sd = s.n > 1 ? sqrt(ss / (s.n - 1)) : 0;
+    return s;
+}
+
+/* ---- formatting ---- */
+
+static void fmt_text(char *buf, size_t n, double v, bool integer, int digits) {
+    if (isnan(v)) snprintf(buf, n, "-");
+    else if (v == 0) snprintf(buf, n, "0");
+    else if ((integer && v == floor(v)) || (fabs(v) >= 1e4 && fabs(v) < 1e15)) snprintf(buf, n, "%.0f", v);
+    else snprintf(buf, n, "%.*g", digits, v);
+}
+
+/* "mean ± sd": the mean to 4 significant digits, the deviation to the same decimals. */
+static void fmt_mean_sd(char *buf, size_t n, double mean, double sd) {
+    char m[32], d[32];
+    if (sd == 0 && mean == floor(mean) && fabs(mean) < 1e15) {
+        snprintf(m, sizeof m, "%.0f", mean);
+        snprintf(d, sizeof d, "0");
+    } else if (fabs(mean) >= 1e-3 && fabs(mean) < 1e4) {
+        int decimals = 3 - (int)floor(log10(fabs(mean)));
+        if (decimals < 0) decimals = 0;
+        snprintf(m, sizeof m, "%.*f", decimals, mean);
+        snprintf(d, sizeof d, "%.*f", decimals, sd);
+    } else {
+        fmt_text(m, sizeof m, mean, false, 4);
+        fmt_text(d, sizeof d, sd, false, 2);
+    }
+    snprintf(buf, n, "%s ± %s", m, d);
+}
+
+static void fmt_number(char *buf, size_t n, double v, bool integer) {
+    if (isnan(v)) buf[0] = 0;
+    else if (v == 0) snprintf(buf, n, "0");
+    else if (integer && v == floor(v) && fabs(v) < 1e15) snprintf(buf, n, "%.0f", v);
+    else snprintf(buf, n, "%.6g", v);
+}
+
+static size_t width(const char *s) { /* characters of UTF-8 text */
+    size_t w = 0;
+    for (; *s; s++) w += ((unsigned char)*s & 0xC0) != 0x80;
+    return w;
+}
+
+static void pad(FILE *out, size_t n) {
+    while (n--) fputc(' ', out);
+}
+
+static void csv_field(FILE *out, const char *s) {
+    if (!strpbrk(s, ",\"\n\r")) {
+        fputs(s, out);
+        return;
+    }
+    fputc('"', out);
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', out);
+        fputc(*s, out);
+    }
+    fputc('"', out);
+}
+
+static void json_string(FILE *out, const char *s) {
+    fputc('"', out);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') fprintf(out, "\\%c", c);
+        else if (c < 0x20) fprintf(out, "\\u%04x", c);
+        else fputc(c, out);
+    }
+    fputc('"', out);
+}
+
+static void json_number(FILE *out, double v, bool integer) {
+    char buf[64];
+    fmt_number(buf, sizeof buf, v, integer);
+    fputs(*buf ? buf : "null", out);
+}
+
+/* ---- the three formats ---- */
+
+static bool write_text(FILE *out, const Column *cols, int ncols, int nruns, const Row *rows, int nrows) {
+    enum { CELL = 96 };
+    char *cells = calloc((size_t)(nrows + 1) * (size_t)(ncols + 1), CELL);
+    size_t *w = calloc((size_t)ncols + 1, sizeof *w);
+    if (!cells || !w) {
+        free(cells);
+        free(w);
+        return false;
+    }
+#define CELLP(r, c) (cells + ((size_t)(r) * (size_t)(ncols + 1) + (size_t)(c)) * CELL)
+    for (int r = 0; r < nrows; r++) {
+        const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+        if (*mi->unit) snprintf(CELLP(r + 1, 0), CELL, "%s (%s)", rows[r].label, mi->unit);
+        else snprintf(CELLP(r + 1, 0), CELL, "%s", rows[r].label);
+        for (int c = 0; c < ncols; c++) {
+            Stat s = stat(&cols[c], nruns, &rows[r]);
+            if (nruns > 1 && s.n) fmt_mean_sd(CELLP(r + 1, c + 1), CELL, s.mean, s.sd);
+            else fmt_text(CELLP(r + 1, c + 1), CELL, s.mean, mi->integer, 4);
+        }
+    }
+    /* The first row names the columns: metric, then each model as it was typed. */
+    const char *head = "metric";
+    w[0] = width(head);
+    for (int c = 0; c < ncols; c++) w[c + 1] = width(cols[c].label);
+    for (int r = 1; r <= nrows; r++)
+        for (int c = 0; c <= ncols; c++)
+            if (width(CELLP(r, c)) > w[c]) w[c] = width(CELLP(r, c));
+    for (int r = 0; r <= nrows; r++) {
+        const char *first = r ? CELLP(r, 0) : head;
+        fputs(first, out);
+        pad(out, w[0] - width(first));
+        for (int c = 1; c <= ncols; c++) {
+            const char *cell = r ? CELLP(r, c) : cols[c - 1].label;
+            pad(out, 2 + w[c] - width(cell));
+            fputs(cell, out);
+        }
+        fputc('\n', out);
+    }
+#undef CELLP
+    free(cells);
+    free(w);
+    return true;
+}
+
+static void write_csv(FILE *out, const Column *cols, int ncols, int nruns, const Row *rows, int nrows) {
+    fputs("metric,unit", out);
+    for (int c = 0; c < ncols; c++) {
+        char h[4200];
+        fputc(',', out);
+        snprintf(h, sizeof h, nruns > 1 ? "%s mean" : "%s", cols[c].label);
+        csv_field(out, h);
+        if (nruns > 1) {
+            fputc(',', out);
+            snprintf(h, sizeof h, "%s sd", cols[c].label);
+            csv_field(out, h);
+        }
+    }
+    fputc('\n', out);
+    for (int r = 0; r < nrows; r++) {
+        const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+        fprintf(out, "%s,%s", rows[r].key, mi->unit);
+        for (int c = 0; c < ncols; c++) {
+            Stat s = stat(&cols[c], nruns, &rows[r]);
+            char buf[64];
+            fmt_number(buf, sizeof buf, s.mean, mi->integer);
+            fprintf(out, ",%s", buf);
+            if (nruns > 1) {
+                fmt_number(buf, sizeof buf, s.sd, false);
+                fprintf(out, ",%s", buf);
+            }
+        }
+        fputc('\n', out);
+    }
+}
+
+static void write_json(FILE *out, const Column *cols, int ncols, int nruns, const Row *rows, int nrows) {
+    fprintf(out, "{\n  \"seeds\": %d,\n  \"metrics\": [\n", nruns);
+    for (int r = 0; r < nrows; r++) {
+        const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+        fputs("    {\"key\": ", out);
+        json_string(out, rows[r].key);
+        fputs(", \"label\": ", out);
+        json_string(out, rows[r].label);
+        fputs(", \"unit\": ", out);
+        json_string(out, mi->unit);
+        fputs(", \"description\": ", out);
+        json_string(out, mi->description);
+        fprintf(out, "}%s\n", r + 1 < nrows ? "," : "");
+    }
+    fputs("  ],\n  \"models\": [\n", out);
+    for (int c = 0; c < ncols; c++) {
+        fputs("    {\"model\": ", out);
+        json_string(out, cols[c].args.spec);
+        fputs(", \"name\": ", out);
+        json_string(out, cols[c].name);
+        fputs(", \"seeds\": [", out);
+        for (int i = 0; i < nruns; i++)
+            fprintf(out, "%s%llu", i ? ", " : "", (unsigned long long)(cols[c].seed0 + (uint64_t)i));
+        fputs("],\n      \"values\": {", out);
+        for (int r = 0; r < nrows; r++) {
+            const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+            Stat s = stat(&cols[c], nruns, &rows[r]);
+            fputs(r ? ",\n        " : "\n        ", out);
+            json_string(out, rows[r].key);
+            fputs(": ", out);
+            if (nruns > 1 && s.n) {
+                fputs("{\"mean\": ", out);
+                json_number(out, s.mean, false);
+                fputs(", \"sd\": ", out);
+                json_number(out, s.sd, false);
+                fputc('}', out);
+            } else json_number(out, s.mean, mi->integer);
+        }
+        fprintf(out, "\n      }}%s\n", c + 1 < ncols ? "," : "");
+    }
+    fputs("  ]\n}\n", out);
+}
+
+/* ---- running ---- */
+
+/* Rows: every metric, the per-order ones from order 1 to the highest Strahler order - 1. */
+static Row *make_rows(const Column *cols, int ncols, int nruns, int *nrows) {
+    int top = 0;
+    for (int c = 0; c < ncols; c++)
+        for (int i = 0; i < nruns; i++)
+            if (cols[c].runs[i].strahler > top) top = (int)cols[c].runs[i].strahler;
+    Row *rows = calloc((size_t)syl_metric_count + (size_t)top + 1, sizeof *rows);
+    int n = 0;
+    if (!rows) return NULL;
+    for (int m = 0; m < syl_metric_count; m++) {
+        const SylMetricInfo *mi = &syl_metric_info[m];
+        if (!mi->per_order) {
+            rows[n] = (Row){.metric = m};
+            snprintf(rows[n].key, sizeof rows[n].key, "%s", mi->key);
+            snprintf(rows[n++].label, sizeof rows[0].label, "%s", mi->label);
+            continue;
+        }
+        for (int o = 1; o < top; o++) {
+            rows[n] = (Row){.metric = m, .order = o};
+            snprintf(rows[n].key, sizeof rows[n].key, "%s_%d", mi->key, o);
+            snprintf(rows[n++].label, sizeof rows[0].label, "%s %d:%d", mi->label, o, o + 1);
+        }
+    }
+    *nrows = n;
+    return rows;
+}
+
+/* Grow a column's model nruns times and measure each plant. */
+static int run_column(Column *col, const SylDeriveOptions *base, bool seeded, int nruns, bool keep_mesh) {
+    int status;
+    SylProgram *p = cli_compile(&col->args, 0, &status);
+    if (!p) return status;
+    snprintf(col->name, sizeof col->name, "%s", syl_program_name(p));
+    col->seed0 = seeded ? base->seed : syl_program_seed(p);
+    syl_program_free(p);
+    for (int i = 0; i < nruns; i++) {
+        SylDeriveOptions d = *base;
+        d.use_seed = 1;
+        d.seed = col->seed0 + (uint64_t)i;
+        SylMeshOptions mo = {.threads = d.threads, .diag = stderr};
+        Plant pl;
+        status = cli_plant(&col->args, &d, &mo, &pl);
+        if (status) return status;
+        SylMetricsOptions o = {.mesh = pl.mesh, .threads = d.threads, .diag = stderr};
+        status = syl_metrics(pl.sk, &o, &col->runs[i]);
+        if (!status && i == 0 && keep_mesh) {
+            col->mesh = pl.mesh;
+            col->ground = col->runs[0].ground;
+            pl.mesh = NULL;
+        }
+        cli_plant_free(&pl);
+        if (status) return status;
+    }
+    return SYL_OK;
+}
+
+static int write_image(const Column *cols, int ncols, const char *path, SylRenderOptions *ro) {
+    const SylMesh **meshes = calloc((size_t)ncols, sizeof *meshes);
+    double *ground = calloc((size_t)ncols, sizeof *ground);
+    SylMesh *all = NULL;
+    int status = SYL_ELIMIT;
+    if (meshes && ground) {
+        for (int c = 0; c < ncols; c++) meshes[c] = cols[c].mesh, ground[c] = cols[c].ground;
+        all = lineup_build(meshes, ground, ncols);
+    }
+    if (!all) fprintf(stderr, "sylva: error: out of memory\n");
+    else {
+        Progress prog;
+        cli_progress_start(&prog, "rendering");
+        ro->progress = cli_progress;
+        ro->user = &prog;
+        status = syl_render_png(all, ro, path);
+    }
+    syl_mesh_free(all);
+    free(meshes);
+    free(ground);
+    return status;
+}
+
+int cmd_compare(int argc, char **argv) {
+    static const struct option opts[] = {
+        CLI_DERIVE_OPTIONS,
+        {"csv", no_argument, 0, OPT_CSV},           {"json", no_argument, 0, OPT_JSON},
+        {"seeds", required_argument, 0, OPT_SEEDS}, {"image", required_argument, 0, OPT_IMAGE},
+        {"size", required_argument, 0, OPT_SIZE},   {"view", required_argument, 0, OPT_VIEW},
+        {"output", required_argument, 0, 'o'},      {"help", no_argument, 0, 'h'},
+        {0, 0, 0, 0},
+    };
+    ModelArgs m = {0};
+    SylDeriveOptions d = {.steps = -1, .diag = stderr};
+    SylRenderOptions ro = {.diag = stderr, .view = SYL_VIEW_FRONT, .width = 1600, .height = 900};
+    const char *output = NULL, *image = NULL;
+    int format = FORMAT_TEXT, nruns = 1;
+    double v;
+    int c;
+    optind = 1;
+    while ((c = getopt_long(argc, argv, CLI_DERIVE_SHORT "o:h", opts, NULL)) != -1) {
+        int done = cli_derive_option(c, optarg, &m, &d);
+        if (done < 0) return SYL_EUSAGE;
+        if (done) continue;
+        switch (c) {
+        case OPT_CSV: format = FORMAT_CSV; break;
+        case OPT_JSON: format = FORMAT_JSON; break;
+        case OPT_SEEDS:
+            if (!cli_integer("--seeds", optarg, 1, 10000, &v)) return SYL_EUSAGE;
+            nruns = (int)v;
+            break;
+        case OPT_IMAGE: image = optarg; break;
+        case OPT_SIZE:
+            if (!cli_picture_size(optarg, &ro.width, &ro.height)) return SYL_EUSAGE;
+            break;
+        case OPT_VIEW:
+            if (!cli_view(optarg, &ro.view)) return SYL_EUSAGE;
+            break;
+        case 'o': output = optarg; break;
+        case 'h': print_usage(stdout); return SYL_OK;
+        default: print_usage(stderr); return SYL_EUSAGE;
+        }
+    }
+    int ncols = argc - optind;
+    if (ncols < 1) {
+        fprintf(stderr, "sylva compare: expects one or more model files\n");
+        print_usage(stderr);
+        return SYL_EUSAGE;
+    }
+    ro.threads = d.threads;
+    Column *cols = calloc((size_t)ncols, sizeof *cols);
+    int status = cols ? SYL_OK : SYL_ELIMIT;
+    for (int i = 0; i < ncols && !status; i++) {
+        cli_model_spec(&cols[i].args, argv[optind + i]);
+        if (!strcmp(cols[i].args.path, "-")) { /* read more than once: it must be a file */
+            fprintf(stderr, "sylva compare: reads models from files, not from standard input\n");
+            status = SYL_EUSAGE;
+            break;
+        }
+        memcpy(cols[i].args.sets, m.sets, sizeof m.sets);
+        cols[i].args.nsets = m.nsets;
+        cols[i].runs = calloc((size_t)nruns, sizeof *cols[i].runs);
+        if (!cols[i].runs) status = SYL_ELIMIT;
+    }
+    if (status == SYL_ELIMIT) fprintf(stderr, "sylva: error: out of memory\n");
+    for (int i = 0; i < ncols && !status; i++) status = run_column(&cols[i], &d, d.use_seed, nruns, image != NULL);
+    for (int i = 0; i < ncols && !status; i++) {
+        cols[i].label = cols[i].name;
+        for (int j = 0; j < ncols; j++)
+            if (j != i && !strcmp(cols[i].name, cols[j].name)) cols[i].label = cols[i].args.spec;
+    }
+    int nrows = 0;
+    Row *rows = status ? NULL : make_rows(cols, ncols, nruns, &nrows);
+    if (!status && !rows) {
+        fprintf(stderr, "sylva: error: out of memory\n");
+        status = SYL_ELIMIT;
+    }
+    if (!status && image) status = write_image(cols, ncols, image, &ro);
+    if (!status) {
+        OutFile out; /* after the picture: a table means that everything was done */
+        if (!out_open(&out, output)) status = SYL_EIO;
+        else {
+            if (format == FORMAT_CSV) write_csv(out.f, cols, ncols, nruns, rows, nrows);
+            else if (format == FORMAT_JSON) write_json(out.f, cols, ncols, nruns, rows, nrows);
+            else if (!write_text(out.f, cols, ncols, nruns, rows, nrows)) {
+                fprintf(stderr, "sylva: error: out of memory\n");
+                status = SYL_ELIMIT;
+            }
+            status = out_close(&out, status);
+        }
+    }
+    free(rows);
+    for (int i = 0; cols && i < ncols; i++) {
+        free(cols[i].runs);
+        syl_mesh_free(cols[i].mesh);
+    }
+    free(cols);
+    return status;
+}

@@ -1,0 +1,29 @@
+/* The plant pipeline for grow blocks and scenes: grow (a progress bar per year), mesh, and
+ * add a scene's obstacles to the mesh so pictures show the walls the trees grew around. */
+#include "cli.h"
+
+
+int cli_grow_plant(SylProgram *p, bool scene, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out) {
+    Progress bar;
+    cli_progress_start(&bar, "growing");
+    SylGrowOptions g = {.years = d->steps, .use_seed = d->use_seed, .seed = d->seed, .threads = d->threads,
+                        .max_metamers = d->max_modules, .diag = stderr, .progress = cli_progress, .user = &bar};
+    SylMesh *obstacles = NULL;
+    double t0 = cli_now();
+    int status = scene ? syl_grow_scene(p, &g, &out->sk, &obstacles) : syl_grow(p, &g, &out->sk);
+    cli_progress(&bar, 1);
+    syl_program_free(p);
+    double t1 = cli_now();
+    out->grown = true;
+    out->grow = g.stats;
+    out->derive_s = t1 - t0;
+    if (!status) out->modules = out->sk->nnodes;
+    if (!status && mo) {
+        status = syl_mesh_build(out->sk, mo, &out->mesh);
+        if (!status && obstacles) status = syl_mesh_append(out->mesh, obstacles);
+    }
+    out->mesh_s = cli_now() - t1;
+    syl_mesh_free(obstacles);
+    if (status) cli_plant_free(out);
+    return status;
+}

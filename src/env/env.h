@@ -1,0 +1,51 @@
+/* The shared environment of a scene: one per scene, read and written by every plant in it.
+ *
+ *   light    a shadow-propagation grid (shadow.h) or sky exposure by rays (sky.h)
+ *   space    the occupied points (every metamer end), the global marker cloud (markers.h),
+ *            and rounds of space colonization over them (space.h)
+ *   obstacles triangle meshes from OBJ files in an Embree scene (obstacles.h)
+ *   ground   a plane at a height; terrain meshes are obstacles
+ *
+ * Plants register their metamers here (shadow casters, occupants); L-system plants drawn by
+ * the turtle register theirs once, as static occupants. */
+#ifndef SYL_ENV_H
+#define SYL_ENV_H
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include <embree3/rtcore.h>
+
+#include "env/markers.h"
+#include "env/obstacles.h"
+#include "env/pointgrid.h"
+#include "env/shadow.h"
+#include "env/sky.h"
+
+typedef struct Env {
+    RTCDevice dev;
+    FILE *diag;
+    int threads;
+    float ground;          /* the ground plane's height */
+    float sun[3];          /* unit, towards the sun */
+    Obstacles obstacles;
+    bool shadow_on;
+    ShadowGrid shadow;
+    bool sky_on;
+    SkyScene sky;
+    bool cloud_on;
+    MarkerCloud cloud;
+    float occupancy;       /* radius, model units */
+    PointGrid occupied;    /* metamer ends of every plant, rebuilt once a year */
+    float *statics;        /* static occupants: 3 floats each */
+    size_t nstatic, static_cap;
+} Env;
+
+/* SYL_OK, or SYL_ELIMIT when Embree cannot start. */
+int env_init(Env *e, int threads, FILE *diag);
+void env_free(Env *e);
+bool env_add_static(Env *e, const float pos[3]);
+/* Is p below the ground plane? */
+static inline bool env_below_ground(const Env *e, const float p[3]) { return p[1] < e->ground; }
+
+#endif

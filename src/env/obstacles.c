@@ -1,0 +1,119 @@
+/* Obstacles in an Embree scene: see obstacles.h. */
+#include "env/obstacles.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "env/objread.h"
+#include "sylva/sylva.h"
+
+static bool reserve(void **arr, size_t *cap, size_t need, size_t elem) {
+    if (need <= *cap) return true;
+    size_t c = *cap ? *cap * 2 : 1024;
+    while (c < need) c *= 2;
+    void *p = realloc(*arr, c * elem);
+    if (!p) return false;
+    *arr = p;
+    *cap = c;
+    return true;
+}
+
+bool obstacles_add(Obstacles *o, const float *v, size_t nv, const uint32_t *tri, size_t nt) {
+    if (o->nv + nv > UINT32_MAX - 2) return false;
+    if (!reserve((void **)&o->v, &o->vcap, 3 * (o->nv + nv) + 4, sizeof(float)) ||
+        !reserve((void **)&o->tri, &o->tcap, 3 * (o->nt + nt), sizeof(uint32_t)))
+        return false;
+    if (o->nv == 0)
+        for (int k = 0; k < 3; k++) o->lo[k] = INFINITY, o->hi[k] = -INFINITY;
+    for (size_t i = 0; i < 3 * nv; i++) {
+        o->v[3 * o->nv + i] = v[i];
+        if (v[i] < o->lo[i % 3]) o->lo[i % 3] = v[i];
+        if (v[i] > o->hi[i % 3]) o->hi[i % 3] = v[i];
+    }
+    for (size_t i = 0; i < 3 * nt; i++) o->tri[3 * o->nt + i] = tri[i] + (uint32_t)o->nv;
+    o->nv += nv;
+    o->nt += nt;
+    return true;
+}
+
+int obstacles_add_obj(Obstacles *o, const char *path, const float offset[3], float scale, FILE *diag) {
+    ObjMesh m;
+    int st = obj_read(path, &m, diag);
+    if (st) return st;
+    for (size_t i = 0; i < 3 * m.nv; i++) m.v[i] = m.v[i] * scale + offset[i % 3];
+    if (!obstacles_add(o, m.v, m.nv, m.tri, m.nt)) {
+        if (diag) fprintf(diag, "sylva: error: out of memory reading '%s'\n", path);
+        st = SYL_ELIMIT;
+    }
+    obj_free(&m);
+    return st;
+}
+
+int obstacles_commit(Obstacles *o, RTCDevice dev, FILE *diag) {
+    if (o->scene) rtcReleaseScene(o->scene);
+    o->scene = NULL;
+    if (!o->nt) return SYL_OK;
+    o->scene = rtcNewScene(dev);
+    rtcSetSceneFlags(o->scene, RTC_SCENE_FLAG_ROBUST);
+    RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, o->v, 0, 3 * sizeof(float), o->nv);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, o->tri, 0, 3 * sizeof(uint32_t), o->nt);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(o->scene, g);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(o->scene);
+    if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) {
+        if (diag) fprintf(diag, "sylva: error: cannot build the obstacles' ray-tracing scene\n");
+        return SYL_ELIMIT;
+    }
+    return SYL_OK;
+}
+
+void obstacles_free(Obstacles *o) {
+    if (o->scene) rtcReleaseScene(o->scene);
+    free(o->v);
+    free(o->tri);
+    memset(o, 0, sizeof *o);
+}
+
+static bool occluded(RTCScene scene, const float org[3], const float dir[3], float tfar) {
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRay ray = {.org_x = org[0], .org_y = org[1], .org_z = org[2], .tnear = 0,
+                         .dir_x = dir[0], .dir_y = dir[1], .dir_z = dir[2], .time = 0, .tfar = tfar,
+                         .mask = 0xffffffffu, .id = 0, .flags = 0};
+    rtcOccluded1(scene, &ctx, &ray);
+    return ray.tfar < 0;
+}
+
+bool obstacles_blocked(const Obstacles *o, const float a[3], const float b[3], float margin) {
+    if (!o->scene) return false;
+    float d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    if (!(len > 0)) return false;
+    for (int k = 0; k < 3; k++) d[k] /= len;
+    /* quick reject: both ends (with the margin) outside the obstacles' bounds on one side */
+    for (int k = 0; k < 3; k++) {
+        float e = b[k] + d[k] * margin;
+        if ((a[k] < o->lo[k] && e < o->lo[k]) || (a[k] > o->hi[k] && e > o->hi[k])) return false;
+    }
+    return occluded(o->scene, a, d, len + margin);
+}
+
+bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out) {
+    if (!o->scene) return false;
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = x, rh.ray.org_y = y, rh.ray.org_z = z;
+    rh.ray.dir_y = -1;
+    rh.ray.tfar = INFINITY;
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(o->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    *out = y - rh.ray.tfar;
+    return true;
+}

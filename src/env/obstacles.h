@@ -1,0 +1,36 @@
+/* Obstacles: triangle meshes (read from OBJ files) in an Embree scene, asked whether a
+ * straight segment is free — a bud never grows into a wall, and a marker behind a wall is
+ * not seen — and how high the terrain is under a point. */
+#ifndef SYL_ENV_OBSTACLES_H
+#define SYL_ENV_OBSTACLES_H
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include <embree3/rtcore.h>
+
+typedef struct Obstacles {
+    RTCScene scene;  /* NULL until committed with triangles */
+    float *v;        /* 3 per vertex, with room for Embree's 16-byte reads */
+    size_t nv, vcap;
+    uint32_t *tri;
+    size_t nt, tcap;
+    float lo[3], hi[3]; /* bounds */
+} Obstacles;
+
+/* Read an OBJ file and add its triangles scaled by scale and moved by offset.
+ * SYL_OK, SYL_EIO or SYL_EMODEL (reported as file:line: error). */
+int obstacles_add_obj(Obstacles *o, const char *path, const float offset[3], float scale, FILE *diag);
+bool obstacles_add(Obstacles *o, const float *v, size_t nv, const uint32_t *tri, size_t nt);
+/* Build the Embree scene (after the last add). */
+int obstacles_commit(Obstacles *o, RTCDevice dev, FILE *diag);
+void obstacles_free(Obstacles *o);
+
+static inline bool obstacles_any(const Obstacles *o) { return o->scene != NULL; }
+/* Does the segment a-b (extended by margin beyond b) cross an obstacle? */
+bool obstacles_blocked(const Obstacles *o, const float a[3], const float b[3], float margin);
+/* The height of the highest obstacle surface under (x, z), looking down from y; false if none. */
+bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out);
+
+#endif

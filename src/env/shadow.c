@@ -1,0 +1,270 @@
+/* The shadow-propagation grid: see shadow.h. */
+#include "env/shadow.h"
+
+enum { SHADOW_PAD = 8 };
+
+
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void shadow_init(ShadowGrid *g, const ShadowParams *p, float ground_y) {
+    memset(g, 0, sizeof *g);
+    g->p = *p;
+    if (g->p.depth < 0) g->p.depth = 0;
+    if (g->p.depth > SHADOW_MAX_DEPTH) g->p.depth = SHADOW_MAX_DEPTH;
+    g->inv = 1.0f / g->p.voxel;
+    float sy = p->sun[1] > 0.2f ? p->sun[1] : 0.2f; /* a low sun: at most 5 voxels aside per level */
+    int wide = 0;
+    for (int q = 0; q <= g->p.depth; q++) {
+        g->layer[q] = (int32_t)lround((double)p->a * pow(p->b, -q) * SHADOW_ONE);
+        g->shift_x[q] = (int)lround(-q * p->sun[0] / sy);
+        g->shift_z[q] = (int)lround(-q * p->sun[2] / sy);
+        int w = abs(g->shift_x[q]) > abs(g->shift_z[q]) ? abs(g->shift_x[q]) : abs(g->shift_z[q]);
+        if (w > wide) wide = w;
+    }
+    g->reach = g->p.depth + wide;
+    double gy = floor((double)ground_y * g->inv) - 1;
+    g->ymin = isfinite(gy) && gy > INT_MIN / 4 && gy < INT_MAX / 4 ? (int)gy : INT_MIN / 4;
+    g->max_voxels = (size_t)1 << 27; /* 512 MB of shadow and as much of differences */
+}
+
+void shadow_free(ShadowGrid *g) {
+    free(g->s);
+    free(g->d);
+    free(g->row);
+    g->s = NULL;
+    g->d = g->row = NULL;
+}
+
+size_t shadow_voxels(const ShadowGrid *g) { return (size_t)g->nx * (size_t)g->ny * (size_t)g->nz; }
+
+static inline int cell(float v, float inv) { /* floor, clamped; cheaper than floorf */
+    float f = v * inv;
+    if (!(f > -1e8f)) return -100000000;
+    if (f > 1e8f) return 100000000;
+    int i = (int)f;
+    return i - (f < (float)i);
+}
+
+/* Make the grid hold [lo, hi] (inclusive voxel coordinates), with room to spare. */
+static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
+    int cur_lo[3] = {g->x0, g->y0, g->z0}, cur_hi[3] = {g->x0 + g->nx - 1, g->y0 + g->ny - 1, g->z0 + g->nz - 1};
+    bool empty = g->s == NULL;
+    if (!empty && lo[0] >= cur_lo[0] && lo[1] >= cur_lo[1] && lo[2] >= cur_lo[2] && hi[0] <= cur_hi[0] &&
+        hi[1] <= cur_hi[1] && hi[2] <= cur_hi[2])
+        return true;
+    long nlo[3], nhi[3];
+    for (int k = 0; k < 3; k++) {
+        nlo[k] = empty ? lo[k] : lo[k] < cur_lo[k] ? lo[k] : cur_lo[k];
+        nhi[k] = empty ? hi[k] : hi[k] > cur_hi[k] ? hi[k] : cur_hi[k];
+        long size = nhi[k] - nlo[k] + 1, slack = size / 4 + 4; /* grow geometrically */
+        if (empty || lo[k] < cur_lo[k]) nlo[k] -= slack;
+        if (empty || hi[k] > cur_hi[k]) nhi[k] += slack;
+    }
+    if (nlo[1] < g->ymin) nlo[1] = g->ymin;
+    if (nhi[1] < nlo[1]) nhi[1] = nlo[1];
+    double total = (double)(nhi[0] - nlo[0] + 1) * (double)(nhi[1] - nlo[1] + 1) * (double)(nhi[2] - nlo[2] + 1);
+    if (total > (double)g->max_voxels) return false;
+    int nx = (int)(nhi[0] - nlo[0] + 1), ny = (int)(nhi[1] - nlo[1] + 1), nz = (int)(nhi[2] - nlo[2] + 1);
+    uint32_t *s = calloc((size_t)total + SHADOW_PAD, sizeof *s), *d = calloc((size_t)total, sizeof *d),
+             *row = malloc((size_t)nx * sizeof *row);
+    if (!s || !d || !row) {
+        free(s), free(d), free(row);
+        return false;
+    }
+    if (!empty) {
+        int dx = g->x0 - (int)nlo[0], dy = g->y0 - (int)nlo[1], dz = g->z0 - (int)nlo[2];
+        for (int y = 0; y < g->ny; y++)
+            for (int z = 0; z < g->nz; z++)
+                memcpy(s + ((size_t)(y + dy) * (size_t)nz + (size_t)(z + dz)) * (size_t)nx + (size_t)dx,
+                       g->s + ((size_t)y * (size_t)g->nz + (size_t)z) * (size_t)g->nx, (size_t)g->nx * sizeof *s);
+    }
+    free(g->s);
+    free(g->d);
+    free(g->row);
+    g->s = (int32_t *)s;
+    g->d = d;
+    g->row = row;
+    g->x0 = (int)nlo[0], g->y0 = (int)nlo[1], g->z0 = (int)nlo[2];
+    g->nx = nx, g->ny = ny, g->nz = nz;
+    return true;
+}
+
+/* Directly: each level's rows, 8 voxels at a time (lanes past a row's end add 0; the grid
+ * has SHADOW_PAD spare voxels at its end, so the last row can be read whole). Cheaper than
+ * the difference grid for a few casters spread over a large box. */
+typedef uint32_t v8u __attribute__((vector_size(32)));
+
+static void cast_direct(ShadowGrid *g, int I, int J, int K, int sign) {
+    uint32_t *s = (uint32_t *)g->s;
+    const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
+    for (int q = 0; q <= g->p.depth; q++) {
+        int y = J - q;
+        if (y < g->y0) break;
+        uint32_t v = (uint32_t)g->layer[q];
+        if (!v) break;
+        if (sign < 0) v = 0u - v;
+        int xs = I - q + g->shift_x[q] - g->x0, zs = K - q + g->shift_z[q] - g->z0, w = 2 * q + 1;
+        uint32_t *plane = s + (size_t)(y - g->y0) * nz * nx;
+        for (int x0 = 0; x0 < w; x0 += 8) {
+            v8u add;
+            for (int k = 0; k < 8; k++) add[k] = x0 + k < w ? v : 0;
+            for (int z = zs; z < zs + w; z++) {
+                uint32_t *row = plane + (size_t)z * nx + (size_t)xs + (size_t)x0;
+                v8u cur;
+                memcpy(&cur, row, sizeof cur);
+                cur += add; /* wraps: adding and removing stay exact */
+                memcpy(row, &cur, sizeof cur);
+            }
+        }
+    }
+}
+
+/* A pyramid's levels as corners of squares in the difference grid; bb grows to hold them. */
+static void cast_one(ShadowGrid *g, int I, int J, int K, int sign, int bb[6]) {
+    uint32_t *d = g->d;
+    const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
+    for (int q = 0; q <= g->p.depth; q++) {
+        int y = J - q;
+        if (y < g->y0) break;
+        uint32_t v = (uint32_t)g->layer[q];
+        if (!v) break;
+        if (sign < 0) v = 0u - v;
+        int x0 = I - q + g->shift_x[q] - g->x0, z0 = K - q + g->shift_z[q] - g->z0, x1 = x0 + 2 * q + 1,
+            z1 = z0 + 2 * q + 1, yy = y - g->y0; /* x1, z1: one past the square, inside the grid */
+        uint32_t *plane = d + (size_t)yy * nz * nx;
+        plane[(size_t)z0 * nx + (size_t)x0] += v; /* wraps: adding and removing stay exact */
+        plane[(size_t)z0 * nx + (size_t)x1] -= v;
+        plane[(size_t)z1 * nx + (size_t)x0] -= v;
+        plane[(size_t)z1 * nx + (size_t)x1] += v;
+        if (x0 < bb[0]) bb[0] = x0;
+        if (x1 > bb[1]) bb[1] = x1;
+        if (yy < bb[2]) bb[2] = yy;
+        if (yy > bb[3]) bb[3] = yy;
+        if (z0 < bb[4]) bb[4] = z0;
+        if (z1 > bb[5]) bb[5] = z1;
+    }
+}
+
+/* Sort by bits from..from+32 (a voxel index, below 2^33): three passes of an 11-bit radix
+ * sort through tmp; stable. */
+static void sort_bits(uint64_t *v, uint64_t *tmp, size_t n, int from) {
+    for (int pass = 0; pass < 3; pass++) {
+        size_t count[2049] = {0};
+        int shift = from + 11 * pass;
+        for (size_t i = 0; i < n; i++) count[((v[i] >> shift) & 2047) + 1]++;
+        for (int b = 0; b < 2048; b++) count[b + 1] += count[b];
+        for (size_t i = 0; i < n; i++) tmp[count[(v[i] >> shift) & 2047]++] = v[i];
+        memcpy(v, tmp, n * sizeof *v);
+    }
+}
+
+/* Sum the differences inside bb into the shadow and clear them: down each plane, column
+ * sums along z (whole rows at a time), then a running sum along x. */
+static void integrate(ShadowGrid *g, const int bb[6]) {
+    const size_t nx = (size_t)g->nx, nz = (size_t)g->nz, w = (size_t)(bb[1] - bb[0] + 1);
+    uint32_t *s = (uint32_t *)g->s, *col = g->row;
+    for (int y = bb[2]; y <= bb[3]; y++) {
+        memset(col, 0, w * sizeof *col);
+        for (int z = bb[4]; z <= bb[5]; z++) {
+            size_t at = ((size_t)y * nz + (size_t)z) * nx + (size_t)bb[0];
+            uint32_t *dr = g->d + at, *sr = s + at, run = 0;
+            size_t x = 0;
+            for (; x + 8 <= w; x += 8) { /* 8 at a time */
+                v8u c, d;
+                memcpy(&c, col + x, sizeof c);
+                memcpy(&d, dr + x, sizeof d);
+                c += d;
+                memcpy(col + x, &c, sizeof c);
+            }
+            for (; x < w; x++) col[x] += dr[x];
+            memset(dr, 0, w * sizeof *dr);
+            for (size_t x = 0; x < w; x++) {
+                run += col[x];
+                sr[x] += run;
+            }
+        }
+    }
+}
+
+bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t n, int sign) {
+    if (!n) return true;
+    int lo[3] = {INT_MAX, INT_MAX, INT_MAX}, hi[3] = {INT_MIN, INT_MIN, INT_MIN};
+    for (size_t i = 0; i < n; i++) {
+        const float *p = base + i * stride;
+        int c[3] = {cell(p[0], g->inv), cell(p[1], g->inv), cell(p[2], g->inv)};
+        /* + 1: a square's far corners lie one past it */
+        int l[3] = {c[0] - g->reach, c[1] - g->p.depth, c[2] - g->reach},
+            h[3] = {c[0] + g->reach + 1, c[1], c[2] + g->reach + 1};
+        for (int k = 0; k < 3; k++) {
+            if (l[k] < lo[k]) lo[k] = l[k];
+            if (h[k] > hi[k]) hi[k] = h[k];
+        }
+    }
+    if (lo[1] < g->ymin) lo[1] = g->ymin;
+    if (hi[1] < g->ymin) return true; /* all below the ground */
+    if (!reserve(g, lo, hi)) return false;
+    /* the cheaper way (by measured costs per step): row by row, or corners and one sum
+     * over the batch's box */
+    double rows = 0, box = (double)(hi[0] - lo[0] + 1) * (double)(hi[1] - lo[1] + 1) * (double)(hi[2] - lo[2] + 1);
+    for (int q = 0; q <= g->p.depth; q++) rows += (2 * q + 1) * ((2 * q + 1 + 7) / 8);
+    bool direct = 15.0 * (double)n * rows < 10.0 * (double)n * (g->p.depth + 1) + 8.0 * box;
+    /* casters in grid order, so that neighbouring pyramids (or corners) share the cache */
+    uint64_t *order = malloc(2 * n * sizeof *order);
+    int bb[6] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) {
+        const float *p = base + i * stride;
+        int I = cell(p[0], g->inv), J = cell(p[1], g->inv), K = cell(p[2], g->inv);
+        if (J < g->y0) continue;
+        if (order)
+            order[m++] = ((uint64_t)(J - g->y0) * (uint64_t)g->nz + (uint64_t)(K - g->z0)) * (uint64_t)g->nx +
+                         (uint64_t)(I - g->x0);
+        else if (direct) cast_direct(g, I, J, K, sign);
+        else cast_one(g, I, J, K, sign, bb);
+    }
+    if (order) {
+        sort_bits(order, order + n, m, 0);
+        for (size_t i = 0; i < m; i++) {
+            uint64_t at = order[i];
+            int I = (int)(at % (uint64_t)g->nx) + g->x0, K = (int)(at / (uint64_t)g->nx % (uint64_t)g->nz) + g->z0,
+                J = (int)(at / (uint64_t)g->nx / (uint64_t)g->nz) + g->y0;
+            if (direct) cast_direct(g, I, J, K, sign);
+            else cast_one(g, I, J, K, sign, bb);
+        }
+        free(order);
+    }
+    if (bb[0] <= bb[1]) integrate(g, bb);
+    return true;
+}
+
+bool shadow_cast(ShadowGrid *g, const float (*pos)[3], size_t n, int sign) {
+    return shadow_cast_strided(g, n ? pos[0] : NULL, 3, n, sign);
+}
+
+static inline float voxel_at(const ShadowGrid *g, int I, int J, int K) {
+    I -= g->x0, J -= g->y0, K -= g->z0;
+    if (I < 0 || J < 0 || K < 0 || I >= g->nx || J >= g->ny || K >= g->nz) return 0;
+    return (float)g->s[((size_t)J * (size_t)g->nz + (size_t)K) * (size_t)g->nx + (size_t)I] * (1.0f / SHADOW_ONE);
+}
+
+float shadow_at(const ShadowGrid *g, const float pos[3]) {
+    if (!g->s) return 0;
+    return voxel_at(g, cell(pos[0], g->inv), cell(pos[1], g->inv), cell(pos[2], g->inv));
+}
+
+float shadow_light(const ShadowGrid *g, const float pos[3]) {
+    float q = g->p.full - shadow_at(g, pos) + g->p.a;
+    return q > 0 ? q : 0;
+}
+
+void shadow_gradient(const ShadowGrid *g, const float pos[3], float out[3]) {
+    out[0] = out[1] = out[2] = 0;
+    if (!g->s) return;
+    int I = cell(pos[0], g->inv), J = cell(pos[1], g->inv), K = cell(pos[2], g->inv);
+    out[0] = 0.5f * (voxel_at(g, I - 1, J, K) - voxel_at(g, I + 1, J, K));
+    out[1] = 0.5f * (voxel_at(g, I, J - 1, K) - voxel_at(g, I, J + 1, K));
+    out[2] = 0.5f * (voxel_at(g, I, J, K - 1) - voxel_at(g, I, J, K + 1));
+}

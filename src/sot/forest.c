@@ -1,0 +1,173 @@
+/* The forest's life and its yearly cycle: see forest.h. Light and registration are in
+ * forest_light.c, shoot growth in forest_grow.c. */
+#include "sot/forest.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sot/allocate.h"
+#include "sot/forest_internal.h"
+#include "sot/shed.h"
+
+double forest_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+int forest_init(Forest *f, int threads, FILE *diag, SylGrowStats *stats) {
+    memset(f, 0, sizeof *f);
+    f->threads = threads;
+    f->diag = diag;
+    f->stats = stats;
+    f->max_metamers = 20000000;
+    return env_init(&f->env, threads, diag);
+}
+
+void forest_free(Forest *f) {
+    for (int i = 0; i < f->ntrees; i++) tree_free(&f->trees[i]);
+    free(f->trees);
+    free(f->cand);
+    free(f->sb);
+    free(f->sr);
+    free(f->sb_cand);
+    free(f->occ);
+    env_free(&f->env);
+    memset(f, 0, sizeof *f);
+}
+
+int forest_add_tree(Forest *f, const GrowParams *P, const float base[3], int years) {
+    Tree *t = realloc(f->trees, (size_t)(f->ntrees + 1) * sizeof *t);
+    if (!t) return SYL_ELIMIT;
+    f->trees = t;
+    GrowParams q = *P;
+    q.years = years;
+    if (!tree_init(&f->trees[f->ntrees], &q, f->ntrees, base, 0)) return SYL_ELIMIT;
+    f->ntrees++;
+    if (years > f->years) f->years = years;
+    return SYL_OK;
+}
+
+int forest_add_static(Forest *f, const float pos[3]) {
+    return env_add_static(&f->env, pos) ? SYL_OK : SYL_ELIMIT;
+}
+
+int forest_setup(Forest *f, float ground, const float sun[3], bool sun_set) {
+    Env *e = &f->env;
+    e->ground = ground;
+    const GrowParams *shadow = NULL, *sky = NULL, *space = NULL;
+    for (int i = 0; i < f->ntrees; i++) {
+        Tree *t = &f->trees[i];
+        /* trees that grow fewer years start later: all end together */
+        t->start_year = f->years - t->P.years;
+        t->nodes[0].born = (uint16_t)t->start_year;
+        t->buds[0].born = (uint16_t)t->start_year;
+        if (sun_set) memcpy(t->P.sun, sun, sizeof t->P.sun);
+        if (t->P.light == LIGHT_SHADOW && !shadow) shadow = &t->P;
+        if (t->P.light == LIGHT_SKY && !sky) sky = &t->P;
+        if (t->P.space != SPACEM_OFF && !space) space = &t->P;
+    }
+    const GrowParams *first = f->ntrees ? &f->trees[0].P : NULL;
+    memcpy(e->sun, sun_set || !first ? sun : first->sun, sizeof e->sun);
+    if (shadow) {
+        ShadowParams sp = {.voxel = shadow->voxel, .full = shadow->full, .a = shadow->shadow_a, .b = shadow->shadow_b,
+                           .depth = shadow->depth};
+        memcpy(sp.sun, e->sun, sizeof sp.sun);
+        shadow_init(&e->shadow, &sp, ground);
+        e->shadow_on = true;
+    }
+    e->sky_on = sky != NULL;
+    if (space) {
+        f->space_any = true;
+        f->space_variant = space->space == SPACEM_GLOBAL ? SPACE_GLOBAL : SPACE_PER_BUD;
+        e->occupancy = space->occupancy * space->internode;
+        if (f->space_variant == SPACE_GLOBAL) {
+            float reach = 0, il3 = space->internode * space->internode * space->internode;
+            for (int i = 0; i < f->ntrees; i++)
+                if (f->trees[i].P.perception * f->trees[i].P.internode > reach)
+                    reach = f->trees[i].P.perception * f->trees[i].P.internode;
+            markers_init(&e->cloud, reach, space->density / il3, e->occupancy, ground, space->seed ^ 0x3a7c3u);
+            e->cloud_on = true;
+        }
+    }
+    return SYL_OK;
+}
+
+bool forest_too_many(const Forest *f, int year) {
+    uint64_t n = 0;
+    for (int i = 0; i < f->ntrees; i++) n += f->trees[i].n - 1;
+    if (n <= f->max_metamers) return false;
+    if (f->diag)
+        fprintf(f->diag, "sylva: error: more than %llu metamers in year %d (the --max-metamers limit)\n",
+                (unsigned long long)f->max_metamers, year);
+    return true;
+}
+
+static int shed_all(Forest *f) {
+    for (int i = 0; i < f->ntrees; i++) {
+        Tree *t = &f->trees[i];
+        if (!(t->P.shed_threshold > 0) && !(t->P.bare_trunk > 0)) continue;
+        forest_node_light(f, t);
+        size_t marked = shed_mark(t);
+        if (marked == (size_t)-1) return SYL_ELIMIT;
+        if (!marked) continue;
+        int st = forest_unregister_dead(f, t);
+        if (st) return st;
+        if (!tree_compact(t)) return SYL_ELIMIT;
+    }
+    return SYL_OK;
+}
+
+int forest_run(Forest *f, void (*progress)(void *, double), void *user) {
+    SylGrowStats *s = f->stats;
+    size_t *before = malloc((size_t)(f->ntrees ? f->ntrees : 1) * sizeof *before);
+    int st = before ? forest_register_statics(f) : SYL_ELIMIT;
+    for (int year = 1; year <= f->years && !st; year++) {
+        double t0 = forest_now();
+        for (int i = 0; i < f->ntrees; i++) before[i] = f->trees[i].n;
+        st = forest_light(f, year);
+        double t1 = forest_now();
+        if (!st) st = forest_space_light(f, year);
+        double t2 = forest_now();
+        for (int i = 0; i < f->ntrees && !st; i++) {
+            Tree *t = &f->trees[i];
+            if (t->start_year >= year) continue;
+            alloc_demand(t, year);
+            if (!alloc_resources(t, year)) st = SYL_ELIMIT;
+            alloc_shoots(t, year);
+        }
+        double t3 = forest_now();
+        if (!st) st = forest_grow(f, year);
+        double t4 = forest_now();
+        if (!st) st = forest_register(f, before);
+        double t5 = forest_now();
+        if (!st) st = shed_all(f);
+        double t6 = forest_now();
+        if (!st) st = forest_occupancy(f);
+        double t7 = forest_now();
+        if (s) {
+            s->light_s += (t1 - t0) + (t5 - t4);
+            s->space_s += (t2 - t1) + (t7 - t6);
+            s->alloc_s += t3 - t2;
+            s->growth_s += t4 - t3;
+            s->shed_s += t6 - t5;
+        }
+        if (!st && forest_too_many(f, year)) st = SYL_ELIMIT;
+        if (progress) progress(user, (double)year / f->years);
+    }
+    free(before);
+    if (s) {
+        s->years = f->years;
+        s->plants += f->ntrees;
+        for (int i = 0; i < f->ntrees; i++) {
+            const Tree *t = &f->trees[i];
+            s->metamers += t->n - 1;
+            s->grown += t->grown;
+            s->shed_branches += t->shed_branches;
+            s->shed_metamers += t->shed_metamers;
+            for (size_t b = 0; b < t->nb; b++) s->buds += t->buds[b].alive;
+        }
+    }
+    return st;
+}

@@ -1,0 +1,52 @@
+/* syl_grow: one `grow` model alone, its base at the origin. */
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "sot/forest.h"
+#include "sot/forest_internal.h"
+#include "sot/output.h"
+#include "sylva/grow.h"
+
+int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
+    static SylGrowOptions defaults = {.years = -1};
+    SylGrowOptions local;
+    if (!opt) {
+        local = defaults;
+        opt = &local;
+    }
+    *out = NULL;
+    memset(&opt->stats, 0, sizeof opt->stats);
+    double t0 = forest_now();
+    if (syl_program_kind(p) != SYL_MODEL_GROW) {
+        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s' is not a grow block\n", syl_program_name(p));
+        return SYL_EUSAGE;
+    }
+    GrowParams P;
+    if (grow_params_read(p, &P, opt->diag)) return SYL_EMODEL;
+    if (opt->years >= 0) P.years = opt->years;
+    if (opt->use_seed) P.seed = opt->seed;
+    Forest f;
+    int st = forest_init(&f, opt->threads, opt->diag, &opt->stats);
+    if (opt->max_metamers) f.max_metamers = opt->max_metamers;
+    const float base[3] = {0, 0, 0};
+    if (!st) st = forest_add_tree(&f, &P, base, P.years);
+    if (!st) st = forest_setup(&f, base[1], P.sun, false);
+    if (!st) st = forest_run(&f, opt->progress, opt->user);
+    double t1 = forest_now();
+    SylSkeleton *sk = NULL;
+    if (!st) {
+        sk = syl_skeleton_new(syl_program_name(p));
+        st = sk ? tree_to_skeleton(&f.trees[0], f.years, sk, 0, &opt->stats.organs) : SYL_ELIMIT;
+    }
+    forest_free(&f);
+    if (st) {
+        syl_skeleton_free(sk);
+        return st;
+    }
+    double t2 = forest_now();
+    opt->stats.other_s += t2 - t1;
+    opt->stats.total_s = t2 - t0;
+    *out = sk;
+    return SYL_OK;
+}

@@ -1,0 +1,561 @@
+/* The directives of a `grow` block: one table says what each accepts, with ranges; reading
+ * fills GrowParams over the defaults and reports every wrong line. docs/growth.md is the
+ * user's side of this table — keep the two in step.
+ *
+ *   DIRECTIVE [MODE [COUNT]] [VALUE] [KEY VALUE]...
+ *
+ * A value is a number, a one-element tuple `(expr)` (which may use a `param`, so --set can
+ * change it), a tuple (x, y, z), a word or on/off. */
+#include "sot/params.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <string.h>
+
+#include "sylva/skeleton.h"
+
+typedef enum { V_NUM, V_INT, V_SEED, V_BOOL, V_VEC3, V_WORD } VType; /* V_SEED: a whole number in a uint64_t */
+
+typedef struct Key {
+    const char *name;
+    VType type;
+    double lo, hi;      /* inclusive range (V_NUM, V_INT) */
+    size_t off;         /* into GrowParams, or OrganSpec for `organ` */
+    const char *const *words; /* V_WORD: the words, their index stored as int */
+} Key;
+
+typedef struct Mode {
+    const char *word;
+    int value;
+    bool count;         /* an integer follows the word (whorled N) */
+    const Key *keys;    /* keys of this mode only; NULL: none */
+} Mode;
+
+typedef struct Directive {
+    const char *name;
+    bool repeat;        /* may appear more than once (organ) */
+    bool mode_required; /* unless implied: */
+    int implied;        /* the mode's index in modes when none is written (-1: none) */
+    size_t mode_off;    /* where the mode's value goes */
+    const Mode *modes;
+    const Key *value;   /* a bare value right after the name (years 18) */
+    const Key *keys;    /* keys of every mode */
+} Directive;
+
+#define G(f) offsetof(GrowParams, f)
+#define O(f) offsetof(OrganSpec, f)
+#define END {0}
+#define BIG 1e9
+
+static const Key k_years = {"years", V_INT, 0, 10000, G(years), 0};
+static const Key k_seed = {"seed", V_SEED, 0, 9007199254740991.0, G(seed), 0};
+static const Key k_internode = {"internode", V_NUM, 1e-6, 1e4, G(internode), 0};
+static const Key k_sensitivity = {"sensitivity", V_NUM, 0, 20, G(sensitivity), 0};
+
+static const Key buds_keys[] = {
+    {"divergence", V_NUM, -360, 360, G(divergence), 0},
+    {"angle", V_NUM, 0, 180, G(branch_angle), 0},
+    {"life", V_INT, 1, 10000, G(bud_life), 0},
+    END,
+};
+static const Mode buds_modes[] = {
+    {"alternate", PHYL_ALTERNATE, false, NULL},
+    {"opposite", PHYL_OPPOSITE, false, NULL},
+    {"whorled", PHYL_WHORLED, true, NULL},
+    {0},
+};
+
+static const Key grav_keys[] = {
+    {"horizontal", V_NUM, 1e-3, 100, G(grav_h), 0},
+    {"vertical", V_NUM, 1e-3, 100, G(grav_v), 0},
+    {"up", V_NUM, -100, 100, G(grav_up), 0},
+    END,
+};
+
+static const Key shadow_keys[] = {
+    {"voxel", V_NUM, 1e-6, 1e4, G(voxel), 0},
+    {"a", V_NUM, 1e-4, 1000, G(shadow_a), 0},
+    {"b", V_NUM, 1, 1e6, G(shadow_b), 0},
+    {"depth", V_INT, 0, 64, G(depth), 0},
+    END,
+};
+static const Key sky_keys[] = {
+    {"rays", V_INT, 1, 4096, G(sky_rays), 0},
+    {"foliage", V_NUM, 1e-6, 1e4, G(foliage), 0},
+    END,
+};
+static const Key light_keys[] = {
+    {"full", V_NUM, 1e-6, 1e6, G(full), 0},
+    {"sun", V_VEC3, -BIG, BIG, G(sun), 0},
+    END,
+};
+static const Mode light_modes[] = {
+    {"shadow", LIGHT_SHADOW, false, shadow_keys},
+    {"sky", LIGHT_SKY, false, sky_keys},
+    {"off", LIGHT_OFF, false, NULL},
+    {0},
+};
+
+static const Key space_bud_keys[] = {{"markers", V_INT, 1, 10000, G(markers), 0}, END};
+static const Key space_global_keys[] = {{"density", V_NUM, 1e-6, 1e4, G(density), 0}, END};
+static const Key space_keys[] = {
+    {"occupancy", V_NUM, 1e-3, 1e4, G(occupancy), 0},
+    {"perception", V_NUM, 1e-3, 1e4, G(perception), 0},
+    {"cone", V_NUM, 1, 360, G(cone), 0},
+    END,
+};
+static const Mode space_modes[] = {
+    {"bud", SPACEM_BUD, false, space_bud_keys},
+    {"global", SPACEM_GLOBAL, false, space_global_keys},
+    {"off", SPACEM_OFF, false, NULL},
+    {0},
+};
+
+static const Key bh_keys[] = {{"lambda", V_NUM, 0, 1, G(lambda), 0}, END};
+static const Key priority_keys[] = {
+    {"kappa", V_NUM, 0, 1, G(kappa), 0},
+    {"wmax", V_NUM, 0, 1e6, G(wmax), 0},
+    {"wmin", V_NUM, 0, 1e6, G(wmin), 0},
+    END,
+};
+static const Key alloc_keys[] = {{"alpha", V_NUM, 1e-6, 1e6, G(alpha), 0}, END};
+static const Mode alloc_modes[] = {
+    {"bh", ALLOC_BH, false, bh_keys},
+    {"priority", ALLOC_PRIORITY, false, priority_keys},
+    {0},
+};
+
+static const Key shoot_keys[] = {{"max", V_INT, 1, 1000, G(shoot_max), 0}, END};
+static const Mode shoot_modes[] = {
+    {"relative", SHOOT_RELATIVE, false, NULL},
+    {"vigor", SHOOT_VIGOR, false, NULL},
+    {0},
+};
+
+static const Key direction_keys[] = {
+    {"bud", V_NUM, 0, 1e6, G(w_bud), 0},
+    {"space", V_NUM, 0, 1e6, G(w_space), 0},
+    {"light", V_NUM, 0, 1e6, G(w_light), 0},
+    {"tropism", V_NUM, -1e6, 1e6, G(w_tropism), 0},
+    {"at", V_NUM, 0, 180, G(tropism_angle), 0},
+    {"trunk", V_NUM, 0, 1e6, G(w_trunk), 0},
+    {"trunk_tropism", V_BOOL, 0, 1, G(trunk_tropism), 0},
+    {"jitter", V_NUM, 0, 90, G(jitter), 0},
+    END,
+};
+
+static const Key shed_keys[] = {
+    {"threshold", V_NUM, 0, 1e6, G(shed_threshold), 0},
+    {"bare_trunk", V_NUM, 0, 1e6, G(bare_trunk), 0},
+    END,
+};
+static const Mode shed_modes[] = {{"off", 0, false, NULL}, {0}};
+
+static const Key pipe_keys[] = {
+    {"exponent", V_NUM, 1, 10, G(pipe_exponent), 0},
+    {"tip", V_NUM, 1e-7, 1e3, G(tip_radius), 0},
+    END,
+};
+
+static const char *const organ_places[] = {"young", "tips", NULL};
+static const Key organ_keys[] = {
+    {"size", V_NUM, 1e-6, 1e4, O(size), 0},
+    {"count", V_INT, 1, 64, O(count), 0},
+    {"angle", V_NUM, 0, 180, O(angle), 0},
+    {"age", V_INT, 1, 10000, O(age), 0},
+    {"chance", V_NUM, 0, 1, O(chance), 0},
+    {"on", V_WORD, 0, 0, O(place), organ_places},
+    END,
+};
+static const Mode organ_modes[] = {
+    {"leaf", SYL_KIND_LEAF, false, NULL},
+    {"flower", SYL_KIND_FLOWER, false, NULL},
+    {"needle", SYL_KIND_NEEDLE, false, NULL},
+    {0},
+};
+
+enum { NO_MODE = (size_t)-1 };
+
+/* `light voxel 0.3` means light shadow, `space markers 20` space bud, `allocate lambda 0.52`
+ * allocate bh, `shoot max 4` shoot relative: the implied modes. */
+static const Directive directives[] = {
+    {"years", false, false, -1, NO_MODE, NULL, &k_years, NULL},
+    {"seed", false, false, -1, NO_MODE, NULL, &k_seed, NULL},
+    {"internode", false, false, -1, NO_MODE, NULL, &k_internode, NULL},
+    {"buds", false, false, -1, G(phyllotaxis), buds_modes, NULL, buds_keys},
+    {"gravimorphism", false, false, -1, NO_MODE, NULL, NULL, grav_keys},
+    {"light", false, true, 0, G(light), light_modes, NULL, light_keys},
+    {"space", false, true, 0, G(space), space_modes, NULL, space_keys},
+    {"allocate", false, true, 0, G(alloc), alloc_modes, NULL, alloc_keys},
+    {"sensitivity", false, false, -1, NO_MODE, NULL, &k_sensitivity, NULL},
+    {"shoot", false, false, 0, G(shoot), shoot_modes, NULL, shoot_keys},
+    {"direction", false, false, -1, NO_MODE, NULL, NULL, direction_keys},
+    {"shed", false, false, -1, NO_MODE, shed_modes, NULL, shed_keys},
+    {"pipe", false, false, -1, NO_MODE, NULL, NULL, pipe_keys},
+    {"organ", true, true, -1, O(kind), organ_modes, NULL, organ_keys},
+};
+enum { NDIRECTIVES = sizeof directives / sizeof *directives };
+
+void grow_params_default(GrowParams *g) {
+    memset(g, 0, sizeof *g);
+    g->years = 20;
+    g->seed = 1;
+    g->internode = 0.25f;
+    g->phyllotaxis = PHYL_ALTERNATE;
+    g->laterals = 1;
+    g->divergence = 137.5f;
+    g->branch_angle = 45;
+    g->bud_life = 2;
+    g->grav_h = g->grav_v = 1;
+    g->light = LIGHT_SHADOW;
+    g->voxel = 0; /* 0: the internode */
+    g->full = 1;
+    g->shadow_a = 0.2f;
+    g->shadow_b = 3;
+    g->depth = 6;
+    g->sun[1] = 1;
+    g->sky_rays = 16;
+    g->foliage = 0; /* 0: the internode */
+    g->space = SPACEM_OFF;
+    g->markers = 12;
+    g->density = 2;
+    g->occupancy = 2;
+    g->perception = 5;
+    g->cone = 90;
+    g->alloc = ALLOC_BH;
+    g->lambda = 0.5f;
+    g->alpha = 2;
+    g->kappa = 0.5f;
+    g->wmax = 1;
+    g->wmin = 0.1f;
+    g->sensitivity = 1;
+    g->shoot = SHOOT_RELATIVE;
+    g->shoot_max = 3;
+    g->w_bud = 1;
+    g->w_space = 0.5f;
+    g->w_light = 0.2f;
+    g->w_tropism = 0.1f;
+    g->tropism_angle = 0;
+    g->w_trunk = 0.2f;
+    g->trunk_tropism = false;
+    g->jitter = 5;
+    g->shed_threshold = 0;
+    g->bare_trunk = 0;
+    g->pipe_exponent = 2.5f;
+    g->tip_radius = 0.004f;
+}
+
+static void organ_default(OrganSpec *o) {
+    memset(o, 0, sizeof *o);
+    o->kind = SYL_KIND_LEAF;
+    o->place = ORGAN_YOUNG;
+    o->size = 0.1f;
+    o->count = 1;
+    o->angle = 50;
+    o->age = 1;
+    o->chance = 1;
+}
+
+typedef struct Reader {
+    const SylProgram *p;
+    FILE *diag;
+    int errors;
+} Reader;
+
+#define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
+
+static const char *kind_name(SylDirArgKind k) {
+    switch (k) {
+    case SYL_DARG_WORD: return "a word";
+    case SYL_DARG_NUMBER: return "a number";
+    case SYL_DARG_STRING: return "a string";
+    case SYL_DARG_SYMBOL: return "a symbol";
+    default: return "a tuple";
+    }
+}
+
+/* A number: a literal or a one-element tuple. */
+static bool number_of(const SylDirArg *a, double *out) {
+    if (a->kind == SYL_DARG_NUMBER) return *out = a->num, true;
+    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *out = a->values[0], true;
+    return false;
+}
+
+/* The list "a, b or c" of a table's names. */
+static void list_words(char *buf, size_t size, const char *const *names, size_t stride, size_t n) {
+    buf[0] = 0;
+    size_t used = 0;
+    for (size_t i = 0; i < n; i++) {
+        const char *w = *(const char *const *)((const char *)names + i * stride);
+        int k = snprintf(buf + used, size - used, "%s%s", i == 0 ? "" : i + 1 == n ? " or " : ", ", w);
+        if (k < 0 || (size_t)k >= size - used) break;
+        used += (size_t)k;
+    }
+}
+
+/* Store the value of key k from args[i] (and on); returns how many args it took, 0 on error. */
+static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylDirArg *args, int i, void *base) {
+    if (i >= d->nargs) {
+        const SylDirArg *last = i > 0 ? &args[i - 1] : NULL;
+        ERR(r, last ? last->line : d->line, last ? last->col : d->col, "'%s' needs a value after it", k->name);
+        return 0;
+    }
+    const SylDirArg *a = &args[i];
+    char *field = (char *)base + k->off;
+    double v;
+    switch (k->type) {
+    case V_NUM:
+    case V_INT:
+    case V_SEED:
+        if (!number_of(a, &v)) {
+            ERR(r, a->line, a->col, "'%s' expects a number, not %s", k->name, kind_name(a->kind));
+            return 0;
+        }
+        if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
+            if (k->type != V_NUM)
+                ERR(r, a->line, a->col, "'%s' expects a whole number from %g to %g, not %g", k->name, k->lo, k->hi, v);
+            else ERR(r, a->line, a->col, "'%s' expects a number from %g to %g, not %g", k->name, k->lo, k->hi, v);
+            return 0;
+        }
+        if (k->type == V_NUM) *(float *)field = (float)v;
+        else if (k->type == V_SEED) *(uint64_t *)field = (uint64_t)v;
+        else *(int *)field = (int)v;
+        return 1;
+    case V_BOOL:
+        if (a->kind == SYL_DARG_WORD && (!strcmp(a->text, "on") || !strcmp(a->text, "yes"))) *(bool *)field = true;
+        else if (a->kind == SYL_DARG_WORD && (!strcmp(a->text, "off") || !strcmp(a->text, "no"))) *(bool *)field = false;
+        else if (number_of(a, &v) && (v == 0 || v == 1)) *(bool *)field = v == 1;
+        else {
+            ERR(r, a->line, a->col, "'%s' expects on or off", k->name);
+            return 0;
+        }
+        return 1;
+    case V_VEC3:
+        if (a->kind != SYL_DARG_TUPLE || a->nvalues != 3) {
+            ERR(r, a->line, a->col, "'%s' expects a direction (x, y, z)", k->name);
+            return 0;
+        }
+        for (int j = 0; j < 3; j++) {
+            if (!isfinite(a->values[j])) {
+                ERR(r, a->line, a->col, "'%s': (x, y, z) must be finite", k->name);
+                return 0;
+            }
+            ((float *)field)[j] = (float)a->values[j];
+        }
+        return 1;
+    case V_WORD:
+        for (int j = 0; k->words[j]; j++)
+            if (a->kind == SYL_DARG_WORD && !strcmp(a->text, k->words[j])) {
+                *(uint8_t *)field = (uint8_t)j;
+                return 1;
+            }
+        {
+            char list[256];
+            size_t n = 0;
+            while (k->words[n]) n++;
+            list_words(list, sizeof list, k->words, sizeof *k->words, n);
+            ERR(r, a->line, a->col, "'%s' expects %s", k->name, list);
+        }
+        return 0;
+    }
+    return 0;
+}
+
+static const Key *find_key(const Key *keys, const char *name) {
+    for (size_t i = 0; keys && keys[i].name; i++)
+        if (!strcmp(keys[i].name, name)) return &keys[i];
+    return NULL;
+}
+
+/* Side effects of a mode: buds per node and the usual divergence. */
+static void apply_mode(GrowParams *g, const Directive *dir, const Mode *m, int count) {
+    if (dir->modes == buds_modes) {
+        g->laterals = m->value == PHYL_ALTERNATE ? 1 : m->value == PHYL_OPPOSITE ? 2 : count;
+        g->divergence = m->value == PHYL_ALTERNATE ? 137.5f : m->value == PHYL_OPPOSITE ? 90.0f : 180.0f / (float)count;
+    }
+    if (dir->modes == shed_modes) g->shed_threshold = 0, g->bare_trunk = 0;
+}
+
+static void read_directive(Reader *r, const Directive *dir, const SylDirective *d, GrowParams *g) {
+    void *base = g;
+    if (dir->modes == organ_modes) {
+        if (g->norgans == MAX_ORGANS) {
+            ERR(r, d->line, d->col, "at most %d organ lines", MAX_ORGANS);
+            return;
+        }
+        organ_default(&g->organs[g->norgans]);
+        base = &g->organs[g->norgans++];
+    }
+    const SylDirArg *args = d->args;
+    int i = 0;
+    const Mode *mode = NULL;
+    if (dir->modes) {
+        if (i < d->nargs && args[i].kind == SYL_DARG_WORD)
+            for (int m = 0; dir->modes[m].word; m++)
+                if (!strcmp(args[i].text, dir->modes[m].word)) mode = &dir->modes[m];
+        size_t nm = 0;
+        while (dir->modes[nm].word) nm++;
+        char list[256];
+        list_words(list, sizeof list, &dir->modes[0].word, sizeof *dir->modes, nm);
+        if (!mode && dir->implied >= 0 && i < d->nargs) { /* keys only: the implied mode */
+            mode = &dir->modes[dir->implied];
+            i--; /* nothing was read */
+        }
+        if (!mode && dir->mode_required) {
+            if (i < d->nargs && args[i].kind == SYL_DARG_WORD)
+                ERR(r, args[i].line, args[i].col, "'%s' expects %s first, not '%s'", d->name, list, args[i].text);
+            else if (i < d->nargs)
+                ERR(r, args[i].line, args[i].col, "'%s' expects %s first, not %s", d->name, list, kind_name(args[i].kind));
+            else ERR(r, d->line, d->col, "'%s' expects %s after it", d->name, list);
+            return;
+        }
+        if (mode) {
+            i++;
+            int count = 0;
+            if (mode->count) {
+                double v;
+                if (i >= d->nargs || !number_of(&args[i], &v) || v != floor(v) || v < 1 || v > 32) {
+                    const SylDirArg *at = i < d->nargs ? &args[i] : &args[i - 1];
+                    ERR(r, at->line, at->col, "'%s' expects a whole number of buds from 1 to 32 after it", mode->word);
+                    return;
+                }
+                count = (int)v;
+                i++;
+            }
+            if (dir->mode_off != NO_MODE) {
+                if (dir->modes == organ_modes) *(uint8_t *)((char *)base + dir->mode_off) = (uint8_t)mode->value;
+                else *(int *)((char *)base + dir->mode_off) = mode->value;
+            }
+            apply_mode(g, dir, mode, count);
+        }
+    }
+    if (dir->value) {
+        if (!take_value(r, d, dir->value, args, i < d->nargs ? i : d->nargs, base)) return;
+        i++;
+    }
+    for (; i < d->nargs; i++) {
+        const SylDirArg *a = &args[i];
+        if (dir->modes == organ_modes && a->kind == SYL_DARG_SYMBOL) { /* ~leaf(0.06): kind and size */
+            OrganSpec *o = base;
+            const char *s = a->text[0] == '~' ? a->text + 1 : a->text;
+            if (!strcmp(s, "leaf")) o->kind = SYL_KIND_LEAF;
+            else if (!strcmp(s, "petal") || !strcmp(s, "flower")) o->kind = SYL_KIND_FLOWER;
+            else if (!strcmp(s, "needle")) o->kind = SYL_KIND_NEEDLE;
+            else {
+                ERR(r, a->line, a->col, "'%s' is not an organ: use ~leaf, ~flower or ~needle", a->text);
+                return;
+            }
+            if (a->nvalues >= 1) {
+                if (!(a->values[0] > 0) || !isfinite(a->values[0])) {
+                    ERR(r, a->line, a->col, "the size of '%s' must be above 0", a->text);
+                    return;
+                }
+                o->size = (float)a->values[0];
+            }
+            continue;
+        }
+        if (a->kind != SYL_DARG_WORD) {
+            ERR(r, a->line, a->col, "expected a key of '%s' here, not %s", d->name, kind_name(a->kind));
+            return;
+        }
+        const Key *k = find_key(dir->keys, a->text);
+        if (!k && mode) k = find_key(mode->keys, a->text);
+        if (!k) {
+            /* name the keys that would have been right */
+            const Key *all[2] = {mode ? mode->keys : NULL, dir->keys};
+            const char *names[64];
+            size_t n = 0;
+            for (int t = 0; t < 2; t++)
+                for (size_t j = 0; all[t] && all[t][j].name && n < 64; j++) names[n++] = all[t][j].name;
+            char list[512];
+            list_words(list, sizeof list, names, sizeof *names, n);
+            bool other_mode = false;
+            for (int m = 0; dir->modes && dir->modes[m].word; m++)
+                if (find_key(dir->modes[m].keys, a->text)) other_mode = true;
+            if (other_mode && mode)
+                ERR(r, a->line, a->col, "'%s' is not a key of '%s %s' (keys: %s)", a->text, d->name, mode->word,
+                    n ? list : "none");
+            else if (n) ERR(r, a->line, a->col, "unknown key '%s' of '%s' (keys: %s)", a->text, d->name, list);
+            else ERR(r, a->line, a->col, "'%s%s%s' takes no keys", d->name, mode ? " " : "", mode ? mode->word : "");
+            return;
+        }
+        int took = take_value(r, d, k, args, i + 1, base);
+        if (!took) return;
+        i += took;
+    }
+}
+
+/* Checks across directives, once all are read. */
+static void check_whole(Reader *r, const SylDirective *dirs, int n, GrowParams *g) {
+    if (g->space != SPACEM_OFF && g->perception <= g->occupancy) {
+        int line = 0, col = 0;
+        for (int i = 0; i < n; i++)
+            if (!strcmp(dirs[i].name, "space")) line = dirs[i].line, col = dirs[i].col;
+        ERR(r, line, col, "'space': perception (%g) must reach beyond occupancy (%g)", g->perception, g->occupancy);
+    }
+    if (g->alloc == ALLOC_PRIORITY && g->wmin > g->wmax) {
+        int line = 0, col = 0;
+        for (int i = 0; i < n; i++)
+            if (!strcmp(dirs[i].name, "allocate")) line = dirs[i].line, col = dirs[i].col;
+        ERR(r, line, col, "'allocate priority': wmin (%g) must not exceed wmax (%g)", g->wmin, g->wmax);
+    }
+    float s = sqrtf(g->sun[0] * g->sun[0] + g->sun[1] * g->sun[1] + g->sun[2] * g->sun[2]);
+    if (!(s > 0) || g->sun[1] <= 0) {
+        int line = 0, col = 0;
+        for (int i = 0; i < n; i++)
+            if (!strcmp(dirs[i].name, "light")) line = dirs[i].line, col = dirs[i].col;
+        ERR(r, line, col, "'light': the sun must be above the horizon (y > 0)");
+    } else
+        for (int k = 0; k < 3; k++) g->sun[k] /= s;
+    const double deg = 3.14159265358979323846 / 180;
+    g->tropism_sin = (float)sin(g->tropism_angle * deg);
+    g->tropism_cos = (float)cos(g->tropism_angle * deg);
+    g->jitter_cos = g->jitter > 0 ? (float)cos(g->jitter * deg) : 1;
+    g->branch_sin = (float)sin(g->branch_angle * deg);
+    g->branch_cos = (float)cos(g->branch_angle * deg);
+    if (g->voxel <= 0) g->voxel = g->internode;
+    if (g->foliage <= 0) g->foliage = 0.4f * g->internode;
+}
+
+int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
+    grow_params_default(g);
+    g->seed = syl_program_seed(p) ? syl_program_seed(p) : 1;
+    Reader r = {.p = p, .diag = diag};
+    int n = 0;
+    const SylDirective *dirs = syl_program_directives(p, &n);
+    int first[NDIRECTIVES];
+    for (int k = 0; k < NDIRECTIVES; k++) first[k] = -1;
+    for (int i = 0; i < n; i++) {
+        const SylDirective *d = &dirs[i];
+        int k = 0;
+        while (k < NDIRECTIVES && strcmp(directives[k].name, d->name)) k++;
+        if (k == NDIRECTIVES) {
+            const char *names[NDIRECTIVES];
+            for (int j = 0; j < NDIRECTIVES; j++) names[j] = directives[j].name;
+            char list[512];
+            list_words(list, sizeof list, names, sizeof *names, NDIRECTIVES);
+            ERR(&r, d->line, d->col, "unknown directive '%s' in a grow block (known: %s)", d->name, list);
+            continue;
+        }
+        if (first[k] >= 0 && !directives[k].repeat) {
+            ERR(&r, d->line, d->col, "'%s' is given twice (first at line %d)", d->name, dirs[first[k]].line);
+            continue;
+        }
+        if (first[k] < 0) first[k] = i;
+        if (directives[k].modes == shed_modes && d->nargs == 0) continue;
+        if (!d->nargs && (directives[k].value || directives[k].mode_required)) {
+            if (directives[k].value)
+                ERR(&r, d->line, d->col, "'%s' needs a value", d->name);
+            else read_directive(&r, &directives[k], d, g);
+            continue;
+        }
+        read_directive(&r, &directives[k], d, g);
+    }
+    check_whole(&r, dirs, n, g);
+    return r.errors;
+}
+
+int sot_check_grow(const SylProgram *p, FILE *diag) {
+    GrowParams g;
+    return grow_params_read(p, &g, diag);
+}

@@ -1,0 +1,268 @@
+/* syl_grow_scene: every plant of a file's scene in one environment. Grow plants become
+ * trees of one forest; L-system plants are derived and drawn first, then stand in the
+ * environment as static shadow casters and occupants. The skeleton holds every plant in
+ * the order the scene lists them. */
+#include <libgen.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sot/forest.h"
+#include "sot/forest_internal.h"
+#include "sot/output.h"
+#include "sylva/grow.h"
+
+enum { OBSTACLE_MATERIAL = 250 };
+
+typedef struct Placed {
+    SylSkeleton *lsys; /* an L-system plant, drawn and moved into place */
+    int tree;          /* a grow plant: its tree, or -1 */
+} Placed;
+
+/* path relative to the scene file's directory (free it). */
+static char *resolve(const SylProgram *p, const char *file) {
+    if (file[0] == '/') return strdup(file);
+    char *scene = strdup(syl_program_path(p));
+    if (!scene) return NULL;
+    const char *dir = dirname(scene);
+    size_t n = strlen(dir) + strlen(file) + 2;
+    char *out = malloc(n);
+    if (out && !strcmp(dir, ".")) snprintf(out, n, "%s", file); /* messages name it as written */
+    else if (out) snprintf(out, n, "%s/%s", dir, file);
+    free(scene);
+    return out;
+}
+
+/* Compile a plant's model: one of this file, or "file.syl[:Model]" of another. */
+static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE *diag, int *status) {
+    SylCompileOptions copt = {.diag = diag};
+    if (pl->model) {
+        size_t len = 0;
+        const char *text = syl_program_source(p, &len);
+        copt.model = pl->model;
+        return syl_compile(syl_program_path(p), text, len, &copt, status);
+    }
+    char *path = resolve(p, pl->file);
+    if (!path) {
+        *status = SYL_ELIMIT;
+        return NULL;
+    }
+    char *colon = strrchr(path, ':');
+    if (colon && colon > strrchr(path, '/') && colon[1]) {
+        *colon = 0;
+        copt.model = colon + 1;
+    }
+    SylProgram *q = syl_compile(path, NULL, 0, &copt, status);
+    free(path);
+    return q;
+}
+
+static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index,
+                        SylSkeleton **out) {
+    SylDeriveOptions d = {.steps = -1, .threads = opt->threads, .diag = opt->diag};
+    if (pl->seed_set) d.use_seed = 1, d.seed = pl->seed;
+    else if (opt->use_seed) d.use_seed = 1, d.seed = opt->seed + (uint64_t)index;
+    SylString *s = NULL, *ti = NULL;
+    int st = syl_derive(q, &d, &s);
+    if (!st) st = syl_interpret(q, s, &d, &ti);
+    SylTurtleOptions to = {.diag = opt->diag};
+    if (!st) st = syl_turtle(q, ti, &to, out);
+    syl_string_free(s);
+    syl_string_free(ti);
+    if (st) return st;
+    SylSkeleton *sk = *out;
+    for (size_t i = 0; i < sk->nnodes; i++)
+        for (int k = 0; k < 3; k++) sk->nodes[i].pos[k] += pl->at[k];
+    for (size_t i = 0; i < sk->norgans; i++)
+        for (int k = 0; k < 3; k++) sk->organs[i].pos[k] += pl->at[k];
+    for (size_t i = 0; i < sk->nverts; i++)
+        for (int k = 0; k < 3; k++) sk->poly_verts[i][k] += pl->at[k];
+    return SYL_OK;
+}
+
+/* Append skeleton b to a: indices and axes renumbered, materials carried over. */
+static int append_skeleton(SylSkeleton *a, const SylSkeleton *b) {
+    size_t first = a->nnodes;
+    int32_t axis = skeleton_next_axis(a);
+    for (size_t i = 0; i < b->nnodes; i++) {
+        SylNode n = b->nodes[i];
+        if (n.parent >= 0) n.parent += (int32_t)first;
+        n.axis += axis;
+        if (syl_skeleton_add_node(a, &n) < 0) return SYL_ELIMIT;
+    }
+    for (size_t i = 0; i < b->norgans; i++) {
+        SylOrgan o = b->organs[i];
+        if (o.node >= 0) o.node += (int32_t)first;
+        if (syl_skeleton_add_organ(a, &o) < 0) return SYL_ELIMIT;
+    }
+    for (size_t i = 0; i < b->npolys; i++) {
+        const SylPolygon *p = &b->polys[i];
+        if (syl_skeleton_add_polygon(a, (const float(*)[3])b->poly_verts[p->first], p->count,
+                                     p->node >= 0 ? p->node + (int32_t)first : -1, p->material, p->module) < 0)
+            return SYL_ELIMIT;
+    }
+    for (int m = 0; m < b->nmaterials; m++) a->materials[m] = b->materials[m];
+    if (b->nmaterials > a->nmaterials) a->nmaterials = b->nmaterials;
+    return SYL_OK;
+}
+
+/* The obstacles' triangles as a mesh, one flat-shaded material. */
+static SylMesh *obstacle_mesh(const Obstacles *o) {
+    SylMesh *m = calloc(1, sizeof *m);
+    if (!m) return NULL;
+    size_t nv = 3 * o->nt;
+    m->pos = malloc((3 * nv + 4) * sizeof *m->pos);
+    m->nrm = malloc(3 * nv * sizeof *m->nrm);
+    m->uv = calloc(2 * nv, sizeof *m->uv);
+    m->idx = malloc(nv * sizeof *m->idx);
+    m->groups = malloc(sizeof *m->groups);
+    if (!m->pos || !m->nrm || !m->uv || !m->idx || !m->groups) {
+        syl_mesh_free(m);
+        return NULL;
+    }
+    for (size_t t = 0; t < o->nt; t++) {
+        const float *p[3];
+        for (int k = 0; k < 3; k++) p[k] = o->v + 3 * o->tri[3 * t + k];
+        float e1[3], e2[3], n[3];
+        for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; k++) n[k] = len > 0 ? n[k] / len : (k == 1);
+        for (int v = 0; v < 3; v++) {
+            size_t i = 3 * t + (size_t)v;
+            memcpy(m->pos + 3 * i, p[v], 3 * sizeof(float));
+            memcpy(m->nrm + 3 * i, n, 3 * sizeof(float));
+            m->idx[i] = (uint32_t)i;
+        }
+    }
+    memset(m->pos + 3 * nv, 0, 4 * sizeof(float));
+    m->nverts = nv;
+    m->vert_cap = nv + 1;
+    m->nidx = m->idx_cap = nv;
+    m->groups[0] = (SylMeshGroup){.first = 0, .count = (uint32_t)nv, .material = OBSTACLE_MATERIAL};
+    m->ngroups = 1;
+    m->materials[OBSTACLE_MATERIAL] = (SylMaterial){{0.72f, 0.70f, 0.66f}, SYL_MATERIAL_PLAIN};
+    m->nmaterials = OBSTACLE_MATERIAL + 1;
+    snprintf(m->name, sizeof m->name, "obstacles");
+    return m;
+}
+
+static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, FILE *diag) {
+    for (int i = 0; i < S->nobstacles; i++) {
+        const SceneObstacle *o = &S->obstacles[i];
+        char *path = resolve(p, o->file);
+        if (!path) return SYL_ELIMIT;
+        int st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
+        free(path);
+        if (st) {
+            if (diag) syl_program_error(p, diag, o->line, o->col, "cannot use the obstacle \"%s\"", o->file);
+            return st;
+        }
+    }
+    return obstacles_commit(&f->env.obstacles, f->env.dev, diag);
+}
+
+static bool has_terrain(const SceneSpec *S) {
+    for (int i = 0; i < S->nobstacles; i++)
+        if (S->obstacles[i].terrain) return true;
+    return false;
+}
+
+static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec *S, Forest *f, Placed *placed,
+                      SylSkeleton **out, SylMesh **obstacles) {
+    FILE *diag = opt->diag;
+    double ts = forest_now();
+    int st = load_obstacles(f, p, S, diag);
+    if (st) return st;
+    float ground = S->ground, lowest = INFINITY;
+    for (int i = 0; i < S->nplants && !st; i++) {
+        ScenePlant pl = S->plants[i];
+        placed[i].tree = -1;
+        float h;
+        if (has_terrain(S) && obstacles_height(&f->env.obstacles, pl.at[0], pl.at[2], f->env.obstacles.hi[1] + 1, &h))
+            pl.at[1] = h + 0.01f; /* just above, so its first metamer's ray starts clear */
+        if (pl.at[1] < lowest) lowest = pl.at[1];
+        SylProgram *q = plant_program(p, &pl, diag, &st);
+        if (!q) {
+            if (diag) syl_program_error(p, diag, pl.line, pl.col, "cannot use this plant");
+            return st ? st : SYL_EMODEL;
+        }
+        if (syl_program_kind(q) == SYL_MODEL_GROW) {
+            GrowParams P;
+            if (grow_params_read(q, &P, diag)) st = SYL_EMODEL;
+            if (pl.seed_set) P.seed = pl.seed;
+            else if (opt->use_seed) P.seed = opt->seed + (uint64_t)i;
+            else P.seed += (uint64_t)i;
+            int years = opt->years >= 0 ? opt->years : pl.years_set ? pl.years : P.years;
+            placed[i].tree = f->ntrees;
+            if (!st) st = forest_add_tree(f, &P, pl.at, years);
+        } else if (syl_program_kind(q) == SYL_MODEL_LSYSTEM) {
+            st = draw_lsystem(q, opt, &pl, i, &placed[i].lsys);
+            opt->stats.plants++;
+            const SylSkeleton *sk = placed[i].lsys;
+            for (size_t k = 0; !st && k < sk->nnodes; k++) st = forest_add_static(f, sk->nodes[k].pos);
+        } else {
+            syl_program_error(p, diag, pl.line, pl.col, "a scene cannot be a plant of a scene");
+            st = SYL_EMODEL;
+        }
+        syl_program_free(q);
+    }
+    if (st) return st;
+    if (!S->ground_set) ground = has_terrain(S) ? f->env.obstacles.lo[1] : lowest;
+    st = forest_setup(f, ground, S->sun, S->sun_set);
+    double t0 = forest_now();
+    opt->stats.other_s += t0 - ts;
+    if (!st) st = forest_run(f, opt->progress, opt->user);
+    double t1 = forest_now();
+    SylSkeleton *sk = syl_skeleton_new("scene");
+    if (!sk) return SYL_ELIMIT;
+    for (int i = 0; i < S->nplants && !st; i++) {
+        if (placed[i].tree >= 0)
+            st = tree_to_skeleton(&f->trees[placed[i].tree], f->years, sk, skeleton_next_axis(sk), &opt->stats.organs);
+        else if (placed[i].lsys) st = append_skeleton(sk, placed[i].lsys);
+    }
+    if (!st && obstacles && f->env.obstacles.nt) {
+        *obstacles = obstacle_mesh(&f->env.obstacles);
+        if (!*obstacles) st = SYL_ELIMIT;
+    }
+    if (st) {
+        syl_skeleton_free(sk);
+        return st;
+    }
+    opt->stats.other_s += forest_now() - t1;
+    *out = sk;
+    return SYL_OK;
+}
+
+int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, SylMesh **obstacles) {
+    SylGrowOptions local = {.years = -1};
+    if (!opt) opt = &local;
+    *out = NULL;
+    if (obstacles) *obstacles = NULL;
+    memset(&opt->stats, 0, sizeof opt->stats);
+    double t0 = forest_now();
+    SceneSpec S;
+    int errors = scene_spec_read(p, &S, opt->diag);
+    if (errors || !S.nplants) {
+        if (!errors && opt->diag) fprintf(opt->diag, "sylva: error: the file has no scene\n");
+        scene_spec_free(&S);
+        return errors ? SYL_EMODEL : SYL_EUSAGE;
+    }
+    Forest f;
+    Placed *placed = calloc((size_t)S.nplants, sizeof *placed);
+    int st = placed ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
+    if (!st) {
+        if (opt->max_metamers) f.max_metamers = opt->max_metamers;
+        st = grow_scene(p, opt, &S, &f, placed, out, obstacles);
+        forest_free(&f);
+    }
+    for (int i = 0; placed && i < S.nplants; i++) syl_skeleton_free(placed[i].lsys);
+    free(placed);
+    scene_spec_free(&S);
+    if (st && obstacles) {
+        syl_mesh_free(*obstacles);
+        *obstacles = NULL;
+    }
+    opt->stats.total_s = forest_now() - t0;
+    return st;
+}

@@ -1,0 +1,208 @@
+/* The `scene` block's directives:
+ *
+ *   plant NAME at (x, y, z) [seed S] [years N]      a model of this file
+ *   plant "file.syl[:Model]" at (x, y, z) ...        a model of another file (relative path)
+ *   obstacle "file.obj" [at (x, y, z)] [scale S]     a triangle mesh
+ *   ground Y                                         the ground plane's height
+ *   ground "terrain.obj" [at (x, y, z)] [scale S]    a terrain mesh; plants stand on it
+ *   sun direction (x, y, z)                          towards the sun
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sot/params.h"
+
+typedef struct Reader {
+    const SylProgram *p;
+    FILE *diag;
+    int errors;
+} Reader;
+
+#define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
+
+static bool number_of(const SylDirArg *a, double *out) {
+    if (a->kind == SYL_DARG_NUMBER) return *out = a->num, true;
+    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *out = a->values[0], true;
+    return false;
+}
+
+static bool vec3_of(Reader *r, const SylDirArg *a, const char *what, float out[3]) {
+    if (a->kind != SYL_DARG_TUPLE || a->nvalues != 3) {
+        ERR(r, a->line, a->col, "'%s' expects a point (x, y, z)", what);
+        return false;
+    }
+    for (int k = 0; k < 3; k++) {
+        if (!isfinite(a->values[k]) || fabs(a->values[k]) > 1e6) {
+            ERR(r, a->line, a->col, "'%s': coordinates must be finite, within a million units", what);
+            return false;
+        }
+        out[k] = (float)a->values[k];
+    }
+    return true;
+}
+
+/* KEY VALUE pairs from args[i] on: at, seed, years, scale (as allowed by the mask). */
+enum { K_AT = 1, K_SEED = 2, K_YEARS = 4, K_SCALE = 8 };
+static bool read_keys(Reader *r, const SylDirective *d, int i, int allowed, float at[3], uint64_t *seed,
+                      bool *seed_set, int *years, bool *years_set, float *scale) {
+    static const char *const names[] = {"at", "seed", "years", "scale"};
+    for (; i < d->nargs; i += 2) {
+        const SylDirArg *a = &d->args[i];
+        int key = -1;
+        for (int k = 0; k < 4; k++)
+            if (a->kind == SYL_DARG_WORD && !strcmp(a->text, names[k]) && (allowed & (1 << k))) key = k;
+        if (key < 0) {
+            char list[64] = "";
+            for (int k = 0; k < 4; k++)
+                if (allowed & (1 << k)) strcat(strcat(list, list[0] ? ", " : ""), names[k]);
+            if (a->kind == SYL_DARG_WORD) ERR(r, a->line, a->col, "unknown key '%s' of '%s' (keys: %s)", a->text, d->name, list);
+            else ERR(r, a->line, a->col, "expected a key of '%s' here (%s)", d->name, list);
+            return false;
+        }
+        if (i + 1 >= d->nargs) {
+            ERR(r, a->line, a->col, "'%s' needs a value after it", a->text);
+            return false;
+        }
+        const SylDirArg *v = &d->args[i + 1];
+        double x;
+        if (key == 0) {
+            if (!vec3_of(r, v, "at", at)) return false;
+        } else if (!number_of(v, &x) || !isfinite(x)) {
+            ERR(r, v->line, v->col, "'%s' expects a number", a->text);
+            return false;
+        } else if (key == 1) {
+            if (x < 0 || x > 9007199254740991.0 || x != floor(x)) {
+                ERR(r, v->line, v->col, "'seed' expects a whole number from 0, not %g", x);
+                return false;
+            }
+            *seed = (uint64_t)x;
+            *seed_set = true;
+        } else if (key == 2) {
+            if (x < 0 || x > 10000 || x != floor(x)) {
+                ERR(r, v->line, v->col, "'years' expects a whole number from 0 to 10000, not %g", x);
+                return false;
+            }
+            *years = (int)x;
+            *years_set = true;
+        } else {
+            if (!(x > 0) || x > 1e6) {
+                ERR(r, v->line, v->col, "'scale' expects a number above 0, not %g", x);
+                return false;
+            }
+            *scale = (float)x;
+        }
+    }
+    return true;
+}
+
+static bool model_exists(const SylProgram *p, const char *name) {
+    size_t len = 0;
+    const char *text = syl_program_source(p, &len);
+    const char *names[512];
+    char buf[16384];
+    int n = syl_list_models(syl_program_path(p), text, len, names, 512, buf, sizeof buf);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(names[i], name)) return true;
+    return false;
+}
+
+static void *push(void *arr, int *n, size_t elem) {
+    void *p = realloc(arr, (size_t)(*n + 1) * elem);
+    if (!p) return NULL;
+    memset((char *)p + (size_t)*n * elem, 0, elem);
+    (*n)++;
+    return p;
+}
+
+int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
+    memset(s, 0, sizeof *s);
+    s->sun[1] = 1;
+    Reader r = {.p = p, .diag = diag};
+    int n = 0;
+    const SylDirective *dirs = syl_program_scene(p, &n);
+    for (int i = 0; dirs && i < n; i++) {
+        const SylDirective *d = &dirs[i];
+        const SylDirArg *a0 = d->nargs ? &d->args[0] : NULL;
+        if (!strcmp(d->name, "plant")) {
+            if (!a0 || (a0->kind != SYL_DARG_WORD && a0->kind != SYL_DARG_STRING)) {
+                ERR(&r, a0 ? a0->line : d->line, a0 ? a0->col : d->col,
+                    "'plant' expects a model's name or \"file.syl\" first");
+                continue;
+            }
+            ScenePlant *pl = push(s->plants, &s->nplants, sizeof *pl);
+            if (!pl) break;
+            s->plants = pl;
+            pl = &s->plants[s->nplants - 1];
+            pl->line = d->line, pl->col = d->col;
+            if (a0->kind == SYL_DARG_WORD) {
+                pl->model = a0->text;
+                if (!model_exists(p, a0->text)) ERR(&r, a0->line, a0->col, "no lsystem or grow block '%s' in this file", a0->text);
+            } else pl->file = a0->text;
+            bool at_given = false;
+            for (int k = 1; k < d->nargs; k++)
+                if (d->args[k].kind == SYL_DARG_WORD && !strcmp(d->args[k].text, "at")) at_given = true;
+            float scale = 1;
+            read_keys(&r, d, 1, K_AT | K_SEED | K_YEARS, pl->at, &pl->seed, &pl->seed_set, &pl->years, &pl->years_set,
+                      &scale);
+            if (!at_given) ERR(&r, d->line, d->col, "'plant' needs a place: at (x, y, z)");
+        } else if (!strcmp(d->name, "obstacle") || (!strcmp(d->name, "ground") && a0 && a0->kind == SYL_DARG_STRING)) {
+            if (!a0 || a0->kind != SYL_DARG_STRING) {
+                ERR(&r, a0 ? a0->line : d->line, a0 ? a0->col : d->col, "'obstacle' expects a file name: \"file.obj\"");
+                continue;
+            }
+            SceneObstacle *o = push(s->obstacles, &s->nobstacles, sizeof *o);
+            if (!o) break;
+            s->obstacles = o;
+            o = &s->obstacles[s->nobstacles - 1];
+            o->file = a0->text;
+            o->scale = 1;
+            o->terrain = d->name[0] == 'g';
+            o->line = a0->line, o->col = a0->col;
+            uint64_t seed;
+            bool set;
+            int years;
+            read_keys(&r, d, 1, K_AT | K_SCALE, o->at, &seed, &set, &years, &set, &o->scale);
+        } else if (!strcmp(d->name, "ground")) {
+            double y;
+            if (!a0 || !number_of(a0, &y) || !isfinite(y) || d->nargs != 1) {
+                ERR(&r, a0 ? a0->line : d->line, a0 ? a0->col : d->col,
+                    "'ground' expects a height (ground 0) or a terrain mesh (ground \"hill.obj\")");
+                continue;
+            }
+            s->ground = (float)y;
+            s->ground_set = true;
+        } else if (!strcmp(d->name, "sun")) {
+            int k = a0 && a0->kind == SYL_DARG_WORD && !strcmp(a0->text, "direction") ? 1 : 0;
+            if (k >= d->nargs || d->nargs != k + 1) {
+                ERR(&r, d->line, d->col, "'sun' expects direction (x, y, z)");
+                continue;
+            }
+            if (!vec3_of(&r, &d->args[k], "sun direction", s->sun)) continue;
+            float len = sqrtf(s->sun[0] * s->sun[0] + s->sun[1] * s->sun[1] + s->sun[2] * s->sun[2]);
+            if (!(len > 0) || s->sun[1] <= 0) {
+                ERR(&r, d->args[k].line, d->args[k].col, "the sun must be above the horizon (y > 0)");
+                continue;
+            }
+            for (int j = 0; j < 3; j++) s->sun[j] /= len;
+            s->sun_set = true;
+        } else {
+            ERR(&r, d->line, d->col, "unknown directive '%s' in a scene (known: plant, obstacle, ground, sun)", d->name);
+        }
+    }
+    if (dirs && !s->nplants && !r.errors) ERR(&r, 0, 0, "the scene has no plant");
+    return r.errors;
+}
+
+void scene_spec_free(SceneSpec *s) {
+    free(s->plants);
+    free(s->obstacles);
+    memset(s, 0, sizeof *s);
+}
+
+int sot_check_scene(const SylProgram *p, FILE *diag) {
+    SceneSpec s;
+    int errors = scene_spec_read(p, &s, diag);
+    scene_spec_free(&s);
+    return errors;
+}

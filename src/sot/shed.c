@@ -1,0 +1,63 @@
+/* Shedding and pipe radii: see shed.h. */
+#include "sot/shed.h"
+
+#include <math.h>
+
+bool pipe_areas(Tree *t) {
+    if (!tree_scratch(t)) return false;
+    double *A = t->acc, *kids = t->acc2;
+    const double tip = pow(t->P.tip_radius, t->P.pipe_exponent);
+    for (size_t i = 0; i < t->n; i++) A[i] = t->nodes[i].pipe, kids[i] = 0;
+    for (size_t i = t->n; i-- > 0;) {
+        if (kids[i] == 0) A[i] += tip;
+        int32_t p = t->nodes[i].parent;
+        if (p >= 0) A[p] += A[i], kids[p] += 1;
+    }
+    return true;
+}
+
+size_t shed_mark(Tree *t) {
+    const GrowParams *P = &t->P;
+    bool by_light = P->shed_threshold > 0, bare = P->bare_trunk > 0;
+    if (!by_light && !bare) return 0;
+    if (!tree_scratch(t)) return (size_t)-1;
+    double *A = t->acc, *light = t->acc2, *count = t->acc3;
+    /* light, size and pipe area of every branch, toward the base in one pass (a node
+     * whose count is still 1 when it is reached has no children: a tip) */
+    const double tip = pow(P->tip_radius, P->pipe_exponent);
+    for (size_t i = 0; i < t->n; i++) A[i] = t->nodes[i].pipe, light[i] = t->nodes[i].light, count[i] = 1;
+    for (size_t i = t->n; i-- > 1;) {
+        int32_t p = t->nodes[i].parent;
+        if (count[i] == 1) A[i] += tip;
+        A[p] += A[i];
+        light[p] += light[i];
+        count[p] += count[i];
+    }
+    /* from the base up: a failing branch goes whole */
+    size_t marked = 0;
+    for (size_t i = 1; i < t->n; i++) {
+        Node *nd = &t->nodes[i];
+        const Node *parent = &t->nodes[nd->parent];
+        if (parent->flags & NODE_DEAD) {
+            nd->flags |= NODE_DEAD;
+            marked++;
+            continue;
+        }
+        if (!(nd->flags & NODE_LATERAL)) continue;
+        bool shed = by_light && light[i] < P->shed_threshold * count[i];
+        if (bare && parent->order == 0 && parent->pos[1] - t->base[1] < P->bare_trunk) shed = true;
+        if (!shed) continue;
+        nd->flags |= NODE_DEAD;
+        marked++;
+        t->nodes[nd->parent].pipe += (float)A[i];
+        t->shed_branches++;
+    }
+    if (bare)
+        for (size_t i = 0; i < t->nb; i++) {
+            Bud *b = &t->buds[i];
+            const Node *nd = &t->nodes[b->node];
+            if (b->kind == BUD_LATERAL && nd->order == 0 && nd->pos[1] - t->base[1] < P->bare_trunk) b->alive = 0;
+        }
+    t->shed_metamers += marked;
+    return marked;
+}

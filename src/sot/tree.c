@@ -1,0 +1,107 @@
+/* Tree storage: see tree.h. */
+#include "sot/tree.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/rng.h"
+
+static bool reserve(void **arr, size_t *cap, size_t need, size_t elem) {
+    if (need <= *cap) return true;
+    size_t c = *cap ? *cap * 2 : 256;
+    while (c < need) c *= 2;
+    void *p = realloc(*arr, c * elem);
+    if (!p) return false;
+    *arr = p;
+    *cap = c;
+    return true;
+}
+
+bool tree_init(Tree *t, const GrowParams *P, int index, const float base[3], int start_year) {
+    memset(t, 0, sizeof *t);
+    t->P = *P;
+    t->index = index;
+    t->start_year = start_year;
+    memcpy(t->base, base, sizeof t->base);
+    Node root = {.pos = {base[0], base[1], base[2]}, .h = {0, 1, 0}, .l = {1, 0, 0}, .parent = -1, .main = -1,
+                 .axis = t->axes++, .born = 0};
+    Bud bud = {.dir = {0, 1, 0}, .node = 0, .kind = BUD_APICAL, .alive = 1, .born = 0,
+               .key = rng_stream(P->seed, 0x5eed, 0, 0).key};
+    return tree_add_node(t, &root) == 0 && tree_add_bud(t, &bud) == 0;
+}
+
+void tree_free(Tree *t) {
+    free(t->nodes);
+    free(t->buds);
+    free(t->acc);
+    free(t->acc2);
+    free(t->acc3);
+    memset(t, 0, sizeof *t);
+}
+
+int32_t tree_add_node(Tree *t, const Node *n) {
+    if (t->n >= INT32_MAX - 1 || !reserve((void **)&t->nodes, &t->cap, t->n + 1, sizeof *n)) return -1;
+    t->nodes[t->n] = *n;
+    return (int32_t)t->n++;
+}
+
+int32_t tree_add_bud(Tree *t, const Bud *b) {
+    if (t->nb >= INT32_MAX - 1 || !reserve((void **)&t->buds, &t->bcap, t->nb + 1, sizeof *b)) return -1;
+    t->buds[t->nb] = *b;
+    return (int32_t)t->nb++;
+}
+
+bool tree_scratch(Tree *t) {
+    if (t->n <= t->scratch_cap) return true;
+    size_t cap = t->cap;
+    double *a = realloc(t->acc, cap * sizeof *a);
+    if (!a) return false;
+    t->acc = a;
+    double *b = realloc(t->acc2, cap * sizeof *b);
+    if (!b) return false;
+    t->acc2 = b;
+    double *c = realloc(t->acc3, cap * sizeof *c);
+    if (!c) return false;
+    t->acc3 = c;
+    t->scratch_cap = cap;
+    return true;
+}
+
+bool tree_compact(Tree *t) {
+    int32_t *map = malloc((t->n ? t->n : 1) * sizeof *map);
+    if (!map) return false;
+    size_t k = 0;
+    for (size_t i = 0; i < t->n; i++) {
+        Node *nd = &t->nodes[i];
+        if (nd->flags & NODE_DEAD) {
+            map[i] = -1;
+            continue;
+        }
+        map[i] = (int32_t)k;
+        Node moved = *nd;
+        if (moved.parent >= 0) moved.parent = map[moved.parent];
+        t->nodes[k++] = moved;
+    }
+    t->n = k;
+    for (size_t i = 0; i < t->n; i++) {
+        Node *nd = &t->nodes[i];
+        if (nd->main >= 0) nd->main = map[nd->main]; /* -1 when the main child was shed */
+    }
+    size_t j = 0;
+    for (size_t i = 0; i < t->nb; i++) {
+        Bud b = t->buds[i];
+        if (!b.alive || map[b.node] < 0) continue;
+        b.node = map[b.node];
+        t->buds[j++] = b;
+    }
+    t->nb = j;
+    free(map);
+    return true;
+}
+
+void tree_compact_buds(Tree *t) {
+    size_t j = 0;
+    for (size_t i = 0; i < t->nb; i++)
+        if (t->buds[i].alive) t->buds[j++] = t->buds[i];
+    t->nb = j;
+}
