@@ -90,6 +90,25 @@ double syl_program_setting(const SylProgram *p, const char *name);  /* angle, st
 /* Print modules, constants, parameters, rules and their bytecode. */
 void syl_program_dump(const SylProgram *p, FILE *out);
 
+/* Environment queries (?E modules, docs/language.md "Open L-systems"): after every step the
+ * turtle reads the string and collects every segment's end and every ?E module with the
+ * turtle's position and heading there; an environment then writes its answers into the
+ * string's parameters: par[probe.par + k], k < probe.na. */
+typedef struct SylEnvProbe {
+    float pos[3], h[3];
+    size_t par; /* offset of the module's parameters */
+    int na;
+    int tip;    /* nonzero: at the end of the segment just drawn (it casts shadow here too) */
+} SylEnvProbe;
+typedef struct SylEnvFill {
+    float (*ends)[3]; /* segment ends, in the order drawn */
+    size_t nends, ends_cap;
+    SylEnvProbe *probes;
+    size_t nprobes, probes_cap;
+} SylEnvFill;
+/* Answer the probes of one step: SYL_OK, or a SYL_* error (reported by the environment). */
+typedef int (*SylEnvFn)(void *user, int step, const SylEnvFill *fill, double *par);
+
 typedef struct SylDeriveOptions {
     int steps;            /* < 0: the model's `derive` */
     int use_seed;         /* nonzero: use seed instead of the model's */
@@ -102,6 +121,10 @@ typedef struct SylDeriveOptions {
     void (*on_step)(void *user, int step, const SylString *s);
     void *user;
     uint64_t rewritten;   /* out: modules read by all passes of all steps (throughput) */
+    /* The environment that fills ?E modules; NULL: a stand-alone one (the plant alone on
+     * the ground, shading itself). */
+    SylEnvFn env;
+    void *env_user;
 } SylDeriveOptions;
 
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);

@@ -101,6 +101,21 @@ bool obstacles_blocked(const Obstacles *o, const float a[3], const float b[3], f
     return occluded(o->scene, a, d, len + margin);
 }
 
+float obstacles_distance(const Obstacles *o, const float org[3], const float dir[3], float far) {
+    if (!o->scene) return far;
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    struct RTCRayHit rh;
+    memset(&rh, 0, sizeof rh);
+    rh.ray.org_x = org[0], rh.ray.org_y = org[1], rh.ray.org_z = org[2];
+    rh.ray.dir_x = dir[0], rh.ray.dir_y = dir[1], rh.ray.dir_z = dir[2];
+    rh.ray.tfar = far;
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(o->scene, &ctx, &rh);
+    return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? far : rh.ray.tfar;
+}
+
 bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out) {
     if (!o->scene) return false;
     struct RTCIntersectContext ctx;

@@ -30,6 +30,9 @@ void obstacles_free(Obstacles *o);
 static inline bool obstacles_any(const Obstacles *o) { return o->scene != NULL; }
 /* Does the segment a-b (extended by margin beyond b) cross an obstacle? */
 bool obstacles_blocked(const Obstacles *o, const float a[3], const float b[3], float margin);
+/* How far from org along the unit dir the first obstacle surface is (either side of it);
+ * far when none is nearer. */
+float obstacles_distance(const Obstacles *o, const float org[3], const float dir[3], float far);
 /* The height of the highest obstacle surface under (x, z), looking down from y; false if none. */
 bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out);
 

@@ -136,7 +136,8 @@ struct SylProgram {
     SylDirective *directives, *scene;
     int ndirectives, nscene;
     bool has_scene;
-    bool uses_queries;      /* ?P ?H ?L ?U appear: the turtle fills them after every step */
+    bool uses_queries;      /* ?P ?H ?L ?U ?E appear: the turtle fills them after every step */
+    bool uses_env;          /* ?E appears: the environment answers it after every step */
     Arena arena;
     Source src;
     char *text; /* owned copy of the source */

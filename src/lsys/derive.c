@@ -11,6 +11,7 @@
 
 #include "../lang/builtins.h"
 #include "../turtle/turtle.h"
+#include "env/open.h"
 #include "match.h"
 #include "modstr.h"
 #include "sylva/sylva.h"
@@ -279,6 +280,11 @@ typedef struct Engine {
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
     bool warned_depth;
+    /* ?E modules: the environment that answers them and what the turtle collects for it */
+    SylEnvFn env;
+    void *env_user;
+    SylEnvFill fill;
+    OpenEnv *alone; /* the stand-alone environment, when the caller gives none */
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
@@ -320,6 +326,10 @@ static bool grow(void *pp, size_t *cap, size_t elem, size_t n) {
 }
 
 static void engine_free(Engine *e) {
+    free(e->fill.ends);
+    free(e->fill.probes);
+    if (e->alone) open_env_free(e->alone);
+    free(e->alone);
     free(e->left);
     free(e->right);
     free(e->pair);
@@ -518,16 +528,40 @@ static int axiom(Engine *e, SylString *out) {
 
 /* Query modules (?P ?H ?L ?U) take the turtle's state after every step, as the turtle sees
  * the string: through the `interpret` rules when there are any. Those rules keep query
- * modules as they are, so the k-th query module read is the k-th of the string. */
+ * modules as they are, so the k-th query module read is the k-th of the string. ?E modules
+ * are answered by the environment at the turtle's position and heading (env/open.h). */
 static bool is_query(const SylProgram *p, uint16_t code) {
     const char *n = p->syms[CODE_SYM(code)].name;
-    return n[0] == '?' && (n[1] == 'P' || n[1] == 'H' || n[1] == 'L' || n[1] == 'U') && !n[2];
+    return n[0] == '?' && (n[1] == 'P' || n[1] == 'H' || n[1] == 'L' || n[1] == 'U' || n[1] == 'E') && !n[2];
+}
+
+static int turtle_fill(Engine *e, SylString *s, int step) {
+    int st = syl_turtle_query(e->p, s, e->env ? &e->fill : NULL);
+    if (!st && e->env && e->fill.nprobes) st = e->env(e->env_user, step, &e->fill, s->par);
+    return st;
+}
+
+/* The environment for ?E modules: the caller's, or the plant alone on the ground. */
+static int env_setup(Engine *e, const SylDeriveOptions *opt) {
+    if (!e->p->uses_env) return SYL_OK;
+    if (opt->env) {
+        e->env = opt->env;
+        e->env_user = opt->env_user;
+        return SYL_OK;
+    }
+    e->alone = malloc(sizeof *e->alone);
+    if (!e->alone) return SYL_ELIMIT;
+    OpenEnvParams P = {.voxel = (float)e->p->step, .sun = {0, 1, 0}, .diag = opt->diag};
+    open_env_init(e->alone, &P);
+    e->env = open_env_answer;
+    e->env_user = e->alone;
+    return SYL_OK;
 }
 
 static int fill_queries(Engine *e, SylString *s, int step) {
     const SylProgram *p = e->p;
     if (!p->uses_queries) return SYL_OK;
-    if (!p->tables[TABLE_INTERPRET].nrules) return syl_turtle_query(p, s);
+    if (!p->tables[TABLE_INTERPRET].nrules) return turtle_fill(e, s, step);
     SylString *cur = new_string(e), *spare = new_string(e);
     int st = cur && spare ? ms_reserve(cur, s->n, s->np) : SYL_ELIMIT;
     if (!st) {
@@ -537,7 +571,7 @@ static int fill_queries(Engine *e, SylString *s, int step) {
         cur->np = s->np;
         st = passes(e, TABLE_INTERPRET, step, &cur, &spare);
     }
-    if (!st) st = syl_turtle_query(p, cur);
+    if (!st) st = turtle_fill(e, cur, step);
     /* copy the filled values back, query module by query module */
     for (size_t i = 0, j = 0, pi = 0, pj = 0; !st && i < s->n; pi += CODE_ARITY(s->code[i]), i++) {
         if (!is_query(p, s->code[i])) continue;
@@ -565,7 +599,8 @@ int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
     engine_init(&e, p, opt);
     SylString *cur = new_string(&e), *spare = new_string(&e);
     int steps = opt->steps >= 0 ? opt->steps : p->derive;
-    int st = cur && spare ? axiom(&e, cur) : SYL_ELIMIT;
+    int st = cur && spare ? env_setup(&e, opt) : SYL_ELIMIT;
+    if (!st) st = axiom(&e, cur);
     if (!st) st = passes(&e, TABLE_DECOMPOSE, 0, &cur, &spare);
     if (!st) st = fill_queries(&e, cur, 0);
     if (!st && opt->on_step) opt->on_step(opt->user, 0, cur);

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "env/open.h"
 #include "sot/forest.h"
 #include "sot/forest_internal.h"
 #include "sot/output.h"
@@ -57,13 +58,25 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
     return q;
 }
 
+/* An L-system plant's ?E modules read the scene: its obstacles, the ground and the plants
+ * drawn before it (static casters and occupants), and the plant's own skeleton. */
 static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index,
-                        SylSkeleton **out) {
+                        const SceneSpec *S, const Env *env, SylSkeleton **out) {
     SylDeriveOptions d = {.steps = -1, .threads = opt->threads, .diag = opt->diag};
     if (pl->seed_set) d.use_seed = 1, d.seed = pl->seed;
     else if (opt->use_seed) d.use_seed = 1, d.seed = opt->seed + (uint64_t)index;
+    OpenEnvParams P = {.voxel = (float)syl_program_setting(q, "step"), .ground = S->ground_set ? S->ground : pl->at[1],
+                       .sun = {0, 1, 0}, .at = {pl->at[0], pl->at[1], pl->at[2]},
+                       .obstacles = obstacles_any(&env->obstacles) ? &env->obstacles : NULL,
+                       .statics = env->statics, .nstatic = env->nstatic, .diag = opt->diag};
+    if (S->sun_set) memcpy(P.sun, S->sun, sizeof P.sun);
+    OpenEnv oe;
+    open_env_init(&oe, &P);
+    d.env = open_env_answer;
+    d.env_user = &oe;
     SylString *s = NULL, *ti = NULL;
     int st = syl_derive(q, &d, &s);
+    open_env_free(&oe);
     if (!st) st = syl_interpret(q, s, &d, &ti);
     SylTurtleOptions to = {.diag = opt->diag};
     if (!st) st = syl_turtle(q, ti, &to, out);
@@ -197,7 +210,7 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
             placed[i].tree = f->ntrees;
             if (!st) st = forest_add_tree(f, &P, pl.at, years);
         } else if (syl_program_kind(q) == SYL_MODEL_LSYSTEM) {
-            st = draw_lsystem(q, opt, &pl, i, &placed[i].lsys);
+            st = draw_lsystem(q, opt, &pl, i, S, &f->env, &placed[i].lsys);
             opt->stats.plants++;
             const SylSkeleton *sk = placed[i].lsys;
             for (size_t k = 0; !st && k < sk->nnodes; k++) st = forest_add_static(f, sk->nodes[k].pos);

@@ -24,7 +24,7 @@ typedef enum {
     T_POLY_OPEN, T_VERTEX, T_POLY_CLOSE,
     T_LEAF, T_PETAL, T_NEEDLE, T_SURFACE_UNKNOWN, T_SPHERE,
     T_TROPISM, T_ELASTICITY, T_MOVE_TO, T_HEADING, T_SCALE, T_SMOOTH_ON, T_SMOOTH_OFF,
-    T_QUERY_P, T_QUERY_H, T_QUERY_L, T_QUERY_U,
+    T_QUERY_P, T_QUERY_H, T_QUERY_L, T_QUERY_U, T_QUERY_E,
 } TCmd;
 
 static const struct {
@@ -42,6 +42,7 @@ static const struct {
     {"@R", T_HEADING},    {"@D", T_SCALE},      {"@Gc", T_SMOOTH_ON}, {"@Gs", T_SMOOTH_ON},
     {"@Ge", T_SMOOTH_OFF},
     {"?P", T_QUERY_P},    {"?H", T_QUERY_H},    {"?L", T_QUERY_L},    {"?U", T_QUERY_U},
+    {"?E", T_QUERY_E},
 };
 
 /* Everything `[` saves and `]` restores. */
@@ -82,6 +83,7 @@ typedef struct Turtle {
     double last_deg;    /* the last angle turned by, and its sine and cosine */
     float last_sin, last_cos;
     uint64_t bad;       /* modules skipped for non-finite parameters */
+    SylEnvFill *env;    /* filling queries: segment ends and ?E modules are collected here */
     uint8_t cmd[MAX_SYMBOLS];
     bool warned[MAX_SYMBOLS];
     bool oom;
@@ -211,6 +213,42 @@ static inline float distance(const TState *st, float len) { return fmaxf(-1e30f,
 /* The turtle moved without drawing: the next segment starts from a new root. */
 static void detach(Turtle *t) { t->st.gen = ++t->gens; }
 
+/* Filling queries for the environment: a segment's end, and a ?E module where it stands. */
+static void env_end(Turtle *t, const float pos[3]) {
+    SylEnvFill *f = t->env;
+    if (f->nends == f->ends_cap) {
+        size_t cap = f->ends_cap ? 2 * f->ends_cap : 1024;
+        float(*e)[3] = realloc(f->ends, cap * sizeof *e);
+        if (!e) {
+            t->oom = true;
+            return;
+        }
+        f->ends = e;
+        f->ends_cap = cap;
+    }
+    memcpy(f->ends[f->nends++], pos, 3 * sizeof(float));
+}
+
+static void env_probe(Turtle *t, size_t par, int na) {
+    SylEnvFill *f = t->env;
+    if (f->nprobes == f->probes_cap) {
+        size_t cap = f->probes_cap ? 2 * f->probes_cap : 64;
+        SylEnvProbe *e = realloc(f->probes, cap * sizeof *e);
+        if (!e) {
+            t->oom = true;
+            return;
+        }
+        f->probes = e;
+        f->probes_cap = cap;
+    }
+    SylEnvProbe *q = &f->probes[f->nprobes++];
+    memcpy(q->pos, t->st.pos, sizeof q->pos);
+    memcpy(q->h, t->st.h, sizeof q->h);
+    q->par = par;
+    q->na = na;
+    q->tip = t->st.gen == 0;
+}
+
 static void draw(Turtle *t, float len, uint32_t module) {
     TState *st = &t->st;
     if (st->dirty) orthonormalise(st);
@@ -234,6 +272,7 @@ static void draw(Turtle *t, float len, uint32_t module) {
     }
     glm_vec3_muladds(st->h, distance(st, len), st->pos);
     st->node = add_node(t, SYL_KIND_INTERNODE, st->node, module);
+    if (t->env) env_end(t, st->pos);
     tropism(st);
 }
 
@@ -570,6 +609,12 @@ static int run(Turtle *t, const SylString *s, double *fill) {
                 query(st, cmd, fill + (a - par), na);
             }
             break;
+        case T_QUERY_E:
+            if (fill && t->env) {
+                if (st->dirty) orthonormalise(st);
+                env_probe(t, (size_t)(a - par), na);
+            }
+            break;
         }
     }
     return t->oom ? SYL_ELIMIT : SYL_OK;
@@ -611,12 +656,14 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     return status;
 }
 
-int syl_turtle_query(const SylProgram *p, SylString *s) {
+int syl_turtle_query(const SylProgram *p, SylString *s, SylEnvFill *env) {
     Turtle *t = malloc(sizeof *t);
     if (!t) return SYL_ELIMIT;
     init(t, p, NULL, NULL);
+    t->env = env;
+    if (env) env->nends = env->nprobes = 0;
     bool any = false;
-    for (int i = 0; i < p->nsyms && i < MAX_SYMBOLS; i++) any |= t->cmd[i] >= T_QUERY_P;
+    for (int i = 0; i < p->nsyms && i < MAX_SYMBOLS; i++) any |= t->cmd[i] >= T_QUERY_P && (env || t->cmd[i] != T_QUERY_E);
     int status = any ? run(t, s, s->par) : SYL_OK;
     release(t);
     free(t);

@@ -7,6 +7,8 @@
  * where each one stands (LANGUAGE.md §5), in place. Nothing else is changed; strings without
  * query modules are left alone at the cost of one look-up per symbol. Returns SYL_OK, or
  * SYL_ELIMIT when out of memory. */
-int syl_turtle_query(const SylProgram *p, SylString *s);
+/* With env, also collect segment ends and ?E modules into it (emptied first); without, ?E
+ * modules are not looked at. */
+int syl_turtle_query(const SylProgram *p, SylString *s, SylEnvFill *env);
 
 #endif

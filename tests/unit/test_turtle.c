@@ -555,7 +555,7 @@ static void query_modules_are_filled(void **state) {
     UnitRun r = unit_run("lsystem Q {\n  angle 90\n  axiom F?P(0, 0, 0)+F(2)?H(0, 0, 0)?L(9, 9, 9)?U(0, 0, 0)[?P(7)]\n}\n",
                          (SylDeriveOptions){.steps = 0});
     assert_int_equal(r.status, SYL_OK);
-    assert_int_equal(syl_turtle_query(r.p, r.s), SYL_OK);
+    assert_int_equal(syl_turtle_query(r.p, r.s, NULL), SYL_OK);
     char *got = unit_string(&r);
     assert_string_equal(got, "F?P(0,1,0)+F(2)?H(-1,0,0)?L(0,-1,0)?U(0,0,1)[?P(-2)]");
     free(got);

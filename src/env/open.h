@@ -1,0 +1,54 @@
+/* The environment of an open L-system (docs/language.md, "Open L-systems"): answers the ?E
+ * modules of every step at the turtle's position and heading.
+ *
+ *   ?E(0, q)     light: Q = C - s, in 0..C, of a shadow grid (shadow.h; C = a = 1, b = 2,
+ *                depth 6) holding the plant's own segment ends of this step and the scene's
+ *                static casters; at a segment's end, that end's own shadow a does not count
+ *   ?E(1, n, r)  space: how many segment ends (own and the scene's) lie within r of the
+ *                point r ahead along the heading (r defaults to the voxel)
+ *   ?E(2, d)     obstacle distance along the heading: the nearest obstacle surface or the
+ *                ground plane, OPEN_FAR when neither is hit
+ *
+ * Stand-alone (no scene), the plant is alone on the ground plane y = 0 with no obstacles. The
+ * shadow grid is updated incrementally (last step's casters removed, this step's added, both
+ * exact in fixed point), and only in steps that ask for light; the point grid only in steps
+ * that ask for space. Positions are the plant's, moved by `at` into the scene. */
+#ifndef SYL_ENV_OPEN_H
+#define SYL_ENV_OPEN_H
+#include <stdio.h>
+
+#include "env/obstacles.h"
+#include "env/pointgrid.h"
+#include "env/shadow.h"
+#include "sylva/sylva.h"
+
+#define OPEN_FAR 1e9
+
+typedef struct OpenEnvParams {
+    float voxel;                /* the shadow grid's voxel and the default space radius */
+    float ground;               /* the ground plane's height */
+    float sun[3];               /* towards the sun: (0, 1, 0) overhead */
+    float at[3];                /* where the plant stands */
+    const Obstacles *obstacles; /* NULL: none */
+    const float *statics;       /* the scene's other plants: 3 floats each, scene coordinates */
+    size_t nstatic;
+    FILE *diag;
+} OpenEnvParams;
+
+typedef struct OpenEnv {
+    OpenEnvParams P;
+    ShadowGrid shadow;
+    bool statics_cast;
+    float (*cast)[3]; /* own casters now in the shadow grid */
+    size_t ncast, cast_cap;
+    float (*pts)[3];  /* statics and own segment ends, for the point grid */
+    size_t pts_cap;
+    PointGrid occ;
+} OpenEnv;
+
+void open_env_init(OpenEnv *e, const OpenEnvParams *p);
+void open_env_free(OpenEnv *e);
+/* A SylEnvFn: user is an OpenEnv. */
+int open_env_answer(void *user, int step, const SylEnvFill *fill, double *par);
+
+#endif
