@@ -117,6 +117,9 @@ static void fmt_mean_sd(char *buf, size_t n, double mean, double sd) {
         if (decimals < 0) decimals = 0;
         snprintf(m, sizeof m, "%.*f", decimals, mean);
         snprintf(d, sizeof d, "%.*f", decimals, sd);
+    } else if (fabs(mean) >= 1e4 && fabs(mean) < 1e15) { /* whole numbers, the deviation too */
+        snprintf(m, sizeof m, "%.0f", mean);
+        snprintf(d, sizeof d, "%.0f", sd);
     } else {
         fmt_text(m, sizeof m, mean, false, 4);
         fmt_text(d, sizeof d, sd, false, 2);
