@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "env/markers.h"
+#include "util/array.h"
 #include "util/rng.h"
 
 #define CELL_EMPTY UINT64_MAX
@@ -67,17 +68,6 @@ static bool rehash(MarkerCloud *c) {
     return true;
 }
 
-static bool reserve(void **arr, size_t *cap, size_t need, size_t elem) {
-    if (need <= *cap) return true;
-    size_t n = *cap ? *cap * 2 : 4096;
-    while (n < need) n *= 2;
-    void *p = realloc(*arr, n * elem);
-    if (!p) return false;
-    *arr = p;
-    *cap = n;
-    return true;
-}
-
 static bool make_cell(MarkerCloud *c, int x, int y, int z, const PointGrid *occupied) {
     if ((c->nblocks + 1) * 2 > c->mask + 1 && !rehash(c)) return false;
     uint64_t key = cell_key(x, y, z);
@@ -86,11 +76,11 @@ static bool make_cell(MarkerCloud *c, int x, int y, int z, const PointGrid *occu
     double want = c->per_cell;
     uint32_t count = (uint32_t)want + (rng_unit(&r) < want - floor(want));
     size_t pcap = c->cap;
-    if (!reserve((void **)&c->pos, &pcap, c->n + count, sizeof *c->pos)) return false;
+    if (!array_reserve(&c->pos, &pcap, c->n + count, sizeof *c->pos)) return false;
     size_t acap = c->cap;
-    if (!reserve((void **)&c->alive, &acap, c->n + count, 1)) return false;
+    if (!array_reserve(&c->alive, &acap, c->n + count, 1)) return false;
     c->cap = pcap < acap ? pcap : acap;
-    if (!reserve((void **)&c->blocks, &c->bcap, c->nblocks + 1, sizeof *c->blocks)) return false;
+    if (!array_reserve(&c->blocks, &c->bcap, c->nblocks + 1, sizeof *c->blocks)) return false;
     MarkerBlock *b = &c->blocks[c->nblocks];
     b->key = key;
     b->first = (uint32_t)c->n;

@@ -1,5 +1,6 @@
 /* The OBJ reader: see objread.h. */
 #include "env/objread.h"
+#include "util/array.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -31,17 +32,6 @@ static int fail(Reader *r, const char *fmt, ...) {
         va_end(ap);
     }
     return SYL_EMODEL;
-}
-
-static bool grow(void **arr, size_t *cap, size_t need, size_t elem) {
-    if (need <= *cap) return true;
-    size_t c = *cap ? *cap * 2 : 1024;
-    while (c < need) c *= 2;
-    void *p = realloc(*arr, c * elem);
-    if (!p) return false;
-    *arr = p;
-    *cap = c;
-    return true;
 }
 
 /* The next whitespace-separated token of [*s, end): its start and length (0 at the end). */
@@ -77,7 +67,7 @@ static int vertex(Reader *r, const char *s, const char *end) {
         if (n >= sizeof buf || (strtod(buf, &stop), *stop) || token(&s, end, &t))
             return fail(r, "unexpected '%.*s' after a vertex's coordinates", (int)(n < 20 ? n : 20), t);
     }
-    if (!grow((void **)&r->m->v, &r->vcap, 3 * (r->m->nv + 1), sizeof(float))) return SYL_ELIMIT;
+    if (!array_reserve(&r->m->v, &r->vcap, 3 * (r->m->nv + 1), sizeof(float))) return SYL_ELIMIT;
     memcpy(r->m->v + 3 * r->m->nv++, xyz, sizeof xyz);
     return SYL_OK;
 }
@@ -111,7 +101,7 @@ static int face(Reader *r, const char *s, const char *end) {
         int st = reference(r, t, n, &cur);
         if (st) return st;
         if (count >= 2) {
-            if (!grow((void **)&r->m->tri, &r->tcap, 3 * (r->m->nt + 1), sizeof(uint32_t))) return SYL_ELIMIT;
+            if (!array_reserve(&r->m->tri, &r->tcap, 3 * (r->m->nt + 1), sizeof(uint32_t))) return SYL_ELIMIT;
             uint32_t *tri = r->m->tri + 3 * r->m->nt++;
             tri[0] = first, tri[1] = prev, tri[2] = cur;
         }

@@ -1,5 +1,6 @@
 /* Obstacles in an Embree scene: see obstacles.h. */
 #include "env/obstacles.h"
+#include "util/array.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -8,21 +9,10 @@
 #include "env/objread.h"
 #include "sylva/sylva.h"
 
-static bool reserve(void **arr, size_t *cap, size_t need, size_t elem) {
-    if (need <= *cap) return true;
-    size_t c = *cap ? *cap * 2 : 1024;
-    while (c < need) c *= 2;
-    void *p = realloc(*arr, c * elem);
-    if (!p) return false;
-    *arr = p;
-    *cap = c;
-    return true;
-}
-
 bool obstacles_add(Obstacles *o, const float *v, size_t nv, const uint32_t *tri, size_t nt) {
     if (o->nv + nv > UINT32_MAX - 2) return false;
-    if (!reserve((void **)&o->v, &o->vcap, 3 * (o->nv + nv) + 4, sizeof(float)) ||
-        !reserve((void **)&o->tri, &o->tcap, 3 * (o->nt + nt), sizeof(uint32_t)))
+    if (!array_reserve(&o->v, &o->vcap, 3 * (o->nv + nv) + 4, sizeof(float)) ||
+        !array_reserve(&o->tri, &o->tcap, 3 * (o->nt + nt), sizeof(uint32_t)))
         return false;
     if (o->nv == 0)
         for (int k = 0; k < 3; k++) o->lo[k] = INFINITY, o->hi[k] = -INFINITY;

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "../lang/builtins.h"
+#include "../util/array.h"
 #include "../turtle/turtle.h"
 #include "env/open.h"
 #include "match.h"
@@ -313,18 +314,6 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
                    w->fault.pos + 1);
 }
 
-/* Make *p hold at least n elements, keeping what it has (pages once touched stay). */
-static bool grow(void *pp, size_t *cap, size_t elem, size_t n) {
-    void **p = pp;
-    if (*cap >= n) return true;
-    size_t c = n + n / 2 + 1024;
-    void *q = realloc(*p, c * elem);
-    if (!q) return false;
-    *p = q;
-    *cap = c;
-    return true;
-}
-
 static void engine_free(Engine *e) {
     free(e->fill.ends);
     free(e->fill.probes);
@@ -357,24 +346,24 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
          * rules of the fast kind compare neighbour codes only */
         bool idx = t->ctx_index;
         if (t->ctx_branches) {
-            if (!grow(&e->pair, &e->cap_pair, sizeof *e->pair, n)) return SYL_ELIMIT;
+            if (!array_reserve(&e->pair, &e->cap_pair, n, sizeof *e->pair)) return SYL_ELIMIT;
             match_pairs(in->code, n, e->pair);
             v.pair = e->pair;
         }
         if ((t->ctx_left || (t->ctx_right && !t->ctx_branches)) &&
-            !grow(&e->stack, &e->cap_stack, sizeof *e->stack, 2 * n + 2))
+            !array_reserve(&e->stack, &e->cap_stack, 2 * n + 2, sizeof *e->stack))
             return SYL_ELIMIT;
         if (t->ctx_left) {
-            if (!grow(&e->lcode, &e->cap_lcode, sizeof *e->lcode, n) ||
-                (idx && !grow(&e->left, &e->cap_left, sizeof *e->left, n)))
+            if (!array_reserve(&e->lcode, &e->cap_lcode, n, sizeof *e->lcode) ||
+                (idx && !array_reserve(&e->left, &e->cap_left, n, sizeof *e->left)))
                 return SYL_ELIMIT;
             match_link_left(in->code, n, p->skip, idx ? e->left : NULL, e->lcode, e->stack);
             v.left = idx ? e->left : NULL;
             v.lcode = e->lcode;
         }
         if (t->ctx_right && !t->ctx_branches) {
-            if (!grow(&e->rcode, &e->cap_rcode, sizeof *e->rcode, n) ||
-                (idx && !grow(&e->right, &e->cap_right, sizeof *e->right, n)))
+            if (!array_reserve(&e->rcode, &e->cap_rcode, n, sizeof *e->rcode) ||
+                (idx && !array_reserve(&e->right, &e->cap_right, n, sizeof *e->right)))
                 return SYL_ELIMIT;
             match_link_right(in->code, n, p->skip, idx ? e->right : NULL, e->rcode, e->stack);
             v.right = idx ? e->right : NULL;

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "sylva/skeleton.h"
+#include "util/array.h"
 
 const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf", "flower",
                                                    "needle", "sphere", "bud"};
@@ -37,31 +38,19 @@ void syl_skeleton_free(SylSkeleton *s) {
     free(s);
 }
 
-/* Grow an array to hold one more element; false when out of memory. */
-static bool reserve(void **arr, size_t *cap, size_t n, size_t elem) {
-    if (n < *cap) return true;
-    size_t c = *cap ? *cap * 2 : 256;
-    while (c < n + 1) c *= 2;
-    void *p = realloc(*arr, c * elem);
-    if (!p) return false;
-    *arr = p;
-    *cap = c;
-    return true;
-}
-
 static void note_material(SylSkeleton *s, uint8_t m) {
     if (m >= s->nmaterials) s->nmaterials = m + 1;
 }
 
 int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
-    if (s->nnodes >= INT32_MAX || !reserve((void **)&s->nodes, &s->node_cap, s->nnodes, sizeof *n)) return -1;
+    if (s->nnodes >= INT32_MAX || !array_reserve(&s->nodes, &s->node_cap, s->nnodes + 1, sizeof *n)) return -1;
     s->nodes[s->nnodes] = *n;
     note_material(s, n->material);
     return (int32_t)s->nnodes++;
 }
 
 int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o) {
-    if (s->norgans >= INT32_MAX || !reserve((void **)&s->organs, &s->organ_cap, s->norgans, sizeof *o))
+    if (s->norgans >= INT32_MAX || !array_reserve(&s->organs, &s->organ_cap, s->norgans + 1, sizeof *o))
         return -1;
     s->organs[s->norgans] = *o;
     note_material(s, o->material);
@@ -70,10 +59,10 @@ int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o) {
 
 int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32_t n, int32_t node,
                                  uint8_t material, uint32_t module) {
-    if (s->npolys >= INT32_MAX || !reserve((void **)&s->polys, &s->poly_cap, s->npolys, sizeof *s->polys))
+    if (s->npolys >= INT32_MAX || !array_reserve(&s->polys, &s->poly_cap, s->npolys + 1, sizeof *s->polys))
         return -1;
     for (uint32_t i = 0; i < n; i++) {
-        if (!reserve((void **)&s->poly_verts, &s->vert_cap, s->nverts, sizeof *s->poly_verts)) return -1;
+        if (!array_reserve(&s->poly_verts, &s->vert_cap, s->nverts + 1, sizeof *s->poly_verts)) return -1;
         memcpy(s->poly_verts[s->nverts++], verts[i], sizeof *verts);
     }
     SylPolygon *p = &s->polys[s->npolys];

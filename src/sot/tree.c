@@ -1,21 +1,11 @@
 /* Tree storage: see tree.h. */
 #include "sot/tree.h"
+#include "util/array.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "util/rng.h"
-
-static bool reserve(void **arr, size_t *cap, size_t need, size_t elem) {
-    if (need <= *cap) return true;
-    size_t c = *cap ? *cap * 2 : 256;
-    while (c < need) c *= 2;
-    void *p = realloc(*arr, c * elem);
-    if (!p) return false;
-    *arr = p;
-    *cap = c;
-    return true;
-}
 
 bool tree_init(Tree *t, const GrowParams *P, int index, const float base[3], int start_year) {
     memset(t, 0, sizeof *t);
@@ -40,13 +30,13 @@ void tree_free(Tree *t) {
 }
 
 int32_t tree_add_node(Tree *t, const Node *n) {
-    if (t->n >= INT32_MAX - 1 || !reserve((void **)&t->nodes, &t->cap, t->n + 1, sizeof *n)) return -1;
+    if (t->n >= INT32_MAX - 1 || !array_reserve(&t->nodes, &t->cap, t->n + 1, sizeof *n)) return -1;
     t->nodes[t->n] = *n;
     return (int32_t)t->n++;
 }
 
 int32_t tree_add_bud(Tree *t, const Bud *b) {
-    if (t->nb >= INT32_MAX - 1 || !reserve((void **)&t->buds, &t->bcap, t->nb + 1, sizeof *b)) return -1;
+    if (t->nb >= INT32_MAX - 1 || !array_reserve(&t->buds, &t->bcap, t->nb + 1, sizeof *b)) return -1;
     t->buds[t->nb] = *b;
     return (int32_t)t->nb++;
 }
