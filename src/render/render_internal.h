@@ -1,5 +1,5 @@
 /* Inside the renderer: Perlin noise, texture patterns with mipmaps, the camera, and a
- * synthetic tree for tests and benchmarks. Not part of the public API. */
+ * synthetic tree for the unit tests. Not part of the public API. */
 #ifndef SYL_RENDER_INTERNAL_H
 #define SYL_RENDER_INTERNAL_H
 #include <stdbool.h>
@@ -54,7 +54,7 @@ void render_camera(const SylMesh *m, SylView view, int width, int height, Render
 /* Where a world point lands in the picture (pixels, y down); false if behind the eye. */
 bool render_project(const RenderCamera *cam, const float p[3], float *x, float *y);
 
-/* ---- meshes built by hand (synth.c), for tests and benchmarks ---- */
+/* ---- meshes built by hand (synth.c), for the unit tests; free them with syl_mesh_free ---- */
 
 /* An empty mesh with materials 0 bark, 1 leaf, 2 flower, 3 plain red (repeating). */
 SylMesh *synth_new(void);
@@ -64,6 +64,5 @@ bool synth_box(SylMesh *m, const float lo[3], const float hi[3], uint8_t mat);
 /* A branching tree of tubes (bark) with folded leaves, about `triangles` triangles (at
  * least 500), the same every time; its base at the origin, about 2.5 units tall. */
 SylMesh *synth_tree(long triangles);
-void synth_free(SylMesh *m);
 
 #endif

@@ -24,16 +24,6 @@ SylMesh *synth_new(void) {
     return m;
 }
 
-void synth_free(SylMesh *m) {
-    if (!m) return;
-    free(m->pos);
-    free(m->nrm);
-    free(m->uv);
-    free(m->idx);
-    free(m->groups);
-    free(m);
-}
-
 static bool reserve(SylMesh *m, size_t verts, size_t idx) {
     if (m->nverts + verts > m->vert_cap) {
         size_t cap = m->vert_cap ? m->vert_cap : 256;
@@ -316,7 +306,7 @@ SylMesh *synth_tree(long triangles) {
     free(t.segs);
     free(t.leaves);
     if (!ok) {
-        synth_free(m);
+        syl_mesh_free(m);
         return NULL;
     }
     return m;

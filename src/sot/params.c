@@ -7,6 +7,7 @@
  * A value is a number, a one-element tuple `(expr)` (which may use a `param`, so --set can
  * change it), a tuple (x, y, z), a word or on/off. */
 #include "sot/params.h"
+#include "sot/reader.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -256,14 +257,6 @@ static void organ_default(OrganSpec *o) {
     o->chance = 1;
 }
 
-typedef struct Reader {
-    const SylProgram *p;
-    FILE *diag;
-    int errors;
-} Reader;
-
-#define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
-
 static const char *kind_name(SylDirArgKind k) {
     switch (k) {
     case SYL_DARG_WORD: return "a word";
@@ -275,12 +268,6 @@ static const char *kind_name(SylDirArgKind k) {
 }
 
 /* A number: a literal or a one-element tuple. */
-static bool number_of(const SylDirArg *a, double *out) {
-    if (a->kind == SYL_DARG_NUMBER) return *out = a->num, true;
-    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *out = a->values[0], true;
-    return false;
-}
-
 /* The list "a, b or c" of a table's names. */
 static void list_words(char *buf, size_t size, const char *const *names, size_t stride, size_t n) {
     buf[0] = 0;
@@ -307,7 +294,7 @@ static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylD
     case V_NUM:
     case V_INT:
     case V_SEED:
-        if (!number_of(a, &v)) {
+        if (!reader_number(a, &v)) {
             ERR(r, a->line, a->col, "'%s' expects a number, not %s", k->name, kind_name(a->kind));
             return 0;
         }
@@ -324,7 +311,7 @@ static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylD
     case V_BOOL:
         if (a->kind == SYL_DARG_WORD && (!strcmp(a->text, "on") || !strcmp(a->text, "yes"))) *(bool *)field = true;
         else if (a->kind == SYL_DARG_WORD && (!strcmp(a->text, "off") || !strcmp(a->text, "no"))) *(bool *)field = false;
-        else if (number_of(a, &v) && (v == 0 || v == 1)) *(bool *)field = v == 1;
+        else if (reader_number(a, &v) && (v == 0 || v == 1)) *(bool *)field = v == 1;
         else {
             ERR(r, a->line, a->col, "'%s' expects on or off", k->name);
             return 0;
@@ -414,7 +401,7 @@ static void read_directive(Reader *r, const Directive *dir, const SylDirective *
             int count = 0;
             if (mode->count) {
                 double v;
-                if (i >= d->nargs || !number_of(&args[i], &v) || v != floor(v) || v < 1 || v > 32) {
+                if (i >= d->nargs || !reader_number(&args[i], &v) || v != floor(v) || v < 1 || v > 32) {
                     const SylDirArg *at = i < d->nargs ? &args[i] : &args[i - 1];
                     ERR(r, at->line, at->col, "'%s' expects a whole number of buds from 1 to 32 after it", mode->word);
                     return;

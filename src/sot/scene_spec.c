@@ -12,20 +12,7 @@
 #include <string.h>
 
 #include "sot/params.h"
-
-typedef struct Reader {
-    const SylProgram *p;
-    FILE *diag;
-    int errors;
-} Reader;
-
-#define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
-
-static bool number_of(const SylDirArg *a, double *out) {
-    if (a->kind == SYL_DARG_NUMBER) return *out = a->num, true;
-    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *out = a->values[0], true;
-    return false;
-}
+#include "sot/reader.h"
 
 static bool vec3_of(Reader *r, const SylDirArg *a, const char *what, float out[3]) {
     if (a->kind != SYL_DARG_TUPLE || a->nvalues != 3) {
@@ -68,7 +55,7 @@ static bool read_keys(Reader *r, const SylDirective *d, int i, int allowed, floa
         double x;
         if (key == 0) {
             if (!vec3_of(r, v, "at", at)) return false;
-        } else if (!number_of(v, &x) || !isfinite(x)) {
+        } else if (!reader_number(v, &x) || !isfinite(x)) {
             ERR(r, v->line, v->col, "'%s' expects a number", a->text);
             return false;
         } else if (key == 1) {
@@ -165,7 +152,7 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
             read_keys(&r, d, 1, K_AT | K_SCALE, o->at, &seed, &set, &years, &set, &o->scale);
         } else if (!strcmp(d->name, "ground")) {
             double y;
-            if (!a0 || !number_of(a0, &y) || !isfinite(y) || d->nargs != 1) {
+            if (!a0 || !reader_number(a0, &y) || !isfinite(y) || d->nargs != 1) {
                 ERR(&r, a0 ? a0->line : d->line, a0 ? a0->col : d->col,
                     "'ground' expects a height (ground 0) or a terrain mesh (ground \"hill.obj\")");
                 continue;

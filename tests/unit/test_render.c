@@ -64,7 +64,7 @@ static void same_picture_every_time(void **state) {
     assert_memory_equal(a, b, (size_t)W * H * 3);
     free(a);
     free(b);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void thread_count_does_not_matter(void **state) {
@@ -82,7 +82,7 @@ static void thread_count_does_not_matter(void **state) {
     free(a);
     free(b);
     free(c);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void png_has_the_requested_size(void **state) {
@@ -111,7 +111,7 @@ static void png_has_the_requested_size(void **state) {
     assert_int_not_equal(access(tmp, F_OK), 0);
     unlink(path);
     rmdir(dir);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void bad_sizes_are_refused(void **state) {
@@ -135,7 +135,7 @@ static void box_covers_a_plausible_share(void **state) {
         if (share < 0.25 || share > 0.75) fail_msg("view %d: the box covers %.3f of the frame", v, share);
         free(rgb);
     }
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void tree_covers_a_plausible_share(void **state) {
@@ -146,7 +146,7 @@ static void tree_covers_a_plausible_share(void **state) {
     double share = (double)red_pixels(rgb, W * H) / (W * H);
     if (share < 0.08 || share > 0.75) fail_msg("the tree covers %.3f of the frame", share);
     free(rgb);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void framing_fills_about_80_percent(void **state) {
@@ -168,7 +168,7 @@ static void framing_fills_about_80_percent(void **state) {
         assert_near((x0 + x1) / 2, 100, 2);
         assert_near((y0 + y1) / 2, 50, 1);
     }
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 /* A table: a slab held up by a leg; the slab's shadow lies on the ground behind the leg,
@@ -200,7 +200,7 @@ static void shadow_on_the_ground(void **state) {
     if (!(in_shadow < 0.8 * without)) fail_msg("shadow %.1f, the same spot without shadows %.1f", in_shadow, without);
     free(lit);
     free(unshadowed);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void ambient_occlusion_darkens_the_foot(void **state) {
@@ -219,7 +219,7 @@ static void ambient_occlusion_darkens_the_foot(void **state) {
     if (!(a < b - 3)) fail_msg("with AO %.1f, without %.1f", a, b);
     free(with);
     free(without);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void empty_mesh_draws_ground_and_sky(void **state) {
@@ -231,7 +231,7 @@ static void empty_mesh_draws_ground_and_sky(void **state) {
     assert_true(top[2] > top[1] && top[2] > top[0]);
     assert_true(bottom[1] > bottom[2] && bottom[1] > bottom[0]);
     free(rgb);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void bare_meshes_render(void **state) {
@@ -244,7 +244,7 @@ static void bare_meshes_render(void **state) {
     m->vert_cap = m->nverts; /* and no room past the last vertex: Embree gets a padded copy */
     uint8_t *rgb = render(m, (SylRenderOptions){.width = 48, .height = 48, .samples = 1});
     free(rgb);
-    synth_free(m);
+    syl_mesh_free(m);
     /* no mesh at all */
     rgb = render(NULL, (SylRenderOptions){.width = 16, .height = 16, .samples = 1});
     free(rgb);
@@ -255,7 +255,7 @@ static void bare_meshes_render(void **state) {
     FILE *null = fopen("/dev/null", "w");
     assert_int_equal(syl_render(m, &(SylRenderOptions){.width = 16, .height = 16, .diag = null}, px), SYL_EUSAGE);
     fclose(null);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 static void materials_set_the_colours(void **state) {
@@ -269,7 +269,7 @@ static void materials_set_the_colours(void **state) {
     assert_true(b[2] > b[0] + 40);
     free(red);
     free(blue);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 typedef struct ProgressLog {
@@ -295,7 +295,7 @@ static void progress_is_reported(void **state) {
     assert_false(log.backwards);
     assert_near(log.last, 1.0, 1e-12);
     free(rgb);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 /* ---- textures ---- */
@@ -451,7 +451,7 @@ static void textures_written_for_exporters(void **state) {
     assert_string_equal(syl_texture_name(SYL_MATERIAL_LEAF), "leaf");
     assert_null(syl_texture_name(SYL_MATERIAL_PLAIN));
     rmdir(dir);
-    synth_free(m);
+    syl_mesh_free(m);
 }
 
 int main(void) {

@@ -1,0 +1,25 @@
+/* Reading directive lines of grow and scene blocks: errors go through the program's
+ * diagnostics, and are counted so that a whole block is checked before failing. */
+#ifndef SOT_READER_H
+#define SOT_READER_H
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "sylva/sylva.h"
+
+typedef struct Reader {
+    const SylProgram *p;
+    FILE *diag;
+    int errors;
+} Reader;
+
+#define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
+
+/* A number, written as such or as a one-value tuple `(expr)`. */
+static inline bool reader_number(const SylDirArg *a, double *out) {
+    if (a->kind == SYL_DARG_NUMBER) return *out = a->num, true;
+    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *out = a->values[0], true;
+    return false;
+}
+
+#endif
