@@ -128,6 +128,16 @@ typedef struct SylDeriveOptions {
 } SylDeriveOptions;
 
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);
+/* The same, a step at a time (a scene grows its L-systems year by year beside its trees):
+ * begin reads the axiom — or start, when not NULL — and decomposes it (step 0); each
+ * syl_derive_step derives one more step; end hands the string over (out may be NULL) and
+ * frees the deriver. Every call returns SYL_OK or the error that stopped the derivation. */
+typedef struct SylDeriver SylDeriver;
+int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out);
+int syl_derive_step(SylDeriver *d);
+const SylString *syl_deriver_string(const SylDeriver *d);
+int syl_deriver_steps(const SylDeriver *d); /* steps derived so far */
+int syl_derive_end(SylDeriver *d, SylString **out);
 /* Apply the model's `interpret` rules: the string the turtle reads (never stored). */
 int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out);
 
@@ -139,5 +149,8 @@ int syl_string_write(const SylProgram *p, const SylString *s, FILE *out);
 /* Count modules per symbol: counts must hold syl_program_symbol_count(p) entries. */
 void syl_string_count(const SylString *s, uint64_t *counts);
 void syl_string_free(SylString *s);
+/* Build a string by hand (a derivation's start): an empty one, then modules appended. */
+SylString *syl_string_new(void);
+int syl_string_push(SylString *s, int sym, int nparams, const double *params);
 
 #endif

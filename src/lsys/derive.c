@@ -574,48 +574,99 @@ static int fill_queries(Engine *e, SylString *s, int step) {
     return st;
 }
 
+struct SylDeriver {
+    Engine e;
+    SylDeriveOptions *opt;
+    SylString *cur, *spare;
+    int step;
+    int status; /* the first error; every later call returns it */
+};
+
+/* The start string, given or the axiom: copied, then decomposed and queried (step 0). */
+static int begin(SylDeriver *d, const SylString *start) {
+    Engine *e = &d->e;
+    int st = env_setup(e, d->opt);
+    if (!st && start) {
+        st = ms_reserve(d->cur, start->n, start->np);
+        if (!st) {
+            if (start->n) memcpy(d->cur->code, start->code, start->n * sizeof *start->code);
+            if (start->np) memcpy(d->cur->par, start->par, start->np * sizeof *start->par);
+            d->cur->n = start->n;
+            d->cur->np = start->np;
+        }
+    } else if (!st) st = axiom(e, d->cur);
+    if (!st) st = passes(e, TABLE_DECOMPOSE, 0, &d->cur, &d->spare);
+    if (!st) st = fill_queries(e, d->cur, 0);
+    if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, 0, d->cur);
+    return st;
+}
+
+int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out) {
+    *out = NULL;
+    if (p->kind != SYL_MODEL_LSYSTEM) {
+        if (opt && opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: grow it with `sylva grow`\n",
+                    p->name, p->kind == SYL_MODEL_GROW ? "grow block" : "scene");
+        return SYL_EUSAGE;
+    }
+    SylDeriver *d = calloc(1, sizeof *d);
+    if (!d) return SYL_ELIMIT;
+    d->opt = opt;
+    engine_init(&d->e, p, opt);
+    d->cur = new_string(&d->e);
+    d->spare = new_string(&d->e);
+    d->status = d->cur && d->spare ? begin(d, start) : SYL_ELIMIT;
+    *out = d;
+    return d->status;
+}
+
+int syl_derive_step(SylDeriver *d) {
+    if (d->status) return d->status;
+    Engine *e = &d->e;
+    const SylProgram *p = e->p;
+    int step = ++d->step, st = SYL_OK;
+    if (p->tables[TABLE_PRODUCE].nrules) {
+        bool applied = false;
+        st = pass(e, TABLE_PRODUCE, (uint64_t)step << 16, d->cur, d->spare, &applied, step, "step");
+        if (!st) {
+            SylString *x = d->cur;
+            d->cur = d->spare;
+            d->spare = x;
+        }
+    }
+    if (!st) st = passes(e, TABLE_DECOMPOSE, step, &d->cur, &d->spare);
+    if (!st) st = fill_queries(e, d->cur, step);
+    if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, step, d->cur);
+    d->opt->rewritten = e->rewritten;
+    return d->status = st;
+}
+
+const SylString *syl_deriver_string(const SylDeriver *d) { return d->cur; }
+int syl_deriver_steps(const SylDeriver *d) { return d->step; }
+
+int syl_derive_end(SylDeriver *d, SylString **out) {
+    if (out) *out = NULL;
+    if (!d) return SYL_ELIMIT;
+    int st = d->status;
+    d->opt->rewritten = d->e.rewritten;
+    if (!st && out) *out = detach(d->cur);
+    else syl_string_free(d->cur);
+    syl_string_free(d->spare);
+    engine_free(&d->e);
+    free(d);
+    return st;
+}
+
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
     SylDeriveOptions defaults = {.steps = -1};
     if (!opt) opt = &defaults;
-    if (p->kind != SYL_MODEL_LSYSTEM) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: grow it with `sylva grow`\n",
-                    p->name, p->kind == SYL_MODEL_GROW ? "grow block" : "scene");
-        *out = NULL;
-        return SYL_EUSAGE;
-    }
-    Engine e;
-    engine_init(&e, p, opt);
-    SylString *cur = new_string(&e), *spare = new_string(&e);
+    *out = NULL;
+    SylDeriver *d;
+    int st = syl_derive_begin(p, opt, NULL, &d);
     int steps = opt->steps >= 0 ? opt->steps : p->derive;
-    int st = cur && spare ? env_setup(&e, opt) : SYL_ELIMIT;
-    if (!st) st = axiom(&e, cur);
-    if (!st) st = passes(&e, TABLE_DECOMPOSE, 0, &cur, &spare);
-    if (!st) st = fill_queries(&e, cur, 0);
-    if (!st && opt->on_step) opt->on_step(opt->user, 0, cur);
-    for (int step = 1; step <= steps && !st; step++) {
-        bool applied = false;
-        if (p->tables[TABLE_PRODUCE].nrules) {
-            st = pass(&e, TABLE_PRODUCE, (uint64_t)step << 16, cur, spare, &applied, step, "step");
-            if (st) break;
-            SylString *x = cur;
-            cur = spare;
-            spare = x;
-        }
-        st = passes(&e, TABLE_DECOMPOSE, step, &cur, &spare);
-        if (!st) st = fill_queries(&e, cur, step);
-        if (!st && opt->on_step) opt->on_step(opt->user, step, cur);
-    }
-    syl_string_free(spare);
-    engine_free(&e);
-    opt->rewritten = e.rewritten;
-    if (st) {
-        syl_string_free(cur);
-        *out = NULL;
-        return st;
-    }
-    *out = detach(cur);
-    return SYL_OK;
+    for (int step = 1; step <= steps && !st; step++) st = syl_derive_step(d);
+    if (!d) return st;
+    return syl_derive_end(d, out);
 }
 
 int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out) {

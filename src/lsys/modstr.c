@@ -94,6 +94,17 @@ void syl_string_count(const SylString *s, uint64_t *counts) {
     for (size_t i = 0; i < s->n; i++) counts[CODE_SYM(s->code[i])]++;
 }
 
+SylString *syl_string_new(void) { return calloc(1, sizeof(SylString)); }
+
+int syl_string_push(SylString *s, int sym, int nparams, const double *params) {
+    if (sym < 0 || sym >= MAX_SYMBOLS || nparams < 0 || nparams > MAX_ARITY) return SYL_EUSAGE;
+    if (ms_reserve(s, 1, (size_t)nparams)) return SYL_ELIMIT;
+    s->code[s->n++] = CODE(sym, nparams);
+    for (int k = 0; k < nparams; k++) s->par[s->np++] = params[k];
+    s->poff_n = SIZE_MAX; /* the offset index is stale */
+    return SYL_OK;
+}
+
 void syl_string_free(SylString *s) {
     if (!s) return;
     ms_release(s);
