@@ -33,6 +33,8 @@ typedef struct SylCompileOptions {
     int noverrides;
     FILE *diag;                   /* where diagnostics go; NULL: nowhere */
     int lint;                     /* also report warnings of `sylva check` */
+    int sibling;                  /* compiled for another model of the file (a shoot rule, a
+                                     scene's plant): --set names it lacks are not errors */
 } SylCompileOptions;
 
 /* Compile source text (path is used in messages only). On failure *status is set and NULL
@@ -40,6 +42,8 @@ typedef struct SylCompileOptions {
 SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
                         int *status);
 void syl_program_free(SylProgram *p);
+/* Another model of p's file, compiled from the same text with the same --set values. */
+SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag, int *status);
 /* Read a whole file ("-": standard input), NUL-terminated; NULL with errno set on failure.
  * Free with free(). */
 char *syl_read_file(const char *path, size_t *len);

@@ -507,6 +507,7 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
     }
     for (int i = 0; i < c->opt->noverrides; i++) {
         int id = namemap_get(&c->values, c->opt->overrides[i].name, -1);
+        if (c->opt->sibling) continue;
         if (id < 0 || !c->vals[id].is_param) c->usage_error = true;
         if (id < 0 || !c->vals[id].is_param)
             diag_error(c->d, (SylLoc){0}, "--set %s: model '%s' has no parameter '%s'%s",
@@ -662,7 +663,17 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         *status = SYL_ELIMIT;
         return NULL;
     }
-    p->src = (Source){.path = path, .text = p->text, .len = len};
+    /* the path is kept: callers may free theirs while the program lives on */
+    p->src = (Source){.path = arena_strndup(&p->arena, path, strlen(path)), .text = p->text, .len = len};
+    if (opt->noverrides > 0) {
+        p->overrides = arena_alloc(&p->arena, (size_t)opt->noverrides * sizeof *p->overrides);
+        for (int i = 0; i < opt->noverrides; i++) {
+            const char *name = opt->overrides[i].name;
+            p->overrides[i].name = arena_strndup(&p->arena, name, strlen(name));
+            p->overrides[i].value = opt->overrides[i].value;
+        }
+        p->noverrides = opt->noverrides;
+    }
     Arena tmp = {0};
     Diag d = {.out = opt->diag, .src = &p->src};
     Compiler c = {.p = p, .d = &d, .tmp = &tmp, .opt = opt};
@@ -701,8 +712,9 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
             /* Growth directives are checked here, by the growth engine's own table
              * (src/sot/params.c), so `sylva check` reports them. The scene is checked with
              * the file's first model only, so that checking every model reports it once. */
-            if (!d.errors && m->kind == MODEL_GROW) d.errors += sot_check_grow(p, opt->diag);
-            if (!d.errors && scene && m == find_model(&ast, NULL)) d.errors += sot_check_scene(p, opt->diag);
+            if (!opt->sibling && !d.errors && m->kind == MODEL_GROW) d.errors += sot_check_grow(p, opt->diag);
+            if (!opt->sibling && !d.errors && scene && m == find_model(&ast, NULL))
+                d.errors += sot_check_scene(p, opt->diag);
         }
     }
     arena_free(&tmp);
@@ -712,6 +724,12 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         return NULL;
     }
     return p;
+}
+
+SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag, int *status) {
+    SylCompileOptions opt = {.model = model, .overrides = p->overrides, .noverrides = p->noverrides, .diag = diag,
+                             .sibling = 1};
+    return syl_compile(p->src.path, p->src.text, p->src.len, &opt, status);
 }
 
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max, char *buf,

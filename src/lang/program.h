@@ -138,6 +138,8 @@ struct SylProgram {
     bool has_scene;
     bool uses_queries;      /* ?P ?H ?L ?U ?E appear: the turtle fills them after every step */
     bool uses_env;          /* ?E appears: the environment answers it after every step */
+    SylOverride *overrides; /* the --set values it was compiled with, for its file's other models */
+    int noverrides;
     Arena arena;
     Source src;
     char *text; /* owned copy of the source */

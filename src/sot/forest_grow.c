@@ -9,7 +9,9 @@
 #include "sot/forest_internal.h"
 #include "sot/geometry.h"
 #include "sot/phyllotaxis.h"
+#include "util/array.h"
 #include "util/parallel.h"
+#include "util/rng.h"
 
 bool forest_space_scratch(Forest *f, size_t n) {
     if (n <= f->sbcap) return true;
@@ -110,6 +112,149 @@ static void directions(void *arg, size_t lo, size_t hi, int thread) {
     }
 }
 
+/* ---- shoot rules ---- */
+
+/* The things bud bi's plan hangs on metamer k, whose end is node (frame h, l there). False
+ * when out of memory; *end when the plan ends the axis here. */
+static bool hang(Tree *t, int32_t bi, int k, int32_t node, const float h[3], const float l[3], int year, bool *end) {
+    ShootPlan *plan = &t->plans[t->buds[bi].plan];
+    float o[3], u[3];
+    memcpy(o, t->nodes[node].pos, sizeof o);
+    glm_vec3_cross((float *)h, (float *)l, u);
+    for (uint32_t i = t->buds[bi].cursor; i < plan->n && plan->a[i].metamer == k; i++) {
+        Attach *a = &plan->a[i];
+        t->buds[bi].cursor = i + 1;
+        float ah[3], al[3];
+        shoot_to_world(o, h, l, u, a->h, false, ah);
+        shoot_to_world(o, h, l, u, a->l, false, al);
+        if (a->kind == ATT_BUD) {
+            Bud lat = {.node = node, .key = tree_child_key(t->buds[bi].key, (uint64_t)i + 1), .born = (uint16_t)year,
+                       .kind = BUD_LATERAL, .alive = 1, .plan = -1};
+            memcpy(lat.dir, ah, sizeof lat.dir);
+            if (sot_normalize(lat.dir) && tree_add_bud(t, &lat) < 0) return false;
+        } else if (a->kind == ATT_ORGAN) {
+            TreeOrgan g = {.size = a->size, .node = node, .born = (uint16_t)year, .kind = a->organ, .material = a->material};
+            shoot_to_world(o, h, l, u, a->pos, true, g.pos);
+            memcpy(g.h, ah, sizeof g.h);
+            memcpy(g.l, al, sizeof g.l);
+            if (!array_reserve(&t->organs, &t->organs_cap, t->norgans + 1, sizeof g)) return false;
+            t->organs[t->norgans++] = g;
+        } else if (a->kind == ATT_TWIG) {
+            TreeTwig w = {.radius = a->size, .node = node, .born = (uint16_t)year, .material = a->material,
+                          .parent = a->parent >= 0 ? plan->a[a->parent].placed : -1};
+            shoot_to_world(o, h, l, u, a->from, true, w.from);
+            shoot_to_world(o, h, l, u, a->pos, true, w.to);
+            memcpy(w.h, ah, sizeof w.h);
+            memcpy(w.l, al, sizeof w.l);
+            w.detached = a->parent < 0 && glm_vec3_norm2(a->from) > 0;
+            if (!array_reserve(&t->twigs, &t->twigs_cap, t->ntwigs + 1, sizeof w)) return false;
+            a->placed = (int32_t)t->ntwigs;
+            t->twigs[t->ntwigs++] = w;
+        } else *end = true;
+    }
+    return true;
+}
+
+typedef struct PlanJob {
+    Forest *f;
+    int year;
+    int *status; /* per candidate */
+} PlanJob;
+
+static uint64_t shoot_seed(const Bud *b, int year) { return rng_stream(b->key, (uint64_t)year, 0x5400, 0).key; }
+
+static void shoot_args(const Tree *t, const Bud *b, int year, double args[4]) {
+    const Node *nd = &t->nodes[b->node];
+    args[0] = b->len;
+    args[1] = b->v;
+    args[2] = nd->order + (b->kind == BUD_LATERAL);
+    args[3] = year - t->start_year;
+}
+
+static void derive_plans(void *arg, size_t lo, size_t hi, int thread) {
+    (void)thread;
+    PlanJob *j = arg;
+    for (size_t c = lo; c < hi; c++) {
+        Tree *t = &j->f->trees[j->f->cand[c].tree];
+        const Bud *b = &t->buds[j->f->cand[c].bud];
+        if (!t->rule) continue;
+        double args[4];
+        shoot_args(t, b, j->year, args);
+        j->status[c] = shoot_rule_plan(t->rule, args, shoot_seed(b, j->year), &t->plans[b->plan], NULL);
+    }
+}
+
+/* Room for one plan per candidate of a tree with a rule (buffers kept from year to year). */
+static bool plan_slots(Forest *f) {
+    for (int i = 0; i < f->ntrees; i++) f->trees[i].nplans = 0;
+    for (size_t c = 0; c < f->ncand; c++) {
+        Tree *t = &f->trees[f->cand[c].tree];
+        if (!t->rule) continue;
+        if (t->nplans == t->plans_cap) {
+            size_t cap = t->plans_cap ? 2 * t->plans_cap : 64;
+            ShootPlan *p = realloc(t->plans, cap * sizeof *p);
+            if (!p) return false;
+            memset(p + t->plans_cap, 0, (cap - t->plans_cap) * sizeof *p);
+            t->plans = p;
+            t->plans_cap = cap;
+        }
+        t->buds[f->cand[c].bud].plan = (int32_t)t->nplans++;
+        t->buds[f->cand[c].bud].cursor = 0;
+        t->buds[f->cand[c].bud].grown = 0;
+    }
+    return true;
+}
+
+/* Every shoot of a tree with a rule gets its plan: the rule may shorten it, and what it
+ * hangs on the shoot's base is hung now. Candidates left with nothing to grow go. */
+static int make_plans(Forest *f, int year) {
+    bool any = false;
+    for (int i = 0; i < f->ntrees; i++) any |= f->trees[i].rule != NULL;
+    if (!any) return SYL_OK;
+    if (!plan_slots(f)) return SYL_ELIMIT;
+    int *status = calloc(f->ncand ? f->ncand : 1, sizeof *status);
+    if (!status) return SYL_ELIMIT;
+    PlanJob j = {f, year, status};
+    par_for(f->threads, f->ncand, 16, derive_plans, &j);
+    size_t keep = 0;
+    int st = SYL_OK;
+    for (size_t c = 0; c < f->ncand && !st; c++) {
+        Candidate *cd = &f->cand[c];
+        Tree *t = &f->trees[cd->tree];
+        if (!t->rule) {
+            f->cand[keep++] = *cd;
+            continue;
+        }
+        if (status[c]) { /* derive it again to say why, in order, once */
+            Bud *b = &t->buds[cd->bud];
+            double args[4];
+            shoot_args(t, b, year, args);
+            if (f->diag)
+                fprintf(f->diag, "sylva: error: the shoot rule failed on shoot(%g, %g, %g, %g) in year %d%s:\n", args[0],
+                        args[1], args[2], args[3], year,
+                        status[c] == SYL_ELIMIT ? " (a shoot's string may hold a million modules)" : "");
+            shoot_rule_plan(t->rule, args, shoot_seed(b, year), &t->plans[b->plan], f->diag);
+            st = status[c];
+            break;
+        }
+        Bud *b = &t->buds[cd->bud];
+        const Node *nd = &t->nodes[b->node];
+        float h[3], l[3];
+        memcpy(h, b->dir, sizeof h);
+        sot_transport(nd->h, nd->l, h, l);
+        bool end = false;
+        if (!hang(t, cd->bud, 0, b->node, h, l, year, &end)) st = SYL_ELIMIT;
+        b = &t->buds[cd->bud];
+        int m = t->plans[b->plan].metamers;
+        if (m < b->len) b->len = m;
+        if (b->len > 0) f->cand[keep++] = *cd;
+        else if (end) b->alive = 0; /* a shoot of no metamers that ends its axis: a flower, say */
+    }
+    free(status);
+    f->ncand = keep;
+    return st;
+}
+
 /* The metamer candidate c grows: a node, its lateral buds, and the bud moves to its tip. */
 static bool add_metamer(Forest *f, const Candidate *c, int year) {
     Tree *t = &f->trees[c->tree];
@@ -133,9 +278,10 @@ static bool add_metamer(Forest *f, const Candidate *c, int year) {
     int32_t id = tree_add_node(t, &nd);
     if (id < 0) return false;
     if (b.kind == BUD_APICAL) t->nodes[b.node].main = id;
-    for (int k = 0; k < P->laterals; k++) {
+    int laterals = t->rule && shoot_rule_places_buds(t->rule) ? 0 : P->laterals;
+    for (int k = 0; k < laterals; k++) {
         Bud lat = {.node = id, .key = tree_child_key(b.key, (uint64_t)k + 1), .born = (uint16_t)year,
-                   .kind = BUD_LATERAL, .alive = 1};
+                   .kind = BUD_LATERAL, .alive = 1, .plan = -1};
         phyl_lateral_dir(P, &t->nodes[id], k, lat.dir);
         if (tree_add_bud(t, &lat) < 0) return false;
     }
@@ -146,6 +292,15 @@ static bool add_metamer(Forest *f, const Candidate *c, int year) {
     moved->key = tree_child_key(b.key, 0);
     moved->len--;
     t->grown++;
+    if (b.plan >= 0) {
+        bool end = false;
+        int k = ++t->buds[c->bud].grown;
+        float h[3], l[3];
+        memcpy(h, t->nodes[id].h, sizeof h);
+        memcpy(l, t->nodes[id].l, sizeof l);
+        if (!hang(t, c->bud, k, id, h, l, year, &end)) return false;
+        if (end && t->buds[c->bud].len == 0) t->buds[c->bud].alive = 0;
+    }
     if (f->env.cloud_on) markers_kill_near(&f->env.cloud, c->to);
     return true;
 }
@@ -158,9 +313,11 @@ int forest_grow(Forest *f, int year) {
         for (size_t k = 0; k < t->nb; k++)
             if (t->buds[k].alive && t->buds[k].len > 0 && !push_candidate(f, i, (int32_t)k)) return SYL_ELIMIT;
     }
+    int st = make_plans(f, year);
+    if (st) return st;
     for (int step = 0; f->ncand; step++) {
         double t0 = forest_now();
-        int st = space_step(f, year, step);
+        st = space_step(f, year, step);
         if (st) return st;
         double dt = forest_now() - t0;
         if (f->stats) f->stats->space_s += dt, f->stats->growth_s -= dt; /* growth_s is taken whole by the caller */

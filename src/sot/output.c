@@ -2,6 +2,7 @@
 #include "sot/output.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "sot/geometry.h"
@@ -61,6 +62,62 @@ static int add_organs(Tree *t, int year, SylSkeleton *sk, size_t first, const ui
     return SYL_OK;
 }
 
+/* What the shoot rule hung on the tree, less what is older than `keep` years. */
+static int add_rule_parts(Tree *t, int year, SylSkeleton *sk, size_t first, int32_t axis, uint64_t *count) {
+    int keep = t->P.rule_keep;
+    for (size_t i = 0; i < t->norgans; i++) {
+        const TreeOrgan *g = &t->organs[i];
+        if (keep > 0 && year - (int)g->born >= keep) continue;
+        SylOrgan o = {.size = g->size, .node = (int32_t)(first + (size_t)g->node), .kind = g->kind,
+                      .material = g->material, .module = (uint32_t)g->node};
+        memcpy(o.pos, g->pos, sizeof o.pos);
+        memcpy(o.h, g->h, sizeof o.h);
+        memcpy(o.l, g->l, sizeof o.l);
+        glm_vec3_cross(o.h, o.l, o.u);
+        if (syl_skeleton_add_organ(sk, &o) < 0) return SYL_ELIMIT;
+        (*count)++;
+    }
+    int32_t *at = malloc((t->ntwigs ? t->ntwigs : 1) * sizeof *at); /* each twig's end, in sk */
+    if (!at) return SYL_ELIMIT;
+    int st = SYL_OK;
+    for (size_t i = 0; i < t->ntwigs && !st; i++) {
+        const TreeTwig *w = &t->twigs[i];
+        at[i] = -1;
+        if (keep > 0 && year - (int)w->born >= keep) continue;
+        const Node *nd = &t->nodes[w->node];
+        SylNode n = {.radius = w->radius, .order = (uint16_t)(nd->order + 1), .kind = SYL_KIND_INTERNODE,
+                     .material = w->material, .module = (uint32_t)w->node};
+        n.parent = w->parent >= 0 ? at[w->parent] : (int32_t)(first + (size_t)w->node);
+        n.axis = w->parent >= 0 && n.parent >= 0 ? sk->nodes[n.parent].axis : axis++;
+        memcpy(n.h, w->h, sizeof n.h);
+        memcpy(n.l, w->l, sizeof n.l);
+        glm_vec3_cross(n.h, n.l, n.u);
+        if (w->detached || n.parent < 0) { /* it starts away from the shoot: a root of its own */
+            SylNode r = n;
+            memcpy(r.pos, w->from, sizeof r.pos);
+            r.parent = -1;
+            r.kind = SYL_KIND_ROOT;
+            int32_t k = syl_skeleton_add_node(sk, &r);
+            if (k < 0) st = SYL_ELIMIT;
+            n.parent = k;
+        }
+        memcpy(n.pos, w->to, sizeof n.pos);
+        if (!st && (at[i] = syl_skeleton_add_node(sk, &n)) < 0) st = SYL_ELIMIT;
+    }
+    free(at);
+    if (t->rule) {
+        bool set[256];
+        float rgb[256][3];
+        shoot_rule_colours(t->rule, set, rgb);
+        for (int m = 0; m < 256; m++)
+            if (set[m]) {
+                memcpy(sk->materials[m].rgb, rgb[m], sizeof rgb[m]);
+                if (m >= sk->nmaterials) sk->nmaterials = m + 1;
+            }
+    }
+    return st;
+}
+
 int tree_to_skeleton(Tree *t, int year, SylSkeleton *sk, int32_t axis_base, uint64_t *organs) {
     if (!pipe_areas(t)) return SYL_ELIMIT;
     const double *A = t->acc;
@@ -87,5 +144,6 @@ int tree_to_skeleton(Tree *t, int year, SylSkeleton *sk, int32_t axis_base, uint
         out.module = (uint32_t)i;
         if (syl_skeleton_add_node(sk, &out) < 0) return SYL_ELIMIT;
     }
-    return add_organs(t, year, sk, first, has_child, organs);
+    int st = add_organs(t, year, sk, first, has_child, organs);
+    return st ? st : add_rule_parts(t, year, sk, first, axis_base + t->axes, organs);
 }

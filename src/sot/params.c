@@ -8,6 +8,7 @@
  * change it), a tuple (x, y, z), a word or on/off. */
 #include "sot/params.h"
 #include "sot/reader.h"
+#include "sot/shoot_rule.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -15,7 +16,8 @@
 
 #include "sylva/skeleton.h"
 
-typedef enum { V_NUM, V_INT, V_SEED, V_BOOL, V_VEC3, V_WORD } VType; /* V_SEED: a whole number in a uint64_t */
+/* V_SEED: a whole number in a uint64_t; V_NAME: a model's name, into a char[64] */
+typedef enum { V_NUM, V_INT, V_SEED, V_BOOL, V_VEC3, V_WORD, V_NAME } VType;
 
 typedef struct Key {
     const char *name;
@@ -126,7 +128,12 @@ static const Mode alloc_modes[] = {
     {0},
 };
 
-static const Key shoot_keys[] = {{"max", V_INT, 1, 1000, G(shoot_max), 0}, END};
+static const Key shoot_keys[] = {
+    {"max", V_INT, 1, 1000, G(shoot_max), 0},
+    {"rule", V_NAME, 0, 0, G(rule), 0},
+    {"keep", V_INT, 0, 10000, G(rule_keep), 0},
+    END,
+};
 static const Mode shoot_modes[] = {
     {"relative", SHOOT_RELATIVE, false, NULL},
     {"vigor", SHOOT_VIGOR, false, NULL},
@@ -330,6 +337,13 @@ static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylD
             ((float *)field)[j] = (float)a->values[j];
         }
         return 1;
+    case V_NAME:
+        if (a->kind != SYL_DARG_WORD || strlen(a->text) >= 64) {
+            ERR(r, a->line, a->col, "'%s' expects the name of an lsystem of this file", k->name);
+            return 0;
+        }
+        strcpy(field, a->text);
+        return 1;
     case V_WORD:
         for (int j = 0; k->words[j]; j++)
             if (a->kind == SYL_DARG_WORD && !strcmp(a->text, k->words[j])) {
@@ -472,6 +486,31 @@ static void read_directive(Reader *r, const Directive *dir, const SylDirective *
     }
 }
 
+/* The shoot rule's model compiles, is an lsystem and rewrites `shoot`. */
+static void check_rule(Reader *r, const SylDirective *dirs, int n, GrowParams *g) {
+    int line = 0, col = 0;
+    for (int i = 0; i < n; i++)
+        if (!strcmp(dirs[i].name, "shoot"))
+            for (int j = 0; j < dirs[i].nargs; j++)
+                if (dirs[i].args[j].kind == SYL_DARG_WORD && !strcmp(dirs[i].args[j].text, g->rule))
+                    line = dirs[i].args[j].line, col = dirs[i].args[j].col;
+    int status = 0;
+    SylProgram *q = syl_compile_model(r->p, g->rule, NULL, &status);
+    const char *why = shoot_rule_check(q);
+    size_t len = 0;
+    const char *text = syl_program_source(r->p, &len);
+    const char *names[256];
+    char buf[8192];
+    int nm = q ? 0 : syl_list_models(syl_program_path(r->p), text, len, names, 256, buf, sizeof buf);
+    bool exists = false;
+    for (int i = 0; i < nm; i++) exists |= !strcmp(names[i], g->rule);
+    if (!q && !exists) ERR(r, line, col, "the shoot rule '%s' is not a model of this file", g->rule);
+    else if (!q) ERR(r, line, col, "the shoot rule '%s' does not compile (see `sylva check %s:%s`)", g->rule,
+                     syl_program_path(r->p), g->rule);
+    else if (why) ERR(r, line, col, "the shoot rule '%s' %s", g->rule, why);
+    syl_program_free(q);
+}
+
 /* Checks across directives, once all are read. */
 static void check_whole(Reader *r, const SylDirective *dirs, int n, GrowParams *g) {
     if (g->space != SPACEM_OFF && g->perception <= g->occupancy) {
@@ -502,10 +541,12 @@ static void check_whole(Reader *r, const SylDirective *dirs, int n, GrowParams *
     g->branch_cos = (float)cos(g->branch_angle * deg);
     if (g->voxel <= 0) g->voxel = g->internode;
     if (g->foliage <= 0) g->foliage = 0.4f * g->internode;
+    if (g->rule[0]) check_rule(r, dirs, n, g);
 }
 
 int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
     grow_params_default(g);
+    g->from = p;
     g->seed = syl_program_seed(p) ? syl_program_seed(p) : 1;
     Reader r = {.p = p, .diag = diag};
     int n = 0;

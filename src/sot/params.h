@@ -56,6 +56,9 @@ typedef struct GrowParams {
     float sensitivity;
     /* shoots */
     int shoot, shoot_max;
+    char rule[64];                    /* an lsystem of the file whose `shoot` rule builds each shoot */
+    int rule_keep;                    /* years the rule's organs and twigs stay (0: for good) */
+    const SylProgram *from;           /* the grow model read (to compile the rule); valid while read */
     /* direction */
     float w_bud, w_space, w_light, w_tropism, tropism_angle, w_trunk, jitter;
     bool trunk_tropism;

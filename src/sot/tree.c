@@ -15,8 +15,10 @@ bool tree_init(Tree *t, const GrowParams *P, int index, const float base[3], int
     memcpy(t->base, base, sizeof t->base);
     Node root = {.pos = {base[0], base[1], base[2]}, .h = {0, 1, 0}, .l = {1, 0, 0}, .parent = -1, .main = -1,
                  .axis = t->axes++, .born = 0};
-    Bud bud = {.dir = {0, 1, 0}, .node = 0, .kind = BUD_APICAL, .alive = 1, .born = 0,
+    Bud bud = {.dir = {0, 1, 0}, .node = 0, .kind = BUD_APICAL, .alive = 1, .born = 0, .plan = -1,
                .key = rng_stream(P->seed, 0x5eed, 0, 0).key};
+    if (P->rule[0] && P->from && !(t->rule = shoot_rule_new(P->from, P->rule))) return false;
+    t->P.from = NULL; /* it need not outlive this call */
     return tree_add_node(t, &root) == 0 && tree_add_bud(t, &bud) == 0;
 }
 
@@ -26,6 +28,11 @@ void tree_free(Tree *t) {
     free(t->acc);
     free(t->acc2);
     free(t->acc3);
+    shoot_rule_free(t->rule);
+    for (size_t i = 0; i < t->plans_cap; i++) shoot_plan_free(&t->plans[i]);
+    free(t->plans);
+    free(t->organs);
+    free(t->twigs);
     memset(t, 0, sizeof *t);
 }
 
@@ -85,6 +92,32 @@ bool tree_compact(Tree *t) {
         t->buds[j++] = b;
     }
     t->nb = j;
+    /* what the shoot rule hung on shed metamers goes with them */
+    j = 0;
+    for (size_t i = 0; i < t->norgans; i++) {
+        TreeOrgan o = t->organs[i];
+        if (map[o.node] < 0) continue;
+        o.node = map[o.node];
+        t->organs[j++] = o;
+    }
+    t->norgans = j;
+    int32_t *tmap = malloc((t->ntwigs ? t->ntwigs : 1) * sizeof *tmap);
+    if (!tmap) {
+        free(map);
+        return false;
+    }
+    j = 0;
+    for (size_t i = 0; i < t->ntwigs; i++) {
+        TreeTwig w = t->twigs[i];
+        tmap[i] = -1;
+        if (map[w.node] < 0 || (w.parent >= 0 && tmap[w.parent] < 0)) continue;
+        w.node = map[w.node];
+        if (w.parent >= 0) w.parent = tmap[w.parent];
+        tmap[i] = (int32_t)j;
+        t->twigs[j++] = w;
+    }
+    free(tmap);
+    t->ntwigs = j;
     free(map);
     return true;
 }

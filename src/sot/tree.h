@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "sot/params.h"
+#include "sot/shoot_rule.h"
 
 enum { NODE_LATERAL = 1, NODE_DEAD = 2 };
 enum { BUD_APICAL, BUD_LATERAL };
@@ -41,10 +42,33 @@ typedef struct Bud {
     double v;         /* resource allocated */
     float seg;        /* metamer length this year */
     int32_t len;      /* metamers still to grow this year */
+    int32_t plan;     /* this year's shoot plan (Tree.plans), -1: none */
+    uint32_t cursor;  /* the plan's next attachment */
+    uint16_t grown;   /* metamers of this year's shoot grown so far */
     uint16_t born;
     uint8_t kind;     /* BUD_* */
     uint8_t alive;
 } Bud;
+
+/* What a shoot rule hung on the tree: organs, and twigs drawn by F in a branch (neither
+ * takes part in the light or the pipe model). */
+typedef struct TreeOrgan {
+    float pos[3], h[3], l[3];
+    float size;
+    int32_t node;
+    uint16_t born;
+    uint8_t kind, material;
+} TreeOrgan;
+
+typedef struct TreeTwig {
+    float from[3], to[3], h[3], l[3];
+    float radius;
+    int32_t node;     /* the metamer it hangs on */
+    int32_t parent;   /* the twig it continues, -1: it starts at the node (or at from) */
+    uint16_t born;
+    uint8_t material;
+    uint8_t detached; /* it starts at from, away from its node and parent */
+} TreeTwig;
 
 typedef struct Tree {
     GrowParams P;
@@ -56,6 +80,14 @@ typedef struct Tree {
     Bud *buds;
     size_t nb, bcap;
     int32_t axes;     /* axis ids handed out */
+    /* a shoot rule, this year's plans, and what the rule hung on the tree */
+    ShootRule *rule;
+    ShootPlan *plans;
+    size_t nplans, plans_cap;
+    TreeOrgan *organs;
+    size_t norgans, organs_cap;
+    TreeTwig *twigs;
+    size_t ntwigs, twigs_cap;
     /* per-node scratch of the yearly passes */
     double *acc, *acc2, *acc3;
     size_t scratch_cap;
@@ -63,7 +95,8 @@ typedef struct Tree {
     uint64_t grown, shed_branches, shed_metamers;
 } Tree;
 
-/* A tree with its base and its first bud (pointing up). False when out of memory. */
+/* A tree with its base and its first bud (pointing up), and its shoot rule compiled when P
+ * names one. False when out of memory. */
 bool tree_init(Tree *t, const GrowParams *P, int index, const float base[3], int start_year);
 void tree_free(Tree *t);
 /* Append a node or a bud; -1 when out of memory. Pointers into the arrays move. */

@@ -1,0 +1,297 @@
+/* Rule-made shoots: see shoot_rule.h. The plan is read by a small turtle of its own: it
+ * only places things relative to a metamer, so it keeps no skeleton and no tropism. */
+#include "sot/shoot_rule.h"
+
+#include <cglm/cglm.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/program.h"
+#include "sylva/skeleton.h"
+#include "util/array.h"
+
+typedef enum {
+    C_NONE, C_METAMER, C_DRAW, C_MOVE, C_LEFT, C_RIGHT, C_DOWN, C_UP, C_ROLL_LEFT, C_ROLL_RIGHT, C_AROUND,
+    C_PUSH, C_POP, C_CUT, C_WIDTH, C_MATERIAL, C_LEAF, C_FLOWER, C_NEEDLE, C_BUD,
+} Cmd;
+
+static const struct {
+    const char *name;
+    uint8_t cmd;
+} names[] = {
+    {"I", C_METAMER}, {"F", C_DRAW},        {"f", C_MOVE},      {"+", C_LEFT},         {"-", C_RIGHT},
+    {"&", C_DOWN},    {"^", C_UP},          {"\\", C_ROLL_LEFT}, {"/", C_ROLL_RIGHT},  {"|", C_AROUND},
+    {"[", C_PUSH},    {"]", C_POP},         {"%", C_CUT},       {"!", C_WIDTH},        {"'", C_MATERIAL},
+    {"~leaf", C_LEAF}, {"~petal", C_FLOWER}, {"~flower", C_FLOWER}, {"~needle", C_NEEDLE}, {"B", C_BUD},
+};
+
+struct ShootRule {
+    SylProgram *p;
+    int shoot, arity;      /* the symbol rewritten, and its parameters (at most 4) */
+    bool buds;
+    float angle, step, width, widthfactor;
+    uint8_t cmd[MAX_SYMBOLS];
+};
+
+/* The arity of the first production for `shoot` (produce or decompose), or -1. */
+static int shoot_arity(const SylProgram *q, int sym) {
+    for (int t = TABLE_PRODUCE; t <= TABLE_DECOMPOSE; t++)
+        for (int i = 0; i < q->tables[t].nrules; i++)
+            if (CODE_SYM(q->tables[t].rules[i].pred) == sym) return CODE_ARITY(q->tables[t].rules[i].pred);
+    return -1;
+}
+
+const char *shoot_rule_check(const SylProgram *q) {
+    if (!q) return "does not compile";
+    if (syl_program_kind(q) != SYL_MODEL_LSYSTEM) return "is not an lsystem";
+    int sym = syl_program_symbol_find(q, "shoot");
+    int arity = sym >= 0 ? shoot_arity(q, sym) : -1;
+    if (arity < 0) return "has no production for shoot(n, vigor, order, year)";
+    if (arity > 4) return "rewrites shoot with more than 4 parameters (n, vigor, order, year)";
+    return NULL;
+}
+
+ShootRule *shoot_rule_new(const SylProgram *grow, const char *model) {
+    int status = 0;
+    SylProgram *q = syl_compile_model(grow, model, NULL, &status);
+    if (!q || shoot_rule_check(q)) {
+        syl_program_free(q);
+        return NULL;
+    }
+    ShootRule *r = calloc(1, sizeof *r);
+    if (!r) {
+        syl_program_free(q);
+        return NULL;
+    }
+    r->p = q;
+    r->shoot = syl_program_symbol_find(q, "shoot");
+    r->arity = shoot_arity(q, r->shoot);
+    r->angle = (float)q->angle;
+    r->step = (float)q->step;
+    r->width = (float)q->width;
+    r->widthfactor = (float)q->widthfactor;
+    for (int i = 0; i < q->nsyms && i < MAX_SYMBOLS; i++)
+        for (size_t k = 0; q->syms[i].name && k < sizeof names / sizeof *names; k++)
+            if (!strcmp(q->syms[i].name, names[k].name)) r->cmd[i] = names[k].cmd;
+    /* B placed anywhere in the model (a rule or the axiom) means the rule places the buds */
+    int b = syl_program_symbol_find(q, "B");
+    for (int t = 0; b >= 0 && t < TABLE_COUNT && !r->buds; t++)
+        for (int i = 0; i < q->tables[t].nrules && !r->buds; i++)
+            for (int k = 0; k < q->tables[t].rules[i].nsucc; k++)
+                if (CODE_SYM(q->tables[t].rules[i].succ[k]) == b) r->buds = true;
+    return r;
+}
+
+void shoot_rule_free(ShootRule *r) {
+    if (!r) return;
+    syl_program_free(r->p);
+    free(r);
+}
+
+bool shoot_rule_places_buds(const ShootRule *r) { return r->buds; }
+
+void shoot_rule_colours(const ShootRule *r, bool set[256], float rgb[256][3]) {
+    for (int i = 0; i < 256; i++) {
+        set[i] = r->p->colour_set[i];
+        if (set[i]) memcpy(rgb[i], r->p->colours[i], sizeof rgb[i]);
+    }
+}
+
+void shoot_plan_free(ShootPlan *plan) {
+    free(plan->a);
+    memset(plan, 0, sizeof *plan);
+}
+
+/* ---- reading the plan ---- */
+
+typedef struct State {
+    vec3 pos, h, l, u;
+    float width;
+    uint8_t material;
+    int32_t twig;     /* the last twig drawn on this path, -1: none */
+} State;
+
+typedef struct Reader {
+    const ShootRule *r;
+    ShootPlan *plan;
+    State st;
+    State stack[64];
+    int depth;        /* brackets open; deeper ones are followed but not saved */
+    int metamer;
+    float roll;       /* degrees: the top-level rolls so far */
+    bool oom;
+} Reader;
+
+/* (a, b) turned in their plane by deg: a toward b. */
+static void turn(vec3 a, vec3 b, float deg) {
+    float s = sinf(deg * GLM_PIf / 180), c = cosf(deg * GLM_PIf / 180);
+    vec3 a2, b2;
+    glm_vec3_scale(a, c, a2);
+    glm_vec3_muladds(b, s, a2);
+    glm_vec3_scale(b, c, b2);
+    glm_vec3_muladds(a, -s, b2);
+    glm_vec3_copy(a2, a);
+    glm_vec3_copy(b2, b);
+}
+
+/* The frame at a metamer's end: along the shoot, turned by the rolls so far. */
+static void reset(Reader *rd) {
+    State *st = &rd->st;
+    glm_vec3_zero(st->pos);
+    glm_vec3_copy((vec3){1, 0, 0}, st->h);
+    glm_vec3_copy((vec3){0, 1, 0}, st->l);
+    glm_vec3_copy((vec3){0, 0, 1}, st->u);
+    turn(st->l, st->u, rd->roll);
+    st->twig = -1;
+}
+
+static Attach *attach(Reader *rd, AttachKind kind) {
+    ShootPlan *p = rd->plan;
+    if (!array_reserve(&p->a, &p->cap, p->n + 1, sizeof *p->a)) {
+        rd->oom = true;
+        return NULL;
+    }
+    Attach *a = &p->a[p->n++];
+    memset(a, 0, sizeof *a);
+    a->kind = (uint8_t)kind;
+    a->metamer = (uint16_t)(rd->metamer < UINT16_MAX ? rd->metamer : UINT16_MAX);
+    a->parent = -1;
+    a->material = rd->st.material;
+    glm_vec3_copy(rd->st.pos, a->pos);
+    glm_vec3_copy(rd->st.h, a->h);
+    glm_vec3_copy(rd->st.l, a->l);
+    return a;
+}
+
+static float arg(const double *a, int na, float def) {
+    return na && isfinite(a[0]) ? (float)fmax(-1e6, fmin(1e6, a[0])) : def;
+}
+
+static void organ(Reader *rd, uint8_t kind, float size) {
+    Attach *a = attach(rd, ATT_ORGAN);
+    if (!a) return;
+    a->organ = kind;
+    a->size = size;
+    if (a->material == 0) a->material = kind == SYL_KIND_FLOWER ? SYL_MATERIAL_FLOWER : SYL_MATERIAL_LEAF;
+}
+
+static void draw(Reader *rd, float len) {
+    State *st = &rd->st;
+    vec3 from;
+    glm_vec3_copy(st->pos, from);
+    glm_vec3_muladds(st->h, len, st->pos);
+    Attach *a = attach(rd, ATT_TWIG);
+    if (!a) return;
+    glm_vec3_copy(from, a->from);
+    a->parent = st->twig;
+    a->size = 0.5f * st->width;
+    st->twig = (int32_t)(rd->plan->n - 1);
+}
+
+/* The end of the branch open at module i (its `]`), or s's end. */
+static size_t skip_branch(const SylString *s, size_t i) {
+    int depth = 0;
+    for (; i < syl_string_length(s); i++) {
+        int sym = syl_string_module(s, i, NULL, NULL);
+        if (sym == SYM_OPEN) depth++;
+        else if (sym == SYM_CLOSE && depth-- == 0) return i;
+    }
+    return i;
+}
+
+static void read_plan(Reader *rd, const SylString *s) {
+    const ShootRule *r = rd->r;
+    size_t n = syl_string_length(s);
+    reset(rd);
+    for (size_t i = 0; i < n && !rd->oom; i++) {
+        int na;
+        const double *a;
+        int sym = syl_string_module(s, i, &na, &a);
+        State *st = &rd->st;
+        bool top = rd->depth == 0;
+        float deg = arg(a, na, r->angle);
+        switch ((Cmd)r->cmd[sym]) {
+        case C_NONE: break;
+        case C_METAMER:
+        case C_DRAW:
+            if (top) {
+                rd->metamer++;
+                reset(rd);
+            } else draw(rd, arg(a, na, r->step));
+            break;
+        case C_MOVE:
+            glm_vec3_muladds(st->h, arg(a, na, r->step), st->pos);
+            st->twig = -1;
+            break;
+        case C_LEFT: turn(st->h, st->l, deg); break;
+        case C_RIGHT: turn(st->h, st->l, -deg); break;
+        case C_DOWN: turn(st->u, st->h, deg); break; /* H toward -U */
+        case C_UP: turn(st->u, st->h, -deg); break;
+        case C_ROLL_LEFT:
+        case C_ROLL_RIGHT: {
+            float d = r->cmd[sym] == C_ROLL_RIGHT ? deg : -deg;
+            turn(st->l, st->u, d);
+            if (top) rd->roll = fmodf(rd->roll + d, 360);
+            break;
+        }
+        case C_AROUND:
+            glm_vec3_negate(st->h);
+            glm_vec3_negate(st->l);
+            break;
+        case C_PUSH:
+            if (rd->depth < 64) rd->stack[rd->depth] = *st;
+            rd->depth++;
+            break;
+        case C_POP:
+            if (rd->depth == 0) break; /* an unmatched ] ends nothing */
+            rd->depth--;
+            if (rd->depth < 64) *st = rd->stack[rd->depth];
+            break;
+        case C_CUT:
+            if (top) attach(rd, ATT_END);
+            else i = skip_branch(s, i + 1) - 1; /* the ] is read next */
+            if (top) i = n;
+            break;
+        case C_WIDTH: st->width = na ? fmaxf(0, arg(a, na, 0)) : st->width * r->widthfactor; break;
+        case C_MATERIAL: st->material = (uint8_t)fmax(0, fmin(255, arg(a, na, st->material + 1.0f))); break;
+        case C_LEAF: organ(rd, SYL_KIND_LEAF, arg(a, na, r->step)); break;
+        case C_FLOWER: organ(rd, SYL_KIND_FLOWER, arg(a, na, r->step)); break;
+        case C_NEEDLE: organ(rd, SYL_KIND_NEEDLE, arg(a, na, r->step)); break;
+        case C_BUD: attach(rd, ATT_BUD); break;
+        }
+    }
+    rd->plan->metamers = rd->metamer;
+}
+
+int shoot_rule_plan(const ShootRule *r, const double args[4], uint64_t seed, ShootPlan *plan, FILE *diag) {
+    plan->n = 0;
+    plan->metamers = 0;
+    SylString *start = syl_string_new(), *out = NULL;
+    if (!start || syl_string_push(start, r->shoot, r->arity, args)) {
+        syl_string_free(start);
+        return SYL_ELIMIT;
+    }
+    /* a shoot is small: a runaway rule stops here, not at the whole machine's memory */
+    SylDeriveOptions d = {.steps = -1, .use_seed = 1, .seed = seed, .threads = 1, .max_modules = 1000000,
+                          .max_memory = 256u << 20, .diag = diag};
+    SylDeriver *dv = NULL;
+    int st = syl_derive_begin(r->p, &d, start, &dv);
+    for (int k = 1; k <= syl_program_steps(r->p) && !st; k++) st = syl_derive_step(dv);
+    if (dv) st = syl_derive_end(dv, &out);
+    syl_string_free(start);
+    if (st) return st;
+    Reader *rd = calloc(1, sizeof *rd);
+    if (!rd) {
+        syl_string_free(out);
+        return SYL_ELIMIT;
+    }
+    rd->r = r;
+    rd->plan = plan;
+    rd->st.width = r->width;
+    read_plan(rd, out);
+    st = rd->oom ? SYL_ELIMIT : SYL_OK;
+    free(rd);
+    syl_string_free(out);
+    return st;
+}
