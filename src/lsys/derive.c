@@ -381,7 +381,7 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     }
     Work works[MAX_THREADS];
     SylString parts[MAX_THREADS];
-    memset(parts, 0, sizeof parts);
+    memset(parts, 0, (size_t)nt * sizeof *parts); /* only those used: small strings pass often */
     /* where each chunk's parameters start */
     uint32_t plo = 0;
     size_t lo = 0;
