@@ -6,8 +6,9 @@
  *   obstacles triangle meshes from OBJ files in an Embree scene (obstacles.h)
  *   ground   a plane at a height; terrain meshes are obstacles
  *
- * Plants register their metamers here (shadow casters, occupants); L-system plants drawn by
- * the turtle register theirs once, as static occupants. */
+ * Plants register their metamers here (shadow casters, occupants). L-system plants drawn by
+ * the turtle are static occupants: registered once when they are drawn before the trees grow,
+ * or replaced every year when they derive in lockstep with the trees (sot/scene_lsys.c). */
 #ifndef SYL_ENV_H
 #define SYL_ENV_H
 #include <stdbool.h>
@@ -37,7 +38,7 @@ typedef struct Env {
     MarkerCloud cloud;
     float occupancy;       /* radius, model units */
     PointGrid occupied;    /* metamer ends of every plant, rebuilt once a year */
-    float *statics;        /* static occupants: 3 floats each */
+    float *statics;        /* static occupants (L-system segment ends): 3 floats each */
     size_t nstatic, static_cap;
 } Env;
 
@@ -45,6 +46,8 @@ typedef struct Env {
 int env_init(Env *e, int threads, FILE *diag);
 void env_free(Env *e);
 bool env_add_static(Env *e, const float pos[3]);
+/* Forget the static occupants (keeping their memory), to add this year's. */
+static inline void env_clear_statics(Env *e) { e->nstatic = 0; }
 /* Is p below the ground plane? */
 static inline bool env_below_ground(const Env *e, const float p[3]) { return p[1] < e->ground; }
 

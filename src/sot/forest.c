@@ -76,6 +76,12 @@ int forest_setup(Forest *f, float ground, const float sun[3], bool sun_set) {
         memcpy(sp.sun, e->sun, sizeof sp.sun);
         shadow_init(&e->shadow, &sp, ground);
         e->shadow_on = true;
+    } else if (f->lsys_shadow) { /* only for ?E light: no tree reads it */
+        ShadowParams sp = f->lsys_shadow_params;
+        memcpy(sp.sun, e->sun, sizeof sp.sun);
+        if (!(sp.sun[1] > 0)) sp.sun[0] = sp.sun[2] = 0, sp.sun[1] = 1;
+        shadow_init(&e->shadow, &sp, ground);
+        e->shadow_on = true;
     }
     e->sky_on = sky != NULL;
     if (space) {
@@ -124,9 +130,12 @@ int forest_run(Forest *f, void (*progress)(void *, double), void *user) {
     size_t *before = malloc((size_t)(f->ntrees ? f->ntrees : 1) * sizeof *before);
     int st = before ? forest_register_statics(f) : SYL_ELIMIT;
     for (int year = 1; year <= f->years && !st; year++) {
+        double th = forest_now();
+        if (f->year_start) st = f->year_start(f->year_user, year);
         double t0 = forest_now();
+        if (s) s->other_s += t0 - th;
         for (int i = 0; i < f->ntrees; i++) before[i] = f->trees[i].n;
-        st = forest_light(f, year);
+        if (!st) st = forest_light(f, year);
         double t1 = forest_now();
         if (!st) st = forest_space_light(f, year);
         double t2 = forest_now();

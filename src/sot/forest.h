@@ -8,6 +8,10 @@
  *   4. register the new metamers cast shadow and occupy space
  *   5. shed    per tree; shed metamers leave the light and space models
  *
+ * Before the light phase of every year the forest calls its year_start hook, if any: a
+ * scene's L-system plants take their derivation step there and replace their casters and
+ * occupants (scene_lsys.c), so trees and L-systems grow in lockstep.
+ *
  * Everything random comes from the buds' own streams and every sum runs in a fixed order,
  * so the forest is the same for any thread count. */
 #ifndef SYL_SOT_FOREST_H
@@ -35,6 +39,12 @@ typedef struct Forest {
     SylGrowStats *stats;
     int space_variant;     /* SPACE_PER_BUD or SPACE_GLOBAL, from the first tree that uses space */
     bool space_any;
+    /* Called at the start of every year, before light; NULL: none. */
+    int (*year_start)(void *user, int year);
+    void *year_user;
+    /* A shadow grid for ?E light when no tree uses `light shadow` (set before forest_setup). */
+    bool lsys_shadow;
+    ShadowParams lsys_shadow_params;
     /* scratch */
     Candidate *cand;
     size_t ncand, ccap;
@@ -52,7 +62,7 @@ void forest_free(Forest *f);
 int forest_add_tree(Forest *f, const GrowParams *P, const float base[3], int years);
 /* After the trees and the obstacles: set the light and space models up. */
 int forest_setup(Forest *f, float ground, const float sun[3], bool sun_set);
-/* Register static occupants (L-system plants) before forest_run. */
+/* Register static occupants (L-system plants drawn before the trees grow) before forest_run. */
 int forest_add_static(Forest *f, const float pos[3]);
 int forest_run(Forest *f, void (*progress)(void *, double), void *user);
 /* Each node's light this year (shadow model: the grid; otherwise the best bud on it). */

@@ -1,7 +1,9 @@
 /* syl_grow_scene: every plant of a file's scene in one environment. Grow plants become
- * trees of one forest; L-system plants are derived and drawn first, then stand in the
- * environment as static shadow casters and occupants. The skeleton holds every plant in
- * the order the scene lists them. */
+ * trees of one forest. L-system plants beside trees derive in lockstep with them, a step a
+ * year (scene_lsys.c), shading and crowding them and shaded by them; in a scene of
+ * L-systems only, each is derived and drawn in turn and stands, for the plants after it, as
+ * static shadow casters and occupants. The skeleton holds every plant in the order the scene
+ * lists them. */
 #include <libgen.h>
 #include <math.h>
 #include <stdlib.h>
@@ -18,6 +20,7 @@ enum { OBSTACLE_MATERIAL = 250 };
 typedef struct Placed {
     SylSkeleton *lsys; /* an L-system plant, drawn and moved into place */
     int tree;          /* a grow plant: its tree, or -1 */
+    int lockstep;      /* an L-system plant beside trees: its number in SceneLsys, or -1 */
 } Placed;
 
 /* path relative to the scene file's directory (free it). */
@@ -58,13 +61,22 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
     return q;
 }
 
-/* An L-system plant's ?E modules read the scene: its obstacles, the ground and the plants
- * drawn before it (static casters and occupants), and the plant's own skeleton. */
-static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index,
-                        const SceneSpec *S, const Env *env, SylSkeleton **out) {
-    SylDeriveOptions d = {.steps = -1, .threads = opt->threads, .diag = opt->diag};
+/* How an L-system plant of the scene derives: its seed, and its steps (the plant line's
+ * years, else the model's `derive`). */
+static SylDeriveOptions lsys_options(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index) {
+    SylDeriveOptions d = {.steps = pl->years_set ? pl->years : syl_program_steps(q), .threads = opt->threads,
+                          .diag = opt->diag};
     if (pl->seed_set) d.use_seed = 1, d.seed = pl->seed;
     else if (opt->use_seed) d.use_seed = 1, d.seed = opt->seed + (uint64_t)index;
+    return d;
+}
+
+/* A scene without trees: an L-system plant's ?E modules read the scene's obstacles, the
+ * ground and the plants drawn before it (static casters and occupants), and the plant's own
+ * skeleton. */
+static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index,
+                        const SceneSpec *S, const Env *env, SylSkeleton **out) {
+    SylDeriveOptions d = lsys_options(q, opt, pl, index);
     OpenEnvParams P = {.voxel = (float)syl_program_setting(q, "step"), .ground = S->ground_set ? S->ground : pl->at[1],
                        .sun = {0, 1, 0}, .at = {pl->at[0], pl->at[1], pl->at[2]},
                        .obstacles = obstacles_any(&env->obstacles) ? &env->obstacles : NULL,
@@ -74,23 +86,12 @@ static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const Sc
     open_env_init(&oe, &P);
     d.env = open_env_answer;
     d.env_user = &oe;
-    SylString *s = NULL, *ti = NULL;
+    SylString *s = NULL;
     int st = syl_derive(q, &d, &s);
     open_env_free(&oe);
-    if (!st) st = syl_interpret(q, s, &d, &ti);
-    SylTurtleOptions to = {.diag = opt->diag};
-    if (!st) st = syl_turtle(q, ti, &to, out);
+    if (!st) st = lsys_draw(q, s, &d, pl->at, out);
     syl_string_free(s);
-    syl_string_free(ti);
-    if (st) return st;
-    SylSkeleton *sk = *out;
-    for (size_t i = 0; i < sk->nnodes; i++)
-        for (int k = 0; k < 3; k++) sk->nodes[i].pos[k] += pl->at[k];
-    for (size_t i = 0; i < sk->norgans; i++)
-        for (int k = 0; k < 3; k++) sk->organs[i].pos[k] += pl->at[k];
-    for (size_t i = 0; i < sk->nverts; i++)
-        for (int k = 0; k < 3; k++) sk->poly_verts[i][k] += pl->at[k];
-    return SYL_OK;
+    return st;
 }
 
 /* Append skeleton b to a: indices and axes renumbered, materials carried over. */
@@ -181,44 +182,71 @@ static bool has_terrain(const SceneSpec *S) {
     return false;
 }
 
+/* Compile every plant (its place set on the terrain) before any grows: whether a tree is
+ * among them decides how the L-systems derive. */
+static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, ScenePlant *plants, SylProgram **progs,
+                          FILE *diag) {
+    for (int i = 0; i < S->nplants; i++) {
+        ScenePlant *pl = &plants[i];
+        *pl = S->plants[i];
+        float h;
+        if (has_terrain(S) && obstacles_height(&f->env.obstacles, pl->at[0], pl->at[2], f->env.obstacles.hi[1] + 1, &h))
+            pl->at[1] = h + 0.01f; /* just above, so its first metamer's ray starts clear */
+        int st = SYL_OK;
+        progs[i] = plant_program(p, pl, diag, &st);
+        if (!progs[i]) {
+            if (diag) syl_program_error(p, diag, pl->line, pl->col, "cannot use this plant");
+            return st ? st : SYL_EMODEL;
+        }
+        if (syl_program_kind(progs[i]) == SYL_MODEL_SCENE) {
+            syl_program_error(p, diag, pl->line, pl->col, "a scene cannot be a plant of a scene");
+            return SYL_EMODEL;
+        }
+    }
+    return SYL_OK;
+}
+
 static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec *S, Forest *f, Placed *placed,
-                      SylSkeleton **out, SylMesh **obstacles) {
+                      ScenePlant *plants, SylProgram **progs, SceneLsys **lsys, SylSkeleton **out,
+                      SylMesh **obstacles) {
     FILE *diag = opt->diag;
     double ts = forest_now();
     int st = load_obstacles(f, p, S, diag);
+    if (!st) st = compile_plants(p, S, f, plants, progs, diag);
     if (st) return st;
+    bool trees = false;
     float ground = S->ground, lowest = INFINITY;
+    for (int i = 0; i < S->nplants; i++) {
+        trees |= syl_program_kind(progs[i]) == SYL_MODEL_GROW;
+        if (plants[i].at[1] < lowest) lowest = plants[i].at[1];
+    }
+    if (trees && !(*lsys = scene_lsys_new(f, S->nplants))) return SYL_ELIMIT;
+    int nlsys = 0;
     for (int i = 0; i < S->nplants && !st; i++) {
-        ScenePlant pl = S->plants[i];
-        placed[i].tree = -1;
-        float h;
-        if (has_terrain(S) && obstacles_height(&f->env.obstacles, pl.at[0], pl.at[2], f->env.obstacles.hi[1] + 1, &h))
-            pl.at[1] = h + 0.01f; /* just above, so its first metamer's ray starts clear */
-        if (pl.at[1] < lowest) lowest = pl.at[1];
-        SylProgram *q = plant_program(p, &pl, diag, &st);
-        if (!q) {
-            if (diag) syl_program_error(p, diag, pl.line, pl.col, "cannot use this plant");
-            return st ? st : SYL_EMODEL;
-        }
+        const ScenePlant *pl = &plants[i];
+        SylProgram *q = progs[i];
+        placed[i].tree = placed[i].lockstep = -1;
         if (syl_program_kind(q) == SYL_MODEL_GROW) {
             GrowParams P;
             if (grow_params_read(q, &P, diag)) st = SYL_EMODEL;
-            if (pl.seed_set) P.seed = pl.seed;
+            if (pl->seed_set) P.seed = pl->seed;
             else if (opt->use_seed) P.seed = opt->seed + (uint64_t)i;
             else P.seed += (uint64_t)i;
-            int years = opt->years >= 0 ? opt->years : pl.years_set ? pl.years : P.years;
+            int years = opt->years >= 0 ? opt->years : pl->years_set ? pl->years : P.years;
             placed[i].tree = f->ntrees;
-            if (!st) st = forest_add_tree(f, &P, pl.at, years);
-        } else if (syl_program_kind(q) == SYL_MODEL_LSYSTEM) {
-            st = draw_lsystem(q, opt, &pl, i, S, &f->env, &placed[i].lsys);
+            if (!st) st = forest_add_tree(f, &P, pl->at, years);
+        } else if (trees) { /* derived later, year by year with the trees */
+            SylDeriveOptions d = lsys_options(q, opt, pl, i);
+            placed[i].lockstep = nlsys++;
+            st = scene_lsys_add(*lsys, q, &d, pl->at, S->ground_set ? S->ground : pl->at[1], d.steps);
+            if (!st) progs[i] = NULL; /* the SceneLsys has it */
+            opt->stats.plants++;
+        } else {
+            st = draw_lsystem(q, opt, pl, i, S, &f->env, &placed[i].lsys);
             opt->stats.plants++;
             const SylSkeleton *sk = placed[i].lsys;
             for (size_t k = 0; !st && k < sk->nnodes; k++) st = forest_add_static(f, sk->nodes[k].pos);
-        } else {
-            syl_program_error(p, diag, pl.line, pl.col, "a scene cannot be a plant of a scene");
-            st = SYL_EMODEL;
         }
-        syl_program_free(q);
     }
     if (st) return st;
     if (!S->ground_set) ground = has_terrain(S) ? f->env.obstacles.lo[1] : lowest;
@@ -227,6 +255,10 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
     opt->stats.other_s += t0 - ts;
     if (!st) st = forest_run(f, opt->progress, opt->user);
     double t1 = forest_now();
+    if (!st && *lsys) st = scene_lsys_finish(*lsys);
+    for (int i = 0; i < S->nplants && !st; i++)
+        if (placed[i].lockstep >= 0) st = scene_lsys_draw(*lsys, placed[i].lockstep, &placed[i].lsys);
+    if (st) return st;
     SylSkeleton *sk = syl_skeleton_new("scene");
     if (!sk) return SYL_ELIMIT;
     for (int i = 0; i < S->nplants && !st; i++) {
@@ -263,14 +295,21 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     }
     Forest f;
     Placed *placed = calloc((size_t)S.nplants, sizeof *placed);
-    int st = placed ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
+    ScenePlant *plants = calloc((size_t)S.nplants, sizeof *plants);
+    SylProgram **progs = calloc((size_t)S.nplants, sizeof *progs);
+    SceneLsys *lsys = NULL;
+    int st = placed && plants && progs ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
     if (!st) {
         if (opt->max_metamers) f.max_metamers = opt->max_metamers;
-        st = grow_scene(p, opt, &S, &f, placed, out, obstacles);
+        st = grow_scene(p, opt, &S, &f, placed, plants, progs, &lsys, out, obstacles);
+        scene_lsys_free(lsys);
         forest_free(&f);
     }
     for (int i = 0; placed && i < S.nplants; i++) syl_skeleton_free(placed[i].lsys);
+    for (int i = 0; progs && i < S.nplants; i++) syl_program_free(progs[i]);
     free(placed);
+    free(plants);
+    free(progs);
     scene_spec_free(&S);
     if (st && obstacles) {
         syl_mesh_free(*obstacles);
