@@ -8,18 +8,19 @@
  * that sees the plants as they are this year, and the plants' next step reads the trees as
  * they grew.
  *
- * ?E modules are answered here, not by env/open.c: light from the forest's shadow grid (the
- * trees' metamers and every L-system's latest ends, its own of this step included), crowding
- * from the same points, distance from the obstacles and the ground. A step that brings no
+ * ?E modules are answered by env/probe.h from this scene's world (not env/open.c's): light
+ * from the forest's shadow grid (the trees' metamers and every L-system's latest ends, its
+ * own of this step included), crowding and sky exposure from the same points, distance from
+ * the obstacles and the ground. A step that brings no
  * ?E answer (no probes, or no ?E at all) gets its ends from the turtle's skeleton. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "env/open.h"
+#include "env/probe.h"
 #include "sot/forest_internal.h"
 
-enum { Q_LIGHT = 0, Q_SPACE = 1, Q_DISTANCE = 2 };
 
 typedef struct LsysPlant {
     SceneLsys *owner;
@@ -42,9 +43,10 @@ struct SceneLsys {
     int n, cap;
     float (*ends)[3];   /* the turtle's ends for steps without ?E answers */
     size_t ends_cap;
-    float (*pts)[3];    /* occupants for ?E(1) */
+    float (*pts)[3];    /* occupants for ?E(1) and ?E(3) */
     size_t pts_cap;
     PointGrid occ;
+    SkyScene sky;       /* ?E(3) */
 };
 
 int lsys_draw(const SylProgram *q, const SylString *s, const SylDeriveOptions *d, const float at[3], SylSkeleton **out) {
@@ -94,6 +96,7 @@ void scene_lsys_free(SceneLsys *s) {
     free(s->ends);
     free(s->pts);
     pgrid_free(&s->occ);
+    sky_free(&s->sky);
     free(s);
 }
 
@@ -237,8 +240,9 @@ int scene_lsys_draw(SceneLsys *s, int i, SylSkeleton **out) {
 
 /* ---- ?E answers ---- */
 
-/* Crowding sees the trees' metamer ends and every L-system's ends as they are now. */
-static int build_space(SceneLsys *s, const LsysPlant *pl) {
+/* Crowding and sky exposure see the trees' metamer ends and every L-system's ends as they
+ * are now (*n of them, in s->pts). */
+static int build_space(SceneLsys *s, const LsysPlant *pl, size_t *npts) {
     const Forest *f = s->f;
     size_t n = 0;
     for (int i = 0; i < f->ntrees; i++) n += f->trees[i].n - 1;
@@ -257,67 +261,25 @@ static int build_space(SceneLsys *s, const LsysPlant *pl) {
             memcpy(s->pts + m, s->plants[i].ends, s->plants[i].nends * sizeof *s->pts);
             m += s->plants[i].nends;
         }
+    *npts = n;
     return pgrid_build(&s->occ, pl->voxel, (const float *)s->pts, 3, n) ? SYL_OK : SYL_ELIMIT;
-}
-
-/* Points within r of c, but not within r/1000 of the turtle (its own segment's end): as
- * env/open.c counts them. */
-static double count_near(const PointGrid *g, const float c[3], float r, const float self[3]) {
-    double n = 0;
-    float r2 = r * r, e2 = r2 * 1e-6f;
-    PGRID_FOR_CELLS(g, c, r, X, Y, Z) {
-        uint32_t first, cnt = pgrid_cell(g, X, Y, Z, &first);
-        for (uint32_t i = first; i < first + cnt; i++) {
-            const float *q = g->pts[i];
-            float d2 = 0, s2 = 0;
-            for (int k = 0; k < 3; k++) d2 += (q[k] - c[k]) * (q[k] - c[k]), s2 += (q[k] - self[k]) * (q[k] - self[k]);
-            n += d2 < r2 && s2 > e2;
-        }
-    }
-    return n;
-}
-
-static double distance(const LsysPlant *pl, const float pos[3], const float h[3]) {
-    const Obstacles *o = &pl->owner->f->env.obstacles;
-    float far = (float)OPEN_FAR;
-    if (h[1] < 0 && pos[1] > pl->ground) far = (pl->ground - pos[1]) / h[1];
-    if (obstacles_any(o)) far = obstacles_distance(o, pos, h, far);
-    return far;
-}
-
-/* Light as the trees see it, Q = C - s (+ a at a segment's own end), divided by C: 1 in the
- * open whatever the species' C. */
-static double light(const ShadowGrid *g, const float pos[3], bool tip) {
-    const ShadowParams *sp = &g->p;
-    double v = (sp->full - shadow_at(g, pos) + (tip ? sp->a : 0)) / sp->full;
-    return v < 0 ? 0 : v < 1 ? v : 1;
 }
 
 /* A SylEnvFn: user is the plant. Its ends replace its casters first, so it shades itself. */
 static int answer(void *user, int step, const SylEnvFill *fill, double *par) {
-    (void)step;
     LsysPlant *pl = user;
     SceneLsys *s = pl->owner;
-    const Env *e = &s->f->env;
+    Env *e = &s->f->env;
     int st = recast(pl, (const float(*)[3])fill->ends, fill->nends);
-    bool space = false;
-    for (size_t i = 0; i < fill->nprobes; i++) {
-        const SylEnvProbe *q = &fill->probes[i];
-        space |= q->na && par[q->par] == Q_SPACE;
-    }
-    if (!st && space) st = build_space(s, pl);
-    for (size_t i = 0; !st && i < fill->nprobes; i++) {
-        const SylEnvProbe *q = &fill->probes[i];
-        if (q->na < 2) continue; /* nowhere to answer */
-        double *a = par + q->par;
-        float pos[3];
-        for (int k = 0; k < 3; k++) pos[k] = q->pos[k] + pl->at[k];
-        if (a[0] == Q_LIGHT) a[1] = e->shadow_on ? light(&e->shadow, pos, q->tip) : 1;
-        else if (a[0] == Q_SPACE) {
-            float r = q->na >= 3 && a[2] > 0 && isfinite(a[2]) ? (float)a[2] : pl->voxel, c[3];
-            for (int k = 0; k < 3; k++) c[k] = pos[k] + r * q->h[k];
-            a[1] = count_near(&s->occ, c, r, pos);
-        } else if (a[0] == Q_DISTANCE) a[1] = distance(pl, pos, q->h);
-    }
+    unsigned kinds = probe_kinds(fill, par);
+    size_t npts = 0;
+    if (!st && kinds & (1u << PROBE_SPACE | 1u << PROBE_SKY)) st = build_space(s, pl, &npts);
+    float foliage = 0.4f * pl->voxel;
+    if (!st && kinds & 1u << PROBE_SKY)
+        st = probe_sky_build(&s->sky, e->dev, &e->obstacles, NULL, 0, pl->at, (const float *)s->pts, npts, foliage);
+    ProbeWorld w = {.shadow = e->shadow_on ? &e->shadow : NULL, .occ = &s->occ, .voxel = pl->voxel,
+                    .obstacles = &e->obstacles, .ground = pl->ground, .sky = &s->sky, .foliage = foliage,
+                    .at = {pl->at[0], pl->at[1], pl->at[2]}};
+    if (!st) probe_answer(&w, fill, step, par);
     return st;
 }

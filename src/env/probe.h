@@ -1,0 +1,45 @@
+/* What an ?E module reads (docs/language.md §19), one answer per probe, from whatever world
+ * the plant stands in: alone or with other L-systems (env/open.c), or beside trees
+ * (sot/scene_lsys.c). Those modules keep the world up to date; this one only reads it.
+ *
+ *   ?E(0, q)        light: (C - s) / C of a shadow grid, in 0..1; at a segment's own end its
+ *                   own shadow a does not count
+ *   ?E(1, n, r)     crowding: segment ends within r of the point r ahead (r: the voxel)
+ *   ?E(2, d)        distance along the heading to an obstacle or the ground (PROBE_FAR: none)
+ *   ?E(3, e, rays)  sky exposure: the share of `rays` (default 16) cosine-weighted rays to
+ *                   the sky that no foliage sphere or obstacle stops, in 0..1 */
+#ifndef SYL_ENV_PROBE_H
+#define SYL_ENV_PROBE_H
+#include <stdbool.h>
+
+#include "env/obstacles.h"
+#include "env/pointgrid.h"
+#include "env/shadow.h"
+#include "env/sky.h"
+#include "sylva/sylva.h"
+
+#define PROBE_FAR 1e9
+
+enum { PROBE_LIGHT = 0, PROBE_SPACE = 1, PROBE_DISTANCE = 2, PROBE_SKY = 3 };
+
+typedef struct ProbeWorld {
+    const ShadowGrid *shadow;   /* ?E(0); NULL: full light */
+    const PointGrid *occ;       /* ?E(1) */
+    float voxel;                /* ?E(1)'s default radius */
+    const Obstacles *obstacles; /* ?E(2); NULL: none */
+    float ground;               /* ?E(2)'s ground plane */
+    const SkyScene *sky;        /* ?E(3); NULL: full exposure */
+    float foliage;              /* the radius of a segment end's sphere in sky */
+    float at[3];                /* the plant's place: probes are relative to it */
+} ProbeWorld;
+
+/* The kinds the probes of a step ask for: bit k for ?E(k, ...). */
+unsigned probe_kinds(const SylEnvFill *fill, const double *par);
+/* Write every probe's answer into par; the step keys the sky rays' random streams. */
+void probe_answer(const ProbeWorld *w, const SylEnvFill *fill, int step, double *par);
+/* The foliage of sky exposure: a sphere of radius r at every segment end (own ends first,
+ * then others, scene coordinates), obstacles too; the scene is rebuilt. SYL_OK or SYL_ELIMIT. */
+int probe_sky_build(SkyScene *s, RTCDevice dev, const Obstacles *o, const float (*ends)[3], size_t n,
+                    const float at[3], const float *others, size_t nothers, float r);
+
+#endif
