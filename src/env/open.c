@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { Q_LIGHT = 0, Q_SPACE = 1, Q_DISTANCE = 2 };
 
 void open_env_init(OpenEnv *e, const OpenEnvParams *p) {
     memset(e, 0, sizeof *e);
@@ -20,6 +19,8 @@ void open_env_init(OpenEnv *e, const OpenEnvParams *p) {
 void open_env_free(OpenEnv *e) {
     shadow_free(&e->shadow);
     pgrid_free(&e->occ);
+    sky_free(&e->sky);
+    if (e->dev) rtcReleaseDevice(e->dev);
     free(e->cast);
     free(e->pts);
     memset(e, 0, sizeof *e);
@@ -65,58 +66,22 @@ static int update_space(OpenEnv *e, const SylEnvFill *f) {
     return pgrid_build(&e->occ, e->P.voxel, (const float *)e->pts, 3, n) ? SYL_OK : SYL_ELIMIT;
 }
 
-/* Points within r of c, but not within r/1000 of the turtle (its own segment's end). */
-static double count_near(const PointGrid *g, const float c[3], float r, const float self[3]) {
-    double n = 0;
-    float r2 = r * r, e2 = r2 * 1e-6f;
-    PGRID_FOR_CELLS(g, c, r, X, Y, Z) {
-        uint32_t first, cnt = pgrid_cell(g, X, Y, Z, &first);
-        for (uint32_t i = first; i < first + cnt; i++) {
-            const float *q = g->pts[i];
-            float d2 = 0, s2 = 0;
-            for (int k = 0; k < 3; k++) d2 += (q[k] - c[k]) * (q[k] - c[k]), s2 += (q[k] - self[k]) * (q[k] - self[k]);
-            n += d2 < r2 && s2 > e2;
-        }
-    }
-    return n;
-}
-
-static double distance(const OpenEnv *e, const float pos[3], const float h[3]) {
-    float far = (float)OPEN_FAR;
-    if (h[1] < 0 && pos[1] > e->P.ground) far = (e->P.ground - pos[1]) / h[1];
-    if (e->P.obstacles) far = obstacles_distance(e->P.obstacles, pos, h, far);
-    return far;
+/* Sky exposure's foliage: this step's own ends and the scene's other plants. */
+static int update_sky(OpenEnv *e, const SylEnvFill *f) {
+    if (!e->dev && !(e->dev = rtcNewDevice(NULL))) return SYL_ELIMIT;
+    return probe_sky_build(&e->sky, e->dev, e->P.obstacles, (const float(*)[3])f->ends, f->nends, e->P.at,
+                           e->P.statics, e->P.nstatic, 0.4f * e->P.voxel);
 }
 
 int open_env_answer(void *user, int step, const SylEnvFill *f, double *par) {
-    (void)step;
     OpenEnv *e = user;
-    bool light = false, space = false;
-    for (size_t i = 0; i < f->nprobes; i++) {
-        const SylEnvProbe *q = &f->probes[i];
-        double kind = q->na ? par[q->par] : Q_LIGHT;
-        light |= kind == Q_LIGHT;
-        space |= kind == Q_SPACE;
-    }
-    int st = light ? update_light(e, f) : SYL_OK;
-    if (!st && space) st = update_space(e, f);
-    for (size_t i = 0; !st && i < f->nprobes; i++) {
-        const SylEnvProbe *q = &f->probes[i];
-        if (q->na < 2) continue; /* nowhere to answer */
-        double *a = par + q->par;
-        float pos[3];
-        for (int k = 0; k < 3; k++) pos[k] = q->pos[k] + e->P.at[k];
-        if (a[0] == Q_LIGHT) {
-            const ShadowParams *sp = &e->shadow.p;
-            double v = sp->full - shadow_at(&e->shadow, pos) + (q->tip ? sp->a : 0); /* not its own shadow */
-            a[1] = v < 0 ? 0 : v < sp->full ? v : sp->full;
-        } else if (a[0] == Q_SPACE) {
-            float r = q->na >= 3 && a[2] > 0 && isfinite(a[2]) ? (float)a[2] : e->P.voxel, c[3];
-            for (int k = 0; k < 3; k++) c[k] = pos[k] + r * q->h[k];
-            a[1] = count_near(&e->occ, c, r, pos);
-        } else if (a[0] == Q_DISTANCE) {
-            a[1] = distance(e, pos, q->h);
-        }
-    }
+    unsigned kinds = probe_kinds(f, par);
+    int st = kinds & 1u << PROBE_LIGHT ? update_light(e, f) : SYL_OK;
+    if (!st && kinds & 1u << PROBE_SPACE) st = update_space(e, f);
+    if (!st && kinds & 1u << PROBE_SKY) st = update_sky(e, f);
+    ProbeWorld w = {.shadow = &e->shadow, .occ = &e->occ, .voxel = e->P.voxel, .obstacles = e->P.obstacles,
+                    .ground = e->P.ground, .sky = &e->sky, .foliage = 0.4f * e->P.voxel,
+                    .at = {e->P.at[0], e->P.at[1], e->P.at[2]}};
+    if (!st) probe_answer(&w, f, step, par);
     return st;
 }

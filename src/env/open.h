@@ -8,6 +8,8 @@
  *                point r ahead along the heading (r defaults to the voxel)
  *   ?E(2, d)     obstacle distance along the heading: the nearest obstacle surface or the
  *                ground plane, OPEN_FAR when neither is hit
+ *   ?E(3, e, n)  sky exposure: the share of n rays to the sky that no segment end's sphere
+ *                (radius 0.4 voxel) or obstacle stops (env/probe.h)
  *
  * Stand-alone (no scene), the plant is alone on the ground plane y = 0 with no obstacles. The
  * shadow grid is updated incrementally (last step's casters removed, this step's added, both
@@ -19,10 +21,12 @@
 
 #include "env/obstacles.h"
 #include "env/pointgrid.h"
+#include "env/probe.h"
 #include "env/shadow.h"
+#include "env/sky.h"
 #include "sylva/sylva.h"
 
-#define OPEN_FAR 1e9
+#define OPEN_FAR PROBE_FAR
 
 typedef struct OpenEnvParams {
     float voxel;                /* the shadow grid's voxel and the default space radius */
@@ -44,6 +48,8 @@ typedef struct OpenEnv {
     float (*pts)[3];  /* statics and own segment ends, for the point grid */
     size_t pts_cap;
     PointGrid occ;
+    RTCDevice dev;    /* sky exposure's: made when first asked */
+    SkyScene sky;
 } OpenEnv;
 
 void open_env_init(OpenEnv *e, const OpenEnvParams *p);
