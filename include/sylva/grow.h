@@ -18,10 +18,12 @@ typedef struct SylGrowStats {
     uint64_t buds;            /* living buds at the end */
     uint64_t shed_branches, shed_metamers;
     uint64_t organs;
+    uint64_t rule_shoots;     /* shoots a shoot rule built (docs/growth.md, "Shoot rules") */
     double light_s;           /* light per bud, and the shadow grid's updates */
     double space_s;           /* space colonization rounds and occupancy */
     double alloc_s;           /* demand, Borchert–Honda or priority, shoot lengths */
     double growth_s;          /* directions, obstacle tests, new metamers and buds */
+    double rule_s;            /* deriving the shoot rules' plans (part of growth_s) */
     double shed_s;            /* shedding */
     double other_s;           /* L-system plants of a scene, obstacles, the skeleton */
     double total_s;

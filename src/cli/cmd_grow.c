@@ -53,6 +53,8 @@ static void print_stats(const Plant *pl, double write_s) {
             (unsigned long long)g->shed_metamers, (unsigned long long)g->organs);
     fprintf(stderr, "light time: %.6f s\nspace time: %.6f s\nallocation time: %.6f s\ngrowth time: %.6f s\n",
             g->light_s, g->space_s, g->alloc_s, g->growth_s);
+    if (g->rule_shoots)
+        fprintf(stderr, "rule shoots: %llu\nrule time: %.6f s\n", (unsigned long long)g->rule_shoots, g->rule_s);
     fprintf(stderr, "shedding time: %.6f s\nother time: %.6f s\ngrow time: %.6f s\n", g->shed_s, g->other_s,
             g->total_s);
     fprintf(stderr, "internodes/s: %.0f\n", g->total_s > 0 ? (double)g->grown / g->total_s : 0.0);

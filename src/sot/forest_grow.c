@@ -215,7 +215,12 @@ static int make_plans(Forest *f, int year) {
     int *status = calloc(f->ncand ? f->ncand : 1, sizeof *status);
     if (!status) return SYL_ELIMIT;
     PlanJob j = {f, year, status};
+    double t0 = forest_now();
     par_for(f->threads, f->ncand, 16, derive_plans, &j);
+    if (f->stats) {
+        f->stats->rule_s += forest_now() - t0;
+        for (size_t c = 0; c < f->ncand; c++) f->stats->rule_shoots += f->trees[f->cand[c].tree].rule != NULL;
+    }
     size_t keep = 0;
     int st = SYL_OK;
     for (size_t c = 0; c < f->ncand && !st; c++) {
