@@ -1,5 +1,6 @@
 /* The environment of an open L-system: see open.h. */
 #include "env/open.h"
+#include "lsys/modstr.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -21,7 +22,8 @@ void open_env_free(OpenEnv *e) {
     pgrid_free(&e->occ);
     sky_free(&e->sky);
     if (e->dev) rtcReleaseDevice(e->dev);
-    free(e->cast);
+    shadow_set_free(&e->own);
+    free(e->probes.light);
     free(e->pts);
     memset(e, 0, sizeof *e);
 }
@@ -37,18 +39,7 @@ static int update_light(OpenEnv *e, const SylEnvFill *f) {
         if (e->P.nstatic && !shadow_cast_strided(&e->shadow, e->P.statics, 3, e->P.nstatic, 1)) return too_big(e);
         e->statics_cast = true;
     }
-    if (e->ncast && !shadow_cast(&e->shadow, (const float(*)[3])e->cast, e->ncast, -1)) return too_big(e);
-    e->ncast = 0;
-    if (f->nends > e->cast_cap) {
-        float(*c)[3] = realloc(e->cast, f->nends * sizeof *c);
-        if (!c) return SYL_ELIMIT;
-        e->cast = c;
-        e->cast_cap = f->nends;
-    }
-    for (size_t i = 0; i < f->nends; i++)
-        for (int k = 0; k < 3; k++) e->cast[i][k] = f->ends[i][k] + e->P.at[k];
-    if (f->nends && !shadow_cast(&e->shadow, (const float(*)[3])e->cast, f->nends, 1)) return too_big(e);
-    e->ncast = f->nends;
+    if (!shadow_set_replace(&e->shadow, &e->own, (const float(*)[3])f->ends, f->nends, e->P.at)) return too_big(e);
     return SYL_OK;
 }
 
@@ -73,15 +64,55 @@ static int update_sky(OpenEnv *e, const SylEnvFill *f) {
                            e->P.statics, e->P.nstatic, 0.4f * e->P.voxel);
 }
 
-int open_env_answer(void *user, int step, const SylEnvFill *f, double *par) {
-    OpenEnv *e = user;
-    unsigned kinds = probe_kinds(f, par);
+/* Update what the kinds asked read (bit k: kind k). */
+static int update(OpenEnv *e, const SylEnvFill *f, unsigned kinds) {
     int st = kinds & 1u << PROBE_LIGHT ? update_light(e, f) : SYL_OK;
     if (!st && kinds & 1u << PROBE_SPACE) st = update_space(e, f);
     if (!st && kinds & 1u << PROBE_SKY) st = update_sky(e, f);
-    ProbeWorld w = {.shadow = &e->shadow, .occ = &e->occ, .voxel = e->P.voxel, .obstacles = e->P.obstacles,
-                    .ground = e->P.ground, .sky = &e->sky, .foliage = 0.4f * e->P.voxel,
-                    .at = {e->P.at[0], e->P.at[1], e->P.at[2]}};
+    return st;
+}
+
+static ProbeWorld world(OpenEnv *e) {
+    return (ProbeWorld){.shadow = &e->shadow, .occ = &e->occ, .voxel = e->P.voxel, .obstacles = e->P.obstacles,
+                        .ground = e->P.ground, .sky = &e->sky, .foliage = 0.4f * e->P.voxel,
+                        .at = {e->P.at[0], e->P.at[1], e->P.at[2]}};
+}
+
+int open_env_answer(void *user, int step, const SylEnvFill *f, double *par) {
+    OpenEnv *e = user;
+    int st = update(e, f, probe_kinds(f, par));
+    ProbeWorld w = world(e);
     if (!st) probe_answer(&w, f, step, par);
     return st;
+}
+
+/* Light as probe_answer gives it, for compact probes. */
+static void answer_light(const OpenEnv *e, const SylLightProbe *probes, size_t n, double *par) {
+    const ShadowGrid *g = &e->shadow;
+    const ShadowParams *sp = &g->p;
+    for (size_t i = 0; i < n; i++) {
+        const SylLightProbe *q = &probes[i];
+        float pos[3];
+        for (int k = 0; k < 3; k++) pos[k] = q->pos[k] + e->P.at[k];
+        float s = shadow_value(g, shadow_index(g, pos)); /* shadow_at, inlined */
+        double v = (sp->full - s + (q->par & SYL_LIGHT_TIP ? sp->a : 0)) / sp->full;
+        par[(q->par & ~SYL_LIGHT_TIP) + 1] = v < 0 ? 0 : v < 1 ? v : 1;
+    }
+}
+
+int open_env_fill(OpenEnv *e, const SylProgram *p, SylString *s, SylEnvFill *f, int step) {
+    int st = syl_turtle_fill(p, s, f, &e->probes);
+    if (st) return st;
+    /* sky exposure keys its rays' streams by a probe's place among all of them: read again, as
+     * syl_derive does with open_env_answer */
+    if (e->probes.kinds & 1u << PROBE_SKY) {
+        st = syl_turtle_query(p, s, f);
+        return st || !f->nprobes ? st : open_env_answer(e, step, f, s->par);
+    }
+    st = update(e, f, e->probes.kinds);
+    if (st) return st;
+    ProbeWorld w = world(e);
+    probe_answer(&w, f, step, s->par); /* crowding and distance */
+    answer_light(e, e->probes.light, e->probes.nlight, s->par);
+    return SYL_OK;
 }

@@ -12,9 +12,10 @@
  *                (radius 0.4 voxel) or obstacle stops (env/probe.h)
  *
  * Stand-alone (no scene), the plant is alone on the ground plane y = 0 with no obstacles. The
- * shadow grid is updated incrementally (last step's casters removed, this step's added, both
- * exact in fixed point), and only in steps that ask for light; the point grid only in steps
- * that ask for space. Positions are the plant's, moved by `at` into the scene. */
+ * shadow grid is updated incrementally (last step's casters replaced by this step's: only
+ * voxels whose count of ends changed are cast, exact in fixed point), and only in steps that
+ * ask for light; the point grid only in steps that ask for space. Positions are the plant's,
+ * moved by `at` into the scene. */
 #ifndef SYL_ENV_OPEN_H
 #define SYL_ENV_OPEN_H
 #include <stdio.h>
@@ -25,6 +26,7 @@
 #include "env/shadow.h"
 #include "env/sky.h"
 #include "sylva/sylva.h"
+#include "turtle/turtle.h"
 
 #define OPEN_FAR PROBE_FAR
 
@@ -43,18 +45,22 @@ typedef struct OpenEnv {
     OpenEnvParams P;
     ShadowGrid shadow;
     bool statics_cast;
-    float (*cast)[3]; /* own casters now in the shadow grid */
-    size_t ncast, cast_cap;
+    ShadowSet own;    /* own segment ends now in the shadow grid */
     float (*pts)[3];  /* statics and own segment ends, for the point grid */
     size_t pts_cap;
     PointGrid occ;
     RTCDevice dev;    /* sky exposure's: made when first asked */
     SkyScene sky;
+    SylOpenFill probes; /* open_env_fill's light probes */
 } OpenEnv;
 
 void open_env_init(OpenEnv *e, const OpenEnvParams *p);
 void open_env_free(OpenEnv *e);
 /* A SylEnvFn: user is an OpenEnv. */
 int open_env_answer(void *user, int step, const SylEnvFill *fill, double *par);
+/* The turtle's reading of s and the answers in one, as syl_derive does with open_env_answer
+ * (fill: the SylEnvFill it would use), the same answers in less time and memory: light
+ * probes are kept compact (syl_turtle_fill). */
+int open_env_fill(OpenEnv *e, const SylProgram *p, SylString *s, SylEnvFill *fill, int step);
 
 #endif

@@ -40,13 +40,7 @@ void shadow_free(ShadowGrid *g) {
 
 size_t shadow_voxels(const ShadowGrid *g) { return (size_t)g->nx * (size_t)g->ny * (size_t)g->nz; }
 
-static inline int cell(float v, float inv) { /* floor, clamped; cheaper than floorf */
-    float f = v * inv;
-    if (!(f > -1e8f)) return -100000000;
-    if (f > 1e8f) return 100000000;
-    int i = (int)f;
-    return i - (f < (float)i);
-}
+static inline int cell(float v, float inv) { return shadow_cell(v, inv); }
 
 /* Make the grid hold [lo, hi] (inclusive voxel coordinates), with room to spare. */
 static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
@@ -97,7 +91,7 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
  * the difference grid for a few casters spread over a large box. */
 typedef uint32_t v8u __attribute__((vector_size(32)));
 
-static void cast_direct(ShadowGrid *g, int I, int J, int K, int sign) {
+static void cast_direct(ShadowGrid *g, int I, int J, int K, uint32_t weight) {
     uint32_t *s = (uint32_t *)g->s;
     const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
     for (int q = 0; q <= g->p.depth; q++) {
@@ -105,7 +99,7 @@ static void cast_direct(ShadowGrid *g, int I, int J, int K, int sign) {
         if (y < g->y0) break;
         uint32_t v = (uint32_t)g->layer[q];
         if (!v) break;
-        if (sign < 0) v = 0u - v;
+        v *= weight; /* wraps: adding and removing stay exact */
         int xs = I - q + g->shift_x[q] - g->x0, zs = K - q + g->shift_z[q] - g->z0, w = 2 * q + 1;
         uint32_t *plane = s + (size_t)(y - g->y0) * nz * nx;
         for (int x0 = 0; x0 < w; x0 += 8) {
@@ -123,7 +117,7 @@ static void cast_direct(ShadowGrid *g, int I, int J, int K, int sign) {
 }
 
 /* A pyramid's levels as corners of squares in the difference grid; bb grows to hold them. */
-static void cast_one(ShadowGrid *g, int I, int J, int K, int sign, int bb[6]) {
+static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int bb[6]) {
     uint32_t *d = g->d;
     const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
     for (int q = 0; q <= g->p.depth; q++) {
@@ -131,7 +125,7 @@ static void cast_one(ShadowGrid *g, int I, int J, int K, int sign, int bb[6]) {
         if (y < g->y0) break;
         uint32_t v = (uint32_t)g->layer[q];
         if (!v) break;
-        if (sign < 0) v = 0u - v;
+        v *= weight;
         int x0 = I - q + g->shift_x[q] - g->x0, z0 = K - q + g->shift_z[q] - g->z0, x1 = x0 + 2 * q + 1,
             z1 = z0 + 2 * q + 1, yy = y - g->y0; /* x1, z1: one past the square, inside the grid */
         uint32_t *plane = d + (size_t)yy * nz * nx;
@@ -189,28 +183,72 @@ static void integrate(ShadowGrid *g, const int bb[6]) {
     }
 }
 
-bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t n, int sign) {
+/* Make the grid hold the pyramids of casters at p(i) = base + i * stride (+ off, when
+ * given; in float, as the caller would add it), i < n. *none: all are below the ground (the
+ * grid is left as it is). False when the grid would need more than max_voxels. */
+static bool reserve_casters(ShadowGrid *g, const float *base, size_t stride, size_t n, const float *off, int box[6],
+                            bool *none) {
+    *none = true;
     if (!n) return true;
     int lo[3] = {INT_MAX, INT_MAX, INT_MAX}, hi[3] = {INT_MIN, INT_MIN, INT_MIN};
-    for (size_t i = 0; i < n; i++) {
+    const float zero[3] = {0, 0, 0};
+    if (!off) off = zero;
+    /* cell() is monotonic, so the box of the cells is the cells of the box of the points
+     * (not through NaN, nor with an infinite 1 / voxel: then point by point) */
+    float x0 = INFINITY, y0 = INFINITY, z0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY, z1 = -INFINITY;
+    bool nan = !isfinite(g->inv);
+    for (size_t i = 0; i < n; i++) { /* in registers: three chains of min and max */
         const float *p = base + i * stride;
-        int c[3] = {cell(p[0], g->inv), cell(p[1], g->inv), cell(p[2], g->inv)};
+        float x = p[0] + off[0], y = p[1] + off[1], z = p[2] + off[2];
+        x0 = x < x0 ? x : x0, y0 = y < y0 ? y : y0, z0 = z < z0 ? z : z0;
+        x1 = x > x1 ? x : x1, y1 = y > y1 ? y : y1, z1 = z > z1 ? z : z1;
+        nan |= (x != x) | (y != y) | (z != z);
+    }
+    const float mn[3] = {x0, y0, z0}, mx[3] = {x1, y1, z1};
+    for (size_t i = 0; i < (nan ? n : 1); i++) {
+        int c[2][3];
+        for (int k = 0; k < 3; k++) {
+            const float *p = base + i * stride;
+            c[0][k] = cell(nan ? p[k] + off[k] : mn[k], g->inv);
+            c[1][k] = cell(nan ? p[k] + off[k] : mx[k], g->inv);
+        }
         /* + 1: a square's far corners lie one past it */
-        int l[3] = {c[0] - g->reach, c[1] - g->p.depth, c[2] - g->reach},
-            h[3] = {c[0] + g->reach + 1, c[1], c[2] + g->reach + 1};
+        int l[3] = {c[0][0] - g->reach, c[0][1] - g->p.depth, c[0][2] - g->reach},
+            h[3] = {c[1][0] + g->reach + 1, c[1][1], c[1][2] + g->reach + 1};
         for (int k = 0; k < 3; k++) {
             if (l[k] < lo[k]) lo[k] = l[k];
             if (h[k] > hi[k]) hi[k] = h[k];
         }
     }
     if (lo[1] < g->ymin) lo[1] = g->ymin;
-    if (hi[1] < g->ymin) return true; /* all below the ground */
-    if (!reserve(g, lo, hi)) return false;
-    /* the cheaper way (by measured costs per step): row by row, or corners and one sum
-     * over the batch's box */
-    double rows = 0, box = (double)(hi[0] - lo[0] + 1) * (double)(hi[1] - lo[1] + 1) * (double)(hi[2] - lo[2] + 1);
+    *none = hi[1] < g->ymin;
+    for (int k = 0; k < 3; k++) box[2 * k] = lo[k], box[2 * k + 1] = hi[k];
+    return *none || reserve(g, lo, hi);
+}
+
+/* The cheaper way to cast n pyramids over a box (by measured costs per step): row by row, or
+ * corners and one sum over the box. */
+static bool cheaper_direct(const ShadowGrid *g, size_t n, const int box[6]) {
+    double rows = 0, vol = (double)(box[1] - box[0] + 1) * (double)(box[3] - box[2] + 1) * (double)(box[5] - box[4] + 1);
     for (int q = 0; q <= g->p.depth; q++) rows += (2 * q + 1) * ((2 * q + 1 + 7) / 8);
-    bool direct = 15.0 * (double)n * rows < 10.0 * (double)n * (g->p.depth + 1) + 8.0 * box;
+    return 15.0 * (double)n * rows < 10.0 * (double)n * (g->p.depth + 1) + 8.0 * vol;
+}
+
+/* Voxel index (in the grid, which holds it) to coordinates. */
+static inline void voxel_coords(const ShadowGrid *g, uint64_t at, int *I, int *J, int *K) {
+    *I = (int)(at % (uint64_t)g->nx) + g->x0;
+    *K = (int)(at / (uint64_t)g->nx % (uint64_t)g->nz) + g->z0;
+    *J = (int)(at / (uint64_t)g->nx / (uint64_t)g->nz) + g->y0;
+}
+
+bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t n, int sign) {
+    if (!n) return true;
+    int box[6];
+    bool none;
+    if (!reserve_casters(g, base, stride, n, NULL, box, &none)) return false;
+    if (none) return true; /* all below the ground */
+    bool direct = cheaper_direct(g, n, box);
+    uint32_t weight = sign < 0 ? 0u - 1u : 1u;
     /* casters in grid order, so that neighbouring pyramids (or corners) share the cache */
     uint64_t *order = malloc(2 * n * sizeof *order);
     int bb[6] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN, INT_MAX, INT_MIN};
@@ -222,17 +260,16 @@ bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t
         if (order)
             order[m++] = ((uint64_t)(J - g->y0) * (uint64_t)g->nz + (uint64_t)(K - g->z0)) * (uint64_t)g->nx +
                          (uint64_t)(I - g->x0);
-        else if (direct) cast_direct(g, I, J, K, sign);
-        else cast_one(g, I, J, K, sign, bb);
+        else if (direct) cast_direct(g, I, J, K, weight);
+        else cast_one(g, I, J, K, weight, bb);
     }
     if (order) {
         sort_bits(order, order + n, m, 0);
         for (size_t i = 0; i < m; i++) {
-            uint64_t at = order[i];
-            int I = (int)(at % (uint64_t)g->nx) + g->x0, K = (int)(at / (uint64_t)g->nx % (uint64_t)g->nz) + g->z0,
-                J = (int)(at / (uint64_t)g->nx / (uint64_t)g->nz) + g->y0;
-            if (direct) cast_direct(g, I, J, K, sign);
-            else cast_one(g, I, J, K, sign, bb);
+            int I, J, K;
+            voxel_coords(g, order[i], &I, &J, &K);
+            if (direct) cast_direct(g, I, J, K, weight);
+            else cast_one(g, I, J, K, weight, bb);
         }
         free(order);
     }
@@ -267,4 +304,124 @@ void shadow_gradient(const ShadowGrid *g, const float pos[3], float out[3]) {
     out[0] = 0.5f * (voxel_at(g, I - 1, J, K) - voxel_at(g, I + 1, J, K));
     out[1] = 0.5f * (voxel_at(g, I, J - 1, K) - voxel_at(g, I, J + 1, K));
     out[2] = 0.5f * (voxel_at(g, I, J, K - 1) - voxel_at(g, I, J, K + 1));
+}
+
+/* ---- a set of casters replaced as a whole ---- */
+
+static inline size_t set_slot(const ShadowSet *set, uint64_t key) {
+    size_t mask = set->cap - 1, i = (size_t)((key * 0x9E3779B97F4A7C15u) >> 32) & mask;
+    while (set->key[i] && set->key[i] != key) i = (i + 1) & mask;
+    return i;
+}
+
+/* Move the set into cap slots, its keys into the grid's layout now, dropping voxels that
+ * neither hold nor will hold a caster. */
+static bool set_rebuild(ShadowSet *set, const ShadowGrid *g, size_t cap) {
+    uint64_t *key = calloc(cap, sizeof *key);
+    uint32_t *count = calloc(cap, sizeof *count), *want = calloc(cap, sizeof *want);
+    if (!key || !count || !want) {
+        free(key), free(count), free(want);
+        return false;
+    }
+    ShadowSet old = *set;
+    set->key = key, set->count = count, set->want = want, set->cap = cap, set->n = 0;
+    for (size_t i = 0; i < old.cap; i++) {
+        if (!old.key[i] || (!old.count[i] && !old.want[i])) continue;
+        uint64_t at = old.key[i] - 1, nx = (uint64_t)old.nx, nz = (uint64_t)old.nz;
+        long x = (long)(at % nx) + old.x0, z = (long)(at / nx % nz) + old.z0, y = (long)(at / nx / nz) + old.y0;
+        uint64_t k = ((uint64_t)(y - g->y0) * (uint64_t)g->nz + (uint64_t)(z - g->z0)) * (uint64_t)g->nx +
+                     (uint64_t)(x - g->x0) + 1;
+        size_t j = set_slot(set, k);
+        set->key[j] = k, set->count[j] = old.count[i], set->want[j] = old.want[i];
+        set->n++;
+    }
+    set->x0 = g->x0, set->y0 = g->y0, set->z0 = g->z0, set->nx = g->nx, set->nz = g->nz;
+    free(old.key), free(old.count), free(old.want);
+    return true;
+}
+
+/* Count the casters per voxel into want (zero before); false when out of memory. */
+static bool set_count(ShadowGrid *g, ShadowSet *set, const float (*pos)[3], size_t n, const float off[3]) {
+    for (size_t i = 0; i < n; i++) {
+        int I = cell(pos[i][0] + off[0], g->inv), J = cell(pos[i][1] + off[1], g->inv),
+            K = cell(pos[i][2] + off[2], g->inv);
+        if (J < g->y0) continue; /* below the ground: casts nothing (as in shadow_cast) */
+        uint64_t k = ((uint64_t)(J - g->y0) * (uint64_t)g->nz + (uint64_t)(K - g->z0)) * (uint64_t)g->nx +
+                     (uint64_t)(I - g->x0) + 1;
+        /* a table at most a quarter full: most look-ups end at their first slot */
+        if (4 * (set->n + 1) > set->cap && !set_rebuild(set, g, 2 * set->cap)) return false;
+        size_t slot = set_slot(set, k);
+        if (!set->key[slot]) set->key[slot] = k, set->n++;
+        set->want[slot]++;
+    }
+    return true;
+}
+
+bool shadow_set_replace(ShadowGrid *g, ShadowSet *set, const float (*pos)[3], size_t n, const float off[3]) {
+    /* the grid grows to hold the new casters first, as shadow_cast would grow it for them */
+    int box[6];
+    bool none = true;
+    if (n && !reserve_casters(g, pos[0], 3, n, off, box, &none)) return false;
+    if (!set->cap || set->x0 != g->x0 || set->y0 != g->y0 || set->z0 != g->z0 || set->nx != g->nx ||
+        set->nz != g->nz) {
+        if (!set_rebuild(set, g, set->cap ? set->cap : 1024)) return false;
+    }
+    bool ok = none || set_count(g, set, pos, n, off);
+    if (ok && set->delta_cap < set->n) {
+        uint64_t *d = realloc(set->delta, 2 * set->n * sizeof *d); /* and as much to sort through */
+        if (d) set->delta = d, set->delta_cap = set->n;
+        ok = d != NULL;
+    }
+    if (!ok) {
+        memset(set->want, 0, set->cap * sizeof *set->want);
+        return false;
+    }
+    /* the changed voxels, their index above 32 bits (grids hold fewer than 2^32 voxels) and
+     * the change in count below */
+    size_t nd = 0, dead = 0;
+    int lo[3] = {INT_MAX, INT_MAX, INT_MAX}, hi[3] = {INT_MIN, INT_MIN, INT_MIN};
+    for (size_t i = 0; i < set->cap; i++) {
+        if (!set->key[i]) continue;
+        uint32_t d = set->want[i] - set->count[i]; /* wraps: the shadow is kept modulo 2^32 too */
+        set->count[i] = set->want[i];
+        set->want[i] = 0;
+        dead += set->count[i] == 0;
+        if (!d) continue;
+        uint64_t at = set->key[i] - 1;
+        set->delta[nd++] = at << 32 | d;
+        int c[3];
+        voxel_coords(g, at, &c[0], &c[1], &c[2]);
+        for (int k = 0; k < 3; k++) {
+            if (c[k] < lo[k]) lo[k] = c[k];
+            if (c[k] > hi[k]) hi[k] = c[k];
+        }
+    }
+    if (nd) {
+        /* the box as shadow_cast_strided measures it, for the cheaper way to cast */
+        int vb[6] = {lo[0] - g->reach, hi[0] + g->reach + 1, lo[1] - g->p.depth, hi[1],
+                     lo[2] - g->reach, hi[2] + g->reach + 1};
+        if (vb[2] < g->ymin) vb[2] = g->ymin;
+        bool direct = cheaper_direct(g, nd, vb);
+        sort_bits(set->delta, set->delta + nd, nd, 32); /* grid order: pyramids share the cache */
+        int bb[6] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+        for (size_t i = 0; i < nd; i++) {
+            int I, J, K;
+            voxel_coords(g, set->delta[i] >> 32, &I, &J, &K);
+            uint32_t w = (uint32_t)set->delta[i];
+            if (direct) cast_direct(g, I, J, K, w);
+            else cast_one(g, I, J, K, w, bb);
+        }
+        if (bb[0] <= bb[1]) integrate(g, bb);
+    }
+    /* voxels left without casters only lengthen the probes: drop them now and then */
+    if (dead && 4 * dead > set->n) (void)set_rebuild(set, g, set->cap); /* kept as it is when out of memory */
+    return true;
+}
+
+void shadow_set_free(ShadowSet *set) {
+    free(set->key);
+    free(set->count);
+    free(set->want);
+    free(set->delta);
+    memset(set, 0, sizeof *set);
 }

@@ -55,4 +55,46 @@ float shadow_light(const ShadowGrid *g, const float pos[3]); /* Q = max(C - s + 
 void shadow_gradient(const ShadowGrid *g, const float pos[3], float out[3]);
 size_t shadow_voxels(const ShadowGrid *g);
 
+/* floor(v * inv) clamped to +-1e8 (NaN: -1e8): the voxel coordinate of v; cheaper than floorf,
+ * and without branches. */
+static inline int shadow_cell(float v, float inv) {
+    float f = v * inv;
+    f = f > -1e8f ? f : -1e8f; /* NaN too */
+    f = f < 1e8f ? f : 1e8f;
+    int i = (int)f;
+    return i - (f < (float)i);
+}
+/* For many look-ups in a row (the grid unchanged): the index into g->s of the voxel holding
+ * pos, -1 outside the grid; shadow_at(g, pos) is shadow_value(g, shadow_index(g, pos)). */
+static inline ptrdiff_t shadow_index(const ShadowGrid *g, const float pos[3]) {
+    if (!g->s) return -1;
+    int I = shadow_cell(pos[0], g->inv) - g->x0, J = shadow_cell(pos[1], g->inv) - g->y0,
+        K = shadow_cell(pos[2], g->inv) - g->z0;
+    if (I < 0 || J < 0 || K < 0 || I >= g->nx || J >= g->ny || K >= g->nz) return -1;
+    return (ptrdiff_t)(((size_t)J * (size_t)g->nz + (size_t)K) * (size_t)g->nx + (size_t)I);
+}
+static inline float shadow_value(const ShadowGrid *g, ptrdiff_t at) {
+    return at < 0 ? 0 : (float)g->s[at] * (1.0f / SHADOW_ONE);
+}
+
+/* A set of casters replaced as a whole again and again (an open L-system's segment ends,
+ * step after step), kept in the grid as a count per voxel: a caster's pyramid depends only on
+ * the voxel it stands in, so a replacement casts only the voxels whose count changed, with
+ * the same shadow as removing every old caster and adding every new one. */
+typedef struct ShadowSet {
+    uint64_t *key;             /* per slot: voxel index + 1 in the layout below; 0: free */
+    uint32_t *count;           /* casters of the voxel now in the grid */
+    uint32_t *want;            /* and in the replacement being built (0 between) */
+    size_t cap, n;             /* slots (a power of two), used */
+    int x0, y0, z0, nx, nz;    /* the grid's layout the keys were made in */
+    uint64_t *delta;           /* scratch: changed voxels */
+    size_t delta_cap;
+} ShadowSet;
+
+/* Replace the set's casters in the grid by n casters at pos[i] + off (added in float). False
+ * when the grid would need more than max_voxels (the grid and the set are then unchanged), or
+ * out of memory. */
+bool shadow_set_replace(ShadowGrid *g, ShadowSet *set, const float (*pos)[3], size_t n, const float off[3]);
+void shadow_set_free(ShadowSet *set);
+
 #endif

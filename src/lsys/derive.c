@@ -525,6 +525,8 @@ static bool is_query(const SylProgram *p, uint16_t code) {
 }
 
 static int turtle_fill(Engine *e, SylString *s, int step) {
+    /* env/open.c keeps its probes itself, in less memory */
+    if (e->env == open_env_answer) return open_env_fill(e->env_user, e->p, s, &e->fill, step);
     int st = syl_turtle_query(e->p, s, e->env ? &e->fill : NULL);
     if (!st && e->env && e->fill.nprobes) st = e->env(e->env_user, step, &e->fill, s->par);
     return st;
@@ -550,7 +552,12 @@ static int env_setup(Engine *e, const SylDeriveOptions *opt) {
 static int fill_queries(Engine *e, SylString *s, int step) {
     const SylProgram *p = e->p;
     if (!p->uses_queries) return SYL_OK;
-    if (!p->tables[TABLE_INTERPRET].nrules) return turtle_fill(e, s, step);
+    /* no module with an interpret rule's symbol: s is read as it is (the passes would copy it) */
+    const RuleTable *it = &p->tables[TABLE_INTERPRET];
+    bool pred[MAX_SYMBOLS] = {false}, interpreted = false;
+    for (int k = 0; k < it->nrules; k++) pred[CODE_SYM(it->rules[k].pred)] = true;
+    for (size_t i = 0; it->nrules && !interpreted && i < s->n; i++) interpreted = pred[CODE_SYM(s->code[i])];
+    if (!interpreted) return turtle_fill(e, s, step);
     SylString *cur = new_string(e), *spare = new_string(e);
     int st = cur && spare ? ms_reserve(cur, s->n, s->np) : SYL_ELIMIT;
     if (!st) {
@@ -562,9 +569,11 @@ static int fill_queries(Engine *e, SylString *s, int step) {
     }
     if (!st) st = turtle_fill(e, cur, step);
     /* copy the filled values back, query module by query module */
+    bool query[MAX_SYMBOLS] = {false};
+    for (int k = 0; k < p->nsyms && k < MAX_SYMBOLS; k++) query[k] = is_query(p, (uint16_t)k);
     for (size_t i = 0, j = 0, pi = 0, pj = 0; !st && i < s->n; pi += CODE_ARITY(s->code[i]), i++) {
-        if (!is_query(p, s->code[i])) continue;
-        while (j < cur->n && !(cur->code[j] == s->code[i] && is_query(p, cur->code[j]))) pj += CODE_ARITY(cur->code[j++]);
+        if (!query[CODE_SYM(s->code[i])]) continue;
+        while (j < cur->n && cur->code[j] != s->code[i]) pj += CODE_ARITY(cur->code[j++]);
         if (j == cur->n) break; /* an interpret rule removed it: it keeps its values */
         memcpy(s->par + pi, cur->par + pj, sizeof(double) * CODE_ARITY(s->code[i]));
         pj += CODE_ARITY(cur->code[j++]);

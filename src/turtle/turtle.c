@@ -14,6 +14,7 @@
 #include "lsys/modstr.h"
 #include "sylva/skeleton.h"
 #include "turtle.h"
+#include "util/array.h"
 
 typedef enum {
     T_NONE, /* not a turtle symbol: ignored */
@@ -45,6 +46,24 @@ static const struct {
     {"?E", T_QUERY_E},
 };
 
+/* A turn's angle, its sine and cosine. Rules turn by a few angles (the model's, constants of
+ * the rules), so a small cache keyed by the angle saves most sin and cos calls. */
+typedef struct Angle {
+    double deg;
+    float sn, cs;
+} Angle;
+enum { ANGLE_CACHE = 16 };
+
+/* A change of the frame not made yet (run_query): many are never seen, in branches that end
+ * with queries that read only the position. */
+typedef struct Pending {
+    uint32_t op;  /* P_* */
+    bool neg;     /* turn by -deg: the other way */
+    double deg;   /* the angle of a turn */
+} Pending;
+enum { P_HL, P_UH, P_UL, P_NEGATE, P_ORTHO, P_ORTHO_LU };
+enum { PENDING_MAX = 32 };
+
 /* Everything `[` saves and `]` restores. */
 typedef struct TState {
     vec3 pos, h, l, u;
@@ -59,7 +78,8 @@ typedef struct TState {
     uint8_t material;
     bool branch;      /* after `[`, before the first segment: the next segment starts an axis */
     bool smooth;      /* inside @Gc ... @Ge */
-    uint8_t dirty;    /* turns since the frame was last orthonormalised */
+    uint32_t dirty;   /* turns since the frame was last orthonormalised (not a char: stores
+                         to it would alias everything in run_query) */
 } TState;
 
 typedef struct Poly {
@@ -80,10 +100,12 @@ typedef struct Turtle {
     uint64_t gens;      /* moves so far */
     int32_t axes;       /* axis ids handed out */
     double angle, step, widthfactor;
-    double last_deg;    /* the last angle turned by, and its sine and cosine */
-    float last_sin, last_cos;
+    Angle angles[ANGLE_CACHE]; /* recent angles turned by, and their sines and cosines */
     uint64_t bad;       /* modules skipped for non-finite parameters */
     SylEnvFill *env;    /* filling queries: segment ends and ?E modules are collected here */
+    SylOpenFill *open;  /* for env/open.c: light probes go here (syl_turtle_fill) */
+    Pending pend[PENDING_MAX]; /* run_query: frame changes to make, in order */
+    int npend;
     uint8_t cmd[MAX_SYMBOLS];
     bool warned[MAX_SYMBOLS];
     bool oom;
@@ -118,8 +140,21 @@ static void sincos_exact(double deg, float *s, float *c) {
     *c = (float)cos(rad);
 }
 
+/* sin and cos of deg, through the cache (an entry holds the exact values of its angle). */
+static inline void turn_sincos(Angle *cache, double deg, float *s, float *c) {
+    uint64_t bits;
+    memcpy(&bits, &deg, sizeof bits);
+    Angle *e = &cache[(bits * 0x9E3779B97F4A7C15u) >> 60 & (ANGLE_CACHE - 1)];
+    if (e->deg != deg) {
+        sincos_exact(deg, &e->sn, &e->cs);
+        e->deg = deg;
+    }
+    *s = e->sn;
+    *c = e->cs;
+}
+
 /* Rotate the pair (a, b) in its plane: a' = a cos + b sin, b' = b cos - a sin. */
-static void rotate_pair(vec3 a, vec3 b, float s, float c) {
+static inline __attribute__((always_inline)) void rotate_pair(vec3 a, vec3 b, float s, float c) {
     vec3 a2, b2;
     glm_vec3_scale(a, c, a2);
     glm_vec3_muladds(b, s, a2);
@@ -136,6 +171,13 @@ static void orthonormalise(TState *st) {
     glm_vec3_normalize(st->l);
     glm_vec3_cross(st->h, st->l, st->u);
     st->dirty = 0;
+}
+
+/* orthonormalise() in two halves, for run_query: H first, then L and U from it. */
+static void orthonormalise_lu(TState *st) {
+    glm_vec3_muladds(st->h, -glm_vec3_dot(st->l, st->h), st->l);
+    glm_vec3_normalize(st->l);
+    glm_vec3_cross(st->h, st->l, st->u);
 }
 
 /* After a turn: float rounding builds up over many turns, so tidy up now and then. */
@@ -208,42 +250,36 @@ static int32_t add_node(Turtle *t, uint8_t kind, int32_t parent, uint32_t module
 }
 
 /* How far a move of len goes, at the current scale. */
-static inline float distance(const TState *st, float len) { return fmaxf(-1e30f, fminf(1e30f, len * st->scale)); }
+static inline float distance(const TState *st, float len) {
+    float d = len * st->scale;
+    d = d < 1e30f ? d : 1e30f; /* fminf(1e30f, d), NaN too, without a call */
+    return d > -1e30f ? d : -1e30f;
+}
 
 /* The turtle moved without drawing: the next segment starts from a new root. */
 static void detach(Turtle *t) { t->st.gen = ++t->gens; }
 
 /* Filling queries for the environment: a segment's end, and a ?E module where it stands. */
-static void env_end(Turtle *t, const float pos[3]) {
+/* Room for one more in an array of the fill (grown rarely: out of line). */
+static bool grow_fill(Turtle *t, void *arrp, size_t *cap, size_t n, size_t size) {
+    if (array_reserve(arrp, cap, n + 1, size)) return true;
+    t->oom = true;
+    return false;
+}
+
+static inline void env_end(Turtle *t, const float pos[3]) {
     SylEnvFill *f = t->env;
-    if (f->nends == f->ends_cap) {
-        size_t cap = f->ends_cap ? 2 * f->ends_cap : 1024;
-        float(*e)[3] = realloc(f->ends, cap * sizeof *e);
-        if (!e) {
-            t->oom = true;
-            return;
-        }
-        f->ends = e;
-        f->ends_cap = cap;
-    }
+    if (f->nends == f->ends_cap && !grow_fill(t, &f->ends, &f->ends_cap, f->nends, sizeof *f->ends)) return;
     memcpy(f->ends[f->nends++], pos, 3 * sizeof(float));
 }
 
-static void env_probe(Turtle *t, size_t par, int na) {
+static inline void env_probe(Turtle *t, size_t par, int na, bool heading) {
     SylEnvFill *f = t->env;
-    if (f->nprobes == f->probes_cap) {
-        size_t cap = f->probes_cap ? 2 * f->probes_cap : 64;
-        SylEnvProbe *e = realloc(f->probes, cap * sizeof *e);
-        if (!e) {
-            t->oom = true;
-            return;
-        }
-        f->probes = e;
-        f->probes_cap = cap;
-    }
+    if (f->nprobes == f->probes_cap && !grow_fill(t, &f->probes, &f->probes_cap, f->nprobes, sizeof *f->probes)) return;
     SylEnvProbe *q = &f->probes[f->nprobes++];
     memcpy(q->pos, t->st.pos, sizeof q->pos);
-    memcpy(q->h, t->st.h, sizeof q->h);
+    if (heading) memcpy(q->h, t->st.h, sizeof q->h);
+    else memset(q->h, 0, sizeof q->h);
     q->par = par;
     q->na = na;
     q->tip = t->st.gen == 0;
@@ -437,7 +473,7 @@ static void init(Turtle *t, const SylProgram *p, SylSkeleton *sk, FILE *diag) {
     t->sk = sk;
     t->diag = diag;
     t->angle = p->angle;
-    t->last_cos = 1; /* last_deg 0 */
+    for (int k = 0; k < ANGLE_CACHE; k++) t->angles[k] = (Angle){.deg = 0, .sn = 0, .cs = 1};
     t->step = p->step;
     t->widthfactor = p->widthfactor;
     TState *st = &t->st;
@@ -491,9 +527,8 @@ static void query(const TState *st, TCmd c, double *out, int na) {
     for (int k = 0; k < na && k < 3; k++) out[k] = fabsf(v[k]) < 1e-6f ? 0.0 : (double)v[k];
 }
 
-/* Read the string; when fill is set, write the turtle state into query modules instead of
- * building the skeleton's geometry (fill->par is s->par, writable). */
-static int run(Turtle *t, const SylString *s, double *fill) {
+/* Read the string and build the skeleton. */
+static int run(Turtle *t, const SylString *s) {
     TState *st = &t->st;
     const uint16_t *code = s->code;
     const double *par = s->par;
@@ -516,13 +551,7 @@ static int run(Turtle *t, const SylString *s, double *fill) {
         uint32_t module = (uint32_t)i;
         float sn = 0, cs = 1;
         if (cmd >= T_LEFT && cmd <= T_ROLL_RIGHT) { /* most turns are by the model's angle */
-            double deg = argd(a, na, 0, t->angle);
-            if (deg != t->last_deg) {
-                sincos_exact(deg, &t->last_sin, &t->last_cos);
-                t->last_deg = deg;
-            }
-            sn = t->last_sin;
-            cs = t->last_cos;
+            turn_sincos(t->angles, argd(a, na, 0, t->angle), &sn, &cs);
         }
         switch (cmd) {
         case T_NONE: break;
@@ -576,9 +605,7 @@ static int run(Turtle *t, const SylString *s, double *fill) {
         case T_LEAF: add_organ(t, SYL_KIND_LEAF, arg(a, na, 0, t->step), module); break;
         case T_PETAL: add_organ(t, SYL_KIND_FLOWER, arg(a, na, 0, t->step), module); break;
         case T_NEEDLE: add_organ(t, SYL_KIND_NEEDLE, arg(a, na, 0, t->step), module); break;
-        case T_SURFACE_UNKNOWN:
-            if (!fill) warn_once(t, sym, "not a predefined surface (~leaf, ~petal, ~flower, ~needle)");
-            break;
+        case T_SURFACE_UNKNOWN: warn_once(t, sym, "not a predefined surface (~leaf, ~petal, ~flower, ~needle)"); break;
         case T_SPHERE: add_organ(t, SYL_KIND_SPHERE, arg(a, na, 0, st->width), module); break;
         case T_TROPISM:
             if (na >= 3) {
@@ -604,17 +631,314 @@ static int run(Turtle *t, const SylString *s, double *fill) {
         case T_QUERY_H:
         case T_QUERY_L:
         case T_QUERY_U:
-            if (fill) {
-                if (st->dirty) orthonormalise(st);
-                query(st, cmd, fill + (a - par), na);
-            }
+        case T_QUERY_E: break; /* filled by run_query */
+        }
+    }
+    return t->oom ? SYL_ELIMIT : SYL_OK;
+}
+
+/* Filling queries, only what moves or turns the turtle counts: widths, materials, organs and
+ * unknown surfaces change nothing a query reads (organs and vertices are not even kept
+ * without a skeleton), so they are read as unknown symbols, and ?E too when nobody collects. */
+static void resolve_query(Turtle *t) {
+    for (int i = 0; i < MAX_SYMBOLS; i++) switch (t->cmd[i]) {
+        case T_WIDTH: case T_MATERIAL: case T_MATERIAL_NEXT: case T_MATERIAL_PREV: case T_VERTEX:
+        case T_LEAF: case T_PETAL: case T_NEEDLE: case T_SURFACE_UNKNOWN: case T_SPHERE:
+        case T_SMOOTH_ON: case T_SMOOTH_OFF:
+            t->cmd[i] = T_NONE;
             break;
         case T_QUERY_E:
-            if (fill && t->env) {
-                if (st->dirty) orthonormalise(st);
-                env_probe(t, (size_t)(a - par), na);
-            }
+            if (!t->env) t->cmd[i] = T_NONE;
             break;
+        default: break;
+        }
+}
+
+/* ---- filling queries ----
+ * The turtle's frame changes only when something reads it: turns, `|` and re-orthonormalising
+ * wait in t->pend until a segment, a move, `[`, `$`, @R or a query of the frame needs the frame,
+ * and are dropped at `]` (the frame they would have made is never seen). Made later, in the
+ * same order, they give the same floats; dirty is counted as they are queued, so the frame is
+ * re-orthonormalised where run() would do it. */
+
+/* Make the frame changes waiting (orthonormalise's dirty = 0 is already counted). */
+static void flush(Turtle *t) {
+    TState *st = &t->st;
+    uint32_t dirty = st->dirty;
+    for (int k = 0; k < t->npend; k++) {
+        const Pending *q = &t->pend[k];
+        float sn = 0, cs = 1;
+        if (q->op <= P_UL) {
+            turn_sincos(t->angles, q->deg, &sn, &cs);
+            if (q->neg) sn = -sn;
+        }
+        switch (q->op) {
+        case P_HL: rotate_pair(st->h, st->l, sn, cs); break;
+        case P_UH: rotate_pair(st->u, st->h, sn, cs); break;
+        case P_UL: rotate_pair(st->u, st->l, sn, cs); break;
+        case P_NEGATE:
+            glm_vec3_negate(st->h);
+            glm_vec3_negate(st->l);
+            break;
+        case P_ORTHO: orthonormalise(st); break;
+        default: orthonormalise_lu(st); break;
+        }
+    }
+    st->dirty = dirty;
+    t->npend = 0;
+}
+
+/* The frame changes waiting, as far as H: a last re-orthonormalising is made for H alone,
+ * L and U left waiting (a segment needs H; a branch of turns and light queries after it
+ * drops the rest). */
+static void flush_h(Turtle *t) {
+    if (t->pend[t->npend - 1].op != P_ORTHO) {
+        flush(t);
+        return;
+    }
+    t->npend--;
+    flush(t);
+    glm_vec3_normalize(t->st.h);
+    t->pend[t->npend++] = (Pending){.op = P_ORTHO_LU};
+}
+
+static inline void pend(Turtle *t, uint32_t op, bool neg, double deg) {
+    if (t->npend == PENDING_MAX) flush(t);
+    t->pend[t->npend++] = (Pending){.op = op, .neg = neg, .deg = deg};
+}
+
+/* orthonormalise() when the frame is dirty, as every reader of the frame in run() does. */
+static inline void pend_tidy(Turtle *t) {
+    if (t->st.dirty) {
+        pend(t, P_ORTHO, false, 0);
+        t->st.dirty = 0;
+    }
+}
+
+/* A turn (its sine and cosine are looked up when it is made: most never are). */
+static inline void pend_turn(Turtle *t, uint32_t op, bool neg, double deg) {
+    pend(t, op, neg, deg);
+    if (++t->st.dirty >= 32) { /* turned() */
+        pend(t, P_ORTHO, false, 0);
+        t->st.dirty = 0;
+    }
+}
+
+/* draw() without the skeleton: the frame, the segment's end, tropism, and the moves that
+ * the stack shares (a query's `tip` reads them). */
+static inline void draw_query(Turtle *t, float len) {
+    TState *st = &t->st;
+    pend_tidy(t);
+    if (t->npend) {
+        if (st->elasticity != 0) flush(t); /* tropism turns the whole frame */
+        else flush_h(t);
+    }
+    if (st->gen) {
+        for (size_t k = t->depth; k-- && t->stack[k].gen == st->gen;) t->stack[k].gen = 0;
+        st->gen = 0;
+    }
+    glm_vec3_muladds(st->h, distance(st, len), st->pos);
+    if (t->env) env_end(t, st->pos);
+    if (st->elasticity != 0) tropism(st);
+}
+
+static inline void move_query(Turtle *t, float len) {
+    if (t->npend) flush(t);
+    glm_vec3_muladds(t->st.h, distance(&t->st, len), t->st.pos);
+    detach(t);
+}
+
+/* `]` (and `%`): the frame changes waiting are never seen. */
+static inline void pop_query(Turtle *t) {
+    if (!t->depth) return; /* an unmatched `]` keeps the state */
+    t->npend = 0;
+    pop(t);
+}
+
+/* Whether v[0..n) are all finite: an exponent of all ones (inf, NaN) carries into bit 63. */
+static inline bool all_finite(const double *v, unsigned n) {
+    uint64_t odd = 0;
+    for (unsigned k = 0; k < n; k++) {
+        uint64_t bits;
+        memcpy(&bits, v + k, sizeof bits);
+        odd |= (bits & 0x7ff0000000000000u) + ((uint64_t)1 << 52);
+    }
+    return !(odd >> 63);
+}
+
+/* The commands run_query meets seldom, out of its loop (which then keeps its variables in
+ * registers). o: the module's parameters, writable. */
+static __attribute__((noinline)) void query_seldom(Turtle *t, TCmd cmd, const double *a, int na, double *o) {
+    TState *st = &t->st;
+    switch (cmd) {
+    case T_TURN_AROUND: pend(t, P_NEGATE, false, 0); break;
+    case T_LEVEL:
+        if (t->npend) flush(t);
+        level(st);
+        break;
+    case T_TROPISM:
+        if (na >= 3) {
+            vec3 tr = {arg(a, na, 0, 0), arg(a, na, 1, 0), arg(a, na, 2, 0)};
+            if (glm_vec3_norm(tr) > 1e-12f) glm_vec3_normalize_to(tr, st->trop);
+            else glm_vec3_zero(st->trop);
+        }
+        if (na >= 4) st->elasticity = arg(a, na, 3, 0);
+        if (glm_vec3_norm(st->trop) == 0) st->elasticity = 0;
+        break;
+    case T_ELASTICITY: st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0; break;
+    case T_MOVE_TO:
+        for (int k = 0; k < na && k < 3; k++) st->pos[k] = arg(a, na, k, 0);
+        detach(t);
+        break;
+    case T_HEADING:
+        if (t->npend) flush(t);
+        set_heading(t, a, na);
+        break;
+    case T_SCALE: st->scale = arg(a, na, 0, 1); break;
+    case T_QUERY_H:
+    case T_QUERY_L:
+    case T_QUERY_U:
+        pend_tidy(t);
+        if (t->npend) flush(t);
+        query(st, cmd, o, na);
+        break;
+    default: break; /* read as unknown: see resolve_query */
+    }
+}
+
+static inline void light_probe(Turtle *t, uint32_t par) {
+    SylOpenFill *o = t->open;
+    if (o->nlight == o->light_cap && !grow_fill(t, &o->light, &o->light_cap, o->nlight, sizeof *o->light)) return;
+    SylLightProbe *q = &o->light[o->nlight++];
+    memcpy(q->pos, t->st.pos, sizeof q->pos);
+    q->par = par | (t->st.gen == 0 ? SYL_LIGHT_TIP : 0);
+}
+
+/* The kind an ?E module asks, as env/probe.c reads it (a missing one is light): bit 1 light,
+ * 2 crowding, 4 distance, 8 sky exposure, 0 another. */
+static inline unsigned env_kind(const double *a, int na) {
+    double kind = na ? a[0] : 0;
+    return kind == 0 ? 1u : kind == 1 ? 2u : kind == 2 ? 4u : kind == 3 ? 8u : 0u;
+}
+
+/* An ?E module: its probe. For env/open.c only what it answers. */
+static inline void query_env(Turtle *t, const double *a, int na, size_t at) {
+    pend_tidy(t);
+    if (!t->open) {
+        if (t->npend) flush(t);
+        env_probe(t, at, na, true);
+        return;
+    }
+    unsigned kind = env_kind(a, na);
+    t->open->kinds |= kind;
+    if (na < 2 || !kind) return; /* not answered */
+    if (kind == 1 && at < SYL_LIGHT_TIP) {
+        light_probe(t, (uint32_t)at); /* the position alone */
+    } else if (kind == 1) {
+        env_probe(t, at, na, false);
+    } else { /* crowding and distance look along the heading (sky: read again, see open.c) */
+        if (t->npend) flush(t);
+        env_probe(t, at, na, true);
+    }
+}
+
+/* A branch that only turns and asks where it stands (?P, light) changes nothing seen after
+ * its `]`, and nobody sees its turns: its queries are answered at the position of its `[`
+ * and it is skipped, without saving and restoring the state. Returns the index of its `]`
+ * (n when the string ends first), *ap past its parameters; 0 when the branch does more
+ * (what it collected is then taken back, and the turtle reads it as usual). */
+/* What a dead branch may hold besides its queries: a bit per command. */
+_Static_assert(T_QUERY_E < 64, "a bit per command in a uint64_t");
+static const uint64_t skip_dead = (uint64_t)1 << T_NONE | (uint64_t)1 << T_LEFT | (uint64_t)1 << T_RIGHT |
+                                  (uint64_t)1 << T_DOWN | (uint64_t)1 << T_UP | (uint64_t)1 << T_ROLL_LEFT |
+                                  (uint64_t)1 << T_ROLL_RIGHT;
+
+static size_t dead_branch(Turtle *t, const SylString *s, size_t i, const double **ap, double *out) {
+    const uint16_t *code = s->code;
+    const double *par = s->par, *a = *ap;
+    size_t n = s->n, nlight = t->open ? t->open->nlight : 0;
+    for (i++; i < n; i++) {
+        unsigned c = code[i], na = CODE_ARITY(c);
+        TCmd cmd = t->cmd[CODE_SYM(c)];
+        a += na;
+        const double *m = a - na;
+        if (skip_dead >> cmd & 1) continue;
+        if (cmd == T_POP) break;
+        if (cmd == T_QUERY_P) {
+            query(&t->st, cmd, out + (m - par), (int)na);
+            continue;
+        }
+        if (cmd != T_QUERY_E || !t->open) return t->open ? (t->open->nlight = nlight, 0) : 0;
+        unsigned kind = env_kind(m, (int)na); /* as query_env */
+        t->open->kinds |= kind;
+        if (na < 2 || !kind) continue; /* not answered */
+        if (kind != 1 || (size_t)(m - par) >= SYL_LIGHT_TIP) { /* needs the heading, or room */
+            t->open->nlight = nlight;
+            return 0;
+        }
+        light_probe(t, (uint32_t)(m - par));
+    }
+    *ap = a;
+    return i;
+}
+
+/* Read the string as run() does, but only to write the turtle's state into its query
+ * modules (out is s->par, writable) and collect what ?E needs: no skeleton, no polygons
+ * (only how many are open: F moves inside one), no organs. The position and frame go
+ * through the same float operations as in run(), so the values are the same. */
+static int run_query(Turtle *t, const SylString *s, double *out) {
+    const uint16_t *code = s->code;
+    const double *par = s->par, *a = par;
+    const uint8_t *cmds = t->cmd;
+    size_t n = s->n, npolys = 0;
+    t->npend = 0;
+    for (size_t i = 0; i < n && !t->oom; i++) {
+        unsigned c = code[i], na = CODE_ARITY(c);
+        TCmd cmd = cmds[CODE_SYM(c)];
+        a += na; /* past this module's parameters: they are a[-na .. -1] */
+        if (cmd == T_NONE) continue;
+        const double *m = a - na;
+        if (na && cmd < T_QUERY_P && !all_finite(m, na)) continue;
+        switch (cmd) {
+        case T_F:
+        case T_G:
+            if (npolys) move_query(t, arg(m, (int)na, 0, t->step));
+            else draw_query(t, arg(m, (int)na, 0, t->step));
+            break;
+        case T_f:
+        case T_g: move_query(t, arg(m, (int)na, 0, t->step)); break;
+        case T_LEFT:
+        case T_RIGHT: pend_turn(t, P_HL, cmd == T_RIGHT, argd(m, (int)na, 0, t->angle)); break; /* H toward L */
+        case T_DOWN:
+        case T_UP: pend_turn(t, P_UH, cmd == T_UP, argd(m, (int)na, 0, t->angle)); break; /* H toward -U */
+        case T_ROLL_LEFT:
+        case T_ROLL_RIGHT: pend_turn(t, P_UL, cmd == T_ROLL_RIGHT, argd(m, (int)na, 0, t->angle)); break; /* L toward -U */
+        case T_PUSH: {
+            size_t end = dead_branch(t, s, i, &a, out);
+            if (end) {
+                i = end;
+                break;
+            }
+            if (t->npend) flush(t);
+            push(t);
+            break;
+        }
+        case T_POP: pop_query(t); break;
+        case T_CUT: {
+            size_t off = (size_t)(a - par);
+            i = branch_end(s, i, &off);
+            a = par + off;
+            if (i < n) pop_query(t);
+            break;
+        }
+        case T_POLY_OPEN: npolys++; break;
+        case T_POLY_CLOSE: npolys -= npolys > 0; break;
+        case T_QUERY_P:
+            pend_tidy(t); /* the position needs no frame */
+            query(&t->st, cmd, out + (m - par), (int)na);
+            break;
+        case T_QUERY_E: query_env(t, m, (int)na, (size_t)(m - par)); break;
+        default: query_seldom(t, cmd, m, (int)na, out + (m - par)); break;
         }
     }
     return t->oom ? SYL_ELIMIT : SYL_OK;
@@ -641,7 +965,7 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
         }
     init(t, p, sk, diag);
     reserve_nodes(t, s);
-    int status = run(t, s, NULL);
+    int status = run(t, s);
     if (status == SYL_OK && t->bad && diag)
         fprintf(diag, "sylva: warning: the turtle skipped %llu module%s with a parameter that is not a finite number\n",
                 (unsigned long long)t->bad, t->bad == 1 ? "" : "s");
@@ -656,16 +980,25 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     return status;
 }
 
-int syl_turtle_query(const SylProgram *p, SylString *s, SylEnvFill *env) {
+static int fill(const SylProgram *p, SylString *s, SylEnvFill *env, SylOpenFill *open) {
     Turtle *t = malloc(sizeof *t);
     if (!t) return SYL_ELIMIT;
     init(t, p, NULL, NULL);
     t->env = env;
+    t->open = env ? open : NULL;
     if (env) env->nends = env->nprobes = 0;
+    if (t->open) t->open->nlight = 0, t->open->kinds = 0;
+    resolve_query(t);
     bool any = false;
-    for (int i = 0; i < p->nsyms && i < MAX_SYMBOLS; i++) any |= t->cmd[i] >= T_QUERY_P && (env || t->cmd[i] != T_QUERY_E);
-    int status = any ? run(t, s, s->par) : SYL_OK;
+    for (int i = 0; i < p->nsyms && i < MAX_SYMBOLS; i++) any |= t->cmd[i] >= T_QUERY_P;
+    int status = any ? run_query(t, s, s->par) : SYL_OK;
     release(t);
     free(t);
     return status;
+}
+
+int syl_turtle_query(const SylProgram *p, SylString *s, SylEnvFill *env) { return fill(p, s, env, NULL); }
+
+int syl_turtle_fill(const SylProgram *p, SylString *s, SylEnvFill *env, SylOpenFill *open) {
+    return fill(p, s, env, open);
 }
