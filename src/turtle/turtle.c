@@ -667,15 +667,20 @@ static void flush(Turtle *t) {
     uint32_t dirty = st->dirty;
     for (int k = 0; k < t->npend; k++) {
         const Pending *q = &t->pend[k];
-        float sn = 0, cs = 1;
-        if (q->op <= P_UL) {
-            turn_sincos(t->angles, q->deg, &sn, &cs);
-            if (q->neg) sn = -sn;
-        }
+        float sn, cs;
         switch (q->op) {
-        case P_HL: rotate_pair(st->h, st->l, sn, cs); break;
-        case P_UH: rotate_pair(st->u, st->h, sn, cs); break;
-        case P_UL: rotate_pair(st->u, st->l, sn, cs); break;
+        case P_HL:
+            turn_sincos(t->angles, q->deg, &sn, &cs);
+            rotate_pair(st->h, st->l, q->neg ? -sn : sn, cs);
+            break;
+        case P_UH:
+            turn_sincos(t->angles, q->deg, &sn, &cs);
+            rotate_pair(st->u, st->h, q->neg ? -sn : sn, cs);
+            break;
+        case P_UL:
+            turn_sincos(t->angles, q->deg, &sn, &cs);
+            rotate_pair(st->u, st->l, q->neg ? -sn : sn, cs);
+            break;
         case P_NEGATE:
             glm_vec3_negate(st->h);
             glm_vec3_negate(st->l);
@@ -892,7 +897,7 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
     const uint8_t *cmds = t->cmd;
     size_t n = s->n, npolys = 0;
     t->npend = 0;
-    for (size_t i = 0; i < n && !t->oom; i++) {
+    for (size_t i = 0; i < n; i++) { /* t->oom is looked at where memory is taken */
         unsigned c = code[i], na = CODE_ARITY(c);
         TCmd cmd = cmds[CODE_SYM(c)];
         a += na; /* past this module's parameters: they are a[-na .. -1] */
@@ -902,8 +907,12 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
         switch (cmd) {
         case T_F:
         case T_G:
-            if (npolys) move_query(t, arg(m, (int)na, 0, t->step));
-            else draw_query(t, arg(m, (int)na, 0, t->step));
+            if (npolys) {
+                move_query(t, arg(m, (int)na, 0, t->step));
+                break;
+            }
+            draw_query(t, arg(m, (int)na, 0, t->step));
+            if (t->oom) return SYL_ELIMIT;
             break;
         case T_f:
         case T_g: move_query(t, arg(m, (int)na, 0, t->step)); break;
@@ -917,10 +926,11 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
             size_t end = dead_branch(t, s, i, &a, out);
             if (end) {
                 i = end;
-                break;
+            } else {
+                if (t->npend) flush(t);
+                push(t);
             }
-            if (t->npend) flush(t);
-            push(t);
+            if (t->oom) return SYL_ELIMIT;
             break;
         }
         case T_POP: pop_query(t); break;
@@ -937,7 +947,10 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
             pend_tidy(t); /* the position needs no frame */
             query(&t->st, cmd, out + (m - par), (int)na);
             break;
-        case T_QUERY_E: query_env(t, m, (int)na, (size_t)(m - par)); break;
+        case T_QUERY_E:
+            query_env(t, m, (int)na, (size_t)(m - par));
+            if (t->oom) return SYL_ELIMIT;
+            break;
         default: query_seldom(t, cmd, m, (int)na, out + (m - par)); break;
         }
     }
