@@ -88,15 +88,11 @@ int open_env_answer(void *user, int step, const SylEnvFill *f, double *par) {
 
 /* Light as probe_answer gives it, for compact probes. */
 static void answer_light(const OpenEnv *e, const SylLightProbe *probes, size_t n, double *par) {
-    const ShadowGrid *g = &e->shadow;
-    const ShadowParams *sp = &g->p;
     for (size_t i = 0; i < n; i++) {
         const SylLightProbe *q = &probes[i];
         float pos[3];
         for (int k = 0; k < 3; k++) pos[k] = q->pos[k] + e->P.at[k];
-        float s = shadow_value(g, shadow_index(g, pos)); /* shadow_at, inlined */
-        double v = (sp->full - s + (q->par & SYL_LIGHT_TIP ? sp->a : 0)) / sp->full;
-        par[(q->par & ~SYL_LIGHT_TIP) + 1] = v < 0 ? 0 : v < 1 ? v : 1;
+        par[(q->par & ~SYL_LIGHT_TIP) + 1] = probe_light(&e->shadow, pos, (q->par & SYL_LIGHT_TIP) != 0);
     }
 }
 

@@ -38,13 +38,6 @@ static double distance(const ProbeWorld *w, const float pos[3], const float h[3]
     return far;
 }
 
-static double light(const ShadowGrid *g, const float pos[3], bool tip) {
-    if (!g) return 1;
-    const ShadowParams *sp = &g->p;
-    double v = (sp->full - shadow_at(g, pos) + (tip ? sp->a : 0)) / sp->full;
-    return v < 0 ? 0 : v < 1 ? v : 1;
-}
-
 void probe_answer(const ProbeWorld *w, const SylEnvFill *fill, int step, double *par) {
     static const float up[3] = {0, 1, 0};
     for (size_t i = 0; i < fill->nprobes; i++) {
@@ -53,7 +46,7 @@ void probe_answer(const ProbeWorld *w, const SylEnvFill *fill, int step, double 
         double *a = par + q->par;
         float pos[3];
         for (int k = 0; k < 3; k++) pos[k] = q->pos[k] + w->at[k];
-        if (a[0] == PROBE_LIGHT) a[1] = light(w->shadow, pos, q->tip);
+        if (a[0] == PROBE_LIGHT) a[1] = w->shadow ? probe_light(w->shadow, pos, q->tip) : 1;
         else if (a[0] == PROBE_SPACE) {
             float r = q->na >= 3 && a[2] > 0 && isfinite(a[2]) ? (float)a[2] : w->voxel, c[3];
             for (int k = 0; k < 3; k++) c[k] = pos[k] + r * q->h[k];

@@ -33,6 +33,14 @@ typedef struct ProbeWorld {
     float at[3];                /* the plant's place: probes are relative to it */
 } ProbeWorld;
 
+/* ?E(0)'s answer at pos: (C - s + (tip ? a : 0)) / C, in 0..1 (at a segment's end its own
+ * shadow does not count). Inline: env/open.c answers every apex of a step with it. */
+static inline double probe_light(const ShadowGrid *g, const float pos[3], bool tip) {
+    const ShadowParams *sp = &g->p;
+    double v = (sp->full - shadow_value(g, shadow_index(g, pos)) + (tip ? sp->a : 0)) / sp->full;
+    return v < 0 ? 0 : v < 1 ? v : 1;
+}
+
 /* The kinds the probes of a step ask for: bit k for ?E(k, ...). */
 unsigned probe_kinds(const SylEnvFill *fill, const double *par);
 /* Write every probe's answer into par; the step keys the sky rays' random streams. */

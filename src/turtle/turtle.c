@@ -379,6 +379,17 @@ static void add_organ(Turtle *t, uint8_t kind, float size, uint32_t module) {
     if (syl_skeleton_add_organ(t->sk, &o) < 0) t->oom = true;
 }
 
+/* @Tp(x, y, z[, e]): the tropism's direction (zero: none) and its elasticity. */
+static void set_tropism(TState *st, const double *a, int na) {
+    if (na >= 3) {
+        vec3 tr = {arg(a, na, 0, 0), arg(a, na, 1, 0), arg(a, na, 2, 0)};
+        if (glm_vec3_norm(tr) > 1e-12f) glm_vec3_normalize_to(tr, st->trop);
+        else glm_vec3_zero(st->trop);
+    }
+    if (na >= 4) st->elasticity = arg(a, na, 3, 0);
+    if (glm_vec3_norm(st->trop) == 0) st->elasticity = 0;
+}
+
 static void push(Turtle *t) {
     if (t->depth == t->cap) {
         size_t c = t->cap ? t->cap * 2 : 64;
@@ -607,15 +618,7 @@ static int run(Turtle *t, const SylString *s) {
         case T_NEEDLE: add_organ(t, SYL_KIND_NEEDLE, arg(a, na, 0, t->step), module); break;
         case T_SURFACE_UNKNOWN: warn_once(t, sym, "not a predefined surface (~leaf, ~petal, ~flower, ~needle)"); break;
         case T_SPHERE: add_organ(t, SYL_KIND_SPHERE, arg(a, na, 0, st->width), module); break;
-        case T_TROPISM:
-            if (na >= 3) {
-                vec3 tr = {arg(a, na, 0, 0), arg(a, na, 1, 0), arg(a, na, 2, 0)};
-                if (glm_vec3_norm(tr) > 1e-12f) glm_vec3_normalize_to(tr, st->trop);
-                else glm_vec3_zero(st->trop);
-            }
-            if (na >= 4) st->elasticity = arg(a, na, 3, 0);
-            if (glm_vec3_norm(st->trop) == 0) st->elasticity = 0;
-            break;
+        case T_TROPISM: set_tropism(st, a, na); break;
         case T_ELASTICITY:
             st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0;
             break;
@@ -781,15 +784,7 @@ static __attribute__((noinline)) void query_seldom(Turtle *t, TCmd cmd, const do
         if (t->npend) flush(t);
         level(st);
         break;
-    case T_TROPISM:
-        if (na >= 3) {
-            vec3 tr = {arg(a, na, 0, 0), arg(a, na, 1, 0), arg(a, na, 2, 0)};
-            if (glm_vec3_norm(tr) > 1e-12f) glm_vec3_normalize_to(tr, st->trop);
-            else glm_vec3_zero(st->trop);
-        }
-        if (na >= 4) st->elasticity = arg(a, na, 3, 0);
-        if (glm_vec3_norm(st->trop) == 0) st->elasticity = 0;
-        break;
+    case T_TROPISM: set_tropism(st, a, na); break;
     case T_ELASTICITY: st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0; break;
     case T_MOVE_TO:
         for (int k = 0; k < na && k < 3; k++) st->pos[k] = arg(a, na, k, 0);
