@@ -34,12 +34,22 @@ typedef struct SylGrowOptions {
     int use_seed;             /* nonzero: seed replaces the model's (in a scene: seed + plant number) */
     uint64_t seed;
     int threads;              /* <= 0: all cores; the result never depends on it */
-    uint64_t max_metamers;    /* stop with SYL_ELIMIT beyond; 0: 20 million */
+    uint64_t max_metamers;    /* living metamers of all trees: stop with SYL_ELIMIT beyond; 0: 20 million */
     FILE *diag;
     void (*progress)(void *user, double fraction); /* after every year; may be NULL */
     void *user;
     SylGrowStats stats;       /* out */
+    /* Limits (exit code 3 beyond them, with a message naming the option). */
+    uint64_t max_buds;        /* living buds of all trees; 0: 100 million */
+    uint64_t max_modules;     /* of each L-system string in a scene, and of each shoot a shoot
+                                 rule derives; 0: 200 million (a shoot: 1 million) */
+    uint64_t max_work;        /* of each L-system derivation (SylDeriveOptions.max_work) */
+    uint64_t max_memory;      /* bytes, when budget is NULL; 0: the default */
+    SylBudget *budget;        /* shared memory budget: trees, buds, scenes' strings, shoots */
 } SylGrowOptions;
+
+/* The most years a tree may grow (`years`, --years, -n). */
+enum { SYL_GROW_MAX_YEARS = 10000 };
 
 /* Grow a `grow` model alone, its base at the origin. */
 int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out);

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "skeleton.h"
+#include "sylva.h"
 
 typedef struct SylMeshGroup {
     uint32_t first, count; /* a range of SylMesh.idx (a multiple of 3) */
@@ -24,6 +25,8 @@ typedef struct SylMesh {
     SylMaterial materials[256];
     int nmaterials;
     char name[64];
+    SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
+    uint64_t charged;
 } SylMesh;
 
 enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };
@@ -37,6 +40,10 @@ typedef struct SylMeshOptions {
     int caps;             /* close axis ends (default on: set -1 for off) */
     int threads;          /* <= 0: all cores; the mesh never depends on it */
     FILE *diag;           /* where problems are reported; NULL: nowhere */
+    /* The mesh's size is estimated before anything is allocated: beyond the memory budget
+     * it stops with SYL_ELIMIT and says so. */
+    uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
+    SylBudget *budget;    /* shared memory budget; the mesh counts against it until freed */
 } SylMeshOptions;
 
 int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out);

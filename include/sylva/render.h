@@ -21,6 +21,10 @@ typedef struct SylRenderOptions {
     FILE *diag;
     void (*progress)(void *user, double fraction); /* may be NULL */
     void *user;
+    /* The picture's buffers and Embree's scene (about 150 bytes a triangle) are estimated
+     * before they are built: beyond the memory budget it stops with SYL_ELIMIT. */
+    uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
+    SylBudget *budget;    /* shared memory budget */
 } SylRenderOptions;
 
 /* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and

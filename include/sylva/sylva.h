@@ -22,6 +22,18 @@ enum {
 typedef struct SylProgram SylProgram;
 typedef struct SylString SylString;
 
+/* A memory budget that several engines share, so that one limit (--max-memory) holds for a
+ * whole run: derivation, growth, scenes, the mesher and the renderer each count their large
+ * arrays against it and stop with SYL_ELIMIT, before allocating, when it would be passed.
+ * Give the same budget to each engine's options (their `budget` field); NULL there: the
+ * engine keeps its own, of its max_memory or the default (half the machine's memory, at most
+ * 16 GiB). Thread-safe. */
+typedef struct SylBudget SylBudget;
+SylBudget *syl_budget_new(uint64_t max_bytes); /* 0: the default; NULL when out of memory */
+void syl_budget_free(SylBudget *b);
+uint64_t syl_budget_used(const SylBudget *b);  /* bytes counted now */
+uint64_t syl_budget_limit(const SylBudget *b);
+
 typedef struct SylOverride {
     const char *name;
     double value;
@@ -129,6 +141,11 @@ typedef struct SylDeriveOptions {
      * the ground, shading itself). */
     SylEnvFn env;
     void *env_user;
+    SylBudget *budget;    /* shared memory budget; NULL: one of max_memory */
+    /* Stop with SYL_ELIMIT when all steps together would rewrite more than this many
+     * modules (each pass counts as at least 100): a derivation that would run for hours.
+     * 0: the default (100 billion). */
+    uint64_t max_work;
 } SylDeriveOptions;
 
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);

@@ -19,6 +19,7 @@ typedef struct ModelArgs {
     const char *model; /* NULL: the first */
     SylOverride sets[MAX_SETS];
     int nsets;
+    uint64_t max_metamers, max_buds; /* --max-metamers, --max-buds (grow blocks, scenes) */
 } ModelArgs;
 
 /* Split FILE:Model. */
@@ -30,22 +31,37 @@ bool cli_integer(const char *opt, const char *arg, double min, double max, doubl
 bool cli_size(const char *opt, const char *arg, unsigned long long *out); /* 512M, 2G */
 SylProgram *cli_compile(ModelArgs *m, int lint, int *status);
 
-/* Options of every command that derives a model: -n, --seed, --set, -j, --max-modules and
- * --max-memory. Put CLI_DERIVE_OPTIONS in the getopt_long table, CLI_DERIVE_SHORT in the short
- * options, and hand every option to cli_derive_option. */
+/* The resource limits (docs/cli.md, "Resource limits"), each stopping with exit code 3 and a
+ * message that names it: CLI_LIMIT_OPTIONS for every command that derives, and
+ * CLI_GROW_LIMITS too for those that grow. cli_derive_option applies them all. */
+#define CLI_LIMIT_OPTIONS                                                                      \
+    {"max-modules", required_argument, 0, 'M'}, {"max-memory", required_argument, 0, 'm'},     \
+        {"max-work", required_argument, 0, 'W'}
+#define CLI_GROW_LIMITS {"max-metamers", required_argument, 0, 'T'}, {"max-buds", required_argument, 0, 'B'}
+#define CLI_LIMIT_HELP                                                                         \
+    "  --max-memory SIZE     stop with exit code 3 beyond SIZE of memory for strings, trees,\n" \
+    "                        meshes and pictures, e.g. 2G (default: half the machine's\n"       \
+    "                        memory, at most 16G)\n"                                            \
+    "  --max-modules N       stop with exit code 3 beyond N modules in a string\n"              \
+    "                        (default 200000000)\n"                                             \
+    "  --max-work N          stop with exit code 3 beyond N modules rewritten by all steps\n"   \
+    "                        of a derivation (default 100000000000)\n"
+#define CLI_GROW_LIMIT_HELP                                                                    \
+    "  --max-metamers N      stop with exit code 3 beyond N metamers (default 20000000)\n"      \
+    "  --max-buds N          stop with exit code 3 beyond N buds (default 100000000)\n"
+/* Options of every command that derives a model: -n, --seed, --set, -j and the limits. Put
+ * CLI_DERIVE_OPTIONS in the getopt_long table, CLI_DERIVE_SHORT in the short options, and
+ * hand every option to cli_derive_option. */
 #define CLI_DERIVE_OPTIONS                                                                     \
     {"derive", required_argument, 0, 'n'}, {"seed", required_argument, 0, 's'},                \
-        {"set", required_argument, 0, 'S'}, {"threads", required_argument, 0, 'j'},            \
-        {"max-modules", required_argument, 0, 'M'}, {"max-memory", required_argument, 0, 'm'}
+        {"set", required_argument, 0, 'S'}, {"threads", required_argument, 0, 'j'}, CLI_LIMIT_OPTIONS
 #define CLI_DERIVE_SHORT "n:j:"
 #define CLI_DERIVE_HELP                                                                        \
     "  -n, --derive N        derivation steps (default: the model's `derive`)\n"               \
     "  --seed S              random seed (default: the model's `seed`)\n"                      \
     "  --set NAME=VALUE      override a `param` of the model (repeatable)\n"                   \
     "  -j, --threads N       threads (default: all cores); the output never depends on N\n"    \
-    "  --max-modules N       stop with exit code 3 beyond N modules (default 200000000)\n"     \
-    "  --max-memory SIZE     stop with exit code 3 beyond SIZE of strings, e.g. 2G\n"          \
-    "                        (default: half the machine's memory, at most 16G)\n"
+    CLI_LIMIT_HELP
 /* 1: c is one of those options and was applied; 0: it is not; -1: bad value (reported). */
 int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d);
 /* Compile m, derive it and apply its `interpret` rules: the string a turtle reads. On
@@ -77,7 +93,8 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
 void cli_plant_free(Plant *pl);
 /* cli_plant's way for grow blocks and scenes (grow_plant.c): -n is the years and
  * --max-modules the most metamers; takes p. */
-int cli_grow_plant(SylProgram *p, bool scene, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
+int cli_grow_plant(SylProgram *p, bool scene, const ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo,
+                   Plant *out);
 
 /* Write through a temporary file renamed into place, so a failed run leaves nothing. */
 typedef struct OutFile {

@@ -97,6 +97,9 @@ int cmd_derive(int argc, char **argv) {
         syl_program_free(p);
         return SYL_EIO;
     }
+    SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
+    d.budget = budget;
+
     StepPrinter sp = {.p = p, .out = out.f};
     if (all_steps && !quiet) {
         d.on_step = print_step;
@@ -122,5 +125,6 @@ int cmd_derive(int argc, char **argv) {
     if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, d.rewritten);
     syl_string_free(s);
     syl_program_free(p);
+    syl_budget_free(budget);
     return status;
 }

@@ -24,14 +24,15 @@ static const char usage[] =
     "  --seed S              random seed (a scene: S + the plant's number)\n"
     "  --set NAME=VALUE      override a `param` of the model (repeatable)\n"
     "  -j, --threads N       threads (default: all cores); the result never depends on N\n"
-    "  --max-metamers N      stop with exit code 3 beyond N metamers (default 20000000)\n"
+    CLI_GROW_LIMIT_HELP
+    CLI_LIMIT_HELP
     "  --view V              iso, front, side or top (default: chosen from the shape)\n"
     "  --size WxH            picture size (default 1024x1024)\n"
     "  --stats               print counts and the time of every phase to stderr\n"
     "\n"
     "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n";
 
-enum { OPT_OUT = 1000, OPT_YEARS, OPT_MAX, OPT_VIEW, OPT_SIZE, OPT_STATS };
+enum { OPT_OUT = 1000, OPT_YEARS, OPT_VIEW, OPT_SIZE, OPT_STATS };
 
 typedef enum { W_DEFAULT, W_PNG, W_MESH, W_CSV, W_JSON } What;
 
@@ -83,7 +84,8 @@ int cmd_grow(int argc, char **argv) {
         {"output", required_argument, 0, 'o'},   {"out", required_argument, 0, OPT_OUT},
         {"years", required_argument, 0, OPT_YEARS}, {"seed", required_argument, 0, 's'},
         {"set", required_argument, 0, 'S'},      {"threads", required_argument, 0, 'j'},
-        {"max-metamers", required_argument, 0, OPT_MAX}, {"view", required_argument, 0, OPT_VIEW},
+        CLI_LIMIT_OPTIONS,                       CLI_GROW_LIMITS,
+        {"view", required_argument, 0, OPT_VIEW},
         {"size", required_argument, 0, OPT_SIZE}, {"stats", no_argument, 0, OPT_STATS},
         {"help", no_argument, 0, 'h'},           {0, 0, 0, 0},
     };
@@ -96,20 +98,17 @@ int cmd_grow(int argc, char **argv) {
     int c;
     optind = 1;
     while ((c = getopt_long(argc, argv, "o:j:h", opts, NULL)) != -1) {
-        if (c == 's' || c == 'S' || c == 'j') {
-            if (cli_derive_option(c, optarg, &m, &d) < 0) return SYL_EUSAGE;
-            continue;
+        if (c != 'n') { /* grow counts years with --years */
+            int done = cli_derive_option(c, optarg, &m, &d);
+            if (done < 0) return SYL_EUSAGE;
+            if (done) continue;
         }
         switch (c) {
         case 'o': output = optarg; break;
         case OPT_OUT: dir = optarg; break;
         case OPT_YEARS:
-            if (!cli_integer("--years", optarg, 0, 10000, &v)) return SYL_EUSAGE;
+            if (!cli_integer("--years", optarg, 0, SYL_GROW_MAX_YEARS, &v)) return SYL_EUSAGE;
             d.steps = (int)v;
-            break;
-        case OPT_MAX:
-            if (!cli_integer("--max-metamers", optarg, 1, 4e9, &v)) return SYL_EUSAGE;
-            d.max_modules = (uint64_t)v;
             break;
         case OPT_VIEW:
             if (!cli_view(optarg, &ro.view)) return SYL_EUSAGE;
@@ -137,15 +136,22 @@ int cmd_grow(int argc, char **argv) {
         return SYL_EIO;
     }
     cli_model_spec(&m, argv[optind]);
-    SylMeshOptions mo = {.threads = d.threads, .diag = stderr};
+    SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
+    d.budget = budget;
+    SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};
     ro.threads = d.threads;
+    ro.budget = budget;
     Plant pl;
     int status = cli_plant(&m, &d, what == W_CSV || what == W_JSON ? NULL : &mo, &pl);
-    if (status) return status;
+    if (status) {
+        syl_budget_free(budget);
+        return status;
+    }
     if (!pl.grown) {
         fprintf(stderr, "sylva: error: '%s' is an lsystem, not a grow block: draw it with `sylva %s`\n", pl.name,
                 m.spec);
         cli_plant_free(&pl);
+        syl_budget_free(budget);
         return SYL_EUSAGE;
     }
     double t0 = cli_now();
@@ -163,5 +169,6 @@ int cmd_grow(int argc, char **argv) {
     }
     if (!status && stats) print_stats(&pl, cli_now() - t0);
     cli_plant_free(&pl);
+    syl_budget_free(budget);
     return status;
 }

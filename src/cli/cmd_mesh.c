@@ -109,9 +109,15 @@ int cmd_mesh(int argc, char **argv) {
     }
     mo.threads = d.threads;
     cli_model_spec(&m, argv[optind]);
+    SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
+    d.budget = budget;
+    mo.budget = budget;
     Plant pl;
     int status = cli_plant(&m, &d, &mo, &pl);
-    if (status) return status;
+    if (status) {
+        syl_budget_free(budget);
+        return status;
+    }
     const SylSkeleton *sk = pl.sk;
     const SylMesh *mesh = pl.mesh;
     double t3 = cli_now();
@@ -128,5 +134,6 @@ int cmd_mesh(int argc, char **argv) {
         fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
     }
     cli_plant_free(&pl);
+    syl_budget_free(budget);
     return status;
 }

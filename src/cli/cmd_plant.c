@@ -14,13 +14,14 @@ static const char usage[] =
     "Derive the model, draw it, and write a picture and a mesh of it: DIR/NAME.png\n"
     "(1024x1024, as `sylva render` makes it) and DIR/NAME.glb (as `sylva mesh` makes it),\n"
     "NAME being the file's name without .syl (or Model, for FILE:Model). A grow block is\n"
-    "grown (-n: years); a file with a scene, named without :Model, makes the whole scene\n"
-    "(docs/growth.md).\n"
+    "grown (-n: years, at most 10000); a file with a scene, named without :Model, makes the\n"
+    "whole scene (docs/growth.md).\n"
     "\n"
     "  --out DIR             where to write (default: out)\n"
     "  --view V              iso, front, side or top (default: chosen from the plant's shape)\n"
     "  --size WxH            picture size (default 1024x1024)\n"
     CLI_DERIVE_HELP
+    CLI_GROW_LIMIT_HELP
     "\n"
     "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n";
 
@@ -28,7 +29,7 @@ enum { OPT_OUT = 1000, OPT_VIEW, OPT_SIZE };
 
 int cmd_plant(int argc, char **argv) {
     static const struct option opts[] = {
-        CLI_DERIVE_OPTIONS,
+        CLI_DERIVE_OPTIONS, CLI_GROW_LIMITS,
         {"out", required_argument, 0, OPT_OUT}, {"view", required_argument, 0, OPT_VIEW},
         {"size", required_argument, 0, OPT_SIZE}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0},
     };
@@ -63,10 +64,16 @@ int cmd_plant(int argc, char **argv) {
         return SYL_EIO;
     }
     cli_model_spec(&m, argv[optind]);
-    SylMeshOptions mo = {.threads = d.threads, .diag = stderr};
+    SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
+    d.budget = budget;
+    SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};
+    ro.budget = budget;
     Plant pl;
     int status = cli_plant(&m, &d, &mo, &pl);
-    if (status) return status;
+    if (status) {
+        syl_budget_free(budget);
+        return status;
+    }
     char *png = cli_output_name(&m, dir, "png"), *glb = cli_output_name(&m, dir, "glb");
     if (!png || !glb) status = SYL_ELIMIT;
     if (!status) status = syl_write_glb(pl.mesh, glb, stderr);
@@ -82,5 +89,6 @@ int cmd_plant(int argc, char **argv) {
     free(png);
     free(glb);
     cli_plant_free(&pl);
+    syl_budget_free(budget);
     return status;
 }

@@ -90,10 +90,14 @@ int cmd_render(int argc, char **argv) {
     char *out_path = NULL;
     cli_model_spec(&m, argv[optind]);
     out_path = output ? strdup(output) : cli_output_name(&m, NULL, "png");
-    SylMeshOptions mo = {.threads = d.threads, .diag = stderr};
+    SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
+    d.budget = budget;
+    SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};
+    ro.budget = budget;
     status = cli_plant(&m, &d, &mo, &pl);
     if (status) {
         free(out_path);
+        syl_budget_free(budget);
         return status;
     }
     mesh = pl.mesh;
@@ -131,5 +135,6 @@ int cmd_render(int argc, char **argv) {
     }
     free(out_path);
     cli_plant_free(&pl);
+    syl_budget_free(budget);
     return status;
 }

@@ -112,6 +112,18 @@ int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d) {
         if (!cli_size("--max-memory", arg, &size)) return -1;
         d->max_memory = size;
         return 1;
+    case 'W':
+        if (!cli_integer("--max-work", arg, 1, 1e18, &v)) return -1;
+        d->max_work = (uint64_t)v;
+        return 1;
+    case 'T':
+        if (!cli_integer("--max-metamers", arg, 1, 4e9, &v)) return -1;
+        m->max_metamers = (uint64_t)v;
+        return 1;
+    case 'B':
+        if (!cli_integer("--max-buds", arg, 1, 4e9, &v)) return -1;
+        m->max_buds = (uint64_t)v;
+        return 1;
     default: return 0;
     }
 }
@@ -183,7 +195,7 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     /* grow blocks grow; a file with a scene, named without a model, makes its scene */
     int nscene = 0;
     bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!m->model && syl_program_scene(p, &nscene));
-    if (scene || syl_program_kind(p) == SYL_MODEL_GROW) return cli_grow_plant(p, scene, d, mo, out);
+    if (scene || syl_program_kind(p) == SYL_MODEL_GROW) return cli_grow_plant(p, scene, m, d, mo, out);
     StepProgress sp = {.steps = d->steps >= 0 ? d->steps : syl_program_steps(p)};
     cli_progress_start(&sp.bar, "deriving");
     if (!d->on_step) {

@@ -1,13 +1,26 @@
 /* The plant pipeline for grow blocks and scenes: grow (a progress bar per year), mesh, and
  * add a scene's obstacles to the mesh so pictures show the walls the trees grew around. */
+#include <stdlib.h>
+
 #include "cli.h"
 
-
-int cli_grow_plant(SylProgram *p, bool scene, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out) {
+int cli_grow_plant(SylProgram *p, bool scene, const ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo,
+                   Plant *out) {
+    /* -n is the years here: the limit of --years and of `years`, with the same message */
+    if (d->steps > SYL_GROW_MAX_YEARS) {
+        char arg[32];
+        double v;
+        snprintf(arg, sizeof arg, "%d", d->steps);
+        cli_integer("-n", arg, 0, SYL_GROW_MAX_YEARS, &v);
+        syl_program_free(p);
+        return SYL_EUSAGE;
+    }
     Progress bar;
     cli_progress_start(&bar, "growing");
     SylGrowOptions g = {.years = d->steps, .use_seed = d->use_seed, .seed = d->seed, .threads = d->threads,
-                        .max_metamers = d->max_modules, .diag = stderr, .progress = cli_progress, .user = &bar};
+                        .max_metamers = m->max_metamers, .max_buds = m->max_buds, .max_modules = d->max_modules,
+                        .max_work = d->max_work, .max_memory = d->max_memory, .budget = d->budget,
+                        .diag = stderr, .progress = cli_progress, .user = &bar};
     SylMesh *obstacles = NULL;
     double t0 = cli_now();
     int status = scene ? syl_grow_scene(p, &g, &out->sk, &obstacles) : syl_grow(p, &g, &out->sk);

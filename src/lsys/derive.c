@@ -11,6 +11,7 @@
 
 #include "../lang/builtins.h"
 #include "../util/array.h"
+#include "../util/budget.h"
 #include "../turtle/turtle.h"
 #include "env/open.h"
 #include "match.h"
@@ -20,7 +21,7 @@
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256 };
 
-enum { LIMIT_MODULES = 1, LIMIT_MEMORY };
+enum { LIMIT_MODULES = 1, LIMIT_MEMORY, LIMIT_WORK };
 
 typedef struct Fault {
     int status;      /* SYL_OK, SYL_EMODEL or SYL_ELIMIT */
@@ -182,7 +183,7 @@ static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, 
 
 /* Checked whenever an output buffer grows: the exact module count is checked after the pass. */
 static bool over_limit(Work *w, size_t pos, int reserve_status) {
-    if (w->out->n <= w->out->budget->max_modules && !reserve_status) return false;
+    if (w->out->n <= w->out->max_modules && !reserve_status) return false;
     w->fault.status = SYL_ELIMIT;
     w->fault.limit = reserve_status ? LIMIT_MEMORY : LIMIT_MODULES;
     w->fault.pos = pos;
@@ -270,7 +271,9 @@ static void *run_thread(void *arg) {
 
 typedef struct Engine {
     const SylProgram *p;
-    Budget budget;
+    Budget own;         /* the memory budget when the caller shares none */
+    Budget *mem;        /* own or the caller's */
+    uint64_t max_modules, max_work;
     int threads;
     uint64_t seed;
     FILE *diag;
@@ -280,7 +283,9 @@ typedef struct Engine {
     size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
+    uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
     bool warned_depth;
+    bool reported;      /* an error was reported: one message per failure */
     /* ?E modules: the environment that answers them and what the turtle collects for it */
     SylEnvFn env;
     void *env_user;
@@ -289,18 +294,24 @@ typedef struct Engine {
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
+    e->reported = true;
     if (!e->diag) return;
     const SylProgram *p = e->p;
     Diag d = {.out = e->diag, .src = &p->src};
     if (w->fault.status == SYL_ELIMIT) {
         if (w->fault.limit == LIMIT_MODULES)
             fprintf(e->diag, "sylva: error: %s %d would exceed the limit of %llu modules; raise it with --max-modules\n",
-                    what, step, (unsigned long long)e->budget.max_modules);
+                    what, step, (unsigned long long)e->max_modules);
+        else if (w->fault.limit == LIMIT_WORK)
+            fprintf(e->diag,
+                    "sylva: error: %s %d would take the derivation past %llu modules rewritten by all its steps "
+                    "together; raise the limit with --max-work\n",
+                    what, step, (unsigned long long)e->max_work);
         else
             fprintf(e->diag,
-                    "sylva: error: %s %d would need more than %llu MB for its strings; raise the limit with "
+                    "sylva: error: %s %d would need more than %llu MB of memory; raise the limit with "
                     "--max-memory\n",
-                    what, step, (unsigned long long)(e->budget.max_bytes >> 20));
+                    what, step, (unsigned long long)budget_limit_mb(e->mem));
         return;
     }
     SylLoc loc = w->fault.rule ? w->fault.rule->loc : (SylLoc){0};
@@ -333,6 +344,14 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     const SylProgram *p = e->p;
     const RuleTable *t = &p->tables[table];
     e->rewritten += in->n;
+    /* a pass costs at least as much as rewriting 100 modules: a million steps of one module
+     * is work too */
+    e->work += in->n + 100;
+    if (e->work > e->max_work) {
+        Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_WORK}};
+        report(e, &w, step, what);
+        return SYL_ELIMIT;
+    }
     out->n = out->np = 0;
     out->poff_n = SIZE_MAX; /* the offset cache describes the old contents */
     View v = {.code = in->code, .par = in->par, .n = in->n, .skip = p->skip};
@@ -376,7 +395,7 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     if (nt == 1 && e->growth[table] > 0) {
         size_t want = (size_t)((double)in->n * e->growth[table] * 1.02) + 64;
         size_t pwant = (size_t)((double)want * e->density[table] * 1.02) + 64;
-        if (want > e->budget.max_modules) want = (size_t)e->budget.max_modules;
+        if (want > e->max_modules) want = (size_t)e->max_modules;
         ms_reserve(out, want, pwant); /* a refusal here is met again, and reported, below */
     }
     Work works[MAX_THREADS];
@@ -390,7 +409,8 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
                           .codes_only = !in->np && !t->emits_params && t->all_plain};
-        parts[k].budget = &e->budget;
+        parts[k].mem = e->mem;
+        parts[k].max_modules = e->max_modules;
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(in->code[i]);
         lo = hi;
     }
@@ -425,7 +445,7 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
         }
         ms_release(&parts[k]);
     }
-    if (!status && out->n > e->budget.max_modules) {
+    if (!status && out->n > e->max_modules) {
         Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MODULES}};
         report(e, &w, step, what);
         return SYL_ELIMIT;
@@ -464,12 +484,6 @@ static int passes(Engine *e, int table, int step, SylString **cur, SylString **s
     return SYL_OK;
 }
 
-static uint64_t default_memory(void) {
-    long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-    uint64_t half = pages > 0 && size > 0 ? (uint64_t)pages * (uint64_t)size / 2 : (4ull << 30);
-    return half < (16ull << 30) ? half : (16ull << 30);
-}
-
 static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *opt) {
     memset(e, 0, sizeof *e);
     e->p = p;
@@ -481,21 +495,28 @@ static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *
         e->threads = n > 0 ? (int)n : 1;
     }
     if (e->threads > MAX_THREADS) e->threads = MAX_THREADS;
-    e->budget.max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
-    if (e->budget.max_modules > INT32_MAX) e->budget.max_modules = INT32_MAX;
-    e->budget.max_bytes = opt->max_memory ? opt->max_memory : default_memory();
+    e->max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
+    if (e->max_modules > INT32_MAX) e->max_modules = INT32_MAX;
+    e->max_work = opt->max_work ? opt->max_work : 100000000000ull;
+    budget_init(&e->own, opt->max_memory);
+    e->mem = opt->budget ? opt->budget : &e->own;
 }
 
 static SylString *new_string(Engine *e) {
     SylString *s = calloc(1, sizeof *s);
-    if (s) s->budget = &e->budget;
+    if (s) s->mem = e->mem, s->max_modules = e->max_modules;
     return s;
 }
 
-/* Strings handed to the caller no longer count against a derivation's budget. */
-static SylString *detach(SylString *s) {
-    s->budget = NULL;
-    s->charged = 0;
+/* Strings handed to the caller count against the caller's budget until freed, and no
+ * longer against a derivation's own (it goes with the deriver). */
+static SylString *detach(Engine *e, SylString *s) {
+    s->max_modules = 0;
+    if (s->mem == &e->own) {
+        budget_release(&e->own, s->charged);
+        s->mem = NULL;
+        s->charged = 0;
+    }
     return s;
 }
 
@@ -610,6 +631,15 @@ static int begin(SylDeriver *d, const SylString *start) {
     return st;
 }
 
+/* Every SYL_ELIMIT says why: those not reported where they arose came from an allocation. */
+static int said(Engine *e, int st, int step, const char *what) {
+    if (st == SYL_ELIMIT && !e->reported) {
+        Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MEMORY}};
+        report(e, &w, step, what);
+    }
+    return st;
+}
+
 int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out) {
     *out = NULL;
     if (p->kind != SYL_MODEL_LSYSTEM) {
@@ -619,12 +649,15 @@ int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString
         return SYL_EUSAGE;
     }
     SylDeriver *d = calloc(1, sizeof *d);
-    if (!d) return SYL_ELIMIT;
+    if (!d) {
+        if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory\n");
+        return SYL_ELIMIT;
+    }
     d->opt = opt;
     engine_init(&d->e, p, opt);
     d->cur = new_string(&d->e);
     d->spare = new_string(&d->e);
-    d->status = d->cur && d->spare ? begin(d, start) : SYL_ELIMIT;
+    d->status = said(&d->e, d->cur && d->spare ? begin(d, start) : SYL_ELIMIT, 0, "step");
     *out = d;
     return d->status;
 }
@@ -647,7 +680,7 @@ int syl_derive_step(SylDeriver *d) {
     if (!st) st = fill_queries(e, d->cur, step);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, step, d->cur);
     d->opt->rewritten = e->rewritten;
-    return d->status = st;
+    return d->status = said(e, st, step, "step");
 }
 
 const SylString *syl_deriver_string(const SylDeriver *d) { return d->cur; }
@@ -658,7 +691,7 @@ int syl_derive_end(SylDeriver *d, SylString **out) {
     if (!d) return SYL_ELIMIT;
     int st = d->status;
     d->opt->rewritten = d->e.rewritten;
-    if (!st && out) *out = detach(d->cur);
+    if (!st && out) *out = detach(&d->e, d->cur);
     else syl_string_free(d->cur);
     syl_string_free(d->spare);
     engine_free(&d->e);
@@ -692,6 +725,7 @@ int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptio
         cur->np = in->np;
         st = passes(&e, TABLE_INTERPRET, opt->steps >= 0 ? opt->steps : p->derive, &cur, &spare);
     }
+    said(&e, st, opt->steps >= 0 ? opt->steps : p->derive, "interpretation of step");
     syl_string_free(spare);
     engine_free(&e);
     if (st) {
@@ -699,6 +733,6 @@ int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptio
         *out = NULL;
         return st;
     }
-    *out = detach(cur);
+    *out = detach(&e, cur);
     return SYL_OK;
 }

@@ -17,12 +17,9 @@ static void hint_huge(void *p, size_t bytes) {
 }
 
 static int charge(SylString *s, int64_t delta) {
-    if (!s->budget) return SYL_OK;
-    uint64_t now = atomic_fetch_add(&s->budget->bytes, (uint64_t)delta) + (uint64_t)delta;
-    if (delta > 0 && now > s->budget->max_bytes) {
-        atomic_fetch_sub(&s->budget->bytes, (uint64_t)delta);
+    if (!s->mem) return SYL_OK;
+    if (delta >= 0 ? !budget_charge(s->mem, (uint64_t)delta) : (budget_release(s->mem, (uint64_t)-delta), false))
         return SYL_ELIMIT;
-    }
     s->charged += (uint64_t)delta;
     return SYL_OK;
 }
@@ -54,9 +51,14 @@ int ms_reserve(SylString *s, size_t n, size_t np) {
 
 const uint32_t *ms_offsets(SylString *s) {
     if (s->poff && s->poff_n == s->n) return s->poff; /* poff_n is SIZE_MAX once stale */
-    uint32_t *o = realloc(s->poff, (s->n + 1) * sizeof *o);
-    if (!o) return NULL;
-    s->poff = o;
+    if (s->n + 1 > s->poff_cap) {
+        if (charge(s, (int64_t)((s->n + 1 - s->poff_cap) * sizeof *s->poff))) return NULL;
+        uint32_t *o = realloc(s->poff, (s->n + 1) * sizeof *o);
+        if (!o) return NULL;
+        s->poff = o;
+        s->poff_cap = s->n + 1;
+    }
+    uint32_t *o = s->poff;
     uint32_t at = 0;
     for (size_t i = 0; i < s->n; i++) {
         o[i] = at;
@@ -68,14 +70,15 @@ const uint32_t *ms_offsets(SylString *s) {
 }
 
 void ms_release(SylString *s) {
-    charge(s, -(int64_t)s->charged);
+    budget_release(s->mem, s->charged);
+    s->charged = 0;
     free(s->code);
     free(s->par);
     free(s->poff);
     s->code = NULL;
     s->par = NULL;
     s->poff = NULL;
-    s->n = s->cap = s->np = s->pcap = s->poff_n = 0;
+    s->n = s->cap = s->np = s->pcap = s->poff_n = s->poff_cap = 0;
 }
 
 /* ---- public access ---- */

@@ -2,18 +2,13 @@
  * parameter count), and the parameters of all modules, in order, in one array. */
 #ifndef SYL_MODSTR_H
 #define SYL_MODSTR_H
-#include <stdatomic.h>
 #include <stddef.h>
 #include <stdint.h>
 
 #include "../lang/program.h"
 #include "sylva/sylva.h"
 
-/* Memory and size limits of one derivation, shared by every thread that grows a string. */
-typedef struct Budget {
-    _Atomic uint64_t bytes;
-    uint64_t max_bytes, max_modules;
-} Budget;
+#include "util/budget.h"
 
 struct SylString {
     uint16_t *code;
@@ -21,9 +16,10 @@ struct SylString {
     size_t n, cap;   /* modules */
     size_t np, pcap; /* parameters */
     uint32_t *poff;  /* parameter offset per module (n + 1), built on demand */
-    size_t poff_n;
-    uint64_t charged; /* bytes counted against a budget */
-    Budget *budget;
+    size_t poff_n, poff_cap;
+    uint64_t charged; /* bytes counted against mem */
+    Budget *mem;      /* the memory budget (--max-memory) its arrays count against; NULL: none */
+    uint64_t max_modules; /* of the derivation writing it (0: none) */
 };
 
 /* Make room for n more modules and np more parameters. Returns SYL_OK or SYL_ELIMIT. */

@@ -27,6 +27,7 @@
 #include <cglm/cglm.h>
 
 #include "mesh/mesh_internal.h"
+#include "util/budget.h"
 
 #define TWO_PI 6.28318530717958647692f
 /* fmaxf and fminf are calls (they care about NaN); these are one instruction */
@@ -82,6 +83,7 @@ static void plan_free(MeshPlan *pl) {
 
 void syl_mesh_free(SylMesh *m) {
     if (!m) return;
+    budget_release(m->budget, m->charged);
     free(m->pos);
     free(m->nrm);
     free(m->uv);
@@ -652,15 +654,54 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     SylMesh *m = calloc(1, sizeof *m);
-    float *rad = malloc((s->nnodes ? s->nnodes : 1) * sizeof *rad);
-    if (!m || !rad) goto oom;
+    float *rad = NULL;
+    if (!m) goto oom;
+    /* the budget is the caller's, or one of max_memory for this mesh alone */
+    Budget own;
+    budget_init(&own, o.max_memory);
+    Budget *mem = o.budget ? o.budget : &own;
+    /* planning holds a radius and a few words per node; the mesh itself is counted once
+     * its size is known, before a byte of it is allocated */
+    uint64_t plan_bytes = (uint64_t)s->nnodes * 64 + (uint64_t)s->norgans * 32 + (uint64_t)s->npolys * 32;
+    if (!budget_charge(mem, plan_bytes)) {
+        if (o.diag)
+            fprintf(o.diag, "sylva: error: meshing %zu nodes would need more than the %llu MB that --max-memory "
+                            "allows; raise the limit with --max-memory\n",
+                    s->nnodes, (unsigned long long)budget_limit_mb(mem));
+        status = SYL_ELIMIT;
+        goto done;
+    }
+    rad = malloc((s->nnodes ? s->nnodes : 1) * sizeof *rad);
+    if (!rad) goto oom_plan;
     radii(s, &o, rad);
-    if (!plan_tubes(&pl, rad) || !size_tubes(&pl) || !mesh_plan_shapes(&pl)) goto oom;
+    if (!plan_tubes(&pl, rad) || !size_tubes(&pl) || !mesh_plan_shapes(&pl)) goto oom_plan;
+    budget_release(mem, plan_bytes);
+    plan_bytes = 0;
     if (pl.nverts > UINT32_MAX) {
         diag(&o, "more than 2^32 vertices");
         status = SYL_ELIMIT;
         goto done;
     }
+    size_t ntris = 0;
+    for (size_t r = 0; r < pl.nruns; r++) ntris += (size_t)pl.runs[r].tris;
+    uint64_t bytes = (uint64_t)pl.nverts * 8 * sizeof(float) + (uint64_t)ntris * 3 * sizeof(uint32_t);
+    if (o.budget && !budget_charge(o.budget, bytes)) {
+        if (o.diag)
+            fprintf(o.diag, "sylva: error: the mesh would need %zu triangles (%llu MB), more than --max-memory "
+                            "allows (%llu MB in all); raise the limit with --max-memory, or use fewer --sides\n",
+                    ntris, (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem));
+        status = SYL_ELIMIT;
+        goto done;
+    }
+    if (!o.budget && bytes > own.limit) {
+        if (o.diag)
+            fprintf(o.diag, "sylva: error: the mesh would need %zu triangles (%llu MB), more than --max-memory "
+                            "allows (%llu MB); raise the limit with --max-memory, or use fewer --sides\n",
+                    ntris, (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem));
+        status = SYL_ELIMIT;
+        goto done;
+    }
+    if (o.budget) m->budget = o.budget, m->charged = bytes;
     if (!place_runs(&pl, m)) goto oom;
     m->nverts = m->vert_cap = pl.nverts;
     m->idx_cap = m->nidx;
@@ -675,6 +716,8 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     snprintf(m->name, sizeof m->name, "%s", s->name);
     emit_all(&pl, m, o.threads > 0 ? o.threads : ncpu());
     goto done;
+oom_plan:
+    budget_release(mem, plan_bytes);
 oom:
     diag(&o, "out of memory");
     status = SYL_ELIMIT;

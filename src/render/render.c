@@ -18,6 +18,7 @@
 #endif
 
 #include "render/render_internal.h"
+#include "util/budget.h"
 #include "util/rng.h"
 
 enum { TILE = 32, MAX_SAMPLES = 64, MAX_AO = 64, TEX_SIZE = 256 };
@@ -574,9 +575,32 @@ static int build_scene(Scene *s, int threads, FILE *diag) {
     return rtcGetDeviceError(s->dev) == RTC_ERROR_NONE ? SYL_OK : SYL_ELIMIT;
 }
 
+static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
+
+/* Embree's BVH, its copy of the positions, the textures and the picture, counted against
+ * the memory budget before any is built: about 150 bytes a triangle. */
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
+    Budget own;
+    budget_init(&own, opt->max_memory);
+    Budget *mem = opt->budget ? opt->budget : &own;
+    uint64_t w = opt->width > 0 ? (uint64_t)opt->width : 1024, h = opt->height > 0 ? (uint64_t)opt->height : 1024;
+    uint64_t tris = m ? m->nidx / 3 : 0, need = tris * 150 + (m ? m->nverts * 16 : 0) + w * h * 3 + (4u << 20);
+    if (!budget_charge(mem, need)) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: rendering %llu triangles would need about %llu MB, more than "
+                               "--max-memory allows (%llu MB in all); raise the limit with --max-memory\n",
+                    (unsigned long long)tris, (unsigned long long)(need >> 20),
+                    (unsigned long long)budget_limit_mb(mem));
+        return SYL_ELIMIT;
+    }
+    int st = render_checked(m, opt, rgb);
+    budget_release(mem, need);
+    return st;
+}
+
+static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
     FILE *diag = opt->diag;
     int width = opt->width > 0 ? opt->width : 1024, height = opt->height > 0 ? opt->height : 1024;
     if (opt->width < 0 || opt->height < 0 || width > 65536 || height > 65536 ||

@@ -22,11 +22,39 @@ int forest_init(Forest *f, int threads, FILE *diag, SylGrowStats *stats) {
     f->diag = diag;
     f->stats = stats;
     f->max_metamers = 20000000;
+    f->max_buds = 100000000;
+    budget_init(&f->own, 0);
+    f->mem = &f->own;
     return env_init(&f->env, threads, diag);
+}
+
+void forest_limits(Forest *f, const SylGrowOptions *opt) {
+    if (opt->max_metamers) f->max_metamers = opt->max_metamers;
+    if (opt->max_buds) f->max_buds = opt->max_buds;
+    f->max_modules = opt->max_modules;
+    f->max_work = opt->max_work;
+    budget_init(&f->own, opt->max_memory);
+    f->mem = opt->budget ? opt->budget : &f->own;
+}
+
+int forest_said(Forest *f, int st, int year) {
+    if (st != SYL_ELIMIT || f->reported) return st;
+    f->reported = true;
+    if (!f->diag) return st;
+    char when[32] = "";
+    if (year > 0) snprintf(when, sizeof when, " in year %d", year);
+    if (atomic_load(&f->mem->refused))
+        fprintf(f->diag, "sylva: error: growing would need more than %llu MB of memory%s; raise the limit with "
+                         "--max-memory\n", (unsigned long long)budget_limit_mb(f->mem), when);
+    else fprintf(f->diag, "sylva: error: out of memory%s\n", when);
+    return st;
 }
 
 void forest_free(Forest *f) {
     for (int i = 0; i < f->ntrees; i++) tree_free(&f->trees[i]);
+    for (int i = 0; i < f->nrules; i++) shoot_rule_free(f->rules[i].rule);
+    free(f->rules);
+    budget_release(f->mem, f->charged);
     free(f->trees);
     free(f->cand);
     free(f->sb);
@@ -37,14 +65,49 @@ void forest_free(Forest *f) {
     memset(f, 0, sizeof *f);
 }
 
+/* The shoot rule `name` of grow model `from`, built once for all its trees. */
+static ShootRule *shared_rule(Forest *f, const SylProgram *from, const char *name) {
+    for (int i = 0; i < f->nrules; i++)
+        if (f->rules[i].from == from && !strcmp(f->rules[i].name, name)) return f->rules[i].rule;
+    if (f->nrules == f->rules_cap) {
+        int cap = f->rules_cap ? 2 * f->rules_cap : 4;
+        ForestRule *r = realloc(f->rules, (size_t)cap * sizeof *r);
+        if (!r) return NULL;
+        f->rules = r;
+        f->rules_cap = cap;
+    }
+    ShootRule *rule = shoot_rule_new(from, name);
+    if (!rule) return NULL;
+    shoot_rule_limits(rule, f->max_modules, f->max_work, f->mem);
+    f->rules[f->nrules++] = (ForestRule){.from = from, .name = name, .rule = rule};
+    return rule;
+}
+
 int forest_add_tree(Forest *f, const GrowParams *P, const float base[3], int years) {
-    Tree *t = realloc(f->trees, (size_t)(f->ntrees + 1) * sizeof *t);
-    if (!t) return SYL_ELIMIT;
-    f->trees = t;
+    if (f->ntrees == f->trees_cap) {
+        int cap = f->trees_cap ? 2 * f->trees_cap : 4;
+        Tree *t = realloc(f->trees, (size_t)cap * sizeof *t);
+        if (!t) return SYL_ELIMIT;
+        f->trees = t;
+        f->trees_cap = cap;
+    }
     GrowParams q = *P;
     q.years = years;
-    if (!tree_init(&f->trees[f->ntrees], &q, f->ntrees, base, 0)) return SYL_ELIMIT;
+    ShootRule *rule = NULL;
+    if (q.rule[0] && q.from && !(rule = shared_rule(f, q.from, q.rule))) return SYL_ELIMIT;
+    q.from = NULL; /* the tree takes the forest's rule */
+    Tree *t = &f->trees[f->ntrees];
+    if (!tree_init(t, &q, f->ntrees, base, 0)) return SYL_ELIMIT;
+    t->rule = rule;
+    t->rule_shared = true;
     f->ntrees++;
+    /* charged from the tree's start: its first node and bud */
+    t->mem = f->mem;
+    t->charged = (uint64_t)t->cap * sizeof *t->nodes + (uint64_t)t->bcap * sizeof *t->buds;
+    if (!budget_charge(t->mem, t->charged)) {
+        t->charged = 0;
+        return SYL_ELIMIT;
+    }
     if (years > f->years) f->years = years;
     return SYL_OK;
 }
@@ -100,13 +163,17 @@ int forest_setup(Forest *f, float ground, const float sun[3], bool sun_set) {
     return SYL_OK;
 }
 
-bool forest_too_many(const Forest *f, int year) {
-    uint64_t n = 0;
-    for (int i = 0; i < f->ntrees; i++) n += f->trees[i].n - 1;
-    if (n <= f->max_metamers) return false;
-    if (f->diag)
+bool forest_too_many(Forest *f, int year) {
+    uint64_t n = 0, buds = 0;
+    for (int i = 0; i < f->ntrees; i++) n += f->trees[i].n - 1, buds += f->trees[i].nb;
+    if (n <= f->max_metamers && buds <= f->max_buds) return false;
+    f->reported = true;
+    if (f->diag && n > f->max_metamers)
         fprintf(f->diag, "sylva: error: more than %llu metamers in year %d (the --max-metamers limit)\n",
                 (unsigned long long)f->max_metamers, year);
+    else if (f->diag)
+        fprintf(f->diag, "sylva: error: more than %llu buds in year %d (the --max-buds limit)\n",
+                (unsigned long long)f->max_buds, year);
     return true;
 }
 
@@ -163,6 +230,7 @@ int forest_run(Forest *f, void (*progress)(void *, double), void *user) {
             s->shed_s += t6 - t5;
         }
         if (!st && forest_too_many(f, year)) st = SYL_ELIMIT;
+        st = forest_said(f, st, year);
         if (progress) progress(user, (double)year / f->years);
     }
     free(before);

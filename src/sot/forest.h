@@ -28,13 +28,26 @@ typedef struct Candidate {
     uint8_t blocked, spaced;
 } Candidate;
 
+typedef struct ForestRule {
+    const SylProgram *from;
+    const char *name;
+    ShootRule *rule;
+} ForestRule;
+
 typedef struct Forest {
     Env env;
     Tree *trees;
     int ntrees;
     int years;             /* the forest's age at the end */
     int threads;
-    uint64_t max_metamers;
+    uint64_t max_metamers, max_buds;
+    uint64_t max_modules, max_work; /* of shoot rules' derivations (0: their defaults) */
+    Budget own, *mem;      /* the memory budget: own, or the caller's */
+    uint64_t charged;      /* the forest's own arrays */
+    bool reported;         /* a limit's message was printed */
+    ForestRule *rules; /* shoot rules, one per model and rule name, shared by trees */
+    int nrules, rules_cap;
+    int trees_cap;
     FILE *diag;
     SylGrowStats *stats;
     int space_variant;     /* SPACE_PER_BUD or SPACE_GLOBAL, from the first tree that uses space */
@@ -57,6 +70,11 @@ typedef struct Forest {
 } Forest;
 
 int forest_init(Forest *f, int threads, FILE *diag, SylGrowStats *stats);
+/* The limits of opt (max_metamers, max_buds, max_modules, max_work, the memory budget). */
+void forest_limits(Forest *f, const SylGrowOptions *opt);
+/* st, having said why when st is SYL_ELIMIT and nothing was said yet: the memory budget or
+ * an allocation ran out in `year` (0: before growth). */
+int forest_said(Forest *f, int st, int year);
 void forest_free(Forest *f);
 /* A tree that grows for `years` years, ending with the forest. */
 int forest_add_tree(Forest *f, const GrowParams *P, const float base[3], int years);

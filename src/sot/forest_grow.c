@@ -43,6 +43,8 @@ void forest_space_bud(const Tree *t, const Bud *b, SpaceBud *out) {
 static bool push_candidate(Forest *f, int32_t tree, int32_t bud) {
     if (f->ncand == f->ccap) {
         size_t cap = f->ccap ? 2 * f->ccap : 1024;
+        if (!budget_charge(f->mem, (cap - f->ccap) * sizeof *f->cand)) return false;
+        f->charged += (cap - f->ccap) * sizeof *f->cand;
         Candidate *c = realloc(f->cand, cap * sizeof *c);
         if (!c) return false;
         f->cand = c;
@@ -137,7 +139,7 @@ static bool hang(Tree *t, int32_t bi, int k, int32_t node, const float h[3], con
             shoot_to_world(o, h, l, u, a->pos, true, g.pos);
             memcpy(g.h, ah, sizeof g.h);
             memcpy(g.l, al, sizeof g.l);
-            if (!array_reserve(&t->organs, &t->organs_cap, t->norgans + 1, sizeof g)) return false;
+            if (!tree_reserve(t, &t->organs, &t->organs_cap, t->norgans + 1, sizeof g)) return false;
             t->organs[t->norgans++] = g;
         } else if (a->kind == ATT_TWIG) {
             TreeTwig w = {.radius = a->size, .node = node, .born = (uint16_t)year, .material = a->material,
@@ -147,7 +149,7 @@ static bool hang(Tree *t, int32_t bi, int k, int32_t node, const float h[3], con
             memcpy(w.h, ah, sizeof w.h);
             memcpy(w.l, al, sizeof w.l);
             w.detached = a->parent < 0 && glm_vec3_norm2(a->from) > 0;
-            if (!array_reserve(&t->twigs, &t->twigs_cap, t->ntwigs + 1, sizeof w)) return false;
+            if (!tree_reserve(t, &t->twigs, &t->twigs_cap, t->ntwigs + 1, sizeof w)) return false;
             a->placed = (int32_t)t->ntwigs;
             t->twigs[t->ntwigs++] = w;
         } else *end = true;
@@ -240,6 +242,7 @@ static int make_plans(Forest *f, int year) {
                         status[c] == SYL_ELIMIT ? " (a shoot's string may hold a million modules)" : "");
             shoot_rule_plan(t->rule, args, shoot_seed(b, year), &t->plans[b->plan], f->diag);
             st = status[c];
+            f->reported = true;
             break;
         }
         Bud *b = &t->buds[cd->bud];

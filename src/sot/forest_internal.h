@@ -5,7 +5,7 @@
 
 double forest_now(void);
 /* More metamers than the limit? (Reported.) */
-bool forest_too_many(const Forest *f, int year);
+bool forest_too_many(Forest *f, int year);
 /* Static occupants cast shadow and occupy space once, before the first year. */
 int forest_register_statics(Forest *f);
 /* Every candidate bud's light (shadow grid or sky rays); the sky's scene is rebuilt. */
@@ -32,7 +32,7 @@ SceneLsys *scene_lsys_new(Forest *f, int max);
 void scene_lsys_free(SceneLsys *s);
 /* A plant (before forest_setup): it takes q, derives with d (its env is replaced) and takes
  * `steps` steps, standing at `at`; ground is the plane its ?E(2) distances meet. */
-int scene_lsys_add(SceneLsys *s, SylProgram *q, const SylDeriveOptions *d, const float at[3], float ground, int steps);
+int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d, const float at[3], float ground, int steps);
 /* After forest_run: steps not taken yet (a forest of 0 years), and the final strings. */
 int scene_lsys_finish(SceneLsys *s);
 /* The i-th plant's skeleton, moved into place. */

@@ -123,6 +123,7 @@ static bool gather(Forest *f, size_t n) {
 }
 
 static int too_big(Forest *f) {
+    f->reported = true;
     if (f->diag)
         fprintf(f->diag, "sylva: error: the shadow grid would need more than %zu voxels: the scene is too large "
                          "for its voxel size\n", f->env.shadow.max_voxels);

@@ -9,7 +9,7 @@
 #include "sylva/grow.h"
 
 int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
-    static SylGrowOptions defaults = {.years = -1};
+    static const SylGrowOptions defaults = {.years = -1};
     SylGrowOptions local;
     if (!opt) {
         local = defaults;
@@ -27,8 +27,12 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     if (opt->years >= 0) P.years = opt->years;
     if (opt->use_seed) P.seed = opt->seed;
     Forest f;
+    if (opt->years > SYL_GROW_MAX_YEARS) {
+        if (opt->diag) fprintf(opt->diag, "sylva: error: at most %d years, not %d\n", SYL_GROW_MAX_YEARS, opt->years);
+        return SYL_EUSAGE;
+    }
     int st = forest_init(&f, opt->threads, opt->diag, &opt->stats);
-    if (opt->max_metamers) f.max_metamers = opt->max_metamers;
+    forest_limits(&f, opt);
     const float base[3] = {0, 0, 0};
     if (!st) st = forest_add_tree(&f, &P, base, P.years);
     if (!st) st = forest_setup(&f, base[1], P.sun, false);
@@ -39,6 +43,7 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
         sk = syl_skeleton_new(syl_program_name(p));
         st = sk ? tree_to_skeleton(&f.trees[0], f.years, sk, 0, &opt->stats.organs) : SYL_ELIMIT;
     }
+    st = forest_said(&f, st, 0);
     forest_free(&f);
     if (st) {
         syl_skeleton_free(sk);

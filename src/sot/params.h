@@ -98,9 +98,9 @@ typedef struct SceneObstacle {
 
 typedef struct SceneSpec {
     ScenePlant *plants;
-    int nplants;
+    int nplants, plants_cap;
     SceneObstacle *obstacles;
-    int nobstacles;
+    int nobstacles, obstacles_cap;
     float ground;
     bool ground_set;
     float sun[3];

@@ -10,6 +10,8 @@
 #include <string.h>
 
 #include "env/open.h"
+#include "util/arena.h"
+#include "util/namemap.h"
 #include "sot/forest.h"
 #include "sot/forest_internal.h"
 #include "sot/output.h"
@@ -37,10 +39,31 @@ static char *resolve(const SylProgram *p, const char *file) {
     return out;
 }
 
-/* Compile a plant's model: one of this file, or "file.syl[:Model]" of another. */
+/* Each distinct model of a scene is compiled once, and a grow model's directives read once,
+ * however many plants it has: compiling a model reads the whole file. */
+typedef struct SceneModel {
+    SylProgram *q;
+    GrowParams P;  /* a grow model's */
+} SceneModel;
+
+typedef struct SceneModels {
+    Arena keys;
+    NameMap index; /* "m:NAME" of this file, "f:FILE[:SceneModel]" of another -> models[i] */
+    SceneModel *v;
+    int n, cap;
+} SceneModels;
+
+static void models_free(SceneModels *m) {
+    for (int i = 0; i < m->n; i++) syl_program_free(m->v[i].q);
+    free(m->v);
+    arena_free(&m->keys);
+}
+
+/* Compile a plant's model: one of this file, or "file.syl[:SceneModel]" of another. */
 static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE *diag, int *status) {
     SylCompileOptions copt = {.diag = diag};
     if (pl->model) {
+        copt.sibling = 1; /* the file and its scene were checked when p was compiled */
         size_t len = 0;
         const char *text = syl_program_source(p, &len);
         copt.model = pl->model;
@@ -65,7 +88,8 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
  * years, else the model's `derive`). */
 static SylDeriveOptions lsys_options(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index) {
     SylDeriveOptions d = {.steps = pl->years_set ? pl->years : syl_program_steps(q), .threads = opt->threads,
-                          .diag = opt->diag};
+                          .diag = opt->diag, .max_modules = opt->max_modules, .max_work = opt->max_work,
+                          .budget = opt->budget};
     if (pl->seed_set) d.use_seed = 1, d.seed = pl->seed;
     else if (opt->use_seed) d.use_seed = 1, d.seed = opt->seed + (uint64_t)index;
     return d;
@@ -75,7 +99,8 @@ static SylDeriveOptions lsys_options(const SylProgram *q, const SylGrowOptions *
  * ground and the plants drawn before it (static casters and occupants), and the plant's own
  * skeleton. */
 static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index,
-                        const SceneSpec *S, const Env *env, SylSkeleton **out) {
+                        const SceneSpec *S, Forest *f, SylSkeleton **out) {
+    const Env *env = &f->env;
     SylDeriveOptions d = lsys_options(q, opt, pl, index);
     OpenEnvParams P = {.voxel = (float)syl_program_setting(q, "step"), .ground = S->ground_set ? S->ground : pl->at[1],
                        .sun = {0, 1, 0}, .at = {pl->at[0], pl->at[1], pl->at[2]},
@@ -91,13 +116,14 @@ static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const Sc
     open_env_free(&oe);
     if (!st) st = lsys_draw(q, s, &d, pl->at, out);
     syl_string_free(s);
+    if (st) f->reported = true; /* the deriver and the turtle say why */
     return st;
 }
 
-/* Append skeleton b to a: indices and axes renumbered, materials carried over. */
-static int append_skeleton(SylSkeleton *a, const SylSkeleton *b) {
+/* Append skeleton b to a, whose axes are below `axis`: indices and axes renumbered,
+ * materials carried over. */
+static int append_skeleton(SylSkeleton *a, const SylSkeleton *b, int32_t axis) {
     size_t first = a->nnodes;
-    int32_t axis = skeleton_next_axis(a);
     for (size_t i = 0; i < b->nnodes; i++) {
         SylNode n = b->nodes[i];
         if (n.parent >= 0) n.parent += (int32_t)first;
@@ -182,10 +208,41 @@ static bool has_terrain(const SceneSpec *S) {
     return false;
 }
 
+/* The plant's model, compiled the first time a plant names it. */
+static SceneModel *plant_model(const SylProgram *p, const ScenePlant *pl, SceneModels *m, FILE *diag, int *status) {
+    char *key = arena_printf(&m->keys, "%c:%s", pl->model ? 'm' : 'f', pl->model ? pl->model : pl->file);
+    if (!key) {
+        *status = SYL_ELIMIT;
+        return NULL;
+    }
+    int at = namemap_get(&m->index, key, -1);
+    if (at >= 0) return &m->v[at];
+    if (m->n == m->cap) {
+        int cap = m->cap ? 2 * m->cap : 16;
+        SceneModel *v = realloc(m->v, (size_t)cap * sizeof *v);
+        if (!v) {
+            *status = SYL_ELIMIT;
+            return NULL;
+        }
+        m->v = v;
+        m->cap = cap;
+    }
+    SceneModel *md = &m->v[m->n];
+    memset(md, 0, sizeof *md);
+    if (!(md->q = plant_program(p, pl, diag, status))) return NULL;
+    if (syl_program_kind(md->q) == SYL_MODEL_GROW && grow_params_read(md->q, &md->P, diag)) {
+        syl_program_free(md->q);
+        *status = SYL_EMODEL;
+        return NULL;
+    }
+    namemap_put(&m->index, key, m->n);
+    return &m->v[m->n++];
+}
+
 /* Compile every plant (its place set on the terrain) before any grows: whether a tree is
- * among them decides how the L-systems derive. */
-static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, ScenePlant *plants, SylProgram **progs,
-                          FILE *diag) {
+ * among them decides how the L-systems derive. progs[i] belongs to m. */
+static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, ScenePlant *plants, SceneModel **progs,
+                          SceneModels *m, FILE *diag) {
     for (int i = 0; i < S->nplants; i++) {
         ScenePlant *pl = &plants[i];
         *pl = S->plants[i];
@@ -193,12 +250,13 @@ static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, Sc
         if (has_terrain(S) && obstacles_height(&f->env.obstacles, pl->at[0], pl->at[2], f->env.obstacles.hi[1] + 1, &h))
             pl->at[1] = h + 0.01f; /* just above, so its first metamer's ray starts clear */
         int st = SYL_OK;
-        progs[i] = plant_program(p, pl, diag, &st);
+        progs[i] = plant_model(p, pl, m, diag, &st);
         if (!progs[i]) {
-            if (diag) syl_program_error(p, diag, pl->line, pl->col, "cannot use this plant");
+            if (diag && st != SYL_ELIMIT) syl_program_error(p, diag, pl->line, pl->col, "cannot use this plant");
+            else if (diag) fprintf(diag, "sylva: error: out of memory\n");
             return st ? st : SYL_EMODEL;
         }
-        if (syl_program_kind(progs[i]) == SYL_MODEL_SCENE) {
+        if (syl_program_kind(progs[i]->q) == SYL_MODEL_SCENE) {
             syl_program_error(p, diag, pl->line, pl->col, "a scene cannot be a plant of a scene");
             return SYL_EMODEL;
         }
@@ -207,28 +265,27 @@ static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, Sc
 }
 
 static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec *S, Forest *f, Placed *placed,
-                      ScenePlant *plants, SylProgram **progs, SceneLsys **lsys, SylSkeleton **out,
-                      SylMesh **obstacles) {
+                      ScenePlant *plants, SceneModel **progs, SceneModels *models, SceneLsys **lsys,
+                      SylSkeleton **out, SylMesh **obstacles) {
     FILE *diag = opt->diag;
     double ts = forest_now();
     int st = load_obstacles(f, p, S, diag);
-    if (!st) st = compile_plants(p, S, f, plants, progs, diag);
+    if (!st) st = compile_plants(p, S, f, plants, progs, models, diag);
     if (st) return st;
     bool trees = false;
     float ground = S->ground, lowest = INFINITY;
     for (int i = 0; i < S->nplants; i++) {
-        trees |= syl_program_kind(progs[i]) == SYL_MODEL_GROW;
+        trees |= syl_program_kind(progs[i]->q) == SYL_MODEL_GROW;
         if (plants[i].at[1] < lowest) lowest = plants[i].at[1];
     }
     if (trees && !(*lsys = scene_lsys_new(f, S->nplants))) return SYL_ELIMIT;
     int nlsys = 0;
     for (int i = 0; i < S->nplants && !st; i++) {
         const ScenePlant *pl = &plants[i];
-        SylProgram *q = progs[i];
+        SylProgram *q = progs[i]->q;
         placed[i].tree = placed[i].lockstep = -1;
         if (syl_program_kind(q) == SYL_MODEL_GROW) {
-            GrowParams P;
-            if (grow_params_read(q, &P, diag)) st = SYL_EMODEL;
+            GrowParams P = progs[i]->P;
             if (pl->seed_set) P.seed = pl->seed;
             else if (opt->use_seed) P.seed = opt->seed + (uint64_t)i;
             else P.seed += (uint64_t)i;
@@ -239,10 +296,9 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
             SylDeriveOptions d = lsys_options(q, opt, pl, i);
             placed[i].lockstep = nlsys++;
             st = scene_lsys_add(*lsys, q, &d, pl->at, S->ground_set ? S->ground : pl->at[1], d.steps);
-            if (!st) progs[i] = NULL; /* the SceneLsys has it */
             opt->stats.plants++;
         } else {
-            st = draw_lsystem(q, opt, pl, i, S, &f->env, &placed[i].lsys);
+            st = draw_lsystem(q, opt, pl, i, S, f, &placed[i].lsys);
             opt->stats.plants++;
             const SylSkeleton *sk = placed[i].lsys;
             for (size_t k = 0; !st && k < sk->nnodes; k++) st = forest_add_static(f, sk->nodes[k].pos);
@@ -261,10 +317,14 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
     if (st) return st;
     SylSkeleton *sk = syl_skeleton_new("scene");
     if (!sk) return SYL_ELIMIT;
+    int32_t axis = 0; /* above every axis of sk: each plant's axes follow the last one's */
     for (int i = 0; i < S->nplants && !st; i++) {
+        size_t first = sk->nnodes;
         if (placed[i].tree >= 0)
-            st = tree_to_skeleton(&f->trees[placed[i].tree], f->years, sk, skeleton_next_axis(sk), &opt->stats.organs);
-        else if (placed[i].lsys) st = append_skeleton(sk, placed[i].lsys);
+            st = tree_to_skeleton(&f->trees[placed[i].tree], f->years, sk, axis, &opt->stats.organs);
+        else if (placed[i].lsys) st = append_skeleton(sk, placed[i].lsys, axis);
+        for (size_t k = first; k < sk->nnodes; k++)
+            if (sk->nodes[k].axis >= axis) axis = sk->nodes[k].axis + 1;
     }
     if (!st && obstacles && f->env.obstacles.nt) {
         *obstacles = obstacle_mesh(&f->env.obstacles);
@@ -285,6 +345,10 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     *out = NULL;
     if (obstacles) *obstacles = NULL;
     memset(&opt->stats, 0, sizeof opt->stats);
+    if (opt->years > SYL_GROW_MAX_YEARS) {
+        if (opt->diag) fprintf(opt->diag, "sylva: error: at most %d years, not %d\n", SYL_GROW_MAX_YEARS, opt->years);
+        return SYL_EUSAGE;
+    }
     double t0 = forest_now();
     SceneSpec S;
     int errors = scene_spec_read(p, &S, opt->diag);
@@ -296,17 +360,20 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     Forest f;
     Placed *placed = calloc((size_t)S.nplants, sizeof *placed);
     ScenePlant *plants = calloc((size_t)S.nplants, sizeof *plants);
-    SylProgram **progs = calloc((size_t)S.nplants, sizeof *progs);
+    SceneModel **progs = calloc((size_t)S.nplants, sizeof *progs);
+    SceneModels models = {0};
+    namemap_init(&models.index, &models.keys);
     SceneLsys *lsys = NULL;
     int st = placed && plants && progs ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
     if (!st) {
-        if (opt->max_metamers) f.max_metamers = opt->max_metamers;
-        st = grow_scene(p, opt, &S, &f, placed, plants, progs, &lsys, out, obstacles);
+        forest_limits(&f, opt);
+        st = grow_scene(p, opt, &S, &f, placed, plants, progs, &models, &lsys, out, obstacles);
+        st = forest_said(&f, st, 0);
         scene_lsys_free(lsys);
         forest_free(&f);
     }
     for (int i = 0; placed && i < S.nplants; i++) syl_skeleton_free(placed[i].lsys);
-    for (int i = 0; progs && i < S.nplants; i++) syl_program_free(progs[i]);
+    models_free(&models);
     free(placed);
     free(plants);
     free(progs);

@@ -24,7 +24,7 @@
 
 typedef struct LsysPlant {
     SceneLsys *owner;
-    SylProgram *q;
+    const SylProgram *q; /* the scene's: plants of one model share it */
     SylDeriveOptions d; /* the deriver keeps a pointer to it: never moved */
     SylDeriver *dv;
     int steps, done;    /* steps to take in all; taken */
@@ -89,7 +89,6 @@ void scene_lsys_free(SceneLsys *s) {
         LsysPlant *pl = &s->plants[i];
         if (pl->dv) syl_derive_end(pl->dv, NULL);
         syl_string_free(pl->final);
-        syl_program_free(pl->q);
         free(pl->ends);
     }
     free(s->plants);
@@ -102,7 +101,7 @@ void scene_lsys_free(SceneLsys *s) {
 
 static int answer(void *user, int step, const SylEnvFill *fill, double *par);
 
-int scene_lsys_add(SceneLsys *s, SylProgram *q, const SylDeriveOptions *d, const float at[3], float ground, int steps) {
+int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d, const float at[3], float ground, int steps) {
     if (s->n == s->cap) return SYL_ELIMIT;
     LsysPlant *pl = &s->plants[s->n++];
     pl->owner = s;
@@ -124,7 +123,8 @@ int scene_lsys_add(SceneLsys *s, SylProgram *q, const SylDeriveOptions *d, const
     return SYL_OK;
 }
 
-static int too_big(const Forest *f) {
+static int too_big(Forest *f) {
+    f->reported = true;
     if (f->diag)
         fprintf(f->diag, "sylva: error: the shadow grid would need more than %zu voxels: the scene is too large "
                          "for its voxel size\n", f->env.shadow.max_voxels);
@@ -190,6 +190,7 @@ static int advance(LsysPlant *pl, int want) {
         pl->done++;
     }
     if (!st && !pl->fresh) st = turtle_ends(pl);
+    if (st) pl->owner->f->reported = true; /* the deriver and the turtle say why */
     return st;
 }
 
@@ -224,6 +225,7 @@ int scene_lsys_finish(SceneLsys *s) {
         if (!st) {
             st = syl_derive_end(pl->dv, &pl->final);
             pl->dv = NULL;
+            if (st) s->f->reported = true;
         }
     }
     return st;
@@ -235,7 +237,9 @@ int scene_lsys_draw(SceneLsys *s, int i, SylSkeleton **out) {
     if (!pl->final) return SYL_ELIMIT;
     SylDeriveOptions d = pl->d;
     d.steps = pl->steps;
-    return lsys_draw(pl->q, pl->final, &d, pl->at, out);
+    int st = lsys_draw(pl->q, pl->final, &d, pl->at, out);
+    if (st) s->f->reported = true;
+    return st;
 }
 
 /* ---- ?E answers ---- */

@@ -83,23 +83,37 @@ static bool read_keys(Reader *r, const SylDirective *d, int i, int allowed, floa
     return true;
 }
 
-static bool model_exists(const SylProgram *p, const char *name) {
-    size_t len = 0;
-    const char *text = syl_program_source(p, &len);
-    const char *names[512];
+/* The file's model names, listed once per scene (listing parses the whole file). */
+typedef struct Names {
+    const char *v[512];
     char buf[16384];
-    int n = syl_list_models(syl_program_path(p), text, len, names, 512, buf, sizeof buf);
-    for (int i = 0; i < n; i++)
-        if (!strcmp(names[i], name)) return true;
+    int n; /* -1: not listed yet */
+} Names;
+
+static bool model_exists(const SylProgram *p, Names *names, const char *name) {
+    if (names->n < 0) {
+        size_t len = 0;
+        const char *text = syl_program_source(p, &len);
+        names->n = syl_list_models(syl_program_path(p), text, len, names->v, 512, names->buf, sizeof names->buf);
+    }
+    for (int i = 0; i < names->n; i++)
+        if (!strcmp(names->v[i], name)) return true;
     return false;
 }
 
-static void *push(void *arr, int *n, size_t elem) {
-    void *p = realloc(arr, (size_t)(*n + 1) * elem);
-    if (!p) return NULL;
-    memset((char *)p + (size_t)*n * elem, 0, elem);
-    (*n)++;
-    return p;
+/* A zeroed slot at the end of *arr, doubling its capacity (NULL: out of memory). */
+static void *push(void *arrp, int *n, int *cap, size_t elem) {
+    void **arr = arrp;
+    if (*n == *cap) {
+        int c = *cap ? 2 * *cap : 16;
+        void *p = realloc(*arr, (size_t)c * elem);
+        if (!p) return NULL;
+        *arr = p;
+        *cap = c;
+    }
+    char *slot = (char *)*arr + (size_t)(*n)++ * elem;
+    memset(slot, 0, elem);
+    return slot;
 }
 
 int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
@@ -108,6 +122,12 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
     Reader r = {.p = p, .diag = diag};
     int n = 0;
     const SylDirective *dirs = syl_program_scene(p, &n);
+    Names *names = malloc(sizeof *names);
+    if (!names) {
+        if (diag) fprintf(diag, "sylva: error: out of memory\n");
+        return 1;
+    }
+    names->n = -1;
     for (int i = 0; dirs && i < n; i++) {
         const SylDirective *d = &dirs[i];
         const SylDirArg *a0 = d->nargs ? &d->args[0] : NULL;
@@ -117,14 +137,12 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
                     "'plant' expects a model's name or \"file.syl\" first");
                 continue;
             }
-            ScenePlant *pl = push(s->plants, &s->nplants, sizeof *pl);
+            ScenePlant *pl = push(&s->plants, &s->nplants, &s->plants_cap, sizeof *pl);
             if (!pl) break;
-            s->plants = pl;
-            pl = &s->plants[s->nplants - 1];
             pl->line = d->line, pl->col = d->col;
             if (a0->kind == SYL_DARG_WORD) {
                 pl->model = a0->text;
-                if (!model_exists(p, a0->text)) ERR(&r, a0->line, a0->col, "no lsystem or grow block '%s' in this file", a0->text);
+                if (!model_exists(p, names, a0->text)) ERR(&r, a0->line, a0->col, "no lsystem or grow block '%s' in this file", a0->text);
             } else pl->file = a0->text;
             bool at_given = false;
             for (int k = 1; k < d->nargs; k++)
@@ -138,10 +156,8 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
                 ERR(&r, a0 ? a0->line : d->line, a0 ? a0->col : d->col, "'obstacle' expects a file name: \"file.obj\"");
                 continue;
             }
-            SceneObstacle *o = push(s->obstacles, &s->nobstacles, sizeof *o);
+            SceneObstacle *o = push(&s->obstacles, &s->nobstacles, &s->obstacles_cap, sizeof *o);
             if (!o) break;
-            s->obstacles = o;
-            o = &s->obstacles[s->nobstacles - 1];
             o->file = a0->text;
             o->scale = 1;
             o->terrain = d->name[0] == 'g';
@@ -178,6 +194,7 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
         }
     }
     if (dirs && !s->nplants && !r.errors) ERR(&r, 0, 0, "the scene has no plant");
+    free(names);
     return r.errors;
 }
 

@@ -32,6 +32,8 @@ struct ShootRule {
     bool buds;
     float angle, step, width, widthfactor;
     uint8_t cmd[MAX_SYMBOLS];
+    uint64_t max_modules, max_work; /* of each shoot's derivation */
+    SylBudget *mem;
 };
 
 /* The arity of the first production for `shoot` (produce or decompose), or -1. */
@@ -81,6 +83,12 @@ ShootRule *shoot_rule_new(const SylProgram *grow, const char *model) {
             for (int k = 0; k < q->tables[t].rules[i].nsucc; k++)
                 if (CODE_SYM(q->tables[t].rules[i].succ[k]) == b) r->buds = true;
     return r;
+}
+
+void shoot_rule_limits(ShootRule *r, uint64_t max_modules, uint64_t max_work, SylBudget *mem) {
+    r->max_modules = max_modules;
+    r->max_work = max_work;
+    r->mem = mem;
 }
 
 void shoot_rule_free(ShootRule *r) {
@@ -273,8 +281,9 @@ int shoot_rule_plan(const ShootRule *r, const double args[4], uint64_t seed, Sho
         return SYL_ELIMIT;
     }
     /* a shoot is small: a runaway rule stops here, not at the whole machine's memory */
-    SylDeriveOptions d = {.steps = -1, .use_seed = 1, .seed = seed, .threads = 1, .max_modules = 1000000,
-                          .max_memory = 256u << 20, .diag = diag};
+    SylDeriveOptions d = {.steps = -1, .use_seed = 1, .seed = seed, .threads = 1,
+                          .max_modules = r->max_modules ? r->max_modules : 1000000, .max_memory = 256u << 20,
+                          .max_work = r->max_work, .budget = r->mem, .diag = diag};
     SylDeriver *dv = NULL;
     int st = syl_derive_begin(r->p, &d, start, &dv);
     for (int k = 1; k <= syl_program_steps(r->p) && !st; k++) st = syl_derive_step(dv);

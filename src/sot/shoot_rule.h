@@ -47,6 +47,9 @@ const char *shoot_rule_check(const SylProgram *q);
 /* The rule `model` of grow's file; NULL when it does not compile or is out of memory. */
 ShootRule *shoot_rule_new(const SylProgram *grow, const char *model);
 void shoot_rule_free(ShootRule *r);
+/* The limits of every shoot's derivation: max_modules (0: a million), max_work (0: the
+ * default) and the memory budget (NULL: 256 MB a shoot). */
+void shoot_rule_limits(ShootRule *r, uint64_t max_modules, uint64_t max_work, SylBudget *mem);
 /* The rule places lateral buds (its model uses B): the `buds` directive places none. */
 bool shoot_rule_places_buds(const ShootRule *r);
 /* Colours the rule's model sets (colour I, R, G, B): rgb[i] when set[i]. */

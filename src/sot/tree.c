@@ -22,13 +22,29 @@ bool tree_init(Tree *t, const GrowParams *P, int index, const float base[3], int
     return tree_add_node(t, &root) == 0 && tree_add_bud(t, &bud) == 0;
 }
 
+bool tree_reserve(Tree *t, void *arrp, size_t *cap, size_t need, size_t elem) {
+    if (need <= *cap) return true;
+    size_t c = *cap ? *cap * 2 : 1024;
+    while (c < need) c *= 2;
+    uint64_t more = (uint64_t)(c - *cap) * elem;
+    if (!budget_charge(t->mem, more)) return false;
+    size_t old = *cap;
+    if (!array_reserve(arrp, cap, need, elem)) {
+        budget_release(t->mem, more);
+        return false;
+    }
+    t->charged += (uint64_t)(*cap - old) * elem;
+    return true;
+}
+
 void tree_free(Tree *t) {
+    budget_release(t->mem, t->charged);
     free(t->nodes);
     free(t->buds);
     free(t->acc);
     free(t->acc2);
     free(t->acc3);
-    shoot_rule_free(t->rule);
+    if (!t->rule_shared) shoot_rule_free(t->rule);
     for (size_t i = 0; i < t->plans_cap; i++) shoot_plan_free(&t->plans[i]);
     free(t->plans);
     free(t->organs);
@@ -37,13 +53,13 @@ void tree_free(Tree *t) {
 }
 
 int32_t tree_add_node(Tree *t, const Node *n) {
-    if (t->n >= INT32_MAX - 1 || !array_reserve(&t->nodes, &t->cap, t->n + 1, sizeof *n)) return -1;
+    if (t->n >= INT32_MAX - 1 || !tree_reserve(t, &t->nodes, &t->cap, t->n + 1, sizeof *n)) return -1;
     t->nodes[t->n] = *n;
     return (int32_t)t->n++;
 }
 
 int32_t tree_add_bud(Tree *t, const Bud *b) {
-    if (t->nb >= INT32_MAX - 1 || !array_reserve(&t->buds, &t->bcap, t->nb + 1, sizeof *b)) return -1;
+    if (t->nb >= INT32_MAX - 1 || !tree_reserve(t, &t->buds, &t->bcap, t->nb + 1, sizeof *b)) return -1;
     t->buds[t->nb] = *b;
     return (int32_t)t->nb++;
 }
@@ -51,6 +67,9 @@ int32_t tree_add_bud(Tree *t, const Bud *b) {
 bool tree_scratch(Tree *t) {
     if (t->n <= t->scratch_cap) return true;
     size_t cap = t->cap;
+    uint64_t more = 3 * (uint64_t)(cap - t->scratch_cap) * sizeof(double);
+    if (!budget_charge(t->mem, more)) return false;
+    t->charged += more; /* released with the tree, even when a realloc below fails */
     double *a = realloc(t->acc, cap * sizeof *a);
     if (!a) return false;
     t->acc = a;

@@ -14,6 +14,7 @@
 
 #include "sot/params.h"
 #include "sot/shoot_rule.h"
+#include "util/budget.h"
 
 enum { NODE_LATERAL = 1, NODE_DEAD = 2 };
 enum { BUD_APICAL, BUD_LATERAL };
@@ -93,6 +94,10 @@ typedef struct Tree {
     size_t scratch_cap;
     /* totals */
     uint64_t grown, shed_branches, shed_metamers;
+    /* the memory budget its arrays count against (NULL: none), and what they count */
+    Budget *mem;
+    uint64_t charged;
+    bool rule_shared; /* rule belongs to the forest */
 } Tree;
 
 /* A tree with its base and its first bud (pointing up), and its shoot rule compiled when P
@@ -102,6 +107,9 @@ void tree_free(Tree *t);
 /* Append a node or a bud; -1 when out of memory. Pointers into the arrays move. */
 int32_t tree_add_node(Tree *t, const Node *n);
 int32_t tree_add_bud(Tree *t, const Bud *b);
+/* array_reserve that counts the growth against t->mem first: false when out of memory or
+ * beyond the budget (the array unchanged). */
+bool tree_reserve(Tree *t, void *arrp, size_t *cap, size_t need, size_t elem);
 /* Room for the per-node scratch arrays. */
 bool tree_scratch(Tree *t);
 /* Drop dead nodes (NODE_DEAD) and buds (alive == 0), keeping order; indices are remapped. */

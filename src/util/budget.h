@@ -1,0 +1,37 @@
+/* A memory budget: the one --max-memory of a run, shared by every engine that holds large
+ * arrays (derivation strings, growth, scenes, meshes, pictures). Engines charge an array
+ * when it grows (per reallocation, never per element) and release it when freed; a charge
+ * beyond the limit is refused and the engine stops with SYL_ELIMIT before it allocates.
+ * Charges are atomic: threads may share one budget. */
+#ifndef SYL_BUDGET_H
+#define SYL_BUDGET_H
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+struct SylBudget {
+    _Atomic uint64_t used;  /* bytes charged now */
+    _Atomic uint64_t peak;  /* the most ever charged */
+    uint64_t limit;         /* bytes */
+    _Atomic uint64_t refused; /* the size of the first charge refused; 0: none */
+};
+typedef struct SylBudget Budget;
+
+/* Half the machine's memory, at most 16 GiB: the default of --max-memory. */
+uint64_t budget_default_limit(void);
+/* A budget of limit bytes (0: the default), nothing charged. */
+void budget_init(Budget *b, uint64_t limit);
+/* Count bytes more; false (nothing counted, the refusal remembered) when the total would pass
+ * the limit. b NULL: always true. */
+bool budget_charge(Budget *b, uint64_t bytes);
+void budget_release(Budget *b, uint64_t bytes);
+/* Charge or release the difference when an array goes from old_bytes to new_bytes. */
+bool budget_resize(Budget *b, uint64_t old_bytes, uint64_t new_bytes);
+/* The public face, declared again in sylva.h. */
+Budget *syl_budget_new(uint64_t max_bytes);
+void syl_budget_free(Budget *b);
+uint64_t syl_budget_used(const Budget *b);
+uint64_t syl_budget_limit(const Budget *b);
+static inline uint64_t budget_limit_mb(const Budget *b) { return b ? b->limit >> 20 : 0; }
+
+#endif
