@@ -307,11 +307,12 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
                     "sylva: error: %s %d would take the derivation past %llu modules rewritten by all its steps "
                     "together; raise the limit with --max-work\n",
                     what, step, (unsigned long long)e->max_work);
-        else
+        else if (atomic_load(&e->mem->refused))
             fprintf(e->diag,
                     "sylva: error: %s %d would need more than %llu MB of memory; raise the limit with "
                     "--max-memory\n",
                     what, step, (unsigned long long)budget_limit_mb(e->mem));
+        else fprintf(e->diag, "sylva: error: %s %d: out of memory\n", what, step);
         return;
     }
     SylLoc loc = w->fault.rule ? w->fault.rule->loc : (SylLoc){0};
