@@ -160,7 +160,10 @@ int cmd_grow(int argc, char **argv) {
     else if (what == W_CSV || what == W_JSON) status = write_skeleton(pl.sk, output, what == W_JSON);
     else {
         char *png = cli_output_name(&m, dir, "png"), *glb = cli_output_name(&m, dir, "glb");
-        if (!png || !glb) status = SYL_ELIMIT;
+        if (!png || !glb) {
+            fprintf(stderr, "sylva: error: out of memory\n");
+            status = SYL_ELIMIT;
+        }
         if (!status) status = syl_write_glb(pl.mesh, glb, stderr);
         if (!status) status = render(&pl, &ro, png);
         if (!status) printf("%s\n%s\n", png, glb);

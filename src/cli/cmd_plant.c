@@ -75,7 +75,10 @@ int cmd_plant(int argc, char **argv) {
         return status;
     }
     char *png = cli_output_name(&m, dir, "png"), *glb = cli_output_name(&m, dir, "glb");
-    if (!png || !glb) status = SYL_ELIMIT;
+    if (!png || !glb) {
+        fprintf(stderr, "sylva: error: out of memory\n");
+        status = SYL_ELIMIT;
+    }
     if (!status) status = syl_write_glb(pl.mesh, glb, stderr);
     if (!status) {
         Progress prog;

@@ -33,7 +33,8 @@ int cli_grow_plant(SylProgram *p, bool scene, const ModelArgs *m, SylDeriveOptio
     if (!status) out->modules = out->sk->nnodes;
     if (!status && mo) {
         status = syl_mesh_build(out->sk, mo, &out->mesh);
-        if (!status && obstacles) status = syl_mesh_append(out->mesh, obstacles);
+        if (!status && obstacles && (status = syl_mesh_append(out->mesh, obstacles)))
+            fprintf(stderr, "sylva: error: out of memory adding the obstacles to the mesh\n");
     }
     out->mesh_s = cli_now() - t1;
     syl_mesh_free(obstacles);

@@ -138,7 +138,10 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
                 continue;
             }
             ScenePlant *pl = push(&s->plants, &s->nplants, &s->plants_cap, sizeof *pl);
-            if (!pl) break;
+            if (!pl) {
+                ERR(&r, d->line, d->col, "out of memory");
+                break;
+            }
             pl->line = d->line, pl->col = d->col;
             if (a0->kind == SYL_DARG_WORD) {
                 pl->model = a0->text;
@@ -157,7 +160,10 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
                 continue;
             }
             SceneObstacle *o = push(&s->obstacles, &s->nobstacles, &s->obstacles_cap, sizeof *o);
-            if (!o) break;
+            if (!o) {
+                ERR(&r, d->line, d->col, "out of memory");
+                break;
+            }
             o->file = a0->text;
             o->scale = 1;
             o->terrain = d->name[0] == 'g';
