@@ -58,6 +58,8 @@ static Expr *fold_call(Compiler *c, Expr *e, Scope *s, bool *random) {
         }
         cc_function(c, id);
         if (c->fn_random[id]) *random = true;
+        /* The body's error was reported where it is; there is no code to run for this call. */
+        if (f->state == 3) return number(c, e, 0);
         if (all_const && f->state == 2 && !c->fn_random[id]) {
             double args[MAX_LOCALS], r;
             for (int i = 0; i < n; i++) args[i] = e->args.v[i]->num;
@@ -320,5 +322,5 @@ void cc_function(Compiler *c, int id) {
     int32_t pc = cc_expr(c, st->value, &s, &random);
     f->pc = pc < 0 ? 0 : (uint32_t)pc;
     c->fn_random[id] = random;
-    f->state = 2;
+    f->state = pc < 0 ? 3 : 2;
 }
