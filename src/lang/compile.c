@@ -663,6 +663,10 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         *status = SYL_ELIMIT;
         return NULL;
     }
+    if (len >= 3 && !memcmp(p->text, "\xef\xbb\xbf", 3)) { /* a UTF-8 byte order mark: not part of the text */
+        memmove(p->text, p->text + 3, len - 3 + (text ? 0 : 1));
+        len -= 3;
+    }
     /* the path is kept: callers may free theirs while the program lives on */
     p->src = (Source){.path = arena_strndup(&p->arena, path, strlen(path)), .text = p->text, .len = len};
     if (opt->noverrides > 0) {
@@ -734,6 +738,7 @@ SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag
 
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max, char *buf,
                     size_t bufsize) {
+    if (len >= 3 && !memcmp(text, "\xef\xbb\xbf", 3)) text += 3, len -= 3; /* as syl_compile */
     Source src = {.path = path, .text = text, .len = len};
     Arena tmp = {0};
     Diag d = {0};
