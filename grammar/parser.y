@@ -20,8 +20,17 @@
 
 int yylex(YYSTYPE *lval, SylLoc *lloc, void *scanner);
 static const char *const model_kinds[] = {"lsystem", "grow", "scene"};
+/* The parser's stack holds one to four entries per level of nesting (the lexer counts
+ * parentheses exactly): full, it says "memory exhausted", reported as what it is. */
+#define YYMAXDEPTH (5 * SYL_MAX_NESTING + 64)
 static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg) {
     (void)scanner;
+    if (ps->lex->too_deep) return; /* reported, and the rest of the file is not read */
+    if (!strcmp(msg, "memory exhausted")) {
+        diag_error(ps->diag, *loc, "too deeply nested (at most %d levels)", SYL_MAX_NESTING);
+        ps->lex->too_deep = ps->lex->eof_reported = 1;
+        return;
+    }
     bool at_eof = strstr(msg, "unexpected end of file") != NULL;
     if (at_eof && ps->lex->eof_reported) return; /* the lexer said why already */
     if (ps->lex->paren > 0 && loc->first_line > ps->lex->paren_loc.first_line) {
