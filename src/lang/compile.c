@@ -227,8 +227,13 @@ static void setting(Compiler *c, Stmt *s, SylLoc *seen) {
         for (int k = 0; k < 4; k++) p->tropism[k] = v[k];
         return;
     }
-    if (v[0] < def->min || v[0] > def->max || (def->integer && v[0] != floor(v[0]))) {
-        diag_error(c->d, s->args.v[0]->loc, "'%s' must be %s from %g to %g", s->name,
+    if (v[0] < def->min || v[0] > def->max) {
+        diag_error(c->d, s->args.v[0]->loc, "'%s' %.15g is out of range (%s %.17g)", s->name, v[0],
+                   v[0] > def->max ? "at most" : "at least", v[0] > def->max ? def->max : def->min);
+        return;
+    }
+    if (def->integer && v[0] != floor(v[0])) {
+        diag_error(c->d, s->args.v[0]->loc, "'%s' must be %s from %.15g to %.17g", s->name,
                    def->integer ? "a whole number" : "a number", def->min, def->max);
         return;
     }
