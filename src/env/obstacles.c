@@ -48,7 +48,7 @@ int obstacles_commit(Obstacles *o, RTCDevice dev, FILE *diag) {
     if (o->scene) rtcReleaseScene(o->scene);
     o->scene = NULL;
     if (!o->nt) return SYL_OK;
-    if (!coord_check(o->v, o->nv, 3, "the obstacles", diag)) return SYL_EMODEL;
+    if (!coord_check(o->v, o->nv, 3, "an obstacle", diag)) return SYL_EMODEL;
     o->scene = rtcNewScene(dev);
     rtcSetSceneFlags(o->scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);

@@ -233,6 +233,44 @@ static void obstacles_block_segments(void **state) {
     env_free(&e);
 }
 
+/* Embree aborts on rays from beyond 1.844e18 (its documented limit); util/coord.h keeps to
+ * 1e12. Rays that would start beyond it are answered without tracing (blocked, distance 0,
+ * no sky: these asked Embree before and aborted the process), and obstacles beyond it are
+ * refused when committed, with the message. */
+static void far_points_are_not_traced(void **state) {
+    (void)state;
+    Env e;
+    assert_int_equal(env_init(&e, 1, NULL), SYL_OK);
+    add_wall(&e.obstacles);
+    assert_int_equal(obstacles_commit(&e.obstacles, e.dev, NULL), SYL_OK);
+    const Obstacles *o = &e.obstacles;
+    const float far[3] = {0, 1e19f, 0}, down[3] = {0, -1, 0}, up[3] = {0, 1, 0};
+    assert_true(obstacles_blocked(o, far, (float[3]){0, 1.5f, 1}, 0));
+    assert_true(obstacles_blocked(o, (float[3]){0, 1.5f, -1}, (float[3]){0, 1.5f, 2e12f}, 0)); /* either end */
+    assert_near(obstacles_distance(o, far, down, 1e9f), 0, 0);
+    assert_near(obstacles_distance(o, (float[3]){1, 0.5f, -1}, (float[3]){0, 0, 1}, 1e9f), 1, 1e-5); /* near: traced */
+    float h;
+    assert_false(obstacles_height(o, 2e12f, 0, 10, &h));
+    sky_reset(&e.sky);
+    assert_true(sky_add(&e.sky, far, 0.5f)); /* left out, not an error */
+    assert_int_equal(e.sky.n, 0);
+    assert_int_equal(sky_commit(&e.sky, e.dev, &e.obstacles), 0);
+    Rng r = rng_stream(1, 1, 1, 1);
+    assert_near(sky_exposure(&e.sky, far, up, 8, &r, 0.01f), 0, 0);
+    /* a wall moved out to 1e13 is refused, with the bound */
+    const float v[9] = {1e13f, 0, 0, 1e13f, 1, 0, 1e13f, 0, 1};
+    const uint32_t tri[3] = {0, 1, 2};
+    assert_true(obstacles_add(&e.obstacles, v, 3, tri, 1));
+    char *msg = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&msg, &len);
+    assert_int_equal(obstacles_commit(&e.obstacles, e.dev, mem), SYL_EMODEL);
+    fclose(mem);
+    assert_string_equal(msg, "sylva: error: an obstacle reaches 1e+13 units from the origin; Sylva traces at most 1e+12 units\n");
+    free(msg);
+    env_free(&e);
+}
+
 /* ---- markers ---- */
 
 static void marker_cloud_is_order_independent(void **state) {
@@ -349,6 +387,7 @@ int main(void) {
         cmocka_unit_test(obj_reads_faces),
         cmocka_unit_test(obj_errors_name_file_and_line),
         cmocka_unit_test(obstacles_block_segments),
+        cmocka_unit_test(far_points_are_not_traced),
         cmocka_unit_test(marker_cloud_is_order_independent),
         cmocka_unit_test(space_round_per_bud),
         cmocka_unit_test(space_round_global_and_obstacles),
