@@ -15,13 +15,24 @@
 }
 
 %code {
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 int yylex(YYSTYPE *lval, SylLoc *lloc, void *scanner);
 static const char *const model_kinds[] = {"lsystem", "grow", "scene"};
+/* The parser's stack holds one to four entries per level of nesting (the lexer counts
+ * parentheses exactly): full, it says "memory exhausted", reported as what it is. */
+#define YYMAXDEPTH (5 * SYL_MAX_NESTING + 64)
 static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg) {
     (void)scanner;
+    if (ps->lex->too_deep) return; /* reported, and the rest of the file is not read */
+    if (!strcmp(msg, "memory exhausted")) {
+        diag_error(ps->diag, *loc, "too deeply nested (at most %d levels)", SYL_MAX_NESTING);
+        ps->lex->too_deep = ps->lex->eof_reported = 1;
+        return;
+    }
     bool at_eof = strstr(msg, "unexpected end of file") != NULL;
     if (at_eof && ps->lex->eof_reported) return; /* the lexer said why already */
     if (ps->lex->paren > 0 && loc->first_line > ps->lex->paren_loc.first_line) {
@@ -38,6 +49,15 @@ static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg)
                    msg);
     else
         diag_error(ps->diag, *loc, "%s", msg);
+}
+
+/* A numeric literal's value. One too large for a double (strtod gives inf) is an error; one
+ * too small to tell from 0 is what strtod makes of it (0 or a denormal), as a user expects. */
+static double literal(ParseState *ps, const char *text, SylLoc loc) {
+    double v = strtod(text, NULL);
+    if (isfinite(v)) return v;
+    diag_error(ps->diag, loc, "number out of range (at most %g)", DBL_MAX);
+    return 0;
 }
 
 static SylLoc span(SylLoc a, SylLoc b) {
@@ -170,10 +190,10 @@ dargs: %empty { memset(&$$, 0, sizeof $$); }
 darg: WORD { $$ = darg(DARG_WORD, $1, @1); }
     | SETTING { $$ = darg(DARG_WORD, $1, @1); }
     | STRING { $$ = darg(DARG_STRING, $1, @1); }
-    | NUMBER { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = strtod($1, NULL); }
-    | DIGITS { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = strtod($1, NULL); }
-    | '-' NUMBER { $$ = darg(DARG_NUMBER, $2, @2); $$.value = mk(ps, EX_NUM, @2); $$.value->num = -strtod($2, NULL); }
-    | '-' DIGITS { $$ = darg(DARG_NUMBER, $2, @2); $$.value = mk(ps, EX_NUM, @2); $$.value->num = -strtod($2, NULL); }
+    | NUMBER { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = literal(ps, $1, @1); }
+    | DIGITS { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = literal(ps, $1, @1); }
+    | '-' NUMBER { $$ = darg(DARG_NUMBER, $2, @2); $$.value = mk(ps, EX_NUM, @2); $$.value->num = -literal(ps, $2, @2); }
+    | '-' DIGITS { $$ = darg(DARG_NUMBER, $2, @2); $$.value = mk(ps, EX_NUM, @2); $$.value->num = -literal(ps, $2, @2); }
     | SPECIAL args_opt { $$ = darg(DARG_SYMBOL, $1, @1); $$.args = $2; }
     | '(' exprs ')' { $$ = darg(DARG_TUPLE, "(", @1); $$.args = $2; }
     ;
@@ -325,8 +345,8 @@ exprs: expr { memset(&$$, 0, sizeof $$); *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap
      | exprs ',' expr { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $3; }
      ;
 
-expr: NUMBER { $$ = mk(ps, EX_NUM, @1); $$->num = strtod($1, NULL); }
-    | DIGITS { $$ = mk(ps, EX_NUM, @1); $$->num = strtod($1, NULL); }
+expr: NUMBER { $$ = mk(ps, EX_NUM, @1); $$->num = literal(ps, $1, @1); }
+    | DIGITS { $$ = mk(ps, EX_NUM, @1); $$->num = literal(ps, $1, @1); }
     | WORD { $$ = mk(ps, EX_NAME, @1); $$->name = $1; }
     | WORD '(' exprs_opt ')' { $$ = mk(ps, EX_CALL, span(@1, @4)); $$->name = $1; $$->args = $3; }
     | '(' expr ')' { $$ = $2; }

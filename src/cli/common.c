@@ -21,43 +21,67 @@ void cli_model_spec(ModelArgs *m, const char *spec) {
     }
 }
 
-bool cli_number(const char *opt, const char *arg, double min, double max, double *out) {
-    char *end;
+/* The one reader of numbers on the command line. false when arg is not a number at all; a
+ * number too large for a double is +-inf (so out of any range), one too small to tell from 0
+ * is what strtod makes of it (0 or a denormal, with ERANGE), and is accepted. end: where
+ * the number stops (NULL: it must take the whole argument). */
+static bool read_number(const char *arg, double *v, char **end) {
+    char *stop;
     errno = 0;
-    double v = strtod(arg, &end);
-    if (!*arg || *end || errno || !isfinite(v) || v < min || v > max) {
+    *v = strtod(arg, &stop);
+    if (stop == arg || isnan(*v) || (!end && *stop)) return false;
+    for (const char *c = arg; c < stop; c++) /* decimal only: 0x10 is no count, nor 0x5 a size */
+        if (*c == 'x' || *c == 'X' || *c == 'p' || *c == 'P') return false;
+    if (end) *end = stop;
+    return true;
+}
+
+static bool out_of_range(const char *opt, const char *arg, double v, double min, double max, const char *unit) {
+    if (v >= min && v <= max) return false;
+    fprintf(stderr, "sylva: error: %s '%s' is out of range (%s %.16g%s)\n", opt, arg, v > max ? "at most" : "at least",
+            v > max ? max : min, unit);
+    return true;
+}
+
+bool cli_number(const char *opt, const char *arg, double min, double max, double *out) {
+    double v;
+    if (!read_number(arg, &v, NULL)) {
         fprintf(stderr, "sylva: error: %s expects a number from %g to %g, not '%s'\n", opt, min, max, arg);
         return false;
     }
+    if (out_of_range(opt, arg, v, min, max, "")) return false;
     *out = v;
     return true;
 }
 
 bool cli_integer(const char *opt, const char *arg, double min, double max, double *out) {
-    char *end;
-    errno = 0;
-    double v = strtod(arg, &end);
-    if (!*arg || *end || errno || !isfinite(v) || v < min || v > max || v != floor(v)) {
+    double v;
+    if (!read_number(arg, &v, NULL) || (isfinite(v) && v != floor(v))) {
         fprintf(stderr, "sylva: error: %s expects a whole number from %.0f to %.0f, not '%s'\n", opt, min, max, arg);
         return false;
     }
+    if (out_of_range(opt, arg, v, min, max, "")) return false;
     *out = v;
     return true;
 }
 
 bool cli_size(const char *opt, const char *arg, unsigned long long *out) {
+    double v, unit = 1;
     char *end;
-    errno = 0;
-    double v = strtod(arg, &end);
-    double unit = 1;
-    if (*end == 'k' || *end == 'K') unit = 1024.0, end++;
-    else if (*end == 'm' || *end == 'M') unit = 1024.0 * 1024, end++;
-    else if (*end == 'g' || *end == 'G') unit = 1024.0 * 1024 * 1024, end++;
-    if (*end == 'B' || *end == 'b') end++;
-    if (!*arg || *end || errno || !(v > 0) || v * unit > 1e18) {
+    bool ok = read_number(arg, &v, &end);
+    if (ok && (*end == 'k' || *end == 'K')) unit = 1024.0, end++;
+    else if (ok && (*end == 'm' || *end == 'M')) unit = 1024.0 * 1024, end++;
+    else if (ok && (*end == 'g' || *end == 'G')) unit = 1024.0 * 1024 * 1024, end++;
+    if (ok && (*end == 'B' || *end == 'b')) end++;
+    if (!ok || *end) {
         fprintf(stderr, "sylva: error: %s expects a size such as 512M or 4G, not '%s'\n", opt, arg);
         return false;
     }
+    if (!(v > 0)) {
+        fprintf(stderr, "sylva: error: %s '%s' is out of range (more than 0 bytes)\n", opt, arg);
+        return false;
+    }
+    if (out_of_range(opt, arg, v * unit, 1, 1e18, " bytes")) return false;
     *out = (unsigned long long)(v * unit);
     return true;
 }
@@ -303,17 +327,17 @@ bool cli_view(const char *arg, SylView *v) {
 }
 
 bool cli_picture_size(const char *arg, int *w, int *h) {
+    double a, b;
     char *end;
-    long a = strtol(arg, &end, 10), b = a;
-    if (end != arg && (*end == 'x' || *end == 'X')) {
-        const char *s = end + 1;
-        b = strtol(s, &end, 10);
-        if (end == s) b = 0;
-    }
-    if (end == arg || *end || a < 1 || b < 1 || a > 16384 || b > 16384) {
+    bool ok = read_number(arg, &a, &end);
+    b = a;
+    if (ok && (*end == 'x' || *end == 'X')) ok = read_number(end + 1, &b, &end);
+    if (!ok || *end || (isfinite(a) && a != floor(a)) || (isfinite(b) && b != floor(b))) {
         fprintf(stderr, "sylva: error: --size expects WIDTHxHEIGHT, each from 1 to 16384, not '%s'\n", arg);
         return false;
     }
+    if (out_of_range("--size", arg, a < b ? a : b, 1, 16384, "") || out_of_range("--size", arg, a > b ? a : b, 1, 16384, ""))
+        return false;
     *w = (int)a;
     *h = (int)b;
     return true;

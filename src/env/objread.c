@@ -1,6 +1,7 @@
 /* The OBJ reader: see objread.h. */
 #include "env/objread.h"
 #include "util/array.h"
+#include "util/coord.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -15,17 +16,20 @@
 typedef struct Reader {
     const char *path;
     int line;
+    const char *bol; /* where the line starts: columns count bytes from it */
     FILE *diag;
     ObjMesh *m;
     size_t vcap, tcap;
 } Reader;
 
-static int fail(Reader *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static int fail(Reader *r, const char *fmt, ...) {
+/* at: where on the line the error is (NULL: the whole line). */
+static int fail(Reader *r, const char *at, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static int fail(Reader *r, const char *at, const char *fmt, ...) {
     if (r->diag) {
         va_list ap;
         va_start(ap, fmt);
-        if (r->line > 0) fprintf(r->diag, "%s:%d: error: ", r->path, r->line);
+        if (r->line > 0 && at) fprintf(r->diag, "%s:%d:%d: error: ", r->path, r->line, (int)(at - r->bol) + 1);
+        else if (r->line > 0) fprintf(r->diag, "%s:%d: error: ", r->path, r->line);
         else fprintf(r->diag, "%s: error: ", r->path);
         vfprintf(r->diag, fmt, ap);
         fputc('\n', r->diag);
@@ -49,14 +53,16 @@ static int vertex(Reader *r, const char *s, const char *end) {
     for (int k = 0; k < 3; k++) {
         const char *t;
         size_t n = token(&s, end, &t);
-        if (!n) return fail(r, "a vertex needs three coordinates ('v x y z')");
+        if (!n) return fail(r, t, "a vertex needs three coordinates ('v x y z')");
         char buf[64], *stop;
-        if (n >= sizeof buf) return fail(r, "coordinate '%.*s' is not a number", 20, t);
+        if (n >= sizeof buf) return fail(r, t, "coordinate '%.*s' is not a number", 20, t);
         memcpy(buf, t, n);
         buf[n] = 0;
         errno = 0;
         double v = strtod(buf, &stop);
-        if (*stop || !isfinite(v) || fabs(v) > 1e30) return fail(r, "coordinate '%s' is not a number", buf);
+        if (*stop || isnan(v)) return fail(r, t, "coordinate '%s' is not a number", buf);
+        if (!coord_ok(v)) /* Embree traces in float: see util/coord.h */
+            return fail(r, t, "coordinate %s is out of range (at most %g from the origin)", buf, COORD_MAX);
         xyz[k] = (float)v;
     }
     const char *t; /* an optional w, and nothing more */
@@ -65,7 +71,7 @@ static int vertex(Reader *r, const char *s, const char *end) {
         char buf[64], *stop;
         if (n < sizeof buf) memcpy(buf, t, n), buf[n] = 0;
         if (n >= sizeof buf || (strtod(buf, &stop), *stop) || token(&s, end, &t))
-            return fail(r, "unexpected '%.*s' after a vertex's coordinates", (int)(n < 20 ? n : 20), t);
+            return fail(r, t, "unexpected '%.*s' after a vertex's coordinates", (int)(n < 20 ? n : 20), t);
     }
     if (!array_reserve(&r->m->v, &r->vcap, 3 * (r->m->nv + 1), sizeof(float))) return SYL_ELIMIT;
     memcpy(r->m->v + 3 * r->m->nv++, xyz, sizeof xyz);
@@ -77,21 +83,22 @@ static int reference(Reader *r, const char *t, size_t n, uint32_t *out) {
     char buf[64], *stop;
     size_t k = 0;
     while (k < n && t[k] != '/') k++;
-    if (k == 0 || k >= sizeof buf) return fail(r, "face vertex '%.*s' is not an index", (int)(n < 20 ? n : 20), t);
+    if (k == 0 || k >= sizeof buf) return fail(r, t, "face vertex '%.*s' is not an index", (int)(n < 20 ? n : 20), t);
     memcpy(buf, t, k);
     buf[k] = 0;
     errno = 0;
     long long i = strtoll(buf, &stop, 10);
-    if (*stop || errno) return fail(r, "face vertex '%.*s' is not an index", (int)(n < 20 ? n : 20), t);
+    if (*stop || errno) return fail(r, t, "face vertex '%.*s' is not an index", (int)(n < 20 ? n : 20), t);
     long long nv = (long long)r->m->nv;
     if (i < 0) i = nv + i + 1;
     if (i < 1 || i > nv)
-        return fail(r, "face vertex %s is out of range (%lld vertices so far)", buf, nv);
+        return fail(r, t, "face vertex %s is out of range (%lld vertices so far)", buf, nv);
     *out = (uint32_t)(i - 1);
     return SYL_OK;
 }
 
 static int face(Reader *r, const char *s, const char *end) {
+    const char *f = s - 1; /* the 'f' */
     uint32_t first = 0, prev = 0, cur = 0;
     int count = 0;
     for (;;) {
@@ -109,7 +116,7 @@ static int face(Reader *r, const char *s, const char *end) {
         prev = cur;
         count++;
     }
-    if (count < 3) return fail(r, "a face needs at least three vertices, not %d", count);
+    if (count < 3) return fail(r, f, "a face needs at least three vertices, not %d", count);
     return SYL_OK;
 }
 
@@ -117,22 +124,24 @@ int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, FILE
     memset(out, 0, sizeof *out);
     Reader r = {.path = path, .diag = diag, .m = out};
     const char *s = text, *end = text + len;
+    if (len >= 3 && !memcmp(s, "\xef\xbb\xbf", 3)) s += 3; /* a UTF-8 byte order mark */
     int st = SYL_OK;
     while (s < end && !st) {
         const char *eol = memchr(s, '\n', (size_t)(end - s));
         if (!eol) eol = end;
         r.line++;
+        r.bol = s;
         const char *p = s, *t;
         size_t n = token(&p, eol, &t);
         if (n == 1 && t[0] == 'v') st = vertex(&r, p, eol);
         else if (n == 1 && t[0] == 'f') st = face(&r, p, eol);
-        else if (n && memchr(t, 0, n)) st = fail(&r, "not a text file");
+        else if (n && memchr(t, 0, n)) st = fail(&r, NULL, "not a text file");
         /* comments, normals, texture coordinates, groups, materials: skipped */
         s = eol + 1;
     }
     if (!st && out->nt == 0) {
         r.line = 0;
-        st = fail(&r, "no faces: an obstacle needs triangles ('f a b c')");
+        st = fail(&r, NULL, "no faces: an obstacle needs triangles ('f a b c')");
     }
     if (st == SYL_ELIMIT && diag) fprintf(diag, "%s: error: out of memory\n", path);
     if (st) obj_free(out);

@@ -1,6 +1,7 @@
 /* Obstacles in an Embree scene: see obstacles.h. */
 #include "env/obstacles.h"
 #include "util/array.h"
+#include "util/coord.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -32,7 +33,10 @@ int obstacles_add_obj(Obstacles *o, const char *path, const float offset[3], flo
     int st = obj_read(path, &m, diag);
     if (st) return st;
     for (size_t i = 0; i < 3 * m.nv; i++) m.v[i] = m.v[i] * scale + offset[i % 3];
-    if (!obstacles_add(o, m.v, m.nv, m.tri, m.nt)) {
+    char what[512];
+    snprintf(what, sizeof what, "the obstacle '%s', moved and scaled,", path);
+    if (!coord_check(m.v, m.nv, 3, what, diag)) st = SYL_EMODEL;
+    else if (!obstacles_add(o, m.v, m.nv, m.tri, m.nt)) {
         if (diag) fprintf(diag, "sylva: error: out of memory reading '%s'\n", path);
         st = SYL_ELIMIT;
     }
@@ -44,6 +48,7 @@ int obstacles_commit(Obstacles *o, RTCDevice dev, FILE *diag) {
     if (o->scene) rtcReleaseScene(o->scene);
     o->scene = NULL;
     if (!o->nt) return SYL_OK;
+    if (!coord_check(o->v, o->nv, 3, "an obstacle", diag)) return SYL_EMODEL;
     o->scene = rtcNewScene(dev);
     rtcSetSceneFlags(o->scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -82,6 +87,7 @@ bool obstacles_blocked(const Obstacles *o, const float a[3], const float b[3], f
     float d[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
     float len = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
     if (!(len > 0)) return false;
+    if (!coord_ok3(a) || !coord_ok3(b)) return true; /* beyond what Embree traces: no way through */
     for (int k = 0; k < 3; k++) d[k] /= len;
     /* quick reject: both ends (with the margin) outside the obstacles' bounds on one side */
     for (int k = 0; k < 3; k++) {
@@ -93,6 +99,7 @@ bool obstacles_blocked(const Obstacles *o, const float a[3], const float b[3], f
 
 float obstacles_distance(const Obstacles *o, const float org[3], const float dir[3], float far) {
     if (!o->scene) return far;
+    if (!coord_ok3(org)) return 0; /* beyond what Embree traces */
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     struct RTCRayHit rh;
@@ -107,7 +114,7 @@ float obstacles_distance(const Obstacles *o, const float org[3], const float dir
 }
 
 bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out) {
-    if (!o->scene) return false;
+    if (!o->scene || !coord_ok(x) || !coord_ok(y) || !coord_ok(z)) return false;
     struct RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     struct RTCRayHit rh;

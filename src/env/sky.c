@@ -1,5 +1,6 @@
 /* Sky exposure by rays: see sky.h. */
 #include "env/sky.h"
+#include "util/coord.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -12,6 +13,7 @@ void sky_reset(SkyScene *s) {
 }
 
 bool sky_add(SkyScene *s, const float pos[3], float radius) {
+    if (!coord_ok3(pos) || !coord_ok(radius)) return true; /* beyond what Embree traces: no shade */
     if (4 * (s->n + 1) + 4 > s->cap) {
         size_t cap = s->cap ? 2 * s->cap : 4096;
         float *p = realloc(s->spheres, cap * sizeof *p);
@@ -55,6 +57,7 @@ void sky_free(SkyScene *s) {
 
 float sky_exposure(const SkyScene *s, const float pos[3], const float sun[3], int rays, Rng *rng, float tnear) {
     if (!s->scene || rays <= 0) return 1;
+    if (!coord_ok3(pos)) return 0; /* a ray from there would abort Embree: no sky is seen */
     /* a frame about the sun's direction */
     float n[3] = {sun[0], sun[1], sun[2]}, t[3], b[3];
     float len = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);

@@ -227,8 +227,13 @@ static void setting(Compiler *c, Stmt *s, SylLoc *seen) {
         for (int k = 0; k < 4; k++) p->tropism[k] = v[k];
         return;
     }
-    if (v[0] < def->min || v[0] > def->max || (def->integer && v[0] != floor(v[0]))) {
-        diag_error(c->d, s->args.v[0]->loc, "'%s' must be %s from %g to %g", s->name,
+    if (v[0] < def->min || v[0] > def->max) {
+        diag_error(c->d, s->args.v[0]->loc, "'%s' %.15g is out of range (%s %.17g)", s->name, v[0],
+                   v[0] > def->max ? "at most" : "at least", v[0] > def->max ? def->max : def->min);
+        return;
+    }
+    if (def->integer && v[0] != floor(v[0])) {
+        diag_error(c->d, s->args.v[0]->loc, "'%s' must be %s from %.15g to %.17g", s->name,
                    def->integer ? "a whole number" : "a number", def->min, def->max);
         return;
     }
@@ -663,6 +668,10 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         *status = SYL_ELIMIT;
         return NULL;
     }
+    if (len >= 3 && !memcmp(p->text, "\xef\xbb\xbf", 3)) { /* a UTF-8 byte order mark: not part of the text */
+        memmove(p->text, p->text + 3, len - 3 + (text ? 0 : 1));
+        len -= 3;
+    }
     /* the path is kept: callers may free theirs while the program lives on */
     p->src = (Source){.path = arena_strndup(&p->arena, path, strlen(path)), .text = p->text, .len = len};
     if (opt->noverrides > 0) {
@@ -734,6 +743,7 @@ SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag
 
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max, char *buf,
                     size_t bufsize) {
+    if (len >= 3 && !memcmp(text, "\xef\xbb\xbf", 3)) text += 3, len -= 3; /* as syl_compile */
     Source src = {.path = path, .text = text, .len = len};
     Arena tmp = {0};
     Diag d = {0};

@@ -56,7 +56,13 @@ typedef struct Compiler {
     bool *fn_random; /* per function: its body draws random numbers */
     bool *fn_used, *curve_used;
     bool *sym_used;  /* per symbol: appears in an axiom or a rule */
+    int depth;       /* of cc_fold's recursion, through nested function compiles too */
+    bool too_deep;   /* that was reported */
 } Compiler;
+
+/* How deep cc_fold (and so code generation) may recurse: the parser bounds nesting, but a
+ * chain such as 1+1+...+1 is as deep as it is long. */
+#define CC_MAX_DEPTH 4000
 
 /* expr.c */
 Expr *cc_fold(Compiler *c, Expr *e, Scope *s, bool *random);

@@ -41,7 +41,7 @@ static int binary(int op, double a, double b, double *r) {
     return isfinite(*r) ? EVAL_OK : EVAL_NONFINITE;
 }
 
-static Expr *fold_call(Compiler *c, Expr *e, Scope *s, bool *random) {
+static Expr *fold_call(Compiler *c, Expr *e, Scope *s, bool *random) { /* through cc_fold */
     bool all_const = true;
     for (int i = 0; i < e->args.n; i++) {
         e->args.v[i] = cc_fold(c, e->args.v[i], s, random);
@@ -58,6 +58,8 @@ static Expr *fold_call(Compiler *c, Expr *e, Scope *s, bool *random) {
         }
         cc_function(c, id);
         if (c->fn_random[id]) *random = true;
+        /* The body's error was reported where it is; there is no code to run for this call. */
+        if (f->state == 3) return number(c, e, 0);
         if (all_const && f->state == 2 && !c->fn_random[id]) {
             double args[MAX_LOCALS], r;
             for (int i = 0; i < n; i++) args[i] = e->args.v[i]->num;
@@ -107,7 +109,7 @@ static Expr *fold_call(Compiler *c, Expr *e, Scope *s, bool *random) {
     return number(c, e, 0);
 }
 
-Expr *cc_fold(Compiler *c, Expr *e, Scope *s, bool *random) {
+static Expr *fold(Compiler *c, Expr *e, Scope *s, bool *random) {
     switch (e->kind) {
     case EX_NUM:
     case EX_LOCAL: return e;
@@ -175,6 +177,21 @@ Expr *cc_fold(Compiler *c, Expr *e, Scope *s, bool *random) {
         return e;
     case EX_CALL: return fold_call(c, e, s, random);
     }
+    return e;
+}
+
+/* fold, with the C stack bounded: an expression deeper than CC_MAX_DEPTH is an error. */
+Expr *cc_fold(Compiler *c, Expr *e, Scope *s, bool *random) {
+    if (c->depth >= CC_MAX_DEPTH) {
+        if (!c->too_deep)
+            diag_error(c->d, e->loc, "expression is too deeply nested (at most %d operations inside one another)",
+                       CC_MAX_DEPTH);
+        c->too_deep = true;
+        return number(c, e, 0);
+    }
+    c->depth++;
+    e = fold(c, e, s, random);
+    c->depth--;
     return e;
 }
 
@@ -320,5 +337,5 @@ void cc_function(Compiler *c, int id) {
     int32_t pc = cc_expr(c, st->value, &s, &random);
     f->pc = pc < 0 ? 0 : (uint32_t)pc;
     c->fn_random[id] = random;
-    f->state = 2;
+    f->state = pc < 0 ? 3 : 2;
 }

@@ -3,8 +3,13 @@
 #define SYL_PARSE_STATE_H
 #include "ast.h"
 
+/* How deeply parentheses and other constructs may nest: bounds the parser's stack and the
+ * checker's and compiler's recursion over the tree (docs/language.md, Limits). */
+#define SYL_MAX_NESTING 1000
+
 typedef struct LexState {
     int line, col, paren;
+    int too_deep; /* "too deeply nested" was reported: the file ends there */
     int eof_done; /* a final NEWLINE was sent, so a file may end without one */
     int eof_reported; /* an error at the end of the file was reported already */
     SylLoc paren_loc; /* the outermost open parenthesis */

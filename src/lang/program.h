@@ -104,7 +104,7 @@ typedef struct Function {
     int nparams;
     uint32_t pc;
     SylLoc loc;
-    int state; /* 0 not compiled, 1 compiling, 2 compiled */
+    int state; /* 0 not compiled, 1 compiling, 2 compiled, 3 its body has an error (no code) */
 } Function;
 
 typedef struct Curve {

@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "metrics/metrics_internal.h"
+#include "util/coord.h"
 #include "util/parallel.h"
 
 typedef struct Light {
@@ -89,6 +90,7 @@ int metrics_light(const SylMesh *m, double base, const SylMetricsOptions *opt, d
             if (opt->diag) fprintf(opt->diag, "sylva: error: metrics: mesh index %u out of range\n", m->idx[i]);
             return SYL_EUSAGE;
         }
+    if (!coord_check(m->pos, m->nverts, 3, "the model", opt->diag)) return SYL_EMODEL; /* Embree's range */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int all = 0; all < 2 && lo[0] == INFINITY; all++) /* the crown's vertices, else all */
         for (size_t v = 0; v < m->nverts; v++)

@@ -19,6 +19,7 @@
 
 #include "render/render_internal.h"
 #include "util/budget.h"
+#include "util/coord.h"
 #include "util/rng.h"
 
 enum { TILE = 32, MAX_SAMPLES = 64, MAX_AO = 64, TEX_SIZE = 256 };
@@ -536,6 +537,7 @@ static void *tex_job(void *arg) {
 static int build_scene(Scene *s, int threads, FILE *diag) {
     const SylMesh *m = s->m;
     size_t ntri = m ? m->nidx / 3 : 0;
+    if (m && !coord_check(m->pos, m->nverts, 3, "the model", diag)) return SYL_EMODEL;
     char config[64];
     snprintf(config, sizeof config, "threads=%d,verbose=0", threads);
     s->dev = rtcNewDevice(config);
@@ -679,7 +681,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t
     for (int j = 0; j < njobs; j++)
         jobs[j].started = threads > 1 && pthread_create(&jobs[j].thread, NULL, tex_job, &jobs[j]) == 0;
     int status = build_scene(s, threads, diag);
-    if (status && diag) fprintf(diag, "sylva: error: render: cannot build the scene\n");
+    if (status == SYL_ELIMIT && diag) fprintf(diag, "sylva: error: render: cannot build the scene\n");
     for (int j = 0; j < njobs; j++) {
         if (jobs[j].started) pthread_join(jobs[j].thread, NULL);
         else tex_job(&jobs[j]);

@@ -547,7 +547,7 @@ static int run(Turtle *t, const SylString *s) {
     for (size_t i = 0; i < s->n && !t->oom; i++) {
         uint16_t c = code[i];
         int sym = CODE_SYM(c), na = CODE_ARITY(c);
-        const double *a = par + off;
+        const double *a = na ? par + off : NULL; /* par is NULL in a string without parameters */
         off += (size_t)na;
         TCmd cmd = t->cmd[sym];
         if (cmd == T_NONE) continue;
@@ -853,9 +853,10 @@ static const uint64_t skip_dead = (uint64_t)1 << T_NONE | (uint64_t)1 << T_LEFT 
                                   (uint64_t)1 << T_DOWN | (uint64_t)1 << T_UP | (uint64_t)1 << T_ROLL_LEFT |
                                   (uint64_t)1 << T_ROLL_RIGHT;
 
-static size_t dead_branch(Turtle *t, const SylString *s, size_t i, const double **ap, double *out) {
+static size_t dead_branch(Turtle *t, const SylString *s, const double *par, size_t i, const double **ap,
+                          double *out) {
     const uint16_t *code = s->code;
-    const double *par = s->par, *a = *ap;
+    const double *a = *ap;
     size_t n = s->n, nlight = t->open ? t->open->nlight : 0;
     for (i++; i < n; i++) {
         unsigned c = code[i], na = CODE_ARITY(c);
@@ -887,8 +888,12 @@ static size_t dead_branch(Turtle *t, const SylString *s, size_t i, const double 
  * (only how many are open: F moves inside one), no organs. The position and frame go
  * through the same float operations as in run(), so the values are the same. */
 static int run_query(Turtle *t, const SylString *s, double *out) {
+    /* A string without parameters has none (par NULL): offsets are then taken from a
+     * stand-in, as pointer arithmetic on NULL is undefined even by zero. */
+    double none[1] = {0};
+    if (!out) out = none;
     const uint16_t *code = s->code;
-    const double *par = s->par, *a = par;
+    const double *par = s->par ? s->par : out, *a = par;
     const uint8_t *cmds = t->cmd;
     size_t n = s->n, npolys = 0;
     t->npend = 0;
@@ -918,7 +923,7 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
         case T_ROLL_LEFT:
         case T_ROLL_RIGHT: pend_turn(t, P_UL, cmd == T_ROLL_RIGHT, argd(m, (int)na, 0, t->angle)); break; /* L toward -U */
         case T_PUSH: {
-            size_t end = dead_branch(t, s, i, &a, out);
+            size_t end = dead_branch(t, s, par, i, &a, out);
             if (end) {
                 i = end;
             } else {

@@ -1,12 +1,94 @@
 #include "diag.h"
 
 #include <stdarg.h>
+#include <stdint.h>
 #include <string.h>
 
 static const char *const severity_name[] = {"error", "warning", "note"};
 
-/* Print the source line of loc and a caret (with tildes for the rest of a one-line span),
- * keeping tabs so that the caret stays under the right character. */
+/* Characters that print nothing visible or reorder what follows: soft hyphen, zero-width
+ * and bidirectional marks, the byte order mark. */
+static bool invisible(uint32_t c) {
+    return c == 0xad || (c >= 0x200b && c <= 0x200f) || (c >= 0x2028 && c <= 0x202e) ||
+           (c >= 0x2060 && c <= 0x2069) || c == 0xfeff || (c >= 0xfff9 && c <= 0xfffb);
+}
+
+/* The valid UTF-8 character at s (n bytes left): its length, 0 if there is none. */
+static size_t utf8(const unsigned char *s, size_t n, uint32_t *cp) {
+    size_t len = s[0] >= 0xc2 && s[0] <= 0xdf ? 2 : s[0] >= 0xe0 && s[0] <= 0xef ? 3 : s[0] >= 0xf0 && s[0] <= 0xf4 ? 4 : 0;
+    if (!len || len > n) return 0;
+    uint32_t c = s[0] & (0x7f >> len);
+    for (size_t i = 1; i < len; i++) {
+        if ((s[i] & 0xc0) != 0x80) return 0;
+        c = c << 6 | (s[i] & 0x3f);
+    }
+    if ((len == 3 && c < 0x800) || (len == 4 && (c < 0x10000 || c > 0x10ffff)) || (c >= 0xd800 && c <= 0xdfff))
+        return 0; /* overlong, beyond Unicode, or a surrogate */
+    *cp = c;
+    return len;
+}
+
+/* How the character at s shows on a terminal, never raw when it could act on it: printable
+ * ASCII and visible UTF-8 as they are, a control as ^X (DEL as ^?), a C1 control or an
+ * invisible character as <U+XXXX>, a byte that starts no UTF-8 character as \xHH. Tab and
+ * newline stay when keep_space is set. Writes out (NUL-terminated, at most 12 bytes); returns
+ * the bytes of s taken, and *cols the columns shown. */
+static size_t show_char(const char *s, size_t n, bool keep_space, char out[12], int *cols) {
+    unsigned char b = (unsigned char)s[0];
+    uint32_t cp;
+    size_t len;
+    if ((b >= 32 && b < 127) || (keep_space && (b == '\t' || b == '\n'))) {
+        out[0] = (char)b, out[1] = 0, *cols = 1;
+        return 1;
+    }
+    if (b < 32 || b == 127) {
+        out[0] = '^', out[1] = b == 127 ? '?' : (char)(b + 64), out[2] = 0, *cols = 2;
+        return 1;
+    }
+    if (!(len = utf8((const unsigned char *)s, n, &cp))) {
+        snprintf(out, 12, "\\x%02x", b);
+        *cols = 4;
+        return 1;
+    }
+    if (cp < 0xa0 || invisible(cp)) {
+        *cols = snprintf(out, 12, "<U+%04X>", (unsigned)cp);
+        return len;
+    }
+    memcpy(out, s, len);
+    out[len] = 0;
+    *cols = 1;
+    return len;
+}
+
+static void put_shown(FILE *out, const char *s, size_t n, bool keep_space) {
+    char c[12];
+    int cols;
+    for (size_t i = 0; i < n;) {
+        i += show_char(s + i, n - i, keep_space, c, &cols);
+        fputs(c, out);
+    }
+}
+
+const char *diag_quote(char *buf, size_t cap, const char *s, size_t n) {
+    size_t used = 0;
+    char c[12];
+    int cols;
+    if (!cap) return buf;
+    for (size_t i = 0; i < n;) {
+        i += show_char(s + i, n - i, false, c, &cols);
+        size_t l = strlen(c);
+        if (used + l >= cap) break;
+        memcpy(buf + used, c, l);
+        used += l;
+    }
+    buf[used] = 0;
+    return buf;
+}
+
+/* Print the source line of loc and a caret (with tildes for the rest of a one-line span).
+ * Tabs are kept, in the line and under it, so that the caret stays under the right
+ * character; control characters are shown escaped (show_char), the caret line padded as
+ * wide as what they show. */
 static void show_line(FILE *out, const Source *src, SylLoc loc) {
     if (!src || !src->text || loc.first_line <= 0) return;
     const char *p = src->text, *end = src->text + src->len;
@@ -17,12 +99,33 @@ static void show_line(FILE *out, const Source *src, SylLoc loc) {
     while (e < end && *e != '\n') e++;
     int width = (int)(e - p);
     if (width > 400) return; /* a minified line helps no one */
-    fprintf(out, "%5d | %.*s\n      | ", loc.first_line, width, p);
+    fprintf(out, "%5d | ", loc.first_line);
+    put_shown(out, p, (size_t)width, true);
+    fputs("\n      | ", out);
+    /* columns count bytes from 1: pad to the byte col - 1, then mark bytes col .. last */
     int col = loc.first_column > 0 ? loc.first_column : 1;
-    for (int i = 0; i < col - 1 && i < width; i++) fputc(p[i] == '\t' ? '\t' : ' ', out);
+    int last = loc.last_line == loc.first_line ? loc.last_column : col;
+    char c[12];
+    int cols;
+    for (int i = 0; i < width && i < col - 1;) {
+        if (p[i] == '\t') {
+            fputc('\t', out);
+            i++;
+            continue;
+        }
+        i += (int)show_char(p + i, (size_t)(width - i), true, c, &cols);
+        for (int k = 0; k < cols; k++) fputc(' ', out);
+    }
     fputc('^', out);
-    if (loc.last_line == loc.first_line)
-        for (int i = col; i < loc.last_column && i < width; i++) fputc('~', out);
+    int at = col - 1;
+    if (at < width) { /* the marked character may show wider than one column */
+        at += (int)show_char(p + at, (size_t)(width - at), true, c, &cols);
+        for (int k = 1; k < cols; k++) fputc('~', out);
+    }
+    while (at < width && at < last) {
+        at += (int)show_char(p + at, (size_t)(width - at), true, c, &cols);
+        for (int k = 0; k < cols; k++) fputc('~', out);
+    }
     fputc('\n', out);
 }
 
@@ -32,14 +135,16 @@ void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...) {
     int limit = d->max_shown ? d->max_shown : 20;
     if (!d->out || (severity != DIAG_NOTE && d->errors + d->warnings > limit)) return;
     const char *path = d->src && d->src->path ? d->src->path : "sylva";
-    if (loc.first_line > 0)
-        fprintf(d->out, "%s:%d:%d: %s: ", path, loc.first_line, loc.first_column, severity_name[severity]);
-    else
-        fprintf(d->out, "%s: %s: ", path, severity_name[severity]);
+    put_shown(d->out, path, strlen(path), false); /* a path or a name may come from anywhere */
+    if (loc.first_line > 0) fprintf(d->out, ":%d:%d: %s: ", loc.first_line, loc.first_column, severity_name[severity]);
+    else fprintf(d->out, ": %s: ", severity_name[severity]);
+    char msg[2048];
     va_list ap;
     va_start(ap, fmt);
-    vfprintf(d->out, fmt, ap);
+    int n = vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
+    if (n < 0) n = 0;
+    put_shown(d->out, msg, (size_t)n < sizeof msg ? (size_t)n : sizeof msg - 1, true);
     fputc('\n', d->out);
     show_line(d->out, d->src, loc);
 }

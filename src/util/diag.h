@@ -26,8 +26,13 @@ typedef struct Diag {
     int max_shown;      /* stop printing after this many errors (0: 20) */
 } Diag;
 
+/* The message and the path are printed escaped as diag_quote does (tabs and newlines kept),
+ * and so is the source line under them. */
 void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
+/* s[0..n) made safe to print (see diag.c: controls escaped, visible UTF-8 kept) into buf,
+ * cut to fit cap; returns buf. For text from the user that a message quotes. */
+const char *diag_quote(char *buf, size_t cap, const char *s, size_t n);
 #define diag_error(d, loc, ...) diag_report((d), DIAG_ERROR, (loc), __VA_ARGS__)
 #define diag_warning(d, loc, ...) diag_report((d), DIAG_WARNING, (loc), __VA_ARGS__)
 #define diag_note(d, loc, ...) diag_report((d), DIAG_NOTE, (loc), __VA_ARGS__)

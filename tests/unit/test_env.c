@@ -157,20 +157,39 @@ static void obj_errors_name_file_and_line(void **state) {
     int st;
     char *msg = parse_error("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 7\n", &st);
     assert_int_equal(st, SYL_EMODEL);
-    assert_string_equal(msg, "wall.obj:4: error: face vertex 7 is out of range (3 vertices so far)\n");
+    assert_string_equal(msg, "wall.obj:4:7: error: face vertex 7 is out of range (3 vertices so far)\n");
     free(msg);
     msg = parse_error("v 0 0\n", &st);
     assert_int_equal(st, SYL_EMODEL);
-    assert_string_equal(msg, "wall.obj:1: error: a vertex needs three coordinates ('v x y z')\n");
+    assert_string_equal(msg, "wall.obj:1:6: error: a vertex needs three coordinates ('v x y z')\n");
     free(msg);
     msg = parse_error("v 0 0 zero\n", &st);
-    assert_string_equal(msg, "wall.obj:1: error: coordinate 'zero' is not a number\n");
+    assert_string_equal(msg, "wall.obj:1:7: error: coordinate 'zero' is not a number\n");
     free(msg);
     msg = parse_error("v 0 0 0\nv 1 0 0\nf 1 2\n", &st);
-    assert_string_equal(msg, "wall.obj:3: error: a face needs at least three vertices, not 2\n");
+    assert_string_equal(msg, "wall.obj:3:1: error: a face needs at least three vertices, not 2\n");
     free(msg);
     msg = parse_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 x 3\n", &st);
-    assert_string_equal(msg, "wall.obj:4: error: face vertex 'x' is not an index\n");
+    assert_string_equal(msg, "wall.obj:4:5: error: face vertex 'x' is not an index\n");
+    free(msg);
+    /* Embree traces in float: a coordinate beyond util/coord.h's bound is refused where it is */
+    msg = parse_error("v 0 0 0\nv 1 0 0\nv 0 -1e18 0\nf 1 2 3\n", &st);
+    assert_int_equal(st, SYL_EMODEL);
+    assert_string_equal(msg, "wall.obj:3:5: error: coordinate -1e18 is out of range (at most 1e+12 from the origin)\n");
+    free(msg);
+    msg = parse_error("v 0 0 1e400\n", &st);
+    assert_string_equal(msg, "wall.obj:1:7: error: coordinate 1e400 is out of range (at most 1e+12 from the origin)\n");
+    free(msg);
+    msg = parse_error("v 0 nan 0\n", &st);
+    assert_string_equal(msg, "wall.obj:1:5: error: coordinate 'nan' is not a number\n");
+    free(msg);
+    /* a byte order mark is skipped, and columns count from after it */
+    msg = parse_error("\xef\xbb\xbfv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &st);
+    assert_int_equal(st, SYL_OK);
+    assert_string_equal(msg, "");
+    free(msg);
+    msg = parse_error("\xef\xbb\xbfv 0 0 q\n", &st);
+    assert_string_equal(msg, "wall.obj:1:7: error: coordinate 'q' is not a number\n");
     free(msg);
     msg = parse_error("# nothing\n", &st);
     assert_string_equal(msg, "wall.obj: error: no faces: an obstacle needs triangles ('f a b c')\n");
@@ -211,6 +230,44 @@ static void obstacles_block_segments(void **state) {
     assert_false(obstacles_blocked(o, (float[3]){3, 0.5f, -1}, (float[3]){3, 0.5f, 1}, 0)); /* beside */
     float h;
     assert_true(obstacles_height(o, 1, 0, 10, &h) == false || h <= 3); /* a vertical wall: a grazing ray */
+    env_free(&e);
+}
+
+/* Embree aborts on rays from beyond 1.844e18 (its documented limit); util/coord.h keeps to
+ * 1e12. Rays that would start beyond it are answered without tracing (blocked, distance 0,
+ * no sky: these asked Embree before and aborted the process), and obstacles beyond it are
+ * refused when committed, with the message. */
+static void far_points_are_not_traced(void **state) {
+    (void)state;
+    Env e;
+    assert_int_equal(env_init(&e, 1, NULL), SYL_OK);
+    add_wall(&e.obstacles);
+    assert_int_equal(obstacles_commit(&e.obstacles, e.dev, NULL), SYL_OK);
+    const Obstacles *o = &e.obstacles;
+    const float far[3] = {0, 1e19f, 0}, down[3] = {0, -1, 0}, up[3] = {0, 1, 0};
+    assert_true(obstacles_blocked(o, far, (float[3]){0, 1.5f, 1}, 0));
+    assert_true(obstacles_blocked(o, (float[3]){0, 1.5f, -1}, (float[3]){0, 1.5f, 2e12f}, 0)); /* either end */
+    assert_near(obstacles_distance(o, far, down, 1e9f), 0, 0);
+    assert_near(obstacles_distance(o, (float[3]){1, 0.5f, -1}, (float[3]){0, 0, 1}, 1e9f), 1, 1e-5); /* near: traced */
+    float h;
+    assert_false(obstacles_height(o, 2e12f, 0, 10, &h));
+    sky_reset(&e.sky);
+    assert_true(sky_add(&e.sky, far, 0.5f)); /* left out, not an error */
+    assert_int_equal(e.sky.n, 0);
+    assert_int_equal(sky_commit(&e.sky, e.dev, &e.obstacles), 0);
+    Rng r = rng_stream(1, 1, 1, 1);
+    assert_near(sky_exposure(&e.sky, far, up, 8, &r, 0.01f), 0, 0);
+    /* a wall moved out to 1e13 is refused, with the bound */
+    const float v[9] = {1e13f, 0, 0, 1e13f, 1, 0, 1e13f, 0, 1};
+    const uint32_t tri[3] = {0, 1, 2};
+    assert_true(obstacles_add(&e.obstacles, v, 3, tri, 1));
+    char *msg = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&msg, &len);
+    assert_int_equal(obstacles_commit(&e.obstacles, e.dev, mem), SYL_EMODEL);
+    fclose(mem);
+    assert_string_equal(msg, "sylva: error: an obstacle reaches 1e+13 units from the origin; Sylva traces at most 1e+12 units\n");
+    free(msg);
     env_free(&e);
 }
 
@@ -330,6 +387,7 @@ int main(void) {
         cmocka_unit_test(obj_reads_faces),
         cmocka_unit_test(obj_errors_name_file_and_line),
         cmocka_unit_test(obstacles_block_segments),
+        cmocka_unit_test(far_points_are_not_traced),
         cmocka_unit_test(marker_cloud_is_order_independent),
         cmocka_unit_test(space_round_per_bud),
         cmocka_unit_test(space_round_global_and_obstacles),

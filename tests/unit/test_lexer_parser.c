@@ -353,6 +353,50 @@ static void empty_file(void **state) {
     free(diag);
 }
 
+/* diag_quote: what a message may quote of the user's text. Printable ASCII and visible
+ * UTF-8 stay; C0 controls are ^X, DEL ^?, C1 controls and invisible characters <U+XXXX>,
+ * bytes that start no UTF-8 character (a lone continuation, an overlong form, a surrogate)
+ * \xHH; and it is cut to fit, never in the middle of an escape. */
+static void quoting_escapes_controls(void **state) {
+    (void)state;
+    char b[64];
+    struct { const char *in; size_t n; const char *out; } cases[] = {
+        {"F(x)", 4, "F(x)"},
+        {"\x1b[31m", 5, "^[[31m"},
+        {"a\0b", 3, "a^@b"},
+        {"\t\n\x7f", 3, "^I^J^?"},
+        {"\xc3\xa9", 2, "\xc3\xa9"},                /* é */
+        {"\xc2\x9b", 2, "<U+009B>"},                /* CSI, a C1 control */
+        {"\xef\xbb\xbf", 3, "<U+FEFF>"},            /* byte order mark */
+        {"\xe2\x80\xae", 3, "<U+202E>"},            /* right-to-left override */
+        {"\x80", 1, "\\x80"},                        /* a lone continuation byte */
+        {"\xc0\xaf", 2, "\\xc0\\xaf"},              /* overlong '/' */
+        {"\xed\xa0\x80", 3, "\\xed\\xa0\\x80"},     /* a surrogate */
+        {"\xf0\x9f\x8c\xb3", 4, "\xf0\x9f\x8c\xb3"}, /* a tree, beyond the BMP */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++)
+        assert_string_equal(diag_quote(b, sizeof b, cases[i].in, cases[i].n), cases[i].out);
+    assert_string_equal(diag_quote(b, 6, "ab\x1b\x1b", 4), "ab^[");
+}
+
+/* The line printer: the escaped line, and the caret padded as wide as what was shown
+ * before it (a tab stays a tab); the message's own text is escaped too. */
+static void caret_after_escapes(void **state) {
+    (void)state;
+    const char *text = "x\t\x1b\xc2\x9bY\n";
+    Source src = {.path = "p\x1b.syl", .text = text, .len = strlen(text)};
+    char *out = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&out, &len);
+    Diag d = {.out = mem, .src = &src};
+    diag_error(&d, ((SylLoc){1, 6, 1, 6}), "name '%s'", "a\x07");
+    fclose(mem);
+    assert_string_equal(out, "p^[.syl:1:6: error: name 'a^G'\n"
+                             "    1 | x\t^[<U+009B>Y\n"
+                             "      |  \t          ^\n");
+    free(out);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(statement_kinds_and_counts),
@@ -371,6 +415,8 @@ int main(void) {
         cmocka_unit_test(bad_characters),
         cmocka_unit_test(unclosed_model_and_stray_statement),
         cmocka_unit_test(empty_file),
+        cmocka_unit_test(quoting_escapes_controls),
+        cmocka_unit_test(caret_after_escapes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -315,7 +315,7 @@ static void malformed_obstacle_is_reported(void **state) {
     char *diag = NULL;
     char *csv = grow_text(path, text, true, 1, &diag);
     assert_null(csv);
-    assert_contains(diag, "bad.obj:2: error: unexpected 'oops' after a vertex's coordinates");
+    assert_contains(diag, "bad.obj:2:9: error: unexpected 'oops' after a vertex's coordinates");
     assert_contains(diag, "scene.syl:11:12: error: cannot use the obstacle \"bad.obj\"");
     free(diag);
 }

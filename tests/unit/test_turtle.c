@@ -562,6 +562,26 @@ static void query_modules_are_filled(void **state) {
     unit_run_free(&r);
 }
 
+/* A string without any parameter has no parameter array (NULL): the turtle and its query
+ * pass read it without offsetting that pointer (clang's -fsanitize=pointer-overflow, part
+ * of -fsanitize=undefined, stops on "applying zero offset to null pointer"). The skeleton
+ * is still the one the string draws: F+F at 90 degrees, a root and two segments. */
+static void string_without_parameters(void **state) {
+    Drawn d = draw_axiom("  angle 90", "F+F[-F]?P?H!");
+    assert_null(d.s->par);
+    assert_int_equal(d.sk->nnodes, 4);
+    const SylNode *last = &d.sk->nodes[d.sk->nnodes - 1];
+    assert_float_equal(last->pos[0], -1, 1e-6);
+    assert_float_equal(last->pos[1], 2, 1e-6);
+    drawn_free(&d);
+    /* the query pass, over queries that have nowhere to write */
+    d = draw_axiom("", "F?P?E[?P]+F");
+    assert_null(d.s->par);
+    assert_int_equal(syl_turtle_query(d.p, d.s, NULL), SYL_OK);
+    assert_int_equal(syl_string_length(d.s), 8);
+    drawn_free(&d);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(hilbert3d_visits_the_lattice),
@@ -584,6 +604,7 @@ int main(void) {
         cmocka_unit_test(export_csv),
         cmocka_unit_test(odd_input_is_harmless),
         cmocka_unit_test(query_modules_are_filled),
+        cmocka_unit_test(string_without_parameters),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
