@@ -11,6 +11,10 @@
 
 #define SYLVA_VERSION "0.1.0"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     SYL_OK = 0,
     SYL_EMODEL = 1, /* the model is wrong: syntax, names, or a runtime error in an expression */
@@ -156,5 +160,9 @@ void syl_string_free(SylString *s);
 /* Build a string by hand (a derivation's start): an empty one, then modules appended. */
 SylString *syl_string_new(void);
 int syl_string_push(SylString *s, int sym, int nparams, const double *params);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif
