@@ -1,4 +1,5 @@
 /* Runs the flex scanner and the bison parser over one source text. */
+#include <setjmp.h>
 #include <string.h>
 
 #include "lang/parse_state.h"
@@ -22,10 +23,21 @@ int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
         diag_error(diag, (SylLoc){0}, "cannot start the lexer");
         return 1;
     }
-    YY_BUFFER_STATE buf = syl_yy_scan_bytes(src->text, (int)src->len, scanner);
-    int rc = syl_yyparse(scanner, &ps);
-    syl_yy_delete_buffer(buf, scanner);
+    /* Out of memory in the scanner or the arena unwinds to here: free the scanner, then go
+     * on to the caller's target (the compiler's), or report it when there is none. */
+    jmp_buf *outer = arena->oom, oom;
+    int rc = 1, failed = 1; /* both set only on the way that does not jump */
+    if (!setjmp(oom)) {
+        arena->oom = &oom;
+        YY_BUFFER_STATE buf = syl_yy_scan_bytes(src->text, (int)src->len, scanner);
+        rc = syl_yyparse(scanner, &ps);
+        syl_yy_delete_buffer(buf, scanner);
+        failed = 0;
+    }
     syl_yylex_destroy(scanner);
+    arena->oom = outer;
+    if (failed && outer) longjmp(*outer, 1);
+    if (failed) diag_error(diag, (SylLoc){0}, "out of memory");
     if (rc && diag->errors == before) diag_error(diag, (SylLoc){0}, "could not parse the file");
     return diag->errors - before;
 }
