@@ -334,7 +334,7 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     const RuleTable *t = &p->tables[table];
     e->rewritten += in->n;
     out->n = out->np = 0;
-    out->poff_n = SIZE_MAX; /* the offset cache describes the old contents */
+    ms_changed(out); /* the offset cache describes the old contents */
     View v = {.code = in->code, .par = in->par, .n = in->n, .skip = p->skip};
     if (t->has_context) {
         if (in->np) {
@@ -586,6 +586,7 @@ static int fill_queries(Engine *e, SylString *s, int step) {
 struct SylDeriver {
     Engine e;
     SylDeriveOptions *opt;
+    SylDeriveOptions own_opt; /* opt when the caller passes NULL (defaults) */
     SylString *cur, *spare;
     int step;
     int status; /* the first error; every later call returns it */
@@ -620,8 +621,9 @@ int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString
     }
     SylDeriver *d = calloc(1, sizeof *d);
     if (!d) return SYL_ELIMIT;
-    d->opt = opt;
-    engine_init(&d->e, p, opt);
+    d->own_opt = (SylDeriveOptions){.steps = -1};
+    d->opt = opt ? opt : &d->own_opt;
+    engine_init(&d->e, p, d->opt);
     d->cur = new_string(&d->e);
     d->spare = new_string(&d->e);
     d->status = d->cur && d->spare ? begin(d, start) : SYL_ELIMIT;
