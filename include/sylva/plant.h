@@ -35,7 +35,8 @@ typedef struct SylPlantOptions {
     int threads;           /* <= 0: all cores; the result never depends on it */
     uint64_t max_modules;  /* L-systems: SYL_ELIMIT beyond (0: 200 million); grow blocks and
                               scenes: the most metamers (0: 20 million) */
-    uint64_t max_memory;   /* bytes of module strings; 0: half the machine's memory, at most 16 GiB */
+    uint64_t max_memory;   /* L-systems: bytes of module strings; 0: half the machine's memory,
+                              at most 16 GiB */
     SylPlantStage until;   /* stop after the string or the skeleton; SYL_PLANT_STRING refuses
                               grow blocks and scenes (they have no string) */
     int drop_string;       /* nonzero: free the string once drawn (less memory); out->string NULL */
