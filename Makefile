@@ -65,16 +65,28 @@ $(BUILD)/%.o: %.c | $(DEPS_OK) $(BUILD)/gen/parser.h
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -c -o $@ $<
 
-$(BUILD)/libsylva.a: $(LIB_OBJ)
+# libsylva.a, the installed library, exports the public API only: every object is linked into
+# one (ld -r) whose globals are made local except the syl_ names the public headers declare,
+# so a program's own yyparse, tree_free or arena_alloc cannot collide with ours, nor can it
+# call our internals (tests/run-embed checks it). The unit tests call internal functions:
+# they link the plain objects in libsylva-internal.a.
+$(BUILD)/libsylva-internal.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
+$(BUILD)/libsylva.a: $(LIB_OBJ) $(wildcard include/sylva/*.h)
+	@rm -f $@
+	ld -r -o $(BUILD)/sylva-all.o $(LIB_OBJ)
+	grep -ohE '\bsyl_[a-z0-9_]+' include/sylva/*.h | sort -u > $(BUILD)/sylva-api.syms
+	objcopy --keep-global-symbols=$(BUILD)/sylva-api.syms $(BUILD)/sylva-all.o $(BUILD)/sylva-api.o
+	ar rcs $@ $(BUILD)/sylva-api.o
+	@rm -f $(BUILD)/sylva-all.o
 $(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva.a
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # ---- tests ----
-$(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva.a
+$(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(BUILD)/libsylva.a $(LDLIBS) -lcmocka
+	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(BUILD)/libsylva-internal.a $(LDLIBS) -lcmocka
 units: $(UNIT_BIN)
 
 test-fast: all units

@@ -1,6 +1,8 @@
 /* Grammar of .syl files (LANGUAGE.md). One statement per line; the parser only builds the
  * syntax tree, everything else (names, arities, modules in words) is the checker's job. */
 %define api.pure full
+/* syl_yy, not yy: a program that links libsylva may have its own yyparse (issue 9). */
+%define api.prefix {syl_yy}
 %define parse.error verbose
 %locations
 /* One known conflict: in a directive, `~leaf (0.1)` could be a symbol followed by a tuple;
@@ -20,7 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-int yylex(YYSTYPE *lval, SylLoc *lloc, void *scanner);
+int syl_yylex(SYL_YYSTYPE *lval, SylLoc *lloc, void *scanner);
 static const char *const model_kinds[] = {"lsystem", "grow", "scene"};
 /* The parser's stack holds one to four entries per level of nesting (the lexer counts
  * parentheses exactly): full, it says "memory exhausted", reported as what it is. */

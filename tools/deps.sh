@@ -1,6 +1,6 @@
 #!/bin/sh
 # Install the Debian packages Sylva needs, if any are missing (as root), or say how.
-PKGS="flex bison pkg-config libcglm-dev libembree-dev libxml2-dev libpng-dev libcmocka-dev clang libclang-rt-dev pngquant"
+PKGS="flex bison pkg-config g++ libcglm-dev libembree-dev libxml2-dev libpng-dev libcmocka-dev clang libclang-rt-dev pngquant"
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}\n' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"

@@ -10,6 +10,10 @@
 #include "skeleton.h"
 #include "sylva.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* Counts at the end and seconds per phase (comparable with Tázlar 2018, Table 5.2). */
 typedef struct SylGrowStats {
     int plants, years;
@@ -59,5 +63,9 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out);
  * it. *obstacles (if not NULL) receives the obstacles' triangles as a mesh, to draw with the
  * plants (NULL when there are none). */
 int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, SylMesh **obstacles);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

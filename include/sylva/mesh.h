@@ -9,6 +9,10 @@
 #include "skeleton.h"
 #include "sylva.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct SylMeshGroup {
     uint32_t first, count; /* a range of SylMesh.idx (a multiple of 3) */
     uint8_t material;
@@ -61,5 +65,9 @@ int syl_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.m
 int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

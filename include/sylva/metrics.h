@@ -10,6 +10,10 @@
 #include "mesh.h"
 #include "skeleton.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum { SYL_METRICS_MAX_STRAHLER = 64 };
 
 typedef struct SylMetrics {
@@ -61,5 +65,9 @@ extern const int syl_metric_count;
 /* The value of metric `metric` (an index into syl_metric_info); order is the Strahler order
  * i of a per-order metric (R_b = N_i / N_(i+1)), ignored by the others. NaN when undefined. */
 double syl_metric_value(const SylMetrics *m, int metric, int order);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

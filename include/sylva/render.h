@@ -8,6 +8,10 @@
 
 #include "mesh.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 /* AUTO: front for a plant drawn in a plane (2D models), iso otherwise. */
 typedef enum { SYL_VIEW_ISO, SYL_VIEW_FRONT, SYL_VIEW_SIDE, SYL_VIEW_TOP, SYL_VIEW_AUTO } SylView;
 
@@ -54,5 +58,9 @@ enum { SYL_TEXTURE_SIZE = 512 };
  * the material (glTF baseColorFactor, MTL Kd), which multiplies them — as the renderer does.
  * Each file is written through a temporary file. Returns SYL_OK, SYL_EIO or SYL_ELIMIT. */
 int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

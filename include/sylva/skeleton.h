@@ -12,6 +12,10 @@
 
 #include "sylva.h"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef enum {
     SYL_KIND_ROOT,      /* where an axis starts without a parent segment */
     SYL_KIND_INTERNODE, /* the end of a drawn segment (F, G) */
@@ -102,5 +106,9 @@ typedef struct SylTurtleOptions {
 /* Interpret a derived string (after `interpret` rules, see syl_interpret) with the 3D
  * turtle of docs/turtle.md and return its skeleton. */
 int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -11,6 +11,10 @@
 
 #define SYLVA_VERSION "0.1.0"
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 enum {
     SYL_OK = 0,
     SYL_EMODEL = 1, /* the model is wrong: syntax, names, or a runtime error in an expression */
@@ -152,7 +156,8 @@ int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);
 /* The same, a step at a time (a scene grows its L-systems year by year beside its trees):
  * begin reads the axiom — or start, when not NULL — and decomposes it (step 0); each
  * syl_derive_step derives one more step; end hands the string over (out may be NULL) and
- * frees the deriver. Every call returns SYL_OK or the error that stopped the derivation. */
+ * frees the deriver. Every call returns SYL_OK or the error that stopped the derivation.
+ * The deriver keeps opt (NULL: defaults): it must outlive the deriver. */
 typedef struct SylDeriver SylDeriver;
 int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out);
 int syl_derive_step(SylDeriver *d);
@@ -163,7 +168,9 @@ int syl_derive_end(SylDeriver *d, SylString **out);
 int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out);
 
 size_t syl_string_length(const SylString *s);
-/* Module i: its symbol id, parameter count and a pointer to its parameters. */
+/* Module i: its symbol id, parameter count and a pointer to its parameters (valid until
+ * the string changes). -1 (0 parameters, NULL) when i >= syl_string_length(s). Several
+ * threads may read one string at once as long as none changes it. */
 int syl_string_module(const SylString *s, size_t i, int *nparams, const double **params);
 /* Canonical form: modules concatenated, parameters as %g separated by commas. */
 int syl_string_write(const SylProgram *p, const SylString *s, FILE *out);
@@ -173,5 +180,9 @@ void syl_string_free(SylString *s);
 /* Build a string by hand (a derivation's start): an empty one, then modules appended. */
 SylString *syl_string_new(void);
 int syl_string_push(SylString *s, int sym, int nparams, const double *params);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -6,6 +6,7 @@
 
 #include "sylva/grow.h"
 #include "sylva/mesh.h"
+#include "sylva/plant.h"
 #include "sylva/render.h"
 #include "sylva/skeleton.h"
 #include "sylva/sylva.h"
@@ -64,10 +65,6 @@ SylProgram *cli_compile(ModelArgs *m, int lint, int *status);
     CLI_LIMIT_HELP
 /* 1: c is one of those options and was applied; 0: it is not; -1: bad value (reported). */
 int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d);
-/* Compile m, derive it and apply its `interpret` rules: the string a turtle reads. On
- * success *p and *s are set (free both); otherwise they are NULL. */
-int cli_derive_interpreted(ModelArgs *m, SylDeriveOptions *d, SylProgram **p, SylString **s);
-
 /* A progress bar on stderr, shown only when stderr is a terminal and the work has taken
  * more than a second. */
 typedef struct Progress {
@@ -78,8 +75,8 @@ typedef struct Progress {
 void cli_progress_start(Progress *p, const char *label);
 void cli_progress(void *progress, double fraction); /* 0..1; 1 clears the line */
 
-/* The whole way from a model to a skeleton and (if mo is not NULL) a mesh, with a progress
- * bar per derivation step. Free with cli_plant_free. */
+/* The whole way from a model to a skeleton and (if mo is not NULL) a mesh: syl_plant_build
+ * (sylva/plant.h) with a progress bar per derivation step or year. Free with cli_plant_free. */
 typedef struct Plant {
     SylSkeleton *sk;
     SylMesh *mesh;
@@ -91,10 +88,6 @@ typedef struct Plant {
 } Plant;
 int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
 void cli_plant_free(Plant *pl);
-/* cli_plant's way for grow blocks and scenes (grow_plant.c): -n is the years and
- * --max-modules the most metamers; takes p. */
-int cli_grow_plant(SylProgram *p, bool scene, const ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo,
-                   Plant *out);
 
 /* Write through a temporary file renamed into place, so a failed run leaves nothing. */
 typedef struct OutFile {

@@ -101,29 +101,19 @@ int cmd_skeleton(int argc, char **argv) {
         }
     }
     cli_model_spec(&m, argv[optind]);
-    SylProgram *p;
-    SylString *s;
-    double t0 = cli_now();
-    int status = cli_derive_interpreted(&m, &d, &p, &s);
+    Plant pl;
+    int status = cli_plant(&m, &d, NULL, &pl);
     if (status) return status;
-    double t1 = cli_now();
-    SylSkeleton *sk = NULL;
-    SylTurtleOptions topt = {.diag = stderr};
-    status = syl_turtle(p, s, &topt, &sk);
-    double t2 = cli_now();
-    size_t modules = syl_string_length(s);
-    syl_string_free(s);
-    syl_program_free(p);
-    if (status) return status;
+    SylSkeleton *sk = pl.sk;
     OutFile out;
     if (!out_open(&out, output)) {
-        syl_skeleton_free(sk);
+        cli_plant_free(&pl);
         return SYL_EIO;
     }
     status = format == FMT_JSON ? syl_skeleton_write_json(sk, out.f) : syl_skeleton_write_csv(sk, out.f);
     if (status == SYL_EIO) fprintf(stderr, "sylva: error: cannot write the output\n");
     status = out_close(&out, status);
-    if (!status && stats) print_stats(sk, modules, t1 - t0, t2 - t1);
-    syl_skeleton_free(sk);
+    if (!status && stats) print_stats(sk, pl.modules, pl.derive_s, pl.turtle_s);
+    cli_plant_free(&pl);
     return status;
 }

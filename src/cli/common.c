@@ -152,24 +152,6 @@ int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d) {
     }
 }
 
-int cli_derive_interpreted(ModelArgs *m, SylDeriveOptions *d, SylProgram **p, SylString **s) {
-    int status;
-    *s = NULL;
-    *p = cli_compile(m, 0, &status);
-    if (!*p) return status;
-    SylString *derived = NULL;
-    status = syl_derive(*p, d, &derived);
-    if (!status) status = syl_interpret(*p, derived, d, s);
-    syl_string_free(derived);
-    if (status) {
-        syl_string_free(*s);
-        syl_program_free(*p);
-        *s = NULL;
-        *p = NULL;
-    }
-    return status;
-}
-
 void cli_progress_start(Progress *p, const char *label) {
     memset(p, 0, sizeof *p);
     p->label = label;
@@ -198,56 +180,48 @@ void cli_progress(void *progress, double fraction) {
     fflush(stderr);
 }
 
-typedef struct StepProgress {
-    Progress bar;
-    int steps;
-} StepProgress;
-
-static void on_step(void *user, int step, const SylString *s) {
-    (void)s;
-    StepProgress *sp = user;
-    if (sp->steps > 0) cli_progress(&sp->bar, step >= sp->steps ? 1.0 : (double)step / sp->steps);
-}
-
 int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out) {
     memset(out, 0, sizeof *out);
     double t0 = cli_now();
     int status;
     SylProgram *p = cli_compile(m, 0, &status);
     if (!p) return status;
+    double compiled = cli_now() - t0;
     snprintf(out->name, sizeof out->name, "%s", syl_program_name(p));
     /* grow blocks grow; a file with a scene, named without a model, makes its scene */
     int nscene = 0;
     bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!m->model && syl_program_scene(p, &nscene));
-    if (scene || syl_program_kind(p) == SYL_MODEL_GROW) return cli_grow_plant(p, scene, m, d, mo, out);
-    StepProgress sp = {.steps = d->steps >= 0 ? d->steps : syl_program_steps(p)};
-    cli_progress_start(&sp.bar, "deriving");
-    if (!d->on_step) {
-        d->on_step = on_step;
-        d->user = &sp;
+    out->grown = scene || syl_program_kind(p) == SYL_MODEL_GROW;
+    /* -n is the years of a grow block or scene: the limit of --years, with its message */
+    if (out->grown && d->steps > SYL_GROW_MAX_YEARS) {
+        char arg[32];
+        double v;
+        snprintf(arg, sizeof arg, "%d", d->steps);
+        cli_integer("-n", arg, 0, SYL_GROW_MAX_YEARS, &v);
+        syl_program_free(p);
+        return SYL_EUSAGE;
     }
-    SylString *derived = NULL, *s = NULL;
-    status = syl_derive(p, d, &derived);
-    cli_progress(&sp.bar, 1);
-    if (d->on_step == on_step) d->on_step = NULL;
-    if (!status) status = syl_interpret(p, derived, d, &s);
-    syl_string_free(derived);
-    double t1 = cli_now();
-    if (!status) {
-        SylTurtleOptions topt = {.diag = stderr};
-        out->modules = syl_string_length(s);
-        status = syl_turtle(p, s, &topt, &out->sk);
-    }
-    syl_string_free(s);
+    Progress bar;
+    cli_progress_start(&bar, out->grown ? "growing" : "deriving");
+    SylPlantOptions po = {.use_steps = d->steps >= 0, .steps = d->steps, .use_seed = d->use_seed, .seed = d->seed,
+                          .threads = d->threads, .max_modules = d->max_modules, .max_memory = d->max_memory,
+                          .max_work = d->max_work, .max_metamers = m->max_metamers, .max_buds = m->max_buds,
+                          .budget = d->budget, .until = mo ? SYL_PLANT_MESH : SYL_PLANT_SKELETON,
+                          .drop_string = 1, .scene = !m->model, .mesh = mo, .diag = stderr,
+                          .progress = cli_progress, .user = &bar};
+    SylPlant pl;
+    status = syl_plant_build(p, &po, &pl);
     syl_program_free(p);
-    double t2 = cli_now();
-    if (!status && mo) status = syl_mesh_build(out->sk, mo, &out->mesh);
-    double t3 = cli_now();
-    out->derive_s = t1 - t0;
-    out->turtle_s = t2 - t1;
-    out->mesh_s = t3 - t2;
-    if (status) cli_plant_free(out);
-    return status;
+    if (status) return status;
+    out->sk = pl.skeleton;
+    out->mesh = pl.mesh;
+    out->modules = pl.modules;
+    out->grow = pl.grow;
+    out->derive_s = (out->grown ? 0 : compiled) + pl.derive_s; /* growth alone, as --stats says */
+    out->turtle_s = pl.turtle_s;
+    out->mesh_s = pl.mesh_s;
+    d->rewritten = pl.rewritten;
+    return SYL_OK;
 }
 
 void cli_plant_free(Plant *pl) {

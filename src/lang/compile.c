@@ -642,8 +642,16 @@ static void directives(Compiler *c, Model *m, SylDirective **out, int *nout) {
     }
 }
 
-SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
-                        int *status) {
+/* What syl_compile frees when out of memory unwinds it (arena.h): kept off its stack,
+ * since locals changed after setjmp are lost by longjmp. */
+typedef struct CompileGuard {
+    jmp_buf oom;
+    SylProgram *p;
+    Arena tmp;
+} CompileGuard;
+
+static SylProgram *compile_text(CompileGuard *g, const char *path, const char *text, size_t len,
+                                const SylCompileOptions *opt, int *status) {
     static const SylCompileOptions defaults = {0};
     if (!opt) opt = &defaults;
     SylProgram *p = calloc(1, sizeof *p);
@@ -651,6 +659,9 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         *status = SYL_ELIMIT;
         return NULL;
     }
+    g->p = p;
+    p->arena.oom = &g->oom;
+    g->tmp.oom = &g->oom;
     if (text) {
         p->text = malloc(len + 1);
         if (p->text) memcpy(p->text, text, len);
@@ -683,17 +694,17 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         }
         p->noverrides = opt->noverrides;
     }
-    Arena tmp = {0};
+    Arena *tmp = &g->tmp;
     Diag d = {.out = opt->diag, .src = &p->src};
-    Compiler c = {.p = p, .d = &d, .tmp = &tmp, .opt = opt};
-    namemap_init(&c.values, &tmp);
-    namemap_init(&c.fns, &tmp);
-    namemap_init(&c.curves, &tmp);
-    namemap_init(&c.syms, &tmp);
-    namemap_init(&c.declared, &tmp);
+    Compiler c = {.p = p, .d = &d, .tmp = tmp, .opt = opt};
+    namemap_init(&c.values, tmp);
+    namemap_init(&c.fns, tmp);
+    namemap_init(&c.curves, tmp);
+    namemap_init(&c.syms, tmp);
+    namemap_init(&c.declared, tmp);
     FileAst ast;
     *status = SYL_OK;
-    if (syl_parse(&p->src, &tmp, &d, &ast) == 0) {
+    if (syl_parse(&p->src, tmp, &d, &ast) == 0) {
         Model *m = find_model(&ast, opt->model);
         Model *scene = find_scene(&ast);
         if (!m && opt->model) {
@@ -726,12 +737,34 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
                 d.errors += sot_check_scene(p, opt->diag);
         }
     }
-    arena_free(&tmp);
+    arena_free(tmp);
+    g->p = NULL;
+    p->arena.oom = NULL; /* the target dies with syl_compile's frame */
     if (d.errors) {
         if (!*status) *status = c.usage_error ? SYL_EUSAGE : SYL_EMODEL;
         syl_program_free(p);
         return NULL;
     }
+    return p;
+}
+
+SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
+                        int *status) {
+    CompileGuard *g = calloc(1, sizeof *g);
+    if (!g) {
+        *status = SYL_ELIMIT;
+        return NULL;
+    }
+    if (setjmp(g->oom)) {
+        arena_free(&g->tmp);
+        syl_program_free(g->p);
+        free(g);
+        if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory while compiling '%s'\n", path);
+        *status = SYL_ELIMIT;
+        return NULL;
+    }
+    SylProgram *p = compile_text(g, path, text, len, opt, status);
+    free(g);
     return p;
 }
 

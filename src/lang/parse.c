@@ -1,14 +1,17 @@
 /* Runs the flex scanner and the bison parser over one source text. */
+#include <setjmp.h>
 #include <string.h>
 
 #include "lang/parse_state.h"
 #include "parser.h"
+#define YYSTYPE SYL_YYSTYPE /* as in grammar/lexer.l */
+#define YYLTYPE SYL_YYLTYPE
 #include "lexer.h"
 
 const char *const syl_setting_names[] = {"derive", "angle", "step", "width", "seed", "maxdepth",
                                           "widthfactor", "tropism", "colour", NULL};
 
-int yyparse(void *scanner, ParseState *ps);
+int syl_yyparse(void *scanner, ParseState *ps);
 
 int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     memset(ast, 0, sizeof *ast);
@@ -16,14 +19,25 @@ int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     LexState ls = {.line = 1, .col = 1, .arena = arena, .diag = diag};
     ParseState ps = {.lex = &ls, .arena = arena, .diag = diag, .ast = ast, .model = &ast->top};
     yyscan_t scanner;
-    if (yylex_init_extra(&ls, &scanner)) {
+    if (syl_yylex_init_extra(&ls, &scanner)) {
         diag_error(diag, (SylLoc){0}, "cannot start the lexer");
         return 1;
     }
-    YY_BUFFER_STATE buf = yy_scan_bytes(src->text, (int)src->len, scanner);
-    int rc = yyparse(scanner, &ps);
-    yy_delete_buffer(buf, scanner);
-    yylex_destroy(scanner);
+    /* Out of memory in the scanner or the arena unwinds to here: free the scanner, then go
+     * on to the caller's target (the compiler's), or report it when there is none. */
+    jmp_buf *outer = arena->oom, oom;
+    int rc = 1, failed = 1; /* both set only on the way that does not jump */
+    if (!setjmp(oom)) {
+        arena->oom = &oom;
+        YY_BUFFER_STATE buf = syl_yy_scan_bytes(src->text, (int)src->len, scanner);
+        rc = syl_yyparse(scanner, &ps);
+        syl_yy_delete_buffer(buf, scanner);
+        failed = 0;
+    }
+    syl_yylex_destroy(scanner);
+    arena->oom = outer;
+    if (failed && outer) longjmp(*outer, 1);
+    if (failed) diag_error(diag, (SylLoc){0}, "out of memory");
     if (rc && diag->errors == before) diag_error(diag, (SylLoc){0}, "could not parse the file");
     return diag->errors - before;
 }

@@ -354,7 +354,7 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
         return SYL_ELIMIT;
     }
     out->n = out->np = 0;
-    out->poff_n = SIZE_MAX; /* the offset cache describes the old contents */
+    ms_changed(out); /* the offset cache describes the old contents */
     View v = {.code = in->code, .par = in->par, .n = in->n, .skip = p->skip};
     if (t->has_context) {
         if (in->np) {
@@ -608,6 +608,7 @@ static int fill_queries(Engine *e, SylString *s, int step) {
 struct SylDeriver {
     Engine e;
     SylDeriveOptions *opt;
+    SylDeriveOptions own_opt; /* opt when the caller passes NULL (defaults) */
     SylString *cur, *spare;
     int step;
     int status; /* the first error; every later call returns it */
@@ -654,8 +655,9 @@ int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString
         if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory\n");
         return SYL_ELIMIT;
     }
-    d->opt = opt;
-    engine_init(&d->e, p, opt);
+    d->own_opt = (SylDeriveOptions){.steps = -1};
+    d->opt = opt ? opt : &d->own_opt;
+    engine_init(&d->e, p, d->opt);
     d->cur = new_string(&d->e);
     d->spare = new_string(&d->e);
     d->status = said(&d->e, d->cur && d->spare ? begin(d, start) : SYL_ELIMIT, 0, "step");

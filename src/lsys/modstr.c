@@ -1,5 +1,6 @@
 #include "modstr.h"
 
+#include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,12 +50,31 @@ int ms_reserve(SylString *s, size_t n, size_t np) {
     return SYL_OK;
 }
 
-const uint32_t *ms_offsets(SylString *s) {
-    if (s->poff && s->poff_n == s->n) return s->poff; /* poff_n is SIZE_MAX once stale */
+const uint32_t *ms_offsets(const SylString *cs) {
+    /* The cache is not part of the string's value: building it is a const operation made
+     * safe between threads by poff_state (stale -> building -> ready). */
+    SylString *s = (SylString *)cs;
+    for (;;) {
+        int st = atomic_load_explicit(&s->poff_state, memory_order_acquire);
+        if (st == POFF_READY && s->poff_n == s->n) return s->poff;
+        if (st == POFF_BUILDING) { /* another reader is building it: short, wait */
+            sched_yield();
+            continue;
+        }
+        if (atomic_compare_exchange_weak_explicit(&s->poff_state, &st, POFF_BUILDING, memory_order_acquire,
+                                                  memory_order_relaxed))
+            break;
+    }
     if (s->n + 1 > s->poff_cap) {
-        if (charge(s, (int64_t)((s->n + 1 - s->poff_cap) * sizeof *s->poff))) return NULL;
-        uint32_t *o = realloc(s->poff, (s->n + 1) * sizeof *o);
-        if (!o) return NULL;
+        uint32_t *o = NULL;
+        if (!charge(s, (int64_t)((s->n + 1 - s->poff_cap) * sizeof *s->poff))) {
+            o = realloc(s->poff, (s->n + 1) * sizeof *o);
+            if (!o) charge(s, -(int64_t)((s->n + 1 - s->poff_cap) * sizeof *s->poff));
+        }
+        if (!o) {
+            atomic_store_explicit(&s->poff_state, POFF_STALE, memory_order_release);
+            return NULL;
+        }
         s->poff = o;
         s->poff_cap = s->n + 1;
     }
@@ -66,6 +86,7 @@ const uint32_t *ms_offsets(SylString *s) {
     }
     o[s->n] = at;
     s->poff_n = s->n;
+    atomic_store_explicit(&s->poff_state, POFF_READY, memory_order_release);
     return o;
 }
 
@@ -78,18 +99,25 @@ void ms_release(SylString *s) {
     s->code = NULL;
     s->par = NULL;
     s->poff = NULL;
-    s->n = s->cap = s->np = s->pcap = s->poff_n = s->poff_cap = 0;
+    s->n = s->cap = s->np = s->pcap = s->poff_cap = 0;
+    ms_changed(s);
 }
 
 /* ---- public access ---- */
 
 size_t syl_string_length(const SylString *s) { return s->n; }
 
-int syl_string_module(const SylString *cs, size_t i, int *nparams, const double **params) {
-    SylString *s = (SylString *)cs; /* the offset index is a cache */
-    const uint32_t *o = ms_offsets(s);
+int syl_string_module(const SylString *s, size_t i, int *nparams, const double **params) {
+    if (i >= s->n) {
+        if (nparams) *nparams = 0;
+        if (params) *params = NULL;
+        return -1;
+    }
     if (nparams) *nparams = CODE_ARITY(s->code[i]);
-    if (params) *params = o ? s->par + o[i] : NULL;
+    if (params) {
+        const uint32_t *o = ms_offsets(s);
+        *params = o ? s->par + o[i] : NULL;
+    }
     return CODE_SYM(s->code[i]);
 }
 
@@ -104,7 +132,7 @@ int syl_string_push(SylString *s, int sym, int nparams, const double *params) {
     if (ms_reserve(s, 1, (size_t)nparams)) return SYL_ELIMIT;
     s->code[s->n++] = CODE(sym, nparams);
     for (int k = 0; k < nparams; k++) s->par[s->np++] = params[k];
-    s->poff_n = SIZE_MAX; /* the offset index is stale */
+    ms_changed(s);
     return SYL_OK;
 }
 

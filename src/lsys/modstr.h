@@ -16,7 +16,10 @@ struct SylString {
     size_t n, cap;   /* modules */
     size_t np, pcap; /* parameters */
     uint32_t *poff;  /* parameter offset per module (n + 1), built on demand */
-    size_t poff_n, poff_cap;
+    /* POFF_*: readers of a const string may build poff from several threads at once, so one
+     * builds it while the others wait (syl_string_module takes a const string) */
+    _Atomic int poff_state;
+    size_t poff_n, poff_cap; /* the n it was built for; its room */
     uint64_t charged; /* bytes counted against mem */
     Budget *mem;      /* the memory budget (--max-memory) its arrays count against; NULL: none */
     uint64_t max_modules; /* of the derivation writing it (0: none) */
@@ -24,8 +27,12 @@ struct SylString {
 
 /* Make room for n more modules and np more parameters. Returns SYL_OK or SYL_ELIMIT. */
 int ms_reserve(SylString *s, size_t n, size_t np);
-/* Offsets of every module's parameters, built once per string (NULL if out of memory). */
-const uint32_t *ms_offsets(SylString *s);
+enum { POFF_STALE, POFF_BUILDING, POFF_READY };
+/* Offsets of every module's parameters, built once per string contents (NULL if out of
+ * memory). Safe to call from several threads on one string nobody changes. */
+const uint32_t *ms_offsets(const SylString *s);
+/* Whoever changes modules or parameters says so (the offsets are then rebuilt). */
+static inline void ms_changed(SylString *s) { atomic_store_explicit(&s->poff_state, POFF_STALE, memory_order_relaxed); }
 void ms_release(SylString *s); /* free the arrays, keep the struct */
 
 #endif

@@ -59,12 +59,12 @@ int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o) {
 
 int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32_t n, int32_t node,
                                  uint8_t material, uint32_t module) {
-    if (s->npolys >= INT32_MAX || !array_reserve(&s->polys, &s->poly_cap, s->npolys + 1, sizeof *s->polys))
-        return -1;
-    for (uint32_t i = 0; i < n; i++) {
-        if (!array_reserve(&s->poly_verts, &s->vert_cap, s->nverts + 1, sizeof *s->poly_verts)) return -1;
-        memcpy(s->poly_verts[s->nverts++], verts[i], sizeof *verts);
-    }
+    /* SylPolygon.first is 32-bit: every vertex index must fit */
+    if (s->npolys >= INT32_MAX || s->nverts + n > UINT32_MAX ||
+        !array_reserve(&s->polys, &s->poly_cap, s->npolys + 1, sizeof *s->polys) ||
+        !array_reserve(&s->poly_verts, &s->vert_cap, s->nverts + n, sizeof *s->poly_verts))
+        return -1; /* all the room first: a failure leaves no orphan vertices */
+    for (uint32_t i = 0; i < n; i++) memcpy(s->poly_verts[s->nverts++], verts[i], sizeof *verts);
     SylPolygon *p = &s->polys[s->npolys];
     p->first = (uint32_t)(s->nverts - n);
     p->count = n;

@@ -1,5 +1,6 @@
 #include "arena.h"
 
+#include <limits.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -14,16 +15,20 @@ struct ArenaBlock {
 
 enum { BLOCK_MIN = 64 * 1024 };
 
+void *arena_fail(Arena *a) {
+    if (a->oom) longjmp(*a->oom, 1);
+    return NULL;
+}
+
 void *arena_alloc(Arena *a, size_t size) {
+    /* size + 15 and sizeof *b + bs must not wrap; no object exceeds PTRDIFF_MAX anyway */
+    if (size > PTRDIFF_MAX - 16 - sizeof(ArenaBlock)) return arena_fail(a);
     size = (size + 15) & ~(size_t)15;
     ArenaBlock *b = a->head;
     if (!b || b->size - b->off < size) {
         size_t bs = size > BLOCK_MIN ? size : BLOCK_MIN;
         b = malloc(sizeof *b + bs);
-        if (!b) {
-            fputs("sylva: out of memory\n", stderr);
-            abort();
-        }
+        if (!b) return arena_fail(a);
         b->size = bs;
         b->off = 0;
         b->next = a->head;
@@ -38,12 +43,15 @@ void *arena_alloc(Arena *a, size_t size) {
 
 void *arena_grow(Arena *a, void *old, size_t old_size, size_t new_size) {
     void *p = arena_alloc(a, new_size);
+    if (!p) return NULL;
     if (old && old_size) memcpy(p, old, old_size < new_size ? old_size : new_size);
     return p;
 }
 
 char *arena_strndup(Arena *a, const char *s, size_t n) {
+    if (n == SIZE_MAX) return arena_fail(a);
     char *p = arena_alloc(a, n + 1);
+    if (!p) return NULL;
     memcpy(p, s, n);
     p[n] = 0;
     return p;
@@ -54,7 +62,9 @@ char *arena_printf(Arena *a, const char *fmt, ...) {
     va_start(ap, fmt);
     int n = vsnprintf(NULL, 0, fmt, ap);
     va_end(ap);
+    if (n < 0) return arena_fail(a); /* vsnprintf fails only for want of memory here */
     char *p = arena_alloc(a, (size_t)n + 1);
+    if (!p) return NULL;
     va_start(ap, fmt);
     vsnprintf(p, (size_t)n + 1, fmt, ap);
     va_end(ap);
@@ -73,7 +83,9 @@ void arena_free(Arena *a) {
 }
 
 void *arena_vec_grow(Arena *a, void *ptr, int *cap, size_t elem) {
-    size_t old = (size_t)*cap * elem;
-    *cap = *cap ? *cap * 2 : 4;
-    return arena_grow(a, ptr, old, (size_t)*cap * elem);
+    int c = *cap ? *cap : 2;
+    if (c > INT_MAX / 2 || (size_t)c * 2 > PTRDIFF_MAX / (elem ? elem : 1)) return arena_fail(a);
+    void *p = arena_grow(a, ptr, (size_t)*cap * elem, (size_t)c * 2 * elem);
+    if (p) *cap = c * 2;
+    return p;
 }

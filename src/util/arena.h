@@ -1,14 +1,20 @@
 /* Arena: bump allocation for data that lives and dies together (an AST, a program).
  * Nothing is freed one by one; arena_free releases every block at once, which is also
- * what keeps error paths leak-free. */
+ * what keeps error paths leak-free.
+ *
+ * Out of memory (or a size that does not fit in size_t) never aborts: with oom NULL every
+ * allocator returns NULL; with oom set, it longjmps there instead, so that code with many
+ * allocations (the parser, the compiler) unwinds once, the way Lua's allocator does. */
 #ifndef SYL_ARENA_H
 #define SYL_ARENA_H
+#include <setjmp.h>
 #include <stddef.h>
 
 typedef struct ArenaBlock ArenaBlock;
 typedef struct Arena {
     ArenaBlock *head;
     size_t used;  /* bytes handed out, for statistics */
+    jmp_buf *oom; /* where out of memory unwinds to; NULL: return NULL */
 } Arena;
 
 void *arena_alloc(Arena *a, size_t size);            /* zeroed, 16-byte aligned */
@@ -16,11 +22,15 @@ void *arena_grow(Arena *a, void *old, size_t old_size, size_t new_size);
 char *arena_strndup(Arena *a, const char *s, size_t n);
 char *arena_printf(Arena *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void arena_free(Arena *a);
+/* Report out of memory: longjmp to a->oom, or return NULL when it is not set. */
+void *arena_fail(Arena *a);
 
 /* Growable array in an arena: VEC_PUSH(arena, ptr, n, cap) returns a pointer to a new
- * zeroed slot at the end (n and cap are ints). */
+ * zeroed slot at the end (n and cap are ints). Out of memory with a->oom unset: NULL, and
+ * ptr is NULL too (n and cap unchanged; the arena still owns the old array). */
 void *arena_vec_grow(Arena *a, void *ptr, int *cap, size_t elem);
-#define VEC_PUSH(ar, ptr, n, cap) \
-    ((n) == (cap) ? (void)((ptr) = arena_vec_grow((ar), (ptr), &(cap), sizeof *(ptr))) : (void)0, &(ptr)[(n)++])
+#define VEC_PUSH(ar, ptr, n, cap)                                                              \
+    ((n) == (cap) ? (void)((ptr) = arena_vec_grow((ar), (ptr), &(cap), sizeof *(ptr))) : (void)0, \
+     (ptr) ? &(ptr)[(n)++] : NULL)
 
 #endif

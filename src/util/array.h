@@ -6,7 +6,8 @@
 #include <stddef.h>
 
 /* Make *arrp (a pointer to the array pointer) hold at least need elements of elem bytes,
- * doubling from 1024; false (the array unchanged) when out of memory. */
+ * doubling from 1024; false (the array unchanged) when out of memory or when need * elem
+ * does not fit in size_t. */
 bool array_reserve(void *arrp, size_t *cap, size_t need, size_t elem);
 
 #endif

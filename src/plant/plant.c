@@ -1,0 +1,120 @@
+/* syl_plant_build: the pipeline every drawing command runs, above every engine (lsys,
+ * turtle, sot, mesh) and using only their public API, so that nothing below calls it. */
+#include "sylva/plant.h"
+
+#include <stdbool.h>
+#include <string.h>
+#include <time.h>
+
+static double now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
+}
+
+typedef struct StepProgress {
+    const SylPlantOptions *opt;
+    int steps;
+} StepProgress;
+
+static void on_step(void *user, int step, const SylString *s) {
+    (void)s;
+    const StepProgress *sp = user;
+    if (sp->steps > 0 && step < sp->steps) sp->opt->progress(sp->opt->user, (double)step / sp->steps);
+}
+
+static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *opt, const SylMeshOptions *mo,
+                       SylBudget *budget, SylPlant *out) {
+    SylGrowOptions g = {.years = opt->use_steps ? opt->steps : -1, .use_seed = opt->use_seed, .seed = opt->seed,
+                        .threads = opt->threads, .max_metamers = opt->max_metamers, .max_buds = opt->max_buds,
+                        .max_modules = opt->max_modules, .max_work = opt->max_work, .max_memory = opt->max_memory,
+                        .budget = budget, .diag = opt->diag, .progress = opt->progress, .user = opt->user};
+    SylMesh *obstacles = NULL;
+    double t0 = now();
+    int st = scene ? syl_grow_scene(p, &g, &out->skeleton, &obstacles) : syl_grow(p, &g, &out->skeleton);
+    if (opt->progress) opt->progress(opt->user, 1);
+    double t1 = now();
+    out->grow = g.stats;
+    out->derive_s = t1 - t0;
+    if (!st) out->modules = out->skeleton->nnodes;
+    if (!st && opt->until == SYL_PLANT_MESH) {
+        st = syl_mesh_build(out->skeleton, mo, &out->mesh);
+        /* the walls the trees grew around belong in the picture */
+        if (!st && obstacles && (st = syl_mesh_append(out->mesh, obstacles)) && opt->diag)
+            fprintf(opt->diag, "sylva: error: out of memory adding the obstacles to the mesh\n");
+    }
+    out->mesh_s = now() - t1;
+    syl_mesh_free(obstacles);
+    return st;
+}
+
+static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const SylMeshOptions *mo,
+                         SylBudget *budget, SylPlant *out) {
+    StepProgress sp = {.opt = opt, .steps = opt->use_steps ? opt->steps : syl_program_steps(p)};
+    SylDeriveOptions d = {.steps = opt->use_steps ? opt->steps : -1, .use_seed = opt->use_seed, .seed = opt->seed,
+                          .threads = opt->threads, .max_modules = opt->max_modules,
+                          .max_work = opt->max_work, .max_memory = opt->max_memory, .budget = budget,
+                          .diag = opt->diag,
+                          .on_step = opt->progress ? on_step : NULL, .user = &sp};
+    double t0 = now();
+    SylString *derived = NULL;
+    int st = syl_derive(p, &d, &derived);
+    if (opt->progress) opt->progress(opt->user, 1);
+    if (!st) st = syl_interpret(p, derived, &d, &out->string);
+    syl_string_free(derived);
+    double t1 = now();
+    out->derive_s = t1 - t0;
+    out->rewritten = d.rewritten;
+    if (!st) out->modules = syl_string_length(out->string);
+    if (!st && opt->until != SYL_PLANT_STRING) {
+        st = syl_turtle(p, out->string, &(SylTurtleOptions){.diag = opt->diag}, &out->skeleton);
+        if (opt->drop_string) {
+            syl_string_free(out->string);
+            out->string = NULL;
+        }
+    }
+    double t2 = now();
+    out->turtle_s = t2 - t1;
+    if (!st && opt->until == SYL_PLANT_MESH) st = syl_mesh_build(out->skeleton, mo, &out->mesh);
+    out->mesh_s = now() - t2;
+    return st;
+}
+
+int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *out) {
+    static const SylPlantOptions defaults = {0};
+    if (!opt) opt = &defaults;
+    memset(out, 0, sizeof *out);
+    SylMeshOptions mo = opt->mesh ? *opt->mesh : (SylMeshOptions){.threads = opt->threads, .diag = opt->diag};
+    /* The caller's budget is shared by every engine; without one, each engine keeps its own
+     * limit of max_memory (a budget made here could not outlive the mesh it counts). */
+    SylBudget *budget = opt->budget ? opt->budget : mo.budget;
+    if (!mo.budget) mo.budget = budget;
+    if (!mo.max_memory) mo.max_memory = opt->max_memory;
+    SylModelKind kind = syl_program_kind(p);
+    int nscene = 0;
+    bool scene = kind == SYL_MODEL_SCENE || (opt->scene && syl_program_scene(p, &nscene));
+    int st;
+    if (scene || kind == SYL_MODEL_GROW) {
+        out->kind = scene ? SYL_MODEL_SCENE : SYL_MODEL_GROW;
+        if (opt->until == SYL_PLANT_STRING) {
+            if (opt->diag)
+                fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: it has no string\n",
+                        syl_program_name(p), scene ? "scene" : "grow block");
+            return SYL_EUSAGE;
+        }
+        st = build_grown(p, scene, opt, &mo, budget, out);
+    } else {
+        out->kind = SYL_MODEL_LSYSTEM;
+        st = build_lsystem(p, opt, &mo, budget, out);
+    }
+    if (st) syl_plant_free(out);
+    return st;
+}
+
+void syl_plant_free(SylPlant *pl) {
+    if (!pl) return;
+    syl_mesh_free(pl->mesh);
+    syl_skeleton_free(pl->skeleton);
+    syl_string_free(pl->string);
+    memset(pl, 0, sizeof *pl);
+}
