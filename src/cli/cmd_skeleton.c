@@ -121,7 +121,6 @@ int cmd_skeleton(int argc, char **argv) {
         return SYL_EIO;
     }
     status = format == FMT_JSON ? syl_skeleton_write_json(sk, out.f) : syl_skeleton_write_csv(sk, out.f);
-    if (status == SYL_EIO) fprintf(stderr, "sylva: error: cannot write the output\n");
     status = out_close(&out, status);
     if (!status && stats) print_stats(sk, modules, t1 - t0, t2 - t1);
     syl_skeleton_free(sk);

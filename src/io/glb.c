@@ -175,7 +175,7 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) {
         if (diag) fprintf(diag, "sylva: error: '%s' would be larger than 4 GiB, the limit of .glb\n", path);
         status = SYL_ELIMIT;
     }
-    IoFile fo;
+    OutFile fo;
     if (!status && !io_open(&fo, path, diag)) status = SYL_EIO;
     if (!status) {
         IoBuf head = {0};
@@ -194,9 +194,10 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) {
             fwrite(head.data, 1, head.len, fo.f);
             fwrite(bin.data, 1, bin.len, fo.f);
         }
+        if (head.failed && diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
         if (head.failed) status = SYL_ELIMIT;
         io_free(&head);
-        status = io_close(&fo, status, true, diag);
+        status = io_close(&fo, status, diag); /* also catches the fwrite failures above */
     }
     io_free(&js);
     io_free(&bin);
