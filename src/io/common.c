@@ -4,6 +4,7 @@
 #include <math.h>
 #include <png.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -24,6 +25,10 @@ int io_close(OutFile *o, int status, FILE *diag) {
 void io_put(IoBuf *b, const void *p, size_t n) {
     if (b->failed) return;
     if (b->len + n > b->cap) {
+        if (n > SIZE_MAX / 4 - b->len) { /* doubling would overflow */
+            b->failed = true;
+            return;
+        }
         size_t c = b->cap ? b->cap : 4096;
         while (c < b->len + n) c *= 2;
         uint8_t *d = realloc(b->data, c);

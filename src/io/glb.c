@@ -33,7 +33,7 @@ static void put_words(IoBuf *b, const void *x, size_t n) {
 }
 
 static void pad(IoBuf *b, uint8_t with) {
-    while (b->len % 4) io_put(b, &with, 1);
+    while (b->len % 4 && !b->failed) io_put(b, &with, 1); /* a failed buffer no longer grows */
 }
 
 /* "min":[..],"max":[..] of n vectors of k floats. */
@@ -87,9 +87,8 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) {
             bin.failed = true;
             break;
         }
-        syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, rgb);
         size_t at = bin.len;
-        if (!io_png(&bin, rgb, SYL_TEXTURE_SIZE)) {
+        if (!syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, rgb) || !io_png(&bin, rgb, SYL_TEXTURE_SIZE)) {
             bin.failed = true;
             break;
         }

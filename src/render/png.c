@@ -26,14 +26,18 @@ static void png_warning_fn(png_structp png, png_const_charp msg) {
     (void)msg;
 }
 
-/* Encode into an open file; false on failure (reported). */
-static bool encode(const OutFile *o, const uint8_t *rgb, int width, int height, FILE *diag) {
+/* Encode into an open file: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported. */
+static int encode(const OutFile *o, const uint8_t *rgb, int width, int height, FILE *diag) {
     PngErr err = {diag, o};
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, png_error_fn, png_warning_fn);
-    if (!png) return false;
-    png_infop info = png_create_info_struct(png);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!info) {
+        png_destroy_write_struct(&png, NULL);
+        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", o->path);
+        return SYL_ELIMIT;
+    }
     volatile bool ok = false;
-    if (info && !setjmp(png_jmpbuf(png))) {
+    if (!setjmp(png_jmpbuf(png))) {
         png_init_io(png, o->f);
         png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                      PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -43,8 +47,8 @@ static bool encode(const OutFile *o, const uint8_t *rgb, int width, int height, 
         png_write_end(png, info);
         ok = true;
     }
-    png_destroy_write_struct(&png, info ? &info : NULL);
-    return ok;
+    png_destroy_write_struct(&png, &info);
+    return ok ? SYL_OK : SYL_EIO;
 }
 
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
@@ -54,7 +58,7 @@ int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, F
     }
     OutFile o; /* "-" is standard output */
     if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
-    bool ok = encode(&o, rgb, width, height, diag);
-    if (!outfile_close(&o, ok, diag)) ok = false;
-    return ok ? SYL_OK : SYL_EIO;
+    int status = encode(&o, rgb, width, height, diag);
+    if (!outfile_close(&o, status == SYL_OK, diag) && !status) status = SYL_EIO;
+    return status;
 }

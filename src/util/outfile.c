@@ -117,7 +117,7 @@ static void drop_temp(OutFile *o, bool unlink_it) {
 static int open_named(OutFile *o) {
     for (int n = 0; n < MAX_TRIES; n++) {
         if (!name_temp(o, n)) return -1;
-        int fd = open(o->tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666); /* the umask applies */
+        int fd = open(o->tmp, O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0666); /* the umask applies */
         if (fd >= 0) return fd;
         int e = errno;
         drop_temp(o, false);
@@ -166,7 +166,7 @@ bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, FILE *dia
             if (found) o->mode = st.st_mode & 07777, o->uid = st.st_uid, o->gid = st.st_gid, o->nlink = st.st_nlink;
             char *dir = dir_of(o->target);
             if (!dir) goto fail;
-            o->fd = hooks ? -1 : open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+            o->fd = hooks ? -1 : open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0666);
             free(dir);
             if (o->fd < 0) o->fd = open_named(o);
             if (o->fd >= 0 && o->exists && o->nlink == 1) {
