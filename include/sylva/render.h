@@ -30,7 +30,7 @@ typedef struct SylRenderOptions {
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
 /* Render and write a PNG (via a temporary file). */
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
-/* path "-": standard output. */
+/* path "-": standard output; otherwise as the mesh writers (mesh.h). */
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
 
 /* Procedural textures after Picek 2015 (bark with cracks along the branch, leaf with veins,

@@ -6,6 +6,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -210,20 +211,32 @@ static void fifo_is_written_through(void **state) {
     remove_dir(&d);
 }
 
+/* As root, a node of our own: a broken writer could rename over the system's /dev/full. */
 static void full_device_names_file_and_reason(void **state) {
-    char *msg = NULL;
+    Dir d = make_dir();
+    const char *full = "/dev/full";
+    if (geteuid() == 0) {
+        if (mknod(at(&d, "full"), S_IFCHR | 0666, makedev(1, 7))) {
+            remove_dir(&d);
+            skip();
+        }
+        full = at(&d, "full");
+    }
+    char *msg = NULL, want[256];
     size_t n;
     FILE *diag = open_memstream(&msg, &n);
     char big[100000];
     memset(big, 'x', sizeof big - 1);
     big[sizeof big - 1] = 0;
-    assert_false(write_text("/dev/full", big, true, NULL, diag));
+    assert_false(write_text(full, big, true, NULL, diag));
     fclose(diag);
-    assert_string_equal(msg, "sylva: error: cannot write '/dev/full': No space left on device\n");
+    snprintf(want, sizeof want, "sylva: error: cannot write '%s': No space left on device\n", full);
+    assert_string_equal(msg, want);
     free(msg);
     struct stat st;
-    assert_int_equal(stat("/dev/full", &st), 0);
+    assert_int_equal(stat(full, &st), 0);
     assert_true(S_ISCHR(st.st_mode));
+    remove_dir(&d);
 }
 
 typedef struct Seen {
