@@ -127,6 +127,14 @@ static int open_named(OutFile *o) {
     return -1;
 }
 
+/* The new file replacing o's target gets its mode, and its owner when we may (root). */
+static void keep_mode(const OutFile *o, int fd) {
+    if (geteuid() == 0 && fchown(fd, o->uid, o->gid)) { /* best effort, and before fchmod: */
+    }                                                    /* chown clears set-user-id bits */
+    if (fchmod(fd, o->mode)) { /* best effort: it keeps a new file's mode */
+    }
+}
+
 static void free_names(OutFile *o) {
     free(o->path);
     free(o->target);
@@ -169,13 +177,7 @@ bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, FILE *dia
             o->fd = hooks ? -1 : open(dir, O_TMPFILE | O_RDWR | O_CLOEXEC, 0666);
             free(dir);
             if (o->fd < 0) o->fd = open_named(o);
-            if (o->fd >= 0 && o->exists && o->nlink == 1) {
-                /* Replacing it: keep its owner (as root) and mode. */
-                if (geteuid() == 0 && fchown(o->fd, o->uid, o->gid)) { /* best effort */
-                }
-                if (fchmod(o->fd, o->mode)) { /* best effort: the mode of a new file */
-                }
-            }
+            if (o->fd >= 0 && o->exists && o->nlink == 1) keep_mode(o, o->fd);
         }
         if (o->fd < 0) {
             e = errno;
@@ -237,12 +239,7 @@ static bool commit(OutFile *o) {
         if (!linked) { /* no way to link it (no /proc?): copy it into a named file */
             int to = open_named(o);
             if (to < 0) return false;
-            if (o->exists) {
-                if (geteuid() == 0 && fchown(to, o->uid, o->gid)) {
-                }
-                if (fchmod(to, o->mode)) {
-                }
-            }
+            if (o->exists) keep_mode(o, to);
             bool ok = copy_fd(o->fd, to) && !fsync(to);
             int e = errno;
             if (close(to) && ok) ok = false, e = errno;
