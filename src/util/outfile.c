@@ -73,14 +73,14 @@ static char *dir_of(const char *path) {
     return strndup(path, (size_t)(slash - path));
 }
 
-/* Copy all of from (read from its start) into to; false with errno. */
+/* Copy all of from (read from its start) over to's start, and cut to there; false with errno. */
 static bool copy_fd(int from, int to) {
     char buf[1 << 16];
     for (off_t at = 0;;) {
         ssize_t n = pread(from, buf, sizeof buf, at);
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) return false;
-        if (n == 0) return true;
+        if (n == 0) return !ftruncate(to, at);
         for (ssize_t done = 0; done < n;) {
             ssize_t w = write(to, buf + done, (size_t)(n - done));
             if (w < 0 && errno == EINTR) continue;
@@ -215,7 +215,7 @@ static bool commit(OutFile *o) {
     if (o->exists && o->nlink > 1) {
         /* Renaming would split the links: copy into the file they share. What was there is
          * kept until the whole output is ready, but a failed copy leaves it half-written. */
-        int to = open(o->target, O_WRONLY | O_TRUNC | O_CLOEXEC);
+        int to = open(o->target, O_WRONLY | O_CLOEXEC); /* cut at the end: a failed first read keeps it */
         if (to < 0) return false;
         bool ok = copy_fd(o->fd, to) && !fsync(to);
         int e = errno;

@@ -178,6 +178,11 @@ static void hard_links_stay_linked(void **state) {
     assert_int_equal(after.st_nlink, 2);
     assert_true(after.st_ino == before.st_ino);
     assert_string_equal(slurp(at(&d, "b"), NULL), "new content\n");
+    assert_true(write_text(at(&d, "b"), "x\n", true, NULL, stderr)); /* shorter: cut */
+    assert_string_equal(slurp(at(&d, "a"), NULL), "x\n");
+    char names[256];
+    listing(&d, names, sizeof names);
+    assert_string_equal(names, "a b");
     remove_dir(&d);
 }
 
