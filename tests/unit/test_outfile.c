@@ -335,6 +335,7 @@ static void skeleton_json_escapes_the_name(void **state) {
 
 /* ---- OBJ when allocations fail ---- */
 
+#if FAULTS
 static SylMesh *leafy_mesh(bool leaf) {
     SylSkeleton *s = fx_tree(3, 1);
     SylOrgan o = fx_organ(SYL_KIND_LEAF, 0, 2, 0, 0.4f, 1);
@@ -344,6 +345,7 @@ static SylMesh *leafy_mesh(bool leaf) {
     syl_skeleton_free(s);
     return m;
 }
+#endif
 
 /* Write m as name through write with the k-th allocation failing, for k = 0, 1, ... until
  * none fails: each run fails with a message, status 3 or 4 and neither name nor mtl (when
