@@ -100,6 +100,13 @@ static char *slurp(const char *path, size_t *len) {
     return buf;
 }
 
+static void assert_file(const char *path, const char *want) {
+    char *got = slurp(path, NULL);
+    assert_non_null(got);
+    assert_string_equal(got, want);
+    free(got);
+}
+
 static bool write_text(const char *path, const char *text, bool commit, const OutHooks *hooks, FILE *diag) {
     OutFile o;
     if (!outfile_open(&o, path, hooks, diag)) return false;
@@ -117,7 +124,7 @@ static void new_file_mode_follows_umask(void **state) {
     struct stat st;
     assert_int_equal(stat(at(&d, "a"), &st), 0);
     assert_int_equal(st.st_mode & 07777, 0640); /* 0666 & ~027, as creat gives */
-    assert_string_equal(slurp(at(&d, "a"), NULL), "one\n");
+    assert_file(at(&d, "a"), "one\n");
     char names[256];
     listing(&d, names, sizeof names);
     assert_string_equal(names, "a");
@@ -129,9 +136,9 @@ static void existing_file_keeps_mode_and_old_content_on_discard(void **state) {
     put(at(&d, "a"), "old\n");
     chmod(at(&d, "a"), 0600);
     assert_true(write_text(at(&d, "a"), "new\n", false, NULL, stderr)); /* not committed */
-    assert_string_equal(slurp(at(&d, "a"), NULL), "old\n");
+    assert_file(at(&d, "a"), "old\n");
     assert_true(write_text(at(&d, "a"), "new\n", true, NULL, stderr));
-    assert_string_equal(slurp(at(&d, "a"), NULL), "new\n");
+    assert_file(at(&d, "a"), "new\n");
     struct stat st;
     stat(at(&d, "a"), &st);
     assert_int_equal(st.st_mode & 07777, 0600);
@@ -154,8 +161,8 @@ static void symlinks_are_followed_and_kept(void **state) {
     assert_true(S_ISLNK(st.st_mode));
     assert_int_equal(lstat(at(&d, "dangling"), &st), 0);
     assert_true(S_ISLNK(st.st_mode));
-    assert_string_equal(slurp(at(&d, "real"), NULL), "new\n");
-    assert_string_equal(slurp(at(&d, "made"), NULL), "made\n");
+    assert_file(at(&d, "real"), "new\n");
+    assert_file(at(&d, "made"), "made\n");
     assert_int_equal(symlink("loop", at(&d, "loop")), 0);
     char *msg = NULL;
     size_t n;
@@ -177,9 +184,9 @@ static void hard_links_stay_linked(void **state) {
     stat(at(&d, "a"), &after);
     assert_int_equal(after.st_nlink, 2);
     assert_true(after.st_ino == before.st_ino);
-    assert_string_equal(slurp(at(&d, "b"), NULL), "new content\n");
+    assert_file(at(&d, "b"), "new content\n");
     assert_true(write_text(at(&d, "b"), "x\n", true, NULL, stderr)); /* shorter: cut */
-    assert_string_equal(slurp(at(&d, "a"), NULL), "x\n");
+    assert_file(at(&d, "a"), "x\n");
     char names[256];
     listing(&d, names, sizeof names);
     assert_string_equal(names, "a b");
@@ -301,7 +308,7 @@ static void killed_writer_leaves_nothing(void **state) {
     char names[256];
     listing(&d, names, sizeof names);
     assert_string_equal(names, "keep");
-    assert_string_equal(slurp(at(&d, "keep"), NULL), "old\n");
+    assert_file(at(&d, "keep"), "old\n");
     close(fds[0]);
     close(fds[1]);
     remove_dir(&d);
