@@ -60,7 +60,8 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src);
 int syl_mesh_radii(const SylSkeleton *s, const SylMeshOptions *opt, float *radius);
 
 /* Files (docs/mesh.md). Each writes to a temporary file and renames it, so a failure leaves
- * nothing. OBJ writes its textures (PNG) beside the file; GLB embeds them. */
+ * nothing; a symlink is followed, a FIFO or device written through (docs/cli.md#output-files).
+ * OBJ writes its textures (PNG) beside the file; GLB embeds them. */
 int syl_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
 int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */

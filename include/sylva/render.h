@@ -38,7 +38,7 @@ typedef struct SylRenderOptions {
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
 /* Render and write a PNG (via a temporary file). */
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
-/* path "-": standard output. */
+/* path "-": standard output; otherwise as the mesh writers (mesh.h). */
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
 
 /* Procedural textures after Picek 2015 (bark with cracks along the branch, leaf with veins,
@@ -46,8 +46,9 @@ int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, F
  * The texture is a pattern times rgb (in linear light); rgb NULL: white (grass: its green).
  * Image x is u: around a branch, across a leaf or petal (main vein at u = 0.5); image y is
  * v (row 0 first, as in glTF): along a branch, from a leaf's base (v = 0) to its tip (1).
- * Every texture tiles. SYL_MATERIAL_PLAIN is flat. */
-void syl_texture(int kind, const float rgb[3], int size, uint8_t *out);
+ * Every texture tiles. SYL_MATERIAL_PLAIN is flat. False when out of memory: out is then
+ * flat, which a writer must not commit as the texture. */
+bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out);
 /* "bark", "leaf", "flower", "grass" (kind -1); NULL for kinds without a texture. */
 const char *syl_texture_name(int kind);
 

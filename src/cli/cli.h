@@ -10,6 +10,7 @@
 #include "sylva/render.h"
 #include "sylva/skeleton.h"
 #include "sylva/sylva.h"
+#include "util/outfile.h"
 
 enum { MAX_SETS = 64 };
 
@@ -89,13 +90,11 @@ typedef struct Plant {
 int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
 void cli_plant_free(Plant *pl);
 
-/* Write through a temporary file renamed into place, so a failed run leaves nothing. */
-typedef struct OutFile {
-    FILE *f;
-    char *path, *tmp;
-} OutFile;
-bool out_open(OutFile *o, const char *path); /* NULL or "-": standard output */
-int out_close(OutFile *o, int status);       /* commit when status is SYL_OK */
+/* Outputs through util/outfile: "-" (or NULL) is standard output, FIFOs and devices are
+ * written through, files through a temporary file that a signal removes (cli_temp_hooks). */
+bool out_open(OutFile *o, const char *path); /* reported when false */
+int out_close(OutFile *o, int status);       /* commit when status is SYL_OK; SYL_EIO when writing failed */
+extern const OutHooks cli_temp_hooks;        /* main.c: the temporary files a signal removes */
 
 bool cli_view(const char *arg, SylView *v);                 /* --view */
 bool cli_picture_size(const char *arg, int *w, int *h);    /* --size WxH */

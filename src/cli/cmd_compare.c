@@ -7,6 +7,7 @@
 #include "cli.h"
 #include "lineup.h"
 #include "sylva/metrics.h"
+#include "util/json.h"
 
 static const char usage[] =
     "usage: sylva compare FILE[:Model]... [--csv | --json] [--seeds N] [--image OUT.png] [options]\n"
@@ -157,17 +158,6 @@ static void csv_field(FILE *out, const char *s) {
     fputc('"', out);
 }
 
-static void json_string(FILE *out, const char *s) {
-    fputc('"', out);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') fprintf(out, "\\%c", c);
-        else if (c < 0x20) fprintf(out, "\\u%04x", c);
-        else fputc(c, out);
-    }
-    fputc('"', out);
-}
-
 static void json_number(FILE *out, double v, bool integer) {
     char buf[64];
     fmt_number(buf, sizeof buf, v, integer);
@@ -256,21 +246,21 @@ static void write_json(FILE *out, const Column *cols, int ncols, int nruns, cons
     for (int r = 0; r < nrows; r++) {
         const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
         fputs("    {\"key\": ", out);
-        json_string(out, rows[r].key);
+        json_string_file(out, rows[r].key);
         fputs(", \"label\": ", out);
-        json_string(out, rows[r].label);
+        json_string_file(out, rows[r].label);
         fputs(", \"unit\": ", out);
-        json_string(out, mi->unit);
+        json_string_file(out, mi->unit);
         fputs(", \"description\": ", out);
-        json_string(out, mi->description);
+        json_string_file(out, mi->description);
         fprintf(out, "}%s\n", r + 1 < nrows ? "," : "");
     }
     fputs("  ],\n  \"models\": [\n", out);
     for (int c = 0; c < ncols; c++) {
         fputs("    {\"model\": ", out);
-        json_string(out, cols[c].args.spec);
+        json_string_file(out, cols[c].args.spec);
         fputs(", \"name\": ", out);
-        json_string(out, cols[c].name);
+        json_string_file(out, cols[c].name);
         fputs(", \"seeds\": [", out);
         for (int i = 0; i < nruns; i++)
             fprintf(out, "%s%llu", i ? ", " : "", (unsigned long long)(cols[c].seed0 + (uint64_t)i));
@@ -279,7 +269,7 @@ static void write_json(FILE *out, const Column *cols, int ncols, int nruns, cons
             const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
             Stat s = stat(&cols[c], nruns, &rows[r]);
             fputs(r ? ",\n        " : "\n        ", out);
-            json_string(out, rows[r].key);
+            json_string_file(out, rows[r].key);
             fputs(": ", out);
             if (nruns > 1 && s.n) {
                 fputs("{\"mean\": ", out);

@@ -120,7 +120,6 @@ int cmd_derive(int argc, char **argv) {
         status = syl_string_write(p, s, out.f);
         if (!status && fputc('\n', out.f) == EOF) status = SYL_EIO;
     }
-    if (status == SYL_EIO) fprintf(stderr, "sylva: error: cannot write the output\n");
     status = out_close(&out, status);
     if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, d.rewritten);
     syl_string_free(s);

@@ -111,7 +111,6 @@ int cmd_skeleton(int argc, char **argv) {
         return SYL_EIO;
     }
     status = format == FMT_JSON ? syl_skeleton_write_json(sk, out.f) : syl_skeleton_write_csv(sk, out.f);
-    if (status == SYL_EIO) fprintf(stderr, "sylva: error: cannot write the output\n");
     status = out_close(&out, status);
     if (!status && stats) print_stats(sk, pl.modules, pl.derive_s, pl.turtle_s);
     cli_plant_free(&pl);

@@ -232,45 +232,11 @@ void cli_plant_free(Plant *pl) {
 }
 
 bool out_open(OutFile *o, const char *path) {
-    memset(o, 0, sizeof *o);
-    if (!path || !strcmp(path, "-")) {
-        o->f = stdout;
-        return true;
-    }
-    size_t n = strlen(path) + 32;
-    o->path = strdup(path);
-    o->tmp = malloc(n);
-    if (!o->path || !o->tmp) return false;
-    snprintf(o->tmp, n, "%s.tmp%ld", path, (long)getpid());
-    o->f = fopen(o->tmp, "wb");
-    if (!o->f) {
-        fprintf(stderr, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
-        free(o->path);
-        free(o->tmp);
-        return false;
-    }
-    return true;
+    return outfile_open(o, path ? path : "-", &cli_temp_hooks, stderr);
 }
 
 int out_close(OutFile *o, int status) {
-    if (o->f == stdout) {
-        if (fflush(stdout) && !status) {
-            fprintf(stderr, "sylva: error: cannot write the output: %s\n", strerror(errno));
-            status = SYL_EIO;
-        }
-        return status;
-    }
-    if (fclose(o->f) && !status) {
-        fprintf(stderr, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno));
-        status = SYL_EIO;
-    }
-    if (!status && rename(o->tmp, o->path)) {
-        fprintf(stderr, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno));
-        status = SYL_EIO;
-    }
-    if (status) unlink(o->tmp);
-    free(o->path);
-    free(o->tmp);
+    if (!outfile_close(o, status == SYL_OK, stderr) && !status) status = SYL_EIO;
     return status;
 }
 

@@ -1,9 +1,61 @@
 /* sylva: the command line. Each subcommand lives in its own file. */
+#include <limits.h>
+#include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli.h"
+
+/* The named temporary files of this run (util/outfile reports them), removed when SIGINT,
+ * SIGTERM or SIGHUP stops it. A slot's path is written before it is marked live, so the
+ * handler, on whatever thread, sees only whole paths; it uses only unlink and raise. */
+enum { MAX_TEMPS = 16 };
+static char temp_path[MAX_TEMPS][PATH_MAX + 64];
+static atomic_int temp_live[MAX_TEMPS];
+
+static void temp_created(void *ctx, const char *tmp) {
+    (void)ctx;
+    if (strlen(tmp) >= sizeof temp_path[0]) return; /* too long to keep: outfile would fail anyway */
+    for (int i = 0; i < MAX_TEMPS; i++)
+        if (!atomic_load(&temp_live[i])) {
+            strcpy(temp_path[i], tmp);
+            atomic_store(&temp_live[i], 1);
+            return;
+        }
+}
+
+static void temp_gone(void *ctx, const char *tmp) {
+    (void)ctx;
+    for (int i = 0; i < MAX_TEMPS; i++)
+        if (atomic_load(&temp_live[i]) && !strcmp(temp_path[i], tmp)) {
+            atomic_store(&temp_live[i], 0);
+            return;
+        }
+}
+
+const OutHooks cli_temp_hooks = {temp_created, temp_gone, NULL};
+
+static void on_signal(int sig) {
+    for (int i = 0; i < MAX_TEMPS; i++)
+        if (atomic_exchange(&temp_live[i], 0)) unlink(temp_path[i]);
+    raise(sig); /* SA_RESETHAND: the default action, once this handler returns */
+}
+
+static void install_signals(void) {
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+    for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) {
+        struct sigaction sa = {0}, old;
+        sa.sa_handler = on_signal;
+        sa.sa_flags = SA_RESETHAND;
+        sigemptyset(&sa.sa_mask);
+        /* A signal the caller ignores (nohup, `&` in a script) stays ignored. */
+        if (!sigaction(sigs[i], NULL, &old) && old.sa_handler != SIG_IGN) sigaction(sigs[i], &sa, NULL);
+    }
+    /* Beyond `ulimit -f` a write then fails with EFBIG, reported and exit 4, instead of a core. */
+    signal(SIGXFSZ, SIG_IGN);
+}
 
 static const struct {
     const char *name;
@@ -32,6 +84,7 @@ static void help(FILE *out) {
 }
 
 int main(int argc, char **argv) {
+    install_signals();
     if (argc < 2) {
         help(stderr);
         return SYL_EUSAGE;

@@ -1,9 +1,10 @@
-/* Mesh writers: temporary files, buffers, numbers, material names, PNG in memory, and the
+/* Mesh writers: files, buffers, numbers, material names, PNG in memory, and the
  * choice of format by extension. */
 #include <errno.h>
 #include <math.h>
 #include <png.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
@@ -11,65 +12,23 @@
 
 #include "io/io_internal.h"
 #include "sylva/render.h"
+#include "util/json.h"
 
-bool io_open(IoFile *o, const char *path, FILE *diag) {
-    memset(o, 0, sizeof *o);
-    size_t n = strlen(path) + 32;
-    o->path = strdup(path);
-    o->tmp = malloc(n);
-    if (!o->path || !o->tmp) {
-        if (diag) fprintf(diag, "sylva: error: out of memory\n");
-        free(o->path);
-        free(o->tmp);
-        return false;
-    }
-    snprintf(o->tmp, n, "%s.tmp%ld", path, (long)getpid());
-    o->f = fopen(o->tmp, "wb");
-    if (!o->f) {
-        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
-        free(o->path);
-        free(o->tmp);
-        return false;
-    }
-    return true;
-}
+bool io_open(OutFile *o, const char *path, FILE *diag) { return outfile_open(o, path, NULL, diag); }
 
-int io_rename(IoFile *o, FILE *diag) {
-    int status = SYL_OK;
-    if (rename(o->tmp, o->path)) {
-        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno));
-        unlink(o->tmp);
-        status = SYL_EIO;
-    }
-    free(o->path);
-    free(o->tmp);
-    o->path = o->tmp = NULL;
-    return status;
-}
-
-void io_discard(IoFile *o) {
-    if (o->tmp) unlink(o->tmp);
-    free(o->path);
-    free(o->tmp);
-    o->path = o->tmp = NULL;
-}
-
-int io_close(IoFile *o, int status, bool rename_now, FILE *diag) {
-    bool bad = ferror(o->f) != 0;
-    if (fclose(o->f)) bad = true;
-    o->f = NULL;
-    if (bad && !status) {
-        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", o->path, strerror(errno ? errno : EIO));
-        status = SYL_EIO;
-    }
-    if (status) io_discard(o);
-    else if (rename_now) status = io_rename(o, diag);
+int io_close(OutFile *o, int status, FILE *diag) {
+    /* A write error is reported by outfile_close; other failures by whoever set status. */
+    if (!outfile_close(o, status == SYL_OK, diag) && !status) status = SYL_EIO;
     return status;
 }
 
 void io_put(IoBuf *b, const void *p, size_t n) {
     if (b->failed) return;
     if (b->len + n > b->cap) {
+        if (n > SIZE_MAX / 4 - b->len) { /* doubling would overflow */
+            b->failed = true;
+            return;
+        }
         size_t c = b->cap ? b->cap : 4096;
         while (c < b->len + n) c *= 2;
         uint8_t *d = realloc(b->data, c);
@@ -110,15 +69,17 @@ void io_printf(IoBuf *b, const char *fmt, ...) {
     free(big);
 }
 
-void io_json_string(IoBuf *b, const char *s) {
-    io_put(b, "\"", 1);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\') io_printf(b, "\\%c", c);
-        else if (c < 0x20) io_printf(b, "\\u%04x", c);
-        else io_put(b, s, 1);
+static void put_buf(void *b, const void *p, size_t n) { io_put(b, p, n); }
+
+void io_json_string(IoBuf *b, const char *s) { json_string(s, put_buf, b); }
+
+void io_line_text(char *dst, size_t n, const char *s, bool no_spaces) {
+    size_t i = 0;
+    for (; s[i] && i + 1 < n; i++) {
+        unsigned char c = (unsigned char)s[i];
+        dst[i] = c < 0x20 || c == 0x7f || (no_spaces && c == ' ') ? '_' : (char)c;
     }
-    io_put(b, "\"", 1);
+    if (n) dst[i] = 0;
 }
 
 void io_free(IoBuf *b) {

@@ -33,7 +33,7 @@ static void put_words(IoBuf *b, const void *x, size_t n) {
 }
 
 static void pad(IoBuf *b, uint8_t with) {
-    while (b->len % 4) io_put(b, &with, 1);
+    while (b->len % 4 && !b->failed) io_put(b, &with, 1); /* a failed buffer no longer grows */
 }
 
 /* "min":[..],"max":[..] of n vectors of k floats. */
@@ -87,9 +87,8 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) {
             bin.failed = true;
             break;
         }
-        syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, rgb);
         size_t at = bin.len;
-        if (!io_png(&bin, rgb, SYL_TEXTURE_SIZE)) {
+        if (!syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, rgb) || !io_png(&bin, rgb, SYL_TEXTURE_SIZE)) {
             bin.failed = true;
             break;
         }
@@ -175,7 +174,7 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) {
         if (diag) fprintf(diag, "sylva: error: '%s' would be larger than 4 GiB, the limit of .glb\n", path);
         status = SYL_ELIMIT;
     }
-    IoFile fo;
+    OutFile fo;
     if (!status && !io_open(&fo, path, diag)) status = SYL_EIO;
     if (!status) {
         IoBuf head = {0};
@@ -194,9 +193,10 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) {
             fwrite(head.data, 1, head.len, fo.f);
             fwrite(bin.data, 1, bin.len, fo.f);
         }
+        if (head.failed && diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
         if (head.failed) status = SYL_ELIMIT;
         io_free(&head);
-        status = io_close(&fo, status, true, diag);
+        status = io_close(&fo, status, diag); /* also catches the fwrite failures above */
     }
     io_free(&js);
     io_free(&bin);

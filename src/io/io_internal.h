@@ -7,20 +7,13 @@
 #include <stdio.h>
 
 #include "sylva/mesh.h"
+#include "util/outfile.h"
 
-/* A file written under a temporary name and renamed into place by io_commit. */
-typedef struct IoFile {
-    FILE *f;
-    char *path, *tmp;
-} IoFile;
-
-bool io_open(IoFile *o, const char *path, FILE *diag);
-/* Close; when status is SYL_OK and the writes went well, keep the file (rename it into place
- * if rename is set, else leave it under its temporary name for io_rename); otherwise remove
- * it. Returns the status, SYL_EIO when writing failed. */
-int io_close(IoFile *o, int status, bool rename, FILE *diag);
-int io_rename(IoFile *o, FILE *diag);
-void io_discard(IoFile *o); /* remove a closed, unrenamed file and forget it */
+/* Files are written through util/outfile (no hooks: an anonymous temporary file). */
+bool io_open(OutFile *o, const char *path, FILE *diag);
+/* Close o; put it in place when status is SYL_OK, otherwise leave the path as it was.
+ * Returns status, or SYL_EIO when writing failed (reported). */
+int io_close(OutFile *o, int status, FILE *diag);
 
 /* A growable byte buffer. */
 typedef struct IoBuf {
@@ -33,6 +26,10 @@ void io_put(IoBuf *b, const void *p, size_t n);
 void io_printf(IoBuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void io_json_string(IoBuf *b, const char *s); /* a quoted, escaped JSON string */
 void io_free(IoBuf *b);
+
+/* s made safe for one line of a text header (n bytes at most): control characters, and
+ * spaces when no_spaces is set, become '_'. A name with a newline would end the line. */
+void io_line_text(char *dst, size_t n, const char *s, bool no_spaces);
 
 /* Short decimal form of x with about sig significant digits ("0.25", "-3", "1e-07"). */
 char *io_float(char *p, float x, int sig);

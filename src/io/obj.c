@@ -22,7 +22,9 @@ static const char *base_name(const char *path) {
 }
 
 static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
-    fprintf(f, "# Sylva %s: materials of %s\n", SYLVA_VERSION, m->name);
+    char title[sizeof m->name];
+    io_line_text(title, sizeof title, m->name, false);
+    fprintf(f, "# Sylva %s: materials of %s\n", SYLVA_VERSION, title);
     for (int g = 0; g < m->ngroups; g++) {
         int k = m->groups[g].material;
         char name[32];
@@ -30,20 +32,22 @@ static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
         const float *c = m->materials[k].rgb;
         fprintf(f, "\nnewmtl %s\nKa 0 0 0\nKd %.4f %.4f %.4f\nKs 0 0 0\nNs 1\nd 1\nillum 1\n", name, c[0], c[1], c[2]);
         const char *tex = io_texture_kind(m, k);
-        if (tex) fprintf(f, "map_Kd %s_%s.png\n", stem, tex);
+        if (tex) fprintf(f, "map_Kd %s_%s.png\n", stem, tex); /* the rest of the line: spaces work */
     }
 }
 
-/* Vertices, UVs, normals and faces, through a buffer. */
-static void write_obj_body(const SylMesh *m, FILE *f, const char *stem) {
-    fprintf(f, "# Sylva %s: %s, %zu vertices, %zu triangles\nmtllib %s.mtl\no %s\n", SYLVA_VERSION, m->name, m->nverts,
-            m->nidx / 3, stem, m->name[0] ? m->name : "plant");
+/* Vertices, UVs, normals and faces, through a buffer; false when out of memory. */
+static bool write_obj_body(const SylMesh *m, FILE *f, const char *stem) {
     enum { CHUNK = 1 << 16 };
     char *buf = malloc(CHUNK + 256), *p = buf;
-    if (!buf) {
-        fputs("# out of memory\n", f);
-        return;
-    }
+    if (!buf) return false;
+    /* mtllib takes the rest of the line (Blender, Assimp, trimesh), so a stem with spaces
+     * works; object and material names are single words. */
+    char comment[sizeof m->name], object[sizeof m->name];
+    io_line_text(comment, sizeof comment, m->name, false);
+    io_line_text(object, sizeof object, m->name[0] ? m->name : "plant", true);
+    fprintf(f, "# Sylva %s: %s, %zu vertices, %zu triangles\nmtllib %s.mtl\no %s\n", SYLVA_VERSION, comment,
+            m->nverts, m->nidx / 3, stem, object);
 #define FLUSH()                                      \
     do {                                             \
         if (p - buf > CHUNK) {                       \
@@ -100,37 +104,45 @@ static void write_obj_body(const SylMesh *m, FILE *f, const char *stem) {
 #undef FLUSH
     fwrite(buf, 1, (size_t)(p - buf), f);
     free(buf);
+    return true;
 }
 
 int syl_write_obj(const SylMesh *m, const char *path, FILE *diag) {
+    if (!strcmp(path, "-")) {
+        if (diag) fprintf(diag, "sylva: error: an OBJ cannot go to standard output: its .mtl is written beside it\n");
+        return SYL_EUSAGE;
+    }
     char *prefix = strip_extension(path);
     size_t n = prefix ? strlen(prefix) + 8 : 0;
     char *mtl = prefix ? malloc(n) : NULL;
     if (!prefix || !mtl) {
         free(prefix);
-        if (diag) fprintf(diag, "sylva: error: out of memory\n");
+        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
         return SYL_ELIMIT;
     }
     snprintf(mtl, n, "%s.mtl", prefix);
     const char *stem = base_name(prefix);
-    IoFile fo, fm;
+    /* Both files stay uncommitted until the textures are written: a failure leaves none. */
+    OutFile fo, fm;
     int status = SYL_EIO;
     if (io_open(&fo, path, diag)) {
-        write_obj_body(m, fo.f, stem);
-        status = io_close(&fo, SYL_OK, false, diag);
-        if (!status) {
+        status = SYL_OK;
+        if (!write_obj_body(m, fo.f, stem)) {
+            if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+            status = SYL_ELIMIT;
+        }
+        fflush(fo.f); /* a write error is kept in fo.err and reported by io_close */
+        if (!status && !fo.err) {
             if (io_open(&fm, mtl, diag)) {
                 write_mtl(m, fm.f, stem);
-                status = io_close(&fm, SYL_OK, false, diag);
-                if (!status) status = syl_write_textures(m, prefix, diag);
-                if (!status) status = io_rename(&fm, diag);
-                else io_discard(&fm);
+                fflush(fm.f);
+                if (!fm.err) status = syl_write_textures(m, prefix, diag);
+                status = io_close(&fm, status, diag);
             } else {
                 status = SYL_EIO;
             }
-            if (!status) status = io_rename(&fo, diag);
-            else io_discard(&fo);
         }
+        status = io_close(&fo, status, diag);
     }
     free(prefix);
     free(mtl);

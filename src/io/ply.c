@@ -17,10 +17,12 @@ static void put_u32(uint8_t *p, uint32_t u) {
 }
 
 int syl_write_ply(const SylMesh *m, const char *path, FILE *diag) {
-    IoFile fo;
+    OutFile fo;
     if (!io_open(&fo, path, diag)) return SYL_EIO;
     FILE *f = fo.f;
-    fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment Sylva %s: %s\n", SYLVA_VERSION, m->name);
+    char name[sizeof m->name];
+    io_line_text(name, sizeof name, m->name, false);
+    fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment Sylva %s: %s\n", SYLVA_VERSION, name);
     for (int g = 0; g < m->ngroups; g++) {
         int k = m->groups[g].material;
         char name[32];
@@ -40,7 +42,10 @@ int syl_write_ply(const SylMesh *m, const char *path, FILE *diag) {
             m->nverts, m->nidx / 3);
     enum { VSIZE = 32, FSIZE = 14, CHUNK = 4096 };
     uint8_t *buf = malloc(CHUNK * VSIZE);
-    if (!buf) return io_close(&fo, SYL_ELIMIT, true, diag);
+    if (!buf) {
+        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        return io_close(&fo, SYL_ELIMIT, diag);
+    }
     for (size_t i = 0; i < m->nverts;) {
         size_t n = m->nverts - i < CHUNK ? m->nverts - i : CHUNK;
         for (size_t k = 0; k < n; k++, i++) {
@@ -67,5 +72,5 @@ int syl_write_ply(const SylMesh *m, const char *path, FILE *diag) {
         }
     }
     free(buf);
-    return io_close(&fo, SYL_OK, true, diag);
+    return io_close(&fo, SYL_OK, diag); /* fwrite's failures are caught there */
 }

@@ -1,4 +1,4 @@
-/* PNG output through libpng, written to PATH.tmpPID and renamed into place. */
+/* PNG output through libpng, written through util/outfile. */
 #include <errno.h>
 #include <png.h>
 #include <stdbool.h>
@@ -7,15 +7,17 @@
 #include <unistd.h>
 
 #include "sylva/render.h"
+#include "util/outfile.h"
 
 typedef struct PngErr {
     FILE *diag;
-    const char *path;
+    const OutFile *o;
 } PngErr;
 
 static void png_error_fn(png_structp png, png_const_charp msg) {
     PngErr *e = png_get_error_ptr(png);
-    if (e->diag) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->path, msg);
+    /* A failed write ("Write Error") is reported with its reason by outfile_close. */
+    if (e->diag && !e->o->err) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->o->path, msg);
     png_longjmp(png, 1);
 }
 
@@ -24,15 +26,19 @@ static void png_warning_fn(png_structp png, png_const_charp msg) {
     (void)msg;
 }
 
-/* Encode into an open file; false on failure (reported). */
-static bool encode(FILE *f, const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
-    PngErr err = {diag, path};
+/* Encode into an open file: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported. */
+static int encode(const OutFile *o, const uint8_t *rgb, int width, int height, FILE *diag) {
+    PngErr err = {diag, o};
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, png_error_fn, png_warning_fn);
-    if (!png) return false;
-    png_infop info = png_create_info_struct(png);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!info) {
+        png_destroy_write_struct(&png, NULL);
+        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", o->path);
+        return SYL_ELIMIT;
+    }
     volatile bool ok = false;
-    if (info && !setjmp(png_jmpbuf(png))) {
-        png_init_io(png, f);
+    if (!setjmp(png_jmpbuf(png))) {
+        png_init_io(png, o->f);
         png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                      PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
         png_set_compression_level(png, 1); /* fast: pictures are big, and noisy */
@@ -41,8 +47,8 @@ static bool encode(FILE *f, const char *path, const uint8_t *rgb, int width, int
         png_write_end(png, info);
         ok = true;
     }
-    png_destroy_write_struct(&png, info ? &info : NULL);
-    return ok;
+    png_destroy_write_struct(&png, &info);
+    return ok ? SYL_OK : SYL_EIO;
 }
 
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
@@ -50,34 +56,9 @@ int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, F
         if (diag) fprintf(diag, "sylva: error: cannot write '%s': empty picture\n", path);
         return SYL_EUSAGE;
     }
-    if (!strcmp(path, "-")) { /* standard output: no temporary file */
-        bool ok = encode(stdout, "standard output", rgb, width, height, diag);
-        if (fflush(stdout) && ok) {
-            if (diag) fprintf(diag, "sylva: error: cannot write the picture: %s\n", strerror(errno));
-            ok = false;
-        }
-        return ok ? SYL_OK : SYL_EIO;
-    }
-    size_t n = strlen(path) + 32;
-    char *tmp = malloc(n);
-    if (!tmp) return SYL_ELIMIT;
-    snprintf(tmp, n, "%s.tmp%ld", path, (long)getpid());
-    FILE *f = fopen(tmp, "wb");
-    if (!f) {
-        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
-        free(tmp);
-        return SYL_EIO;
-    }
-    bool ok = encode(f, path, rgb, width, height, diag);
-    if (fclose(f) && ok) {
-        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
-        ok = false;
-    }
-    if (ok && rename(tmp, path)) {
-        if (diag) fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(errno));
-        ok = false;
-    }
-    if (!ok) unlink(tmp);
-    free(tmp);
-    return ok ? SYL_OK : SYL_EIO;
+    OutFile o; /* "-" is standard output */
+    if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
+    int status = encode(&o, rgb, width, height, diag);
+    if (!outfile_close(&o, status == SYL_OK, diag) && !status) status = SYL_EIO;
+    return status;
 }

@@ -102,22 +102,23 @@ static const float grass_rgb[3] = {0.42f, 0.56f, 0.22f};
 
 const float *texture_grass_rgb(void) { return grass_rgb; }
 
-void syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
-    if (size <= 0) return;
+bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
+    if (size <= 0) return true;
     static const float white[3] = {1, 1, 1};
     if (!rgb) rgb = kind == -1 ? grass_rgb : white;
     float *p = malloc((size_t)size * (size_t)size * 3 * sizeof *p);
     float lin[3];
     for (int c = 0; c < 3; c++) lin[c] = srgb_to_linear(rgb[c]);
-    if (!p) { /* out of memory: a flat texture is still a texture */
+    if (!p) { /* out of memory: a flat texture, for a picture that can live with it */
         for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
             out[i] = (uint8_t)lrintf(255 * linear_to_srgb(lin[i % 3]));
-        return;
+        return false;
     }
     texture_pattern(kind, size, p);
     for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
         out[i] = (uint8_t)lrintf(255 * linear_to_srgb(p[i] * lin[i % 3]));
     free(p);
+    return true;
 }
 
 const char *syl_texture_name(int kind) {
@@ -148,8 +149,12 @@ int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
         for (int g = 0; m && g < m->ngroups && !used; g++) used = m->materials[m->groups[g].material].kind == kinds[k];
         if (!used) continue;
         snprintf(path, n, "%s_%s.png", prefix, syl_texture_name(kinds[k]));
-        syl_texture(kinds[k], NULL, size, img);
-        status = syl_write_png(path, img, size, size, diag);
+        if (syl_texture(kinds[k], NULL, size, img)) {
+            status = syl_write_png(path, img, size, size, diag);
+        } else {
+            if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+            status = SYL_ELIMIT;
+        }
     }
     free(img);
     free(path);

@@ -6,6 +6,7 @@
 
 #include "sylva/skeleton.h"
 #include "util/array.h"
+#include "util/json.h"
 
 const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf", "flower",
                                                    "needle", "sphere", "bud"};
@@ -111,7 +112,9 @@ int syl_skeleton_write_csv(const SylSkeleton *s, FILE *out) {
 }
 
 int syl_skeleton_write_json(const SylSkeleton *s, FILE *out) {
-    fprintf(out, "{\"name\":\"%s\",\"nodes\":[", s->name);
+    fputs("{\"name\":", out);
+    json_string_file(out, s->name); /* any string: syl_skeleton_new takes one */
+    fputs(",\"nodes\":[", out);
     for (size_t i = 0; i < s->nnodes; i++) {
         const SylNode *n = &s->nodes[i];
         fprintf(out, "%s\n{\"id\":%zu,\"parent\":%d,\"x\":%.6g,\"y\":%.6g,\"z\":%.6g,\"radius\":%.6g,"
