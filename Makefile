@@ -68,8 +68,9 @@ $(BUILD)/%.o: %.c | $(DEPS_OK) $(BUILD)/gen/parser.h
 # libsylva.a, the installed library, exports the public API only: every object is linked into
 # one (ld -r) whose globals are made local except the syl_ names the public headers declare,
 # so a program's own yyparse, tree_free or arena_alloc cannot collide with ours, nor can it
-# call our internals (tests/run-embed checks it). The unit tests call internal functions:
-# they link the plain objects in libsylva-internal.a.
+# call our internals (tests/run-embed checks it). The unit tests call internal functions, and
+# the CLI the lowest layer's helpers (util: the output writer, the JSON escaper): they link the
+# plain objects in libsylva-internal.a.
 $(BUILD)/libsylva-internal.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
@@ -80,7 +81,7 @@ $(BUILD)/libsylva.a: $(LIB_OBJ) $(wildcard include/sylva/*.h)
 	objcopy --keep-global-symbols=$(BUILD)/sylva-api.syms $(BUILD)/sylva-all.o $(BUILD)/sylva-api.o
 	ar rcs $@ $(BUILD)/sylva-api.o
 	@rm -f $(BUILD)/sylva-all.o
-$(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva.a
+$(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva-internal.a
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
 
 # ---- tests ----
