@@ -5,7 +5,8 @@
  * output on /dev/null. To keep it safe and quick, arguments that name another directory
  * (any '/') and options that would make the work large (-n, -j, --max-*, --derive,
  * --threads, --size, --image, --seeds, --years) are left out: their parsers are fuzzed by
- * fuzz_cli's own calls below, with the value from the input. */
+ * fuzz_cli's own calls below, with the value from the input. The harness changes directory on
+ * its first input: give libFuzzer absolute corpus paths (tests/fuzz/run does). */
 #include <dirent.h>
 #include <fcntl.h>
 #include <getopt.h>
