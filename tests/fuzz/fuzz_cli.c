@@ -82,8 +82,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         while (s < end && !*s) s++;
     }
     argv[argc] = NULL;
-    /* `sylva FILE` renders a full-size picture: too slow to fuzz here */
-    if (argc > 1 && argv[1][0] != '-' && access(argv[1], R_OK) == 0 && pick >= sizeof commands_fuzzed / sizeof *commands_fuzzed) {
+    /* `sylva FILE[:Model]` (and `sylva -`) render a full-size picture: too slow to fuzz here */
+    if (pick >= sizeof commands_fuzzed / sizeof *commands_fuzzed && argc > 1 &&
+        (argv[1][0] != '-' || !strcmp(argv[1], "-"))) {
         free(text);
         return 0;
     }
