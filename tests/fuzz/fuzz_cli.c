@@ -119,7 +119,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         }
     }
     /* the command itself */
-    optind = 0; /* glibc: start getopt afresh */
+    /* Start getopt afresh, as a new process would: the commands set optind = 1, which keeps
+     * glibc's pointer into the last input's arguments when they stopped inside "-abc". */
+    optind = 0;
+    char *dummy[] = {"sylva", NULL};
+    (void)getopt(1, dummy, "");
     (void)sylva_main(argc, argv);
     fflush(stdout);
     if (saved_err >= 0) {
