@@ -28,7 +28,7 @@ UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 DEPS_OK := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-fast test-asan fuzz bench demo gallery install clean help units
+.PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units
 all: $(BUILD)/sylva $(BUILD)/libsylva.a
 
 help:
@@ -36,6 +36,7 @@ help:
 	@echo "make deps       install missing Debian packages (as root)"
 	@echo "make test       unit, case and golden tests, again under ASan+UBSan, and a fuzz run"
 	@echo "make test-fast  the same tests once, without sanitizers and fuzzing"
+	@echo "make fuzz       a fuzz campaign: every harness FUZZ_SECONDS long (default 300)"
 	@echo "make bench      speed figures against peer tools"
 	@echo "make demo       render every example into out/: pictures, meshes and out/gallery.md"
 	@echo "make gallery    render every example into docs/gallery/ and write docs/gallery.md"
@@ -97,18 +98,42 @@ test-asan:
 	@tests/run-all build-asan
 test: all units
 	@$(MAKE) --no-print-directory BUILD=build-asan SAN=1 all units
-	@$(MAKE) --no-print-directory build-fuzz/fuzz_compile
-	@tests/run-all $(BUILD) build-asan --fuzz build-fuzz/fuzz_compile
+	@$(MAKE) --no-print-directory fuzz-build
+	@FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
 
 # ---- fuzzing (clang + libFuzzer) ----
+# One harness per reader: tests/fuzz/fuzz_NAME.c becomes build-fuzz/fuzz_NAME, linked against
+# the library (and the CLI without its main) built once with the sanitizers; tests/fuzz/harnesses
+# lists them with their dictionary. A new reader's harness is one file there and one line here.
 FUZZ_CFLAGS = -std=c11 -O1 -g -Wall -Wextra -D_GNU_SOURCE -pthread -Iinclude -Isrc -Ibuild-fuzz/gen $(PKG_CFLAGS) \
-               -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
-build-fuzz/fuzz_compile: tests/fuzz/fuzz_compile.c $(LIB_SRC) grammar/lexer.l grammar/parser.y | $(DEPS_OK)
-	@$(MAKE) --no-print-directory BUILD=build-fuzz build-fuzz/gen/lexer.c
-	clang $(FUZZ_CFLAGS) -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter -o $@ \
-	    tests/fuzz/fuzz_compile.c $(LIB_SRC) build-fuzz/gen/parser.c build-fuzz/gen/lexer.c $(LDLIBS)
-fuzz: build-fuzz/fuzz_compile
-	@tests/fuzz/run build-fuzz/fuzz_compile $${FUZZ_SECONDS:-300}
+               -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer \
+               -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter
+FUZZ_HARNESS := $(patsubst tests/fuzz/%.c,build-fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
+FUZZ_LIB_SRC := $(LIB_SRC) $(filter-out src/cli/main.c,$(CLI_SRC))
+FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.o) build-fuzz/obj/gen/parser.o build-fuzz/obj/gen/lexer.o
+FUZZ_SECONDS ?= 300
+FUZZ_TEST_SECONDS ?= 20
+build-fuzz/gen/.made: grammar/lexer.l grammar/parser.y | $(DEPS_OK)
+	@mkdir -p $(@D)
+	bison -Wall -Werror -d -o build-fuzz/gen/parser.c grammar/parser.y
+	flex --header-file=build-fuzz/gen/lexer.h -o build-fuzz/gen/lexer.c grammar/lexer.l
+	@touch $@
+build-fuzz/obj/gen/parser.o build-fuzz/obj/gen/lexer.o: build-fuzz/obj/gen/%.o: build-fuzz/gen/.made
+	@mkdir -p $(@D)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c -o $@ build-fuzz/gen/$*.c
+build-fuzz/obj/%.o: %.c build-fuzz/gen/.made
+	@mkdir -p $(@D)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c -o $@ $<
+build-fuzz/libsylva-fuzz.a: $(FUZZ_LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+build-fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h build-fuzz/libsylva-fuzz.a
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< build-fuzz/libsylva-fuzz.a $(LDLIBS)
+fuzz-build: $(FUZZ_HARNESS)
+# A campaign: every harness for FUZZ_SECONDS, its corpus kept in tests/fuzz/corpus/NAME/.
+fuzz: $(FUZZ_HARNESS)
+	@tests/fuzz/run-all build-fuzz $(FUZZ_SECONDS) --keep
+-include $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.d)
 
 # ---- user-facing ----
 bench: all

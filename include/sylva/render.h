@@ -23,7 +23,9 @@ typedef struct SylRenderOptions {
     int shadows;         /* 0: on; -1: off */
     int threads;         /* 0: all cores */
     FILE *diag;
-    void (*progress)(void *user, double fraction); /* may be NULL */
+    /* May be NULL. Called once per finished tile with the fraction done, increasing and
+     * ending with exactly 1.0; the calls are serial but may come from any render thread. */
+    void (*progress)(void *user, double fraction);
     void *user;
     /* The picture's buffers and Embree's scene (about 150 bytes a triangle) are estimated
      * before they are built: beyond the memory budget it stops with SYL_ELIMIT. */

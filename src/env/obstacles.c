@@ -124,8 +124,19 @@ bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out)
     rh.ray.tfar = INFINITY;
     rh.ray.mask = 0xffffffffu;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(o->scene, &ctx, &rh);
+    /* A vertical face has no height under a point; a ray in its plane gets an arbitrary
+     * distance from Embree (found by fuzzing: a height below the lowest vertex). Such hits
+     * are passed, and the answer is kept within the surfaces' bounds. */
+    for (int pass = 0; pass < 8; pass++) {
+        rtcIntersect1(o->scene, &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+        float ng = fabsf(rh.hit.Ng_x) + fabsf(rh.hit.Ng_y) + fabsf(rh.hit.Ng_z);
+        if (fabsf(rh.hit.Ng_y) > 1e-6f * ng) break;
+        rh.ray.tnear = rh.ray.tfar + 1e-6f * (1 + fabsf(rh.ray.tfar));
+        rh.ray.tfar = INFINITY;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    }
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    *out = y - rh.ray.tfar;
+    *out = fminf(fmaxf(y - rh.ray.tfar, o->lo[1]), o->hi[1]);
     return true;
 }

@@ -197,6 +197,10 @@ typedef struct Scene {
     uint8_t *out;
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
+    /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */
+    void (*progress)(void *user, double fraction);
+    void *user;
+    pthread_mutex_t progress_lock;
 } Scene;
 
 static const float sun_rgb[3] = {2.35f, 2.20f, 1.95f};
@@ -493,14 +497,27 @@ static void restore_floats(unsigned old) {
 #endif
 }
 
-static void *worker(void *arg) {
-    Scene *s = arg;
-    fast_floats();
+/* One call per finished tile; the last one is exactly 1.0. */
+static void tile_finished(Scene *s) {
+    if (!s->progress) return;
+    pthread_mutex_lock(&s->progress_lock);
+    int done = atomic_fetch_add(&s->tiles_done, 1) + 1;
+    s->progress(s->user, done == s->ntiles ? 1.0 : (double)done / (double)s->ntiles);
+    pthread_mutex_unlock(&s->progress_lock);
+}
+
+static void render_tiles(Scene *s) {
     int t;
     while ((t = atomic_fetch_add(&s->next_tile, 1)) < s->ntiles) {
         render_tile(s, t);
-        atomic_fetch_add(&s->tiles_done, 1);
+        tile_finished(s);
     }
+}
+
+static void *worker(void *arg) {
+    Scene *s = arg;
+    fast_floats();
+    render_tiles(s);
     return NULL;
 }
 
@@ -695,7 +712,10 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t
         return status;
     }
 
-    /* Tiles to the workers; this thread works too and reports progress. */
+    /* Tiles to the workers; this thread works too. */
+    s->progress = opt->progress;
+    s->user = opt->user;
+    pthread_mutex_init(&s->progress_lock, NULL);
     s->tiles_x = (width + TILE - 1) / TILE;
     s->ntiles = s->tiles_x * ((height + TILE - 1) / TILE);
     if (threads > s->ntiles) threads = s->ntiles;
@@ -704,15 +724,10 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t
     for (int i = 1; i < threads; i++)
         if (pthread_create(&tid[started], NULL, worker, s) == 0) started++;
     unsigned csr = fast_floats();
-    int t;
-    while ((t = atomic_fetch_add(&s->next_tile, 1)) < s->ntiles) {
-        render_tile(s, t);
-        int done = atomic_fetch_add(&s->tiles_done, 1) + 1;
-        if (opt->progress) opt->progress(opt->user, (double)done / (double)s->ntiles);
-    }
+    render_tiles(s);
     restore_floats(csr);
     for (int i = 0; i < started; i++) pthread_join(tid[i], NULL);
-    if (opt->progress) opt->progress(opt->user, 1.0);
+    pthread_mutex_destroy(&s->progress_lock);
     scene_free(s);
     return SYL_OK;
 }

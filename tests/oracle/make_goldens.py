@@ -8,7 +8,8 @@ choosing the largest n <= the model's `derive` whose string stays under LIMIT ch
 It also writes module_counts.tsv (model, step, number of modules, for every step up to
 `derive`) and prints the list of skipped (stochastic / unsupported) models.
 
-Usage: make_goldens.py [--check]   (--check: compare instead of writing; exit 1 on a diff)
+Usage: make_goldens.py [--check]   (--check: compare instead of writing; exit 1 on a diff;
+       it ends with "oracle: N passed, N failed", N counting golden files)
 """
 
 import glob
@@ -28,7 +29,7 @@ GOLDEN = os.path.join(ROOT, "tests", "golden", "abop")
 def main():
     check = "--check" in sys.argv[1:]
     os.makedirs(GOLDEN, exist_ok=True)
-    skipped, rows, bad = [], [], 0
+    skipped, rows, bad, good = [], [], 0, 0
     for path in sorted(glob.glob(os.path.join(EXAMPLES, "*.syl"))):
         name = os.path.splitext(os.path.basename(path))[0]
         try:
@@ -55,6 +56,8 @@ def main():
                 if old != content:
                     print("DIFF", fn)
                     bad += 1
+                else:
+                    good += 1
             else:
                 with open(p, "w", encoding="utf-8") as f:
                     f.write(content)
@@ -66,7 +69,9 @@ def main():
             f.write("model\tstep\tmodules\n")
             f.writelines(rows)
     for name, why in skipped:
-        print("skipped %s: %s" % (name, why))
+        print("skipped %s: %s (see tests/oracle/stochastic.py)" % (name, why))
+    if check:
+        print("oracle: %d passed, %d failed" % (good, bad))
     return 1 if bad else 0
 
 

@@ -1,0 +1,29 @@
+/* Shared bits of the libFuzzer harnesses (tests/fuzz/fuzz_*.c). Each harness feeds one
+ * reader arbitrary bytes with small limits, so that a run of a few seconds gets deep, and
+ * prints diagnostics to /dev/null, so that the message and caret printers run too. */
+#ifndef SYL_FUZZ_H
+#define SYL_FUZZ_H
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Where diagnostics go: /dev/null, or stderr with SYLVA_FUZZ_VERBOSE=1 (to read what a
+ * crash input does). Opened once: the harness process is the fuzzer's. */
+static FILE *fuzz_diag(void) {
+    static FILE *f;
+    if (!f) f = getenv("SYLVA_FUZZ_VERBOSE") ? stderr : fopen("/dev/null", "w");
+    return f;
+}
+
+/* A NUL-terminated copy of the input (readers that want C strings). */
+static char *fuzz_text(const uint8_t *data, size_t size) {
+    char *t = malloc(size + 1);
+    if (!t) abort();
+    memcpy(t, data, size);
+    t[size] = 0;
+    return t;
+}
+
+#endif

@@ -1,0 +1,31 @@
+/* libFuzzer harness: `grow` blocks and `scene` blocks on arbitrary source, grown for two
+ * years with small limits, then meshed — the directive readers of src/sot and the growth
+ * engine behind them. */
+#include "fuzz.h"
+#include "sylva/grow.h"
+#include "sylva/mesh.h"
+#include "sylva/sylva.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    int status;
+    FILE *diag = fuzz_diag();
+    SylCompileOptions opt = {.diag = diag};
+    SylProgram *p = syl_compile("fuzz.syl", (const char *)data, size, &opt, &status);
+    if (!p) return 0;
+    SylModelKind kind = syl_program_kind(p);
+    SylGrowOptions g = {.years = 2, .threads = 1, .max_metamers = 3000, .diag = diag};
+    SylSkeleton *sk = NULL;
+    SylMesh *obstacles = NULL;
+    int st = SYL_EMODEL;
+    if (kind == SYL_MODEL_GROW) st = syl_grow(p, &g, &sk);
+    else if (kind == SYL_MODEL_SCENE) st = syl_grow_scene(p, &g, &sk, &obstacles);
+    if (st == SYL_OK && sk) {
+        SylMesh *m = NULL;
+        SylMeshOptions mo = {.sides = 4, .radius = SYL_RADIUS_PIPE, .threads = 1, .diag = diag};
+        if (syl_mesh_build(sk, &mo, &m) == SYL_OK) syl_mesh_free(m);
+    }
+    syl_mesh_free(obstacles);
+    syl_skeleton_free(sk);
+    syl_program_free(p);
+    return 0;
+}
