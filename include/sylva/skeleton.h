@@ -85,6 +85,8 @@ typedef struct SylSkeleton {
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
+    SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
+    uint64_t charged;
 } SylSkeleton;
 
 SylSkeleton *syl_skeleton_new(const char *name); /* default palette: bark, leaf, flower, ... */
@@ -101,6 +103,10 @@ int syl_skeleton_write_json(const SylSkeleton *s, FILE *out);
 
 typedef struct SylTurtleOptions {
     FILE *diag;
+    /* The skeleton's nodes are counted before they are allocated: beyond the memory budget
+     * the turtle stops with SYL_ELIMIT. */
+    uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
+    SylBudget *budget;    /* shared memory budget; the skeleton counts against it until freed */
 } SylTurtleOptions;
 
 /* Interpret a derived string (after `interpret` rules, see syl_interpret) with the 3D

@@ -101,18 +101,21 @@ int cmd_skeleton(int argc, char **argv) {
         }
     }
     cli_model_spec(&m, argv[optind]);
+    SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
+    d.budget = budget;
     Plant pl;
     int status = cli_plant(&m, &d, NULL, &pl);
-    if (status) return status;
-    SylSkeleton *sk = pl.sk;
-    OutFile out;
-    if (!out_open(&out, output)) {
-        cli_plant_free(&pl);
-        return SYL_EIO;
+    if (!status) {
+        OutFile out;
+        if (!out_open(&out, output)) status = SYL_EIO;
+        else {
+            SylSkeleton *sk = pl.sk;
+            status = format == FMT_JSON ? syl_skeleton_write_json(sk, out.f) : syl_skeleton_write_csv(sk, out.f);
+            status = out_close(&out, status);
+            if (!status && stats) print_stats(sk, pl.modules, pl.derive_s, pl.turtle_s);
+        }
     }
-    status = format == FMT_JSON ? syl_skeleton_write_json(sk, out.f) : syl_skeleton_write_csv(sk, out.f);
-    status = out_close(&out, status);
-    if (!status && stats) print_stats(sk, pl.modules, pl.derive_s, pl.turtle_s);
     cli_plant_free(&pl);
+    syl_budget_free(budget);
     return status;
 }

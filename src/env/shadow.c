@@ -31,6 +31,8 @@ void shadow_init(ShadowGrid *g, const ShadowParams *p, float ground_y) {
 }
 
 void shadow_free(ShadowGrid *g) {
+    budget_release(g->mem, g->charged);
+    g->charged = 0;
     free(g->s);
     free(g->d);
     free(g->row);
@@ -62,12 +64,17 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
     double total = (double)(nhi[0] - nlo[0] + 1) * (double)(nhi[1] - nlo[1] + 1) * (double)(nhi[2] - nlo[2] + 1);
     if (total > (double)g->max_voxels) return false;
     int nx = (int)(nhi[0] - nlo[0] + 1), ny = (int)(nhi[1] - nlo[1] + 1), nz = (int)(nhi[2] - nlo[2] + 1);
+    uint64_t bytes = ((uint64_t)total * 2 + SHADOW_PAD + (uint64_t)nx) * sizeof(uint32_t);
+    g->refused = !budget_resize(g->mem, g->charged, bytes);
+    if (g->refused) return false;
     uint32_t *s = calloc((size_t)total + SHADOW_PAD, sizeof *s), *d = calloc((size_t)total, sizeof *d),
              *row = malloc((size_t)nx * sizeof *row);
     if (!s || !d || !row) {
         free(s), free(d), free(row);
+        budget_resize(g->mem, bytes, g->charged);
         return false;
     }
+    g->charged = bytes;
     if (!empty) {
         int dx = g->x0 - (int)nlo[0], dy = g->y0 - (int)nlo[1], dz = g->z0 - (int)nlo[2];
         for (int y = 0; y < g->ny; y++)

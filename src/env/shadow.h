@@ -17,6 +17,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "util/budget.h"
+
 enum { SHADOW_MAX_DEPTH = 64, SHADOW_ONE = 4096 };
 
 typedef struct ShadowParams {
@@ -39,6 +41,9 @@ typedef struct ShadowGrid {
     uint32_t *d;                             /* the difference grid: zero between batches */
     uint32_t *row;                           /* a row of running sums */
     size_t max_voxels;
+    Budget *mem;       /* the memory budget the grids count against (NULL: none); set after init */
+    uint64_t charged;
+    bool refused;      /* the last grow was refused by mem (not by max_voxels) */
 } ShadowGrid;
 
 void shadow_init(ShadowGrid *g, const ShadowParams *p, float ground_y);

@@ -685,19 +685,12 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     size_t ntris = 0;
     for (size_t r = 0; r < pl.nruns; r++) ntris += (size_t)pl.runs[r].tris;
     uint64_t bytes = (uint64_t)pl.nverts * 8 * sizeof(float) + (uint64_t)ntris * 3 * sizeof(uint32_t);
-    if (o.budget && !budget_charge(o.budget, bytes)) {
+    if (!budget_charge(mem, bytes)) { /* "in all": a budget other engines share */
         if (o.diag)
             fprintf(o.diag, "sylva: error: the mesh would need %zu triangles (%llu MB), more than --max-memory "
-                            "allows (%llu MB in all); raise the limit with --max-memory, or use fewer --sides\n",
-                    ntris, (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem));
-        status = SYL_ELIMIT;
-        goto done;
-    }
-    if (!o.budget && bytes > own.limit) {
-        if (o.diag)
-            fprintf(o.diag, "sylva: error: the mesh would need %zu triangles (%llu MB), more than --max-memory "
-                            "allows (%llu MB); raise the limit with --max-memory, or use fewer --sides\n",
-                    ntris, (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem));
+                            "allows (%llu MB%s); raise the limit with --max-memory, or use fewer --sides\n",
+                    ntris, (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem),
+                    o.budget ? " in all" : "");
         status = SYL_ELIMIT;
         goto done;
     }

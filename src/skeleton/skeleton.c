@@ -6,6 +6,7 @@
 
 #include "sylva/skeleton.h"
 #include "util/array.h"
+#include "util/budget.h"
 #include "util/json.h"
 
 const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf", "flower",
@@ -32,6 +33,7 @@ SylSkeleton *syl_skeleton_new(const char *name) {
 
 void syl_skeleton_free(SylSkeleton *s) {
     if (!s) return;
+    budget_release(s->budget, s->charged);
     free(s->nodes);
     free(s->organs);
     free(s->polys);

@@ -8,6 +8,9 @@ double forest_now(void);
 bool forest_too_many(Forest *f, int year);
 /* Static occupants cast shadow and occupy space once, before the first year. */
 int forest_register_statics(Forest *f);
+/* The shadow grid could not grow (past its voxel cap, or refused by --max-memory): reported,
+ * SYL_ELIMIT. */
+int forest_shadow_too_big(Forest *f);
 /* Every candidate bud's light (shadow grid or sky rays); the sky's scene is rebuilt. */
 int forest_light(Forest *f, int year);
 /* Trees without a light model: a bud's light is 1 if it perceives markers, else 0. */

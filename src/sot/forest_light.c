@@ -122,9 +122,12 @@ static bool gather(Forest *f, size_t n) {
     return true;
 }
 
-static int too_big(Forest *f) {
+int forest_shadow_too_big(Forest *f) {
     f->reported = true;
-    if (f->diag)
+    if (f->diag && f->env.shadow.refused)
+        fprintf(f->diag, "sylva: error: the shadow grid would need more than the %llu MB that --max-memory allows; "
+                         "raise the limit with --max-memory\n", (unsigned long long)budget_limit_mb(f->mem));
+    else if (f->diag)
         fprintf(f->diag, "sylva: error: the shadow grid would need more than %zu voxels: the scene is too large "
                          "for its voxel size\n", f->env.shadow.max_voxels);
     return SYL_ELIMIT;
@@ -137,7 +140,7 @@ int forest_register(Forest *f, const size_t *before) {
         Tree *t = &f->trees[i];
         size_t from = before[i] > 1 ? before[i] : 1;
         if (t->n > from && !shadow_cast_strided(&e->shadow, t->nodes[from].pos, NODE_STRIDE, t->n - from, +1))
-            return too_big(f);
+            return forest_shadow_too_big(f);
     }
     return SYL_OK;
 }
@@ -151,7 +154,7 @@ int forest_unregister_dead(Forest *f, Tree *t) {
     size_t m = 0;
     for (size_t k = 1; k < t->n; k++)
         if (t->nodes[k].flags & NODE_DEAD) memcpy(f->occ + 3 * m++, t->nodes[k].pos, 3 * sizeof(float));
-    if (!shadow_cast_strided(&e->shadow, f->occ, 3, m, -1)) return too_big(f);
+    if (!shadow_cast_strided(&e->shadow, f->occ, 3, m, -1)) return forest_shadow_too_big(f);
     return SYL_OK;
 }
 
@@ -170,7 +173,7 @@ int forest_occupancy(Forest *f) {
 
 int forest_register_statics(Forest *f) {
     Env *e = &f->env;
-    if (e->shadow_on && !shadow_cast_strided(&e->shadow, e->statics, 3, e->nstatic, +1)) return too_big(f);
+    if (e->shadow_on && !shadow_cast_strided(&e->shadow, e->statics, 3, e->nstatic, +1)) return forest_shadow_too_big(f);
     return forest_occupancy(f);
 }
 

@@ -52,7 +52,7 @@ struct SceneLsys {
 int lsys_draw(const SylProgram *q, const SylString *s, const SylDeriveOptions *d, const float at[3], SylSkeleton **out) {
     SylString *ti = NULL;
     int st = syl_interpret(q, s, d, &ti);
-    SylTurtleOptions to = {.diag = d->diag};
+    SylTurtleOptions to = {.diag = d->diag, .max_memory = d->max_memory, .budget = d->budget};
     if (!st) st = syl_turtle(q, ti, &to, out);
     syl_string_free(ti);
     if (st) return st;
@@ -123,20 +123,13 @@ int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d,
     return SYL_OK;
 }
 
-static int too_big(Forest *f) {
-    f->reported = true;
-    if (f->diag)
-        fprintf(f->diag, "sylva: error: the shadow grid would need more than %zu voxels: the scene is too large "
-                         "for its voxel size\n", f->env.shadow.max_voxels);
-    return SYL_ELIMIT;
-}
 
 /* Replace the plant's casters in the shadow grid by these ends (plant coordinates). Removing
  * and adding are exact in fixed point, so the grid is as if only this year's were there. */
 static int recast(LsysPlant *pl, const float (*ends)[3], size_t n) {
     Env *e = &pl->owner->f->env;
     if (e->shadow_on && pl->nends && !shadow_cast(&e->shadow, (const float(*)[3])pl->ends, pl->nends, -1))
-        return too_big(pl->owner->f);
+        return forest_shadow_too_big(pl->owner->f);
     pl->nends = 0;
     if (n > pl->cap) {
         float(*p)[3] = realloc(pl->ends, n * sizeof *p);
@@ -146,7 +139,7 @@ static int recast(LsysPlant *pl, const float (*ends)[3], size_t n) {
     }
     for (size_t i = 0; i < n; i++)
         for (int k = 0; k < 3; k++) pl->ends[i][k] = ends[i][k] + pl->at[k];
-    if (e->shadow_on && n && !shadow_cast(&e->shadow, (const float(*)[3])pl->ends, n, 1)) return too_big(pl->owner->f);
+    if (e->shadow_on && n && !shadow_cast(&e->shadow, (const float(*)[3])pl->ends, n, 1)) return forest_shadow_too_big(pl->owner->f);
     pl->nends = n;
     pl->fresh = true;
     return SYL_OK;
@@ -161,7 +154,7 @@ static int turtle_ends(LsysPlant *pl) {
     SylString *ti = NULL;
     SylSkeleton *sk = NULL;
     int st = syl_interpret(pl->q, syl_deriver_string(pl->dv), &d, &ti);
-    SylTurtleOptions to = {.diag = d.diag};
+    SylTurtleOptions to = {.diag = d.diag, .max_memory = d.max_memory, .budget = d.budget};
     if (!st) st = syl_turtle(pl->q, ti, &to, &sk);
     syl_string_free(ti);
     size_t n = 0;

@@ -15,6 +15,7 @@
 #include "sylva/skeleton.h"
 #include "turtle.h"
 #include "util/array.h"
+#include "util/budget.h"
 
 typedef enum {
     T_NONE, /* not a turtle symbol: ignored */
@@ -509,9 +510,9 @@ static void release(Turtle *t) {
     free(t->verts);
 }
 
-/* Reserve the node array once: segments, plus at most one root per move or per segment. A
- * guess good enough that the array rarely grows (`%` is not followed here). */
-static void reserve_nodes(Turtle *t, const SylString *s) {
+/* The nodes a string draws: segments, plus at most one root per move or per segment. A
+ * bound good enough that the node array, reserved once, rarely grows (`%` is not followed). */
+static uint64_t count_nodes(const Turtle *t, const SylString *s) {
     uint64_t draws = 0, moves = 1, polys = 0;
     for (size_t i = 0; i < s->n; i++) {
         switch (t->cmd[CODE_SYM(s->code[i])]) {
@@ -522,9 +523,11 @@ static void reserve_nodes(Turtle *t, const SylString *s) {
         default: break;
         }
     }
-    uint64_t want = draws + (moves < draws ? moves : draws);
+    return draws + (moves < draws ? moves : draws);
+}
+
+static void reserve_nodes(SylSkeleton *sk, uint64_t want) {
     if (want == 0 || want > INT32_MAX) return;
-    SylSkeleton *sk = t->sk;
     SylNode *nodes = realloc(sk->nodes, want * sizeof *nodes);
     if (!nodes) return; /* grow as needed instead */
     sk->nodes = nodes;
@@ -977,7 +980,24 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
                                              : SYL_MATERIAL_PLAIN;
         }
     init(t, p, sk, diag);
-    reserve_nodes(t, s);
+    /* the nodes are counted before they are drawn: the caller's budget keeps them counted
+     * until the skeleton is freed, one of max_memory checks them alone */
+    uint64_t want = count_nodes(t, s), bytes = want * sizeof(SylNode);
+    Budget own, *mem = opt && opt->budget ? opt->budget : &own;
+    budget_init(&own, opt ? opt->max_memory : 0);
+    if (!budget_charge(mem, bytes)) {
+        if (diag)
+            fprintf(diag, "sylva: error: the skeleton would need %llu nodes (%llu MB), more than --max-memory "
+                          "allows (%llu MB%s); raise the limit with --max-memory\n",
+                    (unsigned long long)want, (unsigned long long)(bytes >> 20),
+                    (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
+        release(t);
+        free(t);
+        syl_skeleton_free(sk);
+        return SYL_ELIMIT;
+    }
+    if (mem != &own) sk->budget = mem, sk->charged = bytes;
+    reserve_nodes(sk, want);
     int status = run(t, s);
     if (status == SYL_OK && t->bad && diag)
         fprintf(diag, "sylva: warning: the turtle skipped %llu module%s with a parameter that is not a finite number\n",
