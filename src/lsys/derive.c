@@ -597,7 +597,8 @@ static int fill_queries(Engine *e, SylString *s, int step) {
         if (!query[CODE_SYM(s->code[i])]) continue;
         while (j < cur->n && cur->code[j] != s->code[i]) pj += CODE_ARITY(cur->code[j++]);
         if (j == cur->n) break; /* an interpret rule removed it: it keeps its values */
-        memcpy(s->par + pi, cur->par + pj, sizeof(double) * CODE_ARITY(s->code[i]));
+        if (CODE_ARITY(s->code[i])) /* a ?P without parameters: the string may have none */
+            memcpy(s->par + pi, cur->par + pj, sizeof(double) * CODE_ARITY(s->code[i]));
         pj += CODE_ARITY(cur->code[j++]);
     }
     syl_string_free(cur);
