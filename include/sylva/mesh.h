@@ -67,6 +67,15 @@ int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary lit
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
 
+enum { SYL_TEXTURE_SIZE = 512 };
+/* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if
+ * a material group of m has that kind (m NULL: all of them and PREFIX_grass.png), as
+ * SYL_TEXTURE_SIZE squares (syl_texture, texture.h). They are white-based patterns: the
+ * material's colour goes in the material (glTF baseColorFactor, MTL Kd), which multiplies
+ * them — as the renderer does. Each file is written through a temporary file. Returns
+ * SYL_OK, SYL_EIO or SYL_ELIMIT. */
+int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag);
+
 #ifdef __cplusplus
 }
 #endif

@@ -7,6 +7,7 @@
 #include <stdio.h>
 
 #include "mesh.h"
+#include "texture.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -40,27 +41,7 @@ typedef struct SylRenderOptions {
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
 /* Render and write a PNG (via a temporary file). */
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
-/* path "-": standard output; otherwise as the mesh writers (mesh.h). */
-int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
-
-/* Procedural textures after Picek 2015 (bark with cracks along the branch, leaf with veins,
- * grass): size x size RGB, rows top to bottom. Kind is SYL_MATERIAL_*, or -1 for grass.
- * The texture is a pattern times rgb (in linear light); rgb NULL: white (grass: its green).
- * Image x is u: around a branch, across a leaf or petal (main vein at u = 0.5); image y is
- * v (row 0 first, as in glTF): along a branch, from a leaf's base (v = 0) to its tip (1).
- * Every texture tiles. SYL_MATERIAL_PLAIN is flat. False when out of memory: out is then
- * flat, which a writer must not commit as the texture. */
-bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out);
-/* "bark", "leaf", "flower", "grass" (kind -1); NULL for kinds without a texture. */
-const char *syl_texture_name(int kind);
-
-enum { SYL_TEXTURE_SIZE = 512 };
-/* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if
- * a material group of m has that kind (m NULL: all of them and PREFIX_grass.png), as
- * SYL_TEXTURE_SIZE squares. They are white-based patterns: the material's colour goes in
- * the material (glTF baseColorFactor, MTL Kd), which multiplies them — as the renderer does.
- * Each file is written through a temporary file. Returns SYL_OK, SYL_EIO or SYL_ELIMIT. */
-int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag);
+/* The PNG writer (syl_write_png) and the textures the renderer uses are in texture.h. */
 
 #ifdef __cplusplus
 }

@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "io/io_internal.h"
-#include "sylva/render.h"
+#include "sylva/texture.h"
 #include "util/json.h"
 
 bool io_open(OutFile *o, const char *path, FILE *diag) { return outfile_open(o, path, NULL, diag); }

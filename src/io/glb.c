@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "io/io_internal.h"
-#include "sylva/render.h"
+#include "sylva/texture.h"
 
 enum { GLB_MAGIC = 0x46546C67, GLB_JSON = 0x4E4F534A, GLB_BIN = 0x004E4942 };
 enum { ARRAY_BUFFER = 34962, ELEMENT_ARRAY_BUFFER = 34963, FLOAT = 5126, UNSIGNED_INT = 5125 };

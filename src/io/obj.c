@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "io/io_internal.h"
-#include "sylva/render.h"
+#include "sylva/texture.h"
 
 /* "dir/NAME.obj" -> "dir/NAME" (the caller frees). */
 static char *strip_extension(const char *path) {

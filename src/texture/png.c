@@ -6,7 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "sylva/render.h"
+#include "sylva/texture.h"
 #include "util/outfile.h"
 
 typedef struct PngErr {

@@ -11,7 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "render/render_internal.h"
+#include "sylva/skeleton.h"
+#include "texture/texture.h"
 
 float srgb_to_linear(float c) {
     if (c <= 0) return 0;
@@ -129,36 +130,6 @@ const char *syl_texture_name(int kind) {
     case -1: return "grass";
     default: return NULL;
     }
-}
-
-int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
-    static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
-    const int size = SYL_TEXTURE_SIZE;
-    uint8_t *img = malloc((size_t)size * size * 3);
-    size_t n = strlen(prefix) + 16;
-    char *path = malloc(n);
-    if (!img || !path) {
-        free(img);
-        free(path);
-        if (diag) fprintf(diag, "sylva: error: out of memory writing textures\n");
-        return SYL_ELIMIT;
-    }
-    int status = SYL_OK;
-    for (size_t k = 0; k < sizeof kinds / sizeof *kinds && !status; k++) {
-        bool used = !m;
-        for (int g = 0; m && g < m->ngroups && !used; g++) used = m->materials[m->groups[g].material].kind == kinds[k];
-        if (!used) continue;
-        snprintf(path, n, "%s_%s.png", prefix, syl_texture_name(kinds[k]));
-        if (syl_texture(kinds[k], NULL, size, img)) {
-            status = syl_write_png(path, img, size, size, diag);
-        } else {
-            if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
-            status = SYL_ELIMIT;
-        }
-    }
-    free(img);
-    free(path);
-    return status;
 }
 
 /* ---- mip-mapped patterns for the renderer ---- */

@@ -3,7 +3,7 @@
  * lattice point, so there is no table to initialise and every call is reproducible. */
 #include <math.h>
 
-#include "render/render_internal.h"
+#include "texture/texture.h"
 
 static inline uint32_t hash3(uint32_t x, uint32_t y, uint32_t seed) {
     uint32_t h = x * 0x8da6b343u ^ y * 0xd8163841u ^ seed * 0xcb1ab31fu;

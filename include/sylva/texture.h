@@ -1,0 +1,34 @@
+/* Texture: procedural bark, leaf, flower and grass textures, and PNG pictures — what the
+ * renderer and the mesh exporters both draw on. */
+#ifndef SYLVA_TEXTURE_H
+#define SYLVA_TEXTURE_H
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sylva.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Procedural textures after Picek 2015 (bark with cracks along the branch, leaf with veins,
+ * grass): size x size RGB, rows top to bottom. Kind is SYL_MATERIAL_*, or -1 for grass.
+ * The texture is a pattern times rgb (in linear light); rgb NULL: white (grass: its green).
+ * Image x is u: around a branch, across a leaf or petal (main vein at u = 0.5); image y is
+ * v (row 0 first, as in glTF): along a branch, from a leaf's base (v = 0) to its tip (1).
+ * Every texture tiles. SYL_MATERIAL_PLAIN is flat. False when out of memory: out is then
+ * flat, which a writer must not commit as the texture. */
+bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out);
+/* "bark", "leaf", "flower", "grass" (kind -1); NULL for kinds without a texture. */
+const char *syl_texture_name(int kind);
+
+/* Write width x height RGB (rows top to bottom) as a PNG. path "-": standard output;
+ * otherwise as the mesh writers (mesh.h). */
+int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
