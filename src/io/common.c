@@ -1,5 +1,4 @@
-/* Mesh writers: files, buffers, numbers, material names, PNG in memory, and the
- * choice of format by extension. */
+/* What the mesh writers share: files, buffers, numbers, names, PNG, format by extension. */
 #include <errno.h>
 #include <math.h>
 #include <png.h>

@@ -1,5 +1,6 @@
-/* Wavefront OBJ with its MTL library and textures: PATH (NAME.obj), NAME.mtl and
- * NAME_bark.png, NAME_leaf.png, NAME_flower.png for the kinds of material it uses. One
+/* The Wavefront OBJ writer, with its MTL library and textures. */
+
+/* PATH (NAME.obj), NAME.mtl and NAME_bark.png, NAME_leaf.png, NAME_flower.png for the kinds of material it uses. One
  * `usemtl` per material group. OBJ's v runs up the picture, so v is written as 1 - v. */
 #include <stdlib.h>
 #include <string.h>

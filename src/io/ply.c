@@ -1,4 +1,6 @@
-/* Binary little-endian PLY: vertices with position, normal and UV (s, t with t up the
+/* The PLY writer (binary little endian). */
+
+/* Vertices with position, normal and UV (s, t with t up the
  * picture, as Blender and MeshLab read it), faces with three indices and a material index.
  * Materials are described in comments: "comment material INDEX NAME R G B". */
 #include <stdlib.h>

@@ -1,5 +1,6 @@
-/* Perlin's gradient noise in two dimensions, periodic so that textures tile, and its sum of
- * octaves as in Picek 2015, equations (2.16)-(2.18). Gradients come from a hash of the
+/* Perlin's gradient noise in two dimensions, periodic, and its sum of octaves. */
+
+/* Periodic so that textures tile; the octaves as in Picek 2015, equations (2.16)-(2.18). Gradients come from a hash of the
  * lattice point, so there is no table to initialise and every call is reproducible. */
 #include <math.h>
 

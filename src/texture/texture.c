@@ -1,4 +1,6 @@
-/* Procedural textures after Picek 2015 (§3.4, §4.7): bark whose cracks run along the branch
+/* Procedural textures (bark, leaf, flower, grass) and their mip chains for the renderer. */
+
+/* After Picek 2015 (§3.4, §4.7): bark whose cracks run along the branch
  * (stripes made by noise with the along-the-branch coordinate zeroed, which then distort a
  * second noise), a leaf with a bright main vein, sine side veins and darker edges, and grass
  * from two noises, the second shifted against the first.

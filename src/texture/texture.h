@@ -1,5 +1,4 @@
-/* Inside textures: Perlin noise, the patterns, their mip chains and the sRGB conversions,
- * for the renderer and the exporters. Not part of the public API (that is sylva/texture.h). */
+/* Inside textures: noise, patterns, mip chains and sRGB, for the renderer and exporters. */
 #ifndef SYL_TEXTURE_TEXTURE_H
 #define SYL_TEXTURE_TEXTURE_H
 #include <stdbool.h>

@@ -8,6 +8,8 @@
 
 #include "unit.h"
 #include "render/render_internal.h"
+#include "render_fixtures.h"
+#include "texture/texture.h"
 
 enum { W = 128, H = 128, MAT_RED = 3 };
 

@@ -1,11 +1,17 @@
-/* Meshes built by hand, for tests and benchmarks that should not depend on the turtle and
- * the mesher: boxes, and a branching tree of tubes and leaves of any size. */
+/* Meshes built by hand for the renderer tests: boxes, and a tree of tubes and leaves. */
+
+/* They do not depend on the turtle and the mesher; a tree can have any size. Free them with
+ * syl_mesh_free. */
+#ifndef SYL_RENDER_FIXTURES_H
+#define SYL_RENDER_FIXTURES_H
 #include <cglm/cglm.h>
 #include <math.h>
 #include <stdlib.h>
+#include <stdbool.h>
+#include <stdint.h>
 #include <string.h>
 
-#include "render/render_internal.h"
+#include "sylva/mesh.h"
 #include "util/rng.h"
 
 static const SylMaterial palette[4] = {
@@ -15,7 +21,8 @@ static const SylMaterial palette[4] = {
     {{0.85f, 0.10f, 0.10f}, SYL_MATERIAL_PLAIN},
 };
 
-SylMesh *synth_new(void) {
+/* An empty mesh with materials 0 bark, 1 leaf, 2 flower, 3 plain red (repeating). */
+static inline SylMesh *synth_new(void) {
     SylMesh *m = calloc(1, sizeof *m);
     if (!m) return NULL;
     for (int i = 0; i < 256; i++) m->materials[i] = palette[i % 4];
@@ -72,7 +79,9 @@ static bool tri(SylMesh *m, uint32_t a, uint32_t b, uint32_t c, uint8_t mat) {
     return true;
 }
 
-bool synth_box(SylMesh *m, const float lo[3], const float hi[3], uint8_t mat) {
+/* Append an axis-aligned box with material mat; materials must be appended in increasing
+ * order (groups stay sorted). */
+static inline bool synth_box(SylMesh *m, const float lo[3], const float hi[3], uint8_t mat) {
     if (!reserve(m, 24, 36)) return false;
     for (int axis = 0; axis < 3; axis++)
         for (int side = 0; side < 2; side++) {
@@ -273,7 +282,9 @@ static bool emit_leaf(SylMesh *m, const Leaf *l) {
     return tri(m, b, md, lf, 1) && tri(m, b, rt, md, 1) && tri(m, lf, md, tp, 1) && tri(m, md, rt, tp, 1);
 }
 
-SylMesh *synth_tree(long triangles) {
+/* A branching tree of tubes (bark) with folded leaves, about `triangles` triangles (at
+ * least 500), the same every time; its base at the origin, about 2.5 units tall. */
+static inline SylMesh *synth_tree(long triangles) {
     if (triangles < 500) triangles = 500;
     Tree t = {.ok = true};
     /* The deepest tree whose bark is at most a third of the triangles; leaves make the rest. */
@@ -311,3 +322,5 @@ SylMesh *synth_tree(long triangles) {
     }
     return m;
 }
+
+#endif

@@ -1,0 +1,54 @@
+/* What one render shares between its set-up (render.c) and its shading (shade.c). */
+#ifndef SYL_RENDER_SCENE_H
+#define SYL_RENDER_SCENE_H
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdint.h>
+
+#include "render/render_internal.h"
+#include "texture/texture.h"
+
+enum { TILE = 32, MAX_SAMPLES = 64, MAX_AO = 64, TEX_SIZE = 256 };
+
+typedef struct Scene {
+    const SylMesh *m;
+    RenderCamera cam;
+    RTCDevice dev;
+    RTCScene scene;
+    float *pos_copy;            /* when the mesh's vertex array has no room for Embree's padding */
+    uint8_t *tri_mat;           /* material of each triangle */
+    Texture tex[4];             /* bark, leaf, flower, grass */
+    float mat_lin[256][3];      /* material colours in linear light */
+    uint8_t mat_kind[256];
+    float grass_lin[3];
+    float size, eps, ao_dist, fog_dist, ground_y, ground_half, ground_c[2], grass_tile;
+    float pixel_angle;
+    float sun[3];
+    int width, height, samples, ao, shadows;
+    float sub[MAX_SAMPLES][2];  /* sub-pixel sample positions */
+    uint8_t lut[4097];          /* linear 0..1 in 4096 steps -> sRGB byte */
+    uint8_t *out;
+    int tiles_x, ntiles;
+    atomic_int next_tile, tiles_done;
+    /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */
+    void (*progress)(void *user, double fraction);
+    void *user;
+    pthread_mutex_t progress_lock;
+} Scene;
+
+/* Shade tile number `tile` (TILE x TILE pixels, row by row) into s->out. */
+void render_tile(const Scene *s, int tile);
+
+static inline float dot3(const float a[3], const float b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+static inline void normalize3(float v[3]) {
+    float l = sqrtf(dot3(v, v));
+    if (l > 0) {
+        float k = 1 / l;
+        v[0] *= k, v[1] *= k, v[2] *= k;
+    }
+}
+
+#endif
