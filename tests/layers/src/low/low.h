@@ -1,0 +1,2 @@
+/* Fixture: the lowest folder's function. */
+int low_value(void);

@@ -1,0 +1,2 @@
+/* Fixture: a type of the lowest folder, with nothing to link. */
+typedef struct LowPair { int a, b; } LowPair;

@@ -1,0 +1,2 @@
+/* Fixture: the middle folder's function. */
+int mid_value(void);
