@@ -60,8 +60,8 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
 void syl_program_free(SylProgram *p);
 /* Another model of p's file, compiled from the same text with the same --set values. */
 SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag, int *status);
-/* Read a whole file ("-": standard input), NUL-terminated; NULL with errno set on failure.
- * Free with free(). */
+/* Read a whole file ("-": standard input), NUL-terminated, as syl_compile reads a NULL text
+ * (a file utility, kept here for embedders); NULL with errno set on failure. Free with free(). */
 char *syl_read_file(const char *path, size_t *len);
 /* Names of the models in a file, for listing; returns how many, writes at most max. */
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,

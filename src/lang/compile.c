@@ -7,35 +7,12 @@
 
 #include "compiler.h"
 #include "opcodes.h"
+#include "util/file.h"
 #include "sot/params.h" /* the growth engine checks grow and scene directives (see below) */
 
 /* ---- reading sources ---- */
 
-char *syl_read_file(const char *path, size_t *len) {
-    FILE *f = strcmp(path, "-") ? fopen(path, "rb") : stdin;
-    if (!f) return NULL;
-    errno = 0;
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    for (size_t got; buf && (got = fread(buf + n, 1, cap - n, f)) > 0;) {
-        n += got;
-        if (n == cap) {
-            char *nb = realloc(buf, cap *= 2);
-            if (!nb) { free(buf); buf = NULL; }
-            buf = nb;
-        }
-    }
-    int err = ferror(f) ? (errno ? errno : EIO) : 0;
-    if (f != stdin) fclose(f);
-    if (err || !buf) {
-        free(buf);
-        errno = err ? err : ENOMEM;
-        return NULL;
-    }
-    buf[n] = 0; /* n < cap: the loop grows the buffer when it fills */
-    *len = n;
-    return buf;
-}
+char *syl_read_file(const char *path, size_t *len) { return file_read(path, len); }
 
 /* ---- declarations ---- */
 
@@ -666,7 +643,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         p->text = malloc(len + 1);
         if (p->text) memcpy(p->text, text, len);
     } else {
-        p->text = syl_read_file(path, &len);
+        p->text = file_read(path, &len);
         if (!p->text) {
             if (opt->diag) fprintf(opt->diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
             free(p);
