@@ -59,7 +59,8 @@ int cmd_check(int argc, char **argv) {
             char *msg = NULL;
             size_t msglen = 0;
             FILE *mem = open_memstream(&msg, &msglen);
-            SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1};
+            SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1,
+                                     .validate = syl_grow_validate};
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
             if (mem) fclose(mem);

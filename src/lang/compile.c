@@ -8,7 +8,6 @@
 #include "compiler.h"
 #include "opcodes.h"
 #include "util/file.h"
-#include "sot/params.h" /* the growth engine checks grow and scene directives (see below) */
 
 /* ---- reading sources ---- */
 
@@ -693,8 +692,8 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             p->kind = SYL_MODEL_SCENE;
             compile_model(&c, &ast.top, scene);
             p->has_scene = true;
+            p->first_model = true;
             directives(&c, scene, &p->scene, &p->nscene);
-            if (!d.errors) d.errors += sot_check_scene(p, opt->diag);
         } else if (!m) {
             diag_error(&d, (SylLoc){0}, "this file holds no lsystem");
         } else {
@@ -706,12 +705,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
                 p->has_scene = true;
                 directives(&c, scene, &p->scene, &p->nscene);
             }
-            /* Growth directives are checked here, by the growth engine's own table
-             * (src/sot/params.c), so `sylva check` reports them. The scene is checked with
-             * the file's first model only, so that checking every model reports it once. */
-            if (!opt->sibling && !d.errors && m->kind == MODEL_GROW) d.errors += sot_check_grow(p, opt->diag);
-            if (!opt->sibling && !d.errors && scene && m == find_model(&ast, NULL))
-                d.errors += sot_check_scene(p, opt->diag);
+            p->first_model = m == find_model(&ast, NULL);
         }
     }
     arena_free(tmp);
@@ -742,6 +736,14 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
     }
     SylProgram *p = compile_text(g, path, text, len, opt, status);
     free(g);
+    /* What the language leaves to others (grow and scene directives) is checked by the
+     * caller's hook, once the program is whole: a sibling model it compiles is a compile of
+     * its own, not one nested in this. */
+    if (p && opt && opt->validate && opt->validate(opt->validate_user, p, opt->diag)) {
+        syl_program_free(p);
+        *status = SYL_EMODEL;
+        return NULL;
+    }
     return p;
 }
 
