@@ -55,6 +55,13 @@ typedef struct SylGrowOptions {
 /* The most years a tree may grow (`years`, --years, -n). */
 enum { SYL_GROW_MAX_YEARS = 10000 };
 
+/* The validation hook for syl_compile (SylCompileOptions.validate; user is unused): checks
+ * a `grow` model's directives and, for the file's first model (or a file that holds only a
+ * scene), the `scene` block, each error with file:line:col, the source line and a caret.
+ * Returns the number of errors. syl_grow and syl_grow_scene read the same directives, so a
+ * program compiled without the hook reports the same errors there, when it grows. */
+int syl_grow_validate(void *user, const SylProgram *p, FILE *diag);
+
 /* Grow a `grow` model alone, its base at the origin. */
 int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out);
 /* Grow the file's scene (p: any model of the file, or the scene itself): every plant, year

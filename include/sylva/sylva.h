@@ -51,17 +51,26 @@ typedef struct SylCompileOptions {
     int lint;                     /* also report warnings of `sylva check` */
     int sibling;                  /* compiled for another model of the file (a shoot rule, a
                                      scene's plant): --set names it lacks are not errors */
+    /* What the language leaves to the engines that own it: syl_compile checks the language
+     * only, then, once the program compiled without errors, calls validate (when not NULL)
+     * with validate_user, the program and diag. It returns how many errors it reported to
+     * diag; any fails the compile with SYL_EMODEL. syl_grow_validate (grow.h) checks `grow`
+     * and `scene` directives as `sylva check` reports them. A sibling compile passes none:
+     * its file was checked with the model it serves. */
+    int (*validate)(void *user, const SylProgram *p, FILE *diag);
+    void *validate_user;
 } SylCompileOptions;
 
 /* Compile source text (path is used in messages only). On failure *status is set and NULL
- * is returned; a NULL text reads the file at path ("-": standard input). */
+ * is returned; a NULL text reads the file at path ("-": standard input). The directives of
+ * `grow` and `scene` blocks are read as values here and checked by opt->validate. */
 SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
                         int *status);
 void syl_program_free(SylProgram *p);
 /* Another model of p's file, compiled from the same text with the same --set values. */
 SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag, int *status);
-/* Read a whole file ("-": standard input), NUL-terminated; NULL with errno set on failure.
- * Free with free(). */
+/* Read a whole file ("-": standard input), NUL-terminated, as syl_compile reads a NULL text
+ * (a file utility, kept here for embedders); NULL with errno set on failure. Free with free(). */
 char *syl_read_file(const char *path, size_t *len);
 /* Names of the models in a file, for listing; returns how many, writes at most max. */
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,

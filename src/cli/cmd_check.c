@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "util/file.h"
 
 static const char usage[] =
     "usage: sylva check FILE[:Model]...\n"
@@ -40,7 +41,7 @@ int cmd_check(int argc, char **argv) {
         ModelArgs m = {0};
         cli_model_spec(&m, argv[a]);
         size_t len = 0;
-        char *text = syl_read_file(m.path, &len);
+        char *text = file_read(m.path, &len);
         if (!text) {
             fprintf(stderr, "sylva: error: cannot read '%s': %s\n", m.path, strerror(errno));
             worst = SYL_EIO;
@@ -58,7 +59,8 @@ int cmd_check(int argc, char **argv) {
             char *msg = NULL;
             size_t msglen = 0;
             FILE *mem = open_memstream(&msg, &msglen);
-            SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1};
+            SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1,
+                                     .validate = syl_grow_validate};
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
             if (mem) fclose(mem);

@@ -106,7 +106,7 @@ bool cli_set(ModelArgs *m, char *arg) {
 
 SylProgram *cli_compile(ModelArgs *m, int lint, int *status) {
     SylCompileOptions opt = {.model = m->model, .overrides = m->sets, .noverrides = m->nsets,
-                             .diag = stderr, .lint = lint};
+                             .diag = stderr, .lint = lint, .validate = syl_grow_validate};
     return syl_compile(m->path, NULL, 0, &opt, status);
 }
 

@@ -2,6 +2,7 @@
 #include "env/objread.h"
 #include "util/array.h"
 #include "util/coord.h"
+#include "util/file.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -151,7 +152,7 @@ int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, FILE
 int obj_read(const char *path, ObjMesh *out, FILE *diag) {
     memset(out, 0, sizeof *out);
     size_t len = 0;
-    char *text = syl_read_file(path, &len);
+    char *text = file_read(path, &len);
     if (!text) {
         if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
         return SYL_EIO;

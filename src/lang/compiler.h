@@ -70,7 +70,22 @@ bool cc_const(Compiler *c, Expr *e, double *out); /* compile-time value or an er
 /* Fold, emit and append; returns its pc. *random (may be NULL) tells whether it draws. */
 int32_t cc_expr(Compiler *c, Expr *e, Scope *s, bool *random);
 void cc_function(Compiler *c, int fn);
+
+/* declare.c */
+void cc_declare(Compiler *c, Stmt *s, bool top); /* top: outside any model */
+void cc_evaluate(Compiler *c, Stmt *s);            /* a const, param or curve, in the order written */
+
+/* rules.c */
+static inline bool cc_is_bracket(int sym) { return sym == SYM_OPEN || sym == SYM_CLOSE; }
 bool cc_code_constant(const SylProgram *p, int32_t pc, double *v); /* PUSHK k; RET */
+void cc_rule(Compiler *c, const Stmt *s, Rule *out);
+/* A successor (or the axiom: what names it in messages) over the rule's bound names. */
+void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *what);
+void cc_build_table(Compiler *c, RuleTable *t); /* dispatch and fast paths, once its rules are in */
+
+/* settings.c */
+/* A setting statement; seen: where each was first set, to report one set twice. */
+void cc_setting(Compiler *c, Stmt *s, SylLoc *seen);
 
 /* modules.c */
 int cc_symbol(Compiler *c, const char *name, SylLoc loc);

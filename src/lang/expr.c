@@ -5,7 +5,7 @@
 #include "builtins.h"
 #include "compiler.h"
 #include "opcodes.h"
-#include "lsys/vm.h"
+#include "lang/vm.h"
 
 static Expr *number(Compiler *c, Expr *like, double v) {
     Expr *e = arena_alloc(c->tmp, sizeof *e);

@@ -136,6 +136,9 @@ struct SylProgram {
     SylDirective *directives, *scene;
     int ndirectives, nscene;
     bool has_scene;
+    bool first_model;       /* the file's first model (or its scene, when it holds no model):
+                               the one whose validation covers the scene block, so that checking
+                               every model of the file reports the scene once */
     bool uses_queries;      /* ?P ?H ?L ?U ?E appear: the turtle fills them after every step */
     bool uses_env;          /* ?E appears: the environment answers it after every step */
     SylOverride *overrides; /* the --set values it was compiled with, for its file's other models */

@@ -17,7 +17,7 @@
 #include "match.h"
 #include "modstr.h"
 #include "sylva/sylva.h"
-#include "vm.h"
+#include "lang/vm.h"
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256 };
 

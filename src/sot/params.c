@@ -14,6 +14,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "lang/program.h"
+#include "sylva/grow.h"
 #include "sylva/skeleton.h"
 
 /* V_SEED: a whole number in a uint64_t; V_NAME: a model's name, into a char[64] */
@@ -586,4 +588,13 @@ int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
 int sot_check_grow(const SylProgram *p, FILE *diag) {
     GrowParams g;
     return grow_params_read(p, &g, diag);
+}
+
+/* The scene is checked with the file's first model only, so that checking every model of a
+ * file (`sylva check`) reports it once. */
+int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
+    (void)user;
+    int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
+    if (!errors && p->has_scene && p->first_model) errors += sot_check_scene(p, diag);
+    return errors;
 }

@@ -112,8 +112,8 @@ typedef struct SceneSpec {
 int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag);
 void scene_spec_free(SceneSpec *s);
 
-/* The hook of syl_compile: check a grow block's directives and the scene's. Returns the
- * number of errors reported. */
+/* Check a grow block's directives, and the scene's: what syl_grow_validate (the hook
+ * syl_compile's callers pass) runs. Returns the number of errors reported. */
 int sot_check_grow(const SylProgram *p, FILE *diag);
 int sot_check_scene(const SylProgram *p, FILE *diag);
 

@@ -63,7 +63,7 @@ static void models_free(SceneModels *m) {
 static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE *diag, int *status) {
     SylCompileOptions copt = {.diag = diag};
     if (pl->model) {
-        copt.sibling = 1; /* the file and its scene were checked when p was compiled */
+        copt.sibling = 1; /* the file and its scene were checked when p was compiled: no hook */
         size_t len = 0;
         const char *text = syl_program_source(p, &len);
         copt.model = pl->model;
@@ -79,6 +79,7 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
         *colon = 0;
         copt.model = colon + 1;
     }
+    copt.validate = syl_grow_validate; /* another file: checked as `sylva check` would */
     SylProgram *q = syl_compile(path, NULL, 0, &copt, status);
     free(path);
     return q;

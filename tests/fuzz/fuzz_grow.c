@@ -9,7 +9,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     int status;
     FILE *diag = fuzz_diag();
-    SylCompileOptions opt = {.diag = diag};
+    SylCompileOptions opt = {.diag = diag, .validate = syl_grow_validate};
     SylProgram *p = syl_compile("fuzz.syl", (const char *)data, size, &opt, &status);
     if (!p) return 0;
     SylModelKind kind = syl_program_kind(p);

@@ -2,6 +2,7 @@
  * derivation, `interpret` rules, the turtle and the mesher (both radius models) — with the
  * derived string bounded so that one input takes milliseconds. */
 #include "fuzz.h"
+#include "sylva/grow.h"
 #include "sylva/mesh.h"
 #include "sylva/skeleton.h"
 #include "sylva/sylva.h"
@@ -9,7 +10,7 @@
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     int status;
     FILE *diag = fuzz_diag();
-    SylCompileOptions opt = {.diag = diag};
+    SylCompileOptions opt = {.diag = diag, .validate = syl_grow_validate};
     SylProgram *p = syl_compile("fuzz.syl", (const char *)data, size, &opt, &status);
     if (!p) return 0;
     if (syl_program_kind(p) != SYL_MODEL_LSYSTEM) {

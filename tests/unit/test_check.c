@@ -191,7 +191,8 @@ static void settings_and_axiom(void **state) {
 static SylProgram *compile_with(const char *text, const SylOverride *ov, int n, char **diag, int *st) {
     size_t len = 0;
     FILE *mem = open_memstream(diag, &len);
-    SylCompileOptions opt = {.diag = mem, .lint = 1, .overrides = ov, .noverrides = n};
+    SylCompileOptions opt = {.diag = mem, .lint = 1, .overrides = ov, .noverrides = n,
+                             .validate = syl_grow_validate};
     SylProgram *p = syl_compile("test.syl", text, strlen(text), &opt, st);
     fclose(mem);
     return p;

@@ -56,7 +56,7 @@ static char *grow_text(const char *path, const char *text, bool scene, int threa
     size_t dlen = 0;
     char *d = NULL;
     FILE *mem = open_memstream(&d, &dlen);
-    SylCompileOptions co = {.diag = mem};
+    SylCompileOptions co = {.diag = mem, .validate = syl_grow_validate};
     int st;
     SylProgram *p = syl_compile(path, text, strlen(text), &co, &st);
     char *csv = NULL;
@@ -577,7 +577,7 @@ static void directive_errors(void **state) {
     assert_int_equal(P.organs[0].place, ORGAN_TIPS);
     /* --set reaches a directive through a param */
     SylOverride set = {"lam", 0.47};
-    SylCompileOptions co = {.overrides = &set, .noverrides = 1};
+    SylCompileOptions co = {.overrides = &set, .noverrides = 1, .validate = syl_grow_validate};
     int st;
     p = syl_compile("test.syl", ok, strlen(ok), &co, &st);
     assert_non_null(p);
@@ -601,6 +601,73 @@ static void scene_errors(void **state) {
 }
 
 /* ---- phyllotaxis and gravimorphism ---- */
+
+/* syl_compile checks the language only; a grow block's directives and the scene are the
+ * hook's (SylCompileOptions.validate): without it a wrong directive compiles, with
+ * syl_grow_validate it is an error, and the scene is checked with the file's first model. */
+static SylProgram *compile_hooked(const char *text, const char *model, bool hook, char **diag, int *st) {
+    size_t len = 0;
+    FILE *mem = open_memstream(diag, &len);
+    SylCompileOptions co = {.model = model, .diag = mem, .validate = hook ? syl_grow_validate : NULL};
+    SylProgram *p = syl_compile("test.syl", text, strlen(text), &co, st);
+    fclose(mem);
+    return p;
+}
+
+static int count_calls(void *user, const SylProgram *p, FILE *diag) {
+    (void)p, (void)diag;
+    ++*(int *)user;
+    return 0;
+}
+
+static void directives_checked_by_the_hook(void **state) {
+    (void)state;
+    const char *grow = "grow G {\n  years 2\n  fog on\n}\n";
+    char *diag = NULL;
+    int st = -1;
+    SylProgram *p = compile_hooked(grow, NULL, false, &diag, &st);
+    assert_non_null(p); /* the check is the caller's */
+    assert_int_equal(st, SYL_OK);
+    assert_string_equal(diag, "");
+    free(diag);
+    diag = NULL;
+    SylGrowOptions go = {.years = -1, .threads = 1, .diag = open_memstream(&diag, &(size_t){0})};
+    SylSkeleton *sk = NULL;
+    assert_int_equal(syl_grow(p, &go, &sk), SYL_EMODEL); /* growing reads the same directives */
+    fclose(go.diag);
+    assert_contains(diag, "test.syl:3:3: error: unknown directive 'fog' in a grow block");
+    free(diag);
+    syl_program_free(p);
+
+    diag = NULL;
+    assert_null(compile_hooked(grow, NULL, true, &diag, &st));
+    assert_int_equal(st, SYL_EMODEL);
+    assert_contains(diag, "test.syl:3:3: error: unknown directive 'fog' in a grow block");
+    free(diag);
+
+    const char *scene = "lsystem A {\n  axiom X\n}\nlsystem B {\n  axiom Y\n}\nscene {\n  fog on\n}\n";
+    diag = NULL;
+    assert_null(compile_hooked(scene, "A", true, &diag, &st));
+    assert_contains(diag, "test.syl:8:3: error: unknown directive 'fog' in a scene");
+    free(diag);
+    diag = NULL;
+    p = compile_hooked(scene, "B", true, &diag, &st); /* not the first: the scene was A's */
+    assert_non_null(p);
+    assert_string_equal(diag, "");
+    free(diag);
+    syl_program_free(p);
+
+    /* the hook runs once, with its user pointer, and only on a program without errors */
+    int calls = 0;
+    SylCompileOptions co = {.validate = count_calls, .validate_user = &calls};
+    p = syl_compile("test.syl", scene, strlen(scene), &co, &st);
+    assert_non_null(p);
+    assert_int_equal(calls, 1);
+    syl_program_free(p);
+    const char *wrong = "lsystem A {\n  axiom X(\n}\n";
+    assert_null(syl_compile("test.syl", wrong, strlen(wrong), &co, &st));
+    assert_int_equal(calls, 1);
+}
 
 static void phyllotaxis_directions(void **state) {
     (void)state;
@@ -656,6 +723,7 @@ int main(void) {
         cmocka_unit_test(reruns_and_threads_agree),
         cmocka_unit_test(directive_errors),
         cmocka_unit_test(scene_errors),
+        cmocka_unit_test(directives_checked_by_the_hook),
         cmocka_unit_test(phyllotaxis_directions),
         cmocka_unit_test(gravimorphism_prefers),
     };

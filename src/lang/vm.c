@@ -1,9 +1,10 @@
-#include "vm.h"
+/* The expression VM's interpreter: a stack machine over the instructions of lang/opcodes.h. */
+#include "lang/vm.h"
 
 #include <math.h>
 
-#include "../lang/builtins.h"
-#include "../lang/opcodes.h"
+#include "lang/builtins.h"
+#include "lang/opcodes.h"
 
 enum { MAX_CALL_DEPTH = 200 };
 

@@ -3,8 +3,8 @@
 #define SYL_VM_H
 #include <stdint.h>
 
-#include "../lang/program.h"
-#include "../util/rng.h"
+#include "lang/program.h"
+#include "util/rng.h"
 
 typedef struct VmFault {
     int status;  /* EVAL_* */

@@ -1,0 +1,62 @@
+/* The compiled Program: its accessors (sylva.h) and its freeing. */
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/program.h"
+#include "util/diag.h"
+
+void syl_program_free(SylProgram *p) {
+    if (!p) return;
+    arena_free(&p->arena);
+    free(p->text);
+    free(p);
+}
+
+const char *syl_program_name(const SylProgram *p) { return p->name; }
+SylModelKind syl_program_kind(const SylProgram *p) { return p->kind; }
+const char *syl_program_path(const SylProgram *p) { return p->src.path; }
+const char *syl_program_source(const SylProgram *p, size_t *len) {
+    *len = p->src.len;
+    return p->src.text;
+}
+
+const SylDirective *syl_program_directives(const SylProgram *p, int *n) {
+    *n = p->ndirectives;
+    return p->directives;
+}
+
+const SylDirective *syl_program_scene(const SylProgram *p, int *n) {
+    *n = p->nscene;
+    return p->has_scene ? p->scene : NULL;
+}
+
+void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    Diag d = {.out = out, .src = &p->src};
+    diag_error(&d, ((SylLoc){line, col, line, col}), "%s", msg);
+}
+int syl_program_steps(const SylProgram *p) { return p->derive; }
+uint64_t syl_program_seed(const SylProgram *p) { return p->seed; }
+int syl_program_symbol_count(const SylProgram *p) { return p->nsyms; }
+const char *syl_program_symbol_name(const SylProgram *p, int sym) {
+    return sym >= 0 && sym < p->nsyms ? p->syms[sym].name : NULL;
+}
+int syl_program_symbol_find(const SylProgram *p, const char *name) {
+    for (int i = 0; i < p->nsyms; i++)
+        if (!strcmp(p->syms[i].name, name)) return i;
+    return -1;
+}
+double syl_program_setting(const SylProgram *p, const char *name) {
+    if (!strcmp(name, "angle")) return p->angle;
+    if (!strcmp(name, "step")) return p->step;
+    if (!strcmp(name, "width")) return p->width;
+    if (!strcmp(name, "derive")) return p->derive;
+    if (!strcmp(name, "widthfactor")) return p->widthfactor;
+    return NAN;
+}

@@ -1,0 +1,230 @@
+/* Rules: a rule's patterns and successor compiled, and the dispatch tables built over them. */
+#include <string.h>
+
+#include "lang/compiler.h"
+#include "lang/opcodes.h"
+
+static uint16_t module_code(Compiler *c, const Mod *m) {
+    const Symbol *y = &c->p->syms[m->sym];
+    int n = m->args.n;
+    c->sym_used[m->sym] = true;
+    if (n > MAX_ARITY) {
+        diag_error(c->d, m->loc, "a module has at most %d parameters", MAX_ARITY);
+        n = MAX_ARITY;
+    }
+    if (cc_is_bracket(m->sym) && n) diag_error(c->d, m->loc, "a bracket takes no parameters");
+    if (y->declared && y->declared_arity >= 0 && n != y->declared_arity)
+        diag_error(c->d, m->loc, "module '%s' takes %d parameter%s (declared at line %d), not %d", y->name,
+                   y->declared_arity, y->declared_arity == 1 ? "" : "s", y->decl_loc.first_line, n);
+    return CODE(m->sym, n);
+}
+
+/* Bind a pattern module's parameters (which must be names) to fresh locals. */
+static int bind(Compiler *c, const Mod *m, Scope *s) {
+    int first = s->n;
+    for (int i = 0; i < m->args.n; i++) {
+        Expr *e = m->args.v[i];
+        if (e->kind != EX_NAME) {
+            diag_error(c->d, e->loc, "parameters in a rule's predecessor and contexts must be names");
+            continue;
+        }
+        for (int j = 0; j < s->n; j++)
+            if (!strcmp(s->names[j], e->name))
+                diag_error(c->d, e->loc, "parameter '%s' is bound twice in this rule", e->name);
+        if (s->n >= MAX_LOCALS) {
+            diag_error(c->d, e->loc, "a rule binds at most %d parameters", MAX_LOCALS);
+            return first;
+        }
+        s->names[s->n++] = e->name;
+    }
+    return first;
+}
+
+static void pattern(Compiler *c, const Mods *ms, bool branches, Scope *s, PatElem **out, int *nout) {
+    *nout = ms->n;
+    *out = arena_alloc(&c->p->arena, sizeof **out * (size_t)(ms->n ? ms->n : 1));
+    int stack[64], depth = 0;
+    for (int i = 0; i < ms->n; i++) {
+        const Mod *m = &ms->v[i];
+        PatElem *pe = &(*out)[i];
+        pe->code = module_code(c, m);
+        if (m->sym == SYM_OPEN || m->sym == SYM_CLOSE) {
+            if (!branches) {
+                diag_error(c->d, m->loc, "a left context cannot hold branches");
+                continue;
+            }
+            if (m->sym == SYM_OPEN) {
+                pe->kind = PAT_OPEN;
+                if (depth == 64) diag_error(c->d, m->loc, "branches nested too deeply");
+                else stack[depth++] = i;
+            } else if (!depth) {
+                diag_error(c->d, m->loc, "']' without '[' in a right context");
+            } else {
+                pe->kind = PAT_CLOSE;
+                (*out)[stack[--depth]].match = i;
+            }
+        } else {
+            pe->kind = PAT_MODULE;
+            pe->local = (uint8_t)bind(c, m, s);
+        }
+    }
+    if (depth) diag_error(c->d, ms->v[stack[depth - 1]].loc, "'[' without ']' in a right context");
+}
+
+/* The constant an expression compiled to, if it is one (PUSHK k; RET). */
+bool cc_code_constant(const SylProgram *p, int32_t pc, double *v) {
+    if (pc < 0 || INSTR_OP(p->code[pc]) != OP_PUSHK || INSTR_OP(p->code[pc + 1]) != OP_RET) return false;
+    *v = p->consts[INSTR_A(p->code[pc])];
+    return true;
+}
+
+void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *what) {
+    SylProgram *p = c->p;
+    r->nsucc = ms->n;
+    r->succ = arena_alloc(&p->arena, sizeof *r->succ * (size_t)(ms->n + SUCC_PAD));
+    int nslots = 0, depth = 0;
+    SylLoc open[64];
+    for (int i = 0; i < ms->n; i++) nslots += ms->v[i].args.n;
+    r->slots = arena_alloc(&p->arena, sizeof *r->slots * (size_t)(nslots ? nslots : 1));
+    r->nslots = 0;
+    for (int i = 0; i < ms->n; i++) {
+        const Mod *m = &ms->v[i];
+        r->succ[i] = module_code(c, m);
+        if (m->sym == SYM_OPEN) open[depth++ & 63] = m->loc;
+        if (m->sym == SYM_CLOSE && --depth < 0) {
+            diag_error(c->d, m->loc, "']' closes no branch");
+            depth = 0;
+        }
+        for (int j = 0; j < m->args.n && r->nslots < nslots; j++) {
+            Slot *sl = &r->slots[r->nslots++];
+            bool random = false;
+            int before = c->d->errors;
+            Expr *e = cc_fold(c, m->args.v[j], s, &random);
+            if (c->d->errors != before) continue;
+            if (e->kind == EX_NUM) {
+                sl->kind = SLOT_CONST;
+                sl->k = e->num;
+            } else if (e->kind == EX_LOCAL) {
+                sl->kind = SLOT_LOCAL;
+                sl->local = (uint8_t)e->op;
+            } else if (e->kind == EX_BINARY && e->a->kind == EX_LOCAL && e->b->kind == EX_NUM &&
+                       (e->op == '+' || e->op == '-' || e->op == '*' || e->op == '/')) {
+                sl->kind = e->op == '+' ? SLOT_ADDK : e->op == '-' ? SLOT_SUBK : e->op == '*' ? SLOT_MULK : SLOT_DIVK;
+                sl->local = (uint8_t)e->a->op;
+                sl->k = e->b->num;
+                int32_t pc = cc_expr(c, e, s, NULL); /* LOCAL x; op k; RET */
+                sl->pc = pc < 0 ? 0 : (uint32_t)pc + 1; /* the operator: where an overflow is reported */
+            } else {
+                sl->kind = SLOT_CODE;
+                int32_t pc = cc_expr(c, e, s, NULL);
+                sl->pc = pc < 0 ? 0 : (uint32_t)pc;
+            }
+        }
+    }
+    if (depth) diag_error(c->d, open[(depth - 1) & 63], "a '[' in %s is never closed", what);
+}
+
+void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
+    SylProgram *p = c->p;
+    memset(out, 0, sizeof *out);
+    Mods pred, left, right, succ;
+    cc_split(c, &s->rule.pred, &pred);
+    cc_split(c, &s->rule.left, &left);
+    cc_split(c, &s->rule.right, &right);
+    cc_split(c, &s->rule.succ, &succ);
+    out->loc = s->rule.loc;
+    out->line = s->rule.loc.first_line;
+    out->cond = out->weight = -1;
+    if (pred.n != 1 || cc_is_bracket(pred.v[0].sym)) {
+        diag_error(c->d, s->rule.loc, "a predecessor is one module (write contexts with < and >)");
+        return;
+    }
+    const char *names[MAX_LOCALS];
+    Scope scope = {.names = names};
+    out->pred = module_code(c, &pred.v[0]);
+    out->pred_arity = (uint8_t)CODE_ARITY(out->pred);
+    bind(c, &pred.v[0], &scope);
+    pattern(c, &left, false, &scope, &out->left, &out->nleft);
+    pattern(c, &right, true, &scope, &out->right, &out->nright);
+    out->nlocals = (uint8_t)scope.n;
+    out->names = arena_alloc(&p->arena, sizeof *out->names * (size_t)(scope.n + 1));
+    for (int i = 0; i < scope.n; i++) out->names[i] = arena_strndup(&p->arena, names[i], strlen(names[i]));
+    if (s->rule.cond) {
+        out->cond = cc_expr(c, s->rule.cond, &scope, NULL);
+        double v;
+        if (cc_code_constant(p, out->cond, &v) && v != 0) out->cond = -1; /* always true */
+    }
+    if (s->rule.weight) {
+        out->weighted = true;
+        int32_t pc = cc_expr(c, s->rule.weight, &scope, NULL);
+        double v;
+        if (cc_code_constant(p, pc, &v)) {
+            out->const_weight = v;
+            if (v < 0) diag_error(c->d, s->rule.weight->loc, "a weight must not be negative");
+        } else {
+            out->weight = pc;
+        }
+    }
+    cc_successor(c, &succ, &scope, out, "this successor");
+}
+
+void cc_build_table(Compiler *c, RuleTable *t) {
+    SylProgram *p = c->p;
+    if (!t->nrules) return;
+    t->dispatch = arena_alloc(&p->arena, sizeof *t->dispatch * CODE_COUNT);
+    t->order = arena_alloc(&p->arena, sizeof *t->order * (size_t)t->nrules);
+    for (int i = 0; i < t->nrules; i++) t->dispatch[t->rules[i].pred].count++;
+    uint32_t at = 0;
+    for (int code = 0; code < CODE_COUNT; code++) {
+        t->dispatch[code].first = at;
+        at += t->dispatch[code].count;
+        t->dispatch[code].count = 0;
+    }
+    for (int i = 0; i < t->nrules; i++) {
+        Rule *r = &t->rules[i];
+        Dispatch *d = &t->dispatch[r->pred];
+        t->order[d->first + d->count++] = (uint16_t)i;
+        if (r->nleft || r->nright) t->has_context = true;
+        if (r->nleft) t->ctx_left = true;
+        for (int k = 0; k < r->nright; k++)
+            if (r->right[k].kind != PAT_MODULE) t->ctx_branches = true;
+        if (r->nright) t->ctx_right = true;
+        if (r->nleft > 1 || r->nright > 1) t->ctx_index = true;
+        for (int k = 0; k < r->nleft; k++)
+            if (CODE_ARITY(r->left[k].code)) t->ctx_index = true;
+        for (int k = 0; k < r->nright; k++)
+            if (CODE_ARITY(r->right[k].code)) t->ctx_index = true;
+        if (r->nslots) t->emits_params = true;
+        if (r->nsucc > t->max_succ) t->max_succ = r->nsucc;
+        if (r->nslots > t->max_succ_params) t->max_succ_params = r->nslots;
+    }
+    t->all_plain = true;
+    for (int code = 0; code < CODE_COUNT; code++) {
+        Dispatch *d = &t->dispatch[code];
+        if (d->count > 1) t->all_plain = false;
+        if (d->count != 1) continue;
+        const Rule *r = &t->rules[t->order[d->first]];
+        if (!r->nleft && !r->nright && r->cond < 0 && !r->weighted) d->plain = r;
+        else t->all_plain = false;
+    }
+    for (int code = 0; code < CODE_COUNT; code++) {
+        Dispatch *d = &t->dispatch[code];
+        if (!d->count || d->plain) continue;
+        bool fast = true;
+        for (uint32_t k = 0; k < d->count && fast; k++) {
+            const Rule *r = &t->rules[t->order[d->first + k]];
+            fast = r->nleft <= 1 && r->nright <= 1 && r->cond < 0 && !r->weighted &&
+                   (!r->nleft || !CODE_ARITY(r->left[0].code)) &&
+                   (!r->nright || (r->right[0].kind == PAT_MODULE && !CODE_ARITY(r->right[0].code)));
+        }
+        if (!fast) continue;
+        FastRule *f = arena_alloc(&p->arena, sizeof *f * d->count);
+        for (uint32_t k = 0; k < d->count; k++) {
+            const Rule *r = &t->rules[t->order[d->first + k]];
+            f[k].left = r->nleft ? r->left[0].code : CODE_ANY;
+            f[k].right = r->nright ? r->right[0].code : CODE_ANY;
+            f[k].rule = r;
+        }
+        d->fast = f;
+    }
+}

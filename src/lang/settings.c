@@ -1,0 +1,92 @@
+/* The model's settings (derive, angle, step, ..., colour): their table of ranges, checked and stored. */
+#include <math.h>
+#include <string.h>
+
+#include "lang/compiler.h"
+
+typedef struct SettingDef {
+    const char *name;
+    int block; /* -1: the model's level; else only in decompose/interpret blocks */
+    double min, max;
+    bool integer;
+    int nargs;       /* values it takes */
+    bool repeatable; /* colour: once per index */
+} SettingDef;
+
+static const SettingDef settings[] = {
+    {"derive", -1, 0, 1e6, true, 1, false},
+    {"angle", -1, -1e9, 1e9, false, 1, false},
+    {"step", -1, -1e9, 1e9, false, 1, false},
+    {"width", -1, 0, 1e9, false, 1, false},
+    {"seed", -1, 0, 9007199254740991.0, true, 1, false},
+    {"maxdepth", 1, 1, 1000, true, 1, false},
+    {"widthfactor", -1, 0, 1e9, false, 1, false},
+    {"tropism", -1, -1e9, 1e9, false, 4, false}, /* direction x, y, z and elasticity */
+    {"colour", -1, 0, 255, false, 4, true},      /* index, then red, green, blue in 0..1 */
+};
+
+void cc_setting(Compiler *c, Stmt *s, SylLoc *seen) {
+    SylProgram *p = c->p;
+    int i = 0, n = (int)(sizeof settings / sizeof *settings);
+    while (i < n && strcmp(settings[i].name, s->name)) i++;
+    if (i == n) return; /* the lexer only makes SETTING of known names */
+    const SettingDef *def = &settings[i];
+    if ((def->block < 0) != (s->block == BLOCK_PRODUCE)) {
+        diag_error(c->d, s->loc, def->block < 0 ? "'%s' belongs to the model, not to a block"
+                                                : "'%s' belongs in a decompose or interpret block",
+                   s->name);
+        return;
+    }
+    if (s->args.n != def->nargs) {
+        if (def->nargs == 1) diag_error(c->d, s->loc, "'%s' takes one value", s->name);
+        else diag_error(c->d, s->loc, "'%s' takes %d values separated by commas", s->name, def->nargs);
+        return;
+    }
+    int slot = def->block < 0 ? i : i + s->block; /* maxdepth per block */
+    if (!def->repeatable) {
+        if (seen[slot].first_line) {
+            diag_error(c->d, s->loc, "'%s' is set twice (first at line %d)", s->name, seen[slot].first_line);
+            return;
+        }
+        seen[slot] = s->loc;
+    }
+    double v[4];
+    for (int k = 0; k < def->nargs; k++)
+        if (!cc_const(c, s->args.v[k], &v[k])) return;
+    if (!strcmp(s->name, "colour")) {
+        if (v[0] != floor(v[0]) || v[0] < 0 || v[0] > 255) {
+            diag_error(c->d, s->args.v[0]->loc, "a colour index is a whole number from 0 to 255");
+            return;
+        }
+        for (int k = 1; k < 4; k++)
+            if (v[k] < 0 || v[k] > 1) {
+                diag_error(c->d, s->args.v[k]->loc, "colour components go from 0 to 1");
+                return;
+            }
+        int idx = (int)v[0];
+        for (int k = 0; k < 3; k++) p->colours[idx][k] = (float)v[k + 1];
+        p->colour_set[idx] = true;
+        return;
+    }
+    if (!strcmp(s->name, "tropism")) {
+        for (int k = 0; k < 4; k++) p->tropism[k] = v[k];
+        return;
+    }
+    if (v[0] < def->min || v[0] > def->max) {
+        diag_error(c->d, s->args.v[0]->loc, "'%s' %.15g is out of range (%s %.17g)", s->name, v[0],
+                   v[0] > def->max ? "at most" : "at least", v[0] > def->max ? def->max : def->min);
+        return;
+    }
+    if (def->integer && v[0] != floor(v[0])) {
+        diag_error(c->d, s->args.v[0]->loc, "'%s' must be %s from %.15g to %.17g", s->name,
+                   def->integer ? "a whole number" : "a number", def->min, def->max);
+        return;
+    }
+    if (!strcmp(s->name, "derive")) p->derive = (int)v[0];
+    else if (!strcmp(s->name, "angle")) p->angle = v[0];
+    else if (!strcmp(s->name, "step")) p->step = v[0];
+    else if (!strcmp(s->name, "width")) p->width = v[0];
+    else if (!strcmp(s->name, "seed")) p->seed = (uint64_t)v[0];
+    else if (!strcmp(s->name, "widthfactor")) p->widthfactor = v[0];
+    else p->tables[s->block == BLOCK_DECOMPOSE ? TABLE_DECOMPOSE : TABLE_INTERPRET].maxdepth = (int)v[0];
+}
