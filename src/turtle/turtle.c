@@ -1,8 +1,8 @@
 /* The 3D turtle: reads a module string and emits a Skeleton. docs/turtle.md describes every
  * symbol; LANGUAGE.md §5 is the contract.
  *
- * The program's symbols are resolved once into a table of turtle commands, so reading a module
- * is one table look-up and one switch. The state is kept in floats (cglm); turns by multiples
+ * The compiler resolves each symbol into a turtle command once (lang/turtle_commands.h), so
+ * reading a module is one table look-up and one switch. The state is kept in floats (cglm); turns by multiples
  * of 90 degrees are exact, and the frame is re-orthonormalised before it is used after a turn. */
 #include <cglm/cglm.h>
 #include <math.h>
@@ -17,35 +17,11 @@
 #include "util/array.h"
 #include "util/budget.h"
 
-typedef enum {
-    T_NONE, /* not a turtle symbol: ignored */
-    T_F, T_G, T_f, T_g,
-    T_LEFT, T_RIGHT, T_DOWN, T_UP, T_ROLL_LEFT, T_ROLL_RIGHT, T_TURN_AROUND, T_LEVEL,
-    T_PUSH, T_POP, T_CUT,
-    T_WIDTH, T_MATERIAL, T_MATERIAL_NEXT, T_MATERIAL_PREV,
-    T_POLY_OPEN, T_VERTEX, T_POLY_CLOSE,
-    T_LEAF, T_PETAL, T_NEEDLE, T_SURFACE_UNKNOWN, T_SPHERE,
-    T_TROPISM, T_ELASTICITY, T_MOVE_TO, T_HEADING, T_SCALE, T_SMOOTH_ON, T_SMOOTH_OFF,
-    T_QUERY_P, T_QUERY_H, T_QUERY_L, T_QUERY_U, T_QUERY_E,
-} TCmd;
-
-static const struct {
-    const char *name;
-    uint8_t cmd;
-} names[] = {
-    {"F", T_F},           {"G", T_G},           {"f", T_f},           {"g", T_g},
-    {"+", T_LEFT},        {"-", T_RIGHT},       {"&", T_DOWN},        {"^", T_UP},
-    {"\\", T_ROLL_LEFT},  {"/", T_ROLL_RIGHT},  {"|", T_TURN_AROUND}, {"$", T_LEVEL},
-    {"@v", T_LEVEL},      {"[", T_PUSH},        {"]", T_POP},         {"%", T_CUT},
-    {"!", T_WIDTH},       {"'", T_MATERIAL},    {";", T_MATERIAL_NEXT}, {",", T_MATERIAL_PREV},
-    {"{", T_POLY_OPEN},   {".", T_VERTEX},      {"}", T_POLY_CLOSE},
-    {"~leaf", T_LEAF},    {"~petal", T_PETAL},  {"~flower", T_PETAL}, {"~needle", T_NEEDLE},
-    {"@O", T_SPHERE},     {"@Tp", T_TROPISM},   {"@Ts", T_ELASTICITY}, {"@M", T_MOVE_TO},
-    {"@R", T_HEADING},    {"@D", T_SCALE},      {"@Gc", T_SMOOTH_ON}, {"@Gs", T_SMOOTH_ON},
-    {"@Ge", T_SMOOTH_OFF},
-    {"?P", T_QUERY_P},    {"?H", T_QUERY_H},    {"?L", T_QUERY_L},    {"?U", T_QUERY_U},
-    {"?E", T_QUERY_E},
-};
+/* The loops test ranges of commands: the six turns follow each other, the queries come last. */
+_Static_assert(TC_RIGHT == TC_LEFT + 1 && TC_DOWN == TC_LEFT + 2 && TC_UP == TC_LEFT + 3 &&
+                   TC_ROLL_LEFT == TC_LEFT + 4 && TC_ROLL_RIGHT == TC_LEFT + 5,
+               "the turns in a row");
+_Static_assert(TC_QUERY_P + 5 == TC_COUNT, "the queries last");
 
 /* A turn's angle, its sine and cosine. Rules turn by a few angles (the model's, constants of
  * the rules), so a small cache keyed by the angle saves most sin and cos calls. */
@@ -465,18 +441,10 @@ static size_t branch_end(const SylString *s, size_t i, size_t *off) {
     return i;
 }
 
+/* Each symbol's command, as the compiler resolved it (a copy: the loops read it per module). */
 static void resolve(Turtle *t) {
-    memset(t->cmd, T_NONE, sizeof t->cmd);
-    for (int i = 0; i < t->p->nsyms && i < MAX_SYMBOLS; i++) {
-        const char *name = t->p->syms[i].name;
-        if (!name) continue;
-        for (size_t k = 0; k < sizeof names / sizeof *names; k++)
-            if (!strcmp(name, names[k].name)) {
-                t->cmd[i] = names[k].cmd;
-                break;
-            }
-        if (t->cmd[i] == T_NONE && name[0] == '~' && name[1]) t->cmd[i] = T_SURFACE_UNKNOWN;
-    }
+    memset(t->cmd, TC_NONE, sizeof t->cmd);
+    for (int i = 0; i < t->p->nsyms && i < MAX_SYMBOLS; i++) t->cmd[i] = t->p->syms[i].turtle;
 }
 
 static void init(Turtle *t, const SylProgram *p, SylSkeleton *sk, FILE *diag) {
@@ -516,10 +484,10 @@ static uint64_t count_nodes(const Turtle *t, const SylString *s) {
     uint64_t draws = 0, moves = 1, polys = 0;
     for (size_t i = 0; i < s->n; i++) {
         switch (t->cmd[CODE_SYM(s->code[i])]) {
-        case T_F: case T_G: *(polys ? &moves : &draws) += 1; break;
-        case T_f: case T_g: case T_MOVE_TO: moves++; break;
-        case T_POLY_OPEN: polys++; break;
-        case T_POLY_CLOSE: polys -= polys > 0; break;
+        case TC_F: case TC_G: *(polys ? &moves : &draws) += 1; break;
+        case TC_f: case TC_g: case TC_MOVE_TO: moves++; break;
+        case TC_POLY_OPEN: polys++; break;
+        case TC_POLY_CLOSE: polys -= polys > 0; break;
         default: break;
         }
     }
@@ -535,8 +503,8 @@ static void reserve_nodes(SylSkeleton *sk, uint64_t want) {
 }
 
 /* The value of one query module: position or a frame vector. */
-static void query(const TState *st, TCmd c, double *out, int na) {
-    const float *v = c == T_QUERY_P ? st->pos : c == T_QUERY_H ? st->h : c == T_QUERY_L ? st->l : st->u;
+static void query(const TState *st, TurtleCommand c, double *out, int na) {
+    const float *v = c == TC_QUERY_P ? st->pos : c == TC_QUERY_H ? st->h : c == TC_QUERY_L ? st->l : st->u;
     /* the turtle computes in float: residues of rotations (6e-17, -0) read as 0 */
     for (int k = 0; k < na && k < 3; k++) out[k] = fabsf(v[k]) < 1e-6f ? 0.0 : (double)v[k];
 }
@@ -552,92 +520,93 @@ static int run(Turtle *t, const SylString *s) {
         int sym = CODE_SYM(c), na = CODE_ARITY(c);
         const double *a = na ? par + off : NULL; /* par is NULL in a string without parameters */
         off += (size_t)na;
-        TCmd cmd = t->cmd[sym];
-        if (cmd == T_NONE) continue;
+        TurtleCommand cmd = t->cmd[sym];
+        if (cmd == TC_NONE) continue;
         if (na) {
             bool finite = true;
             for (int k = 0; k < na; k++) finite &= isfinite(a[k]) != 0;
-            if (!finite && cmd < T_QUERY_P) {
+            if (!finite && cmd < TC_QUERY_P) {
                 t->bad++;
                 continue;
             }
         }
         uint32_t module = (uint32_t)i;
         float sn = 0, cs = 1;
-        if (cmd >= T_LEFT && cmd <= T_ROLL_RIGHT) { /* most turns are by the model's angle */
+        if (cmd >= TC_LEFT && cmd <= TC_ROLL_RIGHT) { /* most turns are by the model's angle */
             turn_sincos(t->angles, argd(a, na, 0, t->angle), &sn, &cs);
         }
         switch (cmd) {
-        case T_NONE: break;
-        case T_F:
-        case T_G:
-            if (t->npolys) move(t, arg(a, na, 0, t->step), cmd == T_F);
+        case TC_NONE: break;
+        case TC_F:
+        case TC_G:
+            if (t->npolys) move(t, arg(a, na, 0, t->step), cmd == TC_F);
             else draw(t, arg(a, na, 0, t->step), module);
             break;
-        case T_f:
-        case T_g: move(t, arg(a, na, 0, t->step), cmd == T_f && t->npolys); break;
-        case T_LEFT:
-        case T_RIGHT:
-            rotate_pair(st->h, st->l, cmd == T_LEFT ? sn : -sn, cs); /* H toward L */
+        case TC_f:
+        case TC_g: move(t, arg(a, na, 0, t->step), cmd == TC_f && t->npolys); break;
+        case TC_LEFT:
+        case TC_RIGHT:
+            rotate_pair(st->h, st->l, cmd == TC_LEFT ? sn : -sn, cs); /* H toward L */
             turned(st);
             break;
-        case T_DOWN:
-        case T_UP:
-            rotate_pair(st->u, st->h, cmd == T_DOWN ? sn : -sn, cs); /* H toward -U */
+        case TC_DOWN:
+        case TC_UP:
+            rotate_pair(st->u, st->h, cmd == TC_DOWN ? sn : -sn, cs); /* H toward -U */
             turned(st);
             break;
-        case T_ROLL_LEFT:
-        case T_ROLL_RIGHT:
-            rotate_pair(st->u, st->l, cmd == T_ROLL_LEFT ? sn : -sn, cs); /* L toward -U */
+        case TC_ROLL_LEFT:
+        case TC_ROLL_RIGHT:
+            rotate_pair(st->u, st->l, cmd == TC_ROLL_LEFT ? sn : -sn, cs); /* L toward -U */
             turned(st);
             break;
-        case T_TURN_AROUND:
+        case TC_TURN_AROUND:
             glm_vec3_negate(st->h);
             glm_vec3_negate(st->l);
             break;
-        case T_LEVEL: level(st); break;
-        case T_PUSH: push(t); break;
-        case T_POP: pop(t); break;
-        case T_CUT:
+        case TC_LEVEL: level(st); break;
+        case TC_PUSH: push(t); break;
+        case TC_POP: pop(t); break;
+        case TC_CUT:
             i = branch_end(s, i, &off);
             if (i < s->n) pop(t);
             break;
-        case T_WIDTH:
+        case TC_WIDTH:
             if (na) st->width = fmaxf(0, arg(a, na, 0, 0));
             else st->width = (float)fmin(st->width * t->widthfactor, 1e30);
             break;
-        case T_MATERIAL:
-        case T_MATERIAL_NEXT:
+        case TC_MATERIAL:
+        case TC_MATERIAL_NEXT:
             st->material = na ? clamp_material(a[0]) : clamp_material(st->material + 1.0);
             break;
-        case T_MATERIAL_PREV:
+        case TC_MATERIAL_PREV:
             st->material = na ? clamp_material(a[0]) : clamp_material(st->material - 1.0);
             break;
-        case T_POLY_OPEN: open_poly(t); break;
-        case T_VERTEX: add_vertex(t); break;
-        case T_POLY_CLOSE: close_poly(t, module); break;
-        case T_LEAF: add_organ(t, SYL_KIND_LEAF, arg(a, na, 0, t->step), module); break;
-        case T_PETAL: add_organ(t, SYL_KIND_FLOWER, arg(a, na, 0, t->step), module); break;
-        case T_NEEDLE: add_organ(t, SYL_KIND_NEEDLE, arg(a, na, 0, t->step), module); break;
-        case T_SURFACE_UNKNOWN: warn_once(t, sym, "not a predefined surface (~leaf, ~petal, ~flower, ~needle)"); break;
-        case T_SPHERE: add_organ(t, SYL_KIND_SPHERE, arg(a, na, 0, st->width), module); break;
-        case T_TROPISM: set_tropism(st, a, na); break;
-        case T_ELASTICITY:
+        case TC_POLY_OPEN: open_poly(t); break;
+        case TC_VERTEX: add_vertex(t); break;
+        case TC_POLY_CLOSE: close_poly(t, module); break;
+        case TC_LEAF: add_organ(t, SYL_KIND_LEAF, arg(a, na, 0, t->step), module); break;
+        case TC_PETAL: add_organ(t, SYL_KIND_FLOWER, arg(a, na, 0, t->step), module); break;
+        case TC_NEEDLE: add_organ(t, SYL_KIND_NEEDLE, arg(a, na, 0, t->step), module); break;
+        case TC_SURFACE_UNKNOWN: warn_once(t, sym, "not a predefined surface (~leaf, ~petal, ~flower, ~needle)"); break;
+        case TC_SPHERE: add_organ(t, SYL_KIND_SPHERE, arg(a, na, 0, st->width), module); break;
+        case TC_TROPISM: set_tropism(st, a, na); break;
+        case TC_ELASTICITY:
             st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0;
             break;
-        case T_MOVE_TO:
+        case TC_MOVE_TO:
             for (int k = 0; k < na && k < 3; k++) st->pos[k] = arg(a, na, k, 0);
             detach(t);
             break;
-        case T_HEADING: set_heading(t, a, na); break;
-        case T_SCALE: st->scale = arg(a, na, 0, 1); break;
-        case T_SMOOTH_ON: st->smooth = true; break;
-        case T_SMOOTH_OFF: st->smooth = false; break;
-        case T_QUERY_P:
-        case T_QUERY_H:
-        case T_QUERY_L:
-        case T_QUERY_U:
-        case T_QUERY_E: break; /* filled by run_query */
+        case TC_HEADING: set_heading(t, a, na); break;
+        case TC_SCALE: st->scale = arg(a, na, 0, 1); break;
+        case TC_SMOOTH_ON: st->smooth = true; break;
+        case TC_SMOOTH_OFF: st->smooth = false; break;
+        case TC_QUERY_P:
+        case TC_QUERY_H:
+        case TC_QUERY_L:
+        case TC_QUERY_U:
+        case TC_QUERY_E: break; /* filled by run_query */
+        case TC_COUNT: break;
         }
     }
     return t->oom ? SYL_ELIMIT : SYL_OK;
@@ -647,17 +616,12 @@ static int run(Turtle *t, const SylString *s) {
  * unknown surfaces change nothing a query reads (organs and vertices are not even kept
  * without a skeleton), so they are read as unknown symbols, and ?E too when nobody collects. */
 static void resolve_query(Turtle *t) {
-    for (int i = 0; i < MAX_SYMBOLS; i++) switch (t->cmd[i]) {
-        case T_WIDTH: case T_MATERIAL: case T_MATERIAL_NEXT: case T_MATERIAL_PREV: case T_VERTEX:
-        case T_LEAF: case T_PETAL: case T_NEEDLE: case T_SURFACE_UNKNOWN: case T_SPHERE:
-        case T_SMOOTH_ON: case T_SMOOTH_OFF:
-            t->cmd[i] = T_NONE;
-            break;
-        case T_QUERY_E:
-            if (!t->env) t->cmd[i] = T_NONE;
-            break;
-        default: break;
-        }
+    for (int i = 0; i < MAX_SYMBOLS; i++) {
+        unsigned cmd = t->cmd[i];
+        if (!(turtle_command_flags(cmd) & (TF_MOVES | TF_TURNS | TF_STACK | TF_STEERS | TF_QUERY)) ||
+            (cmd == TC_QUERY_E && !t->env))
+            t->cmd[i] = TC_NONE;
+    }
 }
 
 /* ---- filling queries ----
@@ -779,28 +743,28 @@ static inline bool all_finite(const double *v, unsigned n) {
 
 /* The commands run_query meets seldom, out of its loop (which then keeps its variables in
  * registers). o: the module's parameters, writable. */
-static __attribute__((noinline)) void query_seldom(Turtle *t, TCmd cmd, const double *a, int na, double *o) {
+static __attribute__((noinline)) void query_seldom(Turtle *t, TurtleCommand cmd, const double *a, int na, double *o) {
     TState *st = &t->st;
     switch (cmd) {
-    case T_TURN_AROUND: pend(t, P_NEGATE, false, 0); break;
-    case T_LEVEL:
+    case TC_TURN_AROUND: pend(t, P_NEGATE, false, 0); break;
+    case TC_LEVEL:
         if (t->npend) flush(t);
         level(st);
         break;
-    case T_TROPISM: set_tropism(st, a, na); break;
-    case T_ELASTICITY: st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0; break;
-    case T_MOVE_TO:
+    case TC_TROPISM: set_tropism(st, a, na); break;
+    case TC_ELASTICITY: st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0; break;
+    case TC_MOVE_TO:
         for (int k = 0; k < na && k < 3; k++) st->pos[k] = arg(a, na, k, 0);
         detach(t);
         break;
-    case T_HEADING:
+    case TC_HEADING:
         if (t->npend) flush(t);
         set_heading(t, a, na);
         break;
-    case T_SCALE: st->scale = arg(a, na, 0, 1); break;
-    case T_QUERY_H:
-    case T_QUERY_L:
-    case T_QUERY_U:
+    case TC_SCALE: st->scale = arg(a, na, 0, 1); break;
+    case TC_QUERY_H:
+    case TC_QUERY_L:
+    case TC_QUERY_U:
         pend_tidy(t);
         if (t->npend) flush(t);
         query(st, cmd, o, na);
@@ -817,13 +781,6 @@ static inline void light_probe(Turtle *t, uint32_t par) {
     q->par = par | (t->st.gen == 0 ? SYL_LIGHT_TIP : 0);
 }
 
-/* The kind an ?E module asks, as env/probe.c reads it (a missing one is light): bit 1 light,
- * 2 crowding, 4 distance, 8 sky exposure, 0 another. */
-static inline unsigned env_kind(const double *a, int na) {
-    double kind = na ? a[0] : 0;
-    return kind == 0 ? 1u : kind == 1 ? 2u : kind == 2 ? 4u : kind == 3 ? 8u : 0u;
-}
-
 /* An ?E module: its probe. For env/open.c only what it answers. */
 static inline void query_env(Turtle *t, const double *a, int na, size_t at) {
     pend_tidy(t);
@@ -832,7 +789,7 @@ static inline void query_env(Turtle *t, const double *a, int na, size_t at) {
         env_probe(t, at, na, true);
         return;
     }
-    unsigned kind = env_kind(a, na);
+    unsigned kind = syl_env_kind_bit(a, na);
     t->open->kinds |= kind;
     if (na < 2 || !kind) return; /* not answered */
     if (kind == 1 && at < SYL_LIGHT_TIP) {
@@ -851,10 +808,10 @@ static inline void query_env(Turtle *t, const double *a, int na, size_t at) {
  * (n when the string ends first), *ap past its parameters; 0 when the branch does more
  * (what it collected is then taken back, and the turtle reads it as usual). */
 /* What a dead branch may hold besides its queries: a bit per command. */
-_Static_assert(T_QUERY_E < 64, "a bit per command in a uint64_t");
-static const uint64_t skip_dead = (uint64_t)1 << T_NONE | (uint64_t)1 << T_LEFT | (uint64_t)1 << T_RIGHT |
-                                  (uint64_t)1 << T_DOWN | (uint64_t)1 << T_UP | (uint64_t)1 << T_ROLL_LEFT |
-                                  (uint64_t)1 << T_ROLL_RIGHT;
+_Static_assert(TC_QUERY_E < 64, "a bit per command in a uint64_t");
+static const uint64_t skip_dead = (uint64_t)1 << TC_NONE | (uint64_t)1 << TC_LEFT | (uint64_t)1 << TC_RIGHT |
+                                  (uint64_t)1 << TC_DOWN | (uint64_t)1 << TC_UP | (uint64_t)1 << TC_ROLL_LEFT |
+                                  (uint64_t)1 << TC_ROLL_RIGHT;
 
 static size_t dead_branch(Turtle *t, const SylString *s, const double *par, size_t i, const double **ap,
                           double *out) {
@@ -863,17 +820,17 @@ static size_t dead_branch(Turtle *t, const SylString *s, const double *par, size
     size_t n = s->n, nlight = t->open ? t->open->nlight : 0;
     for (i++; i < n; i++) {
         unsigned c = code[i], na = CODE_ARITY(c);
-        TCmd cmd = t->cmd[CODE_SYM(c)];
+        TurtleCommand cmd = t->cmd[CODE_SYM(c)];
         a += na;
         const double *m = a - na;
         if (skip_dead >> cmd & 1) continue;
-        if (cmd == T_POP) break;
-        if (cmd == T_QUERY_P) {
+        if (cmd == TC_POP) break;
+        if (cmd == TC_QUERY_P) {
             query(&t->st, cmd, out + (m - par), (int)na);
             continue;
         }
-        if (cmd != T_QUERY_E || !t->open) return t->open ? (t->open->nlight = nlight, 0) : 0;
-        unsigned kind = env_kind(m, (int)na); /* as query_env */
+        if (cmd != TC_QUERY_E || !t->open) return t->open ? (t->open->nlight = nlight, 0) : 0;
+        unsigned kind = syl_env_kind_bit(m, (int)na); /* as query_env */
         t->open->kinds |= kind;
         if (na < 2 || !kind) continue; /* not answered */
         if (kind != 1 || (size_t)(m - par) >= SYL_LIGHT_TIP) { /* needs the heading, or room */
@@ -902,14 +859,14 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
     t->npend = 0;
     for (size_t i = 0; i < n; i++) { /* t->oom is looked at where memory is taken */
         unsigned c = code[i], na = CODE_ARITY(c);
-        TCmd cmd = cmds[CODE_SYM(c)];
+        TurtleCommand cmd = cmds[CODE_SYM(c)];
         a += na; /* past this module's parameters: they are a[-na .. -1] */
-        if (cmd == T_NONE) continue;
+        if (cmd == TC_NONE) continue;
         const double *m = a - na;
-        if (na && cmd < T_QUERY_P && !all_finite(m, na)) continue;
+        if (na && cmd < TC_QUERY_P && !all_finite(m, na)) continue;
         switch (cmd) {
-        case T_F:
-        case T_G:
+        case TC_F:
+        case TC_G:
             if (npolys) {
                 move_query(t, arg(m, (int)na, 0, t->step));
                 break;
@@ -917,15 +874,15 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
             draw_query(t, arg(m, (int)na, 0, t->step));
             if (t->oom) return SYL_ELIMIT;
             break;
-        case T_f:
-        case T_g: move_query(t, arg(m, (int)na, 0, t->step)); break;
-        case T_LEFT:
-        case T_RIGHT: pend_turn(t, P_HL, cmd == T_RIGHT, argd(m, (int)na, 0, t->angle)); break; /* H toward L */
-        case T_DOWN:
-        case T_UP: pend_turn(t, P_UH, cmd == T_UP, argd(m, (int)na, 0, t->angle)); break; /* H toward -U */
-        case T_ROLL_LEFT:
-        case T_ROLL_RIGHT: pend_turn(t, P_UL, cmd == T_ROLL_RIGHT, argd(m, (int)na, 0, t->angle)); break; /* L toward -U */
-        case T_PUSH: {
+        case TC_f:
+        case TC_g: move_query(t, arg(m, (int)na, 0, t->step)); break;
+        case TC_LEFT:
+        case TC_RIGHT: pend_turn(t, P_HL, cmd == TC_RIGHT, argd(m, (int)na, 0, t->angle)); break; /* H toward L */
+        case TC_DOWN:
+        case TC_UP: pend_turn(t, P_UH, cmd == TC_UP, argd(m, (int)na, 0, t->angle)); break; /* H toward -U */
+        case TC_ROLL_LEFT:
+        case TC_ROLL_RIGHT: pend_turn(t, P_UL, cmd == TC_ROLL_RIGHT, argd(m, (int)na, 0, t->angle)); break; /* L toward -U */
+        case TC_PUSH: {
             size_t end = dead_branch(t, s, par, i, &a, out);
             if (end) {
                 i = end;
@@ -936,21 +893,21 @@ static int run_query(Turtle *t, const SylString *s, double *out) {
             if (t->oom) return SYL_ELIMIT;
             break;
         }
-        case T_POP: pop_query(t); break;
-        case T_CUT: {
+        case TC_POP: pop_query(t); break;
+        case TC_CUT: {
             size_t off = (size_t)(a - par);
             i = branch_end(s, i, &off);
             a = par + off;
             if (i < n) pop_query(t);
             break;
         }
-        case T_POLY_OPEN: npolys++; break;
-        case T_POLY_CLOSE: npolys -= npolys > 0; break;
-        case T_QUERY_P:
+        case TC_POLY_OPEN: npolys++; break;
+        case TC_POLY_CLOSE: npolys -= npolys > 0; break;
+        case TC_QUERY_P:
             pend_tidy(t); /* the position needs no frame */
             query(&t->st, cmd, out + (m - par), (int)na);
             break;
-        case T_QUERY_E:
+        case TC_QUERY_E:
             query_env(t, m, (int)na, (size_t)(m - par));
             if (t->oom) return SYL_ELIMIT;
             break;
@@ -1023,7 +980,7 @@ static int fill(const SylProgram *p, SylString *s, SylEnvFill *env, SylOpenFill 
     if (t->open) t->open->nlight = 0, t->open->kinds = 0;
     resolve_query(t);
     bool any = false;
-    for (int i = 0; i < p->nsyms && i < MAX_SYMBOLS; i++) any |= t->cmd[i] >= T_QUERY_P;
+    for (int i = 0; i < p->nsyms && i < MAX_SYMBOLS; i++) any |= (turtle_command_flags(t->cmd[i]) & TF_QUERY) != 0;
     int status = any ? run_query(t, s, s->par) : SYL_OK;
     release(t);
     free(t);
