@@ -137,6 +137,12 @@ typedef struct SylEnvFill {
 } SylEnvFill;
 /* Answer the probes of one step: SYL_OK, or a SYL_* error (reported by the environment). */
 typedef int (*SylEnvFn)(void *user, int step, const SylEnvFill *fill, double *par);
+/* The kind an ?E module with parameters a[0..na) asks, its first parameter (none: light, 0):
+ * bit k for kind k = 0 light, 1 crowding, 2 distance, 3 sky exposure; 0 for any other. */
+static inline unsigned syl_env_kind_bit(const double *a, int na) {
+    double kind = na ? a[0] : 0;
+    return kind == 0 ? 1u : kind == 1 ? 2u : kind == 2 ? 4u : kind == 3 ? 8u : 0u;
+}
 
 typedef struct SylDeriveOptions {
     int steps;            /* < 0: the model's `derive` */

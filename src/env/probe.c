@@ -9,8 +9,7 @@ unsigned probe_kinds(const SylEnvFill *fill, const double *par) {
     unsigned kinds = 0;
     for (size_t i = 0; i < fill->nprobes; i++) {
         const SylEnvProbe *q = &fill->probes[i];
-        double k = q->na ? par[q->par] : PROBE_LIGHT;
-        if (k >= 0 && k <= PROBE_SKY && k == floor(k)) kinds |= 1u << (int)k;
+        kinds |= syl_env_kind_bit(q->na ? par + q->par : NULL, q->na);
     }
     return kinds;
 }

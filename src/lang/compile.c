@@ -151,12 +151,11 @@ static void apply_consider(Compiler *c, const bool *considered) {
  * and ?E (the environment answers it). */
 static void mark_queries(Compiler *c) {
     SylProgram *p = c->p;
-    static const char *const queries[] = {"?P", "?H", "?L", "?U", "?E"};
-    for (int q = 0; q < 5; q++) {
-        int id = namemap_get(&c->syms, queries[q], -1);
-        if (id >= 0 && c->sym_used[id]) p->uses_queries = true;
-        if (id >= 0 && c->sym_used[id] && q == 4) p->uses_env = true;
-    }
+    for (int s = 0; s < p->nsyms; s++)
+        if (c->sym_used[s] && lang_symbol_is_query(p, s)) {
+            p->uses_queries = true;
+            if (p->syms[s].turtle == TC_QUERY_E) p->uses_env = true;
+        }
 }
 
 static void compile_model(Compiler *c, Model *top, Model *model) {

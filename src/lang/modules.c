@@ -16,6 +16,7 @@ int cc_symbol(Compiler *c, const char *name, SylLoc loc) {
     Symbol *s = VEC_PUSH(&p->arena, p->syms, p->nsyms, p->symcap);
     s->name = arena_strndup(&p->arena, name, strlen(name));
     s->declared_arity = -1;
+    s->turtle = (uint8_t)turtle_command_find(s->name); /* resolved once, here */
     namemap_put(&c->syms, s->name, p->nsyms - 1);
     return p->nsyms - 1;
 }

@@ -7,6 +7,7 @@
 
 #include "../util/arena.h"
 #include "../util/diag.h"
+#include "lang/turtle_commands.h"
 #include "sylva/sylva.h"
 
 /* A module code packs the symbol id (low 11 bits) and the parameter count (high 5 bits):
@@ -25,6 +26,7 @@ typedef struct Symbol {
     const char *name;
     int declared_arity; /* -1: not declared with a parameter list */
     bool declared;
+    uint8_t turtle; /* its TurtleCommand (lang/turtle_commands.h), TC_NONE for others */
     SylLoc decl_loc;
 } Symbol;
 
@@ -174,5 +176,10 @@ struct SylProgram {
     bool colour_set[256];
     uint64_t seed;
 };
+
+/* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */
+static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {
+    return (turtle_command_flags(p->syms[sym].turtle) & TF_QUERY) != 0;
+}
 
 #endif
