@@ -132,7 +132,7 @@ int cli_parse(const CliCommand *cmd, int argc, char **argv, CliArgs *a) {
     shorts[ns++] = HELP;
     shorts[ns] = 0;
     int c;
-    optind = 1;
+    optind = 0; /* glibc: start afresh, forgetting where the last parse stopped inside "-abc" */
     while ((c = getopt_long(argc, argv, shorts, longs, NULL)) != -1) {
         int id = c >= LONG ? c - LONG : 0;
         for (int i = 1; !id && c != HELP && c != '?' && i < CLI_OPT_COUNT; i++)
