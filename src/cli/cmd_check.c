@@ -14,7 +14,10 @@ const CliCommand cli_check_command = {
              "unknown names, rules that can never apply, weights that are not positive, modules,\n"
              "constants and functions that are never used. Exit code 0 when there is no error, 1\n"
              "otherwise (warnings alone do not fail).\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_WERROR}, {0}},
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_WERROR},
+        {0},
+    },
     .width = 11,
     .several = true,
 };

@@ -11,7 +11,11 @@ const CliCommand cli_compile_command = {
     .about = "Compile the model and report errors. With --dump, print the compiled program: modules,\n"
              "settings, parameters, the axiom, every rule's contexts, condition, weight and successor,\n"
              "and the bytecode of each expression.\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_DUMP, .help = ""}, {.option = CLI_OPT_SET, .help = ""}, {0}}, /* the usage line names them */
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_DUMP, .help = ""}, /* no rows: the usage line names them */
+        {.option = CLI_OPT_SET, .help = ""},
+        {0},
+    },
 };
 
 int cmd_compile(int argc, char **argv) {

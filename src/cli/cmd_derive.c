@@ -11,13 +11,15 @@ const CliCommand cli_derive_command = {
     .usage = "sylva derive FILE[:Model] [options]",
     .about = "Derive the model and print the final string in canonical form: modules one after\n"
              "another, parameters in parentheses printed with %g and separated by commas.\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_STEPS},
-                                {.option = CLI_OPT_INTERPRET},
-                                {.option = CLI_OPT_STATS, .help = "print module counts, time and peak memory to stderr"},
-                                {.option = CLI_OPT_QUIET},
-                                {.option = CLI_OPT_OUTPUT},
-                                {.group = cli_derive_uses},
-                                {0}},
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_STEPS},
+        {.option = CLI_OPT_INTERPRET},
+        {.option = CLI_OPT_STATS, .help = "print module counts, time and peak memory to stderr"},
+        {.option = CLI_OPT_QUIET},
+        {.option = CLI_OPT_OUTPUT},
+        {.group = cli_derive_uses},
+        {0},
+    },
     .epilogue = "\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",
 };

@@ -16,19 +16,22 @@ const CliCommand cli_grow_command = {
     .about = "Grow the model's tree year by year (docs/growth.md) — or, for a file with a scene and\n"
              "no Model named, every plant of the scene in one shared environment — and write it.\n"
              "Without -o: DIR/NAME.png and DIR/NAME.glb, as `sylva FILE` does.\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_OUTPUT, .help = "one file, by its extension: .png (picture), .glb .obj .ply\n"
-                                                 "(mesh), .csv .json (skeleton)"},
-                                {.option = CLI_OPT_OUT, .help = "where to write without -o (default: out)"},
-                                {.option = CLI_OPT_YEARS},
-                                {.option = CLI_OPT_SEED, .help = "random seed (a scene: S + the plant's number)"},
-                                {.option = CLI_OPT_SET},
-                                {.option = CLI_OPT_THREADS, .help = "threads (default: all cores); the result never depends on N"},
-                                {.group = cli_grow_limits},
-                                {.group = cli_limits},
-                                {.option = CLI_OPT_VIEW},
-                                {.option = CLI_OPT_SIZE},
-                                {.option = CLI_OPT_STATS, .help = "print counts and the time of every phase to stderr"},
-                                {0}},
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUTPUT,
+         .help = "one file, by its extension: .png (picture), .glb .obj .ply\n"
+                 "(mesh), .csv .json (skeleton)"},
+        {.option = CLI_OPT_OUT, .help = "where to write without -o (default: out)"},
+        {.option = CLI_OPT_YEARS},
+        {.option = CLI_OPT_SEED, .help = "random seed (a scene: S + the plant's number)"},
+        {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_THREADS, .help = "threads (default: all cores); the result never depends on N"},
+        {.group = cli_grow_limits},
+        {.group = cli_limits},
+        {.option = CLI_OPT_VIEW},
+        {.option = CLI_OPT_SIZE},
+        {.option = CLI_OPT_STATS, .help = "print counts and the time of every phase to stderr"},
+        {0},
+    },
     .epilogue = "\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",
 };

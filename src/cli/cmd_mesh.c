@@ -16,15 +16,17 @@ const CliCommand cli_mesh_command = {
              "leaves and polygons as double-sided faces, one material group per colour. The format\n"
              "follows the extension: glTF 2.0 binary (.glb), Wavefront OBJ with NAME.mtl and\n"
              "NAME_bark.png etc. (.obj), or binary PLY (.ply).\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_OUTPUT, .help = "the mesh file (required)"},
-                                {.option = CLI_OPT_SIDES},
-                                {.option = CLI_OPT_MIN_SIDES},
-                                {.option = CLI_OPT_RADIUS},
-                                {.option = CLI_OPT_TIP},
-                                {.option = CLI_OPT_NO_CAPS},
-                                {.option = CLI_OPT_STATS},
-                                {.group = cli_derive_uses},
-                                {0}},
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUTPUT, .help = "the mesh file (required)"},
+        {.option = CLI_OPT_SIDES},
+        {.option = CLI_OPT_MIN_SIDES},
+        {.option = CLI_OPT_RADIUS},
+        {.option = CLI_OPT_TIP},
+        {.option = CLI_OPT_NO_CAPS},
+        {.option = CLI_OPT_STATS},
+        {.group = cli_derive_uses},
+        {0},
+    },
     .epilogue = "\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",
 };

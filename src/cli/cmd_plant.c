@@ -17,12 +17,14 @@ const CliCommand cli_plant_command = {
              "NAME being the file's name without .syl (or Model, for FILE:Model). A grow block is\n"
              "grown (-n: years, at most 10000); a file with a scene, named without :Model, makes the\n"
              "whole scene (docs/growth.md).\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_OUT},
-                                {.option = CLI_OPT_VIEW, .help = "iso, front, side or top (default: chosen from the plant's shape)"},
-                                {.option = CLI_OPT_SIZE},
-                                {.group = cli_derive_uses},
-                                {.group = cli_grow_limits},
-                                {0}},
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUT},
+        {.option = CLI_OPT_VIEW, .help = "iso, front, side or top (default: chosen from the plant's shape)"},
+        {.option = CLI_OPT_SIZE},
+        {.group = cli_derive_uses},
+        {.group = cli_grow_limits},
+        {0},
+    },
     .epilogue = "\n" CLI_EXIT_CODES,
 };
 

@@ -16,18 +16,22 @@ const CliCommand cli_render_command = {
              "with shadows, sky light with ambient occlusion, a grass ground, procedural bark, leaf\n"
              "and flower textures, the camera framed so the plant fills about 80% of the picture.\n"
              "The picture never depends on the number of threads.\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_OUTPUT, .help = "the PNG file (default: the model's name with .png, in the\n"
-                                                 "current directory; - is standard output)"},
-                                {.option = CLI_OPT_VIEW, .help = "iso (from 35 degrees up, 45 around), front (looking along -Z),\n"
-                                               "side (along -X) or top (down from +Y); default: front for a\n"
-                                               "plant drawn in a plane, iso otherwise"},
-                                {.option = CLI_OPT_SIZE, .help = "picture size in pixels, 1 to 16384 each (default 1024x1024)"},
-                                {.option = CLI_OPT_SAMPLES},
-                                {.option = CLI_OPT_AO},
-                                {.option = CLI_OPT_NO_SHADOWS},
-                                {.option = CLI_OPT_STATS},
-                                {.group = cli_derive_uses},
-                                {0}},
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUTPUT,
+         .help = "the PNG file (default: the model's name with .png, in the\n"
+                 "current directory; - is standard output)"},
+        {.option = CLI_OPT_VIEW,
+         .help = "iso (from 35 degrees up, 45 around), front (looking along -Z),\n"
+                 "side (along -X) or top (down from +Y); default: front for a\n"
+                 "plant drawn in a plane, iso otherwise"},
+        {.option = CLI_OPT_SIZE, .help = "picture size in pixels, 1 to 16384 each (default 1024x1024)"},
+        {.option = CLI_OPT_SAMPLES},
+        {.option = CLI_OPT_AO},
+        {.option = CLI_OPT_NO_SHADOWS},
+        {.option = CLI_OPT_STATS},
+        {.group = cli_derive_uses},
+        {0},
+    },
     .epilogue = "\nA progress bar is shown on stderr when it is a terminal and the picture takes more than\n"
                 "a second.\n\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",

@@ -13,12 +13,15 @@ const CliCommand cli_skeleton_command = {
     .about = "Derive the model, apply its `interpret` rules, draw the string with the 3D turtle\n"
              "(docs/turtle.md) and write the skeleton: one row per node (segment ends and roots),\n"
              "then one per organ, with the columns id,parent,x,y,z,radius,order,kind.\n",
-    .options = (const CliUse[]){{.option = CLI_OPT_OUTPUT, .help = "write to FILE: CSV for *.csv, JSON for *.json\n"
-                                                 "(default: CSV on standard output)"},
-                                {.option = CLI_OPT_FORMAT},
-                                {.option = CLI_OPT_STATS, .help = "print counts, bounds and times to stderr"},
-                                {.group = cli_derive_uses},
-                                {0}},
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUTPUT,
+         .help = "write to FILE: CSV for *.csv, JSON for *.json\n"
+                 "(default: CSV on standard output)"},
+        {.option = CLI_OPT_FORMAT},
+        {.option = CLI_OPT_STATS, .help = "print counts, bounds and times to stderr"},
+        {.group = cli_derive_uses},
+        {0},
+    },
     .epilogue = "\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",
 };

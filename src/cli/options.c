@@ -143,8 +143,11 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_DUMP] = {"dump", 0, NULL, "print the compiled program: rules and bytecode", CLI_FLAG, ARGS(dump)},
 };
 
-const CliUse cli_limits[] = {{.option = CLI_OPT_MAX_MEMORY}, {.option = CLI_OPT_MAX_MODULES}, {.option = CLI_OPT_MAX_WORK}, {0}};
+const CliUse cli_limits[] = {
+    {.option = CLI_OPT_MAX_MEMORY}, {.option = CLI_OPT_MAX_MODULES}, {.option = CLI_OPT_MAX_WORK}, {0},
+};
 const CliUse cli_grow_limits[] = {{.option = CLI_OPT_MAX_METAMERS}, {.option = CLI_OPT_MAX_BUDS}, {0}};
 const CliUse cli_derive_uses[] = {
-    {.option = CLI_OPT_DERIVE}, {.option = CLI_OPT_SEED}, {.option = CLI_OPT_SET}, {.option = CLI_OPT_THREADS}, {.group = cli_limits}, {0},
+    {.option = CLI_OPT_DERIVE}, {.option = CLI_OPT_SEED}, {.option = CLI_OPT_SET},
+    {.option = CLI_OPT_THREADS}, {.group = cli_limits}, {0},
 };

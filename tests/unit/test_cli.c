@@ -120,11 +120,11 @@ static void every_option_taken_is_listed_and_parses(void **state) {
             const CliOption *o = &cli_options[id];
             char word[64], buf[64];
             snprintf(word, sizeof word, "--%s", o->name);
-            if (!has_token(help, word)) fail_msg("sylva %s takes %s, which its --help does not name", cmd->name, word);
+            if (!has_token(help, word)) fail_msg("sylva %s takes %s; its --help does not name it", cmd->name, word);
             parses(cmd, word, example(o, buf, sizeof buf));
             if (o->letter) {
                 snprintf(word, sizeof word, "-%c", o->letter);
-                if (!has_token(help, word)) fail_msg("sylva %s takes %s, which its --help does not name", cmd->name, word);
+                if (!has_token(help, word)) fail_msg("sylva %s takes %s; its --help does not name it", cmd->name, word);
                 parses(cmd, word, example(o, buf, sizeof buf));
             }
             n++;
@@ -224,7 +224,8 @@ static void doc_lists(const char *heading, const CliCommand *cmd, const CliUse *
         for (int i = 0; i < n && !found; i++)
             found = names[i][1] == '-' ? !strcmp(names[i] + 2, cli_options[id].name)
                                        : names[i][1] == cli_options[id].letter && !names[i][2];
-        if (!found) fail_msg("docs/cli.md, %s: no row for --%s of sylva %s", heading, cli_options[id].name, cmd->name);
+        if (!found)
+            fail_msg("docs/cli.md, %s: no row for --%s of sylva %s", heading, cli_options[id].name, cmd->name);
     }
 }
 
