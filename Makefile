@@ -89,6 +89,11 @@ $(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva-internal.a
 $(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(BUILD)/libsylva-internal.a $(LDLIBS) -lcmocka
+# test_cli reads the command line's tables: it links the CLI's objects too (not its main).
+$(BUILD)/tests/test_cli: tests/unit/test_cli.c tests/unit/unit.h $(filter-out $(BUILD)/src/cli/main.o,$(CLI_OBJ)) \
+                         $(BUILD)/libsylva-internal.a
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(filter %.o,$^) $(BUILD)/libsylva-internal.a $(LDLIBS) -lcmocka
 units: $(UNIT_BIN)
 
 test-fast: all units

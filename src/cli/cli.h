@@ -4,6 +4,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "cli/options.h"
 #include "sylva/grow.h"
 #include "sylva/mesh.h"
 #include "sylva/plant.h"
@@ -33,39 +34,6 @@ bool cli_integer(const char *opt, const char *arg, double min, double max, doubl
 bool cli_size(const char *opt, const char *arg, unsigned long long *out); /* 512M, 2G */
 SylProgram *cli_compile(ModelArgs *m, int lint, int *status);
 
-/* The resource limits (docs/cli.md, "Resource limits"), each stopping with exit code 3 and a
- * message that names it: CLI_LIMIT_OPTIONS for every command that derives, and
- * CLI_GROW_LIMITS too for those that grow. cli_derive_option applies them all. */
-#define CLI_LIMIT_OPTIONS                                                                      \
-    {"max-modules", required_argument, 0, 'M'}, {"max-memory", required_argument, 0, 'm'},     \
-        {"max-work", required_argument, 0, 'W'}
-#define CLI_GROW_LIMITS {"max-metamers", required_argument, 0, 'T'}, {"max-buds", required_argument, 0, 'B'}
-#define CLI_LIMIT_HELP                                                                         \
-    "  --max-memory SIZE     stop with exit code 3 beyond SIZE of memory for strings, trees,\n" \
-    "                        meshes and pictures, e.g. 2G (default: half the machine's\n"       \
-    "                        memory, at most 16G)\n"                                            \
-    "  --max-modules N       stop with exit code 3 beyond N modules in a string\n"              \
-    "                        (default 200000000)\n"                                             \
-    "  --max-work N          stop with exit code 3 beyond N modules rewritten by all steps\n"   \
-    "                        of a derivation (default 100000000000)\n"
-#define CLI_GROW_LIMIT_HELP                                                                    \
-    "  --max-metamers N      stop with exit code 3 beyond N metamers (default 20000000)\n"      \
-    "  --max-buds N          stop with exit code 3 beyond N buds (default 100000000)\n"
-/* Options of every command that derives a model: -n, --seed, --set, -j and the limits. Put
- * CLI_DERIVE_OPTIONS in the getopt_long table, CLI_DERIVE_SHORT in the short options, and
- * hand every option to cli_derive_option. */
-#define CLI_DERIVE_OPTIONS                                                                     \
-    {"derive", required_argument, 0, 'n'}, {"seed", required_argument, 0, 's'},                \
-        {"set", required_argument, 0, 'S'}, {"threads", required_argument, 0, 'j'}, CLI_LIMIT_OPTIONS
-#define CLI_DERIVE_SHORT "n:j:"
-#define CLI_DERIVE_HELP                                                                        \
-    "  -n, --derive N        derivation steps (default: the model's `derive`)\n"               \
-    "  --seed S              random seed (default: the model's `seed`)\n"                      \
-    "  --set NAME=VALUE      override a `param` of the model (repeatable)\n"                   \
-    "  -j, --threads N       threads (default: all cores); the output never depends on N\n"    \
-    CLI_LIMIT_HELP
-/* 1: c is one of those options and was applied; 0: it is not; -1: bad value (reported). */
-int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d);
 /* A progress bar on stderr, shown only when stderr is a terminal and the work has taken
  * more than a second. */
 typedef struct Progress {
@@ -115,5 +83,12 @@ int cmd_render(int argc, char **argv);
 int cmd_plant(int argc, char **argv); /* sylva FILE */
 int cmd_grow(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+
+/* Each command's options and --help (cli/options.h), beside its cmd_ function. */
+extern const CliCommand cli_derive_command, cli_check_command, cli_compile_command, cli_skeleton_command,
+    cli_mesh_command, cli_render_command, cli_grow_command, cli_compare_command;
+extern const CliCommand cli_plant_command; /* sylva FILE */
+/* The commands, in the order `sylva --help` lists them; NULL ends the list. */
+extern const CliCommand *const cli_commands[];
 
 #endif

@@ -1,47 +1,38 @@
 /* sylva check: report errors and warnings without deriving. */
 #include <errno.h>
-#include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "util/file.h"
+#include "cli/cli.h"
 
-static const char usage[] =
-    "usage: sylva check FILE[:Model]...\n"
-    "\n"
-    "Compile every model of each file (or the one named) and report errors and warnings:\n"
-    "unknown names, rules that can never apply, weights that are not positive, modules,\n"
-    "constants and functions that are never used. Exit code 0 when there is no error, 1\n"
-    "otherwise (warnings alone do not fail).\n"
-    "\n"
-    "  --werror   treat warnings as errors\n";
+const CliCommand cli_check_command = {
+    .name = "check",
+    .what = "report errors and warnings in model files",
+    .run = cmd_check,
+    .usage = "sylva check FILE[:Model]...",
+    .about = "Compile every model of each file (or the one named) and report errors and warnings:\n"
+             "unknown names, rules that can never apply, weights that are not positive, modules,\n"
+             "constants and functions that are never used. Exit code 0 when there is no error, 1\n"
+             "otherwise (warnings alone do not fail).\n",
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_WERROR},
+        {0},
+    },
+    .width = 11,
+    .several = true,
+};
 
 int cmd_check(int argc, char **argv) {
-    static const struct option opts[] = {{"werror", no_argument, 0, 'W'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
-    bool werror = false;
-    int c;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        if (c == 'W') werror = true;
-        else if (c == 'h') {
-            fputs(usage, stdout);
-            return SYL_OK;
-        } else {
-            fputs(usage, stderr);
-            return SYL_EUSAGE;
-        }
-    }
-    if (optind >= argc) {
-        fputs(usage, stderr);
-        return SYL_EUSAGE;
-    }
+    CliArgs a = {0};
+    int done = cli_parse(&cli_check_command, argc, argv, &a);
+    if (done != CLI_RUN) return done;
+    bool werror = a.werror;
     int worst = SYL_OK, models = 0;
-    for (int a = optind; a < argc; a++) {
+    for (int f = 0; f < a.nfiles; f++) {
         ModelArgs m = {0};
-        cli_model_spec(&m, argv[a]);
+        cli_model_spec(&m, a.files[f]);
         size_t len = 0;
-        char *text = file_read(m.path, &len);
+        char *text = syl_read_file(m.path, &len);
         if (!text) {
             fprintf(stderr, "sylva: error: cannot read '%s': %s\n", m.path, strerror(errno));
             worst = SYL_EIO;

@@ -1,39 +1,14 @@
 /* sylva compare: metrics of several models side by side (docs/compare.md). */
-#include <getopt.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
-#include "lineup.h"
+#include "cli/cli.h"
+#include "cli/lineup.h"
 #include "sylva/metrics.h"
 #include "util/json.h"
 
-static const char usage[] =
-    "usage: sylva compare FILE[:Model]... [--csv | --json] [--seeds N] [--image OUT.png] [options]\n"
-    "\n"
-    "Grow every model and print a table of metrics computed from its skeleton, one column per\n"
-    "model and one row per metric (docs/compare.md defines them). The output is the same on\n"
-    "every run and with any number of threads.\n"
-    "\n"
-    "  --csv                 comma-separated values instead of the aligned table\n"
-    "  --json                JSON instead of the aligned table\n"
-    "  -o, --output FILE     write the table to FILE (default: standard output)\n"
-    "  --seeds N             grow each model with N seeds (its seed, +1, +2, ...) and print\n"
-    "                        mean +- sample standard deviation (default 1)\n"
-    "  --image FILE          also render the plants side by side at one scale, with a height\n"
-    "                        ruler, into the PNG FILE (the first seed of each model)\n"
-    "  --size WxH            size of the picture (default 1600x900)\n"
-    "  --view V              iso, front, side or top (default front)\n"
-    CLI_DERIVE_HELP
-    "\n"
-    "--set applies to every model. Metrics:\n";
-
-enum { OPT_CSV = 1000, OPT_JSON, OPT_SEEDS, OPT_IMAGE, OPT_SIZE, OPT_VIEW };
-enum { FORMAT_TEXT, FORMAT_CSV, FORMAT_JSON };
-
-static void print_usage(FILE *out) {
-    fputs(usage, out);
+static void print_metrics(FILE *out) {
     for (int i = 0; i < syl_metric_count; i++) {
         const SylMetricInfo *mi = &syl_metric_info[i];
         char name[64];
@@ -43,6 +18,31 @@ static void print_usage(FILE *out) {
     }
     fputs("\nExit codes: 0 ok, 1 a model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n", out);
 }
+
+const CliCommand cli_compare_command = {
+    .name = "compare",
+    .what = "print a table of metrics of several models; --image draws them side by side",
+    .run = cmd_compare,
+    .usage = "sylva compare FILE[:Model]... [--csv | --json] [--seeds N] [--image OUT.png] [options]",
+    .about = "Grow every model and print a table of metrics computed from its skeleton, one column per\n"
+             "model and one row per metric (docs/compare.md defines them). The output is the same on\n"
+             "every run and with any number of threads.\n",
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_CSV},
+        {.option = CLI_OPT_JSON},
+        {.option = CLI_OPT_OUTPUT, .help = "write the table to FILE (default: standard output)"},
+        {.option = CLI_OPT_SEEDS},
+        {.option = CLI_OPT_IMAGE},
+        {.option = CLI_OPT_SIZE, .help = "size of the picture (default 1600x900)"},
+        {.option = CLI_OPT_VIEW, .help = "iso, front, side or top (default front)"},
+        {.group = cli_derive_uses},
+        {0},
+    },
+    .epilogue = "\n--set applies to every model. Metrics:\n",
+    .more = print_metrics,
+    .several = true,
+    .args_error = "expects one or more model files",
+};
 
 /* One model: its runs' metrics. */
 typedef struct Column {
@@ -366,56 +366,19 @@ static int write_image(const Column *cols, int ncols, const char *path, SylRende
 }
 
 int cmd_compare(int argc, char **argv) {
-    static const struct option opts[] = {
-        CLI_DERIVE_OPTIONS,
-        {"csv", no_argument, 0, OPT_CSV},           {"json", no_argument, 0, OPT_JSON},
-        {"seeds", required_argument, 0, OPT_SEEDS}, {"image", required_argument, 0, OPT_IMAGE},
-        {"size", required_argument, 0, OPT_SIZE},   {"view", required_argument, 0, OPT_VIEW},
-        {"output", required_argument, 0, 'o'},      {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0},
-    };
     ModelArgs m = {0};
     SylDeriveOptions d = {.steps = -1, .diag = stderr};
     SylRenderOptions ro = {.diag = stderr, .view = SYL_VIEW_FRONT, .width = 1600, .height = 900};
-    const char *output = NULL, *image = NULL;
-    int format = FORMAT_TEXT, nruns = 1;
-    double v;
-    int c;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, CLI_DERIVE_SHORT "o:h", opts, NULL)) != -1) {
-        int done = cli_derive_option(c, optarg, &m, &d);
-        if (done < 0) return SYL_EUSAGE;
-        if (done) continue;
-        switch (c) {
-        case OPT_CSV: format = FORMAT_CSV; break;
-        case OPT_JSON: format = FORMAT_JSON; break;
-        case OPT_SEEDS:
-            if (!cli_integer("--seeds", optarg, 1, 10000, &v)) return SYL_EUSAGE;
-            nruns = (int)v;
-            break;
-        case OPT_IMAGE: image = optarg; break;
-        case OPT_SIZE:
-            if (!cli_picture_size(optarg, &ro.width, &ro.height)) return SYL_EUSAGE;
-            break;
-        case OPT_VIEW:
-            if (!cli_view(optarg, &ro.view)) return SYL_EUSAGE;
-            break;
-        case 'o': output = optarg; break;
-        case 'h': print_usage(stdout); return SYL_OK;
-        default: print_usage(stderr); return SYL_EUSAGE;
-        }
-    }
-    int ncols = argc - optind;
-    if (ncols < 1) {
-        fprintf(stderr, "sylva compare: expects one or more model files\n");
-        print_usage(stderr);
-        return SYL_EUSAGE;
-    }
+    CliArgs a = {.m = &m, .d = &d, .ro = &ro, .seeds = 1};
+    int done = cli_parse(&cli_compare_command, argc, argv, &a);
+    if (done != CLI_RUN) return done;
+    const char *output = a.output, *image = a.image;
+    int format = a.format, nruns = a.seeds, ncols = a.nfiles;
     ro.threads = d.threads;
     Column *cols = calloc((size_t)ncols, sizeof *cols);
     int status = cols ? SYL_OK : SYL_ELIMIT;
     for (int i = 0; i < ncols && !status; i++) {
-        cli_model_spec(&cols[i].args, argv[optind + i]);
+        cli_model_spec(&cols[i].args, a.files[i]);
         if (!strcmp(cols[i].args.path, "-")) { /* read more than once: it must be a file */
             fprintf(stderr, "sylva compare: reads models from files, not from standard input\n");
             status = SYL_EUSAGE;
@@ -444,8 +407,8 @@ int cmd_compare(int argc, char **argv) {
         OutFile out; /* after the picture: a table means that everything was done */
         if (!out_open(&out, output)) status = SYL_EIO;
         else {
-            if (format == FORMAT_CSV) write_csv(out.f, cols, ncols, nruns, rows, nrows);
-            else if (format == FORMAT_JSON) write_json(out.f, cols, ncols, nruns, rows, nrows);
+            if (format == CLI_FORMAT_CSV) write_csv(out.f, cols, ncols, nruns, rows, nrows);
+            else if (format == CLI_FORMAT_JSON) write_json(out.f, cols, ncols, nruns, rows, nrows);
             else if (!write_text(out.f, cols, ncols, nruns, rows, nrows)) {
                 fprintf(stderr, "sylva: error: out of memory\n");
                 status = SYL_ELIMIT;

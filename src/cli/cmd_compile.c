@@ -1,42 +1,32 @@
 /* sylva compile: compile a model; --dump shows what each rule became. */
-#include <getopt.h>
 #include <stdlib.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 
-static const char usage[] =
-    "usage: sylva compile FILE[:Model] [--dump] [--set NAME=VALUE]...\n"
-    "\n"
-    "Compile the model and report errors. With --dump, print the compiled program: modules,\n"
-    "settings, parameters, the axiom, every rule's contexts, condition, weight and successor,\n"
-    "and the bytecode of each expression.\n";
+const CliCommand cli_compile_command = {
+    .name = "compile",
+    .what = "compile a model; --dump prints rules and bytecode",
+    .run = cmd_compile,
+    .usage = "sylva compile FILE[:Model] [--dump] [--set NAME=VALUE]...",
+    .about = "Compile the model and report errors. With --dump, print the compiled program: modules,\n"
+             "settings, parameters, the axiom, every rule's contexts, condition, weight and successor,\n"
+             "and the bytecode of each expression.\n",
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_DUMP, .help = ""}, /* no rows: the usage line names them */
+        {.option = CLI_OPT_SET, .help = ""},
+        {0},
+    },
+};
 
 int cmd_compile(int argc, char **argv) {
-    static const struct option opts[] = {
-        {"dump", no_argument, 0, 'd'}, {"set", required_argument, 0, 'S'}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0}};
     ModelArgs m = {0};
-    int dump = 0, c;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-        if (c == 'd') dump = 1;
-        else if (c == 'S') {
-            if (!cli_set(&m, optarg)) return SYL_EUSAGE;
-        } else if (c == 'h') {
-            fputs(usage, stdout);
-            return SYL_OK;
-        } else {
-            fputs(usage, stderr);
-            return SYL_EUSAGE;
-        }
-    }
-    if (optind != argc - 1) {
-        fputs(usage, stderr);
-        return SYL_EUSAGE;
-    }
-    cli_model_spec(&m, argv[optind]);
+    CliArgs a = {.m = &m};
+    int done = cli_parse(&cli_compile_command, argc, argv, &a);
+    if (done != CLI_RUN) return done;
+    cli_model_spec(&m, a.files[0]);
     int status;
     SylProgram *p = cli_compile(&m, 0, &status);
-    if (p && dump) syl_program_dump(p, stdout);
+    if (p && a.dump) syl_program_dump(p, stdout);
     syl_program_free(p);
     return p ? SYL_OK : status;
 }

@@ -1,24 +1,28 @@
 /* sylva derive: print the derived string. */
-#include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 
-static const char usage[] =
-    "usage: sylva derive FILE[:Model] [options]\n"
-    "\n"
-    "Derive the model and print the final string in canonical form: modules one after\n"
-    "another, parameters in parentheses printed with %g and separated by commas.\n"
-    "\n"
-    "  --steps               print every step on its own line, step 0 being the axiom\n"
-    "  --interpret           apply the model's `interpret` rules before printing\n"
-    "  --stats               print module counts, time and peak memory to stderr\n"
-    "  -q, --quiet           do not print the string (with --stats: figures only)\n"
-    "  -o, --output FILE     write to FILE instead of standard output\n"
-    CLI_DERIVE_HELP
-    "\n"
-    "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n";
+const CliCommand cli_derive_command = {
+    .name = "derive",
+    .what = "derive a model and print the resulting string",
+    .run = cmd_derive,
+    .usage = "sylva derive FILE[:Model] [options]",
+    .about = "Derive the model and print the final string in canonical form: modules one after\n"
+             "another, parameters in parentheses printed with %g and separated by commas.\n",
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_STEPS},
+        {.option = CLI_OPT_INTERPRET},
+        {.option = CLI_OPT_STATS, .help = "print module counts, time and peak memory to stderr"},
+        {.option = CLI_OPT_QUIET},
+        {.option = CLI_OPT_OUTPUT},
+        {.group = cli_derive_uses},
+        {0},
+    },
+    .epilogue = "\n" CLI_EXIT_CODES,
+    .args_error = "expects one model file",
+};
 
 typedef struct StepPrinter {
     const SylProgram *p;
@@ -53,42 +57,18 @@ static void print_stats(const SylProgram *p, const SylString *s, int steps, doub
 }
 
 int cmd_derive(int argc, char **argv) {
-    static const struct option opts[] = {
-        CLI_DERIVE_OPTIONS,
-        {"steps", no_argument, 0, 'A'},           {"interpret", no_argument, 0, 'I'},
-        {"stats", no_argument, 0, 't'},           {"output", required_argument, 0, 'o'},
-        {"quiet", no_argument, 0, 'q'},           {"help", no_argument, 0, 'h'},
-        {0, 0, 0, 0},
-    };
     ModelArgs m = {0};
     SylDeriveOptions d = {.steps = -1, .diag = stderr};
-    const char *output = NULL;
-    bool all_steps = false, interpret = false, stats = false, quiet = false;
-    int c;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, CLI_DERIVE_SHORT "o:qh", opts, NULL)) != -1) {
-        int done = cli_derive_option(c, optarg, &m, &d);
-        if (done < 0) return SYL_EUSAGE;
-        if (done) continue;
-        switch (c) {
-        case 'A': all_steps = true; break;
-        case 'I': interpret = true; break;
-        case 't': stats = true; break;
-        case 'q': quiet = true; break;
-        case 'o': output = optarg; break;
-        case 'h': fputs(usage, stdout); return SYL_OK;
-        default: fputs(usage, stderr); return SYL_EUSAGE;
-        }
-    }
-    if (optind != argc - 1) {
-        fprintf(stderr, "sylva derive: expects one model file\n%s", usage);
-        return SYL_EUSAGE;
-    }
+    CliArgs a = {.m = &m, .d = &d};
+    int done = cli_parse(&cli_derive_command, argc, argv, &a);
+    if (done != CLI_RUN) return done;
+    const char *output = a.output;
+    bool all_steps = a.steps, interpret = a.interpret, stats = a.stats, quiet = a.quiet;
     if (all_steps && interpret) {
         fprintf(stderr, "sylva derive: --steps and --interpret do not go together\n");
         return SYL_EUSAGE;
     }
-    cli_model_spec(&m, argv[optind]);
+    cli_model_spec(&m, a.files[0]);
     int status;
     SylProgram *p = cli_compile(&m, 0, &status);
     if (!p) return status;

@@ -1,38 +1,40 @@
 /* sylva grow: grow a self-organizing tree (a `grow` block) or a file's scene, and write a
  * picture, a mesh or a skeleton of it; --stats times every phase. */
 #include <errno.h>
-#include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 
-static const char usage[] =
-    "usage: sylva grow FILE[:Model] [options]\n"
-    "\n"
-    "Grow the model's tree year by year (docs/growth.md) — or, for a file with a scene and\n"
-    "no Model named, every plant of the scene in one shared environment — and write it.\n"
-    "Without -o: DIR/NAME.png and DIR/NAME.glb, as `sylva FILE` does.\n"
-    "\n"
-    "  -o, --output FILE     one file, by its extension: .png (picture), .glb .obj .ply\n"
-    "                        (mesh), .csv .json (skeleton)\n"
-    "  --out DIR             where to write without -o (default: out)\n"
-    "  --years N             years to grow (default: the model's `years`; a scene: each\n"
-    "                        plant's)\n"
-    "  --seed S              random seed (a scene: S + the plant's number)\n"
-    "  --set NAME=VALUE      override a `param` of the model (repeatable)\n"
-    "  -j, --threads N       threads (default: all cores); the result never depends on N\n"
-    CLI_GROW_LIMIT_HELP
-    CLI_LIMIT_HELP
-    "  --view V              iso, front, side or top (default: chosen from the shape)\n"
-    "  --size WxH            picture size (default 1024x1024)\n"
-    "  --stats               print counts and the time of every phase to stderr\n"
-    "\n"
-    "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n";
-
-enum { OPT_OUT = 1000, OPT_YEARS, OPT_VIEW, OPT_SIZE, OPT_STATS };
+const CliCommand cli_grow_command = {
+    .name = "grow",
+    .what = "grow a self-organizing tree or a scene; picture, mesh or skeleton",
+    .run = cmd_grow,
+    .usage = "sylva grow FILE[:Model] [options]",
+    .about = "Grow the model's tree year by year (docs/growth.md) — or, for a file with a scene and\n"
+             "no Model named, every plant of the scene in one shared environment — and write it.\n"
+             "Without -o: DIR/NAME.png and DIR/NAME.glb, as `sylva FILE` does.\n",
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUTPUT,
+         .help = "one file, by its extension: .png (picture), .glb .obj .ply\n"
+                 "(mesh), .csv .json (skeleton)"},
+        {.option = CLI_OPT_OUT, .help = "where to write without -o (default: out)"},
+        {.option = CLI_OPT_YEARS},
+        {.option = CLI_OPT_SEED, .help = "random seed (a scene: S + the plant's number)"},
+        {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_THREADS, .help = "threads (default: all cores); the result never depends on N"},
+        {.group = cli_grow_limits},
+        {.group = cli_limits},
+        {.option = CLI_OPT_VIEW},
+        {.option = CLI_OPT_SIZE},
+        {.option = CLI_OPT_STATS, .help = "print counts and the time of every phase to stderr"},
+        {0},
+    },
+    .epilogue = "\n" CLI_EXIT_CODES,
+    .args_error = "expects one model file",
+};
 
 typedef enum { W_DEFAULT, W_PNG, W_MESH, W_CSV, W_JSON } What;
 
@@ -80,51 +82,14 @@ static int render(const Plant *pl, SylRenderOptions *ro, const char *path) {
 }
 
 int cmd_grow(int argc, char **argv) {
-    static const struct option opts[] = {
-        {"output", required_argument, 0, 'o'},   {"out", required_argument, 0, OPT_OUT},
-        {"years", required_argument, 0, OPT_YEARS}, {"seed", required_argument, 0, 's'},
-        {"set", required_argument, 0, 'S'},      {"threads", required_argument, 0, 'j'},
-        CLI_LIMIT_OPTIONS,                       CLI_GROW_LIMITS,
-        {"view", required_argument, 0, OPT_VIEW},
-        {"size", required_argument, 0, OPT_SIZE}, {"stats", no_argument, 0, OPT_STATS},
-        {"help", no_argument, 0, 'h'},           {0, 0, 0, 0},
-    };
     ModelArgs m = {0};
     SylDeriveOptions d = {.steps = -1, .diag = stderr};
     SylRenderOptions ro = {.diag = stderr, .view = SYL_VIEW_AUTO};
-    const char *output = NULL, *dir = "out";
-    bool stats = false;
-    double v;
-    int c;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, "o:j:h", opts, NULL)) != -1) {
-        if (c != 'n') { /* grow counts years with --years */
-            int done = cli_derive_option(c, optarg, &m, &d);
-            if (done < 0) return SYL_EUSAGE;
-            if (done) continue;
-        }
-        switch (c) {
-        case 'o': output = optarg; break;
-        case OPT_OUT: dir = optarg; break;
-        case OPT_YEARS:
-            if (!cli_integer("--years", optarg, 0, SYL_GROW_MAX_YEARS, &v)) return SYL_EUSAGE;
-            d.steps = (int)v;
-            break;
-        case OPT_VIEW:
-            if (!cli_view(optarg, &ro.view)) return SYL_EUSAGE;
-            break;
-        case OPT_SIZE:
-            if (!cli_picture_size(optarg, &ro.width, &ro.height)) return SYL_EUSAGE;
-            break;
-        case OPT_STATS: stats = true; break;
-        case 'h': fputs(usage, stdout); return SYL_OK;
-        default: fputs(usage, stderr); return SYL_EUSAGE;
-        }
-    }
-    if (optind != argc - 1) {
-        fprintf(stderr, "sylva grow: expects one model file\n%s", usage);
-        return SYL_EUSAGE;
-    }
+    CliArgs a = {.m = &m, .d = &d, .ro = &ro, .dir = "out"};
+    int done = cli_parse(&cli_grow_command, argc, argv, &a);
+    if (done != CLI_RUN) return done;
+    const char *output = a.output, *dir = a.dir;
+    bool stats = a.stats;
     What what = output ? what_of(output) : W_DEFAULT;
     if (output && what == W_DEFAULT) {
         fprintf(stderr, "sylva: error: cannot tell the format of '%s': name it *.png, *.glb, *.obj, *.ply, *.csv "
@@ -135,7 +100,7 @@ int cmd_grow(int argc, char **argv) {
         fprintf(stderr, "sylva: error: cannot make the directory '%s': %s\n", dir, strerror(errno));
         return SYL_EIO;
     }
-    cli_model_spec(&m, argv[optind]);
+    cli_model_spec(&m, a.files[0]);
     SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
     d.budget = budget;
     SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};

@@ -1,69 +1,46 @@
 /* sylva FILE: the one-command way — write out/NAME.png and out/NAME.glb. */
 #include <errno.h>
-#include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 #include "sylva/render.h"
 
-static const char usage[] =
-    "usage: sylva FILE[:Model] [options]\n"
-    "\n"
-    "Derive the model, draw it, and write a picture and a mesh of it: DIR/NAME.png\n"
-    "(1024x1024, as `sylva render` makes it) and DIR/NAME.glb (as `sylva mesh` makes it),\n"
-    "NAME being the file's name without .syl (or Model, for FILE:Model). A grow block is\n"
-    "grown (-n: years, at most 10000); a file with a scene, named without :Model, makes the\n"
-    "whole scene (docs/growth.md).\n"
-    "\n"
-    "  --out DIR             where to write (default: out)\n"
-    "  --view V              iso, front, side or top (default: chosen from the plant's shape)\n"
-    "  --size WxH            picture size (default 1024x1024)\n"
-    CLI_DERIVE_HELP
-    CLI_GROW_LIMIT_HELP
-    "\n"
-    "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n";
-
-enum { OPT_OUT = 1000, OPT_VIEW, OPT_SIZE };
+const CliCommand cli_plant_command = {
+    .name = "FILE",
+    .what = "write out/NAME.png and out/NAME.glb",
+    .run = cmd_plant,
+    .usage = "sylva FILE[:Model] [options]",
+    .about = "Derive the model, draw it, and write a picture and a mesh of it: DIR/NAME.png\n"
+             "(1024x1024, as `sylva render` makes it) and DIR/NAME.glb (as `sylva mesh` makes it),\n"
+             "NAME being the file's name without .syl (or Model, for FILE:Model). A grow block is\n"
+             "grown (-n: years, at most 10000); a file with a scene, named without :Model, makes the\n"
+             "whole scene (docs/growth.md).\n",
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUT},
+        {.option = CLI_OPT_VIEW, .help = "iso, front, side or top (default: chosen from the plant's shape)"},
+        {.option = CLI_OPT_SIZE},
+        {.group = cli_derive_uses},
+        {.group = cli_grow_limits},
+        {0},
+    },
+    .epilogue = "\n" CLI_EXIT_CODES,
+};
 
 int cmd_plant(int argc, char **argv) {
-    static const struct option opts[] = {
-        CLI_DERIVE_OPTIONS, CLI_GROW_LIMITS,
-        {"out", required_argument, 0, OPT_OUT}, {"view", required_argument, 0, OPT_VIEW},
-        {"size", required_argument, 0, OPT_SIZE}, {"help", no_argument, 0, 'h'}, {0, 0, 0, 0},
-    };
     ModelArgs m = {0};
     SylDeriveOptions d = {.steps = -1, .diag = stderr};
     SylRenderOptions ro = {.diag = stderr, .view = SYL_VIEW_AUTO};
-    const char *dir = "out";
-    int c;
-    optind = 1;
-    while ((c = getopt_long(argc, argv, CLI_DERIVE_SHORT "h", opts, NULL)) != -1) {
-        int done = cli_derive_option(c, optarg, &m, &d);
-        if (done < 0) return SYL_EUSAGE;
-        if (done) continue;
-        switch (c) {
-        case OPT_OUT: dir = optarg; break;
-        case OPT_VIEW:
-            if (!cli_view(optarg, &ro.view)) return SYL_EUSAGE;
-            break;
-        case OPT_SIZE:
-            if (!cli_picture_size(optarg, &ro.width, &ro.height)) return SYL_EUSAGE;
-            break;
-        case 'h': fputs(usage, stdout); return SYL_OK;
-        default: fputs(usage, stderr); return SYL_EUSAGE;
-        }
-    }
-    if (optind != argc - 1) {
-        fputs(usage, stderr);
-        return SYL_EUSAGE;
-    }
+    CliArgs a = {.m = &m, .d = &d, .ro = &ro, .dir = "out"};
+    int done = cli_parse(&cli_plant_command, argc, argv, &a);
+    if (done != CLI_RUN) return done;
+    const char *dir = a.dir;
     if (mkdir(dir, 0777) && errno != EEXIST) {
         fprintf(stderr, "sylva: error: cannot make the directory '%s': %s\n", dir, strerror(errno));
         return SYL_EIO;
     }
-    cli_model_spec(&m, argv[optind]);
+    cli_model_spec(&m, a.files[0]);
     SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
     d.budget = budget;
     SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};

@@ -7,7 +7,7 @@
 #include <time.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 
 void cli_model_spec(ModelArgs *m, const char *spec) {
     struct stat st;
@@ -108,48 +108,6 @@ SylProgram *cli_compile(ModelArgs *m, int lint, int *status) {
     SylCompileOptions opt = {.model = m->model, .overrides = m->sets, .noverrides = m->nsets,
                              .diag = stderr, .lint = lint, .validate = syl_grow_validate};
     return syl_compile(m->path, NULL, 0, &opt, status);
-}
-
-int cli_derive_option(int c, char *arg, ModelArgs *m, SylDeriveOptions *d) {
-    double v;
-    unsigned long long size;
-    switch (c) {
-    case 'n':
-        if (!cli_integer("-n", arg, 0, 1e6, &v)) return -1;
-        d->steps = (int)v;
-        return 1;
-    case 's':
-        if (!cli_integer("--seed", arg, 0, 9007199254740991.0, &v)) return -1;
-        d->use_seed = 1;
-        d->seed = (uint64_t)v;
-        return 1;
-    case 'S': return cli_set(m, arg) ? 1 : -1;
-    case 'j':
-        if (!cli_integer("-j", arg, 1, 256, &v)) return -1;
-        d->threads = (int)v;
-        return 1;
-    case 'M':
-        if (!cli_integer("--max-modules", arg, 1, 2147483647.0, &v)) return -1;
-        d->max_modules = (uint64_t)v;
-        return 1;
-    case 'm':
-        if (!cli_size("--max-memory", arg, &size)) return -1;
-        d->max_memory = size;
-        return 1;
-    case 'W':
-        if (!cli_integer("--max-work", arg, 1, 1e18, &v)) return -1;
-        d->max_work = (uint64_t)v;
-        return 1;
-    case 'T':
-        if (!cli_integer("--max-metamers", arg, 1, 4e9, &v)) return -1;
-        m->max_metamers = (uint64_t)v;
-        return 1;
-    case 'B':
-        if (!cli_integer("--max-buds", arg, 1, 4e9, &v)) return -1;
-        m->max_buds = (uint64_t)v;
-        return 1;
-    default: return 0;
-    }
 }
 
 void cli_progress_start(Progress *p, const char *label) {

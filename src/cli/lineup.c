@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lineup.h"
+#include "cli/lineup.h"
 
 typedef struct Box {
     float lo[3], hi[3];

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cli.h"
+#include "cli/cli.h"
 
 /* The named temporary files of this run (util/outfile reports them), removed when SIGINT,
  * SIGTERM or SIGHUP stops it. A slot's path is written before it is marked live, so the
@@ -57,26 +57,10 @@ static void install_signals(void) {
     signal(SIGXFSZ, SIG_IGN);
 }
 
-static const struct {
-    const char *name;
-    int (*run)(int, char **);
-    const char *what;
-} commands[] = {
-    {"derive", cmd_derive, "derive a model and print the resulting string"},
-    {"check", cmd_check, "report errors and warnings in model files"},
-    {"compile", cmd_compile, "compile a model; --dump prints rules and bytecode"},
-    {"skeleton", cmd_skeleton, "draw a model with the turtle and export its skeleton (CSV, JSON)"},
-    {"mesh", cmd_mesh, "draw a model and write a triangle mesh (.glb, .obj, .ply)"},
-    {"render", cmd_render, "draw a model and ray-trace a PNG picture of it"},
-    {"grow", cmd_grow, "grow a self-organizing tree or a scene; picture, mesh or skeleton"},
-    {"compare", cmd_compare, "print a table of metrics of several models; --image draws them side by side"},
-};
-
 static void help(FILE *out) {
     fprintf(out, "usage: sylva COMMAND [options]\n\nSylva %s: plant models from grammar files.\n\ncommands:\n",
             SYLVA_VERSION);
-    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-        fprintf(out, "  %-9s %s\n", commands[i].name, commands[i].what);
+    for (const CliCommand *const *c = cli_commands; *c; c++) fprintf(out, "  %-9s %s\n", (*c)->name, (*c)->what);
     fprintf(out, "\n`sylva FILE` alone writes out/NAME.png and out/NAME.glb (see `sylva FILE --help`).\n"
                  "`sylva COMMAND --help` describes a command. A model is named FILE or FILE:Model\n"
                  "when a file holds several. Exit codes: 0 ok, 1 the model is wrong, 2 bad command\n"
@@ -92,10 +76,10 @@ int main(int argc, char **argv) {
     const char *cmd = argv[1];
     if (!strcmp(cmd, "--help") || !strcmp(cmd, "-h") || !strcmp(cmd, "help")) {
         if (argc > 2 && strcmp(cmd, "help") == 0)
-            for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-                if (!strcmp(commands[i].name, argv[2])) {
+            for (const CliCommand *const *c = cli_commands; *c; c++)
+                if (!strcmp((*c)->name, argv[2])) {
                     char *args[] = {argv[2], "--help", NULL};
-                    return commands[i].run(2, args);
+                    return (*c)->run(2, args);
                 }
         help(stdout);
         return SYL_OK;
@@ -104,12 +88,12 @@ int main(int argc, char **argv) {
         printf("sylva %s\n", SYLVA_VERSION);
         return SYL_OK;
     }
-    for (size_t i = 0; i < sizeof commands / sizeof *commands; i++)
-        if (!strcmp(commands[i].name, cmd)) {
+    for (const CliCommand *const *c = cli_commands; *c; c++)
+        if (!strcmp((*c)->name, cmd)) {
             char name[64]; /* getopt's messages begin with argv[0]: "sylva derive: ..." */
             snprintf(name, sizeof name, "sylva %s", cmd);
             argv[1] = name;
-            return commands[i].run(argc - 1, argv + 1);
+            return (*c)->run(argc - 1, argv + 1);
         }
     ModelArgs m; /* `sylva FILE[:Model]`: a picture and a mesh in out/ */
     cli_model_spec(&m, cmd);

@@ -113,14 +113,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         (void)cli_view(argv[i], &view);
         cli_model_spec(&m, argv[i]);
         (void)cli_set(&m, copy);
-        for (const char *c = "nsjMm"; *c; c++) {
+        SylMeshOptions mo = {0};
+        SylRenderOptions ro = {0};
+        CliArgs a = {.m = &m, .d = &d, .mo = &mo, .ro = &ro};
+        for (int o = 1; o < CLI_OPT_COUNT; o++) { /* every option's reader */
             snprintf(copy, sizeof copy, "%s", argv[i]);
-            (void)cli_derive_option(*c, copy, &m, &d);
+            (void)cli_apply((CliOptionId)o, cli_options[o].arg ? copy : NULL, &a);
         }
     }
     /* the command itself */
-    /* Start getopt afresh, as a new process would: the commands set optind = 1, which keeps
-     * glibc's pointer into the last input's arguments when they stopped inside "-abc". */
+    /* Start getopt afresh, as a new process would (cli_parse does too, with optind = 0: 1 would
+     * keep glibc's pointer into the last input's arguments when they stopped inside "-abc"). */
     optind = 0;
     char *dummy[] = {"sylva", NULL};
     (void)getopt(1, dummy, "");

@@ -1,0 +1,153 @@
+/* Every option of `sylva`: its names, its help row and what it sets (cli/options.h). */
+#include <stddef.h>
+#include <string.h>
+
+#include "cli/cli.h"
+
+static bool read_seed(CliArgs *a, char *arg) {
+    double v;
+    if (!cli_integer("--seed", arg, 0, 9007199254740991.0, &v)) return false;
+    a->d->use_seed = 1;
+    a->d->seed = (uint64_t)v;
+    return true;
+}
+
+static bool read_set(CliArgs *a, char *arg) { return cli_set(a->m, arg); }
+static bool read_view(CliArgs *a, char *arg) { return cli_view(arg, &a->ro->view); }
+static bool read_size(CliArgs *a, char *arg) { return cli_picture_size(arg, &a->ro->width, &a->ro->height); }
+
+static bool read_ao(CliArgs *a, char *arg) {
+    double v;
+    if (!cli_integer("--ao", arg, 0, 64, &v)) return false;
+    a->ro->ao_samples = v > 0 ? (int)v : -1; /* 0 is the mesher's default: -1 is none */
+    return true;
+}
+
+static bool read_radius(CliArgs *a, char *arg) {
+    SylMeshOptions *mo = a->mo;
+    if (!strcmp(arg, "model")) {
+        mo->radius = SYL_RADIUS_MODEL;
+        return true;
+    }
+    if (!strncmp(arg, "pipe", 4) && (!arg[4] || arg[4] == ':')) {
+        mo->radius = SYL_RADIUS_PIPE;
+        double v;
+        if (arg[4] == ':') {
+            if (!cli_number("--radius pipe:", arg + 5, 0.5, 10, &v)) return false;
+            mo->pipe_exponent = (float)v;
+        }
+        return true;
+    }
+    fprintf(stderr, "sylva: error: --radius expects model, pipe or pipe:EXPONENT, not '%s'\n", arg);
+    return false;
+}
+
+int cli_format_named(const char *name) {
+    if (!strcmp(name, "csv")) return CLI_FORMAT_CSV;
+    if (!strcmp(name, "json")) return CLI_FORMAT_JSON;
+    return CLI_FORMAT_NONE;
+}
+
+static bool read_format(CliArgs *a, char *arg) {
+    a->format = cli_format_named(arg);
+    if (a->format) return true;
+    fprintf(stderr, "sylva: error: --format expects csv or json, not '%s'\n", arg);
+    return false;
+}
+
+#define IN(where, type, member) .in = CLI_IN_##where, .at = offsetof(type, member)
+#define ARGS(member) IN(ARGS, CliArgs, member)
+#define DERIVE(member) IN(DERIVE, SylDeriveOptions, member)
+#define MODEL(member) IN(MODEL, ModelArgs, member)
+#define MESH(member) IN(MESH, SylMeshOptions, member)
+#define RENDER(member) IN(RENDER, SylRenderOptions, member)
+
+const CliOption cli_options[CLI_OPT_COUNT] = {
+    /* what is derived or grown, and the limits that stop it */
+    [CLI_OPT_DERIVE] = {"derive", 'n', "N", "derivation steps (default: the model's `derive`)",
+                        CLI_INT, DERIVE(steps), 0, 1e6},
+    [CLI_OPT_SEED] = {"seed", 0, "S", "random seed (default: the model's `seed`)", CLI_READ, .read = read_seed},
+    [CLI_OPT_SET] = {"set", 0, "NAME=VALUE", "override a `param` of the model (repeatable)", CLI_READ,
+                     .read = read_set},
+    [CLI_OPT_THREADS] = {"threads", 'j', "N", "threads (default: all cores); the output never depends on N",
+                         CLI_INT, DERIVE(threads), 1, 256},
+    [CLI_OPT_MAX_MODULES] = {"max-modules", 0, "N",
+                             "stop with exit code 3 beyond N modules in a string\n"
+                             "(default 200000000)",
+                             CLI_COUNT, DERIVE(max_modules), 1, 2147483647.0},
+    [CLI_OPT_MAX_MEMORY] = {"max-memory", 0, "SIZE",
+                            "stop with exit code 3 beyond SIZE of memory for strings, trees,\n"
+                            "meshes and pictures, e.g. 2G (default: half the machine's\n"
+                            "memory, at most 16G)",
+                            CLI_SIZE, DERIVE(max_memory)},
+    [CLI_OPT_MAX_WORK] = {"max-work", 0, "N",
+                          "stop with exit code 3 beyond N modules rewritten by all steps\n"
+                          "of a derivation (default 100000000000)",
+                          CLI_COUNT, DERIVE(max_work), 1, 1e18},
+    [CLI_OPT_MAX_METAMERS] = {"max-metamers", 0, "N", "stop with exit code 3 beyond N metamers (default 20000000)",
+                              CLI_COUNT, MODEL(max_metamers), 1, 4e9},
+    [CLI_OPT_MAX_BUDS] = {"max-buds", 0, "N", "stop with exit code 3 beyond N buds (default 100000000)",
+                          CLI_COUNT, MODEL(max_buds), 1, 4e9},
+    [CLI_OPT_YEARS] = {"years", 0, "N",
+                       "years to grow (default: the model's `years`; a scene: each\n"
+                       "plant's)",
+                       CLI_INT, DERIVE(steps), 0, SYL_GROW_MAX_YEARS},
+    [CLI_OPT_SEEDS] = {"seeds", 0, "N",
+                       "grow each model with N seeds (its seed, +1, +2, ...) and print\n"
+                       "mean +- sample standard deviation (default 1)",
+                       CLI_INT, ARGS(seeds), 1, 10000},
+    /* what is written */
+    [CLI_OPT_OUTPUT] = {"output", 'o', "FILE", "write to FILE instead of standard output", CLI_TEXT, ARGS(output)},
+    [CLI_OPT_OUT] = {"out", 0, "DIR", "where to write (default: out)", CLI_TEXT, ARGS(dir)},
+    [CLI_OPT_IMAGE] = {"image", 0, "FILE",
+                       "also render the plants side by side at one scale, with a height\n"
+                       "ruler, into the PNG FILE (the first seed of each model)",
+                       CLI_TEXT, ARGS(image)},
+    [CLI_OPT_FORMAT] = {"format", 0, "csv|json", "the format, whatever the file name", CLI_READ, .read = read_format},
+    [CLI_OPT_CSV] = {"csv", 0, NULL, "comma-separated values instead of the aligned table", CLI_CHOICE, ARGS(format),
+                     .value = CLI_FORMAT_CSV},
+    [CLI_OPT_JSON] = {"json", 0, NULL, "JSON instead of the aligned table", CLI_CHOICE, ARGS(format),
+                      .value = CLI_FORMAT_JSON},
+    [CLI_OPT_STEPS] = {"steps", 0, NULL, "print every step on its own line, step 0 being the axiom", CLI_FLAG,
+                       ARGS(steps)},
+    [CLI_OPT_INTERPRET] = {"interpret", 0, NULL, "apply the model's `interpret` rules before printing", CLI_FLAG,
+                           ARGS(interpret)},
+    [CLI_OPT_QUIET] = {"quiet", 'q', NULL, "do not print the string (with --stats: figures only)", CLI_FLAG,
+                       ARGS(quiet)},
+    /* the picture */
+    [CLI_OPT_VIEW] = {"view", 0, "V", "iso, front, side or top (default: chosen from the shape)", CLI_READ,
+                      .read = read_view},
+    [CLI_OPT_SIZE] = {"size", 0, "WxH", "picture size (default 1024x1024)", CLI_READ, .read = read_size},
+    [CLI_OPT_SAMPLES] = {"samples", 0, "N", "anti-aliasing samples per pixel, 1 to 64 (default 4)", CLI_INT,
+                         RENDER(samples), 1, 64},
+    [CLI_OPT_AO] = {"ao", 0, "N", "ambient occlusion rays per pixel, 0 (none) to 64 (default 8)", CLI_READ,
+                    .read = read_ao},
+    [CLI_OPT_NO_SHADOWS] = {"no-shadows", 0, NULL, "no sun shadows", CLI_CHOICE, RENDER(shadows), .value = -1},
+    /* the mesh */
+    [CLI_OPT_SIDES] = {"sides", 0, "N",
+                       "sides around the thickest branch, 3 to 256 (default 8);\n"
+                       "thinner ones get fewer, down to --min-sides (default 3)",
+                       CLI_INT, MESH(sides), 3, 256},
+    [CLI_OPT_MIN_SIDES] = {"min-sides", 0, "N", "the fewest sides of a thin branch", CLI_INT, MESH(min_sides), 3,
+                           256},
+    [CLI_OPT_RADIUS] = {"radius", 0, "model|pipe[:EXP]",
+                        "branch radii: the model's widths (default), or the pipe model\n"
+                        "r^EXP = sum of the children's r^EXP (EXP default 2)",
+                        CLI_READ, .read = read_radius},
+    [CLI_OPT_TIP] = {"tip", 0, "R", "pipe model: the radius of a tip (default: the model's mean)", CLI_REAL,
+                     MESH(tip_radius), 1e-9, 1e9},
+    [CLI_OPT_NO_CAPS] = {"no-caps", 0, NULL, "leave the ends of the tubes open", CLI_CHOICE, MESH(caps), .value = -1},
+    /* the rest */
+    [CLI_OPT_STATS] = {"stats", 0, NULL, "print counts and times to stderr", CLI_FLAG, ARGS(stats)},
+    [CLI_OPT_WERROR] = {"werror", 0, NULL, "treat warnings as errors", CLI_FLAG, ARGS(werror)},
+    [CLI_OPT_DUMP] = {"dump", 0, NULL, "print the compiled program: rules and bytecode", CLI_FLAG, ARGS(dump)},
+};
+
+const CliUse cli_limits[] = {
+    {.option = CLI_OPT_MAX_MEMORY}, {.option = CLI_OPT_MAX_MODULES}, {.option = CLI_OPT_MAX_WORK}, {0},
+};
+const CliUse cli_grow_limits[] = {{.option = CLI_OPT_MAX_METAMERS}, {.option = CLI_OPT_MAX_BUDS}, {0}};
+const CliUse cli_derive_uses[] = {
+    {.option = CLI_OPT_DERIVE}, {.option = CLI_OPT_SEED}, {.option = CLI_OPT_SET},
+    {.option = CLI_OPT_THREADS}, {.group = cli_limits}, {0},
+};
