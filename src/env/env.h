@@ -8,7 +8,7 @@
  *
  * Plants register their metamers here (shadow casters, occupants). L-system plants drawn by
  * the turtle are static occupants: registered once when they are drawn before the trees grow,
- * or replaced every year when they derive in lockstep with the trees (sot/scene_lsys.c). */
+ * or replaced every year when they derive in lockstep with the trees (scene/lsys.c). */
 #ifndef SYL_ENV_H
 #define SYL_ENV_H
 #include <stdbool.h>

@@ -1,6 +1,6 @@
 /* What an ?E module reads (docs/language.md §19), one answer per probe, from whatever world
- * the plant stands in: alone or with other L-systems (env/open.c), or beside trees
- * (sot/scene_lsys.c). Those modules keep the world up to date; this one only reads it.
+ * the plant stands in: alone or with other L-systems (scene/open.c), or beside trees
+ * (scene/lsys.c). Those modules keep the world up to date; this one only reads it.
  *
  *   ?E(0, q)        light: (C - s) / C of a shadow grid, in 0..1; at a segment's own end its
  *                   own shadow a does not count
@@ -34,7 +34,7 @@ typedef struct ProbeWorld {
 } ProbeWorld;
 
 /* ?E(0)'s answer at pos: (C - s + (tip ? a : 0)) / C, in 0..1 (at a segment's end its own
- * shadow does not count). Inline: env/open.c answers every apex of a step with it. */
+ * shadow does not count). Inline: scene/open.c answers every apex of a step with it. */
 static inline double probe_light(const ShadowGrid *g, const float pos[3], bool tip) {
     const ShadowParams *sp = &g->p;
     double v = (sp->full - shadow_value(g, shadow_index(g, pos)) + (tip ? sp->a : 0)) / sp->full;

@@ -13,7 +13,7 @@
 #include "../util/array.h"
 #include "../util/budget.h"
 #include "../turtle/turtle.h"
-#include "env/open.h"
+#include "scene/open.h"
 #include "match.h"
 #include "modstr.h"
 #include "sylva/sylva.h"

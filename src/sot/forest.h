@@ -10,7 +10,7 @@
  *
  * Before the light phase of every year the forest calls its year_start hook, if any: a
  * scene's L-system plants take their derivation step there and replace their casters and
- * occupants (scene_lsys.c), so trees and L-systems grow in lockstep.
+ * occupants (scene/lsys.c), so trees and L-systems grow in lockstep.
  *
  * Everything random comes from the buds' own streams and every sum runs in a fixed order,
  * so the forest is the same for any thread count. */

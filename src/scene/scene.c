@@ -1,6 +1,6 @@
 /* syl_grow_scene: every plant of a file's scene in one environment. Grow plants become
  * trees of one forest. L-system plants beside trees derive in lockstep with them, a step a
- * year (scene_lsys.c), shading and crowding them and shaded by them; in a scene of
+ * year (lsys.c), shading and crowding them and shaded by them; in a scene of
  * L-systems only, each is derived and drawn in turn and stands, for the plants after it, as
  * static shadow casters and occupants. The skeleton holds every plant in the order the scene
  * lists them. */
@@ -9,11 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "env/open.h"
+#include "scene/open.h"
 #include "util/arena.h"
 #include "util/namemap.h"
 #include "sot/forest.h"
 #include "sot/forest_internal.h"
+#include "scene/lsys.h"
+#include "scene/spec.h"
 #include "sot/output.h"
 #include "sylva/grow.h"
 

@@ -1,5 +1,5 @@
 /* The environment of an open L-system: see open.h. */
-#include "env/open.h"
+#include "scene/open.h"
 #include "lsys/modstr.h"
 
 #include <math.h>

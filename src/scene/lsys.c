@@ -8,7 +8,7 @@
  * that sees the plants as they are this year, and the plants' next step reads the trees as
  * they grew.
  *
- * ?E modules are answered by env/probe.h from this scene's world (not env/open.c's): light
+ * ?E modules are answered by env/probe.h from this scene's world (not scene/open.c's): light
  * from the forest's shadow grid (the trees' metamers and every L-system's latest ends, its
  * own of this step included), crowding and sky exposure from the same points, distance from
  * the obstacles and the ground. A step that brings no
@@ -17,8 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "env/open.h"
 #include "env/probe.h"
+#include "scene/lsys.h"
 #include "sot/forest_internal.h"
 
 
