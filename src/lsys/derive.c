@@ -12,8 +12,7 @@
 #include "../lang/builtins.h"
 #include "../util/array.h"
 #include "../util/budget.h"
-#include "../turtle/turtle.h"
-#include "scene/open.h"
+#include "lsys/derive.h"
 #include "match.h"
 #include "modstr.h"
 #include "sylva/sylva.h"
@@ -286,11 +285,7 @@ typedef struct Engine {
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
     bool warned_depth;
     bool reported;      /* an error was reported: one message per failure */
-    /* ?E modules: the environment that answers them and what the turtle collects for it */
-    SylEnvFn env;
-    void *env_user;
-    SylEnvFill fill;
-    OpenEnv *alone; /* the stand-alone environment, when the caller gives none */
+    LsysQueries queries; /* what fills query modules */
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
@@ -327,10 +322,7 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
 }
 
 static void engine_free(Engine *e) {
-    free(e->fill.ends);
-    free(e->fill.probes);
-    if (e->alone) open_env_free(e->alone);
-    free(e->alone);
+    if (e->queries.release) e->queries.release(e->queries.user);
     free(e->left);
     free(e->right);
     free(e->pair);
@@ -537,38 +529,17 @@ static int axiom(Engine *e, SylString *out) {
     return SYL_OK;
 }
 
-/* Query modules (?P ?H ?L ?U) take the turtle's state after every step, as the turtle sees
- * the string: through the `interpret` rules when there are any. Those rules keep query
- * modules as they are, so the k-th query module read is the k-th of the string. ?E modules
- * are answered by the environment at the turtle's position and heading (env/open.h). */
+/* Query modules (?P ?H ?L ?U ?E) take the turtle's state after every step, as the turtle
+ * sees the string: through the `interpret` rules when there are any. Those rules keep query
+ * modules as they are, so the k-th query module read is the k-th of the string. The
+ * environment the caller plugged in fills them (docs/language.md, "Open L-systems"). */
 static bool is_query(const SylProgram *p, uint16_t code) {
     const char *n = p->syms[CODE_SYM(code)].name;
     return n[0] == '?' && (n[1] == 'P' || n[1] == 'H' || n[1] == 'L' || n[1] == 'U' || n[1] == 'E') && !n[2];
 }
 
-static int turtle_fill(Engine *e, SylString *s, int step) {
-    /* env/open.c keeps its probes itself, in less memory */
-    if (e->env == open_env_answer) return open_env_fill(e->env_user, e->p, s, &e->fill, step);
-    int st = syl_turtle_query(e->p, s, e->env ? &e->fill : NULL);
-    if (!st && e->env && e->fill.nprobes) st = e->env(e->env_user, step, &e->fill, s->par);
-    return st;
-}
-
-/* The environment for ?E modules: the caller's, or the plant alone on the ground. */
-static int env_setup(Engine *e, const SylDeriveOptions *opt) {
-    if (!e->p->uses_env) return SYL_OK;
-    if (opt->env) {
-        e->env = opt->env;
-        e->env_user = opt->env_user;
-        return SYL_OK;
-    }
-    e->alone = malloc(sizeof *e->alone);
-    if (!e->alone) return SYL_ELIMIT;
-    OpenEnvParams P = {.voxel = (float)e->p->step, .sun = {0, 1, 0}, .diag = opt->diag};
-    open_env_init(e->alone, &P);
-    e->env = open_env_answer;
-    e->env_user = e->alone;
-    return SYL_OK;
+static int query_fill(Engine *e, SylString *s, int step) {
+    return e->queries.ops ? e->queries.ops->fill(e->queries.user, e->p, s, step) : SYL_OK;
 }
 
 static int fill_queries(Engine *e, SylString *s, int step) {
@@ -579,7 +550,7 @@ static int fill_queries(Engine *e, SylString *s, int step) {
     bool pred[MAX_SYMBOLS] = {false}, interpreted = false;
     for (int k = 0; k < it->nrules; k++) pred[CODE_SYM(it->rules[k].pred)] = true;
     for (size_t i = 0; it->nrules && !interpreted && i < s->n; i++) interpreted = pred[CODE_SYM(s->code[i])];
-    if (!interpreted) return turtle_fill(e, s, step);
+    if (!interpreted) return query_fill(e, s, step);
     SylString *cur = new_string(e), *spare = new_string(e);
     int st = cur && spare ? ms_reserve(cur, s->n, s->np) : SYL_ELIMIT;
     if (!st) {
@@ -589,7 +560,7 @@ static int fill_queries(Engine *e, SylString *s, int step) {
         cur->np = s->np;
         st = passes(e, TABLE_INTERPRET, step, &cur, &spare);
     }
-    if (!st) st = turtle_fill(e, cur, step);
+    if (!st) st = query_fill(e, cur, step);
     /* copy the filled values back, query module by query module */
     bool query[MAX_SYMBOLS] = {false};
     for (int k = 0; k < p->nsyms && k < MAX_SYMBOLS; k++) query[k] = is_query(p, (uint16_t)k);
@@ -618,8 +589,8 @@ struct SylDeriver {
 /* The start string, given or the axiom: copied, then decomposed and queried (step 0). */
 static int begin(SylDeriver *d, const SylString *start) {
     Engine *e = &d->e;
-    int st = env_setup(e, d->opt);
-    if (!st && start) {
+    int st = SYL_OK;
+    if (start) {
         st = ms_reserve(d->cur, start->n, start->np);
         if (!st) {
             if (start->n) memcpy(d->cur->code, start->code, start->n * sizeof *start->code);
@@ -627,7 +598,7 @@ static int begin(SylDeriver *d, const SylString *start) {
             d->cur->n = start->n;
             d->cur->np = start->np;
         }
-    } else if (!st) st = axiom(e, d->cur);
+    } else st = axiom(e, d->cur);
     if (!st) st = passes(e, TABLE_DECOMPOSE, 0, &d->cur, &d->spare);
     if (!st) st = fill_queries(e, d->cur, 0);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, 0, d->cur);
@@ -643,22 +614,26 @@ static int said(Engine *e, int st, int step, const char *what) {
     return st;
 }
 
-int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out) {
+int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, const LsysQueries *q,
+                      SylDeriver **out) {
     *out = NULL;
     if (p->kind != SYL_MODEL_LSYSTEM) {
         if (opt && opt->diag)
             fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: grow it with `sylva grow`\n",
                     p->name, p->kind == SYL_MODEL_GROW ? "grow block" : "scene");
+        if (q && q->release) q->release(q->user);
         return SYL_EUSAGE;
     }
     SylDeriver *d = calloc(1, sizeof *d);
     if (!d) {
         if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory\n");
+        if (q && q->release) q->release(q->user);
         return SYL_ELIMIT;
     }
     d->own_opt = (SylDeriveOptions){.steps = -1};
     d->opt = opt ? opt : &d->own_opt;
     engine_init(&d->e, p, d->opt);
+    if (q) d->e.queries = *q;
     d->cur = new_string(&d->e);
     d->spare = new_string(&d->e);
     d->status = said(&d->e, d->cur && d->spare ? begin(d, start) : SYL_ELIMIT, 0, "step");
@@ -701,18 +676,6 @@ int syl_derive_end(SylDeriver *d, SylString **out) {
     engine_free(&d->e);
     free(d);
     return st;
-}
-
-int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
-    SylDeriveOptions defaults = {.steps = -1};
-    if (!opt) opt = &defaults;
-    *out = NULL;
-    SylDeriver *d;
-    int st = syl_derive_begin(p, opt, NULL, &d);
-    int steps = opt->steps >= 0 ? opt->steps : p->derive;
-    for (int step = 1; step <= steps && !st; step++) st = syl_derive_step(d);
-    if (!d) return st;
-    return syl_derive_end(d, out);
 }
 
 int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out) {

@@ -18,8 +18,11 @@
 #include <string.h>
 
 #include "env/probe.h"
+#include "lang/program.h"
+#include "lsys/modstr.h"
 #include "scene/lsys.h"
 #include "sot/forest_internal.h"
+#include "turtle/turtle.h"
 
 
 typedef struct LsysPlant {
@@ -35,6 +38,7 @@ typedef struct LsysPlant {
     size_t nends, cap;
     bool fresh;         /* ends are those of the string as it is now */
     SylString *final;
+    SylEnvFill fill;    /* what the turtle collects for the answers */
 } LsysPlant;
 
 struct SceneLsys {
@@ -90,6 +94,8 @@ void scene_lsys_free(SceneLsys *s) {
         if (pl->dv) syl_derive_end(pl->dv, NULL);
         syl_string_free(pl->final);
         free(pl->ends);
+        free(pl->fill.ends);
+        free(pl->fill.probes);
     }
     free(s->plants);
     free(s->ends);
@@ -99,7 +105,7 @@ void scene_lsys_free(SceneLsys *s) {
     free(s);
 }
 
-static int answer(void *user, int step, const SylEnvFill *fill, double *par);
+static const SylQueryOps plant_ops;
 
 int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d, const float at[3], float ground, int steps) {
     if (s->n == s->cap) return SYL_ELIMIT;
@@ -107,8 +113,8 @@ int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d,
     pl->owner = s;
     pl->q = q;
     pl->d = *d;
-    pl->d.env = answer;
-    pl->d.env_user = pl;
+    pl->d.queries = &plant_ops;
+    pl->d.queries_user = pl;
     pl->steps = steps;
     memcpy(pl->at, at, sizeof pl->at);
     pl->ground = ground;
@@ -262,9 +268,8 @@ static int build_space(SceneLsys *s, const LsysPlant *pl, size_t *npts) {
     return pgrid_build(&s->occ, pl->voxel, (const float *)s->pts, 3, n) ? SYL_OK : SYL_ELIMIT;
 }
 
-/* A SylEnvFn: user is the plant. Its ends replace its casters first, so it shades itself. */
-static int answer(void *user, int step, const SylEnvFill *fill, double *par) {
-    LsysPlant *pl = user;
+/* The probes of one step: the plant's ends replace its casters first, so it shades itself. */
+static int answer(LsysPlant *pl, int step, const SylEnvFill *fill, double *par) {
     SceneLsys *s = pl->owner;
     Env *e = &s->f->env;
     int st = recast(pl, (const float(*)[3])fill->ends, fill->nends);
@@ -280,3 +285,14 @@ static int answer(void *user, int step, const SylEnvFill *fill, double *par) {
     if (!st) probe_answer(&w, fill, step, par);
     return st;
 }
+
+/* The turtle's query pass, then the scene's answers (user: the plant). */
+static int plant_fill(void *user, const SylProgram *p, SylString *s, int step) {
+    LsysPlant *pl = user;
+    if (!p->uses_env) return syl_turtle_query(p, s, NULL);
+    int st = syl_turtle_query(p, s, &pl->fill);
+    if (!st && pl->fill.nprobes) st = answer(pl, step, &pl->fill, s->par);
+    return st;
+}
+
+static const SylQueryOps plant_ops = {.fill = plant_fill};

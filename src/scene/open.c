@@ -1,5 +1,6 @@
 /* The environment of an open L-system: see open.h. */
 #include "scene/open.h"
+#include "lang/program.h"
 #include "lsys/modstr.h"
 
 #include <math.h>
@@ -24,6 +25,8 @@ void open_env_free(OpenEnv *e) {
     if (e->dev) rtcReleaseDevice(e->dev);
     shadow_set_free(&e->own);
     free(e->probes.light);
+    free(e->fill.ends);
+    free(e->fill.probes);
     free(e->pts);
     memset(e, 0, sizeof *e);
 }
@@ -78,8 +81,7 @@ static ProbeWorld world(OpenEnv *e) {
                         .at = {e->P.at[0], e->P.at[1], e->P.at[2]}};
 }
 
-int open_env_answer(void *user, int step, const SylEnvFill *f, double *par) {
-    OpenEnv *e = user;
+int open_env_answer(OpenEnv *e, int step, const SylEnvFill *f, double *par) {
     int st = update(e, f, probe_kinds(f, par));
     ProbeWorld w = world(e);
     if (!st) probe_answer(&w, f, step, par);
@@ -100,7 +102,7 @@ int open_env_fill(OpenEnv *e, const SylProgram *p, SylString *s, SylEnvFill *f, 
     int st = syl_turtle_fill(p, s, f, &e->probes);
     if (st) return st;
     /* sky exposure keys its rays' streams by a probe's place among all of them: read again, as
-     * syl_derive does with open_env_answer */
+     * the plain query pass does */
     if (e->probes.kinds & 1u << PROBE_SKY) {
         st = syl_turtle_query(p, s, f);
         return st || !f->nprobes ? st : open_env_answer(e, step, f, s->par);
@@ -112,3 +114,38 @@ int open_env_fill(OpenEnv *e, const SylProgram *p, SylString *s, SylEnvFill *f, 
     answer_light(e, e->probes.light, e->probes.nlight, s->par);
     return SYL_OK;
 }
+
+static int ops_fill(void *user, const SylProgram *p, SylString *s, int step) {
+    OpenEnv *e = user;
+    return p->uses_env ? open_env_fill(e, p, s, &e->fill, step) : syl_turtle_query(p, s, NULL);
+}
+
+const SylQueryOps open_env_ops = {.fill = ops_fill};
+
+/* ---- the stand-alone environment ---- */
+
+struct SylEnvStandalone {
+    OpenEnv e;
+};
+
+SylEnvStandalone *syl_env_standalone_new(const SylProgram *p, FILE *diag) {
+    SylEnvStandalone *a = malloc(sizeof *a);
+    if (!a) return NULL;
+    OpenEnvParams P = {.voxel = (float)p->step, .sun = {0, 1, 0}, .diag = diag};
+    open_env_init(&a->e, &P);
+    return a;
+}
+
+void syl_env_standalone_free(SylEnvStandalone *a) {
+    if (!a) return;
+    open_env_free(&a->e);
+    free(a);
+}
+
+static int standalone_fill(void *user, const SylProgram *p, SylString *s, int step) {
+    return ops_fill(&((SylEnvStandalone *)user)->e, p, s, step);
+}
+
+static const SylQueryOps standalone_ops = {.fill = standalone_fill};
+
+const SylQueryOps *syl_env_standalone_ops(void) { return &standalone_ops; }

@@ -51,16 +51,20 @@ typedef struct OpenEnv {
     PointGrid occ;
     RTCDevice dev;    /* sky exposure's: made when first asked */
     SkyScene sky;
+    SylEnvFill fill;    /* what the turtle collects for the answers */
     SylOpenFill probes; /* open_env_fill's light probes */
 } OpenEnv;
 
 void open_env_init(OpenEnv *e, const OpenEnvParams *p);
 void open_env_free(OpenEnv *e);
-/* A SylEnvFn: user is an OpenEnv. */
-int open_env_answer(void *user, int step, const SylEnvFill *fill, double *par);
-/* The turtle's reading of s and the answers in one, as syl_derive does with open_env_answer
- * (fill: the SylEnvFill it would use), the same answers in less time and memory: light
- * probes are kept compact (syl_turtle_fill). */
+/* Answer the probes the turtle collected in fill: e's world brought up to date first. */
+int open_env_answer(OpenEnv *e, int step, const SylEnvFill *fill, double *par);
+/* The turtle's reading of s and the answers in one, as the turtle's query pass and
+ * open_env_answer give them (fill: the SylEnvFill they would use), in less time and memory:
+ * light probes are kept compact (syl_turtle_fill). */
 int open_env_fill(OpenEnv *e, const SylProgram *p, SylString *s, SylEnvFill *fill, int step);
+/* The query environment of an OpenEnv (user: the OpenEnv): open_env_fill for models with ?E,
+ * the turtle's query pass alone for the others. */
+extern const SylQueryOps open_env_ops;
 
 #endif

@@ -111,8 +111,8 @@ static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const Sc
     if (S->sun_set) memcpy(P.sun, S->sun, sizeof P.sun);
     OpenEnv oe;
     open_env_init(&oe, &P);
-    d.env = open_env_answer;
-    d.env_user = &oe;
+    d.queries = &open_env_ops;
+    d.queries_user = &oe;
     SylString *s = NULL;
     int st = syl_derive(q, &d, &s);
     open_env_free(&oe);
@@ -369,6 +369,7 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     int st = placed && plants && progs ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
     if (!st) {
         forest_limits(&f, opt);
+        f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
         st = grow_scene(p, opt, &S, &f, placed, plants, progs, &models, &lsys, out, obstacles);
         st = forest_said(&f, st, 0);
         scene_lsys_free(lsys);

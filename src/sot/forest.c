@@ -79,6 +79,7 @@ static ShootRule *shared_rule(Forest *f, const SylProgram *from, const char *nam
     ShootRule *rule = shoot_rule_new(from, name);
     if (!rule) return NULL;
     shoot_rule_limits(rule, f->max_modules, f->max_work, f->mem);
+    shoot_rule_derive_with(rule, f->shoot_derive);
     f->rules[f->nrules++] = (ForestRule){.from = from, .name = name, .rule = rule};
     return rule;
 }

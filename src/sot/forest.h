@@ -18,6 +18,7 @@
 #define SYL_SOT_FOREST_H
 #include "env/env.h"
 #include "env/space.h"
+#include "sot/shoot_rule.h"
 #include "sot/tree.h"
 #include "sylva/grow.h"
 
@@ -52,6 +53,8 @@ typedef struct Forest {
     SylGrowStats *stats;
     int space_variant;     /* SPACE_PER_BUD or SPACE_GLOBAL, from the first tree that uses space */
     bool space_any;
+    /* How shoot rules derive (set before the trees are added): see shoot_rule_derive_with. */
+    ShootDeriveFn shoot_derive;
     /* Called at the start of every year, before light; NULL: none. */
     int (*year_start)(void *user, int year);
     void *year_user;
