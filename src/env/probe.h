@@ -41,6 +41,17 @@ static inline double probe_light(const ShadowGrid *g, const float pos[3], bool t
     return v < 0 ? 0 : v < 1 ? v : 1;
 }
 
+/* The shadow grid of ?E light where no tree sets one (alone, in turn, beside trees without
+ * `light shadow`): C = 1, a = 0.25, b = 2, depth 8 at the model's step; a sun at or below the
+ * horizon is overhead. */
+static inline ShadowParams probe_shadow_params(float voxel, const float sun[3]) {
+    ShadowParams sp = {.voxel = voxel, .full = 1, .a = 0.25f, .b = 2, .depth = 8, .sun = {sun[0], sun[1], sun[2]}};
+    if (!(sp.sun[1] > 0)) sp.sun[0] = sp.sun[2] = 0, sp.sun[1] = 1;
+    return sp;
+}
+/* The radius of a segment end's sphere in sky exposure. */
+static inline float probe_foliage(float voxel) { return 0.4f * voxel; }
+
 /* The kinds the probes of a step ask for: bit k for ?E(k, ...). */
 unsigned probe_kinds(const SylEnvFill *fill, const double *par);
 /* Write every probe's answer into par; the step keys the sky rays' random streams. */

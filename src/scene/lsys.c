@@ -47,10 +47,6 @@ struct SceneLsys {
     int n, cap;
     float (*ends)[3];   /* the turtle's ends for steps without ?E answers */
     size_t ends_cap;
-    float (*pts)[3];    /* occupants for ?E(1) and ?E(3) */
-    size_t pts_cap;
-    PointGrid occ;
-    SkyScene sky;       /* ?E(3) */
 };
 
 int lsys_draw(const SylProgram *q, const SylString *s, const SylDeriveOptions *d, const float at[3], SylSkeleton **out) {
@@ -99,9 +95,6 @@ void scene_lsys_free(SceneLsys *s) {
     }
     free(s->plants);
     free(s->ends);
-    free(s->pts);
-    pgrid_free(&s->occ);
-    sky_free(&s->sky);
     free(s);
 }
 
@@ -124,7 +117,7 @@ int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d,
     Forest *f = s->f;
     if (syl_program_symbol_find(q, "?E") >= 0 && !f->lsys_shadow) {
         f->lsys_shadow = true;
-        f->lsys_shadow_params = (ShadowParams){.voxel = pl->voxel, .full = 1, .a = 0.25f, .b = 2, .depth = 8};
+        f->lsys_shadow_voxel = pl->voxel;
     }
     return SYL_OK;
 }
@@ -244,28 +237,24 @@ int scene_lsys_draw(SceneLsys *s, int i, SylSkeleton **out) {
 /* ---- ?E answers ---- */
 
 /* Crowding and sky exposure see the trees' metamer ends and every L-system's ends as they
- * are now (*n of them, in s->pts). */
+ * are now (*n of them, in the environment's ?E points). */
 static int build_space(SceneLsys *s, const LsysPlant *pl, size_t *npts) {
-    const Forest *f = s->f;
+    Forest *f = s->f;
     size_t n = 0;
     for (int i = 0; i < f->ntrees; i++) n += f->trees[i].n - 1;
     for (int i = 0; i < s->n; i++) n += s->plants[i].nends;
-    if (n > s->pts_cap) {
-        float(*p)[3] = realloc(s->pts, n * sizeof *p);
-        if (!p) return SYL_ELIMIT;
-        s->pts = p;
-        s->pts_cap = n;
-    }
+    if (!env_probe_points(&f->env, n)) return SYL_ELIMIT;
+    float(*pts)[3] = f->env.probes.pts;
     size_t m = 0;
     for (int i = 0; i < f->ntrees; i++)
-        for (size_t k = 1; k < f->trees[i].n; k++) memcpy(s->pts[m++], f->trees[i].nodes[k].pos, sizeof *s->pts);
+        for (size_t k = 1; k < f->trees[i].n; k++) memcpy(pts[m++], f->trees[i].nodes[k].pos, sizeof *pts);
     for (int i = 0; i < s->n; i++)
         if (s->plants[i].nends) {
-            memcpy(s->pts + m, s->plants[i].ends, s->plants[i].nends * sizeof *s->pts);
+            memcpy(pts + m, s->plants[i].ends, s->plants[i].nends * sizeof *pts);
             m += s->plants[i].nends;
         }
     *npts = n;
-    return pgrid_build(&s->occ, pl->voxel, (const float *)s->pts, 3, n) ? SYL_OK : SYL_ELIMIT;
+    return pgrid_build(&f->env.probes.occ, pl->voxel, (const float *)pts, 3, n) ? SYL_OK : SYL_ELIMIT;
 }
 
 /* The probes of one step: the plant's ends replace its casters first, so it shades itself. */
@@ -276,12 +265,10 @@ static int answer(LsysPlant *pl, int step, const SylEnvFill *fill, double *par) 
     unsigned kinds = probe_kinds(fill, par);
     size_t npts = 0;
     if (!st && kinds & (1u << PROBE_SPACE | 1u << PROBE_SKY)) st = build_space(s, pl, &npts);
-    float foliage = 0.4f * pl->voxel;
     if (!st && kinds & 1u << PROBE_SKY)
-        st = probe_sky_build(&s->sky, e->dev, &e->obstacles, NULL, 0, pl->at, (const float *)s->pts, npts, foliage);
-    ProbeWorld w = {.shadow = e->shadow_on ? &e->shadow : NULL, .occ = &s->occ, .voxel = pl->voxel,
-                    .obstacles = &e->obstacles, .ground = pl->ground, .sky = &s->sky, .foliage = foliage,
-                    .at = {pl->at[0], pl->at[1], pl->at[2]}};
+        st = probe_sky_build(&e->probes.sky, e->dev, &e->obstacles, NULL, 0, pl->at, (const float *)e->probes.pts,
+                             npts, probe_foliage(pl->voxel));
+    ProbeWorld w = env_probe_world(e, pl->voxel, pl->ground, &e->obstacles, pl->at);
     if (!st) probe_answer(&w, fill, step, par);
     return st;
 }

@@ -12,22 +12,16 @@ void open_env_init(OpenEnv *e, const OpenEnvParams *p) {
     memset(e, 0, sizeof *e);
     e->P = *p;
     if (!(e->P.voxel > 0) || !isfinite(e->P.voxel)) e->P.voxel = 1;
-    ShadowParams sp = {.voxel = e->P.voxel, .full = 1, .a = 0.25f, .b = 2, .depth = 8};
-    memcpy(sp.sun, e->P.sun, sizeof sp.sun);
-    if (!(sp.sun[1] > 0)) sp.sun[0] = sp.sun[2] = 0, sp.sun[1] = 1;
-    shadow_init(&e->shadow, &sp, e->P.ground);
+    ShadowParams sp = probe_shadow_params(e->P.voxel, e->P.sun);
+    env_init_probes(&e->world, &sp, e->P.ground, e->P.diag);
 }
 
 void open_env_free(OpenEnv *e) {
-    shadow_free(&e->shadow);
-    pgrid_free(&e->occ);
-    sky_free(&e->sky);
-    if (e->dev) rtcReleaseDevice(e->dev);
+    env_free(&e->world);
     shadow_set_free(&e->own);
     free(e->probes.light);
     free(e->fill.ends);
     free(e->fill.probes);
-    free(e->pts);
     memset(e, 0, sizeof *e);
 }
 
@@ -39,32 +33,29 @@ static int too_big(OpenEnv *e) {
 /* Replace last step's own casters in the shadow grid by this step's. */
 static int update_light(OpenEnv *e, const SylEnvFill *f) {
     if (!e->statics_cast) {
-        if (e->P.nstatic && !shadow_cast_strided(&e->shadow, e->P.statics, 3, e->P.nstatic, 1)) return too_big(e);
+        if (e->P.nstatic && !shadow_cast_strided(&e->world.shadow, e->P.statics, 3, e->P.nstatic, 1)) return too_big(e);
         e->statics_cast = true;
     }
-    if (!shadow_set_replace(&e->shadow, &e->own, (const float(*)[3])f->ends, f->nends, e->P.at)) return too_big(e);
+    if (!shadow_set_replace(&e->world.shadow, &e->own, (const float(*)[3])f->ends, f->nends, e->P.at)) return too_big(e);
     return SYL_OK;
 }
 
 static int update_space(OpenEnv *e, const SylEnvFill *f) {
     size_t n = e->P.nstatic + f->nends;
-    if (n > e->pts_cap) {
-        float(*p)[3] = realloc(e->pts, n * sizeof *p);
-        if (!p) return SYL_ELIMIT;
-        e->pts = p;
-        e->pts_cap = n;
-    }
-    if (e->P.nstatic) memcpy(e->pts, e->P.statics, e->P.nstatic * sizeof *e->pts);
+    if (!env_probe_points(&e->world, n)) return SYL_ELIMIT;
+    float(*pts)[3] = e->world.probes.pts;
+    if (e->P.nstatic) memcpy(pts, e->P.statics, e->P.nstatic * sizeof *pts);
     for (size_t i = 0; i < f->nends; i++)
-        for (int k = 0; k < 3; k++) e->pts[e->P.nstatic + i][k] = f->ends[i][k] + e->P.at[k];
-    return pgrid_build(&e->occ, e->P.voxel, (const float *)e->pts, 3, n) ? SYL_OK : SYL_ELIMIT;
+        for (int k = 0; k < 3; k++) pts[e->P.nstatic + i][k] = f->ends[i][k] + e->P.at[k];
+    return pgrid_build(&e->world.probes.occ, e->P.voxel, (const float *)pts, 3, n) ? SYL_OK : SYL_ELIMIT;
 }
 
 /* Sky exposure's foliage: this step's own ends and the scene's other plants. */
 static int update_sky(OpenEnv *e, const SylEnvFill *f) {
-    if (!e->dev && !(e->dev = rtcNewDevice(NULL))) return SYL_ELIMIT;
-    return probe_sky_build(&e->sky, e->dev, e->P.obstacles, (const float(*)[3])f->ends, f->nends, e->P.at,
-                           e->P.statics, e->P.nstatic, 0.4f * e->P.voxel);
+    RTCDevice dev = env_device(&e->world);
+    if (!dev) return SYL_ELIMIT;
+    return probe_sky_build(&e->world.probes.sky, dev, e->P.obstacles, (const float(*)[3])f->ends, f->nends, e->P.at,
+                           e->P.statics, e->P.nstatic, probe_foliage(e->P.voxel));
 }
 
 /* Update what the kinds asked read (bit k: kind k). */
@@ -76,9 +67,7 @@ static int update(OpenEnv *e, const SylEnvFill *f, unsigned kinds) {
 }
 
 static ProbeWorld world(OpenEnv *e) {
-    return (ProbeWorld){.shadow = &e->shadow, .occ = &e->occ, .voxel = e->P.voxel, .obstacles = e->P.obstacles,
-                        .ground = e->P.ground, .sky = &e->sky, .foliage = 0.4f * e->P.voxel,
-                        .at = {e->P.at[0], e->P.at[1], e->P.at[2]}};
+    return env_probe_world(&e->world, e->P.voxel, e->P.ground, e->P.obstacles, e->P.at);
 }
 
 int open_env_answer(OpenEnv *e, int step, const SylEnvFill *f, double *par) {
@@ -94,7 +83,7 @@ static void answer_light(const OpenEnv *e, const SylLightProbe *probes, size_t n
         const SylLightProbe *q = &probes[i];
         float pos[3];
         for (int k = 0; k < 3; k++) pos[k] = q->pos[k] + e->P.at[k];
-        par[(q->par & ~SYL_LIGHT_TIP) + 1] = probe_light(&e->shadow, pos, (q->par & SYL_LIGHT_TIP) != 0);
+        par[(q->par & ~SYL_LIGHT_TIP) + 1] = probe_light(&e->world.shadow, pos, (q->par & SYL_LIGHT_TIP) != 0);
     }
 }
 

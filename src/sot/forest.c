@@ -142,9 +142,7 @@ int forest_setup(Forest *f, float ground, const float sun[3], bool sun_set) {
         e->shadow.mem = f->mem;
         e->shadow_on = true;
     } else if (f->lsys_shadow) { /* only for ?E light: no tree reads it */
-        ShadowParams sp = f->lsys_shadow_params;
-        memcpy(sp.sun, e->sun, sizeof sp.sun);
-        if (!(sp.sun[1] > 0)) sp.sun[0] = sp.sun[2] = 0, sp.sun[1] = 1;
+        ShadowParams sp = probe_shadow_params(f->lsys_shadow_voxel, e->sun);
         shadow_init(&e->shadow, &sp, ground);
         e->shadow.mem = f->mem;
         e->shadow_on = true;

@@ -58,9 +58,10 @@ typedef struct Forest {
     /* Called at the start of every year, before light; NULL: none. */
     int (*year_start)(void *user, int year);
     void *year_user;
-    /* A shadow grid for ?E light when no tree uses `light shadow` (set before forest_setup). */
+    /* A shadow grid for ?E light when no tree uses `light shadow` (set before forest_setup):
+     * probe_shadow_params at this voxel. */
     bool lsys_shadow;
-    ShadowParams lsys_shadow_params;
+    float lsys_shadow_voxel;
     /* scratch */
     Candidate *cand;
     size_t ncand, ccap;
