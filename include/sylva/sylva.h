@@ -135,14 +135,31 @@ typedef struct SylEnvFill {
     SylEnvProbe *probes;
     size_t nprobes, probes_cap;
 } SylEnvFill;
-/* Answer the probes of one step: SYL_OK, or a SYL_* error (reported by the environment). */
-typedef int (*SylEnvFn)(void *user, int step, const SylEnvFill *fill, double *par);
 /* The kind an ?E module with parameters a[0..na) asks, its first parameter (none: light, 0):
  * bit k for kind k = 0 light, 1 crowding, 2 distance, 3 sky exposure; 0 for any other. */
 static inline unsigned syl_env_kind_bit(const double *a, int na) {
     double kind = na ? a[0] : 0;
     return kind == 0 ? 1u : kind == 1 ? 2u : kind == 2 ? 4u : kind == 3 ? 8u : 0u;
 }
+
+/* Query modules (?P ?H ?L ?U ?E) are filled after every step (and after the axiom, step 0)
+ * by an environment the caller plugs in: fill reads s as the turtle would (the engine has
+ * applied the `interpret` rules already) and writes every query module's parameters in
+ * place; the engine copies them back to the derived string. SYL_OK or a SYL_* error
+ * (reported by the environment). */
+typedef struct SylQueryOps {
+    int (*fill)(void *user, const SylProgram *p, SylString *s, int step);
+} SylQueryOps;
+
+/* The stand-alone environment, `sylva derive`'s: the plant alone on the ground plane y = 0
+ * under a sun overhead, shading and crowding itself (docs/language.md, "Open L-systems").
+ * Install it with opt.queries = syl_env_standalone_ops(), opt.queries_user = the result of
+ * syl_env_standalone_new(p, diag), for one derivation of p at a time; free it after the
+ * derivation. NULL when out of memory. */
+typedef struct SylEnvStandalone SylEnvStandalone;
+SylEnvStandalone *syl_env_standalone_new(const SylProgram *p, FILE *diag);
+void syl_env_standalone_free(SylEnvStandalone *e);
+const SylQueryOps *syl_env_standalone_ops(void);
 
 typedef struct SylDeriveOptions {
     int steps;            /* < 0: the model's `derive` */
@@ -156,10 +173,10 @@ typedef struct SylDeriveOptions {
     void (*on_step)(void *user, int step, const SylString *s);
     void *user;
     uint64_t rewritten;   /* out: modules read by all passes of all steps (throughput) */
-    /* The environment that fills ?E modules; NULL: a stand-alone one (the plant alone on
-     * the ground, shading itself). */
-    SylEnvFn env;
-    void *env_user;
+    /* The environment that fills query modules, and its user pointer; NULL: a stand-alone
+     * one (the plant alone on the ground, shading itself), made and freed by the deriver. */
+    const SylQueryOps *queries;
+    void *queries_user;
     SylBudget *budget;    /* shared memory budget; NULL: one of max_memory */
     /* Stop with SYL_ELIMIT when all steps together would rewrite more than this many
      * modules (each pass counts as at least 100): a derivation that would run for hours.

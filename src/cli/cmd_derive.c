@@ -87,7 +87,12 @@ int cmd_derive(int argc, char **argv) {
     }
     SylString *s = NULL;
     double t0 = cli_now();
-    status = syl_derive(p, &d, &s);
+    SylEnvStandalone *alone = syl_env_standalone_new(p, d.diag); /* the plant alone, for ?E */
+    d.queries = syl_env_standalone_ops();
+    d.queries_user = alone;
+    status = alone ? syl_derive(p, &d, &s) : SYL_ELIMIT;
+    if (!alone) fprintf(stderr, "sylva: error: out of memory\n");
+    syl_env_standalone_free(alone);
     double t1 = cli_now();
     if (!status && interpret) {
         SylString *t = NULL;

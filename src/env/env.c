@@ -27,16 +27,47 @@ int env_init(Env *e, int threads, FILE *diag) {
     return SYL_OK;
 }
 
+void env_init_probes(Env *e, const ShadowParams *shadow, float ground, FILE *diag) {
+    memset(e, 0, sizeof *e);
+    e->diag = diag;
+    e->ground = ground;
+    memcpy(e->sun, shadow->sun, sizeof e->sun);
+    shadow_init(&e->shadow, shadow, ground);
+    e->shadow_on = true;
+}
+
 void env_free(Env *e) {
-    if (!e->dev) return;
     obstacles_free(&e->obstacles);
     shadow_free(&e->shadow);
     sky_free(&e->sky);
     markers_free(&e->cloud);
     pgrid_free(&e->occupied);
     free(e->statics);
-    rtcReleaseDevice(e->dev);
+    free(e->probes.pts);
+    pgrid_free(&e->probes.occ);
+    sky_free(&e->probes.sky);
+    if (e->dev) rtcReleaseDevice(e->dev);
     memset(e, 0, sizeof *e);
+}
+
+RTCDevice env_device(Env *e) {
+    if (!e->dev) e->dev = rtcNewDevice(NULL);
+    return e->dev;
+}
+
+bool env_probe_points(Env *e, size_t n) {
+    if (n <= e->probes.pts_cap) return true;
+    float(*p)[3] = realloc(e->probes.pts, n * sizeof *p);
+    if (!p) return false;
+    e->probes.pts = p;
+    e->probes.pts_cap = n;
+    return true;
+}
+
+ProbeWorld env_probe_world(const Env *e, float voxel, float ground, const Obstacles *o, const float at[3]) {
+    return (ProbeWorld){.shadow = e->shadow_on ? &e->shadow : NULL, .occ = &e->probes.occ, .voxel = voxel,
+                        .obstacles = o, .ground = ground, .sky = &e->probes.sky, .foliage = probe_foliage(voxel),
+                        .at = {at[0], at[1], at[2]}};
 }
 
 bool env_add_static(Env *e, const float pos[3]) {

@@ -8,7 +8,12 @@
  *
  * Plants register their metamers here (shadow casters, occupants). L-system plants drawn by
  * the turtle are static occupants: registered once when they are drawn before the trees grow,
- * or replaced every year when they derive in lockstep with the trees (sot/scene_lsys.c). */
+ * or replaced every year when they derive in lockstep with the trees (scene/lsys.c).
+ *
+ * The same type is the world of an open L-system drawn alone or in turn (scene/open.c): then
+ * only its shadow grid and ?E's probes are used, and Embree starts when sky exposure is first
+ * asked (env_device). What a plant brings — where it stands, its own casters — stays with it;
+ * ?E answers read the world through a ProbeWorld (env_probe_world). */
 #ifndef SYL_ENV_H
 #define SYL_ENV_H
 #include <stdbool.h>
@@ -20,8 +25,18 @@
 #include "env/markers.h"
 #include "env/obstacles.h"
 #include "env/pointgrid.h"
+#include "env/probe.h"
 #include "env/shadow.h"
 #include "env/sky.h"
+
+/* ?E's view beyond the shadow grid: the points crowding and sky exposure see, their grid and
+ * the sky scene of their spheres, rebuilt in steps that ask. */
+typedef struct EnvProbes {
+    float (*pts)[3];
+    size_t pts_cap;
+    PointGrid occ;
+    SkyScene sky;
+} EnvProbes;
 
 typedef struct Env {
     RTCDevice dev;
@@ -40,11 +55,22 @@ typedef struct Env {
     PointGrid occupied;    /* metamer ends of every plant, rebuilt once a year */
     float *statics;        /* static occupants (L-system segment ends): 3 floats each */
     size_t nstatic, static_cap;
+    EnvProbes probes;      /* ?E's points, point grid and sky scene */
 } Env;
 
 /* SYL_OK, or SYL_ELIMIT when Embree cannot start. */
 int env_init(Env *e, int threads, FILE *diag);
+/* An environment whose Embree device starts when first asked for (env_device): a plant's world
+ * for ?E, with a shadow grid of probe_shadow_params. */
+void env_init_probes(Env *e, const ShadowParams *shadow, float ground, FILE *diag);
 void env_free(Env *e);
+/* The Embree device, started now if not yet (NULL when it cannot start). */
+RTCDevice env_device(Env *e);
+/* Room for n of ?E's points (e->probes.pts); false when out of memory. */
+bool env_probe_points(Env *e, size_t n);
+/* The read-only view of ?E answers: e's shadow grid (when on), ?E's point grid and sky
+ * scene; the obstacles, ground and default radius given, probes relative to at. */
+ProbeWorld env_probe_world(const Env *e, float voxel, float ground, const Obstacles *o, const float at[3]);
 bool env_add_static(Env *e, const float pos[3]);
 /* Forget the static occupants (keeping their memory), to add this year's. */
 static inline void env_clear_statics(Env *e) { e->nstatic = 0; }

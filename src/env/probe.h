@@ -1,6 +1,6 @@
 /* What an ?E module reads (docs/language.md §19), one answer per probe, from whatever world
- * the plant stands in: alone or with other L-systems (env/open.c), or beside trees
- * (sot/scene_lsys.c). Those modules keep the world up to date; this one only reads it.
+ * the plant stands in: alone or with other L-systems (scene/open.c), or beside trees
+ * (scene/lsys.c). Those modules keep the world up to date; this one only reads it.
  *
  *   ?E(0, q)        light: (C - s) / C of a shadow grid, in 0..1; at a segment's own end its
  *                   own shadow a does not count
@@ -34,12 +34,23 @@ typedef struct ProbeWorld {
 } ProbeWorld;
 
 /* ?E(0)'s answer at pos: (C - s + (tip ? a : 0)) / C, in 0..1 (at a segment's end its own
- * shadow does not count). Inline: env/open.c answers every apex of a step with it. */
+ * shadow does not count). Inline: scene/open.c answers every apex of a step with it. */
 static inline double probe_light(const ShadowGrid *g, const float pos[3], bool tip) {
     const ShadowParams *sp = &g->p;
     double v = (sp->full - shadow_value(g, shadow_index(g, pos)) + (tip ? sp->a : 0)) / sp->full;
     return v < 0 ? 0 : v < 1 ? v : 1;
 }
+
+/* The shadow grid of ?E light where no tree sets one (alone, in turn, beside trees without
+ * `light shadow`): C = 1, a = 0.25, b = 2, depth 8 at the model's step; a sun at or below the
+ * horizon is overhead. */
+static inline ShadowParams probe_shadow_params(float voxel, const float sun[3]) {
+    ShadowParams sp = {.voxel = voxel, .full = 1, .a = 0.25f, .b = 2, .depth = 8, .sun = {sun[0], sun[1], sun[2]}};
+    if (!(sp.sun[1] > 0)) sp.sun[0] = sp.sun[2] = 0, sp.sun[1] = 1;
+    return sp;
+}
+/* The radius of a segment end's sphere in sky exposure. */
+static inline float probe_foliage(float voxel) { return 0.4f * voxel; }
 
 /* The kinds the probes of a step ask for: bit k for ?E(k, ...). */
 unsigned probe_kinds(const SylEnvFill *fill, const double *par);

@@ -1,8 +1,8 @@
-/* The derivation engine: parallel rewriting of a module string, one table at a time.
+/* The derivation engine: steps, passes of one table and the deriver API.
  *
  * A step reads one string and writes the next. The input is cut into chunks that threads
- * rewrite independently; every random draw comes from a stream keyed by (seed, step,
- * table, module position), so the result is the same for any number of threads. */
+ * rewrite independently (rewrite.c); every random draw comes from a stream keyed by (seed,
+ * step, table, module position), so the result is the same for any number of threads. */
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -12,8 +12,8 @@
 #include "../lang/builtins.h"
 #include "../util/array.h"
 #include "../util/budget.h"
-#include "../turtle/turtle.h"
-#include "env/open.h"
+#include "lsys/derive.h"
+#include "lsys/rewrite.h"
 #include "match.h"
 #include "modstr.h"
 #include "sylva/sylva.h"
@@ -21,249 +21,8 @@
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256 };
 
-enum { LIMIT_MODULES = 1, LIMIT_MEMORY, LIMIT_WORK };
-
-typedef struct Fault {
-    int status;      /* SYL_OK, SYL_EMODEL or SYL_ELIMIT */
-    int limit;       /* with SYL_ELIMIT: LIMIT_* */
-    VmFault vm;
-    size_t pos;      /* the module being rewritten */
-    const Rule *rule;
-} Fault;
-
-/* One chunk of one pass. */
-typedef struct Work {
-    const SylProgram *p;
-    const RuleTable *t;
-    const View *in;
-    size_t lo, hi;
-    uint32_t plo;     /* offset of module lo's parameters */
-    SylString *out;
-    uint64_t key;     /* step and pass, for the random streams */
-    int table;
-    uint64_t seed;
-    bool applied;     /* a rule other than identity was used */
-    bool codes_only;  /* no parameters in or out: run_chunk_codes */
-    const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
-    double *weight;
-    int ncap;
-    Fault fault;
-} Work;
-
-static inline void copy_module(Work *w, uint16_t c, const double *args) {
-    SylString *o = w->out;
-    int ar = CODE_ARITY(c);
-    o->code[o->n++] = c;
-    double *dst = o->par + o->np;
-    for (int k = 0; k < ar; k++) dst[k] = args[k]; /* mostly 0 or 1: no call to memcpy */
-    o->np += (size_t)ar;
-}
-
-static int fail(Work *w, size_t pos, const Rule *r, int status) {
-    w->fault.status = SYL_EMODEL;
-    w->fault.pos = pos;
-    w->fault.rule = r;
-    if (status != EVAL_OK && !w->fault.vm.status) w->fault.vm.status = status;
-    return SYL_EMODEL;
-}
-
-/* Copy a successor's codes: short ones with one fixed-size move (both sides are padded). */
-static inline void put_codes(uint16_t *dst, const Rule *r) {
-    if (r->nsucc <= SUCC_PAD) memcpy(dst, r->succ, SUCC_PAD * sizeof *dst);
-    else memcpy(dst, r->succ, (size_t)r->nsucc * sizeof *dst);
-}
-
-static inline int emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready) {
-    SylString *o = w->out;
-    put_codes(o->code + o->n, r);
-    o->n += (size_t)r->nsucc;
-    double *dst = o->par + o->np;
-    for (int k = 0; k < r->nslots; k++) {
-        const Slot *s = &r->slots[k];
-        double v;
-        switch (s->kind) {
-        case SLOT_CONST: dst[k] = s->k; continue;
-        case SLOT_LOCAL: dst[k] = locals[s->local]; continue;
-        case SLOT_ADDK: v = locals[s->local] + s->k; break;
-        case SLOT_SUBK: v = locals[s->local] - s->k; break;
-        case SLOT_MULK: v = locals[s->local] * s->k; break;
-        case SLOT_DIVK: v = locals[s->local] / s->k; break;
-        default:
-            if (!*rng_ready) {
-                *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, pos);
-                *rng_ready = true;
-            }
-            if (vm_run(w->p, s->pc, locals, rng, &dst[k], &w->fault.vm)) return fail(w, pos, r, EVAL_OK);
-            continue;
-        }
-        if (!isfinite(v)) {
-            w->fault.vm.pc = s->pc;
-            return fail(w, pos, r, EVAL_NONFINITE);
-        }
-        dst[k] = v;
-    }
-    o->np += (size_t)r->nslots;
-    w->applied = true;
-    return SYL_OK;
-}
-
-/* Try the rules for module i in order: the first applicable one decides. If it is weighted,
- * the choice is among every applicable weighted rule, in proportion to its weight. */
-static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, Rng *rng, bool *rng_ready,
-                          int *status) {
-    const RuleTable *t = w->t;
-    const View *in = w->in;
-    double total = 0;
-    int nc = 0;
-    *status = SYL_OK;
-    for (uint32_t k = 0; k < d->count; k++) {
-        const Rule *r = &t->rules[t->order[d->first + k]];
-        if (nc && !r->weighted) continue;
-        if (r->nleft && !match_left(in, i, r, locals)) continue;
-        if (r->nright && !match_right(in, i, r, locals)) continue;
-        if (r->cond >= 0 || r->weight >= 0) {
-            if (!*rng_ready) {
-                *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
-                *rng_ready = true;
-            }
-        }
-        if (r->cond >= 0) {
-            double v;
-            if (vm_run(w->p, (uint32_t)r->cond, locals, rng, &v, &w->fault.vm)) {
-                *status = fail(w, i, r, EVAL_OK);
-                return NULL;
-            }
-            if (v == 0) continue;
-        }
-        if (!r->weighted) return r;
-        double wt = r->const_weight;
-        if (r->weight >= 0 && vm_run(w->p, (uint32_t)r->weight, locals, rng, &wt, &w->fault.vm)) {
-            *status = fail(w, i, r, EVAL_OK);
-            return NULL;
-        }
-        if (wt < 0) {
-            w->fault.vm.pc = (uint32_t)r->weight;
-            *status = fail(w, i, r, EVAL_NEG_WEIGHT);
-            return NULL;
-        }
-        if (nc == w->ncap) { /* grows once per chunk at most a few times */
-            int cap = w->ncap ? 2 * w->ncap : 16;
-            const Rule **c = realloc(w->cand, sizeof *c * (size_t)cap);
-            double *wt2 = c ? realloc(w->weight, sizeof *wt2 * (size_t)cap) : NULL;
-            if (c) w->cand = c;
-            if (!c || !wt2) {
-                w->fault.status = SYL_ELIMIT;
-                w->fault.limit = LIMIT_MEMORY;
-                w->fault.pos = i;
-                *status = SYL_ELIMIT;
-                return NULL;
-            }
-            w->weight = wt2;
-            w->ncap = cap;
-        }
-        w->cand[nc] = r;
-        w->weight[nc++] = wt;
-        total += wt;
-    }
-    if (!nc || total <= 0) return NULL;
-    if (!*rng_ready) {
-        *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
-        *rng_ready = true;
-    }
-    double u = rng_unit(rng) * total;
-    int pick = 0;
-    while (pick < nc - 1 && (u -= w->weight[pick]) >= 0) pick++;
-    while (w->weight[pick] == 0) pick--; /* u landed exactly on a boundary before a zero */
-    const Rule *r = w->cand[pick];
-    /* the contexts bound last may be another candidate's: bind the chosen rule's again */
-    if (r->nleft) match_left(in, i, r, locals);
-    if (r->nright) match_right(in, i, r, locals);
-    return r;
-}
-
-/* Checked whenever an output buffer grows: the exact module count is checked after the pass. */
-static bool over_limit(Work *w, size_t pos, int reserve_status) {
-    if (w->out->n <= w->out->max_modules && !reserve_status) return false;
-    w->fault.status = SYL_ELIMIT;
-    w->fault.limit = reserve_status ? LIMIT_MEMORY : LIMIT_MODULES;
-    w->fault.pos = pos;
-    return true;
-}
-
-/* Strings without parameters under rules that make none: codes only, no checks per slot. */
-static void run_chunk_codes(Work *w) {
-    const RuleTable *t = w->t;
-    const uint16_t *code = w->in->code;
-    SylString *o = w->out;
-    const size_t need = (size_t)t->max_succ + SUCC_PAD;
-    size_t n = o->n;
-    for (size_t i = w->lo; i < w->hi; i++) {
-        if (n + need > o->cap) {
-            o->n = n;
-            if (over_limit(w, i, ms_reserve(o, need + (w->hi - i), 0))) return;
-        }
-        uint16_t c = code[i];
-        const Rule *r = t->dispatch[c].plain;
-        if (r) {
-            put_codes(o->code + n, r);
-            n += (size_t)r->nsucc;
-            w->applied = true;
-        } else {
-            o->code[n++] = c;
-        }
-    }
-    o->n = n;
-}
-
-static void run_chunk(Work *w) {
-    const RuleTable *t = w->t;
-    const View *in = w->in;
-    SylString *o = w->out;
-    const uint16_t *code = in->code;
-    size_t pi = w->plo; /* an index, not a pointer: a string without parameters has none */
-    const size_t need = (size_t)t->max_succ + SUCC_PAD;
-    const size_t pneed = (size_t)t->max_succ_params + MAX_ARITY;
-    double locals[MAX_LOCALS + MAX_ARITY];
-    w->fault.status = SYL_OK;
-    for (size_t i = w->lo; i < w->hi; i++) {
-        uint16_t c = code[i];
-        const double *args = in->par ? in->par + pi : NULL;
-        pi += CODE_ARITY(c);
-        if (o->n + need > o->cap || o->np + pneed > o->pcap) {
-            if (over_limit(w, i, ms_reserve(o, need + (w->hi - i), pneed))) return;
-        }
-        const Dispatch *d = &t->dispatch[c];
-        Rng rng;
-        bool rng_ready = false;
-        if (d->plain) {
-            if (emit(w, d->plain, args, i, &rng, &rng_ready)) return;
-            continue;
-        }
-        if (!d->count) {
-            copy_module(w, c, args);
-            continue;
-        }
-        if (d->fast) { /* neighbours' codes against each rule's, in order */
-            uint16_t lc = in->lcode ? in->lcode[i] : CODE_NONE, rc = in->rcode ? in->rcode[i] : CODE_NONE;
-            const FastRule *f = d->fast, *end = f + d->count;
-            while (f < end && !((f->left == CODE_ANY || f->left == lc) && (f->right == CODE_ANY || f->right == rc)))
-                f++;
-            if (f == end) copy_module(w, c, args);
-            else if (emit(w, f->rule, args, i, &rng, &rng_ready)) return;
-            continue;
-        }
-        memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
-        int status;
-        const Rule *r = choose(w, d, i, locals, &rng, &rng_ready, &status);
-        if (status) return;
-        if (!r) copy_module(w, c, args);
-        else if (emit(w, r, locals, i, &rng, &rng_ready)) return;
-    }
-}
-
 static void *run_thread(void *arg) {
-    Work *w = arg;
-    w->codes_only ? run_chunk_codes(w) : run_chunk(w);
+    rewrite_chunk(arg);
     return NULL;
 }
 
@@ -286,11 +45,7 @@ typedef struct Engine {
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
     bool warned_depth;
     bool reported;      /* an error was reported: one message per failure */
-    /* ?E modules: the environment that answers them and what the turtle collects for it */
-    SylEnvFn env;
-    void *env_user;
-    SylEnvFill fill;
-    OpenEnv *alone; /* the stand-alone environment, when the caller gives none */
+    LsysQueries queries; /* what fills query modules */
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
@@ -327,10 +82,7 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
 }
 
 static void engine_free(Engine *e) {
-    free(e->fill.ends);
-    free(e->fill.probes);
-    if (e->alone) open_env_free(e->alone);
-    free(e->alone);
+    if (e->queries.release) e->queries.release(e->queries.user);
     free(e->left);
     free(e->right);
     free(e->pair);
@@ -340,7 +92,7 @@ static void engine_free(Engine *e) {
 }
 
 /* Rewrite `in` with table t into `out` (emptied first). Returns a SYL_* status. */
-static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *out, bool *applied, int step,
+static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylString *out, bool *applied, int step,
                 const char *what) {
     const SylProgram *p = e->p;
     const RuleTable *t = &p->tables[table];
@@ -418,10 +170,10 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
     pthread_t tid[MAX_THREADS];
     bool started[MAX_THREADS] = {false};
     for (int k = 1; k < nt; k++) started[k] = !pthread_create(&tid[k], NULL, run_thread, &works[k]);
-    run_thread(&works[0]);
+    rewrite_chunk(&works[0]);
     for (int k = 1; k < nt; k++) {
         if (started[k]) pthread_join(tid[k], NULL);
-        else run_thread(&works[k]);
+        else rewrite_chunk(&works[k]);
     }
     for (int k = 0; k < nt; k++) {
         free(works[k].cand);
@@ -463,12 +215,12 @@ static int pass(Engine *e, int table, uint64_t key, SylString *in, SylString *ou
 }
 
 /* Apply a table repeatedly until no rule applies or its maxdepth is reached. */
-static int passes(Engine *e, int table, int step, SylString **cur, SylString **spare) {
+static int rewrite_until_stable(Engine *e, int table, int step, SylString **cur, SylString **spare) {
     const RuleTable *t = &e->p->tables[table];
     if (!t->nrules) return SYL_OK;
     for (int d = 0; d < t->maxdepth; d++) {
         bool applied = false;
-        int st = pass(e, table, (uint64_t)step << 16 | (uint64_t)d, *cur, *spare, &applied, step,
+        int st = rewrite_pass(e, table, (uint64_t)step << 16 | (uint64_t)d, *cur, *spare, &applied, step,
                       table == TABLE_DECOMPOSE ? "decomposition after step" : "interpretation of step");
         if (st) return st;
         if (!applied) break;
@@ -530,45 +282,24 @@ static int axiom(Engine *e, SylString *out) {
     Rng rng;
     bool ready = false;
     double none[1] = {0};
-    if (emit(&w, r, none, 0, &rng, &ready)) {
+    if (rewrite_emit(&w, r, none, 0, &rng, &ready)) {
         report(e, &w, 0, "axiom, step");
         return SYL_EMODEL;
     }
     return SYL_OK;
 }
 
-/* Query modules (?P ?H ?L ?U) take the turtle's state after every step, as the turtle sees
- * the string: through the `interpret` rules when there are any. Those rules keep query
- * modules as they are, so the k-th query module read is the k-th of the string. ?E modules
- * are answered by the environment at the turtle's position and heading (env/open.h). */
+/* Query modules (?P ?H ?L ?U ?E) take the turtle's state after every step, as the turtle
+ * sees the string: through the `interpret` rules when there are any. Those rules keep query
+ * modules as they are, so the k-th query module read is the k-th of the string. The
+ * environment the caller plugged in fills them (docs/language.md, "Open L-systems"). */
 static bool is_query(const SylProgram *p, uint16_t code) {
     const char *n = p->syms[CODE_SYM(code)].name;
     return n[0] == '?' && (n[1] == 'P' || n[1] == 'H' || n[1] == 'L' || n[1] == 'U' || n[1] == 'E') && !n[2];
 }
 
-static int turtle_fill(Engine *e, SylString *s, int step) {
-    /* env/open.c keeps its probes itself, in less memory */
-    if (e->env == open_env_answer) return open_env_fill(e->env_user, e->p, s, &e->fill, step);
-    int st = syl_turtle_query(e->p, s, e->env ? &e->fill : NULL);
-    if (!st && e->env && e->fill.nprobes) st = e->env(e->env_user, step, &e->fill, s->par);
-    return st;
-}
-
-/* The environment for ?E modules: the caller's, or the plant alone on the ground. */
-static int env_setup(Engine *e, const SylDeriveOptions *opt) {
-    if (!e->p->uses_env) return SYL_OK;
-    if (opt->env) {
-        e->env = opt->env;
-        e->env_user = opt->env_user;
-        return SYL_OK;
-    }
-    e->alone = malloc(sizeof *e->alone);
-    if (!e->alone) return SYL_ELIMIT;
-    OpenEnvParams P = {.voxel = (float)e->p->step, .sun = {0, 1, 0}, .diag = opt->diag};
-    open_env_init(e->alone, &P);
-    e->env = open_env_answer;
-    e->env_user = e->alone;
-    return SYL_OK;
+static int query_fill(Engine *e, SylString *s, int step) {
+    return e->queries.ops ? e->queries.ops->fill(e->queries.user, e->p, s, step) : SYL_OK;
 }
 
 static int fill_queries(Engine *e, SylString *s, int step) {
@@ -579,7 +310,7 @@ static int fill_queries(Engine *e, SylString *s, int step) {
     bool pred[MAX_SYMBOLS] = {false}, interpreted = false;
     for (int k = 0; k < it->nrules; k++) pred[CODE_SYM(it->rules[k].pred)] = true;
     for (size_t i = 0; it->nrules && !interpreted && i < s->n; i++) interpreted = pred[CODE_SYM(s->code[i])];
-    if (!interpreted) return turtle_fill(e, s, step);
+    if (!interpreted) return query_fill(e, s, step);
     SylString *cur = new_string(e), *spare = new_string(e);
     int st = cur && spare ? ms_reserve(cur, s->n, s->np) : SYL_ELIMIT;
     if (!st) {
@@ -587,9 +318,9 @@ static int fill_queries(Engine *e, SylString *s, int step) {
         if (s->np) memcpy(cur->par, s->par, s->np * sizeof *s->par);
         cur->n = s->n;
         cur->np = s->np;
-        st = passes(e, TABLE_INTERPRET, step, &cur, &spare);
+        st = rewrite_until_stable(e, TABLE_INTERPRET, step, &cur, &spare);
     }
-    if (!st) st = turtle_fill(e, cur, step);
+    if (!st) st = query_fill(e, cur, step);
     /* copy the filled values back, query module by query module */
     bool query[MAX_SYMBOLS] = {false};
     for (int k = 0; k < p->nsyms && k < MAX_SYMBOLS; k++) query[k] = is_query(p, (uint16_t)k);
@@ -618,8 +349,8 @@ struct SylDeriver {
 /* The start string, given or the axiom: copied, then decomposed and queried (step 0). */
 static int begin(SylDeriver *d, const SylString *start) {
     Engine *e = &d->e;
-    int st = env_setup(e, d->opt);
-    if (!st && start) {
+    int st = SYL_OK;
+    if (start) {
         st = ms_reserve(d->cur, start->n, start->np);
         if (!st) {
             if (start->n) memcpy(d->cur->code, start->code, start->n * sizeof *start->code);
@@ -627,8 +358,8 @@ static int begin(SylDeriver *d, const SylString *start) {
             d->cur->n = start->n;
             d->cur->np = start->np;
         }
-    } else if (!st) st = axiom(e, d->cur);
-    if (!st) st = passes(e, TABLE_DECOMPOSE, 0, &d->cur, &d->spare);
+    } else st = axiom(e, d->cur);
+    if (!st) st = rewrite_until_stable(e, TABLE_DECOMPOSE, 0, &d->cur, &d->spare);
     if (!st) st = fill_queries(e, d->cur, 0);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, 0, d->cur);
     return st;
@@ -643,22 +374,26 @@ static int said(Engine *e, int st, int step, const char *what) {
     return st;
 }
 
-int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out) {
+int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, const LsysQueries *q,
+                      SylDeriver **out) {
     *out = NULL;
     if (p->kind != SYL_MODEL_LSYSTEM) {
         if (opt && opt->diag)
             fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: grow it with `sylva grow`\n",
                     p->name, p->kind == SYL_MODEL_GROW ? "grow block" : "scene");
+        if (q && q->release) q->release(q->user);
         return SYL_EUSAGE;
     }
     SylDeriver *d = calloc(1, sizeof *d);
     if (!d) {
         if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory\n");
+        if (q && q->release) q->release(q->user);
         return SYL_ELIMIT;
     }
     d->own_opt = (SylDeriveOptions){.steps = -1};
     d->opt = opt ? opt : &d->own_opt;
     engine_init(&d->e, p, d->opt);
+    if (q) d->e.queries = *q;
     d->cur = new_string(&d->e);
     d->spare = new_string(&d->e);
     d->status = said(&d->e, d->cur && d->spare ? begin(d, start) : SYL_ELIMIT, 0, "step");
@@ -673,14 +408,14 @@ int syl_derive_step(SylDeriver *d) {
     int step = ++d->step, st = SYL_OK;
     if (p->tables[TABLE_PRODUCE].nrules) {
         bool applied = false;
-        st = pass(e, TABLE_PRODUCE, (uint64_t)step << 16, d->cur, d->spare, &applied, step, "step");
+        st = rewrite_pass(e, TABLE_PRODUCE, (uint64_t)step << 16, d->cur, d->spare, &applied, step, "step");
         if (!st) {
             SylString *x = d->cur;
             d->cur = d->spare;
             d->spare = x;
         }
     }
-    if (!st) st = passes(e, TABLE_DECOMPOSE, step, &d->cur, &d->spare);
+    if (!st) st = rewrite_until_stable(e, TABLE_DECOMPOSE, step, &d->cur, &d->spare);
     if (!st) st = fill_queries(e, d->cur, step);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, step, d->cur);
     d->opt->rewritten = e->rewritten;
@@ -703,18 +438,6 @@ int syl_derive_end(SylDeriver *d, SylString **out) {
     return st;
 }
 
-int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out) {
-    SylDeriveOptions defaults = {.steps = -1};
-    if (!opt) opt = &defaults;
-    *out = NULL;
-    SylDeriver *d;
-    int st = syl_derive_begin(p, opt, NULL, &d);
-    int steps = opt->steps >= 0 ? opt->steps : p->derive;
-    for (int step = 1; step <= steps && !st; step++) st = syl_derive_step(d);
-    if (!d) return st;
-    return syl_derive_end(d, out);
-}
-
 int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptions *opt, SylString **out) {
     static const SylDeriveOptions defaults = {.steps = -1};
     if (!opt) opt = &defaults;
@@ -727,7 +450,7 @@ int syl_interpret(const SylProgram *p, const SylString *in, const SylDeriveOptio
         if (in->np) memcpy(cur->par, in->par, in->np * sizeof *in->par);
         cur->n = in->n;
         cur->np = in->np;
-        st = passes(&e, TABLE_INTERPRET, opt->steps >= 0 ? opt->steps : p->derive, &cur, &spare);
+        st = rewrite_until_stable(&e, TABLE_INTERPRET, opt->steps >= 0 ? opt->steps : p->derive, &cur, &spare);
     }
     said(&e, st, opt->steps >= 0 ? opt->steps : p->derive, "interpretation of step");
     syl_string_free(spare);

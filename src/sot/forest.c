@@ -79,6 +79,7 @@ static ShootRule *shared_rule(Forest *f, const SylProgram *from, const char *nam
     ShootRule *rule = shoot_rule_new(from, name);
     if (!rule) return NULL;
     shoot_rule_limits(rule, f->max_modules, f->max_work, f->mem);
+    shoot_rule_derive_with(rule, f->shoot_derive);
     f->rules[f->nrules++] = (ForestRule){.from = from, .name = name, .rule = rule};
     return rule;
 }
@@ -141,9 +142,7 @@ int forest_setup(Forest *f, float ground, const float sun[3], bool sun_set) {
         e->shadow.mem = f->mem;
         e->shadow_on = true;
     } else if (f->lsys_shadow) { /* only for ?E light: no tree reads it */
-        ShadowParams sp = f->lsys_shadow_params;
-        memcpy(sp.sun, e->sun, sizeof sp.sun);
-        if (!(sp.sun[1] > 0)) sp.sun[0] = sp.sun[2] = 0, sp.sun[1] = 1;
+        ShadowParams sp = probe_shadow_params(f->lsys_shadow_voxel, e->sun);
         shadow_init(&e->shadow, &sp, ground);
         e->shadow.mem = f->mem;
         e->shadow_on = true;

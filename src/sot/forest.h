@@ -10,7 +10,7 @@
  *
  * Before the light phase of every year the forest calls its year_start hook, if any: a
  * scene's L-system plants take their derivation step there and replace their casters and
- * occupants (scene_lsys.c), so trees and L-systems grow in lockstep.
+ * occupants (scene/lsys.c), so trees and L-systems grow in lockstep.
  *
  * Everything random comes from the buds' own streams and every sum runs in a fixed order,
  * so the forest is the same for any thread count. */
@@ -18,6 +18,7 @@
 #define SYL_SOT_FOREST_H
 #include "env/env.h"
 #include "env/space.h"
+#include "sot/shoot_rule.h"
 #include "sot/tree.h"
 #include "sylva/grow.h"
 
@@ -52,12 +53,15 @@ typedef struct Forest {
     SylGrowStats *stats;
     int space_variant;     /* SPACE_PER_BUD or SPACE_GLOBAL, from the first tree that uses space */
     bool space_any;
+    /* How shoot rules derive (set before the trees are added): see shoot_rule_derive_with. */
+    ShootDeriveFn shoot_derive;
     /* Called at the start of every year, before light; NULL: none. */
     int (*year_start)(void *user, int year);
     void *year_user;
-    /* A shadow grid for ?E light when no tree uses `light shadow` (set before forest_setup). */
+    /* A shadow grid for ?E light when no tree uses `light shadow` (set before forest_setup):
+     * probe_shadow_params at this voxel. */
     bool lsys_shadow;
-    ShadowParams lsys_shadow_params;
+    float lsys_shadow_voxel;
     /* scratch */
     Candidate *cand;
     size_t ncand, ccap;

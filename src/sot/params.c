@@ -589,12 +589,3 @@ int sot_check_grow(const SylProgram *p, FILE *diag) {
     GrowParams g;
     return grow_params_read(p, &g, diag);
 }
-
-/* The scene is checked with the file's first model only, so that checking every model of a
- * file (`sylva check`) reports it once. */
-int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
-    (void)user;
-    int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
-    if (!errors && p->has_scene && p->first_model) errors += sot_check_scene(p, diag);
-    return errors;
-}

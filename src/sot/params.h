@@ -77,43 +77,8 @@ void grow_params_default(GrowParams *g);
  * errors, each reported through diag at its place. */
 int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag);
 
-/* One plant of a scene. */
-typedef struct ScenePlant {
-    const char *model;   /* a model of this file, or NULL when file is set */
-    const char *file;    /* "path.syl" or "path.syl:Model", relative to the scene's file */
-    float at[3];
-    bool seed_set, years_set;
-    uint64_t seed;
-    int years;
-    int line, col;
-} ScenePlant;
-
-typedef struct SceneObstacle {
-    const char *file;
-    float at[3];
-    float scale;
-    bool terrain;        /* from `ground "file.obj"` */
-    int line, col;
-} SceneObstacle;
-
-typedef struct SceneSpec {
-    ScenePlant *plants;
-    int nplants, plants_cap;
-    SceneObstacle *obstacles;
-    int nobstacles, obstacles_cap;
-    float ground;
-    bool ground_set;
-    float sun[3];
-    bool sun_set;
-} SceneSpec;
-
-/* Read p's scene block (free with scene_spec_free). Returns the number of errors. Names of
- * plants are checked against the models of the file. */
-int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag);
-void scene_spec_free(SceneSpec *s);
-
-/* Check a grow block's directives, and the scene's: what syl_grow_validate (the hook
- * syl_compile's callers pass) runs. Returns the number of errors reported. */
+/* The hook of syl_compile: check a grow block's directives and the scene's (sot_check_scene
+ * is scene/spec.c's). Returns the number of errors reported. */
 int sot_check_grow(const SylProgram *p, FILE *diag);
 int sot_check_scene(const SylProgram *p, FILE *diag);
 

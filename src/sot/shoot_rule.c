@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "lang/program.h"
+#include "lsys/derive.h"
 #include "sylva/skeleton.h"
 #include "util/array.h"
 
@@ -34,6 +35,7 @@ struct ShootRule {
     uint8_t cmd[MAX_SYMBOLS];
     uint64_t max_modules, max_work; /* of each shoot's derivation */
     SylBudget *mem;
+    ShootDeriveFn begin;   /* NULL: lsys_derive_begin without queries */
 };
 
 /* The arity of the first production for `shoot` (produce or decompose), or -1. */
@@ -90,6 +92,8 @@ void shoot_rule_limits(ShootRule *r, uint64_t max_modules, uint64_t max_work, Sy
     r->max_work = max_work;
     r->mem = mem;
 }
+
+void shoot_rule_derive_with(ShootRule *r, ShootDeriveFn begin) { r->begin = begin; }
 
 void shoot_rule_free(ShootRule *r) {
     if (!r) return;
@@ -285,7 +289,7 @@ int shoot_rule_plan(const ShootRule *r, const double args[4], uint64_t seed, Sho
                           .max_modules = r->max_modules ? r->max_modules : 1000000, .max_memory = 256u << 20,
                           .max_work = r->max_work, .budget = r->mem, .diag = diag};
     SylDeriver *dv = NULL;
-    int st = syl_derive_begin(r->p, &d, start, &dv);
+    int st = r->begin ? r->begin(r->p, &d, start, &dv) : lsys_derive_begin(r->p, &d, start, NULL, &dv);
     for (int k = 1; k <= syl_program_steps(r->p) && !st; k++) st = syl_derive_step(dv);
     if (dv) st = syl_derive_end(dv, &out);
     syl_string_free(start);

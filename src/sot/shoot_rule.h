@@ -50,6 +50,11 @@ void shoot_rule_free(ShootRule *r);
 /* The limits of every shoot's derivation: max_modules (0: a million), max_work (0: the
  * default) and the memory budget (NULL: 256 MB a shoot). */
 void shoot_rule_limits(ShootRule *r, uint64_t max_modules, uint64_t max_work, SylBudget *mem);
+/* How every shoot derives, and so who fills its query modules (?P ... ?E): the public
+ * syl_derive_begin when the scene layer sets it (the stand-alone environment); NULL, the
+ * default: the engine's own deriver, which leaves query modules as they are. */
+typedef int (*ShootDeriveFn)(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out);
+void shoot_rule_derive_with(ShootRule *r, ShootDeriveFn begin);
 /* The rule places lateral buds (its model uses B): the `buds` directive places none. */
 bool shoot_rule_places_buds(const ShootRule *r);
 /* Colours the rule's model sets (colour I, R, G, B): rgb[i] when set[i]. */

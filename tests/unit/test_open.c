@@ -1,4 +1,4 @@
-/* Open L-systems (?E modules, env/open.h): light is lower under a canopy than in the open,
+/* Open L-systems (?E modules, scene/open.h): light is lower under a canopy than in the open,
  * obstacle distance along the heading, the pruned hedge of examples/hybrid never crosses its
  * box, and reruns agree. Run from the repository's root (tests/run-all does). */
 #include <math.h>

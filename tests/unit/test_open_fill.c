@@ -1,7 +1,7 @@
 /* The fast paths of open L-systems: a set of casters replaced step by step gives the shadow
  * of removing and adding every caster; the turtle's lazy frame (turns made only when read,
  * dropped in branches nobody reads) gives the frames of the skeleton's turtle; the compact
- * probes of env/open.c are the probes of the plain reading. */
+ * probes of scene/open.c are the probes of the plain reading. */
 #include <math.h>
 
 #include "unit.h"

@@ -8,7 +8,7 @@
  * that sees the plants as they are this year, and the plants' next step reads the trees as
  * they grew.
  *
- * ?E modules are answered by env/probe.h from this scene's world (not env/open.c's): light
+ * ?E modules are answered by env/probe.h from this scene's world (not scene/open.c's): light
  * from the forest's shadow grid (the trees' metamers and every L-system's latest ends, its
  * own of this step included), crowding and sky exposure from the same points, distance from
  * the obstacles and the ground. A step that brings no
@@ -17,9 +17,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "env/open.h"
 #include "env/probe.h"
+#include "lang/program.h"
+#include "lsys/modstr.h"
+#include "scene/lsys.h"
 #include "sot/forest_internal.h"
+#include "turtle/turtle.h"
 
 
 typedef struct LsysPlant {
@@ -35,6 +38,7 @@ typedef struct LsysPlant {
     size_t nends, cap;
     bool fresh;         /* ends are those of the string as it is now */
     SylString *final;
+    SylEnvFill fill;    /* what the turtle collects for the answers */
 } LsysPlant;
 
 struct SceneLsys {
@@ -43,10 +47,6 @@ struct SceneLsys {
     int n, cap;
     float (*ends)[3];   /* the turtle's ends for steps without ?E answers */
     size_t ends_cap;
-    float (*pts)[3];    /* occupants for ?E(1) and ?E(3) */
-    size_t pts_cap;
-    PointGrid occ;
-    SkyScene sky;       /* ?E(3) */
 };
 
 int lsys_draw(const SylProgram *q, const SylString *s, const SylDeriveOptions *d, const float at[3], SylSkeleton **out) {
@@ -90,16 +90,15 @@ void scene_lsys_free(SceneLsys *s) {
         if (pl->dv) syl_derive_end(pl->dv, NULL);
         syl_string_free(pl->final);
         free(pl->ends);
+        free(pl->fill.ends);
+        free(pl->fill.probes);
     }
     free(s->plants);
     free(s->ends);
-    free(s->pts);
-    pgrid_free(&s->occ);
-    sky_free(&s->sky);
     free(s);
 }
 
-static int answer(void *user, int step, const SylEnvFill *fill, double *par);
+static const SylQueryOps plant_ops;
 
 int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d, const float at[3], float ground, int steps) {
     if (s->n == s->cap) return SYL_ELIMIT;
@@ -107,8 +106,8 @@ int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d,
     pl->owner = s;
     pl->q = q;
     pl->d = *d;
-    pl->d.env = answer;
-    pl->d.env_user = pl;
+    pl->d.queries = &plant_ops;
+    pl->d.queries_user = pl;
     pl->steps = steps;
     memcpy(pl->at, at, sizeof pl->at);
     pl->ground = ground;
@@ -118,7 +117,7 @@ int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d,
     Forest *f = s->f;
     if (syl_program_symbol_find(q, "?E") >= 0 && !f->lsys_shadow) {
         f->lsys_shadow = true;
-        f->lsys_shadow_params = (ShadowParams){.voxel = pl->voxel, .full = 1, .a = 0.25f, .b = 2, .depth = 8};
+        f->lsys_shadow_voxel = pl->voxel;
     }
     return SYL_OK;
 }
@@ -238,45 +237,49 @@ int scene_lsys_draw(SceneLsys *s, int i, SylSkeleton **out) {
 /* ---- ?E answers ---- */
 
 /* Crowding and sky exposure see the trees' metamer ends and every L-system's ends as they
- * are now (*n of them, in s->pts). */
+ * are now (*n of them, in the environment's ?E points). */
 static int build_space(SceneLsys *s, const LsysPlant *pl, size_t *npts) {
-    const Forest *f = s->f;
+    Forest *f = s->f;
     size_t n = 0;
     for (int i = 0; i < f->ntrees; i++) n += f->trees[i].n - 1;
     for (int i = 0; i < s->n; i++) n += s->plants[i].nends;
-    if (n > s->pts_cap) {
-        float(*p)[3] = realloc(s->pts, n * sizeof *p);
-        if (!p) return SYL_ELIMIT;
-        s->pts = p;
-        s->pts_cap = n;
-    }
+    if (!env_probe_points(&f->env, n)) return SYL_ELIMIT;
+    float(*pts)[3] = f->env.probes.pts;
     size_t m = 0;
     for (int i = 0; i < f->ntrees; i++)
-        for (size_t k = 1; k < f->trees[i].n; k++) memcpy(s->pts[m++], f->trees[i].nodes[k].pos, sizeof *s->pts);
+        for (size_t k = 1; k < f->trees[i].n; k++) memcpy(pts[m++], f->trees[i].nodes[k].pos, sizeof *pts);
     for (int i = 0; i < s->n; i++)
         if (s->plants[i].nends) {
-            memcpy(s->pts + m, s->plants[i].ends, s->plants[i].nends * sizeof *s->pts);
+            memcpy(pts + m, s->plants[i].ends, s->plants[i].nends * sizeof *pts);
             m += s->plants[i].nends;
         }
     *npts = n;
-    return pgrid_build(&s->occ, pl->voxel, (const float *)s->pts, 3, n) ? SYL_OK : SYL_ELIMIT;
+    return pgrid_build(&f->env.probes.occ, pl->voxel, (const float *)pts, 3, n) ? SYL_OK : SYL_ELIMIT;
 }
 
-/* A SylEnvFn: user is the plant. Its ends replace its casters first, so it shades itself. */
-static int answer(void *user, int step, const SylEnvFill *fill, double *par) {
-    LsysPlant *pl = user;
+/* The probes of one step: the plant's ends replace its casters first, so it shades itself. */
+static int answer(LsysPlant *pl, int step, const SylEnvFill *fill, double *par) {
     SceneLsys *s = pl->owner;
     Env *e = &s->f->env;
     int st = recast(pl, (const float(*)[3])fill->ends, fill->nends);
     unsigned kinds = probe_kinds(fill, par);
     size_t npts = 0;
     if (!st && kinds & (1u << PROBE_SPACE | 1u << PROBE_SKY)) st = build_space(s, pl, &npts);
-    float foliage = 0.4f * pl->voxel;
     if (!st && kinds & 1u << PROBE_SKY)
-        st = probe_sky_build(&s->sky, e->dev, &e->obstacles, NULL, 0, pl->at, (const float *)s->pts, npts, foliage);
-    ProbeWorld w = {.shadow = e->shadow_on ? &e->shadow : NULL, .occ = &s->occ, .voxel = pl->voxel,
-                    .obstacles = &e->obstacles, .ground = pl->ground, .sky = &s->sky, .foliage = foliage,
-                    .at = {pl->at[0], pl->at[1], pl->at[2]}};
+        st = probe_sky_build(&e->probes.sky, e->dev, &e->obstacles, NULL, 0, pl->at, (const float *)e->probes.pts,
+                             npts, probe_foliage(pl->voxel));
+    ProbeWorld w = env_probe_world(e, pl->voxel, pl->ground, &e->obstacles, pl->at);
     if (!st) probe_answer(&w, fill, step, par);
     return st;
 }
+
+/* The turtle's query pass, then the scene's answers (user: the plant). */
+static int plant_fill(void *user, const SylProgram *p, SylString *s, int step) {
+    LsysPlant *pl = user;
+    if (!p->uses_env) return syl_turtle_query(p, s, NULL);
+    int st = syl_turtle_query(p, s, &pl->fill);
+    if (!st && pl->fill.nprobes) st = answer(pl, step, &pl->fill, s->par);
+    return st;
+}
+
+static const SylQueryOps plant_ops = {.fill = plant_fill};

@@ -1,6 +1,6 @@
 /* syl_grow_scene: every plant of a file's scene in one environment. Grow plants become
  * trees of one forest. L-system plants beside trees derive in lockstep with them, a step a
- * year (scene_lsys.c), shading and crowding them and shaded by them; in a scene of
+ * year (lsys.c), shading and crowding them and shaded by them; in a scene of
  * L-systems only, each is derived and drawn in turn and stands, for the plants after it, as
  * static shadow casters and occupants. The skeleton holds every plant in the order the scene
  * lists them. */
@@ -9,11 +9,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "env/open.h"
+#include "scene/open.h"
 #include "util/arena.h"
 #include "util/namemap.h"
 #include "sot/forest.h"
 #include "sot/forest_internal.h"
+#include "scene/lsys.h"
+#include "scene/spec.h"
 #include "sot/output.h"
 #include "sylva/grow.h"
 
@@ -110,8 +112,8 @@ static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const Sc
     if (S->sun_set) memcpy(P.sun, S->sun, sizeof P.sun);
     OpenEnv oe;
     open_env_init(&oe, &P);
-    d.env = open_env_answer;
-    d.env_user = &oe;
+    d.queries = &open_env_ops;
+    d.queries_user = &oe;
     SylString *s = NULL;
     int st = syl_derive(q, &d, &s);
     open_env_free(&oe);
@@ -368,6 +370,7 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     int st = placed && plants && progs ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
     if (!st) {
         forest_limits(&f, opt);
+        f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
         st = grow_scene(p, opt, &S, &f, placed, plants, progs, &models, &lsys, out, obstacles);
         st = forest_said(&f, st, 0);
         scene_lsys_free(lsys);

@@ -33,6 +33,7 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     }
     int st = forest_init(&f, opt->threads, opt->diag, &opt->stats);
     forest_limits(&f, opt);
+    f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
     const float base[3] = {0, 0, 0};
     if (!st) st = forest_add_tree(&f, &P, base, P.years);
     if (!st) st = forest_setup(&f, base[1], P.sun, false);

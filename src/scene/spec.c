@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene/spec.h"
 #include "sot/params.h"
 #include "sot/reader.h"
 
@@ -214,5 +215,14 @@ int sot_check_scene(const SylProgram *p, FILE *diag) {
     SceneSpec s;
     int errors = scene_spec_read(p, &s, diag);
     scene_spec_free(&s);
+    return errors;
+}
+
+/* syl_compile's hook (grow.h): a grow block's directives and the scene's. The scene is checked with the file's first model only, so that checking every model of a
+ * file (`sylva check`) reports it once. */
+int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
+    (void)user;
+    int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
+    if (!errors && p->has_scene && p->first_model) errors += sot_check_scene(p, diag);
     return errors;
 }

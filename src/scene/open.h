@@ -1,8 +1,7 @@
 /* The environment of an open L-system (docs/language.md, "Open L-systems"): answers the ?E
  * modules of every step at the turtle's position and heading.
  *
- *   ?E(0, q)     light: Q = C - s, in 0..C, of a shadow grid (shadow.h; C = a = 1, b = 2,
- *                depth 6) holding the plant's own segment ends of this step and the scene's
+ *   ?E(0, q)     light: Q = C - s, in 0..C, of a shadow grid (probe_shadow_params) holding the plant's own segment ends of this step and the scene's
  *                static casters; at a segment's end, that end's own shadow a does not count
  *   ?E(1, n, r)  space: how many segment ends (own and the scene's) lie within r of the
  *                point r ahead along the heading (r defaults to the voxel)
@@ -20,11 +19,7 @@
 #define SYL_ENV_OPEN_H
 #include <stdio.h>
 
-#include "env/obstacles.h"
-#include "env/pointgrid.h"
-#include "env/probe.h"
-#include "env/shadow.h"
-#include "env/sky.h"
+#include "env/env.h"
 #include "sylva/sylva.h"
 #include "turtle/turtle.h"
 
@@ -43,24 +38,23 @@ typedef struct OpenEnvParams {
 
 typedef struct OpenEnv {
     OpenEnvParams P;
-    ShadowGrid shadow;
+    Env world;        /* its shadow grid (the ?E parameters), ?E's points and sky scene */
     bool statics_cast;
     ShadowSet own;    /* own segment ends now in the shadow grid */
-    float (*pts)[3];  /* statics and own segment ends, for the point grid */
-    size_t pts_cap;
-    PointGrid occ;
-    RTCDevice dev;    /* sky exposure's: made when first asked */
-    SkyScene sky;
+    SylEnvFill fill;    /* what the turtle collects for the answers */
     SylOpenFill probes; /* open_env_fill's light probes */
 } OpenEnv;
 
 void open_env_init(OpenEnv *e, const OpenEnvParams *p);
 void open_env_free(OpenEnv *e);
-/* A SylEnvFn: user is an OpenEnv. */
-int open_env_answer(void *user, int step, const SylEnvFill *fill, double *par);
-/* The turtle's reading of s and the answers in one, as syl_derive does with open_env_answer
- * (fill: the SylEnvFill it would use), the same answers in less time and memory: light
- * probes are kept compact (syl_turtle_fill). */
+/* Answer the probes the turtle collected in fill: e's world brought up to date first. */
+int open_env_answer(OpenEnv *e, int step, const SylEnvFill *fill, double *par);
+/* The turtle's reading of s and the answers in one, as the turtle's query pass and
+ * open_env_answer give them (fill: the SylEnvFill they would use), in less time and memory:
+ * light probes are kept compact (syl_turtle_fill). */
 int open_env_fill(OpenEnv *e, const SylProgram *p, SylString *s, SylEnvFill *fill, int step);
+/* The query environment of an OpenEnv (user: the OpenEnv): open_env_fill for models with ?E,
+ * the turtle's query pass alone for the others. */
+extern const SylQueryOps open_env_ops;
 
 #endif

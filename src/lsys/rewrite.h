@@ -1,0 +1,48 @@
+/* Rewriting one chunk of a string with one table: what a thread of a pass does (rewrite.c). */
+#ifndef SYL_LSYS_REWRITE_H
+#define SYL_LSYS_REWRITE_H
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsys/match.h"
+#include "lsys/modstr.h"
+#include "lsys/vm.h"
+#include "util/rng.h"
+
+enum { LIMIT_MODULES = 1, LIMIT_MEMORY, LIMIT_WORK };
+
+typedef struct Fault {
+    int status;      /* SYL_OK, SYL_EMODEL or SYL_ELIMIT */
+    int limit;       /* with SYL_ELIMIT: LIMIT_* */
+    VmFault vm;
+    size_t pos;      /* the module being rewritten */
+    const Rule *rule;
+} Fault;
+
+/* One chunk of one pass. */
+typedef struct Work {
+    const SylProgram *p;
+    const RuleTable *t;
+    const View *in;
+    size_t lo, hi;
+    uint32_t plo;     /* offset of module lo's parameters */
+    SylString *out;
+    uint64_t key;     /* step and pass, for the random streams */
+    int table;
+    uint64_t seed;
+    bool applied;     /* a rule other than identity was used */
+    bool codes_only;  /* no parameters in or out: run_chunk_codes */
+    const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
+    double *weight;
+    int ncap;
+    Fault fault;
+} Work;
+
+/* Rewrite modules lo..hi of w->in into w->out; a fault is left in w->fault. */
+void rewrite_chunk(Work *w);
+/* Write rule r's successor for module pos (its parameters bound in locals) to w->out; the
+ * random stream is made when first needed. SYL_OK, or SYL_EMODEL with w->fault set. */
+int rewrite_emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready);
+
+#endif

@@ -1,0 +1,45 @@
+/* A scene block's directives read into plants, obstacles, the ground and the sun (spec.c). */
+#ifndef SYL_SCENE_SPEC_H
+#define SYL_SCENE_SPEC_H
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sylva/sylva.h"
+
+/* One plant of a scene. */
+typedef struct ScenePlant {
+    const char *model;   /* a model of this file, or NULL when file is set */
+    const char *file;    /* "path.syl" or "path.syl:Model", relative to the scene's file */
+    float at[3];
+    bool seed_set, years_set;
+    uint64_t seed;
+    int years;
+    int line, col;
+} ScenePlant;
+
+typedef struct SceneObstacle {
+    const char *file;
+    float at[3];
+    float scale;
+    bool terrain;        /* from `ground "file.obj"` */
+    int line, col;
+} SceneObstacle;
+
+typedef struct SceneSpec {
+    ScenePlant *plants;
+    int nplants, plants_cap;
+    SceneObstacle *obstacles;
+    int nobstacles, obstacles_cap;
+    float ground;
+    bool ground_set;
+    float sun[3];
+    bool sun_set;
+} SceneSpec;
+
+/* Read p's scene block (free with scene_spec_free). Returns the number of errors. Names of
+ * plants are checked against the models of the file. */
+int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag);
+void scene_spec_free(SceneSpec *s);
+
+#endif
