@@ -5,8 +5,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../util/arena.h"
-#include "../util/diag.h"
+#include "util/arena.h"
+#include "util/diag.h"
 #include "sylva/sylva.h"
 
 /* A module code packs the symbol id (low 11 bits) and the parameter count (high 5 bits):
