@@ -67,7 +67,8 @@ typedef struct SylCompileOptions {
 SylProgram *syl_compile(const char *path, const char *text, size_t len, const SylCompileOptions *opt,
                         int *status);
 void syl_program_free(SylProgram *p);
-/* Another model of p's file, compiled from the same text with the same --set values. */
+/* Another model of p's file, compiled from the same text with the same --set values (a
+ * sibling compile: no validate hook). */
 SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag, int *status);
 /* Read a whole file ("-": standard input), NUL-terminated, as syl_compile reads a NULL text
  * (a file utility, kept here for embedders); NULL with errno set on failure. Free with free(). */

@@ -3,8 +3,8 @@
 #define SYL_AST_H
 #include <stdbool.h>
 
-#include "../util/arena.h"
-#include "../util/diag.h"
+#include "util/arena.h"
+#include "util/diag.h"
 
 typedef enum {
     EX_NUM,  /* num */

@@ -1,9 +1,10 @@
-#include "builtins.h"
+/* Built-in functions of the expression language (lang/builtins.h), and the opcodes' names. */
+#include "lang/builtins.h"
 
 #include <math.h>
 #include <string.h>
 
-#include "opcodes.h"
+#include "lang/opcodes.h"
 
 const char *const syl_op_names[OP__COUNT] = {
 #define SYL_OP_NAME(name, kind, effect) #name,

@@ -2,7 +2,7 @@
  * and the VM (for running). Trigonometry works in degrees, as in cpfg. */
 #ifndef SYL_BUILTINS_H
 #define SYL_BUILTINS_H
-#include "../util/rng.h"
+#include "util/rng.h"
 
 typedef struct Builtin {
     const char *name;

@@ -1,10 +1,10 @@
 /* Internal to src/lang: the state of one compilation and the pieces that share it. */
 #ifndef SYL_COMPILER_H
 #define SYL_COMPILER_H
-#include "ast.h"
-#include "program.h"
+#include "lang/ast.h"
+#include "lang/program.h"
 #include "sylva/sylva.h"
-#include "../util/namemap.h"
+#include "util/namemap.h"
 
 /* A named value known at compile time: a const or a param. */
 typedef struct Value {

@@ -1,9 +1,9 @@
 /* The disassembler behind `sylva compile --dump`: what each rule became. */
 #include <stdio.h>
 
-#include "builtins.h"
-#include "opcodes.h"
-#include "program.h"
+#include "lang/builtins.h"
+#include "lang/opcodes.h"
+#include "lang/program.h"
 #include "sylva/sylva.h"
 
 static void module(FILE *out, const SylProgram *p, uint16_t code) {

@@ -2,9 +2,9 @@
 #include <math.h>
 #include <string.h>
 
-#include "builtins.h"
-#include "compiler.h"
-#include "opcodes.h"
+#include "lang/builtins.h"
+#include "lang/compiler.h"
+#include "lang/opcodes.h"
 #include "lang/vm.h"
 
 static Expr *number(Compiler *c, Expr *like, double v) {

@@ -1,7 +1,7 @@
 /* Warnings of `sylva check`: things that are legal but almost certainly not meant. */
 #include <string.h>
 
-#include "compiler.h"
+#include "lang/compiler.h"
 
 static const char *plural(int n) { return n == 1 ? "" : "s"; }
 

@@ -3,7 +3,7 @@
 #include <ctype.h>
 #include <string.h>
 
-#include "compiler.h"
+#include "lang/compiler.h"
 
 int cc_symbol(Compiler *c, const char *name, SylLoc loc) {
     int id = namemap_get(&c->syms, name, -1);

@@ -1,7 +1,7 @@
 /* State shared by the flex lexer and the bison parser (internal to src/lang). */
 #ifndef SYL_PARSE_STATE_H
 #define SYL_PARSE_STATE_H
-#include "ast.h"
+#include "lang/ast.h"
 
 /* How deeply parentheses and other constructs may nest: bounds the parser's stack and the
  * checker's and compiler's recursion over the tree (docs/language.md, Limits). */

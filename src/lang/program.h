@@ -5,8 +5,8 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "../util/arena.h"
-#include "../util/diag.h"
+#include "util/arena.h"
+#include "util/diag.h"
 #include "lang/turtle_commands.h"
 #include "sylva/sylva.h"
 

@@ -7,7 +7,7 @@
 
 #include "lsys/match.h"
 #include "lsys/modstr.h"
-#include "lsys/vm.h"
+#include "lang/vm.h"
 #include "util/rng.h"
 
 enum { LIMIT_MODULES = 1, LIMIT_MEMORY, LIMIT_WORK };

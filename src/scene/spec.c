@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/program.h"
 #include "scene/spec.h"
 #include "sot/params.h"
 #include "sot/reader.h"
