@@ -293,10 +293,7 @@ static int axiom(Engine *e, SylString *out) {
  * sees the string: through the `interpret` rules when there are any. Those rules keep query
  * modules as they are, so the k-th query module read is the k-th of the string. The
  * environment the caller plugged in fills them (docs/language.md, "Open L-systems"). */
-static bool is_query(const SylProgram *p, uint16_t code) {
-    const char *n = p->syms[CODE_SYM(code)].name;
-    return n[0] == '?' && (n[1] == 'P' || n[1] == 'H' || n[1] == 'L' || n[1] == 'U' || n[1] == 'E') && !n[2];
-}
+static bool is_query(const SylProgram *p, uint16_t code) { return lang_symbol_is_query(p, CODE_SYM(code)); }
 
 static int query_fill(Engine *e, SylString *s, int step) {
     return e->queries.ops ? e->queries.ops->fill(e->queries.user, e->p, s, step) : SYL_OK;

@@ -100,6 +100,13 @@ void scene_lsys_free(SceneLsys *s) {
 
 static const SylQueryOps plant_ops;
 
+/* Does the model have an ?E module (used or not: the grid is kept as before)? */
+static bool has_env_query(const SylProgram *q) {
+    for (int s = 0; s < q->nsyms; s++)
+        if (q->syms[s].turtle == TC_QUERY_E) return true;
+    return false;
+}
+
 int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d, const float at[3], float ground, int steps) {
     if (s->n == s->cap) return SYL_ELIMIT;
     LsysPlant *pl = &s->plants[s->n++];
@@ -115,7 +122,7 @@ int scene_lsys_add(SceneLsys *s, const SylProgram *q, const SylDeriveOptions *d,
     if (!(pl->voxel > 0) || !isfinite(pl->voxel)) pl->voxel = 1;
     /* ?E light needs a grid even when no tree keeps one: the stand-alone one's parameters */
     Forest *f = s->f;
-    if (syl_program_symbol_find(q, "?E") >= 0 && !f->lsys_shadow) {
+    if (has_env_query(q) && !f->lsys_shadow) {
         f->lsys_shadow = true;
         f->lsys_shadow_voxel = pl->voxel;
     }
