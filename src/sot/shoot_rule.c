@@ -1,5 +1,6 @@
-/* Rule-made shoots: see shoot_rule.h. The plan is read by a small turtle of its own: it
- * only places things relative to a metamer, so it keeps no skeleton and no tropism. */
+/* Rule-made shoots: see shoot_rule.h. The plan is read with the turtle's commands and frame
+ * operations (turtle/frame.h): it only places things relative to a metamer, so it keeps no
+ * skeleton and no tropism. */
 #include "sot/shoot_rule.h"
 
 #include <cglm/cglm.h>
@@ -9,28 +10,20 @@
 
 #include "lang/program.h"
 #include "sylva/skeleton.h"
+#include "turtle/frame.h"
 #include "util/array.h"
 
-typedef enum {
-    C_NONE, C_METAMER, C_DRAW, C_MOVE, C_LEFT, C_RIGHT, C_DOWN, C_UP, C_ROLL_LEFT, C_ROLL_RIGHT, C_AROUND,
-    C_PUSH, C_POP, C_CUT, C_WIDTH, C_MATERIAL, C_LEAF, C_FLOWER, C_NEEDLE, C_BUD,
-} Cmd;
-
-static const struct {
-    const char *name;
-    uint8_t cmd;
-} names[] = {
-    {"I", C_METAMER}, {"F", C_DRAW},        {"f", C_MOVE},      {"+", C_LEFT},         {"-", C_RIGHT},
-    {"&", C_DOWN},    {"^", C_UP},          {"\\", C_ROLL_LEFT}, {"/", C_ROLL_RIGHT},  {"|", C_AROUND},
-    {"[", C_PUSH},    {"]", C_POP},         {"%", C_CUT},       {"!", C_WIDTH},        {"'", C_MATERIAL},
-    {"~leaf", C_LEAF}, {"~petal", C_FLOWER}, {"~flower", C_FLOWER}, {"~needle", C_NEEDLE}, {"B", C_BUD},
-};
+/* What a module is to the plan: one of the turtle's commands it reads (TF_PLAN in
+ * lang/turtle_commands.h), or one of the growth-only symbols I (a metamer) and B (a bud). */
+enum { PLAN_METAMER = TC_COUNT, PLAN_BUD };
+_Static_assert(PLAN_BUD <= UINT8_MAX, "a plan command in a byte");
 
 struct ShootRule {
     SylProgram *p;
     int shoot, arity;      /* the symbol rewritten, and its parameters (at most 4) */
     bool buds;
-    float angle, step, width, widthfactor;
+    double angle; /* turns are made from the angle in double, as the turtle makes them */
+    float step, width, widthfactor;
     uint8_t cmd[MAX_SYMBOLS];
     uint64_t max_modules, max_work; /* of each shoot's derivation */
     SylBudget *mem;
@@ -69,13 +62,17 @@ ShootRule *shoot_rule_new(const SylProgram *grow, const char *model) {
     r->p = q;
     r->shoot = syl_program_symbol_find(q, "shoot");
     r->arity = shoot_arity(q, r->shoot);
-    r->angle = (float)q->angle;
+    r->angle = q->angle;
     r->step = (float)q->step;
     r->width = (float)q->width;
     r->widthfactor = (float)q->widthfactor;
-    for (int i = 0; i < q->nsyms && i < MAX_SYMBOLS; i++)
-        for (size_t k = 0; q->syms[i].name && k < sizeof names / sizeof *names; k++)
-            if (!strcmp(q->syms[i].name, names[k].name)) r->cmd[i] = names[k].cmd;
+    for (int i = 0; i < q->nsyms && i < MAX_SYMBOLS; i++) {
+        unsigned cmd = q->syms[i].turtle;
+        r->cmd[i] = !strcmp(q->syms[i].name, "I")   ? PLAN_METAMER
+                    : !strcmp(q->syms[i].name, "B") ? PLAN_BUD
+                    : turtle_command_flags(cmd) & TF_PLAN ? (uint8_t)cmd
+                                                          : TC_NONE;
+    }
     /* B placed anywhere in the model (a rule or the axiom) means the rule places the buds */
     int b = syl_program_symbol_find(q, "B");
     for (int t = 0; b >= 0 && t < TABLE_COUNT && !r->buds; t++)
@@ -118,29 +115,33 @@ typedef struct State {
     float width;
     uint8_t material;
     int32_t twig;     /* the last twig drawn on this path, -1: none */
+    uint32_t dirty;   /* turns since the frame was last orthonormalised, as the turtle counts */
 } State;
 
 typedef struct Reader {
     const ShootRule *r;
     ShootPlan *plan;
     State st;
-    State stack[64];
-    int depth;        /* brackets open; deeper ones are followed but not saved */
+    State *stack;     /* the states `[` saved, as the turtle's stack grows */
+    size_t depth, cap;
     int metamer;
     float roll;       /* degrees: the top-level rolls so far */
     bool oom;
 } Reader;
 
-/* (a, b) turned in their plane by deg: a toward b. */
-static void turn(vec3 a, vec3 b, float deg) {
-    float s = sinf(deg * GLM_PIf / 180), c = cosf(deg * GLM_PIf / 180);
-    vec3 a2, b2;
-    glm_vec3_scale(a, c, a2);
-    glm_vec3_muladds(b, s, a2);
-    glm_vec3_scale(b, c, b2);
-    glm_vec3_muladds(a, -s, b2);
-    glm_vec3_copy(a2, a);
-    glm_vec3_copy(b2, b);
+/* The frame made orthonormal where the turtle would make it: before it is read after a turn. */
+static void tidy(State *st) {
+    if (!st->dirty) return;
+    turtle_orthonormalise(st->h, st->l, st->u);
+    st->dirty = 0;
+}
+
+/* A turn command by deg, as the turtle turns. */
+static void turn(State *st, TurtleCommand cmd, double deg) {
+    float s, c;
+    turtle_sincos(deg, &s, &c);
+    turtle_turn(cmd, s, c, st->h, st->l, st->u);
+    if (++st->dirty >= TURTLE_TIDY_TURNS) tidy(st);
 }
 
 /* The frame at a metamer's end: along the shoot, turned by the rolls so far. */
@@ -150,11 +151,23 @@ static void reset(Reader *rd) {
     glm_vec3_copy((vec3){1, 0, 0}, st->h);
     glm_vec3_copy((vec3){0, 1, 0}, st->l);
     glm_vec3_copy((vec3){0, 0, 1}, st->u);
-    turn(st->l, st->u, rd->roll);
+    float s, c;
+    turtle_sincos(rd->roll, &s, &c);
+    turtle_turn(TC_ROLL_RIGHT, s, c, st->h, st->l, st->u);
+    st->dirty = 0;
     st->twig = -1;
 }
 
+static void push(Reader *rd) {
+    if (rd->depth == rd->cap && !array_reserve(&rd->stack, &rd->cap, rd->depth + 1, sizeof *rd->stack)) {
+        rd->oom = true;
+        return;
+    }
+    rd->stack[rd->depth++] = rd->st;
+}
+
 static Attach *attach(Reader *rd, AttachKind kind) {
+    tidy(&rd->st);
     ShootPlan *p = rd->plan;
     if (!array_reserve(&p->a, &p->cap, p->n + 1, sizeof *p->a)) {
         rd->oom = true;
@@ -176,6 +189,13 @@ static float arg(const double *a, int na, float def) {
     return na && isfinite(a[0]) ? (float)fmax(-1e6, fmin(1e6, a[0])) : def;
 }
 
+/* A command's first parameter, or its default (lang/turtle_commands.h); in double, for turns. */
+static double argd(const ShootRule *r, unsigned cmd, const double *a, int na) {
+    if (na && isfinite(a[0])) return fmax(-1e6, fmin(1e6, a[0]));
+    TurtleDefault d = turtle_command_default(cmd);
+    return d == TA_ANGLE ? r->angle : d == TA_STEP ? r->step : 0;
+}
+
 static void organ(Reader *rd, uint8_t kind, float size) {
     Attach *a = attach(rd, ATT_ORGAN);
     if (!a) return;
@@ -186,6 +206,7 @@ static void organ(Reader *rd, uint8_t kind, float size) {
 
 static void draw(Reader *rd, float len) {
     State *st = &rd->st;
+    tidy(st);
     vec3 from;
     glm_vec3_copy(st->pos, from);
     glm_vec3_muladds(st->h, len, st->pos);
@@ -218,55 +239,48 @@ static void read_plan(Reader *rd, const SylString *s) {
         int sym = syl_string_module(s, i, &na, &a);
         State *st = &rd->st;
         bool top = rd->depth == 0;
-        float deg = arg(a, na, r->angle);
-        switch ((Cmd)r->cmd[sym]) {
-        case C_NONE: break;
-        case C_METAMER:
-        case C_DRAW:
+        unsigned cmd = r->cmd[sym];
+        switch (cmd) {
+        case PLAN_METAMER:
+        case TC_F:
             if (top) {
                 rd->metamer++;
                 reset(rd);
             } else draw(rd, arg(a, na, r->step));
             break;
-        case C_MOVE:
+        case TC_f:
             glm_vec3_muladds(st->h, arg(a, na, r->step), st->pos);
             st->twig = -1;
             break;
-        case C_LEFT: turn(st->h, st->l, deg); break;
-        case C_RIGHT: turn(st->h, st->l, -deg); break;
-        case C_DOWN: turn(st->u, st->h, deg); break; /* H toward -U */
-        case C_UP: turn(st->u, st->h, -deg); break;
-        case C_ROLL_LEFT:
-        case C_ROLL_RIGHT: {
-            float d = r->cmd[sym] == C_ROLL_RIGHT ? deg : -deg;
-            turn(st->l, st->u, d);
-            if (top) rd->roll = fmodf(rd->roll + d, 360);
+        case TC_LEFT:
+        case TC_RIGHT:
+        case TC_DOWN:
+        case TC_UP:
+        case TC_ROLL_LEFT:
+        case TC_ROLL_RIGHT: {
+            double deg = argd(r, cmd, a, na);
+            turn(st, (TurtleCommand)cmd, deg);
+            if (top && (cmd == TC_ROLL_LEFT || cmd == TC_ROLL_RIGHT))
+                rd->roll = fmodf(rd->roll + (float)(cmd == TC_ROLL_RIGHT ? deg : -deg), 360);
             break;
         }
-        case C_AROUND:
-            glm_vec3_negate(st->h);
-            glm_vec3_negate(st->l);
+        case TC_TURN_AROUND: turtle_turn(TC_TURN_AROUND, 0, 1, st->h, st->l, st->u); break;
+        case TC_PUSH: push(rd); break;
+        case TC_POP:
+            if (rd->depth) rd->st = rd->stack[--rd->depth]; /* an unmatched ] ends nothing */
             break;
-        case C_PUSH:
-            if (rd->depth < 64) rd->stack[rd->depth] = *st;
-            rd->depth++;
-            break;
-        case C_POP:
-            if (rd->depth == 0) break; /* an unmatched ] ends nothing */
-            rd->depth--;
-            if (rd->depth < 64) *st = rd->stack[rd->depth];
-            break;
-        case C_CUT:
+        case TC_CUT:
             if (top) attach(rd, ATT_END);
             else i = skip_branch(s, i + 1) - 1; /* the ] is read next */
             if (top) i = n;
             break;
-        case C_WIDTH: st->width = na ? fmaxf(0, arg(a, na, 0)) : st->width * r->widthfactor; break;
-        case C_MATERIAL: st->material = (uint8_t)fmax(0, fmin(255, arg(a, na, st->material + 1.0f))); break;
-        case C_LEAF: organ(rd, SYL_KIND_LEAF, arg(a, na, r->step)); break;
-        case C_FLOWER: organ(rd, SYL_KIND_FLOWER, arg(a, na, r->step)); break;
-        case C_NEEDLE: organ(rd, SYL_KIND_NEEDLE, arg(a, na, r->step)); break;
-        case C_BUD: attach(rd, ATT_BUD); break;
+        case TC_WIDTH: st->width = na ? fmaxf(0, arg(a, na, 0)) : st->width * r->widthfactor; break;
+        case TC_MATERIAL: st->material = (uint8_t)fmax(0, fmin(255, arg(a, na, st->material + 1.0f))); break;
+        case TC_LEAF: organ(rd, SYL_KIND_LEAF, (float)argd(r, cmd, a, na)); break;
+        case TC_PETAL: organ(rd, SYL_KIND_FLOWER, (float)argd(r, cmd, a, na)); break;
+        case TC_NEEDLE: organ(rd, SYL_KIND_NEEDLE, (float)argd(r, cmd, a, na)); break;
+        case PLAN_BUD: attach(rd, ATT_BUD); break;
+        default: break; /* not read by the plan */
         }
     }
     rd->plan->metamers = rd->metamer;
@@ -300,6 +314,7 @@ int shoot_rule_plan(const ShootRule *r, const double args[4], uint64_t seed, Sho
     rd->st.width = r->width;
     read_plan(rd, out);
     st = rd->oom ? SYL_ELIMIT : SYL_OK;
+    free(rd->stack);
     free(rd);
     syl_string_free(out);
     return st;
