@@ -1,6 +1,6 @@
-/* Rule-made shoots: see shoot_rule.h. The plan is read with the turtle's commands
- * (lang/turtle_commands.h) and turns (turtle/frame.h): it only places things relative to a
- * metamer, so it keeps no skeleton and no tropism. */
+/* Rule-made shoots: see shoot_rule.h. The plan is read with the turtle's commands and frame
+ * operations (turtle/frame.h): it only places things relative to a metamer, so it keeps no
+ * skeleton and no tropism. */
 #include "sot/shoot_rule.h"
 
 #include <cglm/cglm.h>
@@ -23,7 +23,8 @@ struct ShootRule {
     SylProgram *p;
     int shoot, arity;      /* the symbol rewritten, and its parameters (at most 4) */
     bool buds;
-    float angle, step, width, widthfactor;
+    double angle; /* turns are made from the angle in double, as the turtle makes them */
+    float step, width, widthfactor;
     uint8_t cmd[MAX_SYMBOLS];
     uint64_t max_modules, max_work; /* of each shoot's derivation */
     SylBudget *mem;
@@ -63,7 +64,7 @@ ShootRule *shoot_rule_new(const SylProgram *grow, const char *model) {
     r->p = q;
     r->shoot = syl_program_symbol_find(q, "shoot");
     r->arity = shoot_arity(q, r->shoot);
-    r->angle = (float)q->angle;
+    r->angle = q->angle;
     r->step = (float)q->step;
     r->width = (float)q->width;
     r->widthfactor = (float)q->widthfactor;
@@ -118,6 +119,7 @@ typedef struct State {
     float width;
     uint8_t material;
     int32_t twig;     /* the last twig drawn on this path, -1: none */
+    uint32_t dirty;   /* turns since the frame was last orthonormalised, as the turtle counts */
 } State;
 
 typedef struct Reader {
@@ -131,14 +133,19 @@ typedef struct Reader {
     bool oom;
 } Reader;
 
-/* A turn command by deg, with the turtle's rotation. The sine and cosine are sinf's and
- * cosf's of deg in float, and the frame is never re-orthonormalised, as the plans of grown
- * trees have always been made: the turtle's exact sincos and tidying differ in the last bits
- * (examples/hybrid/conifer.syl's trees would change), so the plan stays within float rounding
- * of the turtle's frame instead of equal to it (tests/unit/test_shoot_plan.c). */
-static void turn(State *st, TurtleCommand cmd, float deg) {
-    float s = sinf(deg * GLM_PIf / 180), c = cosf(deg * GLM_PIf / 180);
+/* The frame made orthonormal where the turtle would make it: before it is read after a turn. */
+static void tidy(State *st) {
+    if (!st->dirty) return;
+    turtle_orthonormalise(st->h, st->l, st->u);
+    st->dirty = 0;
+}
+
+/* A turn command by deg, as the turtle turns. */
+static void turn(State *st, TurtleCommand cmd, double deg) {
+    float s, c;
+    turtle_sincos(deg, &s, &c);
     turtle_turn(cmd, s, c, st->h, st->l, st->u);
+    if (++st->dirty >= TURTLE_TIDY_TURNS) tidy(st);
 }
 
 /* The frame at a metamer's end: along the shoot, turned by the rolls so far. */
@@ -148,7 +155,10 @@ static void reset(Reader *rd) {
     glm_vec3_copy((vec3){1, 0, 0}, st->h);
     glm_vec3_copy((vec3){0, 1, 0}, st->l);
     glm_vec3_copy((vec3){0, 0, 1}, st->u);
-    turn(st, TC_ROLL_RIGHT, rd->roll);
+    float s, c;
+    turtle_sincos(rd->roll, &s, &c);
+    turtle_turn(TC_ROLL_RIGHT, s, c, st->h, st->l, st->u);
+    st->dirty = 0;
     st->twig = -1;
 }
 
@@ -161,6 +171,7 @@ static void push(Reader *rd) {
 }
 
 static Attach *attach(Reader *rd, AttachKind kind) {
+    tidy(&rd->st);
     ShootPlan *p = rd->plan;
     if (!array_reserve(&p->a, &p->cap, p->n + 1, sizeof *p->a)) {
         rd->oom = true;
@@ -182,10 +193,11 @@ static float arg(const double *a, int na, float def) {
     return na && isfinite(a[0]) ? (float)fmax(-1e6, fmin(1e6, a[0])) : def;
 }
 
-/* A command's first parameter, or its default (lang/turtle_commands.h). */
-static float arg_or_default(const ShootRule *r, unsigned cmd, const double *a, int na) {
+/* A command's first parameter, or its default (lang/turtle_commands.h); in double, for turns. */
+static double argd(const ShootRule *r, unsigned cmd, const double *a, int na) {
+    if (na && isfinite(a[0])) return fmax(-1e6, fmin(1e6, a[0]));
     TurtleDefault d = turtle_command_default(cmd);
-    return arg(a, na, d == TA_ANGLE ? r->angle : d == TA_STEP ? r->step : 0);
+    return d == TA_ANGLE ? r->angle : d == TA_STEP ? r->step : 0;
 }
 
 static void organ(Reader *rd, uint8_t kind, float size) {
@@ -198,6 +210,7 @@ static void organ(Reader *rd, uint8_t kind, float size) {
 
 static void draw(Reader *rd, float len) {
     State *st = &rd->st;
+    tidy(st);
     vec3 from;
     glm_vec3_copy(st->pos, from);
     glm_vec3_muladds(st->h, len, st->pos);
@@ -249,10 +262,10 @@ static void read_plan(Reader *rd, const SylString *s) {
         case TC_UP:
         case TC_ROLL_LEFT:
         case TC_ROLL_RIGHT: {
-            float deg = arg_or_default(r, cmd, a, na);
+            double deg = argd(r, cmd, a, na);
             turn(st, (TurtleCommand)cmd, deg);
             if (top && (cmd == TC_ROLL_LEFT || cmd == TC_ROLL_RIGHT))
-                rd->roll = fmodf(rd->roll + (cmd == TC_ROLL_RIGHT ? deg : -deg), 360);
+                rd->roll = fmodf(rd->roll + (float)(cmd == TC_ROLL_RIGHT ? deg : -deg), 360);
             break;
         }
         case TC_TURN_AROUND: turtle_turn(TC_TURN_AROUND, 0, 1, st->h, st->l, st->u); break;
@@ -267,9 +280,9 @@ static void read_plan(Reader *rd, const SylString *s) {
             break;
         case TC_WIDTH: st->width = na ? fmaxf(0, arg(a, na, 0)) : st->width * r->widthfactor; break;
         case TC_MATERIAL: st->material = (uint8_t)fmax(0, fmin(255, arg(a, na, st->material + 1.0f))); break;
-        case TC_LEAF: organ(rd, SYL_KIND_LEAF, arg_or_default(r, cmd, a, na)); break;
-        case TC_PETAL: organ(rd, SYL_KIND_FLOWER, arg_or_default(r, cmd, a, na)); break;
-        case TC_NEEDLE: organ(rd, SYL_KIND_NEEDLE, arg_or_default(r, cmd, a, na)); break;
+        case TC_LEAF: organ(rd, SYL_KIND_LEAF, (float)argd(r, cmd, a, na)); break;
+        case TC_PETAL: organ(rd, SYL_KIND_FLOWER, (float)argd(r, cmd, a, na)); break;
+        case TC_NEEDLE: organ(rd, SYL_KIND_NEEDLE, (float)argd(r, cmd, a, na)); break;
         case PLAN_BUD: attach(rd, ATT_BUD); break;
         default: break; /* not read by the plan */
         }
