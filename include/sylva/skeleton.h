@@ -113,6 +113,14 @@ typedef struct SylTurtleOptions {
  * turtle of docs/turtle.md and return its skeleton. */
 int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out);
 
+/* The turtle's query pass, for a query environment of your own (SylQueryOps.fill): fill the
+ * query modules ?P(x,y,z), ?H, ?L and ?U of s in place with the turtle's position and frame
+ * where each one stands (docs/language.md, "Query modules"); nothing else changes. With env,
+ * also collect every segment end and every ?E module (position, heading, where its parameters
+ * are in syl_string_params) into env, emptied first; without, ?E modules are not looked at.
+ * SYL_OK, or SYL_ELIMIT when out of memory. Free env's arrays with free(). */
+int syl_turtle_query(const SylProgram *p, SylString *s, SylEnvFill *env);
+
 #ifdef __cplusplus
 }
 #endif

@@ -121,7 +121,7 @@ double syl_program_setting(const SylProgram *p, const char *name);  /* angle, st
 void syl_program_dump(const SylProgram *p, FILE *out);
 
 /* Environment queries (?E modules, docs/language.md "Open L-systems"): after every step the
- * turtle reads the string and collects every segment's end and every ?E module with the
+ * turtle (syl_turtle_query, sylva/skeleton.h) reads the string and collects every segment's end and every ?E module with the
  * turtle's position and heading there; an environment then writes its answers into the
  * string's parameters: par[probe.par + k], k < probe.na. */
 typedef struct SylEnvProbe {
@@ -210,6 +210,9 @@ int syl_string_write(const SylProgram *p, const SylString *s, FILE *out);
 /* Count modules per symbol: counts must hold syl_program_symbol_count(p) entries. */
 void syl_string_count(const SylString *s, uint64_t *counts);
 void syl_string_free(SylString *s);
+/* Every parameter of s, module after module (*n of them; NULL when there are none): where a
+ * query environment writes its answers, at a SylEnvProbe's par. Valid until s changes. */
+double *syl_string_params(SylString *s, size_t *n);
 /* Build a string by hand (a derivation's start): an empty one, then modules appended. */
 SylString *syl_string_new(void);
 int syl_string_push(SylString *s, int sym, int nparams, const double *params);

@@ -107,6 +107,11 @@ void ms_release(SylString *s) {
 
 size_t syl_string_length(const SylString *s) { return s->n; }
 
+double *syl_string_params(SylString *s, size_t *n) {
+    if (n) *n = s->np;
+    return s->np ? s->par : NULL;
+}
+
 int syl_string_module(const SylString *s, size_t i, int *nparams, const double **params) {
     if (i >= s->n) {
         if (nparams) *nparams = 0;

@@ -81,10 +81,45 @@ static void standalone_by_default(void **state) {
     syl_program_free(p);
 }
 
+/* An environment of one's own, on the public API only: the turtle collects the ?E probes,
+ * and each is answered with its height; the segment ends are counted too. */
+static int heights(void *user, const SylProgram *p, SylString *s, int step) {
+    (void)step;
+    SylEnvFill f = {0};
+    int st = syl_turtle_query(p, s, &f);
+    double *par = syl_string_params(s, NULL);
+    for (size_t i = 0; !st && i < f.nprobes; i++) par[f.probes[i].par + 1] = f.probes[i].pos[1];
+    *(size_t *)user = f.nends;
+    free(f.ends);
+    free(f.probes);
+    return st;
+}
+
+static void own_environment_reads_probes(void **state) {
+    (void)state;
+    /* up 2, a probe; turn right (+ turns left about U: -90 to the right of up is +X), 1 more, a probe */
+    const char *text = "lsystem H {\n  derive 0\n  angle 90\n  axiom F(2) ?E(2, 0) - F(1) ?E(2, 0) ?P(0, 0, 0)\n}\n";
+    int st;
+    SylProgram *p = unit_compile(text, NULL, &st);
+    assert_non_null(p);
+    static const SylQueryOps ops = {.fill = heights};
+    size_t ends = 0;
+    SylDeriveOptions d = {.steps = -1, .threads = 1, .queries = &ops, .queries_user = &ends};
+    SylString *s = NULL;
+    assert_int_equal(syl_derive(p, &d, &s), SYL_OK);
+    char *out = text_of(p, s);
+    assert_string_equal(out, "F(2)?E(2,2)-F(1)?E(2,2)?P(1,2,0)");
+    assert_int_equal(ends, 2);
+    free(out);
+    syl_string_free(s);
+    syl_program_free(p);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(caller_environment_fills),
         cmocka_unit_test(standalone_by_default),
+        cmocka_unit_test(own_environment_reads_probes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
