@@ -1,3 +1,4 @@
+/* Shared pieces of the subcommands: model arguments, numeric readers, progress, the plant, output files. */
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>

@@ -9,13 +9,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../lang/builtins.h"
-#include "../util/array.h"
-#include "../util/budget.h"
+#include "lang/builtins.h"
+#include "util/array.h"
+#include "util/budget.h"
 #include "lsys/derive.h"
 #include "lsys/rewrite.h"
-#include "match.h"
-#include "modstr.h"
+#include "lsys/match.h"
+#include "lsys/modstr.h"
 #include "sylva/sylva.h"
 #include "lang/vm.h"
 

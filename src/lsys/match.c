@@ -1,4 +1,5 @@
-#include "match.h"
+/* Branch-aware context matching of rules' left and right contexts (see match.h). */
+#include "lsys/match.h"
 
 #include <string.h>
 

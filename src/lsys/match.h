@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../lang/program.h"
+#include "lang/program.h"
 
 /* What the matcher reads: the string, its links and parameter offsets. */
 typedef struct View {

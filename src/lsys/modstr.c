@@ -1,4 +1,5 @@
-#include "modstr.h"
+/* Module strings: storage, the public accessors, canonical printing and counting. */
+#include "lsys/modstr.h"
 
 #include <sched.h>
 #include <stdio.h>

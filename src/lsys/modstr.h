@@ -5,7 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../lang/program.h"
+#include "lang/program.h"
 #include "sylva/sylva.h"
 
 #include "util/budget.h"

@@ -1,4 +1,5 @@
-#include "arena.h"
+/* Arena: bump allocation for data that lives and dies together. */
+#include "util/arena.h"
 
 #include <limits.h>
 #include <stdarg.h>

@@ -1,4 +1,5 @@
-#include "array.h"
+/* Growable arrays: the one overflow-checked reserve. */
+#include "util/array.h"
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,4 +1,5 @@
-#include "budget.h"
+/* The shared memory budget (--max-memory): counting, refusing, releasing. */
+#include "util/budget.h"
 
 #include <stdlib.h>
 #include <unistd.h>

@@ -1,4 +1,5 @@
-#include "diag.h"
+/* Diagnostics: file:line:col messages with the source line and a caret. */
+#include "util/diag.h"
 
 #include <stdarg.h>
 #include <stdint.h>

@@ -1,4 +1,5 @@
-#include "namemap.h"
+/* NameMap: string to int by FNV-1a and open addressing. */
+#include "util/namemap.h"
 
 #include <string.h>
 

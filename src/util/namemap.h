@@ -1,7 +1,7 @@
 /* NameMap: string → int, open addressing, storage in an arena. */
 #ifndef SYL_NAMEMAP_H
 #define SYL_NAMEMAP_H
-#include "arena.h"
+#include "util/arena.h"
 
 typedef struct NameMap {
     const char **keys;

@@ -1,4 +1,5 @@
-#include "parallel.h"
+/* Parallel for over contiguous chunks, one per thread. */
+#include "util/parallel.h"
 
 #include <pthread.h>
 #include <unistd.h>

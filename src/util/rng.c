@@ -1,4 +1,5 @@
-#include "rng.h"
+/* Box-Muller normals over the counter-based streams of rng.h. */
+#include "util/rng.h"
 
 #include <math.h>
 
