@@ -77,7 +77,7 @@ typedef struct Turtle {
     Angle angles[ANGLE_CACHE]; /* recent angles turned by, and their sines and cosines */
     uint64_t bad;       /* modules skipped for non-finite parameters */
     SylEnvFill *env;    /* filling queries: segment ends and ?E modules are collected here */
-    SylOpenFill *open;  /* for env/open.c: light probes go here (syl_turtle_fill) */
+    SylOpenFill *open;  /* for scene/open.c: light probes go here (syl_turtle_fill) */
     Pending pend[PENDING_MAX]; /* fill_queries: frame changes to make, in order */
     int npend;
     uint8_t cmd[MAX_SYMBOLS];

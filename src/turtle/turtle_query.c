@@ -173,7 +173,7 @@ static inline void light_probe(Turtle *t, uint32_t par) {
     q->par = par | (t->st.gen == 0 ? SYL_LIGHT_TIP : 0);
 }
 
-/* An ?E module: its probe. For env/open.c only what it answers. */
+/* An ?E module: its probe. For scene/open.c only what it answers. */
 static inline void query_env(Turtle *t, const double *a, int na, size_t at) {
     pend_tidy(t);
     if (!t->open) {
