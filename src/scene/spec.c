@@ -212,7 +212,7 @@ void scene_spec_free(SceneSpec *s) {
     memset(s, 0, sizeof *s);
 }
 
-int sot_check_scene(const SylProgram *p, FILE *diag) {
+int scene_spec_check(const SylProgram *p, FILE *diag) {
     SceneSpec s;
     int errors = scene_spec_read(p, &s, diag);
     scene_spec_free(&s);
@@ -224,6 +224,6 @@ int sot_check_scene(const SylProgram *p, FILE *diag) {
 int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
     (void)user;
     int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
-    if (!errors && p->has_scene && p->first_model) errors += sot_check_scene(p, diag);
+    if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag);
     return errors;
 }

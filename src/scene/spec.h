@@ -41,5 +41,8 @@ typedef struct SceneSpec {
  * plants are checked against the models of the file. */
 int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag);
 void scene_spec_free(SceneSpec *s);
+/* Check p's scene block, as syl_grow_validate does with a file's first model. Returns the
+ * number of errors reported. */
+int scene_spec_check(const SylProgram *p, FILE *diag);
 
 #endif

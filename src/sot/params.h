@@ -77,9 +77,8 @@ void grow_params_default(GrowParams *g);
  * errors, each reported through diag at its place. */
 int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag);
 
-/* The hook of syl_compile: check a grow block's directives and the scene's (sot_check_scene
- * is scene/spec.c's). Returns the number of errors reported. */
+/* Check a grow block's directives (what syl_grow_validate, scene/spec.c, runs for a grow
+ * model). Returns the number of errors reported. */
 int sot_check_grow(const SylProgram *p, FILE *diag);
-int sot_check_scene(const SylProgram *p, FILE *diag);
 
 #endif
