@@ -214,6 +214,14 @@ static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylSt
     return status;
 }
 
+/* Whether some module of s is a predecessor of the table's rules: only then could another
+ * pass change the string, so only then does stopping at maxdepth deserve a warning. */
+static bool any_predecessor(const RuleTable *t, const SylString *s) {
+    for (size_t i = 0; i < s->n; i++)
+        if (t->dispatch[s->code[i]].count) return true;
+    return false;
+}
+
 /* Apply a table repeatedly until no rule applies or its maxdepth is reached. */
 static int rewrite_until_stable(Engine *e, int table, int step, SylString **cur, SylString **spare) {
     const RuleTable *t = &e->p->tables[table];
@@ -227,7 +235,7 @@ static int rewrite_until_stable(Engine *e, int table, int step, SylString **cur,
         SylString *x = *cur;
         *cur = *spare;
         *spare = x;
-        if (d == t->maxdepth - 1 && !e->warned_depth && e->diag) {
+        if (d == t->maxdepth - 1 && !e->warned_depth && e->diag && any_predecessor(t, *cur)) {
             e->warned_depth = true;
             fprintf(e->diag, "sylva: warning: %s rules may still apply after maxdepth %d passes (step %d); "
                              "raise `maxdepth` in the block if more are meant\n",
