@@ -1,4 +1,4 @@
-/* Grammar of .syl files (LANGUAGE.md). One statement per line; the parser only builds the
+/* Grammar of .syl files (docs/language.md). One statement per line; the parser only builds the
  * syntax tree, everything else (names, arities, modules in words) is the checker's job. */
 %define api.pure full
 /* syl_yy, not yy: a program that links libsylva may have its own yyparse (issue 9). */

@@ -1,4 +1,4 @@
-/* Rule-made shoots (LANGUAGE.md §6, docs/growth.md "Shoot rules"): the simulation decides
+/* Rule-made shoots (docs/growth.md "Shoot rules", docs/language.md §17): the simulation decides
  * where a shoot grows and how many metamers it gets; an lsystem of the file rewrites
  * shoot(n, vigor, order, year) into what the shoot is made of.
  *

@@ -1,5 +1,5 @@
 /* The 3D turtle: reads a module string and emits a Skeleton. docs/turtle.md describes every
- * symbol; LANGUAGE.md §5 is the contract.
+ * symbol and is its contract.
  *
  * The compiler resolves each symbol into a turtle command once (lang/turtle_commands.h), so
  * reading a module is one table look-up and one switch. The state is kept in floats (cglm);

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """ref_lsys.py -- an independent reference deriver for Sylva .syl models.
 
-Written separately from the C compiler, straight from shared/design/LANGUAGE.md, to produce
+Written separately from the C compiler, straight from docs/language.md, to produce
 expected ("golden") derived strings.  It covers the DETERMINISTIC subset of the language:
 
   * single-letter / single-digit modules, declared multi-letter modules (`module Fl, Fr`,
@@ -10,7 +10,7 @@ expected ("golden") derived strings.  It covers the DETERMINISTIC subset of the 
     minus; `%` is fmod; `&& || !`, comparisons, `c ? a : b`; trig in degrees), `const`, `param`
     (overridable with --set), `fn name(a, b) = expr`;
   * conditions; rules tried in file order, first applicable wins, none => identity;
-  * branch-aware left/right context with `ignore` (or `consider`) per LANGUAGE.md section 3:
+  * branch-aware left/right context with `ignore` (or `consider`) per docs/language.md §9.5-§9.6:
     the left context walks back along the path to the root, skipping complete bracketed
     branches and ignored symbols; the right context skips branches it does not name, may
     descend into a branch written in it (`B > [C]D`), and after the named part of such a

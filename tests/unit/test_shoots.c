@@ -1,4 +1,4 @@
-/* Rule-made shoots (LANGUAGE.md §6): the plan a shoot rule yields (metamers, buds, organs,
+/* Rule-made shoots (docs/growth.md "Shoot rules"): the plan a shoot rule yields (metamers, buds, organs,
  * twigs, rolls carried between metamers), and trees grown with one — the rule's length
  * limit, its buds replacing the phyllotaxis, organs on their metamers, `%` ending an axis,
  * `keep`, and the same tree for any thread count. */
