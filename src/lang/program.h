@@ -56,6 +56,7 @@ typedef struct Rule {
     uint8_t pred_arity;
     PatElem *left, *right;    /* left stored as written; matched from its end */
     int nleft, nright;
+    bool right_branches;      /* its right context names a branch: matched by walking */
     int32_t cond, weight;     /* code addresses, -1 when absent */
     double const_weight;      /* weight when it is a constant */
     bool weighted;
@@ -91,8 +92,10 @@ typedef struct RuleTable {
     uint16_t *order;     /* rule indices grouped by predecessor code, source order kept */
     Dispatch *dispatch;  /* CODE_COUNT entries, NULL when the table is empty */
     bool has_context;
-    bool ctx_left, ctx_right, ctx_branches; /* kinds of contexts its rules use */
-    bool ctx_index;      /* some context binds parameters or spans several modules */
+    bool ctx_left;       /* some rule has a left context */
+    bool ctx_right;      /* some rule has a right context without branches: right links */
+    bool ctx_branches;   /* some rule's right context names a branch: bracket pairs */
+    bool ctx_index;      /* some linked context binds parameters or spans several modules */
     bool emits_params;   /* some successor has parameters */
     bool all_plain;      /* every rule is plain: no matching, no choice */
     int max_succ;        /* longest successor in modules */

@@ -187,12 +187,15 @@ void cc_build_table(Compiler *c, RuleTable *t) {
         if (r->nleft || r->nright) t->has_context = true;
         if (r->nleft) t->ctx_left = true;
         for (int k = 0; k < r->nright; k++)
-            if (r->right[k].kind != PAT_MODULE) t->ctx_branches = true;
-        if (r->nright) t->ctx_right = true;
-        if (r->nleft > 1 || r->nright > 1) t->ctx_index = true;
+            if (r->right[k].kind != PAT_MODULE) r->right_branches = true;
+        /* each rule's right context is matched its own way, whatever the others' are: a
+         * branch in one rule does not take the links from the others */
+        if (r->right_branches) t->ctx_branches = true;
+        else if (r->nright) t->ctx_right = true;
+        if (r->nleft > 1 || (r->nright > 1 && !r->right_branches)) t->ctx_index = true;
         for (int k = 0; k < r->nleft; k++)
             if (CODE_ARITY(r->left[k].code)) t->ctx_index = true;
-        for (int k = 0; k < r->nright; k++)
+        for (int k = 0; k < r->nright && !r->right_branches; k++)
             if (CODE_ARITY(r->right[k].code)) t->ctx_index = true;
         if (r->nslots) t->emits_params = true;
         if (r->nsucc > t->max_succ) t->max_succ = r->nsucc;

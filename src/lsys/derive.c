@@ -122,7 +122,7 @@ static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylSt
             match_pairs(in->code, n, e->pair);
             v.pair = e->pair;
         }
-        if ((t->ctx_left || (t->ctx_right && !t->ctx_branches)) &&
+        if ((t->ctx_left || t->ctx_right) &&
             !array_reserve(&e->stack, &e->cap_stack, 2 * n + 2, sizeof *e->stack))
             return SYL_ELIMIT;
         if (t->ctx_left) {
@@ -133,7 +133,7 @@ static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylSt
             v.left = idx ? e->left : NULL;
             v.lcode = e->lcode;
         }
-        if (t->ctx_right && !t->ctx_branches) {
+        if (t->ctx_right) {
             if (!array_reserve(&e->rcode, &e->cap_rcode, n, sizeof *e->rcode) ||
                 (idx && !array_reserve(&e->right, &e->cap_right, n, sizeof *e->right)))
                 return SYL_ELIMIT;

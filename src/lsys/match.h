@@ -4,7 +4,8 @@
  * Two linear passes per step give every module its neighbours: left[i], the previous
  * module on the path to the root, and right[i], the next one along its axis (skipping
  * side branches and ignored symbols). Contexts then follow these links instead of walking
- * the string; only right contexts that name branches walk, using the bracket pairs. */
+ * the string; only right contexts that name branches walk, using the bracket pairs. Which
+ * way a rule is matched is the rule's own (Rule.right_branches): a table may need both. */
 #ifndef SYL_MATCH_H
 #define SYL_MATCH_H
 #include <stdbool.h>
@@ -51,7 +52,7 @@ static inline bool match_left(const View *v, size_t i, const Rule *r, double *lo
 bool match_branches(const View *v, size_t i, const Rule *r, double *locals); /* walks, with pair[] */
 
 static inline bool match_right(const View *v, size_t i, const Rule *r, double *locals) {
-    if (v->pair) return match_branches(v, i, r, locals);
+    if (r->right_branches) return match_branches(v, i, r, locals);
     if (v->rcode[i] != r->right[0].code) return false;
     if (!v->right) return true; /* likewise */
     int32_t pos = (int32_t)i;

@@ -13,8 +13,9 @@ expected ("golden") derived strings.  It covers the DETERMINISTIC subset of the 
   * branch-aware left/right context with `ignore` (or `consider`) per docs/language.md §9.5-§9.6:
     the left context walks back along the path to the root, skipping complete bracketed
     branches and ignored symbols; the right context skips branches it does not name, may
-    descend into a branch written in it (`B > [C]D`), and after the named part of such a
-    branch skips the rest of that branch.
+    descend into a branch written in it (`B > [C]D`: of the side branches that start there,
+    the first whose beginning matches), and after the named part of such a branch skips the
+    rest of that branch.
 
 Not supported (the script says so and exits with status 3): stochastic rules (weights),
 random functions, decompose blocks, curves, group/table L-systems.  `interpret { }` blocks are
@@ -690,26 +691,45 @@ class LSystem:
         return True
 
     def _right(self, ctx, s, match, i, env):
+        return self._right_seq(ctx, 0, len(ctx), s, match, i + 1, env)
+
+    @staticmethod
+    def _ctx_close(ctx, k):
+        """Index of the "]" that closes the "[" at ctx[k]."""
+        depth = 0
+        for m in range(k, len(ctx)):
+            if ctx[m].name == "[":
+                depth += 1
+            elif ctx[m].name == "]":
+                depth -= 1
+                if depth == 0:
+                    return m
+        raise SylError("unbalanced '[' in a right context")
+
+    def _right_seq(self, ctx, k, end, s, match, j, env):
+        """Match ctx[k:end] from string position j on, inside the current branch."""
         n = len(s)
-        j = i + 1
-        for c in ctx:
+        while k < end:
+            c = ctx[k]
             if c.name == "[":
+                # a branch named in the context: the side branches that start here are tried
+                # in turn; the first whose beginning matches the part inside is taken, the
+                # rest of it is skipped, and matching goes on after it
+                close = self._ctx_close(ctx, k)
                 while j < n and s[j][0] not in "[]" and self._skipped(s[j][0]):
                     j += 1
-                if j >= n or s[j][0] != "[":
-                    return False
-                j += 1                    # descend into the branch named in the context
-                continue
-            if c.name == "]":
-                # skip the rest of the current branch, then step out of it
-                while j < n and s[j][0] != "]":
-                    if s[j][0] == "[":
-                        j = match[j] + 1
-                    else:
+                while j < n and s[j][0] == "[":
+                    trial = dict(env)
+                    if self._right_seq(ctx, k + 1, close, s, match, j + 1, trial):
+                        env.update(trial)
+                        break
+                    j = match[j] + 1
+                    while j < n and s[j][0] not in "[]" and self._skipped(s[j][0]):
                         j += 1
-                if j >= n:
+                else:
                     return False
-                j += 1
+                j = match[j] + 1
+                k = close + 1
                 continue
             while True:
                 if j >= n:
@@ -727,6 +747,7 @@ class LSystem:
             if not self._bind(c, s[j], env):
                 return False
             j += 1
+            k += 1
         return True
 
     @staticmethod

@@ -53,6 +53,33 @@ static void right_context_skips_branches(void **state) {
     one_step("AD[B]C", "  A > [B] -> X", "AD[B]C"); /* the branch must start right here */
 }
 
+/* A rule whose right context names a branch does not change how the others' right contexts
+ * match (issue 11): each pair gives the same string with and without the bracketed rule,
+ * whose predecessor never occurs. */
+static void bracketed_rule_leaves_others_alone(void **state) {
+    static const char *const bracketed = "\n  Y(c) > [Y(a)]Y(b) -> Y(a + b + c)";
+    static const struct {
+        const char *axiom, *rules, *expected;
+    } cases[] = {
+        {"U[-W[+W]W]", "  ignore + -\n  W > W -> Q", "U[-Q[+W]W]"},
+        {"A[B]C", "  A > C -> X", "X[B]C"},
+        {"A[B][D[E]F]CE", "  A > CE -> X", "X[B][D[E]F]CE"},
+        {"A[B]C", "  A > B -> X", "A[B]C"},
+        {"A[BC]D", "  B > C -> X\n  C > D -> Z", "A[XC]D"},
+        {"A(1)[B(2)]C(3)", "  A(x) > C(y) -> A(x + y)", "A(4)[B(2)]C(3)"},
+        {"AFB[F[FC]]B", "  consider A B C\n  A > B -> X\n  B > C -> Y", "XFB[F[FC]]B"},
+    };
+    char rules[256];
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        one_step(cases[k].axiom, cases[k].rules, cases[k].expected);
+        snprintf(rules, sizeof rules, "%s%s", cases[k].rules, bracketed);
+        one_step(cases[k].axiom, rules, cases[k].expected);
+    }
+    /* and the bracketed rule still applies beside them */
+    one_step("Y(1)[Y(2)]Y(3)W", "  W > W -> Q\n  Y(c) > [Y(a)]Y(b) -> Y(a + b + c)\n  Y(x) > W -> Q",
+             "Y(6)[Y(2)]QW");
+}
+
 static void branch_ends_block_contexts(void **state) {
     one_step("A[B]C", "  B > C -> X", "A[B]C");
     one_step("[A]B", "  A > B -> X", "[A]B");
@@ -151,6 +178,7 @@ int main(void) {
         cmocka_unit_test(abop_1_8_example),
         cmocka_unit_test(left_context_skips_side_branches),
         cmocka_unit_test(right_context_skips_branches),
+        cmocka_unit_test(bracketed_rule_leaves_others_alone),
         cmocka_unit_test(branch_ends_block_contexts),
         cmocka_unit_test(contexts_of_several_modules),
         cmocka_unit_test(ignore_and_consider),
