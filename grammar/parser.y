@@ -190,7 +190,6 @@ dargs: %empty { memset(&$$, 0, sizeof $$); }
      | dargs darg { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }
      ;
 darg: WORD { $$ = darg(DARG_WORD, $1, @1); }
-    | SETTING { $$ = darg(DARG_WORD, $1, @1); }
     | STRING { $$ = darg(DARG_STRING, $1, @1); }
     | NUMBER { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = literal(ps, $1, @1); }
     | DIGITS { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = literal(ps, $1, @1); }
