@@ -139,6 +139,8 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 
 %token <str> WORD "name" DIGITS "integer" NUMBER "number" SPECIAL "turtle symbol" SETTING "setting" STRING "string"
 %token ARROW "->" NEWLINE "end of line" ANDAND "&&" OROR "||" EQ "==" NE "!=" LE "<=" GE ">="
+/* The lexer gives SETTING and the KW_ tokens only as the first word of a statement that is
+ * not a rule (grammar/lexer.l, lex_word); anywhere else the same words are WORD, a name. */
 %token KW_LSYSTEM "lsystem" KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
 %token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
 %token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROW "grow" KW_SCENE "scene"

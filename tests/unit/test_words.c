@@ -1,6 +1,8 @@
 /* Every word of the language is contextual (docs/language.md, Names): a fn, const, param,
  * module and formal parameter may be named by any keyword or setting word. The words come
  * from the one list of each (syl_keywords, syl_setting_name), so a new word is covered. */
+#include <stdbool.h>
+
 #include "unit.h"
 #include "lang/parse_state.h"
 
@@ -46,6 +48,38 @@ static void every_keyword_is_a_name(void **state) {
     assert_true(n >= 13);
 }
 
+/* The directive words of grow and scene blocks are listed where they are read (src/sot/params.c,
+ * src/scene/spec.c, outside the language): every word-like string literal there is tried, so a
+ * new directive, mode or key is covered. Run from the top of the source tree (tests/run-all). */
+static int directive_words_in(const char *path) {
+    FILE *f = fopen(path, "r");
+    if (!f) fail_msg("cannot read %s (run from the top of the source tree)", path);
+    int n = 0, c, prev = 0;
+    while ((c = fgetc(f)) != EOF) {
+        if (c == '"' && prev != '\\' && prev != '\'') {
+            char w[64];
+            size_t k = 0;
+            while ((c = fgetc(f)) != EOF && c != '"' && c != '\n' && k + 1 < sizeof w) w[k++] = (char)c;
+            w[k] = 0;
+            bool word = k > 0 && c == '"' && w[0] >= 'a' && w[0] <= 'z';
+            for (size_t i = 0; i < k; i++)
+                if (!((w[i] >= 'a' && w[i] <= 'z') || (w[i] >= '0' && w[i] <= '9') || w[i] == '_')) word = false;
+            if (word) check_word(w), n++;
+            prev = 0;
+            continue;
+        }
+        prev = c;
+    }
+    fclose(f);
+    return n;
+}
+
+static void every_directive_word_is_a_name(void **state) {
+    (void)state;
+    assert_true(directive_words_in("src/sot/params.c") >= 40);
+    assert_true(directive_words_in("src/scene/spec.c") >= 4);
+}
+
 /* A setting and a name spelled alike are two things: `angle 30` sets the turtle's angle, and
  * `angle` in an expression is the declared const (as a variable named after a setting is in
  * L-Py's Python and lpfg's C); `angle angle` sets the setting to the const's value. */
@@ -81,6 +115,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_setting_word_is_a_name),
         cmocka_unit_test(every_keyword_is_a_name),
+        cmocka_unit_test(every_directive_word_is_a_name),
         cmocka_unit_test(setting_and_name_spelled_alike),
         cmocka_unit_test(rules_headed_by_words),
     };
