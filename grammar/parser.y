@@ -139,6 +139,8 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 
 %token <str> WORD "name" DIGITS "integer" NUMBER "number" SPECIAL "turtle symbol" SETTING "setting" STRING "string"
 %token ARROW "->" NEWLINE "end of line" ANDAND "&&" OROR "||" EQ "==" NE "!=" LE "<=" GE ">="
+/* The lexer gives SETTING and the KW_ tokens only as the first word of a statement that is
+ * not a rule (grammar/lexer.l, lex_word); anywhere else the same words are WORD, a name. */
 %token KW_LSYSTEM "lsystem" KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
 %token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
 %token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROW "grow" KW_SCENE "scene"
@@ -190,7 +192,6 @@ dargs: %empty { memset(&$$, 0, sizeof $$); }
      | dargs darg { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }
      ;
 darg: WORD { $$ = darg(DARG_WORD, $1, @1); }
-    | SETTING { $$ = darg(DARG_WORD, $1, @1); }
     | STRING { $$ = darg(DARG_STRING, $1, @1); }
     | NUMBER { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = literal(ps, $1, @1); }
     | DIGITS { $$ = darg(DARG_NUMBER, $1, @1); $$.value = mk(ps, EX_NUM, @1); $$.value->num = literal(ps, $1, @1); }

@@ -8,15 +8,20 @@
 #define YYLTYPE SYL_YYLTYPE
 #include "lexer.h"
 
-const char *const syl_setting_names[] = {"derive", "angle", "step", "width", "seed", "maxdepth",
-                                          "widthfactor", "tropism", "colour", NULL};
+const SylKeyword syl_keywords[] = {
+    {"lsystem", KW_LSYSTEM}, {"module", KW_MODULE}, {"const", KW_CONST}, {"param", KW_PARAM},
+    {"fn", KW_FN}, {"curve", KW_CURVE}, {"axiom", KW_AXIOM}, {"ignore", KW_IGNORE},
+    {"consider", KW_CONSIDER}, {"decompose", KW_DECOMPOSE}, {"interpret", KW_INTERPRET},
+    {"grow", KW_GROW}, {"scene", KW_SCENE}, {NULL, 0},
+};
 
 int syl_yyparse(void *scanner, ParseState *ps);
 
 int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     memset(ast, 0, sizeof *ast);
     int before = diag->errors;
-    LexState ls = {.line = 1, .col = 1, .arena = arena, .diag = diag};
+    LexState ls = {.line = 1, .col = 1, .arena = arena, .diag = diag, .text = src->text, .len = src->len,
+                   .at_start = 1};
     ParseState ps = {.lex = &ls, .arena = arena, .diag = diag, .ast = ast, .model = &ast->top};
     yyscan_t scanner;
     if (syl_yylex_init_extra(&ls, &scanner)) {

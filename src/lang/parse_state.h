@@ -16,6 +16,12 @@ typedef struct LexState {
     Arena *arena;
     Diag *diag;
     SylLoc comment_loc;
+    /* Words are contextual: a keyword or setting word is one only as the first word of a
+     * statement that is not a rule (docs/language.md, Names). The lexer reads ahead in text. */
+    const char *text;
+    size_t len, pos; /* pos: just after the token being read */
+    int at_start;    /* the next token begins a statement */
+    int first;       /* the first token of the current statement */
 } LexState;
 
 typedef struct ParseState {
@@ -28,7 +34,14 @@ typedef struct ParseState {
     StmtKind decl; /* ST_CONST or ST_PARAM while reading a definition list */
 } ParseState;
 
-/* Words the lexer returns as SETTING rather than as a name (NULL-terminated). */
-extern const char *const syl_setting_names[];
+/* The language's keywords and their tokens (parse.c), ended by {NULL, 0}. */
+typedef struct SylKeyword {
+    const char *word;
+    int token;
+} SylKeyword;
+extern const SylKeyword syl_keywords[];
+
+/* The setting words, from settings.c's one table: the i-th, NULL past the last. */
+const char *syl_setting_name(int i);
 
 #endif

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "lang/compiler.h"
+#include "lang/parse_state.h"
 
 typedef struct SettingDef {
     const char *name;
@@ -24,6 +25,10 @@ static const SettingDef settings[] = {
     {"tropism", -1, -1e9, 1e9, false, 4, false}, /* direction x, y, z and elasticity */
     {"colour", -1, 0, 255, false, 4, true},      /* index, then red, green, blue in 0..1 */
 };
+
+const char *syl_setting_name(int i) {
+    return i >= 0 && i < (int)(sizeof settings / sizeof *settings) ? settings[i].name : NULL;
+}
 
 void cc_setting(Compiler *c, Stmt *s, SylLoc *seen) {
     SylProgram *p = c->p;
