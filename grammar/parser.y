@@ -87,6 +87,7 @@ static Stmt *add_stmt(ParseState *ps, StmtKind kind, SylLoc loc) {
     s->kind = kind;
     s->loc = loc;
     s->block = ps->block;
+    s->group = ps->group;
     return s;
 }
 static void begin_model(ParseState *ps, ModelKind kind, const char *name, SylLoc loc) {
@@ -104,6 +105,27 @@ static void begin_model(ParseState *ps, ModelKind kind, const char *name, SylLoc
     m->name = name;
     m->loc = loc;
     ps->model = m;
+}
+
+/* A group block opens in the body or inside a decompose or interpret block (as L-Py's
+ * `group` sits inside its sections); groups do not nest. */
+static void open_group(ParseState *ps, const char *name, SylLoc loc) {
+    if (ps->group)
+        diag_error(ps->diag, loc, "group '%s' stands inside group '%s' (line %d): groups do not nest", name,
+                   ps->group, ps->group_loc.first_line);
+    Stmt *s = add_stmt(ps, ST_GROUP, loc);
+    s->name = name;
+    if (!ps->group_depth++) { /* a nested one's rules stay in the outer, after its error */
+        ps->group = name;
+        ps->group_loc = loc;
+    }
+}
+/* decompose and interpret blocks hold groups, not the other way round */
+static void sub_block(ParseState *ps, int block, SylLoc loc) {
+    if (ps->group)
+        diag_error(ps->diag, loc, "a %s block stands in the lsystem's body: write `group %s { }` inside it",
+                   block == BLOCK_DECOMPOSE ? "decompose" : "interpret", ps->group);
+    ps->block = block;
 }
 
 static DirArg darg(DirArgKind kind, const char *text, SylLoc loc) {
@@ -144,8 +166,9 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 %token KW_LSYSTEM "lsystem" KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
 %token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
 %token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROW "grow" KW_SCENE "scene"
+%token KW_GROUP "group" KW_USE "use"
 
-%type <expr> expr cond_opt weight_opt
+%type <expr> expr cond_opt weight_opt use_when
 %type <exprs> exprs exprs_opt args_opt points
 %type <item> item hitem sym
 %type <items> items hitems
@@ -175,6 +198,7 @@ top: NEWLINE
    | KW_LSYSTEM WORD '{' { begin_model(ps, MODEL_LSYSTEM, $2, @2); } body '}' { ps->model = &ps->ast->top; }
    | KW_GROW WORD '{' { begin_model(ps, MODEL_GROW, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
    | KW_SCENE '{' { begin_model(ps, MODEL_SCENE, "scene", @1); } gbody '}' { ps->model = &ps->ast->top; }
+   | use { diag_error(ps->diag, @1, "'use' stands in an lsystem's body, not outside a model"); }
    | error NEWLINE { yyerrok; ps->model = ps->model ? ps->model : &ps->ast->top; }
    ;
 
@@ -212,8 +236,10 @@ stmt: NEWLINE
     | KW_CONSIDER items NEWLINE { add_stmt(ps, ST_CONSIDER, @1)->items = $2; }
     | KW_AXIOM items NEWLINE { add_stmt(ps, ST_AXIOM, @1)->items = $2; }
     | rule NEWLINE { add_stmt(ps, ST_RULE, $1.loc)->rule = $1; }
-    | KW_DECOMPOSE '{' { ps->block = BLOCK_DECOMPOSE; } body '}' { ps->block = BLOCK_PRODUCE; }
-    | KW_INTERPRET '{' { ps->block = BLOCK_INTERPRET; } body '}' { ps->block = BLOCK_PRODUCE; }
+    | KW_DECOMPOSE '{' { sub_block(ps, BLOCK_DECOMPOSE, @1); } body '}' { ps->block = BLOCK_PRODUCE; }
+    | KW_INTERPRET '{' { sub_block(ps, BLOCK_INTERPRET, @1); } body '}' { ps->block = BLOCK_PRODUCE; }
+    | group
+    | use
     | error NEWLINE { yyerrok; }
     ;
 
@@ -264,6 +290,25 @@ points: '(' expr ',' expr ')' { memset(&$$, 0, sizeof $$);
               *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $4;
               *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $6; }
       ;
+
+/* ---- tables: groups of rules and the steps that use them (docs/language.md, Tables) ---- */
+
+group: KW_GROUP WORD '{' { open_group(ps, $2, @2); } body '}' { if (!--ps->group_depth) ps->group = NULL; }
+     ;
+use: KW_USE WORD use_when NEWLINE {
+         if (ps->group || ps->block != BLOCK_PRODUCE)
+             diag_error(ps->diag, @1, "'use' stands in the lsystem's body, not inside a %s block",
+                        ps->group ? "group" : ps->block == BLOCK_DECOMPOSE ? "decompose" : "interpret");
+         Stmt *s = add_stmt(ps, ST_USE, @2); s->name = $2; s->value = $3;
+     }
+   ;
+/* `when EXPR`, or nothing: the group is used at every step */
+use_when: %empty { $$ = NULL; }
+        | WORD expr {
+              if (strcmp($1, "when")) diag_error(ps->diag, @1, "write 'use NAME when CONDITION'");
+              $$ = $2;
+          }
+        ;
 
 /* ---- productions ---- */
 

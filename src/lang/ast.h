@@ -92,6 +92,8 @@ typedef enum {
     ST_CONSIDER,  /* items */
     ST_AXIOM,     /* items */
     ST_RULE,      /* rule */
+    ST_GROUP,     /* name: a group block opens (its rules follow, with group = name) */
+    ST_USE,       /* name, value: `use name when value` (value NULL: at every step) */
 } StmtKind;
 
 enum { BLOCK_PRODUCE, BLOCK_DECOMPOSE, BLOCK_INTERPRET, BLOCK_COUNT };
@@ -99,6 +101,7 @@ enum { BLOCK_PRODUCE, BLOCK_DECOMPOSE, BLOCK_INTERPRET, BLOCK_COUNT };
 typedef struct Stmt {
     StmtKind kind;
     int block; /* BLOCK_* the statement stands in */
+    const char *group; /* the group block it stands in, or NULL */
     SylLoc loc;
     const char *name;
     Expr *value;

@@ -77,6 +77,11 @@ static void evaluate_all(Compiler *c, Stmt **all, int n) {
     SylLoc seen[16] = {{0}};
     for (int i = 0; i < n; i++) {
         Stmt *s = all[i];
+        if (s->kind == ST_GROUP || s->kind == ST_USE) continue; /* groups.c; misplaced ones: the parser */
+        if (s->group && s->kind != ST_RULE) {
+            diag_error(c->d, s->loc, "only rules may stand in a group block");
+            continue;
+        }
         if (s->block != BLOCK_PRODUCE && s->kind != ST_RULE && s->kind != ST_SETTING) {
             diag_error(c->d, s->loc, "only rules and maxdepth may stand in a %s block",
                        s->block == BLOCK_DECOMPOSE ? "decompose" : "interpret");
@@ -126,7 +131,10 @@ static void compile_rules(Compiler *c, Stmt **all, int n, Model *model) {
         Stmt *s = all[i];
         if (s->kind == ST_RULE) {
             RuleTable *t = &p->tables[s->block];
-            cc_rule(c, s, &t->rules[t->nrules++]);
+            Rule *r = &t->rules[t->nrules++];
+            cc_rule(c, s, r);
+            r->group = cc_group_of(p, s->group);
+            if (r->group >= 0) p->grouped[s->block] |= 1ull << r->group;
         } else if (s->kind == ST_AXIOM) {
             if (axioms++) {
                 diag_error(c->d, s->loc, "a model has one axiom");
@@ -158,6 +166,19 @@ static void mark_queries(Compiler *c) {
         }
 }
 
+/* Whether the axiom or a successor of a production or decomposition holds `%`: only then
+ * does a step end with the cut pass. */
+static void mark_cut(Compiler *c) {
+    SylProgram *p = c->p;
+    const Rule *r = &p->axiom;
+    for (int t = -1; t <= TABLE_DECOMPOSE && !p->may_cut; t++)
+        for (int i = 0; i < (t < 0 ? 1 : p->tables[t].nrules) && !p->may_cut; i++) {
+            if (t >= 0) r = &p->tables[t].rules[i];
+            for (int k = 0; k < r->nsucc; k++)
+                if (p->syms[CODE_SYM(r->succ[k])].turtle == TC_CUT) p->may_cut = true;
+        }
+}
+
 static void compile_model(Compiler *c, Model *top, Model *model) {
     SylProgram *p = c->p;
     int n;
@@ -170,7 +191,9 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
     for (int i = 0; i < p->nfns; i++) cc_function(c, i);
     bool considered[MAX_SYMBOLS] = {false};
     bool consider = read_skips(c, all, n, considered);
+    cc_groups(c, all, n);
     compile_rules(c, all, n, model);
+    mark_cut(c);
     if (consider) apply_consider(c, considered);
     for (int t = 0; t < TABLE_COUNT; t++) cc_build_table(c, &p->tables[t]);
     mark_queries(c);

@@ -83,6 +83,10 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out);
 void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *what);
 void cc_build_table(Compiler *c, RuleTable *t); /* dispatch and fast paths, once its rules are in */
 
+/* groups.c */
+int cc_group_of(const SylProgram *p, const char *name); /* its index, -1: none (or name NULL) */
+void cc_groups(Compiler *c, Stmt **all, int n);           /* groups and `use` lines, before the rules */
+
 /* settings.c */
 /* A setting statement; seen: where each was first set, to report one set twice. */
 void cc_setting(Compiler *c, Stmt *s, SylLoc *seen);

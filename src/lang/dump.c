@@ -54,7 +54,9 @@ static void pattern(FILE *out, const SylProgram *p, const PatElem *pe, int n, co
 
 static void rule(FILE *out, const SylProgram *p, const Rule *r, int index) {
     if (index >= 0) {
-        fprintf(out, "  rule %d, line %d: ", index + 1, r->line);
+        fprintf(out, "  rule %d, line %d", index + 1, r->line);
+        if (r->group >= 0) fprintf(out, ", group %s", p->groups[r->group].name);
+        fprintf(out, ": ");
         if (r->nleft) {
             pattern(out, p, r->left, r->nleft, r->names);
             fprintf(out, " < ");
@@ -101,6 +103,25 @@ static void rule(FILE *out, const SylProgram *p, const Rule *r, int index) {
     }
 }
 
+/* Each group and the `use` conditions that make it take part (in the rule lines: its rules). */
+static void groups(FILE *out, const SylProgram *p) {
+    static const char *step[] = {"step"};
+    for (int g = 0; g < p->ngroups; g++) {
+        const Group *gr = &p->groups[g];
+        fprintf(out, "group %s, line %d: ", gr->name, gr->loc.first_line);
+        bool always = false;
+        for (int k = 0; k < gr->nwhen; k++) always |= gr->when[k] < 0;
+        if (always) fprintf(out, "used at every step\n");
+        else if (!gr->nwhen) fprintf(out, "never used\n");
+        else if (gr->nwhen == 1) fprintf(out, "used when its condition holds\n");
+        else fprintf(out, "used when one of its %d conditions holds\n", gr->nwhen);
+        for (int k = 0; k < gr->nwhen && !always; k++) {
+            fprintf(out, "    condition (line %d):\n", gr->when_loc[k].first_line);
+            expression(out, p, (uint32_t)gr->when[k], step, "      ");
+        }
+    }
+}
+
 void syl_program_dump(const SylProgram *p, FILE *out) {
     fprintf(out, "lsystem %s\n", p->name);
     fprintf(out, "settings: derive %d, angle %g, step %g, width %g, seed %llu\n", p->derive, p->angle, p->step,
@@ -111,6 +132,7 @@ void syl_program_dump(const SylProgram *p, FILE *out) {
     for (int i = 0; i < p->nparams; i++)
         fprintf(out, "param %s = %g%s\n", p->params[i].name, p->params[i].value,
                 p->params[i].overridden ? " (set on the command line)" : "");
+    groups(out, p);
     fprintf(out, "axiom:\n");
     rule(out, p, &p->axiom, -1);
     static const char *const table_names[TABLE_COUNT] = {"productions", "decomposition", "interpretation"};

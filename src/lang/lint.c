@@ -36,7 +36,7 @@ static void lint_table(Compiler *c, const RuleTable *t, const bool *made) {
         /* a rule after an unconditional, context-free, unweighted one for the same module */
         for (int j = 0; j < i; j++) {
             const Rule *q = &t->rules[j];
-            if (q->pred == r->pred && !q->nleft && !q->nright && q->cond < 0 && !q->weighted) {
+            if (q->pred == r->pred && q->group == r->group && !q->nleft && !q->nright && q->cond < 0 && !q->weighted) {
                 diag_warning(c->d, r->loc, "this rule never applies: the rule at line %d always applies first",
                              q->line);
                 break;
@@ -47,6 +47,23 @@ static void lint_table(Compiler *c, const RuleTable *t, const bool *made) {
     }
 }
 
+/* A group that no `use` line makes take part, or only with a condition that is always false. */
+static void lint_groups(Compiler *c) {
+    const SylProgram *p = c->p;
+    for (int g = 0; g < p->ngroups; g++) {
+        const Group *gr = &p->groups[g];
+        bool used = false;
+        for (int k = 0; k < gr->nwhen && !used; k++) {
+            double v;
+            used = !cc_code_constant(p, gr->when[k], &v) || v != 0;
+        }
+        if (!used)
+            diag_warning(c->d, gr->loc, gr->nwhen ? "group '%s' is never used: its `use` condition%s always false"
+                                                  : "group '%s' is never used: no `use %s when ...` line",
+                         gr->name, gr->nwhen ? (gr->nwhen == 1 ? " is" : "s are") : gr->name);
+    }
+}
+
 void cc_lint(Compiler *c) {
     const SylProgram *p = c->p;
     bool *made = arena_alloc(c->tmp, sizeof(bool) * CODE_COUNT);
@@ -54,6 +71,7 @@ void cc_lint(Compiler *c) {
     for (int t = 0; t < TABLE_COUNT; t++)
         for (int i = 0; i < p->tables[t].nrules; i++) mark(made, &p->tables[t].rules[i]);
     for (int t = 0; t < TABLE_COUNT; t++) lint_table(c, &p->tables[t], made);
+    lint_groups(c);
     for (int s = 0; s < p->nsyms; s++)
         if (p->syms[s].declared && !c->sym_used[s])
             diag_warning(c->d, p->syms[s].decl_loc, "module '%s' is declared but never used", p->syms[s].name);

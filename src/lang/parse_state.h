@@ -31,6 +31,9 @@ typedef struct ParseState {
     FileAst *ast;
     Model *model; /* where statements go: a model, or the file's top level */
     int block;    /* BLOCK_* */
+    const char *group; /* the group block being read, or NULL */
+    SylLoc group_loc;
+    int group_depth;   /* group blocks open (more than one is an error) */
     StmtKind decl; /* ST_CONST or ST_PARAM while reading a definition list */
 } ParseState;
 

@@ -66,6 +66,7 @@ typedef struct Rule {
     int nslots;
     SylLoc loc;               /* the predecessor */
     int line;
+    int group;                /* index in SylProgram.groups, -1: outside any group */
     const char **names;       /* of the locals, for the disassembler */
 } Rule;
 
@@ -136,6 +137,17 @@ typedef struct ParamInfo {
 
 enum { TABLE_PRODUCE, TABLE_DECOMPOSE, TABLE_INTERPRET, TABLE_COUNT };
 
+/* A group of rules (a table of a table L-system): its rules take part in the steps where one
+ * of its `use` conditions holds. A set of groups is a bitmask, so a model has at most 64. */
+enum { MAX_GROUPS = 64 };
+typedef struct Group {
+    const char *name;
+    SylLoc loc;       /* its first block */
+    int32_t *when;    /* code of each `use` condition (local 0 is `step`); -1: every step */
+    SylLoc *when_loc;
+    int nwhen;
+} Group;
+
 struct SylProgram {
     SylModelKind kind;
     SylDirective *directives, *scene;
@@ -169,6 +181,10 @@ struct SylProgram {
     int nparams, paramcap;
 
     RuleTable tables[TABLE_COUNT];
+    Group *groups;
+    int ngroups;
+    uint64_t grouped[TABLE_COUNT]; /* the groups that hold rules of each table */
+    bool may_cut;        /* a successor or the axiom holds `%`: cut after every step */
     Rule axiom;          /* the axiom, as a rule with no predecessor */
     bool skip[MAX_SYMBOLS]; /* ignored in context matching */
 

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "lang/compiler.h"
+#include "lang/groups.h"
 #include "lang/opcodes.h"
 
 static uint16_t module_code(Compiler *c, const Mod *m) {
@@ -127,6 +128,7 @@ void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *wh
 void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     SylProgram *p = c->p;
     memset(out, 0, sizeof *out);
+    out->group = -1;
     Mods pred, left, right, succ;
     cc_split(c, &s->rule.pred, &pred);
     cc_split(c, &s->rule.left, &left);
@@ -146,6 +148,8 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     bind(c, &pred.v[0], &scope);
     pattern(c, &left, false, &scope, &out->left, &out->nleft);
     pattern(c, &right, true, &scope, &out->right, &out->nright);
+    for (int k = 0; k < out->nright; k++)
+        if (out->right[k].kind != PAT_MODULE) out->right_branches = true;
     out->nlocals = (uint8_t)scope.n;
     out->names = arena_alloc(&p->arena, sizeof *out->names * (size_t)(scope.n + 1));
     for (int i = 0; i < scope.n; i++) out->names[i] = arena_strndup(&p->arena, names[i], strlen(names[i]));
@@ -168,26 +172,24 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     cc_successor(c, &succ, &scope, out, "this successor");
 }
 
-void cc_build_table(Compiler *c, RuleTable *t) {
-    SylProgram *p = c->p;
-    if (!t->nrules) return;
-    t->dispatch = arena_alloc(&p->arena, sizeof *t->dispatch * CODE_COUNT);
-    t->order = arena_alloc(&p->arena, sizeof *t->order * (size_t)t->nrules);
-    for (int i = 0; i < t->nrules; i++) t->dispatch[t->rules[i].pred].count++;
+/* Dispatch and fast paths over the rules pick[0..npick) of t->rules, tried in that order. */
+static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
+    t->dispatch = arena_alloc(a, sizeof *t->dispatch * CODE_COUNT);
+    t->order = arena_alloc(a, sizeof *t->order * (size_t)(npick ? npick : 1));
+    if (!t->dispatch || !t->order) return false;
+    for (int i = 0; i < npick; i++) t->dispatch[t->rules[pick[i]].pred].count++;
     uint32_t at = 0;
     for (int code = 0; code < CODE_COUNT; code++) {
         t->dispatch[code].first = at;
         at += t->dispatch[code].count;
         t->dispatch[code].count = 0;
     }
-    for (int i = 0; i < t->nrules; i++) {
-        Rule *r = &t->rules[i];
+    for (int i = 0; i < npick; i++) {
+        const Rule *r = &t->rules[pick[i]];
         Dispatch *d = &t->dispatch[r->pred];
-        t->order[d->first + d->count++] = (uint16_t)i;
+        t->order[d->first + d->count++] = pick[i];
         if (r->nleft || r->nright) t->has_context = true;
         if (r->nleft) t->ctx_left = true;
-        for (int k = 0; k < r->nright; k++)
-            if (r->right[k].kind != PAT_MODULE) r->right_branches = true;
         /* each rule's right context is matched its own way, whatever the others' are: a
          * branch in one rule does not take the links from the others */
         if (r->right_branches) t->ctx_branches = true;
@@ -221,7 +223,8 @@ void cc_build_table(Compiler *c, RuleTable *t) {
                    (!r->nright || (r->right[0].kind == PAT_MODULE && !CODE_ARITY(r->right[0].code)));
         }
         if (!fast) continue;
-        FastRule *f = arena_alloc(&p->arena, sizeof *f * d->count);
+        FastRule *f = arena_alloc(a, sizeof *f * d->count);
+        if (!f) return false;
         for (uint32_t k = 0; k < d->count; k++) {
             const Rule *r = &t->rules[t->order[d->first + k]];
             f[k].left = r->nleft ? r->left[0].code : CODE_ANY;
@@ -230,4 +233,32 @@ void cc_build_table(Compiler *c, RuleTable *t) {
         }
         d->fast = f;
     }
+    return true;
+}
+
+/* Every rule in file order: what a model without groups derives with, and what the
+ * disassembler and the checks read. */
+void cc_build_table(Compiler *c, RuleTable *t) {
+    if (!t->nrules) return;
+    uint16_t *all = arena_alloc(c->tmp, sizeof *all * (size_t)t->nrules);
+    for (int i = 0; i < t->nrules; i++) all[i] = (uint16_t)i;
+    build(t, all, t->nrules, &c->p->arena);
+}
+
+bool lang_table_select(const SylProgram *p, int table, uint64_t active, RuleTable *t, Arena *a) {
+    const RuleTable *base = &p->tables[table];
+    memset(t, 0, sizeof *t);
+    t->rules = base->rules;
+    t->maxdepth = base->maxdepth;
+    uint16_t *pick = arena_alloc(a, sizeof *pick * (size_t)(base->nrules ? base->nrules : 1));
+    if (!pick) return false;
+    int n = 0;
+    for (int i = 0; i < base->nrules; i++) {
+        int g = base->rules[i].group;
+        if (g >= 0 && (active >> g & 1)) pick[n++] = (uint16_t)i;
+    }
+    for (int i = 0; i < base->nrules; i++)
+        if (base->rules[i].group < 0) pick[n++] = (uint16_t)i;
+    t->nrules = n; /* the rules taking part; their indices stay those of base->rules */
+    return !n || build(t, pick, n, a);
 }

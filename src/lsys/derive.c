@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "lang/builtins.h"
+#include "lang/groups.h"
 #include "util/array.h"
 #include "util/budget.h"
 #include "lsys/derive.h"
@@ -19,7 +20,7 @@
 #include "sylva/sylva.h"
 #include "lang/vm.h"
 
-enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256 };
+enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256, TABLE_CACHE = 8 };
 
 static void *run_thread(void *arg) {
     rewrite_chunk(arg);
@@ -46,6 +47,18 @@ typedef struct Engine {
     bool warned_depth;
     bool reported;      /* an error was reported: one message per failure */
     LsysQueries queries; /* what fills query modules */
+    /* models with groups: the rule table of each set of active groups met, built when first
+     * needed (a handful per derivation), so that the hot loop never tests a rule's group */
+    struct {
+        int table;
+        uint64_t active;
+        RuleTable t;
+        Arena arena;
+    } cache[TABLE_CACHE];
+    int ncache, evict;
+    int active_step;    /* the step whose groups `active` holds, -1 none */
+    uint64_t active;
+    int cut_sym;        /* the symbol of `%`, -1 when the program has none */
 } Engine;
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
@@ -83,6 +96,7 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
 
 static void engine_free(Engine *e) {
     if (e->queries.release) e->queries.release(e->queries.user);
+    for (int k = 0; k < e->ncache; k++) arena_free(&e->cache[k].arena);
     free(e->left);
     free(e->right);
     free(e->pair);
@@ -91,11 +105,50 @@ static void engine_free(Engine *e) {
     free(e->rcode);
 }
 
-/* Rewrite `in` with table t into `out` (emptied first). Returns a SYL_* status. */
-static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylString *out, bool *applied, int step,
-                const char *what) {
+/* The rules of table `table` that take part at `step`: all of them when the model has no
+ * groups in that table; else the table of the groups its `use` lines select, from the cache. */
+static int select_table(Engine *e, int table, int step, const RuleTable **out) {
     const SylProgram *p = e->p;
-    const RuleTable *t = &p->tables[table];
+    *out = &p->tables[table];
+    if (!p->grouped[table]) return SYL_OK;
+    if (e->active_step != step) {
+        VmFault f = {0};
+        int g = 0;
+        if (lang_groups_active(p, step, e->seed, &e->active, &f, &g)) {
+            e->reported = true;
+            if (e->diag) {
+                Diag d = {.out = e->diag, .src = &p->src};
+                SylLoc loc = f.pc < (uint32_t)p->ncode ? p->code_loc[f.pc] : p->groups[g].loc;
+                diag_error(&d, loc, "%s (use of group '%s' at step %d)", syl_eval_error_text(f.status),
+                           p->groups[g].name, step);
+            }
+            return SYL_EMODEL;
+        }
+        e->active_step = step;
+    }
+    uint64_t active = e->active & p->grouped[table];
+    for (int k = 0; k < e->ncache; k++)
+        if (e->cache[k].table == table && e->cache[k].active == active) {
+            *out = &e->cache[k].t;
+            return SYL_OK;
+        }
+    int k = e->ncache < TABLE_CACHE ? e->ncache++ : e->evict++ % TABLE_CACHE;
+    arena_free(&e->cache[k].arena);
+    e->cache[k].table = table;
+    e->cache[k].active = active;
+    if (!lang_table_select(p, table, active, &e->cache[k].t, &e->cache[k].arena)) {
+        arena_free(&e->cache[k].arena);
+        e->cache[k].table = -1;
+        return SYL_ELIMIT;
+    }
+    *out = &e->cache[k].t;
+    return SYL_OK;
+}
+
+/* Rewrite `in` with table t (of kind `table`) into `out` (emptied first). Returns a SYL_* status. */
+static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, SylString *in, SylString *out,
+                        bool *applied, int step, const char *what) {
+    const SylProgram *p = e->p;
     e->rewritten += in->n;
     /* a pass costs at least as much as rewriting 100 modules: a million steps of one module
      * is work too */
@@ -226,9 +279,11 @@ static bool any_predecessor(const RuleTable *t, const SylString *s) {
 static int rewrite_until_stable(Engine *e, int table, int step, SylString **cur, SylString **spare) {
     const RuleTable *t = &e->p->tables[table];
     if (!t->nrules) return SYL_OK;
+    int st = select_table(e, table, step, &t);
+    if (st || !t->nrules) return st;
     for (int d = 0; d < t->maxdepth; d++) {
         bool applied = false;
-        int st = rewrite_pass(e, table, (uint64_t)step << 16 | (uint64_t)d, *cur, *spare, &applied, step,
+        st = rewrite_pass(e, t, table, (uint64_t)step << 16 | (uint64_t)d, *cur, *spare, &applied, step,
                       table == TABLE_DECOMPOSE ? "decomposition after step" : "interpretation of step");
         if (st) return st;
         if (!applied) break;
@@ -261,6 +316,36 @@ static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *
     e->max_work = opt->max_work ? opt->max_work : 100000000000ull;
     budget_init(&e->own, opt->max_memory);
     e->mem = opt->budget ? opt->budget : &e->own;
+    e->active_step = -1;
+    e->cut_sym = -1;
+    for (int s = 0; s < p->nsyms; s++)
+        if (p->syms[s].turtle == TC_CUT) e->cut_sym = s;
+}
+
+/* The cut (cpfg, L-Py): each `%` and the rest of its branch leave the string, up to the `]`
+ * that closes the branch, which stays; a `%` outside any branch ends the string. In place. */
+static void cut_branches(SylString *s, int cut) {
+    size_t i = 0, n = s->n, pi = 0;
+    while (i < n && CODE_SYM(s->code[i]) != cut) pi += CODE_ARITY(s->code[i++]);
+    if (i == n) return;
+    size_t j = i, pj = pi;
+    while (i < n) {
+        uint16_t c = s->code[i];
+        if (CODE_SYM(c) == cut) {
+            for (int depth = 0; i < n; pi += CODE_ARITY(s->code[i]), i++) {
+                int sym = CODE_SYM(s->code[i]);
+                if (sym == SYM_OPEN) depth++;
+                else if (sym == SYM_CLOSE && depth-- == 0) break;
+            }
+            continue;
+        }
+        s->code[j++] = c;
+        for (int k = CODE_ARITY(c); k > 0; k--) s->par[pj++] = s->par[pi++];
+        i++;
+    }
+    s->n = j;
+    s->np = pj;
+    ms_changed(s);
 }
 
 static SylString *new_string(Engine *e) {
@@ -347,6 +432,7 @@ struct SylDeriver {
     SylDeriveOptions *opt;
     SylDeriveOptions own_opt; /* opt when the caller passes NULL (defaults) */
     SylString *cur, *spare;
+    bool may_cut; /* the program, or the start string given, holds `%` */
     int step;
     int status; /* the first error; every later call returns it */
 };
@@ -362,6 +448,8 @@ static int begin(SylDeriver *d, const SylString *start) {
             if (start->np) memcpy(d->cur->par, start->par, start->np * sizeof *start->par);
             d->cur->n = start->n;
             d->cur->np = start->np;
+            for (size_t i = 0; i < start->n && d->e.cut_sym >= 0; i++)
+                if (CODE_SYM(start->code[i]) == d->e.cut_sym) d->may_cut = true;
         }
     } else st = axiom(e, d->cur);
     if (!st) st = rewrite_until_stable(e, TABLE_DECOMPOSE, 0, &d->cur, &d->spare);
@@ -401,6 +489,7 @@ int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylStrin
     if (q) d->e.queries = *q;
     d->cur = new_string(&d->e);
     d->spare = new_string(&d->e);
+    d->may_cut = p->may_cut;
     d->status = said(&d->e, d->cur && d->spare ? begin(d, start) : SYL_ELIMIT, 0, "step");
     *out = d;
     return d->status;
@@ -411,9 +500,11 @@ int syl_derive_step(SylDeriver *d) {
     Engine *e = &d->e;
     const SylProgram *p = e->p;
     int step = ++d->step, st = SYL_OK;
-    if (p->tables[TABLE_PRODUCE].nrules) {
+    const RuleTable *t = &p->tables[TABLE_PRODUCE];
+    if (t->nrules) st = select_table(e, TABLE_PRODUCE, step, &t);
+    if (!st && t->nrules) {
         bool applied = false;
-        st = rewrite_pass(e, TABLE_PRODUCE, (uint64_t)step << 16, d->cur, d->spare, &applied, step, "step");
+        st = rewrite_pass(e, t, TABLE_PRODUCE, (uint64_t)step << 16, d->cur, d->spare, &applied, step, "step");
         if (!st) {
             SylString *x = d->cur;
             d->cur = d->spare;
@@ -421,6 +512,7 @@ int syl_derive_step(SylDeriver *d) {
         }
     }
     if (!st) st = rewrite_until_stable(e, TABLE_DECOMPOSE, step, &d->cur, &d->spare);
+    if (!st && d->may_cut) cut_branches(d->cur, e->cut_sym);
     if (!st) st = fill_queries(e, d->cur, step);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, step, d->cur);
     d->opt->rewritten = e->rewritten;
