@@ -41,7 +41,7 @@ def main():
         counts = [len(s)]
         best_n, best_text = 0, ref_lsys.to_text(s)
         for k in range(1, ls.derive + 1):
-            s = ls.step(s)
+            s = ls.step(s, k)
             counts.append(len(s))
             text = ref_lsys.to_text(s)
             if len(text) + 1 <= LIMIT:

@@ -17,9 +17,16 @@ expected ("golden") derived strings.  It covers the DETERMINISTIC subset of the 
     the first whose beginning matches), and after the named part of such a branch skips the
     rest of that branch.
 
+  * tables (docs/language.md, Tables): rules in `group NAME { }` take part only in the steps
+    where a `use NAME when EXPR` line holds (EXPR reads `step`, 1 for the first); for a
+    module, the rules of the used groups come first, then the ungrouped ones, in file order;
+  * the cut: when a step ends, every `%` and the rest of its branch leave the string, up to
+    the `]` that closes the branch (kept); a `%` outside any branch ends the string.  The
+    axiom (step 0) is printed as written.
+
 Not supported (the script says so and exits with status 3): stochastic rules (weights),
-random functions, decompose blocks, curves, group/table L-systems.  `interpret { }` blocks are
-read and ignored (they never change the derived string).
+random functions, decompose blocks, curves.  `interpret { }` blocks (and groups inside them)
+are read and ignored (they never change the derived string).
 
 Output (canonical form): modules concatenated without spaces; a module with parameters is
 printed as NAME(v1,v2,...) with every value formatted by C's %g, e.g. F(1)[+(25.7)F(0.5)]X.
@@ -417,7 +424,7 @@ SETTINGS = ("derive", "angle", "step", "width", "seed", "widthfactor", "tropism"
 
 
 class Rule:
-    def __init__(self, left, pred, right, cond, succ, weight, text, block):
+    def __init__(self, left, pred, right, cond, succ, weight, text, block, group=None):
         self.left = left          # list of Templates (formal params = names)
         self.pred = pred          # Template
         self.right = right        # list of Templates
@@ -426,6 +433,7 @@ class Rule:
         self.weight = weight      # text or None
         self.text = text
         self.block = block
+        self.group = group        # name of its group, or None
 
 
 class Model:
@@ -438,7 +446,8 @@ class Model:
         self.ignore = None
         self.consider = None
         self.axiom_text = None
-        self.rule_lines = []      # (text, block)
+        self.rule_lines = []      # (text, block, group)
+        self.uses = []            # (group, condition text or None)
 
 
 def _strip_comments(src):
@@ -468,8 +477,10 @@ def _logical_lines(lines):
 def parse_file(src):
     models = []
     cur = None
-    block = None
+    blocks = []                   # open blocks: "interpret", "decompose" or ("group", NAME)
     for line in _logical_lines(_strip_comments(src)):
+        block = next((b for b in blocks if isinstance(b, str)), None)
+        group = next((b[1] for b in blocks if isinstance(b, tuple)), None)
         if not line:
             continue
         if cur is None:
@@ -484,16 +495,24 @@ def parse_file(src):
                 raise Unsupported("scene blocks")
             raise SylError("unexpected top-level line %r" % line)
         if line == "}":
-            if block is not None:
-                block = None
+            if blocks:
+                blocks.pop()
             else:
                 cur = None
             continue
-        m = re.match(r"(interpret|decompose|group\s+\w+)\s*\{$", line)
+        m = re.match(r"(interpret|decompose)\s*\{$", line)
         if m:
-            block = m.group(1).split()[0]
-            if block != "interpret":
-                raise Unsupported("%s blocks" % block)
+            if m.group(1) != "interpret":
+                raise Unsupported("%s blocks" % m.group(1))
+            blocks.append(m.group(1))
+            continue
+        m = re.match(r"group\s+(\w+)\s*\{$", line)
+        if m:
+            blocks.append(("group", m.group(1)))
+            continue
+        m = re.match(r"use\s+(\w+)(?:\s+when\s+(.*))?$", line)
+        if m and "->" not in line:
+            cur.uses.append((m.group(1), m.group(2)))
             continue
         word = line.split(None, 1)[0]
         rest = line[len(word):].strip()
@@ -521,7 +540,7 @@ def parse_file(src):
         elif word == "axiom":
             cur.axiom_text = rest
         else:
-            cur.rule_lines.append((line, block or "produce"))
+            cur.rule_lines.append((line, block or "produce", group))
     if cur is not None:
         raise SylError("model %s not closed" % cur.name)
     return models
@@ -615,7 +634,16 @@ class LSystem:
         for name, params, expr in model.fns:
             self.funcs[name] = self._mkfn(params, compile_expr(expr))
         declared = model.declared
-        self.rules = [parse_rule(t, b, declared) for t, b in model.rule_lines]
+        self.rules = []
+        for t, b, g in model.rule_lines:
+            r = parse_rule(t, b, declared)
+            r.group = g
+            self.rules.append(r)
+        groups = {g for _, _, g in model.rule_lines if g}
+        for g, _ in model.uses:
+            if g not in groups:
+                raise SylError("use of unknown group %r" % g)
+        self.uses = [(g, compile_expr(c) if c else None) for g, c in model.uses]
         self.rules = [r for r in self.rules if r.block == "produce"]
         if any(r.weight is not None for r in self.rules):
             raise Unsupported("stochastic (weighted) rules")
@@ -767,13 +795,42 @@ class LSystem:
             raise SylError("unbalanced '[' in string")
         return match
 
-    def step(self, s):
+    def active_groups(self, k):
+        env = dict(self.consts)
+        env["step"] = float(k)
+        return {g for g, c in self.uses if c is None or c(env, self.funcs) != 0.0}
+
+    @staticmethod
+    def cut(s):
+        """Each '%' and the rest of its branch leave the string; the closing ']' stays."""
+        out, i = [], 0
+        while i < len(s):
+            if s[i][0] != "%":
+                out.append(s[i])
+                i += 1
+                continue
+            depth = 0
+            while i < len(s):
+                if s[i][0] == "[":
+                    depth += 1
+                elif s[i][0] == "]":
+                    if depth == 0:
+                        break
+                    depth -= 1
+                i += 1
+        return out
+
+    def step(self, s, k=1):
         match = None
         out = []
         funcs = self.funcs
+        active = self.active_groups(k) if self.uses else set()
         for i, mod in enumerate(s):
             name, vals = mod
             rules = self.by_pred.get((name, 0 if vals is None else len(vals)))
+            if rules:
+                rules = ([r for r in rules if r.group is not None and r.group in active] +
+                         [r for r in rules if r.group is None])
             if not rules:
                 out.append(mod)
                 continue
@@ -796,7 +853,7 @@ class LSystem:
                 break
             else:
                 out.append(mod)
-        return out
+        return self.cut(out)
 
 
 def fmt_g(v):
@@ -850,7 +907,7 @@ def main(argv=None):
         elif a.all_steps:
             print(to_text(s))
         for k in range(1, n + 1):
-            s = ls.step(s)
+            s = ls.step(s, k)
             if a.counts:
                 print("%d %d" % (k, len(s)))
             elif a.all_steps:
