@@ -134,6 +134,9 @@ static Expr *fold(Compiler *c, Expr *e, Scope *s, bool *random) {
         if (namemap_get(&c->fns, e->name, -1) >= 0 || namemap_get(&c->curves, e->name, -1) >= 0 ||
             syl_builtin_find(e->name) >= 0)
             diag_error(c->d, e->loc, "'%s' is a function: call it as %s(...)", e->name, e->name);
+        else if (!strcmp(e->name, "step")) /* the step number is a `use` line's (docs/language.md §20) */
+            diag_error(c->d, e->loc, "unknown name 'step' (the step number is read in `use NAME when ...` "
+                                     "lines: put the rule in a group)");
         else
             diag_error(c->d, e->loc, "unknown name '%s'", e->name);
         return number(c, e, 0);
