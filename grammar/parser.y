@@ -176,6 +176,7 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 %type <rule> rule lhs
 %type <darg> darg
 %type <dargs> dargs
+%type <str> gword
 
 %right '?' ':'
 %left OROR
@@ -210,7 +211,12 @@ gstmt: NEWLINE
      | decl NEWLINE
      | WORD dargs NEWLINE { Stmt *s = add_stmt(ps, ST_DIRECTIVE, @1); s->name = $1; s->dargs = $2; }
      | SETTING dargs NEWLINE { Stmt *s = add_stmt(ps, ST_DIRECTIVE, @1); s->name = $1; s->dargs = $2; }
+     | gword dargs NEWLINE { Stmt *s = add_stmt(ps, ST_DIRECTIVE, @1); s->name = $1; s->dargs = $2; }
      | error NEWLINE { yyerrok; }
+     ;
+/* the lsystem words that head a line are directive words here, like any other */
+gword: KW_USE { $$ = "use"; }
+     | KW_GROUP { $$ = "group"; }
      ;
 dargs: %empty { memset(&$$, 0, sizeof $$); }
      | dargs darg { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }
@@ -297,8 +303,8 @@ group: KW_GROUP WORD '{' { open_group(ps, $2, @2); } body '}' { if (!--ps->group
      ;
 use: KW_USE WORD use_when NEWLINE {
          if (ps->group || ps->block != BLOCK_PRODUCE)
-             diag_error(ps->diag, @1, "'use' stands in the lsystem's body, not inside a %s block",
-                        ps->group ? "group" : ps->block == BLOCK_DECOMPOSE ? "decompose" : "interpret");
+             diag_error(ps->diag, @1, "'use' stands in the lsystem's body, not inside %s block",
+                        ps->group ? "a group" : ps->block == BLOCK_DECOMPOSE ? "a decompose" : "an interpret");
          Stmt *s = add_stmt(ps, ST_USE, @2); s->name = $2; s->value = $3;
      }
    ;

@@ -43,9 +43,13 @@ void cc_groups(Compiler *c, Stmt **all, int n) {
     for (int i = 0; i < n; i++)
         if (all[i]->kind == ST_USE) {
             int g = cc_group_of(p, all[i]->name);
-            if (g < 0) diag_error(c->d, all[i]->loc, "use of unknown group '%s' (declare it with `group %s { }`)",
-                                  all[i]->name, all[i]->name);
-            else nuse[g]++;
+            bool declared = g >= 0; /* or one past the limit, reported already */
+            for (int j = 0; j < n && !declared; j++)
+                declared = all[j]->kind == ST_GROUP && !strcmp(all[j]->name, all[i]->name);
+            if (!declared)
+                diag_error(c->d, all[i]->loc, "use of unknown group '%s' (declare it with `group %s { }`)",
+                           all[i]->name, all[i]->name);
+            if (g >= 0) nuse[g]++;
         }
     for (int g = 0; g < p->ngroups; g++) {
         p->groups[g].when = arena_alloc(&p->arena, sizeof(int32_t) * (size_t)(nuse[g] + 1));

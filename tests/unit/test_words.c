@@ -44,8 +44,23 @@ static void every_setting_word_is_a_name(void **state) {
 static void every_keyword_is_a_name(void **state) {
     (void)state;
     int n = 0;
-    for (const SylKeyword *k = syl_keywords; k->word; k++, n++) check_word(k->word);
-    assert_true(n >= 13);
+    bool group = false, use = false; /* the tables' words (docs/language.md §20) are in the list */
+    for (const SylKeyword *k = syl_keywords; k->word; k++, n++) {
+        check_word(k->word);
+        group |= !strcmp(k->word, "group");
+        use |= !strcmp(k->word, "use");
+    }
+    assert_true(n >= 15);
+    assert_true(group && use);
+}
+
+/* `group` and `use` name a module, a group and a module's use beside the lines they head: the
+ * group named use is used at step 2 only. */
+static void group_and_use_as_names_beside_tables(void **state) {
+    (void)state;
+    assert_derives("module group(x), use\nlsystem T {\n  derive 2\n  axiom use group(1)\n  group use {\n"
+                   "    group(x) -> group(x + 1) use\n  }\n  use use when step == 2\n}\n",
+                   -1, "usegroup(2)use");
 }
 
 /* The directive words of grow and scene blocks are listed where they are read (src/sot/params.c,
@@ -118,6 +133,7 @@ int main(void) {
         cmocka_unit_test(every_directive_word_is_a_name),
         cmocka_unit_test(setting_and_name_spelled_alike),
         cmocka_unit_test(rules_headed_by_words),
+        cmocka_unit_test(group_and_use_as_names_beside_tables),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
