@@ -519,6 +519,8 @@ int syl_derive_step(SylDeriver *d) {
     return d->status = said(e, st, step, "step");
 }
 
+void lsys_deriver_keep_cuts(SylDeriver *d) { d->may_cut = false; }
+
 const SylString *syl_deriver_string(const SylDeriver *d) { return d->cur; }
 int syl_deriver_steps(const SylDeriver *d) { return d->step; }
 

@@ -17,4 +17,8 @@ typedef struct LsysQueries {
 int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, const LsysQueries *q,
                       SylDeriver **out);
 
+/* Keep every `%` in the strings of d's steps: no cut when a step ends (docs/language.md §12).
+ * For a reader to whom a `%` means something, as a shoot rule's "the axis ends". */
+void lsys_deriver_keep_cuts(SylDeriver *d);
+
 #endif

@@ -304,6 +304,7 @@ int shoot_rule_plan(const ShootRule *r, const double args[4], uint64_t seed, Sho
                           .max_work = r->max_work, .budget = r->mem, .diag = diag};
     SylDeriver *dv = NULL;
     int st = r->begin ? r->begin(r->p, &d, start, &dv) : lsys_derive_begin(r->p, &d, start, NULL, &dv);
+    if (dv) lsys_deriver_keep_cuts(dv); /* a `%` at the top level is read below: the axis ends */
     for (int k = 1; k <= syl_program_steps(r->p) && !st; k++) st = syl_derive_step(dv);
     if (dv) st = syl_derive_end(dv, &out);
     syl_string_free(start);
