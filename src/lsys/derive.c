@@ -16,6 +16,7 @@
 #include "lsys/rewrite.h"
 #include "lsys/match.h"
 #include "lsys/modstr.h"
+#include "lsys/newctx.h"
 #include "sylva/sylva.h"
 #include "lang/vm.h"
 
@@ -91,6 +92,22 @@ static void engine_free(Engine *e) {
     free(e->rcode);
 }
 
+/* Whether step is derived backward (`direction`): asked only by tables with new contexts. */
+static int direction_backward(Engine *e, int step, const char *what, bool *back) {
+    const SylProgram *p = e->p;
+    *back = p->backward;
+    if (p->direction_when < 0) return SYL_OK;
+    double locals[1] = {(double)step}, v;
+    Rng rng = rng_stream(e->seed, (uint64_t)step << 16, TABLE_COUNT + 1, 0);
+    Work w = {.fault = {.status = SYL_EMODEL}};
+    if (vm_run(p, (uint32_t)p->direction_when, locals, &rng, &v, &w.fault.vm)) {
+        report(e, &w, step, what);
+        return SYL_EMODEL;
+    }
+    if (v == 0) *back = !p->backward;
+    return SYL_OK;
+}
+
 /* Rewrite `in` with table t into `out` (emptied first). Returns a SYL_* status. */
 static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylString *out, bool *applied, int step,
                 const char *what) {
@@ -144,6 +161,12 @@ static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylSt
     }
     int nt = e->threads;
     if (in->n < PARALLEL_MIN) nt = 1;
+    bool back = false;
+    if (t->has_newctx) { /* each module reads what the one before it wrote: one thread */
+        nt = 1;
+        int st = direction_backward(e, step, what, &back);
+        if (st) return st;
+    }
     /* size the output from the last pass's growth, so that it is rarely moved */
     if (nt == 1 && e->growth[table] > 0) {
         size_t want = (size_t)((double)in->n * e->growth[table] * 1.02) + 64;
@@ -170,7 +193,8 @@ static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylSt
     pthread_t tid[MAX_THREADS];
     bool started[MAX_THREADS] = {false};
     for (int k = 1; k < nt; k++) started[k] = !pthread_create(&tid[k], NULL, run_thread, &works[k]);
-    rewrite_chunk(&works[0]);
+    if (t->has_newctx) newctx_chunk(&works[0], back);
+    else rewrite_chunk(&works[0]);
     for (int k = 1; k < nt; k++) {
         if (started[k]) pthread_join(tid[k], NULL);
         else rewrite_chunk(&works[k]);
