@@ -99,9 +99,14 @@ static int direction_backward(Engine *e, int step, const char *what, bool *back)
     if (p->direction_when < 0) return SYL_OK;
     double locals[1] = {(double)step}, v;
     Rng rng = rng_stream(e->seed, (uint64_t)step << 16, TABLE_COUNT + 1, 0);
-    Work w = {.fault = {.status = SYL_EMODEL}};
-    if (vm_run(p, (uint32_t)p->direction_when, locals, &rng, &v, &w.fault.vm)) {
-        report(e, &w, step, what);
+    VmFault f = {0};
+    if (vm_run(p, (uint32_t)p->direction_when, locals, &rng, &v, &f)) {
+        e->reported = true;
+        if (e->diag) {
+            Diag d = {.out = e->diag, .src = &p->src};
+            SylLoc loc = f.pc < (uint32_t)p->ncode ? p->code_loc[f.pc] : p->code_loc[p->direction_when];
+            diag_error(&d, loc, "%s (the direction of %s %d)", syl_eval_error_text(f.status), what, step);
+        }
         return SYL_EMODEL;
     }
     if (v == 0) *back = !p->backward;
