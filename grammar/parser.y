@@ -160,6 +160,7 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 }
 
 %token <str> WORD "name" DIGITS "integer" NUMBER "number" SPECIAL "turtle symbol" SETTING "setting" STRING "string"
+%token LTLT "<<" GTGT ">>"
 %token ARROW "->" NEWLINE "end of line" ANDAND "&&" OROR "||" EQ "==" NE "!=" LE "<=" GE ">="
 /* The lexer gives SETTING and the KW_ tokens only as the first word of a statement that is
  * not a rule (grammar/lexer.l, lex_word); anywhere else the same words are WORD, a name. */
@@ -249,6 +250,16 @@ stmt: NEWLINE
     | error NEWLINE { yyerrok; }
     ;
 
+/* `direction backward when EXPR`: a setting whose value holds on the steps where EXPR does */
+stmt: SETTING WORD WORD expr NEWLINE {
+          Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1;
+          Expr *e = mk(ps, EX_NAME, @2); e->name = $2;
+          *VEC_PUSH(ps->arena, s->args.v, s->args.n, s->args.cap) = e;
+          if (strcmp($3, "when")) diag_error(ps->diag, @3, "expected `when` after '%s %s'", $1, $2);
+          s->value = $4;
+      }
+    ;
+
 decl: KW_CONST { ps->decl = ST_CONST; } defs
     | KW_PARAM { ps->decl = ST_PARAM; } defs
     | KW_FN WORD '(' names_opt ')' '=' expr {
@@ -333,6 +344,34 @@ lhs: hitems { memset(&$$, 0, sizeof $$); $$.pred = $1; $$.loc = @1; }
                          $$.has_right = true; $$.loc = @1; }
    | hitems '<' hitems '>' hitems { memset(&$$, 0, sizeof $$); $$.left = $1; $$.has_left = true;
                          $$.pred = $3; $$.right = $5; $$.has_right = true; $$.loc = @3; }
+   ;
+
+/* ---- new contexts (lpfg's `<<` and `>>`): the string being produced in this step ---- */
+lhs: hitems LTLT hitems { memset(&$$, 0, sizeof $$); $$.newleft = $1; $$.has_newleft = true;
+                          $$.newleft_loc = @2; $$.pred = $3; $$.loc = @3; }
+   | hitems GTGT hitems { memset(&$$, 0, sizeof $$); $$.pred = $1; $$.newright = $3;
+                          $$.has_newright = true; $$.newright_loc = @2; $$.loc = @1; }
+   | hitems LTLT hitems '>' hitems { memset(&$$, 0, sizeof $$); $$.newleft = $1; $$.has_newleft = true;
+                          $$.newleft_loc = @2; $$.pred = $3; $$.right = $5; $$.has_right = true; $$.loc = @3; }
+   | hitems '<' hitems GTGT hitems { memset(&$$, 0, sizeof $$); $$.left = $1; $$.has_left = true;
+                          $$.pred = $3; $$.newright = $5; $$.has_newright = true; $$.newright_loc = @4;
+                          $$.loc = @3; }
+   | hitems LTLT hitems GTGT hitems { memset(&$$, 0, sizeof $$); $$.newleft = $1; $$.has_newleft = true;
+                          $$.newleft_loc = @2; $$.pred = $3; $$.newright = $5; $$.has_newright = true;
+                          $$.newright_loc = @4; $$.loc = @3; }
+   /* one kind of context on a side: said here, where both are seen */
+   | hitems '<' hitems LTLT hitems { memset(&$$, 0, sizeof $$); $$.pred = $5; $$.loc = @5;
+                          diag_error(ps->diag, @4, "a left context is old (`<`) or new (`<<`), not both: "
+                                     "write `L < A` or `L << A`"); }
+   | hitems LTLT hitems '<' hitems { memset(&$$, 0, sizeof $$); $$.pred = $5; $$.loc = @5;
+                          diag_error(ps->diag, @4, "a left context is new (`<<`) or old (`<`), not both: "
+                                     "write `L << A` or `L < A`"); }
+   | hitems GTGT hitems '>' hitems { memset(&$$, 0, sizeof $$); $$.pred = $1; $$.loc = @1;
+                          diag_error(ps->diag, @4, "a right context is new (`>>`) or old (`>`), not both: "
+                                     "write `A >> R` or `A > R`"); }
+   | hitems '>' hitems GTGT hitems { memset(&$$, 0, sizeof $$); $$.pred = $1; $$.loc = @1;
+                          diag_error(ps->diag, @4, "a right context is old (`>`) or new (`>>`), not both: "
+                                     "write `A > R` or `A >> R`"); }
    ;
 
 cond_opt: %empty { $$ = NULL; }

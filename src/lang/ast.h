@@ -61,6 +61,9 @@ typedef struct NameList {
 typedef struct Production {
     Items left, pred, right, succ;
     bool has_left, has_right, star; /* star: written `-> *` */
+    Items newleft, newright; /* new contexts: `L << A`, `A >> R` (lpfg) */
+    bool has_newleft, has_newright;
+    SylLoc newleft_loc, newright_loc; /* the << and the >> */
     Expr *cond, *weight;
     SylLoc loc, arrow_loc;
 } Production;

@@ -31,6 +31,7 @@ static void set_defaults(Compiler *c, Model *model) {
     p->step = 1;
     p->width = 0.1;
     p->widthfactor = 0.7;
+    p->direction_when = -1;
     p->tables[TABLE_DECOMPOSE].maxdepth = p->tables[TABLE_INTERPRET].maxdepth = 16;
 }
 

@@ -61,6 +61,10 @@ static void rule(FILE *out, const SylProgram *p, const Rule *r, int index) {
             pattern(out, p, r->left, r->nleft, r->names);
             fprintf(out, " < ");
         }
+        if (r->nnewleft) {
+            pattern(out, p, r->newleft, r->nnewleft, r->names);
+            fprintf(out, " << ");
+        }
         module(out, p, r->pred);
         if (r->pred_arity) {
             fputc('(', out);
@@ -71,6 +75,12 @@ static void rule(FILE *out, const SylProgram *p, const Rule *r, int index) {
             fprintf(out, " > ");
             pattern(out, p, r->right, r->nright, r->names);
         }
+        if (r->nnewright) {
+            fprintf(out, " >> ");
+            pattern(out, p, r->newright, r->nnewright, r->names);
+        }
+        if (r->nnewleft) fprintf(out, "  (new context: forward steps only)");
+        if (r->nnewright) fprintf(out, "  (new context: backward steps only)");
         fputc('\n', out);
         if (r->cond >= 0) {
             fprintf(out, "    condition:\n");
@@ -126,6 +136,13 @@ void syl_program_dump(const SylProgram *p, FILE *out) {
     fprintf(out, "lsystem %s\n", p->name);
     fprintf(out, "settings: derive %d, angle %g, step %g, width %g, seed %llu\n", p->derive, p->angle, p->step,
             p->width, (unsigned long long)p->seed);
+    if (p->backward || p->direction_when >= 0) {
+        fprintf(out, "direction: %s%s\n", p->backward ? "backward" : "forward", p->direction_when >= 0 ? " when" : "");
+        if (p->direction_when >= 0) {
+            const char *step[1] = {"step"};
+            expression(out, p, (uint32_t)p->direction_when, step, "    ");
+        }
+    }
     fprintf(out, "modules (%d):", p->nsyms);
     for (int i = 0; i < p->nsyms; i++) fprintf(out, " %s%s", p->syms[i].name, p->skip[i] ? "(ignored)" : "");
     fputc('\n', out);

@@ -57,6 +57,11 @@ typedef struct Rule {
     PatElem *left, *right;    /* left stored as written; matched from its end */
     int nleft, nright;
     bool right_branches;      /* its right context names a branch: matched by walking */
+    /* new contexts (lpfg's `<<`, `>>`): matched in the string this step writes, so a rule
+     * with `<<` applies only in forward steps and one with `>>` only in backward ones */
+    PatElem *newleft, *newright;
+    int nnewleft, nnewright;
+    bool newright_branches;
     int32_t cond, weight;     /* code addresses, -1 when absent */
     double const_weight;      /* weight when it is a constant */
     bool weighted;
@@ -99,6 +104,7 @@ typedef struct RuleTable {
     bool ctx_index;      /* some linked context binds parameters or spans several modules */
     bool emits_params;   /* some successor has parameters */
     bool all_plain;      /* every rule is plain: no matching, no choice */
+    bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */
@@ -194,6 +200,10 @@ struct SylProgram {
     float colours[256][3];  /* `colour` settings, where colour_set */
     bool colour_set[256];
     uint64_t seed;
+    /* `direction D [when EXPR]`: steps are derived backward when backward is true and
+     * direction_when (code over the local `step`, -1: none) holds, or is absent */
+    bool backward;
+    int32_t direction_when;
 };
 
 /* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */

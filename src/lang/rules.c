@@ -129,10 +129,12 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     SylProgram *p = c->p;
     memset(out, 0, sizeof *out);
     out->group = -1;
-    Mods pred, left, right, succ;
+    Mods pred, left, right, succ, newleft, newright;
     cc_split(c, &s->rule.pred, &pred);
     cc_split(c, &s->rule.left, &left);
     cc_split(c, &s->rule.right, &right);
+    cc_split(c, &s->rule.newleft, &newleft);
+    cc_split(c, &s->rule.newright, &newright);
     cc_split(c, &s->rule.succ, &succ);
     out->loc = s->rule.loc;
     out->line = s->rule.loc.first_line;
@@ -150,6 +152,14 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     pattern(c, &right, true, &scope, &out->right, &out->nright);
     for (int k = 0; k < out->nright; k++)
         if (out->right[k].kind != PAT_MODULE) out->right_branches = true;
+    if (s->rule.has_newleft && s->rule.has_newright)
+        diag_error(c->d, s->rule.newright_loc,
+                   "a rule has a new left context (`<<`, forward steps) or a new right context (`>>`, "
+                   "backward steps), not both");
+    pattern(c, &newleft, false, &scope, &out->newleft, &out->nnewleft);
+    pattern(c, &newright, true, &scope, &out->newright, &out->nnewright);
+    for (int k = 0; k < out->nnewright; k++)
+        if (out->newright[k].kind != PAT_MODULE) out->newright_branches = true;
     out->nlocals = (uint8_t)scope.n;
     out->names = arena_alloc(&p->arena, sizeof *out->names * (size_t)(scope.n + 1));
     for (int i = 0; i < scope.n; i++) out->names[i] = arena_strndup(&p->arena, names[i], strlen(names[i]));
@@ -189,6 +199,7 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
         Dispatch *d = &t->dispatch[r->pred];
         t->order[d->first + d->count++] = pick[i];
         if (r->nleft || r->nright) t->has_context = true;
+        if (r->nnewleft || r->nnewright) t->has_newctx = true;
         if (r->nleft) t->ctx_left = true;
         /* each rule's right context is matched its own way, whatever the others' are: a
          * branch in one rule does not take the links from the others */
@@ -209,7 +220,7 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
         if (d->count > 1) t->all_plain = false;
         if (d->count != 1) continue;
         const Rule *r = &t->rules[t->order[d->first]];
-        if (!r->nleft && !r->nright && r->cond < 0 && !r->weighted) d->plain = r;
+        if (!r->nleft && !r->nright && !r->nnewleft && !r->nnewright && r->cond < 0 && !r->weighted) d->plain = r;
         else t->all_plain = false;
     }
     for (int code = 0; code < CODE_COUNT; code++) {
@@ -218,7 +229,7 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
         bool fast = true;
         for (uint32_t k = 0; k < d->count && fast; k++) {
             const Rule *r = &t->rules[t->order[d->first + k]];
-            fast = r->nleft <= 1 && r->nright <= 1 && r->cond < 0 && !r->weighted &&
+            fast = r->nleft <= 1 && r->nright <= 1 && !r->nnewleft && !r->nnewright && r->cond < 0 && !r->weighted &&
                    (!r->nleft || !CODE_ARITY(r->left[0].code)) &&
                    (!r->nright || (r->right[0].kind == PAT_MODULE && !CODE_ARITY(r->right[0].code)));
         }

@@ -24,7 +24,25 @@ static const SettingDef settings[] = {
     {"widthfactor", -1, 0, 1e9, false, 1, false},
     {"tropism", -1, -1e9, 1e9, false, 4, false}, /* direction x, y, z and elasticity */
     {"colour", -1, 0, 255, false, 4, true},      /* index, then red, green, blue in 0..1 */
+    {"direction", -1, 0, 0, false, 1, false},    /* forward or backward [when EXPR]: direction() */
 };
+
+/* `direction forward|backward [when EXPR]`, EXPR over `step` and the model's values. */
+static void direction(Compiler *c, Stmt *s) {
+    SylProgram *p = c->p;
+    const Expr *w = s->args.v[0];
+    bool fwd = w->kind == EX_NAME && !strcmp(w->name, "forward"),
+         back = w->kind == EX_NAME && !strcmp(w->name, "backward");
+    if (!fwd && !back) {
+        diag_error(c->d, w->loc, "'direction' is forward or backward (optionally followed by `when EXPR`)");
+        return;
+    }
+    p->backward = back;
+    if (!s->value) return;
+    const char *names[1] = {"step"};
+    Scope scope = {.names = names, .n = 1};
+    p->direction_when = cc_expr(c, s->value, &scope, NULL);
+}
 
 const char *syl_setting_name(int i) {
     return i >= 0 && i < (int)(sizeof settings / sizeof *settings) ? settings[i].name : NULL;
@@ -54,6 +72,14 @@ void cc_setting(Compiler *c, Stmt *s, SylLoc *seen) {
             return;
         }
         seen[slot] = s->loc;
+    }
+    if (!strcmp(s->name, "direction")) {
+        direction(c, s);
+        return;
+    }
+    if (s->value) { /* the grammar takes `when` after any setting word */
+        diag_error(c->d, s->value->loc, "only 'direction' takes `when`");
+        return;
     }
     double v[4];
     for (int k = 0; k < def->nargs; k++)

@@ -17,6 +17,7 @@
 #include "lsys/rewrite.h"
 #include "lsys/match.h"
 #include "lsys/modstr.h"
+#include "lsys/newctx.h"
 #include "sylva/sylva.h"
 #include "lang/vm.h"
 
@@ -103,6 +104,27 @@ static void engine_free(Engine *e) {
     free(e->stack);
     free(e->lcode);
     free(e->rcode);
+}
+
+/* Whether step is derived backward (`direction`): asked only by tables with new contexts. */
+static int direction_backward(Engine *e, int step, const char *what, bool *back) {
+    const SylProgram *p = e->p;
+    *back = p->backward;
+    if (p->direction_when < 0) return SYL_OK;
+    double locals[1] = {(double)step}, v;
+    Rng rng = rng_stream(e->seed, (uint64_t)step << 16, TABLE_COUNT + 1, 0);
+    VmFault f = {0};
+    if (vm_run(p, (uint32_t)p->direction_when, locals, &rng, &v, &f)) {
+        e->reported = true;
+        if (e->diag) {
+            Diag d = {.out = e->diag, .src = &p->src};
+            SylLoc loc = f.pc < (uint32_t)p->ncode ? p->code_loc[f.pc] : p->code_loc[p->direction_when];
+            diag_error(&d, loc, "%s (the direction of %s %d)", syl_eval_error_text(f.status), what, step);
+        }
+        return SYL_EMODEL;
+    }
+    if (v == 0) *back = !p->backward;
+    return SYL_OK;
 }
 
 /* The rules of table `table` that take part at `step`: all of them when the model has no
@@ -197,6 +219,12 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     }
     int nt = e->threads;
     if (in->n < PARALLEL_MIN) nt = 1;
+    bool back = false;
+    if (t->has_newctx) { /* each module reads what the one before it wrote: one thread */
+        nt = 1;
+        int st = direction_backward(e, step, what, &back);
+        if (st) return st;
+    }
     /* size the output from the last pass's growth, so that it is rarely moved */
     if (nt == 1 && e->growth[table] > 0) {
         size_t want = (size_t)((double)in->n * e->growth[table] * 1.02) + 64;
@@ -223,7 +251,8 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     pthread_t tid[MAX_THREADS];
     bool started[MAX_THREADS] = {false};
     for (int k = 1; k < nt; k++) started[k] = !pthread_create(&tid[k], NULL, run_thread, &works[k]);
-    rewrite_chunk(&works[0]);
+    if (t->has_newctx) newctx_chunk(&works[0], back);
+    else rewrite_chunk(&works[0]);
     for (int k = 1; k < nt; k++) {
         if (started[k]) pthread_join(tid[k], NULL);
         else rewrite_chunk(&works[k]);

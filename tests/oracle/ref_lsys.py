@@ -16,6 +16,14 @@ expected ("golden") derived strings.  It covers the DETERMINISTIC subset of the 
     descend into a branch written in it (`B > [C]D`: of the side branches that start there,
     the first whose beginning matches), and after the named part of such a branch skips the
     rest of that branch.
+  * new contexts (lpfg's `<<` and `>>`, docs/language.md "New contexts"): `L << A` matches L,
+    as a left context would, in the string being produced (the successors already written in
+    this step); `A >> R` matches R, as a right context would, in the new string to the right
+    when the step is derived backward (last module first).  `direction forward|backward
+    [when EXPR]` (EXPR over `step`, 1 for the first step) says which way each step goes.  A
+    rule with `<<` takes part only in forward steps, one with `>>` only in backward ones.
+    Implemented the slow and obvious way: each module's new context is matched by the old
+    context code against the whole partial output, rebuilt for every module.
 
   * tables (docs/language.md, Tables): rules in `group NAME { }` take part only in the steps
     where a `use NAME when EXPR` line holds (EXPR reads `step`, 1 for the first); for a
@@ -420,7 +428,7 @@ def parse_modules(text, declared):
 # Models
 
 # (the turtle settings are read and ignored: they do not change a derivation)
-SETTINGS = ("derive", "angle", "step", "width", "seed", "widthfactor", "tropism", "colour")
+SETTINGS = ("derive", "angle", "step", "width", "seed", "widthfactor", "tropism", "colour", "direction")
 
 
 class Rule:
@@ -434,6 +442,8 @@ class Rule:
         self.text = text
         self.block = block
         self.group = group        # name of its group, or None
+        self.newleft = []         # `<<`: matched in the string being produced (forward steps)
+        self.newright = []        # `>>`: matched in the new string to the right (backward steps)
 
 
 class Model:
@@ -584,6 +594,19 @@ def parse_rule(line, block, declared):
         weight = rhs[k + 1:].strip()
         rhs = rhs[:k].strip()
     left, right = [], []
+    newleft, newright = [], []
+    k = lhs.find("<<")
+    if k >= 0:
+        newleft = parse_modules(lhs[:k], declared)
+        lhs = lhs[k + 2:]
+    k = lhs.find(">>")
+    if k >= 0:
+        newright = parse_modules(lhs[k + 2:], declared)
+        lhs = lhs[:k]
+    if (newleft and _find_top(lhs, "<") >= 0) or (newright and _find_top(lhs, ">") >= 0):
+        raise SylError("old and new context on one side in %r" % line)
+    if newleft and newright:
+        raise SylError("both << and >> in %r" % line)
     k = _find_top(lhs, "<")
     if k >= 0:
         left = parse_modules(lhs[:k], declared)
@@ -610,8 +633,11 @@ def parse_rule(line, block, declared):
         rhs = ""
     succ = [(t.name, None if t.args is None else [compile_expr(a) for a in t.args])
             for t in parse_modules(rhs, declared)]
-    return Rule(left, pred, right, compile_expr(cond) if cond else None, succ, weight, line,
-                block)
+    r = Rule(left, pred, right, compile_expr(cond) if cond else None, succ, weight, line, block)
+    if any(t.name in "[]" for t in newleft):
+        raise SylError("brackets in a new left context")
+    r.newleft, r.newright = newleft, newright
+    return r
 
 
 # --------------------------------------------------------------------------------------------
@@ -664,6 +690,29 @@ class LSystem:
                       for t in parse_modules(model.axiom_text, declared)]
         d = model.settings.get("derive")
         self.derive = int(compile_expr(d)(env, self.funcs)) if d else 0
+        # direction D [when EXPR]: D on the steps where EXPR holds (always without `when`)
+        self.dir_backward, self.dir_when = False, None
+        dtext = model.settings.get("direction")
+        if dtext:
+            word, _, rest = dtext.partition(" ")
+            if word not in ("forward", "backward"):
+                raise SylError("direction %r" % dtext)
+            self.dir_backward = word == "backward"
+            rest = rest.strip()
+            if rest:
+                if not rest.startswith("when"):
+                    raise SylError("direction %r" % dtext)
+                self.dir_when = compile_expr(rest[4:].strip())
+
+    def backward(self, k):
+        """Whether step k (1 for the first) is derived backward."""
+        if self.dir_when is None:
+            return self.dir_backward
+        if k is None:
+            raise Unsupported("direction ... when, without a step number")
+        env = dict(self.consts)
+        env["step"] = float(k)
+        return self.dir_backward if self.dir_when(env, self.funcs) != 0.0 else not self.dir_backward
 
     def _mkfn(self, params, body):
         consts = self.consts
@@ -820,40 +869,68 @@ class LSystem:
                 i += 1
         return out
 
+    @staticmethod
+    def _partial_brackets(s):
+        """Bracket pairs of a piece of a string: a bracket whose partner is outside has none."""
+        match = [None] * len(s)
+        stack = []
+        for k, (name, _) in enumerate(s):
+            if name == "[":
+                stack.append(k)
+            elif name == "]" and stack:
+                o = stack.pop()
+                match[o] = k
+                match[k] = o
+        return match
+
     def step(self, s, k=1):
-        match = None
-        out = []
-        funcs = self.funcs
+        """Step k (1 for the first: read by `direction ... when` and `use ... when`)."""
+        back = self.backward(k)
         active = self.active_groups(k) if self.uses else set()
-        for i, mod in enumerate(s):
-            name, vals = mod
-            rules = self.by_pred.get((name, 0 if vals is None else len(vals)))
-            if rules:
-                rules = ([r for r in rules if r.group is not None and r.group in active] +
-                         [r for r in rules if r.group is None])
-            if not rules:
-                out.append(mod)
-                continue
-            for r in rules:
-                env = dict(self.consts)
-                if not self._bind(r.pred, mod, env):
-                    continue
-                if r.left or r.right:
-                    if match is None:
-                        match = self._brackets(s)
-                    if r.left and not self._left(r.left, s, match, i, env):
-                        continue
-                    if r.right and not self._right(r.right, s, match, i, env):
-                        continue
-                if r.cond is not None and r.cond(env, funcs) == 0.0:
-                    continue
-                for sname, sargs in r.succ:
-                    out.append((sname, None if sargs is None else
-                                tuple(a(env, funcs) for a in sargs)))
-                break
+        match = self._brackets(s)
+        out = []          # forward: the string produced so far
+        suffix = []       # backward: the new string to the right of the module being rewritten
+        funcs = self.funcs
+        order = range(len(s) - 1, -1, -1) if back else range(len(s))
+        for i in order:
+            mod = s[i]
+            succ = self._rewrite(s, i, mod, match, out, suffix, back, funcs, active)
+            if succ is None:
+                succ = [mod]
+            if back:
+                suffix[0:0] = succ
             else:
-                out.append(mod)
-        return self.cut(out)
+                out.extend(succ)
+        return self.cut(suffix if back else out)
+
+    def _rewrite(self, s, i, mod, match, out, suffix, back, funcs, active):
+        name, vals = mod
+        rules = self.by_pred.get((name, 0 if vals is None else len(vals)))
+        if not rules:
+            return None
+        # the rules of the used groups first, then the ungrouped ones, each in file order
+        rules = ([r for r in rules if r.group is not None and r.group in active] +
+                 [r for r in rules if r.group is None])
+        for r in rules:
+            env = dict(self.consts)
+            if not self._bind(r.pred, mod, env):
+                continue
+            if r.newleft:
+                if back or not self._left(r.newleft, out, self._partial_brackets(out), len(out), env):
+                    continue
+            if r.newright:
+                if not back or not self._right(r.newright, suffix, self._partial_brackets(suffix), -1, env):
+                    continue
+            if r.left or r.right:
+                if r.left and not self._left(r.left, s, match, i, env):
+                    continue
+                if r.right and not self._right(r.right, s, match, i, env):
+                    continue
+            if r.cond is not None and r.cond(env, funcs) == 0.0:
+                continue
+            return [(sname, None if sargs is None else tuple(a(env, funcs) for a in sargs))
+                    for sname, sargs in r.succ]
+        return None
 
 
 def fmt_g(v):

@@ -1,0 +1,417 @@
+/* The pass of a table with new contexts (`<<`, `>>`): modules are rewritten one after
+ * another, each rule's new context matched in the string written so far, whose context
+ * links grow with it exactly as match_link_left / match_link_right would build them. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/builtins.h"
+#include "lsys/newctx.h"
+#include "sylva/sylva.h"
+
+/* The links of the string being written, in the positions of its buffer. Position `at`
+ * (just past the output forward, just before it backward) is where the next successor goes:
+ * its link is the module a new context starts from. */
+typedef struct Links {
+    int32_t *link;   /* forward: the previous module on the path to the root; backward: the
+                        next one along the axis (-1: none) */
+    uint16_t *code;  /* that module's code (CODE_NONE: none) */
+    int32_t *pair;   /* backward: for a '[' the index of its ']' */
+    uint32_t *poff;  /* parameter offset of each module */
+    size_t cap;
+    /* the bracket stack: forward, the path module at each open '['; backward, the next
+     * module at each ']' entered from its end, and where that ']' is */
+    int32_t *sidx, *sclose;
+    uint16_t *scode;
+    size_t sp, scap;
+} Links;
+
+static void links_free(Links *l) {
+    free(l->link);
+    free(l->code);
+    free(l->pair);
+    free(l->poff);
+    free(l->sidx);
+    free(l->sclose);
+    free(l->scode);
+}
+
+/* Room for cap positions (contents kept). */
+static bool links_room(Links *l, size_t cap) {
+    if (cap <= l->cap) return true;
+    int32_t *a = realloc(l->link, cap * sizeof *a);
+    if (a) l->link = a;
+    uint16_t *b = a ? realloc(l->code, cap * sizeof *b) : NULL;
+    if (b) l->code = b;
+    int32_t *c = b ? realloc(l->pair, cap * sizeof *c) : NULL;
+    if (c) l->pair = c;
+    uint32_t *d = c ? realloc(l->poff, cap * sizeof *d) : NULL;
+    if (d) l->poff = d;
+    if (!d) return false;
+    l->cap = cap;
+    return true;
+}
+
+static bool push(Links *l, int32_t idx, uint16_t code, int32_t close) {
+    if (l->sp == l->scap) {
+        size_t cap = l->scap ? 2 * l->scap : 256;
+        int32_t *a = realloc(l->sidx, cap * sizeof *a);
+        if (a) l->sidx = a;
+        int32_t *b = a ? realloc(l->sclose, cap * sizeof *b) : NULL;
+        if (b) l->sclose = b;
+        uint16_t *c = b ? realloc(l->scode, cap * sizeof *c) : NULL;
+        if (c) l->scode = c;
+        if (!c) return false;
+        l->scap = cap;
+    }
+    l->sidx[l->sp] = idx;
+    l->scode[l->sp] = code;
+    l->sclose[l->sp++] = close;
+    return true;
+}
+
+static int fault(Work *w, size_t pos, const Rule *r, int status, int limit) {
+    w->fault.status = status;
+    w->fault.limit = limit;
+    w->fault.pos = pos;
+    w->fault.rule = r;
+    return status;
+}
+
+static int vm_fault(Work *w, size_t pos, const Rule *r, int eval) {
+    if (eval != EVAL_OK && !w->fault.vm.status) w->fault.vm.status = eval;
+    return fault(w, pos, r, SYL_EMODEL, 0);
+}
+
+static void copy_module(SylString *o, uint16_t c, const double *args) {
+    int ar = CODE_ARITY(c);
+    o->code[o->n++] = c;
+    for (int k = 0; k < ar; k++) o->par[o->np + (size_t)k] = args[k];
+    o->np += (size_t)ar;
+}
+
+/* Whether rule r applies to input module i, its successor going to position at of the view
+ * nv of the output; its contexts' parameters are bound in locals. A rule with `<<` takes part
+ * only in forward passes, one with `>>` only in backward ones. */
+static bool applies(const Work *w, const Rule *r, size_t i, const View *nv, size_t at, bool backward,
+                    double *locals) {
+    if (r->nnewleft && (backward || !match_left_pat(nv, at, r->newleft, r->nnewleft, locals))) return false;
+    if (r->nnewright &&
+        (!backward || !match_right_pat(nv, at, r->newright, r->nnewright, r->newright_branches, locals)))
+        return false;
+    if (r->nleft && !match_left(w->in, i, r, locals)) return false;
+    if (r->nright && !match_right(w->in, i, r, locals)) return false;
+    return true;
+}
+
+/* As rewrite.c's choice: the first applicable rule decides; if it is weighted, the choice is
+ * among every applicable weighted rule in proportion to its weight, from module i's stream. */
+static const Rule *choose(Work *w, uint16_t c, size_t i, const View *nv, size_t at, bool backward, double *locals,
+                          Rng *rng, bool *rng_ready, int *status) {
+    const RuleTable *t = w->t;
+    const Dispatch *d = &t->dispatch[c];
+    double total = 0;
+    int nc = 0;
+    *status = SYL_OK;
+    for (uint32_t k = 0; k < d->count; k++) {
+        const Rule *r = &t->rules[t->order[d->first + k]];
+        if (nc && !r->weighted) continue;
+        if (!applies(w, r, i, nv, at, backward, locals)) continue;
+        if ((r->cond >= 0 || r->weight >= 0) && !*rng_ready) {
+            *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
+            *rng_ready = true;
+        }
+        if (r->cond >= 0) {
+            double v;
+            if (vm_run(w->p, (uint32_t)r->cond, locals, rng, &v, &w->fault.vm)) {
+                *status = vm_fault(w, i, r, EVAL_OK);
+                return NULL;
+            }
+            if (v == 0) continue;
+        }
+        if (!r->weighted) return r;
+        double wt = r->const_weight;
+        if (r->weight >= 0 && vm_run(w->p, (uint32_t)r->weight, locals, rng, &wt, &w->fault.vm)) {
+            *status = vm_fault(w, i, r, EVAL_OK);
+            return NULL;
+        }
+        if (wt < 0) {
+            w->fault.vm.pc = (uint32_t)r->weight;
+            *status = vm_fault(w, i, r, EVAL_NEG_WEIGHT);
+            return NULL;
+        }
+        if (nc == w->ncap) {
+            int cap = w->ncap ? 2 * w->ncap : 16;
+            const Rule **cd = realloc(w->cand, sizeof *cd * (size_t)cap);
+            double *wt2 = cd ? realloc(w->weight, sizeof *wt2 * (size_t)cap) : NULL;
+            if (cd) w->cand = cd;
+            if (!cd || !wt2) {
+                *status = fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                return NULL;
+            }
+            w->weight = wt2;
+            w->ncap = cap;
+        }
+        w->cand[nc] = r;
+        w->weight[nc++] = wt;
+        total += wt;
+    }
+    if (!nc || total <= 0) return NULL;
+    if (!*rng_ready) {
+        *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
+        *rng_ready = true;
+    }
+    double u = rng_unit(rng) * total;
+    int pick = 0;
+    while (pick < nc - 1 && (u -= w->weight[pick]) >= 0) pick++;
+    while (w->weight[pick] == 0) pick--;
+    const Rule *r = w->cand[pick];
+    applies(w, r, i, nv, at, backward, locals); /* bind the chosen rule's contexts again */
+    return r;
+}
+
+/* Rule or copy for input module i (parameters args) into o. SYL_OK or the fault's status. */
+static int rewrite_one(Work *w, size_t i, const double *args, const View *nv, size_t at, bool backward,
+                       SylString *o) {
+    uint16_t c = w->in->code[i];
+    double locals[MAX_LOCALS + MAX_ARITY];
+    Rng rng;
+    bool ready = false;
+    const Rule *r = NULL;
+    if (w->t->dispatch[c].count) {
+        int status;
+        if (CODE_ARITY(c)) memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
+        r = choose(w, c, i, nv, at, backward, locals, &rng, &ready, &status);
+        if (status) return status;
+    }
+    if (!r) {
+        copy_module(o, c, args);
+        return SYL_OK;
+    }
+    return rewrite_emit(w, r, locals, i, &rng, &ready);
+}
+
+/* First module first: the output is w->out; its left links grow as successors are appended. */
+static void forward(Work *w) {
+    const RuleTable *t = w->t;
+    const View *in = w->in;
+    SylString *o = w->out;
+    const size_t need = (size_t)t->max_succ + SUCC_PAD, pneed = (size_t)t->max_succ_params + MAX_ARITY;
+    Links l = {0};
+    int32_t last = -1;
+    uint16_t lastcode = CODE_NONE;
+    uint32_t pofs = 0;
+    size_t pi = w->plo;
+    w->fault.status = SYL_OK;
+    for (size_t i = w->lo; i < w->hi; i++) {
+        const double *args = in->par ? in->par + pi : NULL;
+        pi += CODE_ARITY(in->code[i]);
+        if (o->n + need > o->cap || o->np + pneed > o->pcap) {
+            int st = ms_reserve(o, need + (w->hi - i), pneed);
+            if (st || o->n > o->max_modules) {
+                fault(w, i, NULL, SYL_ELIMIT, st ? LIMIT_MEMORY : LIMIT_MODULES);
+                break;
+            }
+        }
+        if (!links_room(&l, o->cap + 1)) {
+            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+            break;
+        }
+        size_t at = o->n;
+        l.link[at] = last;
+        l.code[at] = lastcode;
+        View nv = {.code = o->code, .par = o->par, .poff = l.poff, .left = l.link, .lcode = l.code, .n = at,
+                   .skip = in->skip};
+        if (rewrite_one(w, i, args, &nv, at, false, o)) break;
+        for (size_t j = at; j < o->n; j++) { /* match_link_left, one module at a time */
+            uint16_t c = o->code[j];
+            int s = CODE_SYM(c);
+            l.link[j] = last;
+            l.code[j] = lastcode;
+            l.poff[j] = pofs;
+            pofs += CODE_ARITY(c);
+            if (s == SYM_OPEN) {
+                if (!push(&l, last, lastcode, 0)) {
+                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                    goto done;
+                }
+            } else if (s == SYM_CLOSE) {
+                if (l.sp) {
+                    l.sp--;
+                    last = l.sidx[l.sp];
+                    lastcode = l.scode[l.sp];
+                } else {
+                    last = -1;
+                    lastcode = CODE_NONE;
+                }
+            } else if (!in->skip[s]) {
+                last = (int32_t)j;
+                lastcode = c;
+            }
+        }
+    }
+done:
+    links_free(&l);
+}
+
+/* The backward output: modules in [h, cap) of code, parameters in [ph, pcap) of par. */
+typedef struct Back {
+    uint16_t *code;
+    double *par;
+    size_t cap, pcap, h, ph;
+} Back;
+
+/* Room for `need` more modules and `pneed` more parameters before the front (and the slot at
+ * h - 1): the contents move to the end of larger arrays and every index into them with them. */
+static bool back_room(Back *b, Links *l, size_t need, size_t pneed, int32_t *next) {
+    if (b->h < need + 1) {
+        size_t used = b->cap - b->h, cap = 2 * b->cap + need + 1;
+        uint16_t *code = malloc(cap * sizeof *code);
+        if (!code) return false;
+        Links nl = *l;
+        nl.link = nl.pair = NULL;
+        nl.code = NULL;
+        nl.poff = NULL;
+        nl.cap = 0;
+        if (!links_room(&nl, cap)) {
+            free(code);
+            free(nl.link), free(nl.code), free(nl.pair), free(nl.poff);
+            return false;
+        }
+        size_t delta = cap - b->cap, h = b->h + delta;
+        memcpy(code + h, b->code + b->h, used * sizeof *code);
+        memcpy(nl.code + h, l->code + b->h, used * sizeof *nl.code);
+        memcpy(nl.poff + h, l->poff + b->h, used * sizeof *nl.poff);
+        for (size_t j = 0; j < used; j++) {
+            int32_t a = l->link[b->h + j], p = l->pair[b->h + j];
+            nl.link[h + j] = a < 0 ? a : a + (int32_t)delta;
+            nl.pair[h + j] = p < 0 ? p : p + (int32_t)delta;
+        }
+        for (size_t k = 0; k < l->sp; k++) {
+            if (l->sidx[k] >= 0) l->sidx[k] += (int32_t)delta;
+            l->sclose[k] += (int32_t)delta;
+        }
+        if (*next >= 0) *next += (int32_t)delta;
+        free(b->code);
+        free(l->link), free(l->code), free(l->pair), free(l->poff);
+        l->link = nl.link, l->code = nl.code, l->pair = nl.pair, l->poff = nl.poff, l->cap = nl.cap;
+        b->code = code;
+        b->cap = cap;
+        b->h = h;
+    }
+    if (b->ph < pneed) {
+        size_t used = b->pcap - b->ph, pcap = 2 * b->pcap + pneed;
+        double *par = malloc(pcap * sizeof *par);
+        if (!par) return false;
+        size_t delta = pcap - b->pcap, ph = b->ph + delta;
+        if (used) memcpy(par + ph, b->par + b->ph, used * sizeof *par);
+        for (size_t j = b->h; j < b->cap; j++) l->poff[j] += (uint32_t)delta;
+        free(b->par);
+        b->par = par;
+        b->pcap = pcap;
+        b->ph = ph;
+    }
+    return true;
+}
+
+/* Last module first: each successor is written to a scratch string, then put in front of
+ * the output, whose right links (and bracket pairs) grow towards the front. */
+static void backward(Work *w) {
+    const RuleTable *t = w->t;
+    const View *in = w->in;
+    SylString *out = w->out;
+    const size_t need = (size_t)t->max_succ + SUCC_PAD, pneed = (size_t)t->max_succ_params + MAX_ARITY;
+    Links l = {0};
+    Back b = {0};
+    SylString tmp = {0};
+    int32_t next = -1;
+    uint16_t nextcode = CODE_NONE;
+    w->fault.status = SYL_OK;
+    size_t pi = w->plo;
+    for (size_t i = w->lo; i < w->hi; i++) pi += CODE_ARITY(in->code[i]);
+    b.cap = b.h = (w->hi - w->lo) + need + 1024;
+    b.pcap = b.ph = (pi - w->plo) + pneed + 1024;
+    b.code = malloc(b.cap * sizeof *b.code);
+    b.par = malloc(b.pcap * sizeof *b.par);
+    if (!b.code || !b.par || !links_room(&l, b.cap) || ms_reserve(&tmp, need, pneed)) {
+        fault(w, w->hi, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+        goto done;
+    }
+    w->out = &tmp;
+    for (size_t i = w->hi; i-- > w->lo;) {
+        pi -= CODE_ARITY(in->code[i]);
+        const double *args = in->par ? in->par + pi : NULL;
+        if (!back_room(&b, &l, need, pneed, &next)) {
+            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+            break;
+        }
+        size_t at = b.h - 1;
+        l.link[at] = next;
+        l.code[at] = nextcode;
+        View nv = {.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
+                   .pair = l.pair, .n = b.cap, .skip = in->skip};
+        tmp.n = tmp.np = 0;
+        if (rewrite_one(w, i, args, &nv, at, true, &tmp)) break;
+        if (b.cap - b.h + tmp.n > out->max_modules) {
+            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MODULES);
+            break;
+        }
+        b.h -= tmp.n;
+        b.ph -= tmp.np;
+        if (tmp.n) memcpy(b.code + b.h, tmp.code, tmp.n * sizeof *b.code);
+        if (tmp.np) memcpy(b.par + b.ph, tmp.par, tmp.np * sizeof *b.par);
+        uint32_t off = (uint32_t)b.ph;
+        for (size_t j = b.h; j < b.h + tmp.n; j++) {
+            l.poff[j] = off;
+            off += CODE_ARITY(b.code[j]);
+        }
+        for (size_t j = b.h + tmp.n; j-- > b.h;) { /* match_link_right, one module at a time */
+            uint16_t c = b.code[j];
+            int s = CODE_SYM(c);
+            l.link[j] = next;
+            l.code[j] = nextcode;
+            l.pair[j] = -1;
+            if (s == SYM_CLOSE) { /* entering a branch from its end */
+                if (!push(&l, next, nextcode, (int32_t)j)) {
+                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                    goto done;
+                }
+                next = -1;
+                nextcode = CODE_NONE;
+            } else if (s == SYM_OPEN) {
+                if (l.sp) {
+                    l.sp--;
+                    next = l.sidx[l.sp];
+                    nextcode = l.scode[l.sp];
+                    l.pair[j] = l.sclose[l.sp];
+                } else { /* never in a balanced string: a walk past it ends the string */
+                    next = -1;
+                    nextcode = CODE_NONE;
+                    l.pair[j] = (int32_t)b.cap - 1;
+                }
+            } else if (!in->skip[s]) {
+                next = (int32_t)j;
+                nextcode = c;
+            }
+        }
+    }
+    w->out = out;
+    if (!w->fault.status) {
+        size_t n = b.cap - b.h, np = b.pcap - b.ph;
+        if (ms_reserve(out, n, np)) {
+            fault(w, w->lo, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+        } else {
+            if (n) memcpy(out->code + out->n, b.code + b.h, n * sizeof *out->code);
+            if (np) memcpy(out->par + out->np, b.par + b.ph, np * sizeof *out->par);
+            out->n += n;
+            out->np += np;
+        }
+    }
+done:
+    w->out = out;
+    free(b.code);
+    free(b.par);
+    ms_release(&tmp);
+    links_free(&l);
+}
+
+void newctx_chunk(Work *w, bool backward_step) { backward_step ? backward(w) : forward(w); }
