@@ -53,6 +53,9 @@ extern const SylKeyword syl_keywords[];
 bool syl_picek_detect(const Source *src);
 int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast);
 
+/* A whole cpfg (.l) or L-Py (.lpy) file (foreign.c): reported as such; true when it is one. */
+bool syl_foreign_file(const Source *src, Diag *diag);
+
 /* The setting words, from settings.c's one table: the i-th, NULL past the last. */
 const char *syl_setting_name(int i);
 
