@@ -1,4 +1,4 @@
-/* Pícek's plant files (docs/language.md §20): read into the syntax tree a .syl model makes. */
+/* Pícek's plant files (docs/language.md §18): read into the syntax tree a .syl model makes. */
 #include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
