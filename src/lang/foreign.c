@@ -13,9 +13,24 @@ static const struct {
 bool syl_foreign_file(const Source *src, Diag *diag) {
     SylLoc found = {0}, cpfg = {0};
     const char *p = src->text, *end = src->text + src->len;
+    bool comment = false; /* inside a Sylva comment: a .syl file may quote another program's */
     for (int line = 1; p < end; line++) {
         const char *nl = memchr(p, '\n', (size_t)(end - p)), *e = nl ? nl : end, *b = p;
+        if (comment) {
+            const char *q = memmem(b, (size_t)(e - b), "*/", 2);
+            comment = !q;
+            b = q ? q + 2 : e;
+        }
         while (b < e && (*b == ' ' || *b == '\t')) b++;
+        for (const char *q = b; q + 1 < e; q++) /* a comment that opens here and goes on */
+            if (q[0] == '/' && q[1] == '*') {
+                const char *c = memmem(q + 2, (size_t)(e - q - 2), "*/", 2);
+                if (!c) {
+                    comment = true;
+                    break;
+                }
+                q = c + 1;
+            }
         for (size_t k = 0; k < sizeof marks / sizeof *marks; k++) {
             size_t n = strlen(marks[k].text);
             if ((size_t)(e - b) < n || memcmp(b, marks[k].text, n)) continue;

@@ -28,6 +28,8 @@ typedef struct LexState {
     int cond;      /* in a rule's condition (after its ':', before its arrow): '=' is '==' */
     int after_eq;  /* a definition's '=' was read in this statement: an expression follows */
     int hint_line; /* a line whose mistake the lexer explained: the parser stays silent there */
+    int arrow_known; /* arrow_at is known for this statement */
+    size_t arrow_at; /* just after the start of its rule's arrow; 0: it has none ahead */
 } LexState;
 
 typedef struct ParseState {
