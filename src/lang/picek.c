@@ -210,10 +210,11 @@ static void interpret(Reader *r, const char *pred, const Item *succ, int n, SylL
     for (int j = 0; j < n; j++) *VEC_PUSH(r->arena, p->succ.v, p->succ.n, p->succ.cap) = succ[j];
 }
 
-static bool has_leaf(const Items *items) {
+/* The first `L` of items, or NULL. */
+static const Item *leaf_of(const Items *items) {
     for (int i = 0; i < items->n; i++)
-        if (items->v[i].kind == IT_WORD && !strcmp(items->v[i].text, "L")) return true;
-    return false;
+        if (items->v[i].kind == IT_WORD && !strcmp(items->v[i].text, "L")) return &items->v[i];
+    return NULL;
 }
 
 int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
@@ -265,20 +266,24 @@ int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     if (!seen[K_AXIOM].first_line && diag->errors == before)
         diag_error(diag, m->loc, "a Pícek file needs an 'axiom:' line");
     /* A uniform choice among the rules that share a predecessor: each weighs 1. */
-    bool leaf = false;
+    const Item *leaf = NULL; /* the first L, in the axiom or a successor */
+    for (int i = 0; i < m->n && !leaf; i++)
+        if (m->v[i].kind == ST_AXIOM) leaf = leaf_of(&m->v[i].items);
     for (int i = 0; i < nrules; i++) {
         Production *pi = &m->v[rules[i]].rule;
-        leaf = leaf || has_leaf(&pi->succ);
+        if (!leaf) leaf = leaf_of(&pi->succ);
         for (int j = 0; j < nrules; j++)
             if (i != j && !strcmp(pi->pred.v[0].text, m->v[rules[j]].rule.pred.v[0].text)) {
                 pi->weight = num(&r, 1, pi->arrow_loc);
                 break;
             }
     }
-    for (int i = 0; i < m->n; i++) leaf = leaf || (m->v[i].kind == ST_AXIOM && has_leaf(&m->v[i].items));
     /* The thesis's turtle draws `L` as a leaf and tapers every segment by `reduction`: interpret
      * rules say so to Sylva's, and leave the derived string as the file makes it. */
-    if (leaf) interpret(&r, "L", (Item[]){item(&r, IT_SYMBOL, "~leaf", 5, m->loc)}, 1, m->loc);
+    if (leaf) {
+        SylLoc loc = leaf->loc; /* copied: the rule's statement may move m->v */
+        interpret(&r, "L", (Item[]){item(&r, IT_SYMBOL, "~leaf", 5, loc)}, 1, loc);
+    }
     if (seen[K_REDUCTION].first_line && value[K_REDUCTION] != 1) {
         SylLoc loc = seen[K_REDUCTION];
         setting(&r, "widthfactor", value[K_REDUCTION], loc);
