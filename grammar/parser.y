@@ -30,6 +30,7 @@ static const char *const model_kinds[] = {"lsystem", "grow", "scene"};
 static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg) {
     (void)scanner;
     if (ps->lex->too_deep) return; /* reported, and the rest of the file is not read */
+    if (loc->first_line == ps->lex->hint_line) return; /* the lexer said what to write instead */
     if (!strcmp(msg, "memory exhausted")) {
         diag_error(ps->diag, *loc, "too deeply nested (at most %d levels)", SYL_MAX_NESTING);
         ps->lex->too_deep = ps->lex->eof_reported = 1;
@@ -238,10 +239,10 @@ body: %empty
 
 stmt: NEWLINE
     | decl NEWLINE
-    | SETTING exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $2; }
-    | KW_IGNORE items NEWLINE { add_stmt(ps, ST_IGNORE, @1)->items = $2; }
-    | KW_CONSIDER items NEWLINE { add_stmt(ps, ST_CONSIDER, @1)->items = $2; }
-    | KW_AXIOM items NEWLINE { add_stmt(ps, ST_AXIOM, @1)->items = $2; }
+    | SETTING colon_opt exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $3; }
+    | KW_IGNORE colon_opt items NEWLINE { add_stmt(ps, ST_IGNORE, @1)->items = $3; }
+    | KW_CONSIDER colon_opt items NEWLINE { add_stmt(ps, ST_CONSIDER, @1)->items = $3; }
+    | KW_AXIOM colon_opt items NEWLINE { add_stmt(ps, ST_AXIOM, @1)->items = $3; }
     | rule NEWLINE { add_stmt(ps, ST_RULE, $1.loc)->rule = $1; }
     | KW_DECOMPOSE '{' { sub_block(ps, BLOCK_DECOMPOSE, @1); } body '}' { ps->block = BLOCK_PRODUCE; }
     | KW_INTERPRET '{' { sub_block(ps, BLOCK_INTERPRET, @1); } body '}' { ps->block = BLOCK_PRODUCE; }
@@ -259,6 +260,11 @@ stmt: SETTING WORD WORD expr NEWLINE {
           s->value = $4;
       }
     ;
+
+/* The book's and cpfg's `axiom:`, `ignore:`, `derive:`: the colon means nothing more. */
+colon_opt: %empty
+         | ':'
+         ;
 
 decl: KW_CONST { ps->decl = ST_CONST; } defs
     | KW_PARAM { ps->decl = ST_PARAM; } defs

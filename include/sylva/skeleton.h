@@ -22,8 +22,9 @@ typedef enum {
     SYL_KIND_LEAF,      /* organs: ~leaf */
     SYL_KIND_FLOWER,    /* ~petal, flowers */
     SYL_KIND_NEEDLE,    /* ~needle */
-    SYL_KIND_SPHERE,    /* @O */
+    SYL_KIND_SPHERE,    /* @O, @o */
     SYL_KIND_BUD,
+    SYL_KIND_DISC,      /* @c: a flat disc in the turtle's H-L plane */
     SYL_KIND_COUNT
 } SylKind;
 
@@ -51,9 +52,9 @@ typedef struct SylNode {
 typedef struct SylOrgan {
     float pos[3];
     float h[3], l[3], u[3];
-    float size;       /* scale of the surface; diameter of a sphere */
+    float size;       /* scale of the surface; diameter of a sphere or a disc */
     int32_t node;     /* the node it is attached to (-1: none) */
-    uint8_t kind;     /* SYL_KIND_LEAF, _FLOWER, _NEEDLE or _SPHERE */
+    uint8_t kind;     /* SYL_KIND_LEAF, _FLOWER, _NEEDLE, _SPHERE or _DISC */
     uint8_t material;
     uint32_t module;
 } SylOrgan;

@@ -34,9 +34,15 @@ int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     int rc = 1, failed = 1; /* both set only on the way that does not jump */
     if (!setjmp(oom)) {
         arena->oom = &oom;
-        YY_BUFFER_STATE buf = syl_yy_scan_bytes(src->text, (int)src->len, scanner);
-        rc = syl_yyparse(scanner, &ps);
-        syl_yy_delete_buffer(buf, scanner);
+        if (syl_foreign_file(src, diag)) {
+            rc = 1;
+        } else if (syl_picek_detect(src)) {
+            rc = syl_picek_parse(src, arena, diag, ast);
+        } else {
+            YY_BUFFER_STATE buf = syl_yy_scan_bytes(src->text, (int)src->len, scanner);
+            rc = syl_yyparse(scanner, &ps);
+            syl_yy_delete_buffer(buf, scanner);
+        }
         failed = 0;
     }
     syl_yylex_destroy(scanner);

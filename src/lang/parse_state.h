@@ -22,6 +22,14 @@ typedef struct LexState {
     size_t len, pos; /* pos: just after the token being read */
     int at_start;    /* the next token begins a statement */
     int first;       /* the first token of the current statement */
+    /* Other programs' spellings (docs/language.md §18): the lexer accepts the ones with one
+     * meaning and says what to write instead of the others. */
+    int prev;      /* the token before the one being read */
+    int cond;      /* in a rule's condition (after its ':', before its arrow): '=' is '==' */
+    int after_eq;  /* a definition's '=' was read in this statement: an expression follows */
+    int hint_line; /* a line whose mistake the lexer explained: the parser stays silent there */
+    int arrow_known; /* arrow_at is known for this statement */
+    size_t arrow_at; /* just after the start of its rule's arrow; 0: it has none ahead */
 } LexState;
 
 typedef struct ParseState {
@@ -43,6 +51,15 @@ typedef struct SylKeyword {
     int token;
 } SylKeyword;
 extern const SylKeyword syl_keywords[];
+
+/* Pícek's plant files (picek.c): whether the text is one (its first line that is not blank
+ * or a `;` comment opens with one of its keys and a colon), and reading it into ast as one
+ * lsystem named after the file. Returns the number of errors. */
+bool syl_picek_detect(const Source *src);
+int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast);
+
+/* A whole cpfg (.l) or L-Py (.lpy) file (foreign.c): reported as such; true when it is one. */
+bool syl_foreign_file(const Source *src, Diag *diag);
 
 /* The setting words, from settings.c's one table: the i-th, NULL past the last. */
 const char *syl_setting_name(int i);

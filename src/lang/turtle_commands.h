@@ -64,6 +64,7 @@ enum {
     X(TC_NEEDLE, "~needle", TA_STEP, TF_DRAWS | TF_ORGAN | TF_PLAN)                \
     X(TC_SURFACE_UNKNOWN, NULL, TA_NONE, 0) /* warned about once, then ignored */ \
     X(TC_SPHERE, "@O", TA_WIDTH, TF_DRAWS | TF_ORGAN)                              \
+    X(TC_DISC, "@c", TA_WIDTH, TF_DRAWS | TF_ORGAN)                                \
     X(TC_TROPISM, "@Tp", TA_NONE, TF_STEERS)                                       \
     X(TC_ELASTICITY, "@Ts", TA_ZERO, TF_STEERS)                                    \
     X(TC_MOVE_TO, "@M", TA_NONE, TF_MOVES)                                         \
@@ -81,6 +82,7 @@ enum {
 #define TURTLE_ALIASES(X) \
     X(TC_LEVEL, "@v")     \
     X(TC_PETAL, "~flower") \
+    X(TC_SPHERE, "@o")     /* cpfg's filled circle: a sphere in 3D */ \
     X(TC_SMOOTH_ON, "@Gs")
 
 typedef enum {

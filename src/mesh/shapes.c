@@ -5,7 +5,8 @@
  * Organ frame: H along the organ, L across, U = H x L its face. A leaf is a blade of length
  * size along H, a fifth as wide each way along L, with UVs 0..1 over the blade (v along the
  * main vein, u across). A flower is five such petals around H, tilted forward. A needle is a
- * slender three-sided spike. A sphere is a UV sphere of diameter size about H. */
+ * slender three-sided spike. A sphere is a UV sphere of diameter size about H. A disc (cpfg's
+ * circle) is a flat fan of diameter size in the H-L plane, facing U, made on both sides. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -58,6 +59,7 @@ static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts,
     case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T; break;
     case SYL_KIND_NEEDLE: *verts = NEEDLE_V, *tris = NEEDLE_T; break;
     case SYL_KIND_SPHERE: *verts = (st + 1) * (sl + 1), *tris = 2 * sl * (st - 1); break;
+    case SYL_KIND_DISC: *verts = 2 * (sl + 1), *tris = 2 * sl; break;
     default: break;
     }
 }
@@ -203,7 +205,9 @@ bool mesh_plan_shapes(MeshPlan *pl) {
         uint32_t nv, nt;
         organ_counts(pl, &s->organs[i], &nv, &nt);
         if (!nt) continue;
-        if (s->organs[i].kind == SYL_KIND_SPHERE && !mesh_trig(pl, pl->sides)) return false;
+        if ((s->organs[i].kind == SYL_KIND_SPHERE || s->organs[i].kind == SYL_KIND_DISC) &&
+            !mesh_trig(pl, pl->sides))
+            return false;
         if (!mesh_reserve((void **)&pl->items, &pl->items_cap, pl->nitems, 1, sizeof *pl->items) ||
             !mesh_add_run(pl, s->organs[i].material, nt))
             return false;
@@ -314,6 +318,27 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
             for (uint32_t j = 0; j < (uint32_t)sl; j++) {
                 if (i > 0) tri(o, a + j, a + j + 1, b + j);
                 if (i + 1 < st) tri(o, a + j + 1, b + j + 1, b + j);
+            }
+        }
+        break;
+    }
+    case SYL_KIND_DISC: { /* per side: the centre, then the rim */
+        const int sl = pl->sides;
+        const MeshTrig *tr = pl->trig[sl];
+        const float rad = 0.5f * size;
+        for (int side = 0; side < 2; side++) {
+            float n[3];
+            for (int q = 0; q < 3; q++) n[q] = side ? -u[q] : u[q];
+            uint32_t centre = put(o, c, n, 0.5f, 0.5f);
+            for (int j = 0; j < sl; j++) {
+                float p[3];
+                for (int q = 0; q < 3; q++) p[q] = c[q] + rad * (tr->c[j] * h[q] + tr->s[j] * l[q]);
+                put(o, p, n, 0.5f + 0.5f * tr->c[j], 0.5f + 0.5f * tr->s[j]);
+            }
+            for (uint32_t j = 0; j < (uint32_t)sl; j++) {
+                uint32_t a = centre + 1 + j, b = centre + 1 + (j + 1) % (uint32_t)sl;
+                if (side) tri(o, centre, b, a);
+                else tri(o, centre, a, b);
             }
         }
         break;

@@ -10,7 +10,7 @@
 #include "util/json.h"
 
 const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf", "flower",
-                                                   "needle", "sphere", "bud"};
+                                                   "needle", "sphere", "bud", "disc"};
 
 /* A default palette: what the renderer draws when a model sets no colours. Index 0 is bark,
  * 1 leaf, 2 flower, then plain colours for models that count with ' ; , */

@@ -234,6 +234,7 @@ static int draw_string(Turtle *t, const SylString *s) {
         case TC_NEEDLE: add_organ(t, SYL_KIND_NEEDLE, arg(a, na, 0, t->step), module); break;
         case TC_SURFACE_UNKNOWN: warn_once(t, sym, "not a predefined surface (~leaf, ~petal, ~flower, ~needle)"); break;
         case TC_SPHERE: add_organ(t, SYL_KIND_SPHERE, arg(a, na, 0, st->width), module); break;
+        case TC_DISC: add_organ(t, SYL_KIND_DISC, arg(a, na, 0, st->width), module); break;
         case TC_TROPISM: turtle_set_tropism(st, a, na); break;
         case TC_ELASTICITY:
             st->elasticity = glm_vec3_norm(st->trop) > 0 ? arg(a, na, 0, 0) : 0;

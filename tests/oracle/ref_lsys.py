@@ -947,9 +947,50 @@ def to_text(s):
     return "".join(parts)
 
 
+PICEK_KEYS = ("iteration", "angle", "reduction", "radius", "thickness", "axiom", "rule")
+
+
+def _picek_lines(src):
+    """Pícek's plant files (his thesis, Table 3.2): `;` comments, then `key: value` lines."""
+    for line in src.split("\n"):
+        line = line.split(";", 1)[0].strip()
+        if line:
+            yield line
+
+
+def is_picek(src):
+    for line in _picek_lines(src):
+        m = re.match(r"([a-z]+)\s*:", line)
+        return bool(m) and m.group(1) in PICEK_KEYS
+    return False
+
+
+def parse_picek(src, name):
+    """The file as one model: iteration is the derivation length, every character a module,
+    and rules sharing a predecessor a uniform (hence weighted, unsupported) choice."""
+    cur = Model(name)
+    rules = []
+    for line in _picek_lines(src):
+        key, _, value = line.partition(":")
+        key, value = key.strip(), value.strip()
+        if key == "iteration":
+            cur.settings["derive"] = value
+        elif key == "axiom":
+            cur.axiom_text = " ".join(value.replace(" ", ""))
+        elif key == "rule":
+            pred, _, succ = value.partition("->")
+            rules.append((pred.strip(), " ".join(succ.replace(" ", ""))))
+    preds = [p for p, _ in rules]
+    for pred, succ in rules:
+        weight = " : 1" if preds.count(pred) > 1 else ""
+        cur.rule_lines.append(("%s -> %s%s" % (pred, succ, weight), "produce"))
+    return [cur]
+
+
 def load(path, model_name=None, overrides=None):
     with open(path, encoding="utf-8") as f:
-        models = parse_file(f.read())
+        src = f.read()
+    models = parse_picek(src, "picek") if is_picek(src) else parse_file(src)
     if not models:
         raise SylError("no lsystem in %s" % path)
     if model_name is None:

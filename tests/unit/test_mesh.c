@@ -318,6 +318,40 @@ static double tri_area(const SylMesh *m, size_t t) {
     return 0.5 * sqrt(x * x + y * y + z * z);
 }
 
+/* A disc (@c) of diameter 2: on each side the regular 8-gon of radius 1 (area 2√2), flat
+ * in the organ's H-L plane, every triangle wound to face its vertices' normal. */
+static void disc(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("disc");
+    SylOrgan d = fx_organ(SYL_KIND_DISC, 1, 2, 3, 2, 0);
+    syl_skeleton_add_organ(s, &d);
+    SylMesh *m = build(s, NULL);
+    assert_int_equal(m->nverts, 2 * 9);
+    assert_int_equal(ntris(m), 2 * 8);
+    assert_unit_normals(m);
+    assert_indices_valid(m);
+    double area = 0;
+    for (size_t t = 0; t < ntris(m); t++) {
+        const float *a = m->pos + 3 * m->idx[3 * t], *b = m->pos + 3 * m->idx[3 * t + 1], *c = m->pos + 3 * m->idx[3 * t + 2];
+        const float *n = m->nrm + 3 * m->idx[3 * t];
+        double u[3], v[3];
+        for (int k = 0; k < 3; k++) u[k] = b[k] - a[k], v[k] = c[k] - a[k];
+        double x = u[1] * v[2] - u[2] * v[1], y = u[2] * v[0] - u[0] * v[2], z = u[0] * v[1] - u[1] * v[0];
+        assert_true(x * n[0] + y * n[1] + z * n[2] > 0);
+        area += tri_area(m, t);
+    }
+    assert_near(area, 2 * 2 * sqrt(2.0), 1e-5);
+    for (size_t t = 0; t < 8; t++) assert_true(back_to_back(m, t, t + 8));
+    for (size_t v = 0; v < m->nverts; v++) {
+        const float *p = m->pos + 3 * v;
+        double r = sqrt((p[0] - 1) * (p[0] - 1) + (p[1] - 2) * (p[1] - 2));
+        assert_near(p[2], 3, 1e-6); /* in the H-L plane through the organ */
+        assert_true(fabs(r) < 1e-6 || fabs(r - 1) < 1e-6);
+    }
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
 static void polygons(void **state) {
     (void)state;
     SylSkeleton *s = syl_skeleton_new("polygons");
@@ -444,6 +478,7 @@ int main(void) {
         cmocka_unit_test(groups_by_material),
         cmocka_unit_test(deterministic_across_threads),
         cmocka_unit_test(organs),
+        cmocka_unit_test(disc),
         cmocka_unit_test(polygons),
         cmocka_unit_test(smooth_nodes),
         cmocka_unit_test(lateral_base_is_sunk),
