@@ -54,7 +54,8 @@ typedef struct SylCompileOptions {
     /* What the language leaves to the engines that own it: syl_compile checks the language
      * only, then, once the program compiled without errors, calls validate (when not NULL)
      * with validate_user, the program and diag. It returns how many errors it reported to
-     * diag; any fails the compile with SYL_EMODEL. syl_grow_validate (grow.h) checks `grow`
+     * diag; any fails the compile with SYL_EMODEL (a negative count: SYL_EUSAGE, errors of
+     * the --set values only). syl_grow_validate (grow.h) checks `grow`
      * and `scene` directives as `sylva check` reports them. A sibling compile passes none:
      * its file was checked with the model it serves. */
     int (*validate)(void *user, const SylProgram *p, FILE *diag);

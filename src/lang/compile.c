@@ -58,20 +58,6 @@ static void track_uses(Compiler *c, Stmt **all, int n, Model *top) {
     }
 }
 
-/* Every --set names a param of the model (a sibling's are the other model's). */
-static void check_overrides(Compiler *c) {
-    SylProgram *p = c->p;
-    for (int i = 0; i < c->opt->noverrides; i++) {
-        int id = namemap_get(&c->values, c->opt->overrides[i].name, -1);
-        if (c->opt->sibling) continue;
-        if (id < 0 || !c->vals[id].is_param) c->usage_error = true;
-        if (id < 0 || !c->vals[id].is_param)
-            diag_error(c->d, (SylLoc){0}, "--set %s: model '%s' has no parameter '%s'%s",
-                       c->opt->overrides[i].name, p->name, c->opt->overrides[i].name,
-                       id >= 0 ? " (it is a const; declare it with `param` to set it)" : "");
-    }
-}
-
 /* Settings and values, in the order written. */
 static void evaluate_all(Compiler *c, Stmt **all, int n) {
     SylLoc seen[16] = {{0}};
@@ -165,8 +151,10 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
     set_defaults(c, model);
     for (int i = 0; i < n; i++) cc_declare(c, all[i], i < top->n);
     track_uses(c, all, n, top);
-    check_overrides(c);
+    cc_localise_overrides(c);
+    cc_check_overrides(c);
     evaluate_all(c, all, n);
+    cc_apply_overrides(c);
     for (int i = 0; i < p->nfns; i++) cc_function(c, i);
     bool considered[MAX_SYMBOLS] = {false};
     bool consider = read_skips(c, all, n, considered);
@@ -281,6 +269,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         }
         p->noverrides = opt->noverrides;
     }
+    p->sibling = opt->sibling;
     Arena *tmp = &g->tmp;
     Diag d = {.out = opt->diag, .src = &p->src};
     Compiler c = {.p = p, .d = &d, .tmp = tmp, .opt = opt};
@@ -292,6 +281,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
     FileAst ast;
     *status = SYL_OK;
     if (syl_parse(&p->src, tmp, &d, &ast) == 0) {
+        c.ast = &ast;
         Model *m = find_model(&ast, opt->model);
         Model *scene = find_scene(&ast);
         if (!m && opt->model) {
@@ -350,9 +340,10 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
     /* What the language leaves to others (grow and scene directives) is checked by the
      * caller's hook, once the program is whole: a sibling model it compiles is a compile of
      * its own, not one nested in this. */
-    if (p && opt && opt->validate && opt->validate(opt->validate_user, p, opt->diag)) {
+    int invalid = p && opt && opt->validate ? opt->validate(opt->validate_user, p, opt->diag) : 0;
+    if (invalid) {
         syl_program_free(p);
-        *status = SYL_EMODEL;
+        *status = invalid < 0 ? SYL_EUSAGE : SYL_EMODEL;
         return NULL;
     }
     return p;

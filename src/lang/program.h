@@ -148,6 +148,10 @@ struct SylProgram {
     bool uses_env;          /* ?E appears: the environment answers it after every step */
     SylOverride *overrides; /* the --set values it was compiled with, for its file's other models */
     int noverrides;
+    const char **set_local; /* per --set: the name within this model ("Birch.lambda" in Birch:
+                               "lambda"), NULL when meant for another model (lang/overrides.c) */
+    bool sibling;           /* compiled for another model of the file: --set names it lacks are
+                               not errors */
     Arena arena;
     Source src;
     char *text; /* owned copy of the source */

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/program.h"
 #include "scene/open.h"
 #include "util/arena.h"
 #include "util/namemap.h"
@@ -63,9 +64,10 @@ static void models_free(SceneModels *m) {
 
 /* Compile a plant's model: one of this file, or "file.syl[:SceneModel]" of another. */
 static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE *diag, int *status) {
-    SylCompileOptions copt = {.diag = diag};
+    /* the --set values reach every plant; a name one lacks is another's (Birch.lambda) */
+    SylCompileOptions copt = {.diag = diag, .overrides = p->overrides, .noverrides = p->noverrides, .sibling = 1};
     if (pl->model) {
-        copt.sibling = 1; /* the file and its scene were checked when p was compiled: no hook */
+        /* the file and its scene were checked when p was compiled: no hook */
         size_t len = 0;
         const char *text = syl_program_source(p, &len);
         copt.model = pl->model;

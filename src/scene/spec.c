@@ -225,5 +225,6 @@ int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
     (void)user;
     int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
     if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag);
+    /* negative: every error was of --set, a bad command line */
     return errors;
 }
