@@ -162,7 +162,6 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
     if (consider) apply_consider(c, considered);
     for (int t = 0; t < TABLE_COUNT; t++) cc_build_table(c, &p->tables[t]);
     mark_queries(c);
-    if (c->opt->lint && !c->d->errors) cc_lint(c);
 }
 
 /* ---- entry points ---- */
@@ -308,6 +307,8 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             }
             p->first_model = m == find_model(&ast, NULL);
         }
+        /* after the directives, whose (expr) values use params too */
+        if (opt->lint && !d.errors && (m || scene)) cc_lint(&c);
     }
     arena_free(tmp);
     g->p = NULL;
