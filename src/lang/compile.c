@@ -122,6 +122,7 @@ static void compile_rules(Compiler *c, Stmt **all, int n, Model *model) {
             cc_split(c, &s->items, &ms);
             Scope none = {0};
             p->axiom.loc = s->loc;
+            cc_warn_words(c, &s->items);
             cc_successor(c, &ms, &none, &p->axiom, "the axiom");
         }
     }
@@ -271,7 +272,9 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
     p->sibling = opt->sibling;
     Arena *tmp = &g->tmp;
     Diag d = {.out = opt->diag, .src = &p->src};
-    Compiler c = {.p = p, .d = &d, .tmp = tmp, .opt = opt};
+    /* a sibling's warnings were its file's, reported with the model it serves: once */
+    int warn = opt->sibling ? 0 : opt->lint ? SYL_WARN_MISTAKES | SYL_WARN_DRAWS : opt->warn;
+    Compiler c = {.p = p, .d = &d, .tmp = tmp, .opt = opt, .warn = warn};
     namemap_init(&c.values, tmp);
     namemap_init(&c.fns, tmp);
     namemap_init(&c.curves, tmp);
@@ -309,6 +312,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         }
         /* after the directives, whose (expr) values use params too */
         if (opt->lint && !d.errors && (m || scene)) cc_lint(&c);
+        if (c.warn && !d.errors && (m || scene)) cc_warn(&c);
     }
     arena_free(tmp);
     g->p = NULL;

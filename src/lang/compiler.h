@@ -58,6 +58,7 @@ typedef struct Compiler {
     bool *sym_used;  /* per symbol: appears in an axiom or a rule */
     int depth;       /* of cc_fold's recursion, through nested function compiles too */
     bool too_deep;   /* that was reported */
+    int warn;        /* SYL_WARN_*: which warnings to report (all with lint) */
     const FileAst *ast; /* the whole file: its models' names qualify --set names */
 } Compiler;
 
@@ -105,5 +106,10 @@ void cc_split(Compiler *c, const Items *items, Mods *out);
 
 /* lint.c */
 void cc_lint(Compiler *c);
+/* The warnings of mistakes (c->warn), also printed by the commands that derive. */
+void cc_warn(Compiler *c);
+void cc_warn_words(Compiler *c, const Items *items); /* "did you mean", in a successor or the axiom */
+/* The closest declared module to word (NULL: none close), for messages. */
+const char *cc_near_module(Compiler *c, const char *word);
 
 #endif
