@@ -184,6 +184,10 @@ struct SylProgram {
     uint64_t seed;
 };
 
+/* A warning about p's source at line:col, as syl_program_error reports an error. */
+void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
 /* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */
 static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {
     return (turtle_command_flags(p->syms[sym].turtle) & TF_QUERY) != 0;

@@ -702,8 +702,24 @@ int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
     return read_all(p, g, diag, &set_errors);
 }
 
+/* What is statically sure to grow nothing: no year (shoots need light and room, which only
+ * growing tells). */
+static void warn_grows_nothing(const SylProgram *p, const GrowParams *g, FILE *diag) {
+    if (g->years) return;
+    int n = 0, line = 0, col = 0;
+    const SylDirective *dirs = syl_program_directives(p, &n);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(dirs[i].name, "years")) line = dirs[i].line, col = dirs[i].col;
+    const char *set = "";
+    for (int i = 0; i < p->noverrides; i++)
+        if (p->set_local[i] && !strcmp(p->set_local[i], "years")) line = col = 0, set = " by --set";
+    program_warning(p, diag, line, col, "grow block '%s' grows nothing: years is 0%s (the tree is its root)",
+                    syl_program_name(p), set);
+}
+
 int sot_check_grow(const SylProgram *p, FILE *diag) {
     GrowParams g;
     int set_errors, errors = read_all(p, &g, diag, &set_errors);
+    if (!errors) warn_grows_nothing(p, &g, diag);
     return errors && errors == set_errors ? -errors : errors; /* only the command line's */
 }
