@@ -30,6 +30,7 @@ int cmd_check(int argc, char **argv) {
     int done = cli_parse(&cli_check_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
     bool werror = a.werror;
+    int files = 1; /* the scene's files are looked at too */
     int worst = SYL_OK, models = 0;
     for (int f = 0; f < a.nfiles; f++) {
         ModelArgs m = {0};
@@ -57,7 +58,7 @@ int cmd_check(int argc, char **argv) {
             FILE *mem = open_memstream(&msg, &msglen);
             SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1,
                                      .overrides = m.sets, .noverrides = m.nsets,
-                                     .validate = syl_grow_validate};
+                                     .validate = syl_grow_validate, .validate_user = &files};
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
             if (mem) fclose(mem);

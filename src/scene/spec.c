@@ -245,13 +245,13 @@ static void warn_unreadable(const SylProgram *p, FILE *diag, const char *what, c
     free(path);
 }
 
-int scene_spec_check(const SylProgram *p, FILE *diag) {
+int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     SceneSpec s;
     int errors = scene_spec_read(p, &s, diag);
-    for (int i = 0; !errors && i < s.nobstacles; i++)
+    for (int i = 0; files && !errors && i < s.nobstacles; i++)
         warn_unreadable(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
                         s.obstacles[i].line, s.obstacles[i].col);
-    for (int i = 0; !errors && i < s.nplants; i++)
+    for (int i = 0; files && !errors && i < s.nplants; i++)
         if (s.plants[i].file)
             warn_unreadable(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
     scene_spec_free(&s);
@@ -261,9 +261,9 @@ int scene_spec_check(const SylProgram *p, FILE *diag) {
 /* syl_compile's hook (grow.h): a grow block's directives and the scene's. The scene is checked with the file's first model only, so that checking every model of a
  * file (`sylva check`) reports it once. */
 int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
-    (void)user;
+    bool files = user && *(const int *)user;
     int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
-    if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag);
+    if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag, files);
     /* negative: every error was of --set, a bad command line */
     return errors;
 }

@@ -47,6 +47,6 @@ char *scene_spec_path(const SylProgram *p, const char *file);
 
 /* Check p's scene block, as syl_grow_validate does with a file's first model. Returns the
  * number of errors reported. */
-int scene_spec_check(const SylProgram *p, FILE *diag);
+int scene_spec_check(const SylProgram *p, FILE *diag, bool files); /* files: warn about unreadable ones */
 
 #endif
