@@ -55,7 +55,9 @@ typedef struct SylGrowOptions {
 /* The most years a tree may grow (`years`, --years, -n). */
 enum { SYL_GROW_MAX_YEARS = 10000 };
 
-/* The validation hook for syl_compile (SylCompileOptions.validate; user is unused): checks
+/* The validation hook for syl_compile (SylCompileOptions.validate; user: NULL, or an int *
+ * that is not 0 to also warn about a scene's files that cannot be read, as `sylva check`
+ * does — the commands that grow fail on them with an error of their own): checks
  * a `grow` model's directives and, for the file's first model (or a file that holds only a
  * scene), the `scene` block, each error with file:line:col, the source line and a caret.
  * Returns the number of errors. syl_grow and syl_grow_scene read the same directives, so a

@@ -43,18 +43,27 @@ typedef struct SylOverride {
     double value;
 } SylOverride;
 
+/* The warnings a command that derives prints (`sylva check` prints every one). */
+enum {
+    SYL_WARN_MISTAKES = 1, /* a word close to a declared module; a rule for a parameter count
+                              no string has; a grow block that grows nothing */
+    SYL_WARN_DRAWS = 2,    /* a model that draws nothing (for the commands that draw) */
+};
+
 typedef struct SylCompileOptions {
     const char *model;            /* model name; NULL: the file's first lsystem */
     const SylOverride *overrides; /* --set name=value */
     int noverrides;
     FILE *diag;                   /* where diagnostics go; NULL: nowhere */
-    int lint;                     /* also report warnings of `sylva check` */
+    int lint;                     /* also report warnings of `sylva check` (all of them) */
+    int warn;                     /* or only these (SYL_WARN_*): mistakes that would pass silently */
     int sibling;                  /* compiled for another model of the file (a shoot rule, a
                                      scene's plant): --set names it lacks are not errors */
     /* What the language leaves to the engines that own it: syl_compile checks the language
      * only, then, once the program compiled without errors, calls validate (when not NULL)
      * with validate_user, the program and diag. It returns how many errors it reported to
-     * diag; any fails the compile with SYL_EMODEL. syl_grow_validate (grow.h) checks `grow`
+     * diag; any fails the compile with SYL_EMODEL (a negative count: SYL_EUSAGE, errors of
+     * the --set values only). syl_grow_validate (grow.h) checks `grow`
      * and `scene` directives as `sylva check` reports them. A sibling compile passes none:
      * its file was checked with the model it serves. */
     int (*validate)(void *user, const SylProgram *p, FILE *diag);

@@ -23,6 +23,7 @@ typedef struct ModelArgs {
     SylOverride sets[MAX_SETS];
     int nsets;
     uint64_t max_metamers, max_buds; /* --max-metamers, --max-buds (grow blocks, scenes) */
+    bool warned;       /* its warnings were printed (cli_compile) */
 } ModelArgs;
 
 /* Split FILE:Model. */
@@ -32,7 +33,8 @@ bool cli_set(ModelArgs *m, char *arg);
 bool cli_number(const char *opt, const char *arg, double min, double max, double *out);
 bool cli_integer(const char *opt, const char *arg, double min, double max, double *out);
 bool cli_size(const char *opt, const char *arg, unsigned long long *out); /* 512M, 2G */
-SylProgram *cli_compile(ModelArgs *m, int lint, int *status);
+/* Compile with the warnings warn (SYL_WARN_*), printed the first time only. */
+SylProgram *cli_compile(ModelArgs *m, int warn, int *status);
 
 /* A progress bar on stderr, shown only when stderr is a terminal and the work has taken
  * more than a second. */

@@ -16,21 +16,27 @@ const CliCommand cli_check_command = {
              "otherwise (warnings alone do not fail).\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_WERROR},
+        {.option = CLI_OPT_SET, .help = "check the model with this value, as other commands would\n"
+                                         "take it; repeatable"},
         {0},
     },
-    .width = 11,
+    .width = 18,
     .several = true,
 };
 
 int cmd_check(int argc, char **argv) {
-    CliArgs a = {0};
+    ModelArgs sets = {0}; /* --set, for every file */
+    CliArgs a = {.m = &sets};
     int done = cli_parse(&cli_check_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
     bool werror = a.werror;
+    int files = 1; /* the scene's files are looked at too */
     int worst = SYL_OK, models = 0;
     for (int f = 0; f < a.nfiles; f++) {
         ModelArgs m = {0};
         cli_model_spec(&m, a.files[f]);
+        memcpy(m.sets, sets.sets, sizeof m.sets);
+        m.nsets = sets.nsets;
         size_t len = 0;
         char *text = syl_read_file(m.path, &len);
         if (!text) {
@@ -51,7 +57,8 @@ int cmd_check(int argc, char **argv) {
             size_t msglen = 0;
             FILE *mem = open_memstream(&msg, &msglen);
             SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1,
-                                     .validate = syl_grow_validate};
+                                     .overrides = m.sets, .noverrides = m.nsets,
+                                     .validate = syl_grow_validate, .validate_user = &files};
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
             if (mem) fclose(mem);

@@ -316,7 +316,7 @@ static Row *make_rows(const Column *cols, int ncols, int nruns, int *nrows) {
 /* Grow a column's model nruns times and measure each plant. */
 static int run_column(Column *col, const SylDeriveOptions *base, bool seeded, int nruns, bool keep_mesh) {
     int status;
-    SylProgram *p = cli_compile(&col->args, 0, &status);
+    SylProgram *p = cli_compile(&col->args, SYL_WARN_MISTAKES | SYL_WARN_DRAWS, &status);
     if (!p) return status;
     snprintf(col->name, sizeof col->name, "%s", syl_program_name(p));
     col->seed0 = seeded ? base->seed : syl_program_seed(p);

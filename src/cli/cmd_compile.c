@@ -25,7 +25,7 @@ int cmd_compile(int argc, char **argv) {
     if (done != CLI_RUN) return done;
     cli_model_spec(&m, a.files[0]);
     int status;
-    SylProgram *p = cli_compile(&m, 0, &status);
+    SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (p && a.dump) syl_program_dump(p, stdout);
     syl_program_free(p);
     return p ? SYL_OK : status;

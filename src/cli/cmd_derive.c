@@ -70,7 +70,7 @@ int cmd_derive(int argc, char **argv) {
     }
     cli_model_spec(&m, a.files[0]);
     int status;
-    SylProgram *p = cli_compile(&m, 0, &status);
+    SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (!p) return status;
     OutFile out;
     if (!out_open(&out, output)) {

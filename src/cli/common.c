@@ -105,9 +105,10 @@ bool cli_set(ModelArgs *m, char *arg) {
     return true;
 }
 
-SylProgram *cli_compile(ModelArgs *m, int lint, int *status) {
+SylProgram *cli_compile(ModelArgs *m, int warn, int *status) {
     SylCompileOptions opt = {.model = m->model, .overrides = m->sets, .noverrides = m->nsets,
-                             .diag = stderr, .lint = lint, .validate = syl_grow_validate};
+                             .diag = stderr, .warn = m->warned ? 0 : warn, .validate = syl_grow_validate};
+    m->warned = true; /* a model compiled again (each seed of compare) says them once */
     return syl_compile(m->path, NULL, 0, &opt, status);
 }
 
@@ -143,7 +144,7 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     memset(out, 0, sizeof *out);
     double t0 = cli_now();
     int status;
-    SylProgram *p = cli_compile(m, 0, &status);
+    SylProgram *p = cli_compile(m, SYL_WARN_MISTAKES | SYL_WARN_DRAWS, &status);
     if (!p) return status;
     double compiled = cli_now() - t0;
     snprintf(out->name, sizeof out->name, "%s", syl_program_name(p));

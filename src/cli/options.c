@@ -67,7 +67,8 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_DERIVE] = {"derive", 'n', "N", "derivation steps (default: the model's `derive`)",
                         CLI_INT, DERIVE(steps), 0, 1e6},
     [CLI_OPT_SEED] = {"seed", 0, "S", "random seed (default: the model's `seed`)", CLI_READ, .read = read_seed},
-    [CLI_OPT_SET] = {"set", 0, "NAME=VALUE", "override a `param` of the model (repeatable)", CLI_READ,
+    [CLI_OPT_SET] = {"set", 0, "NAME=VALUE", "give a `param`, a setting (angle, step...) or a grow\n"
+                     "directive's number (lambda...) this value; repeatable", CLI_READ,
                      .read = read_set},
     [CLI_OPT_THREADS] = {"threads", 'j', "N", "threads (default: all cores); the output never depends on N",
                          CLI_INT, DERIVE(threads), 1, 256},

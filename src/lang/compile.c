@@ -59,20 +59,6 @@ static void track_uses(Compiler *c, Stmt **all, int n, Model *top) {
     }
 }
 
-/* Every --set names a param of the model (a sibling's are the other model's). */
-static void check_overrides(Compiler *c) {
-    SylProgram *p = c->p;
-    for (int i = 0; i < c->opt->noverrides; i++) {
-        int id = namemap_get(&c->values, c->opt->overrides[i].name, -1);
-        if (c->opt->sibling) continue;
-        if (id < 0 || !c->vals[id].is_param) c->usage_error = true;
-        if (id < 0 || !c->vals[id].is_param)
-            diag_error(c->d, (SylLoc){0}, "--set %s: model '%s' has no parameter '%s'%s",
-                       c->opt->overrides[i].name, p->name, c->opt->overrides[i].name,
-                       id >= 0 ? " (it is a const; declare it with `param` to set it)" : "");
-    }
-}
-
 /* Settings and values, in the order written. */
 static void evaluate_all(Compiler *c, Stmt **all, int n) {
     SylLoc seen[16] = {{0}};
@@ -145,6 +131,7 @@ static void compile_rules(Compiler *c, Stmt **all, int n, Model *model) {
             cc_split(c, &s->items, &ms);
             Scope none = {0};
             p->axiom.loc = s->loc;
+            cc_warn_words(c, &s->items);
             cc_successor(c, &ms, &none, &p->axiom, "the axiom");
         }
     }
@@ -187,8 +174,10 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
     set_defaults(c, model);
     for (int i = 0; i < n; i++) cc_declare(c, all[i], i < top->n);
     track_uses(c, all, n, top);
-    check_overrides(c);
+    cc_localise_overrides(c);
+    cc_check_overrides(c);
     evaluate_all(c, all, n);
+    cc_apply_overrides(c);
     for (int i = 0; i < p->nfns; i++) cc_function(c, i);
     bool considered[MAX_SYMBOLS] = {false};
     bool consider = read_skips(c, all, n, considered);
@@ -198,7 +187,6 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
     if (consider) apply_consider(c, considered);
     for (int t = 0; t < TABLE_COUNT; t++) cc_build_table(c, &p->tables[t]);
     mark_queries(c);
-    if (c->opt->lint && !c->d->errors) cc_lint(c);
 }
 
 /* ---- entry points ---- */
@@ -305,9 +293,12 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         }
         p->noverrides = opt->noverrides;
     }
+    p->sibling = opt->sibling;
     Arena *tmp = &g->tmp;
     Diag d = {.out = opt->diag, .src = &p->src};
-    Compiler c = {.p = p, .d = &d, .tmp = tmp, .opt = opt};
+    /* a sibling's warnings were its file's, reported with the model it serves: once */
+    int warn = opt->sibling ? 0 : opt->lint ? SYL_WARN_MISTAKES | SYL_WARN_DRAWS : opt->warn;
+    Compiler c = {.p = p, .d = &d, .tmp = tmp, .opt = opt, .warn = warn};
     namemap_init(&c.values, tmp);
     namemap_init(&c.fns, tmp);
     namemap_init(&c.curves, tmp);
@@ -316,6 +307,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
     FileAst ast;
     *status = SYL_OK;
     if (syl_parse(&p->src, tmp, &d, &ast) == 0) {
+        c.ast = &ast;
         Model *m = find_model(&ast, opt->model);
         Model *scene = find_scene(&ast);
         if (!m && opt->model) {
@@ -342,6 +334,9 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             }
             p->first_model = m == find_model(&ast, NULL);
         }
+        /* after the directives, whose (expr) values use params too */
+        if (opt->lint && !d.errors && (m || scene)) cc_lint(&c);
+        if (c.warn && !d.errors && (m || scene)) cc_warn(&c);
     }
     arena_free(tmp);
     g->p = NULL;
@@ -374,9 +369,10 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
     /* What the language leaves to others (grow and scene directives) is checked by the
      * caller's hook, once the program is whole: a sibling model it compiles is a compile of
      * its own, not one nested in this. */
-    if (p && opt && opt->validate && opt->validate(opt->validate_user, p, opt->diag)) {
+    int invalid = p && opt && opt->validate ? opt->validate(opt->validate_user, p, opt->diag) : 0;
+    if (invalid) {
         syl_program_free(p);
-        *status = SYL_EMODEL;
+        *status = invalid < 0 ? SYL_EUSAGE : SYL_EMODEL;
         return NULL;
     }
     return p;

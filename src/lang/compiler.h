@@ -58,6 +58,8 @@ typedef struct Compiler {
     bool *sym_used;  /* per symbol: appears in an axiom or a rule */
     int depth;       /* of cc_fold's recursion, through nested function compiles too */
     bool too_deep;   /* that was reported */
+    int warn;        /* SYL_WARN_*: which warnings to report (all with lint) */
+    const FileAst *ast; /* the whole file: its models' names qualify --set names */
 } Compiler;
 
 /* How deep cc_fold (and so code generation) may recurse: the parser bounds nesting, but a
@@ -74,6 +76,17 @@ void cc_function(Compiler *c, int fn);
 /* declare.c */
 void cc_declare(Compiler *c, Stmt *s, bool top); /* top: outside any model */
 void cc_evaluate(Compiler *c, Stmt *s);            /* a const, param or curve, in the order written */
+
+/* overrides.c: --set */
+void cc_localise_overrides(Compiler *c);
+const SylOverride *cc_find_override(Compiler *c, const char *name); /* the last one given wins */
+void cc_check_overrides(Compiler *c);  /* every name reaches something, before evaluation */
+void cc_apply_overrides(Compiler *c);  /* settings, once the model's own are read */
+
+/* settings.c: a setting set by --set. -1: no setting of that name; 0: it failed (reported);
+ * 1: stored. */
+int cc_setting_override(Compiler *c, const char *name, double v, const char *typed);
+int cc_setting_names(const char **out, int max); /* the names --set reaches, for suggestions */
 
 /* rules.c */
 static inline bool cc_is_bracket(int sym) { return sym == SYM_OPEN || sym == SYM_CLOSE; }
@@ -97,5 +110,10 @@ void cc_split(Compiler *c, const Items *items, Mods *out);
 
 /* lint.c */
 void cc_lint(Compiler *c);
+/* The warnings of mistakes (c->warn), also printed by the commands that derive. */
+void cc_warn(Compiler *c);
+void cc_warn_words(Compiler *c, const Items *items); /* "did you mean", in a successor or the axiom */
+/* The closest declared module to word (NULL: none close), for messages. */
+const char *cc_near_module(Compiler *c, const char *word);
 
 #endif

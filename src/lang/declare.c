@@ -76,12 +76,6 @@ void cc_declare(Compiler *c, Stmt *s, bool top) {
     }
 }
 
-static const SylOverride *find_override(Compiler *c, const char *name) {
-    for (int i = c->opt->noverrides - 1; i >= 0; i--) /* the last one given wins */
-        if (!strcmp(c->opt->overrides[i].name, name)) return &c->opt->overrides[i];
-    return NULL;
-}
-
 /* Values, in the order written: a const may use the ones before it. */
 void cc_evaluate(Compiler *c, Stmt *s) {
     SylProgram *p = c->p;
@@ -91,7 +85,7 @@ void cc_evaluate(Compiler *c, Stmt *s) {
             c->vals[id].loc.first_column != s->loc.first_column)
             return; /* a duplicate, already reported */
         Value *v = &c->vals[id];
-        const SylOverride *o = s->kind == ST_PARAM ? find_override(c, s->name) : NULL;
+        const SylOverride *o = s->kind == ST_PARAM ? cc_find_override(c, s->name) : NULL;
         double x = 0;
         bool ok = cc_const(c, s->value, &x);
         if (o) x = o->value, ok = true;

@@ -41,6 +41,15 @@ void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const 
     Diag d = {.out = out, .src = &p->src};
     diag_error(&d, ((SylLoc){line, col, line, col}), "%s", msg);
 }
+void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    Diag d = {.out = out, .src = &p->src};
+    diag_warning(&d, ((SylLoc){line, col, line, col}), "%s", msg);
+}
 int syl_program_steps(const SylProgram *p) { return p->derive; }
 uint64_t syl_program_seed(const SylProgram *p) { return p->seed; }
 int syl_program_symbol_count(const SylProgram *p) { return p->nsyms; }

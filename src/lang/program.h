@@ -166,6 +166,10 @@ struct SylProgram {
     bool uses_env;          /* ?E appears: the environment answers it after every step */
     SylOverride *overrides; /* the --set values it was compiled with, for its file's other models */
     int noverrides;
+    const char **set_local; /* per --set: the name within this model ("Birch.lambda" in Birch:
+                               "lambda"), NULL when meant for another model (lang/overrides.c) */
+    bool sibling;           /* compiled for another model of the file: --set names it lacks are
+                               not errors */
     Arena arena;
     Source src;
     char *text; /* owned copy of the source */
@@ -205,6 +209,10 @@ struct SylProgram {
     bool backward;
     int32_t direction_when;
 };
+
+/* A warning about p's source at line:col, as syl_program_error reports an error. */
+void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
 
 /* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */
 static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {

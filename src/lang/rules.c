@@ -136,11 +136,21 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     cc_split(c, &s->rule.newleft, &newleft);
     cc_split(c, &s->rule.newright, &newright);
     cc_split(c, &s->rule.succ, &succ);
+    cc_warn_words(c, &s->rule.succ);
     out->loc = s->rule.loc;
     out->line = s->rule.loc.first_line;
     out->cond = out->weight = -1;
     if (pred.n != 1 || cc_is_bracket(pred.v[0].sym)) {
-        diag_error(c->d, s->rule.loc, "a predecessor is one module (write contexts with < and >)");
+        const Item *w = s->rule.pred.n == 1 && s->rule.pred.v[0].kind == IT_WORD ? &s->rule.pred.v[0] : NULL;
+        const char *near = w ? cc_near_module(c, w->text) : NULL;
+        if (near) /* Leef beside a declared Leaf */
+            diag_error(c->d, s->rule.loc, "'%s' is not a declared module (did you mean '%s'?)", w->text, near);
+        else if (w)
+            diag_error(c->d, s->rule.loc,
+                       "'%s' is not a declared module: declare it with `module %s`, or write one module "
+                       "(a predecessor is one; contexts go with < and >)",
+                       w->text, w->text);
+        else diag_error(c->d, s->rule.loc, "a predecessor is one module (write contexts with < and >)");
         return;
     }
     const char *names[MAX_LOCALS];

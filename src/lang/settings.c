@@ -27,6 +27,9 @@ static const SettingDef settings[] = {
     {"direction", -1, 0, 0, false, 1, false},    /* forward or backward [when EXPR]: direction() */
 };
 
+static bool in_range(Compiler *c, const SettingDef *def, double v, SylLoc loc, const char *typed);
+static void store(Compiler *c, const SettingDef *def, int block, double v);
+
 /* `direction forward|backward [when EXPR]`, EXPR over `step` and the model's values. */
 static void direction(Compiler *c, Stmt *s) {
     SylProgram *p = c->p;
@@ -103,21 +106,67 @@ void cc_setting(Compiler *c, Stmt *s, SylLoc *seen) {
         for (int k = 0; k < 4; k++) p->tropism[k] = v[k];
         return;
     }
-    if (v[0] < def->min || v[0] > def->max) {
-        diag_error(c->d, s->args.v[0]->loc, "'%s' %.15g is out of range (%s %.17g)", s->name, v[0],
-                   v[0] > def->max ? "at most" : "at least", v[0] > def->max ? def->max : def->min);
-        return;
+    if (!in_range(c, def, v[0], s->args.v[0]->loc, NULL)) return;
+    store(c, def, s->block, v[0]);
+}
+
+/* A value of def within its range, or an error at loc (typed: the --set that gave it). */
+static bool in_range(Compiler *c, const SettingDef *def, double v, SylLoc loc, const char *typed) {
+    char set[128] = "";
+    if (typed) snprintf(set, sizeof set, "--set %s=%.15g: ", typed, v);
+    if (v < def->min || v > def->max) {
+        diag_error(c->d, loc, "%s'%s' %.15g is out of range (%s %.17g)", set, def->name, v,
+                   v > def->max ? "at most" : "at least", v > def->max ? def->max : def->min);
+        return false;
     }
-    if (def->integer && v[0] != floor(v[0])) {
-        diag_error(c->d, s->args.v[0]->loc, "'%s' must be %s from %.15g to %.17g", s->name,
-                   def->integer ? "a whole number" : "a number", def->min, def->max);
-        return;
+    if (def->integer && v != floor(v)) {
+        diag_error(c->d, loc, "%s'%s' must be a whole number from %.15g to %.17g", set, def->name, def->min,
+                   def->max);
+        return false;
     }
-    if (!strcmp(s->name, "derive")) p->derive = (int)v[0];
-    else if (!strcmp(s->name, "angle")) p->angle = v[0];
-    else if (!strcmp(s->name, "step")) p->step = v[0];
-    else if (!strcmp(s->name, "width")) p->width = v[0];
-    else if (!strcmp(s->name, "seed")) p->seed = (uint64_t)v[0];
-    else if (!strcmp(s->name, "widthfactor")) p->widthfactor = v[0];
-    else p->tables[s->block == BLOCK_DECOMPOSE ? TABLE_DECOMPOSE : TABLE_INTERPRET].maxdepth = (int)v[0];
+    return true;
+}
+
+static void store(Compiler *c, const SettingDef *def, int block, double v) {
+    SylProgram *p = c->p;
+    const char *name = def->name;
+    if (!strcmp(name, "derive")) p->derive = (int)v;
+    else if (!strcmp(name, "angle")) p->angle = v;
+    else if (!strcmp(name, "step")) p->step = v;
+    else if (!strcmp(name, "width")) p->width = v;
+    else if (!strcmp(name, "seed")) p->seed = (uint64_t)v;
+    else if (!strcmp(name, "widthfactor")) p->widthfactor = v;
+    else p->tables[block == BLOCK_DECOMPOSE ? TABLE_DECOMPOSE : TABLE_INTERPRET].maxdepth = (int)v;
+}
+
+/* --set reaches a setting of one value by its name, a tropism component as tropism.1 to
+ * tropism.4 (x, y, z, elasticity: the order of the line) and a block's maxdepth as
+ * decompose.maxdepth or interpret.maxdepth; colours it does not reach. */
+static const char *const set_names[] = {"derive", "angle", "step", "width", "seed", "widthfactor",
+                                        "tropism.1", "tropism.2", "tropism.3", "tropism.4",
+                                        "decompose.maxdepth", "interpret.maxdepth"};
+enum { NSET_NAMES = sizeof set_names / sizeof *set_names };
+
+int cc_setting_names(const char **out, int max) {
+    int n = 0;
+    for (; n < NSET_NAMES && n < max; n++) out[n] = set_names[n];
+    return n;
+}
+
+int cc_setting_override(Compiler *c, const char *name, double v, const char *typed) {
+    int n = (int)(sizeof settings / sizeof *settings), i = 0;
+    if (!strncmp(name, "tropism.", 8) && name[8] >= '1' && name[8] <= '4' && !name[9]) {
+        while (strcmp(settings[i].name, "tropism")) i++;
+        if (!in_range(c, &settings[i], v, (SylLoc){0}, typed)) return 0;
+        c->p->tropism[name[8] - '1'] = v;
+        return 1;
+    }
+    int block = BLOCK_PRODUCE;
+    if (!strcmp(name, "decompose.maxdepth")) block = BLOCK_DECOMPOSE, name = "maxdepth";
+    else if (!strcmp(name, "interpret.maxdepth")) block = BLOCK_INTERPRET, name = "maxdepth";
+    while (i < n && strcmp(settings[i].name, name)) i++;
+    if (i == n || settings[i].nargs != 1 || (settings[i].block >= 0) != (block != BLOCK_PRODUCE)) return -1;
+    if (!in_range(c, &settings[i], v, (SylLoc){0}, typed)) return 0;
+    store(c, &settings[i], block, v);
+    return 1;
 }

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/program.h"
 #include "scene/open.h"
 #include "util/arena.h"
 #include "util/namemap.h"
@@ -28,19 +29,6 @@ typedef struct Placed {
 } Placed;
 
 /* path relative to the scene file's directory (free it). */
-static char *resolve(const SylProgram *p, const char *file) {
-    if (file[0] == '/') return strdup(file);
-    char *scene = strdup(syl_program_path(p));
-    if (!scene) return NULL;
-    const char *dir = dirname(scene);
-    size_t n = strlen(dir) + strlen(file) + 2;
-    char *out = malloc(n);
-    if (out && !strcmp(dir, ".")) snprintf(out, n, "%s", file); /* messages name it as written */
-    else if (out) snprintf(out, n, "%s/%s", dir, file);
-    free(scene);
-    return out;
-}
-
 /* Each distinct model of a scene is compiled once, and a grow model's directives read once,
  * however many plants it has: compiling a model reads the whole file. */
 typedef struct SceneModel {
@@ -63,15 +51,16 @@ static void models_free(SceneModels *m) {
 
 /* Compile a plant's model: one of this file, or "file.syl[:SceneModel]" of another. */
 static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE *diag, int *status) {
-    SylCompileOptions copt = {.diag = diag};
+    /* the --set values reach every plant; a name one lacks is another's (Birch.lambda) */
+    SylCompileOptions copt = {.diag = diag, .overrides = p->overrides, .noverrides = p->noverrides, .sibling = 1};
     if (pl->model) {
-        copt.sibling = 1; /* the file and its scene were checked when p was compiled: no hook */
+        /* the file and its scene were checked when p was compiled: no hook */
         size_t len = 0;
         const char *text = syl_program_source(p, &len);
         copt.model = pl->model;
         return syl_compile(syl_program_path(p), text, len, &copt, status);
     }
-    char *path = resolve(p, pl->file);
+    char *path = scene_spec_path(p, pl->file);
     if (!path) {
         *status = SYL_ELIMIT;
         return NULL;
@@ -193,7 +182,7 @@ static SylMesh *obstacle_mesh(const Obstacles *o) {
 static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, FILE *diag) {
     for (int i = 0; i < S->nobstacles; i++) {
         const SceneObstacle *o = &S->obstacles[i];
-        char *path = resolve(p, o->file);
+        char *path = scene_spec_path(p, o->file);
         if (!path) return SYL_ELIMIT;
         int st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
         free(path);

@@ -7,6 +7,8 @@
  *   ground "terrain.obj" [at (x, y, z)] [scale S]    a terrain mesh; plants stand on it
  *   sun direction (x, y, z)                          towards the sun
  */
+#include <errno.h>
+#include <libgen.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -212,9 +214,46 @@ void scene_spec_free(SceneSpec *s) {
     memset(s, 0, sizeof *s);
 }
 
-int scene_spec_check(const SylProgram *p, FILE *diag) {
+char *scene_spec_path(const SylProgram *p, const char *file) {
+    if (file[0] == '/') return strdup(file);
+    char *scene = strdup(syl_program_path(p));
+    if (!scene) return NULL;
+    const char *dir = dirname(scene);
+    size_t n = strlen(dir) + strlen(file) + 2;
+    char *out = malloc(n);
+    if (out && !strcmp(dir, ".")) snprintf(out, n, "%s", file); /* messages name it as written */
+    else if (out) snprintf(out, n, "%s/%s", dir, file);
+    free(scene);
+    return out;
+}
+
+/* A file the scene names that cannot be read: a warning, since the commands that grow the
+ * scene fail on it (the file may yet be made, or the model derived on its own). */
+static void warn_unreadable(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
+    char *path = scene_spec_path(p, file);
+    if (!path) return;
+    char *colon = strrchr(path, ':'); /* "file.syl:Model" */
+    if (colon && colon > path && colon[1] && (!strrchr(path, '/') || colon > strrchr(path, '/'))) *colon = 0;
+    errno = 0;
+    FILE *f = fopen(path, "rb");
+    if (f && fgetc(f) == EOF && ferror(f)) {
+        fclose(f);
+        f = NULL;
+    }
+    if (!f) program_warning(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, strerror(errno));
+    else fclose(f);
+    free(path);
+}
+
+int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     SceneSpec s;
     int errors = scene_spec_read(p, &s, diag);
+    for (int i = 0; files && !errors && i < s.nobstacles; i++)
+        warn_unreadable(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
+                        s.obstacles[i].line, s.obstacles[i].col);
+    for (int i = 0; files && !errors && i < s.nplants; i++)
+        if (s.plants[i].file)
+            warn_unreadable(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
     scene_spec_free(&s);
     return errors;
 }
@@ -222,8 +261,9 @@ int scene_spec_check(const SylProgram *p, FILE *diag) {
 /* syl_compile's hook (grow.h): a grow block's directives and the scene's. The scene is checked with the file's first model only, so that checking every model of a
  * file (`sylva check`) reports it once. */
 int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
-    (void)user;
+    bool files = user && *(const int *)user;
     int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
-    if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag);
+    if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag, files);
+    /* negative: every error was of --set, a bad command line */
     return errors;
 }

@@ -41,8 +41,12 @@ typedef struct SceneSpec {
  * plants are checked against the models of the file. */
 int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag);
 void scene_spec_free(SceneSpec *s);
+/* A file the scene names (obstacle, ground, plant), relative to the scene's own file;
+ * malloc'd (NULL: out of memory). */
+char *scene_spec_path(const SylProgram *p, const char *file);
+
 /* Check p's scene block, as syl_grow_validate does with a file's first model. Returns the
  * number of errors reported. */
-int scene_spec_check(const SylProgram *p, FILE *diag);
+int scene_spec_check(const SylProgram *p, FILE *diag, bool files); /* files: warn about unreadable ones */
 
 #endif

@@ -15,6 +15,7 @@
 #include <string.h>
 
 #include "lang/program.h"
+#include "util/closest.h"
 #include "sylva/grow.h"
 #include "sylva/skeleton.h"
 
@@ -488,6 +489,114 @@ static void read_directive(Reader *r, const Directive *dir, const SylDirective *
     }
 }
 
+/* ---- --set: a directive's number by its key ("lambda"), or as DIRECTIVE.KEY where a key
+ * belongs to several ("buds.angle"); a bare value by the directive's name ("years"). Organ
+ * lines, words, directions and names are not reached. ---- */
+
+typedef struct SetKey {
+    const Directive *dir;
+    const Mode *mode; /* the key belongs to this mode only; NULL: to every mode */
+    const Key *key;
+} SetKey;
+
+/* Every key --set reaches, under both its names; returns how many (at most max). */
+static int set_keys(SetKey *out, int max) {
+    int n = 0;
+    for (int d = 0; d < NDIRECTIVES; d++) {
+        const Directive *dir = &directives[d];
+        if (dir->repeat) continue;
+        if (dir->value && n < max) out[n++] = (SetKey){dir, NULL, dir->value};
+        for (int k = 0; dir->keys && dir->keys[k].name && n < max; k++) out[n++] = (SetKey){dir, NULL, &dir->keys[k]};
+        for (int m = 0; dir->modes && dir->modes[m].word; m++)
+            for (int k = 0; dir->modes[m].keys && dir->modes[m].keys[k].name && n < max; k++)
+                out[n++] = (SetKey){dir, &dir->modes[m], &dir->modes[m].keys[k]};
+    }
+    return n;
+}
+
+static bool settable(const Key *k) { return k->type == V_NUM || k->type == V_INT || k->type == V_SEED || k->type == V_BOOL; }
+
+static bool is_param(const SylProgram *p, const char *name) {
+    for (int i = 0; i < p->nparams; i++)
+        if (!strcmp(p->params[i].name, name)) return true;
+    return false;
+}
+
+static void set_one(Reader *r, GrowParams *g, const char *typed, const char *name, double v) {
+    SetKey all[128], *hit = NULL;
+    int n = set_keys(all, 128), hits = 0;
+    char dotted[128];
+    for (int i = 0; i < n && !hit; i++) { /* buds.angle; years */
+        snprintf(dotted, sizeof dotted, "%s.%s", all[i].dir->name, all[i].key->name);
+        if (!strcmp(name, dotted) || (all[i].dir->value == all[i].key && !strcmp(name, all[i].key->name)))
+            hit = &all[i], hits = 1;
+    }
+    for (int i = 0; i < n && !hits; i++) /* lambda */
+        if (!strcmp(name, all[i].key->name)) hit = hit ? hit : &all[i], hits++;
+    hits = hits ? hits : 1;
+    if (!hit || !settable(hit->key)) {
+        if (r->p->sibling) return; /* a name of the model it was set for */
+        const char *names[256];
+        int k = 0;
+        for (int i = 0; i < r->p->nparams && k < 100; i++) names[k++] = r->p->params[i].name;
+        char buf[128][64];
+        for (int i = 0; i < n && k < 250; i++) {
+            if (!settable(all[i].key)) continue;
+            names[k++] = all[i].key->name;
+            snprintf(buf[i], sizeof buf[i], "%s.%s", all[i].dir->name, all[i].key->name);
+            names[k++] = buf[i];
+        }
+        char near[256];
+        int found = closest_list(name, names, k, near, sizeof near);
+        if (hit)
+            ERR(r, 0, 0, "--set %s: '%s' is not a number (write it in the block)", typed, name);
+        else
+            ERR(r, 0, 0, "--set %s: grow block '%s' has no parameter or directive '%s'%s%s%s", typed,
+                syl_program_name(r->p), name, found ? " (did you mean " : "", found ? near : "", found ? "?)" : "");
+        return;
+    }
+    if (hits > 1) { /* none today: kept so that a new key cannot make a name mean two things */
+        ERR(r, 0, 0, "--set %s: '%s' is a key of several directives: name one, as %s.%s", typed, name, hit->dir->name,
+            name);
+        return;
+    }
+    const Key *k = hit->key;
+    if (hit->mode && hit->dir->mode_off != NO_MODE && *(int *)((char *)g + hit->dir->mode_off) != hit->mode->value) {
+        const char *now = "?";
+        for (int m = 0; hit->dir->modes[m].word; m++)
+            if (*(int *)((char *)g + hit->dir->mode_off) == hit->dir->modes[m].value) now = hit->dir->modes[m].word;
+        ERR(r, 0, 0, "--set %s: '%s' is a key of '%s %s', and this block has '%s %s'", typed, k->name,
+            hit->dir->name, hit->mode->word, hit->dir->name, now);
+        return;
+    }
+    char *field = (char *)g + k->off;
+    if (k->type == V_BOOL) {
+        if (v != 0 && v != 1) {
+            ERR(r, 0, 0, "--set %s: '%s' is 1 (on) or 0 (off)", typed, k->name);
+            return;
+        }
+        *(bool *)field = v == 1;
+        return;
+    }
+    if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
+        ERR(r, 0, 0, "--set %s: '%s' expects %s from %g to %g, not %g", typed, k->name,
+            k->type != V_NUM ? "a whole number" : "a number", k->lo, k->hi, v);
+        return;
+    }
+    if (k->type == V_NUM) *(float *)field = (float)v;
+    else if (k->type == V_SEED) *(uint64_t *)field = (uint64_t)v;
+    else *(int *)field = (int)v;
+}
+
+/* In the order given, so that the last one wins; a param takes its own (lang/overrides.c). */
+static void apply_sets(Reader *r, GrowParams *g) {
+    const SylProgram *p = r->p;
+    for (int i = 0; i < p->noverrides; i++) {
+        const char *name = p->set_local ? p->set_local[i] : NULL;
+        if (name && !is_param(p, name)) set_one(r, g, p->overrides[i].name, name, p->overrides[i].value);
+    }
+}
+
 /* The shoot rule's model compiles, is an lsystem and rewrites `shoot`. */
 static void check_rule(Reader *r, const SylDirective *dirs, int n, GrowParams *g) {
     int line = 0, col = 0;
@@ -546,7 +655,7 @@ static void check_whole(Reader *r, const SylDirective *dirs, int n, GrowParams *
     if (g->rule[0]) check_rule(r, dirs, n, g);
 }
 
-int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
+static int read_all(const SylProgram *p, GrowParams *g, FILE *diag, int *set_errors) {
     grow_params_default(g);
     g->from = p;
     g->seed = syl_program_seed(p) ? syl_program_seed(p) : 1;
@@ -581,11 +690,36 @@ int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
         }
         read_directive(&r, &directives[k], d, g);
     }
+    int before = r.errors;
+    apply_sets(&r, g);
+    *set_errors = r.errors - before;
     check_whole(&r, dirs, n, g);
     return r.errors;
 }
 
+int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
+    int set_errors;
+    return read_all(p, g, diag, &set_errors);
+}
+
+/* What is statically sure to grow nothing: no year (shoots need light and room, which only
+ * growing tells). */
+static void warn_grows_nothing(const SylProgram *p, const GrowParams *g, FILE *diag) {
+    if (g->years) return;
+    int n = 0, line = 0, col = 0;
+    const SylDirective *dirs = syl_program_directives(p, &n);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(dirs[i].name, "years")) line = dirs[i].line, col = dirs[i].col;
+    const char *set = "";
+    for (int i = 0; i < p->noverrides; i++)
+        if (p->set_local[i] && !strcmp(p->set_local[i], "years")) line = col = 0, set = " by --set";
+    program_warning(p, diag, line, col, "grow block '%s' grows nothing: years is 0%s (the tree is its root)",
+                    syl_program_name(p), set);
+}
+
 int sot_check_grow(const SylProgram *p, FILE *diag) {
     GrowParams g;
-    return grow_params_read(p, &g, diag);
+    int set_errors, errors = read_all(p, &g, diag, &set_errors);
+    if (!errors) warn_grows_nothing(p, &g, diag);
+    return errors && errors == set_errors ? -errors : errors; /* only the command line's */
 }

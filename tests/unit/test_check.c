@@ -2,6 +2,7 @@
 #include <stdbool.h>
 
 #include "unit.h"
+#include "util/closest.h"
 
 /* Compile text; it must fail with SYL_EMODEL and report `where` (a "test.syl:L:C: error:"
  * prefix) followed on the same line by what. */
@@ -99,7 +100,7 @@ static void module_arity(void **state) {
     expect_error("lsystem T {\n  module A(x)\n  module A(x, y)\n  axiom A(1)\n}\n", "test.syl:3:10: error: ",
                  "module 'A' was declared with 1 parameter");
     /* the declaration is honoured where the module is used correctly */
-    expect_clean("lsystem T {\n  module Apex(a, b)\n  axiom Apex(1, 2)\n  Apex(a, b) -> Apex(b, a)\n}\n");
+    expect_clean("lsystem T {\n  module Apex(a, b)\n  axiom F Apex(1, 2)\n  Apex(a, b) -> Apex(b, a)\n}\n");
 }
 
 static void const_used_before_defined(void **state) {
@@ -163,10 +164,10 @@ static void unbalanced_axiom(void **state) {
 }
 
 static void predecessor_is_one_module(void **state) {
-    expect_error("lsystem T {\n  axiom AB\n  AB -> C\n}\n", "test.syl:3:3: error: ", "a predecessor is one module");
+    expect_error("lsystem T {\n  axiom AB\n  AB -> C\n}\n", "test.syl:3:3: error: ", "'AB' is not a declared module: declare it");
     expect_error("lsystem T {\n  axiom A\n  [ -> C\n}\n", "test.syl:3:3: error: ", "a predecessor is one module");
     /* a declared name is one module */
-    expect_clean("lsystem T {\n  module AB\n  axiom AB\n  AB -> C\n}\n");
+    expect_clean("lsystem T {\n  module AB\n  axiom F AB\n  AB -> C\n}\n");
 }
 
 static void left_context_without_branches(void **state) {
@@ -220,15 +221,47 @@ static void set_parameters(void **state) {
     /* an unknown name is a bad command line: the model itself is fine */
     SylOverride bad = {"nosuch", 1};
     assert_null(compile_with(text, &bad, 1, &diag, &st));
-    assert_contains(diag, "test.syl: error: --set nosuch: model 'T' has no parameter 'nosuch'");
+    assert_contains(diag, "test.syl: error: --set nosuch: model 'T' has no parameter or setting 'nosuch'");
     free(diag);
     assert_int_equal(st, SYL_EUSAGE);
 
     SylOverride konst = {"k", 1};
     assert_null(compile_with(text, &konst, 1, &diag, &st));
-    assert_contains(diag, "has no parameter 'k' (it is a const");
+    assert_contains(diag, "has no parameter or setting 'k' (it is a const");
     free(diag);
     assert_int_equal(st, SYL_EUSAGE);
+
+    /* a setting: over the file's line, and over the default when the file has none */
+    const char *set = "lsystem T {\n  angle 90\n  axiom F\n}\n";
+    SylOverride angles[] = {{"angle", 30}, {"step", 2.5}, {"T.width", 0.3}};
+    p = compile_with(set, angles, 3, &diag, &st);
+    assert_non_null(p);
+    assert_true(syl_program_setting(p, "angle") == 30 && syl_program_setting(p, "step") == 2.5);
+    assert_true(syl_program_setting(p, "width") == 0.3);
+    syl_program_free(p);
+    free(diag);
+    SylOverride far = {"angle", 1e10}; /* the file's range holds */
+    assert_null(compile_with(set, &far, 1, &diag, &st));
+    assert_contains(diag, "--set angle=10000000000: 'angle' 10000000000 is out of range (at most 1000000000)");
+    free(diag);
+    assert_int_equal(st, SYL_EUSAGE);
+}
+
+/* Close names: the edit distance counts a swap of neighbours as one edit. */
+static void close_names(void **state) {
+    assert_int_equal(closest_distance("Leef", "Leaf", 2), 1);
+    assert_int_equal(closest_distance("lamda", "lambda", 2), 1);
+    assert_int_equal(closest_distance("agnle", "angle", 2), 1);
+    assert_int_equal(closest_distance("kitten", "sitting", 5), 3);
+    assert_int_equal(closest_distance("kitten", "sitting", 2), 3); /* stops at limit + 1 */
+    assert_true(closest_near("angel", "angle"));
+    assert_false(closest_near("q", "k"));    /* two short names are always close: none */
+    assert_false(closest_near("Leaf", "Leaf")); /* the same name is no suggestion */
+    assert_false(closest_near("Bud", "Leaf"));
+    char buf[64];
+    const char *names[] = {"step", "steps", "angle"};
+    assert_int_equal(closest_list("stpes", names, 3, buf, sizeof buf), 2);
+    assert_string_equal(buf, "'step' or 'steps'");
 }
 
 /* ---- warnings ---- */
@@ -253,9 +286,9 @@ static void warning_shadowed_rule(void **state) {
     expect_warning("lsystem T {\n  axiom A(1)\n  A(x) -> B\n  A(y) : y > 0 -> C\n}\n", "test.syl:4:3: warning: ",
                    "the rule at line 3 always applies first");
     /* a conditional, a context-sensitive or a weighted rule shadows nothing */
-    expect_clean("lsystem T {\n  axiom A(1)\n  A(x) : x > 0 -> B\n  A(x) -> C\n}\n");
-    expect_clean("lsystem T {\n  axiom BA\n  B < A -> B\n  A -> C\n}\n");
-    expect_clean("lsystem T {\n  axiom A\n  A -> B : 1\n  A -> C : 2\n}\n");
+    expect_clean("lsystem T {\n  axiom F A(1)\n  A(x) : x > 0 -> B\n  A(x) -> C\n}\n");
+    expect_clean("lsystem T {\n  axiom F BA\n  B < A -> B\n  A -> C\n}\n");
+    expect_clean("lsystem T {\n  axiom F A\n  A -> B : 1\n  A -> C : 2\n}\n");
     /* an always-true condition is no condition */
     expect_warning("lsystem T {\n  axiom A\n  A : 2 > 1 -> B\n  A -> C\n}\n", "test.syl:4:3: warning: ",
                    "the rule at line 3 always applies first");
@@ -269,7 +302,7 @@ static void warning_unused(void **state) {
                        "  param p = 2\n"
                        "  fn f(x) = x\n"
                        "  curve c = (0, 0), (1, 1)\n"
-                       "  axiom A\n"
+                       "  axiom F A\n"
                        "}\n";
     expect_warning(text, "test.syl:3:10: warning: ", "module 'Q' is declared but never used");
     expect_warning(text, "test.syl:4:9: warning: ", "const 'k' is never used");
@@ -285,7 +318,7 @@ static void warning_unused(void **state) {
     syl_program_free(p);
     /* used ones are not reported */
     expect_clean("lsystem T {\n  module Q\n  const k = 1\n  fn f(x) = x\n  curve c = (0, 0), (1, 1)\n"
-                 "  axiom Q(f(k) + c(0.5))\n}\n");
+                 "  axiom F Q(f(k) + c(0.5))\n}\n");
 }
 
 static void warning_zero_weight(void **state) {
@@ -323,6 +356,7 @@ int main(void) {
         cmocka_unit_test(unbalanced_brackets),
         cmocka_unit_test(unbalanced_axiom),
         cmocka_unit_test(predecessor_is_one_module),
+        cmocka_unit_test(close_names),
         cmocka_unit_test(left_context_without_branches),
         cmocka_unit_test(pattern_parameters_are_names),
         cmocka_unit_test(settings_and_axiom),
