@@ -10,7 +10,6 @@
 #include <unistd.h>
 
 #include "lang/builtins.h"
-#include "util/array.h"
 #include "util/budget.h"
 #include "lsys/derive.h"
 #include "lsys/rewrite.h"
@@ -83,12 +82,12 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
 
 static void engine_free(Engine *e) {
     if (e->queries.release) e->queries.release(e->queries.user);
-    free(e->left);
-    free(e->right);
-    free(e->pair);
-    free(e->stack);
-    free(e->lcode);
-    free(e->rcode);
+    ms_scratch_free(e->left, e->cap_left, sizeof *e->left);
+    ms_scratch_free(e->right, e->cap_right, sizeof *e->right);
+    ms_scratch_free(e->pair, e->cap_pair, sizeof *e->pair);
+    ms_scratch_free(e->stack, e->cap_stack, sizeof *e->stack);
+    ms_scratch_free(e->lcode, e->cap_lcode, sizeof *e->lcode);
+    ms_scratch_free(e->rcode, e->cap_rcode, sizeof *e->rcode);
 }
 
 /* Rewrite `in` with table t into `out` (emptied first). Returns a SYL_* status. */
@@ -118,24 +117,24 @@ static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylSt
          * rules of the fast kind compare neighbour codes only */
         bool idx = t->ctx_index;
         if (t->ctx_branches) {
-            if (!array_reserve(&e->pair, &e->cap_pair, n, sizeof *e->pair)) return SYL_ELIMIT;
+            if (!ms_scratch_reserve(&e->pair, &e->cap_pair, n, sizeof *e->pair)) return SYL_ELIMIT;
             match_pairs(in->code, n, e->pair);
             v.pair = e->pair;
         }
         if ((t->ctx_left || t->ctx_right) &&
-            !array_reserve(&e->stack, &e->cap_stack, 2 * n + 2, sizeof *e->stack))
+            !ms_scratch_reserve(&e->stack, &e->cap_stack, 2 * n + 2, sizeof *e->stack))
             return SYL_ELIMIT;
         if (t->ctx_left) {
-            if (!array_reserve(&e->lcode, &e->cap_lcode, n, sizeof *e->lcode) ||
-                (idx && !array_reserve(&e->left, &e->cap_left, n, sizeof *e->left)))
+            if (!ms_scratch_reserve(&e->lcode, &e->cap_lcode, n, sizeof *e->lcode) ||
+                (idx && !ms_scratch_reserve(&e->left, &e->cap_left, n, sizeof *e->left)))
                 return SYL_ELIMIT;
             match_link_left(in->code, n, p->skip, idx ? e->left : NULL, e->lcode, e->stack);
             v.left = idx ? e->left : NULL;
             v.lcode = e->lcode;
         }
         if (t->ctx_right) {
-            if (!array_reserve(&e->rcode, &e->cap_rcode, n, sizeof *e->rcode) ||
-                (idx && !array_reserve(&e->right, &e->cap_right, n, sizeof *e->right)))
+            if (!ms_scratch_reserve(&e->rcode, &e->cap_rcode, n, sizeof *e->rcode) ||
+                (idx && !ms_scratch_reserve(&e->right, &e->cap_right, n, sizeof *e->right)))
                 return SYL_ELIMIT;
             match_link_right(in->code, n, p->skip, idx ? e->right : NULL, e->rcode, e->stack);
             v.right = idx ? e->right : NULL;

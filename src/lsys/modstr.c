@@ -52,6 +52,21 @@ static void *grow_big(void *old, size_t old_bytes, size_t used, size_t bytes) {
     return p;
 }
 
+bool ms_scratch_reserve(void *arrp, size_t *cap, size_t need, size_t elem) {
+    void **arr = arrp;
+    if (need <= *cap) return true;
+    if (!elem || need > PTRDIFF_MAX / elem / 2) return false;
+    size_t c = *cap ? *cap : 1024;
+    while (c < need) c *= 2;
+    void *p = grow_big(*arr, *cap * elem, 0, c * elem);
+    if (!p) return false;
+    *arr = p;
+    *cap = c;
+    return true;
+}
+
+void ms_scratch_free(void *arr, size_t cap, size_t elem) { free_big(arr, cap * elem); }
+
 static int charge(SylString *s, int64_t delta) {
     if (!s->mem) return SYL_OK;
     if (delta >= 0 ? !budget_charge(s->mem, (uint64_t)delta) : (budget_release(s->mem, (uint64_t)-delta), false))
