@@ -64,6 +64,7 @@ typedef struct Rule {
     int nsucc;
     Slot *slots;              /* one per successor parameter, in order */
     int nslots;
+    bool vm_free;             /* no slot runs the VM: emitted without a random stream */
     SylLoc loc;               /* the predecessor */
     int line;
     const char **names;       /* of the locals, for the disassembler */
@@ -98,6 +99,7 @@ typedef struct RuleTable {
     bool ctx_index;      /* some linked context binds parameters or spans several modules */
     bool emits_params;   /* some successor has parameters */
     bool all_plain;      /* every rule is plain: no matching, no choice */
+    bool all_fast;       /* every predecessor's rules are plain or FastRules */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */

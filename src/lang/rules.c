@@ -122,6 +122,9 @@ void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *wh
         }
     }
     if (depth) diag_error(c->d, open[(depth - 1) & 63], "a '[' in %s is never closed", what);
+    r->vm_free = true;
+    for (int k = 0; k < r->nslots; k++)
+        if (r->slots[k].kind == SLOT_CODE) r->vm_free = false;
 }
 
 void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
@@ -210,6 +213,7 @@ void cc_build_table(Compiler *c, RuleTable *t) {
         if (!r->nleft && !r->nright && r->cond < 0 && !r->weighted) d->plain = r;
         else t->all_plain = false;
     }
+    t->all_fast = true;
     for (int code = 0; code < CODE_COUNT; code++) {
         Dispatch *d = &t->dispatch[code];
         if (!d->count || d->plain) continue;
@@ -220,7 +224,10 @@ void cc_build_table(Compiler *c, RuleTable *t) {
                    (!r->nleft || !CODE_ARITY(r->left[0].code)) &&
                    (!r->nright || (r->right[0].kind == PAT_MODULE && !CODE_ARITY(r->right[0].code)));
         }
-        if (!fast) continue;
+        if (!fast) {
+            t->all_fast = false;
+            continue;
+        }
         FastRule *f = arena_alloc(&p->arena, sizeof *f * d->count);
         for (uint32_t k = 0; k < d->count; k++) {
             const Rule *r = &t->rules[t->order[d->first + k]];

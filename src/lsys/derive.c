@@ -160,7 +160,7 @@ static int rewrite_pass(Engine *e, int table, uint64_t key, SylString *in, SylSt
         size_t hi = k == nt - 1 ? in->n : in->n / (size_t)nt * (size_t)(k + 1);
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
-                          .codes_only = !in->np && !t->emits_params && t->all_plain};
+                          .codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast)};
         parts[k].mem = e->mem;
         parts[k].max_modules = e->max_modules;
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(in->code[i]);
