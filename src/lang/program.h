@@ -83,6 +83,9 @@ typedef struct FastRule {
 typedef struct Dispatch {
     const struct Rule *plain; /* or NULL */
     const FastRule *fast;     /* count entries, or NULL */
+    /* with fast: the rule for each pair of neighbour classes (RuleTable.ctx_class), left
+     * class * RuleTable.nclass + right class; NULL when there are too many classes */
+    const struct Rule *const *pick;
     uint32_t first;           /* index into RuleTable.order */
     uint32_t count;
 } Dispatch;
@@ -100,6 +103,8 @@ typedef struct RuleTable {
     bool emits_params;   /* some successor has parameters */
     bool all_plain;      /* every rule is plain: no matching, no choice */
     bool all_fast;       /* every predecessor's rules are plain or FastRules */
+    uint8_t *ctx_class;  /* per code: 1.. for the codes fast rules' contexts name, 0 others */
+    int nclass;          /* classes including 0; 0 when the codes are too many for pick */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */

@@ -171,6 +171,40 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     cc_successor(c, &succ, &scope, out, "this successor");
 }
 
+/* Fast rules are looked up, not scanned: each code a fast rule's context names gets a class
+ * 1..K (0: every other code, and no neighbour), and each fast predecessor a table of the
+ * first of its rules that matches each pair of neighbour classes. */
+enum { MAX_CLASSES = 16 };
+static void build_pick(SylProgram *p, RuleTable *t) {
+    int n = 1;
+    t->ctx_class = arena_alloc(&p->arena, CODE_COUNT);
+    for (int i = 0; i < t->nrules; i++) {
+        const Rule *r = &t->rules[i];
+        if (!t->dispatch[r->pred].fast) continue;
+        uint16_t side[2] = {r->nleft ? r->left[0].code : CODE_ANY, r->nright ? r->right[0].code : CODE_ANY};
+        for (int k = 0; k < 2; k++)
+            if (side[k] != CODE_ANY && !t->ctx_class[side[k]]) {
+                if (n == MAX_CLASSES) return; /* too many: the rules are scanned (nclass 0) */
+                t->ctx_class[side[k]] = (uint8_t)n++;
+            }
+    }
+    t->nclass = n;
+    for (int code = 0; code < CODE_COUNT; code++) {
+        Dispatch *d = &t->dispatch[code];
+        if (!d->fast) continue;
+        const Rule **pick = arena_alloc(&p->arena, sizeof *pick * (size_t)(n * n));
+        for (int lc = 0; lc < n; lc++)
+            for (int rc = 0; rc < n; rc++)
+                for (uint32_t k = 0; k < d->count && !pick[lc * n + rc]; k++) {
+                    const FastRule *f = &d->fast[k];
+                    if ((f->left == CODE_ANY || t->ctx_class[f->left] == lc) &&
+                        (f->right == CODE_ANY || t->ctx_class[f->right] == rc))
+                        pick[lc * n + rc] = f->rule;
+                }
+        d->pick = pick;
+    }
+}
+
 void cc_build_table(Compiler *c, RuleTable *t) {
     SylProgram *p = c->p;
     if (!t->nrules) return;
@@ -237,4 +271,5 @@ void cc_build_table(Compiler *c, RuleTable *t) {
         }
         d->fast = f;
     }
+    build_pick(p, t);
 }

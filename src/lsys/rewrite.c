@@ -143,9 +143,11 @@ static bool over_limit(Work *w, size_t pos, int reserve_status) {
  * instead of per module, and the write cursors stay in registers in between. */
 enum { BATCH = 64 };
 
-/* The first of d's fast rules whose neighbour codes match, or NULL. Which rule matches
- * depends on the data: a mask of all of them costs no mispredicted branch per rule. */
-static inline const Rule *fast_pick(const Dispatch *d, uint16_t lc, uint16_t rc) {
+/* The first of d's fast rules whose neighbour codes match, or NULL: looked up by the
+ * neighbours' classes, else (too many classes) a mask of all the rules, which costs no
+ * mispredicted branch per rule (which rule matches depends on the data). */
+static inline const Rule *fast_pick(const RuleTable *t, const Dispatch *d, uint16_t lc, uint16_t rc) {
+    if (d->pick) return d->pick[t->ctx_class[lc] * t->nclass + t->ctx_class[rc]];
     const FastRule *f = d->fast;
     for (uint32_t at = 0; at < d->count; at += 32) {
         uint32_t n = d->count - at < 32 ? d->count - at : 32, hit = 0;
@@ -179,7 +181,7 @@ static void run_chunk_codes(Work *w) {
             uint16_t c = code[i];
             const Dispatch *d = &t->dispatch[c];
             const Rule *r = d->plain;
-            if (!r && d->fast) r = fast_pick(d, lcode_at(in, i), rcode_at(in, i));
+            if (!r && d->fast) r = fast_pick(t, d, lcode_at(in, i), rcode_at(in, i));
             if (r) {
                 put_codes(oc, r);
                 oc += r->nsucc;
@@ -245,7 +247,7 @@ static void run_chunk(Work *w) {
             const Rule *r = d->plain;
             const double *x = args;
             if (!r) {
-                if (d->fast) r = fast_pick(d, lcode_at(in, i), rcode_at(in, i));
+                if (d->fast) r = fast_pick(t, d, lcode_at(in, i), rcode_at(in, i));
                 else if (d->count) { /* conditions, weights or longer contexts */
                     memcpy(locals, args, sizeof(double) * (size_t)ar);
                     int status;
