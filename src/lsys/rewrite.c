@@ -285,7 +285,60 @@ static void run_chunk(Work *w) {
     }
 }
 
-void rewrite_chunk(Work *w) { w->codes_only ? run_chunk_codes(w) : run_chunk(w); }
+/* Tables of plain rules only (the common parametric case): the loop of run_chunk without
+ * contexts or choices, small enough for every cursor to stay in a register. */
+static void run_chunk_plain(Work *w) {
+    const RuleTable *t = w->t;
+    const View *in = w->in;
+    SylString *o = w->out;
+    const uint16_t *code = in->code;
+    static const double no_params[1];
+    const double *args = (in->par ? in->par : no_params) + w->plo;
+    bool applied = false;
+    w->fault.status = SYL_OK;
+    for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
+        size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
+        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
+        if ((o->n + room > o->cap || o->np + proom > o->pcap) &&
+            over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom)))
+            break;
+        uint16_t *oc = o->code + o->n;
+        double *op = o->par + o->np;
+        for (size_t i = lo; i < hi; i++) {
+            uint16_t c = code[i];
+            int ar = CODE_ARITY(c);
+            const Rule *r = t->dispatch[c].plain;
+            if (!r) {
+                *oc++ = c;
+                for (int k = 0; k < ar; k++) *op++ = args[k]; /* mostly 0 or 1: no call to memcpy */
+            } else if (r->vm_free && put_slots(op, r, args)) {
+                put_codes(oc, r);
+                oc += r->nsucc;
+                op += r->nslots;
+                applied = true;
+            } else { /* the VM, or a value to report */
+                o->n = (size_t)(oc - o->code);
+                o->np = (size_t)(op - o->par);
+                Rng rng;
+                bool rng_ready = false;
+                if (emit(w, r, args, i, &rng, &rng_ready)) return;
+                oc = o->code + o->n;
+                op = o->par + o->np;
+            }
+            args += ar;
+        }
+        o->n = (size_t)(oc - o->code);
+        o->np = (size_t)(op - o->par);
+    }
+    w->applied |= applied;
+}
+
+void rewrite_chunk(Work *w) {
+    if (w->codes_only) run_chunk_codes(w);
+    else if (w->t->all_plain) run_chunk_plain(w);
+    else run_chunk(w);
+}
 
 int rewrite_emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready) {
     return emit(w, r, locals, pos, rng, rng_ready);
