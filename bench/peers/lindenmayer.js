@@ -3,14 +3,14 @@
 // (nylki/lindenmayer 1.5.x) and print one line of JSON:
 //   {"model":"a","n":12,"modules":3179648,"seconds":0.41,"peak_mb":215.3}
 //
-//   node bench/peers/lindenmayer.js a|b|c N
+//   node bench/peers/lindenmayer.js a|b|c|d N
 //
 // seconds  best of 3 in-process derivations; only LSystem.iterate(N) is timed
 //          (building the LSystem object, i.e. its "parsing", is not)
 // modules  length of the final string (string mode) or of the final array (object mode)
 // peak_mb  whole-process peak RSS at the end (process.resourceUsage().maxRSS, KiB / 1024)
 //
-// The models must stay the same L-systems as bench/models/{a,b,c}.syl.
+// The models must stay the same L-systems as bench/models/{a,b,c,d}.syl.
 'use strict';
 
 const fs = require('fs');
@@ -49,6 +49,26 @@ function modelB() {
       F: ({ part }) => {
         const l = part.params[0];
         return [{ symbol: 'F', params: [l] }, { symbol: 'F', params: [l] }];
+      },
+    },
+  });
+}
+
+// (d) L-Py's context-free parametric tree `lsystem1.9`, R = 1.456, the same way as (b).
+function modelD() {
+  const OPEN = { symbol: '[' };
+  const CLOSE = { symbol: ']' };
+  const R = 1.456;
+  return new LSystem({
+    axiom: [{ symbol: 'A', params: [1] }],
+    productions: {
+      A: ({ part }) => {
+        const s = part.params[0];
+        return [
+          { symbol: 'F', params: [s] },
+          OPEN, { symbol: '+', params: [85] }, { symbol: 'A', params: [s / R] }, CLOSE,
+          OPEN, { symbol: '-', params: [85] }, { symbol: 'A', params: [s / R] }, CLOSE,
+        ];
       },
     },
   });
@@ -95,13 +115,13 @@ function checkAxiomC() {
     process.stderr.write('lindenmayer.js: warning: axiom of bench/models/c.syl differs from C_AXIOM\n');
 }
 
-const MODELS = { a: modelA, b: modelB, c: modelC };
+const MODELS = { a: modelA, b: modelB, c: modelC, d: modelD };
 
 function main(argv) {
   const [model, nText] = argv;
   const n = Number(nText);
   if (!MODELS[model] || !Number.isInteger(n) || n < 0) {
-    process.stderr.write('usage: node bench/peers/lindenmayer.js a|b|c N\n');
+    process.stderr.write('usage: node bench/peers/lindenmayer.js a|b|c|d N\n');
     process.exit(2);
   }
   if (model === 'c') checkAxiomC();

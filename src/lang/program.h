@@ -69,6 +69,7 @@ typedef struct Rule {
     int nsucc;
     Slot *slots;              /* one per successor parameter, in order */
     int nslots;
+    bool vm_free;             /* no slot runs the VM: emitted without a random stream */
     SylLoc loc;               /* the predecessor */
     int line;
     int group;                /* index in SylProgram.groups, -1: outside any group */
@@ -88,6 +89,9 @@ typedef struct FastRule {
 typedef struct Dispatch {
     const struct Rule *plain; /* or NULL */
     const FastRule *fast;     /* count entries, or NULL */
+    /* with fast: the rule for each pair of neighbour classes (RuleTable.ctx_class), left
+     * class * RuleTable.nclass + right class; NULL when there are too many classes */
+    const struct Rule *const *pick;
     uint32_t first;           /* index into RuleTable.order */
     uint32_t count;
 } Dispatch;
@@ -105,6 +109,9 @@ typedef struct RuleTable {
     bool emits_params;   /* some successor has parameters */
     bool all_plain;      /* every rule is plain: no matching, no choice */
     bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
+    bool all_fast;       /* every predecessor's rules are plain or FastRules */
+    uint8_t *ctx_class;  /* per code: 1.. for the codes fast rules' contexts name, 0 others */
+    int nclass;          /* classes including 0; 0 when the codes are too many for pick */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */

@@ -123,6 +123,9 @@ void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *wh
         }
     }
     if (depth) diag_error(c->d, open[(depth - 1) & 63], "a '[' in %s is never closed", what);
+    r->vm_free = true;
+    for (int k = 0; k < r->nslots; k++)
+        if (r->slots[k].kind == SLOT_CODE) r->vm_free = false;
 }
 
 void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
@@ -192,6 +195,44 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
     cc_successor(c, &succ, &scope, out, "this successor");
 }
 
+/* Fast rules are looked up, not scanned: each code a fast rule's context names gets a class
+ * 1..K (0: every other code, and no neighbour), and each fast predecessor a table of the
+ * first of its rules that matches each pair of neighbour classes. */
+enum { MAX_CLASSES = 16 };
+static bool build_pick(RuleTable *t, Arena *a) {
+    int n = 1;
+    t->ctx_class = arena_alloc(a, CODE_COUNT);
+    if (!t->ctx_class) return false;
+    for (int code = 0; code < CODE_COUNT; code++) {
+        const Dispatch *d = &t->dispatch[code];
+        for (uint32_t j = 0; d->fast && j < d->count; j++) {
+            uint16_t side[2] = {d->fast[j].left, d->fast[j].right};
+            for (int k = 0; k < 2; k++)
+                if (side[k] != CODE_ANY && !t->ctx_class[side[k]]) {
+                    if (n == MAX_CLASSES) return true; /* too many: the rules are scanned (nclass 0) */
+                    t->ctx_class[side[k]] = (uint8_t)n++;
+                }
+        }
+    }
+    t->nclass = n;
+    for (int code = 0; code < CODE_COUNT; code++) {
+        Dispatch *d = &t->dispatch[code];
+        if (!d->fast) continue;
+        const Rule **pick = arena_alloc(a, sizeof *pick * (size_t)(n * n));
+        if (!pick) return false;
+        for (int lc = 0; lc < n; lc++)
+            for (int rc = 0; rc < n; rc++)
+                for (uint32_t k = 0; k < d->count && !pick[lc * n + rc]; k++) {
+                    const FastRule *f = &d->fast[k];
+                    if ((f->left == CODE_ANY || t->ctx_class[f->left] == lc) &&
+                        (f->right == CODE_ANY || t->ctx_class[f->right] == rc))
+                        pick[lc * n + rc] = f->rule;
+                }
+        d->pick = pick;
+    }
+    return true;
+}
+
 /* Dispatch and fast paths over the rules pick[0..npick) of t->rules, tried in that order. */
 static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
     t->dispatch = arena_alloc(a, sizeof *t->dispatch * CODE_COUNT);
@@ -233,6 +274,7 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
         if (!r->nleft && !r->nright && !r->nnewleft && !r->nnewright && r->cond < 0 && !r->weighted) d->plain = r;
         else t->all_plain = false;
     }
+    t->all_fast = true;
     for (int code = 0; code < CODE_COUNT; code++) {
         Dispatch *d = &t->dispatch[code];
         if (!d->count || d->plain) continue;
@@ -243,7 +285,10 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
                    (!r->nleft || !CODE_ARITY(r->left[0].code)) &&
                    (!r->nright || (r->right[0].kind == PAT_MODULE && !CODE_ARITY(r->right[0].code)));
         }
-        if (!fast) continue;
+        if (!fast) {
+            t->all_fast = false;
+            continue;
+        }
         FastRule *f = arena_alloc(a, sizeof *f * d->count);
         if (!f) return false;
         for (uint32_t k = 0; k < d->count; k++) {
@@ -254,7 +299,7 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
         }
         d->fast = f;
     }
-    return true;
+    return build_pick(t, a);
 }
 
 /* Every rule in file order: what a model without groups derives with, and what the

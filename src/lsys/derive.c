@@ -11,7 +11,6 @@
 
 #include "lang/builtins.h"
 #include "lang/groups.h"
-#include "util/array.h"
 #include "util/budget.h"
 #include "lsys/derive.h"
 #include "lsys/rewrite.h"
@@ -98,12 +97,12 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
 static void engine_free(Engine *e) {
     if (e->queries.release) e->queries.release(e->queries.user);
     for (int k = 0; k < e->ncache; k++) arena_free(&e->cache[k].arena);
-    free(e->left);
-    free(e->right);
-    free(e->pair);
-    free(e->stack);
-    free(e->lcode);
-    free(e->rcode);
+    ms_scratch_free(e->left, e->cap_left, sizeof *e->left);
+    ms_scratch_free(e->right, e->cap_right, sizeof *e->right);
+    ms_scratch_free(e->pair, e->cap_pair, sizeof *e->pair);
+    ms_scratch_free(e->stack, e->cap_stack, sizeof *e->stack);
+    ms_scratch_free(e->lcode, e->cap_lcode, sizeof *e->lcode);
+    ms_scratch_free(e->rcode, e->cap_rcode, sizeof *e->rcode);
 }
 
 /* Whether step is derived backward (`direction`): asked only by tables with new contexts. */
@@ -193,24 +192,24 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
          * rules of the fast kind compare neighbour codes only */
         bool idx = t->ctx_index;
         if (t->ctx_branches) {
-            if (!array_reserve(&e->pair, &e->cap_pair, n, sizeof *e->pair)) return SYL_ELIMIT;
+            if (!ms_scratch_reserve(&e->pair, &e->cap_pair, n, sizeof *e->pair)) return SYL_ELIMIT;
             match_pairs(in->code, n, e->pair);
             v.pair = e->pair;
         }
         if ((t->ctx_left || t->ctx_right) &&
-            !array_reserve(&e->stack, &e->cap_stack, 2 * n + 2, sizeof *e->stack))
+            !ms_scratch_reserve(&e->stack, &e->cap_stack, 2 * n + 2, sizeof *e->stack))
             return SYL_ELIMIT;
         if (t->ctx_left) {
-            if (!array_reserve(&e->lcode, &e->cap_lcode, n, sizeof *e->lcode) ||
-                (idx && !array_reserve(&e->left, &e->cap_left, n, sizeof *e->left)))
+            if (!ms_scratch_reserve(&e->lcode, &e->cap_lcode, n, sizeof *e->lcode) ||
+                (idx && !ms_scratch_reserve(&e->left, &e->cap_left, n, sizeof *e->left)))
                 return SYL_ELIMIT;
             match_link_left(in->code, n, p->skip, idx ? e->left : NULL, e->lcode, e->stack);
             v.left = idx ? e->left : NULL;
             v.lcode = e->lcode;
         }
         if (t->ctx_right) {
-            if (!array_reserve(&e->rcode, &e->cap_rcode, n, sizeof *e->rcode) ||
-                (idx && !array_reserve(&e->right, &e->cap_right, n, sizeof *e->right)))
+            if (!ms_scratch_reserve(&e->rcode, &e->cap_rcode, n, sizeof *e->rcode) ||
+                (idx && !ms_scratch_reserve(&e->right, &e->cap_right, n, sizeof *e->right)))
                 return SYL_ELIMIT;
             match_link_right(in->code, n, p->skip, idx ? e->right : NULL, e->rcode, e->stack);
             v.right = idx ? e->right : NULL;
@@ -242,7 +241,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         size_t hi = k == nt - 1 ? in->n : in->n / (size_t)nt * (size_t)(k + 1);
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
-                          .codes_only = !in->np && !t->emits_params && t->all_plain};
+                          .codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast)};
         parts[k].mem = e->mem;
         parts[k].max_modules = e->max_modules;
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(in->code[i]);

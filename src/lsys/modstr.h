@@ -2,6 +2,7 @@
  * parameter count), and the parameters of all modules, in order, in one array. */
 #ifndef SYL_MODSTR_H
 #define SYL_MODSTR_H
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -34,5 +35,9 @@ const uint32_t *ms_offsets(const SylString *s);
 /* Whoever changes modules or parameters says so (the offsets are then rebuilt). */
 static inline void ms_changed(SylString *s) { atomic_store_explicit(&s->poff_state, POFF_STALE, memory_order_relaxed); }
 void ms_release(SylString *s); /* free the arrays, keep the struct */
+/* The engine's scratch arrays (context links), kept between steps in the same storage as
+ * strings: array_reserve's contract, except that the contents are not kept when they grow. */
+bool ms_scratch_reserve(void *arrp, size_t *cap, size_t need, size_t elem);
+void ms_scratch_free(void *arr, size_t cap, size_t elem);
 
 #endif

@@ -8,15 +8,6 @@
 #include "lsys/rewrite.h"
 #include "sylva/sylva.h"
 
-static inline void copy_module(Work *w, uint16_t c, const double *args) {
-    SylString *o = w->out;
-    int ar = CODE_ARITY(c);
-    o->code[o->n++] = c;
-    double *dst = o->par + o->np;
-    for (int k = 0; k < ar; k++) dst[k] = args[k]; /* mostly 0 or 1: no call to memcpy */
-    o->np += (size_t)ar;
-}
-
 static int fail(Work *w, size_t pos, const Rule *r, int status) {
     w->fault.status = SYL_EMODEL;
     w->fault.pos = pos;
@@ -148,29 +139,81 @@ static bool over_limit(Work *w, size_t pos, int reserve_status) {
     return true;
 }
 
-/* Strings without parameters under rules that make none: codes only, no checks per slot. */
+/* Output room is made for BATCH modules' successors at once: one capacity check per batch
+ * instead of per module, and the write cursors stay in registers in between. */
+enum { BATCH = 64 };
+
+/* The first of d's fast rules whose neighbour codes match, or NULL: looked up by the
+ * neighbours' classes, else (too many classes) a mask of all the rules, which costs no
+ * mispredicted branch per rule (which rule matches depends on the data). */
+static inline const Rule *fast_pick(const RuleTable *t, const Dispatch *d, uint16_t lc, uint16_t rc) {
+    if (d->pick) return d->pick[t->ctx_class[lc] * t->nclass + t->ctx_class[rc]];
+    const FastRule *f = d->fast;
+    for (uint32_t at = 0; at < d->count; at += 32) {
+        uint32_t n = d->count - at < 32 ? d->count - at : 32, hit = 0;
+        for (uint32_t k = 0; k < n; k++) {
+            const FastRule *e = &f[at + k];
+            hit |= (uint32_t)(((e->left == CODE_ANY) | (e->left == lc)) & ((e->right == CODE_ANY) | (e->right == rc)))
+                   << k;
+        }
+        if (hit) return f[at + (uint32_t)__builtin_ctz(hit)].rule;
+    }
+    return NULL;
+}
+
+/* The neighbour codes of module i for fast rules (a side without links has no such rules). */
+static inline uint16_t lcode_at(const View *in, size_t i) { return in->lcode ? in->lcode[i] : CODE_NONE; }
+static inline uint16_t rcode_at(const View *in, size_t i) { return in->rcode ? in->rcode[i] : CODE_NONE; }
+
+/* Strings without parameters under plain or fast rules that make none: codes only. */
 static void run_chunk_codes(Work *w) {
     const RuleTable *t = w->t;
-    const uint16_t *code = w->in->code;
+    const View *in = w->in;
+    const uint16_t *code = in->code;
     SylString *o = w->out;
-    const size_t need = (size_t)t->max_succ + SUCC_PAD;
-    size_t n = o->n;
-    for (size_t i = w->lo; i < w->hi; i++) {
-        if (n + need > o->cap) {
-            o->n = n;
-            if (over_limit(w, i, ms_reserve(o, need + (w->hi - i), 0))) return;
+    bool applied = false;
+    for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
+        size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
+        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        if (o->n + room > o->cap && over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), 0))) return;
+        uint16_t *oc = o->code + o->n;
+        for (size_t i = lo; i < hi; i++) {
+            uint16_t c = code[i];
+            const Dispatch *d = &t->dispatch[c];
+            const Rule *r = d->plain;
+            if (!r && d->fast) r = fast_pick(t, d, lcode_at(in, i), rcode_at(in, i));
+            if (r) {
+                put_codes(oc, r);
+                oc += r->nsucc;
+                applied = true;
+            } else {
+                *oc++ = c;
+            }
         }
-        uint16_t c = code[i];
-        const Rule *r = t->dispatch[c].plain;
-        if (r) {
-            put_codes(o->code + n, r);
-            n += (size_t)r->nsucc;
-            w->applied = true;
-        } else {
-            o->code[n++] = c;
-        }
+        o->n = (size_t)(oc - o->code);
     }
-    o->n = n;
+    w->applied |= applied;
+}
+
+/* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
+ * no VM, no random stream. False if a value is not finite (emit then reports it). */
+static inline bool put_slots(double *dst, const Rule *r, const double *x) {
+    bool ok = true;
+    for (int k = 0; k < r->nslots; k++) {
+        const Slot *s = &r->slots[k];
+        double v;
+        switch (s->kind) {
+        case SLOT_CONST: dst[k] = s->k; continue;
+        case SLOT_LOCAL: dst[k] = x[s->local]; continue;
+        case SLOT_ADDK: v = x[s->local] + s->k; break;
+        case SLOT_SUBK: v = x[s->local] - s->k; break;
+        case SLOT_MULK: v = x[s->local] * s->k; break;
+        default: v = x[s->local] / s->k; break; /* SLOT_DIVK: vm_free rules have no other */
+        }
+        ok &= isfinite(v) != 0;
+        dst[k] = v;
+    }
+    return ok;
 }
 
 static void run_chunk(Work *w) {
@@ -178,48 +221,124 @@ static void run_chunk(Work *w) {
     const View *in = w->in;
     SylString *o = w->out;
     const uint16_t *code = in->code;
-    size_t pi = w->plo; /* an index, not a pointer: a string without parameters has none */
-    const size_t need = (size_t)t->max_succ + SUCC_PAD;
-    const size_t pneed = (size_t)t->max_succ_params + MAX_ARITY;
+    static const double no_params[1];
+    const double *par = in->par ? in->par : no_params; /* without parameters every arity is 0 */
+    size_t pi = w->plo;
     double locals[MAX_LOCALS + MAX_ARITY];
     w->fault.status = SYL_OK;
-    for (size_t i = w->lo; i < w->hi; i++) {
-        uint16_t c = code[i];
-        const double *args = in->par ? in->par + pi : NULL;
-        pi += CODE_ARITY(c);
-        if (o->n + need > o->cap || o->np + pneed > o->pcap) {
-            if (over_limit(w, i, ms_reserve(o, need + (w->hi - i), pneed))) return;
+    for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
+        size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
+        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
+        if ((o->n + room > o->cap || o->np + proom > o->pcap) &&
+            over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom)))
+            return;
+        /* write cursors; o->n and o->np are brought up to date before anything reads them */
+        uint16_t *oc = o->code + o->n;
+        double *op = o->par + o->np;
+#define SYNC() (o->n = (size_t)(oc - o->code), o->np = (size_t)(op - o->par))
+#define RELOAD() (oc = o->code + o->n, op = o->par + o->np)
+        for (size_t i = lo; i < hi; i++) {
+            uint16_t c = code[i];
+            const double *args = par + pi;
+            int ar = CODE_ARITY(c);
+            pi += (size_t)ar;
+            const Dispatch *d = &t->dispatch[c];
+            const Rule *r = d->plain;
+            const double *x = args;
+            if (!r) {
+                if (d->fast) r = fast_pick(t, d, lcode_at(in, i), rcode_at(in, i));
+                else if (d->count) { /* conditions, weights or longer contexts */
+                    memcpy(locals, args, sizeof(double) * (size_t)ar);
+                    int status;
+                    SYNC();
+                    Rng rng;
+                    bool rng_ready = false;
+                    r = choose(w, d, i, locals, &rng, &rng_ready, &status);
+                    if (status) return;
+                    if (r && emit(w, r, locals, i, &rng, &rng_ready)) return;
+                    RELOAD();
+                    if (r) continue;
+                }
+                if (!r) { /* no rule applies: the module stays */
+                    *oc++ = c;
+                    for (int k = 0; k < ar; k++) *op++ = args[k]; /* mostly 0 or 1: no call to memcpy */
+                    continue;
+                }
+            }
+            if (r->vm_free && put_slots(op, r, x)) {
+                put_codes(oc, r);
+                oc += r->nsucc;
+                op += r->nslots;
+                w->applied = true;
+                continue;
+            }
+            SYNC(); /* the VM, or a value to report */
+            Rng rng;
+            bool rng_ready = false;
+            if (emit(w, r, x, i, &rng, &rng_ready)) return;
+            RELOAD();
         }
-        const Dispatch *d = &t->dispatch[c];
-        Rng rng;
-        bool rng_ready = false;
-        if (d->plain) {
-            if (emit(w, d->plain, args, i, &rng, &rng_ready)) return;
-            continue;
-        }
-        if (!d->count) {
-            copy_module(w, c, args);
-            continue;
-        }
-        if (d->fast) { /* neighbours' codes against each rule's, in order */
-            uint16_t lc = in->lcode ? in->lcode[i] : CODE_NONE, rc = in->rcode ? in->rcode[i] : CODE_NONE;
-            const FastRule *f = d->fast, *end = f + d->count;
-            while (f < end && !((f->left == CODE_ANY || f->left == lc) && (f->right == CODE_ANY || f->right == rc)))
-                f++;
-            if (f == end) copy_module(w, c, args);
-            else if (emit(w, f->rule, args, i, &rng, &rng_ready)) return;
-            continue;
-        }
-        memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
-        int status;
-        const Rule *r = choose(w, d, i, locals, &rng, &rng_ready, &status);
-        if (status) return;
-        if (!r) copy_module(w, c, args);
-        else if (emit(w, r, locals, i, &rng, &rng_ready)) return;
+        SYNC();
+#undef SYNC
+#undef RELOAD
     }
 }
 
-void rewrite_chunk(Work *w) { w->codes_only ? run_chunk_codes(w) : run_chunk(w); }
+/* Tables of plain rules only (the common parametric case): the loop of run_chunk without
+ * contexts or choices, small enough for every cursor to stay in a register. */
+static void run_chunk_plain(Work *w) {
+    const RuleTable *t = w->t;
+    const View *in = w->in;
+    SylString *o = w->out;
+    const uint16_t *code = in->code;
+    static const double no_params[1];
+    const double *args = (in->par ? in->par : no_params) + w->plo;
+    bool applied = false;
+    w->fault.status = SYL_OK;
+    for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
+        size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
+        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
+        if ((o->n + room > o->cap || o->np + proom > o->pcap) &&
+            over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom)))
+            break;
+        uint16_t *oc = o->code + o->n;
+        double *op = o->par + o->np;
+        for (size_t i = lo; i < hi; i++) {
+            uint16_t c = code[i];
+            int ar = CODE_ARITY(c);
+            const Rule *r = t->dispatch[c].plain;
+            if (!r) {
+                *oc++ = c;
+                for (int k = 0; k < ar; k++) *op++ = args[k]; /* mostly 0 or 1: no call to memcpy */
+            } else if (r->vm_free && put_slots(op, r, args)) {
+                put_codes(oc, r);
+                oc += r->nsucc;
+                op += r->nslots;
+                applied = true;
+            } else { /* the VM, or a value to report */
+                o->n = (size_t)(oc - o->code);
+                o->np = (size_t)(op - o->par);
+                Rng rng;
+                bool rng_ready = false;
+                if (emit(w, r, args, i, &rng, &rng_ready)) return;
+                oc = o->code + o->n;
+                op = o->par + o->np;
+            }
+            args += ar;
+        }
+        o->n = (size_t)(oc - o->code);
+        o->np = (size_t)(op - o->par);
+    }
+    w->applied |= applied;
+}
+
+void rewrite_chunk(Work *w) {
+    if (w->codes_only) run_chunk_codes(w);
+    else if (w->t->all_plain) run_chunk_plain(w);
+    else run_chunk(w);
+}
 
 int rewrite_emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready) {
     return emit(w, r, locals, pos, rng, rng_ready);

@@ -32,7 +32,7 @@ typedef struct Work {
     int table;
     uint64_t seed;
     bool applied;     /* a rule other than identity was used */
-    bool codes_only;  /* no parameters in or out: run_chunk_codes */
+    bool codes_only;  /* no parameters in or out, plain or fast rules: run_chunk_codes */
     const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
     double *weight;
     int ncap;
