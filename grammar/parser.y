@@ -239,7 +239,8 @@ body: %empty
 
 stmt: NEWLINE
     | decl NEWLINE
-    | SETTING colon_opt exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $3; }
+    | SETTING exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $2; }
+    | SETTING ':' exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $3; }
     | KW_IGNORE colon_opt items NEWLINE { add_stmt(ps, ST_IGNORE, @1)->items = $3; }
     | KW_CONSIDER colon_opt items NEWLINE { add_stmt(ps, ST_CONSIDER, @1)->items = $3; }
     | KW_AXIOM colon_opt items NEWLINE { add_stmt(ps, ST_AXIOM, @1)->items = $3; }
