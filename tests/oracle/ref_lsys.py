@@ -983,7 +983,7 @@ def parse_picek(src, name):
     preds = [p for p, _ in rules]
     for pred, succ in rules:
         weight = " : 1" if preds.count(pred) > 1 else ""
-        cur.rule_lines.append(("%s -> %s%s" % (pred, succ, weight), "produce"))
+        cur.rule_lines.append(("%s -> %s%s" % (pred, succ, weight), "produce", None))
     return [cur]
 
 
