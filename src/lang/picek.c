@@ -269,14 +269,12 @@ int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     const Item *leaf = NULL; /* the first L, in the axiom or a successor */
     for (int i = 0; i < m->n && !leaf; i++)
         if (m->v[i].kind == ST_AXIOM) leaf = leaf_of(&m->v[i].items);
+    int share[256] = {0}; /* rules per predecessor, a single byte */
+    for (int i = 0; i < nrules; i++) share[(unsigned char)m->v[rules[i]].rule.pred.v[0].text[0]]++;
     for (int i = 0; i < nrules; i++) {
         Production *pi = &m->v[rules[i]].rule;
         if (!leaf) leaf = leaf_of(&pi->succ);
-        for (int j = 0; j < nrules; j++)
-            if (i != j && !strcmp(pi->pred.v[0].text, m->v[rules[j]].rule.pred.v[0].text)) {
-                pi->weight = num(&r, 1, pi->arrow_loc);
-                break;
-            }
+        if (share[(unsigned char)pi->pred.v[0].text[0]] > 1) pi->weight = num(&r, 1, pi->arrow_loc);
     }
     /* The thesis's turtle draws `L` as a leaf and tapers every segment by `reduction`: interpret
      * rules say so to Sylva's, and leave the derived string as the file makes it. */
