@@ -66,47 +66,8 @@ bool match_right_pat(const View *v, size_t i, const PatElem *pat, int n, bool br
     return true;
 }
 
-/* The neighbour codes alone (no indices), without a branch per module: brackets and
- * ignored symbols follow each other unpredictably, and mispredicted branches were most of
- * the cost. A push is written every time and kept only by a '[' (or ']' going right). */
-static void link_left_codes(const uint16_t *code, size_t n, const bool *skip, uint16_t *lcode, int32_t *stack) {
-    int32_t last = CODE_NONE;
-    size_t sp = 0;
-    for (size_t i = 0; i < n; i++) {
-        uint16_t c = code[i];
-        int s = CODE_SYM(c);
-        bool open = s == SYM_OPEN, close = s == SYM_CLOSE, has = sp != 0;
-        lcode[i] = (uint16_t)last;
-        stack[sp] = last;
-        int32_t top = has ? stack[sp - has] : CODE_NONE;
-        sp = sp + open - (close & has);
-        int32_t keep = open | skip[s] ? last : c;
-        last = close ? top : keep;
-    }
-}
-
-static void link_right_codes(const uint16_t *code, size_t n, const bool *skip, uint16_t *rcode, int32_t *stack) {
-    int32_t next = CODE_NONE;
-    size_t sp = 0;
-    for (size_t i = n; i-- > 0;) {
-        uint16_t c = code[i];
-        int s = CODE_SYM(c);
-        bool open = s == SYM_OPEN, close = s == SYM_CLOSE, has = sp != 0;
-        rcode[i] = (uint16_t)next;
-        stack[sp] = next;
-        int32_t top = has ? stack[sp - has] : CODE_NONE;
-        sp = sp + close - (open & has);
-        int32_t keep = close ? CODE_NONE : skip[s] ? next : c;
-        next = open ? top : keep;
-    }
-}
-
 void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *left, uint16_t *lcode,
                      int32_t *stack) {
-    if (!left) {
-        link_left_codes(code, n, skip, lcode, stack);
-        return;
-    }
     /* the stack keeps (index, code) pairs so that no neighbour is looked up far away */
     int32_t last = -1;
     uint16_t lastcode = CODE_NONE;
@@ -131,10 +92,6 @@ void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *
 
 void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, uint16_t *rcode,
                       int32_t *stack) {
-    if (!right) {
-        link_right_codes(code, n, skip, rcode, stack);
-        return;
-    }
     int32_t next = -1;
     uint16_t nextcode = CODE_NONE;
     size_t sp = 0;

@@ -39,12 +39,14 @@ static void free_big(void *p, size_t bytes) {
 /* Grow an array of old bytes (the first used of them in use) to bytes; NULL if refused,
  * the old array then unchanged. */
 static void *grow_big(void *old, size_t old_bytes, size_t used, size_t bytes) {
-    size_t om = mapped_bytes(old_bytes);
     if (!mapped_bytes(bytes)) return realloc(old, bytes);
+#ifdef MREMAP_MAYMOVE /* Linux */
+    size_t om = mapped_bytes(old_bytes);
     if (old && om) { /* moving the pages costs no copy and keeps the hint */
         void *p = mremap(old, om, mapped_bytes(bytes), MREMAP_MAYMOVE);
         if (p != MAP_FAILED) return p;
     }
+#endif
     void *p = map_big(bytes);
     if (!p) return NULL;
     if (used) memcpy(p, old, used);
