@@ -524,16 +524,18 @@ static bool is_param(const SylProgram *p, const char *name) {
 
 static void set_one(Reader *r, GrowParams *g, const char *typed, const char *name, double v) {
     SetKey all[128], *hit = NULL;
-    int n = set_keys(all, 128), hits = 0;
+    int n = set_keys(all, 128), hits = 1;
     char dotted[128];
-    for (int i = 0; i < n && !hit; i++) { /* buds.angle; years */
+    for (int i = 0; i < n && !hit; i++) { /* DIRECTIVE.KEY (buds.angle), or a bare value (years) */
         snprintf(dotted, sizeof dotted, "%s.%s", all[i].dir->name, all[i].key->name);
         if (!strcmp(name, dotted) || (all[i].dir->value == all[i].key && !strcmp(name, all[i].key->name)))
-            hit = &all[i], hits = 1;
+            hit = &all[i];
     }
-    for (int i = 0; i < n && !hits; i++) /* lambda */
-        if (!strcmp(name, all[i].key->name)) hit = hit ? hit : &all[i], hits++;
-    hits = hits ? hits : 1;
+    if (!hit) { /* a key by its name alone (lambda): one directive's, or ambiguous */
+        hits = 0;
+        for (int i = 0; i < n; i++)
+            if (!strcmp(name, all[i].key->name)) hit = hit ? hit : &all[i], hits++;
+    }
     if (!hit || !settable(hit->key)) {
         if (r->p->sibling) return; /* a name of the model it was set for */
         const char *names[256];
@@ -562,6 +564,7 @@ static void set_one(Reader *r, GrowParams *g, const char *typed, const char *nam
     }
     const Key *k = hit->key;
     if (hit->mode && hit->dir->mode_off != NO_MODE && *(int *)((char *)g + hit->dir->mode_off) != hit->mode->value) {
+        if (r->p->sibling) return; /* meant for a model of that mode */
         const char *now = "?";
         for (int m = 0; hit->dir->modes[m].word; m++)
             if (*(int *)((char *)g + hit->dir->mode_off) == hit->dir->modes[m].value) now = hit->dir->modes[m].word;
