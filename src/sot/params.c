@@ -12,6 +12,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lang/program.h"
@@ -489,9 +490,9 @@ static void read_directive(Reader *r, const Directive *dir, const SylDirective *
     }
 }
 
-/* ---- --set: a directive's number by its key ("lambda"), or as DIRECTIVE.KEY where a key
- * belongs to several ("buds.angle"); a bare value by the directive's name ("years"). Organ
- * lines, words, directions and names are not reached. ---- */
+/* ---- --set: a directive's number by its key ("lambda"), or as DIRECTIVE.KEY ("buds.angle");
+ * a bare value by the directive's name ("years"); an organ line's as organ.N.KEY. Words,
+ * directions and names are not reached. ---- */
 
 typedef struct SetKey {
     const Directive *dir;
@@ -522,7 +523,34 @@ static bool is_param(const SylProgram *p, const char *name) {
     return false;
 }
 
+/* A number v of key k into base (GrowParams or OrganSpec), within the key's range. */
+static void store_number(Reader *r, const char *typed, const Key *k, void *base, double v) {
+    char *field = (char *)base + k->off;
+    if (k->type == V_BOOL) {
+        if (v != 0 && v != 1) {
+            ERR(r, 0, 0, "--set %s: '%s' is 1 (on) or 0 (off)", typed, k->name);
+            return;
+        }
+        *(bool *)field = v == 1;
+        return;
+    }
+    if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
+        ERR(r, 0, 0, "--set %s: '%s' expects %s from %g to %g, not %g", typed, k->name,
+            k->type != V_NUM ? "a whole number" : "a number", k->lo, k->hi, v);
+        return;
+    }
+    if (k->type == V_NUM) *(float *)field = (float)v;
+    else if (k->type == V_SEED) *(uint64_t *)field = (uint64_t)v;
+    else *(int *)field = (int)v;
+}
+
+static void set_organ(Reader *r, GrowParams *g, const char *typed, const char *name, double v);
+
 static void set_one(Reader *r, GrowParams *g, const char *typed, const char *name, double v) {
+    if (!strncmp(name, "organ.", 6)) {
+        set_organ(r, g, typed, name, v);
+        return;
+    }
     SetKey all[128], *hit = NULL;
     int n = set_keys(all, 128), hits = 1;
     char dotted[128];
@@ -572,23 +600,29 @@ static void set_one(Reader *r, GrowParams *g, const char *typed, const char *nam
             hit->dir->name, hit->mode->word, hit->dir->name, now);
         return;
     }
-    char *field = (char *)g + k->off;
-    if (k->type == V_BOOL) {
-        if (v != 0 && v != 1) {
-            ERR(r, 0, 0, "--set %s: '%s' is 1 (on) or 0 (off)", typed, k->name);
-            return;
-        }
-        *(bool *)field = v == 1;
+    store_number(r, typed, k, g, v);
+}
+
+/* organ.N.KEY: the N-th organ line's size, count, angle, age or chance. */
+static void set_organ(Reader *r, GrowParams *g, const char *typed, const char *name, double v) {
+    char *end = NULL;
+    long n = strtol(name + 6, &end, 10);
+    if (end == name + 6 || *end != '.') {
+        ERR(r, 0, 0, "--set %s: write organ.N.KEY, N the organ line from 1 (organ.1.size)", typed);
         return;
     }
-    if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
-        ERR(r, 0, 0, "--set %s: '%s' expects %s from %g to %g, not %g", typed, k->name,
-            k->type != V_NUM ? "a whole number" : "a number", k->lo, k->hi, v);
+    if (n < 1 || n > g->norgans) {
+        if (r->p->sibling) return;
+        ERR(r, 0, 0, "--set %s: grow block '%s' has %d organ line%s", typed, syl_program_name(r->p), g->norgans,
+            g->norgans == 1 ? "" : "s");
         return;
     }
-    if (k->type == V_NUM) *(float *)field = (float)v;
-    else if (k->type == V_SEED) *(uint64_t *)field = (uint64_t)v;
-    else *(int *)field = (int)v;
+    const Key *k = find_key(organ_keys, end + 1);
+    if (!k || k->type == V_WORD) {
+        ERR(r, 0, 0, "--set %s: an organ line has no number '%s' (size, count, angle, age, chance)", typed, end + 1);
+        return;
+    }
+    store_number(r, typed, k, &g->organs[n - 1], v);
 }
 
 /* In the order given, so that the last one wins; a param takes its own (lang/overrides.c). */
