@@ -12,8 +12,9 @@ const CliCommand cli_check_command = {
     .usage = "sylva check FILE[:Model]...",
     .about = "Compile every model of each file (or the one named) and report errors and warnings:\n"
              "unknown names, rules that can never apply, weights that are not positive, modules,\n"
-             "constants and functions that are never used. Exit code 0 when there is no error, 1\n"
-             "otherwise (warnings alone do not fail).\n",
+             "constants and functions that are never used, words close to a declared module,\n"
+             "models that draw or grow nothing, scene files that cannot be read. Exit code 0\n"
+             "when there is no error, 1 otherwise (warnings alone do not fail).\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_WERROR},
         {.option = CLI_OPT_SET, .help = "check the model with this value, as other commands would\n"

@@ -4,8 +4,9 @@
 #include "lang/compiler.h"
 #include "util/closest.h"
 
-/* "Birch.lambda" is meant for the model Birch when the file has one of that name; any other
- * name, dotted or not ("tropism.2", "allocate.lambda"), for every model that has it. */
+/* "Birch.lambda" is meant for the model Birch when the file has one of that name, and
+ * "scene.ground" for the file's scene (no model); any other name, dotted or not
+ * ("tropism.2", "allocate.lambda"), for every model that has it. */
 void cc_localise_overrides(Compiler *c) {
     SylProgram *p = c->p;
     if (!p->noverrides) return;
@@ -16,7 +17,8 @@ void cc_localise_overrides(Compiler *c) {
         for (int m = 0; dot && c->ast && m < c->ast->nmodels; m++) {
             const char *mn = c->ast->models[m].name;
             if (strlen(mn) == (size_t)(dot - name) && !strncmp(mn, name, (size_t)(dot - name)))
-                p->set_local[i] = strcmp(mn, p->name) ? NULL : dot + 1;
+                /* scene.ground: the scene's reader takes it (scene/spec.c) */
+                p->set_local[i] = strcmp(mn, p->name) || c->ast->models[m].kind == MODEL_SCENE ? NULL : dot + 1;
         }
     }
 }

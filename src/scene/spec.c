@@ -120,6 +120,72 @@ static void *push(void *arrp, int *n, int *cap, size_t elem) {
     return slot;
 }
 
+/* --set scene.ground, scene.plant.N.KEY (x, y, z, seed, years) and scene.obstacle.N.KEY
+ * (x, y, z, scale), N counting the lines of each kind from 1 (an `obstacle` and a terrain
+ * `ground "file.obj"` line count as obstacles). */
+static void set_one(Reader *r, SceneSpec *s, const char *typed, const char *name, double v) {
+    static const char *const axes = "xyz";
+    if (!strcmp(name, "ground")) {
+        if (!isfinite(v) || fabs(v) > 1e6) {
+            ERR(r, 0, 0, "--set %s: the ground's height must be finite, within a million units", typed);
+            return;
+        }
+        s->ground = (float)v;
+        s->ground_set = true;
+        return;
+    }
+    bool plant = !strncmp(name, "plant.", 6), obstacle = !strncmp(name, "obstacle.", 9);
+    const char *at = plant ? name + 6 : obstacle ? name + 9 : NULL;
+    char *end = NULL;
+    long n = at ? strtol(at, &end, 10) : 0;
+    int count = plant ? s->nplants : s->nobstacles;
+    if (!at || end == at || *end != '.') {
+        ERR(r, 0, 0, "--set %s: the scene has no number '%s' (scene.ground, scene.plant.N.x|y|z|seed|years, "
+            "scene.obstacle.N.x|y|z|scale)", typed, name);
+        return;
+    }
+    if (n < 1 || n > count) {
+        ERR(r, 0, 0, "--set %s: the scene has %d %s line%s", typed, count, plant ? "plant" : "obstacle",
+            count == 1 ? "" : "s");
+        return;
+    }
+    const char *key = end + 1;
+    float *where = plant ? s->plants[n - 1].at : s->obstacles[n - 1].at;
+    if (key[0] && !key[1] && strchr(axes, key[0])) {
+        if (!isfinite(v) || fabs(v) > 1e6) {
+            ERR(r, 0, 0, "--set %s: coordinates must be finite, within a million units", typed);
+            return;
+        }
+        where[strchr(axes, key[0]) - axes] = (float)v;
+    } else if (plant && (!strcmp(key, "seed") || !strcmp(key, "years"))) {
+        bool seed = key[0] == 's';
+        double hi = seed ? 9007199254740991.0 : 10000;
+        if (v < 0 || v > hi || v != floor(v)) {
+            ERR(r, 0, 0, "--set %s: '%s' expects a whole number from 0 to %.17g, not %g", typed, key, hi, v);
+            return;
+        }
+        ScenePlant *pl = &s->plants[n - 1];
+        if (seed) pl->seed = (uint64_t)v, pl->seed_set = true;
+        else pl->years = (int)v, pl->years_set = true;
+    } else if (obstacle && !strcmp(key, "scale")) {
+        if (!(v > 0) || v > 1e6) {
+            ERR(r, 0, 0, "--set %s: 'scale' expects a number above 0, not %g", typed, v);
+            return;
+        }
+        s->obstacles[n - 1].scale = (float)v;
+    } else {
+        ERR(r, 0, 0, "--set %s: a scene's %s has no number '%s' (%s)", typed, plant ? "plant" : "obstacle", key,
+            plant ? "x, y, z, seed, years" : "x, y, z, scale");
+    }
+}
+
+static void apply_sets(Reader *r, SceneSpec *s) {
+    const SylProgram *p = r->p;
+    for (int i = 0; i < p->noverrides; i++)
+        if (!strncmp(p->overrides[i].name, "scene.", 6))
+            set_one(r, s, p->overrides[i].name, p->overrides[i].name + 6, p->overrides[i].value);
+}
+
 int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
     memset(s, 0, sizeof *s);
     s->sun[1] = 1;
@@ -204,6 +270,9 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
         }
     }
     if (dirs && !s->nplants && !r.errors) ERR(&r, 0, 0, "the scene has no plant");
+    int before = r.errors;
+    if (dirs && !r.errors) apply_sets(&r, s);
+    s->set_errors = r.errors - before;
     free(names);
     return r.errors;
 }
@@ -247,7 +316,7 @@ static void warn_unreadable(const SylProgram *p, FILE *diag, const char *what, c
 
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     SceneSpec s;
-    int errors = scene_spec_read(p, &s, diag);
+    int errors = scene_spec_read(p, &s, diag), set_errors = s.set_errors;
     for (int i = 0; files && !errors && i < s.nobstacles; i++)
         warn_unreadable(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
                         s.obstacles[i].line, s.obstacles[i].col);
@@ -255,7 +324,7 @@ int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
         if (s.plants[i].file)
             warn_unreadable(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
     scene_spec_free(&s);
-    return errors;
+    return errors && errors == set_errors ? -errors : errors;
 }
 
 /* syl_compile's hook (grow.h): a grow block's directives and the scene's. The scene is checked with the file's first model only, so that checking every model of a

@@ -35,6 +35,7 @@ typedef struct SceneSpec {
     bool ground_set;
     float sun[3];
     bool sun_set;
+    int set_errors; /* of those read, the errors of --set scene.NAME */
 } SceneSpec;
 
 /* Read p's scene block (free with scene_spec_free). Returns the number of errors. Names of
@@ -46,7 +47,7 @@ void scene_spec_free(SceneSpec *s);
 char *scene_spec_path(const SylProgram *p, const char *file);
 
 /* Check p's scene block, as syl_grow_validate does with a file's first model. Returns the
- * number of errors reported. */
+ * number of errors reported, negated when all are of --set. */
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files); /* files: warn about unreadable ones */
 
 #endif

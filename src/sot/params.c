@@ -12,6 +12,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lang/program.h"
@@ -489,9 +490,9 @@ static void read_directive(Reader *r, const Directive *dir, const SylDirective *
     }
 }
 
-/* ---- --set: a directive's number by its key ("lambda"), or as DIRECTIVE.KEY where a key
- * belongs to several ("buds.angle"); a bare value by the directive's name ("years"). Organ
- * lines, words, directions and names are not reached. ---- */
+/* ---- --set: a directive's number by its key ("lambda"), or as DIRECTIVE.KEY ("buds.angle");
+ * a bare value by the directive's name ("years"); an organ line's as organ.N.KEY. Words,
+ * directions and names are not reached. ---- */
 
 typedef struct SetKey {
     const Directive *dir;
@@ -522,18 +523,47 @@ static bool is_param(const SylProgram *p, const char *name) {
     return false;
 }
 
+/* A number v of key k into base (GrowParams or OrganSpec), within the key's range. */
+static void store_number(Reader *r, const char *typed, const Key *k, void *base, double v) {
+    char *field = (char *)base + k->off;
+    if (k->type == V_BOOL) {
+        if (v != 0 && v != 1) {
+            ERR(r, 0, 0, "--set %s: '%s' is 1 (on) or 0 (off)", typed, k->name);
+            return;
+        }
+        *(bool *)field = v == 1;
+        return;
+    }
+    if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
+        ERR(r, 0, 0, "--set %s: '%s' expects %s from %g to %g, not %g", typed, k->name,
+            k->type != V_NUM ? "a whole number" : "a number", k->lo, k->hi, v);
+        return;
+    }
+    if (k->type == V_NUM) *(float *)field = (float)v;
+    else if (k->type == V_SEED) *(uint64_t *)field = (uint64_t)v;
+    else *(int *)field = (int)v;
+}
+
+static void set_organ(Reader *r, GrowParams *g, const char *typed, const char *name, double v);
+
 static void set_one(Reader *r, GrowParams *g, const char *typed, const char *name, double v) {
+    if (!strncmp(name, "organ.", 6)) {
+        set_organ(r, g, typed, name, v);
+        return;
+    }
     SetKey all[128], *hit = NULL;
-    int n = set_keys(all, 128), hits = 0;
+    int n = set_keys(all, 128), hits = 1;
     char dotted[128];
-    for (int i = 0; i < n && !hit; i++) { /* buds.angle; years */
+    for (int i = 0; i < n && !hit; i++) { /* DIRECTIVE.KEY (buds.angle), or a bare value (years) */
         snprintf(dotted, sizeof dotted, "%s.%s", all[i].dir->name, all[i].key->name);
         if (!strcmp(name, dotted) || (all[i].dir->value == all[i].key && !strcmp(name, all[i].key->name)))
-            hit = &all[i], hits = 1;
+            hit = &all[i];
     }
-    for (int i = 0; i < n && !hits; i++) /* lambda */
-        if (!strcmp(name, all[i].key->name)) hit = hit ? hit : &all[i], hits++;
-    hits = hits ? hits : 1;
+    if (!hit) { /* a key by its name alone (lambda): one directive's, or ambiguous */
+        hits = 0;
+        for (int i = 0; i < n; i++)
+            if (!strcmp(name, all[i].key->name)) hit = hit ? hit : &all[i], hits++;
+    }
     if (!hit || !settable(hit->key)) {
         if (r->p->sibling) return; /* a name of the model it was set for */
         const char *names[256];
@@ -562,6 +592,7 @@ static void set_one(Reader *r, GrowParams *g, const char *typed, const char *nam
     }
     const Key *k = hit->key;
     if (hit->mode && hit->dir->mode_off != NO_MODE && *(int *)((char *)g + hit->dir->mode_off) != hit->mode->value) {
+        if (r->p->sibling) return; /* meant for a model of that mode */
         const char *now = "?";
         for (int m = 0; hit->dir->modes[m].word; m++)
             if (*(int *)((char *)g + hit->dir->mode_off) == hit->dir->modes[m].value) now = hit->dir->modes[m].word;
@@ -569,23 +600,29 @@ static void set_one(Reader *r, GrowParams *g, const char *typed, const char *nam
             hit->dir->name, hit->mode->word, hit->dir->name, now);
         return;
     }
-    char *field = (char *)g + k->off;
-    if (k->type == V_BOOL) {
-        if (v != 0 && v != 1) {
-            ERR(r, 0, 0, "--set %s: '%s' is 1 (on) or 0 (off)", typed, k->name);
-            return;
-        }
-        *(bool *)field = v == 1;
+    store_number(r, typed, k, g, v);
+}
+
+/* organ.N.KEY: the N-th organ line's size, count, angle, age or chance. */
+static void set_organ(Reader *r, GrowParams *g, const char *typed, const char *name, double v) {
+    char *end = NULL;
+    long n = strtol(name + 6, &end, 10);
+    if (end == name + 6 || *end != '.') {
+        ERR(r, 0, 0, "--set %s: write organ.N.KEY, N the organ line from 1 (organ.1.size)", typed);
         return;
     }
-    if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
-        ERR(r, 0, 0, "--set %s: '%s' expects %s from %g to %g, not %g", typed, k->name,
-            k->type != V_NUM ? "a whole number" : "a number", k->lo, k->hi, v);
+    if (n < 1 || n > g->norgans) {
+        if (r->p->sibling) return;
+        ERR(r, 0, 0, "--set %s: grow block '%s' has %d organ line%s", typed, syl_program_name(r->p), g->norgans,
+            g->norgans == 1 ? "" : "s");
         return;
     }
-    if (k->type == V_NUM) *(float *)field = (float)v;
-    else if (k->type == V_SEED) *(uint64_t *)field = (uint64_t)v;
-    else *(int *)field = (int)v;
+    const Key *k = find_key(organ_keys, end + 1);
+    if (!k || k->type == V_WORD) {
+        ERR(r, 0, 0, "--set %s: an organ line has no number '%s' (size, count, angle, age, chance)", typed, end + 1);
+        return;
+    }
+    store_number(r, typed, k, &g->organs[n - 1], v);
 }
 
 /* In the order given, so that the last one wins; a param takes its own (lang/overrides.c). */
