@@ -80,7 +80,8 @@ static void lint_table(Compiler *c, const RuleTable *t, const bool *made, const 
         /* a rule after an unconditional, context-free, unweighted one for the same module */
         for (int j = 0; j < i; j++) {
             const Rule *q = &t->rules[j];
-            if (q->pred == r->pred && q->group == r->group && !q->nleft && !q->nright && q->cond < 0 && !q->weighted) {
+            if (q->pred == r->pred && q->group == r->group && !q->nleft && !q->nright && !q->nnewleft &&
+                !q->nnewright && q->cond < 0 && !q->weighted) {
                 diag_warning(c->d, r->loc, "this rule never applies: the rule at line %d always applies first",
                              q->line);
                 break;
