@@ -104,6 +104,8 @@ typedef struct RuleTable {
     bool emits_params;   /* some successor has parameters */
     bool all_plain;      /* every rule is plain: no matching, no choice */
     bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
+    bool *newleft_code;  /* CODE_COUNT entries: the codes some `<<` context names (only their
+                            links are kept as the output is written); NULL without `<<` */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */

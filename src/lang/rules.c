@@ -212,6 +212,14 @@ void cc_build_table(Compiler *c, RuleTable *t) {
         if (r->nsucc > t->max_succ) t->max_succ = r->nsucc;
         if (r->nslots > t->max_succ_params) t->max_succ_params = r->nslots;
     }
+    for (int i = 0; i < t->nrules; i++) {
+        const Rule *r = &t->rules[i];
+        if (r->nnewleft && !t->newleft_code) {
+            t->newleft_code = arena_alloc(&p->arena, sizeof *t->newleft_code * CODE_COUNT);
+            memset(t->newleft_code, 0, sizeof *t->newleft_code * CODE_COUNT);
+        }
+        for (int k = 0; k < r->nnewleft; k++) t->newleft_code[r->newleft[k].code] = true;
+    }
     t->all_plain = true;
     for (int code = 0; code < CODE_COUNT; code++) {
         Dispatch *d = &t->dispatch[code];
