@@ -468,7 +468,17 @@ struct NewctxScratch {
     Links links;
     Back back;
     SylString tmp;
+    Budget *mem;      /* --max-memory: what the arrays hold is charged after each pass */
+    uint64_t charged;
 };
+
+static uint64_t scratch_bytes(const struct NewctxScratch *s) {
+    const Links *l = &s->links;
+    return l->entcap * sizeof *l->ent +
+           l->cap * (sizeof *l->link + sizeof *l->code + sizeof *l->pair + sizeof *l->poff) +
+           l->scap * (sizeof *l->sidx + sizeof *l->sclose + sizeof *l->scode) +
+           s->back.cap * sizeof *s->back.code + s->back.pcap * sizeof *s->back.par;
+}
 
 void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
     if (!*scratch && !(*scratch = calloc(1, sizeof **scratch))) {
@@ -476,13 +486,21 @@ void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
         return;
     }
     struct NewctxScratch *s = *scratch;
+    s->mem = w->out->mem;
     if (backward_step) backward(w, &s->links, &s->back, &s->tmp);
     else forward(w, &s->links);
+    uint64_t now = scratch_bytes(s);
+    if (!budget_resize(s->mem, s->charged, now)) {
+        if (!w->fault.status) fault(w, w->hi, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+        return; /* the next pass or newctx_release releases what is charged */
+    }
+    s->charged = now;
 }
 
 void newctx_release(struct NewctxScratch **scratch) {
     struct NewctxScratch *s = *scratch;
     if (!s) return;
+    budget_release(s->mem, s->charged);
     links_free(&s->links);
     free(s->back.code);
     free(s->back.par);
