@@ -106,6 +106,8 @@ typedef struct RuleTable {
     bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
     bool *newleft_code;  /* CODE_COUNT entries: the codes some `<<` context names (only their
                             links are kept as the output is written); NULL without `<<` */
+    bool *newright_code; /* the same for `>>` contexts that name no branch; NULL without */
+    bool newright_branches; /* some `>>` context names a branch: backward passes keep every link */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */

@@ -219,6 +219,12 @@ void cc_build_table(Compiler *c, RuleTable *t) {
             memset(t->newleft_code, 0, sizeof *t->newleft_code * CODE_COUNT);
         }
         for (int k = 0; k < r->nnewleft; k++) t->newleft_code[r->newleft[k].code] = true;
+        if (r->newright_branches) t->newright_branches = true;
+        if (r->nnewright && !t->newright_code) {
+            t->newright_code = arena_alloc(&p->arena, sizeof *t->newright_code * CODE_COUNT);
+            memset(t->newright_code, 0, sizeof *t->newright_code * CODE_COUNT);
+        }
+        for (int k = 0; k < r->nnewright; k++) t->newright_code[r->newright[k].code] = true;
     }
     t->all_plain = true;
     for (int code = 0; code < CODE_COUNT; code++) {

@@ -119,7 +119,8 @@ typedef struct Here {
     const Entry *ent;
     int32_t cursor;
     const double *par;
-    const View *nv;
+    size_t pend;     /* backward entries: poff counts back from here (the buffer moves) */
+    const View *nv;  /* backward, when a `>>` context names a branch: the links of every module */
     size_t at;
 } Here;
 
@@ -134,12 +135,25 @@ static bool match_new_left(const Here *h, const PatElem *pat, int n, double *loc
     return true;
 }
 
+/* Backward without branches in `>>` contexts: the entries of the axis that follows. */
+static bool match_new_right(const Here *h, const PatElem *pat, int n, double *locals) {
+    int32_t pos = h->cursor;
+    for (int j = 0; j < n; j++) {
+        if (pos < 0 || h->ent[pos].code != pat[j].code) return false;
+        int ar = CODE_ARITY(pat[j].code);
+        for (int k = 0; k < ar; k++) locals[pat[j].local + k] = h->par[h->pend - h->ent[pos].poff + (uint32_t)k];
+        pos = h->ent[pos].link;
+    }
+    return true;
+}
+
 /* Whether rule r applies to input module i, its contexts' parameters bound in locals. A rule
  * with `<<` takes part only in forward passes, one with `>>` only in backward ones. */
 static bool applies(const Work *w, const Rule *r, size_t i, const Here *h, bool backward, double *locals) {
     if (r->nnewleft && (backward || !match_new_left(h, r->newleft, r->nnewleft, locals))) return false;
-    if (r->nnewright &&
-        (!backward || !match_right_pat(h->nv, h->at, r->newright, r->nnewright, r->newright_branches, locals)))
+    if (r->nnewright && (!backward || !(h->nv ? match_right_pat(h->nv, h->at, r->newright, r->nnewright,
+                                                                  r->newright_branches, locals)
+                                              : match_new_right(h, r->newright, r->nnewright, locals))))
         return false;
     if (r->nleft && !match_left(w->in, i, r, locals)) return false;
     if (r->nright && !match_right(w->in, i, r, locals)) return false;
@@ -300,7 +314,17 @@ typedef struct Back {
 
 /* Room for `need` more modules and `pneed` more parameters before the front (and the slot at
  * h - 1): the contents move to the end of larger arrays and every index into them with them. */
-static bool back_room(Back *b, Links *l, size_t need, size_t pneed, int32_t *next) {
+static bool back_room(Back *b, Links *l, bool walk, size_t need, size_t pneed, int32_t *next) {
+    if (b->h < need + 1 && !walk) { /* entries hold no position: only the modules move */
+        size_t used = b->cap - b->h, cap = 2 * b->cap + need + 1;
+        uint16_t *code = malloc(cap * sizeof *code);
+        if (!code) return false;
+        memcpy(code + (cap - used), b->code + b->h, used * sizeof *code);
+        free(b->code);
+        b->code = code;
+        b->h = cap - used;
+        b->cap = cap;
+    }
     if (b->h < need + 1) {
         size_t used = b->cap - b->h, cap = 2 * b->cap + need + 1;
         uint16_t *code = malloc(cap * sizeof *code);
@@ -342,7 +366,8 @@ static bool back_room(Back *b, Links *l, size_t need, size_t pneed, int32_t *nex
         if (!par) return false;
         size_t delta = pcap - b->pcap, ph = b->ph + delta;
         if (used) memcpy(par + ph, b->par + b->ph, used * sizeof *par);
-        for (size_t j = b->h; j < b->cap; j++) l->poff[j] += (uint32_t)delta;
+        if (walk)
+            for (size_t j = b->h; j < b->cap; j++) l->poff[j] += (uint32_t)delta;
         free(b->par);
         b->par = par;
         b->pcap = pcap;
@@ -367,8 +392,11 @@ static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
     w->fault.status = SYL_OK;
     size_t pi = w->plo;
     for (size_t i = w->lo; i < w->hi; i++) pi += CODE_ARITY(in->code[i]);
-    /* the arrays of the last backward pass, if they are large enough to start with */
-    size_t cap = (w->hi - w->lo) + need + 1024, pcap = (pi - w->plo) + pneed + 1024;
+    /* room for the output as rewrite_pass sized it from the last pass's growth (out->cap), so
+     * that the buffer is rarely moved; the arrays of the last backward pass when they are larger */
+    size_t n_in = w->hi - w->lo, p_in = pi - w->plo;
+    size_t cap = (out->cap > n_in ? out->cap : n_in) + need + 1024,
+           pcap = (out->pcap > p_in ? out->pcap : p_in) + pneed + 1024;
     if (b.cap < cap) {
         free(b.code);
         b.code = malloc(cap * sizeof *b.code);
@@ -381,7 +409,11 @@ static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
     }
     b.h = b.cap;
     b.ph = b.pcap;
-    if (!b.code || !b.par || !links_room(&l, b.cap) || ms_reserve(&tmp, need, pneed)) {
+    const bool walk = t->newright_branches; /* else entries, as forward */
+    static const bool none[CODE_COUNT];
+    const bool *want = t->newright_code ? t->newright_code : none;
+    l.nent = 0;
+    if (!b.code || !b.par || (walk && !links_room(&l, b.cap)) || ms_reserve(&tmp, need, pneed)) {
         fault(w, w->hi, NULL, SYL_ELIMIT, LIMIT_MEMORY);
         goto done;
     }
@@ -389,16 +421,20 @@ static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
     for (size_t i = w->hi; i-- > w->lo;) {
         pi -= CODE_ARITY(in->code[i]);
         const double *args = in->par ? in->par + pi : NULL;
-        if (!back_room(&b, &l, need, pneed, &next)) {
+        if (!back_room(&b, &l, walk, need, pneed, &next) ||
+            (!walk && l.nent + need > l.entcap && !entries_room(&l, l.nent + need))) {
             fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             break;
         }
         size_t at = b.h - 1;
-        l.link[at] = next;
-        l.code[at] = nextcode;
         View nv = {.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
                    .pair = l.pair, .n = b.cap, .skip = in->skip};
-        Here here = {.nv = &nv, .at = at};
+        Here here = {.ent = l.ent, .cursor = next, .par = b.par, .pend = b.pcap, .nv = walk ? &nv : NULL,
+                     .at = at};
+        if (walk) {
+            l.link[at] = next;
+            l.code[at] = nextcode;
+        }
         tmp.n = tmp.np = 0;
         if (rewrite_one(w, i, args, &here, true, &tmp)) break;
         if (b.cap - b.h + tmp.n > out->max_modules) {
@@ -407,8 +443,33 @@ static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
         }
         b.h -= tmp.n;
         b.ph -= tmp.np;
-        if (tmp.n) memcpy(b.code + b.h, tmp.code, tmp.n * sizeof *b.code);
-        if (tmp.np) memcpy(b.par + b.ph, tmp.par, tmp.np * sizeof *b.par);
+        for (size_t k = 0; k < tmp.n; k++) b.code[b.h + k] = tmp.code[k]; /* a few modules */
+        for (size_t k = 0; k < tmp.np; k++) b.par[b.ph + k] = tmp.par[k];
+        if (!walk) { /* match_link_right over the new modules, kept for those `>>` names */
+            size_t off = b.ph + tmp.np;
+            for (size_t j = b.h + tmp.n; j-- > b.h;) {
+                uint16_t c = b.code[j];
+                int s = CODE_SYM(c);
+                off -= CODE_ARITY(c);
+                if (s == SYM_CLOSE) {
+                    if (!push(&l, next, 0, 0)) {
+                        fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                        goto done;
+                    }
+                    next = -1;
+                } else if (s == SYM_OPEN) {
+                    next = l.sp ? l.sidx[--l.sp] : -1;
+                } else if (!in->skip[s]) {
+                    if (want[c]) {
+                        l.ent[l.nent] = (Entry){.link = next, .code = c, .poff = (uint32_t)(b.pcap - off)};
+                        next = (int32_t)l.nent++;
+                    } else {
+                        next = -1;
+                    }
+                }
+            }
+            continue;
+        }
         uint32_t off = (uint32_t)b.ph;
         for (size_t j = b.h; j < b.h + tmp.n; j++) {
             l.poff[j] = off;
