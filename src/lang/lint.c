@@ -77,6 +77,18 @@ static void lint_table(Compiler *c, const RuleTable *t, const bool *made, const 
             diag_warning(c->d, r->loc, "this rule never applies: its condition is always false");
             continue;
         }
+        /* a new context of a direction the model never derives in (docs/language.md §9.7) */
+        bool always = p->direction_when < 0;
+        if (always && r->nnewright && !p->backward) {
+            diag_warning(c->d, r->loc, "this rule never applies: a new right context (`>>`) is matched only in "
+                                       "backward steps (see `direction`)");
+            continue;
+        }
+        if (always && r->nnewleft && p->backward) {
+            diag_warning(c->d, r->loc, "this rule never applies: a new left context (`<<`) is matched only in "
+                                       "forward steps, and the model says `direction backward`");
+            continue;
+        }
         /* a rule after an unconditional, context-free, unweighted one for the same module */
         for (int j = 0; j < i; j++) {
             const Rule *q = &t->rules[j];

@@ -112,6 +112,10 @@ typedef struct RuleTable {
     bool all_fast;       /* every predecessor's rules are plain or FastRules */
     uint8_t *ctx_class;  /* per code: 1.. for the codes fast rules' contexts name, 0 others */
     int nclass;          /* classes including 0; 0 when the codes are too many for pick */
+    bool *newleft_code;  /* CODE_COUNT entries: the codes some `<<` context names (only their
+                            links are kept as the output is written); NULL without `<<` */
+    bool *newright_code; /* the same for `>>` contexts that name no branch; NULL without */
+    bool newright_branches; /* some `>>` context names a branch: backward passes keep every link */
     int max_succ;        /* longest successor in modules */
     int max_succ_params; /* most parameters a successor emits */
     int maxdepth;        /* decomposition / interpretation passes */

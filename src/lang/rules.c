@@ -265,6 +265,16 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
         if (r->nsucc > t->max_succ) t->max_succ = r->nsucc;
         if (r->nslots > t->max_succ_params) t->max_succ_params = r->nslots;
     }
+    for (int i = 0; i < npick; i++) { /* the codes new contexts name: only their links are kept */
+        const Rule *r = &t->rules[pick[i]];
+        if (r->nnewleft && !t->newleft_code && !(t->newleft_code = arena_alloc(a, CODE_COUNT * sizeof(bool))))
+            return false;
+        for (int k = 0; k < r->nnewleft; k++) t->newleft_code[r->newleft[k].code] = true;
+        if (r->newright_branches) t->newright_branches = true;
+        if (r->nnewright && !t->newright_code && !(t->newright_code = arena_alloc(a, CODE_COUNT * sizeof(bool))))
+            return false;
+        for (int k = 0; k < r->nnewright; k++) t->newright_code[r->newright[k].code] = true;
+    }
     t->all_plain = true;
     for (int code = 0; code < CODE_COUNT; code++) {
         Dispatch *d = &t->dispatch[code];

@@ -40,6 +40,7 @@ typedef struct Engine {
     /* context links of the string being read, each grown as needed and kept for the next step */
     int32_t *left, *right, *pair, *stack;
     uint16_t *lcode, *rcode;
+    struct NewctxScratch *newctx; /* the arrays of passes with new contexts */
     size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
@@ -103,6 +104,7 @@ static void engine_free(Engine *e) {
     ms_scratch_free(e->stack, e->cap_stack, sizeof *e->stack);
     ms_scratch_free(e->lcode, e->cap_lcode, sizeof *e->lcode);
     ms_scratch_free(e->rcode, e->cap_rcode, sizeof *e->rcode);
+    newctx_release(&e->newctx);
 }
 
 /* Whether step is derived backward (`direction`): asked only by tables with new contexts. */
@@ -250,7 +252,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     pthread_t tid[MAX_THREADS];
     bool started[MAX_THREADS] = {false};
     for (int k = 1; k < nt; k++) started[k] = !pthread_create(&tid[k], NULL, run_thread, &works[k]);
-    if (t->has_newctx) newctx_chunk(&works[0], back);
+    if (t->has_newctx) newctx_chunk(&works[0], back, &e->newctx);
     else rewrite_chunk(&works[0]);
     for (int k = 1; k < nt; k++) {
         if (started[k]) pthread_join(tid[k], NULL);

@@ -43,17 +43,6 @@ bool match_branches(const View *v, size_t i, const Rule *r, double *locals) {
     return match_seq(v, r->right, 0, r->nright, i + 1, locals);
 }
 
-bool match_left_pat(const View *v, size_t i, const PatElem *pat, int n, double *locals) {
-    if (v->lcode[i] != pat[n - 1].code) return false;
-    int32_t pos = (int32_t)i;
-    for (int j = n - 1; j >= 0; j--) {
-        pos = v->left[pos];
-        if (pos < 0 || v->code[pos] != pat[j].code) return false;
-        match_bind(v, (size_t)pos, &pat[j], locals);
-    }
-    return true;
-}
-
 bool match_right_pat(const View *v, size_t i, const PatElem *pat, int n, bool branches, double *locals) {
     if (branches) return match_seq(v, pat, 0, n, i + 1, locals);
     if (v->rcode[i] != pat[0].code) return false;

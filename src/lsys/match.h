@@ -64,9 +64,8 @@ static inline bool match_right(const View *v, size_t i, const Rule *r, double *l
     return true;
 }
 
-/* New contexts (newctx.c): a pattern that is not the rule's old context, matched around
- * position i of a view of the string being written (i is where the successor goes). */
-bool match_left_pat(const View *v, size_t i, const PatElem *pat, int n, double *locals);
+/* New right contexts (newctx.c): a pattern that is not the rule's old context, matched after
+ * position i of a view of the new string (i is where the successor goes). */
 bool match_right_pat(const View *v, size_t i, const PatElem *pat, int n, bool branches, double *locals);
 
 /* Fill the links and neighbour codes; stack must hold n entries. Strings always have

@@ -8,17 +8,27 @@
 #include "lsys/newctx.h"
 #include "sylva/sylva.h"
 
-/* The links of the string being written, in the positions of its buffer. Position `at`
- * (just past the output forward, just before it backward) is where the next successor goes:
- * its link is the module a new context starts from. */
+/* Forward: the output modules some `<<` pattern names, in the order written, each with the
+ * entry of the module before it on its path (-1: none, or one no pattern names, where every
+ * match fails). A match walks these few entries, not the output. */
+typedef struct Entry {
+    int32_t link;
+    uint16_t code;
+    uint32_t poff; /* its parameters in the output */
+} Entry;
+
+/* What a pass keeps of the string it writes. Backward, in the positions of the buffer it
+ * fills from the end: position `at`, just before the output, is where the next successor
+ * goes, and its link is the module a new right context starts from. */
 typedef struct Links {
-    int32_t *link;   /* forward: the previous module on the path to the root; backward: the
-                        next one along the axis (-1: none) */
+    Entry *ent;      /* forward */
+    size_t nent, entcap;
+    int32_t *link;   /* backward: the next module along the axis (-1: none) */
     uint16_t *code;  /* that module's code (CODE_NONE: none) */
-    int32_t *pair;   /* backward: for a '[' the index of its ']' */
+    int32_t *pair;   /* for a '[' the index of its ']' */
     uint32_t *poff;  /* parameter offset of each module */
     size_t cap;
-    /* the bracket stack: forward, the path module at each open '['; backward, the next
+    /* the bracket stack: forward, the path entry at each open '['; backward, the next
      * module at each ']' entered from its end, and where that ']' is */
     int32_t *sidx, *sclose;
     uint16_t *scode;
@@ -26,6 +36,7 @@ typedef struct Links {
 } Links;
 
 static void links_free(Links *l) {
+    free(l->ent);
     free(l->link);
     free(l->code);
     free(l->pair);
@@ -33,6 +44,18 @@ static void links_free(Links *l) {
     free(l->sidx);
     free(l->sclose);
     free(l->scode);
+    memset(l, 0, sizeof *l);
+}
+
+static bool entries_room(Links *l, size_t need) {
+    if (need <= l->entcap) return true;
+    size_t cap = l->entcap ? 2 * l->entcap : 1024;
+    while (cap < need) cap *= 2;
+    Entry *e = realloc(l->ent, cap * sizeof *e);
+    if (!e) return false;
+    l->ent = e;
+    l->entcap = cap;
+    return true;
 }
 
 /* Room for cap positions (contents kept). */
@@ -89,14 +112,48 @@ static void copy_module(SylString *o, uint16_t c, const double *args) {
     o->np += (size_t)ar;
 }
 
-/* Whether rule r applies to input module i, its successor going to position at of the view
- * nv of the output; its contexts' parameters are bound in locals. A rule with `<<` takes part
- * only in forward passes, one with `>>` only in backward ones. */
-static bool applies(const Work *w, const Rule *r, size_t i, const View *nv, size_t at, bool backward,
-                    double *locals) {
-    if (r->nnewleft && (backward || !match_left_pat(nv, at, r->newleft, r->nnewleft, locals))) return false;
-    if (r->nnewright &&
-        (!backward || !match_right_pat(nv, at, r->newright, r->nnewright, r->newright_branches, locals)))
+/* Where the successor of the module being rewritten goes. Forward: the entry of the output's
+ * last path module (cursor) and the output's parameters; backward: the view of the new string
+ * to the right and the free position just before it. */
+typedef struct Here {
+    const Entry *ent;
+    int32_t cursor;
+    const double *par;
+    size_t pend;     /* backward entries: poff counts back from here (the buffer moves) */
+    const View *nv;  /* backward, when a `>>` context names a branch: the links of every module */
+    size_t at;
+} Here;
+
+static bool match_new_left(const Here *h, const PatElem *pat, int n, double *locals) {
+    int32_t pos = h->cursor;
+    for (int j = n - 1; j >= 0; j--) {
+        if (pos < 0 || h->ent[pos].code != pat[j].code) return false;
+        int ar = CODE_ARITY(pat[j].code);
+        for (int k = 0; k < ar; k++) locals[pat[j].local + k] = h->par[h->ent[pos].poff + (uint32_t)k];
+        pos = h->ent[pos].link;
+    }
+    return true;
+}
+
+/* Backward without branches in `>>` contexts: the entries of the axis that follows. */
+static bool match_new_right(const Here *h, const PatElem *pat, int n, double *locals) {
+    int32_t pos = h->cursor;
+    for (int j = 0; j < n; j++) {
+        if (pos < 0 || h->ent[pos].code != pat[j].code) return false;
+        int ar = CODE_ARITY(pat[j].code);
+        for (int k = 0; k < ar; k++) locals[pat[j].local + k] = h->par[h->pend - h->ent[pos].poff + (uint32_t)k];
+        pos = h->ent[pos].link;
+    }
+    return true;
+}
+
+/* Whether rule r applies to input module i, its contexts' parameters bound in locals. A rule
+ * with `<<` takes part only in forward passes, one with `>>` only in backward ones. */
+static bool applies(const Work *w, const Rule *r, size_t i, const Here *h, bool backward, double *locals) {
+    if (r->nnewleft && (backward || !match_new_left(h, r->newleft, r->nnewleft, locals))) return false;
+    if (r->nnewright && (!backward || !(h->nv ? match_right_pat(h->nv, h->at, r->newright, r->nnewright,
+                                                                  r->newright_branches, locals)
+                                              : match_new_right(h, r->newright, r->nnewright, locals))))
         return false;
     if (r->nleft && !match_left(w->in, i, r, locals)) return false;
     if (r->nright && !match_right(w->in, i, r, locals)) return false;
@@ -105,7 +162,7 @@ static bool applies(const Work *w, const Rule *r, size_t i, const View *nv, size
 
 /* As rewrite.c's choice: the first applicable rule decides; if it is weighted, the choice is
  * among every applicable weighted rule in proportion to its weight, from module i's stream. */
-static const Rule *choose(Work *w, uint16_t c, size_t i, const View *nv, size_t at, bool backward, double *locals,
+static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool backward, double *locals,
                           Rng *rng, bool *rng_ready, int *status) {
     const RuleTable *t = w->t;
     const Dispatch *d = &t->dispatch[c];
@@ -115,7 +172,7 @@ static const Rule *choose(Work *w, uint16_t c, size_t i, const View *nv, size_t 
     for (uint32_t k = 0; k < d->count; k++) {
         const Rule *r = &t->rules[t->order[d->first + k]];
         if (nc && !r->weighted) continue;
-        if (!applies(w, r, i, nv, at, backward, locals)) continue;
+        if (!applies(w, r, i, h, backward, locals)) continue;
         if ((r->cond >= 0 || r->weight >= 0) && !*rng_ready) {
             *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
             *rng_ready = true;
@@ -165,22 +222,23 @@ static const Rule *choose(Work *w, uint16_t c, size_t i, const View *nv, size_t 
     while (pick < nc - 1 && (u -= w->weight[pick]) >= 0) pick++;
     while (w->weight[pick] == 0) pick--;
     const Rule *r = w->cand[pick];
-    applies(w, r, i, nv, at, backward, locals); /* bind the chosen rule's contexts again */
+    applies(w, r, i, h, backward, locals); /* bind the chosen rule's contexts again */
     return r;
 }
 
 /* Rule or copy for input module i (parameters args) into o. SYL_OK or the fault's status. */
-static int rewrite_one(Work *w, size_t i, const double *args, const View *nv, size_t at, bool backward,
-                       SylString *o) {
+static int rewrite_one(Work *w, size_t i, const double *args, const Here *h, bool backward, SylString *o) {
     uint16_t c = w->in->code[i];
     double locals[MAX_LOCALS + MAX_ARITY];
     Rng rng;
     bool ready = false;
     const Rule *r = NULL;
-    if (w->t->dispatch[c].count) {
+    const Dispatch *d = &w->t->dispatch[c];
+    if (d->plain) return rewrite_emit(w, d->plain, args, i, &rng, &ready); /* no context, no choice */
+    if (d->count) {
         int status;
         if (CODE_ARITY(c)) memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
-        r = choose(w, c, i, nv, at, backward, locals, &rng, &ready, &status);
+        r = choose(w, c, i, h, backward, locals, &rng, &ready, &status);
         if (status) return status;
     }
     if (!r) {
@@ -190,15 +248,18 @@ static int rewrite_one(Work *w, size_t i, const double *args, const View *nv, si
     return rewrite_emit(w, r, locals, i, &rng, &ready);
 }
 
-/* First module first: the output is w->out; its left links grow as successors are appended. */
-static void forward(Work *w) {
+/* First module first: the output is w->out; the entries of its path grow as successors are
+ * appended (match_link_left, one module at a time, kept only for the modules `<<` names). */
+static void forward(Work *w, Links *lp) {
     const RuleTable *t = w->t;
     const View *in = w->in;
     SylString *o = w->out;
     const size_t need = (size_t)t->max_succ + SUCC_PAD, pneed = (size_t)t->max_succ_params + MAX_ARITY;
-    Links l = {0};
-    int32_t last = -1;
-    uint16_t lastcode = CODE_NONE;
+    Links l = *lp; /* a copy in registers, put back at the end */
+    l.sp = l.nent = 0;
+    static const bool none[CODE_COUNT]; /* a table with `>>` only: nothing to keep */
+    const bool *want = t->newleft_code ? t->newleft_code : none;
+    int32_t last = -1; /* the entry of the output's last path module */
     uint32_t pofs = 0;
     size_t pi = w->plo;
     w->fault.status = SYL_OK;
@@ -212,45 +273,36 @@ static void forward(Work *w) {
                 break;
             }
         }
-        if (!links_room(&l, o->cap + 1)) {
+        if (l.nent + need > l.entcap && !entries_room(&l, l.nent + need)) {
             fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             break;
         }
         size_t at = o->n;
-        l.link[at] = last;
-        l.code[at] = lastcode;
-        View nv = {.code = o->code, .par = o->par, .poff = l.poff, .left = l.link, .lcode = l.code, .n = at,
-                   .skip = in->skip};
-        if (rewrite_one(w, i, args, &nv, at, false, o)) break;
-        for (size_t j = at; j < o->n; j++) { /* match_link_left, one module at a time */
+        Here h = {.ent = l.ent, .cursor = last, .par = o->par};
+        if (rewrite_one(w, i, args, &h, false, o)) break;
+        for (size_t j = at; j < o->n; j++) {
             uint16_t c = o->code[j];
             int s = CODE_SYM(c);
-            l.link[j] = last;
-            l.code[j] = lastcode;
-            l.poff[j] = pofs;
-            pofs += CODE_ARITY(c);
             if (s == SYM_OPEN) {
-                if (!push(&l, last, lastcode, 0)) {
+                if (!push(&l, last, 0, 0)) {
                     fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
                     goto done;
                 }
             } else if (s == SYM_CLOSE) {
-                if (l.sp) {
-                    l.sp--;
-                    last = l.sidx[l.sp];
-                    lastcode = l.scode[l.sp];
-                } else {
-                    last = -1;
-                    lastcode = CODE_NONE;
-                }
+                last = l.sp ? l.sidx[--l.sp] : -1;
             } else if (!in->skip[s]) {
-                last = (int32_t)j;
-                lastcode = c;
+                if (want[c]) {
+                    l.ent[l.nent] = (Entry){.link = last, .code = c, .poff = pofs};
+                    last = (int32_t)l.nent++;
+                } else {
+                    last = -1; /* no pattern names it: every match fails here */
+                }
             }
+            pofs += CODE_ARITY(c);
         }
     }
 done:
-    links_free(&l);
+    *lp = l;
 }
 
 /* The backward output: modules in [h, cap) of code, parameters in [ph, pcap) of par. */
@@ -262,7 +314,17 @@ typedef struct Back {
 
 /* Room for `need` more modules and `pneed` more parameters before the front (and the slot at
  * h - 1): the contents move to the end of larger arrays and every index into them with them. */
-static bool back_room(Back *b, Links *l, size_t need, size_t pneed, int32_t *next) {
+static bool back_room(Back *b, Links *l, bool walk, size_t need, size_t pneed, int32_t *next) {
+    if (b->h < need + 1 && !walk) { /* entries hold no position: only the modules move */
+        size_t used = b->cap - b->h, cap = 2 * b->cap + need + 1;
+        uint16_t *code = malloc(cap * sizeof *code);
+        if (!code) return false;
+        memcpy(code + (cap - used), b->code + b->h, used * sizeof *code);
+        free(b->code);
+        b->code = code;
+        b->h = cap - used;
+        b->cap = cap;
+    }
     if (b->h < need + 1) {
         size_t used = b->cap - b->h, cap = 2 * b->cap + need + 1;
         uint16_t *code = malloc(cap * sizeof *code);
@@ -304,7 +366,8 @@ static bool back_room(Back *b, Links *l, size_t need, size_t pneed, int32_t *nex
         if (!par) return false;
         size_t delta = pcap - b->pcap, ph = b->ph + delta;
         if (used) memcpy(par + ph, b->par + b->ph, used * sizeof *par);
-        for (size_t j = b->h; j < b->cap; j++) l->poff[j] += (uint32_t)delta;
+        if (walk)
+            for (size_t j = b->h; j < b->cap; j++) l->poff[j] += (uint32_t)delta;
         free(b->par);
         b->par = par;
         b->pcap = pcap;
@@ -315,24 +378,42 @@ static bool back_room(Back *b, Links *l, size_t need, size_t pneed, int32_t *nex
 
 /* Last module first: each successor is written to a scratch string, then put in front of
  * the output, whose right links (and bracket pairs) grow towards the front. */
-static void backward(Work *w) {
+static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
     const RuleTable *t = w->t;
     const View *in = w->in;
     SylString *out = w->out;
     const size_t need = (size_t)t->max_succ + SUCC_PAD, pneed = (size_t)t->max_succ_params + MAX_ARITY;
-    Links l = {0};
-    Back b = {0};
-    SylString tmp = {0};
+    Links l = *lp;
+    Back b = *bp;
+    SylString tmp = *tmpp;
+    l.sp = 0;
     int32_t next = -1;
     uint16_t nextcode = CODE_NONE;
     w->fault.status = SYL_OK;
     size_t pi = w->plo;
     for (size_t i = w->lo; i < w->hi; i++) pi += CODE_ARITY(in->code[i]);
-    b.cap = b.h = (w->hi - w->lo) + need + 1024;
-    b.pcap = b.ph = (pi - w->plo) + pneed + 1024;
-    b.code = malloc(b.cap * sizeof *b.code);
-    b.par = malloc(b.pcap * sizeof *b.par);
-    if (!b.code || !b.par || !links_room(&l, b.cap) || ms_reserve(&tmp, need, pneed)) {
+    /* room for the output as rewrite_pass sized it from the last pass's growth (out->cap), so
+     * that the buffer is rarely moved; the arrays of the last backward pass when they are larger */
+    size_t n_in = w->hi - w->lo, p_in = pi - w->plo;
+    size_t cap = (out->cap > n_in ? out->cap : n_in) + need + 1024,
+           pcap = (out->pcap > p_in ? out->pcap : p_in) + pneed + 1024;
+    if (b.cap < cap) {
+        free(b.code);
+        b.code = malloc(cap * sizeof *b.code);
+        b.cap = b.code ? cap : 0;
+    }
+    if (b.pcap < pcap) {
+        free(b.par);
+        b.par = malloc(pcap * sizeof *b.par);
+        b.pcap = b.par ? pcap : 0;
+    }
+    b.h = b.cap;
+    b.ph = b.pcap;
+    const bool walk = t->newright_branches; /* else entries, as forward */
+    static const bool none[CODE_COUNT];
+    const bool *want = t->newright_code ? t->newright_code : none;
+    l.nent = 0;
+    if (!b.code || !b.par || (walk && !links_room(&l, b.cap)) || ms_reserve(&tmp, need, pneed)) {
         fault(w, w->hi, NULL, SYL_ELIMIT, LIMIT_MEMORY);
         goto done;
     }
@@ -340,25 +421,55 @@ static void backward(Work *w) {
     for (size_t i = w->hi; i-- > w->lo;) {
         pi -= CODE_ARITY(in->code[i]);
         const double *args = in->par ? in->par + pi : NULL;
-        if (!back_room(&b, &l, need, pneed, &next)) {
+        if (!back_room(&b, &l, walk, need, pneed, &next) ||
+            (!walk && l.nent + need > l.entcap && !entries_room(&l, l.nent + need))) {
             fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             break;
         }
         size_t at = b.h - 1;
-        l.link[at] = next;
-        l.code[at] = nextcode;
         View nv = {.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
                    .pair = l.pair, .n = b.cap, .skip = in->skip};
+        Here here = {.ent = l.ent, .cursor = next, .par = b.par, .pend = b.pcap, .nv = walk ? &nv : NULL,
+                     .at = at};
+        if (walk) {
+            l.link[at] = next;
+            l.code[at] = nextcode;
+        }
         tmp.n = tmp.np = 0;
-        if (rewrite_one(w, i, args, &nv, at, true, &tmp)) break;
+        if (rewrite_one(w, i, args, &here, true, &tmp)) break;
         if (b.cap - b.h + tmp.n > out->max_modules) {
             fault(w, i, NULL, SYL_ELIMIT, LIMIT_MODULES);
             break;
         }
         b.h -= tmp.n;
         b.ph -= tmp.np;
-        if (tmp.n) memcpy(b.code + b.h, tmp.code, tmp.n * sizeof *b.code);
-        if (tmp.np) memcpy(b.par + b.ph, tmp.par, tmp.np * sizeof *b.par);
+        for (size_t k = 0; k < tmp.n; k++) b.code[b.h + k] = tmp.code[k]; /* a few modules */
+        for (size_t k = 0; k < tmp.np; k++) b.par[b.ph + k] = tmp.par[k];
+        if (!walk) { /* match_link_right over the new modules, kept for those `>>` names */
+            size_t off = b.ph + tmp.np;
+            for (size_t j = b.h + tmp.n; j-- > b.h;) {
+                uint16_t c = b.code[j];
+                int s = CODE_SYM(c);
+                off -= CODE_ARITY(c);
+                if (s == SYM_CLOSE) {
+                    if (!push(&l, next, 0, 0)) {
+                        fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                        goto done;
+                    }
+                    next = -1;
+                } else if (s == SYM_OPEN) {
+                    next = l.sp ? l.sidx[--l.sp] : -1;
+                } else if (!in->skip[s]) {
+                    if (want[c]) {
+                        l.ent[l.nent] = (Entry){.link = next, .code = c, .poff = (uint32_t)(b.pcap - off)};
+                        next = (int32_t)l.nent++;
+                    } else {
+                        next = -1;
+                    }
+                }
+            }
+            continue;
+        }
         uint32_t off = (uint32_t)b.ph;
         for (size_t j = b.h; j < b.h + tmp.n; j++) {
             l.poff[j] = off;
@@ -408,10 +519,53 @@ static void backward(Work *w) {
     }
 done:
     w->out = out;
-    free(b.code);
-    free(b.par);
-    ms_release(&tmp);
-    links_free(&l);
+    *lp = l;
+    *bp = b;
+    *tmpp = tmp;
 }
 
-void newctx_chunk(Work *w, bool backward_step) { backward_step ? backward(w) : forward(w); }
+/* What passes keep for the next: allocated once, not page-faulted in again every step. */
+struct NewctxScratch {
+    Links links;
+    Back back;
+    SylString tmp;
+    Budget *mem;      /* --max-memory: what the arrays hold is charged after each pass */
+    uint64_t charged;
+};
+
+static uint64_t scratch_bytes(const struct NewctxScratch *s) {
+    const Links *l = &s->links;
+    return l->entcap * sizeof *l->ent +
+           l->cap * (sizeof *l->link + sizeof *l->code + sizeof *l->pair + sizeof *l->poff) +
+           l->scap * (sizeof *l->sidx + sizeof *l->sclose + sizeof *l->scode) +
+           s->back.cap * sizeof *s->back.code + s->back.pcap * sizeof *s->back.par;
+}
+
+void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
+    if (!*scratch && !(*scratch = calloc(1, sizeof **scratch))) {
+        fault(w, w->lo, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+        return;
+    }
+    struct NewctxScratch *s = *scratch;
+    s->mem = w->out->mem;
+    if (backward_step) backward(w, &s->links, &s->back, &s->tmp);
+    else forward(w, &s->links);
+    uint64_t now = scratch_bytes(s);
+    if (!budget_resize(s->mem, s->charged, now)) {
+        if (!w->fault.status) fault(w, w->hi, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+        return; /* the next pass or newctx_release releases what is charged */
+    }
+    s->charged = now;
+}
+
+void newctx_release(struct NewctxScratch **scratch) {
+    struct NewctxScratch *s = *scratch;
+    if (!s) return;
+    budget_release(s->mem, s->charged);
+    links_free(&s->links);
+    free(s->back.code);
+    free(s->back.par);
+    ms_release(&s->tmp);
+    free(s);
+    *scratch = NULL;
+}
