@@ -5,69 +5,27 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 #include "sylva/sylva.h"
+#include "util/pages.h"
 
-/* Large arrays are written once per step into fresh memory, and page faults dominate
- * filling it (on a virtual machine a 4 KB fault costs microseconds). Arrays of BIG bytes
- * and more are therefore mapped directly, in whole 2 MB pages, aligned and marked for huge
- * pages, so that one fault fills 2 MB; smaller ones live in malloc. Whether an array is
- * mapped follows from its capacity alone (mapped_bytes), so nothing else is recorded. */
-#define HUGE_PAGE ((size_t)2 << 20)
-enum { BIG = 1u << 20 };
-
-static size_t mapped_bytes(size_t bytes) { return bytes < BIG ? 0 : (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1); }
-
-static void *map_big(size_t bytes) {
-    size_t len = mapped_bytes(bytes);
-    char *p = mmap(NULL, len + HUGE_PAGE, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-    if (p == MAP_FAILED) return NULL;
-    char *a = (char *)(((uintptr_t)p + HUGE_PAGE - 1) & ~(uintptr_t)(HUGE_PAGE - 1));
-    if (a > p) munmap(p, (size_t)(a - p));
-    if (a + len < p + len + HUGE_PAGE) munmap(a + len, (size_t)(p + len + HUGE_PAGE - (a + len)));
-    madvise(a, len, MADV_HUGEPAGE); /* a hint; harmless where transparent huge pages are off */
-    return a;
-}
-
-static void free_big(void *p, size_t bytes) {
-    if (!p) return;
-    if (mapped_bytes(bytes)) munmap(p, mapped_bytes(bytes));
-    else free(p);
-}
-
-/* Grow an array of old bytes (the first used of them in use) to bytes; NULL if refused,
- * the old array then unchanged. */
-static void *grow_big(void *old, size_t old_bytes, size_t used, size_t bytes) {
-    if (!mapped_bytes(bytes)) return realloc(old, bytes);
-#ifdef MREMAP_MAYMOVE /* Linux */
-    size_t om = mapped_bytes(old_bytes);
-    if (old && om) { /* moving the pages costs no copy and keeps the hint */
-        void *p = mremap(old, om, mapped_bytes(bytes), MREMAP_MAYMOVE);
-        if (p != MAP_FAILED) return p;
-    }
-#endif
-    void *p = map_big(bytes);
-    if (!p) return NULL;
-    if (used) memcpy(p, old, used);
-    free_big(old, old_bytes);
-    return p;
-}
-
+/* Strings are written once per step into fresh memory, and page faults dominated filling
+ * them (on a virtual machine a 4 KB fault costs microseconds): their arrays live in whole
+ * 2 MB pages (util/pages.c). */
 bool ms_scratch_reserve(void *arrp, size_t *cap, size_t need, size_t elem) {
     void **arr = arrp;
     if (need <= *cap) return true;
     if (!elem || need > PTRDIFF_MAX / elem / 2) return false;
     size_t c = *cap ? *cap : 1024;
     while (c < need) c *= 2;
-    void *p = grow_big(*arr, *cap * elem, 0, c * elem);
+    void *p = pages_grow(*arr, *cap * elem, 0, c * elem);
     if (!p) return false;
     *arr = p;
     *cap = c;
     return true;
 }
 
-void ms_scratch_free(void *arr, size_t cap, size_t elem) { free_big(arr, cap * elem); }
+void ms_scratch_free(void *arr, size_t cap, size_t elem) { pages_free(arr, cap * elem); }
 
 static int charge(SylString *s, int64_t delta) {
     if (!s->mem) return SYL_OK;
@@ -83,7 +41,7 @@ int ms_reserve(SylString *s, size_t n, size_t np) {
         size_t cap = s->cap + s->cap / 2 + 1024;
         if (cap < s->n + n) cap = s->n + n;
         if (charge(s, (int64_t)((cap - s->cap) * sizeof *s->code))) return SYL_ELIMIT;
-        uint16_t *c = grow_big(s->code, s->cap * sizeof *c, s->n * sizeof *c, cap * sizeof *c);
+        uint16_t *c = pages_grow(s->code, s->cap * sizeof *c, s->n * sizeof *c, cap * sizeof *c);
         if (!c) return SYL_ELIMIT;
         s->code = c;
         s->cap = cap;
@@ -92,7 +50,7 @@ int ms_reserve(SylString *s, size_t n, size_t np) {
         size_t cap = s->pcap + s->pcap / 2 + 256;
         if (cap < s->np + np) cap = s->np + np;
         if (charge(s, (int64_t)((cap - s->pcap) * sizeof *s->par))) return SYL_ELIMIT;
-        double *p = grow_big(s->par, s->pcap * sizeof *p, s->np * sizeof *p, cap * sizeof *p);
+        double *p = pages_grow(s->par, s->pcap * sizeof *p, s->np * sizeof *p, cap * sizeof *p);
         if (!p) return SYL_ELIMIT;
         s->par = p;
         s->pcap = cap;
@@ -143,8 +101,8 @@ const uint32_t *ms_offsets(const SylString *cs) {
 void ms_release(SylString *s) {
     budget_release(s->mem, s->charged);
     s->charged = 0;
-    free_big(s->code, s->cap * sizeof *s->code);
-    free_big(s->par, s->pcap * sizeof *s->par);
+    pages_free(s->code, s->cap * sizeof *s->code);
+    pages_free(s->par, s->pcap * sizeof *s->par);
     free(s->poff);
     s->code = NULL;
     s->par = NULL;

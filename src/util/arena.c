@@ -1,17 +1,22 @@
 /* Arena: bump allocation for data that lives and dies together. */
 #include "util/arena.h"
+#include "util/pages.h"
 
 #include <limits.h>
+#include <stdbool.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+/* A big block's data lives apart from its header, in whole 2 MB pages (util/pages.c): a
+ * rule table's dispatch is 2 MB, and a deriver builds one per set of active groups. */
 struct ArenaBlock {
     ArenaBlock *next;
     size_t size, off;
-    _Alignas(16) unsigned char data[];
+    unsigned char *data; /* inline, or pages of their own when size >= PAGES_BIG */
+    _Alignas(16) unsigned char inline_data[];
 };
 
 enum { BLOCK_MIN = 64 * 1024 };
@@ -28,8 +33,14 @@ void *arena_alloc(Arena *a, size_t size) {
     ArenaBlock *b = a->head;
     if (!b || b->size - b->off < size) {
         size_t bs = size > BLOCK_MIN ? size : BLOCK_MIN;
-        b = malloc(sizeof *b + bs);
-        if (!b) return arena_fail(a);
+        bool big = bs >= PAGES_BIG;
+        b = malloc(sizeof *b + (big ? 0 : bs));
+        unsigned char *data = !b ? NULL : big ? pages_alloc(bs) : b->inline_data;
+        if (!data) {
+            free(b);
+            return arena_fail(a);
+        }
+        b->data = data;
         b->size = bs;
         b->off = 0;
         b->next = a->head;
@@ -76,6 +87,7 @@ void arena_free(Arena *a) {
     ArenaBlock *b = a->head;
     while (b) {
         ArenaBlock *n = b->next;
+        if (b->data != b->inline_data) pages_free(b->data, b->size);
         free(b);
         b = n;
     }

@@ -1,0 +1,47 @@
+/* Big arrays in whole 2 MB pages, aligned and marked for transparent huge pages. */
+#include "util/pages.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+
+#define HUGE_PAGE ((size_t)2 << 20)
+
+static size_t mapped_bytes(size_t bytes) { return bytes < PAGES_BIG ? 0 : (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1); }
+
+static void *map_big(size_t bytes) {
+    size_t len = mapped_bytes(bytes);
+    char *p = mmap(NULL, len + HUGE_PAGE, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return NULL;
+    char *a = (char *)(((uintptr_t)p + HUGE_PAGE - 1) & ~(uintptr_t)(HUGE_PAGE - 1));
+    if (a > p) munmap(p, (size_t)(a - p));
+    if (a + len < p + len + HUGE_PAGE) munmap(a + len, (size_t)(p + len + HUGE_PAGE - (a + len)));
+    madvise(a, len, MADV_HUGEPAGE); /* a hint; harmless where transparent huge pages are off */
+    return a;
+}
+
+void pages_free(void *p, size_t bytes) {
+    if (!p) return;
+    if (mapped_bytes(bytes)) munmap(p, mapped_bytes(bytes));
+    else free(p);
+}
+
+void *pages_grow(void *old, size_t old_bytes, size_t used, size_t bytes) {
+    if (!mapped_bytes(bytes)) return realloc(old, bytes);
+#ifdef MREMAP_MAYMOVE /* Linux */
+    size_t om = mapped_bytes(old_bytes);
+    if (old && om) { /* moving the pages costs no copy and keeps the hint */
+        void *p = mremap(old, om, mapped_bytes(bytes), MREMAP_MAYMOVE);
+        if (p != MAP_FAILED) return p;
+    }
+#endif
+    void *p = map_big(bytes);
+    if (!p) return NULL;
+    if (used) memcpy(p, old, used);
+    pages_free(old, old_bytes);
+    return p;
+}
+
+
+void *pages_alloc(size_t bytes) { return mapped_bytes(bytes) ? map_big(bytes) : calloc(1, bytes ? bytes : 1); }
