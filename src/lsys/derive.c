@@ -40,8 +40,9 @@ typedef struct Engine {
     /* context links of the string being read, each grown as needed and kept for the next step */
     int32_t *left, *right, *pair, *stack;
     uint16_t *lcode, *rcode;
+    uint8_t *rclass, *cstack; /* run_chunk_classes: right neighbours' classes, left classes' stack */
     struct NewctxScratch *newctx; /* the arrays of passes with new contexts */
-    size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode;
+    size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
@@ -104,6 +105,8 @@ static void engine_free(Engine *e) {
     ms_scratch_free(e->stack, e->cap_stack, sizeof *e->stack);
     ms_scratch_free(e->lcode, e->cap_lcode, sizeof *e->lcode);
     ms_scratch_free(e->rcode, e->cap_rcode, sizeof *e->rcode);
+    ms_scratch_free(e->rclass, e->cap_rclass, 1);
+    ms_scratch_free(e->cstack, e->cap_cstack, 1);
     newctx_release(&e->newctx);
 }
 
@@ -184,7 +187,20 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     out->n = out->np = 0;
     ms_changed(out); /* the offset cache describes the old contents */
     View v = {.code = in->code, .par = in->par, .n = in->n, .skip = p->skip};
-    if (t->has_context) {
+    int nt = e->threads;
+    if (in->n < PARALLEL_MIN) nt = 1;
+    bool codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast);
+    /* one thread, contexts of one module without parameters on both sides, pick tables:
+     * run_chunk_classes follows the left neighbours itself and reads the right ones' classes */
+    bool classes = nt == 1 && codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
+                   !t->ctx_branches && !t->has_newctx;
+    if (classes) {
+        if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, in->n, 1) ||
+            !ms_scratch_reserve(&e->cstack, &e->cap_cstack, in->n + 1, 1))
+            return SYL_ELIMIT;
+        match_class_right(in->code, in->n, p->skip, t->ctx_class, e->rclass, e->cstack);
+        v.rclass = e->rclass;
+    } else if (t->has_context) {
         if (in->np) {
             v.poff = ms_offsets(in);
             if (!v.poff) return SYL_ELIMIT;
@@ -218,8 +234,6 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             v.rcode = e->rcode;
         }
     }
-    int nt = e->threads;
-    if (in->n < PARALLEL_MIN) nt = 1;
     bool back = false;
     if (t->has_newctx) { /* each module reads what the one before it wrote: one thread */
         nt = 1;
@@ -243,7 +257,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         size_t hi = k == nt - 1 ? in->n : in->n / (size_t)nt * (size_t)(k + 1);
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
-                          .codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast)};
+                          .codes_only = codes_only, .stack = classes ? e->cstack : NULL};
         parts[k].mem = e->mem;
         parts[k].max_modules = e->max_modules;
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(in->code[i]);

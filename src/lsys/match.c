@@ -104,6 +104,22 @@ void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t 
     }
 }
 
+void match_class_right(const uint16_t *code, size_t n, const bool *skip, const uint8_t *cls, uint8_t *rclass,
+                       uint8_t *stack) {
+    uint8_t none = cls[CODE_NONE], next = none;
+    size_t sp = 0;
+    for (size_t i = n; i-- > 0;) {
+        uint16_t c = code[i];
+        int s = CODE_SYM(c);
+        rclass[i] = next;
+        if (s == SYM_CLOSE) {
+            stack[sp++] = next;
+            next = none;
+        } else if (s == SYM_OPEN) next = sp ? stack[--sp] : none;
+        else if (!skip[s]) next = cls[c];
+    }
+}
+
 void match_pairs(const uint16_t *code, size_t n, int32_t *pair) {
     /* pair[] doubles as the stack of open brackets: each '[' links to the enclosing one
      * until its ']' is found. */

@@ -23,6 +23,7 @@ typedef struct View {
     const int32_t *right;  /* -1: none */
     const uint16_t *lcode, *rcode; /* the codes of those neighbours (CODE_NONE: none) */
     const int32_t *pair;   /* for '[' the index of its ']' and the other way round */
+    const uint8_t *rclass; /* or, for run_chunk_classes, the class of the right neighbour's code */
     size_t n;
     const bool *skip;      /* symbols ignored in contexts */
 } View;
@@ -75,5 +76,9 @@ void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *
 void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, uint16_t *rcode,
                       int32_t *stack);
 void match_pairs(const uint16_t *code, size_t n, int32_t *pair);
+/* rclass[i] = cls[code of module i's right neighbour] (cls[CODE_NONE] for none): the right
+ * links of match_link_right in one byte a module; stack must hold n entries. */
+void match_class_right(const uint16_t *code, size_t n, const bool *skip, const uint8_t *cls, uint8_t *rclass,
+                       uint8_t *stack);
 
 #endif

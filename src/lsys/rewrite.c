@@ -195,6 +195,48 @@ static void run_chunk_codes(Work *w) {
     w->applied |= applied;
 }
 
+/* run_chunk_codes for a whole string in one thread when every context is one module without
+ * parameters and pick tables exist: the left neighbour's class is followed while scanning
+ * (a stack of the branch parents'), the right one's read from in->rclass, a byte a module.
+ * No link pass and no link arrays for the left side, a quarter of the memory for the right. */
+static void run_chunk_classes(Work *w) {
+    const RuleTable *t = w->t;
+    const View *in = w->in;
+    const uint16_t *code = in->code;
+    const uint8_t *cls = t->ctx_class, *rclass = in->rclass;
+    const bool *skip = in->skip;
+    const size_t nclass = (size_t)t->nclass;
+    uint8_t *stack = w->stack, none = cls[CODE_NONE], left = none;
+    size_t sp = 0;
+    SylString *o = w->out;
+    bool applied = false;
+    for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
+        size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
+        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        if (o->n + room > o->cap && over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), 0))) return;
+        uint16_t *oc = o->code + o->n;
+        for (size_t i = lo; i < hi; i++) {
+            uint16_t c = code[i];
+            const Dispatch *d = &t->dispatch[c];
+            const Rule *r = d->plain;
+            if (!r && d->fast) r = d->pick[left * nclass + rclass[i]];
+            if (r) {
+                put_codes(oc, r);
+                oc += r->nsucc;
+                applied = true;
+            } else {
+                *oc++ = c;
+            }
+            int s = CODE_SYM(c); /* the left link of match_link_left, one module on */
+            if (s == SYM_OPEN) stack[sp++] = left;
+            else if (s == SYM_CLOSE) left = sp ? stack[--sp] : none;
+            else if (!skip[s]) left = cls[c];
+        }
+        o->n = (size_t)(oc - o->code);
+    }
+    w->applied |= applied;
+}
+
 /* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
  * no VM, no random stream. False if a value is not finite (emit then reports it). */
 static inline bool put_slots(double *dst, const Rule *r, const double *x) {
@@ -335,7 +377,7 @@ static void run_chunk_plain(Work *w) {
 }
 
 void rewrite_chunk(Work *w) {
-    if (w->codes_only) run_chunk_codes(w);
+    if (w->codes_only) w->stack ? run_chunk_classes(w) : run_chunk_codes(w);
     else if (w->t->all_plain) run_chunk_plain(w);
     else run_chunk(w);
 }

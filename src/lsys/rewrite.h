@@ -33,6 +33,7 @@ typedef struct Work {
     uint64_t seed;
     bool applied;     /* a rule other than identity was used */
     bool codes_only;  /* no parameters in or out, plain or fast rules: run_chunk_codes */
+    uint8_t *stack;   /* set for run_chunk_classes (in->rclass): room for n left classes */
     const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
     double *weight;
     int ncap;
