@@ -305,7 +305,9 @@ done:
     *lp = l;
 }
 
-/* The backward output: modules in [h, cap) of code, parameters in [ph, pcap) of par. */
+/* The backward output, written into the output string's own arrays from their end: modules
+ * in [h, cap) of code, parameters in [ph, pcap) of par, moved to the front once at the end
+ * (a copy within memory already touched, where a separate buffer faulted in fresh pages). */
 typedef struct Back {
     uint16_t *code;
     double *par;
@@ -313,78 +315,71 @@ typedef struct Back {
 } Back;
 
 /* Room for `need` more modules and `pneed` more parameters before the front (and the slot at
- * h - 1): the contents move to the end of larger arrays and every index into them with them. */
-static bool back_room(Back *b, Links *l, bool walk, size_t need, size_t pneed, int32_t *next) {
-    if (b->h < need + 1 && !walk) { /* entries hold no position: only the modules move */
-        size_t used = b->cap - b->h, cap = 2 * b->cap + need + 1;
-        uint16_t *code = malloc(cap * sizeof *code);
-        if (!code) return false;
-        memcpy(code + (cap - used), b->code + b->h, used * sizeof *code);
-        free(b->code);
-        b->code = code;
-        b->h = cap - used;
-        b->cap = cap;
-    }
+ * h - 1): out's arrays grow, the contents move to their new end and every index into them
+ * with them. */
+static bool back_room(Back *b, SylString *out, Links *l, bool walk, size_t need, size_t pneed, int32_t *next) {
     if (b->h < need + 1) {
-        size_t used = b->cap - b->h, cap = 2 * b->cap + need + 1;
-        uint16_t *code = malloc(cap * sizeof *code);
-        if (!code) return false;
-        Links nl = *l;
-        nl.link = nl.pair = NULL;
-        nl.code = NULL;
-        nl.poff = NULL;
-        nl.cap = 0;
-        if (!links_room(&nl, cap)) {
-            free(code);
-            free(nl.link), free(nl.code), free(nl.pair), free(nl.poff);
-            return false;
-        }
-        size_t delta = cap - b->cap, h = b->h + delta;
-        memcpy(code + h, b->code + b->h, used * sizeof *code);
-        memcpy(nl.code + h, l->code + b->h, used * sizeof *nl.code);
-        memcpy(nl.poff + h, l->poff + b->h, used * sizeof *nl.poff);
-        for (size_t j = 0; j < used; j++) {
-            int32_t a = l->link[b->h + j], p = l->pair[b->h + j];
-            nl.link[h + j] = a < 0 ? a : a + (int32_t)delta;
-            nl.pair[h + j] = p < 0 ? p : p + (int32_t)delta;
-        }
-        for (size_t k = 0; k < l->sp; k++) {
-            if (l->sidx[k] >= 0) l->sidx[k] += (int32_t)delta;
-            l->sclose[k] += (int32_t)delta;
-        }
-        if (*next >= 0) *next += (int32_t)delta;
-        free(b->code);
-        free(l->link), free(l->code), free(l->pair), free(l->poff);
-        l->link = nl.link, l->code = nl.code, l->pair = nl.pair, l->poff = nl.poff, l->cap = nl.cap;
-        b->code = code;
-        b->cap = cap;
+        size_t used = b->cap - b->h, old = b->cap;
+        out->n = old; /* all of it is kept while the arrays grow */
+        int st = ms_reserve(out, old + need + 1, 0);
+        out->n = 0;
+        if (st) return false;
+        size_t delta = out->cap - old, h = b->h + delta;
+        memmove(out->code + h, out->code + b->h, used * sizeof *out->code);
+        b->code = out->code;
+        b->cap = out->cap;
         b->h = h;
+        if (walk) {
+            Links nl = *l;
+            nl.link = nl.pair = NULL;
+            nl.code = NULL;
+            nl.poff = NULL;
+            nl.cap = 0;
+            if (!links_room(&nl, b->cap)) {
+                free(nl.link), free(nl.code), free(nl.pair), free(nl.poff);
+                return false;
+            }
+            memcpy(nl.code + h, l->code + (h - delta), used * sizeof *nl.code);
+            memcpy(nl.poff + h, l->poff + (h - delta), used * sizeof *nl.poff);
+            for (size_t j = 0; j < used; j++) {
+                int32_t a = l->link[h - delta + j], p = l->pair[h - delta + j];
+                nl.link[h + j] = a < 0 ? a : a + (int32_t)delta;
+                nl.pair[h + j] = p < 0 ? p : p + (int32_t)delta;
+            }
+            for (size_t k = 0; k < l->sp; k++) {
+                if (l->sidx[k] >= 0) l->sidx[k] += (int32_t)delta;
+                l->sclose[k] += (int32_t)delta;
+            }
+            if (*next >= 0) *next += (int32_t)delta;
+            free(l->link), free(l->code), free(l->pair), free(l->poff);
+            l->link = nl.link, l->code = nl.code, l->pair = nl.pair, l->poff = nl.poff, l->cap = nl.cap;
+        }
     }
     if (b->ph < pneed) {
-        size_t used = b->pcap - b->ph, pcap = 2 * b->pcap + pneed;
-        double *par = malloc(pcap * sizeof *par);
-        if (!par) return false;
-        size_t delta = pcap - b->pcap, ph = b->ph + delta;
-        if (used) memcpy(par + ph, b->par + b->ph, used * sizeof *par);
+        size_t used = b->pcap - b->ph, old = b->pcap;
+        out->np = old;
+        int st = ms_reserve(out, 0, old + pneed);
+        out->np = 0;
+        if (st) return false;
+        size_t delta = out->pcap - old, ph = b->ph + delta;
+        if (used) memmove(out->par + ph, out->par + b->ph, used * sizeof *out->par);
         if (walk)
             for (size_t j = b->h; j < b->cap; j++) l->poff[j] += (uint32_t)delta;
-        free(b->par);
-        b->par = par;
-        b->pcap = pcap;
+        b->par = out->par;
+        b->pcap = out->pcap;
         b->ph = ph;
     }
     return true;
 }
 
 /* Last module first: each successor is written to a scratch string, then put in front of
- * the output, whose right links (and bracket pairs) grow towards the front. */
-static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
+ * the output (Back), whose right links (and bracket pairs) grow towards the front. */
+static void backward(Work *w, Links *lp, SylString *tmpp) {
     const RuleTable *t = w->t;
     const View *in = w->in;
     SylString *out = w->out;
     const size_t need = (size_t)t->max_succ + SUCC_PAD, pneed = (size_t)t->max_succ_params + MAX_ARITY;
     Links l = *lp;
-    Back b = *bp;
     SylString tmp = *tmpp;
     l.sp = 0;
     int32_t next = -1;
@@ -393,20 +388,12 @@ static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
     size_t pi = w->plo;
     for (size_t i = w->lo; i < w->hi; i++) pi += CODE_ARITY(in->code[i]);
     /* room for the output as rewrite_pass sized it from the last pass's growth (out->cap), so
-     * that the buffer is rarely moved; the arrays of the last backward pass when they are larger */
+     * that it is rarely moved, and at least for the input's size */
     size_t n_in = w->hi - w->lo, p_in = pi - w->plo;
-    size_t cap = (out->cap > n_in ? out->cap : n_in) + need + 1024,
-           pcap = (out->pcap > p_in ? out->pcap : p_in) + pneed + 1024;
-    if (b.cap < cap) {
-        free(b.code);
-        b.code = malloc(cap * sizeof *b.code);
-        b.cap = b.code ? cap : 0;
-    }
-    if (b.pcap < pcap) {
-        free(b.par);
-        b.par = malloc(pcap * sizeof *b.par);
-        b.pcap = b.par ? pcap : 0;
-    }
+    size_t cap = n_in + need + 1024, pcap = p_in + pneed + 1024;
+    Back b = {0};
+    if (!ms_reserve(out, cap, pcap))
+        b = (Back){.code = out->code, .par = out->par, .cap = out->cap, .pcap = out->pcap};
     b.h = b.cap;
     b.ph = b.pcap;
     const bool walk = t->newright_branches; /* else entries, as forward */
@@ -421,7 +408,7 @@ static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
     for (size_t i = w->hi; i-- > w->lo;) {
         pi -= CODE_ARITY(in->code[i]);
         const double *args = in->par ? in->par + pi : NULL;
-        if (!back_room(&b, &l, walk, need, pneed, &next) ||
+        if (!back_room(&b, out, &l, walk, need, pneed, &next) ||
             (!walk && l.nent + need > l.entcap && !entries_room(&l, l.nent + need))) {
             fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             break;
@@ -505,29 +492,21 @@ static void backward(Work *w, Links *lp, Back *bp, SylString *tmpp) {
             }
         }
     }
-    w->out = out;
     if (!w->fault.status) {
-        size_t n = b.cap - b.h, np = b.pcap - b.ph;
-        if (ms_reserve(out, n, np)) {
-            fault(w, w->lo, NULL, SYL_ELIMIT, LIMIT_MEMORY);
-        } else {
-            if (n) memcpy(out->code + out->n, b.code + b.h, n * sizeof *out->code);
-            if (np) memcpy(out->par + out->np, b.par + b.ph, np * sizeof *out->par);
-            out->n += n;
-            out->np += np;
-        }
+        out->n = b.cap - b.h;
+        out->np = b.pcap - b.ph;
+        memmove(out->code, out->code + b.h, out->n * sizeof *out->code);
+        if (out->np) memmove(out->par, out->par + b.ph, out->np * sizeof *out->par);
     }
 done:
     w->out = out;
     *lp = l;
-    *bp = b;
     *tmpp = tmp;
 }
 
 /* What passes keep for the next: allocated once, not page-faulted in again every step. */
 struct NewctxScratch {
     Links links;
-    Back back;
     SylString tmp;
     Budget *mem;      /* --max-memory: what the arrays hold is charged after each pass */
     uint64_t charged;
@@ -537,8 +516,7 @@ static uint64_t scratch_bytes(const struct NewctxScratch *s) {
     const Links *l = &s->links;
     return l->entcap * sizeof *l->ent +
            l->cap * (sizeof *l->link + sizeof *l->code + sizeof *l->pair + sizeof *l->poff) +
-           l->scap * (sizeof *l->sidx + sizeof *l->sclose + sizeof *l->scode) +
-           s->back.cap * sizeof *s->back.code + s->back.pcap * sizeof *s->back.par;
+           l->scap * (sizeof *l->sidx + sizeof *l->sclose + sizeof *l->scode);
 }
 
 void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
@@ -548,7 +526,7 @@ void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
     }
     struct NewctxScratch *s = *scratch;
     s->mem = w->out->mem;
-    if (backward_step) backward(w, &s->links, &s->back, &s->tmp);
+    if (backward_step) backward(w, &s->links, &s->tmp);
     else forward(w, &s->links);
     uint64_t now = scratch_bytes(s);
     if (!budget_resize(s->mem, s->charged, now)) {
@@ -563,8 +541,6 @@ void newctx_release(struct NewctxScratch **scratch) {
     if (!s) return;
     budget_release(s->mem, s->charged);
     links_free(&s->links);
-    free(s->back.code);
-    free(s->back.par);
     ms_release(&s->tmp);
     free(s);
     *scratch = NULL;
