@@ -7,6 +7,7 @@
 #include "lang/builtins.h"
 #include "lsys/newctx.h"
 #include "sylva/sylva.h"
+#include "util/pages.h"
 
 /* Forward: the output modules some `<<` pattern names, in the order written, each with the
  * entry of the module before it on its path (-1: none, or one no pattern names, where every
@@ -36,7 +37,7 @@ typedef struct Links {
 } Links;
 
 static void links_free(Links *l) {
-    free(l->ent);
+    pages_free(l->ent, l->entcap * sizeof *l->ent);
     free(l->link);
     free(l->code);
     free(l->pair);
@@ -51,7 +52,8 @@ static bool entries_room(Links *l, size_t need) {
     if (need <= l->entcap) return true;
     size_t cap = l->entcap ? 2 * l->entcap : 1024;
     while (cap < need) cap *= 2;
-    Entry *e = realloc(l->ent, cap * sizeof *e);
+    /* in whole 2 MB pages: a step of a big string writes millions of entries */
+    Entry *e = pages_grow(l->ent, l->entcap * sizeof *e, l->nent * sizeof *e, cap * sizeof *e);
     if (!e) return false;
     l->ent = e;
     l->entcap = cap;
