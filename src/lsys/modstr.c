@@ -76,7 +76,7 @@ const uint32_t *ms_offsets(const SylString *cs) {
     if (s->n + 1 > s->poff_cap) {
         uint32_t *o = NULL;
         if (!charge(s, (int64_t)((s->n + 1 - s->poff_cap) * sizeof *s->poff))) {
-            o = realloc(s->poff, (s->n + 1) * sizeof *o);
+            o = pages_grow(s->poff, s->poff_cap * sizeof *o, 0, (s->n + 1) * sizeof *o); /* rebuilt below */
             if (!o) charge(s, -(int64_t)((s->n + 1 - s->poff_cap) * sizeof *s->poff));
         }
         if (!o) {
@@ -103,7 +103,7 @@ void ms_release(SylString *s) {
     s->charged = 0;
     pages_free(s->code, s->cap * sizeof *s->code);
     pages_free(s->par, s->pcap * sizeof *s->par);
-    free(s->poff);
+    pages_free(s->poff, s->poff_cap * sizeof *s->poff);
     s->code = NULL;
     s->par = NULL;
     s->poff = NULL;
