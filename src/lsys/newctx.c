@@ -416,11 +416,12 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
             break;
         }
         size_t at = b.h - 1;
-        View nv = {.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
-                   .pair = l.pair, .n = b.cap, .skip = in->skip};
-        Here here = {.ent = l.ent, .cursor = next, .par = b.par, .pend = b.pcap, .nv = walk ? &nv : NULL,
-                     .at = at};
+        View nv; /* filled only when walking: this loop runs once a module */
+        Here here = {.ent = l.ent, .cursor = next, .par = b.par, .pend = b.pcap, .at = at};
         if (walk) {
+            nv = (View){.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
+                        .pair = l.pair, .n = b.cap, .skip = in->skip};
+            here.nv = &nv;
             l.link[at] = next;
             l.code[at] = nextcode;
         }
