@@ -102,11 +102,6 @@ static int fault(Work *w, size_t pos, const Rule *r, int status, int limit) {
     return status;
 }
 
-static int vm_fault(Work *w, size_t pos, const Rule *r, int eval) {
-    if (eval != EVAL_OK && !w->fault.vm.status) w->fault.vm.status = eval;
-    return fault(w, pos, r, SYL_EMODEL, 0);
-}
-
 static void copy_module(SylString *o, uint16_t c, const double *args) {
     int ar = CODE_ARITY(c);
     o->code[o->n++] = c;
@@ -162,8 +157,7 @@ static bool applies(const Work *w, const Rule *r, size_t i, const Here *h, bool 
     return true;
 }
 
-/* As rewrite.c's choice: the first applicable rule decides; if it is weighted, the choice is
- * among every applicable weighted rule in proportion to its weight, from module i's stream. */
+/* As rewrite.c's choice (rewrite_weigh, rewrite_pick), with the new contexts matched too. */
 static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool backward, double *locals,
                           Rng *rng, bool *rng_ready, int *status) {
     const RuleTable *t = w->t;
@@ -175,56 +169,12 @@ static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool bac
         const Rule *r = &t->rules[t->order[d->first + k]];
         if (nc && !r->weighted) continue;
         if (!applies(w, r, i, h, backward, locals)) continue;
-        if ((r->cond >= 0 || r->weight >= 0) && !*rng_ready) {
-            *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
-            *rng_ready = true;
-        }
-        if (r->cond >= 0) {
-            double v;
-            if (vm_run(w->p, (uint32_t)r->cond, locals, rng, &v, &w->fault.vm)) {
-                *status = vm_fault(w, i, r, EVAL_OK);
-                return NULL;
-            }
-            if (v == 0) continue;
-        }
-        if (!r->weighted) return r;
-        double wt = r->const_weight;
-        if (r->weight >= 0 && vm_run(w->p, (uint32_t)r->weight, locals, rng, &wt, &w->fault.vm)) {
-            *status = vm_fault(w, i, r, EVAL_OK);
-            return NULL;
-        }
-        if (wt < 0) {
-            w->fault.vm.pc = (uint32_t)r->weight;
-            *status = vm_fault(w, i, r, EVAL_NEG_WEIGHT);
-            return NULL;
-        }
-        if (nc == w->ncap) {
-            int cap = w->ncap ? 2 * w->ncap : 16;
-            const Rule **cd = realloc(w->cand, sizeof *cd * (size_t)cap);
-            double *wt2 = cd ? realloc(w->weight, sizeof *wt2 * (size_t)cap) : NULL;
-            if (cd) w->cand = cd;
-            if (!cd || !wt2) {
-                *status = fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
-                return NULL;
-            }
-            w->weight = wt2;
-            w->ncap = cap;
-        }
-        w->cand[nc] = r;
-        w->weight[nc++] = wt;
-        total += wt;
+        int v = rewrite_weigh(w, r, i, locals, rng, rng_ready, &nc, &total, status);
+        if (v == WEIGH_TAKE) return r;
+        if (v == WEIGH_FAULT) return NULL;
     }
-    if (!nc || total <= 0) return NULL;
-    if (!*rng_ready) {
-        *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
-        *rng_ready = true;
-    }
-    double u = rng_unit(rng) * total;
-    int pick = 0;
-    while (pick < nc - 1 && (u -= w->weight[pick]) >= 0) pick++;
-    while (w->weight[pick] == 0) pick--;
-    const Rule *r = w->cand[pick];
-    applies(w, r, i, h, backward, locals); /* bind the chosen rule's contexts again */
+    const Rule *r = rewrite_pick(w, nc, total, i, rng, rng_ready);
+    if (r) applies(w, r, i, h, backward, locals); /* bind the chosen rule's contexts again */
     return r;
 }
 

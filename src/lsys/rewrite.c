@@ -56,6 +56,78 @@ static inline int emit(Work *w, const Rule *r, const double *locals, size_t pos,
     return SYL_OK;
 }
 
+/* Rule r, whose contexts match at module i: its condition, then its weight. The verdict is
+ * WEIGH_SKIP (the condition is false), WEIGH_TAKE (unweighted: it decides), WEIGH_ADDED (a
+ * candidate of the weighted choice, in w->cand) or WEIGH_FAULT (w->fault set, *status). */
+static inline int weigh(Work *w, const Rule *r, size_t i, double *locals, Rng *rng, bool *rng_ready, int *nc,
+                        double *total, int *status) {
+    if ((r->cond >= 0 || r->weight >= 0) && !*rng_ready) {
+        *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
+        *rng_ready = true;
+    }
+    if (r->cond >= 0) {
+        double v;
+        if (vm_run(w->p, (uint32_t)r->cond, locals, rng, &v, &w->fault.vm)) {
+            *status = fail(w, i, r, EVAL_OK);
+            return WEIGH_FAULT;
+        }
+        if (v == 0) return WEIGH_SKIP;
+    }
+    if (!r->weighted) return WEIGH_TAKE;
+    double wt = r->const_weight;
+    if (r->weight >= 0 && vm_run(w->p, (uint32_t)r->weight, locals, rng, &wt, &w->fault.vm)) {
+        *status = fail(w, i, r, EVAL_OK);
+        return WEIGH_FAULT;
+    }
+    if (wt < 0) {
+        w->fault.vm.pc = (uint32_t)r->weight;
+        *status = fail(w, i, r, EVAL_NEG_WEIGHT);
+        return WEIGH_FAULT;
+    }
+    if (*nc == w->ncap) { /* grows once per chunk at most a few times */
+        int cap = w->ncap ? 2 * w->ncap : 16;
+        const Rule **c = realloc(w->cand, sizeof *c * (size_t)cap);
+        double *wt2 = c ? realloc(w->weight, sizeof *wt2 * (size_t)cap) : NULL;
+        if (c) w->cand = c;
+        if (!c || !wt2) {
+            w->fault.status = SYL_ELIMIT;
+            w->fault.limit = LIMIT_MEMORY;
+            w->fault.pos = i;
+            *status = SYL_ELIMIT;
+            return WEIGH_FAULT;
+        }
+        w->weight = wt2;
+        w->ncap = cap;
+    }
+    w->cand[*nc] = r;
+    w->weight[(*nc)++] = wt;
+    *total += wt;
+    return WEIGH_ADDED;
+}
+
+/* The weighted choice among the nc candidates, from module i's stream; NULL when none weighs. */
+static inline const Rule *pick(Work *w, int nc, double total, size_t i, Rng *rng, bool *rng_ready) {
+    if (!nc || total <= 0) return NULL;
+    if (!*rng_ready) {
+        *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
+        *rng_ready = true;
+    }
+    double u = rng_unit(rng) * total;
+    int k = 0;
+    while (k < nc - 1 && (u -= w->weight[k]) >= 0) k++;
+    while (w->weight[k] == 0) k--; /* u landed exactly on a boundary before a zero */
+    return w->cand[k];
+}
+
+int rewrite_weigh(Work *w, const Rule *r, size_t i, double *locals, Rng *rng, bool *rng_ready, int *nc,
+                  double *total, int *status) {
+    return weigh(w, r, i, locals, rng, rng_ready, nc, total, status);
+}
+
+const Rule *rewrite_pick(Work *w, int nc, double total, size_t i, Rng *rng, bool *rng_ready) {
+    return pick(w, nc, total, i, rng, rng_ready);
+}
+
 /* Try the rules for module i in order: the first applicable one decides. If it is weighted,
  * the choice is among every applicable weighted rule, in proportion to its weight. */
 static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, Rng *rng, bool *rng_ready,
@@ -70,63 +142,14 @@ static const Rule *choose(Work *w, const Dispatch *d, size_t i, double *locals, 
         if (nc && !r->weighted) continue;
         if (r->nleft && !match_left(in, i, r, locals)) continue;
         if (r->nright && !match_right(in, i, r, locals)) continue;
-        if (r->cond >= 0 || r->weight >= 0) {
-            if (!*rng_ready) {
-                *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
-                *rng_ready = true;
-            }
-        }
-        if (r->cond >= 0) {
-            double v;
-            if (vm_run(w->p, (uint32_t)r->cond, locals, rng, &v, &w->fault.vm)) {
-                *status = fail(w, i, r, EVAL_OK);
-                return NULL;
-            }
-            if (v == 0) continue;
-        }
-        if (!r->weighted) return r;
-        double wt = r->const_weight;
-        if (r->weight >= 0 && vm_run(w->p, (uint32_t)r->weight, locals, rng, &wt, &w->fault.vm)) {
-            *status = fail(w, i, r, EVAL_OK);
-            return NULL;
-        }
-        if (wt < 0) {
-            w->fault.vm.pc = (uint32_t)r->weight;
-            *status = fail(w, i, r, EVAL_NEG_WEIGHT);
-            return NULL;
-        }
-        if (nc == w->ncap) { /* grows once per chunk at most a few times */
-            int cap = w->ncap ? 2 * w->ncap : 16;
-            const Rule **c = realloc(w->cand, sizeof *c * (size_t)cap);
-            double *wt2 = c ? realloc(w->weight, sizeof *wt2 * (size_t)cap) : NULL;
-            if (c) w->cand = c;
-            if (!c || !wt2) {
-                w->fault.status = SYL_ELIMIT;
-                w->fault.limit = LIMIT_MEMORY;
-                w->fault.pos = i;
-                *status = SYL_ELIMIT;
-                return NULL;
-            }
-            w->weight = wt2;
-            w->ncap = cap;
-        }
-        w->cand[nc] = r;
-        w->weight[nc++] = wt;
-        total += wt;
+        int v = weigh(w, r, i, locals, rng, rng_ready, &nc, &total, status);
+        if (v == WEIGH_TAKE) return r;
+        if (v == WEIGH_FAULT) return NULL;
     }
-    if (!nc || total <= 0) return NULL;
-    if (!*rng_ready) {
-        *rng = rng_stream(w->seed, w->key, (uint64_t)w->table, i);
-        *rng_ready = true;
-    }
-    double u = rng_unit(rng) * total;
-    int pick = 0;
-    while (pick < nc - 1 && (u -= w->weight[pick]) >= 0) pick++;
-    while (w->weight[pick] == 0) pick--; /* u landed exactly on a boundary before a zero */
-    const Rule *r = w->cand[pick];
+    const Rule *r = pick(w, nc, total, i, rng, rng_ready);
     /* the contexts bound last may be another candidate's: bind the chosen rule's again */
-    if (r->nleft) match_left(in, i, r, locals);
-    if (r->nright) match_right(in, i, r, locals);
+    if (r && r->nleft) match_left(in, i, r, locals);
+    if (r && r->nright) match_right(in, i, r, locals);
     return r;
 }
 

@@ -46,4 +46,13 @@ void rewrite_chunk(Work *w);
  * random stream is made when first needed. SYL_OK, or SYL_EMODEL with w->fault set. */
 int rewrite_emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready);
 
+/* The choice among a module's rules, for passes that match contexts their own way (newctx.c):
+ * rewrite_weigh takes rule r, whose contexts match at module i, in file order (its condition,
+ * then its weight; *nc and *total count the weighted candidates), and rewrite_pick draws among
+ * the candidates once the rules are tried (NULL: none weighs). */
+enum { WEIGH_SKIP, WEIGH_TAKE, WEIGH_ADDED, WEIGH_FAULT };
+int rewrite_weigh(Work *w, const Rule *r, size_t i, double *locals, Rng *rng, bool *rng_ready, int *nc,
+                  double *total, int *status);
+const Rule *rewrite_pick(Work *w, int nc, double total, size_t i, Rng *rng, bool *rng_ready);
+
 #endif
