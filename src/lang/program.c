@@ -32,23 +32,25 @@ const SylDirective *syl_program_scene(const SylProgram *p, int *n) {
     return p->has_scene ? p->scene : NULL;
 }
 
-void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
+/* A message at (line, col) of the program's source, with the line and a caret. */
+static void report_at(const SylProgram *p, FILE *out, int severity, int line, int col, const char *fmt, va_list ap) {
     char msg[1024];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    Diag d = {.out = out, .src = &p->src};
+    diag_report(&d, severity, ((SylLoc){line, col, line, col}), "%s", msg);
+}
+
+void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    report_at(p, out, DIAG_ERROR, line, col, fmt, ap);
     va_end(ap);
-    Diag d = {.out = out, .src = &p->src};
-    diag_error(&d, ((SylLoc){line, col, line, col}), "%s", msg);
 }
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
-    char msg[1024];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
+    report_at(p, out, DIAG_WARNING, line, col, fmt, ap);
     va_end(ap);
-    Diag d = {.out = out, .src = &p->src};
-    diag_warning(&d, ((SylLoc){line, col, line, col}), "%s", msg);
 }
 int syl_program_steps(const SylProgram *p) { return p->derive; }
 uint64_t syl_program_seed(const SylProgram *p) { return p->seed; }
