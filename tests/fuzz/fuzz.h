@@ -9,6 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sylva/sylva.h"
+
 /* Where diagnostics go: /dev/null, or stderr with SYLVA_FUZZ_VERBOSE=1 (to read what a
  * crash input does). Opened once: the harness process is the fuzzer's. */
 static FILE *fuzz_diag(void) {
@@ -24,6 +26,21 @@ static char *fuzz_text(const uint8_t *data, size_t size) {
     memcpy(t, data, size);
     t[size] = 0;
     return t;
+}
+
+/* What the compiler harnesses do with a program once compiled: a small bounded derivation
+ * and its interpretation, the string and the program printed; then the program is freed. */
+static void fuzz_derive_and_free(SylProgram *p, int steps, FILE *diag) {
+    SylDeriveOptions d = {.steps = steps, .threads = 1, .max_modules = 20000, .max_memory = 64u << 20, .diag = diag};
+    SylString *s = NULL;
+    if (syl_derive(p, &d, &s) == SYL_OK) {
+        SylString *t = NULL;
+        if (syl_interpret(p, s, &d, &t) == SYL_OK) syl_string_free(t);
+        syl_string_write(p, s, diag);
+    }
+    syl_string_free(s);
+    syl_program_dump(p, diag);
+    syl_program_free(p);
 }
 
 #endif
