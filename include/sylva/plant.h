@@ -48,6 +48,8 @@ typedef struct SylPlantOptions {
     SylPlantStage until;   /* stop after the string or the skeleton; SYL_PLANT_STRING refuses
                               grow blocks and scenes (they have no string) */
     int drop_string;       /* nonzero: free the string once drawn (less memory); out->string NULL */
+    double age;            /* strands blocks: age t in (0, 1]; 0: full grown */
+    int levels;            /* weber blocks: stem levels to build (0: the block's Levels) */
     int scene;             /* nonzero: when p's file has a `scene` block, build the scene — every
                               plant where it stands — rather than p alone */
     const SylMeshOptions *mesh; /* NULL: defaults, with threads as above */

@@ -86,9 +86,12 @@ char *syl_read_file(const char *path, size_t *len);
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,
                     char *buf, size_t bufsize);
 
-/* What a compiled model is: an L-system, a `grow` block (self-organizing tree), or — for a
- * file that holds only a `scene` block — the scene. */
-typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW, SYL_MODEL_SCENE } SylModelKind;
+/* What a compiled model is: an L-system, a `grow` block (self-organizing tree), — for a
+ * file that holds only a `scene` block — the scene, a `weber` block (Weber–Penn parametric
+ * tree) or a `strands` block (Holton's strand model). */
+typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW, SYL_MODEL_SCENE, SYL_MODEL_WEBER, SYL_MODEL_STRANDS } SylModelKind;
+/* "lsystem", "grow block", "scene", "weber block", "strands block" */
+const char *syl_model_kind_name(SylModelKind k);
 SylModelKind syl_program_kind(const SylProgram *p);
 
 /* The lines of a `grow` block (its directives) and of the file's `scene` block, with values

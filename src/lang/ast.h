@@ -116,7 +116,8 @@ typedef struct Stmt {
     DirArgs dargs;
 } Stmt;
 
-typedef enum { MODEL_LSYSTEM, MODEL_GROW, MODEL_SCENE } ModelKind;
+/* in the order of SylModelKind, whose values they share */
+typedef enum { MODEL_LSYSTEM, MODEL_GROW, MODEL_SCENE, MODEL_WEBER, MODEL_STRANDS } ModelKind;
 
 typedef struct Model {
     ModelKind kind;

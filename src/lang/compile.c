@@ -325,9 +325,9 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             diag_error(&d, (SylLoc){0}, "this file holds no lsystem");
         } else {
             p->name = arena_strndup(&p->arena, m->name, strlen(m->name));
-            p->kind = m->kind == MODEL_GROW ? SYL_MODEL_GROW : SYL_MODEL_LSYSTEM;
+            p->kind = (SylModelKind)m->kind; /* the two enums share their values */
             compile_model(&c, &ast.top, m);
-            if (m->kind == MODEL_GROW) directives(&c, m, &p->directives, &p->ndirectives);
+            if (m->kind != MODEL_LSYSTEM) directives(&c, m, &p->directives, &p->ndirectives);
             if (scene) {
                 p->has_scene = true;
                 directives(&c, scene, &p->scene, &p->nscene);

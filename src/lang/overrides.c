@@ -42,7 +42,7 @@ static void unknown(Compiler *c, const char *typed, const char *local) {
     int n = 0;
     for (int i = 0; i < c->nvals && n < 200; i++)
         if (c->vals[i].is_param) names[n++] = c->vals[i].name;
-    if (p->kind != SYL_MODEL_GROW) n += cc_setting_names(names + n, 256 - n);
+    if (!syl_kind_has_directives(p->kind)) n += cc_setting_names(names + n, 256 - n);
     char near[256];
     int k = closest_list(local, names, n, near, sizeof near);
     const char *dot = strchr(typed, '.');
@@ -56,7 +56,7 @@ static void unknown(Compiler *c, const char *typed, const char *local) {
     }
     int id = namemap_get(&c->values, local, -1);
     diag_error(c->d, (SylLoc){0}, "--set %s: model '%s' has no %s '%s'%s%s%s%s", typed, p->name,
-               p->kind == SYL_MODEL_GROW ? "parameter" : "parameter or setting", local,
+               syl_kind_has_directives(p->kind) ? "parameter" : "parameter or setting", local,
                id >= 0 ? " (it is a const; declare it with `param` to set it)" : "", k ? " (did you mean " : "",
                k ? near : "", k ? "?)" : model);
     c->usage_error = true;
@@ -71,9 +71,9 @@ void cc_check_overrides(Compiler *c) {
     for (int i = 0; i < p->noverrides; i++) {
         const char *local = p->set_local[i];
         if (!local || is_param(c, local)) continue;
-        if (p->kind == SYL_MODEL_GROW && namemap_get(&c->values, local, -1) < 0) continue;
+        if (syl_kind_has_directives(p->kind) && namemap_get(&c->values, local, -1) < 0) continue;
         const char *names[64];
-        int n = p->kind == SYL_MODEL_GROW ? 0 : cc_setting_names(names, 64), j = 0;
+        int n = syl_kind_has_directives(p->kind) ? 0 : cc_setting_names(names, 64), j = 0;
         while (j < n && strcmp(names[j], local)) j++;
         if (j == n) unknown(c, p->overrides[i].name, local);
     }
@@ -83,7 +83,7 @@ void cc_check_overrides(Compiler *c) {
  * of the same name takes the value instead (cc_evaluate). */
 void cc_apply_overrides(Compiler *c) {
     SylProgram *p = c->p;
-    if (p->kind == SYL_MODEL_GROW) return;
+    if (syl_kind_has_directives(p->kind)) return;
     for (int i = 0; i < p->noverrides; i++) {
         const char *local = p->set_local[i];
         if (local && !is_param(c, local) && cc_setting_override(c, local, p->overrides[i].value, p->overrides[i].name) == 0)

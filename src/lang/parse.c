@@ -12,7 +12,8 @@ const SylKeyword syl_keywords[] = {
     {"lsystem", KW_LSYSTEM}, {"module", KW_MODULE}, {"const", KW_CONST}, {"param", KW_PARAM},
     {"fn", KW_FN}, {"curve", KW_CURVE}, {"axiom", KW_AXIOM}, {"ignore", KW_IGNORE},
     {"consider", KW_CONSIDER}, {"decompose", KW_DECOMPOSE}, {"interpret", KW_INTERPRET},
-    {"grow", KW_GROW}, {"scene", KW_SCENE}, {"group", KW_GROUP}, {"use", KW_USE}, {NULL, 0},
+    {"grow", KW_GROW}, {"scene", KW_SCENE}, {"group", KW_GROUP}, {"use", KW_USE},
+    {"weber", KW_WEBER}, {"strands", KW_STRANDS}, {NULL, 0},
 };
 
 int syl_yyparse(void *scanner, ParseState *ps);

@@ -16,6 +16,11 @@ void syl_program_free(SylProgram *p) {
 
 const char *syl_program_name(const SylProgram *p) { return p->name; }
 SylModelKind syl_program_kind(const SylProgram *p) { return p->kind; }
+
+const char *syl_model_kind_name(SylModelKind k) {
+    static const char *const names[] = {"lsystem", "grow block", "scene", "weber block", "strands block"};
+    return (unsigned)k < sizeof names / sizeof *names ? names[k] : "model";
+}
 const char *syl_program_path(const SylProgram *p) { return p->src.path; }
 const char *syl_program_source(const SylProgram *p, size_t *len) {
     *len = p->src.len;

@@ -517,7 +517,7 @@ int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylStrin
     if (p->kind != SYL_MODEL_LSYSTEM) {
         if (opt && opt->diag)
             fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: grow it with `sylva grow`\n",
-                    p->name, p->kind == SYL_MODEL_GROW ? "grow block" : "scene");
+                    p->name, syl_model_kind_name(p->kind));
         if (q && q->release) q->release(q->user);
         return SYL_EUSAGE;
     }

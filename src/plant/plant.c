@@ -1,6 +1,7 @@
 /* syl_plant_build: the pipeline every drawing command runs, above every engine (lsys,
  * turtle, sot, mesh) and using only their public API, so that nothing below calls it. */
 #include "sylva/plant.h"
+#include "sylva/trees.h"
 
 #include <stdbool.h>
 #include <string.h>
@@ -45,6 +46,23 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
     }
     out->mesh_s = now() - t1;
     syl_mesh_free(obstacles);
+    return st;
+}
+
+/* weber and strands blocks: the skeleton straight from the parameters */
+static int build_tree(const SylProgram *p, const SylPlantOptions *opt, const SylMeshOptions *mo, SylBudget *budget,
+                      SylPlant *out) {
+    SylTreeOptions t = {.use_seed = opt->use_seed, .seed = opt->seed, .threads = opt->threads, .age = opt->age,
+                        .levels = opt->levels, .max_memory = opt->max_memory, .budget = budget, .diag = opt->diag};
+    double t0 = now();
+    int st = syl_program_kind(p) == SYL_MODEL_WEBER ? syl_weber(p, &t, &out->skeleton)
+                                                      : syl_strands(p, &t, &out->skeleton);
+    if (opt->progress) opt->progress(opt->user, 1);
+    double t1 = now();
+    out->derive_s = t1 - t0;
+    if (!st) out->modules = out->skeleton->nnodes;
+    if (!st && opt->until == SYL_PLANT_MESH) st = syl_mesh_build(out->skeleton, mo, &out->mesh);
+    out->mesh_s = now() - t1;
     return st;
 }
 
@@ -103,6 +121,15 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
             return SYL_EUSAGE;
         }
         st = build_grown(p, scene, opt, &mo, budget, out);
+    } else if (kind == SYL_MODEL_WEBER || kind == SYL_MODEL_STRANDS) {
+        out->kind = kind;
+        if (opt->until == SYL_PLANT_STRING) {
+            if (opt->diag)
+                fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: it has no string\n",
+                        syl_program_name(p), syl_model_kind_name(kind));
+            return SYL_EUSAGE;
+        }
+        st = build_tree(p, opt, &mo, budget, out);
     } else {
         out->kind = SYL_MODEL_LSYSTEM;
         st = build_lsystem(p, opt, &mo, budget, out);

@@ -17,6 +17,7 @@
 #include "scene/spec.h"
 #include "sot/params.h"
 #include "sot/reader.h"
+#include "sylva/trees.h"
 
 static bool vec3_of(Reader *r, const SylDirArg *a, const char *what, float out[3]) {
     if (a->kind != SYL_DARG_TUPLE || a->nvalues != 3) {
@@ -331,7 +332,10 @@ int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
  * file (`sylva check`) reports it once. */
 int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
     bool files = user && *(const int *)user;
-    int errors = p->kind == SYL_MODEL_GROW ? sot_check_grow(p, diag) : 0;
+    int errors = p->kind == SYL_MODEL_GROW      ? sot_check_grow(p, diag)
+                 : p->kind == SYL_MODEL_WEBER   ? syl_weber_validate(p, diag)
+                 : p->kind == SYL_MODEL_STRANDS ? syl_strands_validate(p, diag)
+                                                : 0;
     if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag, files);
     /* negative: every error was of --set, a bad command line */
     return errors;

@@ -1,0 +1,44 @@
+/* Procedural trees: a `weber` block (Weber & Penn 1995, also read from Arbaro's XML species
+ * files) and a `strands` block (Holton 1994, as in Zamuda's modeller) build a skeleton straight
+ * from their parameters, the same skeleton an L-system or a grown tree gives, so the mesher,
+ * the renderer, metrics and every file format take it unchanged. docs/weberpenn.md and
+ * docs/strands.md list the parameters. */
+#ifndef SYLVA_TREES_H
+#define SYLVA_TREES_H
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sylva.h"
+#include "skeleton.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct SylTreeOptions {
+    bool use_seed;       /* seed below instead of the block's own */
+    uint64_t seed;
+    int threads;         /* 0: all cores; the tree is the same for any count */
+    double age;          /* strands: age t in (0, 1] (S' = t^2 S, l0' = t^2 l0); 0: full grown */
+    int levels;          /* weber: stop at this many stem levels (0: the block's Levels) */
+    uint64_t max_memory; /* bytes, when budget is NULL; 0: the default */
+    SylBudget *budget;
+    FILE *diag;
+} SylTreeOptions;
+
+/* The tree of a compiled `weber` or `strands` program. SYL_OK, SYL_EUSAGE for another kind
+ * of model, SYL_ELIMIT beyond the memory budget. */
+int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+
+/* Check a block's parameters as `sylva check` does (syl_grow_validate calls these): returns
+ * the number of errors reported to diag, each with file:line:col, the line and a caret. */
+int syl_weber_validate(const SylProgram *p, FILE *diag);
+int syl_strands_validate(const SylProgram *p, FILE *diag);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
