@@ -117,6 +117,11 @@ const SylDirective *syl_program_scene(const SylProgram *p, int *n);      /* NULL
  * and a caret, in the form of every other diagnostic. */
 void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
+/* An error about a directive's value a (NULL: about the directive's name), at its place:
+ * directives may come from another file than the program's (a `weber` block's
+ * `from "species.xml"`), and the message names that file and shows its line. */
+void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
+                         const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* The path the program was read from (for files a model names, such as obstacles). */
 const char *syl_program_path(const SylProgram *p);
 /* The source text it was compiled from. */

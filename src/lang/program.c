@@ -51,6 +51,13 @@ void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const 
     report_at(p, out, DIAG_ERROR, line, col, fmt, ap);
     va_end(ap);
 }
+void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
+                         const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    report_at(p, out, DIAG_ERROR, a ? a->line : d->line, a ? a->col : d->col, fmt, ap);
+    va_end(ap);
+}
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
