@@ -110,6 +110,12 @@ typedef struct SylDirective {
     int line, col;
     const SylDirArg *args;
     int nargs;
+    /* Where the line was written when not in the program's own source (a weber block's
+     * `from "species.xml"`): that file's path and text, which line and col refer to;
+     * NULL: the program's. */
+    const char *file;
+    const char *file_text;
+    size_t file_len;
 } SylDirective;
 const SylDirective *syl_program_directives(const SylProgram *p, int *n); /* of a grow block */
 const SylDirective *syl_program_scene(const SylProgram *p, int *n);      /* NULL: no scene */

@@ -114,6 +114,7 @@ typedef struct Stmt {
     Items items;
     Production rule;
     DirArgs dargs;
+    const Source *file; /* a directive spliced from another file (splice.c); NULL: this file's */
 } Stmt;
 
 /* in the order of SylModelKind, whose values they share */

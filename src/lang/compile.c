@@ -220,6 +220,11 @@ static void directives(Compiler *c, Model *m, SylDirective **out, int *nout) {
         d->name = arena_strndup(&p->arena, s->name, strlen(s->name));
         d->line = s->loc.first_line;
         d->col = s->loc.first_column;
+        if (s->file) {
+            d->file = s->file->path;
+            d->file_text = s->file->text;
+            d->file_len = s->file->len;
+        }
         d->nargs = s->dargs.n;
         SylDirArg *args = arena_alloc(&p->arena, sizeof *args * (size_t)(s->dargs.n ? s->dargs.n : 1));
         d->args = args;
@@ -326,6 +331,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         } else {
             p->name = arena_strndup(&p->arena, m->name, strlen(m->name));
             p->kind = (SylModelKind)m->kind; /* the two enums share their values */
+            cc_splice_from(&c, m);
             compile_model(&c, &ast.top, m);
             if (m->kind != MODEL_LSYSTEM) directives(&c, m, &p->directives, &p->ndirectives);
             if (scene) {

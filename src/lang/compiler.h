@@ -109,6 +109,8 @@ int cc_symbol(Compiler *c, const char *name, SylLoc loc);
 void cc_split(Compiler *c, const Items *items, Mods *out);
 
 /* lint.c */
+/* splice.c: a weber block's `from "file"`: that file's parameters before the block's lines */
+void cc_splice_from(Compiler *c, Model *m);
 void cc_lint(Compiler *c);
 /* The warnings of mistakes (c->warn), also printed by the commands that derive. */
 void cc_warn(Compiler *c);

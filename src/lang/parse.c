@@ -2,6 +2,7 @@
 #include <setjmp.h>
 #include <string.h>
 
+#include "lang/arbaro.h"
 #include "lang/parse_state.h"
 #include "parser.h"
 #define YYSTYPE SYL_YYSTYPE /* as in grammar/lexer.l */
@@ -35,7 +36,9 @@ int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     int rc = 1, failed = 1; /* both set only on the way that does not jump */
     if (!setjmp(oom)) {
         arena->oom = &oom;
-        if (syl_foreign_file(src, diag)) {
+        if (syl_arbaro_detect(src)) {
+            rc = syl_arbaro_parse(src, arena, diag, ast);
+        } else if (syl_foreign_file(src, diag)) {
             rc = 1;
         } else if (syl_picek_detect(src)) {
             rc = syl_picek_parse(src, arena, diag, ast);

@@ -55,7 +55,16 @@ void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, 
                          const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    report_at(p, out, DIAG_ERROR, a ? a->line : d->line, a ? a->col : d->col, fmt, ap);
+    int line = a ? a->line : d->line, col = a ? a->col : d->col;
+    if (d->file) { /* spliced from another file: its path and its line */
+        char msg[1024];
+        vsnprintf(msg, sizeof msg, fmt, ap);
+        Source src = {.path = d->file, .text = d->file_text, .len = d->file_len};
+        Diag dg = {.out = out, .src = &src};
+        diag_report(&dg, DIAG_ERROR, ((SylLoc){line, col, line, col}), "%s", msg);
+    } else {
+        report_at(p, out, DIAG_ERROR, line, col, fmt, ap);
+    }
     va_end(ap);
 }
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
