@@ -1,10 +1,11 @@
 /* syl_weber: a Weber–Penn tree from a `weber` block. (The generator lands in this folder.) */
 #include "sylva/trees.h"
 
+#include "weber/params.h"
+
 int syl_weber_validate(const SylProgram *p, FILE *diag) {
-    (void)p;
-    (void)diag;
-    return 0;
+    WeberParams w;
+    return weber_params_read(p, &w, diag);
 }
 
 int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {

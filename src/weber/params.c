@@ -1,0 +1,214 @@
+/* Reading a `weber` block's directives against the parameter table (params.def). */
+#include "weber/params.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/closest.h"
+
+#define WP_G(f, nm, ty, lo, hi, lop, hop, d, mean) \
+    {nm, false, ty, lo, hi, lop, hop, {d, d, d, d}, offsetof(WeberParams, f), mean},
+#define WP_L(f, nm, ty, lo, hi, lop, hop, d0, d1, d2, d3, mean) \
+    {nm, true, ty, lo, hi, lop, hop, {d0, d1, d2, d3}, offsetof(WeberParams, f), mean},
+const WeberParamInfo weber_param_table[] = {
+#include "params.def"
+};
+#undef WP_G
+#undef WP_L
+const int weber_param_count = (int)(sizeof weber_param_table / sizeof weber_param_table[0]);
+
+/* Directives that are not parameters of the model. */
+static const char *const extra_names[] = {"convention", "Seed", "envelope", "Species"};
+enum { NEXTRA = sizeof extra_names / sizeof extra_names[0] };
+
+static double *slot(WeberParams *w, const WeberParamInfo *pi) { return (double *)((char *)w + pi->offset); }
+
+void weber_params_default(WeberParams *w) {
+    memset(w, 0, sizeof *w);
+    for (int i = 0; i < weber_param_count; i++) {
+        const WeberParamInfo *pi = &weber_param_table[i];
+        double *v = slot(w, pi);
+        if (pi->per_level)
+            for (int l = 0; l < 4; l++) v[l] = pi->def[l];
+        else
+            v[0] = pi->def[0];
+    }
+    w->leaf_kind = WEBER_LEAF_DISC;
+    w->leaf_tris = 6;
+    w->convention = WEBER_ARBARO;
+    w->seed = 13;
+}
+
+static const WeberParamInfo *find(const char *name, bool per_level) {
+    for (int i = 0; i < weber_param_count; i++)
+        if (weber_param_table[i].per_level == per_level && !strcmp(weber_param_table[i].name, name))
+            return &weber_param_table[i];
+    return NULL;
+}
+
+static void range_text(const WeberParamInfo *pi, char *buf, size_t n) {
+    char lo[32], hi[32];
+    if (isinf(pi->lo)) snprintf(lo, sizeof lo, "-inf"); else snprintf(lo, sizeof lo, "%g", pi->lo);
+    if (isinf(pi->hi)) snprintf(hi, sizeof hi, "inf"); else snprintf(hi, sizeof hi, "%g", pi->hi);
+    snprintf(buf, n, "%s%s, %s%s", pi->lo_open || isinf(pi->lo) ? "(" : "[", lo, hi,
+             pi->hi_open || isinf(pi->hi) ? ")" : "]");
+}
+
+/* The leaf shape words Arbaro's mesher knows (any number is its "0", the disc). */
+static bool leaf_shape(const char *s, WeberParams *w) {
+    if (!strcmp(s, "disc") || !strcmp(s, "0")) { w->leaf_kind = WEBER_LEAF_DISC; w->leaf_tris = 6; return true; }
+    if (!strncmp(s, "disc", 4) && s[4] >= '1' && s[4] <= '9' && !s[5]) {
+        w->leaf_kind = WEBER_LEAF_DISC;
+        w->leaf_tris = s[4] - '0';
+        return true;
+    }
+    if (!strcmp(s, "square")) { w->leaf_kind = WEBER_LEAF_SQUARE; w->leaf_tris = 2; return true; }
+    if (!strcmp(s, "sphere")) { w->leaf_kind = WEBER_LEAF_SPHERE; w->leaf_tris = 20; return true; }
+    if (!strcmp(s, "palm")) { w->leaf_kind = WEBER_LEAF_PALM; w->leaf_tris = 4; return true; }
+    return false;
+}
+static const char *const leaf_names[] = {"disc", "disc1", "disc2", "disc3", "disc4", "disc5", "disc6",
+                                         "disc7", "disc8", "disc9", "square", "sphere", "palm"};
+
+/* One value of parameter pi; stores it at *v. Returns the errors (0 or 1). */
+static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, const SylDirArg *a,
+                      const WeberParamInfo *pi, const char *shown, WeberParams *w, double *v) {
+    if (pi->type == WP_LEAFSHAPE) {
+        if (a->kind == SYL_DARG_NUMBER) { leaf_shape("0", w); return 0; }
+        if ((a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING) && leaf_shape(a->text, w)) return 0;
+        char near[160];
+        int k = a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING
+                    ? closest_list(a->text, leaf_names, (int)(sizeof leaf_names / sizeof *leaf_names), near, sizeof near)
+                    : 0;
+        syl_directive_error(p, diag, d, a, "LeafShape must be 0, disc, disc1 .. disc9, square, sphere or palm%s%s%s",
+                            k ? " (did you mean " : "", k ? near : "", k ? "?)" : "");
+        return 1;
+    }
+    if (a->kind != SYL_DARG_NUMBER) {
+        syl_directive_error(p, diag, d, a, "%s takes a number", shown);
+        return 1;
+    }
+    double x = a->num;
+    char r[80];
+    range_text(pi, r, sizeof r);
+    if (isnan(x) || x < pi->lo || x > pi->hi || (pi->lo_open && x == pi->lo) || (pi->hi_open && x == pi->hi)) {
+        syl_directive_error(p, diag, d, a, "%s must be in %s, not %g", shown, r, x);
+        return 1;
+    }
+    if (pi->type == WP_INT && x != floor(x)) {
+        syl_directive_error(p, diag, d, a, "%s takes a whole number, not %g", shown, x);
+        return 1;
+    }
+    *v = x;
+    return 0;
+}
+
+static int unknown(const SylProgram *p, FILE *diag, const SylDirective *d) {
+    /* 1DownAngel is compared with 1DownAngle, 1Rotate, ...; DownAngel with every name */
+    char pre[128][32];
+    const char *names[128 + NEXTRA];
+    int n = 0;
+    char digit = d->name[0] >= '0' && d->name[0] <= '3' && d->name[1] ? d->name[0] : 0;
+    for (int i = 0; i < weber_param_count && n < 128; i++) {
+        if (digit && weber_param_table[i].per_level) {
+            snprintf(pre[n], sizeof pre[n], "%c%s", digit, weber_param_table[i].name);
+            names[n] = pre[n];
+            n++;
+        } else
+            names[n++] = weber_param_table[i].name;
+    }
+    for (int i = 0; i < NEXTRA; i++) names[n++] = extra_names[i];
+    char near[200] = "";
+    int k = closest_list(d->name, names, n, near, sizeof near);
+    if (k)
+        syl_directive_error(p, diag, d, NULL, "unknown weber parameter '%s' (did you mean %s?)", d->name, near);
+    else
+        syl_directive_error(p, diag, d, NULL, "unknown weber parameter '%s' (docs/weberpenn.md lists them)", d->name);
+    return 1;
+}
+
+static int read_extra(const SylProgram *p, FILE *diag, const SylDirective *d, WeberParams *w) {
+    const SylDirArg *a = d->nargs ? &d->args[0] : NULL;
+    if (d->nargs != 1) {
+        syl_directive_error(p, diag, d, d->nargs > 1 ? &d->args[1] : NULL, "%s takes one value", d->name);
+        return 1;
+    }
+    if (!strcmp(d->name, "convention")) {
+        if (a->kind == SYL_DARG_WORD && !strcmp(a->text, "arbaro")) w->convention = WEBER_ARBARO;
+        else if (a->kind == SYL_DARG_WORD && !strcmp(a->text, "paper")) w->convention = WEBER_PAPER;
+        else {
+            syl_directive_error(p, diag, d, a, "convention is 'arbaro' or 'paper'");
+            return 1;
+        }
+    } else if (!strcmp(d->name, "Seed")) {
+        if (a->kind != SYL_DARG_NUMBER || a->num < 0 || a->num != floor(a->num) || a->num > 9.0e15) {
+            syl_directive_error(p, diag, d, a, "Seed takes a whole number >= 0");
+            return 1;
+        }
+        w->has_seed = true;
+        w->seed = (uint64_t)a->num;
+    } else if (!strcmp(d->name, "envelope")) {
+        if (a->kind != SYL_DARG_STRING) {
+            syl_directive_error(p, diag, d, a, "envelope takes a file name in quotes (a closed .obj mesh)");
+            return 1;
+        }
+        w->envelope = a->text;
+        w->envelope_at = d;
+    } /* Species: a name, as in Arbaro's files; nothing reads it */
+    return 0;
+}
+
+int weber_params_read(const SylProgram *p, WeberParams *w, FILE *diag) {
+    weber_params_default(w);
+    int n = 0, errors = 0;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    const SylDirective *splits_at[4] = {0}, *levels_at = NULL;
+    for (int i = 0; i < n; i++) {
+        const SylDirective *d = &ds[i];
+        bool extra = false;
+        for (int e = 0; e < NEXTRA; e++) extra |= !strcmp(d->name, extra_names[e]);
+        if (extra) { errors += read_extra(p, diag, d, w); continue; }
+        const WeberParamInfo *pi = find(d->name, false);
+        int level = -1; /* a single level (digit prefix); -1: a list from level 0 */
+        if (!pi) pi = find(d->name, true);
+        if (!pi && d->name[0] >= '0' && d->name[0] <= '9' && (pi = find(d->name + 1, true)) != NULL) {
+            level = d->name[0] - '0';
+            if (level > 3) {
+                syl_directive_error(p, diag, d, NULL, "levels above 3 reuse level 3's parameters: write 3%s",
+                                    d->name + 1);
+                errors++;
+                continue;
+            }
+        }
+        if (!pi) { errors += unknown(p, diag, d); continue; }
+        int most = pi->per_level && level < 0 ? 4 : 1;
+        if (d->nargs < 1 || d->nargs > most) {
+            if (most == 4)
+                syl_directive_error(p, diag, d, d->nargs ? &d->args[4] : NULL,
+                                    "%s takes 1 to 4 values, for levels 0 to 3", d->name);
+            else
+                syl_directive_error(p, diag, d, d->nargs ? &d->args[1] : NULL, "%s takes one value", d->name);
+            errors++;
+            continue;
+        }
+        double *v = slot(w, pi);
+        for (int k = 0; k < d->nargs; k++) {
+            int l = level >= 0 ? level : k;
+            char shown[64];
+            if (pi->per_level) snprintf(shown, sizeof shown, "%d%s", l, pi->name);
+            else snprintf(shown, sizeof shown, "%s", pi->name);
+            errors += read_value(p, diag, d, &d->args[k], pi, shown, w, pi->per_level ? &v[l] : &v[0]);
+            if (pi->per_level && !strcmp(pi->name, "SegSplits")) splits_at[l] = d;
+        }
+        if (!strcmp(pi->name, "Levels")) levels_at = d;
+    }
+    (void)levels_at;
+    /* Arbaro refuses splitting without an angle to split by. */
+    for (int l = 0; l < 4 && l < (int)w->Levels; l++)
+        if (w->SegSplits[l] > 0 && w->SplitAngle[l] == 0 && splits_at[l]) {
+            syl_directive_error(p, diag, splits_at[l], NULL, "%dSegSplits %g needs a %dSplitAngle above 0", l,
+                                w->SegSplits[l], l);
+            errors++;
+        }
+    return errors;
+}
