@@ -1,0 +1,183 @@
+/* A weber block's parameters as Arbaro XML (libxml2's xmlTextWriter does the escaping) or as a
+ * .syl block. Both print each value as the shortest decimal that reads back to the same double,
+ * so that reading what is written gives the same parameters, and writing again the same bytes. */
+#include <ctype.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <libxml/xmlwriter.h>
+
+#include "weber/xml.h"
+
+/* Arbaro's order (its writer's, as in its species files): the globals, then per level. */
+static const char *const arbaro_globals[] = {
+    "Shape",       "Levels",       "Scale",        "ScaleV",      "BaseSize",    "Ratio",         "RatioPower",
+    "Flare",       "Lobes",        "LobeDepth",    "Smooth",      "Leaves",      "LeafShape",     "LeafScale",
+    "LeafScaleX",  "LeafQuality",  "LeafStemLen",  "LeafDistrib", "LeafBend",    "AttractionUp",  "PruneRatio",
+    "PrunePowerLow", "PrunePowerHigh", "PruneWidth", "PruneWidthPeak", "0Scale", "0ScaleV",      "0BaseSplits"};
+static const char *const arbaro_levels[] = {"DownAngle", "DownAngleV", "Rotate",    "RotateV",    "Branches",
+                                            "BranchDist", "Length",    "LengthV",   "Taper",      "SegSplits",
+                                            "SplitAngle", "SplitAngleV", "CurveRes", "Curve",     "CurveBack",
+                                            "CurveV"};
+
+static const WeberParamInfo *info(const char *name, bool per_level) {
+    for (int i = 0; i < weber_param_count; i++)
+        if (weber_param_table[i].per_level == per_level && !strcmp(weber_param_table[i].name, name))
+            return &weber_param_table[i];
+    return NULL;
+}
+
+static const double *slot(const WeberParams *w, const WeberParamInfo *pi) {
+    return (const double *)((const char *)w + pi->offset);
+}
+
+/* The shortest %.Ng that strtod reads back as v; whole numbers without an exponent (60, not
+ * 6e+01: %g turns to one only for them or for tiny values). */
+static void number(char *buf, size_t n, double v) {
+    if (v == (double)(long long)v && v > -1e15 && v < 1e15) {
+        snprintf(buf, n, "%.0f", v == 0 ? 0.0 : v); /* -0 as 0 */
+        return;
+    }
+    for (int prec = 1; prec <= 17; prec++) {
+        snprintf(buf, n, "%.*g", prec, v);
+        if (strtod(buf, NULL) == v) return;
+    }
+}
+
+static const char *leaf_shape(const WeberParams *w, char *buf, size_t n) {
+    switch (w->leaf_kind) {
+    case WEBER_LEAF_SQUARE: return "square";
+    case WEBER_LEAF_SPHERE: return "sphere";
+    case WEBER_LEAF_PALM: return "palm";
+    default:
+        if (w->leaf_tris == 6) return "0"; /* Arbaro's default spelling of the disc */
+        snprintf(buf, n, "disc%d", w->leaf_tris);
+        return buf;
+    }
+}
+
+/* A global's value as text (LeafShape is a word). */
+static const char *global_text(const WeberParams *w, const WeberParamInfo *pi, char *buf, size_t n) {
+    if (pi->type == WP_LEAFSHAPE) return leaf_shape(w, buf, n);
+    number(buf, n, slot(w, pi)[0]);
+    return buf;
+}
+
+/* ---- XML ---- */
+
+typedef struct Xml {
+    xmlTextWriterPtr tw;
+    int rc; /* the first negative result of a writer call */
+} Xml;
+
+static void check(Xml *x, int rc) {
+    if (rc < 0 && x->rc >= 0) x->rc = rc;
+}
+
+static void param(Xml *x, const char *name, const char *value) {
+    check(x, xmlTextWriterStartElement(x->tw, BAD_CAST "param"));
+    check(x, xmlTextWriterWriteAttribute(x->tw, BAD_CAST "name", BAD_CAST name));
+    check(x, xmlTextWriterWriteAttribute(x->tw, BAD_CAST "value", BAD_CAST value));
+    check(x, xmlTextWriterEndElement(x->tw));
+}
+
+int weber_write_xml(const WeberParams *w, const char *species, FILE *out) {
+    xmlBufferPtr buf = xmlBufferCreate();
+    xmlTextWriterPtr tw = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;
+    if (!tw) {
+        xmlBufferFree(buf);
+        return SYL_ELIMIT;
+    }
+    Xml x = {tw, 0};
+    check(&x, xmlTextWriterSetIndent(tw, 1));
+    check(&x, xmlTextWriterSetIndentString(tw, BAD_CAST "  "));
+    check(&x, xmlTextWriterSetQuoteChar(tw, '\''));
+    check(&x, xmlTextWriterStartDocument(tw, "1.0", NULL, NULL));
+    check(&x, xmlTextWriterStartElement(tw, BAD_CAST "arbaro"));
+    check(&x, xmlTextWriterStartElement(tw, BAD_CAST "species"));
+    check(&x, xmlTextWriterWriteAttribute(tw, BAD_CAST "name", BAD_CAST species));
+    check(&x, xmlTextWriterWriteComment(tw, BAD_CAST " general params "));
+    char v[64];
+    for (size_t i = 0; i < sizeof arbaro_globals / sizeof *arbaro_globals; i++) {
+        const WeberParamInfo *pi = info(arbaro_globals[i], false);
+        if (pi) param(&x, pi->name, global_text(w, pi, v, sizeof v));
+    }
+    /* Sylva's own: an Arbaro file means convention arbaro, no seed, no envelope, ZScale 1 0 */
+    const WeberParamInfo *zs = info("ZScale", false), *zv = info("ZScaleV", false);
+    if (zs && slot(w, zs)[0] != zs->def[0]) param(&x, "ZScale", global_text(w, zs, v, sizeof v));
+    if (zv && slot(w, zv)[0] != zv->def[0]) param(&x, "ZScaleV", global_text(w, zv, v, sizeof v));
+    if (w->convention == WEBER_PAPER) param(&x, "convention", "paper");
+    if (w->has_seed) {
+        snprintf(v, sizeof v, "%llu", (unsigned long long)w->seed);
+        param(&x, "Seed", v);
+    }
+    if (w->envelope) param(&x, "envelope", w->envelope);
+    for (int l = 0; l < 4; l++) {
+        char comment[32], name[64];
+        snprintf(comment, sizeof comment, " level %d ", l);
+        check(&x, xmlTextWriterWriteComment(tw, BAD_CAST comment));
+        for (size_t i = 0; i < sizeof arbaro_levels / sizeof *arbaro_levels; i++) {
+            const WeberParamInfo *pi = info(arbaro_levels[i], true);
+            if (!pi) continue;
+            snprintf(name, sizeof name, "%d%s", l, pi->name);
+            number(v, sizeof v, slot(w, pi)[l]);
+            param(&x, name, v);
+        }
+    }
+    check(&x, xmlTextWriterEndDocument(tw));
+    xmlFreeTextWriter(tw); /* flushes into buf */
+    int status = SYL_OK;
+    if (x.rc < 0) status = SYL_ELIMIT;
+    else if (fwrite(xmlBufferContent(buf), 1, (size_t)xmlBufferLength(buf), out) != (size_t)xmlBufferLength(buf))
+        status = SYL_EIO;
+    xmlBufferFree(buf);
+    return status;
+}
+
+/* ---- .syl ---- */
+
+static bool is_name(const char *s) {
+    if (!isalpha((unsigned char)s[0]) && s[0] != '_') return false;
+    for (; *s; s++)
+        if (!isalnum((unsigned char)*s) && *s != '_') return false;
+    return true;
+}
+
+int weber_write_syl(const WeberParams *w, const char *species, const char *note, FILE *out) {
+    char name[256], v[64];
+    size_t n = 0;
+    for (const char *s = species; *s && n + 2 < sizeof name; s++)
+        name[n++] = isalnum((unsigned char)*s) || *s == '_' ? *s : '_';
+    name[n] = 0;
+    if (!n || isdigit((unsigned char)name[0])) {
+        memmove(name + 1, name, n + 1 < sizeof name - 1 ? n + 1 : sizeof name - 2);
+        name[0] = '_';
+    }
+    if (note) fprintf(out, "# %s\n", note);
+    fprintf(out, "weber %s {\n", name);
+    if (!is_name(species) || strcmp(name, species)) {
+        fputs("  Species \"", out);
+        for (const char *s = species; *s; s++) fputc(*s == '"' || *s == '\n' ? '_' : *s, out);
+        fputs("\"\n", out);
+    }
+    fprintf(out, "  convention %s\n", w->convention == WEBER_PAPER ? "paper" : "arbaro");
+    if (w->has_seed) fprintf(out, "  Seed %llu\n", (unsigned long long)w->seed);
+    if (w->envelope) fprintf(out, "  envelope \"%s\"\n", w->envelope);
+    for (int i = 0; i < weber_param_count; i++) {
+        const WeberParamInfo *pi = &weber_param_table[i];
+        if (pi->per_level) continue;
+        fprintf(out, "  %-14s %s\n", pi->name, global_text(w, pi, v, sizeof v));
+    }
+    for (int i = 0; i < weber_param_count; i++) {
+        const WeberParamInfo *pi = &weber_param_table[i];
+        if (!pi->per_level) continue;
+        fprintf(out, "  %-14s", pi->name);
+        for (int l = 0; l < 4; l++) {
+            number(v, sizeof v, slot(w, pi)[l]);
+            fprintf(out, " %s", v);
+        }
+        fputc('\n', out);
+    }
+    fputs("}\n", out);
+    return ferror(out) ? SYL_EIO : SYL_OK;
+}
