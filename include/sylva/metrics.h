@@ -14,7 +14,7 @@
 extern "C" {
 #endif
 
-enum { SYL_METRICS_MAX_STRAHLER = 64 };
+enum { SYL_METRICS_MAX_STRAHLER = 64, SYL_METRICS_MAX_STEM_ORDER = 63 };
 
 typedef struct SylMetrics {
     double height;             /* highest point - ground (the lowest root) */
@@ -35,6 +35,13 @@ typedef struct SylMetrics {
     double ground;             /* y of the lowest root */
     double crown_base;         /* y of the lowest branching node (the ground when none) */
     double streams[SYL_METRICS_MAX_STRAHLER + 1]; /* streams[i]: Strahler streams of order i */
+    /* Counts (`compare --json`): stems_by_order[k] is the number of stems of branch order k
+     * (axes with a drawn segment; a split clone is an axis of its own), for k below
+     * stem_orders; orders above SYL_METRICS_MAX_STEM_ORDER are counted there. leaves: organs
+     * of kind leaf or needle. */
+    double stems_by_order[SYL_METRICS_MAX_STEM_ORDER + 1];
+    int stem_orders;
+    double leaves;
 } SylMetrics;
 
 typedef struct SylMetricsOptions {

@@ -164,6 +164,47 @@ static void json_number(FILE *out, double v, bool integer) {
     fputs(*buf ? buf : "null", out);
 }
 
+/* Mean and sample standard deviation of v[0..n) (n >= 1). */
+static Stat stat_of(const double *v, int n) {
+    Stat s = {0, 0, n};
+    for (int i = 0; i < n; i++) s.mean += v[i];
+    s.mean /= n;
+    for (int i = 0; i < n; i++) s.sd += (v[i] - s.mean) * (v[i] - s.mean);
+    s.sd = n > 1 ? sqrt(s.sd / (n - 1)) : 0;
+    return s;
+}
+
+/* A count over the runs: the number itself for one run, else {"mean": …, "sd": …}. */
+static void json_count(FILE *out, const double *v, int n) {
+    Stat s = stat_of(v, n);
+    if (n == 1) {
+        json_number(out, v[0], true);
+        return;
+    }
+    fputs("{\"mean\": ", out);
+    json_number(out, s.mean, false);
+    fputs(", \"sd\": ", out);
+    json_number(out, s.sd, false);
+    fputc('}', out);
+}
+
+/* The counts a user can check on the plant: stems of each branch order, and leaves. */
+static void json_counts(FILE *out, const Column *c, int nruns) {
+    double v[nruns > 0 ? nruns : 1];
+    int orders = 0;
+    for (int i = 0; i < nruns; i++)
+        if (c->runs[i].stem_orders > orders) orders = c->runs[i].stem_orders;
+    fputs(",\n      \"stems_by_order\": [", out);
+    for (int k = 0; k < orders; k++) {
+        for (int i = 0; i < nruns; i++) v[i] = c->runs[i].stems_by_order[k];
+        if (k) fputs(", ", out);
+        json_count(out, v, nruns);
+    }
+    fputs("], \"leaves\": ", out);
+    for (int i = 0; i < nruns; i++) v[i] = c->runs[i].leaves;
+    json_count(out, v, nruns);
+}
+
 /* ---- the three formats ---- */
 
 static bool write_text(FILE *out, const Column *cols, int ncols, int nruns, const Row *rows, int nrows) {
@@ -279,7 +320,9 @@ static void write_json(FILE *out, const Column *cols, int ncols, int nruns, cons
                 fputc('}', out);
             } else json_number(out, s.mean, mi->integer);
         }
-        fprintf(out, "\n      }}%s\n", c + 1 < ncols ? "," : "");
+        fputs("\n      }", out);
+        json_counts(out, &cols[c], nruns);
+        fprintf(out, "}%s\n", c + 1 < ncols ? "," : "");
     }
     fputs("  ]\n}\n", out);
 }

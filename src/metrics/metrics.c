@@ -127,7 +127,7 @@ int syl_metrics(const SylSkeleton *s, const SylMetricsOptions *opt, SylMetrics *
                            ? pow(out->streams[1] / out->streams[strahler], 1.0 / (strahler - 1))
                            : NAN;
     out->branching_angle = metrics_branching_angle(&t);
-    if (!metrics_crown(&t, ground, out) || !metrics_box_dimension(s, &out->box_dimension)) goto oom;
+    if (!metrics_counts(s, out) || !metrics_crown(&t, ground, out) || !metrics_box_dimension(s, &out->box_dimension)) goto oom;
 
     /* Light, on the mesh. */
     const SylMesh *mesh = o->mesh;

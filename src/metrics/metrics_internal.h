@@ -21,6 +21,9 @@ static inline uint32_t tree_nkids(const MetricsTree *t, size_t i) { return t->fi
  * root), streams[k] the streams of order k; returns the plant's order (0: no segment). */
 int metrics_strahler(const MetricsTree *t, int *order, double streams[SYL_METRICS_MAX_STRAHLER + 1]);
 
+/* Stems by order and leaves (counts.c). false: out of memory. */
+bool metrics_counts(const SylSkeleton *s, SylMetrics *out);
+
 /* The mean angle, in degrees, between each lateral branch's first segment and its parent's
  * continuation (branching.c); NaN when there is none. */
 double metrics_branching_angle(const MetricsTree *t);
