@@ -1,4 +1,4 @@
-/* sylva skeleton: derive a model, draw it with the turtle and export the skeleton. */
+/* sylva skeleton: any model's skeleton (drawn, grown or built from parameters), exported. */
 #include <stdlib.h>
 #include <string.h>
 
@@ -7,12 +7,14 @@
 
 const CliCommand cli_skeleton_command = {
     .name = "skeleton",
-    .what = "draw a model with the turtle and export its skeleton (CSV, JSON)",
+    .what = "build any model's skeleton and export it (CSV, JSON)",
     .run = cmd_skeleton,
     .usage = "sylva skeleton FILE[:Model] [options]",
-    .about = "Derive the model, apply its `interpret` rules, draw the string with the 3D turtle\n"
-             "(docs/turtle.md) and write the skeleton: one row per node (segment ends and roots),\n"
-             "then one per organ, with the columns id,parent,x,y,z,radius,order,kind.\n",
+    .about = "Build the model's skeleton and write it: an lsystem is derived, its `interpret` rules\n"
+             "applied and its string drawn with the 3D turtle (docs/turtle.md); a grow block or a scene\n"
+             "grows (-n years); a weber or strands block builds its tree from its parameters. One row\n"
+             "per node (segment ends and roots), then one per organ, with the columns\n"
+             "id,parent,x,y,z,radius,order,kind.\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT,
          .help = "write to FILE: CSV for *.csv, JSON for *.json\n"
