@@ -1,0 +1,35 @@
+/* libFuzzer harness: the Arbaro XML reader (src/lang/arbaro.c, libxml2 underneath) on arbitrary
+ * bytes. An input that does not read as XML gets `<arbaro>` in front, so that every input
+ * reaches libxml2. Then what `sylva check` and `sylva convert` do with a weber model: the weber
+ * reader's validation, the dump, and both writers (XML and .syl), all into the void. */
+#include "fuzz.h"
+#include "lang/arbaro.h"
+#include "sylva/grow.h"
+#include "weber/params.h"
+#include "weber/xml.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    static const char head[] = "<arbaro>";
+    Source src = {.path = "fuzz.xml", .text = (const char *)data, .len = size};
+    size_t skip = syl_arbaro_detect(&src) ? sizeof head - 1 : 0, n = size + sizeof head - 1 - skip;
+    char *text = malloc(n + 1);
+    if (!text) abort();
+    memcpy(text, head + skip, sizeof head - 1 - skip);
+    memcpy(text + (sizeof head - 1 - skip), data, size);
+    text[n] = 0;
+    FILE *diag = fuzz_diag();
+    int status;
+    SylCompileOptions opt = {.diag = diag, .validate = syl_grow_validate};
+    SylProgram *p = syl_compile("fuzz.xml", text, n, &opt, &status);
+    if (p) {
+        syl_program_dump(p, diag);
+        WeberParams w;
+        if (syl_program_kind(p) == SYL_MODEL_WEBER && weber_params_read(p, &w, diag) == 0) {
+            weber_write_xml(&w, syl_program_name(p), diag);
+            weber_write_syl(&w, syl_program_name(p), "fuzz", diag);
+        }
+        syl_program_free(p);
+    }
+    free(text);
+    return 0;
+}
