@@ -19,8 +19,8 @@ const CliCommand cli_convert_command = {
              "lists over levels 0 to 3. Values are written so that they read back exactly: converting\n"
              "the written file again gives the same bytes.\n",
     .options = (const CliUse[]){
-        {.option = CLI_OPT_OUTPUT, .help = "write to FILE: Arbaro XML for *.xml, a weber block for *.syl\n"
-                                           "(required; '-' with --format is not offered)"},
+        {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a weber block\n"
+                                           "for *.syl"},
         {.option = CLI_OPT_SET},
         {0},
     },

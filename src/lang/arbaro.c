@@ -67,6 +67,13 @@ static const char *find(const char *b, const char *e, const char *s, size_t n) {
     return n && (size_t)(e - b) >= n ? memmem(b, (size_t)(e - b), s, n) : NULL;
 }
 
+/* name in quotes in [b, e) (an attribute's value: `'Shape'`, not the Shape of `'LeafShape'`). */
+static const char *quoted(const char *b, const char *e, const char *name, size_t n) {
+    const char *p = find(b, e, name, n);
+    while (p && !(p > b && (p[-1] == '\'' || p[-1] == '"') && p + n < e && p[n] == p[-1])) p = find(p + 1, e, name, n);
+    return p;
+}
+
 /* Where the first character of a value stands in its line: after `value=` and its quote
  * (following the quoted name, for a <param>), or after the `>` of `<Name>` (Helios);
  * NULL when the line does not show it (written over several lines, or with references). */
@@ -83,8 +90,7 @@ static const char *value_start(const Reader *r, int line, const char *name, bool
         for (p++; p < e && blank(*p); p++) {}
         return p;
     }
-    const char *p = find(b, e, name, n);
-    while (p && !(p > b && (p[-1] == '\'' || p[-1] == '"') && p + n < e && p[n] == p[-1])) p = find(p + 1, e, name, n);
+    const char *p = quoted(b, e, name, n);
     p = find(p ? p : b, e, "value", 5);
     if (!p) return NULL;
     p += 5;
@@ -223,7 +229,7 @@ static void species(Reader *r, xmlNodePtr sp) {
             continue;
         }
         const char *b, *e, *at = NULL;
-        if (line_text(r, loc.first_line, &b, &e)) at = find(b, e, pname, strlen(pname));
+        if (line_text(r, loc.first_line, &b, &e)) at = quoted(b, e, pname, strlen(pname));
         Stmt *s = add(r, m, pname, loc.first_line, at ? column(r, loc.first_line, at) : loc.first_column);
         arguments(r, s, value, loc.first_line, value_start(r, loc.first_line, pname, true));
     }
