@@ -1,16 +1,91 @@
-/* syl_weber: a Weber–Penn tree from a `weber` block. (The generator lands in this folder.) */
-#include "sylva/trees.h"
+/* syl_weber: a Weber–Penn tree from a `weber` block. The tree is made depth first on one
+ * thread (Arbaro's order: its error diffusion runs through the whole tree), every stem drawing
+ * from random streams keyed by its place in the tree, so the same block and seed give the
+ * same skeleton whatever -j says. docs/weberpenn.md describes the model. */
+#include <stdlib.h>
+#include <string.h>
 
-#include "weber/params.h"
+#include "sylva/trees.h"
+#include "util/budget.h"
+#include "weber/internal.h"
 
 int syl_weber_validate(const SylProgram *p, FILE *diag) {
     WeberParams w;
     return weber_params_read(p, &w, diag);
 }
 
+static void free_gen(WeberGen *g) {
+    budget_release(g->budget, g->charged);
+    free(g->stems);
+    free(g->pts);
+    free(g->lvs);
+}
+
+/* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
+static void make_trunks(WeberGen *g) {
+    const WeberParams *w = &g->w;
+    Rng r = weber_rng(g, 0, WRNG_KIDS);
+    WStem holder = {0}; /* keeps the trunks' rotation angle */
+    for (int i = 0; i < (int)w->Branches[0] && !g->failed; i++) {
+        WStem t = {0};
+        t.level = 0;
+        t.parent = t.from = -1;
+        t.key = weber_key(1, 0, (uint64_t)i);
+        frame_identity(&t.start);
+        holder.level = -1;
+        t.start = weber_child_direction(g, &holder, t.start, 0, 0, &r);
+        double angle = weber_var(&r, 360) * M_PI / 180, dist = weber_var(&r, w->BranchDist[0]);
+        t.start.t[0] = dist * sin(angle);
+        t.start.t[1] = dist * cos(angle);
+        weber_make_stem(g, t);
+    }
+}
+
 int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+    FILE *diag = opt ? opt->diag : NULL;
     *out = NULL;
-    if (opt && opt->diag)
-        fprintf(opt->diag, "sylva: error: '%s': weber blocks are not generated yet\n", syl_program_name(p));
-    return SYL_EMODEL;
+    if (syl_program_kind(p) != SYL_MODEL_WEBER) return SYL_EUSAGE;
+    WeberGen *g = calloc(1, sizeof *g);
+    if (!g) return SYL_ELIMIT;
+    if (weber_params_read(p, &g->w, diag)) {
+        free(g);
+        return SYL_EMODEL;
+    }
+    const WeberParams *w = &g->w;
+    Budget local;
+    if (opt && opt->budget) g->budget = opt->budget;
+    else budget_init(&local, opt ? opt->max_memory : 0), g->budget = &local;
+    g->levels = (int)w->Levels;
+    g->leaves = (int)w->Leaves;
+    if (opt && opt->levels > 0 && opt->levels < g->levels) g->levels = opt->levels, g->leaves = 0;
+    g->seed = opt && opt->use_seed ? opt->seed : w->seed;
+    g->leaf_len = w->LeafScale / sqrt(w->LeafQuality);
+    g->leaf_width = w->LeafScale * w->LeafScaleX / sqrt(w->LeafQuality);
+    Rng tree = weber_rng(g, 0, WRNG_SELF);
+    g->scale_tree = w->Scale + weber_var(&tree, w->ScaleV);
+    make_trunks(g);
+    int st = SYL_OK;
+    SylSkeleton *sk = NULL;
+    if (g->failed) st = SYL_ELIMIT;
+    if (!st && !(sk = syl_skeleton_new(syl_program_name(p)))) st = SYL_ELIMIT;
+    if (!st) st = weber_write(g, sk);
+    if (!st) {
+        uint64_t bytes = (uint64_t)sk->node_cap * sizeof *sk->nodes + (uint64_t)sk->organ_cap * sizeof *sk->organs;
+        if (budget_charge(g->budget == &local ? NULL : g->budget, bytes)) {
+            if (g->budget != &local) sk->budget = g->budget, sk->charged = bytes;
+        } else {
+            st = SYL_ELIMIT;
+        }
+    }
+    if (st == SYL_ELIMIT && diag)
+        fprintf(diag, "sylva: error: '%s': the tree needs more memory than --max-memory allows (%llu MB)\n",
+                syl_program_name(p), (unsigned long long)budget_limit_mb(g->budget));
+    free_gen(g);
+    free(g);
+    if (st) {
+        syl_skeleton_free(sk);
+        return st;
+    }
+    *out = sk;
+    return SYL_OK;
 }
