@@ -35,7 +35,8 @@ typedef struct WStem {
     double sps, lps;   /* children and leaves per segment */
     double rot;        /* the last child's rotation angle */
     uint32_t pt_first, pt_count, leaf_first, leaf_count;
-    int32_t first_node; /* written: its nodes' range in the skeleton */
+    double u_length, u_lcm; /* the first trunk's draws for its length and its children's, when
+                             * they come from Arbaro's streams (else negative) */
 } WStem;
 
 /* A point of a stem's axis: segment ends and the sub-sections of flare, rounded ends, beads
@@ -45,10 +46,6 @@ typedef struct WPoint {
     float r, dist;     /* radius there; distance from the stem's base */
 } WPoint;
 
-typedef struct WLeaf {
-    float pos[3], z[3], x[3];
-    float dist;        /* along its stem, for the node it hangs from */
-} WLeaf;
 
 typedef struct WSeg {  /* one segment while its stem is made */
     Frame f;           /* at its base */
@@ -66,8 +63,9 @@ typedef struct WeberGen {
     size_t nstems, stems_cap;
     WPoint *pts;
     size_t npts, pts_cap;
-    WLeaf *lvs;
-    size_t nlvs, lvs_cap;
+    SylOrgan *lvs;     /* the leaves, in Sylva's coordinates, in the skeleton's order; */
+    float *ldist;      /* each one's distance along its stem (for the node it hangs from) */
+    size_t nlvs, lvs_cap, ldist_cap;
     double sub_err[10], split_err[10], leaf_err; /* error diffusion, per level (Arbaro's) */
     Budget *budget;
     uint64_t charged;
@@ -80,6 +78,15 @@ static inline Rng weber_rng(const WeberGen *g, uint64_t key, int table) { return
 /* Arbaro's var(v): uniform in [-v, v]. */
 static inline double weber_var(Rng *r, double v) { return v * (2 * rng_unit(r) - 1); }
 static inline uint64_t weber_key(uint64_t parent, uint64_t kind, uint64_t n) { return rng_mix(parent * 0x9e3779b97f4a7c15ull ^ (kind << 48) ^ n); }
+
+/* arbaro_rng.c: java.util.Random, for Arbaro's tree size */
+typedef struct JRand {
+    uint64_t s;
+} JRand;
+void jrand_seed(JRand *r, int64_t seed);
+int64_t jrand_long(JRand *r);
+double jrand_double(JRand *r);
+void jrand_tree(int64_t seed, JRand *level0, JRand *level1);
 
 /* frame.c */
 void frame_identity(Frame *f);
@@ -110,7 +117,7 @@ void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, R
 Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids);
 
 /* leaves.c */
-void weber_leaves(WeberGen *g, WStem *st, int seg, const WSeg *segs, Rng *kids);
+void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids);
 double weber_leaves_per_stem(const WeberGen *g, const WStem *st);
 
 /* prune.c */

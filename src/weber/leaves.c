@@ -23,20 +23,32 @@ static void bend(const WeberGen *g, Frame *f) {
     frame_rot_local(f, 1, 0, 0, b * fbend);
 }
 
-static void put_leaf(WeberGen *g, Frame f, double dist) {
-    bend(g, &f);
-    if (!weber_grow(g, (void **)&g->lvs, &g->lvs_cap, g->nlvs + 1, sizeof *g->lvs)) return;
-    WLeaf *l = &g->lvs[g->nlvs++];
-    double stem = g->w.LeafStemLen * g->leaf_len; /* the petiole, not drawn */
-    for (int i = 0; i < 3; i++) {
-        l->pos[i] = (float)(f.t[i] + f.z[i] * stem);
-        l->z[i] = (float)f.z[i];
-        l->x[i] = (float)f.x[i];
-    }
-    l->dist = (float)dist;
+/* Tree coordinates (z up) to Sylva's (Y up), as write.c does. */
+static void to_sylva(float out[3], const double in[3]) {
+    out[0] = (float)in[0], out[1] = (float)in[2], out[2] = (float)-in[1];
 }
 
-void weber_leaves(WeberGen *g, WStem *st, int seg, const WSeg *segs, Rng *kids) {
+static void put_leaf(WeberGen *g, int id, Frame f, double dist) {
+    bend(g, &f);
+    if (!weber_grow(g, (void **)&g->lvs, &g->lvs_cap, g->nlvs + 1, sizeof *g->lvs) ||
+        !weber_grow(g, (void **)&g->ldist, &g->ldist_cap, g->nlvs + 1, sizeof *g->ldist))
+        return;
+    SylOrgan *o = &g->lvs[g->nlvs];
+    g->ldist[g->nlvs++] = (float)dist;
+    double stem = g->w.LeafStemLen * g->leaf_len, p[3]; /* the petiole, not drawn */
+    for (int i = 0; i < 3; i++) p[i] = f.t[i] + f.z[i] * stem;
+    to_sylva(o->pos, p);
+    to_sylva(o->h, f.z);
+    to_sylva(o->l, f.x);
+    to_sylva(o->u, f.y); /* y = z x x */
+    o->size = (float)g->leaf_len;
+    o->node = -1;
+    o->kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
+    o->material = SYL_MATERIAL_LEAF;
+    o->module = (uint32_t)id;
+}
+
+void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids) {
     const WeberParams *w = &g->w;
     double len = st->seglen;
     if (g->leaves > 0) {
@@ -50,7 +62,7 @@ void weber_leaves(WeberGen *g, WStem *st, int seg, const WSeg *segs, Rng *kids) 
             double at = (seg + where) * len;
             Frame f = weber_child_direction(g, st, segs[seg].f, at, st->level + 1, kids);
             for (int i = 0; i < 3; i++) f.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
-            put_leaf(g, f, at);
+            put_leaf(g, id, f, at);
         }
     } else if (seg == st->nseg - 1) { /* a fan at the tip */
         int cl = weber_lv(st->level + 1);
@@ -60,7 +72,7 @@ void weber_leaves(WeberGen *g, WStem *st, int seg, const WSeg *segs, Rng *kids) 
         frame_move(&tip, len);
         double step = w->Rotate[cl] / n, stepv = w->RotateV[cl] / n, off;
         if (n % 2 == 1) {
-            put_leaf(g, tip, st->length);
+            put_leaf(g, id, tip, st->length);
             off = step;
         } else {
             off = step / 2;
@@ -70,7 +82,7 @@ void weber_leaves(WeberGen *g, WStem *st, int seg, const WSeg *segs, Rng *kids) 
                 Frame f = tip;
                 frame_rot_local(&f, 0, 1, 0, -side * (off + k * step + weber_var(kids, stepv))); /* Arbaro's roty */
                 frame_rot_local(&f, 1, 0, 0, w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]));
-                put_leaf(g, f, st->length);
+                put_leaf(g, id, f, st->length);
             }
     }
 }

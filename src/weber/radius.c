@@ -4,7 +4,10 @@
 
 double weber_stem_length(WeberGen *g, const WStem *s, Rng *self) {
     const WeberParams *w = &g->w;
-    if (s->level == 0) return (w->Length[0] + weber_var(self, w->LengthV[0])) * g->scale_tree;
+    if (s->level == 0) {
+        double v = s->u_length >= 0 ? w->LengthV[0] * (2 * s->u_length - 1) : weber_var(self, w->LengthV[0]);
+        return (w->Length[0] + v) * g->scale_tree;
+    }
     const WStem *p = &g->stems[s->parent];
     if (s->level == 1) {
         double base = w->BaseSize * g->scale_tree;

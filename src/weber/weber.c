@@ -19,22 +19,35 @@ static void free_gen(WeberGen *g) {
     free(g->stems);
     free(g->pts);
     free(g->lvs);
+    free(g->ldist);
 }
 
 /* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
-static void make_trunks(WeberGen *g) {
+static void make_trunks(WeberGen *g, JRand *j0, JRand *j1) {
     const WeberParams *w = &g->w;
     Rng r = weber_rng(g, 0, WRNG_KIDS);
-    WStem holder = {0}; /* keeps the trunks' rotation angle */
+    double rot = 0;
     for (int i = 0; i < (int)w->Branches[0] && !g->failed; i++) {
+        bool java = i == 0 && j0; /* the draws Arbaro makes for its first trunk */
+        double u[5];
+        for (int k = 0; k < 5; k++) u[k] = java ? jrand_double(j0) : rng_unit(&r);
         WStem t = {0};
         t.level = 0;
         t.parent = t.from = -1;
         t.key = weber_key(1, 0, (uint64_t)i);
+        t.u_length = java ? u[4] : -1;
+        t.u_lcm = java ? jrand_double(j1) : -1;
         frame_identity(&t.start);
-        holder.level = -1;
-        t.start = weber_child_direction(g, &holder, t.start, 0, 0, &r);
-        double angle = weber_var(&r, 360) * M_PI / 180, dist = weber_var(&r, w->BranchDist[0]);
+        double a;
+        if (w->Rotate[0] >= 0) { /* as children turn (children.c) */
+            rot = fmod(rot + w->Rotate[0] + w->RotateV[0] * (2 * u[0] - 1) + 360, 360);
+            a = rot;
+        } else {
+            rot = fabs(rot) != 1 ? -1 : -rot;
+            a = rot * (180 + w->Rotate[0] + w->RotateV[0] * (2 * u[0] - 1));
+        }
+        frame_rotxz(&t.start, w->DownAngle[0] + w->DownAngleV[0] * (2 * u[1] - 1), a);
+        double angle = 360 * (2 * u[2] - 1) * M_PI / 180, dist = w->BranchDist[0] * (2 * u[3] - 1);
         t.start.t[0] = dist * sin(angle);
         t.start.t[1] = dist * cos(angle);
         weber_make_stem(g, t);
@@ -61,9 +74,18 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     g->seed = opt && opt->use_seed ? opt->seed : w->seed;
     g->leaf_len = w->LeafScale / sqrt(w->LeafQuality);
     g->leaf_width = w->LeafScale * w->LeafScaleX / sqrt(w->LeafQuality);
-    Rng tree = weber_rng(g, 0, WRNG_SELF);
-    g->scale_tree = w->Scale + weber_var(&tree, w->ScaleV);
-    make_trunks(g);
+    JRand j0, j1;
+    bool java = w->convention == WEBER_ARBARO;
+    double u;
+    if (java) {
+        jrand_tree((int64_t)g->seed, &j0, &j1);
+        u = jrand_double(&j0);
+    } else {
+        Rng tree = weber_rng(g, 0, WRNG_SELF);
+        u = rng_unit(&tree);
+    }
+    g->scale_tree = w->Scale + w->ScaleV * (2 * u - 1);
+    make_trunks(g, java ? &j0 : NULL, &j1);
     int st = SYL_OK;
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;

@@ -47,8 +47,9 @@ static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], cons
     nd.kind = kind;
     nd.material = SYL_MATERIAL_BARK;
     nd.module = (uint32_t)id;
-    int32_t k = syl_skeleton_add_node(wr->sk, &nd);
-    if (k < 0) return wr->failed = true, -1;
+    if (wr->sk->nnodes >= wr->sk->node_cap) return wr->failed = true, -1; /* (sized in advance) */
+    int32_t k = (int32_t)wr->sk->nnodes;
+    wr->sk->nodes[wr->sk->nnodes++] = nd;
     if (wr->n == wr->cap) {
         size_t nc = wr->cap ? 2 * wr->cap : 64;
         float *d = realloc(wr->dists, nc * sizeof *d);
@@ -80,6 +81,10 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
         att[na++] = (Attach){s->from, (int)j, s->clone ? s->first_seg * s->seglen : s->offset};
     }
     qsort(att, na, sizeof *att, by_host);
+    /* every node at once: at most a root per trunk, the points, and one per attachment */
+    size_t most = g->npts + na + ns;
+    if (!(sk->nodes = malloc((most ? most : 1) * sizeof *sk->nodes))) wr.failed = true;
+    else sk->node_cap = most;
     size_t a = 0;
     for (size_t i = 0; i < ns && !wr.failed; i++) {
         const WStem *st = &g->stems[i];
@@ -111,27 +116,20 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
             prev = p->pos, prev_d = p->dist;
         }
         for (; a < na && att[a].host == (int)i; a++) attach_node[att[a].stem] = last;
-        for (uint32_t q = 0; q < st->leaf_count && !wr.failed && wr.n; q++) {
-            const WLeaf *lf = &g->lvs[st->leaf_first + q];
+        for (uint32_t q = 0; q < st->leaf_count && wr.n; q++) {
+            float d = g->ldist[st->leaf_first + q];
             size_t lo = 0, hi = wr.n; /* the last node at or below the leaf */
             while (hi - lo > 1) {
                 size_t mid = (lo + hi) / 2;
-                if (wr.dists[mid] <= lf->dist) lo = mid; else hi = mid;
+                if (wr.dists[mid] <= d) lo = mid; else hi = mid;
             }
-            SylOrgan o = {0};
-            to_sylva(o.pos, lf->pos);
-            to_sylva(o.h, lf->z);
-            to_sylva(o.l, lf->x);
-            o.u[0] = o.h[1] * o.l[2] - o.h[2] * o.l[1];
-            o.u[1] = o.h[2] * o.l[0] - o.h[0] * o.l[2];
-            o.u[2] = o.h[0] * o.l[1] - o.h[1] * o.l[0];
-            o.size = (float)g->leaf_len;
-            o.node = wr.ids[lo];
-            o.kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
-            o.material = SYL_MATERIAL_LEAF;
-            o.module = (uint32_t)i;
-            if (syl_skeleton_add_organ(sk, &o) < 0) wr.failed = true;
+            g->lvs[st->leaf_first + q].node = wr.ids[lo];
         }
+    }
+    if (!wr.failed && g->nlvs) { /* the leaves are the organs, in order already */
+        sk->organs = g->lvs, sk->norgans = g->nlvs, sk->organ_cap = g->lvs_cap;
+        g->lvs = NULL;
+        if (sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
     }
     free(att);
     free(attach_node);
