@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "sylva/skeleton.h"
+#include "env/obstacles.h"
 #include "util/budget.h"
 #include "util/rng.h"
 #include "weber/params.h"
@@ -52,6 +53,12 @@ typedef struct WSeg {  /* one segment while its stem is made */
     double sps;        /* children per segment there (splits divide it) */
 } WSeg;
 
+/* `envelope "crown.obj"`: a closed mesh stems are pruned to (Sylva's coordinates). */
+typedef struct WeberEnvelope {
+    Obstacles obs;
+    RTCDevice dev;
+} WeberEnvelope;
+
 typedef struct WeberGen {
     WeberParams w;
     int levels;        /* stem levels made (the block's, or fewer) */
@@ -70,7 +77,7 @@ typedef struct WeberGen {
     Budget *budget;
     uint64_t charged;
     bool failed;       /* out of memory or budget */
-    const struct WeberEnvelope *envelope;
+    const WeberEnvelope *envelope;
 } WeberGen;
 
 enum { WRNG_SELF, WRNG_SHAPE, WRNG_KIDS };

@@ -1,4 +1,4 @@
-/* Pruning: a stem that leaves the envelope is shortened until it fits (grown again in test
+/* Pruning: a stem that leaves the envelope (Weber & Penn's, or a closed mesh's inside) is shortened until it fits (grown again in test
  * mode from the same random stream, so it keeps its shape), then lengthened back by
  * 1 - PruneRatio of what was cut. */
 #include <string.h>
@@ -7,6 +7,10 @@
 
 bool weber_inside(const WeberGen *g, const double p[3]) {
     const WeberParams *w = &g->w;
+    if (g->envelope) { /* the mesh's inside instead of Weber & Penn's envelope */
+        float q[3] = {(float)p[0], (float)p[2], (float)-p[1]};
+        return obstacles_inside(&g->envelope->obs, q);
+    }
     double r = sqrt(p[0] * p[0] + p[1] * p[1]);
     double ratio = (g->scale_tree - p[2]) / (g->scale_tree * (1 - w->BaseSize));
     return r / g->scale_tree < w->PruneWidth * weber_shape_ratio(w, 8, ratio);

@@ -54,6 +54,35 @@ static void make_trunks(WeberGen *g, JRand *j0, JRand *j1) {
     }
 }
 
+/* The envelope's file, beside the program's unless absolute. */
+static char *beside(const SylProgram *p, const char *file) {
+    const char *prog = syl_program_path(p);
+    const char *slash = prog ? strrchr(prog, '/') : NULL;
+    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - prog + 1);
+    char *out = malloc(dir + strlen(file) + 1);
+    if (!out) return NULL;
+    memcpy(out, prog, dir);
+    strcpy(out + dir, file);
+    return out;
+}
+
+static int load_envelope(const SylProgram *p, const WeberParams *w, WeberEnvelope *e, FILE *diag) {
+    char *path = beside(p, w->envelope);
+    if (!path) return SYL_ELIMIT;
+    static const float zero[3] = {0, 0, 0};
+    int st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
+    free(path);
+    if (!st && e->obs.nt == 0) st = SYL_EMODEL;
+    if (!st) {
+        e->dev = rtcNewDevice(NULL);
+        st = e->dev ? obstacles_commit(&e->obs, e->dev, diag) : SYL_ELIMIT;
+    }
+    if (st && diag)
+        syl_directive_error(p, diag, w->envelope_at, &w->envelope_at->args[0],
+                            "cannot use the envelope \"%s\" (a closed mesh in an .obj file)", w->envelope);
+    return st;
+}
+
 int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
     FILE *diag = opt ? opt->diag : NULL;
     *out = NULL;
@@ -74,6 +103,17 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     g->seed = opt && opt->use_seed ? opt->seed : w->seed;
     g->leaf_len = w->LeafScale / sqrt(w->LeafQuality);
     g->leaf_width = w->LeafScale * w->LeafScaleX / sqrt(w->LeafQuality);
+    WeberEnvelope env = {0};
+    if (w->envelope) {
+        int est = load_envelope(p, w, &env, diag);
+        if (est) {
+            obstacles_free(&env.obs);
+            if (env.dev) rtcReleaseDevice(env.dev);
+            free(g);
+            return est;
+        }
+        g->envelope = &env;
+    }
     JRand j0, j1;
     bool java = w->convention == WEBER_ARBARO;
     double u;
@@ -104,6 +144,8 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
                 syl_program_name(p), (unsigned long long)budget_limit_mb(g->budget));
     free_gen(g);
     free(g);
+    obstacles_free(&env.obs);
+    if (env.dev) rtcReleaseDevice(env.dev);
     if (st) {
         syl_skeleton_free(sk);
         return st;
