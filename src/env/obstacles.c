@@ -113,6 +113,31 @@ float obstacles_distance(const Obstacles *o, const float org[3], const float dir
     return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? far : rh.ray.tfar;
 }
 
+bool obstacles_inside(const Obstacles *o, const float p[3]) {
+    if (!o->scene || !coord_ok3(p)) return false;
+    /* an unusual direction, so that the ray seldom runs along an edge of a modelled mesh */
+    static const float dir[3] = {0.5773503f, 0.5925557f, 0.5619427f};
+    struct RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    int crossings = 0;
+    float t = 0;
+    for (int k = 0; k < 4096; k++) {
+        struct RTCRayHit rh;
+        memset(&rh, 0, sizeof rh);
+        rh.ray.org_x = p[0], rh.ray.org_y = p[1], rh.ray.org_z = p[2];
+        rh.ray.dir_x = dir[0], rh.ray.dir_y = dir[1], rh.ray.dir_z = dir[2];
+        rh.ray.tnear = t;
+        rh.ray.tfar = INFINITY;
+        rh.ray.mask = 0xffffffffu;
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(o->scene, &ctx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+        crossings++;
+        t = rh.ray.tfar * (1 + 1e-6f) + 1e-6f; /* past this surface */
+    }
+    return crossings % 2 == 1;
+}
+
 bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out) {
     if (!o->scene || !coord_ok(x) || !coord_ok(y) || !coord_ok(z)) return false;
     struct RTCIntersectContext ctx;

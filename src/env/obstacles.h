@@ -33,6 +33,9 @@ bool obstacles_blocked(const Obstacles *o, const float a[3], const float b[3], f
 /* How far from org along the unit dir the first obstacle surface is (either side of it);
  * far when none is nearer. */
 float obstacles_distance(const Obstacles *o, const float org[3], const float dir[3], float far);
+/* Is p inside the closed surfaces (odd crossings of a ray from p, counted by parity)? A
+ * mesh that is not closed gives an answer, but not a meaningful one. */
+bool obstacles_inside(const Obstacles *o, const float p[3]);
 /* The height of the highest obstacle surface under (x, z), looking down from y; false if none. */
 bool obstacles_height(const Obstacles *o, float x, float z, float y, float *out);
 

@@ -1,16 +1,155 @@
-/* syl_weber: a Weber–Penn tree from a `weber` block. (The generator lands in this folder.) */
-#include "sylva/trees.h"
+/* syl_weber: a Weber–Penn tree from a `weber` block. The tree is made depth first on one
+ * thread (Arbaro's order: its error diffusion runs through the whole tree), every stem drawing
+ * from random streams keyed by its place in the tree, so the same block and seed give the
+ * same skeleton whatever -j says. docs/weberpenn.md describes the model. */
+#include <stdlib.h>
+#include <string.h>
 
-#include "weber/params.h"
+#include "sylva/trees.h"
+#include "util/budget.h"
+#include "weber/internal.h"
 
 int syl_weber_validate(const SylProgram *p, FILE *diag) {
     WeberParams w;
     return weber_params_read(p, &w, diag);
 }
 
+static void free_gen(WeberGen *g) {
+    budget_release(g->budget, g->charged);
+    free(g->stems);
+    free(g->pts);
+    free(g->lvs);
+    free(g->ldist);
+}
+
+/* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
+static void make_trunks(WeberGen *g, JRand *j0, JRand *j1) {
+    const WeberParams *w = &g->w;
+    Rng r = weber_rng(g, 0, WRNG_KIDS);
+    double rot = 0;
+    for (int i = 0; i < (int)w->Branches[0] && !g->failed; i++) {
+        bool java = i == 0 && j0; /* the draws Arbaro makes for its first trunk */
+        double u[5];
+        for (int k = 0; k < 5; k++) u[k] = java ? jrand_double(j0) : rng_unit(&r);
+        WStem t = {0};
+        t.level = 0;
+        t.parent = t.from = -1;
+        t.key = weber_key(1, 0, (uint64_t)i);
+        t.u_length = java ? u[4] : -1;
+        t.u_lcm = java ? jrand_double(j1) : -1;
+        frame_identity(&t.start);
+        double a;
+        if (w->Rotate[0] >= 0) { /* as children turn (children.c) */
+            rot = fmod(rot + w->Rotate[0] + w->RotateV[0] * (2 * u[0] - 1) + 360, 360);
+            a = rot;
+        } else {
+            rot = fabs(rot) != 1 ? -1 : -rot;
+            a = rot * (180 + w->Rotate[0] + w->RotateV[0] * (2 * u[0] - 1));
+        }
+        frame_rotxz(&t.start, w->DownAngle[0] + w->DownAngleV[0] * (2 * u[1] - 1), a);
+        double angle = 360 * (2 * u[2] - 1) * M_PI / 180, dist = w->BranchDist[0] * (2 * u[3] - 1);
+        t.start.t[0] = dist * sin(angle);
+        t.start.t[1] = dist * cos(angle);
+        weber_make_stem(g, t);
+    }
+}
+
+/* The envelope's file, beside the program's unless absolute. */
+static char *beside(const SylProgram *p, const char *file) {
+    const char *prog = syl_program_path(p);
+    const char *slash = prog ? strrchr(prog, '/') : NULL;
+    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - prog + 1);
+    char *out = malloc(dir + strlen(file) + 1);
+    if (!out) return NULL;
+    memcpy(out, prog, dir);
+    strcpy(out + dir, file);
+    return out;
+}
+
+static int load_envelope(const SylProgram *p, const WeberParams *w, WeberEnvelope *e, FILE *diag) {
+    char *path = beside(p, w->envelope);
+    if (!path) return SYL_ELIMIT;
+    static const float zero[3] = {0, 0, 0};
+    int st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
+    free(path);
+    if (!st && e->obs.nt == 0) st = SYL_EMODEL;
+    if (!st) {
+        e->dev = rtcNewDevice(NULL);
+        st = e->dev ? obstacles_commit(&e->obs, e->dev, diag) : SYL_ELIMIT;
+    }
+    if (st && diag)
+        syl_directive_error(p, diag, w->envelope_at, &w->envelope_at->args[0],
+                            "cannot use the envelope \"%s\" (a closed mesh in an .obj file)", w->envelope);
+    return st;
+}
+
 int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+    FILE *diag = opt ? opt->diag : NULL;
     *out = NULL;
-    if (opt && opt->diag)
-        fprintf(opt->diag, "sylva: error: '%s': weber blocks are not generated yet\n", syl_program_name(p));
-    return SYL_EMODEL;
+    if (syl_program_kind(p) != SYL_MODEL_WEBER) return SYL_EUSAGE;
+    WeberGen *g = calloc(1, sizeof *g);
+    if (!g) return SYL_ELIMIT;
+    if (weber_params_read(p, &g->w, diag)) {
+        free(g);
+        return SYL_EMODEL;
+    }
+    const WeberParams *w = &g->w;
+    Budget local;
+    if (opt && opt->budget) g->budget = opt->budget;
+    else budget_init(&local, opt ? opt->max_memory : 0), g->budget = &local;
+    g->levels = (int)w->Levels;
+    g->leaves = (int)w->Leaves;
+    if (opt && opt->levels > 0 && opt->levels < g->levels) g->levels = opt->levels, g->leaves = 0;
+    g->seed = opt && opt->use_seed ? opt->seed : w->seed;
+    g->leaf_len = w->LeafScale / sqrt(w->LeafQuality);
+    g->leaf_width = w->LeafScale * w->LeafScaleX / sqrt(w->LeafQuality);
+    WeberEnvelope env = {0};
+    if (w->envelope) {
+        int est = load_envelope(p, w, &env, diag);
+        if (est) {
+            obstacles_free(&env.obs);
+            if (env.dev) rtcReleaseDevice(env.dev);
+            free(g);
+            return est;
+        }
+        g->envelope = &env;
+    }
+    JRand j0, j1;
+    bool java = w->convention == WEBER_ARBARO;
+    double u;
+    if (java) {
+        jrand_tree((int64_t)g->seed, &j0, &j1);
+        u = jrand_double(&j0);
+    } else {
+        Rng tree = weber_rng(g, 0, WRNG_SELF);
+        u = rng_unit(&tree);
+    }
+    g->scale_tree = w->Scale + w->ScaleV * (2 * u - 1);
+    make_trunks(g, java ? &j0 : NULL, &j1);
+    int st = SYL_OK;
+    SylSkeleton *sk = NULL;
+    if (g->failed) st = SYL_ELIMIT;
+    if (!st && !(sk = syl_skeleton_new(syl_program_name(p)))) st = SYL_ELIMIT;
+    if (!st) st = weber_write(g, sk);
+    if (!st) {
+        uint64_t bytes = (uint64_t)sk->node_cap * sizeof *sk->nodes + (uint64_t)sk->organ_cap * sizeof *sk->organs;
+        if (budget_charge(g->budget == &local ? NULL : g->budget, bytes)) {
+            if (g->budget != &local) sk->budget = g->budget, sk->charged = bytes;
+        } else {
+            st = SYL_ELIMIT;
+        }
+    }
+    if (st == SYL_ELIMIT && diag)
+        fprintf(diag, "sylva: error: '%s': the tree needs more memory than --max-memory allows (%llu MB)\n",
+                syl_program_name(p), (unsigned long long)budget_limit_mb(g->budget));
+    free_gen(g);
+    free(g);
+    obstacles_free(&env.obs);
+    if (env.dev) rtcReleaseDevice(env.dev);
+    if (st) {
+        syl_skeleton_free(sk);
+        return st;
+    }
+    *out = sk;
+    return SYL_OK;
 }

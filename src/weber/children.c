@@ -1,0 +1,56 @@
+/* Children of a stem: how many on each segment (error diffusion, the trunk's bare base),
+ * where on the segment (BranchDist), and their down and rotation angles. */
+#include "weber/internal.h"
+
+Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids) {
+    const WeberParams *w = &g->w;
+    int cl = weber_lv(child_level);
+    double rot;
+    if (w->Rotate[cl] >= 0) { /* a spiral */
+        st->rot = fmod(st->rot + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]) + 360, 360);
+        rot = st->rot;
+    } else { /* alternate sides */
+        if (fabs(st->rot) != 1) st->rot = 1;
+        st->rot = -st->rot;
+        rot = st->rot * (180 + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]));
+    }
+    double down;
+    if (w->DownAngleV[cl] >= 0 || st->level < 0) { /* (trunks: always so) */
+        down = w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]);
+    } else { /* lower children hang lower */
+        double len = st->level == 0 ? st->length * (1 - w->BaseSize) : st->length;
+        down = w->DownAngle[cl] + w->DownAngleV[cl] * (1 - 2 * weber_shape_ratio(w, 0, (st->length - offset) / len));
+    }
+    frame_rotxz(&trf, down, rot);
+    return trf;
+}
+
+void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids) {
+    const WeberParams *w = &g->w;
+    int cl = weber_lv(st->level + 1), lv = st->level < 9 ? st->level : 9;
+    double per = segs[seg].sps, offs = 0, len = st->seglen;
+    if (st->level > 0) {
+        if (seg == 0) offs = weber_radius(g, &g->stems[st->parent], st->offset) / len; /* not inside the parent */
+    } else if (seg * len > w->BaseSize * st->length) {
+    } else if ((seg + 1) * len <= w->BaseSize * st->length) {
+        return; /* the bare base of the trunk */
+    } else {
+        offs = (w->BaseSize * st->length - seg * len) / len;
+        per *= 1 - offs;
+    }
+    int n = (int)(per + g->sub_err[lv] + 0.5);
+    g->sub_err[lv] -= n - per;
+    if (n <= 0) return;
+    double dist = (1.0 - offs) / n * w->BranchDist[cl], distv = dist * 0.25;
+    for (int k = 0; k < n && !g->failed; k++) {
+        double where = offs + dist / 2 + k * dist + weber_var(kids, distv);
+        WStem c = {0};
+        c.level = st->level + 1;
+        c.parent = id;
+        c.offset = (seg + where) * len;
+        c.key = weber_key(st->key, 1, (uint64_t)seg << 20 | (uint64_t)k);
+        c.start = weber_child_direction(g, st, segs[seg].f, c.offset, c.level, kids);
+        for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
+        weber_make_stem(g, c);
+    }
+}

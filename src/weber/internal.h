@@ -1,0 +1,137 @@
+/* The Weber–Penn generator's shared state. Coordinates here are the paper's and Arbaro's:
+ * z up; the skeleton writer turns them into Sylva's Y-up frame at the end. */
+#ifndef WEBER_INTERNAL_H
+#define WEBER_INTERNAL_H
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "sylva/skeleton.h"
+#include "env/obstacles.h"
+#include "util/budget.h"
+#include "util/rng.h"
+#include "weber/params.h"
+
+/* A frame: the local axes x, y, z (z along the stem) in tree coordinates, and its origin t. */
+typedef struct Frame {
+    double x[3], y[3], z[3], t[3];
+} Frame;
+
+/* Stems below these are not made (Arbaro's limits: its mesher breaks below them). */
+#define WEBER_MIN_LEN 0.0005
+#define WEBER_MIN_RADIUS (WEBER_MIN_LEN / 10)
+
+typedef struct WStem {
+    Frame start;       /* the base of its first segment */
+    uint64_t key;      /* names its random streams: (parent's key, child or clone number) */
+    int level;
+    int from;          /* the stem it grows out of: its parent, or for a clone the stem it split from */
+    int parent;        /* the stem whose child it is (a clone's is its origin's); -1 for a trunk */
+    int nseg, first_seg; /* CurveRes; a clone starts at first_seg */
+    bool clone;
+    double offset;     /* from the parent's base (a clone: its origin's offset) */
+    double length, seglen, base_radius;
+    double lcm;        /* most length of a child, relative (drawn once per stem) */
+    double split_corr; /* turn per segment that straightens a split out again */
+    double sps, lps;   /* children and leaves per segment */
+    double rot;        /* the last child's rotation angle */
+    uint32_t pt_first, pt_count, leaf_first, leaf_count;
+    double u_length, u_lcm; /* the first trunk's draws for its length and its children's, when
+                             * they come from Arbaro's streams (else negative) */
+} WStem;
+
+/* A point of a stem's axis: segment ends and the sub-sections of flare, rounded ends, beads
+ * and helices. */
+typedef struct WPoint {
+    float pos[3], z[3], x[3];
+    float r, dist;     /* radius there; distance from the stem's base */
+} WPoint;
+
+
+typedef struct WSeg {  /* one segment while its stem is made */
+    Frame f;           /* at its base */
+    double sps;        /* children per segment there (splits divide it) */
+} WSeg;
+
+/* `envelope "crown.obj"`: a closed mesh stems are pruned to (Sylva's coordinates). */
+typedef struct WeberEnvelope {
+    Obstacles obs;
+    RTCDevice dev;
+} WeberEnvelope;
+
+typedef struct WeberGen {
+    WeberParams w;
+    int levels;        /* stem levels made (the block's, or fewer) */
+    int leaves;        /* Leaves, or 0 when levels were cut */
+    uint64_t seed;
+    double scale_tree;
+    double leaf_len, leaf_width;
+    WStem *stems;
+    size_t nstems, stems_cap;
+    WPoint *pts;
+    size_t npts, pts_cap;
+    SylOrgan *lvs;     /* the leaves, in Sylva's coordinates, in the skeleton's order; */
+    float *ldist;      /* each one's distance along its stem (for the node it hangs from) */
+    size_t nlvs, lvs_cap, ldist_cap;
+    double sub_err[10], split_err[10], leaf_err; /* error diffusion, per level (Arbaro's) */
+    Budget *budget;
+    uint64_t charged;
+    bool failed;       /* out of memory or budget */
+    const WeberEnvelope *envelope;
+} WeberGen;
+
+enum { WRNG_SELF, WRNG_SHAPE, WRNG_KIDS };
+static inline Rng weber_rng(const WeberGen *g, uint64_t key, int table) { return rng_stream(g->seed, key, (uint64_t)table, 0); }
+/* Arbaro's var(v): uniform in [-v, v]. */
+static inline double weber_var(Rng *r, double v) { return v * (2 * rng_unit(r) - 1); }
+static inline uint64_t weber_key(uint64_t parent, uint64_t kind, uint64_t n) { return rng_mix(parent * 0x9e3779b97f4a7c15ull ^ (kind << 48) ^ n); }
+
+/* arbaro_rng.c: java.util.Random, for Arbaro's tree size */
+typedef struct JRand {
+    uint64_t s;
+} JRand;
+void jrand_seed(JRand *r, int64_t seed);
+int64_t jrand_long(JRand *r);
+double jrand_double(JRand *r);
+void jrand_tree(int64_t seed, JRand *level0, JRand *level1);
+
+/* frame.c */
+void frame_identity(Frame *f);
+void frame_rot_global(Frame *f, const double axis[3], double deg);   /* about a tree axis */
+void frame_rot_local(Frame *f, double ax, double ay, double az, double deg); /* about a local axis */
+void frame_rotxz(Frame *f, double down, double rot);  /* about local z by rot, then the new x by down */
+void frame_move(Frame *f, double d);                  /* along its z */
+
+/* shape.c */
+double weber_shape_ratio(const WeberParams *w, int shape, double r);
+
+/* radius.c */
+double weber_stem_length(WeberGen *g, const WStem *s, Rng *self);
+double weber_base_radius(const WeberGen *g, const WStem *s);
+double weber_radius(const WeberGen *g, const WStem *s, double h);
+
+/* stem.c */
+bool weber_make_stem(WeberGen *g, WStem st);
+int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs);
+bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
+
+/* splits.c */
+int weber_split_count(WeberGen *g, const WStem *st, int seg);
+Frame weber_split(WeberGen *g, WStem *st, Rng *r, Frame trf, double s_angle, int seg, int nsplits, bool test);
+
+/* children.c */
+void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids);
+Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids);
+
+/* leaves.c */
+void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids);
+double weber_leaves_per_stem(const WeberGen *g, const WStem *st);
+
+/* prune.c */
+bool weber_inside(const WeberGen *g, const double p[3]);
+void weber_prune(WeberGen *g, WStem *st);
+
+/* write.c */
+int weber_write(WeberGen *g, SylSkeleton *sk);
+
+#endif

@@ -1,0 +1,247 @@
+/* One stem: its length and radius, its segments (curvature, attraction, splits), the points
+ * of its axis, then its clones, children and leaves, depth first. */
+#include <stdlib.h>
+#include <string.h>
+#include <sys/mman.h>
+
+#include "weber/internal.h"
+
+bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) {
+    if (need <= *cap) return true;
+    size_t nc = *cap ? *cap : 256;
+    while (nc < need) nc *= 2;
+    if (!budget_resize(g->budget, (uint64_t)*cap * size, (uint64_t)nc * size)) return g->failed = true, false;
+    void *p;
+    const size_t huge = (size_t)2 << 20, bytes = nc * size;
+    if (bytes >= 2 * huge) { /* big arrays on huge pages: page faults were a fifth of the time */
+        size_t round = (bytes + huge - 1) / huge * huge;
+        p = aligned_alloc(huge, round);
+#ifdef MADV_HUGEPAGE
+        if (p) madvise(p, round, MADV_HUGEPAGE);
+#endif
+        if (p && *cap) memcpy(p, *arr, *cap * size);
+        if (p) free(*arr);
+    } else {
+        p = realloc(*arr, bytes);
+    }
+    if (!p) {
+        budget_resize(g->budget, (uint64_t)nc * size, (uint64_t)*cap * size);
+        return g->failed = true, false;
+    }
+    g->charged += (uint64_t)(nc - *cap) * size;
+    *arr = p;
+    *cap = nc;
+    return true;
+}
+
+/* The turn at the start of segment seg (none at the first: the down and rotation angles
+ * stay as given). */
+static void new_direction(WeberGen *g, WStem *st, Frame *trf, int seg, Rng *r) {
+    if (seg == 0) return;
+    const WeberParams *w = &g->w;
+    int lv = weber_lv(st->level);
+    double res = w->CurveRes[lv], delta;
+    if (w->CurveBack[lv] == 0) delta = w->Curve[lv] / res;
+    else if (seg < ((int)res + 1) / 2) delta = w->Curve[lv] * 2 / res;
+    else delta = w->CurveBack[lv] * 2 / res;
+    delta += st->split_corr;
+    frame_rot_local(trf, 1, 0, 0, delta);
+    if (w->CurveV[lv] > 0) { /* a random bend about an axis in the segment's xy plane */
+        double d = weber_var(r, w->CurveV[lv]) / res;
+        double rho = (180 + weber_var(r, 180)) * (M_PI / 180);
+        frame_rot_local(trf, cos(rho), sin(rho), 0, d);
+    }
+    if (w->AttractionUp != 0 && st->level >= 2) {
+        double zz = trf->z[2] > 1 ? 1 : trf->z[2] < -1 ? -1 : trf->z[2];
+        double decl = acos(zz);
+        if (w->convention == WEBER_PAPER) { /* the paper's form, with the orientation term */
+            double yz = trf->y[2] > 1 ? 1 : trf->y[2] < -1 ? -1 : trf->y[2];
+            double up = w->AttractionUp * decl * cos(acos(yz)) / res;
+            frame_rot_local(trf, 1, 0, 0, up * 180 / M_PI);
+        } else { /* Arbaro's: about the horizontal axis across the stem */
+            double up = w->AttractionUp * fabs(decl * sin(decl)) / res;
+            double axis[3] = {-trf->z[1], trf->z[0], 0};
+            frame_rot_global(trf, axis, -up * 180 / M_PI);
+        }
+    }
+}
+
+/* A stem traced: its segments, and its clones, each traced when it splits off (Arbaro's
+ * order, which the error diffusion of splits follows); points and children come after. */
+typedef struct Traced Traced;
+typedef struct Pending {
+    Traced *c;
+    size_t n, cap;
+} Pending;
+struct Traced {
+    WStem st;
+    WSeg *segs;
+    Pending pend;
+};
+
+static void free_pending(Pending *p) {
+    for (size_t i = 0; i < p->n; i++) {
+        free(p->c[i].segs);
+        free_pending(&p->c[i].pend);
+    }
+    free(p->c);
+    *p = (Pending){0};
+}
+
+static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs, Pending *pend) {
+    Rng r = weber_rng(g, st->key, WRNG_SHAPE); /* the same stream for a test and the real stem */
+    for (int s = s0; s < st->nseg; s++) {
+        new_direction(g, st, &trf, s, &r);
+        if (segs) segs[s].f = trf, segs[s].sps = st->sps;
+        frame_move(&trf, st->seglen);
+        if (test && !weber_inside(g, trf.t)) return s;
+        if (s >= st->nseg - 1) continue;
+        int n = weber_split_count(g, st, s);
+        if (n < 1) continue;
+        double s_angle = 360.0 / (n + 1);
+        for (int i = 0; i < n; i++) {
+            WStem c = *st;
+            c.clone = true;
+            c.key = weber_key(st->key, 2 + (uint64_t)s, (uint64_t)i);
+            c.first_seg = s + 1;
+            c.rot = st->rot + 180;
+            c.start = weber_split(g, &c, &r, trf, s_angle * (1 + i), s, n, test);
+            if (test) {
+                int bad = trace_in(g, &c, s + 1, c.start, true, NULL, NULL);
+                if (bad >= 0) return bad;
+                continue;
+            }
+            if (pend->n == pend->cap) {
+                size_t nc = pend->cap ? 2 * pend->cap : 4;
+                Traced *q = realloc(pend->c, nc * sizeof *q);
+                if (!q) return g->failed = true, -1;
+                pend->c = q, pend->cap = nc;
+            }
+            Traced *t = &pend->c[pend->n];
+            t->segs = malloc((size_t)c.nseg * sizeof *t->segs);
+            t->pend = (Pending){0};
+            if (!t->segs) return g->failed = true, -1;
+            pend->n++;
+            trace_in(g, &c, s + 1, c.start, false, t->segs, &t->pend);
+            t->st = c;
+        }
+        Frame t2 = weber_split(g, st, &r, trf, 0, s, n, test);
+        if (g->w.convention == WEBER_PAPER) trf = t2; /* Arbaro's original stem keeps its heading */
+    }
+    return -1;
+}
+
+int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs) {
+    return trace_in(g, st, s0, trf, test, segs, NULL);
+}
+
+static bool put_point(WeberGen *g, const WStem *st, const Frame *f, const double p[3], double dist) {
+    if (!weber_grow(g, (void **)&g->pts, &g->pts_cap, g->npts + 1, sizeof *g->pts)) return false;
+    WPoint *q = &g->pts[g->npts++];
+    for (int i = 0; i < 3; i++) q->pos[i] = (float)p[i], q->z[i] = (float)f->z[i], q->x[i] = (float)f->x[i];
+    q->dist = (float)dist;
+    q->r = (float)weber_radius(g, st, dist);
+    return true;
+}
+
+/* The axis points of segment s: its end, and sub-sections where the radius profile or a
+ * helix needs them (Arbaro's counts: 10 for flare, rounded ends and helices, 20 for beads). */
+static bool put_segment(WeberGen *g, const WStem *st, int s, const Frame *f) {
+    const WeberParams *w = &g->w;
+    int lv = weber_lv(st->level);
+    double len = st->seglen, base = s * len, taper = w->Taper[lv], p[3];
+#define AT(d) (p[0] = f->t[0] + f->z[0] * (d), p[1] = f->t[1] + f->z[1] * (d), p[2] = f->t[2] + f->z[2] * (d), p)
+    if (s == st->first_seg && !put_point(g, st, f, AT(len * 1e-3), base + len * 1e-3)) return false;
+    if (w->CurveV[lv] < 0) { /* a helix: one turn per segment */
+        double a = fabs(w->CurveV[lv]) * M_PI / 180, c = cos(a);
+        double hr = sqrt(1.0 / (c * c) - 1) * len / M_PI / 2.0;
+        for (int i = 1; i <= 10; i++) {
+            double lx = hr * cos(2 * M_PI * i / 10) - hr, ly = hr * sin(2 * M_PI * i / 10), lz = i * len / 10;
+            for (int k = 0; k < 3; k++) p[k] = f->t[k] + f->x[k] * lx + f->y[k] * ly + f->z[k] * lz;
+            if (!put_point(g, st, f, p, base + lz)) return false;
+        }
+        return true;
+    }
+    if (taper > 1 && taper <= 2 && s == st->nseg - 1) { /* rounded end: shorter steps to the tip */
+        for (int i = 1; i < 10; i++)
+            if (!put_point(g, st, f, AT(len - len / pow(2, i)), base + len - len / pow(2, i))) return false;
+    } else if (taper > 2) {
+        for (int i = 1; i < 20; i++)
+            if (!put_point(g, st, f, AT(i * len / 20), base + i * len / 20)) return false;
+    } else if (st->level == 0 && w->Flare != 0 && s == 0) { /* flare: shorter steps to the base */
+        for (int i = 9; i >= 1; i--)
+            if (!put_point(g, st, f, AT(len / pow(2, i)), base + len / pow(2, i))) return false;
+    }
+    return put_point(g, st, f, AT(len), base + len);
+#undef AT
+}
+
+static bool add_stem(WeberGen *g, const WStem *st, int *id) {
+    if (!weber_grow(g, (void **)&g->stems, &g->stems_cap, g->nstems + 1, sizeof *g->stems)) return false;
+    *id = (int)g->nstems;
+    g->stems[g->nstems++] = *st;
+    return true;
+}
+
+/* Points, clones, children and leaves of a traced stem already in the list. */
+static void run_stem(WeberGen *g, int id, Traced *t) {
+    WStem *st = &t->st;
+    g->stems[id].pt_first = (uint32_t)g->npts;
+    for (int s = st->first_seg; s < st->nseg && !g->failed; s++) put_segment(g, st, s, &t->segs[s].f);
+    g->stems[id].pt_count = (uint32_t)(g->npts - g->stems[id].pt_first);
+    for (size_t i = 0; i < t->pend.n && !g->failed; i++) {
+        int cid;
+        t->pend.c[i].st.from = id;
+        if (add_stem(g, &t->pend.c[i].st, &cid)) run_stem(g, cid, &t->pend.c[i]);
+    }
+    Rng kids = weber_rng(g, st->key, WRNG_KIDS);
+    g->stems[id].leaf_first = (uint32_t)g->nlvs;
+    for (int s = st->first_seg; s < st->nseg && !g->failed; s++) {
+        if (st->level < g->levels - 1) weber_children(g, id, st, s, t->segs, &kids);
+        else if (g->leaves != 0) weber_leaves(g, id, st, s, t->segs, &kids);
+    }
+    /* (a stem with children has no leaves; the leaves made meanwhile are its descendants') */
+    g->stems[id].leaf_count = st->level < g->levels - 1 ? 0 : (uint32_t)(g->nlvs - g->stems[id].leaf_first);
+}
+
+/* The counts of children and leaves per segment, and the most length of a child. */
+static void prepare_children(WeberGen *g, WStem *st, Rng *self) {
+    const WeberParams *w = &g->w;
+    int cl = weber_lv(st->level + 1);
+    st->lcm = w->Length[cl] + (st->u_lcm >= 0 ? w->LengthV[cl] * (2 * st->u_lcm - 1) : weber_var(self, w->LengthV[cl]));
+    double most = w->Branches[cl], n;
+    if (st->level == 0) {
+        st->sps = most / st->nseg / (1 - w->BaseSize);
+    } else {
+        const WStem *p = &g->stems[st->parent];
+        if (st->level == 1) n = (int)(most * (0.2 + 0.8 * st->length / p->length / p->lcm));
+        else n = (int)(most * (1.0 - 0.5 * st->offset / p->length));
+        st->sps = n / st->nseg;
+    }
+    st->rot = 0;
+    st->lps = st->level == g->levels - 1 ? weber_leaves_per_stem(g, st) / st->nseg : 0;
+}
+
+bool weber_make_stem(WeberGen *g, WStem st) {
+    const WeberParams *w = &g->w;
+    Rng self = weber_rng(g, st.key, WRNG_SELF);
+    st.nseg = (int)w->CurveRes[weber_lv(st.level)];
+    st.first_seg = 0;
+    st.clone = false;
+    st.from = st.parent;
+    st.split_corr = 0;
+    st.length = weber_stem_length(g, &st, &self);
+    st.seglen = st.length / st.nseg;
+    st.base_radius = weber_base_radius(g, &st);
+    if (st.level > 0 && (w->PruneRatio > 0 || g->envelope)) weber_prune(g, &st);
+    if (!(st.length > WEBER_MIN_LEN && st.base_radius > WEBER_MIN_RADIUS)) return false;
+    prepare_children(g, &st, &self);
+    Traced t = {.st = st, .segs = malloc((size_t)st.nseg * sizeof *t.segs)};
+    int id;
+    if (!t.segs) return g->failed = true, false;
+    trace_in(g, &t.st, 0, t.st.start, false, t.segs, &t.pend);
+    if (!g->failed && add_stem(g, &t.st, &id)) run_stem(g, id, &t);
+    free(t.segs);
+    free_pending(&t.pend);
+    return !g->failed;
+}

@@ -1,0 +1,139 @@
+/* The skeleton writer: every stem (and every clone) an axis of its own with order = level,
+ * its nodes the points of its axis plus one wherever a child or a clone grows out (so that
+ * each child starts from a node of its parent, where it really sits); leaves as organs.
+ * Tree coordinates (z up) become Sylva's (Y up): (x, y, z) -> (x, z, -y). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "weber/internal.h"
+
+typedef struct Attach {
+    int host, stem;
+    double at; /* distance along the host */
+} Attach;
+
+static int by_host(const void *a, const void *b) {
+    const Attach *x = a, *y = b;
+    if (x->host != y->host) return x->host < y->host ? -1 : 1;
+    if (x->at != y->at) return x->at < y->at ? -1 : 1;
+    return x->stem < y->stem ? -1 : x->stem > y->stem;
+}
+
+static void to_sylva(float out[3], const float in[3]) {
+    out[0] = in[0], out[1] = in[2], out[2] = -in[1];
+}
+
+typedef struct Writer {
+    SylSkeleton *sk;
+    float *dists;    /* of the current stem's nodes */
+    int32_t *ids;
+    size_t n, cap;
+    bool failed;
+} Writer;
+
+static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], const float z[3], const float x[3],
+                   float r, float dist, int32_t parent, uint8_t kind) {
+    SylNode nd = {0};
+    to_sylva(nd.pos, pos);
+    to_sylva(nd.h, z);
+    to_sylva(nd.l, x);
+    nd.u[0] = nd.h[1] * nd.l[2] - nd.h[2] * nd.l[1];
+    nd.u[1] = nd.h[2] * nd.l[0] - nd.h[0] * nd.l[2];
+    nd.u[2] = nd.h[0] * nd.l[1] - nd.h[1] * nd.l[0];
+    nd.radius = r;
+    nd.parent = parent;
+    nd.axis = id;
+    nd.order = (uint16_t)(st->level < 65535 ? st->level : 65535);
+    nd.kind = kind;
+    nd.material = SYL_MATERIAL_BARK;
+    nd.module = (uint32_t)id;
+    if (wr->sk->nnodes >= wr->sk->node_cap) return wr->failed = true, -1; /* (sized in advance) */
+    int32_t k = (int32_t)wr->sk->nnodes;
+    wr->sk->nodes[wr->sk->nnodes++] = nd;
+    if (wr->n == wr->cap) {
+        size_t nc = wr->cap ? 2 * wr->cap : 64;
+        float *d = realloc(wr->dists, nc * sizeof *d);
+        if (!d) return wr->failed = true, -1;
+        wr->dists = d;
+        int32_t *q = realloc(wr->ids, nc * sizeof *q);
+        if (!q) return wr->failed = true, -1;
+        wr->ids = q;
+        wr->cap = nc;
+    }
+    wr->dists[wr->n] = dist, wr->ids[wr->n++] = k;
+    return k;
+}
+
+int weber_write(WeberGen *g, SylSkeleton *sk) {
+    size_t ns = g->nstems, na = 0;
+    Attach *att = malloc((ns ? ns : 1) * sizeof *att);
+    int32_t *attach_node = malloc((ns ? ns : 1) * sizeof *attach_node);
+    Writer wr = {.sk = sk};
+    if (!att || !attach_node) {
+        free(att);
+        free(attach_node);
+        return SYL_ELIMIT;
+    }
+    for (size_t j = 0; j < ns; j++) {
+        const WStem *s = &g->stems[j];
+        attach_node[j] = -1;
+        if (s->from < 0) continue;
+        att[na++] = (Attach){s->from, (int)j, s->clone ? s->first_seg * s->seglen : s->offset};
+    }
+    qsort(att, na, sizeof *att, by_host);
+    /* every node at once: at most a root per trunk, the points, and one per attachment */
+    size_t most = g->npts + na + ns;
+    if (!(sk->nodes = malloc((most ? most : 1) * sizeof *sk->nodes))) wr.failed = true;
+    else sk->node_cap = most;
+    size_t a = 0;
+    for (size_t i = 0; i < ns && !wr.failed; i++) {
+        const WStem *st = &g->stems[i];
+        wr.n = 0;
+        float base[3], z0[3], x0[3];
+        for (int k = 0; k < 3; k++)
+            base[k] = (float)st->start.t[k], z0[k] = (float)st->start.z[k], x0[k] = (float)st->start.x[k];
+        float prev_d = (float)(st->first_seg * st->seglen);
+        const float *prev = base;
+        int32_t last;
+        if (st->from < 0)
+            last = put(&wr, st, (int)i, base, z0, x0, (float)weber_radius(g, st, 0), 0, -1, SYL_KIND_ROOT);
+        else
+            last = attach_node[i];
+        while (a < na && att[a].host < (int)i) a++;
+        for (uint32_t q = 0; q < st->pt_count && !wr.failed; q++) {
+            const WPoint *p = &g->pts[st->pt_first + q];
+            float tol = 1e-6f * (float)st->length;
+            for (; a < na && att[a].host == (int)i && att[a].at < p->dist - tol; a++) {
+                float t = p->dist > prev_d ? (float)((att[a].at - prev_d) / (p->dist - prev_d)) : 0, pos[3];
+                if (t < 0) t = 0;
+                for (int k = 0; k < 3; k++) pos[k] = prev[k] + (p->pos[k] - prev[k]) * t;
+                last = put(&wr, st, (int)i, pos, p->z, p->x, (float)weber_radius(g, st, att[a].at), (float)att[a].at,
+                           last, SYL_KIND_INTERNODE);
+                attach_node[att[a].stem] = last;
+            }
+            last = put(&wr, st, (int)i, p->pos, p->z, p->x, p->r, p->dist, last, SYL_KIND_INTERNODE);
+            for (; a < na && att[a].host == (int)i && att[a].at <= p->dist + tol; a++) attach_node[att[a].stem] = last;
+            prev = p->pos, prev_d = p->dist;
+        }
+        for (; a < na && att[a].host == (int)i; a++) attach_node[att[a].stem] = last;
+        for (uint32_t q = 0; q < st->leaf_count && wr.n; q++) {
+            float d = g->ldist[st->leaf_first + q];
+            size_t lo = 0, hi = wr.n; /* the last node at or below the leaf */
+            while (hi - lo > 1) {
+                size_t mid = (lo + hi) / 2;
+                if (wr.dists[mid] <= d) lo = mid; else hi = mid;
+            }
+            g->lvs[st->leaf_first + q].node = wr.ids[lo];
+        }
+    }
+    if (!wr.failed && g->nlvs) { /* the leaves are the organs, in order already */
+        sk->organs = g->lvs, sk->norgans = g->nlvs, sk->organ_cap = g->lvs_cap;
+        g->lvs = NULL;
+        if (sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
+    }
+    free(att);
+    free(attach_node);
+    free(wr.dists);
+    free(wr.ids);
+    return wr.failed ? SYL_ELIMIT : SYL_OK;
+}
