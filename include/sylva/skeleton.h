@@ -86,6 +86,10 @@ typedef struct SylSkeleton {
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
+    /* The leaves' surface, for every SYL_KIND_LEAF organ (0: Sylva's blade): an oval of
+     * leaf_tris triangles (Arbaro's disc1..disc9), leaf_width wide per unit of length. */
+    int leaf_tris;
+    float leaf_width;
     SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
     uint64_t charged;
 } SylSkeleton;

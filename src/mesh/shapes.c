@@ -6,7 +6,8 @@
  * size along H, a fifth as wide each way along L, with UVs 0..1 over the blade (v along the
  * main vein, u across). A flower is five such petals around H, tilted forward. A needle is a
  * slender three-sided spike. A sphere is a UV sphere of diameter size about H. A disc (cpfg's
- * circle) is a flat fan of diameter size in the H-L plane, facing U, made on both sides. */
+ * circle) is a flat fan of diameter size in the H-L plane, facing U, made on both sides. A
+ * skeleton may name its own leaf surface (leaf_tris, leaf_width: Weber–Penn's ovals). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -49,13 +50,21 @@ static bool organ_frame(const SylOrgan *o, vec3 h, vec3 l, vec3 u) {
     return true;
 }
 
+/* A skeleton's own leaf surface (Weber–Penn's disc1..disc9): 0 for Sylva's blade. */
+static int oval_tris(const SylSkeleton *s) {
+    return s->leaf_tris >= 1 && s->leaf_tris <= 64 && s->leaf_width > 0 && isfinite(s->leaf_width) ? s->leaf_tris : 0;
+}
+
 static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts, uint32_t *tris) {
     vec3 h, l, u;
     *verts = *tris = 0;
     if (!organ_frame(o, h, l, u)) return;
     uint32_t st = (uint32_t)pl->sphere_stacks, sl = (uint32_t)pl->sides;
     switch (o->kind) {
-    case SYL_KIND_LEAF: *verts = BLADE_V, *tris = BLADE_T; break;
+    case SYL_KIND_LEAF:
+        if (oval_tris(pl->skel)) *verts = 2 * (uint32_t)(oval_tris(pl->skel) + 2), *tris = 2 * (uint32_t)oval_tris(pl->skel);
+        else *verts = BLADE_V, *tris = BLADE_T;
+        break;
     case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T; break;
     case SYL_KIND_NEEDLE: *verts = NEEDLE_V, *tris = NEEDLE_T; break;
     case SYL_KIND_SPHERE: *verts = (st + 1) * (sl + 1), *tris = 2 * sl * (st - 1); break;
@@ -259,12 +268,36 @@ static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float
     for (int t = 0; t < 8; t++) tri(o, b[blade_tri[t][0]], b[blade_tri[t][2]], b[blade_tri[t][1]]);
 }
 
+/* A double-sided oval of n triangles (a fan over n + 2 points of its outline, from the base
+ * through one side, the tip and the other side), len long along x and w wide along y. */
+static void oval(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w, int n) {
+    vec3 nf, nb;
+    glm_vec3_cross((float *)x, (float *)y, nf);
+    glm_vec3_normalize(nf);
+    glm_vec3_negate_to(nf, nb);
+    uint32_t f[66], b[66];
+    for (int i = 0; i < n + 2; i++) {
+        float a = 3.14159265358979f + 6.28318530718f * (float)i / (float)(n + 2);
+        float u = 0.5f + 0.5f * cosf(a), v = 0.5f * sinf(a), p[3]; /* u along, 0..1; v across */
+        for (int q = 0; q < 3; q++) p[q] = origin[q] + u * len * x[q] + v * w * y[q];
+        f[i] = put(o, p, nf, 0.5f + v, u);
+        b[i] = put(o, p, nb, 0.5f + v, u);
+    }
+    for (int i = 1; i + 1 < n + 2; i++) {
+        tri(o, f[0], f[i], f[i + 1]);
+        tri(o, b[0], b[i + 1], b[i]);
+    }
+}
+
 static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
     vec3 h, l, u;
     organ_frame(og, h, l, u);
     const float *c = og->pos, size = og->size;
     switch (og->kind) {
-    case SYL_KIND_LEAF: blade(o, c, h, l, size, LEAF_WIDTH * size); break;
+    case SYL_KIND_LEAF:
+        if (oval_tris(pl->skel)) oval(o, c, h, l, size, pl->skel->leaf_width * size, oval_tris(pl->skel));
+        else blade(o, c, h, l, size, LEAF_WIDTH * size);
+        break;
     case SYL_KIND_FLOWER:
         for (int k = 0; k < PETALS; k++) {
             float a = 6.28318530718f * (float)k / PETALS, ca = cosf(a), sa = sinf(a);

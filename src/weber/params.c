@@ -70,11 +70,19 @@ static bool leaf_shape(const char *s, WeberParams *w) {
 static const char *const leaf_names[] = {"disc", "disc1", "disc2", "disc3", "disc4", "disc5", "disc6",
                                          "disc7", "disc8", "disc9", "square", "sphere", "palm"};
 
+/* A number: written plainly, or as (expr), which arrives evaluated as a one-value tuple. */
+static bool number_of(const SylDirArg *a, double *x) {
+    if (a->kind == SYL_DARG_NUMBER) return *x = a->num, true;
+    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *x = a->values[0], true;
+    return false;
+}
+
 /* One value of parameter pi; stores it at *v. Returns the errors (0 or 1). */
 static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, const SylDirArg *a,
                       const WeberParamInfo *pi, const char *shown, WeberParams *w, double *v) {
     if (pi->type == WP_LEAFSHAPE) {
-        if (a->kind == SYL_DARG_NUMBER) { leaf_shape("0", w); return 0; }
+        double unused;
+        if (number_of(a, &unused)) { leaf_shape("0", w); return 0; }
         if ((a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING) && leaf_shape(a->text, w)) return 0;
         char near[160];
         int k = a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING
@@ -84,11 +92,11 @@ static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, co
                             k ? " (did you mean " : "", k ? near : "", k ? "?)" : "");
         return 1;
     }
-    if (a->kind != SYL_DARG_NUMBER) {
+    double x;
+    if (!number_of(a, &x)) {
         syl_directive_error(p, diag, d, a, "%s takes a number", shown);
         return 1;
     }
-    double x = a->num;
     char r[80];
     range_text(pi, r, sizeof r);
     if (isnan(x) || x < pi->lo || x > pi->hi || (pi->lo_open && x == pi->lo) || (pi->hi_open && x == pi->hi)) {
@@ -141,12 +149,13 @@ static int read_extra(const SylProgram *p, FILE *diag, const SylDirective *d, We
             return 1;
         }
     } else if (!strcmp(d->name, "Seed")) {
-        if (a->kind != SYL_DARG_NUMBER || a->num < 0 || a->num != floor(a->num) || a->num > 9.0e15) {
+        double x;
+        if (!number_of(a, &x) || x < 0 || x != floor(x) || x > 9.0e15) {
             syl_directive_error(p, diag, d, a, "Seed takes a whole number >= 0");
             return 1;
         }
         w->has_seed = true;
-        w->seed = (uint64_t)a->num;
+        w->seed = (uint64_t)x;
     } else if (!strcmp(d->name, "envelope")) {
         if (a->kind != SYL_DARG_STRING) {
             syl_directive_error(p, diag, d, a, "envelope takes a file name in quotes (a closed .obj mesh)");

@@ -130,6 +130,9 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
         sk->organs = g->lvs, sk->norgans = g->nlvs, sk->organ_cap = g->lvs_cap;
         g->lvs = NULL;
         if (sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
+        /* the leaves' surface: an oval of LeafShape's triangles, LeafScaleX wide */
+        sk->leaf_tris = g->w.leaf_tris;
+        sk->leaf_width = (float)g->w.LeafScaleX;
     }
     free(att);
     free(attach_node);

@@ -8,6 +8,9 @@ figures: Arbaro's measured counts and sizes, and the model's own formulas.
   weber_check.py size T.json HEIGHT WIDTH PH PW      Arbaro's height (top of the stem axes)
                                                      and width (farthest corner of their
                                                      bounding box from the axis) within PH, PW %
+  weber_check.py fan T.json N                        N leaves on every last-level stem
+  weber_check.py quality T.json Q.json Q             leaf sizes of both; Q.json has Q times the leaves
+  weber_check.py inside T.json A Y0 Y1               branch nodes inside |x|, |z| <= A, Y0 <= y <= Y1
 """
 import json, math, sys
 
@@ -53,6 +56,24 @@ def main():
         w = math.sqrt(max(min(xs) ** 2 + min(zs) ** 2, max(xs) ** 2 + max(zs) ** 2))
         within('height', h, float(sys.argv[3]), float(sys.argv[5]))
         within('width', w, float(sys.argv[4]), float(sys.argv[6]))
+    elif mode == 'fan':  # every last-level stem has exactly N leaves
+        n = int(sys.argv[3])
+        axes = {x['axis']: x['order'] for x in nodes}
+        last = max(axes.values())
+        stems = sum(1 for o in axes.values() if o == last)
+        print(f"{len(organs)} leaves on {stems} stems: " + ("%d each" % n if len(organs) == n * stems and stems else "not %d each" % n))
+    elif mode == 'quality':  # T.json is LeafQuality 1, sys.argv[3] the same tree with q
+        other, q = load(sys.argv[3])[1], float(sys.argv[4])
+        size = sorted({round(o['size'], 6) for o in organs}), sorted({round(o['size'], 6) for o in other})
+        print('sizes', size[0], size[1])
+        r = len(other) / len(organs)
+        print('count ratio %s' % ('within 10%% of %g' % q if abs(r / q - 1) <= 0.1 else r))
+    elif mode == 'inside':  # every node of order >= 1 inside the box x, z in [-a, a], y in [y0, y1]
+        a, y0, y1 = float(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5])
+        e = 1e-3
+        branch = [x for x in nodes if x['order'] >= 1]
+        out = [x for x in branch if not (abs(x['x']) <= a + e and abs(x['z']) <= a + e and y0 - e <= x['y'] <= y1 + e)]
+        print(f"{'over 20' if len(branch) > 20 else len(branch)} branch nodes, {len(out)} outside")
     else:
         sys.exit('unknown mode ' + mode)
 
