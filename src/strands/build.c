@@ -76,9 +76,10 @@ static int32_t add_node(SylSkeleton *sk, const Pending *b, const double tip[3], 
 int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *strands_of) {
     StrandsCounts cnt = strands_counts(P, age);
     const StrandsOrderParam *o = P->order;
-    /* the seed turns the tree about its trunk: Zamuda's stand-in for Holton's Writh vectors */
+    /* a seed other than 0 turns the tree about its trunk: Zamuda's stand-in for Holton's
+     * Writh vectors, so that trees of one species stand differently in a scene */
     Rng rng = rng_stream(P->seed, 0, 0, 0);
-    double turn = 2 * 3.14159265358979323846 * rng_unit(&rng);
+    double turn = P->seed ? 2 * 3.14159265358979323846 * rng_unit(&rng) : 0;
     Pending b = {.f = {.x = {cos(turn), 0, -sin(turn)}, .y = {0, 1, 0}, .z = {sin(turn), 0, cos(turn)}},
                  .L = 1, .l = cnt.trunk_length, .S = cnt.strands, .parent = -1, .axis = 0};
     SylNode root = {.radius = (float)(P->thickness * sqrt((double)cnt.strands) / 2), .parent = -1,
