@@ -4,6 +4,7 @@
 
 #include "strands/strands.h"
 #include "sylva/trees.h"
+#include "util/array.h"
 #include "util/budget.h"
 
 int syl_strands_validate(const SylProgram *p, FILE *diag) {
@@ -46,6 +47,12 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     if (mem != &own) sk->budget = mem, sk->charged = bytes;
     else budget_release(mem, bytes);
     sk->nmaterials = c.organs ? 2 : 1;
+    /* the counts are known (3.1): one allocation each, not a doubling series */
+    if (!array_reserve(&sk->nodes, &sk->node_cap, c.nodes, sizeof(SylNode)) ||
+        (c.organs && !array_reserve(&sk->organs, &sk->organ_cap, c.organs, sizeof(SylOrgan)))) {
+        syl_skeleton_free(sk);
+        return SYL_ELIMIT;
+    }
     int st = strands_build(&P, opt->age, sk, NULL);
     if (st) {
         if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
