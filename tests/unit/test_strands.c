@@ -2,7 +2,8 @@
  * not from Sylva's numbers: 2S - 1 segments and S tips (3.1), strands conserved at every fork,
  * the split (3.5) in integer arithmetic, d = k_d sqrt(S) (3.4), the angle alpha between the
  * two sub-branches and alpha_1 of the main one (3.7-3.8), lengths (3.24-3.26), gravimorphism
- * toward the ground, age (3.33-3.34), leaves per tip, and the same skeleton for any -j. */
+ * toward the ground, age (3.33-3.34), leaves per tip, and the same skeleton for any -j; and
+ * docs/strands.md's parameter table names exactly the parameters the reader knows. */
 #include <math.h>
 
 #include "unit.h"
@@ -278,13 +279,44 @@ static void bad_parameters(void **state) {
     free(diag);
 }
 
+/* The rows of the table under "### Parameters" in docs/strands.md: their first cells. */
+static int doc_rows(char names[][64], int max) {
+    FILE *f = fopen("docs/strands.md", "r");
+    if (!f) fail_msg("cannot read docs/strands.md (run from the project's root)");
+    char line[4096];
+    int n = 0, in = 0;
+    while (fgets(line, sizeof line, f)) {
+        if (!strncmp(line, "### Parameters", 14)) in = 1;
+        else if (in && !strncmp(line, "| `", 3) && n < max) {
+            char *end = strchr(line + 3, '`');
+            if (end) snprintf(names[n++], 64, "%.*s", (int)(end - line - 3), line + 3);
+        } else if (in && n && line[0] != '|') break;
+    }
+    fclose(f);
+    return n;
+}
+
+static void docs_list_every_parameter(void **state) {
+    (void)state;
+    const char *names[64], *symbols[64];
+    int n = strands_param_names(names, symbols, 64);
+    char rows[64][64];
+    int nr = doc_rows(rows, 64);
+    assert_int_equal(nr, n);
+    for (int i = 0; i < n; i++) {
+        int k = 0;
+        while (k < nr && strcmp(rows[k], names[i])) k++;
+        if (k == nr) fail_msg("docs/strands.md: no row for '%s' (%s)", names[i], symbols[i]);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(counts_and_conservation), cmocka_unit_test(thickness_is_leonardo),
         cmocka_unit_test(branching_angles),        cmocka_unit_test(lengths_clamped),
         cmocka_unit_test(gravimorphism_bends_down), cmocka_unit_test(age_scales),
         cmocka_unit_test(leaves_on_tips),          cmocka_unit_test(same_for_any_threads),
-        cmocka_unit_test(bad_parameters),
+        cmocka_unit_test(bad_parameters),          cmocka_unit_test(docs_list_every_parameter),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
