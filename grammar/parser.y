@@ -221,6 +221,8 @@ gstmt: NEWLINE
 /* the lsystem words that head a line are directive words here, like any other */
 gword: KW_USE { $$ = "use"; }
      | KW_GROUP { $$ = "group"; }
+     | KW_WEBER { $$ = "weber"; }
+     | KW_STRANDS { $$ = "strands"; }
      ;
 dargs: %empty { memset(&$$, 0, sizeof $$); }
      | dargs darg { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }

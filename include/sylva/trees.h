@@ -19,6 +19,7 @@ extern "C" {
 typedef struct SylTreeOptions {
     bool use_seed;       /* seed below instead of the block's own */
     uint64_t seed;
+    uint64_t seed_offset; /* added to the block's own seed (a scene's n-th plant: n) */
     int threads;         /* 0: all cores; the tree is the same for any count */
     double age;          /* strands: age t in (0, 1] (S' = t^2 S, l0' = t^2 l0); 0: full grown */
     int levels;          /* weber: stop at this many stem levels (0: the block's Levels) */

@@ -132,7 +132,36 @@ static void groups(FILE *out, const SylProgram *p) {
     }
 }
 
+/* A directive line with its values evaluated, as the engine that owns it reads them. */
+static void directive(FILE *out, const SylDirective *d) {
+    fprintf(out, "    %s", d->name);
+    for (int a = 0; a < d->nargs; a++) {
+        const SylDirArg *g = &d->args[a];
+        if (g->kind == SYL_DARG_NUMBER) fprintf(out, " %.17g", g->num);
+        else if (g->kind == SYL_DARG_STRING) fprintf(out, " \"%s\"", g->text);
+        else fprintf(out, " %s", g->kind == SYL_DARG_TUPLE ? "" : g->text);
+        if (g->kind == SYL_DARG_TUPLE || (g->kind == SYL_DARG_SYMBOL && g->nvalues))
+            for (int k = 0; k < g->nvalues; k++) fprintf(out, "%s%.17g%s", k ? ", " : "(", g->values[k], k + 1 == g->nvalues ? ")" : "");
+    }
+    fputc('\n', out);
+}
+
+/* grow, weber and strands blocks: their parameters and directive lines */
+static void dump_directives(const SylProgram *p, FILE *out) {
+    static const char *const words[] = {"lsystem", "grow", "scene", "weber", "strands"};
+    fprintf(out, "%s %s\n", words[p->kind], p->name);
+    for (int i = 0; i < p->nparams; i++)
+        fprintf(out, "param %s = %g%s\n", p->params[i].name, p->params[i].value,
+                p->params[i].overridden ? " (set on the command line)" : "");
+    fprintf(out, "directives (%d):\n", p->ndirectives);
+    for (int i = 0; i < p->ndirectives; i++) directive(out, &p->directives[i]);
+}
+
 void syl_program_dump(const SylProgram *p, FILE *out) {
+    if (syl_kind_has_directives(p->kind)) {
+        dump_directives(p, out);
+        return;
+    }
     fprintf(out, "lsystem %s\n", p->name);
     fprintf(out, "settings: derive %d, angle %g, step %g, width %g, seed %llu\n", p->derive, p->angle, p->step,
             p->width, (unsigned long long)p->seed);

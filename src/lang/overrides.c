@@ -72,6 +72,7 @@ void cc_check_overrides(Compiler *c) {
         const char *local = p->set_local[i];
         if (!local || is_param(c, local)) continue;
         if (syl_kind_has_directives(p->kind) && namemap_get(&c->values, local, -1) < 0) continue;
+        if (!syl_kind_has_directives(p->kind) && !strncmp(local, "colour.", 7)) continue; /* colour.I.r: applied and checked there */
         const char *names[64];
         int n = syl_kind_has_directives(p->kind) ? 0 : cc_setting_names(names, 64), j = 0;
         while (j < n && strcmp(names[j], local)) j++;

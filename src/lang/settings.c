@@ -1,5 +1,6 @@
 /* The model's settings (derive, angle, step, ..., colour): their table of ranges, checked and stored. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lang/compiler.h"
@@ -141,7 +142,7 @@ static void store(Compiler *c, const SettingDef *def, int block, double v) {
 
 /* --set reaches a setting of one value by its name, a tropism component as tropism.1 to
  * tropism.4 (x, y, z, elasticity: the order of the line) and a block's maxdepth as
- * decompose.maxdepth or interpret.maxdepth; colours it does not reach. */
+ * decompose.maxdepth or interpret.maxdepth, a colour's component as colour.I.r, .g or .b. */
 static const char *const set_names[] = {"derive", "angle", "step", "width", "seed", "widthfactor",
                                         "tropism.1", "tropism.2", "tropism.3", "tropism.4",
                                         "decompose.maxdepth", "interpret.maxdepth"};
@@ -153,8 +154,37 @@ int cc_setting_names(const char **out, int max) {
     return n;
 }
 
+/* colour.I.r (or .g, .b): one component of a colour the model sets; the others stay. A
+ * colour the model leaves to the palette has no line to change: say so. */
+static int colour_override(Compiler *c, const char *name, double v, const char *typed) {
+    SylProgram *p = c->p;
+    char comp = 0, *end;
+    long idx = strtol(name + 7, &end, 10);
+    if (end == name + 7 || *end != '.' || !end[1] || end[2] || !strchr("rgb", end[1])) {
+        diag_error(c->d, (SylLoc){0}, "--set %s: a colour's component is colour.I.r, colour.I.g or colour.I.b", typed);
+        return 0;
+    }
+    comp = end[1];
+    if (idx < 0 || idx > 255) {
+        diag_error(c->d, (SylLoc){0}, "--set %s: a colour index is a whole number from 0 to 255", typed);
+        return 0;
+    }
+    if (!p->colour_set[idx]) {
+        diag_error(c->d, (SylLoc){0}, "--set %s: model '%s' sets no colour %ld (write `colour %ld, R, G, B` in it)",
+                   typed, p->name, idx, idx);
+        return 0;
+    }
+    if (v < 0 || v > 1) {
+        diag_error(c->d, (SylLoc){0}, "--set %s=%.15g: colour components go from 0 to 1", typed, v);
+        return 0;
+    }
+    p->colours[idx][comp == 'r' ? 0 : comp == 'g' ? 1 : 2] = (float)v;
+    return 1;
+}
+
 int cc_setting_override(Compiler *c, const char *name, double v, const char *typed) {
     int n = (int)(sizeof settings / sizeof *settings), i = 0;
+    if (!strncmp(name, "colour.", 7)) return colour_override(c, name, v, typed);
     if (!strncmp(name, "tropism.", 8) && name[8] >= '1' && name[8] <= '4' && !name[9]) {
         while (strcmp(settings[i].name, "tropism")) i++;
         if (!in_range(c, &settings[i], v, (SylLoc){0}, typed)) return 0;

@@ -516,8 +516,11 @@ int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylStrin
     *out = NULL;
     if (p->kind != SYL_MODEL_LSYSTEM) {
         if (opt && opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: grow it with `sylva grow`\n",
-                    p->name, syl_model_kind_name(p->kind));
+            fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: %s\n", p->name,
+                    syl_model_kind_name(p->kind),
+                    syl_kind_has_directives(p->kind) && p->kind != SYL_MODEL_GROW
+                        ? "it has no string; mesh or render it"
+                        : "grow it with `sylva grow`");
         if (q && q->release) q->release(q->user);
         return SYL_EUSAGE;
     }

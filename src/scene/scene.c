@@ -19,11 +19,12 @@
 #include "scene/spec.h"
 #include "sot/output.h"
 #include "sylva/grow.h"
+#include "sylva/trees.h"
 
 enum { OBSTACLE_MATERIAL = 250 };
 
 typedef struct Placed {
-    SylSkeleton *lsys; /* an L-system plant, drawn and moved into place */
+    SylSkeleton *lsys; /* an L-system, weber or strands plant, drawn and moved into place */
     int tree;          /* a grow plant: its tree, or -1 */
     int lockstep;      /* an L-system plant beside trees: its number in SceneLsys, or -1 */
 } Placed;
@@ -110,6 +111,31 @@ static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const Sc
     syl_string_free(s);
     if (st) f->reported = true; /* the deriver and the turtle say why */
     return st;
+}
+
+/* A weber or strands plant: built once from its parameters and moved to where it stands. Its
+ * seed is the plant line's, else the command's plus its place in the list, else the block's
+ * own plus that place, so that a row of one species is a row of different trees. */
+static int draw_tree(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index, Forest *f,
+                     SylSkeleton **out) {
+    SylTreeOptions t = {.use_seed = pl->seed_set || opt->use_seed,
+                        .seed = pl->seed_set ? pl->seed : opt->seed + (uint64_t)index,
+                        .seed_offset = pl->seed_set || opt->use_seed ? 0 : (uint64_t)index,
+                        .threads = opt->threads, .max_memory = opt->max_memory, .budget = opt->budget,
+                        .diag = opt->diag};
+    int st = syl_program_kind(q) == SYL_MODEL_WEBER ? syl_weber(q, &t, out) : syl_strands(q, &t, out);
+    if (st) {
+        f->reported = true; /* the generator says why */
+        return st;
+    }
+    SylSkeleton *sk = *out;
+    for (size_t k = 0; k < sk->nnodes; k++)
+        for (int c = 0; c < 3; c++) sk->nodes[k].pos[c] += pl->at[c];
+    for (size_t k = 0; k < sk->norgans; k++)
+        for (int c = 0; c < 3; c++) sk->organs[k].pos[c] += pl->at[c];
+    for (size_t k = 0; k < sk->nverts; k++)
+        for (int c = 0; c < 3; c++) sk->poly_verts[k][c] += pl->at[c];
+    return SYL_OK;
 }
 
 /* Append skeleton b to a, whose axes are below `axis`: indices and axes renumbered,
@@ -284,6 +310,13 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
             int years = opt->years >= 0 ? opt->years : pl->years_set ? pl->years : P.years;
             placed[i].tree = f->ntrees;
             if (!st) st = forest_add_tree(f, &P, pl->at, years);
+        } else if (syl_program_kind(q) == SYL_MODEL_WEBER || syl_program_kind(q) == SYL_MODEL_STRANDS) {
+            /* a tree made from parameters does not grow: it shades and crowds from the start */
+            st = draw_tree(q, opt, pl, i, f, &placed[i].lsys);
+            opt->stats.plants++;
+            const SylSkeleton *sk = placed[i].lsys;
+            for (size_t k = 0; !st && k < sk->nnodes; k++) st = forest_add_static(f, sk->nodes[k].pos);
+            for (size_t k = 0; !st && k < sk->norgans; k++) st = forest_add_static(f, sk->organs[k].pos);
         } else if (trees) { /* derived later, year by year with the trees */
             SylDeriveOptions d = lsys_options(q, opt, pl, i);
             placed[i].lockstep = nlsys++;
