@@ -26,7 +26,7 @@ typedef struct Global {
 
 #define OFF(m) offsetof(StrandsParams, m)
 static const Global globals[] = {
-    {"strand_count", "S", 1, 4000000, 1000, true, OFF(strands)},
+    {"strands", "S", 1, 4000000, 1000, true, OFF(strands)},
     {"trunk_length", "l_0", 0, 100, 1, false, OFF(trunk_length)},
     {"thickness", "k_d", 0, 1, 0.01, false, OFF(thickness)},
     {"gravicentralism", "k_c", 0, 1, 1, false, OFF(gravicentral)},

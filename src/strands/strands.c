@@ -24,6 +24,7 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     StrandsParams P;
     if (strands_params_read(p, &P, opt->diag)) return SYL_EMODEL;
     if (opt->use_seed) P.seed = opt->seed;
+    P.seed += opt->seed_offset; /* a scene's n-th plant of a row: turned its own way */
     StrandsCounts c = strands_counts(&P, opt->age);
     /* counted before anything is allocated; the caller's budget keeps them until freed */
     uint64_t bytes = c.nodes * sizeof(SylNode) + c.organs * sizeof(SylOrgan);

@@ -70,7 +70,7 @@ static Kids *kids_of(const SylSkeleton *sk) {
     return k;
 }
 
-#define MODEL(S, extra) "strands T {\n  strand_count " #S "\n  leaves none\n" extra "}\n"
+#define MODEL(S, extra) "strands T {\n  strands " #S "\n  leaves none\n" extra "}\n"
 
 /* 2S - 1 segments, S tips, strands conserved, the split of (3.5) exact, for several S and
  * split ratios; S1 = ceil(1 + k_s (S0 - 2)) in integers: k_s = 3/5 gives 1 + ceil(3(S0-2)/5). */
@@ -220,7 +220,7 @@ static void leaves_on_tips(void **state) {
     static const char *types[] = {"stacked", "staggered", "spiral", "bunched", "coniferous"};
     for (int k = 0; k < 5; k++) {
         char text[256];
-        snprintf(text, sizeof text, "strands T {\n  strand_count 50\n  leaves %s\n  leaf_density 7\n"
+        snprintf(text, sizeof text, "strands T {\n  strands 50\n  leaves %s\n  leaf_density 7\n"
                                     "  leaf_size 0.2\n}\n", types[k]);
         Tree t = tree_of(text, 0);
         assert_int_equal(t.sk->norgans, 50 * 7);
@@ -252,7 +252,7 @@ static char *csv_of(const char *text, int threads) {
 
 static void same_for_any_threads(void **state) {
     (void)state;
-    const char *text = "strands T {\n  strand_count 3000\n  seed 7\n  leaves spiral\n  gravimorphism 20\n}\n";
+    const char *text = "strands T {\n  strands 3000\n  seed 7\n  leaves spiral\n  gravimorphism 20\n}\n";
     char *a = csv_of(text, 1), *b = csv_of(text, 4);
     assert_string_equal(a, b);
     free(a);
@@ -264,11 +264,11 @@ static void bad_parameters(void **state) {
     (void)state;
     char *diag = NULL;
     int st;
-    SylProgram *p = unit_compile("strands T {\n  strand_count 0\n  split_ratio 0.3\n  angel 30\n"
+    SylProgram *p = unit_compile("strands T {\n  strands 0\n  split_ratio 0.3\n  angel 30\n"
                                  "  leaves spiraal\n  angle nocurve\n}\n",
                                  &diag, &st);
     assert_null(p);
-    assert_non_null(strstr(diag, "test.syl:2:16: error: strand_count (S) is 0: it must be a whole number from 1"));
+    assert_non_null(strstr(diag, "test.syl:2:11: error: strands (S) is 0: it must be a whole number from 1"));
     assert_non_null(strstr(diag, "test.syl:3:15: error: split_ratio: the Gravelius factor k_s^g is 0.3: it must be "
                                  "from 0.5 to 1"));
     assert_non_null(strstr(diag, "test.syl:4:3: error: a strands block has no parameter 'angel' (did you mean "
