@@ -23,6 +23,7 @@ typedef struct ModelArgs {
     SylOverride sets[MAX_SETS];
     int nsets;
     uint64_t max_metamers, max_buds; /* --max-metamers, --max-buds (grow blocks, scenes) */
+    float age;         /* --age (strands blocks); 0: full grown */
     bool warned;       /* its warnings were printed (cli_compile) */
 } ModelArgs;
 

@@ -18,7 +18,7 @@ typedef enum CliOptionId {
     CLI_OPT_NONE, /* ends a table */
     CLI_OPT_DERIVE, CLI_OPT_SEED, CLI_OPT_SET, CLI_OPT_THREADS,
     CLI_OPT_MAX_MODULES, CLI_OPT_MAX_MEMORY, CLI_OPT_MAX_WORK, CLI_OPT_MAX_METAMERS, CLI_OPT_MAX_BUDS,
-    CLI_OPT_YEARS, CLI_OPT_SEEDS,
+    CLI_OPT_YEARS, CLI_OPT_SEEDS, CLI_OPT_AGE,
     CLI_OPT_OUTPUT, CLI_OPT_OUT, CLI_OPT_IMAGE, CLI_OPT_FORMAT, CLI_OPT_CSV, CLI_OPT_JSON,
     CLI_OPT_STEPS, CLI_OPT_INTERPRET, CLI_OPT_QUIET,
     CLI_OPT_VIEW, CLI_OPT_SIZE, CLI_OPT_SAMPLES, CLI_OPT_AO, CLI_OPT_NO_SHADOWS,
@@ -84,7 +84,7 @@ typedef struct CliUse {
 /* Groups that several commands share (their --help rows in this order). */
 extern const CliUse cli_limits[];      /* --max-memory, --max-modules, --max-work */
 extern const CliUse cli_grow_limits[]; /* --max-metamers, --max-buds */
-extern const CliUse cli_derive_uses[]; /* -n, --seed, --set, -j and cli_limits */
+extern const CliUse cli_derive_uses[]; /* -n, --seed, --set, -j, --age and cli_limits */
 
 #define CLI_EXIT_CODES "Exit codes: 0 ok, 1 the model is wrong, 2 bad command line, 3 limit hit, 4 I/O error.\n"
 

@@ -236,6 +236,10 @@ static void directives(Compiler *c, Model *m, SylDirective **out, int *nout) {
             o->line = a->loc.first_line;
             o->col = a->loc.first_column;
             if (a->kind == DARG_NUMBER) o->num = a->value->num;
+            /* a word may name a curve (a strands block's per-order functions): that uses it */
+            int cid;
+            if (a->kind == DARG_WORD && c->curve_used && (cid = namemap_get(&c->curves, a->text, -1)) >= 0)
+                c->curve_used[cid] = true;
             if (a->args.n) {
                 double *vals = arena_alloc(&p->arena, sizeof *vals * (size_t)a->args.n);
                 for (int j = 0; j < a->args.n; j++) cc_const(c, a->args.v[j], &vals[j]);

@@ -21,6 +21,11 @@ const char *syl_model_kind_name(SylModelKind k) {
     static const char *const names[] = {"lsystem", "grow block", "scene", "weber block", "strands block"};
     return (unsigned)k < sizeof names / sizeof *names ? names[k] : "model";
 }
+const Curve *lang_curve_find(const SylProgram *p, const char *name) {
+    for (int i = 0; i < p->ncurves; i++)
+        if (p->curves[i].n && !strcmp(p->curves[i].name, name)) return &p->curves[i];
+    return NULL;
+}
 const char *syl_program_path(const SylProgram *p) { return p->src.path; }
 const char *syl_program_source(const SylProgram *p, size_t *len) {
     *len = p->src.len;

@@ -146,6 +146,9 @@ static inline double curve_eval(const Curve *c, double x) {
     return c->y[i - 1] + t * (c->y[i] - c->y[i - 1]);
 }
 
+/* The curve called name, NULL if there is none (a strands block names its curves). */
+const Curve *lang_curve_find(const SylProgram *p, const char *name);
+
 typedef struct ParamInfo {
     const char *name;
     double value;

@@ -1,15 +1,65 @@
-/* syl_strands: a tree of Holton's strands from a `strands` block. (The model lands in this folder.) */
+/* syl_strands: a tree of Holton's strands from a `strands` block, as Zamuda's modeller builds
+ * it (docs/strands.md); syl_strands_validate: the block's check for `sylva check`. */
+#include <stdio.h>
+
+#include "strands/strands.h"
 #include "sylva/trees.h"
+#include "util/array.h"
+#include "util/budget.h"
 
 int syl_strands_validate(const SylProgram *p, FILE *diag) {
-    (void)p;
-    (void)diag;
-    return 0;
+    return syl_program_kind(p) == SYL_MODEL_STRANDS ? strands_params_check(p, diag) : 0;
 }
 
 int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+    static const SylTreeOptions none = {0};
+    if (!opt) opt = &none;
     *out = NULL;
-    if (opt && opt->diag)
-        fprintf(opt->diag, "sylva: error: '%s': strands blocks are not generated yet\n", syl_program_name(p));
-    return SYL_EMODEL;
+    if (syl_program_kind(p) != SYL_MODEL_STRANDS) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' is a %s, not a strands block\n", syl_program_name(p),
+                    syl_model_kind_name(syl_program_kind(p)));
+        return SYL_EUSAGE;
+    }
+    StrandsParams P;
+    if (strands_params_read(p, &P, opt->diag)) return SYL_EMODEL;
+    if (opt->use_seed) P.seed = opt->seed;
+    P.seed += opt->seed_offset; /* a scene's n-th plant of a row: turned its own way */
+    StrandsCounts c = strands_counts(&P, opt->age);
+    /* counted before anything is allocated; the caller's budget keeps them until freed */
+    uint64_t bytes = c.nodes * sizeof(SylNode) + c.organs * sizeof(SylOrgan);
+    Budget own, *mem = opt->budget ? opt->budget : &own;
+    budget_init(&own, opt->max_memory);
+    if (!budget_charge(mem, bytes)) {
+        if (opt->diag)
+            fprintf(opt->diag,
+                    "sylva: error: '%s' would need %llu nodes and %llu leaves (%llu MB), more than --max-memory "
+                    "allows (%llu MB%s)\n",
+                    syl_program_name(p), (unsigned long long)c.nodes, (unsigned long long)c.organs,
+                    (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem),
+                    mem == &own ? "" : " in all");
+        return SYL_ELIMIT;
+    }
+    SylSkeleton *sk = syl_skeleton_new(syl_program_name(p));
+    if (!sk) {
+        budget_release(mem, bytes);
+        return SYL_ELIMIT;
+    }
+    if (mem != &own) sk->budget = mem, sk->charged = bytes;
+    else budget_release(mem, bytes);
+    sk->nmaterials = c.organs ? 2 : 1;
+    /* the counts are known (3.1): one allocation each, not a doubling series */
+    if (!array_reserve(&sk->nodes, &sk->node_cap, c.nodes, sizeof(SylNode)) ||
+        (c.organs && !array_reserve(&sk->organs, &sk->organ_cap, c.organs, sizeof(SylOrgan)))) {
+        syl_skeleton_free(sk);
+        return SYL_ELIMIT;
+    }
+    int st = strands_build(&P, opt->age, sk, NULL);
+    if (st) {
+        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
+        syl_skeleton_free(sk);
+        return st;
+    }
+    *out = sk;
+    return SYL_OK;
 }
