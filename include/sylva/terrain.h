@@ -59,7 +59,9 @@ typedef struct SylTerrain {
     float *height;       /* nx * nz */
     uint8_t *valid;      /* 0 where the DEM had no data (its height was filled in), else 1 */
     float *factor[SYL_TERRAIN_FACTORS]; /* each nx * nz once computed, NULL before */
-    double seconds[SYL_TERRAIN_FACTORS]; /* how long each took (altitude: reading) */
+    double seconds[SYL_TERRAIN_FACTORS];     /* how long each took, wall clock (the aspect's is
+                                                with the slope's; altitude: none) */
+    double cpu_seconds[SYL_TERRAIN_FACTORS]; /* the same in processor time, every thread's */
     SylBudget *budget;
     uint64_t charged;    /* bytes counted against budget */
     int own_budget;

@@ -110,16 +110,16 @@ int cmd_terrain(int argc, char **argv) {
     }
     if (!st && a.stats) {
         fprintf(stderr, "cells: %d x %d\ncell size: %g\nread time: %.6f s\n", t->nx, t->nz, t->cell, read_s);
-        double sum = 0;
+        double sum = 0, cpu = 0;
         for (int f = SYL_TERRAIN_SLOPE; f < SYL_TERRAIN_FACTORS; f++) {
             if (f == SYL_TERRAIN_ASPECT) continue; /* computed with the slope */
-            fprintf(stderr, "%s time: %.6f s\n", f == SYL_TERRAIN_SLOPE ? "slope and aspect"
-                                                : syl_terrain_factor_name((SylTerrainFactor)f), t->seconds[f] * (f == SYL_TERRAIN_SLOPE ? 2 : 1));
-            sum += t->seconds[f];
+            fprintf(stderr, "%s time: %.6f s (cpu %.6f s)\n",
+                    f == SYL_TERRAIN_SLOPE ? "slope and aspect" : syl_terrain_factor_name((SylTerrainFactor)f),
+                    t->seconds[f], t->cpu_seconds[f]);
+            sum += t->seconds[f], cpu += t->cpu_seconds[f];
         }
-        sum += t->seconds[SYL_TERRAIN_ASPECT];
-        fprintf(stderr, "factors time: %.6f s\nwrite time: %.6f s\npeak memory: %.1f MB\n", sum, cli_now() - t1,
-                cli_peak_mb());
+        fprintf(stderr, "factors time: %.6f s (cpu %.6f s)\nwrite time: %.6f s\npeak memory: %.1f MB\n", sum, cpu,
+                cli_now() - t1, cli_peak_mb());
     }
     syl_terrain_free(t);
     syl_budget_free(budget);

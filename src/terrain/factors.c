@@ -5,10 +5,22 @@
 
 #include "terrain/terrain.h"
 
-static double now(void) {
+static double clock_s(clockid_t id) {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(id, &ts);
     return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+typedef struct Stamp {
+    double wall, cpu;
+} Stamp;
+
+static Stamp now(void) { return (Stamp){clock_s(CLOCK_MONOTONIC), clock_s(CLOCK_PROCESS_CPUTIME_ID)}; }
+
+static void took(SylTerrain *t, int f, Stamp since) {
+    Stamp n = now();
+    t->seconds[f] = n.wall - since.wall;
+    t->cpu_seconds[f] = n.cpu - since.cpu;
 }
 
 int syl_terrain_compute(SylTerrain *t, const SylTerrainOptions *o) {
@@ -17,9 +29,9 @@ int syl_terrain_compute(SylTerrain *t, const SylTerrainOptions *o) {
     for (int f = SYL_TERRAIN_SLOPE; f < SYL_TERRAIN_FACTORS; f++)
         if (!t->factor[f] && !(g[f] = t->factor[f] = terrain_grid(t, sizeof(float), diag))) return SYL_ELIMIT;
     t->factor[SYL_TERRAIN_ALTITUDE] = t->height;
-    double t0 = now();
+    Stamp t0 = now();
     terrain_slope_aspect(t, t->factor[SYL_TERRAIN_SLOPE], t->factor[SYL_TERRAIN_ASPECT], o->threads);
-    t->seconds[SYL_TERRAIN_SLOPE] = t->seconds[SYL_TERRAIN_ASPECT] = (now() - t0) / 2;
+    took(t, SYL_TERRAIN_SLOPE, t0);
 
     t0 = now();
     float *filled = terrain_grid(t, sizeof(float), diag);
@@ -34,12 +46,12 @@ int syl_terrain_compute(SylTerrain *t, const SylTerrainOptions *o) {
     terrain_grid_free(t, parent, 1);
     terrain_grid_free(t, dir, 1);
     if (st) return st;
-    t->seconds[SYL_TERRAIN_FLOW] = now() - t0;
+    took(t, SYL_TERRAIN_FLOW, t0);
 
     t0 = now();
     terrain_wetness(t, t->factor[SYL_TERRAIN_FLOW], t->factor[SYL_TERRAIN_SLOPE], t->factor[SYL_TERRAIN_WETNESS],
                     o->threads);
-    t->seconds[SYL_TERRAIN_WETNESS] = now() - t0;
+    took(t, SYL_TERRAIN_WETNESS, t0);
 
     t0 = now();
     size_t nsuns;
@@ -52,12 +64,12 @@ int syl_terrain_compute(SylTerrain *t, const SylTerrainOptions *o) {
     st = terrain_insolation(t, suns, nsuns, t->factor[SYL_TERRAIN_INSOLATION], o->threads, diag);
     free(suns);
     if (st) return st;
-    t->seconds[SYL_TERRAIN_INSOLATION] = now() - t0;
+    took(t, SYL_TERRAIN_INSOLATION, t0);
 
     t0 = now();
     terrain_wind(t, o->wind_set ? o->wind_from : 270, o->wind_distance > 0 ? o->wind_distance : 300,
                  t->factor[SYL_TERRAIN_WIND], o->threads);
-    t->seconds[SYL_TERRAIN_WIND] = now() - t0;
+    took(t, SYL_TERRAIN_WIND, t0);
     (void)g;
     return SYL_OK;
 }

@@ -24,8 +24,11 @@ TerrainSun *terrain_suns(double latitude, int days, double minutes, size_t *n) {
     TerrainSun *s = malloc((size_t)days * (size_t)per_day * sizeof *s + 1);
     if (!s) return NULL;
     double phi = latitude * (M_PI / 180);
-    for (int j = 0; j < days; j++) {
-        double day = (j + 0.5) * 365.0 / days;
+    /* Cooper's declination peaks on day 172.25 and is symmetric about it: days placed
+     * symmetrically about it pair up (j and days − 1 − j), and each pair is traced once. */
+    for (int j = 0; j < (days + 1) / 2; j++) {
+        double day = 172.25 + (j + 0.5 - days / 2.0) * 365.0 / days;
+        float weight = 2 * j + 1 == days ? 1 : 2; /* an odd count's middle day is alone */
         double dec = 23.45 * (M_PI / 180) * sin(2 * M_PI * (284 + day) / 365);
         for (int m = 0; m < per_day; m++) {
             double w = (-180 + (m + 0.5) * 360.0 / per_day) * (M_PI / 180);
@@ -34,7 +37,7 @@ TerrainSun *terrain_suns(double latitude, int days, double minutes, size_t *n) {
             double up = sin(dec) * sin(phi) + cos(dec) * cos(phi) * cos(w);
             if (up <= 1e-6) continue;
             /* Sylva: x east, y up, z south */
-            s[(*n)++] = (TerrainSun){{(float)east, (float)up, (float)-north}};
+            s[(*n)++] = (TerrainSun){{(float)east, (float)up, (float)-north}, weight};
         }
     }
     return s;
@@ -44,11 +47,17 @@ typedef struct Job {
     const Terrain *t;
     RTCScene scene;
     const TerrainSun *suns;
+    const float *tan_sun; /* each sun's tan(altitude) */
+    const float *bound;   /* each cell's horizon bounds, a grid per quadrant (horizon.c) */
     size_t nsuns;
     double ref, hmax;
     float *out;
 } Job;
 
+enum { LANES = 16 };
+
+/* Cells of a row in packets of 16 rays toward one sun at a time: neighbours' rays toward
+ * the same sun are coherent, which Embree traces together. */
 static void rows(void *ctx, size_t lo, size_t hi, int thread) {
     (void)thread;
     const Job *j = ctx;
@@ -58,30 +67,52 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
     rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     float lift = (float)(1e-3 * t->cell);
     for (size_t k = lo; k < hi; k++)
-        for (int i = 0; i < t->nx; i++) {
-            size_t c = k * (size_t)t->nx + (size_t)i;
-            double gx, gz;
-            terrain_horn(t, i, (int)k, &gx, &gz);
-            double len = sqrt(gx * gx + 1 + gz * gz), nx = -gx / len, ny = 1 / len, nz = -gz / len;
-            float ox = (float)((i + 0.5) * t->cell), oz = (float)((k + 0.5) * t->cell);
-            float oy = t->height[c] + lift;
-            double sum = 0;
+        for (int i0 = 0; i0 < t->nx; i0 += LANES) {
+            int m = t->nx - i0 < LANES ? t->nx - i0 : LANES;
+            double nrm[LANES][3], sum[LANES] = {0};
+            float oy[LANES], bound[4][LANES];
+            for (int l = 0; l < m; l++) {
+                double gx, gz;
+                terrain_horn(t, i0 + l, (int)k, &gx, &gz);
+                double len = sqrt(gx * gx + 1 + gz * gz);
+                nrm[l][0] = -gx / len, nrm[l][1] = 1 / len, nrm[l][2] = -gz / len;
+                size_t c = k * (size_t)t->nx + (size_t)(i0 + l);
+                oy[l] = t->height[c] + lift;
+                size_t n = (size_t)t->nx * (size_t)t->nz;
+                for (int q = 0; q < 4; q++) /* float rounding kept on the safe side */
+                    bound[q][l] = j->bound[q * n + c] * (1 + 1e-5f) + 1e-6f;
+            }
             for (size_t s = 0; s < j->nsuns; s++) {
                 const float *d = j->suns[s].dir;
-                double cosi = nx * d[0] + ny * d[1] + nz * d[2];
-                if (cosi <= 0) continue;
-                /* Beyond the height of the highest cell nothing can be in the way. */
-                if (j->scene && oy < j->hmax) {
-                    struct RTCRay ray = {.org_x = ox, .org_y = oy, .org_z = oz, .tnear = 0,
-                                         .dir_x = d[0], .dir_y = d[1], .dir_z = d[2], .time = 0,
-                                         .tfar = (float)((j->hmax - oy) / d[1]) * 1.001f + lift,
-                                         .mask = 0xffffffffu, .id = 0, .flags = 0};
-                    rtcOccluded1(j->scene, &rc, &ray);
-                    if (ray.tfar < 0) continue; /* Embree marks a blocked ray with tfar = −inf */
+                const float *qb = bound[(d[0] >= 0) | (d[2] >= 0) << 1];
+                struct RTCRay16 ray;
+                int valid[LANES], any = 0;
+                double cosi[LANES];
+                for (int l = 0; l < LANES; l++) {
+                    valid[l] = 0;
+                    if (l >= m) continue;
+                    cosi[l] = nrm[l][0] * d[0] + nrm[l][1] * d[1] + nrm[l][2] * d[2];
+                    if (cosi[l] <= 0) continue;
+                    if (!j->scene || oy[l] >= j->hmax || j->tan_sun[s] > qb[l]) {
+                        sum[l] += cosi[l] * j->suns[s].weight; /* nothing can be in the way */
+                        continue;
+                    }
+                    valid[l] = -1, any = 1;
+                    ray.org_x[l] = (float)((i0 + l + 0.5) * t->cell), ray.org_y[l] = oy[l];
+                    ray.org_z[l] = (float)((k + 0.5) * t->cell);
+                    ray.dir_x[l] = d[0], ray.dir_y[l] = d[1], ray.dir_z[l] = d[2];
+                    ray.tnear[l] = 0, ray.time[l] = 0;
+                    /* Beyond the height of the highest cell nothing can be in the way. */
+                    ray.tfar[l] = (float)((j->hmax - oy[l]) / d[1]) * 1.001f + lift;
+                    ray.mask[l] = 0xffffffffu, ray.id[l] = (unsigned)l, ray.flags[l] = 0;
                 }
-                sum += cosi;
+                if (!any) continue;
+                rtcOccluded16(valid, j->scene, &rc, &ray);
+                for (int l = 0; l < m; l++)
+                    if (valid[l] && ray.tfar[l] >= 0) sum[l] += cosi[l] * j->suns[s].weight;
             }
-            j->out[c] = j->ref > 0 ? (float)(sum / j->ref) : 0;
+            for (int l = 0; l < m; l++)
+                j->out[k * (size_t)t->nx + (size_t)(i0 + l)] = j->ref > 0 ? (float)(sum[l] / j->ref) : 0;
         }
 }
 
@@ -131,7 +162,7 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
             goto done;
         }
         scene = rtcNewScene(dev);
-        rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
         RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, v, 0, 3 * sizeof(float), n);
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, tri, 0, 3 * sizeof(uint32_t), ntri);
@@ -146,9 +177,26 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
         }
     }
     double ref = 0;
-    for (size_t s = 0; s < nsuns; s++) ref += suns[s].dir[1];
-    Job j = {t, scene, suns, nsuns, ref, hmax, out};
+    for (size_t s = 0; s < nsuns; s++) ref += suns[s].dir[1] * suns[s].weight;
+    float *bound = terrain_grid(t, 4 * sizeof(float), diag), *scratch = bound ? terrain_grid(t, 2 * sizeof(float), diag) : NULL;
+    float *tan_sun = malloc(nsuns * sizeof *tan_sun + 1);
+    if (!scratch || !tan_sun) {
+        terrain_grid_free(t, bound, 4 * sizeof(float));
+        terrain_grid_free(t, scratch, 2 * sizeof(float));
+        free(tan_sun);
+        st = SYL_ELIMIT;
+        goto done;
+    }
+    for (size_t s = 0; s < nsuns; s++) {
+        const float *d = suns[s].dir;
+        tan_sun[s] = (float)(d[1] / sqrt((double)d[0] * d[0] + (double)d[2] * d[2] + 1e-30));
+    }
+    terrain_horizon_bound(t, bound, scratch);
+    terrain_grid_free(t, scratch, 2 * sizeof(float));
+    Job j = {t, scene, suns, tan_sun, bound, nsuns, ref, hmax, out};
     par_for(threads, nz, 4, rows, &j);
+    terrain_grid_free(t, bound, 4 * sizeof(float));
+    free(tan_sun);
 done:
     if (scene) rtcReleaseScene(scene);
     if (dev) rtcReleaseDevice(dev);

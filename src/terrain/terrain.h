@@ -79,13 +79,19 @@ void terrain_wetness(const Terrain *t, const float *acc, const float *slope, flo
 /* insolation.c */
 typedef struct TerrainSun {
     float dir[3];  /* unit vector toward the sun, y up */
+    float weight;  /* how many of the year's samples it stands for */
 } TerrainSun;
 /* The sun positions above the horizon over a year at latitude (degrees): days sampled days
- * (mid-interval), one position every minutes (mid-interval). Free the array. NULL when out
- * of memory; *n may be 0 (a polar night). */
+ * placed symmetrically about the June solstice (so that pairs of days share a declination
+ * and are traced once, weight 2), one position every minutes (mid-interval). Free the
+ * array. NULL when out of memory; *n may be 0 (a polar night). */
 TerrainSun *terrain_suns(double latitude, int days, double minutes, size_t *n);
 /* The direct sun on each cell (max(0, n·s), zero where the terrain is between the cell and
  * the sun) summed over suns, over the same sum on open flat ground. SYL_OK, SYL_ELIMIT. */
+/* Upper bounds of the tangent of each cell's horizon in each quadrant of directions
+ * (horizon.c): bound[q * cells + cell] for directions of x sign (q & 1 ? + : −) and z sign
+ * (q & 2 ? + : −); a sun higher than it needs no ray. scratch holds 2 grids. */
+void terrain_horizon_bound(const Terrain *t, float *bound, float *scratch);
 int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *out, int threads, FILE *diag);
 
 /* wind.c: Winstral et al. (2002) Sx, degrees, for wind from the azimuth from (degrees

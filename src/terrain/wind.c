@@ -25,16 +25,16 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
         for (int i = 0; i < t->nx; i++) {
             size_t c = k * (size_t)t->nx + (size_t)i;
             double x = t->x0 + (i + 0.5) * t->cell, z = t->z0 + (k + 0.5) * t->cell, h = t->height[c];
-            double best = -INFINITY;
+            double best = -INFINITY; /* the largest rise per distance; one atan at the end */
             for (int s = 1; s <= j->steps; s++) {
                 double d = s * t->cell, sx = x + j->ux * d, sz = z + j->uz * d;
                 /* a little slack: a march along a row or column stays on it despite rounding */
                 double e = 1e-9 * t->cell;
                 if (sx < xlo - e || sx > xhi + e || sz < zlo - e || sz > zhi + e) break;
-                double a = atan((terrain_height_at(t, sx, sz) - h) / d);
-                if (a > best) best = a;
+                double r = (terrain_height_at(t, sx, sz) - h) / d;
+                if (r > best) best = r;
             }
-            j->out[c] = best == -INFINITY ? 0 : (float)(best * (180 / M_PI));
+            j->out[c] = best == -INFINITY ? 0 : (float)(atan(best) * (180 / M_PI));
         }
 }
 
