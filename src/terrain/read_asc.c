@@ -131,7 +131,7 @@ int terrain_read_asc(const char *path, const char *text, size_t len, const SylTe
     for (; c < total; c++) {
         size_t n = token(&sc, &loc);
         if (n == 0) {
-            diag_error(&sc.d, loc, "the grid ends after %zu of its %d x %d values", c, nx, nz);
+            diag_error(&sc.d, loc, "the grid ends after %zu of its %zu values (%d x %d)", c, total, nx, nz);
             syl_terrain_free(t);
             return SYL_EMODEL;
         }

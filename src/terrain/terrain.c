@@ -105,12 +105,14 @@ bool terrain_fill_unknown(Terrain *t) {
 }
 
 void terrain_horn(const Terrain *t, int i, int k, double *gx, double *gz) {
-    double a = terrain_h(t, i - 1, k - 1), b = terrain_h(t, i, k - 1), c = terrain_h(t, i + 1, k - 1);
-    double d = terrain_h(t, i - 1, k), f = terrain_h(t, i + 1, k);
-    double g = terrain_h(t, i - 1, k + 1), h = terrain_h(t, i, k + 1), ii = terrain_h(t, i + 1, k + 1);
-    /* Summed in gdaldem's order, so that the rounding matches too. */
-    *gx = ((c + f + f + ii) - (a + d + d + g)) / (8 * t->cell);
-    *gz = ((g + h + h + ii) - (a + b + b + c)) / (8 * t->cell);
+    float a = terrain_h(t, i - 1, k - 1), b = terrain_h(t, i, k - 1), c = terrain_h(t, i + 1, k - 1);
+    float d = terrain_h(t, i - 1, k), f = terrain_h(t, i + 1, k);
+    float g = terrain_h(t, i - 1, k + 1), h = terrain_h(t, i, k + 1), ii = terrain_h(t, i + 1, k + 1);
+    /* Summed in float and in gdaldem's order, as gdaldem sums a float DEM's window, so that
+     * the rounding matches too (the heights are floats already). */
+    float ex = (c + f + f + ii) - (a + d + d + g), ez = (g + h + h + ii) - (a + b + b + c);
+    *gx = ex / (8 * t->cell);
+    *gz = ez / (8 * t->cell);
 }
 
 /* Bilinear in a grid of cell-centred values. */
