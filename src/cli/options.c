@@ -163,7 +163,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_CELL] = {"cell", 0, "SIZE",
                       "a PNG's cell size (default 1); an OBJ's grid spacing (default:\n"
                       "about one cell per vertex)",
-                      CLI_REAL, ARGS(cell), 1e-6, 1e9},
+                      CLI_REAL, ARGS(cell), 1e-6, 1e6},
     [CLI_OPT_HEIGHTS] = {"heights", 0, "LO,HI", "a PNG's heights of black and of white (default 0,1)", CLI_READ,
                          .read = read_heights},
     [CLI_OPT_LATITUDE] = {"latitude", 0, "DEG", "degrees north, for the sun's path (default 46)", CLI_REAL,

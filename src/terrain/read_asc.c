@@ -99,8 +99,12 @@ int terrain_read_asc(const char *path, const char *text, size_t len, const SylTe
             diag_error(&sc.d, vloc, "%s must be a whole number of at least 1", key_name[key]);
             return SYL_EMODEL;
         }
-        if (key == K_CELL && !(v[key] > 0)) {
-            diag_error(&sc.d, vloc, "cellsize must be more than 0");
+        if (key == K_CELL && !(v[key] >= TERRAIN_MIN_CELL && v[key] <= TERRAIN_MAX_CELL)) {
+            diag_error(&sc.d, vloc, "cellsize must be from %g to %g", TERRAIN_MIN_CELL, TERRAIN_MAX_CELL);
+            return SYL_EMODEL;
+        }
+        if ((key == K_XLL || key == K_YLL) && !(fabs(v[key]) <= TERRAIN_MAX_CORNER)) {
+            diag_error(&sc.d, vloc, "%s must lie within %g of 0", key_name[key], TERRAIN_MAX_CORNER);
             return SYL_EMODEL;
         }
         have[key] = true;

@@ -22,6 +22,7 @@ int terrain_read_obj(const char *path, const SylTerrainOptions *o, Terrain **out
     }
     /* Without a cell size: about one cell per vertex, as a grid written as a mesh had. */
     double cell = o->cell > 0 ? o->cell : sqrt(wx * wz / (double)(ob.nv > 1 ? ob.nv : 1));
+    cell = fmin(fmax(cell, TERRAIN_MIN_CELL), TERRAIN_MAX_CELL);
     double nxd = ceil(wx / cell - 1e-9), nzd = ceil(wz / cell - 1e-9);
     if (nxd < 1) nxd = 1;
     if (nzd < 1) nzd = 1;

@@ -161,6 +161,16 @@ int syl_terrain_read(const char *path, const SylTerrainOptions *o, SylTerrain **
         if (diag) fprintf(diag, "%s: error: cannot tell the DEM's format: name it *.png, *.asc or *.obj\n", path);
         return SYL_EUSAGE;
     }
+    if (o->cell != 0 && !(o->cell >= TERRAIN_MIN_CELL && o->cell <= TERRAIN_MAX_CELL)) {
+        if (diag) fprintf(diag, "sylva: error: a cell size of %g: Sylva takes %g to %g\n", o->cell, TERRAIN_MIN_CELL,
+                          TERRAIN_MAX_CELL);
+        return SYL_EUSAGE;
+    }
+    if (!(fabs(o->height_lo) <= 1e9 && fabs(o->height_hi) <= 1e9)) {
+        if (diag) fprintf(diag, "sylva: error: heights of %g and %g: Sylva takes heights up to 1e9 in size\n",
+                          o->height_lo, o->height_hi);
+        return SYL_EUSAGE;
+    }
     if (obj) return terrain_read_obj(path, o, out);
     size_t len;
     char *data = file_read(path, &len);

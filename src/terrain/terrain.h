@@ -15,6 +15,11 @@ typedef SylTerrainFactor TerrainFactor;
 
 /* Grids larger than this many cells on a side are refused before anything is allocated. */
 enum { TERRAIN_MAX_SIDE = 65536 };
+/* Cell sizes and corners Sylva takes: a grid then spans at most 6.6e10 units, well within
+ * what Embree traces (util/coord.h), and its cells' positions stay finite in float. */
+#define TERRAIN_MIN_CELL 1e-6
+#define TERRAIN_MAX_CELL 1e6
+#define TERRAIN_MAX_CORNER 1e12
 
 /* ---- the grid (terrain.c) ---- */
 
