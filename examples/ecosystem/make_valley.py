@@ -4,9 +4,11 @@
   make_valley.py [SIZE [OUT.png]]      (default 256, examples/ecosystem/valley.png)
 
 Standard library only. On the unit square (x east, z south): a round basin centred at
-(0.5, 0.42) whose sides face every way, an outlet valley from it down to the southern edge,
+(0.5, 0.42) whose sides face every way (1 - exp(-(r / 0.3)^2)), an outlet valley from it down
+to the southern edge,
 two hills, and a few octaves of value noise for texture. Heights 0..65535 map to the range
-given to `sylva terrain --heights` (docs/terrain.md uses 200,1400 with --cell 10).
+given to `sylva terrain --heights`: docs/terrain.md uses 200,1400 with --cell 25 (the 25 m
+cells of the Slovenian DEM Zamuda's thesis used).
 """
 import math
 import struct
@@ -32,14 +34,14 @@ def value_noise(x, z, seed):
 
 def height(x, z):
     r = math.hypot(x - 0.5, z - 0.42)
-    basin = min(1.0, (r / 0.42) ** 2)
+    basin = 1 - math.exp(-((r / 0.3) ** 2))
     # the outlet: a trough from the basin's centre to the south edge, deeper downstream
     if z > 0.42:
         w = 0.06 + 0.05 * (z - 0.42)
         basin -= (0.55 + 0.35 * (z - 0.42)) * math.exp(-(((x - 0.5 - 0.08 * math.sin(6 * z)) / w) ** 2)) * min(1, (z - 0.42) / 0.15)
     hills = 0.35 * math.exp(-((x - 0.18) ** 2 + (z - 0.8) ** 2) / 0.01) + 0.3 * math.exp(-((x - 0.85) ** 2 + (z - 0.75) ** 2) / 0.015)
-    noise = sum(value_noise(x * 8 * 2 ** o, z * 8 * 2 ** o, o) * 0.5 ** o for o in range(4)) / 1.875
-    return 0.62 * basin + hills + 0.1 * noise
+    noise = sum(value_noise(x * 6 * 2 ** o, z * 6 * 2 ** o, o) * 0.5 ** o for o in range(4)) / 1.875
+    return 0.62 * basin + hills + 0.05 * noise
 
 
 def main():

@@ -29,7 +29,7 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
             }
             /* The downhill direction is (−gx east, −gz south), i.e. (−gx, +gz) in east–north;
              * its azimuth from north, clockwise, is atan2(east, north). */
-            double a = atan2(-gx, gz) * deg;
+            double a = atan2(-gx, gz) * deg + 0.0; /* + 0.0: never -0 */
             if (a < 0) a += 360;
             float f = (float)a;
             j->aspect[c] = f >= 360 ? 0 : f; /* 359.99999999 rounds to 360 in float */
