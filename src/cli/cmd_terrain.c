@@ -59,11 +59,15 @@ static void summary(const SylTerrain *t) {
     }
 }
 
-static int write_maps(const SylTerrain *t, const char *dir) {
+static int make_dir(const char *dir) {
     if (mkdir(dir, 0777) && errno != EEXIST) {
         fprintf(stderr, "sylva: error: cannot make the directory '%s': %s\n", dir, strerror(errno));
         return SYL_EIO;
     }
+    return SYL_OK;
+}
+
+static int write_maps(const SylTerrain *t, const char *dir) {
     static const char *const ext[] = {"png", "asc"};
     for (int f = 0; f < SYL_TERRAIN_FACTORS; f++)
         for (int e = 0; e < 2; e++) {
@@ -102,6 +106,8 @@ int cmd_terrain(int argc, char **argv) {
     SylTerrain *t = NULL;
     int st = syl_terrain_read(a.files[0], &o, &t);
     double read_s = cli_now() - t0;
+    /* Once the DEM is read (a bad one makes no directory), before the work of the factors. */
+    if (!st && a.maps) st = make_dir(a.maps);
     if (!st) st = syl_terrain_compute(t, &o);
     double t1 = cli_now();
     if (!st) {
