@@ -55,6 +55,21 @@ static bool read_format(CliArgs *a, char *arg) {
     return false;
 }
 
+/* --heights LO,HI: the heights of black and white in a PNG DEM. */
+static bool read_heights(CliArgs *a, char *arg) {
+    char *comma = strchr(arg, ',');
+    if (comma) {
+        *comma = 0;
+        bool ok = cli_number("--heights", arg, -1e9, 1e9, &a->heights[0]) &&
+                  cli_number("--heights", comma + 1, -1e9, 1e9, &a->heights[1]);
+        *comma = ',';
+        if (!ok) return false;
+        if (a->heights[1] > a->heights[0]) return a->heights_set = true;
+    }
+    fprintf(stderr, "sylva: error: --heights expects LOW,HIGH with LOW below HIGH, not '%s'\n", arg);
+    return false;
+}
+
 #define IN(where, type, member) .in = CLI_IN_##where, .at = offsetof(type, member)
 #define ARGS(member) IN(ARGS, CliArgs, member)
 #define DERIVE(member) IN(DERIVE, SylDeriveOptions, member)
@@ -146,6 +161,27 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_STATS] = {"stats", 0, NULL, "print counts and times to stderr", CLI_FLAG, ARGS(stats)},
     [CLI_OPT_WERROR] = {"werror", 0, NULL, "treat warnings as errors", CLI_FLAG, ARGS(werror)},
     [CLI_OPT_DUMP] = {"dump", 0, NULL, "print the compiled program: rules and bytecode", CLI_FLAG, ARGS(dump)},
+    /* sylva terrain */
+    [CLI_OPT_MAPS] = {"maps", 0, "DIR", "write every factor's map as DIR/NAME.png and DIR/NAME.asc", CLI_TEXT,
+                      ARGS(maps)},
+    [CLI_OPT_CELL] = {"cell", 0, "SIZE",
+                      "a PNG's cell size (default 1); an OBJ's grid spacing (default:\n"
+                      "about one cell per vertex)",
+                      CLI_REAL, ARGS(cell), 1e-6, 1e6},
+    [CLI_OPT_HEIGHTS] = {"heights", 0, "LO,HI", "a PNG's heights of black and of white (default 0,1)", CLI_READ,
+                         .read = read_heights},
+    [CLI_OPT_LATITUDE] = {"latitude", 0, "DEG", "degrees north, for the sun's path (default 46)", CLI_REAL,
+                          ARGS(latitude), -90, 90},
+    [CLI_OPT_SUN_DAYS] = {"sun-days", 0, "N", "days of the year the sun is followed on (default 12)", CLI_INT,
+                          ARGS(sun_days), 1, 365},
+    [CLI_OPT_SUN_MINUTES] = {"sun-minutes", 0, "M", "minutes between the sun's positions in a day (default 60)",
+                             CLI_REAL, ARGS(sun_minutes), 1, 1440},
+    [CLI_OPT_WIND_FROM] = {"wind-from", 0, "DEG",
+                           "the prevailing wind's direction, degrees clockwise from north\n"
+                           "it blows from (default 270: west)",
+                           CLI_REAL, ARGS(wind_from), 0, 360},
+    [CLI_OPT_WIND_DISTANCE] = {"wind-distance", 0, "D", "how far upwind the terrain shelters (default 300)",
+                               CLI_REAL, ARGS(wind_distance), 1e-6, 1e9},
 };
 
 const CliUse cli_limits[] = {

@@ -24,6 +24,9 @@ typedef enum CliOptionId {
     CLI_OPT_VIEW, CLI_OPT_SIZE, CLI_OPT_SAMPLES, CLI_OPT_AO, CLI_OPT_NO_SHADOWS,
     CLI_OPT_SIDES, CLI_OPT_MIN_SIDES, CLI_OPT_RADIUS, CLI_OPT_TIP, CLI_OPT_NO_CAPS,
     CLI_OPT_STATS, CLI_OPT_WERROR, CLI_OPT_DUMP,
+    /* sylva terrain */
+    CLI_OPT_MAPS, CLI_OPT_CELL, CLI_OPT_HEIGHTS, CLI_OPT_LATITUDE, CLI_OPT_SUN_DAYS, CLI_OPT_SUN_MINUTES,
+    CLI_OPT_WIND_FROM, CLI_OPT_WIND_DISTANCE,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -39,6 +42,13 @@ typedef struct CliArgs {
     const char *output, *dir, *image; /* -o, --out, --image */
     int format, seeds;       /* CLI_FORMAT_*; --seeds */
     bool steps, interpret, quiet, stats, werror, dump;
+    /* sylva terrain: --maps, --cell, --heights, --latitude, --sun-days, --sun-minutes,
+     * --wind-from, --wind-distance */
+    const char *maps;
+    float cell, latitude, sun_minutes, wind_from, wind_distance;
+    int sun_days;
+    double heights[2];
+    bool heights_set;
     char **files;            /* the arguments after the options: the models */
     int nfiles;
 } CliArgs;

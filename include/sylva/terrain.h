@@ -1,0 +1,89 @@
+/* libsylva: terrains (digital elevation models) and the factors a plant's site has on them:
+ * altitude, slope, aspect, flow accumulation, wetness, insolation and wind exposure,
+ * computed as GIS computes them (docs/terrain.md).
+ *
+ * A terrain is a grid of nx × nz cells of one size lying in Sylva's x–z plane, heights along
+ * y (up). North is −z and east is +x, so a raster's first row (its northern edge) is the
+ * row of the smallest z. Cell (i, k) is centred at (x0 + (i + ½)·cell, z0 + (k + ½)·cell):
+ * (x0, z0) is the grid's north-west corner. Values are addressed cell by cell,
+ * grid[k * nx + i], or sampled anywhere with syl_terrain_factor_at. */
+#ifndef SYLVA_TERRAIN_H
+#define SYLVA_TERRAIN_H
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sylva/sylva.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum SylTerrainFactor {
+    SYL_TERRAIN_ALTITUDE,   /* the height, in the DEM's units (metres) */
+    SYL_TERRAIN_SLOPE,      /* degrees, 0 flat (Horn 1981) */
+    SYL_TERRAIN_ASPECT,     /* degrees clockwise from north the slope faces; −1 where flat */
+    SYL_TERRAIN_FLOW,       /* D8 flow accumulation after depression filling: cells draining
+                               through the cell, itself included */
+    SYL_TERRAIN_WETNESS,    /* topographic wetness index ln(a / tan β) */
+    SYL_TERRAIN_INSOLATION, /* a year's direct sun with the terrain's shadows, relative to open
+                               flat ground at the same latitude */
+    SYL_TERRAIN_WIND,       /* Winstral's Sx, degrees: > 0 sheltered, < 0 exposed */
+    SYL_TERRAIN_FACTORS
+} SylTerrainFactor;
+
+typedef struct SylTerrainOptions {
+    /* reading */
+    double cell;            /* PNG: cell size (default 1); OBJ: grid spacing (default: about
+                               one cell per vertex); ASC: ignored (the file's cellsize) */
+    double height_lo, height_hi; /* PNG: the heights of grey 0 and of white (default 0, 1
+                                    when both are 0) */
+    /* insolation */
+    double latitude;        /* degrees north (default 46 when `sun_set` is 0) */
+    int sun_days;           /* days sampled across the year (default 12) */
+    double sun_minutes;     /* minutes between sun positions in a day (default 60) */
+    int sun_set;            /* latitude was given (0 is the equator) */
+    /* wind */
+    double wind_from;       /* azimuth the prevailing wind comes from, degrees (default 270) */
+    double wind_distance;   /* Winstral's search distance d_max (default 300) */
+    int wind_set;           /* wind_from was given */
+    int threads;            /* <= 0: all cores; the maps never depend on it */
+    SylBudget *budget;      /* NULL: a budget of max_memory (or the default) */
+    uint64_t max_memory;
+    FILE *diag;
+} SylTerrainOptions;
+
+typedef struct SylTerrain {
+    int nx, nz;          /* cells along x (columns) and z (rows) */
+    double cell;         /* cell size */
+    double x0, z0;       /* the north-west corner */
+    float *height;       /* nx * nz */
+    uint8_t *valid;      /* 0 where the DEM had no data (its height was filled in), else 1 */
+    float *factor[SYL_TERRAIN_FACTORS]; /* each nx * nz once computed, NULL before */
+    double seconds[SYL_TERRAIN_FACTORS];     /* how long each took, wall clock (the aspect's is
+                                                with the slope's; altitude: none) */
+    double cpu_seconds[SYL_TERRAIN_FACTORS]; /* the same in processor time, every thread's */
+    SylBudget *budget;
+    uint64_t charged;    /* bytes counted against budget */
+    int own_budget;
+} SylTerrain;
+
+/* Read a DEM: a greyscale PNG (8 or 16 bits), an ESRI ASCII grid (.asc) or an OBJ mesh
+ * (rasterized by casting rays down), by the file's extension. SYL_OK, SYL_EMODEL (malformed,
+ * reported as `file:line:col: error:` or `file: error:`), SYL_EIO, SYL_ELIMIT (too big for
+ * the budget) or SYL_EUSAGE (bad options). */
+int syl_terrain_read(const char *path, const SylTerrainOptions *o, SylTerrain **out);
+/* Compute every factor. SYL_OK or SYL_ELIMIT. */
+int syl_terrain_compute(SylTerrain *t, const SylTerrainOptions *o);
+/* A factor bilinearly interpolated between cell centres at (x, z), clamped to the grid;
+ * aspect is the nearest cell's. NaN when the factor has not been computed. */
+double syl_terrain_factor_at(const SylTerrain *t, SylTerrainFactor f, double x, double z);
+/* Write one factor's map: PATH.png is a 16-bit greyscale PNG whose text chunk "sylva:range"
+ * holds the values of grey 0 and of white, PATH.asc an ESRI ASCII grid. */
+int syl_terrain_write_map(const SylTerrain *t, SylTerrainFactor f, const char *path, FILE *diag);
+const char *syl_terrain_factor_name(SylTerrainFactor f); /* "altitude", "slope", ... */
+void syl_terrain_free(SylTerrain *t);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
