@@ -1,7 +1,9 @@
 /* The commands of `sylva`, in the order `sylva --help` lists them. */
 #include "cli/cli.h"
 
+extern const CliCommand cli_animate_command; /* cmd_animate.c */
+
 const CliCommand *const cli_commands[] = {
     &cli_derive_command, &cli_check_command, &cli_compile_command, &cli_skeleton_command, &cli_mesh_command,
-    &cli_render_command, &cli_grow_command,  &cli_compare_command, NULL,
+    &cli_render_command, &cli_grow_command,  &cli_compare_command, &cli_animate_command, NULL,
 };

@@ -142,6 +142,10 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_STATS] = {"stats", 0, NULL, "print counts and times to stderr", CLI_FLAG, ARGS(stats)},
     [CLI_OPT_WERROR] = {"werror", 0, NULL, "treat warnings as errors", CLI_FLAG, ARGS(werror)},
     [CLI_OPT_DUMP] = {"dump", 0, NULL, "print the compiled program: rules and bytecode", CLI_FLAG, ARGS(dump)},
+    /* sylva animate */
+    [CLI_OPT_FPS] = {"fps", 0, "N", "frames per second of the video (default 4)", CLI_INT, ARGS(fps), 1, 120},
+    [CLI_OPT_FRAMES_PER_STEP] = {"frames-per-step", 0, "N", "frames that show each step or year (default 1)",
+                                 CLI_INT, ARGS(frames_per_step), 1, 1000},
 };
 
 const CliUse cli_limits[] = {

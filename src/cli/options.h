@@ -24,6 +24,8 @@ typedef enum CliOptionId {
     CLI_OPT_VIEW, CLI_OPT_SIZE, CLI_OPT_SAMPLES, CLI_OPT_AO, CLI_OPT_NO_SHADOWS,
     CLI_OPT_SIDES, CLI_OPT_MIN_SIDES, CLI_OPT_RADIUS, CLI_OPT_TIP, CLI_OPT_NO_CAPS,
     CLI_OPT_STATS, CLI_OPT_WERROR, CLI_OPT_DUMP,
+    /* sylva animate */
+    CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -39,6 +41,7 @@ typedef struct CliArgs {
     const char *output, *dir, *image; /* -o, --out, --image */
     int format, seeds;       /* CLI_FORMAT_*; --seeds */
     bool steps, interpret, quiet, stats, werror, dump;
+    int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
     char **files;            /* the arguments after the options: the models */
     int nfiles;
 } CliArgs;
