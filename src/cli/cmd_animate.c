@@ -217,10 +217,11 @@ int cmd_animate(int argc, char **argv) {
     uint8_t *rgb = NULL;
     status = syl_growth_new(p, &po, &g);
     cli_progress(&bar, 1);
-    double t1 = cli_now(), render_s = 0;
+    double build_s = cli_now() - t0, render_s = 0;
     int n = status ? 0 : syl_growth_count(g);
     /* the last frame first: the camera every frame is seen with */
     if (!status) status = syl_growth_build(g, n - 1, &last);
+    build_s = cli_now() - t0;
     if (!status) ro.frame = last.mesh;
     if (!status && !(rgb = malloc((size_t)w * h * 3))) {
         fprintf(stderr, "sylva: error: out of memory for a %dx%d frame\n", w, h);
@@ -231,11 +232,13 @@ int cmd_animate(int argc, char **argv) {
     cli_progress_start(&rbar, "rendering");
     for (int k = 0; k < n && !status; k++) {
         const SylPlant *pl = &last;
+        double r0 = cli_now();
         if (k < n - 1) {
             status = syl_growth_build(g, k, &frame);
             pl = &frame;
+            build_s += cli_now() - r0;
+            r0 = cli_now();
         }
-        double r0 = cli_now();
         if (!status) status = syl_render(pl->mesh, &ro, rgb);
         render_s += cli_now() - r0;
         if (!status && a.steps) cli_label_draw(rgb, w, h, syl_growth_label(g, k), NULL, NULL);
@@ -247,9 +250,9 @@ int cmd_animate(int argc, char **argv) {
     double t2 = cli_now();
     if (!status && a.stats) {
         int frames = n * a.frames_per_step;
-        fprintf(stderr, "steps: %d\nframes: %d\nsize: %dx%d\nbuild time: %.6f s\nrender time: %.6f s\n", n, frames,
-                w, h, t1 - t0, render_s);
-        fprintf(stderr, "total time: %.6f s\nsteps per second: %.3f\npeak memory: %.2f MB\n", t2 - t0,
+        fprintf(stderr, "pictures: %d\nframes: %d\nsize: %dx%d\nbuild time: %.6f s\nrender time: %.6f s\n", n,
+                frames, w, h, build_s, render_s);
+        fprintf(stderr, "total time: %.6f s\npictures per second: %.3f\npeak memory: %.2f MB\n", t2 - t0,
                 n / (t2 - t0), cli_peak_mb());
     }
     free(rgb);
