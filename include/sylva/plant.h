@@ -78,6 +78,21 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
 /* Free what syl_plant_build made and zero *pl (a zeroed SylPlant is fine too). */
 void syl_plant_free(SylPlant *pl);
 
+/* Growth as a sequence of frames (sylva animate): an L-system's derivation steps 0..n (n:
+ * opt->steps or the model's `derive`), a grow block's or a scene's years 1..N (N: opt->steps
+ * or the model's `years`), a strands block's ages k/N for k = 1..N (N: opt->steps, else 10,
+ * through SylPlantOptions.age). An L-system is derived once, each step's string kept; a grown
+ * plant is grown again to each year, its last year built here. weber blocks have no growth
+ * (SYL_EUSAGE). p must outlive g. */
+typedef struct SylGrowth SylGrowth;
+int syl_growth_new(const SylProgram *p, const SylPlantOptions *opt, SylGrowth **out);
+int syl_growth_count(const SylGrowth *g);        /* frames */
+int syl_growth_label(const SylGrowth *g, int k); /* frame k's step, year or age number */
+/* Frame k (0 .. count-1) with its skeleton and mesh, as syl_plant_build makes them; free
+ * it with syl_plant_free. */
+int syl_growth_build(SylGrowth *g, int k, SylPlant *out);
+void syl_growth_free(SylGrowth *g);
+
 #ifdef __cplusplus
 }
 #endif

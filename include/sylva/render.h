@@ -32,6 +32,10 @@ typedef struct SylRenderOptions {
      * before they are built: beyond the memory budget it stops with SYL_ELIMIT. */
     uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
     SylBudget *budget;    /* shared memory budget */
+    /* NULL: the camera, the ground and the light's scale are fitted to the mesh drawn.
+     * Otherwise to this mesh: an animation fits them to its last frame once, so every frame
+     * is seen by one camera over one ground (sylva animate). */
+    const SylMesh *frame;
 } SylRenderOptions;
 
 /* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and

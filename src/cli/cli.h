@@ -92,7 +92,7 @@ int cmd_terrain(int argc, char **argv);
 /* Each command's options and --help (cli/options.h), beside its cmd_ function. */
 extern const CliCommand cli_derive_command, cli_check_command, cli_compile_command, cli_skeleton_command,
     cli_mesh_command, cli_render_command, cli_grow_command, cli_compare_command,
-    cli_convert_command, cli_terrain_command;
+    cli_convert_command, cli_terrain_command, cli_animate_command;
 extern const CliCommand cli_plant_command; /* sylva FILE */
 /* The commands, in the order `sylva --help` lists them; NULL ends the list. */
 extern const CliCommand *const cli_commands[];

@@ -182,6 +182,10 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                            CLI_REAL, ARGS(wind_from), 0, 360},
     [CLI_OPT_WIND_DISTANCE] = {"wind-distance", 0, "D", "how far upwind the terrain shelters (default 300)",
                                CLI_REAL, ARGS(wind_distance), 1e-6, 1e9},
+    /* sylva animate */
+    [CLI_OPT_FPS] = {"fps", 0, "N", "frames per second of the video (default 4)", CLI_INT, ARGS(fps), 1, 120},
+    [CLI_OPT_FRAMES_PER_STEP] = {"frames-per-step", 0, "N", "frames that show each step or year (default 1)",
+                                 CLI_INT, ARGS(frames_per_step), 1, 1000},
 };
 
 const CliUse cli_limits[] = {

@@ -27,6 +27,8 @@ typedef enum CliOptionId {
     /* sylva terrain */
     CLI_OPT_MAPS, CLI_OPT_CELL, CLI_OPT_HEIGHTS, CLI_OPT_LATITUDE, CLI_OPT_SUN_DAYS, CLI_OPT_SUN_MINUTES,
     CLI_OPT_WIND_FROM, CLI_OPT_WIND_DISTANCE,
+    /* sylva animate */
+    CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -49,6 +51,7 @@ typedef struct CliArgs {
     int sun_days;
     double heights[2];
     bool heights_set;
+    int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
     char **files;            /* the arguments after the options: the models */
     int nfiles;
 } CliArgs;

@@ -196,7 +196,7 @@ static void set_sampling(Scene *s, const SylRenderOptions *opt) {
     int ao = opt->ao_samples < 0 ? 0 : opt->ao_samples == 0 ? 8 : opt->ao_samples > MAX_AO ? MAX_AO : opt->ao_samples;
     s->ao = ao ? (ao + s->samples - 1) / s->samples : 0;
     s->shadows = opt->shadows;
-    render_camera(s->m, opt->view, s->width, s->height, &s->cam);
+    render_camera(opt->frame ? opt->frame : s->m, opt->view, s->width, s->height, &s->cam);
 }
 
 /* Materials, scale, light, sub-pixel positions, and the table from linear light to sRGB. */
