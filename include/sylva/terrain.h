@@ -62,6 +62,7 @@ typedef struct SylTerrain {
     double seconds[SYL_TERRAIN_FACTORS];     /* how long each took, wall clock (the aspect's is
                                                 with the slope's; altitude: none) */
     double cpu_seconds[SYL_TERRAIN_FACTORS]; /* the same in processor time, every thread's */
+    uint64_t sun_pairs, rays;   /* insolation: (cell, sun) pairs facing the sun, rays traced */
     SylBudget *budget;
     uint64_t charged;    /* bytes counted against budget */
     int own_budget;

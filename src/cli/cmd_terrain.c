@@ -124,6 +124,8 @@ int cmd_terrain(int argc, char **argv) {
                     t->seconds[f], t->cpu_seconds[f]);
             sum += t->seconds[f], cpu += t->cpu_seconds[f];
         }
+        fprintf(stderr, "insolation rays: %llu of %llu (cell, sun) pairs facing the sun\n",
+                (unsigned long long)t->rays, (unsigned long long)t->sun_pairs);
         fprintf(stderr, "factors time: %.6f s (cpu %.6f s)\nwrite time: %.6f s\npeak memory: %.1f MB\n", sum, cpu,
                 cli_now() - t1, cli_peak_mb());
     }

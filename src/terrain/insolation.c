@@ -10,6 +10,7 @@
  * light only: no atmosphere, no diffuse sky. */
 #include <embree3/rtcore.h>
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 
 #include "terrain/terrain.h"
@@ -52,6 +53,7 @@ typedef struct Job {
     size_t nsuns;
     double ref, hmax;
     float *out;
+    _Atomic uint64_t pairs, rays; /* counted for --stats */
 } Job;
 
 enum { LANES = 16 };
@@ -60,8 +62,9 @@ enum { LANES = 16 };
  * the same sun are coherent, which Embree traces together. */
 static void rows(void *ctx, size_t lo, size_t hi, int thread) {
     (void)thread;
-    const Job *j = ctx;
+    Job *j = ctx;
     const Terrain *t = j->t;
+    uint64_t pairs = 0, rays = 0;
     struct RTCIntersectContext rc;
     rtcInitIntersectContext(&rc);
     rc.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -93,11 +96,12 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
                     if (l >= m) continue;
                     cosi[l] = nrm[l][0] * d[0] + nrm[l][1] * d[1] + nrm[l][2] * d[2];
                     if (cosi[l] <= 0) continue;
+                    pairs++;
                     if (!j->scene || oy[l] >= j->hmax || j->tan_sun[s] > qb[l]) {
                         sum[l] += cosi[l] * j->suns[s].weight; /* nothing can be in the way */
                         continue;
                     }
-                    valid[l] = -1, any = 1;
+                    valid[l] = -1, any = 1, rays++;
                     ray.org_x[l] = (float)((i0 + l + 0.5) * t->cell), ray.org_y[l] = oy[l];
                     ray.org_z[l] = (float)((k + 0.5) * t->cell);
                     ray.dir_x[l] = d[0], ray.dir_y[l] = d[1], ray.dir_z[l] = d[2];
@@ -114,6 +118,8 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
             for (int l = 0; l < m; l++)
                 j->out[k * (size_t)t->nx + (size_t)(i0 + l)] = j->ref > 0 ? (float)(sum[l] / j->ref) : 0;
         }
+    j->pairs += pairs;
+    j->rays += rays;
 }
 
 int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *out, int threads, FILE *diag) {
@@ -193,8 +199,9 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
     }
     terrain_horizon_bound(t, bound, scratch);
     terrain_grid_free(t, scratch, 2 * sizeof(float));
-    Job j = {t, scene, suns, tan_sun, bound, nsuns, ref, hmax, out};
+    Job j = {t, scene, suns, tan_sun, bound, nsuns, ref, hmax, out, 0, 0};
     par_for(threads, nz, 4, rows, &j);
+    t->sun_pairs = j.pairs, t->rays = j.rays;
     terrain_grid_free(t, bound, 4 * sizeof(float));
     free(tan_sun);
 done:
