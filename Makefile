@@ -125,7 +125,7 @@ build-fuzz/gen/.made: grammar/lexer.l grammar/parser.y | $(DEPS_OK)
 	@touch $@
 build-fuzz/obj/gen/parser.o build-fuzz/obj/gen/lexer.o: build-fuzz/obj/gen/%.o: build-fuzz/gen/.made
 	@mkdir -p $(@D)
-	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -c -o $@ build-fuzz/gen/$*.c
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c -o $@ build-fuzz/gen/$*.c
 build-fuzz/obj/%.o: %.c build-fuzz/gen/.made
 	@mkdir -p $(@D)
 	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer-no-link -MMD -MP -c -o $@ $<
@@ -138,7 +138,7 @@ fuzz-build: $(FUZZ_HARNESS)
 # A campaign: every harness for FUZZ_SECONDS, its corpus kept in tests/fuzz/corpus/NAME/.
 fuzz: $(FUZZ_HARNESS)
 	@tests/fuzz/run-all build-fuzz $(FUZZ_SECONDS) --keep
--include $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.d)
+-include $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.d) build-fuzz/obj/gen/parser.d build-fuzz/obj/gen/lexer.d
 
 # ---- user-facing ----
 bench: all

@@ -89,7 +89,8 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
                 const float *d = j->suns[s].dir;
                 const float *qb = bound[(d[0] >= 0) | (d[2] >= 0) << 1];
                 struct RTCRay16 ray;
-                int valid[LANES], any = 0;
+                _Alignas(64) int valid[LANES]; /* Embree reads the mask of a packet of 16 aligned */
+                int any = 0;
                 double cosi[LANES];
                 for (int l = 0; l < LANES; l++) {
                     valid[l] = 0;
