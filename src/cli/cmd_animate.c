@@ -36,7 +36,8 @@ const CliCommand cli_animate_command = {
         {.option = CLI_OPT_SAMPLES},
         {.option = CLI_OPT_AO},
         {.option = CLI_OPT_NO_SHADOWS},
-        {.option = CLI_OPT_STATS, .help = "print the frame count, times and frames per second to stderr"},
+        {.option = CLI_OPT_STATS, .help = "print the pictures rendered, frames written, times and\n"
+                 "pictures per second to stderr"},
         {.option = CLI_OPT_DERIVE,
          .help = "the last step (grow blocks and scenes: year; strands: the number\n"
                  "of ages, default 10); default: the model's `derive` or `years`"},
