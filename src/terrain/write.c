@@ -3,14 +3,13 @@
  * an ESRI ASCII grid of the values themselves (NODATA_value −9999 where the DEM had none).
  * Both go through util/outfile: nothing half-written is left at the path. */
 #include <math.h>
-#include <png.h>
-#include <setjmp.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "terrain/terrain.h"
 #include "util/outfile.h"
+#include "util/pngout.h"
 
 static void grid_range(const Terrain *t, const float *g, double *lo, double *hi) {
     size_t n = (size_t)t->nx * (size_t)t->nz;
@@ -23,66 +22,34 @@ static void grid_range(const Terrain *t, const float *g, double *lo, double *hi)
     if (*lo > *hi) *lo = *hi = 0;
 }
 
-typedef struct PngErr {
-    FILE *diag;
-    const OutFile *o;
-} PngErr;
+/* A grid's rows as 16-bit grey, lo..hi spread over 0..65535. */
+typedef struct Grey16 {
+    const Terrain *t;
+    const float *g;
+    double lo, scale;
+} Grey16;
 
-static void on_error(png_structp png, png_const_charp msg) {
-    PngErr *e = png_get_error_ptr(png);
-    if (e->diag && !e->o->err) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->o->path, msg);
-    png_longjmp(png, 1);
-}
-
-static void on_warning(png_structp png, png_const_charp msg) {
-    (void)png;
-    (void)msg;
+static const void *grey_row(void *ctx, int k, void *scratch) {
+    const Grey16 *s = ctx;
+    const float *r = s->g + (size_t)k * (size_t)s->t->nx;
+    uint16_t *row = scratch;
+    for (int i = 0; i < s->t->nx; i++) {
+        double p = (r[i] - s->lo) * s->scale;
+        row[i] = p > 0 ? (uint16_t)(p < 65535 ? p + 0.5 : 65535) : 0;
+    }
+    return row;
 }
 
 static int encode(const Terrain *t, const float *g, const char *name, const OutFile *o, FILE *diag, double lo,
                   double hi) {
-    PngErr err = {diag, o};
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, on_error, on_warning);
-    png_infop info = png ? png_create_info_struct(png) : NULL;
-    uint16_t *row = malloc((size_t)t->nx * 2);
-    if (!info || !row) {
-        png_destroy_write_struct(&png, &info);
-        free(row);
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", o->path);
-        return SYL_ELIMIT;
-    }
-    volatile bool ok = false;
-    if (!setjmp(png_jmpbuf(png))) {
-        png_init_io(png, o->f);
-        png_set_IHDR(png, info, (png_uint_32)t->nx, (png_uint_32)t->nz, 16, PNG_COLOR_TYPE_GRAY, PNG_INTERLACE_NONE,
-                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        char range[64], cell[32];
-        snprintf(range, sizeof range, "%.9g %.9g", lo, hi);
-        snprintf(cell, sizeof cell, "%.9g", t->cell);
-        png_text text[3] = {
-            {.compression = PNG_TEXT_COMPRESSION_NONE, .key = "sylva:factor", .text = (char *)name},
-            {.compression = PNG_TEXT_COMPRESSION_NONE, .key = "sylva:range", .text = range},
-            {.compression = PNG_TEXT_COMPRESSION_NONE, .key = "sylva:cell", .text = cell},
-        };
-        png_set_text(png, info, text, 3);
-        png_set_compression_level(png, 6);
-        png_write_info(png, info);
-        png_set_swap(png); /* rows are little-endian uint16_t; PNG is big-endian */
-        double scale = hi > lo ? 65535 / (hi - lo) : 0;
-        for (int k = 0; k < t->nz; k++) {
-            const float *r = g + (size_t)k * (size_t)t->nx;
-            for (int i = 0; i < t->nx; i++) {
-                double p = (r[i] - lo) * scale;
-                row[i] = p > 0 ? (uint16_t)(p < 65535 ? p + 0.5 : 65535) : 0;
-            }
-            png_write_row(png, (png_const_bytep)row);
-        }
-        png_write_end(png, info);
-        ok = true;
-    }
-    png_destroy_write_struct(&png, &info);
-    free(row);
-    return ok ? SYL_OK : SYL_EIO;
+    char range[64], cell[32];
+    snprintf(range, sizeof range, "%.9g %.9g", lo, hi);
+    snprintf(cell, sizeof cell, "%.9g", t->cell);
+    PngOutText text[3] = {{"sylva:factor", name}, {"sylva:range", range}, {"sylva:cell", cell}};
+    Grey16 src = {t, g, lo, hi > lo ? 65535 / (hi - lo) : 0};
+    PngOutImage img = {.width = t->nx, .height = t->nz, .channels = 1, .depth = 16, .level = 6,
+                       .text = text, .ntext = 3, .row = grey_row, .ctx = &src};
+    return pngout_encode(o, &img, diag);
 }
 
 int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, FILE *diag) {

@@ -1,54 +1,19 @@
-/* PNG output through libpng, written through util/outfile. */
-#include <errno.h>
-#include <png.h>
-#include <stdbool.h>
-#include <stdlib.h>
-#include <string.h>
-#include <unistd.h>
+/* PNG output of RGB pictures, encoded by util/pngout and written through util/outfile. */
+#include <stdint.h>
 
 #include "sylva/texture.h"
 #include "util/outfile.h"
+#include "util/pngout.h"
 
-typedef struct PngErr {
-    FILE *diag;
-    const OutFile *o;
-} PngErr;
+typedef struct Rgb {
+    const uint8_t *px;
+    int width;
+} Rgb;
 
-static void png_error_fn(png_structp png, png_const_charp msg) {
-    PngErr *e = png_get_error_ptr(png);
-    /* A failed write ("Write Error") is reported with its reason by outfile_close. */
-    if (e->diag && !e->o->err) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->o->path, msg);
-    png_longjmp(png, 1);
-}
-
-static void png_warning_fn(png_structp png, png_const_charp msg) {
-    (void)png;
-    (void)msg;
-}
-
-/* Encode into an open file: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported. */
-static int encode(const OutFile *o, const uint8_t *rgb, int width, int height, FILE *diag) {
-    PngErr err = {diag, o};
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, png_error_fn, png_warning_fn);
-    png_infop info = png ? png_create_info_struct(png) : NULL;
-    if (!info) {
-        png_destroy_write_struct(&png, NULL);
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", o->path);
-        return SYL_ELIMIT;
-    }
-    volatile bool ok = false;
-    if (!setjmp(png_jmpbuf(png))) {
-        png_init_io(png, o->f);
-        png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        png_set_compression_level(png, 1); /* fast: pictures are big, and noisy */
-        png_write_info(png, info);
-        for (int y = 0; y < height; y++) png_write_row(png, (png_const_bytep)(rgb + (size_t)y * (size_t)width * 3));
-        png_write_end(png, info);
-        ok = true;
-    }
-    png_destroy_write_struct(&png, &info);
-    return ok ? SYL_OK : SYL_EIO;
+static const void *rgb_row(void *ctx, int y, void *scratch) {
+    (void)scratch;
+    const Rgb *r = ctx;
+    return r->px + (size_t)y * (size_t)r->width * 3;
 }
 
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
@@ -58,7 +23,11 @@ int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, F
     }
     OutFile o; /* "-" is standard output */
     if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
-    int status = encode(&o, rgb, width, height, diag);
+    Rgb src = {rgb, width};
+    /* level 1: fast, pictures are big and noisy */
+    PngOutImage img = {.width = width, .height = height, .channels = 3, .depth = 8, .level = 1, .row = rgb_row,
+                       .ctx = &src};
+    int status = pngout_encode(&o, &img, diag);
     if (!outfile_close(&o, status == SYL_OK, diag) && !status) status = SYL_EIO;
     return status;
 }

@@ -1,0 +1,31 @@
+/* PNG encoding through libpng into an open util/outfile output: the one place that drives
+ * libpng's writer, its longjmp error handling and its messages. Both writers use it: the
+ * RGB pictures of texture/png.c and the 16-bit factor maps of terrain/write.c. */
+#ifndef SYL_UTIL_PNGOUT_H
+#define SYL_UTIL_PNGOUT_H
+#include <stdint.h>
+#include <stdio.h>
+
+#include "util/outfile.h"
+
+typedef struct PngOutText {
+    const char *key, *text;
+} PngOutText;
+
+typedef struct PngOutImage {
+    int width, height;
+    int channels; /* 1 grey, 3 RGB */
+    int depth;    /* bits per sample: 8, or 16 (host-order uint16_t samples) */
+    int level;    /* zlib compression level, 0-9 */
+    const PngOutText *text;
+    int ntext;
+    /* Row y: a pointer to width * channels samples; scratch has room for one row, for a
+     * source that converts rather than points into its own pixels. */
+    const void *(*row)(void *ctx, int y, void *scratch);
+    void *ctx;
+} PngOutImage;
+
+/* Encode img into o: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported to diag. */
+int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag);
+
+#endif
