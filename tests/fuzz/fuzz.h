@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sylva/grow.h"
 #include "sylva/sylva.h"
 
 /* Where diagnostics go: /dev/null, or stderr with SYLVA_FUZZ_VERBOSE=1 (to read what a
@@ -26,6 +27,14 @@ static char *fuzz_text(const uint8_t *data, size_t size) {
     memcpy(t, data, size);
     t[size] = 0;
     return t;
+}
+
+/* The source harnesses' compile, as `sylva check` does it: `grow` and `scene` blocks
+ * validated, warnings too when lint is set, diagnostics to fuzz_diag(). NULL: no program. */
+static SylProgram *fuzz_compile(const char *path, const char *text, size_t size, int lint) {
+    int status;
+    SylCompileOptions opt = {.diag = fuzz_diag(), .lint = lint, .validate = syl_grow_validate};
+    return syl_compile(path, text, size, &opt, &status);
 }
 
 /* What the compiler harnesses do with a program once compiled: a small bounded derivation

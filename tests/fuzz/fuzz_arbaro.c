@@ -18,9 +18,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     memcpy(text + (sizeof head - 1 - skip), data, size);
     text[n] = 0;
     FILE *diag = fuzz_diag();
-    int status;
-    SylCompileOptions opt = {.diag = diag, .validate = syl_grow_validate};
-    SylProgram *p = syl_compile("fuzz.xml", text, n, &opt, &status);
+    SylProgram *p = fuzz_compile("fuzz.xml", text, n, 0);
     if (p) {
         syl_program_dump(p, diag);
         WeberParams w;

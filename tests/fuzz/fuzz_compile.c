@@ -6,10 +6,8 @@
 #include "sylva/sylva.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    int status;
     FILE *diag = fuzz_diag();
-    SylCompileOptions opt = {.diag = diag, .lint = 1, .validate = syl_grow_validate}; /* as sylva check */
-    SylProgram *p = syl_compile("fuzz.syl", (const char *)data, size, &opt, &status);
+    SylProgram *p = fuzz_compile("fuzz.syl", (const char *)data, size, 1); /* lint on, as sylva check */
     if (p) fuzz_derive_and_free(p, 4, diag);
     return 0;
 }

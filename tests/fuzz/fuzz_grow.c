@@ -7,10 +7,8 @@
 #include "sylva/sylva.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    int status;
     FILE *diag = fuzz_diag();
-    SylCompileOptions opt = {.diag = diag, .validate = syl_grow_validate};
-    SylProgram *p = syl_compile("fuzz.syl", (const char *)data, size, &opt, &status);
+    SylProgram *p = fuzz_compile("fuzz.syl", (const char *)data, size, 0);
     if (!p) return 0;
     SylModelKind kind = syl_program_kind(p);
     SylGrowOptions g = {.years = 2, .threads = 1, .max_metamers = 3000, .diag = diag};
