@@ -36,6 +36,7 @@ help:
 	@echo "make deps       install missing Debian packages (as root)"
 	@echo "make test       unit, case and golden tests, again under ASan+UBSan, and a fuzz run"
 	@echo "make test-fast  the same tests once, without sanitizers and fuzzing"
+	@echo "make test-times the 20 slowest tests, by CPU time"
 	@echo "make fuzz       a fuzz campaign: every harness FUZZ_SECONDS long (default 300)"
 	@echo "make bench      speed figures against peer tools"
 	@echo "make demo       render every example into out/: pictures, meshes and out/gallery.md"
@@ -96,15 +97,30 @@ $(BUILD)/tests/test_cli: tests/unit/test_cli.c tests/unit/unit.h $(filter-out $(
 	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(filter %.o,$^) $(BUILD)/libsylva-internal.a $(LDLIBS) -lcmocka
 units: $(UNIT_BIN)
 
-test-fast: all units
-	@tests/run-all $(BUILD)
+# The test targets build with -j$(JOBS) whatever -j make itself was given (.ci/run gives none).
+# make test builds its three trees at once under one job server (the packages checked first,
+# once), then tests/run-all runs the release and the ASan pass side by side (JOBS > 1).
+test-fast:
+	@$(MAKE) --no-print-directory -j$(JOBS) all units
+	@JOBS=$(JOBS) tests/run-all $(BUILD)
 test-asan:
+	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-asan SAN=1 all units
+	@JOBS=$(JOBS) tests/run-all build-asan
+test:
+	@$(MAKE) --no-print-directory $(DEPS_OK)
+	@$(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz
+	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
+.PHONY: test-build-release test-build-asan test-build-fuzz test-times
+test-build-release:
+	@$(MAKE) --no-print-directory all units
+test-build-asan:
 	@$(MAKE) --no-print-directory BUILD=build-asan SAN=1 all units
-	@tests/run-all build-asan
-test: all units
-	@$(MAKE) --no-print-directory BUILD=build-asan SAN=1 all units
+test-build-fuzz:
 	@$(MAKE) --no-print-directory fuzz-build
-	@FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
+# The 20 slowest tests of build/ by CPU time (tools/test-times; docs/testing.md).
+test-times:
+	@$(MAKE) --no-print-directory -j$(JOBS) all units
+	@tools/test-times $(BUILD) 20
 
 # ---- fuzzing (clang + libFuzzer) ----
 # One harness per reader: tests/fuzz/fuzz_NAME.c becomes build-fuzz/fuzz_NAME, linked against

@@ -1041,5 +1041,47 @@ def main(argv=None):
     return 0
 
 
+def cached_main(argv):
+    """main(), its output kept in SYLVA_ORACLE_CACHE (a folder tests/run-all makes for one run)
+    under the hash of this file, the arguments and the model's bytes: the release and the ASan
+    pass ask the same derivations, and the answer depends on nothing else (one file is read)."""
+    import hashlib, io, os
+    cache = os.environ.get("SYLVA_ORACLE_CACHE")
+    path = next((a for a in argv if not a.startswith("-")), None)
+    if not cache or path is None or not os.path.isfile(path):
+        return main(argv)
+    h = hashlib.sha256()
+    for part in (open(__file__, "rb").read(), "\0".join(argv).encode(), open(path, "rb").read()):
+        h.update(hashlib.sha256(part).digest())
+    entry = os.path.join(cache, h.hexdigest())
+    try:
+        with open(entry, "rb") as f:
+            code, out_len = (int(x) for x in f.readline().split())
+            data = f.read()
+        sys.stdout.buffer.write(data[:out_len])
+        sys.stdout.flush()
+        sys.stderr.buffer.write(data[out_len:])
+        return code
+    except (OSError, ValueError):
+        pass
+    out, err = io.StringIO(), io.StringIO()
+    real = sys.stdout, sys.stderr
+    sys.stdout, sys.stderr = out, err
+    try:
+        code = main(argv)
+    finally:
+        sys.stdout, sys.stderr = real
+    o, e = out.getvalue().encode(), err.getvalue().encode()
+    sys.stdout.buffer.write(o)
+    sys.stdout.flush()
+    sys.stderr.buffer.write(e)
+    os.makedirs(cache, exist_ok=True)
+    tmp = "%s.%d" % (entry, os.getpid())
+    with open(tmp, "wb") as f:
+        f.write(b"%d %d\n" % (code or 0, len(o)) + o + e)
+    os.replace(tmp, entry)  # whole or not at all: the passes may run at once
+    return code
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(cached_main(sys.argv[1:]))
