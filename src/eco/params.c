@@ -74,8 +74,10 @@ static int number(const SylProgram *p, FILE *diag, const SylDirective *d, int i,
 
 static int arity(const SylProgram *p, FILE *diag, const SylDirective *d, int lo, int hi) {
     if (d->nargs >= lo && d->nargs <= hi) return 0;
-    syl_directive_error(p, diag, d, d->nargs > hi ? &d->args[hi] : NULL, "%s takes %s%d value%s", d->name,
-                        lo == hi ? "" : "at most ", d->nargs > hi ? hi : lo, (d->nargs > hi ? hi : lo) == 1 ? "" : "s");
+    const SylDirArg *a = d->nargs > hi ? &d->args[hi] : NULL;
+    if (lo == hi) syl_directive_error(p, diag, d, a, "%s takes %d value%s", d->name, lo, lo == 1 ? "" : "s");
+    else if (hi == 3) syl_directive_error(p, diag, d, a, "%s takes an optimum, a range and maybe a falloff", d->name);
+    else syl_directive_error(p, diag, d, a, "%s takes %d to %d values", d->name, lo, hi);
     return 1;
 }
 
