@@ -81,7 +81,8 @@ int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
  * halo, or the seeds that fell there) and, after a barrier, takes what was posted to it. An
  * MPI transport implements the same three calls; syl_ecosystem_run uses an in-process one
  * when SylEcoOptions.exchange is NULL. Between two barriers, post may be called from several
- * threads, each for its own `from` tile. */
+ * threads, each for its own `from` tile; the posted plants stay valid until the barrier after
+ * the receiver's take (a transport may keep the pointer instead of copying). */
 enum { SYL_ECO_HALO = 0, SYL_ECO_SEEDS = 1 };
 typedef struct SylEcoExchange {
     void (*post)(void *ctx, int channel, int from, int to, const SylEcoPlant *p, size_t n);

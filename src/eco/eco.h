@@ -9,8 +9,6 @@
 /* The in-process exchange (exchange.c). */
 typedef struct EcoLocal EcoLocal;
 EcoLocal *eco_local_new(int ntiles, SylEcoExchange *ops);
-bool eco_local_failed(const EcoLocal *l); /* a post ran out of memory */
-size_t eco_local_bytes(const EcoLocal *l);
 void eco_local_free(EcoLocal *l);
 
 /* The purposes random streams are keyed by, with (plant id, year). */

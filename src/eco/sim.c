@@ -26,9 +26,9 @@ typedef struct Buf {
 typedef struct Tile {
     int i0, i1, k0, k1;       /* its cells: columns [i0, i1), rows [k0, k1) */
     double x0, x1, z0, z1;    /* its rectangle */
-    Buf own, local, born, keep;
-    Buf *out;                 /* per destination tile: seeds, then border plants */
-    uint32_t *cell_start, *order; /* the spatial grid over local */
+    Buf own, halo, born;      /* its plants (sorted by id), its neighbours' border plants, seedlings */
+    Buf *out, *border;        /* per destination tile: seeds; border plants (its halo) */
+    uint32_t *cell_start, *order; /* the spatial grid over own + halo */
     size_t grid_cap, order_cap;
     uint8_t *dominated;
     size_t dom_cap;
@@ -54,7 +54,7 @@ typedef struct Sim {
 
 static bool buf_reserve(Buf *b, size_t need) {
     if (need <= b->cap) return true;
-    size_t cap = need + need / 2 + 64;
+    size_t cap = need + need / 4 + 64;
     SylEcoPlant *p = realloc(b->p, cap * sizeof *p);
     if (!p) return false;
     b->p = p;
@@ -84,6 +84,11 @@ static int by_id(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
+/* Plant j of the grid's numbering: the tile's own, then its halo. */
+static inline const SylEcoPlant *local_at(const Tile *T, size_t j) {
+    return j < T->own.n ? &T->own.p[j] : &T->halo.p[j - T->own.n];
+}
+
 /* Phase A: the plants within the halo of another tile's rectangle go to it. */
 static void post_halo(Sim *s, int ti) {
     Tile *T = &s->tile[ti];
@@ -92,7 +97,7 @@ static void post_halo(Sim *s, int ti) {
         const Tile *U = &s->tile[u];
         double h = s->halo;
         if (U->x0 - h > T->x1 || U->x1 + h < T->x0 || U->z0 - h > T->z1 || U->z1 + h < T->z0) continue;
-        Buf *o = &T->out[u];
+        Buf *o = &T->border[u];
         o->n = 0;
         for (size_t j = 0; j < T->own.n; j++) {
             const SylEcoPlant *p = &T->own.p[j];
@@ -103,7 +108,7 @@ static void post_halo(Sim *s, int ti) {
     }
 }
 
-/* The spatial grid over T->local: cells of size g >= twice the largest radius among them,
+/* The spatial grid over the tile's own plants and halo: cells of size g >= twice the largest radius among them,
  * so that overlapping circles lie in neighbouring cells. */
 typedef struct Grid {
     double x0, z0, g;
@@ -111,10 +116,10 @@ typedef struct Grid {
 } Grid;
 
 static bool build_grid(const Sim *s, Tile *T, Grid *G) {
-    size_t n = T->local.n;
+    size_t n = T->own.n + T->halo.n;
     double rmax = 0;
     for (size_t j = 0; j < n; j++) {
-        double r = radius_of(s, &T->local.p[j]);
+        double r = radius_of(s, local_at(T, j));
         if (r > rmax) rmax = r;
     }
     G->x0 = T->x0 - s->halo;
@@ -141,7 +146,7 @@ static bool build_grid(const Sim *s, Tile *T, Grid *G) {
     }
     memset(T->cell_start, 0, cells * sizeof *T->cell_start);
     for (size_t j = 0; j < n; j++) {
-        const SylEcoPlant *p = &T->local.p[j];
+        const SylEcoPlant *p = local_at(T, j);
         int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
         ci = ci < 0 ? 0 : ci >= G->nx ? G->nx - 1 : ci;
         ck = ck < 0 ? 0 : ck >= G->nz ? G->nz - 1 : ck;
@@ -150,7 +155,7 @@ static bool build_grid(const Sim *s, Tile *T, Grid *G) {
     for (size_t c = 1; c < cells; c++) T->cell_start[c] += T->cell_start[c - 1];
     /* place each plant; cell_start[c] ends as the start of cell c + 1 */
     for (size_t j = 0; j < n; j++) {
-        const SylEcoPlant *p = &T->local.p[j];
+        const SylEcoPlant *p = local_at(T, j);
         int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
         ci = ci < 0 ? 0 : ci >= G->nx ? G->nx - 1 : ci;
         ck = ck < 0 ? 0 : ck >= G->nz ? G->nz - 1 : ck;
@@ -171,7 +176,7 @@ static bool is_dominated(const Sim *s, const Tile *T, const Grid *G, const SylEc
             if (i < 0 || i >= G->nx) continue;
             size_t c = (size_t)k * G->nx + i;
             for (uint32_t a = T->cell_start[c]; a < T->cell_start[c + 1]; a++) {
-                const SylEcoPlant *q = &T->local.p[T->order[a]];
+                const SylEcoPlant *q = local_at(T, T->order[a]);
                 if (q->height < p->height || (q->height == p->height && q->id >= p->id)) continue;
                 double dx = (double)q->x - p->x, dz = (double)q->z - p->z, rr = rp + radius_of(s, q);
                 if (dx * dx + dz * dz < rr * rr) return true;
@@ -214,25 +219,19 @@ static void step_tile(Sim *s, int ti) {
     const SylEcoModel *m = s->m;
     const SylTerrain *t = s->t;
     int year = s->year;
-    /* own plants, then the halo */
-    T->local.n = 0;
-    if (!buf_reserve(&T->local, T->own.n)) {
-        T->failed = 1;
-        return;
-    }
-    memcpy(T->local.p, T->own.p, T->own.n * sizeof *T->own.p);
-    T->local.n = T->own.n;
+    /* the halo: what the neighbours posted */
+    T->halo.n = 0;
     for (int u = 0; u < s->ntiles; u++) {
         if (u == ti) continue;
         size_t n;
         const SylEcoPlant *h = s->x->take(s->x->ctx, SYL_ECO_HALO, ti, u, &n);
         if (!n) continue;
-        if (!buf_reserve(&T->local, T->local.n + n)) {
+        if (!buf_reserve(&T->halo, T->halo.n + n)) {
             T->failed = 1;
             return;
         }
-        memcpy(T->local.p + T->local.n, h, n * sizeof *h);
-        T->local.n += n;
+        memcpy(T->halo.p + T->halo.n, h, n * sizeof *h);
+        T->halo.n += n;
     }
     Grid G;
     if (T->own.n > T->dom_cap) {
@@ -330,23 +329,22 @@ static void settle_tile(Sim *s, int ti) {
         }
     }
     qsort(T->born.p, T->born.n, sizeof *T->born.p, by_id);
-    /* merge the sorted survivors and the sorted newborns (an id met twice: kept once) */
-    if (!buf_reserve(&T->keep, T->own.n + T->born.n)) {
+    /* merge the sorted newborns into the sorted survivors, from the back, in place (an id
+     * met twice — two hashes alike — is kept once) */
+    if (!buf_reserve(&T->own, T->own.n + T->born.n)) {
         T->failed = 1;
         return;
     }
-    size_t a = 0, b = 0, n = 0;
-    while (a < T->own.n || b < T->born.n) {
-        const SylEcoPlant *p;
-        if (b >= T->born.n || (a < T->own.n && T->own.p[a].id <= T->born.p[b].id)) p = &T->own.p[a++];
-        else p = &T->born.p[b++];
-        if (n && T->keep.p[n - 1].id == p->id) continue;
-        T->keep.p[n++] = *p;
+    size_t a = T->own.n, b = T->born.n, w = T->own.n + T->born.n;
+    while (b > 0) {
+        if (a > 0 && T->own.p[a - 1].id > T->born.p[b - 1].id) T->own.p[--w] = T->own.p[--a];
+        else if (a > 0 && T->own.p[a - 1].id == T->born.p[b - 1].id) b--;
+        else T->own.p[--w] = T->born.p[--b];
     }
-    T->keep.n = n;
-    Buf tmp = T->own;
-    T->own = T->keep;
-    T->keep = tmp;
+    if (w > a) { /* duplicates dropped: close the gap */
+        memmove(T->own.p + a, T->own.p + w, (T->own.n + T->born.n - w) * sizeof *T->own.p);
+    }
+    T->own.n = a + (T->own.n + T->born.n - w);
     memset(T->count, 0, sizeof T->count);
     memset(T->area_u, 0, sizeof T->area_u);
     memset(T->height_u, 0, sizeof T->height_u);
@@ -412,9 +410,9 @@ static double wall_now(void) {
 }
 
 static size_t tile_bytes(const Tile *T, int ntiles) {
-    size_t b = (T->own.cap + T->local.cap + T->born.cap + T->keep.cap) * sizeof(SylEcoPlant) +
+    size_t b = (T->own.cap + T->halo.cap + T->born.cap) * sizeof(SylEcoPlant) +
                (T->grid_cap + T->order_cap) * sizeof(uint32_t) + T->dom_cap;
-    for (int u = 0; u < ntiles; u++) b += T->out[u].cap * sizeof(SylEcoPlant);
+    for (int u = 0; u < ntiles; u++) b += (T->out[u].cap + T->border[u].cap) * sizeof(SylEcoPlant);
     return b;
 }
 
@@ -465,7 +463,8 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         for (int i = T->i0; i < T->i1; i++) s.tile_of_i[i] = a;
         for (int k = T->k0; k < T->k1; k++) s.tile_of_k[k] = b;
         T->out = calloc((size_t)s.ntiles, sizeof *T->out);
-        if (!T->out) st = SYL_ELIMIT;
+        T->border = calloc((size_t)s.ntiles, sizeof *T->border);
+        if (!T->out || !T->border) st = SYL_ELIMIT;
     }
     Buf all = {0};
     SylEcoYear yr;
@@ -480,7 +479,7 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         yr.year = y;
         size_t alive = 0;
         int64_t area[SYL_ECO_MAX_SPECIES] = {0}, height[SYL_ECO_MAX_SPECIES] = {0};
-        size_t bytes = eco_local_bytes(local);
+        size_t bytes = 0;
         for (int ti = 0; ti < s.ntiles; ti++) {
             Tile *T = &s.tile[ti];
             if (T->failed) st = SYL_ELIMIT;
@@ -493,7 +492,6 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
                 height[sp] += T->height_u[sp];
             }
         }
-        if (eco_local_failed(local)) st = SYL_ELIMIT;
         if (st) break;
         double terrain_area = (double)t->nx * t->nz * t->cell * t->cell;
         for (int sp = 0; sp < m->nspecies; sp++) {
@@ -519,9 +517,10 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
     }
     for (int ti = 0; s.tile && ti < s.ntiles; ti++) {
         Tile *T = &s.tile[ti];
-        free(T->own.p), free(T->local.p), free(T->born.p), free(T->keep.p);
+        free(T->own.p), free(T->halo.p), free(T->born.p);
         for (int u = 0; T->out && u < s.ntiles; u++) free(T->out[u].p);
-        free(T->out), free(T->cell_start), free(T->order), free(T->dominated);
+        for (int u = 0; T->border && u < s.ntiles; u++) free(T->border[u].p);
+        free(T->out), free(T->border), free(T->cell_start), free(T->order), free(T->dominated);
     }
     free(all.p);
     free(s.tile), free(s.tile_of_i), free(s.tile_of_k);
