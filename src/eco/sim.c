@@ -54,7 +54,7 @@ typedef struct Sim {
 
 static bool buf_reserve(Buf *b, size_t need) {
     if (need <= b->cap) return true;
-    size_t cap = need + need / 4 + 64;
+    size_t cap = need + need / 8 + 64;
     SylEcoPlant *p = realloc(b->p, cap * sizeof *p);
     if (!p) return false;
     b->p = p;
@@ -126,7 +126,7 @@ static bool build_grid(const Sim *s, Tile *T, Grid *G) {
     G->z0 = T->z0 - s->halo;
     double w = T->x1 - T->x0 + 2 * s->halo, d = T->z1 - T->z0 + 2 * s->halo;
     G->g = 2 * rmax;
-    double least = sqrt(w * d / (double)(n + 1)); /* about one plant per cell at most */
+    double least = sqrt(2 * w * d / (double)(n + 1)); /* about two plants per cell at most */
     if (G->g < least) G->g = least;
     if (G->g <= 0) G->g = 1;
     G->nx = (int)(w / G->g) + 1;
