@@ -1,7 +1,8 @@
 /* The simulation, one year per step and tile by tile (docs/ecosystem.md):
  *   A. every tile posts its plants near another tile's edge to that tile (its halo);
  *   B. every tile, on its own plants and its halo as they were at the year's start: who is
- *      dominated (a taller plant's ecological circle overlaps, Deussen et al. 1998), deaths
+ *      dominated (a more powerful plant's ecological circle overlaps, Deussen et al. 1998;
+ *      power v h p_r as Zamuda 2006), deaths
  *      (age, domination, stress), growth, seeds (posted to the tile they fall in) and random
  *      arrivals on its own cells;
  *   C. every tile takes the seeds that fell on it, lets them germinate, and keeps its plants
@@ -46,6 +47,7 @@ typedef struct Sim {
     int tx, tz, ntiles;
     int *tile_of_i, *tile_of_k;
     double halo;        /* twice the largest ecological radius any plant can reach */
+    double rel_life[SYL_ECO_MAX_SPECIES]; /* max_age / the longest max_age: Zamuda's p_r */
     uint64_t seed;
     int year;
     int phase;
@@ -166,9 +168,15 @@ static bool build_grid(const Sim *s, Tile *T, Grid *G) {
     return true;
 }
 
-/* Whether a taller plant's circle overlaps p's (ties: the smaller id dominates). */
+/* Zamuda's power, v h p_r (eq. 4.18-4.19): long-lived species outcompete short-lived ones of
+ * the same height. */
+static inline double power_of(const Sim *s, const SylEcoPlant *p) {
+    return (double)p->vigour * p->height * s->rel_life[p->species];
+}
+
+/* Whether a more powerful plant's circle overlaps p's (ties: the smaller id dominates). */
 static bool is_dominated(const Sim *s, const Tile *T, const Grid *G, const SylEcoPlant *p) {
-    double rp = radius_of(s, p);
+    double rp = radius_of(s, p), pp = power_of(s, p);
     int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
     for (int k = ck - 1; k <= ck + 1; k++) {
         if (k < 0 || k >= G->nz) continue;
@@ -177,7 +185,8 @@ static bool is_dominated(const Sim *s, const Tile *T, const Grid *G, const SylEc
             size_t c = (size_t)k * G->nx + i;
             for (uint32_t a = T->cell_start[c]; a < T->cell_start[c + 1]; a++) {
                 const SylEcoPlant *q = local_at(T, T->order[a]);
-                if (q->height < p->height || (q->height == p->height && q->id >= p->id)) continue;
+                double pq = power_of(s, q);
+                if (pq < pp || (pq == pp && q->id >= p->id)) continue;
                 double dx = (double)q->x - p->x, dz = (double)q->z - p->z, rr = rp + radius_of(s, q);
                 if (dx * dx + dz * dz < rr * rr) return true;
             }
@@ -435,6 +444,10 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         double r = 2 * m->species[i].radius_ratio * m->species[i].height_max;
         if (r > s.halo) s.halo = r;
     }
+    double longest = 0;
+    for (int i = 0; i < m->nspecies; i++)
+        if (m->species[i].max_age > longest) longest = m->species[i].max_age;
+    for (int i = 0; i < m->nspecies; i++) s.rel_life[i] = m->species[i].max_age / longest;
     int threads = o->threads > 0 ? o->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
     if (threads < 1) threads = 1;
     SylEcoExchange local_ops;
