@@ -505,6 +505,12 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
                 height[sp] += T->height_u[sp];
             }
         }
+        if (!st && o->max_plants && alive > o->max_plants) {
+            if (o->diag)
+                fprintf(o->diag, "sylva: error: year %d: %zu plants, more than the limit of %llu\n", y, alive,
+                        (unsigned long long)o->max_plants);
+            st = SYL_ELIMIT;
+        }
         if (st) break;
         double terrain_area = (double)t->nx * t->nz * t->cell * t->cell;
         for (int sp = 0; sp < m->nspecies; sp++) {
