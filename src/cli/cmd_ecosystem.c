@@ -100,7 +100,7 @@ enum { NPAL = sizeof palette / sizeof palette[0] };
 static bool hillshade(Run *r) {
     const SylTerrain *t = r->t;
     double size = t->nx > t->nz ? t->nx : t->nz;
-    int px = size >= 1024 ? 1 : (int)(1024 / size); /* pixels per cell */
+    int px = size >= 512 ? 1 : (int)(512 / size); /* pixels per cell: a map of about 512 */
     if (px > 8) px = 8;
     r->w = t->nx * px;
     r->h = t->nz * px;
