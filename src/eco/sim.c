@@ -337,7 +337,7 @@ static void settle_tile(Sim *s, int ti) {
             if (!buf_push(&T->born, &c)) T->failed = 1;
         }
     }
-    qsort(T->born.p, T->born.n, sizeof *T->born.p, by_id);
+    if (T->born.n > 1) qsort(T->born.p, T->born.n, sizeof *T->born.p, by_id);
     /* merge the sorted newborns into the sorted survivors, from the back, in place (an id
      * met twice — two hashes alike — is kept once) */
     if (!buf_reserve(&T->own, T->own.n + T->born.n)) {
@@ -400,10 +400,10 @@ static int gather(Sim *s, Buf *all) {
     if (!buf_reserve(all, n)) return SYL_ELIMIT;
     all->n = 0;
     for (int ti = 0; ti < s->ntiles; ti++) {
-        memcpy(all->p + all->n, s->tile[ti].own.p, s->tile[ti].own.n * sizeof *all->p);
+        if (s->tile[ti].own.n) memcpy(all->p + all->n, s->tile[ti].own.p, s->tile[ti].own.n * sizeof *all->p);
         all->n += s->tile[ti].own.n;
     }
-    qsort(all->p, all->n, sizeof *all->p, by_id);
+    if (all->n > 1) qsort(all->p, all->n, sizeof *all->p, by_id);
     return SYL_OK;
 }
 
