@@ -23,7 +23,7 @@
 #include <string.h>
 
 int syl_yylex(SYL_YYSTYPE *lval, SylLoc *lloc, void *scanner);
-static const char *const model_kinds[] = {"lsystem", "grow", "scene", "weber", "strands"};
+static const char *const model_kinds[] = {"lsystem", "grow", "scene", "weber", "strands", "ecosystem"};
 /* The parser's stack holds one to four entries per level of nesting (the lexer counts
  * parentheses exactly): full, it says "memory exhausted", reported as what it is. */
 #define YYMAXDEPTH (5 * SYL_MAX_NESTING + 64)
@@ -168,7 +168,7 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 %token KW_LSYSTEM "lsystem" KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
 %token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
 %token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROW "grow" KW_SCENE "scene"
-%token KW_GROUP "group" KW_USE "use" KW_WEBER "weber" KW_STRANDS "strands"
+%token KW_GROUP "group" KW_USE "use" KW_WEBER "weber" KW_STRANDS "strands" KW_ECOSYSTEM "ecosystem"
 
 %type <expr> expr cond_opt weight_opt use_when
 %type <exprs> exprs exprs_opt args_opt points
@@ -203,11 +203,12 @@ top: NEWLINE
    | KW_SCENE '{' { begin_model(ps, MODEL_SCENE, "scene", @1); } gbody '}' { ps->model = &ps->ast->top; }
    | KW_WEBER WORD '{' { begin_model(ps, MODEL_WEBER, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
    | KW_STRANDS WORD '{' { begin_model(ps, MODEL_STRANDS, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
+   | KW_ECOSYSTEM WORD '{' { begin_model(ps, MODEL_ECOSYSTEM, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
    | use { diag_error(ps->diag, @1, "'use' stands in an lsystem's body, not outside a model"); }
    | error NEWLINE { yyerrok; ps->model = ps->model ? ps->model : &ps->ast->top; }
    ;
 
-/* grow, scene, weber and strands blocks: lines of directives, read by the engine that owns them */
+/* grow, scene, weber, strands and ecosystem blocks: lines of directives, read by the engine that owns them */
 gbody: %empty
      | gbody gstmt
      ;
@@ -223,6 +224,7 @@ gword: KW_USE { $$ = "use"; }
      | KW_GROUP { $$ = "group"; }
      | KW_WEBER { $$ = "weber"; }
      | KW_STRANDS { $$ = "strands"; }
+     | KW_ECOSYSTEM { $$ = "ecosystem"; }
      ;
 dargs: %empty { memset(&$$, 0, sizeof $$); }
      | dargs darg { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }

@@ -89,8 +89,10 @@ int syl_list_models(const char *path, const char *text, size_t len, const char *
 /* What a compiled model is: an L-system, a `grow` block (self-organizing tree), — for a
  * file that holds only a `scene` block — the scene, a `weber` block (Weber–Penn parametric
  * tree) or a `strands` block (Holton's strand model). */
-typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW, SYL_MODEL_SCENE, SYL_MODEL_WEBER, SYL_MODEL_STRANDS } SylModelKind;
-/* "lsystem", "grow block", "scene", "weber block", "strands block" */
+typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW, SYL_MODEL_SCENE, SYL_MODEL_WEBER, SYL_MODEL_STRANDS,
+               SYL_MODEL_ECOSYSTEM } SylModelKind;
+/* "lsystem", "grow block", "scene", "weber block", "strands block", "ecosystem block"
+ * (an ecosystem on a terrain: sylva/ecosystem.h) */
 const char *syl_model_kind_name(SylModelKind k);
 SylModelKind syl_program_kind(const SylProgram *p);
 

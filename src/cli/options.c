@@ -56,6 +56,37 @@ static bool read_format(CliArgs *a, char *arg) {
 }
 
 /* --heights LO,HI: the heights of black and white in a PNG DEM. */
+/* --snapshots 20,60,180: increasing years */
+static bool read_snapshots(CliArgs *a, char *arg) {
+    a->nsnapshots = 0;
+    for (char *s = arg, *end; *s; s = *end ? end + 1 : end) {
+        end = s + strcspn(s, ",");
+        char save = *end;
+        *end = 0;
+        double v;
+        bool ok = a->nsnapshots < 64 && cli_integer("--snapshots", s, 0, 60000, &v);
+        *end = save;
+        if (!ok || (a->nsnapshots && v <= a->snapshots[a->nsnapshots - 1])) {
+            if (ok) fprintf(stderr, "sylva: error: --snapshots expects increasing years, as 20,60,180\n");
+            return false;
+        }
+        a->snapshots[a->nsnapshots++] = (int)v;
+    }
+    return a->nsnapshots > 0;
+}
+
+/* --tiles NxM */
+static bool read_tiles(CliArgs *a, char *arg) {
+    int n, m, used = 0;
+    if (sscanf(arg, "%dx%d%n", &n, &m, &used) != 2 || arg[used] || n < 1 || m < 1 || n > 64 || m > 64) {
+        fprintf(stderr, "sylva: error: --tiles expects NxM with 1 <= N, M <= 64, as 3x2, not '%s'\n", arg);
+        return false;
+    }
+    a->tiles_x = n;
+    a->tiles_z = m;
+    return true;
+}
+
 static bool read_heights(CliArgs *a, char *arg) {
     char *comma = strchr(arg, ',');
     if (comma) {
@@ -186,6 +217,11 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_FPS] = {"fps", 0, "N", "frames per second of the video (default 4)", CLI_INT, ARGS(fps), 1, 120},
     [CLI_OPT_FRAMES_PER_STEP] = {"frames-per-step", 0, "N", "frames that show each step or year (default 1)",
                                  CLI_INT, ARGS(frames_per_step), 1, 1000},
+    /* sylva ecosystem */
+    [CLI_OPT_SNAPSHOTS] = {"snapshots", 0, "Y1,Y2,..", "the years whose plants and map are written (default:\n"
+                           "the block's `snapshots`)", CLI_READ, .read = read_snapshots},
+    [CLI_OPT_TILES] = {"tiles", 0, "NxM", "run the terrain as N x M tiles exchanging their borders\n"
+                       "(default 1x1); the output is the same", CLI_READ, .read = read_tiles},
 };
 
 const CliUse cli_limits[] = {

@@ -118,7 +118,7 @@ typedef struct Stmt {
 } Stmt;
 
 /* in the order of SylModelKind, whose values they share */
-typedef enum { MODEL_LSYSTEM, MODEL_GROW, MODEL_SCENE, MODEL_WEBER, MODEL_STRANDS } ModelKind;
+typedef enum { MODEL_LSYSTEM, MODEL_GROW, MODEL_SCENE, MODEL_WEBER, MODEL_STRANDS, MODEL_ECOSYSTEM } ModelKind;
 
 typedef struct Model {
     ModelKind kind;

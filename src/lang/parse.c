@@ -14,7 +14,7 @@ const SylKeyword syl_keywords[] = {
     {"fn", KW_FN}, {"curve", KW_CURVE}, {"axiom", KW_AXIOM}, {"ignore", KW_IGNORE},
     {"consider", KW_CONSIDER}, {"decompose", KW_DECOMPOSE}, {"interpret", KW_INTERPRET},
     {"grow", KW_GROW}, {"scene", KW_SCENE}, {"group", KW_GROUP}, {"use", KW_USE},
-    {"weber", KW_WEBER}, {"strands", KW_STRANDS}, {NULL, 0},
+    {"weber", KW_WEBER}, {"strands", KW_STRANDS}, {"ecosystem", KW_ECOSYSTEM}, {NULL, 0},
 };
 
 int syl_yyparse(void *scanner, ParseState *ps);

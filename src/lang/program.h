@@ -229,9 +229,9 @@ void program_warning(const SylProgram *p, FILE *out, int line, int col, const ch
     __attribute__((format(printf, 5, 6)));
 
 /* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */
-/* grow, weber and strands blocks are lines of directives read by their engines, not rules */
+/* grow, weber, strands and ecosystem blocks are lines of directives read by their engines, not rules */
 static inline bool syl_kind_has_directives(SylModelKind k) {
-    return k == SYL_MODEL_GROW || k == SYL_MODEL_WEBER || k == SYL_MODEL_STRANDS;
+    return k == SYL_MODEL_GROW || k == SYL_MODEL_WEBER || k == SYL_MODEL_STRANDS || k == SYL_MODEL_ECOSYSTEM;
 }
 
 static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {

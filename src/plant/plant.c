@@ -130,6 +130,11 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
             return SYL_EUSAGE;
         }
         st = build_tree(p, opt, &mo, budget, out);
+    } else if (kind == SYL_MODEL_ECOSYSTEM) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' is an ecosystem block, not a plant: run `sylva ecosystem`\n",
+                    syl_program_name(p));
+        return SYL_EUSAGE;
     } else {
         out->kind = SYL_MODEL_LSYSTEM;
         st = build_lsystem(p, opt, &mo, budget, out);

@@ -1,0 +1,144 @@
+/* libsylva: ecosystems on a terrain — an `ecosystem` block's species spread, compete and die
+ * year by year on a DEM's factors (Zamuda 2006; Deussen et al. 1998; Lane & Prusinkiewicz
+ * 2002). docs/ecosystem.md lists the directives and the formulas.
+ *
+ * The terrain is cut into tiles that exchange their border plants (a halo as wide as the
+ * largest interaction) and the seeds that cross into a neighbour through SylEcoExchange, so a
+ * run over N × M tiles, on any number of threads, gives the same plants byte for byte as one
+ * tile: every random draw is keyed by (plant id, year, purpose) and every plant id is made
+ * from its parent's id or its arrival cell, never from a counter. */
+#ifndef SYLVA_ECOSYSTEM_H
+#define SYLVA_ECOSYSTEM_H
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "sylva/sylva.h"
+#include "sylva/terrain.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { SYL_ECO_MAX_SPECIES = 32, SYL_ECO_MAX_SNAPSHOTS = 64 };
+enum { SYL_ECO_FREE = 0, SYL_ECO_DOMINATED = 1 }; /* SylEcoPlant.state */
+
+/* One plant: 32 bytes. Its altitude is the terrain's at (x, z); its ecological radius is its
+ * species' radius_ratio × height. A renderer places the species' model at (x, y, z), scaled
+ * to the height. */
+typedef struct SylEcoPlant {
+    uint64_t id;      /* unique, made from the parent's id or the arrival's cell and year */
+    float x, z;       /* position on the terrain */
+    float height;     /* metres */
+    float vigour;     /* 0..1: how well the site suits the species */
+    uint16_t age;     /* years */
+    uint8_t species;  /* index into the block's species */
+    uint8_t state;    /* SYL_ECO_FREE or SYL_ECO_DOMINATED (last year's competition) */
+    uint32_t pad;
+} SylEcoPlant;
+
+typedef struct SylEcoSpecies {
+    char name[48], model[64]; /* its name; the Sylva model that is its look ("" : none) */
+    double maturity, old_age, max_age;  /* years: seeds from maturity, no growth after old_age,
+                                           death at an age drawn in [old_age, max_age] */
+    double height_max, growth_rate, start_height; /* Chapman–Richards: h' = v r (H − h) */
+    double radius_ratio;     /* ecological radius / height */
+    double seeds;            /* seeds a free mature plant makes per year at vigour 1 */
+    double dispersal;        /* σ of the Gaussian distance of a seed from its parent, metres;
+                                cut off at 3σ */
+    double arrivals;         /* seeds arriving at random, per hectare per year */
+    double arrive_until;     /* the last year of arrivals (0: every year): a planted stand */
+    double shade_tolerance;  /* yearly survival of a dominated plant */
+    double stress_mortality; /* yearly death probability at vigour 0 (× (1 − v)) */
+    /* tolerance curves by factor (SylTerrainFactor): optimum, range, falloff; set: given */
+    double optimum[SYL_TERRAIN_FACTORS], range[SYL_TERRAIN_FACTORS], falloff[SYL_TERRAIN_FACTORS];
+    uint8_t set[SYL_TERRAIN_FACTORS];
+    int line, col; /* where `species` was written */
+} SylEcoSpecies;
+
+typedef enum { SYL_ECO_MEAN, SYL_ECO_PRODUCT, SYL_ECO_MINIMUM } SylEcoCombine;
+
+/* An ecosystem block read from its directives. */
+typedef struct SylEcoModel {
+    char terrain[1024];           /* the DEM's path, relative to the program's file */
+    double cell, height_lo, height_hi, latitude;
+    int latitude_set;
+    int years;
+    int snapshots[SYL_ECO_MAX_SNAPSHOTS], nsnapshots;
+    uint64_t seed;
+    SylEcoCombine combine;
+    SylEcoSpecies species[SYL_ECO_MAX_SPECIES];
+    int nspecies;
+} SylEcoModel;
+
+/* Read (and check) an ecosystem block: returns the number of errors reported to diag, each
+ * as file:line:col with the line and a caret. syl_ecosystem_validate is the same check for
+ * syl_compile's hook (`sylva check`). */
+int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag);
+int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
+
+/* How tiles talk: a tile posts plants to another tile (its border plants, for the other's
+ * halo, or the seeds that fell there) and, after a barrier, takes what was posted to it. An
+ * MPI transport implements the same three calls; syl_ecosystem_run uses an in-process one
+ * when SylEcoOptions.exchange is NULL. Between two barriers, post may be called from several
+ * threads, each for its own `from` tile; the posted plants stay valid until the barrier after
+ * the receiver's take (a transport may keep the pointer instead of copying). */
+enum { SYL_ECO_HALO = 0, SYL_ECO_SEEDS = 1 };
+typedef struct SylEcoExchange {
+    void (*post)(void *ctx, int channel, int from, int to, const SylEcoPlant *p, size_t n);
+    void (*barrier)(void *ctx);
+    /* what `from` posted to `to` on the channel since the barrier before last */
+    const SylEcoPlant *(*take)(void *ctx, int channel, int to, int from, size_t *n);
+    void *ctx;
+} SylEcoExchange;
+
+typedef struct SylEcoYear {
+    int year;
+    uint32_t count[SYL_ECO_MAX_SPECIES];  /* living plants at the end of the year */
+    double cover[SYL_ECO_MAX_SPECIES];    /* their crowns' area (π r²) over the terrain's area */
+    double mean_height[SYL_ECO_MAX_SPECIES];
+} SylEcoYear;
+
+typedef struct SylEcoOptions {
+    int years;             /* 0: the block's */
+    const int *snapshots;  /* NULL: the block's */
+    int nsnapshots;
+    int tiles_x, tiles_z;  /* 0: 1 × 1 */
+    int threads;           /* <= 0: all cores; the output never depends on it */
+    int use_seed;
+    uint64_t seed;
+    const SylEcoExchange *exchange; /* NULL: in-process */
+    uint64_t max_plants;   /* SYL_ELIMIT when more live at once (0: no limit) */
+    /* called after every year, and with the year's plants (sorted by id) at each snapshot */
+    void (*on_year)(void *user, const SylEcoYear *y);
+    int (*on_snapshot)(void *user, int year, const SylEcoPlant *plants, size_t n); /* non-0 stops */
+    void (*progress)(void *user, double fraction);
+    void *user;
+    FILE *diag;
+} SylEcoOptions;
+
+typedef struct SylEcoStats {
+    uint64_t plant_years;  /* plants alive at the start of a year, summed over the years */
+    size_t peak_plants;
+    size_t bytes_per_plant; /* memory the simulation holds per plant beyond the terrain */
+    double seconds, cpu_seconds;
+} SylEcoStats;
+
+/* Read the block, its terrain (computing its factors), and run it. *terrain_out (when not
+ * NULL) receives the terrain, to be freed with syl_terrain_free. SYL_OK, SYL_EMODEL (a bad
+ * block or DEM), SYL_EUSAGE, SYL_EIO, SYL_ELIMIT, or what on_snapshot returned. */
+int syl_ecosystem_run(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *model_out,
+                      SylTerrain **terrain_out, SylEcoStats *stats);
+/* Only the reading: the block into *m and its terrain, factors computed, into *terrain
+ * (free with syl_terrain_free). */
+int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *m, SylTerrain **terrain);
+/* The same on a model and terrain already read (the terrain's factors computed). */
+int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylEcoOptions *o,
+                           SylEcoStats *stats);
+/* A species' vigour at (x, z): its suitabilities combined as the block says. */
+double syl_ecosystem_vigour(const SylEcoModel *m, int species, const SylTerrain *t, double x, double z);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

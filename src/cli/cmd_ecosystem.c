@@ -1,0 +1,385 @@
+/* sylva ecosystem: run an `ecosystem` block (docs/ecosystem.md) and write its plant tables,
+ * species counts and cover (CSV and an SVG chart), the terrain's factor maps and a top-down
+ * map per snapshot. */
+#include <errno.h>
+#include <libxml/xmlwriter.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli/cli.h"
+#include "sylva/ecosystem.h"
+#include "sylva/texture.h"
+
+const CliCommand cli_ecosystem_command = {
+    .name = "ecosystem",
+    .what = "simulate an ecosystem block on its terrain; plant tables, charts, maps",
+    .run = cmd_ecosystem,
+    .usage = "sylva ecosystem FILE[:Model] -o DIR [options]",
+    .about = "Run the model's `ecosystem` block year by year on its terrain (docs/ecosystem.md) and\n"
+             "write into DIR: plants-YEAR.csv and map-YEAR.png for every snapshot, species.csv and\n"
+             "species.svg (counts and cover per year) and maps/FACTOR.png|asc (the terrain's\n"
+             "factors). The output never depends on -j nor on --tiles.\n",
+    .options = (const CliUse[]){
+        {.option = CLI_OPT_OUTPUT, .help = "the directory to write into (made if missing)"},
+        {.option = CLI_OPT_YEARS, .help = "years to simulate (default: the block's `years`)"},
+        {.option = CLI_OPT_SNAPSHOTS},
+        {.option = CLI_OPT_TILES},
+        {.option = CLI_OPT_SEED},
+        {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_THREADS, .help = "threads over the tiles (default: all cores); the output\n"
+                                            "never depends on N"},
+        {.option = CLI_OPT_STATS, .help = "print plant-years, plants per second and memory to stderr"},
+        {0},
+    },
+    .width = 24,
+    .epilogue = "\nExit codes: 0 ok, 1 the model or its DEM is malformed, 2 bad command line, 3 limit hit,\n"
+                "4 I/O error.\n",
+    .args_error = "expects one model file",
+};
+
+/* The validate hook of every compile: grow and scene directives (syl_grow_validate), then an
+ * ecosystem block's. */
+int cli_validate(void *user, const SylProgram *p, FILE *diag) {
+    int e = syl_grow_validate(user, p, diag);
+    if (e >= 0 && syl_program_kind(p) == SYL_MODEL_ECOSYSTEM) e += syl_ecosystem_validate(p, diag);
+    return e;
+}
+
+typedef struct Run {
+    const char *dir;
+    const SylEcoModel *m;
+    const SylTerrain *t;
+    SylEcoYear *years;
+    int nyears, cap;
+    uint8_t *shade;   /* the hillshade, one grey per pixel */
+    int w, h;
+    double scale;     /* pixels per metre */
+    Progress bar;
+    int status;
+} Run;
+
+static char *path_in(const char *dir, const char *fmt, int n) {
+    size_t len = strlen(dir) + 64;
+    char *p = malloc(len);
+    if (!p) return NULL;
+    int k = snprintf(p, len, "%s/", dir);
+    snprintf(p + k, len - (size_t)k, fmt, n);
+    return p;
+}
+
+static int make_dir(const char *dir) {
+    if (mkdir(dir, 0777) && errno != EEXIST) {
+        fprintf(stderr, "sylva: error: cannot make the directory '%s': %s\n", dir, strerror(errno));
+        return SYL_EIO;
+    }
+    return SYL_OK;
+}
+
+static void on_year(void *user, const SylEcoYear *y) {
+    Run *r = user;
+    if (r->nyears == r->cap) {
+        int cap = r->cap ? 2 * r->cap : 256;
+        SylEcoYear *v = realloc(r->years, (size_t)cap * sizeof *v);
+        if (!v) {
+            r->status = SYL_ELIMIT;
+            return;
+        }
+        r->years = v;
+        r->cap = cap;
+    }
+    r->years[r->nyears++] = *y;
+}
+
+static const uint8_t palette[][3] = {{46, 125, 50}, {230, 140, 30}, {30, 90, 160}, {170, 60, 150},
+                                     {200, 50, 40}, {120, 170, 40}, {90, 60, 30}, {20, 160, 160}};
+enum { NPAL = sizeof palette / sizeof palette[0] };
+
+/* Grey hillshade, lit from the north-west 45° up: the map's background. */
+static bool hillshade(Run *r) {
+    const SylTerrain *t = r->t;
+    double size = t->nx > t->nz ? t->nx : t->nz;
+    int px = size >= 512 ? 1 : (int)(512 / size); /* pixels per cell: a map of about 512 */
+    if (px > 8) px = 8;
+    r->w = t->nx * px;
+    r->h = t->nz * px;
+    r->scale = px / t->cell;
+    r->shade = malloc((size_t)r->w * r->h);
+    if (!r->shade) return false;
+    double lx = -0.5, ly = 0.7071, lz = -0.5; /* towards the light: north-west, up */
+    for (int k = 0; k < t->nz; k++)
+        for (int i = 0; i < t->nx; i++) {
+            int i0 = i > 0 ? i - 1 : i, i1 = i + 1 < t->nx ? i + 1 : i;
+            int k0 = k > 0 ? k - 1 : k, k1 = k + 1 < t->nz ? k + 1 : k;
+            double dx = (t->height[(size_t)k * t->nx + i1] - t->height[(size_t)k * t->nx + i0]) / ((i1 - i0) * t->cell + 1e-12);
+            double dz = (t->height[(size_t)k1 * t->nx + i] - t->height[(size_t)k0 * t->nx + i]) / ((k1 - k0) * t->cell + 1e-12);
+            double nx = -dx, ny = 1, nz = -dz, len = sqrt(nx * nx + ny * ny + nz * nz);
+            double c = (nx * lx + ny * ly + nz * lz) / len;
+            uint8_t g = (uint8_t)(60 + 170 * (c > 0 ? c : 0));
+            for (int b = 0; b < px; b++) memset(r->shade + (size_t)(k * px + b) * r->w + (size_t)i * px, g, (size_t)px);
+        }
+    return true;
+}
+
+static int by_height(const void *a, const void *b) {
+    const SylEcoPlant *p = a, *q = b;
+    if (p->height != q->height) return p->height < q->height ? -1 : 1;
+    return p->id < q->id ? -1 : p->id > q->id;
+}
+
+static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
+    uint8_t *rgb = malloc((size_t)r->w * r->h * 3);
+    SylEcoPlant *order = malloc((n ? n : 1) * sizeof *order);
+    if (!rgb || !order) {
+        free(rgb), free(order);
+        return SYL_ELIMIT;
+    }
+    for (size_t i = 0; i < (size_t)r->w * r->h; i++) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = r->shade[i];
+    memcpy(order, plants, n * sizeof *order);
+    qsort(order, n, sizeof *order, by_height); /* the tallest drawn last, on top */
+    for (size_t j = 0; j < n; j++) {
+        const SylEcoPlant *p = &order[j];
+        double rad = r->m->species[p->species].radius_ratio * p->height * r->scale;
+        if (rad < 0.75) rad = 0.75;
+        double cx = (p->x - r->t->x0) * r->scale, cz = (p->z - r->t->z0) * r->scale;
+        const uint8_t *c = palette[p->species % NPAL];
+        double dim = p->state == SYL_ECO_DOMINATED ? 0.6 : 1.0;
+        for (int z = (int)floor(cz - rad); z <= (int)ceil(cz + rad); z++) {
+            if (z < 0 || z >= r->h) continue;
+            for (int x = (int)floor(cx - rad); x <= (int)ceil(cx + rad); x++) {
+                if (x < 0 || x >= r->w) continue;
+                double dx = x + 0.5 - cx, dz = z + 0.5 - cz, d2 = dx * dx + dz * dz;
+                if (d2 > rad * rad) continue;
+                double lit = dim * (1.05 - 0.35 * d2 / (rad * rad)); /* a rounded crown */
+                uint8_t *o = rgb + 3 * ((size_t)z * r->w + x);
+                for (int ch = 0; ch < 3; ch++) {
+                    double v = c[ch] * lit;
+                    o[ch] = (uint8_t)(v > 255 ? 255 : v);
+                }
+            }
+        }
+    }
+    char *path = path_in(r->dir, "map-%d.png", year);
+    int st = path ? syl_write_png(path, rgb, r->w, r->h, stderr) : SYL_ELIMIT;
+    if (!st) printf("%s\n", path);
+    free(path), free(rgb), free(order);
+    return st;
+}
+
+static int write_table(Run *r, int year, const SylEcoPlant *plants, size_t n) {
+    char *path = path_in(r->dir, "plants-%d.csv", year);
+    if (!path) return SYL_ELIMIT;
+    OutFile o;
+    if (!out_open(&o, path)) {
+        free(path);
+        return SYL_EIO;
+    }
+    fprintf(o.f, "id,species,x,y,z,age,height,radius,vigour,state\n");
+    for (size_t j = 0; j < n; j++) {
+        const SylEcoPlant *p = &plants[j];
+        const SylEcoSpecies *s = &r->m->species[p->species];
+        double y = syl_terrain_factor_at(r->t, SYL_TERRAIN_ALTITUDE, p->x, p->z);
+        fprintf(o.f, "%016llx,%s,%.3f,%.3f,%.3f,%u,%.3f,%.3f,%.4f,%s\n", (unsigned long long)p->id, s->name, p->x, y,
+                p->z, p->age, p->height, s->radius_ratio * p->height, p->vigour,
+                p->state == SYL_ECO_DOMINATED ? "dominated" : "free");
+    }
+    int st = out_close(&o, SYL_OK);
+    if (!st) printf("%s\n", path);
+    free(path);
+    return st;
+}
+
+static void progress(void *user, double fraction) { cli_progress(&((Run *)user)->bar, fraction); }
+
+static int on_snapshot(void *user, int year, const SylEcoPlant *plants, size_t n) {
+    Run *r = user;
+    int st = write_table(r, year, plants, n);
+    if (!st) st = write_map(r, year, plants, n);
+    return st;
+}
+
+static int write_species_csv(Run *r) {
+    char *path = path_in(r->dir, "species.csv", 0);
+    OutFile o;
+    if (!path || !out_open(&o, path)) {
+        free(path);
+        return path ? SYL_EIO : SYL_ELIMIT;
+    }
+    fprintf(o.f, "year,species,count,cover,mean_height\n");
+    for (int y = 0; y < r->nyears; y++)
+        for (int s = 0; s < r->m->nspecies; s++)
+            fprintf(o.f, "%d,%s,%u,%.6f,%.3f\n", r->years[y].year, r->m->species[s].name, r->years[y].count[s],
+                    r->years[y].cover[s], r->years[y].mean_height[s]);
+    int st = out_close(&o, SYL_OK);
+    if (!st) printf("%s\n", path);
+    free(path);
+    return st;
+}
+
+/* The chart: each species' cover (crown area / terrain area) over the years. */
+static int write_chart(Run *r) {
+    xmlBufferPtr buf = xmlBufferCreate();
+    xmlTextWriterPtr w = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;
+    if (!w) {
+        if (buf) xmlBufferFree(buf);
+        return SYL_ELIMIT;
+    }
+    const double W = 640, H = 360, L = 60, R = 140, T = 20, B = 40;
+    double top = 0;
+    for (int y = 0; y < r->nyears; y++)
+        for (int s = 0; s < r->m->nspecies; s++)
+            if (r->years[y].cover[s] > top) top = r->years[y].cover[s];
+    top = top > 0 ? ceil(top * 10) / 10 : 1;
+    int last = r->nyears ? r->years[r->nyears - 1].year : 1;
+    char v[64];
+    xmlTextWriterSetIndent(w, 1);
+    xmlTextWriterStartDocument(w, NULL, "UTF-8", NULL);
+    xmlTextWriterStartElement(w, BAD_CAST "svg");
+    xmlTextWriterWriteAttribute(w, BAD_CAST "xmlns", BAD_CAST "http://www.w3.org/2000/svg");
+    snprintf(v, sizeof v, "%g", W);
+    xmlTextWriterWriteAttribute(w, BAD_CAST "width", BAD_CAST v);
+    snprintf(v, sizeof v, "%g", H);
+    xmlTextWriterWriteAttribute(w, BAD_CAST "height", BAD_CAST v);
+    xmlTextWriterWriteAttribute(w, BAD_CAST "font-family", BAD_CAST "sans-serif");
+    xmlTextWriterWriteAttribute(w, BAD_CAST "font-size", BAD_CAST "12");
+    xmlTextWriterStartElement(w, BAD_CAST "rect");
+    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", L);
+    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%g", T);
+    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "width", "%g", W - L - R);
+    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "height", "%g", H - T - B);
+    xmlTextWriterWriteAttribute(w, BAD_CAST "fill", BAD_CAST "none");
+    xmlTextWriterWriteAttribute(w, BAD_CAST "stroke", BAD_CAST "#444");
+    xmlTextWriterEndElement(w);
+    for (int i = 0; i <= 4; i++) { /* the axes' labels */
+        xmlTextWriterStartElement(w, BAD_CAST "text");
+        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", L - 6);
+        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%.1f", H - B - (H - T - B) * i / 4 + 4);
+        xmlTextWriterWriteAttribute(w, BAD_CAST "text-anchor", BAD_CAST "end");
+        xmlTextWriterWriteFormatString(w, "%g%%", round(top * 100 * i / 4));
+        xmlTextWriterEndElement(w);
+        xmlTextWriterStartElement(w, BAD_CAST "text");
+        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%.1f", L + (W - L - R) * i / 4);
+        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%g", H - B + 16);
+        xmlTextWriterWriteAttribute(w, BAD_CAST "text-anchor", BAD_CAST "middle");
+        xmlTextWriterWriteFormatString(w, "%d", (int)round((double)last * i / 4));
+        xmlTextWriterEndElement(w);
+    }
+    xmlTextWriterStartElement(w, BAD_CAST "text");
+    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", L + (W - L - R) / 2);
+    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%g", H - 6);
+    xmlTextWriterWriteAttribute(w, BAD_CAST "text-anchor", BAD_CAST "middle");
+    xmlTextWriterWriteString(w, BAD_CAST "year (cover: crown area / terrain area)");
+    xmlTextWriterEndElement(w);
+    for (int s = 0; s < r->m->nspecies; s++) {
+        const uint8_t *c = palette[s % NPAL];
+        char colour[16];
+        snprintf(colour, sizeof colour, "#%02x%02x%02x", c[0], c[1], c[2]);
+        xmlTextWriterStartElement(w, BAD_CAST "polyline");
+        xmlTextWriterWriteAttribute(w, BAD_CAST "fill", BAD_CAST "none");
+        xmlTextWriterWriteAttribute(w, BAD_CAST "stroke", BAD_CAST colour);
+        xmlTextWriterWriteAttribute(w, BAD_CAST "stroke-width", BAD_CAST "2");
+        xmlTextWriterStartAttribute(w, BAD_CAST "points");
+        for (int y = 0; y < r->nyears; y++)
+            xmlTextWriterWriteFormatString(w, "%s%.1f,%.1f", y ? " " : "",
+                                           L + (W - L - R) * r->years[y].year / last,
+                                           H - B - (H - T - B) * r->years[y].cover[s] / top);
+        xmlTextWriterEndAttribute(w);
+        xmlTextWriterEndElement(w);
+        xmlTextWriterStartElement(w, BAD_CAST "text");
+        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", W - R + 10);
+        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%d", (int)T + 14 + 18 * s);
+        xmlTextWriterWriteAttribute(w, BAD_CAST "fill", BAD_CAST colour);
+        xmlTextWriterWriteString(w, BAD_CAST r->m->species[s].name);
+        xmlTextWriterEndElement(w);
+    }
+    xmlTextWriterEndDocument(w);
+    xmlFreeTextWriter(w);
+    char *path = path_in(r->dir, "species.svg", 0);
+    OutFile o;
+    int st = SYL_ELIMIT;
+    if (path && out_open(&o, path)) {
+        fwrite(buf->content, 1, (size_t)buf->use, o.f);
+        st = out_close(&o, SYL_OK);
+    } else if (path)
+        st = SYL_EIO;
+    if (!st) printf("%s\n", path);
+    free(path);
+    xmlBufferFree(buf);
+    return st;
+}
+
+static int write_maps(const SylTerrain *t, const char *dir) {
+    char *maps = path_in(dir, "maps", 0);
+    int st = maps ? make_dir(maps) : SYL_ELIMIT;
+    for (int f = 0; !st && f < SYL_TERRAIN_FACTORS; f++)
+        for (int e = 0; !st && e < 2; e++) {
+            size_t len = strlen(maps) + 32;
+            char *path = malloc(len);
+            if (!path) {
+                st = SYL_ELIMIT;
+                break;
+            }
+            snprintf(path, len, "%s/%s.%s", maps, syl_terrain_factor_name((SylTerrainFactor)f), e ? "asc" : "png");
+            st = syl_terrain_write_map(t, (SylTerrainFactor)f, path, stderr);
+            if (!st) printf("%s\n", path);
+            free(path);
+        }
+    free(maps);
+    return st;
+}
+
+int cmd_ecosystem(int argc, char **argv) {
+    ModelArgs m = {0};
+    SylDeriveOptions d = {0};
+    CliArgs a = {.m = &m, .d = &d};
+    int done = cli_parse(&cli_ecosystem_command, argc, argv, &a);
+    if (done != CLI_RUN) return done;
+    if (!a.output) {
+        fprintf(stderr, "sylva: error: ecosystem needs -o DIR, the directory to write into\n");
+        return SYL_EUSAGE;
+    }
+    cli_model_spec(&m, a.files[0]);
+    int st;
+    SylProgram *p = cli_compile(&m, 1, &st);
+    if (!p) return st;
+    if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) {
+        fprintf(stderr, "sylva: error: '%s' is a %s, not an ecosystem block (name one: FILE:Model)\n",
+                syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
+        syl_program_free(p);
+        return SYL_EUSAGE;
+    }
+    static SylEcoModel model; /* 14 kB: off the stack */
+    Run r = {.dir = a.output, .m = &model};
+    SylEcoOptions o = {.years = d.steps, .snapshots = a.nsnapshots ? a.snapshots : NULL, .nsnapshots = a.nsnapshots,
+                       .tiles_x = a.tiles_x, .tiles_z = a.tiles_z, .threads = d.threads, .use_seed = d.use_seed,
+                       .seed = d.seed, .on_year = on_year, .on_snapshot = on_snapshot, .progress = progress,
+                       .user = &r, .diag = stderr};
+    SylTerrain *t = NULL;
+    SylEcoStats stats = {0};
+    /* the block and its DEM are read before the directory is made: a bad one makes none */
+    st = syl_ecosystem_load(p, &o, &model, &t);
+    r.t = t;
+    if (!st) st = make_dir(a.output);
+    if (!st) st = hillshade(&r) ? SYL_OK : SYL_ELIMIT;
+    if (!st) st = write_maps(t, a.output);
+    if (!st) {
+        cli_progress_start(&r.bar, "years");
+        st = syl_ecosystem_simulate(&model, t, &o, &stats);
+        cli_progress(&r.bar, 1);
+    }
+    if (!st) st = r.status;
+    if (!st) st = write_species_csv(&r);
+    if (!st) st = write_chart(&r);
+    if (!st && a.stats) {
+        fprintf(stderr, "plant-years: %llu\npeak plants: %zu\nbytes per plant: %zu\n",
+                (unsigned long long)stats.plant_years, stats.peak_plants, stats.bytes_per_plant);
+        fprintf(stderr, "simulation: %.3f s wall, %.3f s cpu\nplant-years per second: %.0f\n", stats.seconds,
+                stats.cpu_seconds, stats.seconds > 0 ? stats.plant_years / stats.seconds : 0);
+    }
+    free(r.years);
+    free(r.shade);
+    syl_terrain_free(t);
+    syl_program_free(p);
+    return st;
+}

@@ -1,0 +1,308 @@
+/* Reading an `ecosystem` block's directives: the block's own lines, then after each
+ * `species NAME` line the lines of that species (docs/ecosystem.md). */
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sylva/ecosystem.h"
+#include "util/closest.h"
+
+typedef struct NumInfo {
+    const char *name;
+    size_t offset;   /* in SylEcoSpecies */
+    double lo, hi, def;
+    const char *what;
+} NumInfo;
+
+#define SP(f) offsetof(SylEcoSpecies, f)
+static const NumInfo species_nums[] = {
+    {"maturity", SP(maturity), 0, 1e4, 20, "years"},
+    {"old_age", SP(old_age), 0, 1e4, 100, "years"},
+    {"max_age", SP(max_age), 1, 60000, 150, "years"},
+    {"height_max", SP(height_max), 0.01, 200, 20, "metres"},
+    {"growth_rate", SP(growth_rate), 0, 10, 0.03, "per year"},
+    {"start_height", SP(start_height), 0.001, 200, 0.3, "metres"},
+    {"radius_ratio", SP(radius_ratio), 0.001, 10, 0.25, "radius / height"},
+    {"seeds", SP(seeds), 0, 1000, 2, "per year"},
+    {"dispersal", SP(dispersal), 0, 1e4, 10, "metres"},
+    {"arrivals", SP(arrivals), 0, 1e4, 0.5, "per hectare per year"},
+    {"arrive_until", SP(arrive_until), 0, 60000, 0, "years"},
+    {"shade_tolerance", SP(shade_tolerance), 0, 1, 0.3, "a probability"},
+    {"stress_mortality", SP(stress_mortality), 0, 1, 0.05, "a probability"},
+};
+enum { NNUMS = sizeof species_nums / sizeof species_nums[0] };
+static const char *const block_words[] = {"terrain", "years", "snapshots", "seed", "latitude", "vigour", "species"};
+enum { NBLOCK = sizeof block_words / sizeof block_words[0] };
+
+static bool number_of(const SylDirArg *a, double *x) {
+    if (a->kind == SYL_DARG_NUMBER) return *x = a->num, true;
+    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *x = a->values[0], true;
+    return false;
+}
+
+/* The factor a directive names, or -1 (flow has no curve: wetness is its ecological form). */
+static int factor_named(const char *s) {
+    for (int f = 0; f < SYL_TERRAIN_FACTORS; f++)
+        if (f != SYL_TERRAIN_FLOW && !strcmp(s, syl_terrain_factor_name((SylTerrainFactor)f))) return f;
+    return -1;
+}
+
+static int number(const SylProgram *p, FILE *diag, const SylDirective *d, int i, double lo, double hi,
+                  bool whole, double *out) {
+    if (i >= d->nargs) {
+        syl_directive_error(p, diag, d, NULL, "%s needs %s value", d->name, i ? "another" : "a");
+        return 1;
+    }
+    const SylDirArg *a = &d->args[i];
+    double x;
+    if (!number_of(a, &x)) {
+        syl_directive_error(p, diag, d, a, "%s takes a number", d->name);
+        return 1;
+    }
+    if (isnan(x) || x < lo || x > hi) {
+        syl_directive_error(p, diag, d, a, "%s must be in [%g, %g], not %g", d->name, lo, hi, x);
+        return 1;
+    }
+    if (whole && x != floor(x)) {
+        syl_directive_error(p, diag, d, a, "%s takes a whole number, not %g", d->name, x);
+        return 1;
+    }
+    *out = x;
+    return 0;
+}
+
+static int arity(const SylProgram *p, FILE *diag, const SylDirective *d, int lo, int hi) {
+    if (d->nargs >= lo && d->nargs <= hi) return 0;
+    const SylDirArg *a = d->nargs > hi ? &d->args[hi] : NULL;
+    if (lo == hi) syl_directive_error(p, diag, d, a, "%s takes %d value%s", d->name, lo, lo == 1 ? "" : "s");
+    else if (hi == 3) syl_directive_error(p, diag, d, a, "%s takes an optimum, a range and maybe a falloff", d->name);
+    else syl_directive_error(p, diag, d, a, "%s takes %d to %d values", d->name, lo, hi);
+    return 1;
+}
+
+static void species_default(SylEcoSpecies *s) {
+    memset(s, 0, sizeof *s);
+    for (int i = 0; i < NNUMS; i++) *(double *)((char *)s + species_nums[i].offset) = species_nums[i].def;
+}
+
+static int read_terrain(const SylProgram *p, FILE *diag, const SylDirective *d, SylEcoModel *m) {
+    if (!d->nargs || (d->args[0].kind != SYL_DARG_STRING && d->args[0].kind != SYL_DARG_WORD)) {
+        syl_directive_error(p, diag, d, d->nargs ? &d->args[0] : NULL, "terrain takes a file name, e.g. terrain \"valley.png\"");
+        return 1;
+    }
+    snprintf(m->terrain, sizeof m->terrain, "%s", d->args[0].text);
+    int errors = 0;
+    for (int i = 1; i < d->nargs && !errors;) {
+        const SylDirArg *a = &d->args[i];
+        if (a->kind == SYL_DARG_WORD && !strcmp(a->text, "cell")) {
+            errors += number(p, diag, d, i + 1, 1e-6, 1e6, false, &m->cell);
+            i += 2;
+        } else if (a->kind == SYL_DARG_WORD && !strcmp(a->text, "heights")) {
+            errors += number(p, diag, d, i + 1, -1e6, 1e6, false, &m->height_lo);
+            if (!errors) errors += number(p, diag, d, i + 2, -1e6, 1e6, false, &m->height_hi);
+            if (!errors && m->height_hi <= m->height_lo) {
+                syl_directive_error(p, diag, d, &d->args[i + 2], "the height of white must be above that of black");
+                errors++;
+            }
+            i += 3;
+        } else {
+            static const char *const words[] = {"cell", "heights"};
+            char near[80];
+            int k = a->kind == SYL_DARG_WORD ? closest_list(a->text, words, 2, near, sizeof near) : 0;
+            syl_directive_error(p, diag, d, a, "terrain takes `cell SIZE` and `heights LO HI` after the file%s%s%s",
+                                k ? " (did you mean " : "", k ? near : "", k ? "?)" : "");
+            errors++;
+        }
+    }
+    return errors;
+}
+
+/* Whether the file holds a model called name (not the block itself). */
+static bool model_exists(const SylProgram *p, const char *name) {
+    size_t len;
+    const char *text = syl_program_source(p, &len);
+    const char *names[256];
+    char buf[8192];
+    int n = syl_list_models(syl_program_path(p), text, len, names, 256, buf, sizeof buf);
+    for (int i = 0; i < n && i < 256; i++)
+        if (!strcmp(names[i], name) && strcmp(name, syl_program_name(p))) return true;
+    return false;
+}
+
+static int unknown(const SylProgram *p, FILE *diag, const SylDirective *d, bool in_species) {
+    const char *names[NNUMS + NBLOCK + SYL_TERRAIN_FACTORS + 1];
+    int n = 0;
+    for (int i = 0; i < NBLOCK; i++) names[n++] = block_words[i];
+    names[n++] = "model";
+    for (int i = 0; i < NNUMS; i++) names[n++] = species_nums[i].name;
+    for (int f = 0; f < SYL_TERRAIN_FACTORS; f++)
+        if (f != SYL_TERRAIN_FLOW) names[n++] = syl_terrain_factor_name((SylTerrainFactor)f);
+    char near[200];
+    int k = closest_list(d->name, names, n, near, sizeof near);
+    if (k)
+        syl_directive_error(p, diag, d, NULL, "unknown ecosystem directive '%s' (did you mean %s?)", d->name, near);
+    else if (!in_species && (factor_named(d->name) >= 0 || !strcmp(d->name, "model")))
+        syl_directive_error(p, diag, d, NULL, "'%s' belongs to a species: write it after a `species NAME` line", d->name);
+    else
+        syl_directive_error(p, diag, d, NULL, "unknown ecosystem directive '%s' (docs/ecosystem.md lists them)", d->name);
+    return 1;
+}
+
+static int read_species_line(const SylProgram *p, FILE *diag, const SylDirective *d, SylEcoSpecies *s) {
+    for (int i = 0; i < NNUMS; i++)
+        if (!strcmp(d->name, species_nums[i].name)) {
+            if (arity(p, diag, d, 1, 1)) return 1;
+            return number(p, diag, d, 0, species_nums[i].lo, species_nums[i].hi, false,
+                          (double *)((char *)s + species_nums[i].offset));
+        }
+    int f = factor_named(d->name);
+    if (f >= 0) {
+        if (arity(p, diag, d, 2, 3)) return 1;
+        double lo = f == SYL_TERRAIN_ALTITUDE ? -1e5 : -1e4, hi = 1e5;
+        int e = number(p, diag, d, 0, lo, hi, false, &s->optimum[f]);
+        if (!e) e = number(p, diag, d, 1, 0, 1e5, false, &s->range[f]);
+        s->falloff[f] = s->range[f] > 0 ? s->range[f] : 1;
+        if (!e && d->nargs == 3) e = number(p, diag, d, 2, 1e-9, 1e9, false, &s->falloff[f]);
+        s->set[f] = 1;
+        return e;
+    }
+    if (!strcmp(d->name, "model")) {
+        if (arity(p, diag, d, 1, 1)) return 1;
+        const SylDirArg *a = &d->args[0];
+        if (a->kind != SYL_DARG_WORD && a->kind != SYL_DARG_STRING) {
+            syl_directive_error(p, diag, d, a, "model takes the name of a model of this file");
+            return 1;
+        }
+        if (!model_exists(p, a->text)) {
+            syl_directive_error(p, diag, d, a, "no model called '%s' in this file", a->text);
+            return 1;
+        }
+        snprintf(s->model, sizeof s->model, "%s", a->text);
+        return 0;
+    }
+    return unknown(p, diag, d, true);
+}
+
+static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *d, SylEcoModel *m) {
+    double x;
+    if (!strcmp(d->name, "terrain")) return read_terrain(p, diag, d, m);
+    if (!strcmp(d->name, "years")) {
+        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, 1, 60000, true, &x);
+        if (!e) m->years = (int)x;
+        return e;
+    }
+    if (!strcmp(d->name, "seed")) {
+        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, 0, 9007199254740991.0, true, &x);
+        if (!e) m->seed = (uint64_t)x;
+        return e;
+    }
+    if (!strcmp(d->name, "latitude")) {
+        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, -90, 90, false, &m->latitude);
+        m->latitude_set = !e;
+        return e;
+    }
+    if (!strcmp(d->name, "vigour")) {
+        static const char *const words[] = {"mean", "product", "minimum"};
+        if (arity(p, diag, d, 1, 1)) return 1;
+        for (int i = 0; i < 3; i++)
+            if (d->args[0].kind == SYL_DARG_WORD && !strcmp(d->args[0].text, words[i])) {
+                m->combine = (SylEcoCombine)i;
+                return 0;
+            }
+        syl_directive_error(p, diag, d, &d->args[0], "vigour is 'mean', 'product' or 'minimum'");
+        return 1;
+    }
+    if (!strcmp(d->name, "snapshots")) {
+        if (arity(p, diag, d, 1, SYL_ECO_MAX_SNAPSHOTS)) return 1;
+        m->nsnapshots = 0;
+        for (int i = 0; i < d->nargs; i++) {
+            if (number(p, diag, d, i, 0, 60000, true, &x)) return 1;
+            if (m->nsnapshots && x <= m->snapshots[m->nsnapshots - 1]) {
+                syl_directive_error(p, diag, d, &d->args[i], "snapshots must be increasing years");
+                return 1;
+            }
+            m->snapshots[m->nsnapshots++] = (int)x;
+        }
+        return 0;
+    }
+    return unknown(p, diag, d, false);
+}
+
+static int check_species(const SylProgram *p, FILE *diag, const SylEcoSpecies *s) {
+    int e = 0;
+    if (s->old_age < s->maturity) {
+        syl_program_error(p, diag, s->line, s->col, "species '%s': old_age (%g) is before maturity (%g)", s->name,
+                          s->old_age, s->maturity);
+        e++;
+    }
+    if (s->max_age < s->old_age) {
+        syl_program_error(p, diag, s->line, s->col, "species '%s': max_age (%g) is before old_age (%g)", s->name,
+                          s->max_age, s->old_age);
+        e++;
+    }
+    if (s->start_height > s->height_max) {
+        syl_program_error(p, diag, s->line, s->col, "species '%s': start_height (%g) is above height_max (%g)",
+                          s->name, s->start_height, s->height_max);
+        e++;
+    }
+    return e;
+}
+
+int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag) {
+    memset(m, 0, sizeof *m);
+    m->years = 100;
+    m->seed = syl_program_seed(p);
+    m->combine = SYL_ECO_MEAN;
+    int n = 0, errors = 0;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    SylEcoSpecies *cur = NULL;
+    for (int i = 0; i < n; i++) {
+        const SylDirective *d = &ds[i];
+        if (!strcmp(d->name, "species")) {
+            if (d->nargs != 1 || (d->args[0].kind != SYL_DARG_WORD && d->args[0].kind != SYL_DARG_STRING)) {
+                syl_directive_error(p, diag, d, d->nargs ? &d->args[0] : NULL, "species takes one name: species beech");
+                errors++;
+                cur = NULL;
+                continue;
+            }
+            if (m->nspecies == SYL_ECO_MAX_SPECIES) {
+                syl_directive_error(p, diag, d, NULL, "at most %d species", SYL_ECO_MAX_SPECIES);
+                return errors + 1;
+            }
+            for (int k = 0; k < m->nspecies; k++)
+                if (!strcmp(m->species[k].name, d->args[0].text)) {
+                    syl_directive_error(p, diag, d, &d->args[0], "species '%s' was already given on line %d",
+                                        d->args[0].text, m->species[k].line);
+                    errors++;
+                }
+            cur = &m->species[m->nspecies++];
+            species_default(cur);
+            snprintf(cur->name, sizeof cur->name, "%s", d->args[0].text);
+            cur->line = d->line;
+            cur->col = d->col;
+            continue;
+        }
+        bool block = false;
+        for (int k = 0; k < NBLOCK; k++) block |= !strcmp(d->name, block_words[k]);
+        if (cur && !block) errors += read_species_line(p, diag, d, cur);
+        else errors += read_block_line(p, diag, d, m);
+    }
+    for (int k = 0; k < m->nspecies; k++) errors += check_species(p, diag, &m->species[k]);
+    if (!errors && !m->terrain[0]) {
+        syl_program_error(p, diag, 0, 0, "ecosystem '%s' names no terrain (terrain \"dem.png\" cell 10 heights 0 400)",
+                          syl_program_name(p));
+        errors++;
+    }
+    if (!errors && !m->nspecies) {
+        syl_program_error(p, diag, 0, 0, "ecosystem '%s' has no species", syl_program_name(p));
+        errors++;
+    }
+    return errors;
+}
+
+int syl_ecosystem_validate(const SylProgram *p, FILE *diag) {
+    if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) return 0;
+    SylEcoModel m;
+    return syl_ecosystem_read(p, &m, diag);
+}

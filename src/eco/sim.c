@@ -1,0 +1,548 @@
+/* The simulation, one year per step and tile by tile (docs/ecosystem.md):
+ *   A. every tile posts its plants near another tile's edge to that tile (its halo);
+ *   B. every tile, on its own plants and its halo as they were at the year's start: who is
+ *      dominated (a more powerful plant's ecological circle overlaps, Deussen et al. 1998;
+ *      power v h p_r as Zamuda 2006), deaths
+ *      (age, domination, stress), growth, seeds (posted to the tile they fall in) and random
+ *      arrivals on its own cells;
+ *   C. every tile takes the seeds that fell on it, lets them germinate, and keeps its plants
+ *      sorted by id.
+ * Each decision depends only on the start-of-year state and on streams keyed by (plant id,
+ * year, purpose), so any tiling and any thread count give the same plants. */
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "eco/eco.h"
+#include "util/rng.h"
+
+typedef struct Buf {
+    SylEcoPlant *p;
+    size_t n, cap;
+} Buf;
+
+typedef struct Tile {
+    int i0, i1, k0, k1;       /* its cells: columns [i0, i1), rows [k0, k1) */
+    double x0, x1, z0, z1;    /* its rectangle */
+    Buf own, halo, born;      /* its plants (sorted by id), its neighbours' border plants, seedlings */
+    Buf *out, *border;        /* per destination tile: seeds; border plants (its halo) */
+    uint32_t *cell_start, *order; /* the spatial grid over own + halo */
+    size_t grid_cap, order_cap;
+    uint8_t *dominated;
+    size_t dom_cap;
+    int64_t area_u[SYL_ECO_MAX_SPECIES], height_u[SYL_ECO_MAX_SPECIES]; /* fixed point: exact sums */
+    uint32_t count[SYL_ECO_MAX_SPECIES];
+    uint64_t alive_start;
+    int failed;
+} Tile;
+
+typedef struct Sim {
+    const SylEcoModel *m;
+    const SylTerrain *t;
+    const SylEcoExchange *x;
+    Tile *tile;
+    int tx, tz, ntiles;
+    int *tile_of_i, *tile_of_k;
+    double halo;        /* twice the largest ecological radius any plant can reach */
+    double rel_life[SYL_ECO_MAX_SPECIES]; /* max_age / the longest max_age: Zamuda's p_r */
+    uint64_t seed;
+    int year;
+    int phase;
+    int next;           /* the next tile a worker takes */
+} Sim;
+
+static bool buf_reserve(Buf *b, size_t need) {
+    if (need <= b->cap) return true;
+    size_t cap = need + need / 8 + 64;
+    SylEcoPlant *p = realloc(b->p, cap * sizeof *p);
+    if (!p) return false;
+    b->p = p;
+    b->cap = cap;
+    return true;
+}
+
+static bool buf_push(Buf *b, const SylEcoPlant *p) {
+    if (!buf_reserve(b, b->n + 1)) return false;
+    b->p[b->n++] = *p;
+    return true;
+}
+
+static int tile_at(const Sim *s, double x, double z) {
+    const SylTerrain *t = s->t;
+    int i = (int)floor((x - t->x0) / t->cell), k = (int)floor((z - t->z0) / t->cell);
+    if (i < 0 || k < 0 || i >= t->nx || k >= t->nz) return -1;
+    return s->tile_of_k[k] * s->tx + s->tile_of_i[i];
+}
+
+static double radius_of(const Sim *s, const SylEcoPlant *p) {
+    return s->m->species[p->species].radius_ratio * p->height;
+}
+
+static int by_id(const void *a, const void *b) {
+    uint64_t x = ((const SylEcoPlant *)a)->id, y = ((const SylEcoPlant *)b)->id;
+    return x < y ? -1 : x > y;
+}
+
+/* Plant j of the grid's numbering: the tile's own, then its halo. */
+static inline const SylEcoPlant *local_at(const Tile *T, size_t j) {
+    return j < T->own.n ? &T->own.p[j] : &T->halo.p[j - T->own.n];
+}
+
+/* Phase A: the plants within the halo of another tile's rectangle go to it. */
+static void post_halo(Sim *s, int ti) {
+    Tile *T = &s->tile[ti];
+    for (int u = 0; u < s->ntiles; u++) {
+        if (u == ti) continue;
+        const Tile *U = &s->tile[u];
+        double h = s->halo;
+        if (U->x0 - h > T->x1 || U->x1 + h < T->x0 || U->z0 - h > T->z1 || U->z1 + h < T->z0) continue;
+        Buf *o = &T->border[u];
+        o->n = 0;
+        for (size_t j = 0; j < T->own.n; j++) {
+            const SylEcoPlant *p = &T->own.p[j];
+            if (p->x >= U->x0 - h && p->x <= U->x1 + h && p->z >= U->z0 - h && p->z <= U->z1 + h)
+                if (!buf_push(o, p)) T->failed = 1;
+        }
+        s->x->post(s->x->ctx, SYL_ECO_HALO, ti, u, o->p, o->n);
+    }
+}
+
+/* The spatial grid over the tile's own plants and halo: cells of size g >= twice the largest radius among them,
+ * so that overlapping circles lie in neighbouring cells. */
+typedef struct Grid {
+    double x0, z0, g;
+    int nx, nz;
+} Grid;
+
+static bool build_grid(const Sim *s, Tile *T, Grid *G) {
+    size_t n = T->own.n + T->halo.n;
+    double rmax = 0;
+    for (size_t j = 0; j < n; j++) {
+        double r = radius_of(s, local_at(T, j));
+        if (r > rmax) rmax = r;
+    }
+    G->x0 = T->x0 - s->halo;
+    G->z0 = T->z0 - s->halo;
+    double w = T->x1 - T->x0 + 2 * s->halo, d = T->z1 - T->z0 + 2 * s->halo;
+    G->g = 2 * rmax;
+    double least = sqrt(2 * w * d / (double)(n + 1)); /* about two plants per cell at most */
+    if (G->g < least) G->g = least;
+    if (G->g <= 0) G->g = 1;
+    G->nx = (int)(w / G->g) + 1;
+    G->nz = (int)(d / G->g) + 1;
+    size_t cells = (size_t)G->nx * (size_t)G->nz + 1;
+    if (cells > T->grid_cap) {
+        uint32_t *c = realloc(T->cell_start, cells * sizeof *c);
+        if (!c) return false;
+        T->cell_start = c;
+        T->grid_cap = cells;
+    }
+    if (n > T->order_cap) {
+        uint32_t *o = realloc(T->order, n * sizeof *o);
+        if (!o) return false;
+        T->order = o;
+        T->order_cap = n;
+    }
+    memset(T->cell_start, 0, cells * sizeof *T->cell_start);
+    for (size_t j = 0; j < n; j++) {
+        const SylEcoPlant *p = local_at(T, j);
+        int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
+        ci = ci < 0 ? 0 : ci >= G->nx ? G->nx - 1 : ci;
+        ck = ck < 0 ? 0 : ck >= G->nz ? G->nz - 1 : ck;
+        T->cell_start[(size_t)ck * G->nx + ci + 1]++;
+    }
+    for (size_t c = 1; c < cells; c++) T->cell_start[c] += T->cell_start[c - 1];
+    /* place each plant; cell_start[c] ends as the start of cell c + 1 */
+    for (size_t j = 0; j < n; j++) {
+        const SylEcoPlant *p = local_at(T, j);
+        int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
+        ci = ci < 0 ? 0 : ci >= G->nx ? G->nx - 1 : ci;
+        ck = ck < 0 ? 0 : ck >= G->nz ? G->nz - 1 : ck;
+        T->order[T->cell_start[(size_t)ck * G->nx + ci]++] = (uint32_t)j;
+    }
+    for (size_t c = cells - 1; c > 0; c--) T->cell_start[c] = T->cell_start[c - 1];
+    T->cell_start[0] = 0;
+    return true;
+}
+
+/* Zamuda's power, v h p_r (eq. 4.18-4.19): long-lived species outcompete short-lived ones of
+ * the same height. */
+static inline double power_of(const Sim *s, const SylEcoPlant *p) {
+    return (double)p->vigour * p->height * s->rel_life[p->species];
+}
+
+/* Whether a more powerful plant's circle overlaps p's (ties: the smaller id dominates). */
+static bool is_dominated(const Sim *s, const Tile *T, const Grid *G, const SylEcoPlant *p) {
+    double rp = radius_of(s, p), pp = power_of(s, p);
+    int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
+    for (int k = ck - 1; k <= ck + 1; k++) {
+        if (k < 0 || k >= G->nz) continue;
+        for (int i = ci - 1; i <= ci + 1; i++) {
+            if (i < 0 || i >= G->nx) continue;
+            size_t c = (size_t)k * G->nx + i;
+            for (uint32_t a = T->cell_start[c]; a < T->cell_start[c + 1]; a++) {
+                const SylEcoPlant *q = local_at(T, T->order[a]);
+                double pq = power_of(s, q);
+                if (pq < pp || (pq == pp && q->id >= p->id)) continue;
+                double dx = (double)q->x - p->x, dz = (double)q->z - p->z, rr = rp + radius_of(s, q);
+                if (dx * dx + dz * dz < rr * rr) return true;
+            }
+        }
+    }
+    return false;
+}
+
+static uint64_t child_id(uint64_t parent, int year, int k) {
+    return rng_mix(parent ^ rng_mix(((uint64_t)(unsigned)year << 20) ^ (uint64_t)(unsigned)k ^ 0x5eed000000000000ull));
+}
+
+static int poisson(Rng *r, double lambda) {
+    if (lambda <= 0) return 0;
+    if (lambda > 30) {
+        double v = lambda + sqrt(lambda) * rng_normal(r);
+        return v < 0 ? 0 : (int)floor(v + 0.5);
+    }
+    double l = exp(-lambda), p = 1;
+    int k = 0;
+    do {
+        k++;
+        p *= rng_unit(r);
+    } while (p > l);
+    return k - 1;
+}
+
+/* A seed (or an arrival) at (x, z): sent to the tile it fell on. */
+static void send_seed(Sim *s, Tile *T, uint64_t id, int species, double x, double z) {
+    int u = tile_at(s, x, z);
+    if (u < 0) return; /* off the terrain */
+    SylEcoPlant c = {.id = id, .x = (float)x, .z = (float)z, .species = (uint8_t)species};
+    if (!buf_push(&T->out[u], &c)) T->failed = 1;
+}
+
+/* Phase B. */
+static void step_tile(Sim *s, int ti) {
+    Tile *T = &s->tile[ti];
+    const SylEcoModel *m = s->m;
+    const SylTerrain *t = s->t;
+    int year = s->year;
+    /* the halo: what the neighbours posted */
+    T->halo.n = 0;
+    for (int u = 0; u < s->ntiles; u++) {
+        if (u == ti) continue;
+        size_t n;
+        const SylEcoPlant *h = s->x->take(s->x->ctx, SYL_ECO_HALO, ti, u, &n);
+        if (!n) continue;
+        if (!buf_reserve(&T->halo, T->halo.n + n)) {
+            T->failed = 1;
+            return;
+        }
+        memcpy(T->halo.p + T->halo.n, h, n * sizeof *h);
+        T->halo.n += n;
+    }
+    Grid G;
+    if (T->own.n > T->dom_cap) {
+        uint8_t *d = realloc(T->dominated, T->own.n);
+        if (!d) {
+            T->failed = 1;
+            return;
+        }
+        T->dominated = d;
+        T->dom_cap = T->own.n;
+    }
+    if (!build_grid(s, T, &G)) {
+        T->failed = 1;
+        return;
+    }
+    for (size_t j = 0; j < T->own.n; j++) T->dominated[j] = is_dominated(s, T, &G, &T->own.p[j]);
+    T->alive_start = T->own.n;
+    for (int u = 0; u < s->ntiles; u++) T->out[u].n = 0;
+    /* deaths, growth and seeds */
+    size_t kept = 0;
+    for (size_t j = 0; j < T->own.n; j++) {
+        SylEcoPlant p = T->own.p[j];
+        const SylEcoSpecies *sp = &m->species[p.species];
+        bool dom = T->dominated[j];
+        Rng life = rng_stream(s->seed, 0, ECO_RNG_LIFE, p.id);
+        double lifespan = sp->old_age + (sp->max_age - sp->old_age) * rng_unit(&life);
+        double spread = 0.8 + 0.4 * rng_unit(&life); /* the plant's own growth rate, ±20 % */
+        p.age = p.age < 65535 ? (uint16_t)(p.age + 1) : p.age;
+        if (p.age > lifespan) continue;
+        if (dom) {
+            Rng r = rng_stream(s->seed, (uint64_t)year, ECO_RNG_SHADE, p.id);
+            if (rng_unit(&r) >= sp->shade_tolerance) continue;
+        }
+        Rng r = rng_stream(s->seed, (uint64_t)year, ECO_RNG_STRESS, p.id);
+        if (rng_unit(&r) < sp->stress_mortality * (1 - p.vigour)) continue;
+        p.state = dom ? SYL_ECO_DOMINATED : SYL_ECO_FREE;
+        if (!dom && p.age <= sp->old_age) {
+            double h = p.height + p.vigour * spread * sp->growth_rate * (sp->height_max - p.height);
+            p.height = (float)(h < sp->height_max ? h : sp->height_max);
+        }
+        if (!dom && p.age >= sp->maturity && sp->seeds > 0) {
+            Rng q = rng_stream(s->seed, (uint64_t)year, ECO_RNG_SEEDS, p.id);
+            int n = (int)floor(sp->seeds * p.vigour + rng_unit(&q));
+            for (int k = 0; k < n; k++) {
+                double dx = rng_normal(&q) * sp->dispersal, dz = rng_normal(&q) * sp->dispersal;
+                if (dx * dx + dz * dz > 9 * sp->dispersal * sp->dispersal) continue; /* the 3σ cutoff */
+                send_seed(s, T, child_id(p.id, year, k), p.species, p.x + dx, p.z + dz);
+            }
+        }
+        T->own.p[kept++] = p;
+    }
+    T->own.n = kept;
+    /* random arrivals on the tile's own cells */
+    double cell_ha = t->cell * t->cell / 1e4;
+    for (int k = T->k0; k < T->k1; k++)
+        for (int i = T->i0; i < T->i1; i++) {
+            uint64_t cell = (uint64_t)k * (uint64_t)t->nx + (uint64_t)i;
+            for (int sp = 0; sp < m->nspecies; sp++) {
+                const SylEcoSpecies *S = &m->species[sp];
+                if (S->arrivals <= 0 || (S->arrive_until > 0 && year > S->arrive_until)) continue;
+                Rng r = rng_stream(s->seed, (uint64_t)year, ECO_RNG_ARRIVE, cell * SYL_ECO_MAX_SPECIES + (uint64_t)sp);
+                int n = poisson(&r, S->arrivals * cell_ha);
+                for (int a = 0; a < n; a++) {
+                    double x = t->x0 + (i + rng_unit(&r)) * t->cell, z = t->z0 + (k + rng_unit(&r)) * t->cell;
+                    uint64_t id = rng_mix(rng_mix(cell ^ ((uint64_t)(unsigned)year << 40)) ^
+                                          ((uint64_t)sp << 24 | (uint64_t)a) ^ 0xa771a1000000000ull);
+                    send_seed(s, T, id, sp, x, z);
+                }
+            }
+        }
+    for (int u = 0; u < s->ntiles; u++) s->x->post(s->x->ctx, SYL_ECO_SEEDS, ti, u, T->out[u].p, T->out[u].n);
+}
+
+/* Phase C. */
+static void settle_tile(Sim *s, int ti) {
+    Tile *T = &s->tile[ti];
+    const SylEcoModel *m = s->m;
+    const SylTerrain *t = s->t;
+    T->born.n = 0;
+    for (int u = 0; u < s->ntiles; u++) {
+        size_t n;
+        const SylEcoPlant *in = s->x->take(s->x->ctx, SYL_ECO_SEEDS, ti, u, &n);
+        for (size_t j = 0; j < n; j++) {
+            SylEcoPlant c = in[j];
+            int i = (int)floor((c.x - t->x0) / t->cell), k = (int)floor((c.z - t->z0) / t->cell);
+            if (i < 0 || k < 0 || i >= t->nx || k >= t->nz || !t->valid[(size_t)k * t->nx + i]) continue;
+            double v = syl_ecosystem_vigour(m, c.species, t, c.x, c.z);
+            Rng r = rng_stream(s->seed, (uint64_t)s->year, ECO_RNG_GERMINATE, c.id);
+            if (rng_unit(&r) >= v) continue;
+            c.vigour = (float)v;
+            c.height = (float)m->species[c.species].start_height;
+            c.age = 0;
+            c.state = SYL_ECO_FREE;
+            if (!buf_push(&T->born, &c)) T->failed = 1;
+        }
+    }
+    if (T->born.n > 1) qsort(T->born.p, T->born.n, sizeof *T->born.p, by_id);
+    /* merge the sorted newborns into the sorted survivors, from the back, in place (an id
+     * met twice — two hashes alike — is kept once) */
+    if (!buf_reserve(&T->own, T->own.n + T->born.n)) {
+        T->failed = 1;
+        return;
+    }
+    size_t a = T->own.n, b = T->born.n, w = T->own.n + T->born.n;
+    while (b > 0) {
+        if (a > 0 && T->own.p[a - 1].id > T->born.p[b - 1].id) T->own.p[--w] = T->own.p[--a];
+        else if (a > 0 && T->own.p[a - 1].id == T->born.p[b - 1].id) b--;
+        else T->own.p[--w] = T->born.p[--b];
+    }
+    if (w > a) { /* duplicates dropped: close the gap */
+        memmove(T->own.p + a, T->own.p + w, (T->own.n + T->born.n - w) * sizeof *T->own.p);
+    }
+    T->own.n = a + (T->own.n + T->born.n - w);
+    memset(T->count, 0, sizeof T->count);
+    memset(T->area_u, 0, sizeof T->area_u);
+    memset(T->height_u, 0, sizeof T->height_u);
+    for (size_t j = 0; j < T->own.n; j++) {
+        const SylEcoPlant *p = &T->own.p[j];
+        double r = radius_of(s, p);
+        T->count[p->species]++;
+        T->area_u[p->species] += llround(M_PI * r * r * 1e4); /* cm² */
+        T->height_u[p->species] += llround(p->height * 1e3); /* mm */
+    }
+}
+
+static void run_phase(Sim *s, int ti) {
+    if (s->phase == 0) post_halo(s, ti);
+    else if (s->phase == 1) step_tile(s, ti);
+    else settle_tile(s, ti);
+}
+
+static void *worker(void *arg) {
+    Sim *s = arg;
+    for (;;) {
+        int ti = __atomic_fetch_add(&s->next, 1, __ATOMIC_RELAXED);
+        if (ti >= s->ntiles) return NULL;
+        run_phase(s, ti);
+    }
+}
+
+static void parallel(Sim *s, int phase, int threads) {
+    s->phase = phase;
+    s->next = 0;
+    pthread_t th[64];
+    int n = threads < s->ntiles ? threads : s->ntiles, started = 0;
+    if (n > 64) n = 64;
+    for (int i = 1; i < n; i++)
+        if (!pthread_create(&th[started], NULL, worker, s)) started++;
+    worker(s);
+    for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
+    s->x->barrier(s->x->ctx);
+}
+
+static int gather(Sim *s, Buf *all) {
+    size_t n = 0;
+    for (int ti = 0; ti < s->ntiles; ti++) n += s->tile[ti].own.n;
+    if (!buf_reserve(all, n)) return SYL_ELIMIT;
+    all->n = 0;
+    for (int ti = 0; ti < s->ntiles; ti++) {
+        if (s->tile[ti].own.n) memcpy(all->p + all->n, s->tile[ti].own.p, s->tile[ti].own.n * sizeof *all->p);
+        all->n += s->tile[ti].own.n;
+    }
+    if (all->n > 1) qsort(all->p, all->n, sizeof *all->p, by_id);
+    return SYL_OK;
+}
+
+static double cpu_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+static double wall_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static size_t tile_bytes(const Tile *T, int ntiles) {
+    size_t b = (T->own.cap + T->halo.cap + T->born.cap) * sizeof(SylEcoPlant) +
+               (T->grid_cap + T->order_cap) * sizeof(uint32_t) + T->dom_cap;
+    for (int u = 0; u < ntiles; u++) b += (T->out[u].cap + T->border[u].cap) * sizeof(SylEcoPlant);
+    return b;
+}
+
+int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylEcoOptions *o, SylEcoStats *stats) {
+    double w0 = wall_now(), c0 = cpu_now();
+    Sim s = {.m = m, .t = t, .seed = o->use_seed ? o->seed : m->seed};
+    s.tx = o->tiles_x > 0 ? o->tiles_x : 1;
+    s.tz = o->tiles_z > 0 ? o->tiles_z : 1;
+    if (s.tx > t->nx || s.tz > t->nz) {
+        if (o->diag)
+            fprintf(o->diag, "sylva: error: %d x %d tiles on a terrain of %d x %d cells: at most one tile per cell\n",
+                    s.tx, s.tz, t->nx, t->nz);
+        return SYL_EUSAGE;
+    }
+    s.ntiles = s.tx * s.tz;
+    int years = o->years > 0 ? o->years : m->years;
+    const int *snaps = o->snapshots ? o->snapshots : m->snapshots;
+    int nsnaps = o->snapshots ? o->nsnapshots : m->nsnapshots;
+    for (int i = 0; i < m->nspecies; i++) {
+        double r = 2 * m->species[i].radius_ratio * m->species[i].height_max;
+        if (r > s.halo) s.halo = r;
+    }
+    double longest = 0;
+    for (int i = 0; i < m->nspecies; i++)
+        if (m->species[i].max_age > longest) longest = m->species[i].max_age;
+    for (int i = 0; i < m->nspecies; i++) s.rel_life[i] = m->species[i].max_age / longest;
+    int threads = o->threads > 0 ? o->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+    if (threads < 1) threads = 1;
+    SylEcoExchange local_ops;
+    EcoLocal *local = NULL;
+    if (o->exchange) s.x = o->exchange;
+    else {
+        local = eco_local_new(s.ntiles, &local_ops);
+        s.x = &local_ops;
+    }
+    s.tile = calloc((size_t)s.ntiles, sizeof *s.tile);
+    s.tile_of_i = malloc((size_t)t->nx * sizeof(int));
+    s.tile_of_k = malloc((size_t)t->nz * sizeof(int));
+    int st = SYL_OK;
+    if (!s.tile || !s.tile_of_i || !s.tile_of_k || (!o->exchange && !local)) st = SYL_ELIMIT;
+    for (int ti = 0; !st && ti < s.ntiles; ti++) {
+        Tile *T = &s.tile[ti];
+        int a = ti % s.tx, b = ti / s.tx;
+        T->i0 = (int)((long)t->nx * a / s.tx);
+        T->i1 = (int)((long)t->nx * (a + 1) / s.tx);
+        T->k0 = (int)((long)t->nz * b / s.tz);
+        T->k1 = (int)((long)t->nz * (b + 1) / s.tz);
+        T->x0 = t->x0 + T->i0 * t->cell;
+        T->x1 = t->x0 + T->i1 * t->cell;
+        T->z0 = t->z0 + T->k0 * t->cell;
+        T->z1 = t->z0 + T->k1 * t->cell;
+        for (int i = T->i0; i < T->i1; i++) s.tile_of_i[i] = a;
+        for (int k = T->k0; k < T->k1; k++) s.tile_of_k[k] = b;
+        T->out = calloc((size_t)s.ntiles, sizeof *T->out);
+        T->border = calloc((size_t)s.ntiles, sizeof *T->border);
+        if (!T->out || !T->border) st = SYL_ELIMIT;
+    }
+    Buf all = {0};
+    SylEcoYear yr;
+    size_t peak = 0, peak_bytes = 0;
+    uint64_t plant_years = 0;
+    int snap = 0;
+    while (snap < nsnaps && snaps[snap] < 1) snap++; /* year 0 is bare ground */
+    for (int y = 1; !st && y <= years; y++) {
+        s.year = y;
+        for (int ph = 0; ph < 3; ph++) parallel(&s, ph, threads);
+        memset(&yr, 0, sizeof yr);
+        yr.year = y;
+        size_t alive = 0;
+        int64_t area[SYL_ECO_MAX_SPECIES] = {0}, height[SYL_ECO_MAX_SPECIES] = {0};
+        size_t bytes = 0;
+        for (int ti = 0; ti < s.ntiles; ti++) {
+            Tile *T = &s.tile[ti];
+            if (T->failed) st = SYL_ELIMIT;
+            plant_years += T->alive_start;
+            alive += T->own.n;
+            bytes += tile_bytes(T, s.ntiles);
+            for (int sp = 0; sp < m->nspecies; sp++) {
+                yr.count[sp] += T->count[sp];
+                area[sp] += T->area_u[sp];
+                height[sp] += T->height_u[sp];
+            }
+        }
+        if (!st && o->max_plants && alive > o->max_plants) {
+            if (o->diag)
+                fprintf(o->diag, "sylva: error: year %d: %zu plants, more than the limit of %llu\n", y, alive,
+                        (unsigned long long)o->max_plants);
+            st = SYL_ELIMIT;
+        }
+        if (st) break;
+        double terrain_area = (double)t->nx * t->nz * t->cell * t->cell;
+        for (int sp = 0; sp < m->nspecies; sp++) {
+            yr.cover[sp] = (double)area[sp] * 1e-4 / terrain_area;
+            yr.mean_height[sp] = yr.count[sp] ? (double)height[sp] * 1e-3 / yr.count[sp] : 0;
+        }
+        if (alive > peak) peak = alive;
+        if (alive && alive >= peak) peak_bytes = bytes;
+        if (o->on_year) o->on_year(o->user, &yr);
+        while (snap < nsnaps && snaps[snap] == y) {
+            st = gather(&s, &all);
+            if (!st && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
+            snap++;
+        }
+        if (o->progress) o->progress(o->user, (double)y / years);
+    }
+    if (stats) {
+        stats->plant_years = plant_years;
+        stats->peak_plants = peak;
+        stats->bytes_per_plant = peak ? peak_bytes / peak : 0;
+        stats->seconds = wall_now() - w0;
+        stats->cpu_seconds = cpu_now() - c0;
+    }
+    for (int ti = 0; s.tile && ti < s.ntiles; ti++) {
+        Tile *T = &s.tile[ti];
+        free(T->own.p), free(T->halo.p), free(T->born.p);
+        for (int u = 0; T->out && u < s.ntiles; u++) free(T->out[u].p);
+        for (int u = 0; T->border && u < s.ntiles; u++) free(T->border[u].p);
+        free(T->out), free(T->border), free(T->cell_start), free(T->order), free(T->dominated);
+    }
+    free(all.p);
+    free(s.tile), free(s.tile_of_i), free(s.tile_of_k);
+    eco_local_free(local);
+    return st;
+}
