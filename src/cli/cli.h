@@ -24,6 +24,7 @@ typedef struct ModelArgs {
     int nsets;
     uint64_t max_metamers, max_buds; /* --max-metamers, --max-buds (grow blocks, scenes) */
     float age;         /* --age (strands blocks); 0: full grown */
+    int levels;        /* --levels (weber blocks); 0: the block's Levels */
     bool warned;       /* its warnings were printed (cli_compile) */
 } ModelArgs;
 

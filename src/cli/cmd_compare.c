@@ -430,6 +430,7 @@ int cmd_compare(int argc, char **argv) {
         memcpy(cols[i].args.sets, m.sets, sizeof m.sets);
         cols[i].args.nsets = m.nsets;
         cols[i].args.age = m.age; /* --age: every strands block of the line-up */
+        cols[i].args.levels = m.levels; /* --levels: every weber block's */
         cols[i].runs = calloc((size_t)nruns, sizeof *cols[i].runs);
         if (!cols[i].runs) status = SYL_ELIMIT;
     }

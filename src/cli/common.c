@@ -165,7 +165,7 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     cli_progress_start(&bar, out->grown ? "growing" : "deriving");
     SylPlantOptions po = {.use_steps = d->steps >= 0, .steps = d->steps, .use_seed = d->use_seed, .seed = d->seed,
                           .threads = d->threads, .max_modules = d->max_modules, .max_memory = d->max_memory,
-                          .max_work = d->max_work, .max_metamers = m->max_metamers, .max_buds = m->max_buds, .age = m->age,
+                          .max_work = d->max_work, .max_metamers = m->max_metamers, .max_buds = m->max_buds, .age = m->age, .levels = m->levels,
                           .budget = d->budget, .until = mo ? SYL_PLANT_MESH : SYL_PLANT_SKELETON,
                           .drop_string = 1, .scene = !m->model, .mesh = mo, .diag = stderr,
                           .progress = cli_progress, .user = &bar};

@@ -147,6 +147,10 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                      "strands blocks: the tree at age T in (0, 1], with T^2 of its\n"
                      "strands and T^2 of its trunk length (default 1, full grown)",
                      CLI_REAL, MODEL(age), 1e-6, 1},
+    [CLI_OPT_LEVELS] = {"levels", 0, "N",
+                        "weber blocks: build only the first N stem levels, without leaves\n"
+                        "(default: the block's Levels)",
+                        CLI_INT, MODEL(levels), 1, 10},
     /* what is written */
     [CLI_OPT_OUTPUT] = {"output", 'o', "FILE", "write to FILE instead of standard output", CLI_TEXT, ARGS(output)},
     [CLI_OPT_OUT] = {"out", 0, "DIR", "where to write (default: out)", CLI_TEXT, ARGS(dir)},
@@ -230,5 +234,5 @@ const CliUse cli_limits[] = {
 const CliUse cli_grow_limits[] = {{.option = CLI_OPT_MAX_METAMERS}, {.option = CLI_OPT_MAX_BUDS}, {0}};
 const CliUse cli_derive_uses[] = {
     {.option = CLI_OPT_DERIVE}, {.option = CLI_OPT_SEED}, {.option = CLI_OPT_SET},
-    {.option = CLI_OPT_THREADS}, {.option = CLI_OPT_AGE}, {.group = cli_limits}, {0},
+    {.option = CLI_OPT_THREADS}, {.option = CLI_OPT_AGE}, {.option = CLI_OPT_LEVELS}, {.group = cli_limits}, {0},
 };

@@ -101,6 +101,7 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     g->leaves = (int)w->Leaves;
     if (opt && opt->levels > 0 && opt->levels < g->levels) g->levels = opt->levels, g->leaves = 0;
     g->seed = opt && opt->use_seed ? opt->seed : w->seed;
+    if (opt) g->seed += opt->seed_offset; /* a scene's n-th plant of a row: a tree of its own */
     g->leaf_len = w->LeafScale / sqrt(w->LeafQuality);
     g->leaf_width = w->LeafScale * w->LeafScaleX / sqrt(w->LeafQuality);
     WeberEnvelope env = {0};
