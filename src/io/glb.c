@@ -205,14 +205,13 @@ static void json_materials(IoBuf *js, const Layout *l) {
 
 /* Accessors: per mesh the three attributes, then each group's range of indices; per
  * instance set its TRANSLATION, ROTATION and SCALE. */
-static void json_accessors(IoBuf *js, Layout *l) {
+static void json_accessors(IoBuf *js, const Layout *l) {
     io_printf(js, ",\"accessors\":[");
     static const char *const types[3] = {"VEC3", "VEC3", "VEC2"};
     int n = 0;
     for (int k = 0; k < l->nmeshes; k++) {
         const SylMesh *m = l->mesh[k];
         const float *data[3] = {m->pos, m->nrm, m->uv};
-        l->first_accessor[k] = n;
         for (int a = 0; a < 3; a++, n++) {
             io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
                       l->first_view[k] + a, FLOAT, m->nverts, types[a]);
@@ -225,7 +224,6 @@ static void json_accessors(IoBuf *js, Layout *l) {
                       l->wide[k] ? UNSIGNED_INT : UNSIGNED_SHORT, m->groups[g].count);
     }
     for (int i = 0; i < l->nsets; i++) {
-        l->set_accessor[i] = n;
         static const char *const ttypes[3] = {"VEC3", "VEC4", "VEC3"};
         for (int a = 0; a < 3; a++, n++)
             io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
@@ -275,7 +273,7 @@ static void json_nodes(IoBuf *js, const Layout *l, const char *name) {
 }
 
 /* The JSON chunk, padded with spaces; without geometry, a scene with one empty node. */
-static void write_json(IoBuf *js, const SylMesh *m, Layout *l) {
+static void write_json(IoBuf *js, const SylMesh *m, const Layout *l) {
     const char *name = m->name[0] ? m->name : "plant";
     io_printf(js, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"Sylva\"}");
     if (l->nsets) io_printf(js, ",\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]");
@@ -361,8 +359,12 @@ int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, c
     if (!l.views) l.bin.failed = true;
     for (int k = 0; k < l.nmeshes && l.views; k++) layout_attributes(l.mesh[k], &l, k);
     if (l.views) layout_instances(&l);
-    int mat = 0;
-    for (int k = 0; k < l.nmeshes; k++) l.first_material[k] = mat, mat += l.mesh[k]->ngroups;
+    int mat = 0, acc = 0; /* numbering, before the JSON refers to it */
+    for (int k = 0; k < l.nmeshes; k++) {
+        l.first_material[k] = mat, mat += l.mesh[k]->ngroups;
+        l.first_accessor[k] = acc, acc += 3 + l.mesh[k]->ngroups;
+    }
+    for (int i = 0; i < l.nsets; i++) l.set_accessor[i] = acc, acc += 3;
     if (l.views) layout_textures(&l);
     pad(&l.bin, 0);
     if (l.views) write_json(&js, m, &l);
