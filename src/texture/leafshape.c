@@ -33,7 +33,10 @@ bool syl_leaf_inside(int shape, float s, float t) {
     float w;
     switch (shape) {
     case SYL_LEAF_LINEAR: w = 0.35f * sqrtf(sinf(PI * s)); break;                     /* a strap */
-    case SYL_LEAF_CORDATE: w = fminf(1, 1.8f * sqrtf(s)) * powf(1 - s, 1.1f); break; /* notch at the base */
+    case SYL_LEAF_CORDATE: /* heart: two rounded lobes either side of a notch at the petiole */
+        if (s < 0.18f && fabsf(t) < 0.3f * (1 - s / 0.18f)) return false;
+        w = (s < 0.3f ? sqrtf(1 - (0.3f - s) * (0.3f - s) / 0.09f) : 1) * powf(1 - s, 1.2f) * 1.25f;
+        break;
     case SYL_LEAF_MAPLE: return lobed(s, t, 0.45f, 5, 0.45f, 0.5f);
     case SYL_LEAF_PALMATE: return lobed(s, t, 0.4f, 7, 0.7f, 0.7f);
     default: w = powf(sinf(PI * powf(s, 0.75f)), 0.9f); break; /* ovate: widest below the middle */
