@@ -29,11 +29,16 @@ typedef struct SylMesh {
     SylMaterial materials[256];
     int nmaterials;
     char name[64];
+    uint8_t leaves, leaf_shape; /* SYL_LEAVES_* it was made with; for cards, the shape drawn */
     SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
     uint64_t charged;
 } SylMesh;
 
 enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };
+/* How leaves are made (docs/mesh.md#leaves): copied blades; one alpha-tested card each; or
+ * left out of the mesh, to be placed as instances of one leaf (syl_leaf_instances). */
+enum { SYL_LEAVES_MESH, SYL_LEAVES_CARDS, SYL_LEAVES_INSTANCED, SYL_LEAVES_INSTANCED_CARDS, SYL_LEAVES_MODES };
+extern const char *const syl_leaves_names[SYL_LEAVES_MODES]; /* "mesh", "cards", ... */
 
 typedef struct SylMeshOptions {
     int sides;            /* around a cylinder; 0: 8 */
@@ -42,6 +47,8 @@ typedef struct SylMeshOptions {
     float pipe_exponent;  /* 0: 2.0 (da Vinci) */
     float tip_radius;     /* pipe model: radius of a tip; 0: the mean of the model's tips */
     int caps;             /* close axis ends (default on: set -1 for off) */
+    int leaves;           /* SYL_LEAVES_*: the instanced modes leave leaves out */
+    int leaf_shape;       /* cards: SYL_LEAF_* (texture.h) drawn in the card's alpha */
     int threads;          /* <= 0: all cores; the mesh never depends on it */
     FILE *diag;           /* where problems are reported; NULL: nowhere */
     /* The mesh's size is estimated before anything is allocated: beyond the memory budget
@@ -59,12 +66,32 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src);
  * model's, or the pipe model's. SYL_EMODEL when a parent does not precede its child. */
 int syl_mesh_radii(const SylSkeleton *s, const SylMeshOptions *opt, float *radius);
 
+/* Copies of one prototype mesh placed by translation, rotation (unit quaternion x, y, z, w)
+ * and scale, as glTF's EXT_mesh_gpu_instancing wants them: a vertex p of the prototype is at
+ * T + R (S p). For leaves, and for anything else written many times (a forest's trees). */
+typedef struct SylInstances {
+    SylMesh *proto;
+    size_t count;
+    float *t, *r, *s; /* 3, 4 and 3 floats per instance */
+    char name[64];
+} SylInstances;
+
+/* The leaves of s as instances: one set per leaf material, the prototype a leaf of size 1
+ * at the origin along +x, across +y, facing +z (a blade for SYL_LEAVES_INSTANCED, a card for
+ * SYL_LEAVES_INSTANCED_CARDS; opt->leaves picks). *n sets in *out, in material order; a leaf
+ * the mesher would drop (no size, no frame) is left out too. SYL_OK or SYL_ELIMIT. */
+int syl_leaf_instances(const SylSkeleton *s, const SylMeshOptions *opt, SylInstances **out, int *n);
+void syl_instances_free(SylInstances *sets, int n);
+
 /* Files (docs/mesh.md). Each writes to a temporary file and renames it, so a failure leaves
  * nothing; a symlink is followed, a FIFO or device written through (docs/cli.md#output-files).
  * OBJ writes its textures (PNG) beside the file; GLB embeds them. */
 int syl_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
 int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
+/* m and n sets of instances in one .glb: each set a node with EXT_mesh_gpu_instancing (in
+ * extensionsUsed only: a viewer without it shows the prototype once, at the origin). */
+int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag);
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
 
 enum { SYL_TEXTURE_SIZE = 512 };

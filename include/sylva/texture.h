@@ -23,6 +23,16 @@ bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out);
 /* "bark", "leaf", "flower", "grass" (kind -1); NULL for kinds without a texture. */
 const char *syl_texture_name(int kind);
 
+/* Leaf shapes for alpha-tested cards (docs/mesh.md#leaf-cards). A shape fills the card:
+ * s runs from the leaf's base (0) to its tip (1), t across (-1..1, main vein at 0). */
+enum { SYL_LEAF_OVATE, SYL_LEAF_LINEAR, SYL_LEAF_CORDATE, SYL_LEAF_MAPLE, SYL_LEAF_PALMATE, SYL_LEAF_SHAPES };
+extern const char *const syl_leaf_shape_names[SYL_LEAF_SHAPES]; /* "ovate", ... */
+int syl_leaf_shape_named(const char *name);                      /* -1: no such shape */
+bool syl_leaf_inside(int shape, float s, float t);
+/* size x size RGBA: the leaf texture (white-based, as syl_texture) with the shape's
+ * coverage in alpha; x is u (across), y is v (base at row 0). False when out of memory. */
+bool syl_leaf_card(int shape, int size, uint8_t *rgba);
+
 /* Write width x height RGB (rows top to bottom) as a PNG. path "-": standard output;
  * otherwise as the mesh writers (mesh.h). */
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);

@@ -23,6 +23,8 @@ const CliCommand cli_mesh_command = {
         {.option = CLI_OPT_RADIUS},
         {.option = CLI_OPT_TIP},
         {.option = CLI_OPT_NO_CAPS},
+        {.option = CLI_OPT_LEAVES},
+        {.option = CLI_OPT_LEAF_SHAPE},
         {.option = CLI_OPT_STATS},
         {.group = cli_derive_uses},
         {0},
@@ -49,6 +51,12 @@ int cmd_mesh(int argc, char **argv) {
         fprintf(stderr, "sylva: error: cannot tell the format of '%s': name it *.glb, *.obj or *.ply\n", output);
         return SYL_EUSAGE;
     }
+    bool instanced = mo.leaves == SYL_LEAVES_INSTANCED || mo.leaves == SYL_LEAVES_INSTANCED_CARDS;
+    if (instanced && strcasecmp(dot, ".glb")) {
+        fprintf(stderr, "sylva: error: --leaves %s needs a .glb (OBJ and PLY cannot instance)\n",
+                syl_leaves_names[mo.leaves]);
+        return SYL_EUSAGE;
+    }
     mo.threads = d.threads;
     cli_model_spec(&m, a.files[0]);
     SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
@@ -63,13 +71,24 @@ int cmd_mesh(int argc, char **argv) {
     const SylSkeleton *sk = pl.sk;
     const SylMesh *mesh = pl.mesh;
     double t3 = cli_now();
-    status = syl_write_mesh(mesh, output, stderr);
+    SylInstances *sets = NULL;
+    int nsets = 0;
+    size_t instances = 0;
+    if (instanced) {
+        status = syl_leaf_instances(sk, &mo, &sets, &nsets);
+        if (status) fprintf(stderr, "sylva: error: out of memory placing the leaves\n");
+        for (int i = 0; i < nsets; i++) instances += sets[i].count;
+    }
+    if (!status) status = instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
+                                    : syl_write_mesh(mesh, output, stderr);
+    syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && stats) {
         size_t tris = mesh->nidx / 3;
         fprintf(stderr, "modules: %zu\nnodes: %zu\norgans: %zu\npolygons: %zu\n", pl.modules, sk->nnodes,
                 sk->norgans, sk->npolys);
         fprintf(stderr, "vertices: %zu\ntriangles: %zu\nmaterial groups: %d\n", mesh->nverts, tris, mesh->ngroups);
+        if (instanced) fprintf(stderr, "leaf instances: %zu\n", instances);
         fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", pl.derive_s, pl.turtle_s,
                 pl.mesh_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);

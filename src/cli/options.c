@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "sylva/texture.h"
 
 static bool read_seed(CliArgs *a, char *arg) {
     double v;
@@ -39,6 +40,26 @@ static bool read_radius(CliArgs *a, char *arg) {
         return true;
     }
     fprintf(stderr, "sylva: error: --radius expects model, pipe or pipe:EXPONENT, not '%s'\n", arg);
+    return false;
+}
+
+static bool read_leaves(CliArgs *a, char *arg) {
+    for (int k = 0; k < SYL_LEAVES_MODES; k++)
+        if (!strcmp(arg, syl_leaves_names[k])) {
+            a->mo->leaves = k;
+            return true;
+        }
+    fprintf(stderr, "sylva: error: --leaves expects mesh, cards, instanced or instanced-cards, not '%s'\n", arg);
+    return false;
+}
+
+static bool read_leaf_shape(CliArgs *a, char *arg) {
+    int k = syl_leaf_shape_named(arg);
+    if (k >= 0) {
+        a->mo->leaf_shape = k;
+        return true;
+    }
+    fprintf(stderr, "sylva: error: --leaf-shape expects ovate, linear, cordate, maple or palmate, not '%s'\n", arg);
     return false;
 }
 
@@ -192,6 +213,15 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_TIP] = {"tip", 0, "R", "pipe model: the radius of a tip (default: the model's mean)", CLI_REAL,
                      MESH(tip_radius), 1e-9, 1e9},
     [CLI_OPT_NO_CAPS] = {"no-caps", 0, NULL, "leave the ends of the tubes open", CLI_CHOICE, MESH(caps), .value = -1},
+    [CLI_OPT_LEAVES] = {"leaves", 0, "MODE",
+                        "mesh (copied blades, default), cards (one alpha-tested quad each),\n"
+                        "instanced or instanced-cards (one leaf placed by EXT_mesh_gpu_instancing;\n"
+                        ".glb only)",
+                        CLI_READ, .read = read_leaves},
+    [CLI_OPT_LEAF_SHAPE] = {"leaf-shape", 0, "NAME",
+                            "the silhouette in a card's alpha: ovate (default), linear, cordate,\n"
+                            "maple or palmate",
+                            CLI_READ, .read = read_leaf_shape},
     /* the rest */
     [CLI_OPT_STATS] = {"stats", 0, NULL, "print counts and times to stderr", CLI_FLAG, ARGS(stats)},
     [CLI_OPT_WERROR] = {"werror", 0, NULL, "treat warnings as errors", CLI_FLAG, ARGS(werror)},

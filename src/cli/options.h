@@ -22,7 +22,7 @@ typedef enum CliOptionId {
     CLI_OPT_OUTPUT, CLI_OPT_OUT, CLI_OPT_IMAGE, CLI_OPT_FORMAT, CLI_OPT_CSV, CLI_OPT_JSON,
     CLI_OPT_STEPS, CLI_OPT_INTERPRET, CLI_OPT_QUIET,
     CLI_OPT_VIEW, CLI_OPT_SIZE, CLI_OPT_SAMPLES, CLI_OPT_AO, CLI_OPT_NO_SHADOWS,
-    CLI_OPT_SIDES, CLI_OPT_MIN_SIDES, CLI_OPT_RADIUS, CLI_OPT_TIP, CLI_OPT_NO_CAPS,
+    CLI_OPT_SIDES, CLI_OPT_MIN_SIDES, CLI_OPT_RADIUS, CLI_OPT_TIP, CLI_OPT_NO_CAPS, CLI_OPT_LEAVES, CLI_OPT_LEAF_SHAPE,
     CLI_OPT_STATS, CLI_OPT_WERROR, CLI_OPT_DUMP,
     /* sylva terrain */
     CLI_OPT_MAPS, CLI_OPT_CELL, CLI_OPT_HEIGHTS, CLI_OPT_LATITUDE, CLI_OPT_SUN_DAYS, CLI_OPT_SUN_MINUTES,
@@ -41,7 +41,7 @@ enum { CLI_FORMAT_NONE, CLI_FORMAT_CSV, CLI_FORMAT_JSON }; /* --format, --csv, -
 typedef struct CliArgs {
     struct ModelArgs *m;     /* --set, --max-metamers, --max-buds */
     SylDeriveOptions *d;     /* -n, --seed, -j, --max-modules, --max-memory, --max-work, --years */
-    SylMeshOptions *mo;      /* --sides, --min-sides, --radius, --tip, --no-caps */
+    SylMeshOptions *mo;      /* --sides, --min-sides, --radius, --tip, --no-caps, --leaves, --leaf-shape */
     SylRenderOptions *ro;    /* --view, --size, --samples, --ao, --no-shadows */
     const char *output, *dir, *image; /* -o, --out, --image */
     int format, seeds;       /* CLI_FORMAT_*; --seeds */

@@ -41,5 +41,6 @@ const char *io_texture_kind(const SylMesh *m, int material);
 
 /* Encode size x size RGB as PNG into b. */
 bool io_png(IoBuf *b, const uint8_t *rgb, int size);
+bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int size); /* with alpha (leaf cards) */
 
 #endif

@@ -5,6 +5,28 @@
 #include "io/io_internal.h"
 #include "sylva/texture.h"
 
+/* PREFIX_leafcard.png: the card texture, RGBA. */
+static int write_card(int shape, const char *prefix, char *path, size_t n, FILE *diag) {
+    const int size = SYL_TEXTURE_SIZE;
+    uint8_t *rgba = malloc((size_t)size * size * 4);
+    IoBuf b = {0};
+    snprintf(path, n, "%s_leafcard.png", prefix);
+    int status = SYL_OK;
+    if (!rgba || !syl_leaf_card(shape, size, rgba) || !io_png_rgba(&b, rgba, size)) {
+        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        status = SYL_ELIMIT;
+    }
+    OutFile fo;
+    if (!status && !io_open(&fo, path, diag)) status = SYL_EIO;
+    if (!status) {
+        fwrite(b.data, 1, b.len, fo.f);
+        status = io_close(&fo, status, diag);
+    }
+    io_free(&b);
+    free(rgba);
+    return status;
+}
+
 int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
     static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
     const int size = SYL_TEXTURE_SIZE;
@@ -30,6 +52,10 @@ int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
             status = SYL_ELIMIT;
         }
     }
+    bool card = false;
+    for (int g = 0; m && g < m->ngroups; g++)
+        card |= m->materials[m->groups[g].material].kind == SYL_MATERIAL_LEAF && m->leaves == SYL_LEAVES_CARDS;
+    if (card && !status) status = write_card(m->leaf_shape, prefix, path, n, diag);
     free(img);
     free(path);
     return status;

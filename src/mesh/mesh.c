@@ -653,6 +653,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     if (status) return status;
     MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
+    pl.leaves = o.leaves;
     SylMesh *m = calloc(1, sizeof *m);
     float *rad = NULL;
     if (!m) goto oom;
@@ -707,6 +708,8 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     memcpy(m->materials, s->materials, sizeof m->materials);
     m->nmaterials = s->nmaterials;
     snprintf(m->name, sizeof m->name, "%s", s->name);
+    m->leaves = (uint8_t)o.leaves;
+    m->leaf_shape = (uint8_t)o.leaf_shape;
     emit_all(&pl, m, o.threads > 0 ? o.threads : ncpu());
     goto done;
 oom_plan:

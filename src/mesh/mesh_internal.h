@@ -58,7 +58,7 @@ typedef struct MeshTrig {
 
 typedef struct MeshPlan {
     const SylSkeleton *skel;
-    int sides, min_sides, sphere_stacks;
+    int sides, min_sides, sphere_stacks, leaves;
     bool caps;
     MeshPt *pts;
     size_t npts, pts_cap;
@@ -81,6 +81,11 @@ bool mesh_reserve(void **arr, size_t *cap, size_t n, size_t more, size_t elem);
 /* Add a run of tris triangles of material mat. */
 bool mesh_add_run(MeshPlan *pl, uint8_t mat, uint32_t tris);
 const MeshTrig *mesh_trig(MeshPlan *pl, int sides);
+
+/* An organ's unit frame (H along, L across, U = H x L); false when it has none or no size. */
+bool mesh_organ_frame(const SylOrgan *o, float h[3], float l[3], float u[3]);
+/* The half width of a leaf per unit of length (the blade's or the skeleton's oval). */
+float mesh_leaf_width(const SylSkeleton *s);
 
 /* Organs and polygons (shapes.c). Planning adds items and runs; emission fills them. */
 bool mesh_plan_shapes(MeshPlan *pl);

@@ -28,7 +28,7 @@ enum { BLADE_V = 16, BLADE_T = 16, PETALS = 5, NEEDLE_V = 7, NEEDLE_T = 4 };
 #define PETAL_TILT 0.45f  /* radians towards H */
 #define NEEDLE_WIDTH 0.03f
 
-static bool organ_frame(const SylOrgan *o, vec3 h, vec3 l, vec3 u) {
+bool mesh_organ_frame(const SylOrgan *o, float h[3], float l[3], float u[3]) {
     if (!(o->size > 0) || !isfinite(o->size) || !isfinite(o->pos[0]) || !isfinite(o->pos[1]) ||
         !isfinite(o->pos[2]))
         return false;
@@ -55,14 +55,18 @@ static int oval_tris(const SylSkeleton *s) {
     return s->leaf_tris >= 1 && s->leaf_tris <= 64 && s->leaf_width > 0 && isfinite(s->leaf_width) ? s->leaf_tris : 0;
 }
 
+float mesh_leaf_width(const SylSkeleton *s) { return oval_tris(s) ? s->leaf_width : LEAF_WIDTH; }
+
 static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts, uint32_t *tris) {
     vec3 h, l, u;
     *verts = *tris = 0;
-    if (!organ_frame(o, h, l, u)) return;
+    if (!mesh_organ_frame(o, h, l, u)) return;
     uint32_t st = (uint32_t)pl->sphere_stacks, sl = (uint32_t)pl->sides;
     switch (o->kind) {
     case SYL_KIND_LEAF:
-        if (oval_tris(pl->skel)) *verts = 2 * (uint32_t)(oval_tris(pl->skel) + 2), *tris = 2 * (uint32_t)oval_tris(pl->skel);
+        if (pl->leaves == SYL_LEAVES_INSTANCED || pl->leaves == SYL_LEAVES_INSTANCED_CARDS) break; /* placed apart */
+        if (pl->leaves == SYL_LEAVES_CARDS) *verts = 4, *tris = 2;
+        else if (oval_tris(pl->skel)) *verts = 2 * (uint32_t)(oval_tris(pl->skel) + 2), *tris = 2 * (uint32_t)oval_tris(pl->skel);
         else *verts = BLADE_V, *tris = BLADE_T;
         break;
     case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T; break;
@@ -289,13 +293,30 @@ static void oval(Out *o, const float *origin, const vec3 x, const vec3 y, float 
     }
 }
 
+/* A card over the leaf's rectangle, one face: its material is double-sided (two faces would
+ * fight for the same depth), and the texture's alpha draws the leaf. */
+static void card(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w) {
+    vec3 nf;
+    glm_vec3_cross((float *)x, (float *)y, nf);
+    glm_vec3_normalize(nf);
+    static const float corner[4][2] = {{0, -1}, {1, -1}, {1, 1}, {0, 1}}; /* along, across */
+    uint32_t f[4];
+    for (int i = 0; i < 4; i++) {
+        float p[3];
+        for (int q = 0; q < 3; q++) p[q] = origin[q] + corner[i][0] * len * x[q] + corner[i][1] * w * y[q];
+        f[i] = put(o, p, nf, 0.5f + 0.5f * corner[i][1], corner[i][0]);
+    }
+    tri(o, f[0], f[1], f[2]), tri(o, f[0], f[2], f[3]);
+}
+
 static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
     vec3 h, l, u;
-    organ_frame(og, h, l, u);
+    mesh_organ_frame(og, h, l, u);
     const float *c = og->pos, size = og->size;
     switch (og->kind) {
     case SYL_KIND_LEAF:
-        if (oval_tris(pl->skel)) oval(o, c, h, l, size, pl->skel->leaf_width * size, oval_tris(pl->skel));
+        if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(pl->skel) * size);
+        else if (oval_tris(pl->skel)) oval(o, c, h, l, size, pl->skel->leaf_width * size, oval_tris(pl->skel));
         else blade(o, c, h, l, size, LEAF_WIDTH * size);
         break;
     case SYL_KIND_FLOWER:

@@ -51,7 +51,7 @@ static const char *example(const CliOption *o, char *buf, size_t n) {
     static const struct { const char *arg, *value; } reads[] = {
         {"S", "1"}, {"NAME=VALUE", "k=1"}, {"V", "top"}, {"WxH", "8x8"},
         {"csv|json", "json"}, {"model|pipe[:EXP]", "pipe:3"}, {"N", "1"},
-        {"LO,HI", "0,1"}, {"Y1,Y2,..", "10,20"}, {"NxM", "3x2"},
+        {"LO,HI", "0,1"}, {"Y1,Y2,..", "10,20"}, {"NxM", "3x2"}, {"MODE", "cards"}, {"NAME", "maple"},
     };
     switch (o->kind) {
     case CLI_FLAG:

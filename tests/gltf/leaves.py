@@ -1,0 +1,198 @@
+#!/usr/bin/env python3
+"""Independent checks of Sylva's leaf modes, reading the .glb files with nothing but the
+glTF 2.0 and EXT_mesh_gpu_instancing specifications (and the PNG one, via zlib).
+
+  leaves.py DIR   (DIR holds the files tests/run-leaves made)
+
+One line per check, "ok NAME" or "FAIL NAME: why"; the last line counts them."""
+import json, math, os, struct, sys, zlib
+
+D = sys.argv[1]
+results = []
+
+
+def check(name, cond, why=""):
+    results.append(bool(cond))
+    print(("ok " if cond else "FAIL ") + name + ("" if cond else ": " + why))
+
+
+def glb(path):
+    b = open(path, "rb").read()
+    magic, version, total = struct.unpack_from("<III", b, 0)
+    assert magic == 0x46546C67 and version == 2 and total == len(b)
+    jlen, jtype = struct.unpack_from("<II", b, 12)
+    js = json.loads(b[20:20 + jlen])
+    blen, _ = struct.unpack_from("<II", b, 20 + jlen)
+    return js, b[28 + jlen:28 + jlen + blen]
+
+
+SIZE = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
+FMT = {5126: "f", 5125: "I", 5123: "H"}
+
+
+def accessor(js, bin_, i):
+    a = js["accessors"][i]
+    v = js["bufferViews"][a["bufferView"]]
+    k, f = SIZE[a["type"]], FMT[a["componentType"]]
+    off = v.get("byteOffset", 0) + a.get("byteOffset", 0)
+    flat = struct.unpack_from("<%d%s" % (a["count"] * k, f), bin_, off)
+    return [flat[j * k:(j + 1) * k] for j in range(a["count"])] if k > 1 else list(flat)
+
+
+def leaf_material(js, m):
+    return js["materials"][m]["name"].startswith("leaf")
+
+
+def rotate(q, p):  # unit quaternion (x, y, z, w) applied to p
+    x, y, z, w = q
+    tx, ty, tz = 2 * (y * p[2] - z * p[1]), 2 * (z * p[0] - x * p[2]), 2 * (x * p[1] - y * p[0])
+    return (p[0] + w * tx + y * tz - z * ty, p[1] + w * ty + z * tx - x * tz, p[2] + w * tz + x * ty - y * tx)
+
+
+def leaf_vertices(js, bin_, mesh):
+    """Positions of the vertices the leaf primitives of a mesh use, in vertex order."""
+    used = set()
+    pos = None
+    for p in js["meshes"][mesh]["primitives"]:
+        if leaf_material(js, p["material"]):
+            used.update(accessor(js, bin_, p["indices"]))
+            pos = accessor(js, bin_, p["attributes"]["POSITION"])
+    return [pos[i] for i in sorted(used)] if pos else []
+
+
+def instances(js, bin_):
+    """(prototype leaf positions, T, R, S) per instanced node."""
+    out = []
+    for n in js["nodes"]:
+        ext = n.get("extensions", {}).get("EXT_mesh_gpu_instancing")
+        if ext:
+            at = ext["attributes"]
+            out.append((leaf_vertices(js, bin_, n["mesh"]), accessor(js, bin_, at["TRANSLATION"]),
+                        accessor(js, bin_, at["ROTATION"]), accessor(js, bin_, at["SCALE"])))
+    return out
+
+
+def png_rgba(data):
+    """Decode an 8-bit RGBA, non-interlaced PNG."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    p, idat, w = 8, b"", 0
+    while p < len(data):
+        n, t = struct.unpack_from(">I4s", data, p)
+        c = data[p + 8:p + 8 + n]
+        if t == b"IHDR":
+            w, h, depth, ctype = struct.unpack_from(">IIBB", c)
+            assert depth == 8 and ctype == 6, "not RGBA8"
+        elif t == b"IDAT":
+            idat += c
+        p += 12 + n
+    raw, rows, prev, bpp, q = zlib.decompress(idat), [], bytearray(w * 4), 4, 0
+    for _ in range(h):
+        f, line = raw[q], bytearray(raw[q + 1:q + 1 + w * 4])
+        q += 1 + w * 4
+        for i in range(len(line)):
+            a = line[i - bpp] if i >= bpp else 0
+            b, c = prev[i], prev[i - bpp] if i >= bpp else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line)
+        prev = line
+    return w, h, rows
+
+
+def skeleton_leaves(path):
+    return sum(1 for line in open(path) if line.rstrip().endswith(",leaf"))
+
+
+# 1. instances: count, and the transforms put the prototype where the copied leaves are
+copied_js, copied_bin = glb(os.path.join(D, "mesh.glb"))
+inst_js, inst_bin = glb(os.path.join(D, "instanced.glb"))
+sets = instances(inst_js, inst_bin)
+nleaves = skeleton_leaves(os.path.join(D, "skeleton.csv"))
+count = sum(len(t) for _, t, _, _ in sets)
+check("instance count equals the skeleton's leaves", count == nleaves > 0, "%d instances, %d leaves" % (count, nleaves))
+check("extension in extensionsUsed, not extensionsRequired",
+      "EXT_mesh_gpu_instancing" in inst_js.get("extensionsUsed", []) and
+      "EXT_mesh_gpu_instancing" not in inst_js.get("extensionsRequired", []))
+moved = []
+for proto, T, R, S in sets:
+    for t, r, s in zip(T, R, S):
+        check_unit = abs(math.sqrt(sum(c * c for c in r)) - 1) < 1e-5
+        if not check_unit: moved = None; break
+        moved += [tuple(t[k] + v[k] for k in range(3)) for v in (rotate(r, (p[0] * s[0], p[1] * s[1], p[2] * s[2])) for p in proto)]
+    if moved is None: break
+copied = leaf_vertices(copied_js, copied_bin, 0)
+err = max((max(abs(a[k] - b[k]) for k in range(3)) for a, b in zip(moved, copied)), default=math.inf) if moved else math.inf
+scale = max(max(abs(c) for c in p) for p in copied) if copied else 1
+check("instances reproduce the copied leaves' vertices", moved and len(moved) == len(copied) and err <= 1e-5 * scale,
+      "%s moved, %d copied, max error %g" % (len(moved) if moved else "no", len(copied), err))
+check("instanced file has no copied leaves", not leaf_vertices(inst_js, inst_bin, 0))
+
+# 2. the size of the leaves: instance data and the prototype against the copied leaves
+def leaf_bytes(js, mesh):
+    n = 0
+    for p in js["meshes"][mesh]["primitives"]:
+        if leaf_material(js, p["material"]):
+            n += js["accessors"][p["indices"]]["count"] * (2 if js["accessors"][p["indices"]]["componentType"] == 5123 else 4)
+    return n + len(leaf_vertices(js, copied_bin if js is copied_js else inst_bin, mesh)) * 32
+copied_leaf = leaf_bytes(copied_js, 0)
+inst_leaf = 40 * count + sum(len(p) * 32 for p, _, _, _ in sets)
+check("instanced leaves take <= 1/4 of the copied leaves' bytes", inst_leaf * 4 <= copied_leaf,
+      "%d vs %d" % (inst_leaf, copied_leaf))
+print("note: files %d (copied) and %d (instanced) bytes, ratio %.3f" % (
+    os.path.getsize(os.path.join(D, "mesh.glb")), os.path.getsize(os.path.join(D, "instanced.glb")),
+    os.path.getsize(os.path.join(D, "instanced.glb")) / os.path.getsize(os.path.join(D, "mesh.glb"))))
+
+# 3. cards: material, one quad per leaf, and the alpha is the leaf's silhouette
+def ovate(s): return math.sin(math.pi * s ** 0.75) ** 0.9
+for name, instanced in (("cards.glb", False), ("instanced-cards.glb", True)):
+    js, bin_ = glb(os.path.join(D, name))
+    mats = [m for m in js["materials"] if m["name"].startswith("leaf")]
+    check(name + ": leaf material is alpha-tested and double-sided",
+          mats and all(m.get("alphaMode") == "MASK" and 0 < m.get("alphaCutoff", 0.5) < 1 and m.get("doubleSided")
+                       for m in mats))
+    if instanced:
+        protos = [p for p, _, _, _ in instances(js, bin_)]
+        check(name + ": the prototype is one quad", protos and all(len(p) == 4 for p in protos))
+    else:
+        check(name + ": one quad per leaf", len(leaf_vertices(js, bin_, 0)) == 4 * nleaves)
+    tex = js["materials"][js["materials"].index(mats[0])]["pbrMetallicRoughness"]["baseColorTexture"]["index"]
+    view = js["bufferViews"][js["images"][js["textures"][tex]["source"]]["bufferView"]]
+    w, h, rows = png_rgba(bin_[view.get("byteOffset", 0):view.get("byteOffset", 0) + view["byteLength"]])
+    if name == "cards.glb":
+        # every texel whose square lies wholly outside the ovate outline is 0; wholly inside, 255
+        bad = 0
+        for y in range(h):
+            s0, s1 = y / h, (y + 1) / h
+            ws = [ovate(s0 + (s1 - s0) * i / 8) for i in range(9)]
+            lo, hi = min(ws) - 0.02, max(ws) + 0.02  # the outline's range over the row, with slack
+            for x in range(w):
+                a = rows[y][4 * x + 3]
+                t0, t1 = abs(2 * x / w - 1), abs(2 * (x + 1) / w - 1)
+                tn, tf = (0 if (2 * x / w - 1) * (2 * (x + 1) / w - 1) <= 0 else min(t0, t1)), max(t0, t1)
+                if tn > hi and a != 0: bad += 1
+                if tf < lo and 0 < s0 and s1 < 1 and a != 255: bad += 1
+        check("cards: alpha 0 outside the ovate outline, 255 inside", bad == 0, "%d texels wrong" % bad)
+        area = sum(ovate((i + 0.5) / 2000) for i in range(2000)) / 2000  # of the card, by quadrature
+        cover = sum(r[4 * x + 3] for r in rows for x in range(w)) / (255 * w * h)
+        check("cards: coverage is the ovate leaf's area", abs(cover - area) < 0.01, "%.4f vs %.4f" % (cover, area))
+
+# 4. indices: 16-bit up to 65,535 vertices, 32-bit above, and within range
+for name in ("u16.glb", "u32.glb"):
+    js, bin_ = glb(os.path.join(D, name))
+    ok = True
+    for m in js["meshes"]:
+        for p in m["primitives"]:
+            nv = js["accessors"][p["attributes"]["POSITION"]]["count"]
+            ia = js["accessors"][p["indices"]]
+            want = 5123 if nv <= 65535 else 5125
+            ok &= ia["componentType"] == want and max(accessor(js, bin_, p["indices"])) < nv
+    nv0 = js["accessors"][js["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]["count"]
+    check("%s: %d vertices, the smallest index type that holds them" % (name, nv0),
+          ok and (nv0 <= 65535) == (name == "u16.glb"))
+
+print("leaves: %d passed, %d failed" % (sum(results), len(results) - sum(results)))
+sys.exit(0 if all(results) else 1)
