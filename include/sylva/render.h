@@ -36,6 +36,9 @@ typedef struct SylRenderOptions {
      * Otherwise to this mesh: an animation fits them to its last frame once, so every frame
      * is seen by one camera over one ground (sylva animate). */
     const SylMesh *frame;
+    /* NULL, or width * height bytes: each pixel's coverage, 255 times the share of its
+     * samples whose camera ray hit the mesh (not the ground or the sky) — a silhouette. */
+    uint8_t *alpha;
 } SylRenderOptions;
 
 /* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "sylva/lod.h"
 
 static bool read_seed(CliArgs *a, char *arg) {
     double v;
@@ -186,6 +187,9 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_FPS] = {"fps", 0, "N", "frames per second of the video (default 4)", CLI_INT, ARGS(fps), 1, 120},
     [CLI_OPT_FRAMES_PER_STEP] = {"frames-per-step", 0, "N", "frames that show each step or year (default 1)",
                                  CLI_INT, ARGS(frames_per_step), 1, 1000},
+    /* sylva mesh */
+    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
+                     SYL_LOD_MAX},
 };
 
 const CliUse cli_limits[] = {

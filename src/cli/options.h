@@ -29,6 +29,8 @@ typedef enum CliOptionId {
     CLI_OPT_WIND_FROM, CLI_OPT_WIND_DISTANCE,
     /* sylva animate */
     CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
+    /* sylva mesh: levels of detail */
+    CLI_OPT_LOD,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -52,6 +54,7 @@ typedef struct CliArgs {
     double heights[2];
     bool heights_set;
     int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
+    int lod;                 /* sylva mesh: --lod */
     char **files;            /* the arguments after the options: the models */
     int nfiles;
 } CliArgs;

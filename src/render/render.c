@@ -292,6 +292,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t
     s->width = width;
     s->height = height;
     s->out = rgb;
+    s->alpha = opt->alpha;
     int threads = opt->threads > 0 ? opt->threads : cpu_count();
     if (threads > 256) threads = 256;
     set_sampling(s, opt);

@@ -30,6 +30,7 @@ typedef struct Scene {
     float sub[MAX_SAMPLES][2];  /* sub-pixel sample positions */
     uint8_t lut[4097];          /* linear 0..1 in 4096 steps -> sRGB byte */
     uint8_t *out;
+    uint8_t *alpha;             /* NULL, or coverage per pixel */
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
     /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */

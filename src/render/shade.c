@@ -134,7 +134,7 @@ static inline void set_ray16(struct RTCRay16 *r, int l, const float o[3], const 
 }
 
 /* Render the pixels of the block at (x0, y0) into acc (linear light, summed over samples). */
-static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
+static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int hits[LANES]) {
     const RenderCamera *cam = &s->cam;
     _Alignas(64) int valid[LANES], lit[LANES], open_valid[LANES];
     _Alignas(64) struct RTCRayHit16 rh;
@@ -148,6 +148,7 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
     coherent.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcInitIntersectContext(&incoherent);
     memset(acc, 0, LANES * sizeof *acc);
+    memset(hits, 0, LANES * sizeof *hits);
     for (int k = 0; k < s->samples; k++) {
         /* Camera rays, and the ground by hand (a plane: tfar stops Embree there). */
         for (int l = 0; l < LANES; l++) {
@@ -176,7 +177,7 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
             direct[l] = 0;
             if (!valid[l]) continue;
             Surface *f = &sf[l];
-            if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) mesh_surface(s, &rh, l, dirs[l], f);
+            if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) mesh_surface(s, &rh, l, dirs[l], f), hits[l]++;
             else if (rh.ray.tfar[l] < INFINITY) {
                 ground_surface(s, rh.ray.tfar[l], dirs[l], f);
                 sky(dirs[l], f->bg);
@@ -250,13 +251,16 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
 void render_tile(const Scene *s, int tile) {
     int x0 = (tile % s->tiles_x) * TILE, y0 = (tile / s->tiles_x) * TILE;
     float acc[LANES][3];
+    int hits[LANES];
     float inv = 1.0f / (float)s->samples;
     for (int by = y0; by < y0 + TILE && by < s->height; by += BLOCK)
         for (int bx = x0; bx < x0 + TILE && bx < s->width; bx += BLOCK) {
-            render_block(s, bx, by, acc);
+            render_block(s, bx, by, acc, hits);
             for (int l = 0; l < LANES; l++) {
                 int x = bx + l % BLOCK, y = by + l / BLOCK;
                 if (x >= s->width || y >= s->height) continue;
+                if (s->alpha) /* coverage: the share of the pixel's samples that saw the plant */
+                    s->alpha[(size_t)y * (size_t)s->width + (size_t)x] = (uint8_t)((255 * hits[l] + s->samples / 2) / s->samples);
                 uint8_t *o = s->out + 3 * ((size_t)y * (size_t)s->width + (size_t)x);
                 for (int c = 0; c < 3; c++) {
                     float v = acc[l][c] * inv;
