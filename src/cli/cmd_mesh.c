@@ -28,6 +28,8 @@ const CliCommand cli_mesh_command = {
         {.option = CLI_OPT_TIP},
         {.option = CLI_OPT_NO_CAPS},
         {.option = CLI_OPT_LOD},
+        {.option = CLI_OPT_IMAGE, .help = "with --lod, also render LOD0 .. LODN side by side (256 x 256\n"
+                                           "each, one camera) into the PNG FILE"},
         {.option = CLI_OPT_STATS, .help = "print counts and times to stderr; with --lod, each level's\n"
                                           "triangles and silhouette error"},
         {.group = cli_derive_uses},
@@ -82,6 +84,7 @@ int cmd_mesh(int argc, char **argv) {
     double t3 = cli_now();
     if (!status) status = a.lod ? syl_write_glb_lods(&lods, output, stderr) : syl_write_mesh(mesh, output, stderr);
     double t4 = cli_now();
+    if (!status && a.image && lods.n) status = lod_picture(&lods, a.image, 256, d.threads);
     if (!status && stats) {
         size_t tris = mesh->nidx / 3;
         fprintf(stderr, "modules: %zu\nnodes: %zu\norgans: %zu\npolygons: %zu\n", pl.modules, sk->nnodes,
@@ -94,9 +97,9 @@ int cmd_mesh(int argc, char **argv) {
         for (int k = 1; k < lods.n; k++) {
             LodSilhouette sil;
             if (lod_silhouette(&lods, k, d.threads, &sil)) break;
-            fprintf(stderr, "LOD%d: %zu triangles (%.2f%%), max order %d, leaves %.0f%% x %.2f, silhouette error %.2f%% at %d px\n",
+            fprintf(stderr, "LOD%d: %zu triangles (%.2f%%), max order %d, leaves %.0f%% x %.2f, silhouette error %.2f%% (coverage %.2f%%) at %d px\n",
                     k, lods.level[k].mesh->nidx / 3, 100.0 * (double)lods.level[k].mesh->nidx / (double)(mesh->nidx ? mesh->nidx : 1),
-                    lods.level[k].max_order, 100.0 * lods.level[k].leaf_keep, lods.level[k].leaf_scale, sil.percent, sil.pixels);
+                    lods.level[k].max_order, 100.0 * lods.level[k].leaf_keep, lods.level[k].leaf_scale, sil.percent, sil.soft, sil.pixels);
         }
         fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
     }

@@ -8,10 +8,13 @@
 #include "sylva/lod.h"
 #include "util/rng.h"
 
-/* Each level drops one more branch order and thicker twigs; leaves halve until a quarter
- * (the 2x cap on their size); triangles shrink to about 30% of the level above. */
+/* Each level drops one more branch order and thicker twigs; leaves halve, growing by
+ * 1/sqrt(share) up to 2x (beyond a quarter of them, the foliage thins); triangles go to
+ * these shares of LOD0's. */
 static const float radius_share[SYL_LOD_MAX + 1] = {0, 0.02f, 0.05f, 0.1f, 0.16f, 0.22f, 0.3f, 0.4f, 0.5f};
-static const double tri_share = 0.3;
+static const double tri_share[SYL_LOD_MAX + 1] = {1, 0.45, 0.15, 0.045, 0.02, 0.01, 0.005, 0.0025, 0.00125};
+/* Unity's default switch points, then halving; below the last level's, the plant is culled. */
+static const float switch_at[SYL_LOD_MAX + 1] = {0.6f, 0.3f, 0.12f, 0.05f, 0.025f, 0.0125f, 0.006f, 0.003f, 0.0015f};
 
 static bool thinned_kind(int kind) {
     return kind == SYL_KIND_LEAF || kind == SYL_KIND_NEEDLE || kind == SYL_KIND_FLOWER;
@@ -97,10 +100,9 @@ static void free_copy(SylSkeleton *t) {
 static void plan_level(SylLodLevel *lv, int k, int levels, int top_order, float rmax) {
     lv->max_order = top_order - k > 0 ? top_order - k : 0;
     lv->min_radius = radius_share[k] * rmax;
-    float q = powf(0.5f, (float)k);
-    lv->leaf_keep = q < 0.25f ? 0.25f : q;
+    lv->leaf_keep = powf(0.5f, (float)k);
     lv->leaf_scale = fminf(2.0f, 1 / sqrtf(lv->leaf_keep));
-    lv->coverage = k == levels ? 0.005f : 0.5f * powf(0.4f, (float)k);
+    lv->coverage = k == levels ? fminf(0.01f, switch_at[k]) : switch_at[k];
 }
 
 int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0, int levels, SylLodChain *out) {
@@ -117,7 +119,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (radius[i] > rmax) rmax = radius[i];
     }
     if (!status) status = syl_mesh_optimize(lod0);
-    out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1, .coverage = 0.5f};
+    out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1, .coverage = switch_at[0]};
     out->n = 1;
     size_t tris0 = lod0->nidx / 3;
     int sides = mo->sides > 0 ? mo->sides : 8;
@@ -135,7 +137,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         free_copy(&t);
         if (status) break;
         size_t tris = lv->mesh->nidx / 3;
-        double want = (double)tris0 * pow(tri_share, k);
+        double want = (double)tris0 * tri_share[k];
         double ratio = tris ? want / (double)tris : 1;
         status = syl_mesh_simplify(lv->mesh, ratio, 0.004f * powf(3, (float)(k - 1)), &lv->error);
         snprintf(lv->mesh->name, sizeof lv->mesh->name, "%s", lod0->name);
