@@ -28,6 +28,13 @@ typedef struct SylLodLevel {
 typedef struct SylLodChain {
     int n;              /* levels: LOD0 .. LOD(n-1) */
     SylLodLevel level[SYL_LOD_MAX + 1];
+    /* A last level drawn with a picture (an impostor's billboards; not freed here): its
+     * material atlas_material becomes an alpha-tested (MASK) material textured with
+     * atlas, atlas_w x atlas_h RGBA; extras (JSON object text, may be NULL) goes in its
+     * node's extras. */
+    const uint8_t *atlas;
+    int atlas_w, atlas_h, atlas_material;
+    const char *extras;
 } SylLodChain;
 
 /* Build levels 1..levels (1 to SYL_LOD_MAX) from s, meshed with mo as lod0 was. lod0 is
@@ -35,6 +42,9 @@ typedef struct SylLodChain {
  * SYL_EUSAGE. The chain does not depend on mo->threads. */
 int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0, int levels, SylLodChain *out);
 void syl_lod_free(SylLodChain *c);
+/* The screen coverage at which level k of a chain of levels + 1 hands over to the next (for
+ * k = levels: where the plant is culled). */
+float syl_lod_coverage(int k, int levels);
 
 /* The .glb of a chain: nodes NAME_LOD0 .. NAME_LODn, MSFT_lod on LOD0 (docs/mesh.md). */
 int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag);

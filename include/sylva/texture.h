@@ -26,6 +26,8 @@ const char *syl_texture_name(int kind);
 /* Write width x height RGB (rows top to bottom) as a PNG. path "-": standard output;
  * otherwise as the mesh writers (mesh.h). */
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
+/* The same with an alpha channel: 4 bytes a pixel. */
+int syl_write_png_rgba(const char *path, const uint8_t *rgba, int width, int height, FILE *diag);
 
 #ifdef __cplusplus
 }

@@ -190,6 +190,12 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     /* sylva mesh */
     [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
                      SYL_LOD_MAX},
+    [CLI_OPT_IMPOSTOR] = {"impostor", 0, NULL,
+                          "bake an octahedral impostor (8 x 8 views of 256 x 256) into\n"
+                          "NAME_impostor.png and NAME_impostor_normal.png; the last level\n"
+                          "becomes crossed billboards", CLI_FLAG, ARGS(impostor)},
+    [CLI_OPT_BILLBOARDS] = {"billboards", 0, "K", "the last level is K crossed billboards (2 to 4; default 3)", CLI_INT,
+                            ARGS(billboards), 2, 4},
 };
 
 const CliUse cli_limits[] = {

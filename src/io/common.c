@@ -163,6 +163,25 @@ bool io_png(IoBuf *b, const uint8_t *rgb, int size) {
     return ok;
 }
 
+bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int w, int h) {
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_quiet, png_no_warning);
+    if (!png) return false;
+    png_infop info = png_create_info_struct(png);
+    volatile bool ok = false;
+    if (info && !setjmp(png_jmpbuf(png))) {
+        png_set_write_fn(png, b, png_mem_write, png_mem_flush);
+        png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
+                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+        png_set_compression_level(png, 6);
+        png_write_info(png, info);
+        for (int y = 0; y < h; y++) png_write_row(png, (png_const_bytep)(rgba + (size_t)y * (size_t)w * 4));
+        png_write_end(png, info);
+        ok = !b->failed;
+    }
+    png_destroy_write_struct(&png, info ? &info : NULL);
+    return ok;
+}
+
 /* ---- by extension ---- */
 
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag) {

@@ -74,6 +74,7 @@ typedef struct GlbScene {
     int nparts;
     float coverage[GLB_MAX_MESHES]; /* MSFT_screencoverage, when lods */
     bool lods;
+    const SylLodChain *chain;       /* its atlas and extras (last part), or NULL */
 } GlbScene;
 
 /* The BIN chunk and how it is cut into buffer views: each mesh's attributes and indices,
@@ -83,7 +84,8 @@ typedef struct Layout {
     View views[4 * GLB_MAX_MESHES + 3];
     int nviews;
     int first_view[GLB_MAX_MESHES];     /* of each mesh's four views (-1: no geometry) */
-    int tex_of_kind[3], ntex, image_view[3]; /* texture of each kind (-1: none), its view */
+    int tex_of_kind[3], ntex, image_view[4]; /* texture of each kind (-1: none), its view */
+    int atlas_tex;                           /* the chain's atlas texture (-1: none) */
     int mat_slot[256], nmat, mat_of_slot[256]; /* glTF material of each Sylva material (-1: unused) */
 } Layout;
 
@@ -119,9 +121,11 @@ static void layout_materials(const GlbScene *sc, Layout *l) {
 static void layout_textures(const GlbScene *sc, Layout *l) {
     uint8_t *rgb = NULL;
     const SylMesh *m = sc->part[0].mesh; /* the levels share one material table */
+    int skip = sc->chain && sc->chain->atlas ? sc->chain->atlas_material : -1;
     for (int k = 0; k < 3; k++) {
         bool used = false;
-        for (int s = 0; s < l->nmat && !used; s++) used = m->materials[l->mat_of_slot[s]].kind == kinds[k];
+        for (int s = 0; s < l->nmat && !used; s++)
+            used = l->mat_of_slot[s] != skip && m->materials[l->mat_of_slot[s]].kind == kinds[k];
         if (!used) continue;
         if (!rgb && !(rgb = malloc((size_t)SYL_TEXTURE_SIZE * SYL_TEXTURE_SIZE * 3))) {
             l->bin.failed = true;
@@ -138,6 +142,18 @@ static void layout_textures(const GlbScene *sc, Layout *l) {
         l->tex_of_kind[k] = l->ntex++;
     }
     free(rgb);
+    const SylLodChain *c = sc->chain;
+    if (c && c->atlas && !l->bin.failed) {
+        size_t at = l->bin.len;
+        if (!io_png_rgba(&l->bin, c->atlas, c->atlas_w, c->atlas_h)) {
+            l->bin.failed = true;
+            return;
+        }
+        l->image_view[l->ntex] = l->nviews;
+        l->views[l->nviews++] = (View){at, l->bin.len - at, 0};
+        pad(&l->bin, 0);
+        l->atlas_tex = l->ntex++;
+    }
 }
 
 /* The nodes: one per part, with its mesh; LOD0 lists the lower levels in MSFT_lod. */
@@ -155,6 +171,7 @@ static void json_nodes(IoBuf *js, const GlbScene *sc, const Layout *l) {
             for (int q = 0; q < sc->nparts; q++) io_printf(js, "%s%.6g", q ? "," : "", (double)sc->coverage[q]);
             io_put(js, "]}", 2);
         }
+        if (sc->chain && sc->chain->extras && p == sc->nparts - 1) io_printf(js, ",\"extras\":%s", sc->chain->extras);
         io_put(js, "}", 1);
     }
     io_put(js, "]", 1);
@@ -183,6 +200,12 @@ static void json_meshes(IoBuf *js, const GlbScene *sc, const Layout *l, const in
         int i = l->mat_of_slot[s];
         const SylMaterial *mat = &m->materials[i];
         char mname[32];
+        if (sc->chain && l->atlas_tex >= 0 && i == sc->chain->atlas_material) { /* the billboards' picture */
+            io_printf(js, "%s{\"name\":\"impostor\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":%d},"
+                          "\"metallicFactor\":0,\"roughnessFactor\":0.9},\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5}",
+                      s ? "," : "", l->atlas_tex);
+            continue;
+        }
         io_material_name(m, i, mname, sizeof mname);
         io_printf(js, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.6f,%.6f,%.6f,1]",
                   s ? "," : "", mname, srgb_to_linear(mat->rgb[0]), srgb_to_linear(mat->rgb[1]),
@@ -232,6 +255,9 @@ static void json_textures(IoBuf *js, const Layout *l) {
         if (l->tex_of_kind[k] >= 0)
             io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
                       syl_texture_name(kinds[k]), l->image_view[t]), t++;
+    if (l->atlas_tex >= 0)
+        io_printf(js, "%s{\"name\":\"impostor\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
+                  l->image_view[l->atlas_tex]);
     io_printf(js, "],\"textures\":[");
     for (t = 0; t < l->ntex; t++) io_printf(js, "%s{\"sampler\":0,\"source\":%d}", t ? "," : "", t);
     io_put(js, "]", 1);
@@ -304,7 +330,7 @@ static int write_container(const char *path, const IoBuf *js, const IoBuf *bin, 
 }
 
 static int write_scene(const GlbScene *sc, const char *path, FILE *diag) {
-    Layout l = {.tex_of_kind = {-1, -1, -1}};
+    Layout l = {.tex_of_kind = {-1, -1, -1}, .atlas_tex = -1};
     IoBuf js = {0};
     bool geometry = false;
     for (int p = 0; p < sc->nparts; p++) {
@@ -333,7 +359,7 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) {
 }
 
 int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) {
-    GlbScene sc = {.nparts = c->n, .lods = true};
+    GlbScene sc = {.nparts = c->n, .lods = true, .chain = c};
     const char *name = c->level[0].mesh->name[0] ? c->level[0].mesh->name : "plant";
     for (int k = 0; k < c->n; k++) {
         sc.part[k].mesh = c->level[k].mesh;

@@ -102,12 +102,12 @@ static void plan_level(SylLodLevel *lv, int k, int levels, int top_order, float 
     lv->min_radius = radius_share[k] * rmax;
     lv->leaf_keep = powf(0.5f, (float)k);
     lv->leaf_scale = fminf(2.0f, 1 / sqrtf(lv->leaf_keep));
-    lv->coverage = k == levels ? fminf(0.01f, switch_at[k]) : switch_at[k];
+    lv->coverage = syl_lod_coverage(k, levels);
 }
 
 int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0, int levels, SylLodChain *out) {
     memset(out, 0, sizeof *out);
-    if (levels < 1 || levels > SYL_LOD_MAX) return SYL_EUSAGE;
+    if (levels < 0 || levels > SYL_LOD_MAX) return SYL_EUSAGE;
     float *radius = malloc((s->nnodes + 1) * sizeof *radius);
     if (!radius) return SYL_ELIMIT;
     int status = syl_mesh_radii(s, mo, radius);
@@ -119,7 +119,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (radius[i] > rmax) rmax = radius[i];
     }
     if (!status) status = syl_mesh_optimize(lod0);
-    out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1, .coverage = switch_at[0]};
+    out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1, .coverage = syl_lod_coverage(0, levels)};
     out->n = 1;
     size_t tris0 = lod0->nidx / 3;
     int sides = mo->sides > 0 ? mo->sides : 8;
@@ -146,6 +146,11 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
     free(radius);
     if (status) syl_lod_free(out);
     return status;
+}
+
+float syl_lod_coverage(int k, int levels) {
+    if (k < 0 || k > SYL_LOD_MAX) return 0;
+    return k == levels ? fminf(0.01f, switch_at[k]) : switch_at[k];
 }
 
 void syl_lod_free(SylLodChain *c) {

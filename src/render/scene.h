@@ -31,6 +31,8 @@ typedef struct Scene {
     uint8_t lut[4097];          /* linear 0..1 in 4096 steps -> sRGB byte */
     uint8_t *out;
     uint8_t *alpha;             /* NULL, or coverage per pixel */
+    uint8_t *normal;            /* NULL, or normal and depth per pixel */
+    bool ground;
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
     /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */

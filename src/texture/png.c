@@ -27,7 +27,7 @@ static void png_warning_fn(png_structp png, png_const_charp msg) {
 }
 
 /* Encode into an open file: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported. */
-static int encode(const OutFile *o, const uint8_t *rgb, int width, int height, FILE *diag) {
+static int encode(const OutFile *o, const uint8_t *rgb, int width, int height, int channels, FILE *diag) {
     PngErr err = {diag, o};
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, png_error_fn, png_warning_fn);
     png_infop info = png ? png_create_info_struct(png) : NULL;
@@ -39,11 +39,11 @@ static int encode(const OutFile *o, const uint8_t *rgb, int width, int height, F
     volatile bool ok = false;
     if (!setjmp(png_jmpbuf(png))) {
         png_init_io(png, o->f);
-        png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+        png_set_IHDR(png, info, (png_uint_32)width, (png_uint_32)height, 8, channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                      PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
         png_set_compression_level(png, 1); /* fast: pictures are big, and noisy */
         png_write_info(png, info);
-        for (int y = 0; y < height; y++) png_write_row(png, (png_const_bytep)(rgb + (size_t)y * (size_t)width * 3));
+        for (int y = 0; y < height; y++) png_write_row(png, (png_const_bytep)(rgb + (size_t)y * (size_t)width * (size_t)channels));
         png_write_end(png, info);
         ok = true;
     }
@@ -51,14 +51,22 @@ static int encode(const OutFile *o, const uint8_t *rgb, int width, int height, F
     return ok ? SYL_OK : SYL_EIO;
 }
 
-int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
+static int write_png(const char *path, const uint8_t *rgb, int width, int height, int channels, FILE *diag) {
     if (width <= 0 || height <= 0) {
         if (diag) fprintf(diag, "sylva: error: cannot write '%s': empty picture\n", path);
         return SYL_EUSAGE;
     }
     OutFile o; /* "-" is standard output */
     if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
-    int status = encode(&o, rgb, width, height, diag);
+    int status = encode(&o, rgb, width, height, channels, diag);
     if (!outfile_close(&o, status == SYL_OK, diag) && !status) status = SYL_EIO;
     return status;
+}
+
+int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
+    return write_png(path, rgb, width, height, 3, diag);
+}
+
+int syl_write_png_rgba(const char *path, const uint8_t *rgba, int width, int height, FILE *diag) {
+    return write_png(path, rgba, width, height, 4, diag);
 }
