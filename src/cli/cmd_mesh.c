@@ -31,6 +31,8 @@ const CliCommand cli_mesh_command = {
         {.option = CLI_OPT_NO_CAPS},
         {.option = CLI_OPT_LOD},
         {.option = CLI_OPT_IMPOSTOR},
+        {.option = CLI_OPT_IMPOSTOR_GRID},
+        {.option = CLI_OPT_IMPOSTOR_VIEW},
         {.option = CLI_OPT_BILLBOARDS},
         {.option = CLI_OPT_IMAGE, .help = "with --lod, also render LOD0 .. LODN side by side (256 x 256\n"
                                            "each, one camera) into the PNG FILE"},
@@ -53,7 +55,7 @@ static void beside(const char *output, const char *suffix, char *buf, size_t n) 
  * crossed billboards the chain's last level (which imp then owns). */
 static int add_impostor(SylLodChain *c, const CliArgs *a, int threads, const char *output, SylImpostor *imp,
                         char *extras, size_t n) {
-    SylImpostorOptions io = {.grid = a->impostor ? 0 : -1, .billboards = a->billboards ? a->billboards : 3,
+    SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
                              .threads = threads, .diag = stderr};
     int status = syl_impostor_bake(c->level[0].mesh, &io, imp);
     if (status) return status;
@@ -167,7 +169,7 @@ int cmd_mesh(int argc, char **argv) {
         }
         fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
     }
-    if (imp.billboards)
+    if (!status && stats && imp.billboards)
         fprintf(stderr, "LOD%d: %zu triangles, %d crossed billboards\n", lods.n - 1,
                 lods.level[lods.n - 1].mesh->nidx / 3, imp.billboards);
     syl_lod_free(&lods);

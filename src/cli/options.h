@@ -30,7 +30,7 @@ typedef enum CliOptionId {
     /* sylva animate */
     CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
     /* sylva mesh: levels of detail */
-    CLI_OPT_LOD, CLI_OPT_IMPOSTOR, CLI_OPT_BILLBOARDS,
+    CLI_OPT_LOD, CLI_OPT_IMPOSTOR, CLI_OPT_IMPOSTOR_GRID, CLI_OPT_IMPOSTOR_VIEW, CLI_OPT_BILLBOARDS,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -55,6 +55,7 @@ typedef struct CliArgs {
     bool heights_set;
     int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
     int lod, billboards;     /* sylva mesh: --lod, --billboards */
+    int impostor_grid, impostor_view; /* --impostor-grid, --impostor-view */
     bool impostor;           /* --impostor */
     char **files;            /* the arguments after the options: the models */
     int nfiles;

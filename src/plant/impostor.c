@@ -24,7 +24,7 @@ static int bake_views(const SylMesh *m, const SylImpostorOptions *o, int n, cons
     *nd = malloc(4 * px);
     int status = rgb && alpha && *rgba && *nd ? SYL_OK : SYL_ELIMIT;
     /* Few samples: a view is seen small; the sun and sky as in every Sylva picture. */
-    SylRenderOptions ro = {.width = size, .height = size, .samples = 4, .ao_samples = 4, .ground = -1,
+    SylRenderOptions ro = {.width = size, .height = size, .samples = 2, .ao_samples = -1, .ground = -1,
                            .threads = o->threads, .diag = o->diag, .alpha = alpha, .normal = *nd};
     if (!status) status = syl_render_views(m, &ro, n, dirs, rgb);
     for (size_t i = 0; !status && i < px; i++) {
