@@ -3,6 +3,7 @@
  * framing. Tiled across threads; the picture does not depend on the thread count. */
 #ifndef SYLVA_RENDER_H
 #define SYLVA_RENDER_H
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -48,6 +49,7 @@ typedef struct SylRenderOptions {
      * RGB) and in A its depth across the bounding sphere (0 nearest, 255 farthest; with
      * toward), of the first sample that hit the mesh; zero where none did. */
     uint8_t *normal;
+    bool unlit;           /* the surfaces' own colour (albedo, textures included), no light */
 } SylRenderOptions;
 
 /* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and

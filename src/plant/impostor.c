@@ -23,8 +23,9 @@ static int bake_views(const SylMesh *m, const SylImpostorOptions *o, int n, cons
     *rgba = malloc(4 * px);
     *nd = malloc(4 * px);
     int status = rgb && alpha && *rgba && *nd ? SYL_OK : SYL_ELIMIT;
-    /* Few samples: a view is seen small; the sun and sky as in every Sylva picture. */
-    SylRenderOptions ro = {.width = size, .height = size, .samples = 2, .ao_samples = -1, .ground = -1,
+    /* Albedo, for the engine to light with the normals; 4 samples for smooth alpha edges. */
+    SylRenderOptions ro = {.width = size, .height = size, .samples = 4, .ao_samples = -1, .shadows = -1, .unlit = true,
+                           .ground = -1,
                            .threads = o->threads, .diag = o->diag, .alpha = alpha, .normal = *nd};
     if (!status) status = syl_render_views(m, &ro, n, dirs, rgb);
     for (size_t i = 0; !status && i < px; i++) {

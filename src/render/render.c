@@ -297,6 +297,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
     s->width = width;
     s->height = height;
     s->ground = opt->ground >= 0;
+    s->unlit = opt->unlit;
     int threads = opt->threads > 0 ? opt->threads : cpu_count();
     if (threads > 256) threads = 256;
     size_t px = (size_t)width * (size_t)height;

@@ -32,7 +32,7 @@ typedef struct Scene {
     uint8_t *out;
     uint8_t *alpha;             /* NULL, or coverage per pixel */
     uint8_t *normal;            /* NULL, or normal and depth per pixel */
-    bool ground;
+    bool ground, unlit;
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
     /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */

@@ -196,6 +196,7 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], in
                 sky(dirs[l], f->bg);
                 continue;
             }
+            if (s->unlit) continue; /* albedo only: no light to trace */
             float ndl = dot3(f->sn, s->sun), o[3];
             if (ndl > 0) {
                 direct[l] = ndl;
@@ -245,12 +246,13 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], in
             if (!valid[l]) continue;
             const Surface *f = &sf[l];
             if (f->what == SKY) {
-                for (int c = 0; c < 3; c++) acc[l][c] += f->bg[c];
+                for (int c = 0; c < 3; c++) acc[l][c] += s->unlit ? 0 : f->bg[c];
                 continue;
             }
             float ao = s->ao ? (float)open[l] / (float)s->ao : 1;
             for (int c = 0; c < 3; c++) {
                 float v = f->albedo[c] * (sun_rgb[c] * direct[l] + sky_rgb[c] * ao);
+                if (s->unlit) v = f->albedo[c]; /* no ground either: a mesh hit */
                 if (f->what == GROUND) v += f->fog * (f->bg[c] - v);
                 acc[l][c] += v;
             }
@@ -275,8 +277,9 @@ void render_tile(const Scene *s, int tile) {
                     s->alpha[(size_t)y * (size_t)s->width + (size_t)x] = (uint8_t)((255 * hits[l] + s->samples / 2) / s->samples);
                 uint8_t *o = s->out + 3 * ((size_t)y * (size_t)s->width + (size_t)x);
                 for (int c = 0; c < 3; c++) {
-                    float v = acc[l][c] * inv;
-                    v = v / (1 + 0.12f * v); /* a gentle shoulder for sunlit highlights */
+                    /* unlit: the colour of what was hit, not mixed with the background */
+                    float v = acc[l][c] * (s->unlit ? (hits[l] ? 1.0f / (float)hits[l] : 0) : inv);
+                    if (!s->unlit) v = v / (1 + 0.12f * v); /* a gentle shoulder for sunlit highlights */
                     v = v < 0 ? 0 : v > 1 ? 1 : v;
                     o[c] = s->lut[(int)(v * 4096 + 0.5f)];
                 }
