@@ -57,8 +57,15 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, int threads, const cha
                         char *extras, size_t n) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
                              .threads = threads, .diag = stderr};
+    if (!c->level[0].mesh->nidx) {
+        fprintf(stderr, "sylva: error: the model draws nothing: there is no impostor to bake\n");
+        return SYL_EMODEL;
+    }
     int status = syl_impostor_bake(c->level[0].mesh, &io, imp);
-    if (status) return status;
+    if (status) {
+        fprintf(stderr, "sylva: error: cannot bake the impostor (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad request");
+        return status;
+    }
     char color[4096], normal[4096];
     beside(output, "_impostor.png", color, sizeof color);
     beside(output, "_impostor_normal.png", normal, sizeof normal);
