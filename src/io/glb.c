@@ -81,7 +81,7 @@ typedef struct GlbScene {
  * then images. */
 typedef struct Layout {
     IoBuf bin;
-    View views[4 * GLB_MAX_MESHES + 3];
+    View views[4 * GLB_MAX_MESHES + 4]; /* and the images: three kinds and an atlas */
     int nviews;
     int first_view[GLB_MAX_MESHES];     /* of each mesh's four views (-1: no geometry) */
     int tex_of_kind[3], ntex, image_view[4]; /* texture of each kind (-1: none), its view */

@@ -32,7 +32,7 @@ static void scale_about(float p[3], const float c[3], float k) {
 }
 
 /* A copy of s that borrows nothing: the level's nodes, organs and polygons. */
-static int truncate(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t) {
+static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t) {
     *t = *s;
     t->budget = NULL;
     t->charged = 0;
@@ -119,7 +119,8 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (radius[i] > rmax) rmax = radius[i];
     }
     if (!status) status = syl_mesh_optimize(lod0);
-    out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1, .coverage = syl_lod_coverage(0, levels)};
+    out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1,
+                                  .coverage = syl_lod_coverage(0, levels)};
     out->n = 1;
     size_t tris0 = lod0->nidx / 3;
     int sides = mo->sides > 0 ? mo->sides : 8;
@@ -127,7 +128,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         SylLodLevel *lv = &out->level[k];
         plan_level(lv, k, levels, top, rmax);
         SylSkeleton t;
-        status = truncate(s, radius, lv, &t);
+        status = truncate_skeleton(s, radius, lv, &t);
         SylMeshOptions o = *mo;
         o.sides = (int)lroundf((float)sides * powf(0.75f, (float)k));
         if (o.sides < 3) o.sides = 3;
@@ -136,12 +137,12 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (!status) status = syl_mesh_build(&t, &o, &lv->mesh);
         free_copy(&t);
         if (status) break;
+        out->n = k + 1;
         size_t tris = lv->mesh->nidx / 3;
         double want = (double)tris0 * tri_share[k];
         double ratio = tris ? want / (double)tris : 1;
         status = syl_mesh_simplify(lv->mesh, ratio, 0.004f * powf(3, (float)(k - 1)), &lv->error);
         snprintf(lv->mesh->name, sizeof lv->mesh->name, "%s", lod0->name);
-        out->n = k + 1;
     }
     free(radius);
     if (status) syl_lod_free(out);
