@@ -3,6 +3,7 @@
  * framing. Tiled across threads; the picture does not depend on the thread count. */
 #ifndef SYLVA_RENDER_H
 #define SYLVA_RENDER_H
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -36,6 +37,19 @@ typedef struct SylRenderOptions {
      * Otherwise to this mesh: an animation fits them to its last frame once, so every frame
      * is seen by one camera over one ground (sylva animate). */
     const SylMesh *frame;
+    /* NULL, or width * height bytes: each pixel's coverage, 255 times the share of its
+     * samples whose camera ray hit the mesh (not the ground or the sky) — a silhouette. */
+    uint8_t *alpha;
+    /* Impostor baking. toward: NULL, or a unit vector from the plant toward the camera: the
+     * view is then nearly orthographic (from 100 radii away) and frames the mesh's bounding
+     * sphere (the box's centre, half its diagonal) exactly, whatever the direction. */
+    const float *toward;
+    int ground;           /* 0: on; -1: no ground (nor its shadows): sky behind the plant */
+    /* NULL, or width * height * 4 bytes: the surface's normal (world space, n * 0.5 + 0.5 in
+     * RGB) and in A its depth across the bounding sphere (0 nearest, 255 farthest; with
+     * toward), of the first sample that hit the mesh; zero where none did. */
+    uint8_t *normal;
+    bool unlit;           /* the surfaces' own colour (albedo, textures included), no light */
 } SylRenderOptions;
 
 /* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and
@@ -43,6 +57,9 @@ typedef struct SylRenderOptions {
  * positions are copied). The ground is at the mesh's lowest point; the camera is framed
  * from the mesh's vertices. */
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
+/* n pictures of one mesh, one after another in rgb (and alpha, normal), each seen from
+ * toward[i] (see toward): Embree's scene is built once. */
+int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb);
 /* Render and write a PNG (via a temporary file). */
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
 /* The PNG writer (syl_write_png) and the textures the renderer uses are in texture.h. */

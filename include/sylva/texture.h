@@ -36,6 +36,8 @@ bool syl_leaf_card(int shape, int size, uint8_t *rgba);
 /* Write width x height RGB (rows top to bottom) as a PNG. path "-": standard output;
  * otherwise as the mesh writers (mesh.h). */
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
+/* The same with an alpha channel: 4 bytes a pixel. */
+int syl_write_png_rgba(const char *path, const uint8_t *rgba, int width, int height, FILE *diag);
 
 #ifdef __cplusplus
 }

@@ -4,6 +4,10 @@
 #include <strings.h>
 
 #include "cli/cli.h"
+#include "cli/lodcheck.h"
+#include "sylva/impostor.h"
+#include "sylva/lod.h"
+#include "sylva/texture.h"
 #include "sylva/mesh.h"
 
 const CliCommand cli_mesh_command = {
@@ -15,7 +19,9 @@ const CliCommand cli_mesh_command = {
              "along every axis (rotation-minimising frames, end caps, smooth normals, bark UVs),\n"
              "leaves and polygons as double-sided faces, one material group per colour. The format\n"
              "follows the extension: glTF 2.0 binary (.glb), Wavefront OBJ with NAME.mtl and\n"
-             "NAME_bark.png etc. (.obj), or binary PLY (.ply).\n",
+             "NAME_bark.png etc. (.obj), or binary PLY (.ply). Triangles are ordered for the\n"
+             "vertex cache (meshoptimizer). --lod N adds levels of detail NAME_LOD1 .. NAME_LODN\n"
+             "to a .glb (MSFT_lod): fewer branch orders, fewer and larger leaves, simplified.\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT, .help = "the mesh file (required)"},
         {.option = CLI_OPT_SIDES},
@@ -25,13 +31,74 @@ const CliCommand cli_mesh_command = {
         {.option = CLI_OPT_NO_CAPS},
         {.option = CLI_OPT_LEAVES},
         {.option = CLI_OPT_LEAF_SHAPE},
-        {.option = CLI_OPT_STATS},
+        {.option = CLI_OPT_LOD},
+        {.option = CLI_OPT_IMPOSTOR},
+        {.option = CLI_OPT_IMPOSTOR_GRID},
+        {.option = CLI_OPT_IMPOSTOR_VIEW},
+        {.option = CLI_OPT_BILLBOARDS},
+        {.option = CLI_OPT_IMAGE, .help = "with --lod, also render LOD0 .. LODN side by side (256 x 256\n"
+                                           "each, one camera) into the PNG FILE"},
+        {.option = CLI_OPT_STATS, .help = "print counts and times to stderr; with --lod, each level's\n"
+                                          "triangles and silhouette error"},
         {.group = cli_derive_uses},
         {0},
     },
     .epilogue = "\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",
 };
+
+/* OUT.glb -> OUT_SUFFIX */
+static void beside(const char *output, const char *suffix, char *buf, size_t n) {
+    size_t stem = strlen(output) - 4; /* without ".glb" */
+    snprintf(buf, n, "%.*s%s", (int)stem, output, suffix);
+}
+
+/* Bake the impostor from LOD0, write the octahedral atlas beside the file and make the
+ * crossed billboards the chain's last level (which imp then owns). */
+static int add_impostor(SylLodChain *c, const CliArgs *a, int threads, const char *output, SylImpostor *imp,
+                        char *extras, size_t n) {
+    SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
+                             .threads = threads, .diag = stderr};
+    if (!c->level[0].mesh->nidx) {
+        fprintf(stderr, "sylva: error: the model draws nothing: there is no impostor to bake\n");
+        return SYL_EMODEL;
+    }
+    int status = syl_impostor_bake(c->level[0].mesh, &io, imp);
+    if (status) {
+        fprintf(stderr, "sylva: error: cannot bake the impostor (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad request");
+        return status;
+    }
+    char color[4096], normal[4096];
+    beside(output, "_impostor.png", color, sizeof color);
+    beside(output, "_impostor_normal.png", normal, sizeof normal);
+    if (a->impostor) {
+        status = syl_write_png_rgba(color, imp->color, imp->size, imp->size, stderr);
+        if (!status) status = syl_write_png_rgba(normal, imp->normal, imp->size, imp->size, stderr);
+        if (status) return status;
+    }
+    const char *cs = strrchr(color, '/'), *ns = strrchr(normal, '/');
+    cs = cs ? cs + 1 : color, ns = ns ? ns + 1 : normal;
+    int len = snprintf(extras, n, "{\"sylva_billboards\":%d,\"sylva_impostor_centre\":[%.6g,%.6g,%.6g],"
+                                  "\"sylva_impostor_radius\":%.6g", imp->billboards, (double)imp->centre[0],
+                       (double)imp->centre[1], (double)imp->centre[2], (double)imp->radius);
+    if (a->impostor && len > 0 && (size_t)len < n && !strpbrk(cs, "\"\\") && !strpbrk(ns, "\"\\"))
+        len += snprintf(extras + len, n - (size_t)len,
+                        ",\"sylva_impostor\":{\"layout\":\"hemi-octahedral\",\"grid\":%d,\"view\":%d,"
+                        "\"size\":%d,\"color\":\"%s\",\"normal_depth\":\"%s\"}",
+                        imp->grid, imp->view, imp->size, cs, ns);
+    if (len > 0 && (size_t)len + 2 < n) strcat(extras, "}");
+    int k = c->n;
+    c->level[k] = (SylLodLevel){.mesh = imp->bb_mesh, .coverage = syl_lod_coverage(k, k)};
+    if (k > 0) c->level[k - 1].coverage = syl_lod_coverage(k - 1, k);
+    c->n = k + 1;
+    c->atlas = imp->bb_color;
+    c->atlas_w = imp->bb_width;
+    c->atlas_h = imp->view;
+    c->atlas_material = SYL_IMPOSTOR_MATERIAL;
+    c->extras = extras;
+    imp->bb_mesh = NULL; /* the chain's now */
+    return SYL_OK;
+}
 
 int cmd_mesh(int argc, char **argv) {
     ModelArgs m = {0};
@@ -57,6 +124,15 @@ int cmd_mesh(int argc, char **argv) {
                 syl_leaves_names[mo.leaves]);
         return SYL_EUSAGE;
     }
+    bool levels = a.lod || a.impostor || a.billboards;
+    if (levels && mo.leaves != SYL_LEAVES_MESH) {
+        fprintf(stderr, "sylva: error: --lod, --impostor and --billboards take --leaves mesh only (for now)\n");
+        return SYL_EUSAGE;
+    }
+    if (levels && strcasecmp(dot, ".glb")) {
+        fprintf(stderr, "sylva: error: --lod, --impostor and --billboards write into a .glb only, not '%s'\n", output);
+        return SYL_EUSAGE;
+    }
     mo.threads = d.threads;
     cli_model_spec(&m, a.files[0]);
     SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
@@ -69,7 +145,22 @@ int cmd_mesh(int argc, char **argv) {
         return status;
     }
     const SylSkeleton *sk = pl.sk;
-    const SylMesh *mesh = pl.mesh;
+    SylMesh *mesh = pl.mesh;
+    SylLodChain lods = {0};
+    SylImpostor imp = {0};
+    char extras[1024];
+    double t2 = cli_now(), t_imp = 0;
+    if (levels) {
+        bool last_billboard = a.impostor || a.billboards;
+        int geometric = (a.lod ? a.lod : 1) - (last_billboard ? 1 : 0);
+        status = syl_lod_build(sk, &mo, mesh, geometric, &lods);
+        if (status) fprintf(stderr, "sylva: error: cannot build the levels of detail (out of memory)\n");
+        double ti = cli_now();
+        if (!status && last_billboard) status = add_impostor(&lods, &a, d.threads, output, &imp, extras, sizeof extras);
+        t_imp = cli_now() - ti;
+    } else {
+        status = syl_mesh_optimize(mesh);
+    }
     double t3 = cli_now();
     SylInstances *sets = NULL;
     int nsets = 0;
@@ -79,10 +170,16 @@ int cmd_mesh(int argc, char **argv) {
         if (status) fprintf(stderr, "sylva: error: out of memory placing the leaves\n");
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
     }
-    if (!status) status = instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                                    : syl_write_mesh(mesh, output, stderr);
+    if (!status) status = levels      ? syl_write_glb_lods(&lods, output, stderr)
+                          : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
+                                      : syl_write_mesh(mesh, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
+    if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */
+        SylLodChain shown = lods;
+        shown.n -= imp.billboards ? 1 : 0;
+        status = lod_picture(&shown, a.image, 256, d.threads);
+    }
     if (!status && stats) {
         size_t tris = mesh->nidx / 3;
         fprintf(stderr, "modules: %zu\nnodes: %zu\norgans: %zu\npolygons: %zu\n", pl.modules, sk->nnodes,
@@ -92,8 +189,22 @@ int cmd_mesh(int argc, char **argv) {
         fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", pl.derive_s, pl.turtle_s,
                 pl.mesh_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
+        fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp);
+        if (imp.billboards) fprintf(stderr, "impostor time: %.6f s\n", t_imp);
+        for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
+            LodSilhouette sil;
+            if (lod_silhouette(&lods, k, d.threads, &sil)) break;
+            fprintf(stderr, "LOD%d: %zu triangles (%.2f%%), max order %d, leaves %.0f%% x %.2f, silhouette error %.2f%% (coverage %.2f%%) at %d px\n",
+                    k, lods.level[k].mesh->nidx / 3, 100.0 * (double)lods.level[k].mesh->nidx / (double)(mesh->nidx ? mesh->nidx : 1),
+                    lods.level[k].max_order, 100.0 * lods.level[k].leaf_keep, lods.level[k].leaf_scale, sil.percent, sil.soft, sil.pixels);
+        }
         fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
     }
+    if (!status && stats && imp.billboards)
+        fprintf(stderr, "LOD%d: %zu triangles, %d crossed billboards\n", lods.n - 1,
+                lods.level[lods.n - 1].mesh->nidx / 3, imp.billboards);
+    syl_lod_free(&lods);
+    syl_impostor_free(&imp);
     cli_plant_free(&pl);
     syl_budget_free(budget);
     return status;

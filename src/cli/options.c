@@ -4,6 +4,7 @@
 
 #include "cli/cli.h"
 #include "sylva/texture.h"
+#include "sylva/lod.h"
 
 static bool read_seed(CliArgs *a, char *arg) {
     double v;
@@ -256,6 +257,19 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                            "the block's `snapshots`)", CLI_READ, .read = read_snapshots},
     [CLI_OPT_TILES] = {"tiles", 0, "NxM", "run the terrain as N x M tiles exchanging their borders\n"
                        "(default 1x1); the output is the same", CLI_READ, .read = read_tiles},
+    /* sylva mesh */
+    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
+                     SYL_LOD_MAX},
+    [CLI_OPT_IMPOSTOR] = {"impostor", 0, NULL,
+                          "bake an octahedral impostor (8 x 8 views of 256 x 256 pixels) into\n"
+                          "NAME_impostor.png and NAME_impostor_normal.png; the last level\n"
+                          "becomes crossed billboards", CLI_FLAG, ARGS(impostor)},
+    [CLI_OPT_IMPOSTOR_GRID] = {"impostor-grid", 0, "N", "views across the impostor atlas (2 to 32; default 8)", CLI_INT,
+                               ARGS(impostor_grid), 2, 32},
+    [CLI_OPT_IMPOSTOR_VIEW] = {"impostor-view", 0, "PX", "pixels per impostor view (16 to 1024; default 256)", CLI_INT,
+                               ARGS(impostor_view), 16, 1024},
+    [CLI_OPT_BILLBOARDS] = {"billboards", 0, "K", "the last level is K crossed billboards (2 to 4; default 3)", CLI_INT,
+                            ARGS(billboards), 2, 4},
 };
 
 const CliUse cli_limits[] = {

@@ -31,6 +31,8 @@ typedef enum CliOptionId {
     CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
     /* sylva ecosystem */
     CLI_OPT_SNAPSHOTS, CLI_OPT_TILES,
+    /* sylva mesh: levels of detail */
+    CLI_OPT_LOD, CLI_OPT_IMPOSTOR, CLI_OPT_IMPOSTOR_GRID, CLI_OPT_IMPOSTOR_VIEW, CLI_OPT_BILLBOARDS,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -55,6 +57,9 @@ typedef struct CliArgs {
     bool heights_set;
     int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
     int snapshots[64], nsnapshots, tiles_x, tiles_z; /* sylva ecosystem: --snapshots, --tiles */
+    int lod, billboards;     /* sylva mesh: --lod, --billboards */
+    int impostor_grid, impostor_view; /* --impostor-grid, --impostor-view */
+    bool impostor;           /* --impostor */
     char **files;            /* the arguments after the options: the models */
     int nfiles;
 } CliArgs;

@@ -144,18 +144,18 @@ static void png_no_warning(png_structp png, png_const_charp msg) {
     (void)msg;
 }
 
-static bool png_encode(IoBuf *b, const uint8_t *px, int size, int channels) {
+static bool png_encode(IoBuf *b, const uint8_t *px, int w, int h, int channels) {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_quiet, png_no_warning);
     if (!png) return false;
     png_infop info = png_create_info_struct(png);
     volatile bool ok = false;
     if (info && !setjmp(png_jmpbuf(png))) {
         png_set_write_fn(png, b, png_mem_write, png_mem_flush);
-        png_set_IHDR(png, info, (png_uint_32)size, (png_uint_32)size, 8, channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+        png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                      PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
         png_set_compression_level(png, 6);
         png_write_info(png, info);
-        for (int y = 0; y < size; y++) png_write_row(png, (png_const_bytep)(px + (size_t)y * (size_t)size * (size_t)channels));
+        for (int y = 0; y < h; y++) png_write_row(png, (png_const_bytep)(px + (size_t)y * (size_t)w * (size_t)channels));
         png_write_end(png, info);
         ok = !b->failed;
     }
@@ -163,8 +163,8 @@ static bool png_encode(IoBuf *b, const uint8_t *px, int size, int channels) {
     return ok;
 }
 
-bool io_png(IoBuf *b, const uint8_t *rgb, int size) { return png_encode(b, rgb, size, 3); }
-bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int size) { return png_encode(b, rgba, size, 4); }
+bool io_png(IoBuf *b, const uint8_t *rgb, int size) { return png_encode(b, rgb, size, size, 3); }
+bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int w, int h) { return png_encode(b, rgba, w, h, 4); }
 
 /* ---- by extension ---- */
 

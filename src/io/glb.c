@@ -150,7 +150,7 @@ static void layout_textures(Layout *l) {
         }
         size_t at = l->bin.len;
         bool ok = k == CARD ? syl_leaf_card(shape, SYL_TEXTURE_SIZE, img) &&
-                                  io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE)
+                                  io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
                             : syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, img) &&
                                   io_png(&l->bin, img, SYL_TEXTURE_SIZE);
         if (!ok) {

@@ -41,6 +41,7 @@ const char *io_texture_kind(const SylMesh *m, int material);
 
 /* Encode size x size RGB as PNG into b. */
 bool io_png(IoBuf *b, const uint8_t *rgb, int size);
-bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int size); /* with alpha (leaf cards) */
+/* Encode w x h RGBA as PNG into b (leaf cards, impostor atlases). */
+bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int w, int h);
 
 #endif

@@ -12,7 +12,7 @@ static int write_card(int shape, const char *prefix, char *path, size_t n, FILE 
     IoBuf b = {0};
     snprintf(path, n, "%s_leafcard.png", prefix);
     int status = SYL_OK;
-    if (!rgba || !syl_leaf_card(shape, size, rgba) || !io_png_rgba(&b, rgba, size)) {
+    if (!rgba || !syl_leaf_card(shape, size, rgba) || !io_png_rgba(&b, rgba, size, size)) {
         if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
         status = SYL_ELIMIT;
     }

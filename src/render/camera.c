@@ -75,6 +75,49 @@ static float fit_distance(const FitPoints *f, float cx, float cy, float tanx, fl
     return fmaxf(need, fmaxf(-zmin + 0.05f * size, 0.1f * size));
 }
 
+static void mesh_bounds(const SylMesh *m, vec3 lo, vec3 hi) {
+    glm_vec3_copy((vec3){INFINITY, INFINITY, INFINITY}, lo);
+    glm_vec3_copy((vec3){-INFINITY, -INFINITY, -INFINITY}, hi);
+    for (size_t i = 0; m && i < m->nverts; i++)
+        for (int k = 0; k < 3; k++) {
+            float v = m->pos[3 * i + k];
+            if (!isfinite(v)) continue;
+            if (v < lo[k]) lo[k] = v;
+            if (v > hi[k]) hi[k] = v;
+        }
+    if (!(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2])) { /* nothing to frame */
+        glm_vec3_copy((vec3){-0.5f, 0, -0.5f}, lo);
+        glm_vec3_copy((vec3){0.5f, 1, 0.5f}, hi);
+    }
+}
+
+void render_camera_toward(const SylMesh *m, const float toward[3], int width, int height, RenderCamera *cam) {
+    memset(cam, 0, sizeof *cam);
+    cam->width = width;
+    cam->height = height;
+    vec3 lo, hi, c, back, fwd, right, up, upref = {0, 1, 0};
+    mesh_bounds(m, lo, hi);
+    glm_vec3_copy(lo, cam->lo);
+    glm_vec3_copy(hi, cam->hi);
+    glm_vec3_center(lo, hi, c);
+    float r = 0.5f * glm_vec3_distance(lo, hi), dist = 100 * r;
+    if (!(r > 0)) r = 1, dist = 100;
+    glm_vec3_normalize_to((float *)toward, back);
+    if (fabsf(back[1]) > 0.999f) glm_vec3_copy((vec3){0, 0, -1}, upref); /* from straight above */
+    glm_vec3_negate_to(back, fwd);
+    glm_vec3_crossn(fwd, upref, right);
+    glm_vec3_cross(right, fwd, up);
+    cam->tany = r / dist;
+    cam->tanx = cam->tany * (float)width / (float)height;
+    glm_vec3_copy(c, cam->eye);
+    glm_vec3_muladds(back, dist, cam->eye);
+    glm_vec3_copy(fwd, cam->fwd);
+    glm_vec3_copy(right, cam->right);
+    glm_vec3_copy(up, cam->up);
+    cam->near = dist - r;
+    cam->depth = 2 * r;
+}
+
 void render_camera(const SylMesh *m, SylView view, int width, int height, RenderCamera *cam) {
     memset(cam, 0, sizeof *cam);
     cam->width = width;

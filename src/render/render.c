@@ -141,7 +141,8 @@ static int build_scene(Scene *s, int threads, FILE *diag) {
     return rtcGetDeviceError(s->dev) == RTC_ERROR_NONE ? SYL_OK : SYL_ELIMIT;
 }
 
-static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
+static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3],
+                          uint8_t *rgb);
 
 /* Embree's BVH, its copy of the positions, the textures and the picture, counted against
  * the memory budget before any is built: about 150 bytes a triangle. */
@@ -161,7 +162,7 @@ int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
                     (unsigned long long)budget_limit_mb(mem));
         return SYL_ELIMIT;
     }
-    int st = render_checked(m, opt, rgb);
+    int st = render_checked(m, opt, 1, NULL, rgb);
     budget_release(mem, need);
     return st;
 }
@@ -196,7 +197,8 @@ static void set_sampling(Scene *s, const SylRenderOptions *opt) {
     int ao = opt->ao_samples < 0 ? 0 : opt->ao_samples == 0 ? 8 : opt->ao_samples > MAX_AO ? MAX_AO : opt->ao_samples;
     s->ao = ao ? (ao + s->samples - 1) / s->samples : 0;
     s->shadows = opt->shadows;
-    render_camera(opt->frame ? opt->frame : s->m, opt->view, s->width, s->height, &s->cam);
+    if (opt->toward) render_camera_toward(opt->frame ? opt->frame : s->m, opt->toward, s->width, s->height, &s->cam);
+    else render_camera(opt->frame ? opt->frame : s->m, opt->view, s->width, s->height, &s->cam);
 }
 
 /* Materials, scale, light, sub-pixel positions, and the table from linear light to sRGB. */
@@ -279,7 +281,10 @@ static void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt)
     pthread_mutex_destroy(&s->progress_lock);
 }
 
-static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
+/* Pictures of one scene: n views (toward: NULL, or a direction each), written one after
+ * another into rgb, and alpha and normal when the options ask for them. */
+static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3],
+                          uint8_t *rgb) {
     int width, height;
     int status = check_request(m, opt, &width, &height);
     if (status) return status;
@@ -291,15 +296,45 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, uint8_t
     s->m = m;
     s->width = width;
     s->height = height;
-    s->out = rgb;
+    s->ground = opt->ground >= 0;
+    s->unlit = opt->unlit;
     int threads = opt->threads > 0 ? opt->threads : cpu_count();
     if (threads > 256) threads = 256;
-    set_sampling(s, opt);
-    set_lighting(s);
-    status = build_textures_and_scene(s, threads, opt->diag);
-    if (!status) render_all_tiles(s, threads, opt);
+    size_t px = (size_t)width * (size_t)height;
+    for (int v = 0; v < n && !status; v++) {
+        SylRenderOptions o = *opt;
+        if (toward) o.toward = toward[v];
+        s->out = rgb + 3 * px * (size_t)v;
+        s->alpha = opt->alpha ? opt->alpha + px * (size_t)v : NULL;
+        s->normal = opt->normal ? opt->normal + 4 * px * (size_t)v : NULL;
+        atomic_store(&s->next_tile, 0);
+        atomic_store(&s->tiles_done, 0);
+        set_sampling(s, &o);
+        set_lighting(s);
+        if (v == 0) status = build_textures_and_scene(s, threads, opt->diag);
+        if (!status) render_all_tiles(s, threads, &o);
+    }
     scene_free(s);
     return status;
+}
+
+int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb) {
+    if (n < 1) return SYL_OK;
+    Budget own;
+    budget_init(&own, opt->max_memory);
+    Budget *mem = opt->budget ? opt->budget : &own;
+    uint64_t w = opt->width > 0 ? (uint64_t)opt->width : 1024, h = opt->height > 0 ? (uint64_t)opt->height : 1024;
+    uint64_t tris = m ? m->nidx / 3 : 0, need = tris * 150 + (m ? m->nverts * 16 : 0) + w * h * 8 * (uint64_t)n + (4u << 20);
+    if (!budget_charge(mem, need)) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: rendering %d views of %llu triangles would need about %llu MB, more than "
+                               "--max-memory allows (%llu MB in all); raise the limit with --max-memory\n",
+                    n, (unsigned long long)tris, (unsigned long long)(need >> 20), (unsigned long long)budget_limit_mb(mem));
+        return SYL_ELIMIT;
+    }
+    int st = render_checked(m, opt, n, toward, rgb);
+    budget_release(mem, need);
+    return st;
 }
 
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path) {

@@ -11,10 +11,13 @@ typedef struct RenderCamera {
     float tanx, tany;                      /* half the field of view, as tangents */
     int width, height;
     float lo[3], hi[3];                    /* bounds of the mesh */
+    float near, depth;                     /* toward: the sphere's nearest distance, its diameter */
 } RenderCamera;
 
 /* Frame the mesh for a view so it fills about 80% of a width x height picture. */
 void render_camera(const SylMesh *m, SylView view, int width, int height, RenderCamera *cam);
+/* Look along -toward at the mesh's bounding sphere from 100 radii away, framing it exactly. */
+void render_camera_toward(const SylMesh *m, const float toward[3], int width, int height, RenderCamera *cam);
 /* Where a world point lands in the picture (pixels, y down); false if behind the eye. */
 bool render_project(const RenderCamera *cam, const float p[3], float *x, float *y);
 

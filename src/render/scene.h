@@ -30,6 +30,9 @@ typedef struct Scene {
     float sub[MAX_SAMPLES][2];  /* sub-pixel sample positions */
     uint8_t lut[4097];          /* linear 0..1 in 4096 steps -> sRGB byte */
     uint8_t *out;
+    uint8_t *alpha;             /* NULL, or coverage per pixel */
+    uint8_t *normal;            /* NULL, or normal and depth per pixel */
+    bool ground, unlit;
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
     /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */

@@ -62,6 +62,13 @@ typedef struct Surface {
 
 enum { SKY, GROUND, MESH };
 
+/* The shading normal as n * 0.5 + 0.5, and the depth across the framed sphere. */
+static void normal_depth(const Scene *s, const Surface *f, float t, uint8_t out[4]) {
+    for (int c = 0; c < 3; c++) out[c] = (uint8_t)lrintf(127.5f * (f->sn[c] + 1));
+    float z = s->cam.depth > 0 ? (t - s->cam.near) / s->cam.depth : 0;
+    out[3] = (uint8_t)lrintf(255 * (z < 0 ? 0 : z > 1 ? 1 : z));
+}
+
 /* Texture level of detail: log2 of texels per sample footprint. */
 static inline float lod_of(const Scene *s, float t, float cosv, float uv_per_world, int tex_size) {
     float c = cosv > 0.05f ? cosv : 0.05f;
@@ -134,7 +141,7 @@ static inline void set_ray16(struct RTCRay16 *r, int l, const float o[3], const 
 }
 
 /* Render the pixels of the block at (x0, y0) into acc (linear light, summed over samples). */
-static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
+static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int hits[LANES], uint8_t nd[LANES][4]) {
     const RenderCamera *cam = &s->cam;
     _Alignas(64) int valid[LANES], lit[LANES], open_valid[LANES];
     _Alignas(64) struct RTCRayHit16 rh;
@@ -148,6 +155,8 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
     coherent.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcInitIntersectContext(&incoherent);
     memset(acc, 0, LANES * sizeof *acc);
+    memset(hits, 0, LANES * sizeof *hits);
+    memset(nd, 0, LANES * sizeof *nd);
     for (int k = 0; k < s->samples; k++) {
         /* Camera rays, and the ground by hand (a plane: tfar stops Embree there). */
         for (int l = 0; l < LANES; l++) {
@@ -160,7 +169,7 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
             for (int i = 0; i < 3; i++) d[i] = cam->fwd[i] + sx * cam->right[i] + sy * cam->up[i];
             normalize3(d);
             float tg = INFINITY;
-            if (d[1] < 0 && cam->eye[1] > s->ground_y) {
+            if (s->ground && d[1] < 0 && cam->eye[1] > s->ground_y) {
                 float t = (s->ground_y - cam->eye[1]) / d[1];
                 float gx = cam->eye[0] + t * d[0], gz = cam->eye[2] + t * d[2];
                 if (fabsf(gx - s->ground_c[0]) <= s->ground_half && fabsf(gz - s->ground_c[1]) <= s->ground_half) tg = t;
@@ -176,8 +185,10 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
             direct[l] = 0;
             if (!valid[l]) continue;
             Surface *f = &sf[l];
-            if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) mesh_surface(s, &rh, l, dirs[l], f);
-            else if (rh.ray.tfar[l] < INFINITY) {
+            if (rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID) {
+                mesh_surface(s, &rh, l, dirs[l], f);
+                if (!hits[l]++ && s->normal) normal_depth(s, f, rh.ray.tfar[l], nd[l]);
+            } else if (rh.ray.tfar[l] < INFINITY) {
                 ground_surface(s, rh.ray.tfar[l], dirs[l], f);
                 sky(dirs[l], f->bg);
             } else {
@@ -185,6 +196,7 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
                 sky(dirs[l], f->bg);
                 continue;
             }
+            if (s->unlit) continue; /* albedo only: no light to trace */
             float ndl = dot3(f->sn, s->sun), o[3];
             if (ndl > 0) {
                 direct[l] = ndl;
@@ -234,12 +246,13 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
             if (!valid[l]) continue;
             const Surface *f = &sf[l];
             if (f->what == SKY) {
-                for (int c = 0; c < 3; c++) acc[l][c] += f->bg[c];
+                for (int c = 0; c < 3; c++) acc[l][c] += s->unlit ? 0 : f->bg[c];
                 continue;
             }
             float ao = s->ao ? (float)open[l] / (float)s->ao : 1;
             for (int c = 0; c < 3; c++) {
                 float v = f->albedo[c] * (sun_rgb[c] * direct[l] + sky_rgb[c] * ao);
+                if (s->unlit) v = f->albedo[c]; /* no ground either: a mesh hit */
                 if (f->what == GROUND) v += f->fog * (f->bg[c] - v);
                 acc[l][c] += v;
             }
@@ -250,17 +263,23 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3]) {
 void render_tile(const Scene *s, int tile) {
     int x0 = (tile % s->tiles_x) * TILE, y0 = (tile / s->tiles_x) * TILE;
     float acc[LANES][3];
+    int hits[LANES];
+    uint8_t nd[LANES][4];
     float inv = 1.0f / (float)s->samples;
     for (int by = y0; by < y0 + TILE && by < s->height; by += BLOCK)
         for (int bx = x0; bx < x0 + TILE && bx < s->width; bx += BLOCK) {
-            render_block(s, bx, by, acc);
+            render_block(s, bx, by, acc, hits, nd);
             for (int l = 0; l < LANES; l++) {
                 int x = bx + l % BLOCK, y = by + l / BLOCK;
                 if (x >= s->width || y >= s->height) continue;
+                if (s->normal) memcpy(s->normal + 4 * ((size_t)y * (size_t)s->width + (size_t)x), nd[l], 4);
+                if (s->alpha) /* coverage: the share of the pixel's samples that saw the plant */
+                    s->alpha[(size_t)y * (size_t)s->width + (size_t)x] = (uint8_t)((255 * hits[l] + s->samples / 2) / s->samples);
                 uint8_t *o = s->out + 3 * ((size_t)y * (size_t)s->width + (size_t)x);
                 for (int c = 0; c < 3; c++) {
-                    float v = acc[l][c] * inv;
-                    v = v / (1 + 0.12f * v); /* a gentle shoulder for sunlit highlights */
+                    /* unlit: the colour of what was hit, not mixed with the background */
+                    float v = acc[l][c] * (s->unlit ? (hits[l] ? 1.0f / (float)hits[l] : 0) : inv);
+                    if (!s->unlit) v = v / (1 + 0.12f * v); /* a gentle shoulder for sunlit highlights */
                     v = v < 0 ? 0 : v > 1 ? 1 : v;
                     o[c] = s->lut[(int)(v * 4096 + 0.5f)];
                 }

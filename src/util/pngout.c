@@ -38,7 +38,7 @@ int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag) {
     volatile bool ok = false;
     if (!setjmp(png_jmpbuf(png))) {
         png_init_io(png, o->f);
-        int type = img->channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGB;
+        int type = img->channels == 1 ? PNG_COLOR_TYPE_GRAY : img->channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB;
         png_set_IHDR(png, info, (png_uint_32)img->width, (png_uint_32)img->height, img->depth, type,
                      PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
         if (img->ntext > 0) {

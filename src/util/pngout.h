@@ -14,7 +14,7 @@ typedef struct PngOutText {
 
 typedef struct PngOutImage {
     int width, height;
-    int channels; /* 1 grey, 3 RGB */
+    int channels; /* 1 grey, 3 RGB, 4 RGBA */
     int depth;    /* bits per sample: 8, or 16 (host-order uint16_t samples) */
     int level;    /* zlib compression level, 0-9 */
     const PngOutText *text;

@@ -1,0 +1,56 @@
+/* Levels of detail: a chain of meshes of one skeleton, each cheaper than the last, for
+ * real-time engines (docs/mesh.md, "Levels of detail"). Level k drops the finest branch
+ * orders and thin stems (Zamuda's truncation by branch order and radius), keeps a share of
+ * the leaves and enlarges them so the foliage covers about as much (Weber–Penn's leaf
+ * quality), meshes with fewer sides, and simplifies with meshoptimizer. */
+#ifndef SYLVA_LOD_H
+#define SYLVA_LOD_H
+#include "mesh.h"
+#include "skeleton.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { SYL_LOD_MAX = 8 };
+
+typedef struct SylLodLevel {
+    SylMesh *mesh;      /* level 0: the caller's mesh (not freed by syl_lod_free) */
+    int max_order;      /* stems of this branch order or less are kept */
+    float min_radius;   /* and only those at least this thick (model units) */
+    float leaf_keep;    /* share of leaves kept, 0..1 */
+    float leaf_scale;   /* the survivors' enlargement: 1 / sqrt(leaf_keep), at most 2 */
+    float coverage;     /* MSFT_screencoverage: shown while the plant's screen height is above
+                           this share of the screen; the last level's is where it is culled */
+    float error;        /* meshoptimizer's deviation, model units */
+} SylLodLevel;
+
+typedef struct SylLodChain {
+    int n;              /* levels: LOD0 .. LOD(n-1) */
+    SylLodLevel level[SYL_LOD_MAX + 1];
+    /* A last level drawn with a picture (an impostor's billboards; not freed here): its
+     * material atlas_material becomes an alpha-tested (MASK) material textured with
+     * atlas, atlas_w x atlas_h RGBA; extras (JSON object text, may be NULL) goes in its
+     * node's extras. */
+    const uint8_t *atlas;
+    int atlas_w, atlas_h, atlas_material;
+    const char *extras;
+} SylLodChain;
+
+/* Build levels 1..levels (1 to SYL_LOD_MAX) from s, meshed with mo as lod0 was. lod0 is
+ * optimised for the vertex cache in place and becomes level 0. SYL_OK, SYL_ELIMIT or
+ * SYL_EUSAGE. The chain does not depend on mo->threads. */
+int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0, int levels, SylLodChain *out);
+void syl_lod_free(SylLodChain *c);
+/* The screen coverage at which level k of a chain of levels + 1 hands over to the next (for
+ * k = levels: where the plant is culled). */
+float syl_lod_coverage(int k, int levels);
+
+/* The .glb of a chain: nodes NAME_LOD0 .. NAME_LODn, MSFT_lod on LOD0 (docs/mesh.md). */
+int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,160 @@
+/* The LOD chain: truncate the skeleton for each level, mesh it, simplify it. */
+#include <math.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sylva/lod.h"
+#include "util/rng.h"
+
+/* Each level drops one more branch order and thicker twigs; leaves halve, growing by
+ * 1/sqrt(share) up to 2x (beyond a quarter of them, the foliage thins); triangles go to
+ * these shares of LOD0's. */
+static const float radius_share[SYL_LOD_MAX + 1] = {0, 0.02f, 0.05f, 0.1f, 0.16f, 0.22f, 0.3f, 0.4f, 0.5f};
+static const double tri_share[SYL_LOD_MAX + 1] = {1, 0.45, 0.15, 0.045, 0.02, 0.01, 0.005, 0.0025, 0.00125};
+/* Unity's default switch points, then halving; below the last level's, the plant is culled. */
+static const float switch_at[SYL_LOD_MAX + 1] = {0.6f, 0.3f, 0.12f, 0.05f, 0.025f, 0.0125f, 0.006f, 0.003f, 0.0015f};
+
+static bool thinned_kind(int kind) {
+    return kind == SYL_KIND_LEAF || kind == SYL_KIND_NEEDLE || kind == SYL_KIND_FLOWER;
+}
+
+/* One uniform per organ or polygon, the same at every level, so a level's leaves are a
+ * subset of the level above's. */
+static double keep_draw(uint64_t table, size_t i) {
+    Rng r = rng_stream(0x10d, table, i, 0);
+    return rng_unit(&r);
+}
+
+static void scale_about(float p[3], const float c[3], float k) {
+    for (int a = 0; a < 3; a++) p[a] = c[a] + k * (p[a] - c[a]);
+}
+
+/* A copy of s that borrows nothing: the level's nodes, organs and polygons. */
+static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t) {
+    *t = *s;
+    t->budget = NULL;
+    t->charged = 0;
+    t->nodes = malloc((s->nnodes + 1) * sizeof *t->nodes);
+    t->organs = malloc((s->norgans + 1) * sizeof *t->organs);
+    t->polys = malloc((s->npolys + 1) * sizeof *t->polys);
+    t->poly_verts = malloc((s->nverts + 1) * sizeof *t->poly_verts);
+    int32_t *map = malloc((s->nnodes + 1) * sizeof *map);
+    if (!t->nodes || !t->organs || !t->polys || !t->poly_verts || !map) {
+        free(map);
+        return SYL_ELIMIT;
+    }
+    size_t nn = 0;
+    for (size_t i = 0; i < s->nnodes; i++) {
+        const SylNode *n = &s->nodes[i];
+        bool keep = n->parent < 0 || (n->parent < (int32_t)i && map[n->parent] >= 0);
+        if (keep && n->order > 0 && (n->order > lv->max_order || radius[i] < lv->min_radius)) keep = false;
+        map[i] = keep ? (int32_t)nn : -1;
+        if (!keep) continue;
+        t->nodes[nn] = *n;
+        t->nodes[nn].parent = n->parent < 0 ? -1 : map[n->parent];
+        t->nodes[nn].radius = radius[i]; /* the pipe model's radii of the whole tree, kept */
+        nn++;
+    }
+    t->nnodes = t->node_cap = nn;
+    size_t no = 0;
+    for (size_t i = 0; i < s->norgans; i++) {
+        SylOrgan o = s->organs[i];
+        if (thinned_kind(o.kind)) {
+            if (keep_draw(1, i) >= lv->leaf_keep) continue;
+            o.size *= lv->leaf_scale;
+        }
+        o.node = o.node >= 0 && (size_t)o.node < s->nnodes ? map[o.node] : -1;
+        t->organs[no++] = o;
+    }
+    t->norgans = t->organ_cap = no;
+    size_t np = 0, nv = 0;
+    for (size_t i = 0; i < s->npolys; i++) {
+        SylPolygon p = s->polys[i];
+        bool leafy = s->materials[p.material].kind != SYL_MATERIAL_BARK;
+        if (leafy && keep_draw(2, i) >= lv->leaf_keep) continue;
+        float c[3] = {0, 0, 0};
+        for (uint32_t k = 0; k < p.count; k++)
+            for (int a = 0; a < 3; a++) c[a] += s->poly_verts[p.first + k][a] / (float)p.count;
+        for (uint32_t k = 0; k < p.count; k++) {
+            memcpy(t->poly_verts[nv + k], s->poly_verts[p.first + k], sizeof *t->poly_verts);
+            if (leafy) scale_about(t->poly_verts[nv + k], c, lv->leaf_scale);
+        }
+        p.first = (uint32_t)nv;
+        p.node = p.node >= 0 && (size_t)p.node < s->nnodes ? map[p.node] : -1;
+        nv += p.count;
+        t->polys[np++] = p;
+    }
+    t->npolys = t->poly_cap = np;
+    t->nverts = t->vert_cap = nv;
+    free(map);
+    return SYL_OK;
+}
+
+static void free_copy(SylSkeleton *t) {
+    free(t->nodes), free(t->organs), free(t->polys), free(t->poly_verts);
+}
+
+/* What level k keeps, from the skeleton's deepest order and thickest stem. */
+static void plan_level(SylLodLevel *lv, int k, int levels, int top_order, float rmax) {
+    lv->max_order = top_order - k > 0 ? top_order - k : 0;
+    lv->min_radius = radius_share[k] * rmax;
+    lv->leaf_keep = powf(0.5f, (float)k);
+    lv->leaf_scale = fminf(2.0f, 1 / sqrtf(lv->leaf_keep));
+    lv->coverage = syl_lod_coverage(k, levels);
+}
+
+int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0, int levels, SylLodChain *out) {
+    memset(out, 0, sizeof *out);
+    if (levels < 0 || levels > SYL_LOD_MAX) return SYL_EUSAGE;
+    float *radius = malloc((s->nnodes + 1) * sizeof *radius);
+    if (!radius) return SYL_ELIMIT;
+    int status = syl_mesh_radii(s, mo, radius);
+    int top = 0;
+    float rmax = 0;
+    for (size_t i = 0; i < s->nnodes; i++) {
+        if (s->nodes[i].kind != SYL_KIND_INTERNODE) continue;
+        if (s->nodes[i].order > top) top = s->nodes[i].order;
+        if (radius[i] > rmax) rmax = radius[i];
+    }
+    if (!status) status = syl_mesh_optimize(lod0);
+    out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1,
+                                  .coverage = syl_lod_coverage(0, levels)};
+    out->n = 1;
+    size_t tris0 = lod0->nidx / 3;
+    int sides = mo->sides > 0 ? mo->sides : 8;
+    for (int k = 1; k <= levels && !status; k++) {
+        SylLodLevel *lv = &out->level[k];
+        plan_level(lv, k, levels, top, rmax);
+        SylSkeleton t;
+        status = truncate_skeleton(s, radius, lv, &t);
+        SylMeshOptions o = *mo;
+        o.sides = (int)lroundf((float)sides * powf(0.75f, (float)k));
+        if (o.sides < 3) o.sides = 3;
+        o.min_sides = 3;
+        o.radius = SYL_RADIUS_MODEL;
+        if (!status) status = syl_mesh_build(&t, &o, &lv->mesh);
+        free_copy(&t);
+        if (status) break;
+        out->n = k + 1;
+        size_t tris = lv->mesh->nidx / 3;
+        double want = (double)tris0 * tri_share[k];
+        double ratio = tris ? want / (double)tris : 1;
+        status = syl_mesh_simplify(lv->mesh, ratio, 0.004f * powf(3, (float)(k - 1)), &lv->error);
+        snprintf(lv->mesh->name, sizeof lv->mesh->name, "%s", lod0->name);
+    }
+    free(radius);
+    if (status) syl_lod_free(out);
+    return status;
+}
+
+float syl_lod_coverage(int k, int levels) {
+    if (k < 0 || k > SYL_LOD_MAX) return 0;
+    return k == levels ? fminf(0.01f, switch_at[k]) : switch_at[k];
+}
+
+void syl_lod_free(SylLodChain *c) {
+    for (int k = 1; k < c->n; k++) syl_mesh_free(c->level[k].mesh);
+    memset(c, 0, sizeof *c);
+}

@@ -1,0 +1,183 @@
+#!/usr/bin/env python3
+"""Independent reader for sylva's LOD .glb files and impostor PNGs (python3 stdlib only).
+
+  check.py glb FILE LEVELS [--max-last-share S] [--billboards K]
+      node names NAME_LOD0..NAME_LODn, MSFT_lod ids on LOD0, screen coverages decreasing,
+      triangle counts decreasing, leaf area of each geometric level within 25% of
+      LOD0's for LOD1 and LOD2 (keep 1/2 and 1/4, enlarged by 1/sqrt(keep)), the
+      billboard level's embedded atlas 2K*view x view with an alpha-MASK material.
+  check.py atlas COLOR NORMAL GRID VIEW
+      PNG round trip: size GRID*VIEW square RGBA; alpha 0 at every view's corners (outside
+      the framed bounding sphere), > 0 somewhere near every view's centre; normals unit
+      length where the plant is.
+Prints "ok ..." lines; exits 1 with "FAIL ..." on the first failed check."""
+import json, math, struct, sys, zlib
+
+
+def fail(msg):
+    print("FAIL " + msg)
+    sys.exit(1)
+
+
+def read_glb(path):
+    b = open(path, "rb").read()
+    magic, version, length = struct.unpack_from("<III", b, 0)
+    if magic != 0x46546C67 or version != 2 or length != len(b):
+        fail(f"{path}: not a glTF 2.0 binary")
+    jlen, jtype = struct.unpack_from("<II", b, 12)
+    js = json.loads(b[20:20 + jlen])
+    at = 20 + jlen
+    blen, _ = struct.unpack_from("<II", b, at)
+    return js, b[at + 8:at + 8 + blen]
+
+
+def accessor(js, bin_, i):
+    a = js["accessors"][i]
+    v = js["bufferViews"][a["bufferView"]]
+    off = v.get("byteOffset", 0) + a.get("byteOffset", 0)
+    n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[a["type"]] * a["count"]
+    fmt = "<%d%s" % (n, "f" if a["componentType"] == 5126 else "I")
+    return struct.unpack_from(fmt, bin_, off)
+
+
+def mesh_stats(js, bin_, m):
+    """Triangles, and the area of the triangles of leaf materials."""
+    tris, leaf = 0, 0.0
+    for p in js["meshes"][m]["primitives"]:
+        idx = accessor(js, bin_, p["indices"])
+        tris += len(idx) // 3
+        if not js["materials"][p["material"]]["name"].startswith("leaf"):
+            continue
+        pos = accessor(js, bin_, p["attributes"]["POSITION"])
+        for t in range(0, len(idx), 3):
+            a, b, c = (pos[3 * idx[t + k]:3 * idx[t + k] + 3] for k in range(3))
+            u = [b[i] - a[i] for i in range(3)]
+            v = [c[i] - a[i] for i in range(3)]
+            x = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
+            leaf += 0.5 * math.sqrt(sum(q * q for q in x))
+    return tris, leaf
+
+
+def read_png(data):
+    """RGB or RGBA 8-bit PNG, non-interlaced: (width, height, channels, rows of bytes)."""
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        fail("not a PNG")
+    at, idat, w = 8, b"", 0
+    while at < len(data):
+        n, kind = struct.unpack_from(">I4s", data, at)
+        body = data[at + 8:at + 8 + n]
+        if zlib.crc32(kind + body) != struct.unpack_from(">I", data, at + 8 + n)[0]:
+            fail("PNG chunk CRC")
+        if kind == b"IHDR":
+            w, h, depth, ctype, _, _, lace = struct.unpack(">IIBBBBB", body)
+            if depth != 8 or ctype not in (2, 6) or lace:
+                fail("PNG: unexpected format")
+            ch = 4 if ctype == 6 else 3
+        elif kind == b"IDAT":
+            idat += body
+        at += 12 + n
+    raw = zlib.decompress(idat)
+    stride, rows, prev = w * ch, [], bytearray(w * ch)
+    for y in range(h):
+        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - ch] if i >= ch else 0
+            b, c = prev[i], prev[i - ch] if i >= ch else 0
+            if f == 1: line[i] = (line[i] + a) & 255
+            elif f == 2: line[i] = (line[i] + b) & 255
+            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line)
+        prev = line
+    return w, h, ch, rows
+
+
+def check_glb(path, levels, max_last, billboards):
+    js, bin_ = read_glb(path)
+    nodes = js["nodes"]
+    n = levels + 1
+    if len(nodes) != n:
+        fail(f"{len(nodes)} nodes, want {n}")
+    base = nodes[0]["name"][:-len("_LOD0")]
+    for k, nd in enumerate(nodes):
+        if nd["name"] != f"{base}_LOD{k}":
+            fail(f"node {k} is named {nd['name']}")
+    if "MSFT_lod" not in js.get("extensionsUsed", []):
+        fail("MSFT_lod not in extensionsUsed")
+    if nodes[0]["extensions"]["MSFT_lod"]["ids"] != list(range(1, n)):
+        fail("MSFT_lod ids")
+    cov = nodes[0]["extras"]["MSFT_screencoverage"]
+    if len(cov) != n or any(not (cov[k] > cov[k + 1] > 0) for k in range(n - 1)):
+        fail(f"screen coverages {cov}")
+    if js["scenes"][0]["nodes"] != [0]:
+        fail("the scene should show LOD0 only")
+    stats = [mesh_stats(js, bin_, nd["mesh"]) for nd in nodes]
+    tris = [t for t, _ in stats]
+    if any(tris[k + 1] >= tris[k] for k in range(n - 1)):
+        fail(f"triangles do not decrease: {tris}")
+    if max_last and tris[-1] > max_last * tris[0]:
+        fail(f"LOD{n - 1} has {tris[-1]} triangles, more than {max_last} of LOD0's {tris[0]}")
+    geometric = n - (1 if billboards else 0)
+    area0 = stats[0][1]
+    for k in range(1, min(geometric, 3)):  # keep >= 1/4: the enlargement makes up for it
+        want = area0 * min(1.0, 4 * 0.5 ** k)
+        if area0 > 0 and abs(stats[k][1] - want) > 0.25 * want:
+            fail(f"LOD{k} leaf area {stats[k][1]:.4g}, want {want:.4g} (LOD0 {area0:.4g})")
+    if billboards:
+        last = js["meshes"][nodes[-1]["mesh"]]
+        mat = js["materials"][last["primitives"][0]["material"]]
+        if mat.get("alphaMode") != "MASK" or tris[-1] != 4 * billboards:
+            fail("billboard level: material or triangle count")
+        img = js["images"][js["textures"][mat["pbrMetallicRoughness"]["baseColorTexture"]["index"]]["source"]]
+        v = js["bufferViews"][img["bufferView"]]
+        w, h, ch, rows = read_png(bin_[v["byteOffset"]:v["byteOffset"] + v["byteLength"]])
+        if ch != 4 or w != 2 * billboards * h:
+            fail(f"billboard atlas {w}x{h}x{ch}")
+        if any(r[3] for r in (rows[0][:4 * w],)) or not any(rows[h // 2][4 * x + 3] for x in range(w)):
+            fail("billboard atlas alpha: not 0 at the top row or nothing across the middle")
+    print(f"ok {path}: {n} levels, triangles {tris}, leaf area {[round(a / area0, 3) if area0 else 0 for _, a in stats]}")
+
+
+def check_atlas(color, normal, grid, view):
+    for path, is_normal in ((color, False), (normal, True)):
+        w, h, ch, rows = read_png(open(path, "rb").read())
+        if (w, h, ch) != (grid * view, grid * view, 4):
+            fail(f"{path}: {w}x{h}x{ch}, want {grid * view} square RGBA")
+        if is_normal:
+            bad = 0
+            for y in range(0, h, 7):
+                for x in range(0, w, 7):
+                    p = rows[y][4 * x:4 * x + 4]
+                    if p == b"\0\0\0\0":
+                        continue
+                    l = math.sqrt(sum((c / 127.5 - 1) ** 2 for c in p[:3]))
+                    bad += abs(l - 1) > 0.05
+            if bad:
+                fail(f"{path}: {bad} normals are not unit length")
+            continue
+        for row in range(grid):
+            for col in range(grid):
+                x0, y0 = col * view, row * view
+                for cx, cy in ((0, 0), (view - 1, 0), (0, view - 1), (view - 1, view - 1)):
+                    if rows[y0 + cy][4 * (x0 + cx) + 3]:
+                        fail(f"{path}: view ({col},{row}) has alpha at a corner")
+                r = view // 4
+                if not any(rows[y][4 * x + 3] for y in range(y0 + view // 2 - r, y0 + view // 2 + r)
+                           for x in range(x0 + view // 2 - r, x0 + view // 2 + r)):
+                    fail(f"{path}: view ({col},{row}) is empty near its centre")
+    print(f"ok {color}: {grid}x{grid} views of {view}, alpha 0 outside the plant, unit normals")
+
+
+if __name__ == "__main__":
+    a = sys.argv[1:]
+    if a and a[0] == "glb":
+        opt = dict(zip(a[3::2], a[4::2]))
+        check_glb(a[1], int(a[2]), float(opt.get("--max-last-share", 0)), int(opt.get("--billboards", 0)))
+    elif a and a[0] == "atlas":
+        check_atlas(a[1], a[2], int(a[3]), int(a[4]))
+    else:
+        print(__doc__)
+        sys.exit(2)
