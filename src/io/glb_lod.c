@@ -1,6 +1,7 @@
 /* The glTF 2.0 binary writer of a chain of levels of detail (.glb, `sylva mesh --lod`).
- * TODO (fold): this is the lod branch's writer beside glb.c's (instanced leaves, leaf cards,
- * 16-bit indices); the two were restructured in parallel and are to become one. */
+ * Its words, padding, buffer views and container are glb_parts.c's, shared with glb.c; its
+ * layout and JSON are still its own (no leaf cards, instance sets or 16-bit indices), to be
+ * folded into glb.c's so that levels of detail take every leaf mode. */
 
 /* One scene, a node named after the model (or one per level of detail, NAME_LOD0 .. with
  * MSFT_lod on the first), a mesh per node with one primitive per material group. POSITION,
@@ -12,56 +13,16 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/io_internal.h"
+#include "io/glb.h"
 #include "sylva/lod.h"
 #include "sylva/texture.h"
 
-enum { GLB_MAGIC = 0x46546C67, GLB_JSON = 0x4E4F534A, GLB_BIN = 0x004E4942 };
-enum { ARRAY_BUFFER = 34962, ELEMENT_ARRAY_BUFFER = 34963, FLOAT = 5126, UNSIGNED_INT = 5125 };
 
-static float srgb_to_linear(float c) {
-    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
-}
 
-static void put_u32(IoBuf *b, uint32_t u) {
-    uint8_t p[4] = {(uint8_t)u, (uint8_t)(u >> 8), (uint8_t)(u >> 16), (uint8_t)(u >> 24)};
-    io_put(b, p, 4);
-}
 
-/* Little-endian 32-bit words (floats or integers), whatever the host. */
-static void put_words(IoBuf *b, const void *x, size_t n) {
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    io_put(b, x, 4 * n);
-#else
-    const uint32_t *w = x;
-    for (size_t i = 0; i < n; i++) put_u32(b, w[i]);
-#endif
-}
 
-static void pad(IoBuf *b, uint8_t with) {
-    while (b->len % 4 && !b->failed) io_put(b, &with, 1); /* a failed buffer no longer grows */
-}
 
-/* "min":[..],"max":[..] of n vectors of k floats. */
-static void min_max(IoBuf *j, const float *x, size_t n, int k) {
-    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < k; c++) {
-            float v = x[k * i + (size_t)c];
-            if (v < lo[c]) lo[c] = v;
-            if (v > hi[c]) hi[c] = v;
-        }
-    for (int w = 0; w < 2; w++) {
-        io_printf(j, ",\"%s\":[", w ? "max" : "min");
-        for (int c = 0; c < k; c++) io_printf(j, "%s%.17g", c ? "," : "", (double)(w ? hi[c] : lo[c]));
-        io_put(j, "]", 1);
-    }
-}
 
-typedef struct View {
-    size_t offset, length;
-    int target; /* 0: none */
-} View;
 
 enum { GLB_MAX_MESHES = SYL_LOD_MAX + 1 };
 
@@ -99,13 +60,13 @@ static bool has_geometry(const SylMesh *m) { return m->nverts > 0 && m->nidx > 0
 static void layout_attributes(const SylMesh *m, Layout *l) {
     const size_t nv = m->nverts;
     l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER};
-    put_words(&l->bin, m->pos, 3 * nv);
+    glb_words(&l->bin, m->pos, 3 * nv);
     l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER};
-    put_words(&l->bin, m->nrm, 3 * nv);
+    glb_words(&l->bin, m->nrm, 3 * nv);
     l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER};
-    put_words(&l->bin, m->uv, 2 * nv);
+    glb_words(&l->bin, m->uv, 2 * nv);
     l->views[l->nviews++] = (View){l->bin.len, 4 * m->nidx, ELEMENT_ARRAY_BUFFER};
-    put_words(&l->bin, m->idx, m->nidx);
+    glb_words(&l->bin, m->idx, m->nidx);
 }
 
 /* The materials the meshes use, in the order of their indices: one glTF material each. */
@@ -140,7 +101,7 @@ static void layout_textures(const GlbScene *sc, Layout *l) {
         }
         l->image_view[l->ntex] = l->nviews;
         l->views[l->nviews++] = (View){at, l->bin.len - at, 0};
-        pad(&l->bin, 0);
+        glb_pad(&l->bin, 0);
         l->tex_of_kind[k] = l->ntex++;
     }
     free(rgb);
@@ -153,7 +114,7 @@ static void layout_textures(const GlbScene *sc, Layout *l) {
         }
         l->image_view[l->ntex] = l->nviews;
         l->views[l->nviews++] = (View){at, l->bin.len - at, 0};
-        pad(&l->bin, 0);
+        glb_pad(&l->bin, 0);
         l->atlas_tex = l->ntex++;
     }
 }
@@ -210,8 +171,8 @@ static void json_meshes(IoBuf *js, const GlbScene *sc, const Layout *l, const in
         }
         io_material_name(m, i, mname, sizeof mname);
         io_printf(js, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.6f,%.6f,%.6f,1]",
-                  s ? "," : "", mname, srgb_to_linear(mat->rgb[0]), srgb_to_linear(mat->rgb[1]),
-                  srgb_to_linear(mat->rgb[2]));
+                  s ? "," : "", mname, glb_linear(mat->rgb[0]), glb_linear(mat->rgb[1]),
+                  glb_linear(mat->rgb[2]));
         int t = -1;
         for (int k = 0; k < 3; k++)
             if (mat->kind == kinds[k]) t = l->tex_of_kind[k];
@@ -236,7 +197,7 @@ static void json_accessors(IoBuf *js, const GlbScene *sc, const Layout *l, int *
         for (int a = 0; a < 3; a++) {
             io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
                       v + a, FLOAT, m->nverts, types[a]);
-            min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
+            glb_min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
             io_put(js, "}", 1);
             n++;
         }
@@ -280,56 +241,12 @@ static void write_json(IoBuf *js, const GlbScene *sc, const Layout *l, bool geom
         json_accessors(js, sc, l, acc);
         json_meshes(js, sc, l, acc);
         json_textures(js, l);
-        io_printf(js, ",\"bufferViews\":[");
-        for (int v = 0; v < l->nviews; v++) {
-            io_printf(js, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu", v ? "," : "", l->views[v].offset,
-                      l->views[v].length);
-            if (l->views[v].target) io_printf(js, ",\"target\":%d", l->views[v].target);
-            io_put(js, "}", 1);
-        }
-        io_printf(js, "],\"buffers\":[{\"byteLength\":%zu}]", l->bin.len);
+        glb_buffer_views(js, l->views, l->nviews, l->bin.len);
     }
     io_put(js, "}", 1);
-    pad(js, ' ');
+    glb_pad(js, ' ');
 }
 
-/* The GLB container: header, JSON chunk and (with geometry) BIN chunk, through a temporary
- * file. SYL_OK, SYL_ELIMIT or SYL_EIO, reported. */
-static int write_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag) {
-    int status = SYL_OK;
-    if (js->failed || bin->failed) {
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
-        status = SYL_ELIMIT;
-    } else if (12 + 8 + js->len + (geometry ? 8 + bin->len : 0) > UINT32_MAX) {
-        if (diag) fprintf(diag, "sylva: error: '%s' would be larger than 4 GiB, the limit of .glb\n", path);
-        status = SYL_ELIMIT;
-    }
-    OutFile fo;
-    if (!status && !io_open(&fo, path, diag)) status = SYL_EIO;
-    if (!status) {
-        IoBuf head = {0};
-        size_t total = 12 + 8 + js->len + (geometry ? 8 + bin->len : 0);
-        put_u32(&head, GLB_MAGIC);
-        put_u32(&head, 2);
-        put_u32(&head, (uint32_t)total);
-        put_u32(&head, (uint32_t)js->len);
-        put_u32(&head, GLB_JSON);
-        fwrite(head.data, 1, head.len, fo.f);
-        fwrite(js->data, 1, js->len, fo.f);
-        if (geometry) {
-            head.len = 0;
-            put_u32(&head, (uint32_t)bin->len);
-            put_u32(&head, GLB_BIN);
-            fwrite(head.data, 1, head.len, fo.f);
-            fwrite(bin->data, 1, bin->len, fo.f);
-        }
-        if (head.failed && diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
-        if (head.failed) status = SYL_ELIMIT;
-        io_free(&head);
-        status = io_close(&fo, status, diag); /* also catches the fwrite failures above */
-    }
-    return status;
-}
 
 static int write_scene(const GlbScene *sc, const char *path, FILE *diag) {
     Layout l = {.tex_of_kind = {-1, -1, -1}, .atlas_tex = -1};
@@ -346,9 +263,9 @@ static int write_scene(const GlbScene *sc, const char *path, FILE *diag) {
         layout_materials(sc, &l);
         layout_textures(sc, &l);
     }
-    pad(&l.bin, 0);
+    glb_pad(&l.bin, 0);
     write_json(&js, sc, &l, geometry);
-    int status = write_container(path, &js, &l.bin, geometry, diag);
+    int status = glb_container(path, &js, &l.bin, geometry, diag);
     io_free(&js);
     io_free(&l.bin);
     return status;

@@ -1,0 +1,32 @@
+/* What the two glTF binary writers (glb.c, glb_lod.c) share: glb_parts.c. */
+#ifndef SYLVA_IO_GLB_H
+#define SYLVA_IO_GLB_H
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "io/io_internal.h"
+
+enum { GLB_MAGIC = 0x46546C67, GLB_JSON = 0x4E4F534A, GLB_BIN = 0x004E4942 };
+enum { ARRAY_BUFFER = 34962, ELEMENT_ARRAY_BUFFER = 34963, FLOAT = 5126, UNSIGNED_INT = 5125,
+       UNSIGNED_SHORT = 5123 };
+
+/* A slice of the BIN chunk. */
+typedef struct View {
+    size_t offset, length;
+    int target; /* 0: none */
+} View;
+
+float glb_linear(float srgb);                          /* glTF's colours are linear */
+void glb_u32(IoBuf *b, uint32_t u);                    /* little-endian */
+void glb_words(IoBuf *b, const void *x, size_t n);     /* n 32-bit words, little-endian */
+void glb_pad(IoBuf *b, uint8_t with);                  /* to a multiple of 4 bytes */
+void glb_min_max(IoBuf *j, const float *x, size_t n, int k); /* ,"min":[..],"max":[..] */
+/* ,"bufferViews":[..],"buffers":[..] */
+void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len);
+/* The GLB container: header, JSON chunk and (with geometry) BIN chunk, through a temporary
+ * file. SYL_OK, SYL_ELIMIT or SYL_EIO, reported. */
+int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
+
+#endif
