@@ -122,18 +122,8 @@ void render_camera(const SylMesh *m, SylView view, int width, int height, Render
     memset(cam, 0, sizeof *cam);
     cam->width = width;
     cam->height = height;
-    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = {-INFINITY, -INFINITY, -INFINITY};
-    for (size_t i = 0; m && i < m->nverts; i++)
-        for (int k = 0; k < 3; k++) {
-            float v = m->pos[3 * i + k];
-            if (!isfinite(v)) continue;
-            if (v < lo[k]) lo[k] = v;
-            if (v > hi[k]) hi[k] = v;
-        }
-    if (!(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2])) { /* nothing to frame */
-        glm_vec3_copy((vec3){-0.5f, 0, -0.5f}, lo);
-        glm_vec3_copy((vec3){0.5f, 1, 0.5f}, hi);
-    }
+    vec3 lo, hi;
+    mesh_bounds(m, lo, hi);
     glm_vec3_copy(lo, cam->lo);
     glm_vec3_copy(hi, cam->hi);
     float size = fmaxf(hi[0] - lo[0], fmaxf(hi[1] - lo[1], hi[2] - lo[2]));
