@@ -12,6 +12,7 @@
 #include "lang/builtins.h"
 #include "lang/groups.h"
 #include "util/budget.h"
+#include "util/pages.h"
 #include "lsys/derive.h"
 #include "lsys/rewrite.h"
 #include "lsys/match.h"
@@ -171,10 +172,40 @@ static int select_table(Engine *e, int table, int step, const RuleTable **out) {
     return SYL_OK;
 }
 
-/* Rewrite `in` with table t (of kind `table`) into `out` (emptied first). Returns a SYL_* status. */
-static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, SylString *in, SylString *out,
-                        bool *applied, int step, const char *what) {
+/* Whether a pass may write its string over the one it reads (rewrite.c's make_room): one
+ * thread; a string that grew by an eighth or more last time (a stable or shrinking one gains
+ * nothing: the spare buffer is already big enough) and whose arrays are in whole pages, so
+ * that moving it back moves pages instead of copying bytes; rules that read their contexts
+ * from the neighbour arrays alone, never from modules already passed. In place, a step
+ * touches fresh memory only for its growth, where two buffers fill the spare one as well. */
+static bool in_place(const Engine *e, const RuleTable *t, int table, const SylString *in, int nt) {
+    if (nt != 1 || e->growth[table] < 1.125 || t->has_newctx) return false;
+    if (in->cap * sizeof *in->code < PAGES_BIG || (in->np && in->pcap * sizeof *in->par < PAGES_BIG)) return false;
+    return !t->has_context || (!t->ctx_index && !t->ctx_branches && !in->np);
+}
+
+/* Move the string read to the back of its arrays, by the room the output should need. */
+static int move_back(Engine *e, int table, SylString *s, Work *w) {
+    size_t n = s->n, np = s->np;
+    double g = e->growth[table] * 1.02, slack = (double)n / 64 + 4096;
+    size_t room = (size_t)((g - 1) * (double)n + slack);
+    size_t proom = (size_t)((double)n * g * e->density[table] * 1.02 - (double)np + slack);
+    if (e->density[table] * g * (double)n < (double)np) proom = (size_t)slack;
+    int st = ms_move_back(s, n, np, room, proom, &w->at, &w->pat);
+    if (st) return st;
+    w->inplace = true;
+    w->n_in = n;
+    w->np_in = np;
+    s->n = s->np = 0;
+    return SYL_OK;
+}
+
+/* Rewrite *cur with table t (of kind `table`) into *spare (emptied first), or over itself,
+ * then make the result *cur. Returns a SYL_* status. */
+static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, SylString **cur,
+                        SylString **spare, bool *applied, int step, const char *what) {
     const SylProgram *p = e->p;
+    SylString *in = *cur, *out = *spare;
     e->rewritten += in->n;
     /* a pass costs at least as much as rewriting 100 modules: a million steps of one module
      * is work too */
@@ -184,34 +215,46 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         report(e, &w, step, what);
         return SYL_ELIMIT;
     }
-    out->n = out->np = 0;
-    ms_changed(out); /* the offset cache describes the old contents */
-    View v = {.code = in->code, .par = in->par, .n = in->n, .skip = p->skip};
     int nt = e->threads;
     if (in->n < PARALLEL_MIN) nt = 1;
-    bool codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast);
+    Work place = {0};
+    size_t n_in = in->n, np_in = in->np;
+    if (in_place(e, t, table, in, nt)) {
+        int st = move_back(e, table, in, &place);
+        if (st) return st;
+        out = in;
+        ms_release(*spare); /* the string before last: not needed while strings grow */
+    }
+    out->n = out->np = 0;
+    ms_changed(out); /* the offset cache describes the old contents */
+    View v = {.code = in->code, .par = in->par, .n = n_in, .skip = p->skip};
+    if (place.inplace) {
+        v.code = in->code + place.at;
+        v.par = in->par ? in->par + place.pat : NULL;
+    }
+    bool codes_only = !np_in && !t->emits_params && (t->all_plain || t->all_fast);
     /* one thread, contexts of one module without parameters on both sides, pick tables:
      * run_chunk_classes follows the left neighbours itself and reads the right ones' classes */
     bool classes = nt == 1 && codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
                    !t->ctx_branches && !t->has_newctx;
     if (classes) {
-        if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, in->n, 1) ||
-            !ms_scratch_reserve(&e->cstack, &e->cap_cstack, in->n + 1, 1))
+        if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in, 1) ||
+            !ms_scratch_reserve(&e->cstack, &e->cap_cstack, n_in + 1, 1))
             return SYL_ELIMIT;
-        match_class_right(in->code, in->n, p->skip, t->ctx_class, e->rclass, e->cstack);
+        match_class_right(v.code, n_in, p->skip, t->ctx_class, e->rclass, e->cstack);
         v.rclass = e->rclass;
     } else if (t->has_context) {
-        if (in->np) {
+        if (np_in) {
             v.poff = ms_offsets(in);
             if (!v.poff) return SYL_ELIMIT;
         }
-        size_t n = in->n;
+        size_t n = n_in;
         /* indices are needed to bind context parameters or follow longer contexts;
          * rules of the fast kind compare neighbour codes only */
         bool idx = t->ctx_index;
         if (t->ctx_branches) {
             if (!ms_scratch_reserve(&e->pair, &e->cap_pair, n, sizeof *e->pair)) return SYL_ELIMIT;
-            match_pairs(in->code, n, e->pair);
+            match_pairs(v.code, n, e->pair);
             v.pair = e->pair;
         }
         if ((t->ctx_left || t->ctx_right) &&
@@ -221,7 +264,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             if (!ms_scratch_reserve(&e->lcode, &e->cap_lcode, n, sizeof *e->lcode) ||
                 (idx && !ms_scratch_reserve(&e->left, &e->cap_left, n, sizeof *e->left)))
                 return SYL_ELIMIT;
-            match_link_left(in->code, n, p->skip, idx ? e->left : NULL, e->lcode, e->stack);
+            match_link_left(v.code, n, p->skip, idx ? e->left : NULL, e->lcode, e->stack);
             v.left = idx ? e->left : NULL;
             v.lcode = e->lcode;
         }
@@ -229,7 +272,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             if (!ms_scratch_reserve(&e->rcode, &e->cap_rcode, n, sizeof *e->rcode) ||
                 (idx && !ms_scratch_reserve(&e->right, &e->cap_right, n, sizeof *e->right)))
                 return SYL_ELIMIT;
-            match_link_right(in->code, n, p->skip, idx ? e->right : NULL, e->rcode, e->stack);
+            match_link_right(v.code, n, p->skip, idx ? e->right : NULL, e->rcode, e->stack);
             v.right = idx ? e->right : NULL;
             v.rcode = e->rcode;
         }
@@ -241,8 +284,8 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         if (st) return st;
     }
     /* size the output from the last pass's growth, so that it is rarely moved */
-    if (nt == 1 && e->growth[table] > 0) {
-        size_t want = (size_t)((double)in->n * e->growth[table] * 1.02) + 64;
+    if (nt == 1 && e->growth[table] > 0 && !place.inplace) {
+        size_t want = (size_t)((double)n_in * e->growth[table] * 1.02) + 64;
         size_t pwant = (size_t)((double)want * e->density[table] * 1.02) + 64;
         if (want > e->max_modules) want = (size_t)e->max_modules;
         ms_reserve(out, want, pwant); /* a refusal here is met again, and reported, below */
@@ -254,13 +297,15 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     uint32_t plo = 0;
     size_t lo = 0;
     for (int k = 0; k < nt; k++) {
-        size_t hi = k == nt - 1 ? in->n : in->n / (size_t)nt * (size_t)(k + 1);
+        size_t hi = k == nt - 1 ? n_in : n_in / (size_t)nt * (size_t)(k + 1);
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
-                          .codes_only = codes_only, .stack = classes ? e->cstack : NULL};
+                          .codes_only = codes_only, .stack = classes ? e->cstack : NULL,
+                          .inplace = place.inplace, .at = place.at, .pat = place.pat, .n_in = place.n_in,
+                          .np_in = place.np_in};
         parts[k].mem = e->mem;
         parts[k].max_modules = e->max_modules;
-        for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(in->code[i]);
+        for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(v.code[i]);
         lo = hi;
     }
     pthread_t tid[MAX_THREADS];
@@ -298,15 +343,21 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     if (!status && out->n > e->max_modules) {
         Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MODULES}};
         report(e, &w, step, what);
-        return SYL_ELIMIT;
+        status = SYL_ELIMIT;
+        reported = true;
     }
-    if (!status && in->n) {
-        e->growth[table] = (double)out->n / (double)in->n;
+    if (!status && n_in) {
+        e->growth[table] = (double)out->n / (double)n_in;
         e->density[table] = out->n ? (double)out->np / (double)out->n : 0;
     }
     if (status == SYL_ELIMIT && !reported) {
         Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MEMORY}};
         report(e, &w, step, what);
+    }
+    if (status && place.inplace) out->n = out->np = 0; /* half rewritten: nothing to read */
+    if (!status && !place.inplace) {
+        *spare = in;
+        *cur = out;
     }
     return status;
 }
@@ -327,13 +378,10 @@ static int rewrite_until_stable(Engine *e, int table, int step, SylString **cur,
     if (st || !t->nrules) return st;
     for (int d = 0; d < t->maxdepth; d++) {
         bool applied = false;
-        st = rewrite_pass(e, t, table, (uint64_t)step << 16 | (uint64_t)d, *cur, *spare, &applied, step,
-                      table == TABLE_DECOMPOSE ? "decomposition after step" : "interpretation of step");
+        st = rewrite_pass(e, t, table, (uint64_t)step << 16 | (uint64_t)d, cur, spare, &applied, step,
+                          table == TABLE_DECOMPOSE ? "decomposition after step" : "interpretation of step");
         if (st) return st;
         if (!applied) break;
-        SylString *x = *cur;
-        *cur = *spare;
-        *spare = x;
         if (d == t->maxdepth - 1 && !e->warned_depth && e->diag && any_predecessor(t, *cur)) {
             e->warned_depth = true;
             fprintf(e->diag, "sylva: warning: %s rules may still apply after maxdepth %d passes (step %d); "
@@ -551,12 +599,7 @@ int syl_derive_step(SylDeriver *d) {
     if (t->nrules) st = select_table(e, TABLE_PRODUCE, step, &t);
     if (!st && t->nrules) {
         bool applied = false;
-        st = rewrite_pass(e, t, TABLE_PRODUCE, (uint64_t)step << 16, d->cur, d->spare, &applied, step, "step");
-        if (!st) {
-            SylString *x = d->cur;
-            d->cur = d->spare;
-            d->spare = x;
-        }
+        st = rewrite_pass(e, t, TABLE_PRODUCE, (uint64_t)step << 16, &d->cur, &d->spare, &applied, step, "step");
     }
     if (!st) st = rewrite_until_stable(e, TABLE_DECOMPOSE, step, &d->cur, &d->spare);
     if (!st && d->may_cut) cut_branches(d->cur, e->cut_sym);

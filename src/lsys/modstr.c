@@ -58,6 +58,63 @@ int ms_reserve(SylString *s, size_t n, size_t np) {
     return SYL_OK;
 }
 
+/* One array of a string moved: its first `used` elements to `shift`, its capacity to `cap`. */
+static int move_array(SylString *s, void **arr, size_t *cap, size_t elem, size_t used, size_t shift, size_t newcap) {
+    if (newcap < *cap) newcap = *cap;
+    if (charge(s, (int64_t)((newcap - *cap) * elem))) return SYL_ELIMIT;
+    void *p = pages_grow_front(*arr, *cap * elem, used * elem, shift * elem, newcap * elem);
+    if (!p) {
+        charge(s, -(int64_t)((newcap - *cap) * elem));
+        return SYL_ELIMIT;
+    }
+    *arr = p;
+    *cap = newcap;
+    return SYL_OK;
+}
+
+/* The shift, at least `room` elements, that moves whole pages of an array of `bytes`. */
+static size_t page_shift(size_t room, size_t elem, size_t bytes) {
+    size_t unit = pages_shift_unit(bytes);
+    size_t b = (room * elem + unit - 1) / unit * unit;
+    return (b + elem - 1) / elem;
+}
+
+int ms_move_back(SylString *s, size_t n, size_t np, size_t room, size_t proom, size_t *at, size_t *pat) {
+    if (np + proom >= UINT32_MAX) return SYL_ELIMIT; /* offsets are 32-bit */
+    size_t sh = page_shift(room, sizeof *s->code, (room + n) * sizeof *s->code);
+    size_t psh = page_shift(proom, sizeof *s->par, (proom + np) * sizeof *s->par);
+    int st = move_array(s, (void **)&s->code, &s->cap, sizeof *s->code, n, sh, sh + n);
+    if (!st) st = move_array(s, (void **)&s->par, &s->pcap, sizeof *s->par, np, psh, psh + np);
+    if (st) return st;
+    *at = sh;
+    *pat = psh;
+    ms_changed(s);
+    return SYL_OK;
+}
+
+int ms_move_tail(SylString *s, size_t from, size_t len, size_t extra, size_t pfrom, size_t plen, size_t pextra) {
+    if (pfrom + plen + pextra >= UINT32_MAX) return SYL_ELIMIT;
+    if (from + len + extra > s->cap) {
+        size_t cap = from + len + extra;
+        if (charge(s, (int64_t)((cap - s->cap) * sizeof *s->code))) return SYL_ELIMIT;
+        uint16_t *c = pages_grow(s->code, s->cap * sizeof *c, (from + len) * sizeof *c, cap * sizeof *c);
+        if (!c) return charge(s, -(int64_t)((cap - s->cap) * sizeof *s->code)), SYL_ELIMIT;
+        s->code = c;
+        s->cap = cap;
+    }
+    if (pfrom + plen + pextra > s->pcap) {
+        size_t cap = pfrom + plen + pextra;
+        if (charge(s, (int64_t)((cap - s->pcap) * sizeof *s->par))) return SYL_ELIMIT;
+        double *p = pages_grow(s->par, s->pcap * sizeof *p, (pfrom + plen) * sizeof *p, cap * sizeof *p);
+        if (!p) return charge(s, -(int64_t)((cap - s->pcap) * sizeof *s->par)), SYL_ELIMIT;
+        s->par = p;
+        s->pcap = cap;
+    }
+    memmove(s->code + from + extra, s->code + from, len * sizeof *s->code);
+    if (plen) memmove(s->par + pfrom + pextra, s->par + pfrom, plen * sizeof *s->par);
+    return SYL_OK;
+}
+
 const uint32_t *ms_offsets(const SylString *cs) {
     /* The cache is not part of the string's value: building it is a const operation made
      * safe between threads by poff_state (stale -> building -> ready). */

@@ -162,6 +162,40 @@ static bool over_limit(Work *w, size_t pos, int reserve_status) {
     return true;
 }
 
+static const double no_params[1]; /* without parameters every arity is 0 */
+
+/* Where the input's codes and parameters are now: in place they move when room is made. */
+static inline const uint16_t *in_code(const Work *w) { return w->inplace ? w->out->code + w->at : w->in->code; }
+static inline const double *in_par(const Work *w) {
+    const double *p = w->inplace ? w->out->par : w->in->par;
+    return p ? p + (w->inplace ? w->pat : 0) : no_params;
+}
+
+/* Room for `room` more codes and `proom` more parameters before module lo (parameter pi) is
+ * read. In place, the writer must stay behind the reader: when it would catch up, the unread
+ * rest moves further back, by what the growth seen so far says the rest will need. True when
+ * a limit is hit (w->fault set). */
+static bool make_room(Work *w, size_t lo, size_t pi, size_t room, size_t proom) {
+    SylString *o = w->out;
+    if (!w->inplace) {
+        if (o->n + room <= o->cap && o->np + proom <= o->pcap) return false;
+        return over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom));
+    }
+    size_t gap = w->at + lo - o->n, pgap = w->pat + pi - o->np;
+    if (gap >= room && pgap >= proom) return false;
+    size_t rest = w->n_in - lo, prest = w->np_in - pi;
+    double g = lo ? (double)o->n / (double)lo : 2, pg = pi ? (double)o->np / (double)pi : 2;
+    size_t want = (size_t)((g > 1 ? g - 1 : 0) * (double)rest * 1.1) + 2 * room + 1024;
+    size_t pwant = (size_t)((pg > 1 ? pg - 1 : 0) * (double)prest * 1.1) + 2 * proom + 256;
+    size_t extra = want > gap ? want - gap : 0, pextra = pwant > pgap ? pwant - pgap : 0;
+    int st = ms_move_tail(o, w->at + lo, rest, extra, w->pat + pi, prest, pextra);
+    if (!st) {
+        w->at += extra;
+        w->pat += pextra;
+    }
+    return over_limit(w, lo, st);
+}
+
 /* Output room is made for BATCH modules' successors at once: one capacity check per batch
  * instead of per module, and the write cursors stay in registers in between. */
 enum { BATCH = 64 };
@@ -192,13 +226,13 @@ static inline uint16_t rcode_at(const View *in, size_t i) { return in->rcode ? i
 static void run_chunk_codes(Work *w) {
     const RuleTable *t = w->t;
     const View *in = w->in;
-    const uint16_t *code = in->code;
     SylString *o = w->out;
     bool applied = false;
     for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
         size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
         size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
-        if (o->n + room > o->cap && over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), 0))) return;
+        if (make_room(w, lo, 0, room, 0)) return;
+        const uint16_t *code = in_code(w);
         uint16_t *oc = o->code + o->n;
         for (size_t i = lo; i < hi; i++) {
             uint16_t c = code[i];
@@ -225,7 +259,6 @@ static void run_chunk_codes(Work *w) {
 static void run_chunk_classes(Work *w) {
     const RuleTable *t = w->t;
     const View *in = w->in;
-    const uint16_t *code = in->code;
     const uint8_t *cls = t->ctx_class, *rclass = in->rclass;
     const bool *skip = in->skip;
     const size_t nclass = (size_t)t->nclass;
@@ -236,7 +269,8 @@ static void run_chunk_classes(Work *w) {
     for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
         size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
         size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
-        if (o->n + room > o->cap && over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), 0))) return;
+        if (make_room(w, lo, 0, room, 0)) return;
+        const uint16_t *code = in_code(w);
         uint16_t *oc = o->code + o->n;
         for (size_t i = lo; i < hi; i++) {
             uint16_t c = code[i];
@@ -285,9 +319,6 @@ static void run_chunk(Work *w) {
     const RuleTable *t = w->t;
     const View *in = w->in;
     SylString *o = w->out;
-    const uint16_t *code = in->code;
-    static const double no_params[1];
-    const double *par = in->par ? in->par : no_params; /* without parameters every arity is 0 */
     size_t pi = w->plo;
     double locals[MAX_LOCALS + MAX_ARITY];
     w->fault.status = SYL_OK;
@@ -295,9 +326,9 @@ static void run_chunk(Work *w) {
         size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
         size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
         size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
-        if ((o->n + room > o->cap || o->np + proom > o->pcap) &&
-            over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom)))
-            return;
+        if (make_room(w, lo, pi, room, proom)) return;
+        const uint16_t *code = in_code(w);
+        const double *par = in_par(w);
         /* write cursors; o->n and o->np are brought up to date before anything reads them */
         uint16_t *oc = o->code + o->n;
         double *op = o->par + o->np;
@@ -354,20 +385,17 @@ static void run_chunk(Work *w) {
  * contexts or choices, small enough for every cursor to stay in a register. */
 static void run_chunk_plain(Work *w) {
     const RuleTable *t = w->t;
-    const View *in = w->in;
     SylString *o = w->out;
-    const uint16_t *code = in->code;
-    static const double no_params[1];
-    const double *args = (in->par ? in->par : no_params) + w->plo;
+    size_t pi = w->plo;
     bool applied = false;
     w->fault.status = SYL_OK;
     for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
         size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
         size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
         size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
-        if ((o->n + room > o->cap || o->np + proom > o->pcap) &&
-            over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom)))
-            break;
+        if (make_room(w, lo, pi, room, proom)) break;
+        const uint16_t *code = in_code(w);
+        const double *par = in_par(w), *args = par + pi;
         uint16_t *oc = o->code + o->n;
         double *op = o->par + o->np;
         for (size_t i = lo; i < hi; i++) {
@@ -395,6 +423,7 @@ static void run_chunk_plain(Work *w) {
         }
         o->n = (size_t)(oc - o->code);
         o->np = (size_t)(op - o->par);
+        pi = (size_t)(args - par);
     }
     w->applied |= applied;
 }

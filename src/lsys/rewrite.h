@@ -34,6 +34,10 @@ typedef struct Work {
     bool applied;     /* a rule other than identity was used */
     bool codes_only;  /* no parameters in or out, plain or fast rules: run_chunk_codes */
     uint8_t *stack;   /* set for run_chunk_classes (in->rclass): room for n left classes */
+    /* in place (derive.c): out is also the string read, whose module i sits at out->code[at +
+     * i] and parameter j at out->par[pat + j]; n_in and np_in are its sizes */
+    bool inplace;
+    size_t at, pat, n_in, np_in;
     const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
     double *weight;
     int ncap;

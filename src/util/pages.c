@@ -43,5 +43,27 @@ void *pages_grow(void *old, size_t old_bytes, size_t used, size_t bytes) {
     return p;
 }
 
+size_t pages_shift_unit(size_t bytes) { return mapped_bytes(bytes) ? HUGE_PAGE : 1; }
+
+void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes) {
+    if (!mapped_bytes(bytes)) {
+        char *p = realloc(old, bytes);
+        if (p && used) memmove(p + shift, p, used);
+        return p;
+    }
+    char *p = map_big(bytes);
+    if (!p) return NULL;
+    size_t om = mapped_bytes(old_bytes), move = (used + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
+#ifdef MREMAP_FIXED /* Linux: the pages change address, their contents stay where they are */
+    if (om && used && shift % HUGE_PAGE == 0 &&
+        mremap(old, move, move, MREMAP_MAYMOVE | MREMAP_FIXED, p + shift) != MAP_FAILED) {
+        if (om > move) munmap((char *)old + move, om - move);
+        return p;
+    }
+#endif
+    if (used) memcpy(p + shift, old, used);
+    pages_free(old, old_bytes);
+    return p;
+}
 
 void *pages_alloc(size_t bytes) { return mapped_bytes(bytes) ? map_big(bytes) : calloc(1, bytes ? bytes : 1); }

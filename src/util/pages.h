@@ -13,5 +13,12 @@ void pages_free(void *p, size_t bytes);
 /* Grow an array of old_bytes (its first `used` bytes in use) to bytes; NULL if refused,
  * the old array then unchanged. */
 void *pages_grow(void *old, size_t old_bytes, size_t used, size_t bytes);
+/* Grow an array of old_bytes to bytes and move its first `used` bytes to offset `shift`
+ * (shift + used <= bytes); NULL if refused, the old array then unchanged. When the array is
+ * mapped and shift is a multiple of pages_shift_unit(bytes), whole pages are moved, not
+ * copied. The bytes before shift are undefined. */
+void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes);
+/* The shift that moves whole pages for an array of `bytes` (1: any shift copies). */
+size_t pages_shift_unit(size_t bytes);
 
 #endif
