@@ -20,7 +20,7 @@ enum { SYM_BITS = 11, MAX_SYMBOLS = 1 << SYM_BITS, MAX_ARITY = 31, CODE_COUNT = 
 /* Symbols every program has, at fixed ids, because the engine treats them specially. */
 enum { SYM_OPEN = 0, SYM_CLOSE = 1 };
 
-enum { MAX_LOCALS = 255, VM_STACK = 64, SUCC_PAD = 16 };
+enum { MAX_LOCALS = 255, VM_STACK = 64, SUCC_PAD = 16, SLOT_PLAN = 8 };
 
 typedef struct Symbol {
     const char *name;
@@ -70,6 +70,13 @@ typedef struct Rule {
     Slot *slots;              /* one per successor parameter, in order */
     int nslots;
     bool vm_free;             /* no slot runs the VM: emitted without a random stream */
+    /* A vm_free rule of at most SLOT_PLAN slots is written as its template (the constants,
+     * in one fixed-size copy), then its copied parameters, then its arithmetic ones: no
+     * branch per slot on its kind. planned says it has a plan. */
+    bool planned;
+    uint8_t ncopy, narith;
+    uint8_t copy_dst[SLOT_PLAN], copy_src[SLOT_PLAN], arith[SLOT_PLAN];
+    double tmpl[SLOT_PLAN];
     SylLoc loc;               /* the predecessor */
     int line;
     int group;                /* index in SylProgram.groups, -1: outside any group */

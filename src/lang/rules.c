@@ -126,6 +126,15 @@ void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *wh
     r->vm_free = true;
     for (int k = 0; k < r->nslots; k++)
         if (r->slots[k].kind == SLOT_CODE) r->vm_free = false;
+    r->planned = r->vm_free && r->nslots <= SLOT_PLAN;
+    for (int k = 0; r->planned && k < r->nslots; k++) {
+        const Slot *sl = &r->slots[k];
+        if (sl->kind == SLOT_CONST) r->tmpl[k] = sl->k;
+        else if (sl->kind == SLOT_LOCAL) {
+            r->copy_dst[r->ncopy] = (uint8_t)k;
+            r->copy_src[r->ncopy++] = sl->local;
+        } else r->arith[r->narith++] = (uint8_t)k;
+    }
 }
 
 void cc_rule(Compiler *c, const Stmt *s, Rule *out) {

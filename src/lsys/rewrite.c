@@ -296,8 +296,26 @@ static void run_chunk_classes(Work *w) {
 
 /* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
  * no VM, no random stream. False if a value is not finite (emit then reports it). */
-static inline bool put_slots(double *dst, const Rule *r, const double *x) {
+static inline bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
     bool ok = true;
+    if (r->planned) { /* the room of a successor's parameters holds MAX_ARITY more */
+        memcpy(dst, r->tmpl, sizeof r->tmpl);
+        const int ncopy = r->ncopy, narith = r->narith;
+        for (int c = 0; c < ncopy; c++) dst[r->copy_dst[c]] = x[r->copy_src[c]];
+        for (int a = 0; a < narith; a++) {
+            const Slot *s = &r->slots[r->arith[a]];
+            double v, y = x[s->local];
+            switch (s->kind) {
+            case SLOT_ADDK: v = y + s->k; break;
+            case SLOT_SUBK: v = y - s->k; break;
+            case SLOT_MULK: v = y * s->k; break;
+            default: v = y / s->k; break; /* SLOT_DIVK */
+            }
+            ok &= isfinite(v) != 0;
+            dst[r->arith[a]] = v;
+        }
+        return ok;
+    }
     for (int k = 0; k < r->nslots; k++) {
         const Slot *s = &r->slots[k];
         double v;
