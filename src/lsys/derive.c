@@ -302,7 +302,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
                           .codes_only = codes_only, .stack = classes ? e->cstack : NULL,
                           .inplace = place.inplace, .at = place.at, .pat = place.pat, .n_in = place.n_in,
-                          .np_in = place.np_in};
+                          .np_in = place.np_in, .np_all = nt == 1 ? np_in : 0};
         parts[k].mem = e->mem;
         parts[k].max_modules = e->max_modules;
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(v.code[i]);

@@ -76,8 +76,8 @@ static bool links_room(Links *l, size_t cap) {
     return true;
 }
 
-static bool push(Links *l, int32_t idx, uint16_t code, int32_t close) {
-    if (l->sp == l->scap) {
+static bool stack_grow(Links *l) {
+    {
         size_t cap = l->scap ? 2 * l->scap : 256;
         int32_t *a = realloc(l->sidx, cap * sizeof *a);
         if (a) l->sidx = a;
@@ -88,6 +88,11 @@ static bool push(Links *l, int32_t idx, uint16_t code, int32_t close) {
         if (!c) return false;
         l->scap = cap;
     }
+    return true;
+}
+
+static inline bool push(Links *l, int32_t idx, uint16_t code, int32_t close) {
+    if (l->sp == l->scap && !stack_grow(l)) return false;
     l->sidx[l->sp] = idx;
     l->scode[l->sp] = code;
     l->sclose[l->sp++] = close;
@@ -337,8 +342,7 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
     int32_t next = -1;
     uint16_t nextcode = CODE_NONE;
     w->fault.status = SYL_OK;
-    size_t pi = w->plo;
-    for (size_t i = w->lo; i < w->hi; i++) pi += CODE_ARITY(in->code[i]);
+    size_t pi = w->plo + w->np_all; /* the end of the chunk's parameters (one chunk: all) */
     /* room for the output as rewrite_pass sized it from the last pass's growth (out->cap), so
      * that it is rarely moved, and at least for the input's size */
     size_t n_in = w->hi - w->lo, p_in = pi - w->plo;
@@ -357,17 +361,22 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
         goto done;
     }
     w->out = &tmp;
+    Here here = {0};
     for (size_t i = w->hi; i-- > w->lo;) {
         pi -= CODE_ARITY(in->code[i]);
         const double *args = in->par ? in->par + pi : NULL;
-        if (!back_room(&b, out, &l, walk, need, pneed, &next) ||
+        if (((b.h < need + 1 || b.ph < pneed) && !back_room(&b, out, &l, walk, need, pneed, &next)) ||
             (!walk && l.nent + need > l.entcap && !entries_room(&l, l.nent + need))) {
             fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             break;
         }
         size_t at = b.h - 1;
-        View nv; /* filled only when walking: this loop runs once a module */
-        Here here = {.ent = l.ent, .cursor = next, .par = b.par, .pend = b.pcap, .at = at};
+        View nv; /* filled only when walking */
+        here.ent = l.ent; /* fields, not a new struct: this loop runs once a module */
+        here.cursor = next;
+        here.par = b.par;
+        here.pend = b.pcap;
+        here.at = at;
         if (walk) {
             nv = (View){.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
                         .pair = l.pair, .n = b.cap, .skip = in->skip};
@@ -375,19 +384,32 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
             l.link[at] = next;
             l.code[at] = nextcode;
         }
-        tmp.n = tmp.np = 0;
-        if (rewrite_one(w, i, args, &here, true, &tmp)) break;
-        if (b.cap - b.h + tmp.n > out->max_modules) {
-            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MODULES);
-            break;
+        uint16_t c0 = in->code[i];
+        const Dispatch *d = &t->dispatch[c0];
+        size_t nn, pn; /* modules and parameters put in front of the output */
+        if (!d->plain && !d->count) { /* no rule for it: it stays, straight to the front */
+            nn = 1;
+            pn = CODE_ARITY(c0);
+            b.code[--b.h] = c0;
+            b.ph -= pn;
+            for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = args[k];
+        } else {
+            tmp.n = tmp.np = 0;
+            if (rewrite_one(w, i, args, &here, true, &tmp)) break;
+            nn = tmp.n;
+            pn = tmp.np;
+            if (b.cap - b.h + nn > out->max_modules) {
+                fault(w, i, NULL, SYL_ELIMIT, LIMIT_MODULES);
+                break;
+            }
+            b.h -= nn;
+            b.ph -= pn;
+            for (size_t k = 0; k < nn; k++) b.code[b.h + k] = tmp.code[k]; /* a few modules */
+            for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = tmp.par[k];
         }
-        b.h -= tmp.n;
-        b.ph -= tmp.np;
-        for (size_t k = 0; k < tmp.n; k++) b.code[b.h + k] = tmp.code[k]; /* a few modules */
-        for (size_t k = 0; k < tmp.np; k++) b.par[b.ph + k] = tmp.par[k];
         if (!walk) { /* match_link_right over the new modules, kept for those `>>` names */
-            size_t off = b.ph + tmp.np;
-            for (size_t j = b.h + tmp.n; j-- > b.h;) {
+            size_t off = b.ph + pn;
+            for (size_t j = b.h + nn; j-- > b.h;) {
                 uint16_t c = b.code[j];
                 int s = CODE_SYM(c);
                 off -= CODE_ARITY(c);
@@ -411,11 +433,11 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
             continue;
         }
         uint32_t off = (uint32_t)b.ph;
-        for (size_t j = b.h; j < b.h + tmp.n; j++) {
+        for (size_t j = b.h; j < b.h + nn; j++) {
             l.poff[j] = off;
             off += CODE_ARITY(b.code[j]);
         }
-        for (size_t j = b.h + tmp.n; j-- > b.h;) { /* match_link_right, one module at a time */
+        for (size_t j = b.h + nn; j-- > b.h;) { /* match_link_right, one module at a time */
             uint16_t c = b.code[j];
             int s = CODE_SYM(c);
             l.link[j] = next;

@@ -22,11 +22,55 @@ static inline void put_codes(uint16_t *dst, const Rule *r) {
     else memcpy(dst, r->succ, (size_t)r->nsucc * sizeof *dst);
 }
 
+/* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
+ * no VM, no random stream. False if a value is not finite (emit then reports it). */
+static inline bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
+    bool ok = true;
+    if (r->planned) { /* the room of a successor's parameters holds MAX_ARITY more */
+        memcpy(dst, r->tmpl, sizeof r->tmpl);
+        const int ncopy = r->ncopy, narith = r->narith;
+        for (int c = 0; c < ncopy; c++) dst[r->copy_dst[c]] = x[r->copy_src[c]];
+        for (int a = 0; a < narith; a++) {
+            const Slot *s = &r->slots[r->arith[a]];
+            double v, y = x[s->local];
+            switch (s->kind) {
+            case SLOT_ADDK: v = y + s->k; break;
+            case SLOT_SUBK: v = y - s->k; break;
+            case SLOT_MULK: v = y * s->k; break;
+            default: v = y / s->k; break; /* SLOT_DIVK */
+            }
+            ok &= isfinite(v) != 0;
+            dst[r->arith[a]] = v;
+        }
+        return ok;
+    }
+    for (int k = 0; k < r->nslots; k++) {
+        const Slot *s = &r->slots[k];
+        double v;
+        switch (s->kind) {
+        case SLOT_CONST: dst[k] = s->k; continue;
+        case SLOT_LOCAL: dst[k] = x[s->local]; continue;
+        case SLOT_ADDK: v = x[s->local] + s->k; break;
+        case SLOT_SUBK: v = x[s->local] - s->k; break;
+        case SLOT_MULK: v = x[s->local] * s->k; break;
+        default: v = x[s->local] / s->k; break; /* SLOT_DIVK: vm_free rules have no other */
+        }
+        ok &= isfinite(v) != 0;
+        dst[k] = v;
+    }
+    return ok;
+}
+
 static inline int emit(Work *w, const Rule *r, const double *locals, size_t pos, Rng *rng, bool *rng_ready) {
     SylString *o = w->out;
     put_codes(o->code + o->n, r);
     o->n += (size_t)r->nsucc;
     double *dst = o->par + o->np;
+    if (r->planned && put_slots(dst, r, locals)) { /* else the loop below finds the value to report */
+        o->np += (size_t)r->nslots;
+        w->applied = true;
+        return SYL_OK;
+    }
     for (int k = 0; k < r->nslots; k++) {
         const Slot *s = &r->slots[k];
         double v;
@@ -292,45 +336,6 @@ static void run_chunk_classes(Work *w) {
         o->n = (size_t)(oc - o->code);
     }
     w->applied |= applied;
-}
-
-/* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
- * no VM, no random stream. False if a value is not finite (emit then reports it). */
-static inline bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
-    bool ok = true;
-    if (r->planned) { /* the room of a successor's parameters holds MAX_ARITY more */
-        memcpy(dst, r->tmpl, sizeof r->tmpl);
-        const int ncopy = r->ncopy, narith = r->narith;
-        for (int c = 0; c < ncopy; c++) dst[r->copy_dst[c]] = x[r->copy_src[c]];
-        for (int a = 0; a < narith; a++) {
-            const Slot *s = &r->slots[r->arith[a]];
-            double v, y = x[s->local];
-            switch (s->kind) {
-            case SLOT_ADDK: v = y + s->k; break;
-            case SLOT_SUBK: v = y - s->k; break;
-            case SLOT_MULK: v = y * s->k; break;
-            default: v = y / s->k; break; /* SLOT_DIVK */
-            }
-            ok &= isfinite(v) != 0;
-            dst[r->arith[a]] = v;
-        }
-        return ok;
-    }
-    for (int k = 0; k < r->nslots; k++) {
-        const Slot *s = &r->slots[k];
-        double v;
-        switch (s->kind) {
-        case SLOT_CONST: dst[k] = s->k; continue;
-        case SLOT_LOCAL: dst[k] = x[s->local]; continue;
-        case SLOT_ADDK: v = x[s->local] + s->k; break;
-        case SLOT_SUBK: v = x[s->local] - s->k; break;
-        case SLOT_MULK: v = x[s->local] * s->k; break;
-        default: v = x[s->local] / s->k; break; /* SLOT_DIVK: vm_free rules have no other */
-        }
-        ok &= isfinite(v) != 0;
-        dst[k] = v;
-    }
-    return ok;
 }
 
 static void run_chunk(Work *w) {

@@ -38,6 +38,7 @@ typedef struct Work {
      * i] and parameter j at out->par[pat + j]; n_in and np_in are its sizes */
     bool inplace;
     size_t at, pat, n_in, np_in;
+    size_t np_all;    /* parameters of modules lo..hi (set for a pass of one chunk) */
     const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
     double *weight;
     int ncap;
