@@ -42,6 +42,8 @@ typedef struct Engine {
     int32_t *left, *right, *pair, *stack;
     uint16_t *lcode, *rcode;
     uint8_t *rclass, *cstack; /* run_chunk_classes: right neighbours' classes, left classes' stack */
+    uint8_t *act;               /* match_class_actions of act_for */
+    const RuleTable *act_for;
     struct NewctxScratch *newctx; /* the arrays of passes with new contexts */
     size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
@@ -108,6 +110,7 @@ static void engine_free(Engine *e) {
     ms_scratch_free(e->rcode, e->cap_rcode, sizeof *e->rcode);
     ms_scratch_free(e->rclass, e->cap_rclass, 1);
     ms_scratch_free(e->cstack, e->cap_cstack, 1);
+    free(e->act);
     newctx_release(&e->newctx);
 }
 
@@ -241,8 +244,14 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in, 1) ||
             !ms_scratch_reserve(&e->cstack, &e->cap_cstack, n_in + 1, 1))
             return SYL_ELIMIT;
-        match_class_right(v.code, n_in, p->skip, t->ctx_class, e->rclass, e->cstack);
+        if (e->act_for != t) { /* once per table: a 64 K table */
+            if (!e->act && !(e->act = malloc(CODE_COUNT))) return SYL_ELIMIT;
+            match_class_actions(t->ctx_class, p->skip, e->act);
+            e->act_for = t;
+        }
+        match_class_right(v.code, n_in, e->act, t->ctx_class[CODE_NONE], e->rclass, e->cstack);
         v.rclass = e->rclass;
+        v.act = e->act;
     } else if (t->has_context) {
         if (np_in) {
             v.poff = ms_offsets(in);

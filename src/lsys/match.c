@@ -104,19 +104,25 @@ void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t 
     }
 }
 
-void match_class_right(const uint16_t *code, size_t n, const bool *skip, const uint8_t *cls, uint8_t *rclass,
+void match_class_actions(const uint8_t *cls, const bool *skip, uint8_t *act) {
+    for (int c = 0; c < CODE_COUNT; c++) {
+        int s = CODE_SYM(c);
+        act[c] = s == SYM_OPEN ? ACT_OPEN : s == SYM_CLOSE ? ACT_CLOSE : skip[s] ? ACT_SKIP : cls[c];
+    }
+}
+
+void match_class_right(const uint16_t *code, size_t n, const uint8_t *act, uint8_t none, uint8_t *rclass,
                        uint8_t *stack) {
-    uint8_t none = cls[CODE_NONE], next = none;
+    uint8_t next = none;
     size_t sp = 0;
     for (size_t i = n; i-- > 0;) {
-        uint16_t c = code[i];
-        int s = CODE_SYM(c);
+        uint8_t a = act[code[i]];
         rclass[i] = next;
-        if (s == SYM_CLOSE) {
+        if (a < ACT_SKIP) next = a;
+        else if (a == ACT_CLOSE) {
             stack[sp++] = next;
             next = none;
-        } else if (s == SYM_OPEN) next = sp ? stack[--sp] : none;
-        else if (!skip[s]) next = cls[c];
+        } else if (a == ACT_OPEN) next = sp ? stack[--sp] : none;
     }
 }
 

@@ -24,6 +24,7 @@ typedef struct View {
     const uint16_t *lcode, *rcode; /* the codes of those neighbours (CODE_NONE: none) */
     const int32_t *pair;   /* for '[' the index of its ']' and the other way round */
     const uint8_t *rclass; /* or, for run_chunk_classes, the class of the right neighbour's code */
+    const uint8_t *act;    /* with rclass: match_class_actions */
     size_t n;
     const bool *skip;      /* symbols ignored in contexts */
 } View;
@@ -76,9 +77,13 @@ void match_link_left(const uint16_t *code, size_t n, const bool *skip, int32_t *
 void match_link_right(const uint16_t *code, size_t n, const bool *skip, int32_t *right, uint16_t *rcode,
                       int32_t *stack);
 void match_pairs(const uint16_t *code, size_t n, int32_t *pair);
-/* rclass[i] = cls[code of module i's right neighbour] (cls[CODE_NONE] for none): the right
- * links of match_link_right in one byte a module; stack must hold n entries. */
-void match_class_right(const uint16_t *code, size_t n, const bool *skip, const uint8_t *cls, uint8_t *rclass,
+/* What a module is to the class scans, a byte per code: its class (RuleTable.ctx_class) or
+ * one of ACT_*, so that a scan reads one table instead of the symbol, skip and class. */
+enum { ACT_SKIP = 0xfd, ACT_CLOSE = 0xfe, ACT_OPEN = 0xff };
+void match_class_actions(const uint8_t *cls, const bool *skip, uint8_t *act);
+/* rclass[i] = the class of module i's right neighbour (cls[CODE_NONE], in act: none); the
+ * right links of match_link_right in one byte a module; stack must hold n entries. */
+void match_class_right(const uint16_t *code, size_t n, const uint8_t *act, uint8_t none, uint8_t *rclass,
                        uint8_t *stack);
 
 #endif

@@ -235,8 +235,12 @@ static void forward(Work *w, Links *lp) {
             break;
         }
         size_t at = o->n;
-        Here h = {.ent = l.ent, .cursor = last, .par = o->par};
-        if (rewrite_one(w, i, args, &h, false, o)) break;
+        const Dispatch *d = &t->dispatch[in->code[i]];
+        if (!d->plain && !d->count) copy_module(o, in->code[i], args); /* no rule for it */
+        else {
+            Here h = {.ent = l.ent, .cursor = last, .par = o->par};
+            if (rewrite_one(w, i, args, &h, false, o)) break;
+        }
         for (size_t j = at; j < o->n; j++) {
             uint16_t c = o->code[j];
             int s = CODE_SYM(c);

@@ -219,14 +219,10 @@ static inline const double *in_par(const Work *w) {
  * read. In place, the writer must stay behind the reader: when it would catch up, the unread
  * rest moves further back, by what the growth seen so far says the rest will need. True when
  * a limit is hit (w->fault set). */
-static bool make_room(Work *w, size_t lo, size_t pi, size_t room, size_t proom) {
+static bool make_room_slow(Work *w, size_t lo, size_t pi, size_t room, size_t proom) {
     SylString *o = w->out;
-    if (!w->inplace) {
-        if (o->n + room <= o->cap && o->np + proom <= o->pcap) return false;
-        return over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom));
-    }
+    if (!w->inplace) return over_limit(w, lo, ms_reserve(o, room + (w->hi - lo), proom));
     size_t gap = w->at + lo - o->n, pgap = w->pat + pi - o->np;
-    if (gap >= room && pgap >= proom) return false;
     size_t rest = w->n_in - lo, prest = w->np_in - pi;
     double g = lo ? (double)o->n / (double)lo : 2, pg = pi ? (double)o->np / (double)pi : 2;
     size_t want = (size_t)((g > 1 ? g - 1 : 0) * (double)rest * 1.1) + 2 * room + 1024;
@@ -238,6 +234,13 @@ static bool make_room(Work *w, size_t lo, size_t pi, size_t room, size_t proom) 
         w->pat += pextra;
     }
     return over_limit(w, lo, st);
+}
+
+static inline bool make_room(Work *w, size_t lo, size_t pi, size_t room, size_t proom) {
+    const SylString *o = w->out;
+    bool fits = w->inplace ? w->at + lo - o->n >= room && w->pat + pi - o->np >= proom
+                           : o->n + room <= o->cap && o->np + proom <= o->pcap;
+    return !fits && make_room_slow(w, lo, pi, room, proom);
 }
 
 /* Output room is made for BATCH modules' successors at once: one capacity check per batch
@@ -303,8 +306,7 @@ static void run_chunk_codes(Work *w) {
 static void run_chunk_classes(Work *w) {
     const RuleTable *t = w->t;
     const View *in = w->in;
-    const uint8_t *cls = t->ctx_class, *rclass = in->rclass;
-    const bool *skip = in->skip;
+    const uint8_t *cls = t->ctx_class, *rclass = in->rclass, *act = in->act;
     const size_t nclass = (size_t)t->nclass;
     uint8_t *stack = w->stack, none = cls[CODE_NONE], left = none;
     size_t sp = 0;
@@ -328,10 +330,10 @@ static void run_chunk_classes(Work *w) {
             } else {
                 *oc++ = c;
             }
-            int s = CODE_SYM(c); /* the left link of match_link_left, one module on */
-            if (s == SYM_OPEN) stack[sp++] = left;
-            else if (s == SYM_CLOSE) left = sp ? stack[--sp] : none;
-            else if (!skip[s]) left = cls[c];
+            uint8_t a = act[c]; /* the left link of match_link_left, one module on */
+            if (a < ACT_SKIP) left = a;
+            else if (a == ACT_OPEN) stack[sp++] = left;
+            else if (a == ACT_CLOSE) left = sp ? stack[--sp] : none;
         }
         o->n = (size_t)(oc - o->code);
     }
