@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "eco/eco.h"
 #include "util/outfile.h"
@@ -200,7 +201,10 @@ int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *d
         if (diag) fprintf(diag, "sylva: error: cannot read the checkpoint '%s': %s\n", path, strerror(errno));
         return SYL_EIO;
     }
-    size_t cap = 1 << 16, len = 0;
+    /* a regular file is read in one go, at its size; a pipe grows the buffer */
+    struct stat sb;
+    size_t cap = !fstat(fileno(f), &sb) && S_ISREG(sb.st_mode) && sb.st_size > 0 ? (size_t)sb.st_size + 1 : 1 << 16;
+    size_t len = 0;
     uint8_t *buf = malloc(cap);
     for (size_t got; buf; len += got) {
         if (len == cap) {
