@@ -422,25 +422,24 @@ int cmd_ecosystem(int argc, char **argv) {
         if (!ck_path) st = SYL_ELIMIT;
         else if (writer) st = make_dir(a.checkpoint);
     }
-    if (!st && mpi) { /* the tiles over the ranks */
-        if (!o.tiles_x) {
+    if (mpi) { /* the tiles over the ranks; a rank that failed above still joins the check below */
+        if (!st && !o.tiles_x) {
             o.tiles_x = 4 * nranks < t->nx ? 4 * nranks : t->nx;
             o.tiles_z = 1;
         }
         int ntiles = o.tiles_x * (o.tiles_z > 0 ? o.tiles_z : 1);
-        if (ntiles < nranks) {
+        if (!st && ntiles < nranks) {
             if (writer) fprintf(stderr, "sylva: error: %d tiles for %d ranks: give --tiles at least one per rank\n", ntiles, nranks);
             st = SYL_EUSAGE;
-        } else
-            o.exchange = syl_eco_mpi_exchange(mpi, ntiles, a.rebalance);
+        }
+        o.exchange = syl_eco_mpi_exchange(mpi, st ? nranks : ntiles, a.rebalance);
     }
     if (!st && writer) st = make_dir(a.output);
     if (!st && writer) st = hillshade(&r) ? SYL_OK : SYL_ELIMIT;
     if (!st && writer && !a.resume) st = write_maps(t, a.output);
-    if (o.exchange) { /* every rank goes on, or none */
-        int64_t e = st;
+    if (o.exchange) { /* every rank goes on, or none (a rank whose files differ stops them all) */
+        int64_t e = st != SYL_OK;
         o.exchange->sum(o.exchange->ctx, &e, 1);
-        st = (int)e > 0 ? (int)e : st;
         if (e && !st) st = SYL_EIO;
     }
     if (!st) {
