@@ -180,9 +180,10 @@ SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv);
 int syl_eco_mpi_rank(const SylEcoMpi *mpi);
 int syl_eco_mpi_size(const SylEcoMpi *mpi);
 const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance);
-/* Traffic so far, this rank: plants and bytes sent, halo plants received, barriers. */
+/* Traffic so far, this rank: plants and bytes sent, halo plants received, plants received
+ * with a tile that re-balancing gave it, barriers. */
 void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent,
-                         uint64_t *halo_received, uint64_t *barriers);
+                         uint64_t *halo_received, uint64_t *plants_moved, uint64_t *barriers);
 void syl_eco_mpi_abort(SylEcoMpi *mpi, int code, const char *message); /* ends every rank */
 void syl_eco_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
 

@@ -457,10 +457,11 @@ int cmd_ecosystem(int argc, char **argv) {
                 stats.cpu_seconds, stats.seconds > 0 ? stats.plant_years / stats.seconds : 0);
     }
     if (!st && a.stats && mpi) { /* each rank its own traffic, for bench/run */
-        uint64_t sent, bytes, halo, barriers;
-        syl_eco_mpi_traffic(mpi, &sent, &bytes, &halo, &barriers);
-        fprintf(stderr, "rank %d: plants sent %llu, bytes sent %llu, halo plants received %llu, cpu %.3f s\n", rank,
-                (unsigned long long)sent, (unsigned long long)bytes, (unsigned long long)halo, stats.cpu_seconds);
+        uint64_t sent, bytes, halo, moved, barriers;
+        syl_eco_mpi_traffic(mpi, &sent, &bytes, &halo, &moved, &barriers);
+        fprintf(stderr, "rank %d: plants sent %llu, bytes sent %llu, halo plants received %llu, plants moved in %llu, cpu %.3f s\n",
+                rank, (unsigned long long)sent, (unsigned long long)bytes, (unsigned long long)halo,
+                (unsigned long long)moved, stats.cpu_seconds);
     }
     syl_ecosystem_checkpoint_free(&ck);
     free(ck_path);

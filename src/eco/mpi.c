@@ -38,7 +38,7 @@ struct SylEcoMpi {
     uint8_t **send, **recv; /* per rank */
     uint64_t *send_len, *recv_len;
     MPI_Request *req;
-    uint64_t plants_sent, bytes_sent, halo_received, barriers;
+    uint64_t plants_sent, bytes_sent, halo_received, plants_moved, barriers;
 };
 
 static Box *box_of(SylEcoMpi *m, int channel, int to, int from) {
@@ -139,6 +139,7 @@ static void mpi_barrier(void *ctx) {
             b->n = h.n;
             b->got = 1;
             if (h.channel == SYL_ECO_HALO) m->halo_received += h.n;
+            if (h.channel == SYL_ECO_MOVE) m->plants_moved += h.n;
             at += sizeof h + h.n * sizeof(SylEcoPlant);
         }
     if (m->pending) { /* the new owners; what was posted under the old ones is stale */
@@ -236,8 +237,9 @@ const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *m, int ntiles, int rebalan
 }
 
 void syl_eco_mpi_traffic(const SylEcoMpi *m, uint64_t *plants_sent, uint64_t *bytes_sent, uint64_t *halo_received,
-                         uint64_t *barriers) {
+                         uint64_t *plants_moved, uint64_t *barriers) {
     *plants_sent = m ? m->plants_sent : 0;
+    *plants_moved = m ? m->plants_moved : 0;
     *bytes_sent = m ? m->bytes_sent : 0;
     *halo_received = m ? m->halo_received : 0;
     *barriers = m ? m->barriers : 0;

@@ -12,9 +12,9 @@ const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebal
     return NULL;
 }
 void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent, uint64_t *halo_received,
-                         uint64_t *barriers) {
+                         uint64_t *plants_moved, uint64_t *barriers) {
     (void)mpi;
-    *plants_sent = *bytes_sent = *halo_received = *barriers = 0;
+    *plants_sent = *bytes_sent = *halo_received = *plants_moved = *barriers = 0;
 }
 void syl_eco_mpi_abort(SylEcoMpi *mpi, int code, const char *message) { (void)mpi, (void)code, (void)message; }
 void syl_eco_mpi_end(SylEcoMpi *mpi) { (void)mpi; }
