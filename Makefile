@@ -13,13 +13,24 @@ else
 OPT     := -O2 -g
 endif
 CFLAGS   = -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
-           -Iinclude -Isrc -I$(BUILD)/gen $(PKG_CFLAGS)
+           -Iinclude -Isrc -I$(BUILD)/gen $(PKG_CFLAGS) $(MPI_CFLAGS)
 PKGS    := cglm libpng libxml-2.0
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
-LDLIBS   = $(PKG_LIBS) -lembree3 -lmeshoptimizer -lm -pthread
+LDLIBS   = $(PKG_LIBS) -lembree3 -lmeshoptimizer -lm -pthread $(MPI_LIBS)
 
-LIB_SRC := $(filter-out src/cli/%,$(wildcard src/*/*.c))
+# MPI (docs/distributed.md): on when mpicc is found (make MPI=0 builds without it). Only then
+# is src/eco/mpi.c compiled, with mpicc's flags; src/eco/mpi_none.c stands in otherwise.
+MPI     ?= $(if $(shell command -v mpicc 2>/dev/null),1,0)
+ALL_LIB_SRC := $(filter-out src/cli/%,$(wildcard src/*/*.c))
+NOMPI_LIB_SRC := $(filter-out src/eco/mpi.c,$(ALL_LIB_SRC))
+ifeq ($(MPI),1)
+MPI_CFLAGS := $(shell mpicc --showme:compile 2>/dev/null)
+MPI_LIBS   := $(shell mpicc --showme:link 2>/dev/null)
+LIB_SRC := $(filter-out src/eco/mpi_none.c,$(ALL_LIB_SRC))
+else
+LIB_SRC := $(NOMPI_LIB_SRC)
+endif
 CLI_SRC := $(wildcard src/cli/*.c)
 GEN_SRC := $(BUILD)/gen/parser.c $(BUILD)/gen/lexer.c
 LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(GEN_SRC:.c=.o)
@@ -130,7 +141,7 @@ FUZZ_CFLAGS = -std=c11 -O1 -g -Wall -Wextra -D_GNU_SOURCE -pthread -Iinclude -Is
                -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer \
                -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter
 FUZZ_HARNESS := $(patsubst tests/fuzz/%.c,build-fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
-FUZZ_LIB_SRC := $(LIB_SRC) $(filter-out src/cli/main.c,$(CLI_SRC))
+FUZZ_LIB_SRC := $(NOMPI_LIB_SRC) $(filter-out src/cli/main.c,$(CLI_SRC))
 FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.o) build-fuzz/obj/gen/parser.o build-fuzz/obj/gen/lexer.o
 FUZZ_SECONDS ?= 300
 FUZZ_TEST_SECONDS ?= 10
@@ -149,7 +160,7 @@ build-fuzz/libsylva-fuzz.a: $(FUZZ_LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 build-fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h build-fuzz/libsylva-fuzz.a
-	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< build-fuzz/libsylva-fuzz.a $(LDLIBS)
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< build-fuzz/libsylva-fuzz.a $(filter-out $(MPI_LIBS),$(LDLIBS))
 fuzz-build: $(FUZZ_HARNESS)
 # A campaign: every harness for FUZZ_SECONDS, its corpus kept in tests/fuzz/corpus/NAME/.
 fuzz: $(FUZZ_HARNESS)
@@ -172,7 +183,7 @@ install: all
 	install -m 755 $(BUILD)/sylva $(DESTDIR)$(PREFIX)/bin/sylva
 	install -m 644 $(BUILD)/libsylva.a $(DESTDIR)$(PREFIX)/lib/libsylva.a
 	install -m 644 include/sylva/*.h $(DESTDIR)$(PREFIX)/include/sylva/
-	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' tools/sylva.pc.in \
+	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@MPI_LIBS@|$(MPI_LIBS)|' tools/sylva.pc.in \
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sylva.pc
 
 clean:

@@ -2,7 +2,7 @@
 # Install the Debian packages Sylva needs, if any are missing (as root), or say how; then the
 # glTF validator the tests use (npm ci from tests/gltf/package-lock.json). gdal-bin is the
 # terrain tests' oracle (gdaldem); ffmpeg encodes `sylva animate`'s videos.
-PKGS="flex bison pkg-config g++ libcglm-dev libembree-dev libxml2-dev libpng-dev libcmocka-dev libmeshoptimizer-dev clang libclang-rt-dev pngquant python3 gdal-bin ffmpeg"
+PKGS="flex bison pkg-config g++ libcglm-dev libembree-dev libxml2-dev libpng-dev libcmocka-dev libmeshoptimizer-dev clang libclang-rt-dev pngquant python3 gdal-bin ffmpeg libopenmpi-dev openmpi-bin"
 # node and npm for the glTF validator, from Debian unless a node is installed already
 # (one from elsewhere, such as NodeSource's, brings its own npm).
 command -v node >/dev/null 2>&1 || PKGS="$PKGS nodejs npm"

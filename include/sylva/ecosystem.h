@@ -83,12 +83,21 @@ int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
  * when SylEcoOptions.exchange is NULL. Between two barriers, post may be called from several
  * threads, each for its own `from` tile; the posted plants stay valid until the barrier after
  * the receiver's take (a transport may keep the pointer instead of copying). */
-enum { SYL_ECO_HALO = 0, SYL_ECO_SEEDS = 1 };
+enum { SYL_ECO_HALO = 0, SYL_ECO_SEEDS = 1, SYL_ECO_MOVE = 2 /* a tile's plants to its new owner */ };
 typedef struct SylEcoExchange {
     void (*post)(void *ctx, int channel, int from, int to, const SylEcoPlant *p, size_t n);
     void (*barrier)(void *ctx);
     /* what `from` posted to `to` on the channel since the barrier before last */
     const SylEcoPlant *(*take)(void *ctx, int channel, int to, int from, size_t *n);
+    /* The rest is for a transport over processes (each NULL in one process). owns: whether
+     * this process runs the tile. sum: adds v over the processes, in place. gather: every
+     * process's plants into *all (malloc'ed) on the one that writes, *all = NULL elsewhere.
+     * rebalance: at the end of `year`, given every tile's plants, whether tiles change owner
+     * (posts on SYL_ECO_MOVE then go to the new owner, who owns them after the barrier). */
+    int (*owns)(void *ctx, int tile);
+    void (*sum)(void *ctx, int64_t *v, size_t n);
+    int (*gather)(void *ctx, const SylEcoPlant *p, size_t n, SylEcoPlant **all, size_t *nall);
+    int (*rebalance)(void *ctx, int year, const int64_t *plants_per_tile, int ntiles);
     void *ctx;
 } SylEcoExchange;
 
@@ -115,6 +124,14 @@ typedef struct SylEcoOptions {
     void (*progress)(void *user, double fraction);
     void *user;
     FILE *diag;
+    /* a resumed run (sylva ecosystem --resume): start after start_year with these plants,
+     * sorted by id (the state at that year's end) */
+    int start_year;
+    const SylEcoPlant *start;
+    size_t nstart;
+    /* every `every` years, on_checkpoint gets the year's plants (sorted by id): a saved state */
+    int every;
+    int (*on_checkpoint)(void *user, int year, const SylEcoPlant *plants, size_t n); /* non-0 stops */
 } SylEcoOptions;
 
 typedef struct SylEcoStats {
@@ -135,6 +152,41 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
 /* The same on a model and terrain already read (the terrain's factors computed). */
 int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylEcoOptions *o,
                            SylEcoStats *stats);
+/* A saved state (docs/distributed.md, "Checkpoints"): the plants at the end of `year`, the
+ * years' counts so far (years[0 .. year)), and the hash of what they came from. */
+typedef struct SylEcoCheckpoint {
+    uint64_t model_hash; /* syl_ecosystem_hash of the model, terrain and seed */
+    int year;
+    SylEcoYear *years;   /* year entries */
+    SylEcoPlant *plants; /* sorted by id */
+    size_t nplants;
+} SylEcoCheckpoint;
+/* What a run depends on besides its options: the block's values, the terrain, the seed. */
+uint64_t syl_ecosystem_hash(const SylEcoModel *m, const SylTerrain *t, uint64_t seed);
+/* Write c to path atomically (util/outfile.h): SYL_OK or SYL_EIO (reported on diag). */
+int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, FILE *diag);
+/* Read a checkpoint from bytes / a file: SYL_OK, or SYL_EMODEL for a corrupt, truncated or
+ * foreign one (SYL_EIO: unreadable), reported on diag as "sylva: error: checkpoint 'NAME': ..." */
+int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, FILE *diag);
+int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag);
+void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
+
+/* Ranks of an MPI job (src/eco/mpi.c; built with MPI=1). start: NULL when the build has no
+ * MPI or the program was not launched by mpirun (one process); else MPI is initialised,
+ * errors abort the job with a message. exchange: the transport over tiles_x × tiles_z tiles,
+ * spread over the ranks, re-balanced every `rebalance` years (0: never). */
+typedef struct SylEcoMpi SylEcoMpi;
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv);
+int syl_eco_mpi_rank(const SylEcoMpi *mpi);
+int syl_eco_mpi_size(const SylEcoMpi *mpi);
+const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance);
+/* Traffic so far, this rank: plants and bytes sent, halo plants received, plants received
+ * with a tile that re-balancing gave it, barriers. */
+void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent,
+                         uint64_t *halo_received, uint64_t *plants_moved, uint64_t *barriers);
+void syl_eco_mpi_abort(SylEcoMpi *mpi, int code, const char *message); /* ends every rank */
+void syl_eco_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
+
 /* A species' vigour at (x, z): its suitabilities combined as the block says. */
 double syl_ecosystem_vigour(const SylEcoModel *m, int species, const SylTerrain *t, double x, double z);
 

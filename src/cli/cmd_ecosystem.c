@@ -2,6 +2,7 @@
  * species counts and cover (CSV and an SVG chart), the terrain's factor maps and a top-down
  * map per snapshot. */
 #include <errno.h>
+#include <signal.h>
 #include <libxml/xmlwriter.h>
 #include <math.h>
 #include <stdlib.h>
@@ -20,12 +21,20 @@ const CliCommand cli_ecosystem_command = {
     .about = "Run the model's `ecosystem` block year by year on its terrain (docs/ecosystem.md) and\n"
              "write into DIR: plants-YEAR.csv and map-YEAR.png for every snapshot, species.csv and\n"
              "species.svg (counts and cover per year) and maps/FACTOR.png|asc (the terrain's\n"
-             "factors). The output never depends on -j nor on --tiles.\n",
+             "factors). The output never depends on -j nor on --tiles.\n"
+             "\n"
+             "Under `mpirun -np N` (a build with MPI) the tiles are spread over the N ranks (default\n"
+             "tiling: 4N x 1, at most one tile per column), which exchange their borders and seeds\n"
+             "every year; rank 0 writes the same files as one process (docs/distributed.md).\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT, .help = "the directory to write into (made if missing)"},
         {.option = CLI_OPT_YEARS, .help = "years to simulate (default: the block's `years`)"},
         {.option = CLI_OPT_SNAPSHOTS},
         {.option = CLI_OPT_TILES},
+        {.option = CLI_OPT_REBALANCE},
+        {.option = CLI_OPT_CHECKPOINT},
+        {.option = CLI_OPT_EVERY},
+        {.option = CLI_OPT_RESUME},
         {.option = CLI_OPT_SEED},
         {.option = CLI_OPT_SET},
         {.option = CLI_OPT_THREADS, .help = "threads over the tiles (default: all cores); the output\n"
@@ -35,7 +44,9 @@ const CliCommand cli_ecosystem_command = {
     },
     .width = 24,
     .epilogue = "\nExit codes: 0 ok, 1 the model or its DEM is malformed, 2 bad command line, 3 limit hit,\n"
-                "4 I/O error.\n",
+                "4 I/O error (under mpirun: a rank failed or was killed; the job is aborted).\n"
+                "SYLVA_TEST_FAIL_RANK=R SYLVA_TEST_FAIL_YEAR=Y (tests only): rank R kills itself\n"
+                "with SIGKILL at the end of year Y.\n",
     .args_error = "expects one model file",
 };
 
@@ -58,6 +69,9 @@ typedef struct Run {
     double scale;     /* pixels per metre */
     Progress bar;
     int status;
+    int rank;
+    const char *checkpoint; /* the checkpoint file, or NULL */
+    uint64_t hash;
 } Run;
 
 static char *path_in(const char *dir, const char *fmt, int n) {
@@ -90,6 +104,23 @@ static void on_year(void *user, const SylEcoYear *y) {
         r->cap = cap;
     }
     r->years[r->nyears++] = *y;
+    /* a killed rank, for tests/run-mpi: the job must end with nothing half-written */
+    const char *fr = getenv("SYLVA_TEST_FAIL_RANK"), *fy = getenv("SYLVA_TEST_FAIL_YEAR");
+    if (fr && fy && atoi(fr) == r->rank && atoi(fy) == y->year) {
+        fprintf(stderr, "sylva: test: rank %d kills itself at year %d (SYLVA_TEST_FAIL_YEAR)\n", r->rank, y->year);
+        fflush(stderr);
+        raise(SIGKILL);
+    }
+}
+
+static int on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t n) {
+    Run *r = user;
+    if (r->nyears != year) return SYL_ELIMIT; /* the counts of every year so far go with it */
+    SylEcoCheckpoint c = {.model_hash = r->hash, .year = year, .years = r->years,
+                          .plants = (SylEcoPlant *)plants, .nplants = n};
+    int st = syl_ecosystem_checkpoint_write(r->checkpoint, &c, stderr);
+    if (!st) printf("%s\n", r->checkpoint);
+    return st;
 }
 
 static const uint8_t palette[][3] = {{46, 125, 50}, {230, 140, 30}, {30, 90, 160}, {170, 60, 150},
@@ -350,36 +381,94 @@ int cmd_ecosystem(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     static SylEcoModel model; /* 14 kB: off the stack */
-    Run r = {.dir = a.output, .m = &model};
+    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL); /* NULL: one process */
+    int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
+    bool writer = rank == 0;
+    Run r = {.dir = a.output, .m = &model, .rank = rank};
     SylEcoOptions o = {.years = d.steps, .snapshots = a.nsnapshots ? a.snapshots : NULL, .nsnapshots = a.nsnapshots,
                        .tiles_x = a.tiles_x, .tiles_z = a.tiles_z, .threads = d.threads, .use_seed = d.use_seed,
-                       .seed = d.seed, .on_year = on_year, .on_snapshot = on_snapshot, .progress = progress,
+                       .seed = d.seed, .on_year = on_year, .on_snapshot = on_snapshot, .progress = writer ? progress : NULL,
                        .user = &r, .diag = stderr};
     SylTerrain *t = NULL;
     SylEcoStats stats = {0};
+    SylEcoCheckpoint ck = {0};
+    char *ck_path = NULL;
     /* the block and its DEM are read before the directory is made: a bad one makes none */
     st = syl_ecosystem_load(p, &o, &model, &t);
     r.t = t;
-    if (!st) st = make_dir(a.output);
-    if (!st) st = hillshade(&r) ? SYL_OK : SYL_ELIMIT;
-    if (!st) st = write_maps(t, a.output);
+    if (!st) r.hash = syl_ecosystem_hash(&model, t, d.use_seed ? d.seed : model.seed);
+    int years = o.years > 0 ? o.years : model.years;
+    if (!st && a.resume) {
+        char *path = path_in(a.resume, "ecosystem.ckpt", 0);
+        st = path ? syl_ecosystem_checkpoint_read(path, &ck, writer ? stderr : NULL) : SYL_ELIMIT;
+        if (!st && ck.model_hash != r.hash) {
+            if (writer) fprintf(stderr, "sylva: error: the checkpoint '%s' was made from another model, terrain or seed\n", path);
+            st = SYL_EUSAGE;
+        } else if (!st && ck.year >= years) {
+            if (writer) fprintf(stderr, "sylva: error: the checkpoint '%s' is at year %d, the run ends at %d\n", path, ck.year, years);
+            st = SYL_EUSAGE;
+        }
+        free(path);
+        if (!st) {
+            r.years = ck.years, r.nyears = r.cap = ck.year; /* the counts so far */
+            ck.years = NULL;
+            o.start_year = ck.year, o.start = ck.plants, o.nstart = ck.nplants;
+        }
+    }
+    if (!st && a.checkpoint) {
+        o.every = a.every > 0 ? a.every : 10;
+        o.on_checkpoint = on_checkpoint;
+        r.checkpoint = ck_path = path_in(a.checkpoint, "ecosystem.ckpt", 0);
+        if (!ck_path) st = SYL_ELIMIT;
+        else if (writer) st = make_dir(a.checkpoint);
+    }
+    if (mpi) { /* the tiles over the ranks; a rank that failed above still joins the check below */
+        if (!st && !o.tiles_x) {
+            o.tiles_x = 4 * nranks < t->nx ? 4 * nranks : t->nx;
+            o.tiles_z = 1;
+        }
+        int ntiles = o.tiles_x * (o.tiles_z > 0 ? o.tiles_z : 1);
+        if (!st && ntiles < nranks) {
+            if (writer) fprintf(stderr, "sylva: error: %d tiles for %d ranks: give --tiles at least one per rank\n", ntiles, nranks);
+            st = SYL_EUSAGE;
+        }
+        o.exchange = syl_eco_mpi_exchange(mpi, st ? nranks : ntiles, a.rebalance);
+    }
+    if (!st && writer) st = make_dir(a.output);
+    if (!st && writer) st = hillshade(&r) ? SYL_OK : SYL_ELIMIT;
+    if (!st && writer && !a.resume) st = write_maps(t, a.output);
+    if (o.exchange) { /* every rank goes on, or none (a rank whose files differ stops them all) */
+        int64_t e = st != SYL_OK;
+        o.exchange->sum(o.exchange->ctx, &e, 1);
+        if (e && !st) st = SYL_EIO;
+    }
     if (!st) {
-        cli_progress_start(&r.bar, "years");
+        if (writer) cli_progress_start(&r.bar, "years");
         st = syl_ecosystem_simulate(&model, t, &o, &stats);
-        cli_progress(&r.bar, 1);
+        if (writer) cli_progress(&r.bar, 1);
     }
     if (!st) st = r.status;
-    if (!st) st = write_species_csv(&r);
-    if (!st) st = write_chart(&r);
-    if (!st && a.stats) {
+    if (!st && writer) st = write_species_csv(&r);
+    if (!st && writer) st = write_chart(&r);
+    if (!st && a.stats && writer) {
         fprintf(stderr, "plant-years: %llu\npeak plants: %zu\nbytes per plant: %zu\n",
                 (unsigned long long)stats.plant_years, stats.peak_plants, stats.bytes_per_plant);
         fprintf(stderr, "simulation: %.3f s wall, %.3f s cpu\nplant-years per second: %.0f\n", stats.seconds,
                 stats.cpu_seconds, stats.seconds > 0 ? stats.plant_years / stats.seconds : 0);
     }
+    if (!st && a.stats && mpi) { /* each rank its own traffic, for bench/run */
+        uint64_t sent, bytes, halo, moved, barriers;
+        syl_eco_mpi_traffic(mpi, &sent, &bytes, &halo, &moved, &barriers);
+        fprintf(stderr, "rank %d: plants sent %llu, bytes sent %llu, halo plants received %llu, plants moved in %llu, cpu %.3f s\n",
+                rank, (unsigned long long)sent, (unsigned long long)bytes, (unsigned long long)halo,
+                (unsigned long long)moved, stats.cpu_seconds);
+    }
+    syl_ecosystem_checkpoint_free(&ck);
+    free(ck_path);
     free(r.years);
     free(r.shade);
     syl_terrain_free(t);
     syl_program_free(p);
+    syl_eco_mpi_end(mpi);
     return st;
 }

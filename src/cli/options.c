@@ -257,6 +257,13 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                            "the block's `snapshots`)", CLI_READ, .read = read_snapshots},
     [CLI_OPT_TILES] = {"tiles", 0, "NxM", "run the terrain as N x M tiles exchanging their borders\n"
                        "(default 1x1); the output is the same", CLI_READ, .read = read_tiles},
+    [CLI_OPT_REBALANCE] = {"rebalance", 0, "K", "under mpirun: re-cut the tiles over the ranks by plant\n"
+                           "count every K years (default 0: never)", CLI_INT, ARGS(rebalance), 0, 60000},
+    [CLI_OPT_CHECKPOINT] = {"checkpoint", 0, "DIR", "save the whole state into DIR/ecosystem.ckpt (with --every)",
+                            CLI_TEXT, ARGS(checkpoint)},
+    [CLI_OPT_EVERY] = {"every", 0, "K", "years between checkpoints (default 10)", CLI_INT, ARGS(every), 1, 60000},
+    [CLI_OPT_RESUME] = {"resume", 0, "DIR", "continue the run saved in DIR/ecosystem.ckpt (same model,\n"
+                        "seed and options; any number of ranks)", CLI_TEXT, ARGS(resume)},
     /* sylva mesh */
     [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
                      SYL_LOD_MAX},

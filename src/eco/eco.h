@@ -3,6 +3,7 @@
 #define SYL_ECO_H
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "sylva/ecosystem.h"
 
@@ -10,6 +11,9 @@
 typedef struct EcoLocal EcoLocal;
 EcoLocal *eco_local_new(int ntiles, SylEcoExchange *ops);
 void eco_local_free(EcoLocal *l);
+
+/* Tiles to ranks (balance.c): contiguous runs of about equal plants (NULL: tiles alike). */
+void eco_balance_cut(const int64_t *plants, int ntiles, int nranks, int *owner);
 
 /* The purposes random streams are keyed by, with (plant id, year). */
 enum { ECO_RNG_SHADE = 1, ECO_RNG_STRESS, ECO_RNG_SEEDS, ECO_RNG_ARRIVE, ECO_RNG_GERMINATE, ECO_RNG_LIFE };

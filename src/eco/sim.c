@@ -377,7 +377,7 @@ static void *worker(void *arg) {
     for (;;) {
         int ti = __atomic_fetch_add(&s->next, 1, __ATOMIC_RELAXED);
         if (ti >= s->ntiles) return NULL;
-        run_phase(s, ti);
+        if (!s->x->owns || s->x->owns(s->x->ctx, ti)) run_phase(s, ti); /* another process's tile */
     }
 }
 
@@ -394,7 +394,9 @@ static void parallel(Sim *s, int phase, int threads) {
     s->x->barrier(s->x->ctx);
 }
 
-static int gather(Sim *s, Buf *all) {
+/* The plants of every tile, sorted by id; over processes, on the writing one only (*here
+ * false elsewhere). */
+static int gather(Sim *s, Buf *all, bool *here) {
     size_t n = 0;
     for (int ti = 0; ti < s->ntiles; ti++) n += s->tile[ti].own.n;
     if (!buf_reserve(all, n)) return SYL_ELIMIT;
@@ -403,8 +405,61 @@ static int gather(Sim *s, Buf *all) {
         if (s->tile[ti].own.n) memcpy(all->p + all->n, s->tile[ti].own.p, s->tile[ti].own.n * sizeof *all->p);
         all->n += s->tile[ti].own.n;
     }
+    *here = true;
+    if (s->x->gather) {
+        SylEcoPlant *p = NULL;
+        size_t np = 0;
+        if (s->x->gather(s->x->ctx, all->p, all->n, &p, &np)) return SYL_ELIMIT;
+        *here = p != NULL;
+        free(all->p);
+        all->p = p;
+        all->n = all->cap = np;
+    }
     if (all->n > 1) qsort(all->p, all->n, sizeof *all->p, by_id);
     return SYL_OK;
+}
+
+/* A resumed run's plants, each into the tile it stands on (in id order, so sorted). */
+static int place_start(Sim *s, const SylEcoOptions *o) {
+    for (size_t j = 0; j < o->nstart; j++) {
+        const SylEcoPlant *p = &o->start[j];
+        int ti = tile_at(s, p->x, p->z);
+        if (ti < 0 || p->species >= s->m->nspecies) {
+            if (o->diag) fprintf(o->diag, "sylva: error: the saved plant %016llx is not on the terrain or of no species\n",
+                                 (unsigned long long)p->id);
+            return SYL_EMODEL;
+        }
+        if (s->x->owns && !s->x->owns(s->x->ctx, ti)) continue;
+        if (!buf_push(&s->tile[ti].own, p)) return SYL_ELIMIT;
+    }
+    return SYL_OK;
+}
+
+/* Tiles that change process: their plants go to the new owner (SYL_ECO_MOVE). */
+static int move_tiles(Sim *s) {
+    uint8_t *was = malloc((size_t)s->ntiles);
+    if (!was) return SYL_ELIMIT;
+    for (int ti = 0; ti < s->ntiles; ti++) {
+        Tile *T = &s->tile[ti];
+        was[ti] = (uint8_t)s->x->owns(s->x->ctx, ti);
+        if (was[ti]) s->x->post(s->x->ctx, SYL_ECO_MOVE, ti, ti, T->own.p, T->own.n);
+    }
+    s->x->barrier(s->x->ctx);
+    int st = SYL_OK;
+    for (int ti = 0; ti < s->ntiles; ti++) {
+        Tile *T = &s->tile[ti];
+        bool now = s->x->owns(s->x->ctx, ti);
+        if (now && !was[ti]) {
+            size_t n;
+            const SylEcoPlant *p = s->x->take(s->x->ctx, SYL_ECO_MOVE, ti, ti, &n);
+            if (!buf_reserve(&T->own, n)) st = SYL_ELIMIT;
+            else if (n) memcpy(T->own.p, p, n * sizeof *p);
+            T->own.n = st ? 0 : n;
+        } else if (!now)
+            T->own.n = 0;
+    }
+    free(was);
+    return st;
 }
 
 static double cpu_now(void) {
@@ -479,32 +534,47 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         T->border = calloc((size_t)s.ntiles, sizeof *T->border);
         if (!T->out || !T->border) st = SYL_ELIMIT;
     }
+    if (!st) st = place_start(&s, o);
+    /* what the processes add up each year: failed, alive, plant-years, bytes, then per species
+     * count, area, height, then per tile its plants */
+    enum { V_FAILED, V_ALIVE, V_PY, V_BYTES, V_COUNT, V_AREA = V_COUNT + SYL_ECO_MAX_SPECIES,
+           V_HEIGHT = V_AREA + SYL_ECO_MAX_SPECIES, V_TILE = V_HEIGHT + SYL_ECO_MAX_SPECIES };
+    size_t nv = V_TILE + (size_t)s.ntiles;
+    int64_t *v = calloc(nv, sizeof *v);
+    if (!v) st = SYL_ELIMIT;
     Buf all = {0};
     SylEcoYear yr;
     size_t peak = 0, peak_bytes = 0;
     uint64_t plant_years = 0;
     int snap = 0;
-    while (snap < nsnaps && snaps[snap] < 1) snap++; /* year 0 is bare ground */
-    for (int y = 1; !st && y <= years; y++) {
+    int first = o->start_year > 0 ? o->start_year + 1 : 1;
+    while (snap < nsnaps && snaps[snap] < first) snap++; /* year 0 is bare ground; a resumed run's are done */
+    for (int y = first; !st && y <= years; y++) {
         s.year = y;
         for (int ph = 0; ph < 3; ph++) parallel(&s, ph, threads);
         memset(&yr, 0, sizeof yr);
         yr.year = y;
-        size_t alive = 0;
-        int64_t area[SYL_ECO_MAX_SPECIES] = {0}, height[SYL_ECO_MAX_SPECIES] = {0};
-        size_t bytes = 0;
+        memset(v, 0, nv * sizeof *v);
         for (int ti = 0; ti < s.ntiles; ti++) {
             Tile *T = &s.tile[ti];
-            if (T->failed) st = SYL_ELIMIT;
-            plant_years += T->alive_start;
-            alive += T->own.n;
-            bytes += tile_bytes(T, s.ntiles);
+            if (s.x->owns && !s.x->owns(s.x->ctx, ti)) continue;
+            if (T->failed) v[V_FAILED] = 1;
+            v[V_PY] += (int64_t)T->alive_start;
+            v[V_ALIVE] += (int64_t)T->own.n;
+            v[V_BYTES] += (int64_t)tile_bytes(T, s.ntiles);
+            v[V_TILE + ti] = (int64_t)T->own.n;
             for (int sp = 0; sp < m->nspecies; sp++) {
-                yr.count[sp] += T->count[sp];
-                area[sp] += T->area_u[sp];
-                height[sp] += T->height_u[sp];
+                v[V_COUNT + sp] += T->count[sp];
+                v[V_AREA + sp] += T->area_u[sp];
+                v[V_HEIGHT + sp] += T->height_u[sp];
             }
         }
+        if (s.x->sum) s.x->sum(s.x->ctx, v, nv);
+        if (v[V_FAILED]) st = SYL_ELIMIT;
+        plant_years += (uint64_t)v[V_PY];
+        size_t alive = (size_t)v[V_ALIVE], bytes = (size_t)v[V_BYTES];
+        const int64_t *area = v + V_AREA, *height = v + V_HEIGHT;
+        for (int sp = 0; sp < m->nspecies; sp++) yr.count[sp] = (uint32_t)v[V_COUNT + sp];
         if (!st && o->max_plants && alive > o->max_plants) {
             if (o->diag)
                 fprintf(o->diag, "sylva: error: year %d: %zu plants, more than the limit of %llu\n", y, alive,
@@ -520,11 +590,22 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         if (alive > peak) peak = alive;
         if (alive && alive >= peak) peak_bytes = bytes;
         if (o->on_year) o->on_year(o->user, &yr);
-        while (snap < nsnaps && snaps[snap] == y) {
-            st = gather(&s, &all);
-            if (!st && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
-            snap++;
+        bool checkpoint = o->every > 0 && o->on_checkpoint && y % o->every == 0 && y < years;
+        if (checkpoint || (snap < nsnaps && snaps[snap] == y)) {
+            bool here = true;
+            st = gather(&s, &all, &here);
+            while (!st && snap < nsnaps && snaps[snap] == y) {
+                if (here && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
+                snap++;
+            }
+            if (!st && here && checkpoint) st = o->on_checkpoint(o->user, y, all.p, all.n);
+            if (s.x->sum) { /* the writer's status is every process's */
+                int64_t e = st;
+                s.x->sum(s.x->ctx, &e, 1);
+                st = (int)e;
+            }
         }
+        if (!st && s.x->rebalance && s.x->rebalance(s.x->ctx, y, v + V_TILE, s.ntiles)) st = move_tiles(&s);
         if (o->progress) o->progress(o->user, (double)y / years);
     }
     if (stats) {
@@ -542,6 +623,7 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         free(T->out), free(T->border), free(T->cell_start), free(T->order), free(T->dominated);
     }
     free(all.p);
+    free(v);
     free(s.tile), free(s.tile_of_i), free(s.tile_of_k);
     eco_local_free(local);
     return st;

@@ -1,0 +1,264 @@
+/* SylEcoExchange over MPI ranks (built with MPI=1; docs/distributed.md). Each rank runs a
+ * contiguous run of tiles (balance.c). A post to a tile of the same rank is kept as a pointer,
+ * as in exchange.c; the barrier packs the posts to other ranks' tiles into one message per
+ * rank (records: channel, from, to, count, then the plants as bytes of SylEcoPlant), trades
+ * the sizes with MPI_Alltoall and the messages with MPI_Isend/MPI_Irecv/MPI_Waitall, and
+ * points the receiver's mailboxes into what arrived. Counts, gathers and checkpoints go
+ * through collectives, so every rank sees the same totals in the same order. */
+#include <limits.h>
+#include <mpi.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "eco/eco.h"
+
+typedef struct Box {
+    const SylEcoPlant *p;
+    size_t n;
+    int got; /* arrived from another rank: points into recv */
+} Box;
+
+typedef struct Record { /* 32 bytes: the plants after it stay 8-aligned */
+    int32_t channel, from, to, pad;
+    uint64_t n, pad2;
+} Record;
+
+enum { CHANNELS = 3 };
+
+struct SylEcoMpi {
+    int rank, size;
+    MPI_Comm comm;
+    MPI_Datatype plant;
+    MPI_Errhandler errh;
+    SylEcoExchange ops;
+    int ntiles, every, pending;
+    int *owner, *next;
+    Box *box;              /* [channel][to][from] */
+    uint8_t **send, **recv; /* per rank */
+    uint64_t *send_len, *recv_len;
+    MPI_Request *req;
+    uint64_t plants_sent, bytes_sent, halo_received, plants_moved, barriers;
+};
+
+static Box *box_of(SylEcoMpi *m, int channel, int to, int from) {
+    return &m->box[((size_t)channel * m->ntiles + (size_t)to) * m->ntiles + (size_t)from];
+}
+
+static void fail(SylEcoMpi *m, const char *what) {
+    fprintf(stderr, "sylva: error: rank %d of %d: %s; aborting the job\n", m->rank, m->size, what);
+    fflush(stderr);
+    MPI_Abort(m->comm, SYL_EIO);
+}
+
+/* Any MPI error (a rank gone, a message lost) ends the whole job with a message, not a hang. */
+static void on_mpi_error(MPI_Comm *comm, int *code, ...) {
+    char text[MPI_MAX_ERROR_STRING];
+    int len = 0, rank = -1;
+    MPI_Error_string(*code, text, &len);
+    MPI_Comm_rank(*comm, &rank);
+    fprintf(stderr, "sylva: error: rank %d: MPI: %s; aborting the job\n", rank, text);
+    fflush(stderr);
+    MPI_Abort(*comm, SYL_EIO);
+}
+
+static void mpi_post(void *ctx, int channel, int from, int to, const SylEcoPlant *p, size_t n) {
+    Box *b = box_of(ctx, channel, to, from);
+    b->p = p;
+    b->n = n;
+    b->got = 0;
+}
+
+static const SylEcoPlant *mpi_take(void *ctx, int channel, int to, int from, size_t *n) {
+    Box *b = box_of(ctx, channel, to, from);
+    *n = b->n;
+    return b->p;
+}
+
+static int dest_of(const SylEcoMpi *m, int channel, int to) {
+    return channel == SYL_ECO_MOVE ? m->next[to] : m->owner[to];
+}
+
+static void mpi_barrier(void *ctx) {
+    SylEcoMpi *m = ctx;
+    size_t nbox = (size_t)CHANNELS * m->ntiles * m->ntiles;
+    for (size_t i = 0; i < nbox; i++)
+        if (m->box[i].got) m->box[i] = (Box){0}; /* the last barrier's arrivals */
+    for (int r = 0; r < m->size; r++) {
+        free(m->recv[r]), free(m->send[r]);
+        m->recv[r] = m->send[r] = NULL;
+        m->send_len[r] = 0;
+    }
+    /* what goes to each rank: its size, then the records */
+    for (int pass = 0; pass < 2; pass++) {
+        for (int r = 0; pass && r < m->size; r++) {
+            if (m->send_len[r] && !(m->send[r] = malloc(m->send_len[r]))) fail(m, "out of memory for a message");
+            m->send_len[r] = 0;
+        }
+        for (int ch = 0; ch < CHANNELS; ch++)
+            for (int to = 0; to < m->ntiles; to++)
+                for (int from = 0; from < m->ntiles; from++) {
+                    Box *b = box_of(m, ch, to, from);
+                    int r = dest_of(m, ch, to);
+                    if (!b->n || r == m->rank) continue;
+                    size_t len = sizeof(Record) + b->n * sizeof(SylEcoPlant);
+                    if (pass) {
+                        Record h = {.channel = ch, .from = from, .to = to, .n = b->n};
+                        memcpy(m->send[r] + m->send_len[r], &h, sizeof h);
+                        memcpy(m->send[r] + m->send_len[r] + sizeof h, b->p, b->n * sizeof(SylEcoPlant));
+                        m->plants_sent += b->n;
+                        *b = (Box){0};
+                    }
+                    m->send_len[r] += len;
+                }
+    }
+    MPI_Alltoall(m->send_len, 1, MPI_UINT64_T, m->recv_len, 1, MPI_UINT64_T, m->comm);
+    int nreq = 0;
+    for (int r = 0; r < m->size; r++) {
+        if (m->recv_len[r] > INT_MAX || m->send_len[r] > INT_MAX) fail(m, "a message over 2 GB (use more tiles or ranks)");
+        if (m->recv_len[r]) {
+            if (!(m->recv[r] = malloc(m->recv_len[r]))) fail(m, "out of memory for a message");
+            MPI_Irecv(m->recv[r], (int)m->recv_len[r], MPI_BYTE, r, 0, m->comm, &m->req[nreq++]);
+        }
+    }
+    for (int r = 0; r < m->size; r++)
+        if (m->send_len[r]) {
+            MPI_Isend(m->send[r], (int)m->send_len[r], MPI_BYTE, r, 0, m->comm, &m->req[nreq++]);
+            m->bytes_sent += m->send_len[r];
+        }
+    MPI_Waitall(nreq, m->req, MPI_STATUSES_IGNORE);
+    for (int r = 0; r < m->size; r++)
+        for (uint64_t at = 0; at < m->recv_len[r];) {
+            Record h;
+            memcpy(&h, m->recv[r] + at, sizeof h);
+            if (h.channel < 0 || h.channel >= CHANNELS || h.from < 0 || h.from >= m->ntiles || h.to < 0 ||
+                h.to >= m->ntiles || h.n > (m->recv_len[r] - at - sizeof h) / sizeof(SylEcoPlant))
+                fail(m, "a malformed message");
+            Box *b = box_of(m, h.channel, h.to, h.from);
+            b->p = (const SylEcoPlant *)(m->recv[r] + at + sizeof h);
+            b->n = h.n;
+            b->got = 1;
+            if (h.channel == SYL_ECO_HALO) m->halo_received += h.n;
+            if (h.channel == SYL_ECO_MOVE) m->plants_moved += h.n;
+            at += sizeof h + h.n * sizeof(SylEcoPlant);
+        }
+    if (m->pending) { /* the new owners; what was posted under the old ones is stale */
+        memcpy(m->owner, m->next, (size_t)m->ntiles * sizeof *m->owner);
+        m->pending = 0;
+        for (size_t i = 0; i < nbox; i++)
+            if (!m->box[i].got) m->box[i] = (Box){0};
+    }
+    m->barriers++;
+}
+
+static int mpi_owns(void *ctx, int tile) {
+    SylEcoMpi *m = ctx;
+    return m->owner[tile] == m->rank;
+}
+
+static void mpi_sum(void *ctx, int64_t *v, size_t n) {
+    SylEcoMpi *m = ctx;
+    if (n > INT_MAX) fail(m, "too many sums");
+    MPI_Allreduce(MPI_IN_PLACE, v, (int)n, MPI_INT64_T, MPI_SUM, m->comm);
+}
+
+static int mpi_gather(void *ctx, const SylEcoPlant *p, size_t n, SylEcoPlant **all, size_t *nall) {
+    SylEcoMpi *m = ctx;
+    *all = NULL;
+    *nall = 0;
+    if (n > INT_MAX) fail(m, "over 2^31 plants on one rank");
+    int mine = (int)n, *counts = NULL, *displs = NULL;
+    if (m->rank == 0) {
+        counts = malloc((size_t)m->size * sizeof *counts);
+        displs = malloc((size_t)m->size * sizeof *displs);
+        if (!counts || !displs) fail(m, "out of memory for a gather");
+    }
+    MPI_Gather(&mine, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm);
+    int64_t total = 0;
+    for (int r = 0; m->rank == 0 && r < m->size; r++) {
+        if (total + counts[r] > INT_MAX) fail(m, "over 2^31 plants to gather");
+        displs[r] = (int)total;
+        total += counts[r];
+    }
+    if (m->rank == 0 && !(*all = malloc((size_t)(total ? total : 1) * sizeof **all))) fail(m, "out of memory for a gather");
+    MPI_Gatherv(p, mine, m->plant, *all, counts, displs, m->plant, 0, m->comm);
+    *nall = (size_t)total;
+    free(counts), free(displs);
+    return 0;
+}
+
+static int mpi_rebalance(void *ctx, int year, const int64_t *plants, int ntiles) {
+    SylEcoMpi *m = ctx;
+    if (m->every <= 0 || year % m->every || ntiles != m->ntiles) return 0;
+    eco_balance_cut(plants, ntiles, m->size, m->next);
+    m->pending = memcmp(m->next, m->owner, (size_t)ntiles * sizeof *m->owner) != 0;
+    return m->pending;
+}
+
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv) {
+    /* only under a launcher: a plain run stays one plain process */
+    if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK") && !getenv("PMI_RANK")) return NULL;
+    SylEcoMpi *m = calloc(1, sizeof *m);
+    if (!m) return NULL;
+    int provided;
+    MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided); /* MPI from the main thread only */
+    m->comm = MPI_COMM_WORLD;
+    MPI_Comm_rank(m->comm, &m->rank);
+    MPI_Comm_size(m->comm, &m->size);
+    MPI_Comm_create_errhandler(on_mpi_error, &m->errh);
+    MPI_Comm_set_errhandler(m->comm, m->errh);
+    MPI_Type_contiguous((int)sizeof(SylEcoPlant), MPI_BYTE, &m->plant);
+    MPI_Type_commit(&m->plant);
+    return m;
+}
+
+int syl_eco_mpi_rank(const SylEcoMpi *m) { return m ? m->rank : 0; }
+int syl_eco_mpi_size(const SylEcoMpi *m) { return m ? m->size : 1; }
+
+const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *m, int ntiles, int rebalance) {
+    if (!m || ntiles < 1) return NULL;
+    m->ntiles = ntiles;
+    m->every = rebalance;
+    m->owner = malloc((size_t)ntiles * sizeof *m->owner);
+    m->next = malloc((size_t)ntiles * sizeof *m->next);
+    m->box = calloc((size_t)CHANNELS * ntiles * ntiles, sizeof *m->box);
+    m->send = calloc((size_t)m->size, sizeof *m->send);
+    m->recv = calloc((size_t)m->size, sizeof *m->recv);
+    m->send_len = calloc((size_t)m->size, sizeof *m->send_len);
+    m->recv_len = calloc((size_t)m->size, sizeof *m->recv_len);
+    m->req = calloc((size_t)2 * m->size, sizeof *m->req);
+    if (!m->owner || !m->next || !m->box || !m->send || !m->recv || !m->send_len || !m->recv_len || !m->req)
+        fail(m, "out of memory for the tiles");
+    eco_balance_cut(NULL, ntiles, m->size, m->owner);
+    memcpy(m->next, m->owner, (size_t)ntiles * sizeof *m->owner);
+    m->ops = (SylEcoExchange){.post = mpi_post, .barrier = mpi_barrier, .take = mpi_take, .owns = mpi_owns,
+                              .sum = mpi_sum, .gather = mpi_gather, .rebalance = mpi_rebalance, .ctx = m};
+    return &m->ops;
+}
+
+void syl_eco_mpi_traffic(const SylEcoMpi *m, uint64_t *plants_sent, uint64_t *bytes_sent, uint64_t *halo_received,
+                         uint64_t *plants_moved, uint64_t *barriers) {
+    *plants_sent = m ? m->plants_sent : 0;
+    *plants_moved = m ? m->plants_moved : 0;
+    *bytes_sent = m ? m->bytes_sent : 0;
+    *halo_received = m ? m->halo_received : 0;
+    *barriers = m ? m->barriers : 0;
+}
+
+void syl_eco_mpi_abort(SylEcoMpi *m, int code, const char *message) {
+    if (!m) return;
+    fprintf(stderr, "sylva: error: rank %d of %d: %s; aborting the job\n", m->rank, m->size, message);
+    fflush(stderr);
+    MPI_Abort(m->comm, code);
+}
+
+void syl_eco_mpi_end(SylEcoMpi *m) {
+    if (!m) return;
+    for (int r = 0; m->send && r < m->size; r++) free(m->send[r]), free(m->recv[r]);
+    free(m->owner), free(m->next), free(m->box), free(m->send), free(m->recv), free(m->send_len), free(m->recv_len),
+        free(m->req);
+    MPI_Type_free(&m->plant);
+    MPI_Errhandler_free(&m->errh);
+    MPI_Finalize();
+    free(m);
+}
