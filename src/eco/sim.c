@@ -40,6 +40,7 @@ typedef struct Tile {
     int64_t area_u[SYL_ECO_MAX_SPECIES], height_u[SYL_ECO_MAX_SPECIES]; /* fixed point: exact sums */
     uint32_t count[SYL_ECO_MAX_SPECIES];
     uint64_t alive_start;
+    size_t peak_bytes;        /* this year's most memory held at once */
     int failed;
 } Tile;
 
@@ -276,6 +277,19 @@ static void send_seed(Sim *s, Tile *T, uint64_t id, int species, double x, doubl
     if (!buf_push(&T->out[u], &c)) T->failed = 1;
 }
 
+/* The memory a tile holds now, beyond the terrain. */
+static size_t tile_bytes(const Tile *T, int ntiles) {
+    size_t b = (T->own.cap + T->halo.cap) * sizeof(SylEcoPlant) +
+               (T->grid_cap + T->order_cap) * sizeof(uint32_t);
+    for (int u = 0; u < ntiles; u++) b += (T->out[u].cap + T->border[u].cap) * sizeof(SylEcoPlant);
+    return b;
+}
+
+static void note_bytes(Tile *T, int ntiles) {
+    size_t b = tile_bytes(T, ntiles);
+    if (b > T->peak_bytes) T->peak_bytes = b;
+}
+
 /* Phase B. */
 static void step_tile(Sim *s, int ti) {
     Tile *T = &s->tile[ti];
@@ -304,6 +318,13 @@ static void step_tile(Sim *s, int ti) {
     /* this year's domination goes in state at once: the search reads no plant's state */
     for (size_t j = 0; j < T->own.n; j++)
         T->own.p[j].state = is_dominated(s, T, &G, &T->own.p[j]) ? SYL_ECO_DOMINATED : SYL_ECO_FREE;
+    /* the grid and the halo are done with: not held while the seedlings pile up */
+    T->peak_bytes = 0;
+    note_bytes(T, s->ntiles);
+    free(T->cell_start), free(T->order), free(T->halo.p);
+    T->cell_start = T->order = NULL;
+    T->grid_cap = T->order_cap = 0;
+    T->halo = (Buf){0};
     T->alive_start = T->own.n;
     for (int u = 0; u < s->ntiles; u++) T->out[u].n = 0;
     /* deaths, growth and seeds */
@@ -357,6 +378,7 @@ static void step_tile(Sim *s, int ti) {
                 }
             }
         }
+    note_bytes(T, s->ntiles);
     for (int u = 0; u < s->ntiles; u++) {
         if (T->out[u].n > 1) qsort(T->out[u].p, T->out[u].n, sizeof *T->out[u].p, by_id);
         s->x->post(s->x->ctx, SYL_ECO_SEEDS, ti, u, T->out[u].p, T->out[u].n);
@@ -395,6 +417,7 @@ static void settle_tile(Sim *s, int ti) {
         memmove(T->own.p + a, T->own.p + w, (T->own.n + total - w) * sizeof *T->own.p);
     }
     T->own.n = a + (T->own.n + total - w);
+    note_bytes(T, s->ntiles);
     memset(T->count, 0, sizeof T->count);
     memset(T->area_u, 0, sizeof T->area_u);
     memset(T->height_u, 0, sizeof T->height_u);
@@ -457,13 +480,6 @@ static double wall_now(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static size_t tile_bytes(const Tile *T, int ntiles) {
-    size_t b = (T->own.cap + T->halo.cap) * sizeof(SylEcoPlant) +
-               (T->grid_cap + T->order_cap) * sizeof(uint32_t);
-    for (int u = 0; u < ntiles; u++) b += (T->out[u].cap + T->border[u].cap) * sizeof(SylEcoPlant);
-    return b;
 }
 
 int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylEcoOptions *o, SylEcoStats *stats) {
@@ -540,7 +556,7 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
             if (T->failed) st = SYL_ELIMIT;
             plant_years += T->alive_start;
             alive += T->own.n;
-            bytes += tile_bytes(T, s.ntiles);
+            bytes += T->peak_bytes;
             for (int sp = 0; sp < m->nspecies; sp++) {
                 yr.count[sp] += T->count[sp];
                 area[sp] += T->area_u[sp];
@@ -554,6 +570,12 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
             st = SYL_ELIMIT;
         }
         if (st) break;
+        /* the seedlings have settled: their buffers are not held until next year's seeds */
+        for (int ti = 0; ti < s.ntiles; ti++)
+            for (int u = 0; u < s.ntiles; u++) {
+                free(s.tile[ti].out[u].p);
+                s.tile[ti].out[u] = (Buf){0};
+            }
         double terrain_area = (double)t->nx * t->nz * t->cell * t->cell;
         for (int sp = 0; sp < m->nspecies; sp++) {
             yr.cover[sp] = (double)area[sp] * 1e-4 / terrain_area;
@@ -563,8 +585,14 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         if (alive && alive >= peak) peak_bytes = bytes;
         if (o->on_year) o->on_year(o->user, &yr);
         while (snap < nsnaps && snaps[snap] == y) {
-            st = gather(&s, &all);
-            if (!st && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
+            if (s.ntiles == 1) { /* already sorted by id: no copy */
+                if (o->on_snapshot) st = o->on_snapshot(o->user, y, s.tile[0].own.p, s.tile[0].own.n);
+            } else {
+                st = gather(&s, &all);
+                if (!st && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
+                free(all.p); /* not held between snapshots */
+                all = (Buf){0};
+            }
             snap++;
         }
         if (o->progress) o->progress(o->user, (double)y / years);
