@@ -5,6 +5,10 @@
   ecosystem.py valley N CELL               a V-shaped valley draining south (wet floor, dry ridges)
   ecosystem.py thinning SPECIES.CSV        the slope of log density on log mean crown area over
                                            the years the canopy is closed (cover >= 0.3)
+  ecosystem.py yoda DIR W                  the slope of log mean mass (mass ∝ height³, geometric
+                                           similarity) on log density over the snapshots
+                                           DIR/plants-*.csv of a W x W stand whose canopy is
+                                           closed (crown cover >= 0.3, from the radii)
   ecosystem.py clark PLANTS.CSV SPECIES W  Clark and Evans' R of the species' plants on a W x W
                                            square (R < 1 clustered, 1 random, > 1 regular)
   ecosystem.py mean PLANTS.CSV SPECIES GRID.ASC
@@ -53,6 +57,27 @@ def thinning(path):
     mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
     slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
     print("closed-canopy years >= 5; slope %s" % ("in [-1.25, -0.75]" if -1.25 <= slope <= -0.75 else "%.3f" % slope))
+
+
+def yoda(folder, w):
+    import glob
+    xs, ys = [], []
+    for path in sorted(glob.glob(folder + "/plants-*.csv")):
+        rows = list(csv.DictReader(open(path)))
+        if len(rows) < 10:
+            continue
+        cover = sum(math.pi * float(r["radius"]) ** 2 for r in rows) / (w * w)
+        if cover < 0.3:
+            continue
+        mass = sum(float(r["height"]) ** 3 for r in rows) / len(rows)
+        xs.append(math.log(len(rows) / (w * w)))
+        ys.append(math.log(mass))
+    if len(xs) < 5:
+        print("too few closed-canopy snapshots: %d" % len(xs))
+        return
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    print("closed-canopy snapshots >= 5; mass slope %s" % ("in [-1.75, -1.25]" if -1.75 <= slope <= -1.25 else "%.3f" % slope))
 
 
 def points(path, species):
@@ -116,6 +141,8 @@ if __name__ == "__main__":
         valley(int(a[1]), float(a[2]))
     elif a[0] == "thinning":
         thinning(a[1])
+    elif a[0] == "yoda":
+        yoda(a[1], float(a[2]))
     elif a[0] == "clark":
         clark(a[1], a[2], float(a[3]))
     elif a[0] == "mean":
