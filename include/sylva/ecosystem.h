@@ -34,7 +34,7 @@ typedef struct SylEcoPlant {
     uint16_t age;     /* years */
     uint8_t species;  /* index into the block's species */
     uint8_t state;    /* SYL_ECO_FREE or SYL_ECO_DOMINATED (last year's competition) */
-    uint32_t pad;
+    uint32_t cell;    /* the terrain cell it stands on, k nx + i (a tile keeps its plants by cell) */
 } SylEcoPlant;
 
 typedef struct SylEcoSpecies {

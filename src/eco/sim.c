@@ -6,7 +6,7 @@
  *      (age, domination, stress), growth, seeds (posted to the tile they fall in) and random
  *      arrivals on its own cells;
  *   C. every tile takes the seeds that fell on it, lets them germinate, and keeps its plants
- *      sorted by id.
+ *      sorted by (cell, id).
  * Each decision depends only on the start-of-year state and on streams keyed by (plant id,
  * year, purpose), so any tiling and any thread count give the same plants. */
 #include <math.h>
@@ -32,7 +32,7 @@ typedef struct Inbox {
 typedef struct Tile {
     int i0, i1, k0, k1;       /* its cells: columns [i0, i1), rows [k0, k1) */
     double x0, x1, z0, z1;    /* its rectangle */
-    Buf own, halo;            /* its plants (sorted by id), its neighbours' border plants */
+    Buf own, halo;            /* its plants (sorted by key), its neighbours' border plants */
     Buf *out, *border;        /* per destination tile: seedlings; border plants (its halo) */
     Inbox *inbox;             /* the seedlings posted to it, per sending tile */
     uint32_t *cell_start, *order; /* the spatial grid over own + halo */
@@ -89,6 +89,18 @@ static double radius_of(const Sim *s, const SylEcoPlant *p) {
 static int by_id(const void *a, const void *b) {
     uint64_t x = ((const SylEcoPlant *)a)->id, y = ((const SylEcoPlant *)b)->id;
     return x < y ? -1 : x > y;
+}
+
+/* A tile keeps its plants in (terrain cell, id) order: plants never move, so the order
+ * survives the deaths, and neighbours lie near each other in memory for the grid's search
+ * (ids are hashes: by id alone a search would jump all over the tile's plants). */
+static inline bool key_less(const SylEcoPlant *p, const SylEcoPlant *q) {
+    return p->cell != q->cell ? p->cell < q->cell : p->id < q->id;
+}
+
+static int by_key(const void *a, const void *b) {
+    const SylEcoPlant *p = a, *q = b;
+    return key_less(p, q) ? -1 : key_less(q, p);
 }
 
 /* Plant j of the grid's numbering: the tile's own, then its halo. */
@@ -274,6 +286,7 @@ static void send_seed(Sim *s, Tile *T, uint64_t id, int species, double x, doubl
     if (rng_unit(&r) >= v) return;
     c.vigour = (float)v;
     c.height = (float)s->m->species[species].start_height;
+    c.cell = (uint32_t)((size_t)k * (size_t)t->nx + (size_t)i);
     if (!buf_push(&T->out[u], &c)) T->failed = 1;
 }
 
@@ -380,7 +393,7 @@ static void step_tile(Sim *s, int ti) {
         }
     note_bytes(T, s->ntiles);
     for (int u = 0; u < s->ntiles; u++) {
-        if (T->out[u].n > 1) qsort(T->out[u].p, T->out[u].n, sizeof *T->out[u].p, by_id);
+        if (T->out[u].n > 1) qsort(T->out[u].p, T->out[u].n, sizeof *T->out[u].p, by_key);
         s->x->post(s->x->ctx, SYL_ECO_SEEDS, ti, u, T->out[u].p, T->out[u].n);
     }
 }
@@ -388,7 +401,7 @@ static void step_tile(Sim *s, int ti) {
 /* Phase C. */
 static void settle_tile(Sim *s, int ti) {
     Tile *T = &s->tile[ti];
-    /* the seedlings posted to it, each tile's sorted by id */
+    /* the seedlings posted to it, each tile's sorted by key */
     int k = 0;
     size_t total = 0;
     for (int u = 0; u < s->ntiles; u++) {
@@ -396,8 +409,8 @@ static void settle_tile(Sim *s, int ti) {
         const SylEcoPlant *in = s->x->take(s->x->ctx, SYL_ECO_SEEDS, ti, u, &n);
         if (n) T->inbox[k++] = (Inbox){in, n}, total += n;
     }
-    /* merge them into the sorted survivors, from the back, in place (an id met twice — two
-     * hashes alike — is kept once) */
+    /* merge them into the sorted survivors, from the back, in place (an id met twice in a
+     * cell — two hashes alike — is kept once) */
     if (!buf_reserve(&T->own, T->own.n + total)) {
         T->failed = 1;
         return;
@@ -406,11 +419,11 @@ static void settle_tile(Sim *s, int ti) {
     for (;;) {
         Inbox *b = NULL;
         for (int q = 0; q < k; q++)
-            if (T->inbox[q].n && (!b || T->inbox[q].p[T->inbox[q].n - 1].id > b->p[b->n - 1].id)) b = &T->inbox[q];
+            if (T->inbox[q].n && (!b || key_less(&b->p[b->n - 1], &T->inbox[q].p[T->inbox[q].n - 1]))) b = &T->inbox[q];
         if (!b) break;
-        uint64_t id = b->p[b->n - 1].id;
-        if (a > 0 && T->own.p[a - 1].id > id) T->own.p[--w] = T->own.p[--a];
-        else if (a > 0 && T->own.p[a - 1].id == id) b->n--;
+        const SylEcoPlant *c = &b->p[b->n - 1];
+        if (a > 0 && key_less(c, &T->own.p[a - 1])) T->own.p[--w] = T->own.p[--a];
+        else if (a > 0 && !key_less(&T->own.p[a - 1], c)) b->n--;
         else T->own.p[--w] = b->p[--b->n];
     }
     if (w > a) { /* duplicates dropped: close the gap */
@@ -585,8 +598,11 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         if (alive && alive >= peak) peak_bytes = bytes;
         if (o->on_year) o->on_year(o->user, &yr);
         while (snap < nsnaps && snaps[snap] == y) {
-            if (s.ntiles == 1) { /* already sorted by id: no copy */
-                if (o->on_snapshot) st = o->on_snapshot(o->user, y, s.tile[0].own.p, s.tile[0].own.n);
+            if (s.ntiles == 1) { /* sorted by id in place, and back: no copy */
+                Buf *own = &s.tile[0].own;
+                if (own->n > 1) qsort(own->p, own->n, sizeof *own->p, by_id);
+                if (o->on_snapshot) st = o->on_snapshot(o->user, y, own->p, own->n);
+                if (own->n > 1) qsort(own->p, own->n, sizeof *own->p, by_key);
             } else {
                 st = gather(&s, &all);
                 if (!st && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
