@@ -91,6 +91,25 @@ static int by_id(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
+/* Sorts plants in place by cmp with no scratch memory (heapsort): glibc's qsort would take a
+ * copy of all of them, as much again as the plants, at each snapshot. */
+static void sort_in_place(SylEcoPlant *p, size_t n, int (*cmp)(const void *, const void *)) {
+    if (n < 2) return;
+    for (size_t end = n, start = n / 2;;) {
+        if (start > 0) start--; /* first build the heap, */
+        else if (--end > 0) {   /* then move its top behind it */
+            SylEcoPlant t = p[0];
+            p[0] = p[end], p[end] = t;
+        } else return;
+        for (size_t r = start, c; (c = 2 * r + 1) < end; r = c) { /* sift down */
+            if (c + 1 < end && cmp(&p[c], &p[c + 1]) < 0) c++;
+            if (cmp(&p[r], &p[c]) >= 0) break;
+            SylEcoPlant t = p[r];
+            p[r] = p[c], p[c] = t;
+        }
+    }
+}
+
 /* A tile keeps its plants in (terrain cell, id) order: plants never move, so the order
  * survives the deaths, and neighbours lie near each other in memory for the grid's search
  * (ids are hashes: by id alone a search would jump all over the tile's plants). */
@@ -600,9 +619,9 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         while (snap < nsnaps && snaps[snap] == y) {
             if (s.ntiles == 1) { /* sorted by id in place, and back: no copy */
                 Buf *own = &s.tile[0].own;
-                if (own->n > 1) qsort(own->p, own->n, sizeof *own->p, by_id);
+                sort_in_place(own->p, own->n, by_id);
                 if (o->on_snapshot) st = o->on_snapshot(o->user, y, own->p, own->n);
-                if (own->n > 1) qsort(own->p, own->n, sizeof *own->p, by_key);
+                sort_in_place(own->p, own->n, by_key);
             } else {
                 st = gather(&s, &all);
                 if (!st && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
