@@ -3,9 +3,9 @@
  *   B. every tile, on its own plants and its halo as they were at the year's start: who is
  *      dominated (a more powerful plant's ecological circle overlaps, Deussen et al. 1998;
  *      power v h p_r as Zamuda 2006), deaths
- *      (age, domination, stress), growth, seeds (posted to the tile they fall in) and random
- *      arrivals on its own cells;
- *   C. every tile takes the seeds that fell on it, lets them germinate, and keeps its plants
+ *      (age, domination, stress), growth, seeds and random arrivals on its own cells, each
+ *      germinating (or not) where it fell and posted as a seedling to the tile there;
+ *   C. every tile takes the seedlings posted to it and merges them into its plants, kept
  *      sorted by (cell, id).
  * Each decision depends only on the start-of-year state and on streams keyed by (plant id,
  * year, purpose), so any tiling and any thread count give the same plants. */
