@@ -3,8 +3,8 @@
  * 2002). docs/ecosystem.md lists the directives and the formulas.
  *
  * The terrain is cut into tiles that exchange their border plants (a halo as wide as the
- * largest interaction) and the seeds that cross into a neighbour through SylEcoExchange, so a
- * run over N × M tiles, on any number of threads, gives the same plants byte for byte as one
+ * largest interaction) and the seedlings that sprout in a neighbour through SylEcoExchange,
+ * so a run over N × M tiles, on any number of threads, gives the same plants byte for byte as one
  * tile: every random draw is keyed by (plant id, year, purpose) and every plant id is made
  * from its parent's id or its arrival cell, never from a counter. */
 #ifndef SYLVA_ECOSYSTEM_H
@@ -34,7 +34,7 @@ typedef struct SylEcoPlant {
     uint16_t age;     /* years */
     uint8_t species;  /* index into the block's species */
     uint8_t state;    /* SYL_ECO_FREE or SYL_ECO_DOMINATED (last year's competition) */
-    uint32_t pad;
+    uint32_t cell;    /* the terrain cell it stands on, k nx + i (a tile keeps its plants by cell) */
 } SylEcoPlant;
 
 typedef struct SylEcoSpecies {
@@ -78,8 +78,8 @@ int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag);
 int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
 
 /* How tiles talk: a tile posts plants to another tile (its border plants, for the other's
- * halo, or the seeds that fell there) and, after a barrier, takes what was posted to it. An
- * MPI transport implements the same three calls; syl_ecosystem_run uses an in-process one
+ * halo, or the seedlings that sprouted there, germinated by the sender) and, after a
+ * barrier, takes what was posted to it. An MPI transport implements the same three calls; syl_ecosystem_run uses an in-process one
  * when SylEcoOptions.exchange is NULL. Between two barriers, post may be called from several
  * threads, each for its own `from` tile; the posted plants stay valid until the barrier after
  * the receiver's take (a transport may keep the pointer instead of copying). */

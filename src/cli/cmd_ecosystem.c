@@ -153,24 +153,25 @@ static bool hillshade(Run *r) {
     return true;
 }
 
-static int by_height(const void *a, const void *b) {
-    const SylEcoPlant *p = a, *q = b;
+static int by_height(const void *a, const void *b, void *plants) {
+    const SylEcoPlant *p = (const SylEcoPlant *)plants + *(const uint32_t *)a,
+                      *q = (const SylEcoPlant *)plants + *(const uint32_t *)b;
     if (p->height != q->height) return p->height < q->height ? -1 : 1;
     return p->id < q->id ? -1 : p->id > q->id;
 }
 
 static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     uint8_t *rgb = malloc((size_t)r->w * r->h * 3);
-    SylEcoPlant *order = malloc((n ? n : 1) * sizeof *order);
+    uint32_t *order = malloc((n ? n : 1) * sizeof *order); /* indices: no copy of the plants */
     if (!rgb || !order) {
         free(rgb), free(order);
         return SYL_ELIMIT;
     }
     for (size_t i = 0; i < (size_t)r->w * r->h; i++) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = r->shade[i];
-    memcpy(order, plants, n * sizeof *order);
-    qsort(order, n, sizeof *order, by_height); /* the tallest drawn last, on top */
+    for (size_t j = 0; j < n; j++) order[j] = (uint32_t)j;
+    qsort_r(order, n, sizeof *order, by_height, (void *)plants); /* the tallest drawn last, on top */
     for (size_t j = 0; j < n; j++) {
-        const SylEcoPlant *p = &order[j];
+        const SylEcoPlant *p = &plants[order[j]];
         double rad = r->m->species[p->species].radius_ratio * p->height * r->scale;
         if (rad < 0.75) rad = 0.75;
         double cx = (p->x - r->t->x0) * r->scale, cz = (p->z - r->t->z0) * r->scale;
@@ -219,6 +220,29 @@ static int write_table(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     if (!st) printf("%s\n", path);
     free(path);
     return st;
+}
+
+/* A field of /proc/self/status in kB (VmRSS: resident now; VmHWM: its high-water mark), -1 if
+ * not there. */
+static long status_kb(const char *field) {
+    FILE *f = fopen("/proc/self/status", "r");
+    if (!f) return -1;
+    char line[256];
+    long kb = -1;
+    size_t n = strlen(field);
+    while (kb < 0 && fgets(line, sizeof line, f))
+        if (!strncmp(line, field, n) && line[n] == ':') kb = strtol(line + n + 1, NULL, 10);
+    fclose(f);
+    return kb;
+}
+
+/* Resets the high-water mark of resident memory (Linux's clear_refs 5), so that VmHWM after
+ * the simulation less VmRSS before it is the simulation's own peak. */
+static bool reset_peak(void) {
+    FILE *f = fopen("/proc/self/clear_refs", "w");
+    if (!f) return false;
+    bool ok = fputs("5", f) >= 0;
+    return fclose(f) == 0 && ok;
 }
 
 static void progress(void *user, double fraction) { cli_progress(&((Run *)user)->bar, fraction); }
@@ -393,6 +417,7 @@ int cmd_ecosystem(int argc, char **argv) {
     SylEcoStats stats = {0};
     SylEcoCheckpoint ck = {0};
     char *ck_path = NULL;
+    double rss_delta = -1; /* bytes: the simulation's peak resident memory beyond what was there */
     /* the block and its DEM are read before the directory is made: a bad one makes none */
     st = syl_ecosystem_load(p, &o, &model, &t);
     r.t = t;
@@ -444,7 +469,10 @@ int cmd_ecosystem(int argc, char **argv) {
     }
     if (!st) {
         if (writer) cli_progress_start(&r.bar, "years");
+        long before = a.stats && reset_peak() ? status_kb("VmRSS") : -1;
         st = syl_ecosystem_simulate(&model, t, &o, &stats);
+        long peak = before >= 0 ? status_kb("VmHWM") : -1;
+        rss_delta = before >= 0 && peak >= 0 ? (double)(peak - before) * 1024 : -1;
         if (writer) cli_progress(&r.bar, 1);
     }
     if (!st) st = r.status;
@@ -453,6 +481,9 @@ int cmd_ecosystem(int argc, char **argv) {
     if (!st && a.stats && writer) {
         fprintf(stderr, "plant-years: %llu\npeak plants: %zu\nbytes per plant: %zu\n",
                 (unsigned long long)stats.plant_years, stats.peak_plants, stats.bytes_per_plant);
+        if (rss_delta >= 0 && stats.peak_plants)
+            fprintf(stderr, "peak memory delta: %.2f MB, %.0f bytes per plant\n", rss_delta / 1048576,
+                    rss_delta / stats.peak_plants);
         fprintf(stderr, "simulation: %.3f s wall, %.3f s cpu\nplant-years per second: %.0f\n", stats.seconds,
                 stats.cpu_seconds, stats.seconds > 0 ? stats.plant_years / stats.seconds : 0);
     }

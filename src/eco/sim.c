@@ -3,10 +3,10 @@
  *   B. every tile, on its own plants and its halo as they were at the year's start: who is
  *      dominated (a more powerful plant's ecological circle overlaps, Deussen et al. 1998;
  *      power v h p_r as Zamuda 2006), deaths
- *      (age, domination, stress), growth, seeds (posted to the tile they fall in) and random
- *      arrivals on its own cells;
- *   C. every tile takes the seeds that fell on it, lets them germinate, and keeps its plants
- *      sorted by id.
+ *      (age, domination, stress), growth, seeds and random arrivals on its own cells, each
+ *      germinating (or not) where it fell and posted as a seedling to the tile there;
+ *   C. every tile takes the seedlings posted to it and merges them into its plants, kept
+ *      sorted by (cell, id).
  * Each decision depends only on the start-of-year state and on streams keyed by (plant id,
  * year, purpose), so any tiling and any thread count give the same plants. */
 #include <math.h>
@@ -24,18 +24,23 @@ typedef struct Buf {
     size_t n, cap;
 } Buf;
 
+typedef struct Inbox {
+    const SylEcoPlant *p;
+    size_t n;
+} Inbox;
+
 typedef struct Tile {
     int i0, i1, k0, k1;       /* its cells: columns [i0, i1), rows [k0, k1) */
     double x0, x1, z0, z1;    /* its rectangle */
-    Buf own, halo, born;      /* its plants (sorted by id), its neighbours' border plants, seedlings */
-    Buf *out, *border;        /* per destination tile: seeds; border plants (its halo) */
+    Buf own, halo;            /* its plants (sorted by key), its neighbours' border plants */
+    Buf *out, *border;        /* per destination tile: seedlings; border plants (its halo) */
+    Inbox *inbox;             /* the seedlings posted to it, per sending tile */
     uint32_t *cell_start, *order; /* the spatial grid over own + halo */
     size_t grid_cap, order_cap;
-    uint8_t *dominated;
-    size_t dom_cap;
     int64_t area_u[SYL_ECO_MAX_SPECIES], height_u[SYL_ECO_MAX_SPECIES]; /* fixed point: exact sums */
     uint32_t count[SYL_ECO_MAX_SPECIES];
     uint64_t alive_start;
+    size_t peak_bytes;        /* this year's most memory held at once */
     int failed;
 } Tile;
 
@@ -86,6 +91,37 @@ static int by_id(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
+/* Sorts plants in place by cmp with no scratch memory (heapsort): glibc's qsort would take a
+ * copy of all of them, as much again as the plants, at each snapshot. */
+static void sort_in_place(SylEcoPlant *p, size_t n, int (*cmp)(const void *, const void *)) {
+    if (n < 2) return;
+    for (size_t end = n, start = n / 2;;) {
+        if (start > 0) start--; /* first build the heap, */
+        else if (--end > 0) {   /* then move its top behind it */
+            SylEcoPlant t = p[0];
+            p[0] = p[end], p[end] = t;
+        } else return;
+        for (size_t r = start, c; (c = 2 * r + 1) < end; r = c) { /* sift down */
+            if (c + 1 < end && cmp(&p[c], &p[c + 1]) < 0) c++;
+            if (cmp(&p[r], &p[c]) >= 0) break;
+            SylEcoPlant t = p[r];
+            p[r] = p[c], p[c] = t;
+        }
+    }
+}
+
+/* A tile keeps its plants in (terrain cell, id) order: plants never move, so the order
+ * survives the deaths, and neighbours lie near each other in memory for the grid's search
+ * (ids are hashes: by id alone a search would jump all over the tile's plants). */
+static inline bool key_less(const SylEcoPlant *p, const SylEcoPlant *q) {
+    return p->cell != q->cell ? p->cell < q->cell : p->id < q->id;
+}
+
+static int by_key(const void *a, const void *b) {
+    const SylEcoPlant *p = a, *q = b;
+    return key_less(p, q) ? -1 : key_less(q, p);
+}
+
 /* Plant j of the grid's numbering: the tile's own, then its halo. */
 static inline const SylEcoPlant *local_at(const Tile *T, size_t j) {
     return j < T->own.n ? &T->own.p[j] : &T->halo.p[j - T->own.n];
@@ -110,30 +146,78 @@ static void post_halo(Sim *s, int ti) {
     }
 }
 
-/* The spatial grid over the tile's own plants and halo: cells of size g >= twice the largest radius among them,
- * so that overlapping circles lie in neighbouring cells. */
-typedef struct Grid {
-    double x0, z0, g;
+/* Zamuda's power, v h p_r (eq. 4.18-4.19): long-lived species outcompete short-lived ones of
+ * the same height. */
+static inline double power_of(const Sim *s, const SylEcoPlant *p) {
+    return (double)p->vigour * p->height * s->rel_life[p->species];
+}
+
+/* The spatial grid over the tile's own plants and halo, one level per radius class (level L
+ * holds the radii in (top / 2^(L+1), top / 2^L], the last also all below): each level's cells
+ * are sized to its own largest radius, so a shrub looks at a few small cells of shrubs and a
+ * few large cells of trees, never at a shrub-filled neighbourhood as wide as a tree's. Any
+ * split finds the same overlaps: the split only decides how few plants are looked at. */
+enum { GRID_LEVELS = 5 };
+
+typedef struct Level {
+    double x0, z0, g;  /* cells of size g from (x0, z0) */
+    double rmax, pmax; /* the largest radius and power among its plants */
     int nx, nz;
+    size_t cell0, n;   /* its first cell in the tile's cell_start; its plants */
+} Level;
+
+typedef struct Grid {
+    double top; /* the largest radius of all */
+    Level lv[GRID_LEVELS];
 } Grid;
+
+static int level_of(const Grid *G, double r) {
+    int L = 0;
+    for (double b = G->top * 0.5; L < GRID_LEVELS - 1 && r <= b; b *= 0.5) L++;
+    return L;
+}
+
+/* The cell column (or row) of coordinate v, clamped to [0, n). */
+static inline int cell_of(double v, double v0, double g, int n) {
+    double c = floor((v - v0) / g);
+    return c < 0 ? 0 : c >= n ? n - 1 : (int)c;
+}
+
+static inline size_t cell_index(const Level *l, const SylEcoPlant *p) {
+    return l->cell0 + (size_t)cell_of(p->z, l->z0, l->g, l->nz) * l->nx + cell_of(p->x, l->x0, l->g, l->nx);
+}
 
 static bool build_grid(const Sim *s, Tile *T, Grid *G) {
     size_t n = T->own.n + T->halo.n;
-    double rmax = 0;
+    memset(G, 0, sizeof *G);
     for (size_t j = 0; j < n; j++) {
         double r = radius_of(s, local_at(T, j));
-        if (r > rmax) rmax = r;
+        if (r > G->top) G->top = r;
     }
-    G->x0 = T->x0 - s->halo;
-    G->z0 = T->z0 - s->halo;
+    for (size_t j = 0; j < n; j++) {
+        const SylEcoPlant *p = local_at(T, j);
+        double r = radius_of(s, p), pw = power_of(s, p);
+        Level *l = &G->lv[level_of(G, r)];
+        l->n++;
+        if (r > l->rmax) l->rmax = r;
+        if (pw > l->pmax) l->pmax = pw;
+    }
     double w = T->x1 - T->x0 + 2 * s->halo, d = T->z1 - T->z0 + 2 * s->halo;
-    G->g = 2 * rmax;
-    double least = sqrt(2 * w * d / (double)(n + 1)); /* about two plants per cell at most */
-    if (G->g < least) G->g = least;
-    if (G->g <= 0) G->g = 1;
-    G->nx = (int)(w / G->g) + 1;
-    G->nz = (int)(d / G->g) + 1;
-    size_t cells = (size_t)G->nx * (size_t)G->nz + 1;
+    size_t cells = 0;
+    for (int L = 0; L < GRID_LEVELS; L++) {
+        Level *l = &G->lv[L];
+        l->x0 = T->x0 - s->halo;
+        l->z0 = T->z0 - s->halo;
+        l->g = 2 * l->rmax; /* overlapping circles of this level lie in neighbouring cells */
+        double least = sqrt(2 * w * d / (double)(l->n + 1)); /* about two plants per cell at most */
+        if (l->g < least) l->g = least;
+        if (l->g <= 0) l->g = 1;
+        l->nx = l->n ? (int)(w / l->g) + 1 : 0;
+        l->nz = l->n ? (int)(d / l->g) + 1 : 0;
+        l->cell0 = cells;
+        cells += (size_t)l->nx * (size_t)l->nz;
+    }
+    cells++;
     if (cells > T->grid_cap) {
         uint32_t *c = realloc(T->cell_start, cells * sizeof *c);
         if (!c) return false;
@@ -149,41 +233,33 @@ static bool build_grid(const Sim *s, Tile *T, Grid *G) {
     memset(T->cell_start, 0, cells * sizeof *T->cell_start);
     for (size_t j = 0; j < n; j++) {
         const SylEcoPlant *p = local_at(T, j);
-        int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
-        ci = ci < 0 ? 0 : ci >= G->nx ? G->nx - 1 : ci;
-        ck = ck < 0 ? 0 : ck >= G->nz ? G->nz - 1 : ck;
-        T->cell_start[(size_t)ck * G->nx + ci + 1]++;
+        T->cell_start[cell_index(&G->lv[level_of(G, radius_of(s, p))], p) + 1]++;
     }
     for (size_t c = 1; c < cells; c++) T->cell_start[c] += T->cell_start[c - 1];
     /* place each plant; cell_start[c] ends as the start of cell c + 1 */
     for (size_t j = 0; j < n; j++) {
         const SylEcoPlant *p = local_at(T, j);
-        int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
-        ci = ci < 0 ? 0 : ci >= G->nx ? G->nx - 1 : ci;
-        ck = ck < 0 ? 0 : ck >= G->nz ? G->nz - 1 : ck;
-        T->order[T->cell_start[(size_t)ck * G->nx + ci]++] = (uint32_t)j;
+        T->order[T->cell_start[cell_index(&G->lv[level_of(G, radius_of(s, p))], p)]++] = (uint32_t)j;
     }
     for (size_t c = cells - 1; c > 0; c--) T->cell_start[c] = T->cell_start[c - 1];
     T->cell_start[0] = 0;
     return true;
 }
 
-/* Zamuda's power, v h p_r (eq. 4.18-4.19): long-lived species outcompete short-lived ones of
- * the same height. */
-static inline double power_of(const Sim *s, const SylEcoPlant *p) {
-    return (double)p->vigour * p->height * s->rel_life[p->species];
-}
-
-/* Whether a more powerful plant's circle overlaps p's (ties: the smaller id dominates). */
+/* Whether a more powerful plant's circle overlaps p's (ties: the smaller id dominates). Each
+ * level is searched over the cells within p's radius plus the level's largest; a level whose
+ * most powerful plant is weaker than p is skipped. */
 static bool is_dominated(const Sim *s, const Tile *T, const Grid *G, const SylEcoPlant *p) {
     double rp = radius_of(s, p), pp = power_of(s, p);
-    int ci = (int)((p->x - G->x0) / G->g), ck = (int)((p->z - G->z0) / G->g);
-    for (int k = ck - 1; k <= ck + 1; k++) {
-        if (k < 0 || k >= G->nz) continue;
-        for (int i = ci - 1; i <= ci + 1; i++) {
-            if (i < 0 || i >= G->nx) continue;
-            size_t c = (size_t)k * G->nx + i;
-            for (uint32_t a = T->cell_start[c]; a < T->cell_start[c + 1]; a++) {
+    for (int L = 0; L < GRID_LEVELS; L++) {
+        const Level *l = &G->lv[L];
+        if (!l->n || l->pmax < pp) continue;
+        double reach = (rp + l->rmax) * (1 + 1e-9) + 1e-9; /* rounding never narrows the search */
+        int i0 = cell_of(p->x - reach, l->x0, l->g, l->nx), i1 = cell_of(p->x + reach, l->x0, l->g, l->nx);
+        int k0 = cell_of(p->z - reach, l->z0, l->g, l->nz), k1 = cell_of(p->z + reach, l->z0, l->g, l->nz);
+        for (int k = k0; k <= k1; k++) {
+            size_t row = l->cell0 + (size_t)k * l->nx;
+            for (uint32_t a = T->cell_start[row + i0]; a < T->cell_start[row + i1 + 1]; a++) {
                 const SylEcoPlant *q = local_at(T, T->order[a]);
                 double pq = power_of(s, q);
                 if (pq < pp || (pq == pp && q->id >= p->id)) continue;
@@ -214,12 +290,36 @@ static int poisson(Rng *r, double lambda) {
     return k - 1;
 }
 
-/* A seed (or an arrival) at (x, z): sent to the tile it fell on. */
+/* A seed (or an arrival) at (x, z): if it germinates (with probability its vigour there, on a
+ * cell with data), the seedling is sent to the tile it fell on. The sender decides, as every
+ * tile holds the whole terrain: only seedlings travel and wait, not every seed. */
 static void send_seed(Sim *s, Tile *T, uint64_t id, int species, double x, double z) {
+    const SylTerrain *t = s->t;
     int u = tile_at(s, x, z);
     if (u < 0) return; /* off the terrain */
     SylEcoPlant c = {.id = id, .x = (float)x, .z = (float)z, .species = (uint8_t)species};
+    int i = (int)floor((c.x - t->x0) / t->cell), k = (int)floor((c.z - t->z0) / t->cell);
+    if (i < 0 || k < 0 || i >= t->nx || k >= t->nz || !t->valid[(size_t)k * t->nx + i]) return;
+    double v = syl_ecosystem_vigour(s->m, species, t, c.x, c.z);
+    Rng r = rng_stream(s->seed, (uint64_t)s->year, ECO_RNG_GERMINATE, id);
+    if (rng_unit(&r) >= v) return;
+    c.vigour = (float)v;
+    c.height = (float)s->m->species[species].start_height;
+    c.cell = (uint32_t)((size_t)k * (size_t)t->nx + (size_t)i);
     if (!buf_push(&T->out[u], &c)) T->failed = 1;
+}
+
+/* The memory a tile holds now, beyond the terrain. */
+static size_t tile_bytes(const Tile *T, int ntiles) {
+    size_t b = (T->own.cap + T->halo.cap) * sizeof(SylEcoPlant) +
+               (T->grid_cap + T->order_cap) * sizeof(uint32_t);
+    for (int u = 0; u < ntiles; u++) b += (T->out[u].cap + T->border[u].cap) * sizeof(SylEcoPlant);
+    return b;
+}
+
+static void note_bytes(Tile *T, int ntiles) {
+    size_t b = tile_bytes(T, ntiles);
+    if (b > T->peak_bytes) T->peak_bytes = b;
 }
 
 /* Phase B. */
@@ -243,20 +343,20 @@ static void step_tile(Sim *s, int ti) {
         T->halo.n += n;
     }
     Grid G;
-    if (T->own.n > T->dom_cap) {
-        uint8_t *d = realloc(T->dominated, T->own.n);
-        if (!d) {
-            T->failed = 1;
-            return;
-        }
-        T->dominated = d;
-        T->dom_cap = T->own.n;
-    }
     if (!build_grid(s, T, &G)) {
         T->failed = 1;
         return;
     }
-    for (size_t j = 0; j < T->own.n; j++) T->dominated[j] = is_dominated(s, T, &G, &T->own.p[j]);
+    /* this year's domination goes in state at once: the search reads no plant's state */
+    for (size_t j = 0; j < T->own.n; j++)
+        T->own.p[j].state = is_dominated(s, T, &G, &T->own.p[j]) ? SYL_ECO_DOMINATED : SYL_ECO_FREE;
+    /* the grid and the halo are done with: not held while the seedlings pile up */
+    T->peak_bytes = 0;
+    note_bytes(T, s->ntiles);
+    free(T->cell_start), free(T->order), free(T->halo.p);
+    T->cell_start = T->order = NULL;
+    T->grid_cap = T->order_cap = 0;
+    T->halo = (Buf){0};
     T->alive_start = T->own.n;
     for (int u = 0; u < s->ntiles; u++) T->out[u].n = 0;
     /* deaths, growth and seeds */
@@ -264,7 +364,7 @@ static void step_tile(Sim *s, int ti) {
     for (size_t j = 0; j < T->own.n; j++) {
         SylEcoPlant p = T->own.p[j];
         const SylEcoSpecies *sp = &m->species[p.species];
-        bool dom = T->dominated[j];
+        bool dom = p.state == SYL_ECO_DOMINATED;
         Rng life = rng_stream(s->seed, 0, ECO_RNG_LIFE, p.id);
         double lifespan = sp->old_age + (sp->max_age - sp->old_age) * rng_unit(&life);
         double spread = 0.8 + 0.4 * rng_unit(&life); /* the plant's own growth rate, ±20 % */
@@ -276,7 +376,6 @@ static void step_tile(Sim *s, int ti) {
         }
         Rng r = rng_stream(s->seed, (uint64_t)year, ECO_RNG_STRESS, p.id);
         if (rng_unit(&r) < sp->stress_mortality * (1 - p.vigour)) continue;
-        p.state = dom ? SYL_ECO_DOMINATED : SYL_ECO_FREE;
         if (!dom && p.age <= sp->old_age) {
             double h = p.height + p.vigour * spread * sp->growth_rate * (sp->height_max - p.height);
             p.height = (float)(h < sp->height_max ? h : sp->height_max);
@@ -311,49 +410,46 @@ static void step_tile(Sim *s, int ti) {
                 }
             }
         }
-    for (int u = 0; u < s->ntiles; u++) s->x->post(s->x->ctx, SYL_ECO_SEEDS, ti, u, T->out[u].p, T->out[u].n);
+    note_bytes(T, s->ntiles);
+    for (int u = 0; u < s->ntiles; u++) {
+        if (T->out[u].n > 1) qsort(T->out[u].p, T->out[u].n, sizeof *T->out[u].p, by_key);
+        s->x->post(s->x->ctx, SYL_ECO_SEEDS, ti, u, T->out[u].p, T->out[u].n);
+    }
 }
 
 /* Phase C. */
 static void settle_tile(Sim *s, int ti) {
     Tile *T = &s->tile[ti];
-    const SylEcoModel *m = s->m;
-    const SylTerrain *t = s->t;
-    T->born.n = 0;
+    /* the seedlings posted to it, each tile's sorted by key */
+    int k = 0;
+    size_t total = 0;
     for (int u = 0; u < s->ntiles; u++) {
         size_t n;
         const SylEcoPlant *in = s->x->take(s->x->ctx, SYL_ECO_SEEDS, ti, u, &n);
-        for (size_t j = 0; j < n; j++) {
-            SylEcoPlant c = in[j];
-            int i = (int)floor((c.x - t->x0) / t->cell), k = (int)floor((c.z - t->z0) / t->cell);
-            if (i < 0 || k < 0 || i >= t->nx || k >= t->nz || !t->valid[(size_t)k * t->nx + i]) continue;
-            double v = syl_ecosystem_vigour(m, c.species, t, c.x, c.z);
-            Rng r = rng_stream(s->seed, (uint64_t)s->year, ECO_RNG_GERMINATE, c.id);
-            if (rng_unit(&r) >= v) continue;
-            c.vigour = (float)v;
-            c.height = (float)m->species[c.species].start_height;
-            c.age = 0;
-            c.state = SYL_ECO_FREE;
-            if (!buf_push(&T->born, &c)) T->failed = 1;
-        }
+        if (n) T->inbox[k++] = (Inbox){in, n}, total += n;
     }
-    if (T->born.n > 1) qsort(T->born.p, T->born.n, sizeof *T->born.p, by_id);
-    /* merge the sorted newborns into the sorted survivors, from the back, in place (an id
-     * met twice — two hashes alike — is kept once) */
-    if (!buf_reserve(&T->own, T->own.n + T->born.n)) {
+    /* merge them into the sorted survivors, from the back, in place (an id met twice in a
+     * cell — two hashes alike — is kept once) */
+    if (!buf_reserve(&T->own, T->own.n + total)) {
         T->failed = 1;
         return;
     }
-    size_t a = T->own.n, b = T->born.n, w = T->own.n + T->born.n;
-    while (b > 0) {
-        if (a > 0 && T->own.p[a - 1].id > T->born.p[b - 1].id) T->own.p[--w] = T->own.p[--a];
-        else if (a > 0 && T->own.p[a - 1].id == T->born.p[b - 1].id) b--;
-        else T->own.p[--w] = T->born.p[--b];
+    size_t a = T->own.n, w = T->own.n + total;
+    for (;;) {
+        Inbox *b = NULL;
+        for (int q = 0; q < k; q++)
+            if (T->inbox[q].n && (!b || key_less(&b->p[b->n - 1], &T->inbox[q].p[T->inbox[q].n - 1]))) b = &T->inbox[q];
+        if (!b) break;
+        const SylEcoPlant *c = &b->p[b->n - 1];
+        if (a > 0 && key_less(c, &T->own.p[a - 1])) T->own.p[--w] = T->own.p[--a];
+        else if (a > 0 && !key_less(&T->own.p[a - 1], c)) b->n--;
+        else T->own.p[--w] = b->p[--b->n];
     }
     if (w > a) { /* duplicates dropped: close the gap */
-        memmove(T->own.p + a, T->own.p + w, (T->own.n + T->born.n - w) * sizeof *T->own.p);
+        memmove(T->own.p + a, T->own.p + w, (T->own.n + total - w) * sizeof *T->own.p);
     }
-    T->own.n = a + (T->own.n + T->born.n - w);
+    T->own.n = a + (T->own.n + total - w);
+    note_bytes(T, s->ntiles);
     memset(T->count, 0, sizeof T->count);
     memset(T->area_u, 0, sizeof T->area_u);
     memset(T->height_u, 0, sizeof T->height_u);
@@ -419,7 +515,7 @@ static int gather(Sim *s, Buf *all, bool *here) {
     return SYL_OK;
 }
 
-/* A resumed run's plants, each into the tile it stands on (in id order, so sorted). */
+/* A resumed run's plants, each into the tile it stands on. */
 static int place_start(Sim *s, const SylEcoOptions *o) {
     for (size_t j = 0; j < o->nstart; j++) {
         const SylEcoPlant *p = &o->start[j];
@@ -432,6 +528,8 @@ static int place_start(Sim *s, const SylEcoOptions *o) {
         if (s->x->owns && !s->x->owns(s->x->ctx, ti)) continue;
         if (!buf_push(&s->tile[ti].own, p)) return SYL_ELIMIT;
     }
+    for (int ti = 0; ti < s->ntiles; ti++) /* a tile keeps (cell, id) order */
+        sort_in_place(s->tile[ti].own.p, s->tile[ti].own.n, by_key);
     return SYL_OK;
 }
 
@@ -471,13 +569,6 @@ static double wall_now(void) {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static size_t tile_bytes(const Tile *T, int ntiles) {
-    size_t b = (T->own.cap + T->halo.cap + T->born.cap) * sizeof(SylEcoPlant) +
-               (T->grid_cap + T->order_cap) * sizeof(uint32_t) + T->dom_cap;
-    for (int u = 0; u < ntiles; u++) b += (T->out[u].cap + T->border[u].cap) * sizeof(SylEcoPlant);
-    return b;
 }
 
 int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylEcoOptions *o, SylEcoStats *stats) {
@@ -532,7 +623,8 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         for (int k = T->k0; k < T->k1; k++) s.tile_of_k[k] = b;
         T->out = calloc((size_t)s.ntiles, sizeof *T->out);
         T->border = calloc((size_t)s.ntiles, sizeof *T->border);
-        if (!T->out || !T->border) st = SYL_ELIMIT;
+        T->inbox = calloc((size_t)s.ntiles, sizeof *T->inbox);
+        if (!T->out || !T->border || !T->inbox) st = SYL_ELIMIT;
     }
     if (!st) st = place_start(&s, o);
     /* what the processes add up each year: failed, alive, plant-years, bytes, then per species
@@ -561,7 +653,7 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
             if (T->failed) v[V_FAILED] = 1;
             v[V_PY] += (int64_t)T->alive_start;
             v[V_ALIVE] += (int64_t)T->own.n;
-            v[V_BYTES] += (int64_t)tile_bytes(T, s.ntiles);
+            v[V_BYTES] += (int64_t)T->peak_bytes;
             v[V_TILE + ti] = (int64_t)T->own.n;
             for (int sp = 0; sp < m->nspecies; sp++) {
                 v[V_COUNT + sp] += T->count[sp];
@@ -582,6 +674,12 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
             st = SYL_ELIMIT;
         }
         if (st) break;
+        /* the seedlings have settled: their buffers are not held until next year's seeds */
+        for (int ti = 0; ti < s.ntiles; ti++)
+            for (int u = 0; u < s.ntiles; u++) {
+                free(s.tile[ti].out[u].p);
+                s.tile[ti].out[u] = (Buf){0};
+            }
         double terrain_area = (double)t->nx * t->nz * t->cell * t->cell;
         for (int sp = 0; sp < m->nspecies; sp++) {
             yr.cover[sp] = (double)area[sp] * 1e-4 / terrain_area;
@@ -592,13 +690,20 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         if (o->on_year) o->on_year(o->user, &yr);
         bool checkpoint = o->every > 0 && o->on_checkpoint && y % o->every == 0 && y < years;
         if (checkpoint || (snap < nsnaps && snaps[snap] == y)) {
-            bool here = true;
-            st = gather(&s, &all, &here);
+            bool here = true, one = s.ntiles == 1 && !s.x->gather; /* one tile in one process */
+            Buf *own = &s.tile[0].own;
+            if (one) { /* sorted by id in place, and back: no copy */
+                sort_in_place(own->p, own->n, by_id);
+                all = *own;
+            } else st = gather(&s, &all, &here);
             while (!st && snap < nsnaps && snaps[snap] == y) {
                 if (here && o->on_snapshot) st = o->on_snapshot(o->user, y, all.p, all.n);
                 snap++;
             }
             if (!st && here && checkpoint) st = o->on_checkpoint(o->user, y, all.p, all.n);
+            if (one) sort_in_place(own->p, own->n, by_key);
+            else free(all.p); /* not held between snapshots */
+            all = (Buf){0};
             if (s.x->sum) { /* the writer's status is every process's */
                 int64_t e = st;
                 s.x->sum(s.x->ctx, &e, 1);
@@ -617,10 +722,10 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
     }
     for (int ti = 0; s.tile && ti < s.ntiles; ti++) {
         Tile *T = &s.tile[ti];
-        free(T->own.p), free(T->halo.p), free(T->born.p);
+        free(T->own.p), free(T->halo.p), free(T->inbox);
         for (int u = 0; T->out && u < s.ntiles; u++) free(T->out[u].p);
         for (int u = 0; T->border && u < s.ntiles; u++) free(T->border[u].p);
-        free(T->out), free(T->border), free(T->cell_start), free(T->order), free(T->dominated);
+        free(T->out), free(T->border), free(T->cell_start), free(T->order);
     }
     free(all.p);
     free(v);

@@ -5,8 +5,16 @@
   ecosystem.py valley N CELL               a V-shaped valley draining south (wet floor, dry ridges)
   ecosystem.py thinning SPECIES.CSV        the slope of log density on log mean crown area over
                                            the years the canopy is closed (cover >= 0.3)
+  ecosystem.py yoda DIR W                  the slope of log mean mass (mass ∝ height³, geometric
+                                           similarity) on log density over the snapshots
+                                           DIR/plants-*.csv of a W x W stand whose canopy is
+                                           closed (crown cover >= 0.3, from the radii)
   ecosystem.py clark PLANTS.CSV SPECIES W  Clark and Evans' R of the species' plants on a W x W
                                            square (R < 1 clustered, 1 random, > 1 regular)
+  ecosystem.py under PLANTS.CSV LARGE SPECIES...   (LARGE "*": any species)
+                                           the share of each species' established plants
+                                           (aged 2 or more) whose circle a taller LARGE
+                                           plant's circle overlaps: they live under it
   ecosystem.py mean PLANTS.CSV SPECIES GRID.ASC
                                            the mean of the grid at the species' plants
 """
@@ -55,6 +63,27 @@ def thinning(path):
     print("closed-canopy years >= 5; slope %s" % ("in [-1.25, -0.75]" if -1.25 <= slope <= -0.75 else "%.3f" % slope))
 
 
+def yoda(folder, w):
+    import glob
+    xs, ys = [], []
+    for path in sorted(glob.glob(folder + "/plants-*.csv")):
+        rows = list(csv.DictReader(open(path)))
+        if len(rows) < 10:
+            continue
+        cover = sum(math.pi * float(r["radius"]) ** 2 for r in rows) / (w * w)
+        if cover < 0.3:
+            continue
+        mass = sum(float(r["height"]) ** 3 for r in rows) / len(rows)
+        xs.append(math.log(len(rows) / (w * w)))
+        ys.append(math.log(mass))
+    if len(xs) < 5:
+        print("too few closed-canopy snapshots: %d" % len(xs))
+        return
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    slope = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+    print("closed-canopy snapshots >= 5; mass slope %s" % ("in [-1.75, -1.25]" if -1.75 <= slope <= -1.25 else "%.3f" % slope))
+
+
 def points(path, species):
     return [(float(r["x"]), float(r["z"])) for r in csv.DictReader(open(path)) if r["species"] == species]
 
@@ -88,6 +117,27 @@ def clark(path, species, w):
                       if 0.9 <= r <= 1.15 else "R = %.3f" % r))
 
 
+def under(path, large, species):
+    rows = list(csv.DictReader(open(path)))
+    big = [(float(r["x"]), float(r["z"]), float(r["radius"]), float(r["height"])) for r in rows
+           if large in ("*", r["species"])]
+    size = 2 * max([b[2] for b in big] + [1e-9])
+    cell = {}
+    for b in big:
+        cell.setdefault((int(b[0] // size), int(b[1] // size)), []).append(b)
+    for sp in species:
+        n = hit = 0
+        for r in rows:
+            if r["species"] != sp or int(r["age"]) < 2:
+                continue
+            x, z, rad, h = float(r["x"]), float(r["z"]), float(r["radius"]), float(r["height"])
+            ci, ck = int(x // size), int(z // size)
+            n += 1
+            hit += any(math.hypot(b[0] - x, b[1] - z) < b[2] + rad and b[3] > h
+                       for a in range(ci - 1, ci + 2) for c in range(ck - 1, ck + 2) for b in cell.get((a, c), []))
+        print("%s %.4f %d" % (sp, hit / n if n else float("nan"), n))
+
+
 def mean_at(path, species, grid):
     lines = open(grid).read().split("\n")
     head = {}
@@ -116,7 +166,11 @@ if __name__ == "__main__":
         valley(int(a[1]), float(a[2]))
     elif a[0] == "thinning":
         thinning(a[1])
+    elif a[0] == "yoda":
+        yoda(a[1], float(a[2]))
     elif a[0] == "clark":
         clark(a[1], a[2], float(a[3]))
+    elif a[0] == "under":
+        under(a[1], a[2], a[3:])
     elif a[0] == "mean":
         mean_at(a[1], a[2], a[3])
