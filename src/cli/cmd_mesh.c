@@ -125,10 +125,6 @@ int cmd_mesh(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     bool levels = a.lod || a.impostor || a.billboards;
-    if (levels && mo.leaves != SYL_LEAVES_MESH) {
-        fprintf(stderr, "sylva: error: --lod, --impostor and --billboards take --leaves mesh only (for now)\n");
-        return SYL_EUSAGE;
-    }
     if (levels && strcasecmp(dot, ".glb")) {
         fprintf(stderr, "sylva: error: --lod, --impostor and --billboards write into a .glb only, not '%s'\n", output);
         return SYL_EUSAGE;
@@ -169,6 +165,7 @@ int cmd_mesh(int argc, char **argv) {
         status = syl_leaf_instances(sk, &mo, &sets, &nsets);
         if (status) fprintf(stderr, "sylva: error: out of memory placing the leaves\n");
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
+        if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
     if (!status) status = levels      ? syl_write_glb_lods(&lods, output, stderr)
                           : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)

@@ -1,4 +1,5 @@
-/* What the two glTF binary writers (glb.c, glb_lod.c) share: glb_parts.c. */
+/* The glTF binary writer (glb.c) and its parts (glb_parts.c), which other writers of .glb
+ * (a forest's) may share. */
 #ifndef SYLVA_IO_GLB_H
 #define SYLVA_IO_GLB_H
 #include <stdbool.h>
@@ -28,5 +29,32 @@ void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len);
 /* The GLB container: header, JSON chunk and (with geometry) BIN chunk, through a temporary
  * file. SYL_OK, SYL_ELIMIT or SYL_EIO, reported. */
 int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
+
+#include "sylva/mesh.h"
+
+/* A top-level node: its mesh (may be NULL or empty) and its instance sets (child nodes). */
+typedef struct GlbPart {
+    const SylMesh *mesh;
+    const SylInstances *sets;
+    int nsets;
+    const char *name;
+} GlbPart;
+
+/* What glb_write writes: parts, the first in the scene; with lods, the others are its
+ * MSFT_lod levels (coverage: each one's MSFT_screencoverage). The last part's material
+ * atlas_material is drawn with atlas (atlas_w x atlas_h RGBA, alpha-tested) when atlas is
+ * set; extras (JSON object text, may be NULL) goes in the last part's node. */
+typedef struct GlbScene {
+    const GlbPart *part;
+    int nparts;
+    const char *scene_name;
+    bool lods;
+    const float *coverage;
+    const uint8_t *atlas;
+    int atlas_w, atlas_h, atlas_material;
+    const char *extras;
+} GlbScene;
+
+int glb_write(const GlbScene *sc, const char *path, FILE *diag);
 
 #endif

@@ -1,5 +1,5 @@
-/* The parts of a glTF binary both writers share (glb.c: one plant with instance sets and leaf
- * cards; glb_lod.c: a chain of levels of detail): little-endian words, padding, accessor
+/* The parts of a glTF binary writer (glb.c, and any other writer of .glb: a forest's):
+ * little-endian words, padding, accessor
  * bounds, the buffer views and the container. */
 #include <math.h>
 #include <stdio.h>
