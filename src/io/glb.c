@@ -23,6 +23,7 @@ typedef struct MeshRef {
     int part, set;
     int view, accessor, material; /* its first buffer view, accessor and material */
     bool wide;                    /* 32-bit indices (more than 65,535 vertices) */
+    bool skinned;                 /* its part's wind: five more vertex accessors */
 } MeshRef;
 
 /* What goes in the file, numbered before the JSON refers to it. */
@@ -36,11 +37,14 @@ typedef struct Layout {
     int *set_view, *set_accessor, *part_mesh, *part_node, *set_node; /* -1: none */
     int nsets, nnodes;
     int tex_of_kind[KINDS], ntex, image_view[KINDS], image_kind[KINDS];
+    const SylWind *wind;          /* the first part's, when it is skinned */
+    int anim_view, anim_accessor, joint_node; /* its first view, accessor and joint node */
 } Layout;
 
 static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER};
 
 static bool has_geometry(const SylMesh *m) { return m && m->nverts > 0 && m->nidx > 0 && m->ngroups > 0; }
+static int accessors_of(const MeshRef *r) { return 3 + r->m->ngroups + (r->skinned ? 5 : 0); }
 static bool cards(const SylMesh *m) { return m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_INSTANCED_CARDS; }
 
 /* The texture slot material i of mesh r uses (-1: none). */
@@ -77,6 +81,7 @@ static void layout_attributes(Layout *l, MeshRef *r) {
         }
         glb_pad(&l->bin, 0);
     }
+    if (r->skinned) glb_skin_vertices(&l->sc->part[r->part], &l->bin, l->views, &l->nviews);
 }
 
 /* Each set's translations, rotations and scales: three views. */
@@ -138,10 +143,11 @@ static void json_mesh(IoBuf *js, const Layout *l, int k) {
     io_printf(js, "%s{\"name\":", k ? "," : "");
     io_json_string(js, mesh_name(l, r));
     io_printf(js, ",\"primitives\":[");
-    for (int g = 0; g < r->m->ngroups; g++)
-        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d},\"indices\":%d,"
-                      "\"material\":%d,\"mode\":4}",
-                  g ? "," : "", a, a + 1, a + 2, a + 3 + g, r->material + g);
+    for (int g = 0; g < r->m->ngroups; g++) {
+        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", g ? "," : "", a, a + 1, a + 2);
+        if (r->skinned) glb_skin_attributes(js, a + 3 + r->m->ngroups);
+        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", a + 3 + g, r->material + g);
+    }
     io_printf(js, "]}");
 }
 
@@ -196,6 +202,7 @@ static void json_accessors(IoBuf *js, const Layout *l) {
             io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
                       r->view + 3, (size_t)m->groups[g].first * (r->wide ? 4 : 2),
                       r->wide ? UNSIGNED_INT : UNSIGNED_SHORT, m->groups[g].count);
+        if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4), n += 5;
     }
     int i = 0;
     for (int p = 0; p < l->sc->nparts; p++)
@@ -206,6 +213,7 @@ static void json_accessors(IoBuf *js, const Layout *l) {
                 io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
                           l->set_view[i] + a, FLOAT, l->sc->part[p].sets[s].count, ttypes[a]);
         }
+    if (l->wind) glb_skin_anim_accessors(js, l->wind, l->anim_view);
     io_put(js, "]", 1);
 }
 
@@ -241,9 +249,16 @@ static void json_nodes(IoBuf *js, const Layout *l) {
         io_printf(js, "%s{\"name\":", p ? "," : "");
         io_json_string(js, pt->name);
         if (l->part_mesh[p] >= 0) io_printf(js, ",\"mesh\":%d", l->part_mesh[p]);
+        bool skin = p == 0 && l->wind;
+        if (skin) io_printf(js, ",\"skin\":0");
         bool any = false;
         for (int s = 0; s < pt->nsets; s++)
             if (l->set_node[i0 + s] >= 0) io_printf(js, "%s%d", any ? "," : ",\"children\":[", l->set_node[i0 + s]), any = true;
+        if (skin) {
+            if (!any) io_printf(js, ",\"children\":[");
+            glb_skin_roots(js, l->wind, l->joint_node, any);
+            any = true;
+        }
         if (any) io_put(js, "]", 1);
         if (sc->lods && p == 0 && sc->nparts > 1) {
             io_printf(js, ",\"extensions\":{\"MSFT_lod\":{\"ids\":[");
@@ -257,7 +272,7 @@ static void json_nodes(IoBuf *js, const Layout *l) {
         i0 += pt->nsets;
     }
     int i = 0, a = 0;
-    for (int k = 0; k < l->nmeshes; k++) a += 3 + l->mesh[k].m->ngroups;
+    for (int k = 0; k < l->nmeshes; k++) a += accessors_of(&l->mesh[k]);
     for (int p = 0; p < sc->nparts; p++)
         for (int s = 0; s < sc->part[p].nsets; s++, i++) {
             if (l->set_node[i] < 0) continue;
@@ -271,6 +286,7 @@ static void json_nodes(IoBuf *js, const Layout *l) {
                       mesh, a, a + 1, a + 2);
             a += 3;
         }
+    if (l->wind) glb_skin_nodes(js, l->wind, l->joint_node);
     io_put(js, "]", 1);
 }
 
@@ -294,6 +310,7 @@ static void write_json(IoBuf *js, const Layout *l) {
         json_materials(js, l);
         json_accessors(js, l);
         json_textures(js, l);
+        if (l->wind) glb_skin_json(js, l->wind, l->joint_node, l->anim_accessor);
         glb_buffer_views(js, l->views, l->nviews, l->bin.len);
     }
     io_put(js, "}", 1);
@@ -307,7 +324,7 @@ static bool plan(Layout *l) {
     for (int p = 0; p < sc->nparts; p++) sets += sc->part[p].nsets;
     size_t n = (size_t)(sc->nparts + sets) + 1;
     l->mesh = calloc(n, sizeof *l->mesh);
-    l->views = malloc(sizeof *l->views * (4 * n + 3 * (size_t)sets + KINDS));
+    l->views = malloc(sizeof *l->views * (9 * n + 3 * (size_t)sets + KINDS + 3));
     int *ints = malloc(sizeof(int) * (3 * (size_t)sets + 2 * (size_t)sc->nparts + 1));
     if (!l->mesh || !l->views || !ints) {
         free(ints);
@@ -321,7 +338,9 @@ static bool plan(Layout *l) {
         l->part_mesh[p] = -1;
         if (has_geometry(sc->part[p].mesh)) {
             l->part_mesh[p] = l->nmeshes;
-            l->mesh[l->nmeshes++] = (MeshRef){.m = sc->part[p].mesh, .part = p, .set = -1};
+            bool skinned = p == 0 && sc->part[0].wind && sc->part[0].wind->njoints > 0 && sc->part[0].skel;
+            l->mesh[l->nmeshes++] = (MeshRef){.m = sc->part[p].mesh, .part = p, .set = -1, .skinned = skinned};
+            if (skinned) l->wind = sc->part[0].wind;
         }
     }
     int i = 0;
@@ -334,6 +353,8 @@ static bool plan(Layout *l) {
             l->nsets++;
             l->mesh[l->nmeshes++] = (MeshRef){.m = set->proto, .part = p, .set = s};
         }
+    l->joint_node = l->nnodes;
+    if (l->wind) l->nnodes += l->wind->njoints;
     return true;
 }
 
@@ -347,11 +368,15 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
     for (int p = 0; p < sc->nparts && ok; p++)
         for (int s = 0; s < sc->part[p].nsets; s++, i++)
             if (l.set_node[i] >= 0) layout_instances(&l, &sc->part[p].sets[s], i);
+    l.anim_view = l.nviews;
+    if (l.wind && ok) glb_skin_animation(l.wind, &l.bin, l.views, &l.nviews);
     int mat = 0, acc = 0;
     for (int k = 0; k < l.nmeshes && ok; k++) {
         l.mesh[k].material = mat, mat += l.mesh[k].m->ngroups;
-        l.mesh[k].accessor = acc, acc += 3 + l.mesh[k].m->ngroups;
+        l.mesh[k].accessor = acc, acc += accessors_of(&l.mesh[k]);
     }
+    for (int q = 0; q < l.nsets; q++) acc += 3;
+    l.anim_accessor = acc;
     if (ok) layout_textures(&l);
     glb_pad(&l.bin, 0);
     if (ok) write_json(&js, &l);

@@ -11,7 +11,7 @@
 
 enum { GLB_MAGIC = 0x46546C67, GLB_JSON = 0x4E4F534A, GLB_BIN = 0x004E4942 };
 enum { ARRAY_BUFFER = 34962, ELEMENT_ARRAY_BUFFER = 34963, FLOAT = 5126, UNSIGNED_INT = 5125,
-       UNSIGNED_SHORT = 5123 };
+       UNSIGNED_SHORT = 5123, UNSIGNED_BYTE = 5121 };
 
 /* A slice of the BIN chunk. */
 typedef struct View {
@@ -31,6 +31,7 @@ void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len);
 int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
 
 #include "sylva/mesh.h"
+#include "sylva/wind.h"
 
 /* A top-level node: its mesh (may be NULL or empty) and its instance sets (child nodes). */
 typedef struct GlbPart {
@@ -38,6 +39,8 @@ typedef struct GlbPart {
     const SylInstances *sets;
     int nsets;
     const char *name;
+    const SylWind *wind;       /* with wind (the first part only): skinned, mesh->node set */
+    const SylSkeleton *skel;   /* the skeleton mesh->node refers to */
 } GlbPart;
 
 /* What glb_write writes: parts, the first in the scene; with lods, the others are its
@@ -56,5 +59,17 @@ typedef struct GlbScene {
 } GlbScene;
 
 int glb_write(const GlbScene *sc, const char *path, FILE *diag);
+
+/* The skin of a part with wind (glb_skin.c): its five vertex views; the inverse bind
+ * matrices', key times' and rotations' views; their accessors; the primitive's attributes;
+ * the root joints (child ids); the joint nodes; "skins" and "animations". */
+void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews);
+void glb_skin_animation(const SylWind *w, IoBuf *bin, View *views, int *nviews);
+void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view);
+void glb_skin_anim_accessors(IoBuf *js, const SylWind *w, int anim);
+void glb_skin_attributes(IoBuf *js, int acc);
+void glb_skin_roots(IoBuf *js, const SylWind *w, int first_node, bool comma);
+void glb_skin_nodes(IoBuf *js, const SylWind *w, int first_node);
+void glb_skin_json(IoBuf *js, const SylWind *w, int first_node, int anim_acc);
 
 #endif
