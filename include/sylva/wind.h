@@ -55,7 +55,11 @@ typedef struct SylWind {
 int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptions *o, SylWind *out);
 void syl_wind_free(SylWind *w);
 /* The stem a node belongs to, for a vertex's node (SylMesh.node; -1 or out of range: stem 0). */
-int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, int32_t node);
+static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, int32_t node) {
+    if (node < 0 || (size_t)node >= s->nnodes) return 0;
+    int32_t a = s->nodes[node].axis;
+    return a >= 0 && a < w->nstems ? a : 0;
+}
 
 /* m (meshed from s with SylMeshOptions.vertex_nodes) as a skinned .glb with w's joints and
  * its "wind" animation, and the shader attributes (docs/mesh.md#wind). SYL_OK, SYL_EUSAGE

@@ -145,9 +145,3 @@ void syl_wind_free(SylWind *w) {
     free(w->rot);
     memset(w, 0, sizeof *w);
 }
-
-int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, int32_t node) {
-    if (node < 0 || (size_t)node >= s->nnodes) return 0;
-    int32_t a = s->nodes[node].axis;
-    return a >= 0 && a < w->nstems ? a : 0;
-}
