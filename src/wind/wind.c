@@ -11,7 +11,7 @@
 enum { WIND_SEED = 0x5717d };
 /* Bounds that keep a twig of huge L/r from spinning: the undirected sway (a1 + a2) and the
  * directed bend, radians. */
-static const double undirected_max = 0.35, directed_max = 0.25;
+static const double undirected_max = 0.12, directed_max = 0.1;
 
 /* Stems by axis: base, length, base radius, parent stem, order; phases from the axis id. */
 static int find_stems(const SylSkeleton *s, const float *radius, SylWind *w) {
