@@ -37,6 +37,7 @@ typedef struct Layout {
     int *set_view, *set_accessor, *part_mesh, *part_node, *set_node; /* -1: none */
     int nsets, nnodes;
     int tex_of_kind[KINDS], ntex, image_view[KINDS], image_kind[KINDS];
+    float (*quant)[4];            /* each part's dequantization: translation, scale (0: none) */
     const SylWind *wind;          /* the first part's, when it is skinned */
     int anim_view, anim_accessor, joint_node; /* its first view, accessor and joint node */
 } Layout;
@@ -45,6 +46,42 @@ static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_F
 
 static bool has_geometry(const SylMesh *m) { return m && m->nverts > 0 && m->nidx > 0 && m->ngroups > 0; }
 static int accessors_of(const MeshRef *r) { return 3 + r->m->ngroups + (r->skinned ? 5 : 0); }
+
+/* KHR_mesh_quantization: x of a box centred on t of half-size k, as a normalized short. */
+static int16_t q16(float x, float t, float k) {
+    float v = (x - t) / k;
+    v = v < -1 ? -1 : v > 1 ? 1 : v;
+    return (int16_t)lrintf(v * 32767);
+}
+static int8_t q8(float x) { return (int8_t)lrintf((x < -1 ? -1 : x > 1 ? 1 : x) * 127); }
+static void put16(IoBuf *b, int16_t v) {
+    uint8_t p[2] = {(uint8_t)((uint16_t)v & 0xff), (uint8_t)((uint16_t)v >> 8)};
+    io_put(b, p, 2);
+}
+
+/* n vectors of k floats as normalized shorts (t, s: the box), padded to 4 bytes each. */
+static void put_q16(IoBuf *b, const float *x, size_t n, int k, const float *t, float s) {
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < k; c++) put16(b, q16(x[(size_t)k * i + (size_t)c], t ? t[c] : 0, s));
+        if (k == 3) put16(b, 0);
+    }
+}
+
+/* ,"min":[..],"max":[..] of put_q16's values (the integers, as glTF wants). */
+static void min_max_q16(IoBuf *j, const float *x, size_t n, const float *t, float s) {
+    int lo[3] = {32767, 32767, 32767}, hi[3] = {-32767, -32767, -32767};
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            int v = q16(x[3 * i + (size_t)c], t[c], s);
+            if (v < lo[c]) lo[c] = v;
+            if (v > hi[c]) hi[c] = v;
+        }
+    for (int w = 0; w < 2; w++) {
+        io_printf(j, ",\"%s\":[", w ? "max" : "min");
+        for (int c = 0; c < 3; c++) io_printf(j, "%s%d", c ? "," : "", w ? hi[c] : lo[c]);
+        io_put(j, "]", 1);
+    }
+}
 static bool cards(const SylMesh *m) { return m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_INSTANCED_CARDS; }
 
 /* The texture slot material i of mesh r uses (-1: none). */
@@ -62,16 +99,27 @@ static int slot_of(const Layout *l, const MeshRef *r, int i) {
 static void layout_attributes(Layout *l, MeshRef *r) {
     const SylMesh *m = r->m;
     const size_t nv = m->nverts;
+    const float *q = r->set < 0 ? l->quant[r->part] : NULL;
     r->view = l->nviews;
-    l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER};
-    glb_words(&l->bin, m->pos, 3 * nv);
-    l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER};
-    glb_words(&l->bin, m->nrm, 3 * nv);
-    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER};
+    if (q && q[3] > 0) { /* 16-bit positions and 8-bit normals, each padded to 4 bytes */
+        l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 8};
+        put_q16(&l->bin, m->pos, nv, 3, q, q[3]);
+        l->views[l->nviews++] = (View){l->bin.len, 4 * nv, ARRAY_BUFFER, 4};
+        for (size_t i = 0; i < nv; i++) {
+            uint8_t b[4] = {(uint8_t)q8(m->nrm[3 * i]), (uint8_t)q8(m->nrm[3 * i + 1]), (uint8_t)q8(m->nrm[3 * i + 2]), 0};
+            io_put(&l->bin, b, 4);
+        }
+    } else {
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        glb_words(&l->bin, m->pos, 3 * nv);
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        glb_words(&l->bin, m->nrm, 3 * nv);
+    }
+    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 0};
     glb_words(&l->bin, m->uv, 2 * nv);
     /* 16 bits up to 65,535 vertices: 65,535 itself is the primitive restart value */
     r->wide = nv > 65535;
-    l->views[l->nviews++] = (View){l->bin.len, (r->wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER};
+    l->views[l->nviews++] = (View){l->bin.len, (r->wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
     if (r->wide) {
         glb_words(&l->bin, m->idx, m->nidx);
     } else {
@@ -84,15 +132,27 @@ static void layout_attributes(Layout *l, MeshRef *r) {
     if (r->skinned) glb_skin_vertices(&l->sc->part[r->part], &l->bin, l->views, &l->nviews);
 }
 
-/* Each set's translations, rotations and scales: three views. */
-static void layout_instances(Layout *l, const SylInstances *set, int i) {
+/* Each set's translations, rotations and scales: three views. Quantized: translations in
+ * the part's box, rotations, and scales over the part's scale (which the node's transform
+ * applies again: a leaf is far smaller than its plant), all as normalized shorts. */
+static void layout_instances(Layout *l, const SylInstances *set, int i, const float *q) {
+    size_t n = set->count;
     l->set_view[i] = l->nviews;
-    l->views[l->nviews++] = (View){l->bin.len, 12 * set->count, 0};
-    glb_words(&l->bin, set->t, 3 * set->count);
-    l->views[l->nviews++] = (View){l->bin.len, 16 * set->count, 0};
-    glb_words(&l->bin, set->r, 4 * set->count);
-    l->views[l->nviews++] = (View){l->bin.len, 12 * set->count, 0};
-    glb_words(&l->bin, set->s, 3 * set->count);
+    if (q[3] > 0) {
+        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8}; /* VEC3s padded to 8 bytes */
+        put_q16(&l->bin, set->t, n, 3, q, q[3]);
+        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 0};
+        put_q16(&l->bin, set->r, n, 4, NULL, 1);
+        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8};
+        put_q16(&l->bin, set->s, n, 3, NULL, q[3]);
+        return;
+    }
+    l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
+    glb_words(&l->bin, set->t, 3 * n);
+    l->views[l->nviews++] = (View){l->bin.len, 16 * n, 0, 0};
+    glb_words(&l->bin, set->r, 4 * n);
+    l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
+    glb_words(&l->bin, set->s, 3 * n);
 }
 
 /* One PNG texture per slot used, each in a view of its own. */
@@ -125,7 +185,7 @@ static void layout_textures(Layout *l) {
         }
         l->image_view[l->ntex] = l->nviews;
         l->image_kind[l->ntex] = k;
-        l->views[l->nviews++] = (View){at, l->bin.len - at, 0};
+        l->views[l->nviews++] = (View){at, l->bin.len - at, 0, 0};
         glb_pad(&l->bin, 0);
         l->tex_of_kind[k] = l->ntex++;
     }
@@ -192,10 +252,13 @@ static void json_accessors(IoBuf *js, const Layout *l) {
         const MeshRef *r = &l->mesh[k];
         const SylMesh *m = r->m;
         const float *data[3] = {m->pos, m->nrm, m->uv};
+        const float *q = r->set < 0 && l->quant[r->part][3] > 0 ? l->quant[r->part] : NULL;
         for (int a = 0; a < 3; a++, n++) {
-            io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
-                      r->view + a, FLOAT, m->nverts, types[a]);
-            glb_min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
+            int type = q && a < 2 ? (a ? BYTE : SHORT) : FLOAT;
+            io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
+                      r->view + a, type, type != FLOAT ? "\"normalized\":true," : "", m->nverts, types[a]);
+            if (q && a == 0) min_max_q16(js, m->pos, m->nverts, q, q[3]);
+            else if (!(q && a == 1)) glb_min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
             io_put(js, "}", 1);
         }
         for (int g = 0; g < m->ngroups; g++, n++)
@@ -209,9 +272,11 @@ static void json_accessors(IoBuf *js, const Layout *l) {
         for (int s = 0; s < l->sc->part[p].nsets; s++, i++) {
             static const char *const ttypes[3] = {"VEC3", "VEC4", "VEC3"};
             if (l->set_view[i] < 0) continue;
+            bool q = l->quant[p][3] > 0;
             for (int a = 0; a < 3; a++, n++)
-                io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
-                          l->set_view[i] + a, FLOAT, l->sc->part[p].sets[s].count, ttypes[a]);
+                io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
+                          l->set_view[i] + a, q ? SHORT : FLOAT, q ? "\"normalized\":true," : "",
+                          l->sc->part[p].sets[s].count, ttypes[a]);
         }
     if (l->wind) glb_skin_anim_accessors(js, l->wind, l->anim_view);
     io_put(js, "]", 1);
@@ -249,6 +314,10 @@ static void json_nodes(IoBuf *js, const Layout *l) {
         io_printf(js, "%s{\"name\":", p ? "," : "");
         io_json_string(js, pt->name);
         if (l->part_mesh[p] >= 0) io_printf(js, ",\"mesh\":%d", l->part_mesh[p]);
+        const float *q = l->quant[p];
+        if (q[3] > 0)
+            io_printf(js, ",\"translation\":[%.9g,%.9g,%.9g],\"scale\":[%.9g,%.9g,%.9g]", (double)q[0], (double)q[1],
+                      (double)q[2], (double)q[3], (double)q[3], (double)q[3]);
         bool skin = p == 0 && l->wind;
         if (skin) io_printf(js, ",\"skin\":0");
         bool any = false;
@@ -295,10 +364,13 @@ static void json_nodes(IoBuf *js, const Layout *l) {
 static void write_json(IoBuf *js, const Layout *l) {
     const GlbScene *sc = l->sc;
     io_printf(js, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"Sylva\"}");
-    bool lod = sc->lods && sc->nparts > 1;
-    if (lod || l->nsets)
-        io_printf(js, ",\"extensionsUsed\":[%s%s%s]", lod ? "\"MSFT_lod\"" : "", lod && l->nsets ? "," : "",
-                  l->nsets ? "\"EXT_mesh_gpu_instancing\"" : "");
+    bool lod = sc->lods && sc->nparts > 1, quant = false;
+    for (int p = 0; p < sc->nparts; p++) quant |= l->quant[p][3] > 0;
+    if (lod || l->nsets || quant)
+        io_printf(js, ",\"extensionsUsed\":[%s%s%s%s%s]", lod ? "\"MSFT_lod\"" : "", lod && l->nsets ? "," : "",
+                  l->nsets ? "\"EXT_mesh_gpu_instancing\"" : "", quant && (lod || l->nsets) ? "," : "",
+                  quant ? "\"KHR_mesh_quantization\"" : "");
+    if (quant) io_printf(js, ",\"extensionsRequired\":[\"KHR_mesh_quantization\"]");
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
     io_json_string(js, sc->scene_name);
     io_printf(js, ",\"nodes\":[0]}]");
@@ -315,6 +387,25 @@ static void write_json(IoBuf *js, const Layout *l) {
     }
     io_put(js, "}", 1);
     glb_pad(js, ' ');
+}
+
+/* A part's box: the centre and the largest half-extent of its mesh and instance positions. */
+static void plan_quantization(const GlbPart *pt, float q[4]) {
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    const float *xs[257];
+    size_t ns[257];
+    int k = 0;
+    if (has_geometry(pt->mesh)) xs[k] = pt->mesh->pos, ns[k++] = pt->mesh->nverts;
+    for (int s = 0; s < pt->nsets && k < 257; s++) xs[k] = pt->sets[s].t, ns[k++] = pt->sets[s].count;
+    for (int i = 0; i < k; i++)
+        for (size_t v = 0; v < ns[i]; v++)
+            for (int c = 0; c < 3; c++) lo[c] = fminf(lo[c], xs[i][3 * v + (size_t)c]), hi[c] = fmaxf(hi[c], xs[i][3 * v + (size_t)c]);
+    q[3] = 0;
+    for (int c = 0; c < 3 && lo[0] <= hi[0]; c++) {
+        q[c] = (lo[c] + hi[c]) / 2;
+        q[3] = fmaxf(q[3], (hi[c] - lo[c]) / 2);
+    }
+    if (!(q[3] > 0) || !isfinite(q[3])) q[3] = 0; /* nothing to quantize: floats */
 }
 
 /* Number the meshes, sets and nodes: parts first, then the instance sets' nodes. */
@@ -355,6 +446,9 @@ static bool plan(Layout *l) {
         }
     l->joint_node = l->nnodes;
     if (l->wind) l->nnodes += l->wind->njoints;
+    if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
+    for (int p = 0; p < sc->nparts && sc->quantize; p++)
+        if (!(p == 0 && l->wind)) plan_quantization(sc->part + p, l->quant[p]);
     return true;
 }
 
@@ -367,7 +461,7 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
     int i = 0;
     for (int p = 0; p < sc->nparts && ok; p++)
         for (int s = 0; s < sc->part[p].nsets; s++, i++)
-            if (l.set_node[i] >= 0) layout_instances(&l, &sc->part[p].sets[s], i);
+            if (l.set_node[i] >= 0) layout_instances(&l, &sc->part[p].sets[s], i, l.quant[p]);
     l.anim_view = l.nviews;
     if (l.wind && ok) glb_skin_animation(l.wind, &l.bin, l.views, &l.nviews);
     int mat = 0, acc = 0;
@@ -386,13 +480,14 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
     free(l.views);
     free(l.mesh);
     free(l.set_view);
+    free(l.quant);
     return status;
 }
 
 int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
     const char *name = m->name[0] ? m->name : "plant";
     GlbPart part = {.mesh = m, .sets = sets, .nsets = n > 0 ? n : 0, .name = name};
-    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name};
+    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .quantize = n > 0}; /* instanced: small */
     return glb_write(&sc, path, diag);
 }
 

@@ -11,12 +11,13 @@
 
 enum { GLB_MAGIC = 0x46546C67, GLB_JSON = 0x4E4F534A, GLB_BIN = 0x004E4942 };
 enum { ARRAY_BUFFER = 34962, ELEMENT_ARRAY_BUFFER = 34963, FLOAT = 5126, UNSIGNED_INT = 5125,
-       UNSIGNED_SHORT = 5123, UNSIGNED_BYTE = 5121 };
+       UNSIGNED_SHORT = 5123, UNSIGNED_BYTE = 5121, SHORT = 5122, BYTE = 5120 };
 
 /* A slice of the BIN chunk. */
 typedef struct View {
     size_t offset, length;
     int target; /* 0: none */
+    int stride; /* byteStride (0: packed) */
 } View;
 
 float glb_linear(float srgb);                          /* glTF's colours are linear */
@@ -56,6 +57,11 @@ typedef struct GlbScene {
     const uint8_t *atlas;
     int atlas_w, atlas_h, atlas_material;
     const char *extras;
+    /* KHR_mesh_quantization: each part's own mesh has 16-bit positions (its node's
+     * translation and uniform scale bring them back) and 8-bit normals, its instances 16-bit
+     * translations and rotations. Not for a skinned part (a skinned node's transform is not
+     * used). */
+    bool quantize;
 } GlbScene;
 
 int glb_write(const GlbScene *sc, const char *path, FILE *diag);

@@ -16,7 +16,9 @@ int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) {
                             .name = names[k]};
         coverage[k] = c->level[k].coverage;
     }
-    GlbScene sc = {.part = part, .nparts = c->n, .scene_name = name, .lods = true, .coverage = coverage,
+    bool instanced = false;
+    for (int k = 0; k < c->n; k++) instanced |= c->level[k].nsets > 0;
+    GlbScene sc = {.quantize = instanced,.part = part, .nparts = c->n, .scene_name = name, .lods = true, .coverage = coverage,
                    .atlas = c->atlas, .atlas_w = c->atlas_w, .atlas_h = c->atlas_h,
                    .atlas_material = c->atlas_material, .extras = c->extras};
     return glb_write(&sc, path, diag);

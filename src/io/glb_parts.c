@@ -88,6 +88,7 @@ void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len) {
     for (int v = 0; v < n; v++) {
         io_printf(js, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu", v ? "," : "", views[v].offset,
                   views[v].length);
+        if (views[v].stride) io_printf(js, ",\"byteStride\":%d", views[v].stride);
         if (views[v].target) io_printf(js, ",\"target\":%d", views[v].target);
         io_put(js, "}", 1);
     }

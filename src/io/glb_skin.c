@@ -26,11 +26,11 @@ void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
         if (wide) io_put(bin, q, 8);
         else io_put(bin, q, 4);
     }
-    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER};
+    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
     float one[4] = {1, 0, 0, 0};
     at = bin->len;
     for (size_t v = 0; v < nv; v++) glb_words(bin, one, 4);
-    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER};
+    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
     for (int a = 0; a < 3; a++) { /* _BRANCH_LEVEL, _PHASE, _STIFFNESS of the vertex's own stem */
         at = bin->len;
         for (size_t v = 0; v < nv; v++) {
@@ -38,7 +38,7 @@ void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
             float x = a == 0 ? (float)st->order : a == 1 ? st->phase : st->stiffness;
             glb_words(bin, &x, 1);
         }
-        views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER};
+        views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
     }
 }
 
@@ -49,16 +49,16 @@ void glb_skin_animation(const SylWind *w, IoBuf *bin, View *views, int *nviews) 
         float ibm[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -b[0], -b[1], -b[2], 1};
         glb_words(bin, ibm, 16);
     }
-    views[(*nviews)++] = (View){at, bin->len - at, 0};
+    views[(*nviews)++] = (View){at, bin->len - at, 0, 0};
     at = bin->len;
     for (int k = 0; k < w->nkeys; k++) {
         float t = k == w->nkeys - 1 ? w->seconds : w->seconds * (float)k / (float)(w->nkeys - 1);
         glb_words(bin, &t, 1);
     }
-    views[(*nviews)++] = (View){at, bin->len - at, 0};
+    views[(*nviews)++] = (View){at, bin->len - at, 0, 0};
     at = bin->len;
     glb_words(bin, w->rot, 4 * (size_t)w->njoints * (size_t)w->nkeys);
-    views[(*nviews)++] = (View){at, bin->len - at, 0};
+    views[(*nviews)++] = (View){at, bin->len - at, 0, 0};
 }
 
 /* The mesh's five vertex accessors (views view..view+4). */
