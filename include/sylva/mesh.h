@@ -29,7 +29,8 @@ typedef struct SylMesh {
     SylMaterial materials[256];
     int nmaterials;
     int32_t *node;         /* with SylMeshOptions.vertex_nodes: the skeleton node each vertex
-                              was made for (-1: none); else NULL */
+                              was made for: a tube's last node (one of its axis), an organ's or
+                              a polygon's node (-1: none); else NULL */
     char name[64];
     uint8_t leaves, leaf_shape; /* SYL_LEAVES_* it was made with; for cards, the shape drawn */
     SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
