@@ -27,9 +27,9 @@ void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
         else io_put(bin, q, 4);
     }
     views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
-    float one[4] = {1, 0, 0, 0};
+    const uint8_t one[4] = {255, 0, 0, 0}; /* WEIGHTS_0: normalized bytes, 1 exactly */
     at = bin->len;
-    for (size_t v = 0; v < nv; v++) glb_words(bin, one, 4);
+    for (size_t v = 0; v < nv; v++) io_put(bin, one, 4);
     views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
     for (int a = 0; a < 3; a++) { /* _BRANCH_LEVEL, _PHASE, _STIFFNESS of the vertex's own stem */
         at = bin->len;
@@ -67,7 +67,8 @@ void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view) {
     size_t nv = p->mesh->nverts;
     io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC4\"}", view,
               wide_joints(w) ? UNSIGNED_SHORT : UNSIGNED_BYTE, nv);
-    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC4\"}", view + 1, FLOAT, nv);
+    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"normalized\":true,\"count\":%zu,\"type\":\"VEC4\"}",
+              view + 1, UNSIGNED_BYTE, nv);
     for (int a = 0; a < 3; a++)
         io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"SCALAR\"}", view + 2 + a, FLOAT, nv);
 }

@@ -46,6 +46,8 @@ def accessor(js, bin_, i):
     k = WIDTH[a["type"]]
     off = v.get("byteOffset", 0) + a.get("byteOffset", 0)
     flat = struct.unpack_from("<%d%s" % (k * a["count"], ch), bin_, off)
+    if a.get("normalized"):
+        flat = [x / (2 ** (8 * size) - 1) for x in flat]  # the unsigned normalized types
     return [flat[k * n:k * n + k] for n in range(a["count"])]
 
 
