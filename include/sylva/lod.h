@@ -23,6 +23,9 @@ typedef struct SylLodLevel {
     float coverage;     /* MSFT_screencoverage: shown while the plant's screen height is above
                            this share of the screen; the last level's is where it is culled */
     float error;        /* meshoptimizer's deviation, model units */
+    SylInstances *sets; /* with instanced leaves, the level's (level 0: the caller's, not
+                           freed by syl_lod_free) */
+    int nsets;
 } SylLodLevel;
 
 typedef struct SylLodChain {
@@ -37,7 +40,8 @@ typedef struct SylLodChain {
     const char *extras;
 } SylLodChain;
 
-/* Build levels 1..levels (1 to SYL_LOD_MAX) from s, meshed with mo as lod0 was. lod0 is
+/* Build levels 1..levels (1 to SYL_LOD_MAX) from s, meshed with mo as lod0 was (with
+ * instanced leaves, each level also gets its leaves' instance sets). lod0 is
  * optimised for the vertex cache in place and becomes level 0. SYL_OK, SYL_ELIMIT or
  * SYL_EUSAGE. The chain does not depend on mo->threads. */
 int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0, int levels, SylLodChain *out);
@@ -46,7 +50,8 @@ void syl_lod_free(SylLodChain *c);
  * k = levels: where the plant is culled). */
 float syl_lod_coverage(int k, int levels);
 
-/* The .glb of a chain: nodes NAME_LOD0 .. NAME_LODn, MSFT_lod on LOD0 (docs/mesh.md). */
+/* The .glb of a chain: nodes NAME_LOD0 .. NAME_LODn (each with its instance sets), MSFT_lod
+ * on LOD0 (docs/mesh.md). */
 int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag);
 
 #ifdef __cplusplus

@@ -28,6 +28,9 @@ typedef struct SylMesh {
     int ngroups;
     SylMaterial materials[256];
     int nmaterials;
+    int32_t *node;         /* with SylMeshOptions.vertex_nodes: the skeleton node each vertex
+                              was made for: a tube's last node (one of its axis), an organ's or
+                              a polygon's node (-1: none); else NULL */
     char name[64];
     uint8_t leaves, leaf_shape; /* SYL_LEAVES_* it was made with; for cards, the shape drawn */
     SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
@@ -50,6 +53,7 @@ typedef struct SylMeshOptions {
     int leaves;           /* SYL_LEAVES_*: the instanced modes leave leaves out */
     int leaf_shape;       /* cards: SYL_LEAF_* (texture.h) drawn in the card's alpha */
     int threads;          /* <= 0: all cores; the mesh never depends on it */
+    int vertex_nodes;     /* fill SylMesh.node (for skinning: wind, docs/mesh.md#wind) */
     FILE *diag;           /* where problems are reported; NULL: nowhere */
     /* The mesh's size is estimated before anything is allocated: beyond the memory budget
      * it stops with SYL_ELIMIT and says so. */

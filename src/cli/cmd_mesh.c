@@ -9,6 +9,7 @@
 #include "sylva/lod.h"
 #include "sylva/texture.h"
 #include "sylva/mesh.h"
+#include "sylva/wind.h"
 
 const CliCommand cli_mesh_command = {
     .name = "mesh",
@@ -36,6 +37,10 @@ const CliCommand cli_mesh_command = {
         {.option = CLI_OPT_IMPOSTOR_GRID},
         {.option = CLI_OPT_IMPOSTOR_VIEW},
         {.option = CLI_OPT_BILLBOARDS},
+        {.option = CLI_OPT_WIND},
+        {.option = CLI_OPT_WIND_DIR},
+        {.option = CLI_OPT_WIND_SECONDS},
+        {.option = CLI_OPT_WIND_LEVELS},
         {.option = CLI_OPT_IMAGE, .help = "with --lod, also render LOD0 .. LODN side by side (256 x 256\n"
                                            "each, one camera) into the PNG FILE"},
         {.option = CLI_OPT_STATS, .help = "print counts and times to stderr; with --lod, each level's\n"
@@ -125,10 +130,12 @@ int cmd_mesh(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     bool levels = a.lod || a.impostor || a.billboards;
-    if (levels && mo.leaves != SYL_LEAVES_MESH) {
-        fprintf(stderr, "sylva: error: --lod, --impostor and --billboards take --leaves mesh only (for now)\n");
+    if (a.wind > 0 && (strcasecmp(dot, ".glb") || levels || instanced)) {
+        fprintf(stderr, "sylva: error: --wind writes a skinned .glb of one level with copied or card leaves "
+                        "(not with --lod, --impostor, --billboards or instanced leaves, for now)\n");
         return SYL_EUSAGE;
     }
+    mo.vertex_nodes = a.wind > 0;
     if (levels && strcasecmp(dot, ".glb")) {
         fprintf(stderr, "sylva: error: --lod, --impostor and --billboards write into a .glb only, not '%s'\n", output);
         return SYL_EUSAGE;
@@ -161,6 +168,18 @@ int cmd_mesh(int argc, char **argv) {
     } else {
         status = syl_mesh_optimize(mesh);
     }
+    SylWind wind = {0};
+    double t_wind = cli_now();
+    if (!status && a.wind > 0) {
+        SylWindOptions wo = {.speed = a.wind, .dir = {a.wind_dir[0], a.wind_dir[1]}, .seconds = a.wind_seconds,
+                             .levels = a.wind_levels};
+        float *radius = malloc((sk->nnodes + 1) * sizeof *radius);
+        status = radius ? syl_mesh_radii(sk, &mo, radius) : SYL_ELIMIT;
+        if (!status) status = syl_wind_build(sk, radius, &wo, &wind);
+        free(radius);
+        if (status) fprintf(stderr, "sylva: error: cannot build the wind's joints (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad model");
+    }
+    t_wind = cli_now() - t_wind;
     double t3 = cli_now();
     SylInstances *sets = NULL;
     int nsets = 0;
@@ -169,9 +188,11 @@ int cmd_mesh(int argc, char **argv) {
         status = syl_leaf_instances(sk, &mo, &sets, &nsets);
         if (status) fprintf(stderr, "sylva: error: out of memory placing the leaves\n");
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
+        if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
     if (!status) status = levels      ? syl_write_glb_lods(&lods, output, stderr)
                           : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
+                          : a.wind > 0 ? syl_write_glb_wind(mesh, sk, &wind, output, stderr)
                                       : syl_write_mesh(mesh, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
@@ -189,8 +210,9 @@ int cmd_mesh(int argc, char **argv) {
         fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", pl.derive_s, pl.turtle_s,
                 pl.mesh_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
-        fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp);
+        fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp - t_wind);
         if (imp.billboards) fprintf(stderr, "impostor time: %.6f s\n", t_imp);
+        if (a.wind > 0) fprintf(stderr, "wind joints: %d\nwind keys: %d\nwind time: %.6f s\n", wind.njoints, wind.nkeys, t_wind);
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
             LodSilhouette sil;
             if (lod_silhouette(&lods, k, d.threads, &sil)) break;
@@ -204,6 +226,7 @@ int cmd_mesh(int argc, char **argv) {
         fprintf(stderr, "LOD%d: %zu triangles, %d crossed billboards\n", lods.n - 1,
                 lods.level[lods.n - 1].mesh->nidx / 3, imp.billboards);
     syl_lod_free(&lods);
+    syl_wind_free(&wind);
     syl_impostor_free(&imp);
     cli_plant_free(&pl);
     syl_budget_free(budget);

@@ -54,6 +54,18 @@ static bool read_leaves(CliArgs *a, char *arg) {
     return false;
 }
 
+static bool read_wind_dir(CliArgs *a, char *arg) {
+    char *comma = strchr(arg, ',');
+    double x, z;
+    if (comma) *comma = 0;
+    bool ok = comma && cli_number("--wind-dir", arg, -1e6, 1e6, &x) && cli_number("--wind-dir", comma + 1, -1e6, 1e6, &z);
+    if (comma) *comma = ',';
+    if (ok && x == 0 && z == 0) ok = false, fprintf(stderr, "sylva: error: --wind-dir 0,0 has no direction\n");
+    else if (!ok && !comma) fprintf(stderr, "sylva: error: --wind-dir expects X,Z (where the wind blows to), not '%s'\n", arg);
+    if (ok) a->wind_dir[0] = (float)x, a->wind_dir[1] = (float)z;
+    return ok;
+}
+
 static bool read_leaf_shape(CliArgs *a, char *arg) {
     int k = syl_leaf_shape_named(arg);
     if (k >= 0) {
@@ -277,6 +289,14 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                                ARGS(impostor_view), 16, 1024},
     [CLI_OPT_BILLBOARDS] = {"billboards", 0, "K", "the last level is K crossed billboards (2 to 4; default 3)", CLI_INT,
                             ARGS(billboards), 2, 4},
+    [CLI_OPT_WIND] = {"wind", 0, "SPEED", "sway in a wind of SPEED m/s: a skinned .glb (a joint per stem)\n"
+                      "with a looping animation and the shader attributes _BRANCH_LEVEL,\n"
+                      "_PHASE, _STIFFNESS", CLI_REAL, ARGS(wind), 0.01, 100},
+    [CLI_OPT_WIND_DIR] = {"wind-dir", 0, "X,Z", "where the wind blows to (default 1,0: +x)", CLI_READ, .read = read_wind_dir},
+    [CLI_OPT_WIND_SECONDS] = {"wind-seconds", 0, "S", "length of the wind loop (0.5 to 600; default 4)", CLI_REAL,
+                              ARGS(wind_seconds), 0.5, 600},
+    [CLI_OPT_WIND_LEVELS] = {"wind-levels", 0, "N", "stems of branch order below N get a joint (1 to 8; default 2)",
+                             CLI_INT, ARGS(wind_levels), 1, 8},
 };
 
 const CliUse cli_limits[] = {

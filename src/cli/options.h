@@ -33,6 +33,7 @@ typedef enum CliOptionId {
     CLI_OPT_SNAPSHOTS, CLI_OPT_TILES, CLI_OPT_REBALANCE, CLI_OPT_CHECKPOINT, CLI_OPT_EVERY, CLI_OPT_RESUME,
     /* sylva mesh: levels of detail */
     CLI_OPT_LOD, CLI_OPT_IMPOSTOR, CLI_OPT_IMPOSTOR_GRID, CLI_OPT_IMPOSTOR_VIEW, CLI_OPT_BILLBOARDS,
+    CLI_OPT_WIND, CLI_OPT_WIND_DIR, CLI_OPT_WIND_SECONDS, CLI_OPT_WIND_LEVELS,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -62,6 +63,8 @@ typedef struct CliArgs {
     int lod, billboards;     /* sylva mesh: --lod, --billboards */
     int impostor_grid, impostor_view; /* --impostor-grid, --impostor-view */
     bool impostor;           /* --impostor */
+    float wind, wind_dir[2], wind_seconds; /* --wind, --wind-dir, --wind-seconds */
+    int wind_levels;         /* --wind-levels */
     char **files;            /* the arguments after the options: the models */
     int nfiles;
 } CliArgs;

@@ -1,71 +1,126 @@
-/* The glTF 2.0 binary writer (.glb): BIN layout, JSON, and the container. */
-
-/* One scene, one node named after the model, one mesh with one primitive per material
- * group. POSITION, NORMAL and TEXCOORD_0 are shared by the primitives; each has its own
- * range of indices (16-bit up to 65,535 vertices, 32-bit above). Instance sets are child
- * nodes of their own, each with a prototype mesh and EXT_mesh_gpu_instancing transforms. Materials are metallic-roughness with the
- * material's colour (converted to linear, as glTF wants) and, for bark, leaf and flower
- * kinds, the procedural texture (PNG, embedded in the BIN chunk). */
+/* The one glTF 2.0 binary writer (.glb): any set of top-level nodes (one plant; a chain of
+ * levels of detail NAME_LOD0 .. with MSFT_lod on the first), each with its mesh and its
+ * instance sets (child nodes with EXT_mesh_gpu_instancing), in any leaf mode.
+ *
+ * Each mesh has one primitive per material group; POSITION, NORMAL and TEXCOORD_0 are shared
+ * by its primitives, each with its own range of indices (16-bit up to 65,535 vertices, 32-bit
+ * above). Materials are metallic-roughness with the material's colour (converted to linear, as
+ * glTF wants) and, for bark, leaf and flower kinds, the procedural texture; leaf cards and an
+ * impostor's billboards are alpha-tested (PNGs embedded in the BIN chunk). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "io/glb.h"
+#include "sylva/lod.h"
 #include "sylva/texture.h"
 
+enum { KINDS = 5, CARD = 3, ATLAS = 4 }; /* texture slots: bark, leaf, flower, leaf card (RGBA), atlas */
 
+/* A mesh written: the part it belongs to and which of its sets (-1: the part's own). */
+typedef struct MeshRef {
+    const SylMesh *m;
+    int part, set;
+    int view, accessor, material; /* its first buffer view, accessor and material */
+    bool wide;                    /* 32-bit indices (more than 65,535 vertices) */
+    bool skinned;                 /* its part's wind: five more vertex accessors */
+} MeshRef;
 
-
-
-
-
-
-enum { KINDS = 4, CARD = 3 }; /* texture slots: bark, leaf, flower, and the leaf card (RGBA) */
-
-/* What goes in the file: meshes (the plant's, then each instance set's prototype), and the
- * BIN chunk cut into buffer views: per mesh its attributes and indices, per instance set its
- * transforms, then the images. */
+/* What goes in the file, numbered before the JSON refers to it. */
 typedef struct Layout {
+    const GlbScene *sc;
     IoBuf bin;
     View *views;
     int nviews;
-    const SylMesh *mesh[257];
-    int nmeshes, first_view[257], first_accessor[257], first_material[257];
-    bool wide[257];    /* 32-bit indices (more than 65,535 vertices) */
-    int plant_mesh;    /* -1: the plant has no geometry of its own */
-    const SylInstances *sets;
-    int nsets, set_mesh[256], set_view[256], set_accessor[256];
+    MeshRef *mesh;
+    int nmeshes;
+    int *set_view, *set_accessor, *part_mesh, *part_node, *set_node; /* -1: none */
+    int nsets, nnodes;
     int tex_of_kind[KINDS], ntex, image_view[KINDS], image_kind[KINDS];
+    float (*quant)[4];            /* each part's dequantization: translation, scale (0: none) */
+    const SylWind *wind;          /* the first part's, when it is skinned */
+    int anim_view, anim_accessor, joint_node; /* its first view, accessor and joint node */
 } Layout;
 
 static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER};
 
 static bool has_geometry(const SylMesh *m) { return m && m->nverts > 0 && m->nidx > 0 && m->ngroups > 0; }
+static int accessors_of(const MeshRef *r) { return 3 + r->m->ngroups + (r->skinned ? 5 : 0); }
+
+/* KHR_mesh_quantization: x of a box centred on t of half-size k, as a normalized short. */
+static int16_t q16(float x, float t, float k) {
+    float v = (x - t) / k;
+    v = v < -1 ? -1 : v > 1 ? 1 : v;
+    return (int16_t)lrintf(v * 32767);
+}
+static int8_t q8(float x) { return (int8_t)lrintf((x < -1 ? -1 : x > 1 ? 1 : x) * 127); }
+static void put16(IoBuf *b, int16_t v) {
+    uint8_t p[2] = {(uint8_t)((uint16_t)v & 0xff), (uint8_t)((uint16_t)v >> 8)};
+    io_put(b, p, 2);
+}
+
+/* n vectors of k floats as normalized shorts (t, s: the box), padded to 4 bytes each. */
+static void put_q16(IoBuf *b, const float *x, size_t n, int k, const float *t, float s) {
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < k; c++) put16(b, q16(x[(size_t)k * i + (size_t)c], t ? t[c] : 0, s));
+        if (k == 3) put16(b, 0);
+    }
+}
+
+/* ,"min":[..],"max":[..] of put_q16's values (the integers, as glTF wants). */
+static void min_max_q16(IoBuf *j, const float *x, size_t n, const float *t, float s) {
+    int lo[3] = {32767, 32767, 32767}, hi[3] = {-32767, -32767, -32767};
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            int v = q16(x[3 * i + (size_t)c], t[c], s);
+            if (v < lo[c]) lo[c] = v;
+            if (v > hi[c]) hi[c] = v;
+        }
+    for (int w = 0; w < 2; w++) {
+        io_printf(j, ",\"%s\":[", w ? "max" : "min");
+        for (int c = 0; c < 3; c++) io_printf(j, "%s%d", c ? "," : "", w ? hi[c] : lo[c]);
+        io_put(j, "]", 1);
+    }
+}
 static bool cards(const SylMesh *m) { return m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_INSTANCED_CARDS; }
 
-/* The texture slot a material of m uses (-1: none). */
-static int slot_of(const SylMesh *m, int material) {
-    int kind = m->materials[material].kind;
-    if (kind == SYL_MATERIAL_LEAF && cards(m)) return CARD;
+/* The texture slot material i of mesh r uses (-1: none). */
+static int slot_of(const Layout *l, const MeshRef *r, int i) {
+    const GlbScene *sc = l->sc;
+    if (sc->atlas && r->part == sc->nparts - 1 && r->set < 0 && i == sc->atlas_material) return ATLAS;
+    int kind = r->m->materials[i].kind;
+    if (kind == SYL_MATERIAL_LEAF && cards(r->m)) return CARD;
     for (int k = 0; k < 3; k++)
         if (kind == kinds[k]) return k;
     return -1;
 }
 
 /* POSITION, NORMAL and TEXCOORD_0, then the indices, the smallest type that holds them. */
-static void layout_attributes(const SylMesh *m, Layout *l, int k) {
+static void layout_attributes(Layout *l, MeshRef *r) {
+    const SylMesh *m = r->m;
     const size_t nv = m->nverts;
-    l->first_view[k] = l->nviews;
-    l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER};
-    glb_words(&l->bin, m->pos, 3 * nv);
-    l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER};
-    glb_words(&l->bin, m->nrm, 3 * nv);
-    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER};
+    const float *q = r->set < 0 ? l->quant[r->part] : NULL;
+    r->view = l->nviews;
+    if (q && q[3] > 0) { /* 16-bit positions and 8-bit normals, each padded to 4 bytes */
+        l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 8};
+        put_q16(&l->bin, m->pos, nv, 3, q, q[3]);
+        l->views[l->nviews++] = (View){l->bin.len, 4 * nv, ARRAY_BUFFER, 4};
+        for (size_t i = 0; i < nv; i++) {
+            uint8_t b[4] = {(uint8_t)q8(m->nrm[3 * i]), (uint8_t)q8(m->nrm[3 * i + 1]), (uint8_t)q8(m->nrm[3 * i + 2]), 0};
+            io_put(&l->bin, b, 4);
+        }
+    } else {
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        glb_words(&l->bin, m->pos, 3 * nv);
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        glb_words(&l->bin, m->nrm, 3 * nv);
+    }
+    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 0};
     glb_words(&l->bin, m->uv, 2 * nv);
     /* 16 bits up to 65,535 vertices: 65,535 itself is the primitive restart value */
-    l->wide[k] = nv > 65535;
-    l->views[l->nviews++] = (View){l->bin.len, (l->wide[k] ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER};
-    if (l->wide[k]) {
+    r->wide = nv > 65535;
+    l->views[l->nviews++] = (View){l->bin.len, (r->wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
+    if (r->wide) {
         glb_words(&l->bin, m->idx, m->nidx);
     } else {
         for (size_t i = 0; i < m->nidx; i++) {
@@ -74,33 +129,44 @@ static void layout_attributes(const SylMesh *m, Layout *l, int k) {
         }
         glb_pad(&l->bin, 0);
     }
+    if (r->skinned) glb_skin_vertices(&l->sc->part[r->part], &l->bin, l->views, &l->nviews);
 }
 
-/* Each set's translations, rotations and scales: three views. */
-static void layout_instances(Layout *l) {
-    for (int i = 0; i < l->nsets; i++) {
-        const SylInstances *set = &l->sets[i];
-        l->set_view[i] = l->nviews;
-        l->views[l->nviews++] = (View){l->bin.len, 12 * set->count, 0};
-        glb_words(&l->bin, set->t, 3 * set->count);
-        l->views[l->nviews++] = (View){l->bin.len, 16 * set->count, 0};
-        glb_words(&l->bin, set->r, 4 * set->count);
-        l->views[l->nviews++] = (View){l->bin.len, 12 * set->count, 0};
-        glb_words(&l->bin, set->s, 3 * set->count);
+/* Each set's translations, rotations and scales: three views. Quantized: translations in
+ * the part's box, rotations, and scales over the part's scale (which the node's transform
+ * applies again: a leaf is far smaller than its plant), all as normalized shorts. */
+static void layout_instances(Layout *l, const SylInstances *set, int i, const float *q) {
+    size_t n = set->count;
+    l->set_view[i] = l->nviews;
+    if (q[3] > 0) {
+        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8}; /* VEC3s padded to 8 bytes */
+        put_q16(&l->bin, set->t, n, 3, q, q[3]);
+        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 0};
+        put_q16(&l->bin, set->r, n, 4, NULL, 1);
+        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8};
+        put_q16(&l->bin, set->s, n, 3, NULL, q[3]);
+        return;
     }
+    l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
+    glb_words(&l->bin, set->t, 3 * n);
+    l->views[l->nviews++] = (View){l->bin.len, 16 * n, 0, 0};
+    glb_words(&l->bin, set->r, 4 * n);
+    l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
+    glb_words(&l->bin, set->s, 3 * n);
 }
 
-/* One PNG texture per slot used (bark, leaf, flower, leaf card), each in a view of its own. */
+/* One PNG texture per slot used, each in a view of its own. */
 static void layout_textures(Layout *l) {
     bool used[KINDS] = {false};
     int shape = 0;
     for (int k = 0; k < l->nmeshes; k++)
-        for (int g = 0; g < l->mesh[k]->ngroups; g++) {
-            int t = slot_of(l->mesh[k], l->mesh[k]->groups[g].material);
+        for (int g = 0; g < l->mesh[k].m->ngroups; g++) {
+            int t = slot_of(l, &l->mesh[k], l->mesh[k].m->groups[g].material);
             if (t >= 0) used[t] = true;
-            if (t == CARD) shape = l->mesh[k]->leaf_shape;
+            if (t == CARD) shape = l->mesh[k].m->leaf_shape;
         }
     uint8_t *img = NULL;
+    const GlbScene *sc = l->sc;
     for (int k = 0; k < KINDS; k++) {
         if (!used[k]) continue;
         if (!img && !(img = malloc((size_t)SYL_TEXTURE_SIZE * SYL_TEXTURE_SIZE * 4))) {
@@ -108,50 +174,64 @@ static void layout_textures(Layout *l) {
             break;
         }
         size_t at = l->bin.len;
-        bool ok = k == CARD ? syl_leaf_card(shape, SYL_TEXTURE_SIZE, img) &&
-                                  io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
-                            : syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, img) &&
-                                  io_png(&l->bin, img, SYL_TEXTURE_SIZE);
+        bool ok = k == ATLAS  ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
+                  : k == CARD ? syl_leaf_card(shape, SYL_TEXTURE_SIZE, img) &&
+                                    io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
+                              : syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, img) &&
+                                    io_png(&l->bin, img, SYL_TEXTURE_SIZE);
         if (!ok) {
             l->bin.failed = true;
             break;
         }
         l->image_view[l->ntex] = l->nviews;
         l->image_kind[l->ntex] = k;
-        l->views[l->nviews++] = (View){at, l->bin.len - at, 0};
+        l->views[l->nviews++] = (View){at, l->bin.len - at, 0, 0};
         glb_pad(&l->bin, 0);
         l->tex_of_kind[k] = l->ntex++;
     }
     free(img);
 }
 
+static const char *mesh_name(const Layout *l, const MeshRef *r) {
+    return r->set < 0 ? l->sc->part[r->part].name : l->sc->part[r->part].sets[r->set].name;
+}
+
 /* Mesh k's primitives, one per group. */
-static void json_mesh(IoBuf *js, const Layout *l, int k, const char *name) {
-    const SylMesh *m = l->mesh[k];
-    int a = l->first_accessor[k];
+static void json_mesh(IoBuf *js, const Layout *l, int k) {
+    const MeshRef *r = &l->mesh[k];
+    int a = r->accessor;
     io_printf(js, "%s{\"name\":", k ? "," : "");
-    io_json_string(js, name);
+    io_json_string(js, mesh_name(l, r));
     io_printf(js, ",\"primitives\":[");
-    for (int g = 0; g < m->ngroups; g++)
-        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d},\"indices\":%d,"
-                      "\"material\":%d,\"mode\":4}",
-                  g ? "," : "", a, a + 1, a + 2, a + 3 + g, l->first_material[k] + g);
+    for (int g = 0; g < r->m->ngroups; g++) {
+        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", g ? "," : "", a, a + 1, a + 2);
+        if (r->skinned) glb_skin_attributes(js, a + 3 + r->m->ngroups);
+        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", a + 3 + g, r->material + g);
+    }
     io_printf(js, "]}");
 }
 
-/* Materials: metallic-roughness, one per group of each mesh; leaf cards alpha-tested. */
+/* Materials: metallic-roughness, one per group of each mesh; leaf cards and the impostor's
+ * billboards alpha-tested. */
 static void json_materials(IoBuf *js, const Layout *l) {
     io_printf(js, ",\"materials\":[");
     for (int k = 0; k < l->nmeshes; k++) {
-        const SylMesh *m = l->mesh[k];
+        const SylMesh *m = l->mesh[k].m;
         for (int g = 0; g < m->ngroups; g++) {
-            const SylMaterial *mat = &m->materials[m->groups[g].material];
+            int i = m->groups[g].material, slot = slot_of(l, &l->mesh[k], i);
+            int t = slot >= 0 ? l->tex_of_kind[slot] : -1;
+            if (slot == ATLAS) {
+                io_printf(js, "%s{\"name\":\"impostor\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":%d},"
+                              "\"metallicFactor\":0,\"roughnessFactor\":0.9},\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5}",
+                          k || g ? "," : "", t);
+                continue;
+            }
+            const SylMaterial *mat = &m->materials[i];
             char mname[32];
-            io_material_name(m, m->groups[g].material, mname, sizeof mname);
+            io_material_name(m, i, mname, sizeof mname);
             io_printf(js, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.6f,%.6f,%.6f,1]",
                       k || g ? "," : "", mname, glb_linear(mat->rgb[0]), glb_linear(mat->rgb[1]),
                       glb_linear(mat->rgb[2]));
-            int slot = slot_of(m, m->groups[g].material), t = slot >= 0 ? l->tex_of_kind[slot] : -1;
             if (t >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", t);
             io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":%s}",
                       mat->kind == SYL_MATERIAL_BARK ? "0.95" : "0.7");
@@ -169,125 +249,246 @@ static void json_accessors(IoBuf *js, const Layout *l) {
     static const char *const types[3] = {"VEC3", "VEC3", "VEC2"};
     int n = 0;
     for (int k = 0; k < l->nmeshes; k++) {
-        const SylMesh *m = l->mesh[k];
+        const MeshRef *r = &l->mesh[k];
+        const SylMesh *m = r->m;
         const float *data[3] = {m->pos, m->nrm, m->uv};
+        const float *q = r->set < 0 && l->quant[r->part][3] > 0 ? l->quant[r->part] : NULL;
         for (int a = 0; a < 3; a++, n++) {
-            io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
-                      l->first_view[k] + a, FLOAT, m->nverts, types[a]);
-            glb_min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
+            int type = q && a < 2 ? (a ? BYTE : SHORT) : FLOAT;
+            io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
+                      r->view + a, type, type != FLOAT ? "\"normalized\":true," : "", m->nverts, types[a]);
+            if (q && a == 0) min_max_q16(js, m->pos, m->nverts, q, q[3]);
+            else if (!(q && a == 1)) glb_min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
             io_put(js, "}", 1);
         }
         for (int g = 0; g < m->ngroups; g++, n++)
             io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
-                      l->first_view[k] + 3, (size_t)m->groups[g].first * (l->wide[k] ? 4 : 2),
-                      l->wide[k] ? UNSIGNED_INT : UNSIGNED_SHORT, m->groups[g].count);
+                      r->view + 3, (size_t)m->groups[g].first * (r->wide ? 4 : 2),
+                      r->wide ? UNSIGNED_INT : UNSIGNED_SHORT, m->groups[g].count);
+        if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4), n += 5;
     }
-    for (int i = 0; i < l->nsets; i++) {
-        static const char *const ttypes[3] = {"VEC3", "VEC4", "VEC3"};
-        for (int a = 0; a < 3; a++, n++)
-            io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
-                      l->set_view[i] + a, FLOAT, l->sets[i].count, ttypes[a]);
-    }
+    int i = 0;
+    for (int p = 0; p < l->sc->nparts; p++)
+        for (int s = 0; s < l->sc->part[p].nsets; s++, i++) {
+            static const char *const ttypes[3] = {"VEC3", "VEC4", "VEC3"};
+            if (l->set_view[i] < 0) continue;
+            bool q = l->quant[p][3] > 0;
+            for (int a = 0; a < 3; a++, n++)
+                io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
+                          l->set_view[i] + a, q ? SHORT : FLOAT, q ? "\"normalized\":true," : "",
+                          l->sc->part[p].sets[s].count, ttypes[a]);
+        }
+    if (l->wind) glb_skin_anim_accessors(js, l->wind, l->anim_view);
     io_put(js, "]", 1);
 }
 
-/* Sampler, images and textures, when there are textures. Cards clamp: a leaf does not
- * repeat, and wrapping would bleed the far edge's alpha into the base. */
+/* Sampler, images and textures, when there are textures. Cards and the atlas clamp: a leaf
+ * does not repeat, and wrapping would bleed the far edge's alpha into the base. */
 static void json_textures(IoBuf *js, const Layout *l) {
     if (!l->ntex) return;
-    bool card = l->tex_of_kind[CARD] >= 0, tiled = l->ntex > card;
+    bool clamped = l->tex_of_kind[CARD] >= 0 || l->tex_of_kind[ATLAS] >= 0;
+    bool tiled = l->ntex > (l->tex_of_kind[CARD] >= 0) + (l->tex_of_kind[ATLAS] >= 0);
     io_printf(js, ",\"samplers\":[");
     if (tiled) io_printf(js, "{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}");
-    if (card) io_printf(js, "%s{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}", tiled ? "," : "");
+    if (clamped) io_printf(js, "%s{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}", tiled ? "," : "");
     io_printf(js, "],\"images\":[");
-    for (int t = 0; t < l->ntex; t++)
+    for (int t = 0; t < l->ntex; t++) {
+        int k = l->image_kind[t];
         io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
-                  l->image_kind[t] == CARD ? "leafcard" : syl_texture_name(kinds[l->image_kind[t]]), l->image_view[t]);
+                  k == CARD ? "leafcard" : k == ATLAS ? "impostor" : syl_texture_name(kinds[k]), l->image_view[t]);
+    }
     io_printf(js, "],\"textures\":[");
     for (int t = 0; t < l->ntex; t++)
-        io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "", l->image_kind[t] == CARD && tiled, t);
+        io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "", l->image_kind[t] >= CARD && tiled, t);
     io_put(js, "]", 1);
 }
 
-/* Node 0 is the plant (with its mesh, if it has one); each instance set a child of it. */
-static void json_nodes(IoBuf *js, const Layout *l, const char *name) {
-    io_printf(js, ",\"nodes\":[{\"name\":");
-    io_json_string(js, name);
-    if (l->plant_mesh >= 0) io_printf(js, ",\"mesh\":%d", l->plant_mesh);
-    if (l->nsets) {
-        io_printf(js, ",\"children\":[");
-        for (int i = 0; i < l->nsets; i++) io_printf(js, "%s%d", i ? "," : "", 1 + i);
-        io_put(js, "]", 1);
+/* Each part a node (with its mesh, if it has one) and its instance sets child nodes of it;
+ * with levels of detail, the first part lists the others in MSFT_lod. */
+static void json_nodes(IoBuf *js, const Layout *l) {
+    const GlbScene *sc = l->sc;
+    io_printf(js, ",\"nodes\":[");
+    int i0 = 0;
+    for (int p = 0; p < sc->nparts; p++) {
+        const GlbPart *pt = &sc->part[p];
+        io_printf(js, "%s{\"name\":", p ? "," : "");
+        io_json_string(js, pt->name);
+        if (l->part_mesh[p] >= 0) io_printf(js, ",\"mesh\":%d", l->part_mesh[p]);
+        const float *q = l->quant[p];
+        if (q[3] > 0)
+            io_printf(js, ",\"translation\":[%.9g,%.9g,%.9g],\"scale\":[%.9g,%.9g,%.9g]", (double)q[0], (double)q[1],
+                      (double)q[2], (double)q[3], (double)q[3], (double)q[3]);
+        bool skin = p == 0 && l->wind;
+        if (skin) io_printf(js, ",\"skin\":0");
+        bool any = false;
+        for (int s = 0; s < pt->nsets; s++)
+            if (l->set_node[i0 + s] >= 0) io_printf(js, "%s%d", any ? "," : ",\"children\":[", l->set_node[i0 + s]), any = true;
+        if (skin) {
+            if (!any) io_printf(js, ",\"children\":[");
+            glb_skin_roots(js, l->wind, l->joint_node, any);
+            any = true;
+        }
+        if (any) io_put(js, "]", 1);
+        if (sc->lods && p == 0 && sc->nparts > 1) {
+            io_printf(js, ",\"extensions\":{\"MSFT_lod\":{\"ids\":[");
+            for (int q = 1; q < sc->nparts; q++) io_printf(js, "%s%d", q > 1 ? "," : "", l->part_node[q]);
+            io_printf(js, "]}},\"extras\":{\"MSFT_screencoverage\":[");
+            for (int q = 0; q < sc->nparts; q++) io_printf(js, "%s%.6g", q ? "," : "", (double)sc->coverage[q]);
+            io_put(js, "]}", 2);
+        }
+        if (sc->extras && p == sc->nparts - 1) io_printf(js, ",\"extras\":%s", sc->extras);
+        io_put(js, "}", 1);
+        i0 += pt->nsets;
     }
-    io_put(js, "}", 1);
-    for (int i = 0; i < l->nsets; i++) {
-        int a = l->set_accessor[i];
-        io_printf(js, ",{\"name\":");
-        io_json_string(js, l->sets[i].name);
-        io_printf(js, ",\"mesh\":%d,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
-                      "{\"TRANSLATION\":%d,\"ROTATION\":%d,\"SCALE\":%d}}}}",
-                  l->set_mesh[i], a, a + 1, a + 2);
-    }
+    int i = 0, a = 0;
+    for (int k = 0; k < l->nmeshes; k++) a += accessors_of(&l->mesh[k]);
+    for (int p = 0; p < sc->nparts; p++)
+        for (int s = 0; s < sc->part[p].nsets; s++, i++) {
+            if (l->set_node[i] < 0) continue;
+            int mesh = -1;
+            for (int k = 0; k < l->nmeshes; k++)
+                if (l->mesh[k].part == p && l->mesh[k].set == s) mesh = k;
+            io_printf(js, ",{\"name\":");
+            io_json_string(js, sc->part[p].sets[s].name);
+            io_printf(js, ",\"mesh\":%d,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
+                          "{\"TRANSLATION\":%d,\"ROTATION\":%d,\"SCALE\":%d}}}}",
+                      mesh, a, a + 1, a + 2);
+            a += 3;
+        }
+    if (l->wind) glb_skin_nodes(js, l->wind, l->joint_node);
     io_put(js, "]", 1);
 }
 
-/* The JSON chunk, padded with spaces; without geometry, a scene with one empty node. */
-static void write_json(IoBuf *js, const SylMesh *m, const Layout *l) {
-    const char *name = m->name[0] ? m->name : "plant";
+/* The JSON chunk, padded with spaces; the scene shows the first part (the other levels are
+ * reached through MSFT_lod). Without geometry, a scene with empty nodes. */
+static void write_json(IoBuf *js, const Layout *l) {
+    const GlbScene *sc = l->sc;
     io_printf(js, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"Sylva\"}");
-    if (l->nsets) io_printf(js, ",\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]");
+    bool lod = sc->lods && sc->nparts > 1, quant = false;
+    for (int p = 0; p < sc->nparts; p++) quant |= l->quant[p][3] > 0;
+    if (lod || l->nsets || quant)
+        io_printf(js, ",\"extensionsUsed\":[%s%s%s%s%s]", lod ? "\"MSFT_lod\"" : "", lod && l->nsets ? "," : "",
+                  l->nsets ? "\"EXT_mesh_gpu_instancing\"" : "", quant && (lod || l->nsets) ? "," : "",
+                  quant ? "\"KHR_mesh_quantization\"" : "");
+    if (quant) io_printf(js, ",\"extensionsRequired\":[\"KHR_mesh_quantization\"]");
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
-    io_json_string(js, name);
+    io_json_string(js, sc->scene_name);
     io_printf(js, ",\"nodes\":[0]}]");
-    json_nodes(js, l, name);
+    json_nodes(js, l);
     if (l->nmeshes) {
         io_printf(js, ",\"meshes\":[");
-        for (int k = 0; k < l->nmeshes; k++) json_mesh(js, l, k, k == l->plant_mesh ? name : l->sets[k - (l->plant_mesh + 1)].name);
+        for (int k = 0; k < l->nmeshes; k++) json_mesh(js, l, k);
         io_put(js, "]", 1);
         json_materials(js, l);
         json_accessors(js, l);
         json_textures(js, l);
+        if (l->wind) glb_skin_json(js, l->wind, l->joint_node, l->anim_accessor);
         glb_buffer_views(js, l->views, l->nviews, l->bin.len);
     }
     io_put(js, "}", 1);
     glb_pad(js, ' ');
 }
 
-
-int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
-    Layout l = {.tex_of_kind = {-1, -1, -1, -1}, .plant_mesh = -1, .sets = sets};
-    IoBuf js = {0};
-    if (has_geometry(m)) l.mesh[l.plant_mesh = l.nmeshes++] = m;
-    for (int i = 0; i < n && i < 256; i++)
-        if (has_geometry(sets[i].proto) && sets[i].count) { /* an empty set is left out */
-            l.set_mesh[l.nsets] = l.nmeshes;
-            l.mesh[l.nmeshes++] = sets[i].proto;
-            l.nsets++;
-        }
-    /* the sets kept are the first ones with geometry: compact them so index i is set i */
-    SylInstances kept[256];
-    int nk = 0;
-    for (int i = 0; i < n && i < 256; i++)
-        if (has_geometry(sets[i].proto) && sets[i].count) kept[nk++] = sets[i];
-    l.sets = kept;
-    l.views = malloc(sizeof *l.views * (size_t)(4 * l.nmeshes + 3 * l.nsets + KINDS));
-    if (!l.views) l.bin.failed = true;
-    for (int k = 0; k < l.nmeshes && l.views; k++) layout_attributes(l.mesh[k], &l, k);
-    if (l.views) layout_instances(&l);
-    int mat = 0, acc = 0; /* numbering, before the JSON refers to it */
-    for (int k = 0; k < l.nmeshes; k++) {
-        l.first_material[k] = mat, mat += l.mesh[k]->ngroups;
-        l.first_accessor[k] = acc, acc += 3 + l.mesh[k]->ngroups;
+/* A part's box: the centre and the largest half-extent of its mesh and instance positions. */
+static void plan_quantization(const GlbPart *pt, float q[4]) {
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    const float *xs[257];
+    size_t ns[257];
+    int k = 0;
+    if (has_geometry(pt->mesh)) xs[k] = pt->mesh->pos, ns[k++] = pt->mesh->nverts;
+    for (int s = 0; s < pt->nsets && k < 257; s++) xs[k] = pt->sets[s].t, ns[k++] = pt->sets[s].count;
+    for (int i = 0; i < k; i++)
+        for (size_t v = 0; v < ns[i]; v++)
+            for (int c = 0; c < 3; c++) lo[c] = fminf(lo[c], xs[i][3 * v + (size_t)c]), hi[c] = fmaxf(hi[c], xs[i][3 * v + (size_t)c]);
+    q[3] = 0;
+    for (int c = 0; c < 3 && lo[0] <= hi[0]; c++) {
+        q[c] = (lo[c] + hi[c]) / 2;
+        q[3] = fmaxf(q[3], (hi[c] - lo[c]) / 2);
     }
-    for (int i = 0; i < l.nsets; i++) l.set_accessor[i] = acc, acc += 3;
-    if (l.views) layout_textures(&l);
+    if (!(q[3] > 0) || !isfinite(q[3])) q[3] = 0; /* nothing to quantize: floats */
+}
+
+/* Number the meshes, sets and nodes: parts first, then the instance sets' nodes. */
+static bool plan(Layout *l) {
+    const GlbScene *sc = l->sc;
+    int sets = 0;
+    for (int p = 0; p < sc->nparts; p++) sets += sc->part[p].nsets;
+    size_t n = (size_t)(sc->nparts + sets) + 1;
+    l->mesh = calloc(n, sizeof *l->mesh);
+    l->views = malloc(sizeof *l->views * (9 * n + 3 * (size_t)sets + KINDS + 3));
+    int *ints = malloc(sizeof(int) * (3 * (size_t)sets + 2 * (size_t)sc->nparts + 1));
+    if (!l->mesh || !l->views || !ints) {
+        free(ints);
+        return false;
+    }
+    l->set_view = ints, l->set_accessor = ints + sets, l->set_node = ints + 2 * sets;
+    l->part_mesh = ints + 3 * sets, l->part_node = ints + 3 * sets + sc->nparts;
+    l->nnodes = sc->nparts;
+    for (int p = 0; p < sc->nparts; p++) {
+        l->part_node[p] = p;
+        l->part_mesh[p] = -1;
+        if (has_geometry(sc->part[p].mesh)) {
+            l->part_mesh[p] = l->nmeshes;
+            bool skinned = p == 0 && sc->part[0].wind && sc->part[0].wind->njoints > 0 && sc->part[0].skel;
+            l->mesh[l->nmeshes++] = (MeshRef){.m = sc->part[p].mesh, .part = p, .set = -1, .skinned = skinned};
+            if (skinned) l->wind = sc->part[0].wind;
+        }
+    }
+    int i = 0;
+    for (int p = 0; p < sc->nparts; p++)
+        for (int s = 0; s < sc->part[p].nsets; s++, i++) {
+            const SylInstances *set = &sc->part[p].sets[s];
+            l->set_view[i] = l->set_node[i] = -1;
+            if (!has_geometry(set->proto) || !set->count) continue; /* an empty set is left out */
+            l->set_node[i] = l->nnodes++;
+            l->nsets++;
+            l->mesh[l->nmeshes++] = (MeshRef){.m = set->proto, .part = p, .set = s};
+        }
+    l->joint_node = l->nnodes;
+    if (l->wind) l->nnodes += l->wind->njoints;
+    if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
+    for (int p = 0; p < sc->nparts && sc->quantize; p++)
+        if (!(p == 0 && l->wind)) plan_quantization(sc->part + p, l->quant[p]);
+    return true;
+}
+
+int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
+    Layout l = {.sc = sc, .tex_of_kind = {-1, -1, -1, -1, -1}};
+    IoBuf js = {0};
+    bool ok = plan(&l);
+    if (!ok) l.bin.failed = true;
+    for (int k = 0; k < l.nmeshes && ok; k++) layout_attributes(&l, &l.mesh[k]);
+    int i = 0;
+    for (int p = 0; p < sc->nparts && ok; p++)
+        for (int s = 0; s < sc->part[p].nsets; s++, i++)
+            if (l.set_node[i] >= 0) layout_instances(&l, &sc->part[p].sets[s], i, l.quant[p]);
+    l.anim_view = l.nviews;
+    if (l.wind && ok) glb_skin_animation(l.wind, &l.bin, l.views, &l.nviews);
+    int mat = 0, acc = 0;
+    for (int k = 0; k < l.nmeshes && ok; k++) {
+        l.mesh[k].material = mat, mat += l.mesh[k].m->ngroups;
+        l.mesh[k].accessor = acc, acc += accessors_of(&l.mesh[k]);
+    }
+    for (int q = 0; q < l.nsets; q++) acc += 3;
+    l.anim_accessor = acc;
+    if (ok) layout_textures(&l);
     glb_pad(&l.bin, 0);
-    if (l.views) write_json(&js, m, &l);
+    if (ok) write_json(&js, &l);
     int status = glb_container(path, &js, &l.bin, l.nmeshes > 0, diag);
     io_free(&js);
     io_free(&l.bin);
     free(l.views);
+    free(l.mesh);
+    free(l.set_view);
+    free(l.quant);
     return status;
+}
+
+int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
+    const char *name = m->name[0] ? m->name : "plant";
+    GlbPart part = {.mesh = m, .sets = sets, .nsets = n > 0 ? n : 0, .name = name};
+    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .quantize = n > 0}; /* instanced: small */
+    return glb_write(&sc, path, diag);
 }
 
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_write_glb_instanced(m, NULL, 0, path, diag); }

@@ -1,4 +1,5 @@
-/* What the two glTF binary writers (glb.c, glb_lod.c) share: glb_parts.c. */
+/* The glTF binary writer (glb.c) and its parts (glb_parts.c), which other writers of .glb
+ * (a forest's) may share. */
 #ifndef SYLVA_IO_GLB_H
 #define SYLVA_IO_GLB_H
 #include <stdbool.h>
@@ -10,12 +11,13 @@
 
 enum { GLB_MAGIC = 0x46546C67, GLB_JSON = 0x4E4F534A, GLB_BIN = 0x004E4942 };
 enum { ARRAY_BUFFER = 34962, ELEMENT_ARRAY_BUFFER = 34963, FLOAT = 5126, UNSIGNED_INT = 5125,
-       UNSIGNED_SHORT = 5123 };
+       UNSIGNED_SHORT = 5123, UNSIGNED_BYTE = 5121, SHORT = 5122, BYTE = 5120 };
 
 /* A slice of the BIN chunk. */
 typedef struct View {
     size_t offset, length;
     int target; /* 0: none */
+    int stride; /* byteStride (0: packed) */
 } View;
 
 float glb_linear(float srgb);                          /* glTF's colours are linear */
@@ -28,5 +30,52 @@ void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len);
 /* The GLB container: header, JSON chunk and (with geometry) BIN chunk, through a temporary
  * file. SYL_OK, SYL_ELIMIT or SYL_EIO, reported. */
 int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
+
+#include "sylva/mesh.h"
+#include "sylva/wind.h"
+
+/* A top-level node: its mesh (may be NULL or empty) and its instance sets (child nodes). */
+typedef struct GlbPart {
+    const SylMesh *mesh;
+    const SylInstances *sets;
+    int nsets;
+    const char *name;
+    const SylWind *wind;       /* with wind (the first part only): skinned, mesh->node set */
+    const SylSkeleton *skel;   /* the skeleton mesh->node refers to */
+} GlbPart;
+
+/* What glb_write writes: parts, the first in the scene; with lods, the others are its
+ * MSFT_lod levels (coverage: each one's MSFT_screencoverage). The last part's material
+ * atlas_material is drawn with atlas (atlas_w x atlas_h RGBA, alpha-tested) when atlas is
+ * set; extras (JSON object text, may be NULL) goes in the last part's node. */
+typedef struct GlbScene {
+    const GlbPart *part;
+    int nparts;
+    const char *scene_name;
+    bool lods;
+    const float *coverage;
+    const uint8_t *atlas;
+    int atlas_w, atlas_h, atlas_material;
+    const char *extras;
+    /* KHR_mesh_quantization: each part's own mesh has 16-bit positions (its node's
+     * translation and uniform scale bring them back) and 8-bit normals, its instances 16-bit
+     * translations and rotations. Not for a skinned part (a skinned node's transform is not
+     * used). */
+    bool quantize;
+} GlbScene;
+
+int glb_write(const GlbScene *sc, const char *path, FILE *diag);
+
+/* The skin of a part with wind (glb_skin.c): its five vertex views; the inverse bind
+ * matrices', key times' and rotations' views; their accessors; the primitive's attributes;
+ * the root joints (child ids); the joint nodes; "skins" and "animations". */
+void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews);
+void glb_skin_animation(const SylWind *w, IoBuf *bin, View *views, int *nviews);
+void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view);
+void glb_skin_anim_accessors(IoBuf *js, const SylWind *w, int anim);
+void glb_skin_attributes(IoBuf *js, int acc);
+void glb_skin_roots(IoBuf *js, const SylWind *w, int first_node, bool comma);
+void glb_skin_nodes(IoBuf *js, const SylWind *w, int first_node);
+void glb_skin_json(IoBuf *js, const SylWind *w, int first_node, int anim_acc);
 
 #endif

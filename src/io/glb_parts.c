@@ -1,5 +1,5 @@
-/* The parts of a glTF binary both writers share (glb.c: one plant with instance sets and leaf
- * cards; glb_lod.c: a chain of levels of detail): little-endian words, padding, accessor
+/* The parts of a glTF binary writer (glb.c, and any other writer of .glb: a forest's):
+ * little-endian words, padding, accessor
  * bounds, the buffer views and the container. */
 #include <math.h>
 #include <stdio.h>
@@ -88,6 +88,7 @@ void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len) {
     for (int v = 0; v < n; v++) {
         io_printf(js, "%s{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu", v ? "," : "", views[v].offset,
                   views[v].length);
+        if (views[v].stride) io_printf(js, ",\"byteStride\":%d", views[v].stride);
         if (views[v].target) io_printf(js, ",\"target\":%d", views[v].target);
         io_put(js, "}", 1);
     }

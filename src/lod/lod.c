@@ -135,9 +135,11 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         o.min_sides = 3;
         o.radius = SYL_RADIUS_MODEL;
         if (!status) status = syl_mesh_build(&t, &o, &lv->mesh);
+        if (lv->mesh) out->n = k + 1;
+        if (!status && (mo->leaves == SYL_LEAVES_INSTANCED || mo->leaves == SYL_LEAVES_INSTANCED_CARDS))
+            status = syl_leaf_instances(&t, &o, &lv->sets, &lv->nsets);
         free_copy(&t);
         if (status) break;
-        out->n = k + 1;
         size_t tris = lv->mesh->nidx / 3;
         double want = (double)tris0 * tri_share[k];
         double ratio = tris ? want / (double)tris : 1;
@@ -155,6 +157,9 @@ float syl_lod_coverage(int k, int levels) {
 }
 
 void syl_lod_free(SylLodChain *c) {
-    for (int k = 1; k < c->n; k++) syl_mesh_free(c->level[k].mesh);
+    for (int k = 1; k < c->n; k++) {
+        syl_mesh_free(c->level[k].mesh);
+        syl_instances_free(c->level[k].sets, c->level[k].nsets);
+    }
     memset(c, 0, sizeof *c);
 }

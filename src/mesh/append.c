@@ -41,6 +41,8 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src) {
         if (at > start) groups[ng++] = (SylMeshGroup){(uint32_t)start, (uint32_t)(at - start), (uint8_t)m};
     }
     free(dst->pos), free(dst->nrm), free(dst->uv), free(dst->idx), free(dst->groups);
+    free(dst->node); /* src's vertices have no nodes of dst's skeleton */
+    dst->node = NULL;
     dst->pos = pos, dst->nrm = nrm, dst->uv = uv, dst->idx = idx, dst->groups = groups;
     dst->nverts = nv;
     dst->vert_cap = nv + 1;

@@ -89,6 +89,7 @@ void syl_mesh_free(SylMesh *m) {
     free(m->uv);
     free(m->idx);
     free(m->groups);
+    free(m->node);
     free(m);
 }
 
@@ -227,7 +228,7 @@ static bool finish_tube(MeshPlan *pl, RawPt *raw, size_t nraw, bool lateral) {
         glm_vec3_muladds(d0, -sink, base);
     }
     /* the frame's first normal: the first node's U, else its L, across the first tangent */
-    MeshTube tube = {.first = (uint32_t)pl->npts, .rmax = rmax};
+    MeshTube tube = {.first = (uint32_t)pl->npts, .rmax = rmax, .node = raw[n - 1].node};
     if (!perpendicular_of(first->u, d0, tube.ref) && !perpendicular_of(first->l, d0, tube.ref))
         any_perpendicular(d0, tube.ref);
     /* points, smoothed segments subdivided */
@@ -587,6 +588,20 @@ static bool place_runs(MeshPlan *pl, SylMesh *m) {
     return true;
 }
 
+/* Each vertex's node: a tube's last node, an organ's or a polygon's. */
+static bool fill_nodes(const MeshPlan *pl, SylMesh *m) {
+    if (!(m->node = malloc((m->nverts ? m->nverts : 1) * sizeof *m->node))) return false;
+    for (size_t v = 0; v < m->nverts; v++) m->node[v] = -1;
+    for (size_t t = 0; t < pl->ntubes; t++) {
+        const MeshTube *tb = &pl->tubes[t];
+        size_t n = (size_t)tb->count * (tb->sides + 1u) + (pl->caps ? 2 : 0);
+        for (size_t v = 0; v < n; v++) m->node[tb->vert + v] = tb->node;
+    }
+    for (size_t i = 0; i < pl->nitems; i++)
+        for (uint32_t v = 0; v < pl->items[i].verts; v++) m->node[pl->items[i].vert + v] = pl->items[i].node;
+    return true;
+}
+
 /* Large arrays on transparent huge pages where the system allows it: filling a mesh of a
  * million triangles otherwise spends a good part of its time in page faults. */
 static void *big_alloc(size_t n) {
@@ -711,6 +726,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     m->leaves = (uint8_t)o.leaves;
     m->leaf_shape = (uint8_t)o.leaf_shape;
     emit_all(&pl, m, o.threads > 0 ? o.threads : ncpu());
+    if (o.vertex_nodes && !fill_nodes(&pl, m)) goto oom;
     goto done;
 oom_plan:
     budget_release(mem, plan_bytes);

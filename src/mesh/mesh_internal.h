@@ -33,6 +33,7 @@ typedef struct MeshTube {
     uint16_t sides;
     float rmax;            /* its largest radius */
     float ref[3];          /* the frame's first normal, perpendicular to the first tangent */
+    int32_t node;          /* its last node (SylMesh.node) */
 } MeshTube;
 
 /* An organ or a polygon: one run. */
@@ -41,6 +42,7 @@ typedef struct MeshItem {
     uint32_t index; /* into SylSkeleton.organs or MeshPlan.polys */
     uint32_t run;
     uint32_t verts;
+    int32_t node;   /* the node it hangs on (SylMesh.node; -1: none) */
     bool poly;
 } MeshItem;
 

@@ -24,6 +24,10 @@ static int reorder_vertices(SylMesh *m) {
         meshopt_remapVertexBuffer(tmp, streams[s], m->nverts, k * sizeof(float), remap);
         memcpy(streams[s], tmp, nv * k * sizeof(float));
     }
+    if (m->node) {
+        meshopt_remapVertexBuffer(tmp, m->node, m->nverts, sizeof *m->node, remap);
+        memcpy(m->node, tmp, nv * sizeof *m->node);
+    }
     m->nverts = nv; /* the arrays keep their capacity (and the renderer's padding) */
     free(remap);
     free(tmp);

@@ -206,7 +206,8 @@ static bool plan_polygon(MeshPlan *pl, const SylPolygon *sp, PolyScratch *sc) {
         !mesh_add_run(pl, sp->material, 2 * mp.ntris))
         return false;
     pl->items[pl->nitems++] = (MeshItem){.vert = pl->nverts, .index = (uint32_t)pl->npolys,
-                                         .run = (uint32_t)pl->nruns - 1, .verts = 2 * k, .poly = true};
+                                         .run = (uint32_t)pl->nruns - 1, .verts = 2 * k, .node = sp->node,
+                                         .poly = true};
     pl->polys[pl->npolys++] = mp;
     pl->nverts += 2 * (size_t)k;
     return true;
@@ -225,7 +226,8 @@ bool mesh_plan_shapes(MeshPlan *pl) {
             !mesh_add_run(pl, s->organs[i].material, nt))
             return false;
         pl->items[pl->nitems++] = (MeshItem){.vert = pl->nverts, .index = (uint32_t)i,
-                                             .run = (uint32_t)pl->nruns - 1, .verts = nv};
+                                             .run = (uint32_t)pl->nruns - 1, .verts = nv,
+                                             .node = s->organs[i].node};
         pl->nverts += nv;
     }
     PolyScratch sc = {0};

@@ -27,7 +27,8 @@ def glb(path):
 
 
 SIZE = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
-FMT = {5126: "f", 5125: "I", 5123: "H"}
+FMT = {5126: "f", 5125: "I", 5123: "H", 5122: "h", 5120: "b"}
+NORM = {5122: 32767.0, 5120: 127.0}  # KHR_mesh_quantization's normalized types
 
 
 def accessor(js, bin_, i):
@@ -35,8 +36,16 @@ def accessor(js, bin_, i):
     v = js["bufferViews"][a["bufferView"]]
     k, f = SIZE[a["type"]], FMT[a["componentType"]]
     off = v.get("byteOffset", 0) + a.get("byteOffset", 0)
-    flat = struct.unpack_from("<%d%s" % (a["count"] * k, f), bin_, off)
-    return [flat[j * k:(j + 1) * k] for j in range(a["count"])] if k > 1 else list(flat)
+    stride = v.get("byteStride", 0)
+    if stride:  # padded elements: read each one where it starts
+        flat = []
+        for j in range(a["count"]):
+            flat.extend(struct.unpack_from("<%d%s" % (k, f), bin_, off + j * stride))
+    else:
+        flat = struct.unpack_from("<%d%s" % (a["count"] * k, f), bin_, off)
+    if a.get("normalized"):
+        flat = [max(x / NORM[a["componentType"]], -1.0) for x in flat]
+    return [tuple(flat[j * k:(j + 1) * k]) for j in range(a["count"])] if k > 1 else list(flat)
 
 
 def leaf_material(js, m):
@@ -117,12 +126,18 @@ check("instance count equals the skeleton's leaves", count == nleaves > 0, "%d i
 check("extension in extensionsUsed, not extensionsRequired",
       "EXT_mesh_gpu_instancing" in inst_js.get("extensionsUsed", []) and
       "EXT_mesh_gpu_instancing" not in inst_js.get("extensionsRequired", []))
+# the plant node's transform (KHR_mesh_quantization: a translation and a uniform scale)
+# applies to its children, the instance sets
+root = inst_js["nodes"][0]
+T0, k0 = root.get("translation", [0, 0, 0]), root.get("scale", [1, 1, 1])[0]
+quantized = "KHR_mesh_quantization" in inst_js.get("extensionsRequired", [])
 moved = []
 for proto, T, R, S in sets:
     for t, r, s in zip(T, R, S):
-        check_unit = abs(math.sqrt(sum(c * c for c in r)) - 1) < 1e-5
+        check_unit = abs(math.sqrt(sum(c * c for c in r)) - 1) < (1e-5 if not quantized else 1e-4)
         if not check_unit: moved = None; break
-        moved += [tuple(t[k] + v[k] for k in range(3)) for v in (rotate(r, (p[0] * s[0], p[1] * s[1], p[2] * s[2])) for p in proto)]
+        moved += [tuple(T0[k] + k0 * (t[k] + v[k]) for k in range(3))
+                  for v in (rotate(r, (p[0] * s[0], p[1] * s[1], p[2] * s[2])) for p in proto)]
     if moved is None: break
 copied = leaf_vertices(copied_js, copied_bin, 0)
 scale = max(max(abs(c) for c in p) for p in copied) if copied else 1
@@ -148,9 +163,10 @@ def farthest(a, b, tol):
     return worst
 
 
-tol = 1e-5 * scale
+# quantized: translations, rotations and scales are 16-bit steps of the plant's half size k0
+tol = 1e-5 * scale + (4 * k0 / 32767 if quantized else 0)
 err = max(farthest(moved, copied, tol), farthest(copied, moved, tol)) if moved and copied else math.inf
-check("instances reproduce the copied leaves' vertices", moved and len(moved) == len(copied) and err <= 1e-5 * scale,
+check("instances reproduce the copied leaves' vertices", moved and len(moved) == len(copied) and err <= tol,
       "%s moved, %d copied, max error %g" % (len(moved) if moved else "no", len(copied), err))
 check("instanced file has no copied leaves", not leaf_vertices(inst_js, inst_bin, 0))
 
@@ -162,7 +178,9 @@ def leaf_bytes(js, mesh):
             n += js["accessors"][p["indices"]]["count"] * (2 if js["accessors"][p["indices"]]["componentType"] == 5123 else 4)
     return n + len(leaf_vertices(js, copied_bin if js is copied_js else inst_bin, mesh)) * 32
 copied_leaf = leaf_bytes(copied_js, 0)
-inst_leaf = 40 * count + sum(len(p) * 32 for p, _, _, _ in sets)
+inst_leaf = sum(len(p) * 32 for p, _, _, _ in sets) + sum(
+    inst_js["bufferViews"][inst_js["accessors"][a]["bufferView"]]["byteLength"]
+    for n in inst_js["nodes"] for a in n.get("extensions", {}).get("EXT_mesh_gpu_instancing", {}).get("attributes", {}).values())
 check("instanced leaves take <= 1/4 of the copied leaves' bytes", inst_leaf * 4 <= copied_leaf,
       "%d vs %d" % (inst_leaf, copied_leaf))
 print("note: files %d (copied) and %d (instanced) bytes, ratio %.3f" % (

@@ -6,6 +6,12 @@
       triangle counts decreasing, leaf area of each geometric level within 25% of
       LOD0's for LOD1 and LOD2 (keep 1/2 and 1/4, enlarged by 1/sqrt(keep)), the
       billboard level's embedded atlas 2K*view x view with an alpha-MASK material.
+  check.py modes FILE LEVELS MODE
+      levels of detail with --leaves MODE (cards, instanced, instanced-cards): NAME_LODk
+      nodes, MSFT_lod ids; cards: each level's leaf material alpha-tested (MASK) and
+      double-sided, textured with the leafcard image; instanced modes: each level's leaves
+      are child nodes with EXT_mesh_gpu_instancing whose instance counts fall by about half
+      a level (Weber-Penn's leaf quality), nothing leafy in the levels' own meshes.
   check.py atlas COLOR NORMAL GRID VIEW
       PNG round trip: size GRID*VIEW square RGBA; alpha 0 at every view's corners (outside
       the framed bounding sphere), > 0 somewhere near every view's centre; normals unit
@@ -36,7 +42,7 @@ def accessor(js, bin_, i):
     v = js["bufferViews"][a["bufferView"]]
     off = v.get("byteOffset", 0) + a.get("byteOffset", 0)
     n = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[a["type"]] * a["count"]
-    fmt = "<%d%s" % (n, "f" if a["componentType"] == 5126 else "I")
+    fmt = "<%d%s" % (n, {5126: "f", 5125: "I", 5123: "H", 5121: "B"}[a["componentType"]])
     return struct.unpack_from(fmt, bin_, off)
 
 
@@ -141,6 +147,53 @@ def check_glb(path, levels, max_last, billboards):
     print(f"ok {path}: {n} levels, triangles {tris}, leaf area {[round(a / area0, 3) if area0 else 0 for _, a in stats]}")
 
 
+def leaf_materials(js, mesh):
+    return [js["materials"][p["material"]] for p in js["meshes"][mesh]["primitives"]
+            if js["materials"][p["material"]]["name"].startswith("leaf")]
+
+
+def card_material_ok(js, mat):
+    if mat.get("alphaMode") != "MASK" or not mat.get("doubleSided"):
+        return False
+    tex = mat["pbrMetallicRoughness"].get("baseColorTexture")
+    return tex is not None and js["images"][js["textures"][tex["index"]]["source"]]["name"] == "leafcard"
+
+
+def check_modes(path, levels, mode):
+    js, _ = read_glb(path)
+    nodes = js["nodes"]
+    n = levels + 1
+    base = nodes[0]["name"][:-len("_LOD0")]
+    if [nd["name"] for nd in nodes[:n]] != [f"{base}_LOD{k}" for k in range(n)]:
+        fail(f"{path}: nodes {[nd['name'] for nd in nodes[:n]]}")
+    if nodes[0]["extensions"]["MSFT_lod"]["ids"] != list(range(1, n)) or js["scenes"][0]["nodes"] != [0]:
+        fail(f"{path}: MSFT_lod ids or scene")
+    counts = []
+    for k in range(n):
+        nd = nodes[k]
+        own = leaf_materials(js, nd["mesh"]) if "mesh" in nd else []
+        if mode == "cards":
+            if not own or not all(card_material_ok(js, m) for m in own):
+                fail(f"{path}: LOD{k}'s leaves are not alpha-tested double-sided cards")
+            continue
+        if own:
+            fail(f"{path}: LOD{k} has leaves in its own mesh with --leaves {mode}")
+        c = 0
+        for ch in nd.get("children", []):
+            inst = nodes[ch]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"]
+            c += js["accessors"][inst["TRANSLATION"]]["count"]
+            if mode == "instanced-cards" and not all(card_material_ok(js, m) for m in leaf_materials(js, nodes[ch]["mesh"])):
+                fail(f"{path}: LOD{k}'s instanced cards are not alpha-tested double-sided")
+        counts.append(c)
+    if mode != "cards":
+        if "EXT_mesh_gpu_instancing" not in js.get("extensionsUsed", []):
+            fail(f"{path}: EXT_mesh_gpu_instancing not in extensionsUsed")
+        for k in range(1, n):
+            if not (0.35 * counts[k - 1] <= counts[k] <= 0.65 * counts[k - 1]):
+                fail(f"{path}: leaf instances per level {counts}: not about half a level")
+    print(f"ok {path}: {n} levels with --leaves {mode}" + (f", instances {counts}" if counts else ""))
+
+
 def check_atlas(color, normal, grid, view):
     for path, is_normal in ((color, False), (normal, True)):
         w, h, ch, rows = read_png(open(path, "rb").read())
@@ -176,6 +229,8 @@ if __name__ == "__main__":
     if a and a[0] == "glb":
         opt = dict(zip(a[3::2], a[4::2]))
         check_glb(a[1], int(a[2]), float(opt.get("--max-last-share", 0)), int(opt.get("--billboards", 0)))
+    elif a and a[0] == "modes":
+        check_modes(a[1], int(a[2]), a[3])
     elif a and a[0] == "atlas":
         check_atlas(a[1], a[2], int(a[3]), int(a[4]))
     else:

@@ -1,0 +1,25 @@
+/* A chain of levels of detail as one .glb (`sylva mesh --lod`): nodes NAME_LOD0 .. NAME_LODn,
+ * each with its level's mesh and instance sets, MSFT_lod on the first; glb.c writes it. */
+#include <stdio.h>
+
+#include "io/glb.h"
+#include "sylva/lod.h"
+
+int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) {
+    GlbPart part[SYL_LOD_MAX + 1];
+    char names[SYL_LOD_MAX + 1][80];
+    float coverage[SYL_LOD_MAX + 1];
+    const char *name = c->level[0].mesh->name[0] ? c->level[0].mesh->name : "plant";
+    for (int k = 0; k < c->n; k++) {
+        snprintf(names[k], sizeof names[k], "%s_LOD%d", name, k);
+        part[k] = (GlbPart){.mesh = c->level[k].mesh, .sets = c->level[k].sets, .nsets = c->level[k].nsets,
+                            .name = names[k]};
+        coverage[k] = c->level[k].coverage;
+    }
+    bool instanced = false;
+    for (int k = 0; k < c->n; k++) instanced |= c->level[k].nsets > 0;
+    GlbScene sc = {.quantize = instanced,.part = part, .nparts = c->n, .scene_name = name, .lods = true, .coverage = coverage,
+                   .atlas = c->atlas, .atlas_w = c->atlas_w, .atlas_h = c->atlas_h,
+                   .atlas_material = c->atlas_material, .extras = c->extras};
+    return glb_write(&sc, path, diag);
+}

@@ -1,0 +1,148 @@
+/* A skinned plant in a .glb (docs/mesh.md#wind): each vertex's joint (its stem's, or its
+ * nearest jointed ancestor's, weight 1) and the shader attributes _BRANCH_LEVEL, _PHASE and
+ * _STIFFNESS; the joint nodes (translations from their parent joint, no rest rotation), the
+ * inverse bind matrices, and the wind animation of their rotations. glb.c places them. */
+#include <stdlib.h>
+
+#include "io/glb.h"
+
+static bool wide_joints(const SylWind *w) { return w->njoints > 256; }
+
+/* The joint of vertex v. */
+static int joint_of(const GlbPart *p, size_t v) {
+    const SylWind *w = p->wind;
+    int32_t j = w->stems[syl_wind_stem_of(p->skel, w, p->mesh->node ? p->mesh->node[v] : -1)].joint;
+    return j >= 0 ? j : 0;
+}
+
+void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
+    const SylMesh *m = p->mesh;
+    const SylWind *w = p->wind;
+    size_t nv = m->nverts, at = bin->len;
+    bool wide = wide_joints(w);
+    for (size_t v = 0; v < nv; v++) { /* JOINTS_0: the joint, then three unused (weight 0) */
+        int j = joint_of(p, v);
+        uint8_t q[8] = {(uint8_t)j, (uint8_t)(j >> 8)};
+        if (wide) io_put(bin, q, 8);
+        else io_put(bin, q, 4);
+    }
+    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
+    const uint8_t one[4] = {255, 0, 0, 0}; /* WEIGHTS_0: normalized bytes, 1 exactly */
+    at = bin->len;
+    for (size_t v = 0; v < nv; v++) io_put(bin, one, 4);
+    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
+    for (int a = 0; a < 3; a++) { /* _BRANCH_LEVEL, _PHASE, _STIFFNESS of the vertex's own stem */
+        at = bin->len;
+        for (size_t v = 0; v < nv; v++) {
+            const SylWindStem *st = &w->stems[syl_wind_stem_of(p->skel, w, m->node ? m->node[v] : -1)];
+            float x = a == 0 ? (float)st->order : a == 1 ? st->phase : st->stiffness;
+            glb_words(bin, &x, 1);
+        }
+        views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
+    }
+}
+
+void glb_skin_animation(const SylWind *w, IoBuf *bin, View *views, int *nviews) {
+    size_t at = bin->len;
+    for (int j = 0; j < w->njoints; j++) { /* inverse bind matrices: the joint's base, undone */
+        const float *b = w->stems[w->joints[j].stem].base;
+        float ibm[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, -b[0], -b[1], -b[2], 1};
+        glb_words(bin, ibm, 16);
+    }
+    views[(*nviews)++] = (View){at, bin->len - at, 0, 0};
+    at = bin->len;
+    for (int k = 0; k < w->nkeys; k++) {
+        float t = k == w->nkeys - 1 ? w->seconds : w->seconds * (float)k / (float)(w->nkeys - 1);
+        glb_words(bin, &t, 1);
+    }
+    views[(*nviews)++] = (View){at, bin->len - at, 0, 0};
+    at = bin->len;
+    glb_words(bin, w->rot, 4 * (size_t)w->njoints * (size_t)w->nkeys);
+    views[(*nviews)++] = (View){at, bin->len - at, 0, 0};
+}
+
+/* The mesh's five vertex accessors (views view..view+4). */
+void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view) {
+    const SylWind *w = p->wind;
+    size_t nv = p->mesh->nverts;
+    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC4\"}", view,
+              wide_joints(w) ? UNSIGNED_SHORT : UNSIGNED_BYTE, nv);
+    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"normalized\":true,\"count\":%zu,\"type\":\"VEC4\"}",
+              view + 1, UNSIGNED_BYTE, nv);
+    for (int a = 0; a < 3; a++)
+        io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"SCALAR\"}", view + 2 + a, FLOAT, nv);
+}
+
+/* From view anim on: the inverse bind matrices, the key times and each joint's rotations. */
+void glb_skin_anim_accessors(IoBuf *js, const SylWind *w, int anim) {
+    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%d,\"type\":\"MAT4\"}", anim, FLOAT, w->njoints);
+    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%d,\"type\":\"SCALAR\",\"min\":[0],\"max\":[%.9g]}",
+              anim + 1, FLOAT, w->nkeys, (double)w->seconds);
+    for (int j = 0; j < w->njoints; j++)
+        io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%d,\"type\":\"VEC4\"}",
+                  anim + 2, (size_t)j * (size_t)w->nkeys * 16, FLOAT, w->nkeys);
+}
+
+/* The vertex attributes' part of a primitive; acc: the first of the five. */
+void glb_skin_attributes(IoBuf *js, int acc) {
+    io_printf(js, ",\"JOINTS_0\":%d,\"WEIGHTS_0\":%d,\"_BRANCH_LEVEL\":%d,\"_PHASE\":%d,\"_STIFFNESS\":%d", acc,
+              acc + 1, acc + 2, acc + 3, acc + 4);
+}
+
+/* The root joints, as children of the skinned node: ,N,.. */
+void glb_skin_roots(IoBuf *js, const SylWind *w, int first_node, bool comma) {
+    for (int j = 0; j < w->njoints; j++)
+        if (w->joints[j].parent < 0) io_printf(js, "%s%d", comma ? "," : "", first_node + j), comma = true;
+}
+
+/* The joint nodes, numbered from first_node: ,{..},{..} */
+void glb_skin_nodes(IoBuf *js, const SylWind *w, int first_node) {
+    int *child = malloc(((size_t)w->njoints + 1) * sizeof *child), *next = malloc(((size_t)w->njoints + 1) * sizeof *next);
+    if (!child || !next) {
+        js->failed = true;
+        free(child), free(next);
+        return;
+    }
+    for (int j = 0; j < w->njoints; j++) child[j] = next[j] = -1;
+    for (int j = w->njoints - 1; j >= 0; j--) /* children in joint order */
+        if (w->joints[j].parent >= 0) next[j] = child[w->joints[j].parent], child[w->joints[j].parent] = j;
+    for (int j = 0; j < w->njoints; j++) {
+        const SylWindJoint *jt = &w->joints[j];
+        const float *b = w->stems[jt->stem].base, *pb = jt->parent >= 0 ? w->stems[w->joints[jt->parent].stem].base : NULL;
+        io_printf(js, ",{\"name\":\"stem%d\",\"translation\":[%.9g,%.9g,%.9g]", jt->stem, (double)(b[0] - (pb ? pb[0] : 0)),
+                  (double)(b[1] - (pb ? pb[1] : 0)), (double)(b[2] - (pb ? pb[2] : 0)));
+        if (child[j] >= 0) {
+            io_printf(js, ",\"children\":[");
+            for (int c = child[j], first = 1; c >= 0; c = next[c], first = 0) io_printf(js, "%s%d", first ? "" : ",", first_node + c);
+            io_put(js, "]", 1);
+        }
+        io_printf(js, ",\"extras\":{\"sylva_wind\":{\"amplitude\":%.6g,\"frequency\":%.6g}}}", (double)jt->amplitude,
+                  (double)jt->frequency);
+    }
+    free(child);
+    free(next);
+}
+
+/* "skins" and "animations"; anim_acc: the inverse bind matrices' accessor. */
+void glb_skin_json(IoBuf *js, const SylWind *w, int first_node, int anim_acc) {
+    io_printf(js, ",\"skins\":[{\"inverseBindMatrices\":%d,\"joints\":[", anim_acc);
+    for (int j = 0; j < w->njoints; j++) io_printf(js, "%s%d", j ? "," : "", first_node + j);
+    io_printf(js, "]}],\"animations\":[{\"name\":\"wind\",\"samplers\":[");
+    for (int j = 0; j < w->njoints; j++)
+        io_printf(js, "%s{\"input\":%d,\"output\":%d,\"interpolation\":\"LINEAR\"}", j ? "," : "", anim_acc + 1, anim_acc + 2 + j);
+    io_printf(js, "],\"channels\":[");
+    for (int j = 0; j < w->njoints; j++)
+        io_printf(js, "%s{\"sampler\":%d,\"target\":{\"node\":%d,\"path\":\"rotation\"}}", j ? "," : "", j, first_node + j);
+    io_printf(js, "]}]");
+}
+
+int syl_write_glb_wind(const SylMesh *m, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
+    if (!m->node) {
+        if (diag) fprintf(diag, "sylva: error: the mesh has no vertex nodes to skin (SylMeshOptions.vertex_nodes)\n");
+        return SYL_EUSAGE;
+    }
+    const char *name = m->name[0] ? m->name : "plant";
+    GlbPart part = {.mesh = m, .name = name, .wind = w, .skel = s};
+    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name};
+    return glb_write(&sc, path, diag);
+}

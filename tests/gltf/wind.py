@@ -1,0 +1,188 @@
+#!/usr/bin/env python3
+"""Independent reader of a skinned .glb from `sylva mesh --wind` (python3 stdlib only).
+
+  wind.py FILE.glb SKELETON.csv LEVELS SECONDS
+
+SKELETON.csv is `sylva skeleton` of the same model. Checks:
+  - one joint per stem of branch order < LEVELS (a stem: a root, or a node whose order
+    differs from its parent's), each joint at its stem's base, and each joint's parent the
+    joint of the stem it grows on (compared as multisets of (base, parent base) pairs);
+  - JOINTS_0 in range and WEIGHTS_0 summing to 1 at every vertex;
+  - the rest pose (node transforms, no animation) times the inverse bind matrices is the
+    identity, and skinning every vertex at rest gives the unskinned mesh;
+  - one looping animation: key times 0 .. SECONDS increasing, rotations unit quaternions,
+    each joint's angle within its amplitude (extras.sylva_wind) and the model's bound,
+    the first and last keys equal;
+  - _BRANCH_LEVEL are the skeleton's orders, _PHASE in [0, 2 pi), _STIFFNESS in (0, 1].
+Prints "ok ..." lines, or "FAIL ..." and exits 1."""
+import csv, json, math, struct, sys
+
+BOUND = 0.1 + math.sqrt(2) * 0.12  # directed + undirected caps (docs/mesh.md#wind)
+SIZES = {5126: ("f", 4), 5125: ("I", 4), 5123: ("H", 2), 5121: ("B", 1)}
+WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
+
+
+def fail(msg):
+    print("FAIL wind: " + msg)
+    sys.exit(1)
+
+
+def read_glb(path):
+    b = open(path, "rb").read()
+    magic, version, length = struct.unpack_from("<III", b, 0)
+    if magic != 0x46546C67 or version != 2 or length != len(b):
+        fail(f"{path}: not a glTF 2.0 binary")
+    jlen, _ = struct.unpack_from("<II", b, 12)
+    js = json.loads(b[20:20 + jlen])
+    at = 20 + jlen
+    blen, _ = struct.unpack_from("<II", b, at)
+    return js, b[at + 8:at + 8 + blen]
+
+
+def accessor(js, bin_, i):
+    a = js["accessors"][i]
+    v = js["bufferViews"][a["bufferView"]]
+    ch, size = SIZES[a["componentType"]]
+    k = WIDTH[a["type"]]
+    off = v.get("byteOffset", 0) + a.get("byteOffset", 0)
+    flat = struct.unpack_from("<%d%s" % (k * a["count"], ch), bin_, off)
+    if a.get("normalized"):
+        flat = [x / (2 ** (8 * size) - 1) for x in flat]  # the unsigned normalized types
+    return [flat[k * n:k * n + k] for n in range(a["count"])]
+
+
+def matmul(a, b):  # column-major 4x4
+    return [sum(a[r + 4 * k] * b[k + 4 * c] for k in range(4)) for c in range(4) for r in range(4)]
+
+
+def trs(node):
+    t = node.get("translation", [0, 0, 0])
+    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+    s = node.get("scale", [1, 1, 1])
+    r = [1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w),
+         2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+         2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y)]
+    m = [r[0] * s[0], r[1] * s[0], r[2] * s[0], 0, r[3] * s[1], r[4] * s[1], r[5] * s[1], 0,
+         r[6] * s[2], r[7] * s[2], r[8] * s[2], 0, t[0], t[1], t[2], 1]
+    return m
+
+
+def stems_of(csv_path, levels):
+    rows = [r for r in csv.DictReader(open(csv_path)) if r["kind"] in ("root", "internode")]
+    node = {int(r["id"]): r for r in rows}
+    stem_of, stems = {}, []
+    for r in rows:  # parents precede children
+        i, p = int(r["id"]), int(r["parent"])
+        par = node.get(p)
+        if par is not None and par["order"] == r["order"]:
+            stem_of[i] = stem_of[p]
+            continue
+        base = tuple(float((par or r)[c]) for c in "xyz")
+        stems.append({"order": int(r["order"]), "base": base, "parent": stem_of.get(p, -1)})
+        stem_of[i] = len(stems) - 1
+    for st in stems:  # the parent's joint: the nearest ancestor stem with a joint
+        q = st["parent"]
+        while q >= 0 and stems[q]["order"] >= levels:
+            q = stems[q]["parent"]
+        st["joint_parent"] = stems[q]["base"] if q >= 0 else None
+    return [s for s in stems if s["order"] < levels], {int(r["order"]) for r in rows}
+
+
+def key(p, scale):
+    return tuple(round(c / scale, 4) for c in p) if p is not None else None
+
+
+def main(path, csv_path, levels, seconds):
+    js, bin_ = read_glb(path)
+    want, orders = stems_of(csv_path, levels)
+    skin = js["skins"][0]
+    joints = skin["joints"]
+    nodes = js["nodes"]
+    if len(joints) != len(want):
+        fail(f"{len(joints)} joints, want {len(want)} (stems of order < {levels})")
+    # world transforms from the node hierarchy, at rest
+    parent = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
+    world = {}
+    def world_of(i):
+        if i not in world:
+            world[i] = matmul(world_of(parent[i]), trs(nodes[i])) if i in parent else trs(nodes[i])
+        return world[i]
+    base = {j: tuple(world_of(j)[12:15]) for j in joints}
+    scale = max(1e-9, max(abs(c) for b in base.values() for c in b))
+    got = sorted((key(base[j], scale), key(base[parent[j]], scale) if parent.get(j) in base else None) for j in joints)
+    exp = sorted((key(s["base"], scale), key(s["joint_parent"], scale)) for s in want)
+    if got != exp:
+        bad = sum(1 for a, b in zip(got, exp) if a != b)
+        fail(f"joint bases or hierarchy differ from the skeleton's stems ({bad} of {len(got)})")
+    print(f"ok {path}: {len(joints)} joints, one per stem of order < {levels}, hierarchy as the skeleton's")
+    ibm = accessor(js, bin_, skin["inverseBindMatrices"])
+    skinned = [i for i, n in enumerate(nodes) if n.get("skin") == 0]
+    if len(skinned) != 1 or parent.get(skinned[0]) is not None:
+        fail("the skinned node should be one root node")
+    rest = []
+    for j, m in zip(joints, ibm):
+        e = matmul(world_of(j), list(m))
+        if any(abs(e[k] - (1.0 if k % 5 == 0 else 0.0)) > 1e-5 * max(1, scale) for k in range(16)):
+            fail(f"joint {j}: rest transform x inverse bind matrix is not the identity")
+        rest.append(e)
+    mesh = js["meshes"][nodes[skinned[0]]["mesh"]]
+    a = mesh["primitives"][0]["attributes"]
+    pos = accessor(js, bin_, a["POSITION"])
+    jw = accessor(js, bin_, a["JOINTS_0"])
+    ww = accessor(js, bin_, a["WEIGHTS_0"])
+    worst = 0.0
+    for p, jj, w in zip(pos, jw, ww):
+        if abs(sum(w) - 1) > 1e-6 or any(x < 0 for x in w):
+            fail(f"weights {w} do not sum to 1")
+        if any(j >= len(joints) for j, x in zip(jj, w) if x > 0):
+            fail(f"joint index {jj} out of range")
+        q = [0.0, 0.0, 0.0]
+        for j, x in zip(jj, w):
+            if x:
+                m = rest[j]
+                for r in range(3):
+                    q[r] += x * (m[r] * p[0] + m[r + 4] * p[1] + m[r + 8] * p[2] + m[r + 12])
+        worst = max(worst, max(abs(q[r] - p[r]) for r in range(3)))
+    if worst > 1e-5 * scale:
+        fail(f"the skinned rest pose moves a vertex by {worst:.3g}")
+    print(f"ok {path}: {len(pos)} vertices, weights sum to 1, rest pose = the unskinned mesh")
+    for name, lo, hi, integral in (("_BRANCH_LEVEL", 0, 65535, True), ("_PHASE", 0, 2 * math.pi, False),
+                                   ("_STIFFNESS", 1e-9, 1, False)):
+        vals = {v[0] for v in accessor(js, bin_, a[name])}
+        if any(not (lo <= v <= hi) for v in vals) or (integral and not vals <= {float(o) for o in orders}):
+            fail(f"{name} values out of range: {sorted(vals)[:5]}")
+    print(f"ok {path}: _BRANCH_LEVEL, _PHASE, _STIFFNESS in range")
+    anim = js["animations"]
+    if len(anim) != 1 or len(anim[0]["channels"]) != len(joints):
+        fail("one animation with a channel per joint expected")
+    amp_max = 0.0
+    for ch in anim[0]["channels"]:
+        smp = anim[0]["samplers"][ch["sampler"]]
+        node = ch["target"]["node"]
+        if ch["target"]["path"] != "rotation" or node not in joints:
+            fail(f"channel {ch}")
+        times = [t[0] for t in accessor(js, bin_, smp["input"])]
+        if times[0] != 0 or abs(times[-1] - seconds) > 1e-6 or any(b <= a for a, b in zip(times, times[1:])):
+            fail(f"key times {times[:3]} .. {times[-1]}")
+        rot = accessor(js, bin_, smp["output"])
+        amp = nodes[node]["extras"]["sylva_wind"]["amplitude"]
+        if amp > BOUND + 1e-6:
+            fail(f"joint {node}: amplitude {amp} above the model's bound {BOUND:.4f}")
+        if rot[0] != rot[-1]:
+            fail(f"joint {node}: the first and last keys differ: the loop does not close")
+        for q in rot:
+            n = math.sqrt(sum(c * c for c in q))
+            angle = 2 * math.acos(min(1.0, abs(q[3]) / n))
+            if abs(n - 1) > 1e-5 or angle > amp + 1e-5:
+                fail(f"joint {node}: rotation {q} (angle {angle:.4f}) beyond its amplitude {amp:.4f}")
+            amp_max = max(amp_max, angle)
+    if amp_max <= 0:
+        fail("nothing moves")
+    print(f"ok {path}: {len(times)} keys over {seconds} s, loop closed, largest angle {amp_max:.3f} rad")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 5:
+        print(__doc__)
+        sys.exit(2)
+    main(sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4]))
