@@ -73,6 +73,10 @@ int syl_mesh_optimize(SylMesh *m) {
 }
 
 int syl_mesh_simplify(SylMesh *m, double ratio, float max_error, float *error) {
+    return syl_mesh_simplify_kind(m, -1, ratio, max_error, error);
+}
+
+int syl_mesh_simplify_kind(SylMesh *m, int kind, double ratio, float max_error, float *error) {
     float worst = 0;
     if (error) *error = 0;
     if (!m || !m->nidx || ratio >= 1) return syl_mesh_optimize(m);
@@ -82,7 +86,8 @@ int syl_mesh_simplify(SylMesh *m, double ratio, float max_error, float *error) {
     int ng = 0;
     for (int g = 0; g < m->ngroups; g++) {
         const SylMeshGroup *gr = &m->groups[g];
-        size_t target = (size_t)((double)gr->count / 3 * ratio) * 3, n = gr->count;
+        bool chosen = kind < 0 || m->materials[gr->material].kind == kind;
+        size_t target = chosen ? (size_t)((double)gr->count / 3 * ratio) * 3 : gr->count, n = gr->count;
         float e = 0;
         if (target < n) {
             n = meshopt_simplify(out + at, m->idx + gr->first, gr->count, m->pos, m->nverts, 3 * sizeof(float), target,
