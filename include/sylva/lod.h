@@ -16,6 +16,7 @@ enum { SYL_LOD_MAX = 8 };
 
 typedef struct SylLodLevel {
     SylMesh *mesh;      /* level 0: the caller's mesh (not freed by syl_lod_free) */
+    int level;          /* k of LODk */
     int max_order;      /* stems of this branch order or less are kept */
     float min_radius;   /* and only those at least this thick (model units) */
     float leaf_keep;    /* share of leaves kept, 0..1 */

@@ -77,6 +77,9 @@ int syl_mesh_optimize(SylMesh *m);
  * to the mesh's size; then syl_mesh_optimize. *error (may be NULL): the error reached, in
  * model units. */
 int syl_mesh_simplify(SylMesh *m, double ratio, float max_error, float *error);
+/* The same for the groups whose material is of that kind (SYL_MATERIAL_*; -1: every group),
+ * the others kept as they are. */
+int syl_mesh_simplify_kind(SylMesh *m, int kind, double ratio, float max_error, float *error);
 
 /* Copies of one prototype mesh placed by translation, rotation (unit quaternion x, y, z, w)
  * and scale, as glTF's EXT_mesh_gpu_instancing wants them: a vertex p of the prototype is at

@@ -50,6 +50,10 @@ typedef struct SylRenderOptions {
      * toward), of the first sample that hit the mesh; zero where none did. */
     uint8_t *normal;
     bool unlit;           /* the surfaces' own colour (albedo, textures included), no light */
+    /* Samples beyond the first only for blocks of 4 x 4 pixels whose first samples disagree
+     * (some hit the mesh, some not): edges are smoothed, the inside and the sky cost one ray
+     * a pixel. For impostor atlases, where most of each view is one or the other. */
+    bool adaptive;
 } SylRenderOptions;
 
 /* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and

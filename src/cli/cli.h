@@ -76,6 +76,8 @@ bool cli_picture_size(const char *arg, int *w, int *h);    /* --size WxH */
 char *cli_output_name(const ModelArgs *m, const char *dir, const char *ext);
 
 double cli_now(void);
+/* Processor time of the whole process (every thread), for figures a loaded machine skews. */
+double cli_cpu_now(void);
 double cli_peak_mb(void);
 
 int cmd_derive(int argc, char **argv);

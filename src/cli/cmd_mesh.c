@@ -156,15 +156,15 @@ int cmd_mesh(int argc, char **argv) {
     SylLodChain lods = {0};
     SylImpostor imp = {0};
     char extras[1024];
-    double t2 = cli_now(), t_imp = 0;
+    double t2 = cli_now(), t_imp = 0, c2 = cli_cpu_now(), c_imp = 0;
     if (levels) {
         bool last_billboard = a.impostor || a.billboards;
         int geometric = (a.lod ? a.lod : 1) - (last_billboard ? 1 : 0);
         status = syl_lod_build(sk, &mo, mesh, geometric, &lods);
         if (status) fprintf(stderr, "sylva: error: cannot build the levels of detail (out of memory)\n");
-        double ti = cli_now();
+        double ti = cli_now(), ci = cli_cpu_now();
         if (!status && last_billboard) status = add_impostor(&lods, &a, d.threads, output, &imp, extras, sizeof extras);
-        t_imp = cli_now() - ti;
+        t_imp = cli_now() - ti, c_imp = cli_cpu_now() - ci;
     } else {
         status = syl_mesh_optimize(mesh);
     }
@@ -180,7 +180,7 @@ int cmd_mesh(int argc, char **argv) {
         if (status) fprintf(stderr, "sylva: error: cannot build the wind's joints (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad model");
     }
     t_wind = cli_now() - t_wind;
-    double t3 = cli_now();
+    double t3 = cli_now(), c3 = cli_cpu_now();
     SylInstances *sets = NULL;
     int nsets = 0;
     size_t instances = 0;
@@ -211,7 +211,8 @@ int cmd_mesh(int argc, char **argv) {
                 pl.mesh_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
         fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp - t_wind);
-        if (imp.billboards) fprintf(stderr, "impostor time: %.6f s\n", t_imp);
+        if (levels) fprintf(stderr, "lod cpu time: %.6f s\n", c3 - c2 - c_imp);
+        if (imp.billboards) fprintf(stderr, "impostor time: %.6f s\nimpostor cpu time: %.6f s\n", t_imp, c_imp);
         if (a.wind > 0) fprintf(stderr, "wind joints: %d\nwind keys: %d\nwind time: %.6f s\n", wind.njoints, wind.nkeys, t_wind);
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
             LodSilhouette sil;

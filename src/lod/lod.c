@@ -8,13 +8,26 @@
 #include "sylva/lod.h"
 #include "util/rng.h"
 
-/* Each level drops one more branch order and thicker twigs; leaves halve, growing by
- * 1/sqrt(share) up to 2x (beyond a quarter of them, the foliage thins); triangles go to
- * these shares of LOD0's. */
+/* Each level drops one more branch order (never the trunk's children) and thicker twigs;
+ * leaves halve down to a quarter, the survivors growing by 1/sqrt(share) (at most 2x, as
+ * Weber-Penn's leaf quality does), so the foliage keeps its area; each leaf is drawn with
+ * fewer triangles, as large in area; the bark is simplified toward these shares of LOD0's
+ * triangles, less the leaves'. */
 static const float radius_share[SYL_LOD_MAX + 1] = {0, 0.02f, 0.05f, 0.1f, 0.16f, 0.22f, 0.3f, 0.4f, 0.5f};
 static const double tri_share[SYL_LOD_MAX + 1] = {1, 0.45, 0.15, 0.045, 0.02, 0.01, 0.005, 0.0025, 0.00125};
 /* Unity's default switch points, then halving; below the last level's, the plant is culled. */
 static const float switch_at[SYL_LOD_MAX + 1] = {0.6f, 0.3f, 0.12f, 0.05f, 0.025f, 0.0125f, 0.006f, 0.003f, 0.0015f};
+
+enum { MIN_LEAF_SHARE_LOG2 = 2, BLADE_SIDE_TRIS = 8 };
+#define BLADE_AREA 1.225f  /* the mesher's blade, per length x half width (shapes.c) */
+#define BLADE_WIDTH 0.22f  /* its half width per length */
+
+/* Area of the mesher's oval of n triangles a side (n + 2 points of an ellipse), per length
+ * x full width. */
+static float oval_area(int n) {
+    int m = n + 2;
+    return 0.125f * (float)m * sinf(6.28318530718f / (float)m);
+}
 
 static bool thinned_kind(int kind) {
     return kind == SYL_KIND_LEAF || kind == SYL_KIND_NEEDLE || kind == SYL_KIND_FLOWER;
@@ -36,6 +49,15 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
     *t = *s;
     t->budget = NULL;
     t->charged = 0;
+    /* Coarser leaves of the same area: an oval of fewer triangles in place of the blade or
+     * of LOD0's oval; shape: the linear factor that keeps each leaf's area. */
+    bool oval0 = s->leaf_tris >= 1 && s->leaf_tris <= 64 && s->leaf_width > 0 && isfinite(s->leaf_width);
+    int n0 = oval0 ? s->leaf_tris : BLADE_SIDE_TRIS, nk = n0 >> lv->level;
+    if (nk < 1) nk = 1;
+    float width = oval0 ? s->leaf_width : 2 * BLADE_WIDTH;
+    float area0 = oval0 ? oval_area(n0) * width : BLADE_AREA * BLADE_WIDTH;
+    float shape = nk < n0 ? sqrtf(area0 / (oval_area(nk) * width)) : 1;
+    if (nk < n0) t->leaf_tris = nk, t->leaf_width = width;
     t->nodes = malloc((s->nnodes + 1) * sizeof *t->nodes);
     t->organs = malloc((s->norgans + 1) * sizeof *t->organs);
     t->polys = malloc((s->npolys + 1) * sizeof *t->polys);
@@ -63,7 +85,7 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         SylOrgan o = s->organs[i];
         if (thinned_kind(o.kind)) {
             if (keep_draw(1, i) >= lv->leaf_keep) continue;
-            o.size *= lv->leaf_scale;
+            o.size *= lv->leaf_scale * (o.kind == SYL_KIND_LEAF ? shape : 1);
         }
         o.node = o.node >= 0 && (size_t)o.node < s->nnodes ? map[o.node] : -1;
         t->organs[no++] = o;
@@ -96,11 +118,21 @@ static void free_copy(SylSkeleton *t) {
     free(t->nodes), free(t->organs), free(t->polys), free(t->poly_verts);
 }
 
-/* What level k keeps, from the skeleton's deepest order and thickest stem. */
-static void plan_level(SylLodLevel *lv, int k, int levels, int top_order, float rmax) {
-    lv->max_order = top_order - k > 0 ? top_order - k : 0;
+static int by_radius_down(const void *a, const void *b) {
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x < y) - (x > y);
+}
+
+/* What level k keeps, from the skeleton's deepest order and thickest stem; down holds the
+ * stems' radii, thickest first: a level never cuts more twigs than its triangle share asks
+ * (a plant of countless thin twigs would lose its crown). */
+static void plan_level(SylLodLevel *lv, int k, int levels, int top_order, float rmax, const float *down, size_t n) {
+    lv->level = k;
+    lv->max_order = top_order - k > 1 ? top_order - k : top_order < 1 ? top_order : 1;
     lv->min_radius = radius_share[k] * rmax;
-    lv->leaf_keep = powf(0.5f, (float)k);
+    size_t keep = (size_t)(0.5 * tri_share[k] * (double)n);
+    if (keep < n && down[keep] < lv->min_radius) lv->min_radius = down[keep];
+    lv->leaf_keep = powf(0.5f, (float)(k < MIN_LEAF_SHARE_LOG2 ? k : MIN_LEAF_SHARE_LOG2));
     lv->leaf_scale = fminf(2.0f, 1 / sqrtf(lv->leaf_keep));
     lv->coverage = syl_lod_coverage(k, levels);
 }
@@ -118,6 +150,12 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (s->nodes[i].order > top) top = s->nodes[i].order;
         if (radius[i] > rmax) rmax = radius[i];
     }
+    float *down = malloc((s->nnodes + 1) * sizeof *down);
+    size_t nstems = 0;
+    for (size_t i = 0; down && i < s->nnodes; i++)
+        if (s->nodes[i].kind == SYL_KIND_INTERNODE) down[nstems++] = radius[i];
+    if (!down) status = SYL_ELIMIT;
+    else qsort(down, nstems, sizeof *down, by_radius_down);
     if (!status) status = syl_mesh_optimize(lod0);
     out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1,
                                   .coverage = syl_lod_coverage(0, levels)};
@@ -126,7 +164,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
     int sides = mo->sides > 0 ? mo->sides : 8;
     for (int k = 1; k <= levels && !status; k++) {
         SylLodLevel *lv = &out->level[k];
-        plan_level(lv, k, levels, top, rmax);
+        plan_level(lv, k, levels, top, rmax, down, nstems);
         SylSkeleton t;
         status = truncate_skeleton(s, radius, lv, &t);
         SylMeshOptions o = *mo;
@@ -140,13 +178,19 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
             status = syl_leaf_instances(&t, &o, &lv->sets, &lv->nsets);
         free_copy(&t);
         if (status) break;
-        size_t tris = lv->mesh->nidx / 3;
-        double want = (double)tris0 * tri_share[k];
-        double ratio = tris ? want / (double)tris : 1;
-        status = syl_mesh_simplify(lv->mesh, ratio, 0.004f * powf(3, (float)(k - 1)), &lv->error);
+        size_t bark = 0;
+        for (int g = 0; g < lv->mesh->ngroups; g++)
+            if (lv->mesh->materials[lv->mesh->groups[g].material].kind == SYL_MATERIAL_BARK)
+                bark += lv->mesh->groups[g].count / 3;
+        /* the leaves are kept whole (thinning made them few): the bark takes the budget's rest,
+         * a tenth of it at least */
+        double want = (double)tris0 * tri_share[k] - (double)(lv->mesh->nidx / 3 - bark);
+        double ratio = bark ? fmax(want, 0.1 * (double)bark) / (double)bark : 1;
+        status = syl_mesh_simplify_kind(lv->mesh, SYL_MATERIAL_BARK, ratio, 0.004f * powf(3, (float)(k - 1)),
+                                        &lv->error);
         snprintf(lv->mesh->name, sizeof lv->mesh->name, "%s", lod0->name);
     }
-    free(radius);
+    free(radius), free(down);
     if (status) syl_lod_free(out);
     return status;
 }

@@ -26,7 +26,7 @@ static int bake_views(const SylMesh *m, const SylImpostorOptions *o, int n, cons
     /* Albedo, for the engine to light with the normals; 4 samples for smooth alpha edges. */
     SylRenderOptions ro = {.width = size, .height = size, .samples = 4, .ao_samples = -1, .shadows = -1, .unlit = true,
                            .ground = -1,
-                           .threads = o->threads, .diag = o->diag, .alpha = alpha, .normal = *nd};
+                           .threads = o->threads, .diag = o->diag, .alpha = alpha, .normal = *nd, .adaptive = true};
     if (!status) status = syl_render_views(m, &ro, n, dirs, rgb);
     for (size_t i = 0; !status && i < px; i++) {
         bool seen = alpha[i] > 0; /* outside the plant: black, so filtering bleeds no sky */

@@ -75,7 +75,7 @@ static float fit_distance(const FitPoints *f, float cx, float cy, float tanx, fl
     return fmaxf(need, fmaxf(-zmin + 0.05f * size, 0.1f * size));
 }
 
-static void mesh_bounds(const SylMesh *m, vec3 lo, vec3 hi) {
+void render_mesh_bounds(const SylMesh *m, float lo[3], float hi[3]) {
     glm_vec3_copy((vec3){INFINITY, INFINITY, INFINITY}, lo);
     glm_vec3_copy((vec3){-INFINITY, -INFINITY, -INFINITY}, hi);
     for (size_t i = 0; m && i < m->nverts; i++)
@@ -92,11 +92,18 @@ static void mesh_bounds(const SylMesh *m, vec3 lo, vec3 hi) {
 }
 
 void render_camera_toward(const SylMesh *m, const float toward[3], int width, int height, RenderCamera *cam) {
+    vec3 lo, hi;
+    render_mesh_bounds(m, lo, hi);
+    render_camera_toward_box(lo, hi, toward, width, height, cam);
+}
+
+void render_camera_toward_box(const float box_lo[3], const float box_hi[3], const float toward[3], int width,
+                              int height, RenderCamera *cam) {
     memset(cam, 0, sizeof *cam);
     cam->width = width;
     cam->height = height;
-    vec3 lo, hi, c, back, fwd, right, up, upref = {0, 1, 0};
-    mesh_bounds(m, lo, hi);
+    vec3 lo = {box_lo[0], box_lo[1], box_lo[2]}, hi = {box_hi[0], box_hi[1], box_hi[2]};
+    vec3 c, back, fwd, right, up, upref = {0, 1, 0};
     glm_vec3_copy(lo, cam->lo);
     glm_vec3_copy(hi, cam->hi);
     glm_vec3_center(lo, hi, c);
@@ -123,7 +130,7 @@ void render_camera(const SylMesh *m, SylView view, int width, int height, Render
     cam->width = width;
     cam->height = height;
     vec3 lo, hi;
-    mesh_bounds(m, lo, hi);
+    render_mesh_bounds(m, lo, hi);
     glm_vec3_copy(lo, cam->lo);
     glm_vec3_copy(hi, cam->hi);
     float size = fmaxf(hi[0] - lo[0], fmaxf(hi[1] - lo[1], hi[2] - lo[2]));

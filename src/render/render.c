@@ -197,7 +197,11 @@ static void set_sampling(Scene *s, const SylRenderOptions *opt) {
     int ao = opt->ao_samples < 0 ? 0 : opt->ao_samples == 0 ? 8 : opt->ao_samples > MAX_AO ? MAX_AO : opt->ao_samples;
     s->ao = ao ? (ao + s->samples - 1) / s->samples : 0;
     s->shadows = opt->shadows;
-    if (opt->toward) render_camera_toward(opt->frame ? opt->frame : s->m, opt->toward, s->width, s->height, &s->cam);
+    if (opt->toward) {
+        if (!s->boxed) render_mesh_bounds(opt->frame ? opt->frame : s->m, s->box[0], s->box[1]);
+        s->boxed = true;
+        render_camera_toward_box(s->box[0], s->box[1], opt->toward, s->width, s->height, &s->cam);
+    }
     else render_camera(opt->frame ? opt->frame : s->m, opt->view, s->width, s->height, &s->cam);
 }
 
@@ -298,6 +302,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
     s->height = height;
     s->ground = opt->ground >= 0;
     s->unlit = opt->unlit;
+    s->adaptive = opt->adaptive;
     int threads = opt->threads > 0 ? opt->threads : cpu_count();
     if (threads > 256) threads = 256;
     size_t px = (size_t)width * (size_t)height;

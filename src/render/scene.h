@@ -32,7 +32,9 @@ typedef struct Scene {
     uint8_t *out;
     uint8_t *alpha;             /* NULL, or coverage per pixel */
     uint8_t *normal;            /* NULL, or normal and depth per pixel */
-    bool ground, unlit;
+    bool ground, unlit, adaptive;
+    bool boxed;                 /* box: the framed mesh's bounds, measured for the first view */
+    float box[2][3];
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
     /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */

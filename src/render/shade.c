@@ -140,8 +140,9 @@ static inline void set_ray16(struct RTCRay16 *r, int l, const float o[3], const 
     r->tfar[l] = tfar, r->mask[l] = 0xffffffffu, r->id[l] = (unsigned)l, r->flags[l] = 0;
 }
 
-/* Render the pixels of the block at (x0, y0) into acc (linear light, summed over samples). */
-static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int hits[LANES], uint8_t nd[LANES][4]) {
+/* Render the pixels of the block at (x0, y0) into acc (linear light, summed over samples);
+ * returns the samples taken (fewer than s->samples only when adaptive). */
+static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int hits[LANES], uint8_t nd[LANES][4]) {
     const RenderCamera *cam = &s->cam;
     _Alignas(64) int valid[LANES], lit[LANES], open_valid[LANES];
     _Alignas(64) struct RTCRayHit16 rh;
@@ -157,7 +158,13 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], in
     memset(acc, 0, LANES * sizeof *acc);
     memset(hits, 0, LANES * sizeof *hits);
     memset(nd, 0, LANES * sizeof *nd);
-    for (int k = 0; k < s->samples; k++) {
+    int k = 0;
+    for (; k < s->samples; k++) {
+        if (k == 1 && s->adaptive) { /* one sample each so far: do they all agree? */
+            int seen = 0, n = 0;
+            for (int l = 0; l < LANES; l++) seen += valid[l] && hits[l], n += valid[l] != 0;
+            if (seen == 0 || seen == n) break;
+        }
         /* Camera rays, and the ground by hand (a plane: tfar stops Embree there). */
         for (int l = 0; l < LANES; l++) {
             int x = x0 + l % BLOCK, y = y0 + l / BLOCK;
@@ -258,6 +265,7 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], in
             }
         }
     }
+    return k;
 }
 
 void render_tile(const Scene *s, int tile) {
@@ -265,16 +273,16 @@ void render_tile(const Scene *s, int tile) {
     float acc[LANES][3];
     int hits[LANES];
     uint8_t nd[LANES][4];
-    float inv = 1.0f / (float)s->samples;
     for (int by = y0; by < y0 + TILE && by < s->height; by += BLOCK)
         for (int bx = x0; bx < x0 + TILE && bx < s->width; bx += BLOCK) {
-            render_block(s, bx, by, acc, hits, nd);
+            int taken = render_block(s, bx, by, acc, hits, nd);
+            float inv = 1.0f / (float)taken;
             for (int l = 0; l < LANES; l++) {
                 int x = bx + l % BLOCK, y = by + l / BLOCK;
                 if (x >= s->width || y >= s->height) continue;
                 if (s->normal) memcpy(s->normal + 4 * ((size_t)y * (size_t)s->width + (size_t)x), nd[l], 4);
                 if (s->alpha) /* coverage: the share of the pixel's samples that saw the plant */
-                    s->alpha[(size_t)y * (size_t)s->width + (size_t)x] = (uint8_t)((255 * hits[l] + s->samples / 2) / s->samples);
+                    s->alpha[(size_t)y * (size_t)s->width + (size_t)x] = (uint8_t)((255 * hits[l] + taken / 2) / taken);
                 uint8_t *o = s->out + 3 * ((size_t)y * (size_t)s->width + (size_t)x);
                 for (int c = 0; c < 3; c++) {
                     /* unlit: the colour of what was hit, not mixed with the background */

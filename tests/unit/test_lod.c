@@ -95,9 +95,11 @@ static void chain_levels(void **state) {
         const SylLodLevel *lv = &c.level[k];
         assert_true(lv->mesh->nidx < c.level[k - 1].mesh->nidx);
         assert_true(lv->coverage < c.level[k - 1].coverage && lv->coverage > 0);
-        assert_true(lv->max_order < c.level[k - 1].max_order || lv->max_order == 0);
-        assert_true(fabsf(lv->leaf_scale - fminf(2, 1 / sqrtf(lv->leaf_keep))) < 1e-6f);
-        assert_true(lv->leaf_keep < c.level[k - 1].leaf_keep);
+        /* one order fewer a level, the trunk's children kept; leaves halved down to a
+         * quarter, enlarged by 1 / sqrt(share) so their area stays */
+        assert_true(lv->max_order < c.level[k - 1].max_order || lv->max_order <= 1);
+        assert_true(fabsf(lv->leaf_scale - 1 / sqrtf(lv->leaf_keep)) < 1e-6f && lv->leaf_scale <= 2);
+        assert_true(lv->leaf_keep < c.level[k - 1].leaf_keep || lv->leaf_keep == 0.25f);
     }
     syl_lod_free(&c);
     assert_int_equal(syl_lod_build(s, &mo, m, SYL_LOD_MAX + 1, &c), SYL_EUSAGE);

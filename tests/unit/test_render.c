@@ -140,6 +140,38 @@ static void box_covers_a_plausible_share(void **state) {
     syl_mesh_free(m);
 }
 
+/* Coverage with adaptive sampling: a box seen along +z from 100 radii away covers its face,
+ * (2 / (2 sqrt 3))^2 = 1/3 of the frame (times (d / (d - 1))^2 for the face's nearness);
+ * a tree's total coverage matches the full sampling's, and its edges stay soft. */
+static double coverage(const SylMesh *m, bool adaptive, int *partial) {
+    uint8_t alpha[W * H];
+    uint8_t *rgb = render(m, (SylRenderOptions){.toward = (const float[3]){0, 0, 1}, .ground = -1, .unlit = true,
+                                                 .ao_samples = -1, .shadows = -1, .alpha = alpha, .adaptive = adaptive});
+    double sum = 0;
+    *partial = 0;
+    for (int i = 0; i < W * H; i++) sum += alpha[i] / 255.0, *partial += alpha[i] > 0 && alpha[i] < 255;
+    free(rgb);
+    return sum / (W * H);
+}
+
+static void adaptive_sampling_keeps_coverage(void **state) {
+    (void)state;
+    SylMesh *box = red_box((float[3]){-1, -1, -1}, (float[3]){1, 1, 1});
+    double d = 100 * sqrt(3.0), want = (d / (d - 1)) * (d / (d - 1)) / 3;
+    int partial;
+    for (int a = 0; a < 2; a++) {
+        double got = coverage(box, a, &partial);
+        if (fabs(got - want) > 0.01 * want) fail_msg("adaptive %d: the box covers %.4f, want %.4f", a, got, want);
+    }
+    syl_mesh_free(box);
+    SylMesh *tree = synth_tree(3000);
+    int soft_full, soft_adaptive;
+    double full = coverage(tree, false, &soft_full), adaptive = coverage(tree, true, &soft_adaptive);
+    if (fabs(adaptive - full) > 0.03 * full) fail_msg("tree coverage %.4f adaptive, %.4f full", adaptive, full);
+    if (soft_adaptive < soft_full / 2) fail_msg("edges: %d partial pixels adaptive, %d full", soft_adaptive, soft_full);
+    syl_mesh_free(tree);
+}
+
 static void tree_covers_a_plausible_share(void **state) {
     (void)state;
     SylMesh *m = synth_tree(6000);
@@ -489,6 +521,7 @@ int main(void) {
         cmocka_unit_test(grass_is_green_and_varied),
         cmocka_unit_test(noise_is_bounded_and_periodic),
         cmocka_unit_test(textures_written_for_exporters),
+        cmocka_unit_test(adaptive_sampling_keeps_coverage),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
