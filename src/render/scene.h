@@ -33,6 +33,18 @@ typedef struct Scene {
     uint8_t *alpha;             /* NULL, or coverage per pixel */
     uint8_t *normal;            /* NULL, or normal and depth per pixel */
     bool ground, unlit;
+    /* The picture may be a window of a bigger one (syl_render_instances' tile): pixel (x, y)
+     * of out is (x + ox, y + oy) of a full_w x full_h picture. */
+    int ox, oy, full_w, full_h;
+    /* Instances (instances.c): Embree instance i draws proto[inst_proto[i]], turned about y
+     * by inst_cs[i] (cos, sin) and scaled by inst_scale[i]; each proto has its materials. */
+    const SylMesh **proto;
+    uint8_t **proto_tri_mat;
+    float (*proto_lin)[256][3];
+    uint8_t (*proto_kind)[256];
+    const uint32_t *inst_proto;
+    const float (*inst_cs)[2];
+    const float *inst_scale;
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
     /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */
@@ -40,6 +52,12 @@ typedef struct Scene {
     void *user;
     pthread_mutex_t progress_lock;
 } Scene;
+
+/* render.c's pieces that instances.c shares. */
+void render_set_lighting(Scene *s); /* materials of s->m, scale from s->cam's bounds, the sun */
+void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt);
+int render_cpu_count(void);
+void render_embree_error(void *user, enum RTCError code, const char *msg);
 
 /* Shade tile number `tile` (TILE x TILE pixels, row by row) into s->out. */
 void render_tile(const Scene *s, int tile);
