@@ -30,7 +30,7 @@ typedef enum CliOptionId {
     /* sylva animate */
     CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
     /* sylva ecosystem */
-    CLI_OPT_SNAPSHOTS, CLI_OPT_TILES,
+    CLI_OPT_SNAPSHOTS, CLI_OPT_TILES, CLI_OPT_ECO_VIEW, CLI_OPT_GLB,
     /* sylva mesh: levels of detail */
     CLI_OPT_LOD, CLI_OPT_IMPOSTOR, CLI_OPT_IMPOSTOR_GRID, CLI_OPT_IMPOSTOR_VIEW, CLI_OPT_BILLBOARDS,
     CLI_OPT_COUNT
@@ -57,6 +57,8 @@ typedef struct CliArgs {
     bool heights_set;
     int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
     int snapshots[64], nsnapshots, tiles_x, tiles_z; /* sylva ecosystem: --snapshots, --tiles */
+    int eco_view;            /* sylva ecosystem --view: SylForestView */
+    bool glb;                /* sylva ecosystem --glb */
     int lod, billboards;     /* sylva mesh: --lod, --billboards */
     int impostor_grid, impostor_view; /* --impostor-grid, --impostor-view */
     bool impostor;           /* --impostor */
