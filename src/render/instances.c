@@ -267,6 +267,7 @@ static void lighting(Scene *s, const SylMesh *ground, const SylRenderInstance *i
     s->eps = 2e-3f + 4e-6f * reach; /* twigs are centimetres thick whatever the terrain's size */
     s->ao_dist = 4;                  /* metres: the occlusion of neighbours, not of hills */
     s->pixel_angle = 2 * s->cam.tany / (float)s->full_h;
+    s->shadow_far = 4 * s->size + 1000;
 }
 
 int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,

@@ -223,6 +223,7 @@ void render_set_lighting(Scene *s) {
     s->ground_c[1] = 0.5f * (lo[2] + hi[2]);
     s->grass_tile = 0.35f * s->size;
     s->pixel_angle = 2 * s->cam.tany / (float)s->height;
+    s->shadow_far = INFINITY;
     float sun[3] = {0.4f, 1.0f, 0.3f};
     normalize3(sun);
     memcpy(s->sun, sun, sizeof sun);

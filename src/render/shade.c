@@ -229,10 +229,11 @@ static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], in
                 for (int c = 0; c < 3; c++) o[c] = f->p[c] - f->n[c] * s->eps;
             } else continue;
             lit[l] = -1;
-            set_ray16(&sr, l, o, s->sun, INFINITY);
+            set_ray16(&sr, l, o, s->sun, s->shadow_far);
         }
         if (s->shadows >= 0) {
-            rtcOccluded16(lit, s->scene, &coherent, &sr);
+            /* coherent packets through instances hang Embree 3.13: those go as incoherent rays */
+            rtcOccluded16(lit, s->scene, s->proto ? &incoherent : &coherent, &sr);
             for (int l = 0; l < LANES; l++)
                 if (lit[l] && sr.tfar[l] < 0) direct[l] = 0;
         }
