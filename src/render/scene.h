@@ -25,8 +25,8 @@ typedef struct Scene {
     float grass_lin[3];
     float size, eps, ao_dist, fog_dist, ground_y, ground_half, ground_c[2], grass_tile;
     float pixel_angle;
-    float shadow_far;           /* a sun ray's length: finite with instances (Embree hangs on
-                                   an infinite ray through an instance's transform) */
+    float shadow_far;           /* a sun ray's length: INFINITY, or with instances the scene's
+                                   reach (a finite ray through each instance's transform) */
     float sun[3];
     int width, height, samples, ao, shadows;
     float sub[MAX_SAMPLES][2];  /* sub-pixel sample positions */
