@@ -107,6 +107,11 @@ int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 b
 /* m and n sets of instances in one .glb: each set a node with EXT_mesh_gpu_instancing (in
  * extensionsUsed only: a viewer without it shows the prototype once, at the origin). */
 int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag);
+/* A ground mesh (may be NULL) and n sets of instances (each a node with
+ * EXT_mesh_gpu_instancing, extras[i] — JSON object text, or NULL — in its node's extras);
+ * sets with the same proto pointer share one mesh. For a forest split into cells. */
+int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
+                         const char *path, FILE *diag);
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
 
 enum { SYL_TEXTURE_SIZE = 512 };

@@ -66,6 +66,40 @@ int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
 int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb);
 /* Render and write a PNG (via a temporary file). */
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
+/* Many copies of a few meshes (a forest: sylva ecosystem, docs/ecosystem.md#pictures) as
+ * Embree instances over a ground mesh (the terrain: drawn itself, no ground plane). A copy
+ * of proto p is at t + Ry(yaw) (scale x), x a vertex of the proto's mesh, or of its coarse
+ * mesh when the copy spans fewer than SYL_RENDER_COARSE_PX rows of the picture (level of
+ * detail by distance). A copy whose bounding sphere, grown by its height for the shadow it
+ * casts, is outside the view is left out (frustum culling). */
+enum { SYL_RENDER_COARSE_PX = 48 };
+typedef struct SylRenderProto {
+    const SylMesh *mesh, *coarse; /* coarse: NULL for none */
+} SylRenderProto;
+typedef struct SylRenderInstance {
+    float t[3], yaw, scale; /* yaw: radians about +y, counter-clockwise seen from above */
+    uint32_t proto;
+} SylRenderInstance;
+/* A pinhole camera: vertical field of view fov degrees, x to the right of the picture is
+ * fwd x (0, 1, 0). */
+typedef struct SylRenderCamera {
+    float eye[3], target[3], fov;
+} SylRenderCamera;
+typedef struct SylRenderCounts {
+    size_t drawn, coarse, culled;
+} SylRenderCounts;
+/* Render a window of the opt->width x opt->height picture: columns window[0] .. window[2]-1
+ * and rows window[1] .. window[3]-1 (window NULL: all of it) into rgb, the window's size
+ * times 3 bytes; a window's pixels are byte for byte those of the whole picture, so pieces
+ * rendered apart (on MPI ranks) tile it. counts may be NULL. SYL_OK, SYL_EUSAGE, SYL_ELIMIT. */
+int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,
+                         const SylRenderInstance *inst, size_t n, const SylRenderCamera *cam,
+                         const SylRenderOptions *opt, const int window[4], uint8_t *rgb,
+                         SylRenderCounts *counts);
+/* Where the camera puts world point p in the whole picture (pixels, y down, the centre of
+ * the top-left pixel at (0.5, 0.5)); false behind the eye. */
+bool syl_render_project(const SylRenderCamera *cam, int width, int height, const float p[3], float *x, float *y);
+
 /* The PNG writer (syl_write_png) and the textures the renderer uses are in texture.h. */
 
 #ifdef __cplusplus

@@ -1,6 +1,7 @@
 /* sylva ecosystem: run an `ecosystem` block (docs/ecosystem.md) and write its plant tables,
- * species counts and cover (CSV and an SVG chart), the terrain's factor maps and a top-down
- * map per snapshot. */
+ * species counts and cover (CSV and an SVG chart), the terrain's factor maps, and per
+ * snapshot a top-down map, a rendered picture of the plants as instances of their species'
+ * looks, and (--glb) the scene as a .glb. */
 #include <errno.h>
 #include <signal.h>
 #include <libxml/xmlwriter.h>
@@ -8,9 +9,12 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "cli/cli.h"
 #include "sylva/ecosystem.h"
+#include "sylva/forest.h"
+#include "sylva/render.h"
 #include "sylva/texture.h"
 
 const CliCommand cli_ecosystem_command = {
@@ -19,7 +23,9 @@ const CliCommand cli_ecosystem_command = {
     .run = cmd_ecosystem,
     .usage = "sylva ecosystem FILE[:Model] -o DIR [options]",
     .about = "Run the model's `ecosystem` block year by year on its terrain (docs/ecosystem.md) and\n"
-             "write into DIR: plants-YEAR.csv and map-YEAR.png for every snapshot, species.csv and\n"
+             "write into DIR: plants-YEAR.csv, map-YEAR.png (top-down) and view-YEAR.png (each\n"
+             "species' model meshed once per age class, every plant an instance of it on the\n"
+             "terrain, rendered with the sun and shadows) for every snapshot, species.csv and\n"
              "species.svg (counts and cover per year) and maps/FACTOR.png|asc (the terrain's\n"
              "factors). The output never depends on -j nor on --tiles.\n"
              "\n"
@@ -39,7 +45,13 @@ const CliCommand cli_ecosystem_command = {
         {.option = CLI_OPT_SET},
         {.option = CLI_OPT_THREADS, .help = "threads over the tiles (default: all cores); the output\n"
                                             "never depends on N"},
-        {.option = CLI_OPT_STATS, .help = "print plant-years, plants per second and memory to stderr"},
+        {.option = CLI_OPT_ECO_VIEW},
+        {.option = CLI_OPT_SIZE, .help = "view-YEAR.png's size (default 1280x720)"},
+        {.option = CLI_OPT_SAMPLES},
+        {.option = CLI_OPT_NO_SHADOWS},
+        {.option = CLI_OPT_GLB},
+        {.option = CLI_OPT_STATS, .help = "print plant-years, plants per second, memory and each picture's\n"
+                                          "camera, instances and time to stderr"},
         {0},
     },
     .width = 24,
@@ -72,6 +84,10 @@ typedef struct Run {
     int rank;
     const char *checkpoint; /* the checkpoint file, or NULL */
     uint64_t hash;
+    const SylForest *forest;
+    const SylRenderOptions *ro;
+    int view;         /* SylForestView */
+    bool glb, stats;
 } Run;
 
 static char *path_in(const char *dir, const char *fmt, int n) {
@@ -247,10 +263,49 @@ static bool reset_peak(void) {
 
 static void progress(void *user, double fraction) { cli_progress(&((Run *)user)->bar, fraction); }
 
+static double cpu_now(void) { /* every thread's processor time */
+    struct timespec ts;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* view-YEAR.png: the plants as instances over the terrain, from the chosen camera. */
+static int write_view(Run *r, int year, const SylEcoPlant *plants, size_t n) {
+    SylRenderOptions ro = *r->ro;
+    if (!ro.width) ro.width = 1280, ro.height = 720;
+    SylRenderCamera cam;
+    syl_forest_camera(r->forest, (SylForestView)r->view, ro.width, ro.height, &cam);
+    uint8_t *rgb = malloc((size_t)ro.width * (size_t)ro.height * 3);
+    char *path = path_in(r->dir, "view-%d.png", year);
+    SylRenderCounts counts;
+    double t0 = cli_now(), c0 = cpu_now();
+    int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, rgb, &counts) : SYL_ELIMIT;
+    double wall = cli_now() - t0, cpu = cpu_now() - c0;
+    if (!st) st = syl_write_png(path, rgb, ro.width, ro.height, stderr);
+    if (!st) printf("%s\n", path);
+    if (!st && r->stats)
+        fprintf(stderr, "view %d: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n"
+                        "view %d: %zu instances drawn (%zu coarse), %zu culled; %.3f s wall, %.3f s cpu\n",
+                year, cam.eye[0], cam.eye[1], cam.eye[2], cam.target[0], cam.target[1], cam.target[2], cam.fov,
+                ro.width, ro.height, year, counts.drawn, counts.coarse, counts.culled, wall, cpu);
+    free(rgb), free(path);
+    return st;
+}
+
+static int write_glb(Run *r, int year, const SylEcoPlant *plants, size_t n) {
+    char *path = path_in(r->dir, "forest-%d.glb", year);
+    int st = path ? syl_forest_write_glb(r->forest, plants, n, 0, path, stderr) : SYL_ELIMIT;
+    if (!st) printf("%s\n", path);
+    free(path);
+    return st;
+}
+
 static int on_snapshot(void *user, int year, const SylEcoPlant *plants, size_t n) {
     Run *r = user;
     int st = write_table(r, year, plants, n);
     if (!st) st = write_map(r, year, plants, n);
+    if (!st) st = write_view(r, year, plants, n);
+    if (!st && r->glb) st = write_glb(r, year, plants, n);
     return st;
 }
 
@@ -387,7 +442,8 @@ static int write_maps(const SylTerrain *t, const char *dir) {
 int cmd_ecosystem(int argc, char **argv) {
     ModelArgs m = {0};
     SylDeriveOptions d = {0};
-    CliArgs a = {.m = &m, .d = &d};
+    SylRenderOptions ro = {0};
+    CliArgs a = {.m = &m, .d = &d, .ro = &ro};
     int done = cli_parse(&cli_ecosystem_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
     if (!a.output) {
@@ -408,7 +464,9 @@ int cmd_ecosystem(int argc, char **argv) {
     SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
     bool writer = rank == 0;
-    Run r = {.dir = a.output, .m = &model, .rank = rank};
+    ro.threads = d.threads;
+    ro.diag = stderr;
+    Run r = {.dir = a.output, .m = &model, .rank = rank, .ro = &ro, .view = a.eco_view, .glb = a.glb, .stats = a.stats};
     SylEcoOptions o = {.years = d.steps, .snapshots = a.nsnapshots ? a.snapshots : NULL, .nsnapshots = a.nsnapshots,
                        .tiles_x = a.tiles_x, .tiles_z = a.tiles_z, .threads = d.threads, .use_seed = d.use_seed,
                        .seed = d.seed, .on_year = on_year, .on_snapshot = on_snapshot, .progress = writer ? progress : NULL,
@@ -459,6 +517,10 @@ int cmd_ecosystem(int argc, char **argv) {
         }
         o.exchange = syl_eco_mpi_exchange(mpi, st ? nranks : ntiles, a.rebalance);
     }
+    SylForest *forest = NULL; /* the pictures are the writer's */
+    if (!st && writer)
+        st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = d.threads, .diag = stderr}, &forest);
+    r.forest = forest;
     if (!st && writer) st = make_dir(a.output);
     if (!st && writer) st = hillshade(&r) ? SYL_OK : SYL_ELIMIT;
     if (!st && writer && !a.resume) st = write_maps(t, a.output);
@@ -498,6 +560,7 @@ int cmd_ecosystem(int argc, char **argv) {
     free(ck_path);
     free(r.years);
     free(r.shade);
+    syl_forest_free(forest);
     syl_terrain_free(t);
     syl_program_free(p);
     syl_eco_mpi_end(mpi);

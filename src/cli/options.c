@@ -18,6 +18,15 @@ static bool read_set(CliArgs *a, char *arg) { return cli_set(a->m, arg); }
 static bool read_view(CliArgs *a, char *arg) { return cli_view(arg, &a->ro->view); }
 static bool read_size(CliArgs *a, char *arg) { return cli_picture_size(arg, &a->ro->width, &a->ro->height); }
 
+static bool read_eco_view(CliArgs *a, char *arg) {
+    if (!strcmp(arg, "bird") || !strcmp(arg, "walker")) {
+        a->eco_view = arg[0] == 'w'; /* SYL_FOREST_BIRD, SYL_FOREST_WALKER */
+        return true;
+    }
+    fprintf(stderr, "sylva: error: --view expects bird or walker, not '%s'\n", arg);
+    return false;
+}
+
 static bool read_ao(CliArgs *a, char *arg) {
     double v;
     if (!cli_integer("--ao", arg, 0, 64, &v)) return false;
@@ -276,6 +285,11 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_EVERY] = {"every", 0, "K", "years between checkpoints (default 10)", CLI_INT, ARGS(every), 1, 60000},
     [CLI_OPT_RESUME] = {"resume", 0, "DIR", "continue the run saved in DIR/ecosystem.ckpt (same model,\n"
                         "seed and options; any number of ranks)", CLI_TEXT, ARGS(resume)},
+    [CLI_OPT_ECO_VIEW] = {"view", 0, "V", "bird (default: the whole terrain from above) or walker (1.7 m\n"
+                          "above the valley floor, looking along it): view-YEAR.png's camera",
+                          CLI_READ, .read = read_eco_view},
+    [CLI_OPT_GLB] = {"glb", 0, NULL, "also write forest-YEAR.glb: the terrain and the plants as\n"
+                     "EXT_mesh_gpu_instancing nodes, one per species, age class and cell", CLI_FLAG, ARGS(glb)},
     /* sylva mesh */
     [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
                      SYL_LOD_MAX},

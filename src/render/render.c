@@ -19,14 +19,14 @@
 #include "util/budget.h"
 #include "util/coord.h"
 
-static void embree_error(void *user, enum RTCError code, const char *msg) {
+void render_embree_error(void *user, enum RTCError code, const char *msg) {
     FILE *diag = user;
     if (diag) fprintf(diag, "sylva: error: embree: %s (code %d)\n", msg ? msg : "error", (int)code);
 }
 
 /* Embree wants denormals flushed to zero (much faster); each worker sets it for itself and
  * the calling thread puts its own mode back afterwards. */
-static unsigned fast_floats(void) {
+unsigned render_fast_floats(void) {
 #ifdef HAVE_MXCSR
     unsigned old = _mm_getcsr();
     _mm_setcsr(old | 0x8040); /* flush to zero, denormals are zero */
@@ -36,7 +36,7 @@ static unsigned fast_floats(void) {
 #endif
 }
 
-static void restore_floats(unsigned old) {
+void render_restore_floats(unsigned old) {
 #ifdef HAVE_MXCSR
     _mm_setcsr(old);
 #else
@@ -63,7 +63,7 @@ static void render_tiles(Scene *s) {
 
 static void *worker(void *arg) {
     Scene *s = arg;
-    fast_floats();
+    render_fast_floats();
     render_tiles(s);
     return NULL;
 }
@@ -77,7 +77,7 @@ static void scene_free(Scene *s) {
     free(s);
 }
 
-static int cpu_count(void) {
+int render_cpu_count(void) {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > 256 ? 256 : (int)n;
 }
@@ -109,7 +109,7 @@ static int build_scene(Scene *s, int threads, FILE *diag) {
         if (diag) fprintf(diag, "sylva: error: render: cannot start Embree (error %d)\n", (int)rtcGetDeviceError(NULL));
         return SYL_ELIMIT;
     }
-    rtcSetDeviceErrorFunction(s->dev, embree_error, diag);
+    rtcSetDeviceErrorFunction(s->dev, render_embree_error, diag);
     s->scene = rtcNewScene(s->dev);
     if (ntri) {
         s->tri_mat = calloc(ntri, 1);
@@ -206,7 +206,7 @@ static void set_sampling(Scene *s, const SylRenderOptions *opt) {
 }
 
 /* Materials, scale, light, sub-pixel positions, and the table from linear light to sRGB. */
-static void set_lighting(Scene *s) {
+void render_set_lighting(Scene *s) {
     const SylMesh *m = s->m;
     for (int i = 0; i < 256; i++) {
         for (int c = 0; c < 3; c++) s->mat_lin[i][c] = srgb_to_linear(m ? m->materials[i].rgb[c] : 0.5f);
@@ -227,6 +227,7 @@ static void set_lighting(Scene *s) {
     s->ground_c[1] = 0.5f * (lo[2] + hi[2]);
     s->grass_tile = 0.35f * s->size;
     s->pixel_angle = 2 * s->cam.tany / (float)s->height;
+    s->shadow_far = INFINITY;
     float sun[3] = {0.4f, 1.0f, 0.3f};
     normalize3(sun);
     memcpy(s->sun, sun, sizeof sun);
@@ -267,7 +268,7 @@ static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
 }
 
 /* The tiles to the workers; this thread works too. */
-static void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt) {
+void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt) {
     s->progress = opt->progress;
     s->user = opt->user;
     pthread_mutex_init(&s->progress_lock, NULL);
@@ -278,9 +279,9 @@ static void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt)
     int started = 0;
     for (int i = 1; i < threads; i++)
         if (pthread_create(&tid[started], NULL, worker, s) == 0) started++;
-    unsigned csr = fast_floats();
+    unsigned csr = render_fast_floats();
     render_tiles(s);
-    restore_floats(csr);
+    render_restore_floats(csr);
     for (int i = 0; i < started; i++) pthread_join(tid[i], NULL);
     pthread_mutex_destroy(&s->progress_lock);
 }
@@ -298,12 +299,12 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
         return SYL_ELIMIT;
     }
     s->m = m;
-    s->width = width;
-    s->height = height;
+    s->width = s->full_w = width;
+    s->height = s->full_h = height;
     s->ground = opt->ground >= 0;
     s->unlit = opt->unlit;
     s->adaptive = opt->adaptive;
-    int threads = opt->threads > 0 ? opt->threads : cpu_count();
+    int threads = opt->threads > 0 ? opt->threads : render_cpu_count();
     if (threads > 256) threads = 256;
     size_t px = (size_t)width * (size_t)height;
     for (int v = 0; v < n && !status; v++) {
@@ -315,7 +316,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
         atomic_store(&s->next_tile, 0);
         atomic_store(&s->tiles_done, 0);
         set_sampling(s, &o);
-        set_lighting(s);
+        render_set_lighting(s);
         if (v == 0) status = build_textures_and_scene(s, threads, opt->diag);
         if (!status) render_all_tiles(s, threads, &o);
     }

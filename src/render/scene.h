@@ -25,6 +25,8 @@ typedef struct Scene {
     float grass_lin[3];
     float size, eps, ao_dist, fog_dist, ground_y, ground_half, ground_c[2], grass_tile;
     float pixel_angle;
+    float shadow_far;           /* a sun ray's length: INFINITY, or with instances the scene's
+                                   reach (a finite ray through each instance's transform) */
     float sun[3];
     int width, height, samples, ao, shadows;
     float sub[MAX_SAMPLES][2];  /* sub-pixel sample positions */
@@ -35,6 +37,18 @@ typedef struct Scene {
     bool ground, unlit, adaptive;
     bool boxed;                 /* box: the framed mesh's bounds, measured for the first view */
     float box[2][3];
+    /* The picture may be a window of a bigger one (syl_render_instances' tile): pixel (x, y)
+     * of out is (x + ox, y + oy) of a full_w x full_h picture. */
+    int ox, oy, full_w, full_h;
+    /* Instances (instances.c): Embree instance i draws proto[inst_proto[i]], turned about y
+     * by inst_cs[i] (cos, sin) and scaled by inst_scale[i]; each proto has its materials. */
+    const SylMesh **proto;
+    uint8_t **proto_tri_mat;
+    float (*proto_lin)[256][3];
+    uint8_t (*proto_kind)[256];
+    const uint32_t *inst_proto;
+    const float (*inst_cs)[2];
+    const float *inst_scale;
     int tiles_x, ntiles;
     atomic_int next_tile, tiles_done;
     /* Whichever thread finishes a tile reports, under the lock: serial, increasing calls. */
@@ -42,6 +56,12 @@ typedef struct Scene {
     void *user;
     pthread_mutex_t progress_lock;
 } Scene;
+
+/* render.c's pieces that instances.c shares. */
+void render_set_lighting(Scene *s); /* materials of s->m, scale from s->cam's bounds, the sun */
+void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt);
+int render_cpu_count(void);
+void render_embree_error(void *user, enum RTCError code, const char *msg);
 
 /* Shade tile number `tile` (TILE x TILE pixels, row by row) into s->out. */
 void render_tile(const Scene *s, int tile);

@@ -77,8 +77,24 @@ static inline float lod_of(const Scene *s, float t, float cosv, float uv_per_wor
 }
 
 /* Fill sf from lane l of a packet that hit the mesh. */
+static inline void turn(const float cs[2], float v[3]) {
+    float x = v[0], z = v[2];
+    v[0] = cs[0] * x + cs[1] * z, v[2] = -cs[1] * x + cs[0] * z;
+}
+
 static void mesh_surface(const Scene *s, const struct RTCRayHit16 *rh, int l, const float d[3], Surface *sf) {
     const SylMesh *m = s->m;
+    const uint8_t *tri_mat = s->tri_mat;
+    const float(*mat_lin)[3] = s->mat_lin;
+    const uint8_t *mat_kind = s->mat_kind;
+    const float *cs = NULL;
+    float scale = 1;
+    unsigned inst = rh->hit.instID[0][l];
+    if (inst != RTC_INVALID_GEOMETRY_ID && s->proto) { /* an instance: its prototype, turned */
+        uint32_t k = s->inst_proto[inst];
+        m = s->proto[k], tri_mat = s->proto_tri_mat[k], mat_lin = s->proto_lin[k], mat_kind = s->proto_kind[k];
+        cs = s->inst_cs[inst], scale = s->inst_scale[inst];
+    }
     float t = rh->ray.tfar[l], u = rh->hit.u[l], v = rh->hit.v[l], w = 1 - u - v;
     uint32_t tri = rh->hit.primID[l];
     const uint32_t *ix = m->idx + 3 * (size_t)tri;
@@ -86,19 +102,25 @@ static void mesh_surface(const Scene *s, const struct RTCRayHit16 *rh, int l, co
     sf->what = MESH;
     for (int c = 0; c < 3; c++) sf->p[c] = e[c] + t * d[c];
     float *ng = sf->n, *sn = sf->sn;
-    ng[0] = rh->hit.Ng_x[l], ng[1] = rh->hit.Ng_y[l], ng[2] = rh->hit.Ng_z[l];
+    if (cs) { /* Embree gives an instance's normal in its own space: from the triangle, turned */
+        const float *a = m->pos + 3 * (size_t)ix[0], *b = m->pos + 3 * (size_t)ix[1], *c = m->pos + 3 * (size_t)ix[2];
+        float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        ng[0] = e1[1] * e2[2] - e1[2] * e2[1], ng[1] = e1[2] * e2[0] - e1[0] * e2[2], ng[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        turn(cs, ng);
+    } else ng[0] = rh->hit.Ng_x[l], ng[1] = rh->hit.Ng_y[l], ng[2] = rh->hit.Ng_z[l];
     normalize3(ng);
     bool flip = dot3(ng, d) > 0; /* both sides of a surface are drawn */
     if (flip) ng[0] = -ng[0], ng[1] = -ng[1], ng[2] = -ng[2];
     if (m->nrm) {
         const float *n0 = m->nrm + 3 * (size_t)ix[0], *n1 = m->nrm + 3 * (size_t)ix[1], *n2 = m->nrm + 3 * (size_t)ix[2];
         for (int c = 0; c < 3; c++) sn[c] = w * n0[c] + u * n1[c] + v * n2[c];
+        if (cs) turn(cs, sn);
         if (flip) sn[0] = -sn[0], sn[1] = -sn[1], sn[2] = -sn[2];
         normalize3(sn);
         if (!(dot3(sn, d) < 0) || !(dot3(sn, ng) > 0)) memcpy(sn, ng, 3 * sizeof *sn);
     } else memcpy(sn, ng, 3 * sizeof *sn);
-    int mat = s->tri_mat[tri], kind = s->mat_kind[mat];
-    memcpy(sf->albedo, s->mat_lin[mat], sizeof sf->albedo);
+    int mat = tri_mat[tri], kind = mat_kind[mat];
+    memcpy(sf->albedo, mat_lin[mat], sizeof sf->albedo);
     sf->thin = kind == SYL_MATERIAL_LEAF || kind == SYL_MATERIAL_FLOWER;
     if (m->uv && kind <= SYL_MATERIAL_FLOWER) {
         const float *a = m->uv + 2 * (size_t)ix[0], *b = m->uv + 2 * (size_t)ix[1], *c = m->uv + 2 * (size_t)ix[2];
@@ -107,7 +129,7 @@ static void mesh_surface(const Scene *s, const struct RTCRayHit16 *rh, int l, co
         const float *p0 = m->pos + 3 * (size_t)ix[0], *p1 = m->pos + 3 * (size_t)ix[1], *p2 = m->pos + 3 * (size_t)ix[2];
         float e1[3] = {p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, e2[3] = {p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
         float cr[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
-        float aw = sqrtf(dot3(cr, cr));
+        float aw = sqrtf(dot3(cr, cr)) * scale * scale;
         float auv = fabsf((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
         float density = aw > 0 ? sqrtf(auv / aw) : 0;
         const Texture *tx = &s->tex[kind];
@@ -169,9 +191,10 @@ static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int
         for (int l = 0; l < LANES; l++) {
             int x = x0 + l % BLOCK, y = y0 + l / BLOCK;
             valid[l] = x < s->width && y < s->height ? -1 : 0;
-            rng[l] = rng_stream(0x5e1fa, (uint64_t)y * (uint64_t)s->width + (uint64_t)x, 0, (uint64_t)k);
-            float sx = (2 * ((float)x + s->sub[k][0]) / (float)s->width - 1) * cam->tanx;
-            float sy = (1 - 2 * ((float)y + s->sub[k][1]) / (float)s->height) * cam->tany;
+            x += s->ox, y += s->oy; /* in the whole picture: a tile's pixels are the picture's */
+            rng[l] = rng_stream(0x5e1fa, (uint64_t)y * (uint64_t)s->full_w + (uint64_t)x, 0, (uint64_t)k);
+            float sx = (2 * ((float)x + s->sub[k][0]) / (float)s->full_w - 1) * cam->tanx;
+            float sy = (1 - 2 * ((float)y + s->sub[k][1]) / (float)s->full_h) * cam->tany;
             float *d = dirs[l];
             for (int i = 0; i < 3; i++) d[i] = cam->fwd[i] + sx * cam->right[i] + sy * cam->up[i];
             normalize3(d);
@@ -182,7 +205,7 @@ static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int
                 if (fabsf(gx - s->ground_c[0]) <= s->ground_half && fabsf(gz - s->ground_c[1]) <= s->ground_half) tg = t;
             }
             set_ray16(&rh.ray, l, cam->eye, d, tg);
-            rh.hit.geomID[l] = rh.hit.primID[l] = RTC_INVALID_GEOMETRY_ID;
+            rh.hit.geomID[l] = rh.hit.primID[l] = rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
         }
         rtcIntersect16(valid, s->scene, &coherent, &rh);
 
@@ -213,10 +236,11 @@ static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int
                 for (int c = 0; c < 3; c++) o[c] = f->p[c] - f->n[c] * s->eps;
             } else continue;
             lit[l] = -1;
-            set_ray16(&sr, l, o, s->sun, INFINITY);
+            set_ray16(&sr, l, o, s->sun, s->shadow_far);
         }
         if (s->shadows >= 0) {
-            rtcOccluded16(lit, s->scene, &coherent, &sr);
+            /* coherent packets through instances hang Embree 3.13: those go as incoherent rays */
+            rtcOccluded16(lit, s->scene, s->proto ? &incoherent : &coherent, &sr);
             for (int l = 0; l < LANES; l++)
                 if (lit[l] && sr.tfar[l] < 0) direct[l] = 0;
         }

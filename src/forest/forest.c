@@ -1,0 +1,231 @@
+/* syl_forest_*: the looks of an ecosystem's species, meshed once per age class, the terrain as
+ * a mesh, the plants as instances of those looks, and the two cameras. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "sylva/forest.h"
+#include "sylva/plant.h"
+#include "forest/forest_internal.h"
+#include "util/rng.h"
+
+/* The terrain as triangles between its cells' centres, one grass-coloured material. */
+static SylMesh *terrain_mesh(const SylTerrain *t) {
+    SylMesh *g = calloc(1, sizeof *g);
+    size_t nx = (size_t)t->nx, nz = (size_t)t->nz, nv = nx * nz;
+    size_t ntri = nx > 1 && nz > 1 ? 2 * (nx - 1) * (nz - 1) : 0;
+    if (!g) return NULL;
+    g->pos = malloc((nv + 2) * 3 * sizeof(float)); /* room past the end: Embree reads 16 bytes */
+    g->nrm = malloc((nv + 2) * 3 * sizeof(float));
+    g->idx = malloc((ntri ? ntri : 1) * 3 * sizeof(uint32_t));
+    g->groups = calloc(1, sizeof *g->groups);
+    if (!g->pos || !g->nrm || !g->idx || !g->groups || nv > 0xffffffffu) {
+        syl_mesh_free(g);
+        return NULL;
+    }
+    g->nverts = nv, g->vert_cap = nv + 2;
+    const float *h = t->height;
+    for (size_t k = 0; k < nz; k++)
+        for (size_t i = 0; i < nx; i++) {
+            float *p = g->pos + 3 * (k * nx + i), *n = g->nrm + 3 * (k * nx + i);
+            p[0] = (float)(t->x0 + ((double)i + 0.5) * t->cell);
+            p[1] = h[k * nx + i];
+            p[2] = (float)(t->z0 + ((double)k + 0.5) * t->cell);
+            size_t i0 = i ? i - 1 : i, i1 = i + 1 < nx ? i + 1 : i, k0 = k ? k - 1 : k, k1 = k + 1 < nz ? k + 1 : k;
+            double dx = i1 > i0 ? (h[k * nx + i1] - h[k * nx + i0]) / ((double)(i1 - i0) * t->cell) : 0;
+            double dz = k1 > k0 ? (h[k1 * nx + i] - h[k0 * nx + i]) / ((double)(k1 - k0) * t->cell) : 0;
+            double len = sqrt(dx * dx + 1 + dz * dz);
+            n[0] = (float)(-dx / len), n[1] = (float)(1 / len), n[2] = (float)(-dz / len);
+        }
+    memset(g->pos + 3 * nv, 0, 6 * sizeof(float));
+    size_t w = 0;
+    for (size_t k = 0; k + 1 < nz; k++)
+        for (size_t i = 0; i + 1 < nx; i++) { /* counter-clockwise seen from above (+y) */
+            uint32_t a = (uint32_t)(k * nx + i), b = a + 1, c = a + (uint32_t)nx, d = c + 1;
+            uint32_t q[6] = {a, c, b, b, c, d};
+            memcpy(g->idx + w, q, sizeof q), w += 6;
+        }
+    g->nidx = w;
+    g->ngroups = 1;
+    g->groups[0] = (SylMeshGroup){.first = 0, .count = (uint32_t)w, .material = 0};
+    g->materials[0] = (SylMaterial){.rgb = {0.33f, 0.45f, 0.20f}, .kind = SYL_MATERIAL_PLAIN};
+    g->nmaterials = 1;
+    snprintf(g->name, sizeof g->name, "terrain");
+    return g;
+}
+
+/* Base at the origin, height 1: an instance's scale is then its plant's height. */
+static void normalise(SylMesh *m, float y0, float k) {
+    for (size_t i = 0; m && i < m->nverts; i++) {
+        float *p = m->pos + 3 * i;
+        p[0] *= k, p[1] = (p[1] - y0) * k, p[2] *= k;
+    }
+}
+
+static int build_look(SylGrowth *g, const SylProgram *q, int frame, const SylForestOptions *o, Look *look) {
+    SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .budget = o->budget};
+    SylPlantOptions po = {.threads = o->threads, .diag = o->diag, .budget = o->budget, .mesh = &mo, .drop_string = 1};
+    SylPlant pl = {0};
+    int st = g ? syl_growth_build(g, frame, &pl) : syl_plant_build(q, &po, &pl);
+    if (st) return st;
+    SylMesh *m = pl.mesh;
+    pl.mesh = NULL;
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; m && i < m->nverts; i++) lo = fminf(lo, m->pos[3 * i + 1]), hi = fmaxf(hi, m->pos[3 * i + 1]);
+    if (m && m->nidx && o->coarse >= 0 && pl.skeleton && syl_lod_build(pl.skeleton, &mo, m, 1, &look->lod))
+        memset(&look->lod, 0, sizeof look->lod); /* no coarse level: the full mesh everywhere */
+    float k = hi > lo ? 1 / (hi - lo) : 1;
+    normalise(m, lo, k);
+    if (look->lod.n > 1) normalise(look->lod.level[1].mesh, lo, k);
+    look->mesh = m;
+    syl_plant_free(&pl);
+    return SYL_OK;
+}
+
+/* A species' classes: an L-system's derivation steps, a grown tree's years, a strands
+ * block's ages spread over the growth (frame round(N (c + 1) / C)); a Weber–Penn tree has no
+ * growth and is one mesh scaled. */
+static int species_looks(SylForest *f, const SylProgram *p, int s, const SylForestOptions *o) {
+    const SylEcoSpecies *sp = &f->m->species[s];
+    for (int c = 0; c < SYL_FOREST_CLASSES; c++) f->proto_of[s][c] = -1;
+    if (!sp->model[0]) return SYL_OK;
+    int st;
+    SylProgram *q = syl_compile_model(p, sp->model, o->diag, &st);
+    if (!q) return st ? st : SYL_EMODEL;
+    SylGrowth *g = NULL;
+    SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .budget = o->budget};
+    SylPlantOptions po = {.threads = o->threads, .diag = o->diag, .budget = o->budget, .mesh = &mo};
+    if (syl_program_kind(q) != SYL_MODEL_WEBER && syl_growth_new(q, &po, &g)) g = NULL;
+    int frames = g ? syl_growth_count(g) : 1;
+    st = SYL_OK;
+    for (int c = 0; c < SYL_FOREST_CLASSES && !st; c++) {
+        int frame = g ? (int)lround((double)(frames - 1) * (c + 1) / SYL_FOREST_CLASSES) : 0;
+        if (c && (!g || frame == (int)lround((double)(frames - 1) * c / SYL_FOREST_CLASSES))) {
+            f->proto_of[s][c] = f->proto_of[s][c - 1]; /* the same look as the class before */
+            continue;
+        }
+        int k = f->nprotos;
+        st = build_look(g, q, frame, o, &f->looks[k]);
+        if (st) break;
+        f->protos[k].mesh = f->looks[k].mesh;
+        f->protos[k].coarse = f->looks[k].lod.n > 1 ? f->looks[k].lod.level[1].mesh : NULL;
+        snprintf(f->looks[k].mesh->name, sizeof f->looks[k].mesh->name, "%.40s_class%d", sp->name, c);
+        f->proto_species[k] = s, f->proto_class[k] = c;
+        f->proto_of[s][c] = k;
+        f->nprotos++;
+    }
+    syl_growth_free(g);
+    syl_program_free(q);
+    return st;
+}
+
+int syl_forest_new(const SylProgram *p, const SylEcoModel *m, const SylTerrain *t, const SylForestOptions *o,
+                   SylForest **out) {
+    static const SylForestOptions defaults = {0};
+    if (!o) o = &defaults;
+    *out = NULL;
+    SylForest *f = calloc(1, sizeof *f);
+    if (!f) return SYL_ELIMIT;
+    f->m = m, f->t = t;
+    int st = (f->ground = terrain_mesh(t)) ? SYL_OK : SYL_ELIMIT;
+    for (int s = 0; s < m->nspecies && !st; s++) st = species_looks(f, p, s, o);
+    if (st) {
+        syl_forest_free(f);
+        return st;
+    }
+    *out = f;
+    return SYL_OK;
+}
+
+void syl_forest_free(SylForest *f) {
+    if (!f) return;
+    for (int k = 0; k < f->nprotos; k++) {
+        syl_lod_free(&f->looks[k].lod);
+        syl_mesh_free(f->looks[k].mesh);
+    }
+    syl_mesh_free(f->ground);
+    free(f);
+}
+
+int forest_class_of(const SylEcoSpecies *sp, float h) {
+    int c = sp->height_max > 0 ? (int)(h / sp->height_max * SYL_FOREST_CLASSES) : SYL_FOREST_CLASSES - 1;
+    return c < 0 ? 0 : c >= SYL_FOREST_CLASSES ? SYL_FOREST_CLASSES - 1 : c;
+}
+
+void syl_forest_instances(const SylForest *f, const SylEcoPlant *plants, size_t n, SylRenderInstance *inst) {
+    for (size_t i = 0; i < n; i++) {
+        const SylEcoPlant *p = &plants[i];
+        int sp = p->species < f->m->nspecies ? p->species : -1;
+        int k = sp >= 0 ? f->proto_of[sp][forest_class_of(&f->m->species[sp], p->height)] : -1;
+        double y = syl_terrain_factor_at(f->t, SYL_TERRAIN_ALTITUDE, p->x, p->z);
+        uint64_t hash = rng_mix(p->id ^ 0x7f4a7c159e3779b9ull); /* the turn: the plant's own */
+        inst[i] = (SylRenderInstance){.t = {p->x, (float)y, p->z},
+                                      .yaw = (float)((double)(hash >> 40) * 0x1p-24 * 2 * M_PI),
+                                      .scale = k >= 0 ? p->height : 0,
+                                      .proto = k >= 0 ? (uint32_t)k : 0};
+    }
+}
+
+int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, const SylRenderCamera *cam,
+                      const SylRenderOptions *ro, const int window[4], uint8_t *rgb, SylRenderCounts *counts) {
+    SylRenderInstance *inst = malloc((n ? n : 1) * sizeof *inst);
+    if (!inst) return SYL_ELIMIT;
+    syl_forest_instances(f, plants, n, inst);
+    /* the ones drawn as nothing are left out here: the renderer wants a prototype each */
+    size_t kept = 0;
+    for (size_t i = 0; i < n; i++)
+        if (inst[i].scale > 0 && f->nprotos) inst[kept++] = inst[i];
+    int st = syl_render_instances(f->ground, f->protos, f->nprotos, inst, kept, cam, ro, window, rgb, counts);
+    free(inst);
+    return st;
+}
+
+/* The ground's height at (x, z), and the walker's valley floor. */
+static float height_at(const SylTerrain *t, double x, double z) {
+    return (float)syl_terrain_factor_at(t, SYL_TERRAIN_ALTITUDE, x, z);
+}
+
+void syl_forest_camera(const SylForest *f, SylForestView v, int width, int height, SylRenderCamera *cam) {
+    const SylTerrain *t = f->t;
+    double w = t->nx * t->cell, d = t->nz * t->cell, cx = t->x0 + w / 2, cz = t->z0 + d / 2;
+    double lo = INFINITY, hi = -INFINITY, gx = 0, gz = 0;
+    size_t nx = (size_t)t->nx, nz = (size_t)t->nz;
+    for (size_t k = 0; k < nz; k++)
+        for (size_t i = 0; i < nx; i++) {
+            double h = t->height[k * nx + i];
+            lo = fmin(lo, h), hi = fmax(hi, h);
+            if (i + 1 < nx) gx += fabs(t->height[k * nx + i + 1] - h);
+            if (k + 1 < nz) gz += fabs(t->height[(k + 1) * nx + i] - h);
+        }
+    if (!(lo <= hi)) lo = hi = 0;
+    double aspect = height > 0 ? (double)width / height : 1;
+    if (v == SYL_FOREST_BIRD) {
+        float fov = 40;
+        double az = 20 * M_PI / 180, el = 40 * M_PI / 180;
+        double r = 0.5 * sqrt(w * w + d * d + (hi - lo) * (hi - lo));
+        double half = tan(fov * 0.5 * M_PI / 180) * fmin(1, aspect); /* the narrower half-angle */
+        double dist = 1.05 * r / sin(atan(half));
+        double ty = 0.5 * (lo + hi);
+        *cam = (SylRenderCamera){.eye = {(float)(cx + dist * sin(az) * cos(el)), (float)(ty + dist * sin(el)),
+                                         (float)(cz + dist * cos(az) * cos(el))},
+                                 .target = {(float)cx, (float)ty, (float)cz},
+                                 .fov = fov};
+        return;
+    }
+    /* along z when the ground rises less that way per cell (the valley runs along z) */
+    bool along_z = gz / (double)(nx * (nz > 1 ? nz - 1 : 1)) < gx / (double)(nz * (nx > 1 ? nx - 1 : 1));
+    double ex = cx, ez = cz, best = INFINITY;
+    for (int j = 0; j < (along_z ? t->nx : t->nz); j++) { /* the floor across the valley's middle */
+        double x = along_z ? t->x0 + (j + 0.5) * t->cell : cx, z = along_z ? cz : t->z0 + (j + 0.5) * t->cell;
+        double h = height_at(t, x, z);
+        if (h < best) best = h, ex = x, ez = z;
+    }
+    double a = along_z ? height_at(t, ex, t->z0) : height_at(t, t->x0, ez);
+    double b = along_z ? height_at(t, ex, t->z0 + d) : height_at(t, t->x0 + w, ez);
+    double dir = b <= a ? 1 : -1; /* downhill */
+    float ey = height_at(t, ex, ez) + 1.7f;
+    *cam = (SylRenderCamera){.eye = {(float)ex, ey, (float)ez},
+                             .target = {(float)(ex + (along_z ? 0 : 100 * dir)), ey - 4,
+                                        (float)(ez + (along_z ? 100 * dir : 0))},
+                             .fov = 55};
+}

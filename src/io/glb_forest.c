@@ -1,0 +1,154 @@
+/* syl_write_glb_forest: a ground mesh and sets of instances in one .glb, the sets that share a
+ * prototype sharing its mesh (a forest's cells: docs/ecosystem.md#gltf). */
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/glb.h"
+
+typedef struct Forest {
+    const SylMesh *mesh[257]; /* distinct meshes: the ground first (when it has triangles) */
+    int nmeshes, ground;
+    int set_mesh[4096];
+    int first_view[257], first_acc[257], first_mat[257], set_view0, set_acc0;
+    View *views;
+    int nviews;
+    IoBuf bin;
+} Forest;
+
+static bool drawable(const SylMesh *m) { return m && m->nverts && m->nidx && m->ngroups; }
+
+static int mesh_index(Forest *f, const SylMesh *m) {
+    for (int k = 0; k < f->nmeshes; k++)
+        if (f->mesh[k] == m) return k;
+    if (f->nmeshes == 257) return -1;
+    f->mesh[f->nmeshes] = m;
+    return f->nmeshes++;
+}
+
+static void view(Forest *f, const void *x, size_t words, int target) {
+    size_t at = f->bin.len;
+    glb_words(&f->bin, x, words);
+    f->views[f->nviews++] = (View){.offset = at, .length = words * 4, .target = target};
+}
+
+static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *const *extras, int n) {
+    io_printf(js, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"Sylva\"},\"extensionsUsed\":"
+                  "[\"EXT_mesh_gpu_instancing\"],\"scene\":0,\"scenes\":[{\"nodes\":[");
+    int nodes = (f->ground >= 0) + n;
+    for (int i = 0; i < nodes; i++) io_printf(js, "%s%d", i ? "," : "", i);
+    io_printf(js, "]}],\"nodes\":[");
+    int node = 0;
+    if (f->ground >= 0) io_printf(js, "{\"name\":\"terrain\",\"mesh\":%d}", f->ground), node++;
+    for (int i = 0; i < n; i++) {
+        int a = f->set_acc0 + 3 * i;
+        io_printf(js, "%s{\"name\":", node++ ? "," : "");
+        io_json_string(js, sets[i].name);
+        io_printf(js, ",\"mesh\":%d,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
+                      "{\"TRANSLATION\":%d,\"ROTATION\":%d,\"SCALE\":%d}}}",
+                  f->set_mesh[i], a, a + 1, a + 2);
+        if (extras && extras[i]) io_printf(js, ",\"extras\":%s", extras[i]);
+        io_put(js, "}", 1);
+    }
+    io_printf(js, "],\"meshes\":[");
+    for (int k = 0; k < f->nmeshes; k++) {
+        const SylMesh *m = f->mesh[k];
+        io_printf(js, "%s{\"name\":", k ? "," : "");
+        io_json_string(js, m->name[0] ? m->name : "mesh");
+        io_printf(js, ",\"primitives\":[");
+        for (int g = 0; g < m->ngroups; g++)
+            io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d},\"indices\":%d,\"material\":%d,\"mode\":4}",
+                      g ? "," : "", f->first_acc[k], f->first_acc[k] + 1, f->first_acc[k] + 2 + g, f->first_mat[k] + g);
+        io_printf(js, "]}");
+    }
+    io_printf(js, "],\"materials\":[");
+    for (int k = 0; k < f->nmeshes; k++)
+        for (int g = 0; g < f->mesh[k]->ngroups; g++) {
+            const float *c = f->mesh[k]->materials[f->mesh[k]->groups[g].material].rgb;
+            io_printf(js, "%s{\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.4f,%.4f,%.4f,1],\"metallicFactor\":0,"
+                          "\"roughnessFactor\":0.9},\"doubleSided\":true}",
+                      k || g ? "," : "", glb_linear(c[0]), glb_linear(c[1]), glb_linear(c[2]));
+        }
+    io_printf(js, "],\"accessors\":[");
+    bool first = true;
+    for (int k = 0; k < f->nmeshes; k++) {
+        const SylMesh *m = f->mesh[k];
+        int v = f->first_view[k];
+        io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC3\"", first ? "" : ",", v,
+                  FLOAT, m->nverts);
+        glb_min_max(js, m->pos, m->nverts, 3);
+        io_printf(js, "},{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC3\"}", v + 1, FLOAT,
+                  m->nverts);
+        for (int g = 0; g < m->ngroups; g++)
+            io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
+                      v + 2, (size_t)m->groups[g].first * 4, UNSIGNED_INT, m->groups[g].count);
+        first = false;
+    }
+    for (int i = 0; i < n; i++) {
+        int v = f->set_view0 + 3 * i;
+        size_t c = sets[i].count;
+        io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC3\"", first ? "" : ",", v,
+                  FLOAT, c);
+        glb_min_max(js, sets[i].t, c, 3);
+        io_printf(js, "},{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC4\"}", v + 1, FLOAT, c);
+        io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC3\"}", v + 2, FLOAT, c);
+        first = false;
+    }
+    io_put(js, "]", 1);
+    glb_buffer_views(js, f->views, f->nviews, f->bin.len);
+    io_put(js, "}", 1);
+    glb_pad(js, ' ');
+}
+
+int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
+                         const char *path, FILE *diag) {
+    Forest *f = calloc(1, sizeof *f);
+    if (!f) return SYL_ELIMIT;
+    f->ground = -1;
+    if (n < 0 || n > 4096) {
+        if (diag) fprintf(diag, "sylva: error: glb: %d sets of instances (at most 4096)\n", n);
+        free(f);
+        return SYL_EUSAGE;
+    }
+    if (drawable(ground)) f->ground = mesh_index(f, ground);
+    for (int i = 0; i < n; i++) {
+        f->set_mesh[i] = drawable(sets[i].proto) && sets[i].count ? mesh_index(f, sets[i].proto) : -1;
+        if (f->set_mesh[i] < 0) {
+            if (diag) fprintf(diag, "sylva: error: glb: set '%s' has no mesh or no instances\n", sets[i].name);
+            free(f);
+            return SYL_EUSAGE;
+        }
+    }
+    f->views = malloc(sizeof *f->views * (size_t)(3 * f->nmeshes + 3 * n + 1));
+    int st = SYL_ELIMIT;
+    if (f->views) {
+        int acc = 0, mat = 0;
+        for (int k = 0; k < f->nmeshes; k++) {
+            const SylMesh *m = f->mesh[k];
+            f->first_view[k] = f->nviews, f->first_acc[k] = acc, f->first_mat[k] = mat;
+            acc += 2 + m->ngroups, mat += m->ngroups;
+            view(f, m->pos, 3 * m->nverts, ARRAY_BUFFER);
+            if (m->nrm) view(f, m->nrm, 3 * m->nverts, ARRAY_BUFFER);
+            else { /* glTF wants what it is told: up, when the mesh has no normals */
+                size_t at = f->bin.len;
+                for (size_t i = 0; i < m->nverts; i++) glb_words(&f->bin, (const float[3]){0, 1, 0}, 3);
+                f->views[f->nviews++] = (View){.offset = at, .length = 12 * m->nverts, .target = ARRAY_BUFFER};
+            }
+            view(f, m->idx, m->nidx, ELEMENT_ARRAY_BUFFER);
+        }
+        f->set_view0 = f->nviews, f->set_acc0 = acc;
+        for (int i = 0; i < n; i++) {
+            view(f, sets[i].t, 3 * sets[i].count, 0);
+            view(f, sets[i].r, 4 * sets[i].count, 0);
+            view(f, sets[i].s, 3 * sets[i].count, 0);
+        }
+        glb_pad(&f->bin, 0);
+        IoBuf js = {0};
+        json(&js, f, sets, extras, n);
+        st = glb_container(path, &js, &f->bin, f->nmeshes > 0, diag);
+        io_free(&js);
+    }
+    io_free(&f->bin);
+    free(f->views);
+    free(f);
+    return st;
+}
