@@ -2,14 +2,27 @@
  * for fetch locality, and simplify toward a triangle budget. Groups are processed one at a
  * time, so a triangle never changes material. */
 #include <meshoptimizer.h>
+#include <stdbool.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "sylva/mesh.h"
 
+/* Whether the triangles use every vertex, first in the order they are stored (so the
+ * first-use remap would be the identity). */
+static bool in_first_use_order(const SylMesh *m) {
+    uint32_t next = 0;
+    for (size_t i = 0; i < m->nidx; i++) {
+        if (m->idx[i] == next) next++;
+        else if (m->idx[i] > next) return false;
+    }
+    return next == m->nverts;
+}
+
 /* Vertices in first-use order, unused ones dropped; every attribute stream remapped. */
 static int reorder_vertices(SylMesh *m) {
-    if (!m->nverts || !m->nidx) return SYL_OK;
+    if (!m->nverts || !m->nidx || in_first_use_order(m)) return SYL_OK;
     unsigned *remap = malloc(m->nverts * sizeof *remap);
     float *tmp = malloc(3 * m->nverts * sizeof *tmp);
     if (!remap || !tmp) {
@@ -30,12 +43,29 @@ static int reorder_vertices(SylMesh *m) {
     return SYL_OK;
 }
 
+/* A group already as good as any order can be: each vertex fetched once (ACMR, vertices
+ * transformed per triangle, equals its used vertices per triangle), as the mesher emits
+ * leaves (small fans of their own vertices). Reordering those took a third of the time of
+ * meshing a willow and gained nothing. */
+static bool at_best_order(const uint32_t *ix, size_t count, size_t nverts) {
+    if (count < 3) return true;
+    uint8_t *seen = calloc(nverts / 8 + 1, 1);
+    if (!seen) return false; /* then optimize, which reports the shortage */
+    size_t used = 0;
+    for (size_t i = 0; i < count; i++)
+        if (!(seen[ix[i] >> 3] & (1u << (ix[i] & 7)))) seen[ix[i] >> 3] |= (uint8_t)(1u << (ix[i] & 7)), used++;
+    free(seen);
+    struct meshopt_VertexCacheStatistics st = meshopt_analyzeVertexCache(ix, count, nverts, 16, 0, 0);
+    return st.vertices_transformed <= used;
+}
+
 int syl_mesh_optimize(SylMesh *m) {
     if (!m || !m->nidx) return SYL_OK;
     uint32_t *tmp = malloc(m->nidx * sizeof *tmp);
     if (!tmp) return SYL_ELIMIT;
     for (int g = 0; g < m->ngroups; g++) {
         uint32_t *ix = m->idx + m->groups[g].first;
+        if (at_best_order(ix, m->groups[g].count, m->nverts)) continue;
         meshopt_optimizeVertexCache(tmp, ix, m->groups[g].count, m->nverts);
         memcpy(ix, tmp, m->groups[g].count * sizeof *tmp);
     }

@@ -1,5 +1,7 @@
 /* The mesher: closed tubes, normals, UVs, sides, pipe radii, groups, organs, polygons,
  * determinism. Skeletons are built by hand (mesh_fixtures.h). */
+#include <meshoptimizer.h>
+
 #include "unit.h"
 #include "mesh_fixtures.h"
 
@@ -510,10 +512,54 @@ static void lobed_rings(void **state) {
     syl_skeleton_free(s);
 }
 
+/* Leaves are emitted at the best vertex-cache order there is (every vertex fetched once): the
+ * optimizer keeps their triangles in order (vertices may be renumbered), and still reorders
+ * a tube whose triangles were shuffled. */
+static void optimize_keeps_best_orders(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("leaves");
+    for (int k = 0; k < 50; k++) {
+        SylOrgan o = fx_organ(SYL_KIND_LEAF, (float)k, 0, 0, 0.5f, SYL_MATERIAL_LEAF);
+        syl_skeleton_add_organ(s, &o);
+    }
+    SylMeshOptions o = {.threads = 1};
+    SylMesh *m = NULL;
+    assert_int_equal(syl_mesh_build(s, &o, &m), SYL_OK);
+    size_t nidx = m->nidx;
+    float *corners = malloc(3 * nidx * sizeof *corners); /* triangle corners in order, by position */
+    for (size_t i = 0; i < nidx; i++) memcpy(corners + 3 * i, m->pos + 3 * m->idx[i], 3 * sizeof *corners);
+    assert_int_equal(syl_mesh_optimize(m), SYL_OK);
+    assert_int_equal(m->nidx, nidx);
+    for (size_t i = 0; i < nidx; i++) assert_memory_equal(corners + 3 * i, m->pos + 3 * m->idx[i], 3 * sizeof *corners);
+    free(corners);
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+
+    s = syl_skeleton_new("tube");
+    int32_t prev = fx_node(s, -1, 0, 0, 0, 0, 0.1f, SYL_MATERIAL_BARK);
+    for (int k = 1; k <= 40; k++) prev = fx_node(s, prev, 0, 0, (float)k * 0.1f, 0, 0.1f, SYL_MATERIAL_BARK);
+    assert_int_equal(syl_mesh_build(s, &o, &m), SYL_OK);
+    size_t nt = m->nidx / 3;
+    for (size_t t = 0; t < nt; t++) { /* a fixed shuffle of whole triangles */
+        size_t u = (t * 7919 + 13) % nt;
+        for (int c = 0; c < 3; c++) {
+            uint32_t x = m->idx[3 * t + c];
+            m->idx[3 * t + c] = m->idx[3 * u + c], m->idx[3 * u + c] = x;
+        }
+    }
+    float before = meshopt_analyzeVertexCache(m->idx, m->nidx, m->nverts, 16, 0, 0).acmr;
+    assert_int_equal(syl_mesh_optimize(m), SYL_OK);
+    float after = meshopt_analyzeVertexCache(m->idx, m->nidx, m->nverts, 16, 0, 0).acmr;
+    assert_true(after < 0.8f * before);
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(straight_tube),
         cmocka_unit_test(lobed_rings),
+        cmocka_unit_test(optimize_keeps_best_orders),
         cmocka_unit_test(tree_is_closed_per_axis),
         cmocka_unit_test(uv_continuous_along_axis),
         cmocka_unit_test(thin_branches_get_fewer_sides),
