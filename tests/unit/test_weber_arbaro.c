@@ -4,6 +4,7 @@
  * seed's counts agree within a few percent, and their means over seeds closer. */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "unit.h"
 
@@ -121,18 +122,22 @@ static const struct {
     {"european_larch", 4586, 161600}, {"tamarack", 2288, 82908},         {"eastern_cottonwood", 1244, 36035},
 };
 
-/* Over seeds 1-10: the mean stems and leaves within 3% of Arbaro's means. */
+/* The mean stems and leaves within 3% of Arbaro's means over seeds 1-10: the weeping willow's
+ * over the same ten seeds (from seed to seed it varies by 6%, as Arbaro's does); the others
+ * vary by under 1% from seed to seed (Arbaro's too), so seeds 1-3 stand for them (the test
+ * stays within a few seconds under the sanitizers). */
 static void means_over_seeds(void **state) {
     (void)state;
     for (size_t i = 0; i < sizeof means / sizeof *means; i++) {
         SylProgram *p = species(means[i].name);
+        const uint64_t seeds = strcmp(means[i].name, "weeping_willow") ? 3 : 10;
         double stems = 0, leaves = 0;
-        for (uint64_t seed = 1; seed <= 10; seed++) {
+        for (uint64_t seed = 1; seed <= seeds; seed++) {
             Counts c = count(p, seed);
-            stems += c.stems / 10, leaves += c.leaves / 10;
+            stems += c.stems / (double)seeds, leaves += c.leaves / (double)seeds;
         }
-        near(means[i].name, "mean stems over seeds 1-10", stems, means[i].stems, 3);
-        near(means[i].name, "mean leaves over seeds 1-10", leaves, means[i].leaves, 3);
+        near(means[i].name, "mean stems over seeds", stems, means[i].stems, 3);
+        near(means[i].name, "mean leaves over seeds", leaves, means[i].leaves, 3);
         syl_program_free(p);
     }
 }
