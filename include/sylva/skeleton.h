@@ -45,6 +45,11 @@ typedef struct SylNode {
     uint8_t kind;      /* SylKind */
     uint8_t material;  /* index into SylSkeleton.materials */
     uint8_t flags;     /* SYL_NODE_* */
+    /* A lobed cross-section at this node (0: round): the mesher draws radius x (1 + depth x
+     * sin(lobes x a)) at angle a about the axis, depth = lobe_depth / 10000 (Weber & Penn's
+     * Lobes and LobeDepth; it sits in the struct's padding). */
+    uint8_t lobes;
+    uint16_t lobe_depth;
     uint32_t module;   /* index of the module that made it, in the string the turtle read */
 } SylNode;
 

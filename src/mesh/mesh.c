@@ -145,6 +145,8 @@ typedef struct RawPt {
     int32_t node;
     uint8_t mat;
     bool smooth;
+    uint8_t lobes;
+    uint16_t lobe_depth;
 } RawPt;
 
 /* Uniform Catmull-Rom between p1 and p2 at t. */
@@ -238,7 +240,8 @@ static bool finish_tube(MeshPlan *pl, RawPt *raw, size_t nraw, bool lateral) {
     if (!mesh_reserve((void **)&pl->pts, &pl->pts_cap, pl->npts, n + extra, sizeof *pl->pts)) return false;
     MeshPt *out = pl->pts + pl->npts;
     size_t m = 0;
-    out[m++] = (MeshPt){.p = {base[0], base[1], base[2]}, .r = r0, .mat = raw[1].mat};
+    out[m++] = (MeshPt){.p = {base[0], base[1], base[2]}, .r = r0, .mat = raw[1].mat, .lobes = raw[lateral ? 1 : 0].lobes,
+                        .lobe_depth = raw[lateral ? 1 : 0].lobe_depth};
     for (size_t k = 1; k < n; k++) {
         const float r = raw[k].r;
         if (raw[k].smooth && raw[k - 1].smooth) {
@@ -258,9 +261,11 @@ static bool finish_tube(MeshPlan *pl, RawPt *raw, size_t nraw, bool lateral) {
                 catmull_rom(p0, p1, p2, p3, t, q->p);
                 q->r = rprev + (r - rprev) * t;
                 q->mat = raw[k].mat;
+                q->lobes = raw[k].lobes, q->lobe_depth = raw[k].lobe_depth;
             }
         }
-        out[m++] = (MeshPt){.p = {raw[k].p[0], raw[k].p[1], raw[k].p[2]}, .r = r, .mat = raw[k].mat};
+        out[m++] = (MeshPt){.p = {raw[k].p[0], raw[k].p[1], raw[k].p[2]}, .r = r, .mat = raw[k].mat, .lobes = raw[k].lobes,
+                            .lobe_depth = raw[k].lobe_depth};
     }
     tube.count = (uint32_t)m;
     pl->npts += m;
@@ -275,6 +280,8 @@ static void raw_point(RawPt *r, const SylNode *nd, int32_t idx, const float *rad
     r->mat = nd->material;
     r->node = idx;
     r->smooth = (nd->flags & SYL_NODE_SMOOTH) != 0;
+    r->lobes = nd->lobes;
+    r->lobe_depth = nd->lobe_depth;
 }
 
 /* Split the nodes into tubes in one pass in node order: a node continues the tube of its
@@ -343,6 +350,9 @@ static bool size_tubes(MeshPlan *pl) {
         int sides = (int)ceilf((float)pl->sides * sqrtf(tb->rmax / rmax) - 1e-4f);
         if (sides < pl->min_sides) sides = pl->min_sides;
         if (sides > pl->sides) sides = pl->sides;
+        int lobes = 0; /* a lobed ring needs four sides a lobe to show its lobes */
+        for (uint32_t k = 0; k < tb->count; k++) lobes = p[k].lobes > lobes ? p[k].lobes : lobes;
+        if (lobes && sides < 4 * lobes) sides = 4 * lobes < MESH_MAX_SIDES ? 4 * lobes : MESH_MAX_SIDES;
         tb->sides = (uint16_t)sides;
         if (!mesh_trig(pl, sides)) return false;
         tb->vert = pl->nverts;
@@ -365,6 +375,28 @@ static inline void dir_len(const float *a, const float *b, vec3 d, float *len) {
     glm_vec3_sub((float *)b, (float *)a, d);
     *len = glm_vec3_norm(d);
     glm_vec3_scale(d, 1.0f / *len, d);
+}
+
+/* A lobed ring (Weber & Penn's trunk): vertex j at angle a_j = 2 pi j / S from ref moves out
+ * to f = 1 + depth sin(lobes a_j) times its distance from the centre; its normal is the polar
+ * curve's, (f w - f' w_perp) / |..| with f' = depth lobes cos(lobes a_j), still leaning back by
+ * the taper's slope. */
+static void lobe_ring(int lobes, float depth, int S, const MeshTrig *tr, v4f C, float ninv, v4f NT, const vec3 ref,
+                      const vec3 bb, float *vp, float *vn) {
+    const v4f R = {ref[0], ref[1], ref[2], 0}, B = {bb[0], bb[1], bb[2], 0};
+    for (int j = 0; j < S; j++) {
+        const float a = (float)lobes * TWO_PI * (float)j / (float)S;
+        const float f = 1.0f + depth * sinf(a), df = depth * (float)lobes * cosf(a);
+        v4f p = {0};
+        memcpy(&p, vp + 3 * j, 3 * sizeof(float));
+        p = C + f * (p - C);
+        const float cj = tr->c[j], sj = tr->s[j];
+        const v4f w = cj * R + sj * B, wp = cj * B - sj * R;
+        const float inv = 1.0f / sqrtf(f * f + df * df);
+        const v4f nv = NT + (ninv * inv) * (f * w - df * wp);
+        memcpy(vp + 3 * j, &p, 3 * sizeof(float));
+        memcpy(vn + 3 * j, &nv, 3 * sizeof(float));
+    }
 }
 
 static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
@@ -439,6 +471,7 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
             vt[2 * j] = tr->u[j];
             vt[2 * j + 1] = v;
         }
+        if (P[k].lobes) lobe_ring(P[k].lobes, P[k].lobe_depth * 1e-4f, S, tr, C, ninv, NT, ref, bb, vp, vn);
         memcpy(vp + 3 * S, vp, 3 * sizeof *vp); /* the seam */
         memcpy(vn + 3 * S, vn, 3 * sizeof *vn);
         vt[2 * S] = 1.0f;

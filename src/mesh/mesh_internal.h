@@ -17,6 +17,8 @@ typedef struct MeshPt {
     float p[3];
     float r;
     uint8_t mat; /* of the segment ending here (the first point: of the first segment) */
+    uint8_t lobes;       /* its node's lobed cross-section (0: round) */
+    uint16_t lobe_depth; /* as SylNode's */
 } MeshPt;
 
 /* Triangles of one material, written from SylMesh.idx[idx] on. */

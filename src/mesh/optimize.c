@@ -9,9 +9,20 @@
 
 #include "sylva/mesh.h"
 
+/* Whether the triangles use every vertex, first in the order they are stored (so the
+ * first-use remap would be the identity). */
+static bool in_first_use_order(const SylMesh *m) {
+    uint32_t next = 0;
+    for (size_t i = 0; i < m->nidx; i++) {
+        if (m->idx[i] == next) next++;
+        else if (m->idx[i] > next) return false;
+    }
+    return next == m->nverts;
+}
+
 /* Vertices in first-use order, unused ones dropped; every attribute stream remapped. */
 static int reorder_vertices(SylMesh *m) {
-    if (!m->nverts || !m->nidx) return SYL_OK;
+    if (!m->nverts || !m->nidx || in_first_use_order(m)) return SYL_OK;
     unsigned *remap = malloc(m->nverts * sizeof *remap);
     float *tmp = malloc(3 * m->nverts * sizeof *tmp);
     if (!remap || !tmp) {

@@ -48,6 +48,9 @@ static void note_material(SylSkeleton *s, uint8_t m) {
 int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
     if (s->nnodes >= INT32_MAX || !array_reserve(&s->nodes, &s->node_cap, s->nnodes + 1, sizeof *n)) return -1;
     s->nodes[s->nnodes] = *n;
+    /* round: callers built their nodes before lobes sat in the padding, which they leave unset;
+     * a model lobes its nodes after adding them (weber writes them itself) */
+    s->nodes[s->nnodes].lobes = 0, s->nodes[s->nnodes].lobe_depth = 0;
     note_material(s, n->material);
     return (int32_t)s->nnodes++;
 }

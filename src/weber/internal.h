@@ -18,7 +18,7 @@ typedef struct Frame {
 } Frame;
 
 /* Stems below these are not made (Arbaro's limits: its mesher breaks below them). */
-#define WEBER_MIN_LEN 0.0005
+#define WEBER_MIN_LEN 1e-5
 #define WEBER_MIN_RADIUS (WEBER_MIN_LEN / 10)
 
 typedef struct WStem {

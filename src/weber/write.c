@@ -29,6 +29,8 @@ typedef struct Writer {
     int32_t *ids;
     size_t n, cap;
     bool failed;
+    uint8_t lobes;       /* the trunk's cross-section (Lobes, LobeDepth) */
+    uint16_t lobe_depth;
 } Writer;
 
 static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], const float z[3], const float x[3],
@@ -47,6 +49,7 @@ static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], cons
     nd.kind = kind;
     nd.material = SYL_MATERIAL_BARK;
     nd.module = (uint32_t)id;
+    if (st->level == 0) nd.lobes = wr->lobes, nd.lobe_depth = wr->lobe_depth; /* Arbaro lobes the trunk only */
     if (wr->sk->nnodes >= wr->sk->node_cap) return wr->failed = true, -1; /* (sized in advance) */
     int32_t k = (int32_t)wr->sk->nnodes;
     wr->sk->nodes[wr->sk->nnodes++] = nd;
@@ -69,6 +72,10 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
     Attach *att = malloc((ns ? ns : 1) * sizeof *att);
     int32_t *attach_node = malloc((ns ? ns : 1) * sizeof *attach_node);
     Writer wr = {.sk = sk};
+    if (g->w.Lobes > 0 && g->w.LobeDepth > 0) {
+        wr.lobes = (uint8_t)(g->w.Lobes < 255 ? g->w.Lobes : 255);
+        wr.lobe_depth = (uint16_t)(g->w.LobeDepth < 6.5535 ? g->w.LobeDepth * 1e4 + 0.5 : 65535);
+    }
     if (!att || !attach_node) {
         free(att);
         free(attach_node);

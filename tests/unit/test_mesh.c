@@ -1,5 +1,7 @@
 /* The mesher: closed tubes, normals, UVs, sides, pipe radii, groups, organs, polygons,
  * determinism. Skeletons are built by hand (mesh_fixtures.h). */
+#include <meshoptimizer.h>
+
 #include "unit.h"
 #include "mesh_fixtures.h"
 
@@ -468,9 +470,96 @@ static void open_tubes_without_caps(void **state) {
     syl_skeleton_free(s);
 }
 
+/* A lobed cross-section (SylNode.lobes, lobe_depth): every vertex of a ring lies at
+ * r (1 + depth sin(lobes a)) from the axis, a its angle about the axis from the ring's first
+ * vertex; a ring gets four sides a lobe; normals stay unit and point outward. */
+static void lobed_rings(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("lobed");
+    int32_t a = fx_node(s, -1, 0, 0, 0, 0, 0.5f, SYL_MATERIAL_BARK);
+    int32_t b = fx_node(s, a, 0, 0, 2, 0, 0.5f, SYL_MATERIAL_BARK);
+    for (int32_t i = a; i <= b; i++) s->nodes[i].lobes = 5, s->nodes[i].lobe_depth = 1500; /* depth 0.15 */
+    SylMeshOptions o = {.threads = 1, .caps = -1};
+    SylMesh *m = NULL;
+    assert_int_equal(syl_mesh_build(s, &o, &m), SYL_OK);
+    assert_int_equal(m->nverts, 2 * (20 + 1)); /* 4 x 5 sides and the seam, two rings */
+    for (int ring = 0; ring < 2; ring++) {
+        const float *v0 = m->pos + 3 * (size_t)ring * 21, y = ring ? 2.0f : 0.0f;
+        const float a0 = atan2f(v0[2], v0[0]);
+        for (int j = 0; j < 21; j++) {
+            const float *v = m->pos + 3 * ((size_t)ring * 21 + (size_t)j), *n = m->nrm + 3 * ((size_t)ring * 21 + (size_t)j);
+            assert_true(fabsf(v[1] - y) < 1e-5f);
+            /* the angle from the first vertex, either way round (the frame's handedness) */
+            float ang = atan2f(v[2], v[0]) - a0, d = sqrtf(v[0] * v[0] + v[2] * v[2]);
+            float want1 = 0.5f * (1 + 0.15f * sinf(5 * ang)), want2 = 0.5f * (1 + 0.15f * sinf(-5 * ang));
+            if (j > 0 && j < 20) assert_true(fabsf(d - want1) < 1e-4f || fabsf(d - want2) < 1e-4f);
+            assert_true(fabsf(d - (j == 0 || j == 20 ? 0.5f : d)) < 1e-4f);
+            assert_true(fabsf(sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1) < 1e-4f);
+            assert_true(n[0] * v[0] + n[2] * v[2] > 0);
+        }
+    }
+    /* one direction of turning fits every vertex */
+    int fits[2] = {0, 0};
+    const float a0 = atan2f(m->pos[2], m->pos[0]);
+    for (int j = 1; j < 20; j++) {
+        const float *v = m->pos + 3 * j;
+        float ang = atan2f(v[2], v[0]) - a0, d = sqrtf(v[0] * v[0] + v[2] * v[2]);
+        fits[0] += fabsf(d - 0.5f * (1 + 0.15f * sinf(5 * ang))) < 1e-4f;
+        fits[1] += fabsf(d - 0.5f * (1 + 0.15f * sinf(-5 * ang))) < 1e-4f;
+    }
+    assert_true(fits[0] == 19 || fits[1] == 19);
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
+/* Leaves are emitted at the best vertex-cache order there is (every vertex fetched once): the
+ * optimizer keeps their triangles in order (vertices may be renumbered), and still reorders
+ * a tube whose triangles were shuffled. */
+static void optimize_keeps_best_orders(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("leaves");
+    for (int k = 0; k < 50; k++) {
+        SylOrgan o = fx_organ(SYL_KIND_LEAF, (float)k, 0, 0, 0.5f, SYL_MATERIAL_LEAF);
+        syl_skeleton_add_organ(s, &o);
+    }
+    SylMeshOptions o = {.threads = 1};
+    SylMesh *m = NULL;
+    assert_int_equal(syl_mesh_build(s, &o, &m), SYL_OK);
+    size_t nidx = m->nidx;
+    float *corners = malloc(3 * nidx * sizeof *corners); /* triangle corners in order, by position */
+    for (size_t i = 0; i < nidx; i++) memcpy(corners + 3 * i, m->pos + 3 * m->idx[i], 3 * sizeof *corners);
+    assert_int_equal(syl_mesh_optimize(m), SYL_OK);
+    assert_int_equal(m->nidx, nidx);
+    for (size_t i = 0; i < nidx; i++) assert_memory_equal(corners + 3 * i, m->pos + 3 * m->idx[i], 3 * sizeof *corners);
+    free(corners);
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+
+    s = syl_skeleton_new("tube");
+    int32_t prev = fx_node(s, -1, 0, 0, 0, 0, 0.1f, SYL_MATERIAL_BARK);
+    for (int k = 1; k <= 40; k++) prev = fx_node(s, prev, 0, 0, (float)k * 0.1f, 0, 0.1f, SYL_MATERIAL_BARK);
+    assert_int_equal(syl_mesh_build(s, &o, &m), SYL_OK);
+    size_t nt = m->nidx / 3;
+    for (size_t t = 0; t < nt; t++) { /* a fixed shuffle of whole triangles */
+        size_t u = (t * 7919 + 13) % nt;
+        for (int c = 0; c < 3; c++) {
+            uint32_t x = m->idx[3 * t + c];
+            m->idx[3 * t + c] = m->idx[3 * u + c], m->idx[3 * u + c] = x;
+        }
+    }
+    float before = meshopt_analyzeVertexCache(m->idx, m->nidx, m->nverts, 16, 0, 0).acmr;
+    assert_int_equal(syl_mesh_optimize(m), SYL_OK);
+    float after = meshopt_analyzeVertexCache(m->idx, m->nidx, m->nverts, 16, 0, 0).acmr;
+    assert_true(after < 0.8f * before);
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(straight_tube),
+        cmocka_unit_test(lobed_rings),
+        cmocka_unit_test(optimize_keeps_best_orders),
         cmocka_unit_test(tree_is_closed_per_axis),
         cmocka_unit_test(uv_continuous_along_axis),
         cmocka_unit_test(thin_branches_get_fewer_sides),
