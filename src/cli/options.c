@@ -285,7 +285,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_EVERY] = {"every", 0, "K", "years between checkpoints (default 10)", CLI_INT, ARGS(every), 1, 60000},
     [CLI_OPT_RESUME] = {"resume", 0, "DIR", "continue the run saved in DIR/ecosystem.ckpt (same model,\n"
                         "seed and options; any number of ranks)", CLI_TEXT, ARGS(resume)},
-    [CLI_OPT_ECO_VIEW] = {"view", 0, "V", "bird (default: the whole terrain from above) or walker (1.7 m\n"
+    [CLI_OPT_ECO_VIEW] = {"view", 0, "CAMERA", "bird (default: the whole terrain from above) or walker (1.7 m\n"
                           "above the valley floor, looking along it): view-YEAR.png's camera",
                           CLI_READ, .read = read_eco_view},
     [CLI_OPT_GLB] = {"glb", 0, NULL, "also write forest-YEAR.glb: the terrain and the plants as\n"
