@@ -132,14 +132,7 @@ static void work_free(Work *w) {
     for (int i = 0; w->tri_mat && i < 2 * w->npr; i++) free(w->tri_mat[i]);
     free(w->tri_mat), free(w->lin), free(w->kind), free(w->level), free(w->pr);
     free(w->inst_proto), free(w->inst_cs), free(w->inst_scale);
-    if (s) {
-        if (s->scene) rtcReleaseScene(s->scene);
-        if (s->dev) rtcReleaseDevice(s->dev);
-        for (int i = 0; i < 4; i++) texture_free(&s->tex[i]);
-        free(s->tri_mat);
-        free(s->pos_copy);
-        free(s);
-    }
+    if (s) render_scene_free(s);
 }
 
 /* The prototypes' scenes and their materials. */

@@ -68,7 +68,7 @@ static void *worker(void *arg) {
     return NULL;
 }
 
-static void scene_free(Scene *s) {
+void render_scene_free(Scene *s) {
     if (s->scene) rtcReleaseScene(s->scene);
     if (s->dev) rtcReleaseDevice(s->dev);
     for (int i = 0; i < 4; i++) texture_free(&s->tex[i]);
@@ -320,7 +320,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
         if (v == 0) status = build_textures_and_scene(s, threads, opt->diag);
         if (!status) render_all_tiles(s, threads, &o);
     }
-    scene_free(s);
+    render_scene_free(s);
     return status;
 }
 

@@ -60,6 +60,8 @@ typedef struct Scene {
 /* render.c's pieces that instances.c shares. */
 void render_set_lighting(Scene *s); /* materials of s->m, scale from s->cam's bounds, the sun */
 void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt);
+/* Release a scene: its Embree scene and device, textures and copies. */
+void render_scene_free(Scene *s);
 int render_cpu_count(void);
 void render_embree_error(void *user, enum RTCError code, const char *msg);
 

@@ -16,6 +16,7 @@ SKELETON.csv is `sylva skeleton` of the same model. Checks:
   - _BRANCH_LEVEL are the skeleton's orders, _PHASE in [0, 2 pi), _STIFFNESS in (0, 1].
 Prints "ok ..." lines, or "FAIL ..." and exits 1."""
 import csv, json, math, struct, sys
+from glbio import read_glb as _read_glb
 
 BOUND = 0.1 + math.sqrt(2) * 0.12  # directed + undirected caps (docs/mesh.md#wind)
 SIZES = {5126: ("f", 4), 5125: ("I", 4), 5123: ("H", 2), 5121: ("B", 1)}
@@ -28,15 +29,7 @@ def fail(msg):
 
 
 def read_glb(path):
-    b = open(path, "rb").read()
-    magic, version, length = struct.unpack_from("<III", b, 0)
-    if magic != 0x46546C67 or version != 2 or length != len(b):
-        fail(f"{path}: not a glTF 2.0 binary")
-    jlen, _ = struct.unpack_from("<II", b, 12)
-    js = json.loads(b[20:20 + jlen])
-    at = 20 + jlen
-    blen, _ = struct.unpack_from("<II", b, at)
-    return js, b[at + 8:at + 8 + blen]
+    return _read_glb(path, fail)
 
 
 def accessor(js, bin_, i):

@@ -18,6 +18,9 @@
       length where the plant is.
 Prints "ok ..." lines; exits 1 with "FAIL ..." on the first failed check."""
 import json, math, struct, sys, zlib
+import os
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "gltf"))
+from glbio import read_glb as _read_glb  # noqa: E402
 
 
 def fail(msg):
@@ -26,15 +29,7 @@ def fail(msg):
 
 
 def read_glb(path):
-    b = open(path, "rb").read()
-    magic, version, length = struct.unpack_from("<III", b, 0)
-    if magic != 0x46546C67 or version != 2 or length != len(b):
-        fail(f"{path}: not a glTF 2.0 binary")
-    jlen, jtype = struct.unpack_from("<II", b, 12)
-    js = json.loads(b[20:20 + jlen])
-    at = 20 + jlen
-    blen, _ = struct.unpack_from("<II", b, at)
-    return js, b[at + 8:at + 8 + blen]
+    return _read_glb(path, fail)
 
 
 def accessor(js, bin_, i):
