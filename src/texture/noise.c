@@ -25,7 +25,7 @@ static const float grad[8][2] = {
 static inline float fade(float t) { return t * t * t * (t * (t * 6 - 15) + 10); }
 
 static inline int wrap(int i, int period) {
-    if (period <= 0) return i;
+    if (period <= 0 || (unsigned)i < (unsigned)period) return i; /* the common case needs no division */
     i %= period;
     return i < 0 ? i + period : i;
 }
