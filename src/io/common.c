@@ -23,13 +23,14 @@ int io_close(OutFile *o, int status, FILE *diag) {
 
 void io_put(IoBuf *b, const void *p, size_t n) {
     if (b->failed) return;
-    if (b->len + n > b->cap) {
+    size_t own = b->len - b->ref_bytes;
+    if (own + n > b->cap) {
         if (n > SIZE_MAX / 4 - b->len) { /* doubling would overflow */
             b->failed = true;
             return;
         }
         size_t c = b->cap ? b->cap : 4096;
-        while (c < b->len + n) c *= 2;
+        while (c < own + n) c *= 2;
         uint8_t *d = realloc(b->data, c);
         if (!d) {
             b->failed = true;
@@ -38,8 +39,37 @@ void io_put(IoBuf *b, const void *p, size_t n) {
         b->data = d;
         b->cap = c;
     }
-    memcpy(b->data + b->len, p, n);
+    memcpy(b->data + own, p, n);
     b->len += n;
+}
+
+void io_ref(IoBuf *b, const void *p, size_t n) {
+    if (b->failed || !n) return;
+    if (n > SIZE_MAX / 4 - b->len) {
+        b->failed = true;
+        return;
+    }
+    if (b->nrefs == b->ref_cap) {
+        size_t c = b->ref_cap ? 2 * b->ref_cap : 16;
+        IoRef *r = realloc(b->refs, c * sizeof *r);
+        if (!r) {
+            b->failed = true;
+            return;
+        }
+        b->refs = r, b->ref_cap = c;
+    }
+    b->refs[b->nrefs++] = (IoRef){b->len - b->ref_bytes, p, n};
+    b->len += n, b->ref_bytes += n;
+}
+
+void io_write(const IoBuf *b, FILE *f) {
+    size_t own = 0;
+    for (size_t i = 0; i < b->nrefs; i++) {
+        if (b->refs[i].at > own) fwrite(b->data + own, 1, b->refs[i].at - own, f);
+        fwrite(b->refs[i].p, 1, b->refs[i].n, f);
+        own = b->refs[i].at;
+    }
+    if (b->len - b->ref_bytes > own) fwrite(b->data + own, 1, b->len - b->ref_bytes - own, f);
 }
 
 void io_printf(IoBuf *b, const char *fmt, ...) {
@@ -83,6 +113,7 @@ void io_line_text(char *dst, size_t n, const char *s, bool no_spaces) {
 
 void io_free(IoBuf *b) {
     free(b->data);
+    free(b->refs);
     *b = (IoBuf){0};
 }
 

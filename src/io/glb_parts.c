@@ -18,7 +18,8 @@ void glb_u32(IoBuf *b, uint32_t u) {
 /* Little-endian 32-bit words (floats or integers), whatever the host. */
 void glb_words(IoBuf *b, const void *x, size_t n) {
 #if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
-    io_put(b, x, 4 * n);
+    if (n >= 1 << 16) io_ref(b, x, 4 * n); /* a mesh's arrays: written from where they are */
+    else io_put(b, x, 4 * n);
 #else
     const uint32_t *w = x;
     for (size_t i = 0; i < n; i++) glb_u32(b, w[i]);
@@ -73,7 +74,7 @@ int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geom
             glb_u32(&head, (uint32_t)bin->len);
             glb_u32(&head, GLB_BIN);
             fwrite(head.data, 1, head.len, fo.f);
-            fwrite(bin->data, 1, bin->len, fo.f);
+            io_write(bin, fo.f);
         }
         if (head.failed && diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
         if (head.failed) status = SYL_ELIMIT;

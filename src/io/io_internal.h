@@ -15,14 +15,29 @@ bool io_open(OutFile *o, const char *path, FILE *diag);
  * Returns status, or SYL_EIO when writing failed (reported). */
 int io_close(OutFile *o, int status, FILE *diag);
 
-/* A growable byte buffer. */
+/* A byte span of the caller's memory, written in place of copying it (io_ref). */
+typedef struct IoRef {
+    size_t at; /* how many of data's own bytes come before it */
+    const void *p;
+    size_t n;
+} IoRef;
+
+/* A growable byte buffer: len bytes in all, of which len - ref_bytes are its own (data) and
+ * the rest spans of memory it refers to. */
 typedef struct IoBuf {
     uint8_t *data;
     size_t len, cap;
     bool failed; /* out of memory */
+    IoRef *refs;
+    size_t nrefs, ref_cap, ref_bytes;
 } IoBuf;
 
 void io_put(IoBuf *b, const void *p, size_t n);
+/* Append n bytes of p by reference: p must stay as it is until b is written or freed. A big
+ * array (a mesh's vertices) goes to the file without a copy in memory. */
+void io_ref(IoBuf *b, const void *p, size_t n);
+/* Write b's bytes, its own and those it refers to, in order. */
+void io_write(const IoBuf *b, FILE *f);
 void io_printf(IoBuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void io_json_string(IoBuf *b, const char *s); /* a quoted, escaped JSON string */
 void io_free(IoBuf *b);
