@@ -184,7 +184,7 @@ static bool png_encode(IoBuf *b, const uint8_t *px, int w, int h, int channels) 
         png_set_write_fn(png, b, png_mem_write, png_mem_flush);
         png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
                      PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        png_set_compression_level(png, 6);
+        png_set_compression_level(png, 2); /* fast: the textures are small beside the mesh */
         png_write_info(png, info);
         for (int y = 0; y < h; y++) png_write_row(png, (png_const_bytep)(px + (size_t)y * (size_t)w * (size_t)channels));
         png_write_end(png, info);
