@@ -78,6 +78,7 @@ typedef struct MeshPlan {
     size_t npv, pv_cap, nptri, ptri_cap;
     MeshTrig *trig[MESH_MAX_SIDES + 1]; /* by number of sides, as needed */
     size_t nverts;
+    float oval[66][2]; /* a skeleton's own leaf outline (along, across), computed once */
 } MeshPlan;
 
 /* Grow *arr to hold n + more elements; false when out of memory. */

@@ -213,8 +213,11 @@ static bool plan_polygon(MeshPlan *pl, const SylPolygon *sp, PolyScratch *sc) {
     return true;
 }
 
+static void oval_outline(float (*uv)[2], int n);
+
 bool mesh_plan_shapes(MeshPlan *pl) {
     const SylSkeleton *s = pl->skel;
+    if (oval_tris(s)) oval_outline(pl->oval, oval_tris(s));
     for (size_t i = 0; i < s->norgans; i++) {
         uint32_t nv, nt;
         organ_counts(pl, &s->organs[i], &nv, &nt);
@@ -276,15 +279,21 @@ static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float
 
 /* A double-sided oval of n triangles (a fan over n + 2 points of its outline, from the base
  * through one side, the tip and the other side), len long along x and w wide along y. */
-static void oval(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w, int n) {
+static void oval_outline(float (*uv)[2], int n) {
+    for (int i = 0; i < n + 2; i++) {
+        float a = 3.14159265358979f + 6.28318530718f * (float)i / (float)(n + 2);
+        uv[i][0] = 0.5f + 0.5f * cosf(a), uv[i][1] = 0.5f * sinf(a); /* along, 0..1; across */
+    }
+}
+
+static void oval(Out *o, const float (*uv)[2], const float *origin, const vec3 x, const vec3 y, float len, float w, int n) {
     vec3 nf, nb;
     glm_vec3_cross((float *)x, (float *)y, nf);
     glm_vec3_normalize(nf);
     glm_vec3_negate_to(nf, nb);
     uint32_t f[66], b[66];
     for (int i = 0; i < n + 2; i++) {
-        float a = 3.14159265358979f + 6.28318530718f * (float)i / (float)(n + 2);
-        float u = 0.5f + 0.5f * cosf(a), v = 0.5f * sinf(a), p[3]; /* u along, 0..1; v across */
+        float u = uv[i][0], v = uv[i][1], p[3];
         for (int q = 0; q < 3; q++) p[q] = origin[q] + u * len * x[q] + v * w * y[q];
         f[i] = put(o, p, nf, 0.5f + v, u);
         b[i] = put(o, p, nb, 0.5f + v, u);
@@ -318,7 +327,7 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
     switch (og->kind) {
     case SYL_KIND_LEAF:
         if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(pl->skel) * size);
-        else if (oval_tris(pl->skel)) oval(o, c, h, l, size, pl->skel->leaf_width * size, oval_tris(pl->skel));
+        else if (oval_tris(pl->skel)) oval(o, pl->oval, c, h, l, size, pl->skel->leaf_width * size, oval_tris(pl->skel));
         else blade(o, c, h, l, size, LEAF_WIDTH * size);
         break;
     case SYL_KIND_FLOWER:
