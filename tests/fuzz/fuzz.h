@@ -52,4 +52,15 @@ static void fuzz_derive_and_free(SylProgram *p, int steps, FILE *diag) {
     syl_program_free(p);
 }
 
+/* What the tree harnesses (weber, strands) do with a tree once built (st == SYL_OK): mesh it
+ * with few sides; then the tree is freed. */
+static void fuzz_mesh_tree_and_free(int st, SylSkeleton *sk, FILE *diag) {
+    if (st == SYL_OK) {
+        SylMesh *m = NULL;
+        SylMeshOptions mo = {.sides = 4, .threads = 1, .diag = diag};
+        if (syl_mesh_build(sk, &mo, &m) == SYL_OK) syl_mesh_free(m);
+    }
+    syl_skeleton_free(sk);
+}
+
 #endif

@@ -15,12 +15,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         double age = size ? (double)data[size - 1] / 255 : 0; /* 0 or 1: full grown */
         SylTreeOptions t = {.threads = 1, .age = age, .max_memory = 2u << 20, .diag = diag};
         SylSkeleton *sk = NULL;
-        if (syl_strands(p, &t, &sk) == SYL_OK) {
-            SylMesh *m = NULL;
-            SylMeshOptions mo = {.sides = 4, .threads = 1, .diag = diag};
-            if (syl_mesh_build(sk, &mo, &m) == SYL_OK) syl_mesh_free(m);
-        }
-        syl_skeleton_free(sk);
+        int st = syl_strands(p, &t, &sk);
+        fuzz_mesh_tree_and_free(st, sk, diag);
     }
     syl_program_free(p);
     return 0;
