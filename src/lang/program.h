@@ -71,11 +71,15 @@ typedef struct Rule {
     int nslots;
     bool vm_free;             /* no slot runs the VM: emitted without a random stream */
     /* A vm_free rule of at most SLOT_PLAN slots is written as its template (the constants,
-     * in one fixed-size copy), then its copied parameters, then its arithmetic ones: no
-     * branch per slot on its kind. planned says it has a plan. */
+     * in one fixed-size copy), then its distinct arithmetic parameters, then its copied
+     * ones and the repeats of an arithmetic one (`X(l/2)` twice divides once): no branch per
+     * slot on its kind. A division by a power of two is a multiplication by its inverse,
+     * which rounds the same. planned says it has a plan. */
     bool planned;
-    uint8_t ncopy, narith;
-    uint8_t copy_dst[SLOT_PLAN], copy_src[SLOT_PLAN], arith[SLOT_PLAN];
+    uint8_t ncopy, narith, ndup;
+    uint8_t copy_dst[SLOT_PLAN], copy_src[SLOT_PLAN], arith[SLOT_PLAN], dup_dst[SLOT_PLAN], dup_src[SLOT_PLAN];
+    uint8_t arith_kind[SLOT_PLAN], arith_local[SLOT_PLAN];
+    double arith_k[SLOT_PLAN];
     double tmpl[SLOT_PLAN];
     SylLoc loc;               /* the predecessor */
     int line;

@@ -24,24 +24,24 @@ static inline void put_codes(uint16_t *dst, const Rule *r) {
 
 /* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
  * no VM, no random stream. False if a value is not finite (emit then reports it). */
-static inline bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
+static inline __attribute__((always_inline)) bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
     bool ok = true;
     if (r->planned) { /* the room of a successor's parameters holds MAX_ARITY more */
         memcpy(dst, r->tmpl, sizeof r->tmpl);
-        const int ncopy = r->ncopy, narith = r->narith;
-        for (int c = 0; c < ncopy; c++) dst[r->copy_dst[c]] = x[r->copy_src[c]];
+        const int ncopy = r->ncopy, narith = r->narith, ndup = r->ndup;
         for (int a = 0; a < narith; a++) {
-            const Slot *s = &r->slots[r->arith[a]];
-            double v, y = x[s->local];
-            switch (s->kind) {
-            case SLOT_ADDK: v = y + s->k; break;
-            case SLOT_SUBK: v = y - s->k; break;
-            case SLOT_MULK: v = y * s->k; break;
-            default: v = y / s->k; break; /* SLOT_DIVK */
+            double v, y = x[r->arith_local[a]], k = r->arith_k[a];
+            switch (r->arith_kind[a]) {
+            case SLOT_ADDK: v = y + k; break;
+            case SLOT_SUBK: v = y - k; break;
+            case SLOT_MULK: v = y * k; break;
+            default: v = y / k; break; /* SLOT_DIVK */
             }
             ok &= isfinite(v) != 0;
             dst[r->arith[a]] = v;
         }
+        for (int c = 0; c < ncopy; c++) dst[r->copy_dst[c]] = x[r->copy_src[c]];
+        for (int d = 0; d < ndup; d++) dst[r->dup_dst[d]] = dst[r->dup_src[d]];
         return ok;
     }
     for (int k = 0; k < r->nslots; k++) {
