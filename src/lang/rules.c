@@ -310,6 +310,9 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
             return false;
         for (int k = 0; k < r->nnewright; k++) t->newright_code[r->newright[k].code] = true;
     }
+    if (!(t->stay = arena_alloc(a, CODE_COUNT))) return false;
+    for (int code = 0; code < CODE_COUNT; code++)
+        t->stay[code] = t->dispatch[code].count ? 0 : (uint8_t)(1 + CODE_ARITY(code));
     t->all_plain = true;
     for (int code = 0; code < CODE_COUNT; code++) {
         Dispatch *d = &t->dispatch[code];
