@@ -71,11 +71,15 @@ typedef struct Rule {
     int nslots;
     bool vm_free;             /* no slot runs the VM: emitted without a random stream */
     /* A vm_free rule of at most SLOT_PLAN slots is written as its template (the constants,
-     * in one fixed-size copy), then its copied parameters, then its arithmetic ones: no
-     * branch per slot on its kind. planned says it has a plan. */
+     * in one fixed-size copy), then its distinct arithmetic parameters, then its copied
+     * ones and the repeats of an arithmetic one (`X(l/2)` twice divides once): no branch per
+     * slot on its kind. A division by a power of two is a multiplication by its inverse,
+     * which rounds the same. planned says it has a plan. */
     bool planned;
-    uint8_t ncopy, narith;
-    uint8_t copy_dst[SLOT_PLAN], copy_src[SLOT_PLAN], arith[SLOT_PLAN];
+    uint8_t ncopy, narith, ndup;
+    uint8_t copy_dst[SLOT_PLAN], copy_src[SLOT_PLAN], arith[SLOT_PLAN], dup_dst[SLOT_PLAN], dup_src[SLOT_PLAN];
+    uint8_t arith_kind[SLOT_PLAN], arith_local[SLOT_PLAN];
+    double arith_k[SLOT_PLAN];
     double tmpl[SLOT_PLAN];
     SylLoc loc;               /* the predecessor */
     int line;
@@ -117,6 +121,8 @@ typedef struct RuleTable {
     bool all_plain;      /* every rule is plain: no matching, no choice */
     bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
     bool all_fast;       /* every predecessor's rules are plain or FastRules */
+    uint8_t *stay;       /* per code: 1 + its arity when no rule rewrites it, else 0 (runs of
+                            such modules are copied in one go) */
     uint8_t *ctx_class;  /* per code: 1.. for the codes fast rules' contexts name, 0 others */
     int nclass;          /* classes including 0; 0 when the codes are too many for pick */
     bool *newleft_code;  /* CODE_COUNT entries: the codes some `<<` context names (only their

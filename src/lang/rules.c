@@ -1,4 +1,5 @@
 /* Rules: a rule's patterns and successor compiled, and the dispatch tables built over them. */
+#include <math.h>
 #include <string.h>
 
 #include "lang/compiler.h"
@@ -79,6 +80,31 @@ bool cc_code_constant(const SylProgram *p, int32_t pc, double *v) {
     return true;
 }
 
+/* k is 2^e with 1/k a normal number: x / k and x * (1 / k) are then the same double. */
+static bool power_of_two(double k) {
+    int e;
+    return isfinite(k) && frexp(k, &e) == 0.5 && e > -1020 && e < 1020;
+}
+
+/* Slot k of r's plan, arithmetic: computed once however often it is written. */
+static void plan_arith(Rule *r, int k) {
+    const Slot *sl = &r->slots[k];
+    int kind = sl->kind;
+    double m = sl->k;
+    if (kind == SLOT_DIVK && power_of_two(m)) kind = SLOT_MULK, m = 1 / m;
+    for (int a = 0; a < r->narith; a++)
+        if (r->arith_kind[a] == kind && r->arith_local[a] == sl->local && r->arith_k[a] == m &&
+            signbit(r->arith_k[a]) == signbit(m)) {
+            r->dup_dst[r->ndup] = (uint8_t)k;
+            r->dup_src[r->ndup++] = r->arith[a];
+            return;
+        }
+    r->arith_kind[r->narith] = (uint8_t)kind;
+    r->arith_local[r->narith] = sl->local;
+    r->arith_k[r->narith] = m;
+    r->arith[r->narith++] = (uint8_t)k;
+}
+
 void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *what) {
     SylProgram *p = c->p;
     r->nsucc = ms->n;
@@ -133,7 +159,7 @@ void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *wh
         else if (sl->kind == SLOT_LOCAL) {
             r->copy_dst[r->ncopy] = (uint8_t)k;
             r->copy_src[r->ncopy++] = sl->local;
-        } else r->arith[r->narith++] = (uint8_t)k;
+        } else plan_arith(r, k);
     }
 }
 
@@ -284,6 +310,9 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
             return false;
         for (int k = 0; k < r->nnewright; k++) t->newright_code[r->newright[k].code] = true;
     }
+    if (!(t->stay = arena_alloc(a, CODE_COUNT))) return false;
+    for (int code = 0; code < CODE_COUNT; code++)
+        t->stay[code] = t->dispatch[code].count ? 0 : (uint8_t)(1 + CODE_ARITY(code));
     t->all_plain = true;
     for (int code = 0; code < CODE_COUNT; code++) {
         Dispatch *d = &t->dispatch[code];

@@ -24,24 +24,24 @@ static inline void put_codes(uint16_t *dst, const Rule *r) {
 
 /* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
  * no VM, no random stream. False if a value is not finite (emit then reports it). */
-static inline bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
+static inline __attribute__((always_inline)) bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
     bool ok = true;
     if (r->planned) { /* the room of a successor's parameters holds MAX_ARITY more */
         memcpy(dst, r->tmpl, sizeof r->tmpl);
-        const int ncopy = r->ncopy, narith = r->narith;
-        for (int c = 0; c < ncopy; c++) dst[r->copy_dst[c]] = x[r->copy_src[c]];
+        const int ncopy = r->ncopy, narith = r->narith, ndup = r->ndup;
         for (int a = 0; a < narith; a++) {
-            const Slot *s = &r->slots[r->arith[a]];
-            double v, y = x[s->local];
-            switch (s->kind) {
-            case SLOT_ADDK: v = y + s->k; break;
-            case SLOT_SUBK: v = y - s->k; break;
-            case SLOT_MULK: v = y * s->k; break;
-            default: v = y / s->k; break; /* SLOT_DIVK */
+            double v, y = x[r->arith_local[a]], k = r->arith_k[a];
+            switch (r->arith_kind[a]) {
+            case SLOT_ADDK: v = y + k; break;
+            case SLOT_SUBK: v = y - k; break;
+            case SLOT_MULK: v = y * k; break;
+            default: v = y / k; break; /* SLOT_DIVK */
             }
             ok &= isfinite(v) != 0;
             dst[r->arith[a]] = v;
         }
+        for (int c = 0; c < ncopy; c++) dst[r->copy_dst[c]] = x[r->copy_src[c]];
+        for (int d = 0; d < ndup; d++) dst[r->dup_dst[d]] = dst[r->dup_src[d]];
         return ok;
     }
     for (int k = 0; k < r->nslots; k++) {
@@ -246,6 +246,8 @@ static inline bool make_room(Work *w, size_t lo, size_t pi, size_t room, size_t 
 /* Output room is made for BATCH modules' successors at once: one capacity check per batch
  * instead of per module, and the write cursors stay in registers in between. */
 enum { BATCH = 64 };
+/* Modules that stay are copied one by one up to this many in a row, else moved in one go. */
+enum { RUN_MIN = 4 };
 
 /* The first of d's fast rules whose neighbour codes match, or NULL: looked up by the
  * neighbours' classes, else (too many classes) a mask of all the rules, which costs no
@@ -410,6 +412,12 @@ static void run_chunk(Work *w) {
  * contexts or choices, small enough for every cursor to stay in a register. */
 static void run_chunk_plain(Work *w) {
     const RuleTable *t = w->t;
+    const uint8_t *stay = t->stay;
+    /* how far the input may be read: short runs are copied in fixed sizes, which may read
+     * and write past them (the output has room, the writer stays SUCC_PAD codes and
+     * MAX_ARITY parameters behind the reader) */
+    const size_t n_end = w->inplace ? w->n_in : w->in->n;
+    const size_t np_end = w->inplace ? w->np_in : w->np_all;
     SylString *o = w->out;
     size_t pi = w->plo;
     bool applied = false;
@@ -427,9 +435,24 @@ static void run_chunk_plain(Work *w) {
             uint16_t c = code[i];
             int ar = CODE_ARITY(c);
             const Rule *r = t->dispatch[c].plain;
-            if (!r) {
+            if (!r && (i + 1 == hi || !stay[code[i + 1]])) { /* it stays alone */
                 *oc++ = c;
                 for (int k = 0; k < ar; k++) *op++ = args[k]; /* mostly 0 or 1: no call to memcpy */
+            } else if (!r) {
+                size_t j = i + 2, np = (size_t)ar + stay[code[i + 1]] - 1;
+                for (unsigned st; j < hi && (st = stay[code[j]]); j++) np += st - 1;
+                /* a run of modules that stay: its codes and its parameters copied in one go,
+                 * short ones in fixed sizes, long ones moved (in place the writer may be
+                 * closer behind the reader than the run is long) */
+                if (j - i <= 8 && i + 8 <= n_end) memcpy(oc, code + i, 8 * sizeof *oc);
+                else memmove(oc, code + i, (j - i) * sizeof *oc);
+                if (np <= 4 && (size_t)(args - par) + 4 <= np_end) memcpy(op, args, 4 * sizeof *op);
+                else memmove(op, args, np * sizeof *op);
+                oc += j - i;
+                op += np;
+                args += np;
+                i = j - 1;
+                continue;
             } else if (r->vm_free && put_slots(op, r, args)) {
                 put_codes(oc, r);
                 oc += r->nsucc;
