@@ -35,6 +35,18 @@ static void on_warning(png_structp png, png_const_charp msg) {
     (void)msg;
 }
 
+/* Whether every chunk's length fits in the file: libpng allocates a text chunk's stated length
+ * before it reads it, so a damaged length in a small file would ask for gigabytes. */
+static bool chunks_fit(const uint8_t *d, size_t len) {
+    for (size_t at = 8; at + 8 <= len;) {
+        size_t n = (size_t)d[at] << 24 | (size_t)d[at + 1] << 16 | (size_t)d[at + 2] << 8 | d[at + 3];
+        if (n > len - at - 8 || len - at - 8 - n < 4) return false; /* data and CRC */
+        if (!memcmp(d + at + 4, "IEND", 4)) return true;
+        at += 12 + n;
+    }
+    return true; /* a file cut between chunks: libpng says so */
+}
+
 int terrain_read_png(const char *path, const uint8_t *data, size_t len, const SylTerrainOptions *o,
                      Terrain **out) {
     *out = NULL;
@@ -43,6 +55,10 @@ int terrain_read_png(const char *path, const uint8_t *data, size_t len, const Sy
     const double cell = o->cell > 0 ? o->cell : 1;
     if (len < 8 || png_sig_cmp(data, 0, 8)) {
         if (diag) fprintf(diag, "%s: error: not a PNG file (its first bytes are not PNG's signature)\n", path);
+        return SYL_EMODEL;
+    }
+    if (!chunks_fit(data, len)) {
+        if (diag) fprintf(diag, "%s: error: a malformed PNG: the file ends early (truncated)\n", path);
         return SYL_EMODEL;
     }
     Mem m = {data, len, 0, path, diag, false};
