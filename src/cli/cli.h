@@ -92,6 +92,8 @@ int cmd_compare(int argc, char **argv);
 int cmd_convert(int argc, char **argv);
 int cmd_terrain(int argc, char **argv);
 int cmd_ecosystem(int argc, char **argv);
+/* sylva render FILE --plants CSV (snapshot.c): a saved ecosystem snapshot, split over MPI ranks */
+int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro);
 /* syl_compile's hook for every command: grow, scene and ecosystem directives */
 int cli_validate(void *user, const SylProgram *p, FILE *diag);
 

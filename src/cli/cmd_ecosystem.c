@@ -223,15 +223,8 @@ static int write_table(Run *r, int year, const SylEcoPlant *plants, size_t n) {
         free(path);
         return SYL_EIO;
     }
-    fprintf(o.f, "id,species,x,y,z,age,height,radius,vigour,state\n");
-    for (size_t j = 0; j < n; j++) {
-        const SylEcoPlant *p = &plants[j];
-        const SylEcoSpecies *s = &r->m->species[p->species];
-        double y = syl_terrain_factor_at(r->t, SYL_TERRAIN_ALTITUDE, p->x, p->z);
-        fprintf(o.f, "%016llx,%s,%.3f,%.3f,%.3f,%u,%.3f,%.3f,%.4f,%s\n", (unsigned long long)p->id, s->name, p->x, y,
-                p->z, p->age, p->height, s->radius_ratio * p->height, p->vigour,
-                p->state == SYL_ECO_DOMINATED ? "dominated" : "free");
-    }
+    fprintf(o.f, "%s\n", syl_ecosystem_table_header);
+    for (size_t j = 0; j < n; j++) syl_ecosystem_table_row(o.f, r->m, r->t, &plants[j]);
     int st = out_close(&o, SYL_OK);
     if (!st) printf("%s\n", path);
     free(path);

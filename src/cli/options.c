@@ -27,6 +27,13 @@ static bool read_eco_view(CliArgs *a, char *arg) {
     return false;
 }
 
+/* sylva render's --view: a plant's (iso, front, side, top) or a snapshot's (bird, walker) */
+static bool read_render_view(CliArgs *a, char *arg) {
+    if (strcmp(arg, "bird") && strcmp(arg, "walker")) return cli_view(arg, &a->ro->view);
+    a->eco_view_set = true;
+    return read_eco_view(a, arg);
+}
+
 static bool read_ao(CliArgs *a, char *arg) {
     double v;
     if (!cli_integer("--ao", arg, 0, 64, &v)) return false;
@@ -290,6 +297,10 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                           CLI_READ, .read = read_eco_view},
     [CLI_OPT_GLB] = {"glb", 0, NULL, "also write forest-YEAR.glb: the terrain and the plants as\n"
                      "EXT_mesh_gpu_instancing nodes, one per species, age class and cell", CLI_FLAG, ARGS(glb)},
+    [CLI_OPT_PLANTS] = {"plants", 0, "CSV", "render this plant table (plants-YEAR.csv of sylva ecosystem) of\n"
+                        "the model's ecosystem block, as view-YEAR.png", CLI_TEXT, ARGS(plants)},
+    [CLI_OPT_RENDER_VIEW] = {"view", 0, "V", "iso, front, side or top (default: chosen from the shape); with\n"
+                             "--plants, bird (default) or walker", CLI_READ, .read = read_render_view},
     /* sylva mesh */
     [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
                      SYL_LOD_MAX},
