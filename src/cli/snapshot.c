@@ -27,20 +27,38 @@ static int band_row(int b, int nbands, int height) {
     return (int)((int64_t)b * height / nbands) / SYL_RENDER_BLOCK * SYL_RENDER_BLOCK;
 }
 
-/* Every rank's status to all: the worst, so that every rank stops or none. */
-static int agree(SylEcoMpi *mpi, int st) {
-    int64_t v[5] = {0};
+/* Every rank's status to all (every rank makes the same calls): the worst, so that every
+ * rank stops or none. A rank other than 0 that failed says why (its diagnostics, kept in
+ * said) unless rank 0 failed too, which has said it once; rank 0 says how many ranks failed
+ * when it did not. After a failure every rank's st is the worst: nothing is said twice. */
+static int agree(SylEcoMpi *mpi, int st, FILE *said, char *const *text, const size_t *len) {
+    int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
+    int64_t v[7] = {0}; /* a flag per status, rank 0 failed, ranks failed */
     if (st > 0 && st < 5) v[st] = 1;
-    syl_eco_mpi_sum(mpi, v, 5);
+    v[5] = st && rank == 0, v[6] = st != 0;
+    syl_eco_mpi_sum(mpi, v, 7);
+    int worst = SYL_OK;
     for (int k = 4; k > 0; k--)
-        if (v[k]) return k;
-    return SYL_OK;
+        if (v[k] && !worst) worst = k;
+    if (worst && !v[5] && rank == 0)
+        fprintf(stderr, "sylva: error: %lld of the %d ranks could not do their part (the same files on every node?)\n",
+                (long long)v[6], nranks);
+    if (st && !v[5] && rank > 0 && said) {
+        fflush(said);
+        fprintf(stderr, "sylva: error: rank %d of %d could not do its part:\n%.*s", rank, nranks, (int)*len,
+                *text ? *text : "");
+    }
+    return worst;
 }
 
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro) {
     SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
-    FILE *diag = rank == 0 ? stderr : NULL; /* every rank finds the same faults: rank 0 says them */
+    /* every rank finds the same faults, which rank 0 says; another rank's are kept, to be said
+     * when it alone failed (agree) */
+    char *said = NULL;
+    size_t said_len = 0;
+    FILE *diag = rank == 0 ? stderr : open_memstream(&said, &said_len), *kept = rank == 0 ? NULL : diag;
     static SylEcoModel model; /* 14 kB: off the stack */
     SylProgram *p = NULL;
     SylTerrain *t = NULL;
@@ -66,6 +84,7 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
     if (!st) st = syl_ecosystem_load(p, &eo, &model, &t);
     if (!st) st = syl_ecosystem_table_read(a->plants, &model, t, &plants, &nplants, diag);
     if (!st) st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = d->threads, .diag = diag}, &forest);
+    st = agree(mpi, st, kept, &said, &said_len); /* before rendering: no work for a failed job */
     int w = ro->width ? ro->width : 1280, h = ro->height ? ro->height : 720;
     ro->width = w, ro->height = h;
     int nbands = bands_of(h, nranks);
@@ -92,11 +111,8 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
         fflush(stderr);
         raise(SIGKILL);
     }
-    int mine_st = st;
-    st = agree(mpi, st);
-    if (st && !mine_st && diag) fprintf(diag, "sylva: error: another rank could not render its part (the same files on every node?)\n");
     if (!st && !(lens = calloc((size_t)nranks, sizeof *lens))) st = SYL_ELIMIT;
-    st = agree(mpi, st);
+    st = agree(mpi, st, kept, &said, &said_len);
     if (!st) st = syl_eco_mpi_gather(mpi, mine, rows * row_bytes, &all, lens);
     if (!st && rank == 0) { /* each rank's bands, in its order, into their rows */
         if (!(rgb = malloc((size_t)h * row_bytes))) st = SYL_ELIMIT;
@@ -129,7 +145,9 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
             free(glb);
         }
     }
-    st = agree(mpi, st); /* rank 0's writes: every rank exits with their status */
+    st = agree(mpi, st, kept, &said, &said_len); /* rank 0's writes: every rank exits with their status */
+    if (kept) fclose(kept);
+    free(said);
     if (!st && a->stats) {
         if (rank == 0)
             fprintf(stderr, "view: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n", cam.eye[0],
