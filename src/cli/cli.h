@@ -69,6 +69,7 @@ int out_close(OutFile *o, int status);       /* commit when status is SYL_OK; SY
 extern const OutHooks cli_temp_hooks;        /* main.c: the temporary files a signal removes */
 
 bool cli_view(const char *arg, SylView *v);                 /* --view */
+bool cli_view_or(const char *arg, SylView *v, const char *also); /* the same, naming other views */
 bool cli_picture_size(const char *arg, int *w, int *h);    /* --size WxH */
 
 /* [DIR/]NAME.EXT where NAME is the model named in FILE:Model, else the file's name without

@@ -218,7 +218,9 @@ double cli_peak_mb(void) {
     return (double)ru.ru_maxrss / 1024.0;
 }
 
-bool cli_view(const char *arg, SylView *v) {
+bool cli_view(const char *arg, SylView *v) { return cli_view_or(arg, v, ""); }
+
+bool cli_view_or(const char *arg, SylView *v, const char *also) {
     static const struct { const char *name; SylView view; } views[] = {
         {"iso", SYL_VIEW_ISO}, {"front", SYL_VIEW_FRONT}, {"side", SYL_VIEW_SIDE},
         {"top", SYL_VIEW_TOP}, {"auto", SYL_VIEW_AUTO},
@@ -228,7 +230,7 @@ bool cli_view(const char *arg, SylView *v) {
             *v = views[i].view;
             return true;
         }
-    fprintf(stderr, "sylva: error: --view expects iso, front, side, top or auto, not '%s'\n", arg);
+    fprintf(stderr, "sylva: error: --view expects iso, front, side, top or auto%s, not '%s'\n", also, arg);
     return false;
 }
 

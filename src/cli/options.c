@@ -29,7 +29,7 @@ static bool read_eco_view(CliArgs *a, char *arg) {
 
 /* sylva render's --view: a plant's (iso, front, side, top) or a snapshot's (bird, walker) */
 static bool read_render_view(CliArgs *a, char *arg) {
-    if (strcmp(arg, "bird") && strcmp(arg, "walker")) return cli_view(arg, &a->ro->view);
+    if (strcmp(arg, "bird") && strcmp(arg, "walker")) return cli_view_or(arg, &a->ro->view, " (a plant), bird or walker (--plants)");
     a->eco_view_set = true;
     return read_eco_view(a, arg);
 }

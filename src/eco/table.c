@@ -97,7 +97,7 @@ static bool row(Reader *r, const char *line, size_t len, uint64_t last_id, bool 
     for (;; k++) {
         const char *c = memchr(s, ',', (size_t)(end - s));
         if (k == NFIELDS) {
-            diag_error(&r->d, at(r, line, s - 1, 1), "a row has %d fields (%s); this one has more", NFIELDS,
+            diag_error(&r->d, at(r, line, s, (size_t)(end - s)), "a row has %d fields (%s); this one has more", NFIELDS,
                        syl_ecosystem_table_header);
             return false;
         }
