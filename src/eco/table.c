@@ -10,6 +10,7 @@
 #include "util/closest.h"
 #include "util/diag.h"
 #include "util/file.h"
+#include "util/number.h"
 
 const char syl_ecosystem_table_header[] = "id,species,x,y,z,age,height,radius,vigour,state";
 
@@ -52,17 +53,8 @@ static SylLoc at(const Reader *r, const char *line, const char *s, size_t n) {
     return (SylLoc){r->line, c, r->line, n ? c + (int)n - 1 : c};
 }
 
-/* A whole field as a finite number. */
-static bool number(const char *s, size_t n, double *out) {
-    char buf[64];
-    if (n == 0 || n >= sizeof buf) return false;
-    memcpy(buf, s, n);
-    buf[n] = 0;
-    char *e;
-    errno = 0;
-    *out = strtod(buf, &e);
-    return *e == 0 && isfinite(*out) && !strchr(" \t+", buf[0]);
-}
+/* A whole field as a finite number, unsigned as the writer writes it. */
+static bool number(const char *s, size_t n, double *out) { return n && s[0] != '+' && number_read(s, n, out); }
 
 static bool hex_id(const char *s, size_t n, uint64_t *out) {
     if (n == 0 || n > 16) return false;
