@@ -272,7 +272,7 @@ static int write_view(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     char *path = path_in(r->dir, "view-%d.png", year);
     SylRenderCounts counts;
     double t0 = cli_now(), c0 = cpu_now();
-    int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, rgb, &counts) : SYL_ELIMIT;
+    int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, 0, rgb, &counts) : SYL_ELIMIT;
     double wall = cli_now() - t0, cpu = cpu_now() - c0;
     if (!st) st = syl_write_png(path, rgb, ro.width, ro.height, stderr);
     if (!st) printf("%s\n", path);

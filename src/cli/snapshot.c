@@ -92,17 +92,17 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
     for (int b = rank; b < nbands; b += nranks) rows += (size_t)(band_row(b + 1, nbands, h) - band_row(b, nbands, h));
     size_t row_bytes = (size_t)w * 3;
     if (!st && !(mine = malloc(rows * row_bytes + 1))) st = SYL_ELIMIT;
+    int (*windows)[4] = NULL, nwin = 0; /* this rank's bands, rendered on one scene */
+    if (!st && !(windows = malloc((size_t)(nbands / nranks + 1) * sizeof *windows))) st = SYL_ELIMIT;
+    for (int b = rank; !st && b < nbands; b += nranks) {
+        int *win = windows[nwin++];
+        win[0] = 0, win[1] = band_row(b, nbands, h), win[2] = w, win[3] = band_row(b + 1, nbands, h);
+    }
     SylRenderCamera cam;
-    SylRenderCounts counts = {0}, c;
+    SylRenderCounts counts = {0};
     double c0 = cli_cpu_now(), t0 = cli_now();
     if (!st) syl_forest_camera(forest, (SylForestView)a->eco_view, w, h, &cam);
-    size_t at = 0;
-    for (int b = rank; !st && b < nbands; b += nranks) {
-        int y0 = band_row(b, nbands, h), y1 = band_row(b + 1, nbands, h);
-        st = syl_forest_render(forest, plants, nplants, &cam, ro, (const int[4]){0, y0, w, y1}, mine + at, &c);
-        at += (size_t)(y1 - y0) * row_bytes;
-        counts.drawn += c.drawn, counts.coarse += c.coarse, counts.culled += c.culled;
-    }
+    if (!st && nwin) st = syl_forest_render(forest, plants, nplants, &cam, ro, (const int(*)[4])windows, nwin, mine, &counts);
     double cpu = cli_cpu_now() - c0, wall = cli_now() - t0;
     /* a killed rank, for tests/run-mpi: the job must end with nothing written */
     const char *fr = getenv("SYLVA_TEST_FAIL_RANK");
@@ -154,10 +154,10 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
                     cam.eye[1], cam.eye[2], cam.target[0], cam.target[1], cam.target[2], cam.fov, w, h);
         fprintf(stderr, "rank %d: %zu plants, %zu rows in %d bands, %zu bytes gathered; %zu instances drawn (%zu coarse), "
                         "%zu culled; %.3f s wall, %.3f s cpu\n",
-                rank, nplants, rows, (nbands - rank + nranks - 1) / nranks, rows * row_bytes, counts.drawn,
+                rank, nplants, rows, nwin, rows * row_bytes, counts.drawn,
                 counts.coarse, counts.culled, wall, cpu);
     }
-    free(out), free(rgb), free(all), free(lens), free(mine), free(plants);
+    free(out), free(rgb), free(all), free(lens), free(mine), free(plants), free(windows);
     syl_forest_free(forest);
     syl_terrain_free(t);
     syl_program_free(p);
