@@ -153,9 +153,9 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
             fprintf(stderr, "view: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n", cam.eye[0],
                     cam.eye[1], cam.eye[2], cam.target[0], cam.target[1], cam.target[2], cam.fov, w, h);
         fprintf(stderr, "rank %d: %zu plants, %zu rows in %d bands, %zu bytes gathered; %zu instances drawn (%zu coarse), "
-                        "%zu culled; %.3f s wall, %.3f s cpu\n",
+                        "%zu culled; %.3f s wall, %.3f s cpu; %.3f s cpu in all\n",
                 rank, nplants, rows, nwin, rows * row_bytes, counts.drawn,
-                counts.coarse, counts.culled, wall, cpu);
+                counts.coarse, counts.culled, wall, cpu, cli_cpu_now());
     }
     free(out), free(rgb), free(all), free(lens), free(mine), free(plants), free(windows);
     syl_forest_free(forest);
