@@ -2,8 +2,8 @@
  * `sylva ecosystem` renders view-YEAR.png. Under mpirun the picture's rows are cut into bands
  * dealt round the ranks (band b to rank b mod N, for balance: the sky is cheap, the forest
  * dear); every rank holds the whole instanced scene and renders its bands as windows of the
- * picture (syl_render_instances: byte for byte the whole picture's pixels), rank 0 gathers
- * them and writes the PNG. */
+ * picture on it (syl_render_instances: bands starting at multiples of SYL_RENDER_BLOCK rows
+ * have the whole picture's bytes), rank 0 gathers them and writes the PNG. */
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
