@@ -236,8 +236,9 @@ int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTe
     size_t len;
     char *text = file_read(path, &len);
     if (!text) {
-        if (diag) fprintf(diag, "sylva: error: cannot read the plant table '%s': %s\n", path, strerror(errno));
-        return errno == ENOMEM ? SYL_ELIMIT : SYL_EIO;
+        int e = errno; /* before the message, which may change it */
+        if (diag) fprintf(diag, "sylva: error: cannot read the plant table '%s': %s\n", path, strerror(e));
+        return e == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     }
     int st = syl_ecosystem_table_parse(text, len, path, m, t, plants, nplants, diag);
     free(text);
