@@ -44,14 +44,22 @@ static inline __attribute__((always_inline)) bool put_slots(double *restrict dst
         memcpy(&yb, &y, sizeof yb);
         memcpy(&vb, &v, sizeof vb);
         const Bits2 Y = {yb, yb}, V = {vb, vb};
-        for (int p = 0; p < r->blend_pairs; p++) {
-            Bits2 t, mx, mv;
-            memcpy(&t, &r->tmpl[2 * p], sizeof t);
-            memcpy(&mx, &r->blend_x[2 * p], sizeof mx);
-            memcpy(&mv, &r->blend_v[2 * p], sizeof mv);
-            Bits2 d = t | (Y & mx) | (V & mv);
-            memcpy(&dst[2 * p], &d, sizeof d);
+#define PAIR(p)                                                                                                   \
+    do {                                                                                                          \
+        Bits2 t, mx, mv;                                                                                          \
+        memcpy(&t, &r->tmpl[2 * (p)], sizeof t);                                                                  \
+        memcpy(&mx, &r->blend_x[2 * (p)], sizeof mx);                                                             \
+        memcpy(&mv, &r->blend_v[2 * (p)], sizeof mv);                                                             \
+        Bits2 d = t | (Y & mx) | (V & mv);                                                                        \
+        memcpy(&dst[2 * (p)], &d, sizeof d);                                                                      \
+    } while (0)
+        switch (r->blend_pairs) { /* unrolled: no loop counter for one to four pairs */
+        case 4: PAIR(3); /* fall through */
+        case 3: PAIR(2); /* fall through */
+        case 2: PAIR(1); /* fall through */
+        default: PAIR(0);
         }
+#undef PAIR
         return ok;
     }
     if (r->planned) { /* the room of a successor's parameters holds MAX_ARITY more */
