@@ -28,7 +28,9 @@ typedef struct SylWindStem {
     int32_t joint;       /* its joint, or its nearest jointed ancestor's (-1: none) */
     int32_t parent;      /* the stem it grows on (-1: none) */
     float base[3];       /* where it starts */
+    float dir[3];        /* unit direction of its first segment (0: none) */
     float length, radius; /* along its segments; at its base */
+    float parent_radius; /* of the stem it grows on, where it leaves it (0: a root) */
     float phase;         /* 0..2π, from a hash of the stem's id */
     float stiffness;     /* 22.5 r / (22.5 r + L): 1 rigid, 0 limp */
     uint16_t order;
@@ -38,6 +40,10 @@ typedef struct SylWindJoint {
     int32_t stem, parent; /* its stem; the parent joint (-1: a root) */
     float amplitude;      /* bound of its rotation angle at any time, radians */
     float frequency;      /* of its first sine, Hz (a whole number of cycles per loop) */
+    /* Blending into the parent joint at the stem's base (docs/mesh.md#wind): the weight
+     * goes from the parent to this joint between blend_start and blend_start + blend_length
+     * along dir from the base (0, 0 for a root joint). */
+    float blend_start, blend_length;
 } SylWindJoint;
 
 typedef struct SylWind {

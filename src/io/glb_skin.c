@@ -2,13 +2,42 @@
  * nearest jointed ancestor's, weight 1) and the shader attributes _BRANCH_LEVEL, _PHASE and
  * _STIFFNESS; the joint nodes (translations from their parent joint, no rest rotation), the
  * inverse bind matrices, and the wind animation of their rotations. glb.c places them. */
+#include <math.h>
 #include <stdlib.h>
 
 #include "io/glb.h"
 
 static bool wide_joints(const SylWind *w) { return w->njoints > 256; }
 
-/* The joint of vertex v. */
+/* Point p's weights on joint j (the joint of its stem, or of its nearest jointed ancestor):
+ * j's, from the parent joint's to j's by smoothstep(t), 3t^2 - 2t^3, where t grows from 0 to
+ * 1 from blend_start to blend_start + blend_length along the stem's first direction from its
+ * base, or past the blend's end by the distance to the base (so a twig far out on a stem that
+ * bends back is not blended). As bytes summing to 255, the larger first. */
+static void blend_weights(const SylWind *w, int32_t j, const float *p, int joint[2], uint8_t weight[2]) {
+    joint[0] = j, joint[1] = 0, weight[0] = 255, weight[1] = 0;
+    const SylWindJoint *jt = &w->joints[j];
+    if (jt->parent < 0 || !(jt->blend_length > 0)) return;
+    const SylWindStem *st = &w->stems[jt->stem];
+    double s = 0, d2 = 0;
+    for (int c = 0; c < 3; c++) {
+        double x = (double)p[c] - st->base[c];
+        s += x * st->dir[c], d2 += x * x;
+    }
+    double a = jt->blend_start, l = jt->blend_length, x = fmax(s, sqrt(d2) - (a + l));
+    double t = fmin(1, fmax(0, (x - a) / l));
+    long own = lround(255 * t * t * (3 - 2 * t));
+    if (own == 0) joint[0] = jt->parent; /* all the parent's */
+    else if (own < 255) joint[1] = jt->parent;
+    if (own > 0 && own < 255) weight[0] = (uint8_t)own, weight[1] = (uint8_t)(255 - own);
+    if (weight[1] > weight[0]) {
+        int k = joint[0];
+        uint8_t x8 = weight[0];
+        joint[0] = joint[1], joint[1] = k, weight[0] = weight[1], weight[1] = x8;
+    }
+}
+
+/* The joint of vertex v's stem, or of its nearest jointed ancestor. */
 static int joint_of(const GlbPart *p, size_t v) {
     const SylWind *w = p->wind;
     int32_t j = w->stems[syl_wind_stem_of(p->skel, w, p->mesh->node ? p->mesh->node[v] : -1)].joint;
@@ -20,16 +49,24 @@ void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
     const SylWind *w = p->wind;
     size_t nv = m->nverts, at = bin->len;
     bool wide = wide_joints(w);
-    for (size_t v = 0; v < nv; v++) { /* JOINTS_0: the joint, then three unused (weight 0) */
-        int j = joint_of(p, v);
-        uint8_t q[8] = {(uint8_t)j, (uint8_t)(j >> 8)};
-        if (wide) io_put(bin, q, 8);
-        else io_put(bin, q, 4);
+    uint8_t *wt = malloc(4 * nv + 4);
+    if (!wt) {
+        bin->failed = true;
+        return;
+    }
+    for (size_t v = 0; v < nv; v++) { /* JOINTS_0: two joints, then two unused (weight 0) */
+        int j[2];
+        blend_weights(w, joint_of(p, v), m->pos + 3 * v, j, wt + 4 * v);
+        wt[4 * v + 2] = wt[4 * v + 3] = 0;
+        uint8_t shorts[8] = {(uint8_t)j[0], (uint8_t)(j[0] >> 8), (uint8_t)j[1], (uint8_t)(j[1] >> 8)};
+        uint8_t bytes[4] = {(uint8_t)j[0], (uint8_t)j[1]};
+        if (wide) io_put(bin, shorts, 8);
+        else io_put(bin, bytes, 4);
     }
     views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
-    const uint8_t one[4] = {255, 0, 0, 0}; /* WEIGHTS_0: normalized bytes, 1 exactly */
-    at = bin->len;
-    for (size_t v = 0; v < nv; v++) io_put(bin, one, 4);
+    at = bin->len; /* WEIGHTS_0: normalized bytes summing to 255, 1 exactly */
+    io_put(bin, wt, 4 * nv);
+    free(wt);
     views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
     for (int a = 0; a < 3; a++) { /* _BRANCH_LEVEL, _PHASE, _STIFFNESS of the vertex's own stem */
         at = bin->len;
@@ -116,8 +153,14 @@ void glb_skin_nodes(IoBuf *js, const SylWind *w, int first_node) {
             for (int c = child[j], first = 1; c >= 0; c = next[c], first = 0) io_printf(js, "%s%d", first ? "" : ",", first_node + c);
             io_put(js, "]", 1);
         }
-        io_printf(js, ",\"extras\":{\"sylva_wind\":{\"amplitude\":%.6g,\"frequency\":%.6g}}}", (double)jt->amplitude,
+        io_printf(js, ",\"extras\":{\"sylva_wind\":{\"amplitude\":%.6g,\"frequency\":%.6g", (double)jt->amplitude,
                   (double)jt->frequency);
+        if (jt->blend_length > 0) {
+            const float *d = w->stems[jt->stem].dir;
+            io_printf(js, ",\"blend\":[%.9g,%.9g],\"direction\":[%.9g,%.9g,%.9g]", (double)jt->blend_start,
+                      (double)jt->blend_length, (double)d[0], (double)d[1], (double)d[2]);
+        }
+        io_put(js, "}}}", 3);
     }
     free(child);
     free(next);

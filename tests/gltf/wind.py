@@ -8,6 +8,12 @@ SKELETON.csv is `sylva skeleton` of the same model. Checks:
     differs from its parent's), each joint at its stem's base, and each joint's parent the
     joint of the stem it grows on (compared as multisets of (base, parent base) pairs);
   - JOINTS_0 in range and WEIGHTS_0 summing to 1 at every vertex;
+  - the blend at a stem's base: each non-root joint's extras.sylva_wind blend [a, l] and
+    direction u are the skeleton's (a = min(R, L/4), l = min(4 r, L/4): R the parent's radius
+    at the base, r the stem's base radius, L its length; u its first segment), and every
+    vertex's weights are smoothstep(t) on the stem's joint and 1 - smoothstep(t) on its
+    parent, t = clamp((max(s, d - a - l) - a) / l, 0, 1) with s = (p - base).u and
+    d = |p - base| (to a byte);
   - the rest pose (node transforms, no animation) times the inverse bind matrices is the
     identity, and skinning every vertex at rest gives the unskinned mesh;
   - one looping animation: key times 0 .. SECONDS increasing, rotations unit quaternions,
@@ -71,18 +77,95 @@ def stems_of(csv_path, levels):
             stem_of[i] = stem_of[p]
             continue
         base = tuple(float((par or r)[c]) for c in "xyz")
-        stems.append({"order": int(r["order"]), "base": base, "parent": stem_of.get(p, -1)})
+        first = tuple(float(r[c]) for c in "xyz")
+        stems.append({"order": int(r["order"]), "base": base, "parent": stem_of.get(p, -1), "length": 0.0,
+                      "radius": 0.0, "parent_radius": float(par["radius"]) if par is not None else 0.0,
+                      "dir": unit([a - b for a, b in zip(first, base)]) if par is not None else None,
+                      "first": math.dist(first, base)})
         stem_of[i] = len(stems) - 1
+    for r in rows:  # length and base radius, along the internodes
+        st = stems[stem_of[int(r["id"])]]
+        par = node.get(int(r["parent"]))
+        if r["kind"] == "internode" and par is not None:
+            st["length"] += math.dist([float(r[c]) for c in "xyz"], [float(par[c]) for c in "xyz"])
+            if st["radius"] <= 0 and float(r["radius"]) > 0:
+                st["radius"] = float(r["radius"])
     for st in stems:  # the parent's joint: the nearest ancestor stem with a joint
         q = st["parent"]
         while q >= 0 and stems[q]["order"] >= levels:
             q = stems[q]["parent"]
         st["joint_parent"] = stems[q]["base"] if q >= 0 else None
+    for st in stems:
+        L = st["length"]
+        st["blend"] = (min(st["parent_radius"], L / 4), min(4 * st["radius"], L / 4)) \
+            if st["joint_parent"] is not None and st["dir"] is not None else (0.0, 0.0)
     return [s for s in stems if s["order"] < levels], {int(r["order"]) for r in rows}
+
+
+def unit(v):
+    n = math.sqrt(sum(c * c for c in v))
+    return tuple(c / n for c in v) if n > 0 else None
+
+
+def own_weight(p, base, blend, u):
+    """The weight (0..255) of a stem's joint at p: smoothstep of t along its base."""
+    a, l = blend
+    x = [p[c] - base[c] for c in range(3)]
+    s = sum(x[c] * u[c] for c in range(3))
+    t = min(1.0, max(0.0, (max(s, math.sqrt(sum(c * c for c in x)) - a - l) - a) / l))
+    return 255 * t * t * (3 - 2 * t)
 
 
 def key(p, scale):
     return tuple(round(c / scale, 4) for c in p) if p is not None else None
+
+
+def check_blend(js, joints, base, parent, want, scale, pos, jw, ww, path):
+    """Each joint's blend against the skeleton's stems, each vertex's weights against it."""
+    nodes = js["nodes"]
+    blend = {}
+    for k, j in enumerate(joints):
+        ex = nodes[j]["extras"]["sylva_wind"]
+        pb = key(base[parent[j]], scale) if parent.get(j) in base else None
+        cands = [s for s in want if key(s["base"], scale) == key(base[j], scale) and key(s["joint_parent"], scale) == pb]
+        if "blend" not in ex:
+            if any(s["blend"][1] > 0 for s in cands) and not any(s["blend"][1] <= 0 for s in cands):
+                fail(f"joint {j}: no blend at its base")
+            continue
+        b, u = tuple(ex["blend"]), tuple(ex["direction"])
+        tol = 1e-4 * max(1.0, scale)  # the CSV has 6 digits
+        if not any(abs(b[0] - s["blend"][0]) <= tol and abs(b[1] - s["blend"][1]) <= tol and s["dir"] is not None
+                   and max(abs(x - y) for x, y in zip(u, s["dir"])) <= 1e-3 + 1e-5 * scale / max(s["first"], 1e-9)
+                   for s in cands):
+            fail(f"joint {j}: blend {b} along {u} is not a skeleton stem's "
+                 f"({[(s['blend'], s['dir']) for s in cands]})")
+        blend[k] = (b, u)
+    pjoint = {k: joints.index(parent[j]) if parent.get(j) in joints else -1 for k, j in enumerate(joints)}
+    children = {}
+    for k, q in pjoint.items():
+        children.setdefault(q, []).append(k)
+    blended = 0
+    for p, jj, w in zip(pos, jw, ww):
+        w8 = [round(x * 255) for x in w]
+        used = [(j, x) for j, x in zip(jj, w8) if x > 0]
+        if len(used) == 2:  # a child joint and its parent
+            (j0, x0), (j1, x1) = used
+            own, other, x = (j0, j1, x0) if pjoint[j0] == j1 else (j1, j0, x1) if pjoint[j1] == j0 else (None, None, 0)
+            if own is None or own not in blend:
+                fail(f"vertex {p}: weights on joints {jj} that are not a stem's joint and its parent")
+            if abs(own_weight(p, base[joints[own]], *blend[own]) - x) > 1.01:
+                fail(f"vertex {p}: weight {x} of joint {own}, the formula gives "
+                     f"{own_weight(p, base[joints[own]], *blend[own]):.2f}")
+            blended += 1
+        elif len(used) == 1:  # all the joint's: its own stem's past the blend, or a child's before it
+            j = used[0][0]
+            ok = j not in blend or own_weight(p, base[joints[j]], *blend[j]) >= 253.99
+            ok = ok or any(c in blend and own_weight(p, base[joints[c]], *blend[c]) <= 1.01 for c in children.get(j, []))
+            if not ok:
+                fail(f"vertex {p}: weight 1 on joint {j}, but it lies in the blend of that joint's base")
+        else:
+            fail(f"vertex {p}: weights {w}")
+    print(f"ok {path}: {len(blend)} stem bases blended, {blended} vertices on two joints, as the formula")
 
 
 def main(path, csv_path, levels, seconds):
@@ -139,6 +222,7 @@ def main(path, csv_path, levels, seconds):
     if worst > 1e-5 * scale:
         fail(f"the skinned rest pose moves a vertex by {worst:.3g}")
     print(f"ok {path}: {len(pos)} vertices, weights sum to 1, rest pose = the unskinned mesh")
+    check_blend(js, joints, base, parent, want, scale, pos, jw, ww, path)
     for name, lo, hi, integral in (("_BRANCH_LEVEL", 0, 65535, True), ("_PHASE", 0, 2 * math.pi, False),
                                    ("_STIFFNESS", 1e-9, 1, False)):
         vals = {v[0] for v in accessor(js, bin_, a[name])}
