@@ -72,6 +72,13 @@ static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, i
  * (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
 int syl_write_glb_wind(const SylMesh *m, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag);
 
+/* A chain of levels of detail (lod.h) with wind: every level that has vertex nodes (of s)
+ * skinned to w's one set of joints and driven by the one animation; the others (crossed
+ * billboards) still. */
+struct SylLodChain;
+int syl_write_glb_lods_wind(const struct SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path,
+                            FILE *diag);
+
 #ifdef __cplusplus
 }
 #endif

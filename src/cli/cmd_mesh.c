@@ -130,9 +130,9 @@ int cmd_mesh(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     bool levels = a.lod || a.impostor || a.billboards;
-    if (a.wind > 0 && (strcasecmp(dot, ".glb") || levels || instanced)) {
-        fprintf(stderr, "sylva: error: --wind writes a skinned .glb of one level with copied or card leaves "
-                        "(not with --lod, --impostor, --billboards or instanced leaves, for now)\n");
+    if (a.wind > 0 && (strcasecmp(dot, ".glb") || instanced)) {
+        fprintf(stderr, "sylva: error: --wind writes a skinned .glb with copied or card leaves "
+                        "(not with instanced leaves, for now)\n");
         return SYL_EUSAGE;
     }
     mo.vertex_nodes = a.wind > 0;
@@ -190,7 +190,8 @@ int cmd_mesh(int argc, char **argv) {
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
-    if (!status) status = levels      ? syl_write_glb_lods(&lods, output, stderr)
+    if (!status) status = levels && a.wind > 0 ? syl_write_glb_lods_wind(&lods, sk, &wind, output, stderr)
+                          : levels    ? syl_write_glb_lods(&lods, output, stderr)
                           : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
                           : a.wind > 0 ? syl_write_glb_wind(mesh, sk, &wind, output, stderr)
                                       : syl_write_mesh(mesh, output, stderr);

@@ -192,6 +192,10 @@ static void layout_textures(Layout *l) {
     free(img);
 }
 
+/* With levels of detail the joints are the scene's own roots, beside NAME_LOD0: every level
+ * is skinned to them, whichever one is drawn. One plant's are children of its node. */
+static bool joints_at_root(const Layout *l) { return l->wind && l->sc->nparts > 1; }
+
 static const char *mesh_name(const Layout *l, const MeshRef *r) {
     return r->set < 0 ? l->sc->part[r->part].name : l->sc->part[r->part].sets[r->set].name;
 }
@@ -318,8 +322,9 @@ static void json_nodes(IoBuf *js, const Layout *l) {
         if (q[3] > 0)
             io_printf(js, ",\"translation\":[%.9g,%.9g,%.9g],\"scale\":[%.9g,%.9g,%.9g]", (double)q[0], (double)q[1],
                       (double)q[2], (double)q[3], (double)q[3], (double)q[3]);
-        bool skin = p == 0 && l->wind;
+        bool skin = l->part_mesh[p] >= 0 && l->mesh[l->part_mesh[p]].skinned;
         if (skin) io_printf(js, ",\"skin\":0");
+        skin &= !joints_at_root(l) && p == 0;
         bool any = false;
         for (int s = 0; s < pt->nsets; s++)
             if (l->set_node[i0 + s] >= 0) io_printf(js, "%s%d", any ? "," : ",\"children\":[", l->set_node[i0 + s]), any = true;
@@ -373,7 +378,9 @@ static void write_json(IoBuf *js, const Layout *l) {
     if (quant) io_printf(js, ",\"extensionsRequired\":[\"KHR_mesh_quantization\"]");
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
     io_json_string(js, sc->scene_name);
-    io_printf(js, ",\"nodes\":[0]}]");
+    io_printf(js, ",\"nodes\":[0");
+    if (joints_at_root(l)) glb_skin_roots(js, l->wind, l->joint_node, true);
+    io_printf(js, "]}]");
     json_nodes(js, l);
     if (l->nmeshes) {
         io_printf(js, ",\"meshes\":[");
@@ -429,9 +436,10 @@ static bool plan(Layout *l) {
         l->part_mesh[p] = -1;
         if (has_geometry(sc->part[p].mesh)) {
             l->part_mesh[p] = l->nmeshes;
-            bool skinned = p == 0 && sc->part[0].wind && sc->part[0].wind->njoints > 0 && sc->part[0].skel;
-            l->mesh[l->nmeshes++] = (MeshRef){.m = sc->part[p].mesh, .part = p, .set = -1, .skinned = skinned};
-            if (skinned) l->wind = sc->part[0].wind;
+            const GlbPart *pt = &sc->part[p];
+            bool skinned = pt->wind && pt->wind->njoints > 0 && pt->skel && pt->mesh->node;
+            l->mesh[l->nmeshes++] = (MeshRef){.m = pt->mesh, .part = p, .set = -1, .skinned = skinned};
+            if (skinned) l->wind = pt->wind; /* one skin for all the parts */
         }
     }
     int i = 0;
@@ -447,8 +455,7 @@ static bool plan(Layout *l) {
     l->joint_node = l->nnodes;
     if (l->wind) l->nnodes += l->wind->njoints;
     if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
-    for (int p = 0; p < sc->nparts && sc->quantize; p++)
-        if (!(p == 0 && l->wind)) plan_quantization(sc->part + p, l->quant[p]);
+    for (int p = 0; p < sc->nparts && sc->quantize && !l->wind; p++) plan_quantization(sc->part + p, l->quant[p]);
     return true;
 }
 

@@ -1,7 +1,11 @@
 #!/usr/bin/env python3
 """Independent reader of a skinned .glb from `sylva mesh --wind` (python3 stdlib only).
 
-  wind.py FILE.glb SKELETON.csv LEVELS SECONDS
+  wind.py FILE.glb SKELETON.csv LEVELS SECONDS [UNSKINNED.glb]
+
+With levels of detail every skinned node is checked; UNSKINNED.glb, the same chain written
+without --wind, must have the same vertices and triangles in each level (the rest pose of
+each level is its unskinned level), and every level but the billboards is skinned.
 
 SKELETON.csv is `sylva skeleton` of the same model. Checks:
   - one joint per stem of branch order < LEVELS (a stem: a root, or a node whose order
@@ -25,7 +29,7 @@ import csv, json, math, struct, sys
 from glbio import read_glb as _read_glb
 
 BOUND = 0.1 + math.sqrt(2) * 0.12  # directed + undirected caps (docs/mesh.md#wind)
-SIZES = {5126: ("f", 4), 5125: ("I", 4), 5123: ("H", 2), 5121: ("B", 1)}
+SIZES = {5126: ("f", 4), 5125: ("I", 4), 5123: ("H", 2), 5121: ("B", 1), 5122: ("h", 2), 5120: ("b", 1)}
 WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
 
 
@@ -117,7 +121,7 @@ def own_weight(p, base, blend, u):
 
 
 def key(p, scale):
-    return tuple(round(c / scale, 4) for c in p) if p is not None else None
+    return tuple(round(c / scale, 4) for c in p) if p is not None else ()
 
 
 def check_blend(js, joints, base, parent, want, scale, pos, jw, ww, path):
@@ -126,7 +130,7 @@ def check_blend(js, joints, base, parent, want, scale, pos, jw, ww, path):
     blend = {}
     for k, j in enumerate(joints):
         ex = nodes[j]["extras"]["sylva_wind"]
-        pb = key(base[parent[j]], scale) if parent.get(j) in base else None
+        pb = key(base[parent[j]], scale) if parent.get(j) in base else ()
         cands = [s for s in want if key(s["base"], scale) == key(base[j], scale) and key(s["joint_parent"], scale) == pb]
         if "blend" not in ex:
             if any(s["blend"][1] > 0 for s in cands) and not any(s["blend"][1] <= 0 for s in cands):
@@ -165,44 +169,13 @@ def check_blend(js, joints, base, parent, want, scale, pos, jw, ww, path):
                 fail(f"vertex {p}: weight 1 on joint {j}, but it lies in the blend of that joint's base")
         else:
             fail(f"vertex {p}: weights {w}")
-    print(f"ok {path}: {len(blend)} stem bases blended, {blended} vertices on two joints, as the formula")
+    print(f"ok {path}: {len(blend)} stem bases with a blend, {blended} vertices on two joints, as the formula")
 
 
-def main(path, csv_path, levels, seconds):
-    js, bin_ = read_glb(path)
-    want, orders = stems_of(csv_path, levels)
-    skin = js["skins"][0]
-    joints = skin["joints"]
-    nodes = js["nodes"]
-    if len(joints) != len(want):
-        fail(f"{len(joints)} joints, want {len(want)} (stems of order < {levels})")
-    # world transforms from the node hierarchy, at rest
-    parent = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
-    world = {}
-    def world_of(i):
-        if i not in world:
-            world[i] = matmul(world_of(parent[i]), trs(nodes[i])) if i in parent else trs(nodes[i])
-        return world[i]
-    base = {j: tuple(world_of(j)[12:15]) for j in joints}
-    scale = max(1e-9, max(abs(c) for b in base.values() for c in b))
-    got = sorted((key(base[j], scale), key(base[parent[j]], scale) if parent.get(j) in base else None) for j in joints)
-    exp = sorted((key(s["base"], scale), key(s["joint_parent"], scale)) for s in want)
-    if got != exp:
-        bad = sum(1 for a, b in zip(got, exp) if a != b)
-        fail(f"joint bases or hierarchy differ from the skeleton's stems ({bad} of {len(got)})")
-    print(f"ok {path}: {len(joints)} joints, one per stem of order < {levels}, hierarchy as the skeleton's")
-    ibm = accessor(js, bin_, skin["inverseBindMatrices"])
-    skinned = [i for i, n in enumerate(nodes) if n.get("skin") == 0]
-    if len(skinned) != 1 or parent.get(skinned[0]) is not None:
-        fail("the skinned node should be one root node")
-    rest = []
-    for j, m in zip(joints, ibm):
-        e = matmul(world_of(j), list(m))
-        if any(abs(e[k] - (1.0 if k % 5 == 0 else 0.0)) > 1e-5 * max(1, scale) for k in range(16)):
-            fail(f"joint {j}: rest transform x inverse bind matrix is not the identity")
-        rest.append(e)
-    mesh = js["meshes"][nodes[skinned[0]]["mesh"]]
-    a = mesh["primitives"][0]["attributes"]
+def check_skinned(js, bin_, node, joints, rest, base, parent, want, scale, orders, path):
+    """One skinned node: weights, rest pose, blend and shader attributes."""
+    path = f"{path} {node['name']}"
+    a = js["meshes"][node["mesh"]]["primitives"][0]["attributes"]
     pos = accessor(js, bin_, a["POSITION"])
     jw = accessor(js, bin_, a["JOINTS_0"])
     ww = accessor(js, bin_, a["WEIGHTS_0"])
@@ -229,6 +202,70 @@ def main(path, csv_path, levels, seconds):
         if any(not (lo <= v <= hi) for v in vals) or (integral and not vals <= {float(o) for o in orders}):
             fail(f"{name} values out of range: {sorted(vals)[:5]}")
     print(f"ok {path}: _BRANCH_LEVEL, _PHASE, _STIFFNESS in range")
+
+
+def check_levels(js, bin_, skinned, other):
+    """Each level of the same chain written without wind has the same vertices as this
+    one's (whose rest pose is its vertices); every level but the billboards is skinned."""
+    ojs, obin = read_glb(other)
+    mine = {n["name"]: (i, n) for i, n in enumerate(js["nodes"]) if "mesh" in n}
+    count = 0
+    for n in ojs["nodes"]:
+        if "mesh" not in n or "_LOD" not in n["name"]:
+            continue
+        if n["name"] not in mine:
+            fail(f"no node {n['name']} (of {other})")
+        i, m = mine[n["name"]]
+        billboards = "sylva_billboards" in n.get("extras", {})
+        if (i in skinned) == billboards:
+            fail(f"{n['name']}: {'skinned' if billboards else 'not skinned'}")
+        for k, (mp, op) in enumerate(zip(js["meshes"][m["mesh"]]["primitives"], ojs["meshes"][n["mesh"]]["primitives"])):
+            if accessor(js, bin_, mp["attributes"]["POSITION"]) != accessor(ojs, obin, op["attributes"]["POSITION"]) or \
+                    accessor(js, bin_, mp["indices"]) != accessor(ojs, obin, op["indices"]):
+                fail(f"{n['name']}: primitive {k}'s vertices or triangles differ from {other}'s")
+        count += 1
+    if count < 2:
+        fail(f"{other}: {count} levels")
+    print(f"ok {other}: {count} levels, each at rest as the skinned file's, {len(skinned)} skinned")
+
+
+def main(path, csv_path, levels, seconds, same_as=None):
+    js, bin_ = read_glb(path)
+    want, orders = stems_of(csv_path, levels)
+    skin = js["skins"][0]
+    joints = skin["joints"]
+    nodes = js["nodes"]
+    if len(joints) != len(want):
+        fail(f"{len(joints)} joints, want {len(want)} (stems of order < {levels})")
+    # world transforms from the node hierarchy, at rest
+    parent = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
+    world = {}
+    def world_of(i):
+        if i not in world:
+            world[i] = matmul(world_of(parent[i]), trs(nodes[i])) if i in parent else trs(nodes[i])
+        return world[i]
+    base = {j: tuple(world_of(j)[12:15]) for j in joints}
+    scale = max(1e-9, max(abs(c) for b in base.values() for c in b))
+    got = sorted((key(base[j], scale), key(base[parent[j]], scale) if parent.get(j) in base else ()) for j in joints)
+    exp = sorted((key(s["base"], scale), key(s["joint_parent"], scale)) for s in want)
+    if got != exp:
+        bad = sum(1 for a, b in zip(got, exp) if a != b)
+        fail(f"joint bases or hierarchy differ from the skeleton's stems ({bad} of {len(got)})")
+    print(f"ok {path}: {len(joints)} joints, one per stem of order < {levels}, hierarchy as the skeleton's")
+    ibm = accessor(js, bin_, skin["inverseBindMatrices"])
+    skinned = [i for i, n in enumerate(nodes) if n.get("skin") == 0]
+    if not skinned or any(parent.get(i) is not None for i in skinned):
+        fail("the skinned nodes should be root nodes")
+    rest = []
+    for j, m in zip(joints, ibm):
+        e = matmul(world_of(j), list(m))
+        if any(abs(e[k] - (1.0 if k % 5 == 0 else 0.0)) > 1e-5 * max(1, scale) for k in range(16)):
+            fail(f"joint {j}: rest transform x inverse bind matrix is not the identity")
+        rest.append(e)
+    for node in skinned:
+        check_skinned(js, bin_, nodes[node], joints, rest, base, parent, want, scale, orders, path)
+    if same_as:
+        check_levels(js, bin_, skinned, same_as)
     anim = js["animations"]
     if len(anim) != 1 or len(anim[0]["channels"]) != len(joints):
         fail("one animation with a channel per joint expected")
@@ -259,7 +296,7 @@ def main(path, csv_path, levels, seconds):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 5:
+    if len(sys.argv) not in (5, 6):
         print(__doc__)
         sys.exit(2)
-    main(sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4]))
+    main(sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4]), *sys.argv[5:])
