@@ -68,9 +68,11 @@ static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, i
 }
 
 /* m (meshed from s with SylMeshOptions.vertex_nodes) as a skinned .glb with w's joints and
- * its "wind" animation, and the shader attributes (docs/mesh.md#wind). SYL_OK, SYL_EUSAGE
- * (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
-int syl_write_glb_wind(const SylMesh *m, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag);
+ * its "wind" animation, and the shader attributes (docs/mesh.md#wind); n sets of instanced
+ * leaves (may be 0; made with vertex_nodes too) hang from the joints they follow, as child
+ * nodes. SYL_OK, SYL_EUSAGE (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
+int syl_write_glb_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
+                       const char *path, FILE *diag);
 
 /* A chain of levels of detail (lod.h) with wind: every level that has vertex nodes (of s)
  * skinned to w's one set of joints and driven by the one animation; the others (crossed

@@ -116,11 +116,10 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
     return SYL_OK;
 }
 
-/* A level's vertex nodes (SylMeshOptions.vertex_nodes) as nodes of the whole skeleton, so
- * that every level is skinned to the same joints. */
-static void nodes_back(SylMesh *m, const int32_t *back, size_t n) {
-    for (size_t v = 0; m->node && v < m->nverts; v++)
-        m->node[v] = m->node[v] >= 0 && (size_t)m->node[v] < n ? back[m->node[v]] : -1;
+/* A level's vertex (or instance) nodes (SylMeshOptions.vertex_nodes) as nodes of the whole
+ * skeleton, so that every level is skinned to the same joints. */
+static void nodes_back(int32_t *node, size_t count, const int32_t *back, size_t n) {
+    for (size_t v = 0; node && v < count; v++) node[v] = node[v] >= 0 && (size_t)node[v] < n ? back[node[v]] : -1;
 }
 
 static void free_copy(SylSkeleton *t) {
@@ -199,7 +198,8 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         double ratio = bark ? fmax(want, 0.1 * (double)bark) / (double)bark : 1;
         status = syl_mesh_simplify_kind(lv->mesh, SYL_MATERIAL_BARK, ratio, 0.004f * powf(3, (float)(k - 1)),
                                         &lv->error);
-        nodes_back(lv->mesh, back, kept);
+        nodes_back(lv->mesh->node, lv->mesh->nverts, back, kept);
+        for (int i = 0; i < lv->nsets; i++) nodes_back(lv->sets[i].node, lv->sets[i].count, back, kept);
         snprintf(lv->mesh->name, sizeof lv->mesh->name, "%s", lod0->name);
     }
     free(radius), free(down), free(back);

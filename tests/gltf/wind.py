@@ -5,7 +5,9 @@
 
 With levels of detail every skinned node is checked; UNSKINNED.glb, the same chain written
 without --wind, must have the same vertices and triangles in each level (the rest pose of
-each level is its unskinned level), and every level but the billboards is skinned.
+each level is its unskinned level), and every level but the billboards is skinned. With
+instanced leaves, each set hangs from the joint its leaves follow (or, with levels, from
+the level's copy of it), and at rest the leaves are where UNSKINNED.glb has them.
 
 SKELETON.csv is `sylva skeleton` of the same model. Checks:
   - one joint per stem of branch order < LEVELS (a stem: a root, or a node whose order
@@ -48,8 +50,14 @@ def accessor(js, bin_, i):
     ch, size = SIZES[a["componentType"]]
     k = WIDTH[a["type"]]
     off = v.get("byteOffset", 0) + a.get("byteOffset", 0)
-    flat = struct.unpack_from("<%d%s" % (k * a["count"], ch), bin_, off)
-    if a.get("normalized"):
+    stride = v.get("byteStride", k * size)
+    if stride == k * size:
+        flat = struct.unpack_from("<%d%s" % (k * a["count"], ch), bin_, off)
+    else:  # padded elements (quantized VEC3s)
+        flat = [x for n in range(a["count"]) for x in struct.unpack_from("<%d%s" % (k, ch), bin_, off + n * stride)]
+    if a.get("normalized") and ch in "bh":  # the signed normalized types
+        flat = [max(x / (2 ** (8 * size - 1) - 1), -1.0) for x in flat]
+    elif a.get("normalized"):
         flat = [x / (2 ** (8 * size) - 1) for x in flat]  # the unsigned normalized types
     return [flat[k * n:k * n + k] for n in range(a["count"])]
 
@@ -99,6 +107,14 @@ def stems_of(csv_path, levels):
         while q >= 0 and stems[q]["order"] >= levels:
             q = stems[q]["parent"]
         st["joint_parent"] = stems[q]["base"] if q >= 0 else None
+    global NODE_JOINT
+    NODE_JOINT = []  # (position, base of the joint its stem follows) of every node
+    for r in rows:
+        q = stem_of[int(r["id"])]
+        while q >= 0 and stems[q]["order"] >= levels:
+            q = stems[q]["parent"]
+        if q >= 0:
+            NODE_JOINT.append((tuple(float(r[c]) for c in "xyz"), stems[q]["base"]))
     for st in stems:
         L = st["length"]
         st["blend"] = (min(st["parent_radius"], L / 4), min(4 * st["radius"], L / 4)) \
@@ -220,13 +236,132 @@ def check_levels(js, bin_, skinned, other):
         if (i in skinned) == billboards:
             fail(f"{n['name']}: {'skinned' if billboards else 'not skinned'}")
         for k, (mp, op) in enumerate(zip(js["meshes"][m["mesh"]]["primitives"], ojs["meshes"][n["mesh"]]["primitives"])):
-            if accessor(js, bin_, mp["attributes"]["POSITION"]) != accessor(ojs, obin, op["attributes"]["POSITION"]) or \
+            ours = accessor(js, bin_, mp["attributes"]["POSITION"])
+            theirs = accessor(ojs, obin, op["attributes"]["POSITION"])
+            tol = 0.0
+            if ojs["accessors"][op["attributes"]["POSITION"]]["componentType"] != 5126:  # quantized: 16 bits
+                theirs = [transform_point(trs(n), p) for p in theirs]
+                tol = 2 * max(n.get("scale", [1])) / 32767
+            if len(ours) != len(theirs) or any(abs(a - b) > tol for p, q in zip(ours, theirs) for a, b in zip(p, q)) or \
                     accessor(js, bin_, mp["indices"]) != accessor(ojs, obin, op["indices"]):
                 fail(f"{n['name']}: primitive {k}'s vertices or triangles differ from {other}'s")
         count += 1
     if count < 2:
         fail(f"{other}: {count} levels")
     print(f"ok {other}: {count} levels, each at rest as the skinned file's, {len(skinned)} skinned")
+
+
+def transform_point(m, p):
+    return tuple(m[r] * p[0] + m[r + 4] * p[1] + m[r + 8] * p[2] + m[r + 12] for r in range(3))
+
+
+def instance_places(js, bin_):
+    """Each instanced node's level (its root node's name), the node it hangs from, and the
+    world places of its instances at rest."""
+    nodes = js["nodes"]
+    parent = {c: i for i, n in enumerate(nodes) for c in n.get("children", [])}
+    def world(i):
+        return matmul(world(parent[i]), trs(nodes[i])) if i in parent else trs(nodes[i])
+    out = []
+    for i, n in enumerate(nodes):
+        ext = n.get("extensions", {}).get("EXT_mesh_gpu_instancing")
+        if not ext:
+            continue
+        root = i
+        while root in parent:
+            root = parent[root]
+        w = world(i)
+        places = [transform_point(w, t) for t in accessor(js, bin_, ext["attributes"]["TRANSLATION"])]
+        out.append((nodes[root]["name"], parent.get(i), places))
+    return out
+
+
+def matched(ours, theirs, tol):
+    """Whether two lists of points are the same multiset, to tol."""
+    if len(ours) != len(theirs):
+        return False
+    grid = {}
+    for p in theirs:
+        grid.setdefault(tuple(math.floor(c / tol) for c in p), []).append(p)
+    for p in ours:
+        cell = tuple(math.floor(c / tol) for c in p)
+        hit = None
+        for d in ((a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c in (-1, 0, 1)):
+            for q in grid.get(tuple(x + y for x, y in zip(cell, d)), []):
+                if math.dist(p, q) <= tol:
+                    hit = (tuple(x + y for x, y in zip(cell, d)), q)
+                    break
+            if hit:
+                break
+        if not hit:
+            return False
+        grid[hit[0]].remove(hit[1])
+    return True
+
+
+def check_instances(js, bin_, joints, base, parent, scale, other, path):
+    """Instanced leaves of a skinned file: each set hangs from a joint (one plant) or from its
+    level's copy of one (levels of detail: NAME_LODk_stemA under NAME_LODk, turned by the same
+    sampler as joint stemA), the heavier joint of the blend at each leaf's place; at rest each
+    level's leaves are where the file without wind has them."""
+    nodes = js["nodes"]
+    by_name = {nodes[j]["name"]: k for k, j in enumerate(joints)}
+    sampler = {ch["target"]["node"]: ch["sampler"] for ch in js["animations"][0]["channels"]}
+    blend = {k: (tuple(nodes[j]["extras"]["sylva_wind"]["blend"]), tuple(nodes[j]["extras"]["sylva_wind"]["direction"]))
+             for k, j in enumerate(joints) if "blend" in nodes[j]["extras"]["sylva_wind"]}
+    pjoint = {k: joints.index(parent[j]) if parent.get(j) in joints else -1 for k, j in enumerate(joints)}
+    levels, total = {}, 0
+    extent = max(1e-9, max(max(p[c] for p, _ in NODE_JOINT) - min(p[c] for p, _ in NODE_JOINT) for c in range(3)))
+    tol = 1e-5 * extent
+    at_node = {}
+    for p, b in NODE_JOINT:
+        at_node.setdefault(tuple(round(c / tol) for c in p), set()).add(key(b, scale))
+    checked = 0
+    for level, hang, places in instance_places(js, bin_):
+        name = nodes[hang]["name"] if hang is not None else ""
+        stem = "stem" + name.rsplit("_stem", 1)[1] if "_stem" in name else name
+        if stem not in by_name:
+            fail(f"instanced leaves of {level} hang from {name!r}, not a joint")
+        k = by_name[stem]
+        if hang != joints[k]:
+            if name != f"{level}_{stem}" or sampler.get(hang) != sampler.get(joints[k]) or \
+                    nodes[hang].get("translation") != nodes[joints[k]].get("translation"):
+                fail(f"{name}: not {level}'s copy of joint {stem} turned by its sampler")
+        for p in places:
+            heavier = k not in blend or own_weight(p, base[joints[k]], *blend[k]) >= 127
+            heavier = heavier or any(pjoint[c] == k and c in blend and own_weight(p, base[joints[c]], *blend[c]) <= 128
+                                     for c in blend)
+            if not heavier:
+                fail(f"a leaf at {p} follows joint {stem}, the lighter of its blend")
+            # a leaf at a skeleton node hangs from the joint of that node's stem (or, in the
+            # blend at a child's base, from the child's parent joint)
+            cell = tuple(round(c / tol) for c in p)
+            near = set().union(*(at_node.get(tuple(x + d for x, d in zip(cell, dd)), set())
+                                 for dd in ((a, b, c) for a in (-1, 0, 1) for b in (-1, 0, 1) for c in (-1, 0, 1))))
+            if near:
+                checked += 1
+                mine = {key(base[joints[k]], scale)} | {key(base[joints[c]], scale) for c in pjoint if pjoint[c] == k}
+                if not near & mine:
+                    fail(f"a leaf at {p} hangs from joint {stem}, not from its stem's")
+        levels.setdefault(level, []).extend(places)
+        total += len(places)
+    if not total or not checked:
+        fail(f"{total} instanced leaves, {checked} of them at a skeleton node")
+    if other:
+        ojs, obin = read_glb(other)
+        theirs = {}
+        for level, _, places in instance_places(ojs, obin):
+            theirs.setdefault(level, []).extend(places)
+        if sorted(theirs) != sorted(levels):
+            fail(f"levels with leaves {sorted(levels)}, {other} has {sorted(theirs)}")
+        for level in levels:
+            pts = theirs[level]
+            extent = max(max(p[c] for p in pts) - min(p[c] for p in pts) for c in range(3))
+            if not matched(levels[level], pts, 1e-4 * extent):  # their 16-bit quantization
+                fail(f"{level}: the leaves at rest are not where {other} has them")
+    print(f"ok {path}: {total} instanced leaves on {len(levels)} levels ({checked} at a node of their joint's stems), "
+          f"each hanging from the joint it follows"
+          + (f", at rest as {other}'s" if other else ""))
 
 
 def main(path, csv_path, levels, seconds, same_as=None):
@@ -264,16 +399,23 @@ def main(path, csv_path, levels, seconds, same_as=None):
         rest.append(e)
     for node in skinned:
         check_skinned(js, bin_, nodes[node], joints, rest, base, parent, want, scale, orders, path)
-    if same_as:
+    if same_as and any("_LOD" in n.get("name", "") for n in nodes):
         check_levels(js, bin_, skinned, same_as)
+    if any("EXT_mesh_gpu_instancing" in n.get("extensions", {}) for n in nodes):
+        check_instances(js, bin_, joints, base, parent, scale, same_as, path)
     anim = js["animations"]
-    if len(anim) != 1 or len(anim[0]["channels"]) != len(joints):
+    own = [ch for ch in anim[0]["channels"] if ch["target"]["node"] in joints] if len(anim) == 1 else []
+    if len(anim) != 1 or sorted(ch["target"]["node"] for ch in own) != sorted(joints):
         fail("one animation with a channel per joint expected")
+    copies = len(anim[0]["channels"]) - len(own)  # the levels' copies of the joints (check_instances)
+    if copies % len(joints) or any(not nodes[ch["target"]["node"]]["name"].split("_")[-1].startswith("stem")
+                                   for ch in anim[0]["channels"] if ch not in own):
+        fail("channels for nodes that are neither joints nor a level's copies of them")
     amp_max = 0.0
-    for ch in anim[0]["channels"]:
+    for ch in own:
         smp = anim[0]["samplers"][ch["sampler"]]
         node = ch["target"]["node"]
-        if ch["target"]["path"] != "rotation" or node not in joints:
+        if ch["target"]["path"] != "rotation":
             fail(f"channel {ch}")
         times = [t[0] for t in accessor(js, bin_, smp["input"])]
         if times[0] != 0 or abs(times[-1] - seconds) > 1e-6 or any(b <= a for a, b in zip(times, times[1:])):
