@@ -572,7 +572,7 @@ static int write_split(const GlbScene *sc, GlbPart *parts, const char *path, FIL
         }
         if (skinned) {
             parts[p].sets = sets, parts[p].nsets = n;
-            memcpy(set_joint + total, joint, (size_t)n * sizeof *joint);
+            if (n) memcpy(set_joint + total, joint, (size_t)n * sizeof *joint);
             total += n;
         } else {
             parts[p].sets = pt->sets, parts[p].nsets = pt->nsets;
