@@ -88,6 +88,8 @@ typedef struct SylInstances {
     SylMesh *proto;
     size_t count;
     float *t, *r, *s; /* 3, 4 and 3 floats per instance */
+    int32_t *node;    /* with SylMeshOptions.vertex_nodes: each instance's skeleton node (the
+                         leaf's organ node, -1: none), for wind; else NULL */
     char name[64];
 } SylInstances;
 

@@ -130,9 +130,8 @@ int cmd_mesh(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     bool levels = a.lod || a.impostor || a.billboards;
-    if (a.wind > 0 && (strcasecmp(dot, ".glb") || levels || instanced)) {
-        fprintf(stderr, "sylva: error: --wind writes a skinned .glb of one level with copied or card leaves "
-                        "(not with --lod, --impostor, --billboards or instanced leaves, for now)\n");
+    if (a.wind > 0 && strcasecmp(dot, ".glb")) {
+        fprintf(stderr, "sylva: error: --wind writes a skinned .glb, not '%s'\n", output);
         return SYL_EUSAGE;
     }
     mo.vertex_nodes = a.wind > 0;
@@ -153,6 +152,13 @@ int cmd_mesh(int argc, char **argv) {
     }
     const SylSkeleton *sk = pl.sk;
     SylMesh *mesh = pl.mesh;
+    if (a.wind > 0 && !mesh->node) { /* syl_mesh_append dropped them */
+        fprintf(stderr, "sylva: error: --wind cannot skin this mesh: part of it is not the plant's (a scene's "
+                        "obstacles)\n");
+        cli_plant_free(&pl);
+        syl_budget_free(budget);
+        return SYL_EUSAGE;
+    }
     SylLodChain lods = {0};
     SylImpostor imp = {0};
     char extras[1024];
@@ -190,9 +196,10 @@ int cmd_mesh(int argc, char **argv) {
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
-    if (!status) status = levels      ? syl_write_glb_lods(&lods, output, stderr)
+    if (!status) status = levels && a.wind > 0 ? syl_write_glb_lods_wind(&lods, sk, &wind, output, stderr)
+                          : levels    ? syl_write_glb_lods(&lods, output, stderr)
+                          : a.wind > 0 ? syl_write_glb_wind(mesh, sets, nsets, sk, &wind, output, stderr)
                           : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                          : a.wind > 0 ? syl_write_glb_wind(mesh, sk, &wind, output, stderr)
                                       : syl_write_mesh(mesh, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();

@@ -44,8 +44,10 @@ static void scale_about(float p[3], const float c[3], float k) {
     for (int a = 0; a < 3; a++) p[a] = c[a] + k * (p[a] - c[a]);
 }
 
-/* A copy of s that borrows nothing: the level's nodes, organs and polygons. */
-static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t) {
+/* A copy of s that borrows nothing: the level's nodes, organs and polygons; back[i]: the
+ * node of s that node i of the copy is. */
+static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t,
+                             int32_t *back) {
     *t = *s;
     t->budget = NULL;
     t->charged = 0;
@@ -77,7 +79,7 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         t->nodes[nn] = *n;
         t->nodes[nn].parent = n->parent < 0 ? -1 : map[n->parent];
         t->nodes[nn].radius = radius[i]; /* the pipe model's radii of the whole tree, kept */
-        nn++;
+        back[nn++] = (int32_t)i;
     }
     t->nnodes = t->node_cap = nn;
     size_t no = 0;
@@ -112,6 +114,12 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
     t->nverts = t->vert_cap = nv;
     free(map);
     return SYL_OK;
+}
+
+/* A level's vertex (or instance) nodes (SylMeshOptions.vertex_nodes) as nodes of the whole
+ * skeleton, so that every level is skinned to the same joints. */
+static void nodes_back(int32_t *node, size_t count, const int32_t *back, size_t n) {
+    for (size_t v = 0; node && v < count; v++) node[v] = node[v] >= 0 && (size_t)node[v] < n ? back[node[v]] : -1;
 }
 
 static void free_copy(SylSkeleton *t) {
@@ -151,10 +159,11 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (radius[i] > rmax) rmax = radius[i];
     }
     float *down = malloc((s->nnodes + 1) * sizeof *down);
+    int32_t *back = malloc((s->nnodes + 1) * sizeof *back);
     size_t nstems = 0;
     for (size_t i = 0; down && i < s->nnodes; i++)
         if (s->nodes[i].kind == SYL_KIND_INTERNODE) down[nstems++] = radius[i];
-    if (!down) status = SYL_ELIMIT;
+    if (!down || !back) status = SYL_ELIMIT;
     else qsort(down, nstems, sizeof *down, by_radius_down);
     if (!status) status = syl_mesh_optimize(lod0);
     out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1,
@@ -166,7 +175,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         SylLodLevel *lv = &out->level[k];
         plan_level(lv, k, levels, top, rmax, down, nstems);
         SylSkeleton t;
-        status = truncate_skeleton(s, radius, lv, &t);
+        status = truncate_skeleton(s, radius, lv, &t, back);
         SylMeshOptions o = *mo;
         o.sides = (int)lroundf((float)sides * powf(0.75f, (float)k));
         if (o.sides < 3) o.sides = 3;
@@ -176,6 +185,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (lv->mesh) out->n = k + 1;
         if (!status && (mo->leaves == SYL_LEAVES_INSTANCED || mo->leaves == SYL_LEAVES_INSTANCED_CARDS))
             status = syl_leaf_instances(&t, &o, &lv->sets, &lv->nsets);
+        size_t kept = t.nnodes;
         free_copy(&t);
         if (status) break;
         size_t bark = 0;
@@ -188,9 +198,11 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         double ratio = bark ? fmax(want, 0.1 * (double)bark) / (double)bark : 1;
         status = syl_mesh_simplify_kind(lv->mesh, SYL_MATERIAL_BARK, ratio, 0.004f * powf(3, (float)(k - 1)),
                                         &lv->error);
+        nodes_back(lv->mesh->node, lv->mesh->nverts, back, kept);
+        for (int i = 0; i < lv->nsets; i++) nodes_back(lv->sets[i].node, lv->sets[i].count, back, kept);
         snprintf(lv->mesh->name, sizeof lv->mesh->name, "%s", lod0->name);
     }
-    free(radius), free(down);
+    free(radius), free(down), free(back);
     if (status) syl_lod_free(out);
     return status;
 }
