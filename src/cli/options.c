@@ -59,7 +59,7 @@ static bool read_leaves(CliArgs *a, char *arg) {
             a->mo->leaves = k;
             return true;
         }
-    fprintf(stderr, "sylva: error: --leaves expects mesh, cards, instanced or instanced-cards, not '%s'\n", arg);
+    fprintf(stderr, "sylva: error: --leaves expects mesh, cards, instanced, instanced-cards or clusters, not '%s'\n", arg);
     return false;
 }
 
@@ -238,6 +238,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_LEAVES] = {"leaves", 0, "MODE",
                         "mesh (copied blades, default), cards (one alpha-tested quad each),\n"
                         "instanced or instanced-cards (one leaf placed by EXT_mesh_gpu_instancing;\n"
+                        ".glb only), clusters (about 8 leaves or needles on one alpha-tested card;\n"
                         ".glb only)",
                         CLI_READ, .read = read_leaves},
     [CLI_OPT_LEAF_SHAPE] = {"leaf-shape", 0, "NAME",
