@@ -151,6 +151,8 @@ int cmd_mesh(int argc, char **argv) {
         syl_budget_free(budget);
         return status;
     }
+    /* the model's `lod` setting, when --lod does not say: a .glb without wind only */
+    if (!a.lod && pl.lod && !strcasecmp(dot, ".glb") && !(a.wind > 0)) a.lod = pl.lod, levels = true;
     const SylSkeleton *sk = pl.sk;
     SylMesh *mesh = pl.mesh;
     SylLodChain lods = {0};

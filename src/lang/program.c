@@ -95,5 +95,6 @@ double syl_program_setting(const SylProgram *p, const char *name) {
     if (!strcmp(name, "width")) return p->width;
     if (!strcmp(name, "derive")) return p->derive;
     if (!strcmp(name, "widthfactor")) return p->widthfactor;
+    if (!strcmp(name, "lod")) return p->lod;
     return NAN;
 }
