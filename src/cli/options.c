@@ -292,7 +292,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_GLB] = {"glb", 0, NULL, "also write forest-YEAR.glb: the terrain and the plants as\n"
                      "EXT_mesh_gpu_instancing nodes, one per species, age class and cell", CLI_FLAG, ARGS(glb)},
     /* sylva mesh */
-    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
+    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8; default: the\nmodel's lod setting)", CLI_INT, ARGS(lod), 1,
                      SYL_LOD_MAX},
     [CLI_OPT_IMPOSTOR] = {"impostor", 0, NULL,
                           "bake an octahedral impostor (8 x 8 views of 256 x 256 pixels) into\n"
