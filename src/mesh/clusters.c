@@ -38,8 +38,11 @@ typedef struct Table {
 } Table;
 
 static uint32_t *table_slot(Table *t, uint64_t k, bool *fresh) {
-    uint64_t h = k * 0x9e3779b97f4a7c15ull;
-    for (size_t i = (size_t)(h >> 20) & t->mask;; i = (i + 1) & t->mask) {
+    uint64_t h = k; /* splitmix64's finalizer: every bit of the key reaches the low bits */
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
+    h ^= h >> 31;
+    for (size_t i = (size_t)h & t->mask;; i = (i + 1) & t->mask) {
         if (t->key[i] == k) return *fresh = false, &t->val[i];
         if (!t->key[i]) {
             t->key[i] = k;
@@ -49,11 +52,12 @@ static uint32_t *table_slot(Table *t, uint64_t k, bool *fresh) {
 }
 
 /* Groups of leaves for cell size h: group[i] of leaf i, numbered in the order of their
- * first leaf; returns how many. */
-static size_t group(const Leaf *lf, size_t n, const float lo[3], float h, Table *t, uint32_t *grp) {
+ * first leaf; returns how many. Without grp, it stops counting above limit (the table then
+ * needs room for limit + 1 keys only). */
+static size_t group(const Leaf *lf, size_t n, const float lo[3], float h, Table *t, uint32_t *grp, size_t limit) {
     memset(t->key, 0, (t->mask + 1) * sizeof *t->key);
     size_t ng = 0;
-    for (size_t i = 0; i < n; i++) {
+    for (size_t i = 0; i < n && (grp || ng <= limit); i++) {
         bool fresh;
         uint32_t *v = table_slot(t, cell_key(lf[i].c, lo, h, lf[i].mat), &fresh);
         if (fresh) *v = (uint32_t)ng++;
@@ -166,12 +170,16 @@ static size_t gather(const MeshPlan *pl, Leaf *lf, float lo[3], float hi[3], siz
     return n;
 }
 
-/* The cell size whose groups are the fewest not above want (bisection in log scale). */
-static float cell_size(const Leaf *lf, size_t n, const float lo[3], float extent, size_t want, Table *t) {
+/* The smallest cell size (to 1/2^12 of the 14 octaves searched) with at most want groups, by
+ * bisection in log scale; counting stops above want, so a small table (want's) serves. */
+static float cell_size(const Leaf *lf, size_t n, const float lo[3], float extent, size_t want, Table *big) {
+    size_t cap = 16;
+    while (cap < 2 * (want + 1)) cap *= 2;
+    Table t = cap <= big->mask + 1 ? (Table){big->key, big->val, cap - 1} : *big;
     float a = extent * 1e-4f, b = extent * 2;
-    for (int it = 0; it < 16; it++) {
+    for (int it = 0; it < 12; it++) {
         float h = sqrtf(a * b);
-        if (group(lf, n, lo, h, t, NULL) > want) a = h;
+        if (group(lf, n, lo, h, &t, NULL, want) > want) a = h;
         else b = h;
     }
     return b;
@@ -192,7 +200,7 @@ bool mesh_plan_clusters(MeshPlan *pl, float per_card) {
     if (ok && n) {
         float extent = fmaxf(fmaxf(hi[0] - lo[0], hi[1] - lo[1]), fmaxf(hi[2] - lo[2], 1e-6f));
         size_t want = (size_t)((double)n / (double)(per_card >= 1 ? per_card : 1) + 0.5);
-        size_t ng = group(lf, n, lo, cell_size(lf, n, lo, extent, want ? want : 1, &t), &t, grp);
+        size_t ng = group(lf, n, lo, cell_size(lf, n, lo, extent, want ? want : 1, &t), &t, grp, n);
         /* the leaves of each group together, groups in the order of their first leaf */
         first = calloc(ng + 1, sizeof *first), order = malloc(n * sizeof *order);
         ok = first && order && mesh_reserve((void **)&pl->clusters, &pl->clusters_cap, 0, ng, sizeof *pl->clusters) &&
