@@ -45,6 +45,7 @@ enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };
 enum { SYL_LEAVES_MESH, SYL_LEAVES_CARDS, SYL_LEAVES_INSTANCED, SYL_LEAVES_INSTANCED_CARDS, SYL_LEAVES_CLUSTERS,
        SYL_LEAVES_MODES };
 extern const char *const syl_leaves_names[SYL_LEAVES_MODES]; /* "mesh", "cards", ... */
+enum { SYL_CLUSTER_LEAVES = 8 }; /* clusters: leaves per card by default (Pafčo's clusters hold 5 to 10) */
 
 typedef struct SylMeshOptions {
     int sides;            /* around a cylinder; 0: 8 */
@@ -55,7 +56,7 @@ typedef struct SylMeshOptions {
     int caps;             /* close axis ends (default on: set -1 for off) */
     int leaves;           /* SYL_LEAVES_*: the instanced modes leave leaves out */
     int leaf_shape;       /* cards: SYL_LEAF_* (texture.h) drawn in the card's alpha */
-    float cluster_leaves; /* clusters: leaves (and needles) per card on average; 0: 8 */
+    float cluster_leaves; /* clusters: leaves (and needles) per card on average; 0: SYL_CLUSTER_LEAVES */
     int threads;          /* <= 0: all cores; the mesh never depends on it */
     int vertex_nodes;     /* fill SylMesh.node (for skinning: wind, docs/mesh.md#wind) */
     FILE *diag;           /* where problems are reported; NULL: nowhere */

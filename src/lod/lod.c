@@ -23,7 +23,6 @@ enum { MIN_LEAF_SHARE_LOG2 = 2, BLADE_SIDE_TRIS = 8 };
  * half its triangle share, in cards of 2 triangles, makes at least 4 leaves a card. */
 enum { CLUSTER_FROM = 2, CARD_TRIS = 2 };
 #define CLUSTER_MIN 4.0f
-#define CLUSTER_LEAVES 8.0f /* --leaves clusters' LOD0, as SylMeshOptions.cluster_leaves' default */
 #define BLADE_AREA 1.225f  /* the mesher's blade, per length x half width (shapes.c) */
 #define BLADE_WIDTH 0.22f  /* its half width per length */
 
@@ -177,7 +176,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
     if (!status) status = syl_mesh_optimize(lod0);
     size_t leaves = 0;
     for (size_t i = 0; i < s->norgans; i++) leaves += clustered_kind(s->organs[i].kind) && s->organs[i].size > 0;
-    float per0 = mo->cluster_leaves > 0 ? mo->cluster_leaves : CLUSTER_LEAVES;
+    float per0 = mo->cluster_leaves > 0 ? mo->cluster_leaves : SYL_CLUSTER_LEAVES;
     out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1,
                                   .coverage = syl_lod_coverage(0, levels),
                                   .cluster_leaves = mo->leaves == SYL_LEAVES_CLUSTERS ? per0 : 0};

@@ -704,7 +704,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
     pl.leaf_shape = pl.cluster_shape = o.leaf_shape;
-    pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : 8;
+    pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : SYL_CLUSTER_LEAVES;
     SylMesh *m = calloc(1, sizeof *m);
     float *rad = NULL;
     if (!m) goto oom;
