@@ -120,29 +120,40 @@ static int cluster_hit(const ClusterLeaf *lf, int n, const uint8_t *mask, float 
     return -1;
 }
 
-/* Alpha (and, with rgb, colour) of a size x size cluster card. */
+/* Alpha (and, with rgb, colour) of a size x size cluster card. A texel whose four corners
+ * see the same leaf (or none) takes its centre's; the others, at edges, 4 x 4 samples. */
 static bool draw_cluster(int shape, int size, const uint8_t *rgb, uint8_t *rgba, size_t *opaque) {
     ClusterLeaf lf[CLUSTER_MAX];
     int n = cluster_layout(shape, lf);
     uint8_t *mask = malloc(MASK * MASK);
-    if (!mask) return false;
+    int8_t *corner = malloc((size_t)(size + 1) * (size_t)(size + 1));
+    if (!mask || !corner) {
+        free(mask), free(corner);
+        return false;
+    }
     shape_mask(shape, mask);
     enum { SS = 4 };
     *opaque = 0;
+    float s, t;
+    for (int y = 0; y <= size; y++)
+        for (int x = 0; x <= size; x++)
+            corner[y * (size + 1) + x] = (int8_t)cluster_hit(lf, n, mask, (float)x / (float)size, (float)y / (float)size, &s, &t);
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++) {
-            int in = 0, top = -1;
-            float ts = 0, tt = 0, s, t;
-            for (int j = 0; j < SS; j++)
-                for (int i = 0; i < SS; i++) {
-                    int k = cluster_hit(lf, n, mask, ((float)x + ((float)i + 0.5f) / SS) / (float)size,
-                                        ((float)y + ((float)j + 0.5f) / SS) / (float)size, &s, &t);
+            const int8_t *c = corner + y * (size + 1) + x;
+            bool same = c[0] == c[1] && c[0] == c[size + 1] && c[0] == c[size + 2];
+            int in = 0, top = -1, ss = same ? 1 : SS;
+            float ts = 0, tt = 0;
+            for (int j = 0; j < ss; j++)
+                for (int i = 0; i < ss; i++) {
+                    int k = cluster_hit(lf, n, mask, ((float)x + ((float)i + 0.5f) / (float)ss) / (float)size,
+                                        ((float)y + ((float)j + 0.5f) / (float)ss) / (float)size, &s, &t);
                     if (k < 0) continue;
                     in++;
                     if (k >= top) top = k, ts = s, tt = t;
                 }
             size_t p = (size_t)y * (size_t)size + (size_t)x;
-            uint8_t alpha = (uint8_t)((in * 255 + SS * SS / 2) / (SS * SS));
+            uint8_t alpha = (uint8_t)((in * 255 + ss * ss / 2) / (ss * ss));
             *opaque += alpha >= 128;
             if (!rgba) continue;
             /* the leaf texture in the top leaf's own coordinates, so its veins follow it */
@@ -154,7 +165,7 @@ static bool draw_cluster(int shape, int size, const uint8_t *rgb, uint8_t *rgba,
             memcpy(rgba + 4 * p, rgb + 3 * q, 3);
             rgba[4 * p + 3] = alpha;
         }
-    free(mask);
+    free(mask), free(corner);
     return true;
 }
 
