@@ -58,6 +58,7 @@ typedef struct Plant {
     double derive_s, turtle_s, mesh_s;
     bool grown;          /* a grow block or a scene: see grow */
     SylGrowStats grow;   /* its counts and times (derive_s is then the growth) */
+    int lod;             /* the model's `lod` setting (0: none) */
 } Plant;
 int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
 void cli_plant_free(Plant *pl);

@@ -150,6 +150,8 @@ int cmd_mesh(int argc, char **argv) {
         syl_budget_free(budget);
         return status;
     }
+    /* the model's `lod` setting, when --lod does not say: a .glb without wind only */
+    if (!a.lod && pl.lod && !strcasecmp(dot, ".glb") && !(a.wind > 0)) a.lod = pl.lod, levels = true;
     const SylSkeleton *sk = pl.sk;
     SylMesh *mesh = pl.mesh;
     if (a.wind > 0 && !mesh->node) { /* syl_mesh_append dropped them */
@@ -224,9 +226,13 @@ int cmd_mesh(int argc, char **argv) {
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
             LodSilhouette sil;
             if (lod_silhouette(&lods, k, d.threads, &sil)) break;
-            fprintf(stderr, "LOD%d: %zu triangles (%.2f%%), max order %d, leaves %.0f%% x %.2f, silhouette error %.2f%% (coverage %.2f%%) at %d px\n",
-                    k, lods.level[k].mesh->nidx / 3, 100.0 * (double)lods.level[k].mesh->nidx / (double)(mesh->nidx ? mesh->nidx : 1),
-                    lods.level[k].max_order, 100.0 * lods.level[k].leaf_keep, lods.level[k].leaf_scale, sil.percent, sil.soft, sil.pixels);
+            const SylLodLevel *lv = &lods.level[k];
+            char leaves[64];
+            if (lv->cluster_leaves > 0) snprintf(leaves, sizeof leaves, "leaves in clusters of %.1f", (double)lv->cluster_leaves);
+            else snprintf(leaves, sizeof leaves, "leaves %.0f%% x %.2f", 100.0 * lv->leaf_keep, (double)lv->leaf_scale);
+            fprintf(stderr, "LOD%d: %zu triangles (%.2f%%), max order %d, %s, silhouette error %.2f%% (coverage %.2f%%) at %d px\n",
+                    k, lv->mesh->nidx / 3, 100.0 * (double)lv->mesh->nidx / (double)(mesh->nidx ? mesh->nidx : 1),
+                    lv->max_order, leaves, sil.percent, sil.soft, sil.pixels);
         }
         fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
     }

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "sylva/lod.h"
 
 void cli_model_spec(ModelArgs *m, const char *spec) {
     struct stat st;
@@ -148,6 +149,8 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     if (!p) return status;
     double compiled = cli_now() - t0;
     snprintf(out->name, sizeof out->name, "%s", syl_program_name(p));
+    double lod = syl_program_setting(p, "lod");
+    out->lod = lod > 0 && lod <= SYL_LOD_MAX ? (int)lod : 0;
     /* grow blocks grow; a file with a scene, named without a model, makes its scene */
     int nscene = 0;
     bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!m->model && syl_program_scene(p, &nscene));

@@ -66,7 +66,7 @@ static bool read_leaves(CliArgs *a, char *arg) {
             a->mo->leaves = k;
             return true;
         }
-    fprintf(stderr, "sylva: error: --leaves expects mesh, cards, instanced or instanced-cards, not '%s'\n", arg);
+    fprintf(stderr, "sylva: error: --leaves expects mesh, cards, instanced, instanced-cards or clusters, not '%s'\n", arg);
     return false;
 }
 
@@ -245,6 +245,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_LEAVES] = {"leaves", 0, "MODE",
                         "mesh (copied blades, default), cards (one alpha-tested quad each),\n"
                         "instanced or instanced-cards (one leaf placed by EXT_mesh_gpu_instancing;\n"
+                        ".glb only), clusters (about 8 leaves or needles on one alpha-tested card;\n"
                         ".glb only)",
                         CLI_READ, .read = read_leaves},
     [CLI_OPT_LEAF_SHAPE] = {"leaf-shape", 0, "NAME",
@@ -302,7 +303,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_RENDER_VIEW] = {"view", 0, "V", "iso, front, side or top (default: chosen from the shape); with\n"
                              "--plants, bird (default) or walker", CLI_READ, .read = read_render_view},
     /* sylva mesh */
-    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
+    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8; default: the\nmodel's lod setting)", CLI_INT, ARGS(lod), 1,
                      SYL_LOD_MAX},
     [CLI_OPT_IMPOSTOR] = {"impostor", 0, NULL,
                           "bake an octahedral impostor (8 x 8 views of 256 x 256 pixels) into\n"

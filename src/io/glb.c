@@ -15,7 +15,7 @@
 #include "sylva/lod.h"
 #include "sylva/texture.h"
 
-enum { KINDS = 5, CARD = 3, ATLAS = 4 }; /* texture slots: bark, leaf, flower, leaf card (RGBA), atlas */
+enum { KINDS = 6, CARD = 3, ATLAS = 4, CLUSTER = 5 }; /* texture slots: bark, leaf, flower, leaf card (RGBA), atlas, leaf cluster (RGBA) */
 
 /* A mesh written: the part it belongs to and which of its sets (-1: the part's own). */
 typedef struct MeshRef {
@@ -95,6 +95,7 @@ static int slot_of(const Layout *l, const MeshRef *r, int i) {
     if (sc->atlas && r->part == sc->nparts - 1 && r->set < 0 && i == sc->atlas_material) return ATLAS;
     int kind = r->m->materials[i].kind;
     if (kind == SYL_MATERIAL_LEAF && cards(r->m)) return CARD;
+    if (kind == SYL_MATERIAL_LEAF && r->m->leaves == SYL_LEAVES_CLUSTERS) return CLUSTER;
     for (int k = 0; k < 3; k++)
         if (kind == kinds[k]) return k;
     return -1;
@@ -163,12 +164,13 @@ static void layout_instances(Layout *l, const SylInstances *set, int i, const fl
 /* One PNG texture per slot used, each in a view of its own. */
 static void layout_textures(Layout *l) {
     bool used[KINDS] = {false};
-    int shape = 0;
+    int shape = 0, cluster_shape = 0;
     for (int k = 0; k < l->nmeshes; k++)
         for (int g = 0; g < l->mesh[k].m->ngroups; g++) {
             int t = slot_of(l, &l->mesh[k], l->mesh[k].m->groups[g].material);
             if (t >= 0) used[t] = true;
             if (t == CARD) shape = l->mesh[k].m->leaf_shape;
+            if (t == CLUSTER) cluster_shape = l->mesh[k].m->leaf_shape;
         }
     uint8_t *img = NULL;
     const GlbScene *sc = l->sc;
@@ -182,6 +184,8 @@ static void layout_textures(Layout *l) {
         bool ok = k == ATLAS  ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
                   : k == CARD ? syl_leaf_card(shape, SYL_TEXTURE_SIZE, img) &&
                                     io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
+                  : k == CLUSTER ? syl_leaf_cluster(cluster_shape, SYL_TEXTURE_SIZE, img) &&
+                                       io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
                               : syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, img) &&
                                     io_png(&l->bin, img, SYL_TEXTURE_SIZE);
         if (!ok) {
@@ -244,7 +248,7 @@ static void json_materials(IoBuf *js, const Layout *l) {
             if (t >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", t);
             io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":%s}",
                       mat->kind == SYL_MATERIAL_BARK ? "0.95" : "0.7");
-            if (slot == CARD) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
+            if (slot == CARD || slot == CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
             io_put(js, "}", 1);
         }
     }
@@ -295,8 +299,8 @@ static void json_accessors(IoBuf *js, const Layout *l) {
  * does not repeat, and wrapping would bleed the far edge's alpha into the base. */
 static void json_textures(IoBuf *js, const Layout *l) {
     if (!l->ntex) return;
-    bool clamped = l->tex_of_kind[CARD] >= 0 || l->tex_of_kind[ATLAS] >= 0;
-    bool tiled = l->ntex > (l->tex_of_kind[CARD] >= 0) + (l->tex_of_kind[ATLAS] >= 0);
+    int alpha = (l->tex_of_kind[CARD] >= 0) + (l->tex_of_kind[ATLAS] >= 0) + (l->tex_of_kind[CLUSTER] >= 0);
+    bool clamped = alpha > 0, tiled = l->ntex > alpha;
     io_printf(js, ",\"samplers\":[");
     if (tiled) io_printf(js, "{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}");
     if (clamped) io_printf(js, "%s{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}", tiled ? "," : "");
@@ -304,7 +308,8 @@ static void json_textures(IoBuf *js, const Layout *l) {
     for (int t = 0; t < l->ntex; t++) {
         int k = l->image_kind[t];
         io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
-                  k == CARD ? "leafcard" : k == ATLAS ? "impostor" : syl_texture_name(kinds[k]), l->image_view[t]);
+                  k == CARD ? "leafcard" : k == ATLAS ? "impostor" : k == CLUSTER ? "leafcluster" : syl_texture_name(kinds[k]),
+                  l->image_view[t]);
     }
     io_printf(js, "],\"textures\":[");
     for (int t = 0; t < l->ntex; t++)
@@ -519,7 +524,7 @@ static bool plan(Layout *l) {
 
 /* The file of sc; set_joint (may be NULL): the joint each instance set follows. */
 static int write_scene(const GlbScene *sc, const int *set_joint, const char *path, FILE *diag) {
-    Layout l = {.sc = sc, .tex_of_kind = {-1, -1, -1, -1, -1}, .set_joint = set_joint};
+    Layout l = {.sc = sc, .tex_of_kind = {-1, -1, -1, -1, -1, -1}, .set_joint = set_joint};
     IoBuf js = {0};
     bool ok = plan(&l);
     if (!ok) l.bin.failed = true;

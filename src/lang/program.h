@@ -233,6 +233,7 @@ struct SylProgram {
     bool skip[MAX_SYMBOLS]; /* ignored in context matching */
 
     int derive;
+    int lod;             /* the `lod` setting: levels of detail for `sylva mesh` (0: none) */
     double angle, step, width, widthfactor;
     double tropism[4];      /* direction and elasticity; elasticity 0: none */
     float colours[256][3];  /* `colour` settings, where colour_set */

@@ -92,4 +92,4 @@ int syl_leaf_instances(const SylSkeleton *s, const SylMeshOptions *opt, SylInsta
     return SYL_OK;
 }
 
-const char *const syl_leaves_names[SYL_LEAVES_MODES] = {"mesh", "cards", "instanced", "instanced-cards"};
+const char *const syl_leaves_names[SYL_LEAVES_MODES] = {"mesh", "cards", "instanced", "instanced-cards", "clusters"};

@@ -78,6 +78,7 @@ static void plan_free(MeshPlan *pl) {
     free(pl->polys);
     free(pl->pv);
     free(pl->ptri);
+    free(pl->clusters);
     for (int i = 0; i <= MESH_MAX_SIDES; i++) free(pl->trig[i]);
 }
 
@@ -702,6 +703,8 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
+    pl.leaf_shape = pl.cluster_shape = o.leaf_shape;
+    pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : SYL_CLUSTER_LEAVES;
     SylMesh *m = calloc(1, sizeof *m);
     float *rad = NULL;
     if (!m) goto oom;
@@ -757,7 +760,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     m->nmaterials = s->nmaterials;
     snprintf(m->name, sizeof m->name, "%s", s->name);
     m->leaves = (uint8_t)o.leaves;
-    m->leaf_shape = (uint8_t)o.leaf_shape;
+    m->leaf_shape = (uint8_t)pl.cluster_shape;
     emit_all(&pl, m, o.threads > 0 ? o.threads : ncpu());
     if (o.vertex_nodes && !fill_nodes(&pl, m)) goto oom;
     goto done;

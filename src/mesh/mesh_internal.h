@@ -46,7 +46,15 @@ typedef struct MeshItem {
     uint32_t verts;
     int32_t node;   /* the node it hangs on (SylMesh.node; -1: none) */
     bool poly;
+    bool cluster;   /* index: into MeshPlan.clusters */
 } MeshItem;
+
+/* A leaf cluster's card (clusters.c): centre, half extents along and across, its normal. */
+typedef struct MeshCluster {
+    float c[3], a[3], b[3], n[3];
+    int32_t node; /* its first leaf's node */
+    uint8_t mat;
+} MeshCluster;
 
 /* A polygon after cleaning and triangulation. */
 typedef struct MeshPoly {
@@ -63,6 +71,10 @@ typedef struct MeshTrig {
 typedef struct MeshPlan {
     const SylSkeleton *skel;
     int sides, min_sides, sphere_stacks, leaves;
+    int leaf_shape, cluster_shape; /* clusters: the shape the cards show (SYL_CLUSTER_NEEDLES) */
+    float cluster_leaves;          /* clusters: leaves per card */
+    MeshCluster *clusters;
+    size_t nclusters, clusters_cap;
     bool caps;
     MeshPt *pts;
     size_t npts, pts_cap;
@@ -95,5 +107,13 @@ float mesh_leaf_width(const SylSkeleton *s);
 /* Organs and polygons (shapes.c). Planning adds items and runs; emission fills them. */
 bool mesh_plan_shapes(MeshPlan *pl);
 void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m);
+/* The area one side of an organ shows as the mesher draws it (SYL_LEAVES_MESH): a leaf's
+ * blade or oval; half the surface of a closed needle, which shows as much on average. */
+float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o);
+
+/* Leaf clusters (clusters.c): one card item per group of about per_card leaves and needles
+ * (which organ planning then leaves out), and a card's 4 vertices and 2 triangles. */
+bool mesh_plan_clusters(MeshPlan *pl, float per_card);
+void mesh_emit_cluster(const MeshCluster *k, float *pos, float *nrm, float *uv, uint32_t *idx, uint32_t v0);
 
 #endif

@@ -64,13 +64,17 @@ static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts,
     uint32_t st = (uint32_t)pl->sphere_stacks, sl = (uint32_t)pl->sides;
     switch (o->kind) {
     case SYL_KIND_LEAF:
-        if (pl->leaves == SYL_LEAVES_INSTANCED || pl->leaves == SYL_LEAVES_INSTANCED_CARDS) break; /* placed apart */
+        if (pl->leaves == SYL_LEAVES_INSTANCED || pl->leaves == SYL_LEAVES_INSTANCED_CARDS ||
+            pl->leaves == SYL_LEAVES_CLUSTERS)
+            break; /* placed apart */
         if (pl->leaves == SYL_LEAVES_CARDS) *verts = 4, *tris = 2;
         else if (oval_tris(pl->skel)) *verts = 2 * (uint32_t)(oval_tris(pl->skel) + 2), *tris = 2 * (uint32_t)oval_tris(pl->skel);
         else *verts = BLADE_V, *tris = BLADE_T;
         break;
     case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T; break;
-    case SYL_KIND_NEEDLE: *verts = NEEDLE_V, *tris = NEEDLE_T; break;
+    case SYL_KIND_NEEDLE:
+        if (pl->leaves != SYL_LEAVES_CLUSTERS) *verts = NEEDLE_V, *tris = NEEDLE_T;
+        break;
     case SYL_KIND_SPHERE: *verts = (st + 1) * (sl + 1), *tris = 2 * sl * (st - 1); break;
     case SYL_KIND_DISC: *verts = 2 * (sl + 1), *tris = 2 * sl; break;
     default: break;
@@ -233,6 +237,7 @@ bool mesh_plan_shapes(MeshPlan *pl) {
                                              .node = s->organs[i].node};
         pl->nverts += nv;
     }
+    if (pl->leaves == SYL_LEAVES_CLUSTERS && !mesh_plan_clusters(pl, pl->cluster_leaves)) return false;
     PolyScratch sc = {0};
     bool ok = true;
     for (size_t i = 0; i < s->npolys && ok; i++) ok = plan_polygon(pl, &s->polys[i], &sc);
@@ -431,6 +436,30 @@ static void emit_polygon(const MeshPlan *pl, const MeshPoly *mp, Out *o) {
 void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m) {
     Out o = {m->pos + 3 * it->vert, m->nrm + 3 * it->vert, m->uv + 2 * it->vert, m->idx + pl->runs[it->run].idx,
              (uint32_t)it->vert, 0};
-    if (it->poly) emit_polygon(pl, &pl->polys[it->index], &o);
+    if (it->cluster) mesh_emit_cluster(&pl->clusters[it->index], o.pos, o.nrm, o.uv, o.ix, o.v0);
+    else if (it->poly) emit_polygon(pl, &pl->polys[it->index], &o);
     else emit_organ(pl, &pl->skel->organs[it->index], &o);
+}
+
+/* Twice the area of polygon (x, y) pairs, counter-clockwise. */
+static float shoelace(const float (*p)[2], int n) {
+    float a = 0;
+    for (int i = 0; i < n; i++) a += p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1];
+    return a;
+}
+
+float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o) {
+    float size = o->size;
+    if (o->kind == SYL_KIND_NEEDLE) {
+        float r = NEEDLE_WIDTH * size, edge = r * sqrtf(3.0f);
+        float sides = 3 * 0.5f * edge * sqrtf(size * size + 0.25f * r * r), cap = 0.25f * sqrtf(3.0f) * edge * edge;
+        return 0.5f * (sides + cap);
+    }
+    if (oval_tris(pl->skel)) return 0.5f * fabsf(shoelace((const float(*)[2])pl->oval, oval_tris(pl->skel) + 2)) * size * pl->skel->leaf_width * size;
+    float a = 0;
+    for (int t = 0; t < 8; t++) {
+        const float(*p[3]) = {blade_xy[blade_tri[t][0]], blade_xy[blade_tri[t][1]], blade_xy[blade_tri[t][2]]};
+        a += 0.5f * fabsf((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
+    }
+    return a * size * LEAF_WIDTH * size;
 }

@@ -73,6 +73,7 @@ void render_scene_free(Scene *s) {
     if (s->dev) rtcReleaseDevice(s->dev);
     for (int i = 0; i < 4; i++) texture_free(&s->tex[i]);
     free(s->tri_mat);
+    free(s->alphatest);
     free(s->pos_copy);
     free(s);
 }
@@ -133,6 +134,10 @@ static int build_scene(Scene *s, int threads, FILE *diag) {
                                    m->nverts);
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->idx, 0, 3 * sizeof(uint32_t),
                                    ntri);
+        if (render_alpha_test(s, geom)) {
+            rtcReleaseGeometry(geom);
+            return SYL_ELIMIT;
+        }
         rtcCommitGeometry(geom);
         rtcAttachGeometry(s->scene, geom);
         rtcReleaseGeometry(geom);

@@ -4,6 +4,7 @@
 
 #include "unit.h"
 #include "mesh_fixtures.h"
+#include "sylva/texture.h"
 
 static SylMesh *build(const SylSkeleton *s, const SylMeshOptions *o) {
     SylMesh *m = NULL;
@@ -555,9 +556,80 @@ static void optimize_keeps_best_orders(void **state) {
     syl_skeleton_free(s);
 }
 
+static double area_of(const SylMesh *m, size_t first, size_t count) {
+    double a = 0;
+    for (size_t t = first / 3; t < (first + count) / 3; t++) a += tri_area(m, t);
+    return a;
+}
+
+/* Leaf clusters: 30 clumps of 12 leaves (or needles) far apart, 12 a card: no more cards
+ * than 360 / 12, each a flat unit-normal square with UVs over the unit square, and the cards
+ * show (area x the texture's kept share) what the copied leaves show on one side (half
+ * their triangles' area: both faces of a blade, or a closed needle on average). */
+static void leaf_clusters(void **state) {
+    (void)state;
+    for (int kind = 0; kind < 2; kind++) {
+        SylSkeleton *s = syl_skeleton_new("clusters");
+        for (int c = 0; c < 30; c++)
+            for (int i = 0; i < 12; i++) {
+                float a = 0.5f * (float)i;
+                SylOrgan o = fx_organ(kind ? SYL_KIND_NEEDLE : SYL_KIND_LEAF, 10.0f * (float)(c % 6) + 0.1f * cosf(a),
+                                      10.0f * (float)(c / 6), 0.1f * sinf(a), 0.3f, 1);
+                o.h[0] = cosf(a), o.h[1] = 0, o.h[2] = sinf(a);
+                o.l[0] = 0, o.l[1] = 1, o.l[2] = 0;
+                syl_skeleton_add_organ(s, &o);
+            }
+        SylMesh *copied = build(s, NULL);
+        double shown = 0.5 * area_of(copied, 0, copied->nidx);
+        SylMeshOptions o = {.leaves = SYL_LEAVES_CLUSTERS, .cluster_leaves = 12};
+        SylMesh *m = build(s, &o);
+        assert_int_equal(m->leaves, SYL_LEAVES_CLUSTERS);
+        assert_int_equal(m->leaf_shape, kind ? SYL_CLUSTER_NEEDLES : SYL_LEAF_OVATE);
+        assert_indices_valid(m);
+        assert_unit_normals(m);
+        size_t cards = ntris(m) / 2;
+        assert_true(cards >= 10 && cards <= 30);
+        assert_int_equal(m->nverts, 4 * cards);
+        for (size_t k = 0; k < cards; k++) {
+            const float *p = m->pos + 12 * k, *n = m->nrm + 12 * k, *uv = m->uv + 8 * k;
+            for (int v = 1; v < 4; v++) {
+                double d = 0;
+                for (int c = 0; c < 3; c++) d += (p[3 * v + c] - p[c]) * n[c];
+                assert_near(d, 0, 1e-5); /* flat, the normal across it */
+            }
+            double e1 = 0, e2 = 0;
+            for (int c = 0; c < 3; c++) e1 += (p[3 + c] - p[c]) * (p[3 + c] - p[c]), e2 += (p[9 + c] - p[c]) * (p[9 + c] - p[c]);
+            assert_near(e1, e2, 1e-3 * (e1 + e2)); /* square (to float precision 50 units out) */
+            for (int v = 0; v < 8; v++) assert_true(uv[v] == 0 || uv[v] == 1);
+        }
+        double fill = syl_leaf_cluster_fill(m->leaf_shape);
+        assert_near(fill * area_of(m, 0, m->nidx), shown, 1e-3 * shown);
+        syl_mesh_free(copied);
+        syl_mesh_free(m);
+        syl_skeleton_free(s);
+    }
+}
+
+/* The share a cluster card keeps, measured small, is the full-size texture's to 1%. */
+static void cluster_fill(void **state) {
+    (void)state;
+    enum { N = 512 };
+    uint8_t *rgba = malloc(4 * N * N);
+    for (int shape = 0; shape <= SYL_CLUSTER_NEEDLES; shape++) {
+        assert_true(syl_leaf_cluster(shape, N, rgba));
+        size_t kept = 0;
+        for (int i = 0; i < N * N; i++) kept += rgba[4 * i + 3] >= 128;
+        assert_near(syl_leaf_cluster_fill(shape), (double)kept / (N * N), 0.01);
+        for (int i = 0; i < N; i++) assert_int_equal(rgba[4 * i + 3] | rgba[4 * (N * (N - 1) + i) + 3], 0);
+    }
+    free(rgba);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(straight_tube),
+        cmocka_unit_test(leaf_clusters),
+        cmocka_unit_test(cluster_fill),
         cmocka_unit_test(lobed_rings),
         cmocka_unit_test(optimize_keeps_best_orders),
         cmocka_unit_test(tree_is_closed_per_axis),
