@@ -91,10 +91,13 @@ typedef struct SylSkeleton {
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
-    /* The leaves' surface, for every SYL_KIND_LEAF organ (0: Sylva's blade): an oval of
-     * leaf_tris triangles (Arbaro's disc1..disc9), leaf_width wide per unit of length. */
+    /* The leaves' surface, for every SYL_KIND_LEAF organ (leaf_tris 0: Sylva's blade): the
+     * outline leaf_outline (0 an oval of leaf_tris triangles, Arbaro's disc1..disc9; 1 a
+     * square; 2 a folded palm leaflet: src/util/leafoutline.h), leaf_width wide per unit of
+     * length. */
     int leaf_tris;
     float leaf_width;
+    int leaf_outline;
     SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
     uint64_t charged;
 } SylSkeleton;

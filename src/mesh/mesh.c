@@ -758,6 +758,10 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     snprintf(m->name, sizeof m->name, "%s", s->name);
     m->leaves = (uint8_t)o.leaves;
     m->leaf_shape = (uint8_t)o.leaf_shape;
+    if (mesh_own_leaf(s)) /* a card draws the skeleton's own outline */
+        m->leaf_shape = (uint8_t)LEAF_OUTLINE_CARD(s->leaf_outline, s->leaf_tris < LEAF_OUTLINE_CARD_MAX_TRIS
+                                                                         ? s->leaf_tris
+                                                                         : LEAF_OUTLINE_CARD_MAX_TRIS);
     emit_all(&pl, m, o.threads > 0 ? o.threads : ncpu());
     if (o.vertex_nodes && !fill_nodes(&pl, m)) goto oom;
     goto done;
