@@ -98,6 +98,10 @@ typedef struct SylSkeleton {
     int leaf_tris;
     float leaf_width;
     int leaf_outline;
+    /* Jitter of the trunk's surface (Weber–Penn's 0ScaleV, as Arbaro draws it): the mesher
+     * moves each vertex of an order-0 ring to (1 + u) times its distance from the axis, u
+     * uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex. 0: none. */
+    float trunk_jitter;
     SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
     uint64_t charged;
 } SylSkeleton;

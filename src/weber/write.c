@@ -134,6 +134,8 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
             g->lvs[st->leaf_first + q].node = wr.ids[lo];
         }
     }
+    /* Arbaro's 0ScaleV: jitter of the trunk's surface (the paper's varies its radius, radius.c) */
+    if (g->w.convention == WEBER_ARBARO) sk->trunk_jitter = (float)g->w.Scale0V;
     if (!wr.failed && g->nlvs) { /* the leaves are the organs, in order already */
         sk->organs = g->lvs, sk->norgans = g->nlvs, sk->organ_cap = g->lvs_cap;
         g->lvs = NULL;
