@@ -28,6 +28,8 @@ const char *syl_texture_name(int kind);
 enum { SYL_LEAF_OVATE, SYL_LEAF_LINEAR, SYL_LEAF_CORDATE, SYL_LEAF_MAPLE, SYL_LEAF_PALMATE, SYL_LEAF_SHAPES };
 extern const char *const syl_leaf_shape_names[SYL_LEAF_SHAPES]; /* "ovate", ... */
 int syl_leaf_shape_named(const char *name);                      /* -1: no such shape */
+/* shape may also be 128 and above: a skeleton's own outline (Weber–Penn's LeafShape, coded
+ * by the mesher as SylMesh.leaf_shape; src/util/leafoutline.h). */
 bool syl_leaf_inside(int shape, float s, float t);
 /* size x size RGBA: the leaf texture (white-based, as syl_texture) with the shape's
  * coverage in alpha; x is u (across), y is v (base at row 0). False when out of memory. */

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sylva/lod.h"
+#include "util/leafoutline.h"
 #include "util/rng.h"
 
 /* Each level drops one more branch order (never the trunk's children) and thicker twigs;
@@ -28,10 +29,7 @@ enum { CLUSTER_FROM = 2, CARD_TRIS = 2 };
 
 /* Area of the mesher's oval of n triangles a side (n + 2 points of an ellipse), per length
  * x full width. */
-static float oval_area(int n) {
-    int m = n + 2;
-    return 0.125f * (float)m * sinf(6.28318530718f / (float)m);
-}
+static float oval_area(int n) { return (float)leaf_outline_area(LEAF_OUTLINE_OVAL, n); }
 
 static bool clustered_kind(int kind) { return kind == SYL_KIND_LEAF || kind == SYL_KIND_NEEDLE; }
 
@@ -59,9 +57,12 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
     t->charged = 0;
     /* Coarser leaves of the same area: an oval of fewer triangles in place of the blade or
      * of LOD0's oval; shape: the linear factor that keeps each leaf's area. */
-    bool oval0 = s->leaf_tris >= 1 && s->leaf_tris <= 64 && s->leaf_width > 0 && isfinite(s->leaf_width);
+    bool own = s->leaf_tris >= 1 && s->leaf_width > 0 && isfinite(s->leaf_width) &&
+               leaf_outline_valid(s->leaf_outline, s->leaf_tris);
+    bool oval0 = own && s->leaf_outline == LEAF_OUTLINE_OVAL;
     int n0 = oval0 ? s->leaf_tris : BLADE_SIDE_TRIS, nk = n0 >> lv->level;
     if (nk < 1) nk = 1;
+    if (own && !oval0) nk = n0; /* a square or a palm leaflet keeps its outline */
     float width = oval0 ? s->leaf_width : 2 * BLADE_WIDTH;
     float area0 = oval0 ? oval_area(n0) * width : BLADE_AREA * BLADE_WIDTH;
     float shape = nk < n0 ? sqrtf(area0 / (oval_area(nk) * width)) : 1;

@@ -28,6 +28,7 @@
 
 #include "mesh/mesh_internal.h"
 #include "util/budget.h"
+#include "util/rng.h"
 
 #define TWO_PI 6.28318530717958647692f
 /* fmaxf and fminf are calls (they care about NaN); these are one instruction */
@@ -400,6 +401,20 @@ static void lobe_ring(int lobes, float depth, int S, const MeshTrig *tr, v4f C, 
     }
 }
 
+/* The trunk's jitter (SylSkeleton.trunk_jitter): each vertex of the ring moves out by a factor
+ * 1 + u, u uniform in [-k, k] from a stream keyed by the ring's point and the vertex, so
+ * that the mesh is the same for any number of threads. Normals are kept. */
+static void jitter_ring(float k, uint32_t ring, int S, v4f C, float *vp) {
+    for (int j = 0; j < S; j++) {
+        Rng r = rng_stream(0x0ca1e, ring, 0, (uint64_t)j);
+        const float f = 1.0f + k * (float)(2 * rng_unit(&r) - 1);
+        v4f p = {0};
+        memcpy(&p, vp + 3 * j, 3 * sizeof(float));
+        p = C + f * (p - C);
+        memcpy(vp + 3 * j, &p, 3 * sizeof(float));
+    }
+}
+
 static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
     const MeshPt *P = pl->pts + tb->first;
     const uint32_t n = tb->count;
@@ -409,6 +424,8 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
     vec3 ref, tprev = {0}, din = {0}, dout, t0 = {0}, tk = {0};
     glm_vec3_copy((float *)tb->ref, ref);
     float lin = 0, lout, v = 0;
+    const float jitter = tb->node >= 0 && pl->skel->nodes[tb->node].order == 0 && isfinite(pl->skel->trunk_jitter)
+                             ? pl->skel->trunk_jitter : 0;
     dir_len(P[0].p, P[1].p, dout, &lout);
     for (uint32_t k = 0; k < n; k++) {
         const bool inner = k > 0 && k + 1 < n;
@@ -473,6 +490,7 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
             vt[2 * j + 1] = v;
         }
         if (P[k].lobes) lobe_ring(P[k].lobes, P[k].lobe_depth * 1e-4f, S, tr, C, ninv, NT, ref, bb, vp, vn);
+        if (jitter > 0) jitter_ring(jitter, tb->first + k, S, C, vp);
         memcpy(vp + 3 * S, vp, 3 * sizeof *vp); /* the seam */
         memcpy(vn + 3 * S, vn, 3 * sizeof *vn);
         vt[2 * S] = 1.0f;
@@ -703,7 +721,12 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
-    pl.leaf_shape = pl.cluster_shape = o.leaf_shape;
+    pl.leaf_shape = o.leaf_shape;
+    if (mesh_own_leaf(s)) /* cards and clusters draw the skeleton's own outline */
+        pl.leaf_shape = LEAF_OUTLINE_CARD(s->leaf_outline, s->leaf_tris < LEAF_OUTLINE_CARD_MAX_TRIS
+                                                               ? s->leaf_tris
+                                                               : LEAF_OUTLINE_CARD_MAX_TRIS);
+    pl.cluster_shape = pl.leaf_shape;
     pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : SYL_CLUSTER_LEAVES;
     SylMesh *m = calloc(1, sizeof *m);
     float *rad = NULL;

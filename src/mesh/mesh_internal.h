@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "sylva/mesh.h"
+#include "util/leafoutline.h"
 
 enum { MESH_MAX_SIDES = 256 };
 
@@ -90,7 +91,8 @@ typedef struct MeshPlan {
     size_t npv, pv_cap, nptri, ptri_cap;
     MeshTrig *trig[MESH_MAX_SIDES + 1]; /* by number of sides, as needed */
     size_t nverts;
-    float oval[66][2]; /* a skeleton's own leaf outline (along, across), computed once */
+    LeafPanel panels[LEAF_OUTLINE_MAX_PANELS]; /* a skeleton's own leaf outline, computed once */
+    int npanels;                               /* 0: Sylva's blade */
 } MeshPlan;
 
 /* Grow *arr to hold n + more elements; false when out of memory. */
@@ -101,8 +103,10 @@ const MeshTrig *mesh_trig(MeshPlan *pl, int sides);
 
 /* An organ's unit frame (H along, L across, U = H x L); false when it has none or no size. */
 bool mesh_organ_frame(const SylOrgan *o, float h[3], float l[3], float u[3]);
-/* The half width of a leaf per unit of length (the blade's or the skeleton's oval). */
+/* The half width of a leaf per unit of length (the blade's or the skeleton's own). */
 float mesh_leaf_width(const SylSkeleton *s);
+/* Does the skeleton name its own leaf surface (leaf_outline, leaf_tris, leaf_width)? */
+bool mesh_own_leaf(const SylSkeleton *s);
 
 /* Organs and polygons (shapes.c). Planning adds items and runs; emission fills them. */
 bool mesh_plan_shapes(MeshPlan *pl);

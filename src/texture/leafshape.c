@@ -7,6 +7,7 @@
 
 #include "sylva/skeleton.h"
 #include "texture/texture.h"
+#include "util/leafoutline.h"
 
 #define PI 3.14159265358979f
 
@@ -30,6 +31,8 @@ static bool lobed(float s, float t, float centre, int lobes, float depth, float 
 
 bool syl_leaf_inside(int shape, float s, float t) {
     if (!(s > 0 && s < 1 && t > -1 && t < 1)) return false;
+    if (shape >= LEAF_OUTLINE_CARD(0, 0)) /* a skeleton's own outline (Weber–Penn's shapes) */
+        return leaf_outline_inside((shape - LEAF_OUTLINE_CARD(0, 0)) / 32, (shape - LEAF_OUTLINE_CARD(0, 0)) % 32, s, t);
     float w;
     switch (shape) {
     case SYL_LEAF_LINEAR: w = 0.35f * sqrtf(sinf(PI * s)); break;                     /* a strap */

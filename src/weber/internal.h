@@ -80,7 +80,7 @@ typedef struct WeberGen {
     const WeberEnvelope *envelope;
 } WeberGen;
 
-enum { WRNG_SELF, WRNG_SHAPE, WRNG_KIDS };
+enum { WRNG_SELF, WRNG_SHAPE, WRNG_KIDS, WRNG_SCALE0 };
 static inline Rng weber_rng(const WeberGen *g, uint64_t key, int table) { return rng_stream(g->seed, key, (uint64_t)table, 0); }
 /* Arbaro's var(v): uniform in [-v, v]. */
 static inline double weber_var(Rng *r, double v) { return v * (2 * rng_unit(r) - 1); }

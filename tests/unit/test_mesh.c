@@ -513,6 +513,45 @@ static void lobed_rings(void **state) {
     syl_skeleton_free(s);
 }
 
+/* The trunk's jitter (SylSkeleton.trunk_jitter, Weber–Penn's 0ScaleV): each vertex of an
+ * order-0 ring moves along its radius to between 1 - k and 1 + k times it, not all by the
+ * same factor; a branch (order 1) stays as it was; 1 and 3 threads give the same mesh. */
+static void trunk_jitter(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("jitter");
+    int32_t a = fx_node(s, -1, 0, 0, 0, 0, 0.5f, SYL_MATERIAL_BARK);
+    int32_t b = fx_node(s, a, 0, 0, 2, 0, 0.5f, SYL_MATERIAL_BARK);
+    int32_t c = fx_node(s, b, 1, 1, 2, 0, 0.2f, SYL_MATERIAL_BARK);
+    s->nodes[c].order = 1;
+    SylMeshOptions o1 = {.threads = 1, .caps = -1}, o3 = {.threads = 3, .caps = -1};
+    SylMesh *round = build(s, &o1);
+    s->trunk_jitter = 0.2f;
+    SylMesh *m = build(s, &o1), *m3 = build(s, &o3);
+    assert_true(same_mesh(m, m3));
+    assert_int_equal(m->nverts, round->nverts);
+    int trunk = 0, spread = 0;
+    for (size_t v = 0; v < m->nverts; v++) {
+        const float *p = m->pos + 3 * v, *q = round->pos + 3 * v;
+        float d0 = hypotf(q[0], q[2]);
+        if (fabsf(d0 - 0.5f) > 1e-4f) { /* the branch */
+            assert_memory_equal(p, q, 3 * sizeof(float));
+            continue;
+        }
+        float f = hypotf(p[0], p[2]) / d0;
+        trunk++;
+        assert_true(fabsf(p[1] - q[1]) < 1e-6f);
+        assert_true(fabsf(p[0] * q[2] - p[2] * q[0]) < 1e-5f); /* along its radius */
+        assert_true(f >= 0.8f - 1e-5f && f <= 1.2f + 1e-5f);
+        spread += fabsf(f - 1) > 0.1f;
+    }
+    assert_int_equal(trunk, 2 * 9);
+    assert_true(spread >= 3);
+    syl_mesh_free(round);
+    syl_mesh_free(m);
+    syl_mesh_free(m3);
+    syl_skeleton_free(s);
+}
+
 /* Leaves are emitted at the best vertex-cache order there is (every vertex fetched once): the
  * optimizer keeps their triangles in order (vertices may be renumbered), and still reorders
  * a tube whose triangles were shuffled. */
@@ -638,6 +677,7 @@ int main(void) {
         cmocka_unit_test(pipe_model_at_forks),
         cmocka_unit_test(groups_by_material),
         cmocka_unit_test(deterministic_across_threads),
+        cmocka_unit_test(trunk_jitter),
         cmocka_unit_test(organs),
         cmocka_unit_test(disc),
         cmocka_unit_test(polygons),
