@@ -445,13 +445,6 @@ void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m) {
     else emit_organ(pl, &pl->skel->organs[it->index], &o);
 }
 
-/* Twice the area of polygon (x, y) pairs, counter-clockwise. */
-static float shoelace(const float (*p)[2], int n) {
-    float a = 0;
-    for (int i = 0; i < n; i++) a += p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1];
-    return a;
-}
-
 float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o) {
     float size = o->size;
     if (o->kind == SYL_KIND_NEEDLE) {
@@ -459,7 +452,7 @@ float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o) {
         float sides = 3 * 0.5f * edge * sqrtf(size * size + 0.25f * r * r), cap = 0.25f * sqrtf(3.0f) * edge * edge;
         return 0.5f * (sides + cap);
     }
-    if (oval_tris(pl->skel)) return 0.5f * fabsf(shoelace((const float(*)[2])pl->oval, oval_tris(pl->skel) + 2)) * size * pl->skel->leaf_width * size;
+    if (pl->npanels) return (float)leaf_outline_area(pl->skel->leaf_outline, pl->skel->leaf_tris) * size * pl->skel->leaf_width * size;
     float a = 0;
     for (int t = 0; t < 8; t++) {
         const float(*p[3]) = {blade_xy[blade_tri[t][0]], blade_xy[blade_tri[t][1]], blade_xy[blade_tri[t][2]]};
