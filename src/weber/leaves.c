@@ -10,17 +10,40 @@ double weber_leaves_per_stem(const WeberGen *g, const WStem *st) {
            g->w.LeafQuality;
 }
 
-static double atan2d(double y, double x) { return atan2(y, x) * 180 / M_PI; }
+/* A leaf turns by single-precision sines and weber_atan2, several times cheaper than libm's
+ * double ones (the leaves were two thirds of the tree's time): nothing grows from a leaf, and
+ * its frame is stored in floats, so the error (about 1e-7 radian) ends there. */
+static void sincos_f(double rad, double *c, double *s) {
+    float sf, cf;
+    sincosf((float)rad, &sf, &cf);
+    *c = cf, *s = sf;
+}
+
+static void turn_x_f(Frame *f, double rad) {
+    double c, s;
+    sincos_f(rad, &c, &s);
+    frame_turn_x(f, c, s);
+}
 
 /* Turn a leaf outward (about the vertical) and up (about its x) toward the light. */
 static void bend(const WeberGen *g, Frame *f) {
-    double b = g->w.LeafBend;
+    double b = g->w.LeafBend, c, s;
     if (b == 0) return;
-    double tpos = atan2d(f->t[1], f->t[0]), tbend = tpos - atan2d(f->y[1], f->y[0]);
-    static const double up[3] = {0, 0, 1};
-    frame_rot_global(f, up, b * tbend);
-    double fbend = atan2d(sqrt(f->y[0] * f->y[0] + f->y[1] * f->y[1]), f->y[2]);
-    frame_rot_local(f, 1, 0, 0, b * fbend);
+    double tbend = weber_atan2(f->t[1], f->t[0]) - weber_atan2(f->y[1], f->y[0]);
+    sincos_f(b * tbend, &c, &s);
+    frame_turn_vertical(f, c, s);
+    double fbend = weber_atan2(sqrt(f->y[0] * f->y[0] + f->y[1] * f->y[1]), f->y[2]);
+    turn_x_f(f, b * fbend);
+}
+
+/* The leaf's direction from its segment's frame, as weber_child_direction turns a child */
+static Frame leaf_direction(WeberGen *g, WStem *st, Frame trf, double offset, Rng *kids) {
+    double down, rot, c, s;
+    weber_child_angles(g, st, offset, st->level + 1, kids, &down, &rot);
+    sincos_f(rot * (M_PI / 180), &c, &s);
+    frame_turn_z(&trf, c, s);
+    turn_x_f(&trf, down * (M_PI / 180));
+    return trf;
 }
 
 /* Tree coordinates (z up) to Sylva's (Y up), as write.c does. */
@@ -60,7 +83,7 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
         for (int k = 0; k < n && !g->failed; k++) {
             double where = offs + dist / 2 + k * dist + weber_var(kids, dist / 2);
             double at = (seg + where) * len;
-            Frame f = weber_child_direction(g, st, segs[seg].f, at, st->level + 1, kids);
+            Frame f = leaf_direction(g, st, segs[seg].f, at, kids);
             for (int i = 0; i < 3; i++) f.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
             put_leaf(g, id, f, at);
         }
