@@ -526,10 +526,27 @@ typedef struct Work {
     size_t item0, item1;
 } Work;
 
+/* The runs of tube t: up to the next tube's, or the first item's. */
+static size_t tube_runs_end(const MeshPlan *pl, size_t t) {
+    return t + 1 < pl->ntubes ? pl->tubes[t + 1].run : (pl->nitems ? pl->items[0].run : pl->nruns);
+}
+
 static void *work_run(void *arg) {
     const Work *w = arg;
-    for (size_t t = w->tube0; t < w->tube1; t++) emit_tube(w->pl, &w->pl->tubes[t], w->m);
-    for (size_t i = w->item0; i < w->item1; i++) mesh_emit_item(w->pl, &w->pl->items[i], w->m);
+    const MeshPlan *pl = w->pl;
+    MeshFirstUse fu = {0};
+    for (size_t t = w->tube0; t < w->tube1; t++) {
+        const MeshTube *tb = &pl->tubes[t];
+        emit_tube(pl, tb, w->m);
+        mesh_first_use(&fu, w->m, tb->vert, (size_t)tb->count * (tb->sides + 1u) + (pl->caps ? 2 : 0),
+                       pl->runs + tb->run, tube_runs_end(pl, t) - tb->run);
+    }
+    for (size_t i = w->item0; i < w->item1; i++) {
+        const MeshItem *it = &pl->items[i];
+        mesh_emit_item(pl, it, w->m);
+        mesh_first_use(&fu, w->m, it->vert, it->verts, pl->runs + it->run, 1);
+    }
+    mesh_first_use_free(&fu);
     return NULL;
 }
 
@@ -565,7 +582,7 @@ static void emit_all(const MeshPlan *pl, SylMesh *m, int nthreads) {
             size_t r0, r1;
             if (p < pl->ntubes) {
                 r0 = pl->tubes[p].run;
-                r1 = p + 1 < pl->ntubes ? pl->tubes[p + 1].run : (pl->nitems ? pl->items[0].run : pl->nruns);
+                r1 = tube_runs_end(pl, p);
             } else {
                 r0 = pl->items[p - pl->ntubes].run;
                 r1 = r0 + 1;

@@ -96,4 +96,14 @@ float mesh_leaf_width(const SylSkeleton *s);
 bool mesh_plan_shapes(MeshPlan *pl);
 void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m);
 
+/* firstuse.c: a piece's vertices (nv from vert on) in the order its runs' triangles first use
+ * them, the triangles renumbered; f is the caller's scratch, kept between pieces */
+typedef struct MeshFirstUse {
+    uint32_t *id;
+    float *tmp;
+    size_t cap;
+} MeshFirstUse;
+void mesh_first_use(MeshFirstUse *f, SylMesh *m, size_t vert, size_t nv, const MeshRun *runs, size_t nruns);
+void mesh_first_use_free(MeshFirstUse *f);
+
 #endif
