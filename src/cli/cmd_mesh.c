@@ -136,6 +136,7 @@ int cmd_mesh(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     mo.vertex_nodes = a.wind > 0;
+    mo.one_sided = !strcasecmp(dot, ".glb"); /* glTF's doubleSided draws a leaf's back */
     if (levels && strcasecmp(dot, ".glb")) {
         fprintf(stderr, "sylva: error: --lod, --impostor and --billboards write into a .glb only, not '%s'\n", output);
         return SYL_EUSAGE;

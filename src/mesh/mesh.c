@@ -664,6 +664,18 @@ static void *big_alloc(size_t n) {
     return p;
 }
 
+/* The materials of the leaves and petals made with one face (cards are one face anyway). */
+static void mark_double_sided(const MeshPlan *pl, SylMesh *m) {
+    if (!pl->one_sided) return;
+    for (size_t i = 0; i < pl->nitems; i++) {
+        const MeshItem *it = &pl->items[i];
+        if (it->poly) continue;
+        const SylOrgan *o = &pl->skel->organs[it->index];
+        if (o->kind == SYL_KIND_FLOWER || (o->kind == SYL_KIND_LEAF && pl->leaves != SYL_LEAVES_CARDS))
+            m->double_sided[o->material] = 1;
+    }
+}
+
 static int ncpu(void) {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > 64 ? 64 : (int)n;
@@ -716,7 +728,8 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     SylMeshOptions o;
     int status = resolve_options(s, opt, &o);
     if (status) return status;
-    MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1};
+    MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1,
+                   .one_sided = o.one_sided != 0};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
     SylMesh *m = calloc(1, sizeof *m);
@@ -772,6 +785,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     if (!m->pos || !m->nrm || !m->uv || !m->idx) goto oom;
     memcpy(m->materials, s->materials, sizeof m->materials);
     m->nmaterials = s->nmaterials;
+    mark_double_sided(&pl, m);
     snprintf(m->name, sizeof m->name, "%s", s->name);
     m->leaves = (uint8_t)o.leaves;
     m->leaf_shape = (uint8_t)o.leaf_shape;

@@ -63,7 +63,7 @@ typedef struct MeshTrig {
 typedef struct MeshPlan {
     const SylSkeleton *skel;
     int sides, min_sides, sphere_stacks, leaves;
-    bool caps;
+    bool caps, one_sided; /* one_sided: SylMeshOptions.one_sided */
     MeshPt *pts;
     size_t npts, pts_cap;
     MeshTube *tubes;
