@@ -37,13 +37,12 @@ static void bend(const WeberGen *g, Frame *f) {
 }
 
 /* The leaf's direction from its segment's frame, as weber_child_direction turns a child */
-static Frame leaf_direction(WeberGen *g, WStem *st, Frame trf, double offset, Rng *kids) {
+static void leaf_direction(WeberGen *g, WStem *st, Frame *trf, double offset, Rng *kids) {
     double down, rot, c, s;
     weber_child_angles(g, st, offset, st->level + 1, kids, &down, &rot);
     sincos_f(rot * (M_PI / 180), &c, &s);
-    frame_turn_z(&trf, c, s);
-    turn_x_f(&trf, down * (M_PI / 180));
-    return trf;
+    frame_turn_z(trf, c, s);
+    turn_x_f(trf, down * (M_PI / 180));
 }
 
 /* Tree coordinates (z up) to Sylva's (Y up), as write.c does. */
@@ -51,19 +50,20 @@ static void to_sylva(float out[3], const double in[3]) {
     out[0] = (float)in[0], out[1] = (float)in[2], out[2] = (float)-in[1];
 }
 
-static void put_leaf(WeberGen *g, int id, Frame f, double dist) {
-    bend(g, &f);
+/* (frames by pointer: copies of the 96-byte struct were a sixth of the leaves' time) */
+static void put_leaf(WeberGen *g, int id, Frame *f, double dist) {
+    bend(g, f);
     if (!weber_grow(g, (void **)&g->lvs, &g->lvs_cap, g->nlvs + 1, sizeof *g->lvs) ||
         !weber_grow(g, (void **)&g->ldist, &g->ldist_cap, g->nlvs + 1, sizeof *g->ldist))
         return;
     SylOrgan *o = &g->lvs[g->nlvs];
     g->ldist[g->nlvs++] = (float)dist;
     double stem = g->w.LeafStemLen * g->leaf_len, p[3]; /* the petiole, not drawn */
-    for (int i = 0; i < 3; i++) p[i] = f.t[i] + f.z[i] * stem;
+    for (int i = 0; i < 3; i++) p[i] = f->t[i] + f->z[i] * stem;
     to_sylva(o->pos, p);
-    to_sylva(o->h, f.z);
-    to_sylva(o->l, f.x);
-    to_sylva(o->u, f.y); /* y = z x x */
+    to_sylva(o->h, f->z);
+    to_sylva(o->l, f->x);
+    to_sylva(o->u, f->y); /* y = z x x */
     o->size = (float)g->leaf_len;
     o->node = -1;
     o->kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
@@ -83,9 +83,10 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
         for (int k = 0; k < n && !g->failed; k++) {
             double where = offs + dist / 2 + k * dist + weber_var(kids, dist / 2);
             double at = (seg + where) * len;
-            Frame f = leaf_direction(g, st, segs[seg].f, at, kids);
+            Frame f = segs[seg].f;
+            leaf_direction(g, st, &f, at, kids);
             for (int i = 0; i < 3; i++) f.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
-            put_leaf(g, id, f, at);
+            put_leaf(g, id, &f, at);
         }
     } else if (seg == st->nseg - 1) { /* a fan at the tip */
         int cl = weber_lv(st->level + 1);
@@ -95,7 +96,8 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
         frame_move(&tip, len);
         double step = w->Rotate[cl] / n, stepv = w->RotateV[cl] / n, off;
         if (n % 2 == 1) {
-            put_leaf(g, id, tip, st->length);
+            Frame f = tip;
+            put_leaf(g, id, &f, st->length);
             off = step;
         } else {
             off = step / 2;
@@ -105,7 +107,7 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
                 Frame f = tip;
                 frame_rot_local(&f, 0, 1, 0, -side * (off + k * step + weber_var(kids, stepv))); /* Arbaro's roty */
                 frame_rot_local(&f, 1, 0, 0, w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]));
-                put_leaf(g, id, f, st->length);
+                put_leaf(g, id, &f, st->length);
             }
     }
 }
