@@ -208,8 +208,8 @@ int cmd_mesh(int argc, char **argv) {
                 sk->norgans, sk->npolys);
         fprintf(stderr, "vertices: %zu\ntriangles: %zu\nmaterial groups: %d\n", mesh->nverts, tris, mesh->ngroups);
         if (instanced) fprintf(stderr, "leaf instances: %zu\n", instances);
-        fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", pl.derive_s, pl.turtle_s,
-                pl.mesh_s);
+        fprintf(stderr, "derive time: %.6f s\nderive cpu time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n",
+                pl.derive_s, pl.derive_cpu_s, pl.turtle_s, pl.mesh_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
         fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp - t_wind);
         if (levels) fprintf(stderr, "lod cpu time: %.6f s\n", c3 - c2 - c_imp);
