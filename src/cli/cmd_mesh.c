@@ -18,7 +18,8 @@ const CliCommand cli_mesh_command = {
     .usage = "sylva mesh FILE[:Model] -o OUT.{glb,obj,ply} [options]",
     .about = "Derive the model, draw it with the 3D turtle and write a triangle mesh: a closed tube\n"
              "along every axis (rotation-minimising frames, end caps, smooth normals, bark UVs),\n"
-             "leaves and polygons as double-sided faces, one material group per colour. The format\n"
+             "leaves and polygons as double-sided faces (a .glb's leaves one face, their material\n"
+             "doubleSided), one material group per colour. The format\n"
              "follows the extension: glTF 2.0 binary (.glb), Wavefront OBJ with NAME.mtl and\n"
              "NAME_bark.png etc. (.obj), or binary PLY (.ply). Triangles are ordered for the\n"
              "vertex cache (meshoptimizer). --lod N adds levels of detail NAME_LOD1 .. NAME_LODN\n"
