@@ -28,6 +28,8 @@ typedef struct SylMesh {
     int ngroups;
     SylMaterial materials[256];
     int nmaterials;
+    uint8_t double_sided[256]; /* per material, with SylMeshOptions.one_sided: 1 when it has
+                                  leaves or petals made once, to be drawn from both sides */
     int32_t *node;         /* with SylMeshOptions.vertex_nodes: the skeleton node each vertex
                               was made for: a tube's last node (one of its axis), an organ's or
                               a polygon's node (-1: none); else NULL */
@@ -59,6 +61,9 @@ typedef struct SylMeshOptions {
     float cluster_leaves; /* clusters: leaves (and needles) per card on average; 0: SYL_CLUSTER_LEAVES */
     int threads;          /* <= 0: all cores; the mesh never depends on it */
     int vertex_nodes;     /* fill SylMesh.node (for skinning: wind, docs/mesh.md#wind) */
+    int one_sided;        /* leaves and petals made once, not once a side, their materials marked
+                           * in SylMesh.double_sided: for glTF, whose viewers then draw both sides
+                           * (half the leaves' vertices); 0: two faces, for formats that cannot */
     FILE *diag;           /* where problems are reported; NULL: nowhere */
     /* The mesh's size is estimated before anything is allocated: beyond the memory budget
      * it stops with SYL_ELIMIT and says so. */

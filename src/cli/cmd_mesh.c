@@ -18,7 +18,8 @@ const CliCommand cli_mesh_command = {
     .usage = "sylva mesh FILE[:Model] -o OUT.{glb,obj,ply} [options]",
     .about = "Derive the model, draw it with the 3D turtle and write a triangle mesh: a closed tube\n"
              "along every axis (rotation-minimising frames, end caps, smooth normals, bark UVs),\n"
-             "leaves and polygons as double-sided faces, one material group per colour. The format\n"
+             "leaves and polygons as double-sided faces (a .glb's leaves one face, their material\n"
+             "doubleSided), one material group per colour. The format\n"
              "follows the extension: glTF 2.0 binary (.glb), Wavefront OBJ with NAME.mtl and\n"
              "NAME_bark.png etc. (.obj), or binary PLY (.ply). Triangles are ordered for the\n"
              "vertex cache (meshoptimizer). --lod N adds levels of detail NAME_LOD1 .. NAME_LODN\n"
@@ -135,6 +136,7 @@ int cmd_mesh(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     mo.vertex_nodes = a.wind > 0;
+    mo.one_sided = !strcasecmp(dot, ".glb"); /* glTF's doubleSided draws a leaf's back */
     if (levels && strcasecmp(dot, ".glb")) {
         fprintf(stderr, "sylva: error: --lod, --impostor and --billboards write into a .glb only, not '%s'\n", output);
         return SYL_EUSAGE;
@@ -216,8 +218,8 @@ int cmd_mesh(int argc, char **argv) {
                 sk->norgans, sk->npolys);
         fprintf(stderr, "vertices: %zu\ntriangles: %zu\nmaterial groups: %d\n", mesh->nverts, tris, mesh->ngroups);
         if (instanced) fprintf(stderr, "leaf instances: %zu\n", instances);
-        fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", pl.derive_s, pl.turtle_s,
-                pl.mesh_s);
+        fprintf(stderr, "derive time: %.6f s\nderive cpu time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n",
+                pl.derive_s, pl.derive_cpu_s, pl.turtle_s, pl.mesh_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
         fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp - t_wind);
         if (levels) fprintf(stderr, "lod cpu time: %.6f s\n", c3 - c2 - c_imp);

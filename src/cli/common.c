@@ -181,6 +181,7 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     out->modules = pl.modules;
     out->grow = pl.grow;
     out->derive_s = (out->grown ? 0 : compiled) + pl.derive_s; /* growth alone, as --stats says */
+    out->derive_cpu_s = pl.derive_cpu_s;
     out->turtle_s = pl.turtle_s;
     out->mesh_s = pl.mesh_s;
     d->rewritten = pl.rewritten;

@@ -249,6 +249,7 @@ static void json_materials(IoBuf *js, const Layout *l) {
             io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":%s}",
                       mat->kind == SYL_MATERIAL_BARK ? "0.95" : "0.7");
             if (slot == CARD || slot == CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
+            else if (m->double_sided[i]) io_printf(js, ",\"doubleSided\":true"); /* one-sided leaves */
             io_put(js, "}", 1);
         }
     }

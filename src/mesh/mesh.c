@@ -545,10 +545,27 @@ typedef struct Work {
     size_t item0, item1;
 } Work;
 
+/* The runs of tube t: up to the next tube's, or the first item's. */
+static size_t tube_runs_end(const MeshPlan *pl, size_t t) {
+    return t + 1 < pl->ntubes ? pl->tubes[t + 1].run : (pl->nitems ? pl->items[0].run : pl->nruns);
+}
+
 static void *work_run(void *arg) {
     const Work *w = arg;
-    for (size_t t = w->tube0; t < w->tube1; t++) emit_tube(w->pl, &w->pl->tubes[t], w->m);
-    for (size_t i = w->item0; i < w->item1; i++) mesh_emit_item(w->pl, &w->pl->items[i], w->m);
+    const MeshPlan *pl = w->pl;
+    MeshFirstUse fu = {0};
+    for (size_t t = w->tube0; t < w->tube1; t++) {
+        const MeshTube *tb = &pl->tubes[t];
+        emit_tube(pl, tb, w->m);
+        mesh_first_use(&fu, w->m, tb->vert, (size_t)tb->count * (tb->sides + 1u) + (pl->caps ? 2 : 0),
+                       pl->runs + tb->run, tube_runs_end(pl, t) - tb->run);
+    }
+    for (size_t i = w->item0; i < w->item1; i++) {
+        const MeshItem *it = &pl->items[i];
+        mesh_emit_item(pl, it, w->m);
+        mesh_first_use(&fu, w->m, it->vert, it->verts, pl->runs + it->run, 1);
+    }
+    mesh_first_use_free(&fu);
     return NULL;
 }
 
@@ -584,7 +601,7 @@ static void emit_all(const MeshPlan *pl, SylMesh *m, int nthreads) {
             size_t r0, r1;
             if (p < pl->ntubes) {
                 r0 = pl->tubes[p].run;
-                r1 = p + 1 < pl->ntubes ? pl->tubes[p + 1].run : (pl->nitems ? pl->items[0].run : pl->nruns);
+                r1 = tube_runs_end(pl, p);
             } else {
                 r0 = pl->items[p - pl->ntubes].run;
                 r1 = r0 + 1;
@@ -666,6 +683,18 @@ static void *big_alloc(size_t n) {
     return p;
 }
 
+/* The materials of the leaves and petals made with one face (cards are one face anyway). */
+static void mark_double_sided(const MeshPlan *pl, SylMesh *m) {
+    if (!pl->one_sided) return;
+    for (size_t i = 0; i < pl->nitems; i++) {
+        const MeshItem *it = &pl->items[i];
+        if (it->poly) continue;
+        const SylOrgan *o = &pl->skel->organs[it->index];
+        if (o->kind == SYL_KIND_FLOWER || (o->kind == SYL_KIND_LEAF && pl->leaves != SYL_LEAVES_CARDS))
+            m->double_sided[o->material] = 1;
+    }
+}
+
 static int ncpu(void) {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > 64 ? 64 : (int)n;
@@ -718,7 +747,8 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     SylMeshOptions o;
     int status = resolve_options(s, opt, &o);
     if (status) return status;
-    MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1};
+    MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1,
+                   .one_sided = o.one_sided != 0};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
     pl.leaf_shape = o.leaf_shape;
@@ -781,6 +811,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     if (!m->pos || !m->nrm || !m->uv || !m->idx) goto oom;
     memcpy(m->materials, s->materials, sizeof m->materials);
     m->nmaterials = s->nmaterials;
+    mark_double_sided(&pl, m);
     snprintf(m->name, sizeof m->name, "%s", s->name);
     m->leaves = (uint8_t)o.leaves;
     m->leaf_shape = (uint8_t)pl.cluster_shape;

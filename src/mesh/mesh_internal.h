@@ -76,7 +76,7 @@ typedef struct MeshPlan {
     float cluster_leaves;          /* clusters: leaves per card */
     MeshCluster *clusters;
     size_t nclusters, clusters_cap;
-    bool caps;
+    bool caps, one_sided; /* one_sided: SylMeshOptions.one_sided */
     MeshPt *pts;
     size_t npts, pts_cap;
     MeshTube *tubes;
@@ -119,5 +119,15 @@ float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o);
  * (which organ planning then leaves out), and a card's 4 vertices and 2 triangles. */
 bool mesh_plan_clusters(MeshPlan *pl, float per_card);
 void mesh_emit_cluster(const MeshCluster *k, float *pos, float *nrm, float *uv, uint32_t *idx, uint32_t v0);
+
+/* firstuse.c: a piece's vertices (nv from vert on) in the order its runs' triangles first use
+ * them, the triangles renumbered; f is the caller's scratch, kept between pieces */
+typedef struct MeshFirstUse {
+    uint32_t *id;
+    float *tmp;
+    size_t cap;
+} MeshFirstUse;
+void mesh_first_use(MeshFirstUse *f, SylMesh *m, size_t vert, size_t nv, const MeshRun *runs, size_t nruns);
+void mesh_first_use_free(MeshFirstUse *f);
 
 #endif

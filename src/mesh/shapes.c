@@ -1,5 +1,6 @@
 /* Organs and polygons. Leaves, petals and polygons are thin: both sides are made, each with
- * its own normals, so they shade right from either side without a double-sided material.
+ * its own normals, so they shade right from either side without a double-sided material
+ * (for glTF, leaves and petals are made once, their material double-sided: one_sided).
  * Needles and spheres are closed.
  *
  * Organ frame: H along the organ, L across, U = H x L its face. A leaf is a blade of length
@@ -79,8 +80,11 @@ static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts,
         if (pl->leaves == SYL_LEAVES_CARDS) *verts = 4, *tris = 2;
         else if (pl->npanels) own_leaf_counts(pl, verts, tris);
         else *verts = BLADE_V, *tris = BLADE_T;
+        if (pl->one_sided && pl->leaves != SYL_LEAVES_CARDS) *verts /= 2, *tris /= 2;
         break;
-    case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T; break;
+    case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T;
+        if (pl->one_sided) *verts /= 2, *tris /= 2;
+        break;
     case SYL_KIND_NEEDLE:
         if (pl->leaves != SYL_LEAVES_CLUSTERS) *verts = NEEDLE_V, *tris = NEEDLE_T;
         break;
@@ -273,8 +277,9 @@ static void tri(Out *o, uint32_t a, uint32_t b, uint32_t c) {
     *o->ix++ = a, *o->ix++ = b, *o->ix++ = c;
 }
 
-/* A double-sided blade from origin along x (length len) and y (half width w). */
-static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w) {
+/* A double-sided blade from origin along x (length len) and y (half width w); one-sided: its
+ * front only. */
+static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w, bool one) {
     vec3 n, nb;
     glm_vec3_cross((float *)x, (float *)y, n);
     glm_vec3_normalize(n);
@@ -284,15 +289,16 @@ static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float
     for (int i = 0; i < 8; i++)
         for (int q = 0; q < 3; q++) p[i][q] = origin[q] + blade_xy[i][0] * len * x[q] + blade_xy[i][1] * w * y[q];
     for (int i = 0; i < 8; i++) f[i] = put(o, p[i], n, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
-    for (int i = 0; i < 8; i++) b[i] = put(o, p[i], nb, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
     for (int t = 0; t < 8; t++) tri(o, f[blade_tri[t][0]], f[blade_tri[t][1]], f[blade_tri[t][2]]);
+    if (one) return;
+    for (int i = 0; i < 8; i++) b[i] = put(o, p[i], nb, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
     for (int t = 0; t < 8; t++) tri(o, b[blade_tri[t][0]], b[blade_tri[t][2]], b[blade_tri[t][1]]);
 }
 
-/* A double-sided panel of a named leaf outline (a fan over its points, util/leafoutline.h),
+/* A double-sided (one: front only) panel of a named leaf outline (a fan over its points, util/leafoutline.h),
  * len long along x and w wide across: in the plane of x and cos(fold) y + sin(fold) z. */
 static void panel(Out *o, const LeafPanel *pn, const float *origin, const vec3 x, const vec3 y, const vec3 z,
-                  float len, float w) {
+                  float len, float w, bool one) {
     vec3 e, nf, nb;
     if (pn->fold == 0) glm_vec3_copy((float *)y, e);
     else for (int q = 0; q < 3; q++) e[q] = cosf(pn->fold) * y[q] + sinf(pn->fold) * z[q];
@@ -304,11 +310,11 @@ static void panel(Out *o, const LeafPanel *pn, const float *origin, const vec3 x
         float u = pn->st[i][0], v = 0.5f * pn->st[i][1], p[3]; /* along, 0..1; across, -1/2..1/2 */
         for (int q = 0; q < 3; q++) p[q] = origin[q] + u * len * x[q] + v * w * e[q];
         f[i] = put(o, p, nf, 0.5f + v, u);
-        b[i] = put(o, p, nb, 0.5f + v, u);
+        if (!one) b[i] = put(o, p, nb, 0.5f + v, u);
     }
     for (int i = 1; i + 1 < pn->n; i++) {
         tri(o, f[0], f[i], f[i + 1]);
-        tri(o, b[0], b[i + 1], b[i]);
+        if (!one) tri(o, b[0], b[i + 1], b[i]);
     }
 }
 
@@ -336,8 +342,8 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
     case SYL_KIND_LEAF:
         if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(pl->skel) * size);
         else if (pl->npanels)
-            for (int k = 0; k < pl->npanels; k++) panel(o, &pl->panels[k], c, h, l, u, size, pl->skel->leaf_width * size);
-        else blade(o, c, h, l, size, LEAF_WIDTH * size);
+            for (int k = 0; k < pl->npanels; k++) panel(o, &pl->panels[k], c, h, l, u, size, pl->skel->leaf_width * size, pl->one_sided);
+        else blade(o, c, h, l, size, LEAF_WIDTH * size, pl->one_sided);
         break;
     case SYL_KIND_FLOWER:
         for (int k = 0; k < PETALS; k++) {
@@ -349,7 +355,7 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
                 x[q] = cosf(PETAL_TILT) * radial[q] + sinf(PETAL_TILT) * h[q];
             }
             float len = PETAL_LENGTH * size;
-            blade(o, c, x, across, len, PETAL_WIDTH * len);
+            blade(o, c, x, across, len, PETAL_WIDTH * len, pl->one_sided);
         }
         break;
     case SYL_KIND_NEEDLE: {
