@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Independent reader of a skinned .glb from `sylva mesh --wind` (python3 stdlib only).
 
-  wind.py FILE.glb SKELETON.csv LEVELS SECONDS [UNSKINNED.glb]
+  wind.py FILE.glb SKELETON.csv LEVELS SECONDS [UNSKINNED.glb] [--leaves-at-nodes]
 
 With levels of detail every skinned node is checked; UNSKINNED.glb, the same chain written
 without --wind, must have the same vertices and triangles in each level (the rest pose of
 each level is its unskinned level), and every level but the billboards is skinned. With
 instanced leaves, each set hangs from the joint its leaves follow (or, with levels, from
-the level's copy of it), and at rest the leaves are where UNSKINNED.glb has them.
+the level's copy of it), and at rest the leaves are where UNSKINNED.glb has them; a leaf
+at a skeleton node hangs from that node's stem's joint (--leaves-at-nodes: every leaf is at
+one, as an L-system's ~leaf is).
 
 SKELETON.csv is `sylva skeleton` of the same model. Checks:
   - one joint per stem of branch order < LEVELS (a stem: a root, or a node whose order
@@ -30,6 +32,7 @@ Prints "ok ..." lines, or "FAIL ..." and exits 1."""
 import csv, json, math, struct, sys
 from glbio import read_glb as _read_glb
 
+AT_NODES = False
 BOUND = 0.1 + math.sqrt(2) * 0.12  # directed + undirected caps (docs/mesh.md#wind)
 SIZES = {5126: ("f", 4), 5125: ("I", 4), 5123: ("H", 2), 5121: ("B", 1), 5122: ("h", 2), 5120: ("b", 1)}
 WIDTH = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
@@ -345,7 +348,7 @@ def check_instances(js, bin_, joints, base, parent, scale, other, path):
                     fail(f"a leaf at {p} hangs from joint {stem}, not from its stem's")
         levels.setdefault(level, []).extend(places)
         total += len(places)
-    if not total or not checked:
+    if not total or (AT_NODES and checked != total):
         fail(f"{total} instanced leaves, {checked} of them at a skeleton node")
     if other:
         ojs, obin = read_glb(other)
@@ -438,7 +441,9 @@ def main(path, csv_path, levels, seconds, same_as=None):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (5, 6):
+    args = [a for a in sys.argv[1:] if a != "--leaves-at-nodes"]
+    AT_NODES = len(args) < len(sys.argv) - 1
+    if len(args) not in (4, 5):
         print(__doc__)
         sys.exit(2)
-    main(sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4]), *sys.argv[5:])
+    main(args[0], args[1], int(args[2]), float(args[3]), *args[4:])

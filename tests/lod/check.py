@@ -65,8 +65,9 @@ def texture_fill(js, bin_, mat):
     return _fills[src]
 
 
-def mesh_stats(js, bin_, m):
-    """Triangles, and the leaf area the leaf materials' triangles show (see the header)."""
+def mesh_stats(js, bin_, m, shown=True):
+    """Triangles, and the leaf area the leaf materials' triangles show (see the header);
+    shown=False: the leaf triangles' own area, one face, whatever their texture and sides."""
     tris, leaf = 0, 0.0
     for p in js["meshes"][m]["primitives"]:
         idx = accessor(js, bin_, p["indices"])
@@ -75,7 +76,7 @@ def mesh_stats(js, bin_, m):
         if not mat["name"].startswith("leaf"):
             continue
         pos = accessor(js, bin_, p["attributes"]["POSITION"])
-        k = texture_fill(js, bin_, mat) * (2 if mat.get("doubleSided") else 1)
+        k = texture_fill(js, bin_, mat) * (2 if mat.get("doubleSided") else 1) if shown else 1
         if mat.get("alphaMode") == "MASK":
             uv = accessor(js, bin_, p["attributes"]["TEXCOORD_0"])
             if any(not (-1e-6 <= uv[2 * i + c] <= 1 + 1e-6) for i in set(idx) for c in (0, 1)):
