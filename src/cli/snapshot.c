@@ -4,9 +4,12 @@
  * dear); every rank holds the whole instanced scene and renders its bands as windows of the
  * picture on it (syl_render_instances: bands starting at multiples of SYL_RENDER_BLOCK rows
  * have the whole picture's bytes), rank 0 gathers them and writes the PNG. */
+#include <errno.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli/cli.h"
 #include "sylva/ecosystem.h"
@@ -134,16 +137,27 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
         }
         out = a->output ? strdup(a->output) : cli_output_name(m, NULL, "png");
         if (!st && !out) st = SYL_ELIMIT;
-        if (!st) st = syl_write_png(out, rgb, w, h, stderr);
+        /* The .glb first, the PNG last: when the PNG cannot be written, a .glb this run
+         * created is removed again, so a failed command leaves neither. */
+        char *glb = NULL;
+        bool glb_new = false;
         if (!st && a->glb) {
-            char *glb = malloc(strlen(out) + 5);
             size_t n = strlen(out);
-            if (glb) memcpy(glb, out, n + 1);
-            if (glb && n > 4 && !strcmp(glb + n - 4, ".png")) glb[n - 4] = 0;
-            if (glb) strcat(glb, ".glb");
+            glb = malloc(n + 5);
+            if (glb) {
+                memcpy(glb, out, n + 1);
+                if (n > 4 && !strcmp(glb + n - 4, ".png")) glb[n - 4] = 0;
+                strcat(glb, ".glb");
+                struct stat sb;
+                glb_new = lstat(glb, &sb) != 0 && errno == ENOENT;
+            }
             st = glb ? syl_forest_write_glb(forest, plants, nplants, 0, glb, stderr) : SYL_ELIMIT;
-            free(glb);
         }
+        if (!st) {
+            st = syl_write_png(out, rgb, w, h, stderr);
+            if (st && glb && glb_new) unlink(glb);
+        }
+        free(glb);
     }
     st = agree(mpi, st, kept, &said, &said_len); /* rank 0's writes: every rank exits with their status */
     if (kept) fclose(kept);
