@@ -71,7 +71,9 @@ int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *pa
  * of proto p is at t + Ry(yaw) (scale x), x a vertex of the proto's mesh, or of its coarse
  * mesh when the copy spans fewer than SYL_RENDER_COARSE_PX rows of the picture (level of
  * detail by distance). A copy whose bounding sphere, grown by its height for the shadow it
- * casts, is outside the view is left out (frustum culling). */
+ * casts, is outside the view is left out (frustum culling). A proto mesh (or coarse mesh)
+ * with leaf cards or cluster cards (SylMesh.leaves) lets rays through their transparent
+ * parts, as syl_render does. */
 enum { SYL_RENDER_COARSE_PX = 48 };
 typedef struct SylRenderProto {
     const SylMesh *mesh, *coarse; /* coarse: NULL for none */

@@ -31,7 +31,9 @@ typedef enum {
 extern const char *const syl_kind_names[SYL_KIND_COUNT]; /* "root", "internode", ... */
 
 enum {
-    SYL_NODE_SMOOTH = 1, /* inside @Gc ... @Ge: the mesher smooths the axis through it */
+    SYL_NODE_SMOOTH = 1,    /* inside @Gc ... @Ge: the mesher smooths the axis through it */
+    SYL_NODE_NO_JITTER = 2, /* a trunk node the skeleton's trunk_jitter leaves round (a scene's
+                               plant beside a Weber–Penn tree with one) */
 };
 
 /* A node: the root of an axis, or the end of one drawn segment whose start is its parent. */
@@ -100,7 +102,8 @@ typedef struct SylSkeleton {
     int leaf_outline;
     /* Jitter of the trunk's surface (Weber–Penn's 0ScaleV, as Arbaro draws it): the mesher
      * moves each vertex of an order-0 ring to (1 + u) times its distance from the axis, u
-     * uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex. 0: none. */
+     * uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex (not at nodes marked
+     * SYL_NODE_NO_JITTER). 0: none. */
     float trunk_jitter;
     SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
     uint64_t charged;

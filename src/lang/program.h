@@ -255,6 +255,13 @@ static inline bool syl_kind_has_directives(SylModelKind k) {
     return k == SYL_MODEL_GROW || k == SYL_MODEL_WEBER || k == SYL_MODEL_STRANDS || k == SYL_MODEL_ECOSYSTEM;
 }
 
+/* The `lod N` line of a grow, weber or strands block (lod.c): its check (the error count, 0
+ * or 1, reported at the line), a --set lod= value's, and the levels the block asks for (its
+ * last line, then the last --set lod=; 0: none). */
+int lang_lod_check(const SylProgram *p, const SylDirective *d, FILE *diag);
+int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *diag);
+double lang_directive_lod(const SylProgram *p);
+
 static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {
     return (turtle_command_flags(p->syms[sym].turtle) & TF_QUERY) != 0;
 }

@@ -424,7 +424,8 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
     vec3 ref, tprev = {0}, din = {0}, dout, t0 = {0}, tk = {0};
     glm_vec3_copy((float *)tb->ref, ref);
     float lin = 0, lout, v = 0;
-    const float jitter = tb->node >= 0 && pl->skel->nodes[tb->node].order == 0 && isfinite(pl->skel->trunk_jitter)
+    const float jitter = tb->node >= 0 && pl->skel->nodes[tb->node].order == 0 &&
+                                 !(pl->skel->nodes[tb->node].flags & SYL_NODE_NO_JITTER) && isfinite(pl->skel->trunk_jitter)
                              ? pl->skel->trunk_jitter : 0;
     dir_len(P[0].p, P[1].p, dout, &lout);
     for (uint32_t k = 0; k < n; k++) {

@@ -25,6 +25,7 @@ typedef struct Work {
     int npr;
     float *pos_copy[2 * 256 + 1];
     int ncopies;
+    AlphaTest *alpha[2 * 256]; /* per level mesh: its leaf cards' alpha test (NULL: none) */
     uint8_t **tri_mat;        /* per level mesh: 2 * npr */
     float (*lin)[256][3];
     uint8_t (*kind)[256];
@@ -56,7 +57,8 @@ bool syl_render_project(const SylRenderCamera *c, int width, int height, const f
     return render_project(&cam, p, x, y);
 }
 
-static RTCScene mesh_scene(Work *w, RTCDevice dev, const SylMesh *m) {
+/* m's scene; with tri_mat (a prototype's level), its leaf cards alpha-tested through *alpha. */
+static RTCScene mesh_scene(Work *w, RTCDevice dev, const SylMesh *m, const uint8_t *tri_mat, AlphaTest **alpha) {
     RTCScene sc = rtcNewScene(dev);
     size_t ntri = m->nidx / 3;
     if (ntri && m->nverts) {
@@ -75,6 +77,11 @@ static RTCScene mesh_scene(Work *w, RTCDevice dev, const SylMesh *m) {
         RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, pos, 0, 3 * sizeof(float), m->nverts);
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->idx, 0, 3 * sizeof(uint32_t), ntri);
+        if (tri_mat && render_alpha_attach(m, tri_mat, g, alpha)) {
+            rtcReleaseGeometry(g);
+            rtcReleaseScene(sc);
+            return NULL;
+        }
         rtcCommitGeometry(g);
         rtcAttachGeometryByID(sc, g, 0);
         rtcReleaseGeometry(g);
@@ -129,6 +136,7 @@ static void work_free(Work *w) {
         for (int k = 0; k < 2; k++)
             if (w->pr[p].scene[k]) rtcReleaseScene(w->pr[p].scene[k]);
     for (int i = 0; i < w->ncopies; i++) free(w->pos_copy[i]);
+    for (int i = 0; i < 2 * w->npr; i++) free(w->alpha[i]);
     for (int i = 0; w->tri_mat && i < 2 * w->npr; i++) free(w->tri_mat[i]);
     free(w->tri_mat), free(w->lin), free(w->kind), free(w->level), free(w->pr);
     free(w->inst_proto), free(w->inst_cs), free(w->inst_scale);
@@ -159,7 +167,7 @@ static int build_protos(Work *w, const SylRenderProto *protos, int nprotos) {
                 for (int c = 0; c < 3; c++) w->lin[2 * p + k][i][c] = srgb_to_linear(m->materials[i].rgb[c]);
                 w->kind[2 * p + k][i] = m->materials[i].kind;
             }
-            if (!(pr->scene[k] = mesh_scene(w, s->dev, m))) return SYL_ELIMIT;
+            if (!(pr->scene[k] = mesh_scene(w, s->dev, m, w->tri_mat[2 * p + k], &w->alpha[2 * p + k]))) return SYL_ELIMIT;
         }
     }
     return SYL_OK;
@@ -287,7 +295,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
     Budget *mem = opt->budget ? opt->budget : &own;
     uint64_t tris = ground ? ground->nidx / 3 : 0;
     for (int p = 0; p < nprotos; p++) tris += protos[p].mesh->nidx / 3 + (protos[p].coarse ? protos[p].coarse->nidx / 3 : 0);
-    uint64_t need = tris * 150 + (uint64_t)n * 600 + pixels * 3 + (8u << 20);
+    uint64_t need = tris * 150 + (uint64_t)n * 600 + pixels * 3 + (uint64_t)nprotos * (2u << 17) + (8u << 20);
     if (!budget_charge(mem, need)) {
         if (opt->diag)
             fprintf(opt->diag, "sylva: error: rendering %zu instances would need about %llu MB, more than --max-memory "
@@ -326,7 +334,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
         s->scene = rtcNewScene(s->dev);
         if (ground && ground->nidx) {
             if (!(s->tri_mat = triangle_materials(ground))) status = SYL_ELIMIT;
-            RTCScene g = status ? NULL : mesh_scene(&w, s->dev, ground);
+            RTCScene g = status ? NULL : mesh_scene(&w, s->dev, ground, NULL, NULL);
             if (!status && !g) status = SYL_ELIMIT;
             if (g) { /* the ground as an instance of itself would cost a level: its geometry, directly */
                 RTCGeometry geo = rtcGetGeometry(g, 0);

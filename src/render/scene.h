@@ -66,6 +66,9 @@ void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt);
 /* Let rays through the transparent parts of s->m's leaf cards or clusters (on g, its
  * geometry, before it is committed). SYL_OK or SYL_ELIMIT. */
 int render_alpha_test(Scene *s, RTCGeometry g);
+/* The same for any mesh m whose triangles' materials are tri_mat (which must outlive it): *out
+ * the test to free() after the render (NULL: m has no leaf cards or clusters). */
+int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, RTCGeometry g, AlphaTest **out);
 /* Release a scene: its Embree scene and device, textures and copies. */
 void render_scene_free(Scene *s);
 int render_cpu_count(void);

@@ -17,6 +17,7 @@
 #include "sot/forest_internal.h"
 #include "scene/lsys.h"
 #include "scene/spec.h"
+#include "scene/surface.h"
 #include "sot/output.h"
 #include "sylva/grow.h"
 #include "sylva/trees.h"
@@ -343,11 +344,15 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
     SylSkeleton *sk = syl_skeleton_new("scene");
     if (!sk) return SYL_ELIMIT;
     int32_t axis = 0; /* above every axis of sk: each plant's axes follow the last one's */
+    SceneSurface surface = {0};
     for (int i = 0; i < S->nplants && !st; i++) {
-        size_t first = sk->nnodes;
+        size_t first = sk->nnodes, first_organ = sk->norgans;
         if (placed[i].tree >= 0)
             st = tree_to_skeleton(&f->trees[placed[i].tree], f->years, sk, axis, &opt->stats.organs);
         else if (placed[i].lsys) st = append_skeleton(sk, placed[i].lsys, axis);
+        if (!st)
+            scene_surface_carry(&surface, sk, placed[i].tree >= 0 ? NULL : placed[i].lsys, first, first_organ,
+                                syl_program_name(progs[i]->q), p, plants[i].line, plants[i].col, diag);
         for (size_t k = first; k < sk->nnodes; k++)
             if (sk->nodes[k].axis >= axis) axis = sk->nodes[k].axis + 1;
     }

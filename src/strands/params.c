@@ -73,6 +73,7 @@ static int all_names(const char **names) {
     for (int i = 0; i < NGLOBALS; i++) names[n++] = globals[i].name;
     for (int i = 0; i < SP_ORDER_COUNT; i++) names[n++] = orders[i].name;
     names[n++] = "leaves";
+    names[n++] = "lod";
     return n;
 }
 
@@ -205,6 +206,10 @@ static bool is_param(const SylProgram *p, const char *name) {
 /* --set NAME=VALUE: a global's number, or a per-order parameter's Gravelius factor. */
 static void apply_set(Reader *r, StrandsParams *P, const char *typed, const char *name, double v) {
     int before = r->errors;
+    if (!strcmp(name, "lod")) { /* sylva mesh reads it (lang/lod.c) */
+        r->errors += lang_lod_set_check(r->p, v, typed, r->diag);
+        goto done;
+    }
     for (int i = 0; i < NGLOBALS; i++)
         if (!strcmp(name, globals[i].name)) {
             char range[96];
@@ -251,7 +256,7 @@ static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_
     defaults(P);
     int n = 0;
     const SylDirective *dirs = syl_program_directives(p, &n);
-    const SylDirective *seen[NGLOBALS + SP_ORDER_COUNT + 1] = {0};
+    const SylDirective *seen[NGLOBALS + SP_ORDER_COUNT + 2] = {0};
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &dirs[i];
         int slot = -1;
@@ -260,6 +265,7 @@ static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_
         for (int k = 0; k < SP_ORDER_COUNT && slot < 0; k++)
             if (!strcmp(d->name, orders[k].name)) slot = NGLOBALS + k;
         if (slot < 0 && !strcmp(d->name, "leaves")) slot = NGLOBALS + SP_ORDER_COUNT;
+        if (slot < 0 && !strcmp(d->name, "lod")) slot = NGLOBALS + SP_ORDER_COUNT + 1;
         if (slot < 0) {
             const char *names[64];
             int nn = all_names(names);
@@ -278,7 +284,8 @@ static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_
             int k = slot - NGLOBALS;
             read_order(&r, d, &orders[k], &P->order[k]);
             if (k >= SP_LAT_LENGTH_MAX) r.lateral_given[k - SP_LAT_LENGTH_MAX] = true;
-        } else read_leaves(&r, d, P);
+        } else if (slot == NGLOBALS + SP_ORDER_COUNT) read_leaves(&r, d, P);
+        else r.errors += lang_lod_check(p, d, diag); /* sylva mesh reads it */
     }
     for (int i = 0; i < p->noverrides; i++) {
         const char *name = p->set_local ? p->set_local[i] : NULL;

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/program.h"
 #include "util/closest.h"
 
 #define WP_G(f, nm, ty, lo, hi, lop, hop, d, mean) \
@@ -18,7 +19,7 @@ const WeberParamInfo weber_param_table[] = {
 const int weber_param_count = (int)(sizeof weber_param_table / sizeof weber_param_table[0]);
 
 /* Directives that are not parameters of the model. */
-static const char *const extra_names[] = {"convention", "Seed", "envelope", "Species"};
+static const char *const extra_names[] = {"convention", "Seed", "envelope", "Species", "lod"};
 enum { NEXTRA = sizeof extra_names / sizeof extra_names[0] };
 
 static double *slot(WeberParams *w, const WeberParamInfo *pi) { return (double *)((char *)w + pi->offset); }
@@ -135,7 +136,10 @@ static int unknown(const SylProgram *p, FILE *diag, const SylDirective *d) {
     return 1;
 }
 
+static int read_all(const SylProgram *p, WeberParams *w, FILE *diag);
+
 static int read_extra(const SylProgram *p, FILE *diag, const SylDirective *d, WeberParams *w) {
+    if (!strcmp(d->name, "lod")) return lang_lod_check(p, d, diag); /* sylva mesh reads it (lang/lod.c) */
     const SylDirArg *a = d->nargs ? &d->args[0] : NULL;
     if (d->nargs != 1) {
         syl_directive_error(p, diag, d, d->nargs > 1 ? &d->args[1] : NULL, "%s takes one value", d->name);
@@ -167,7 +171,28 @@ static int read_extra(const SylProgram *p, FILE *diag, const SylDirective *d, We
     return 0;
 }
 
+/* --set lod=N: Sylva's `lod` line, checked here as the block's own would be. */
+static int lod_sets(const SylProgram *p, FILE *diag) {
+    int errors = 0;
+    bool param = false;
+    for (int i = 0; i < p->nparams; i++) param |= !strcmp(p->params[i].name, "lod");
+    for (int i = 0; i < p->noverrides && !param; i++)
+        if (p->set_local && p->set_local[i] && !strcmp(p->set_local[i], "lod"))
+            errors += lang_lod_set_check(p, p->overrides[i].value, p->overrides[i].name, diag);
+    return errors;
+}
+
+int weber_params_check(const SylProgram *p, FILE *diag) {
+    WeberParams w;
+    int errors = read_all(p, &w, diag), set_errors = lod_sets(p, diag);
+    return !errors && set_errors ? -set_errors : errors + set_errors; /* negative: only the command line's */
+}
+
 int weber_params_read(const SylProgram *p, WeberParams *w, FILE *diag) {
+    return read_all(p, w, diag) + lod_sets(p, diag);
+}
+
+static int read_all(const SylProgram *p, WeberParams *w, FILE *diag) {
     weber_params_default(w);
     int n = 0, errors = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
@@ -212,6 +237,7 @@ int weber_params_read(const SylProgram *p, WeberParams *w, FILE *diag) {
         if (!strcmp(pi->name, "Levels")) levels_at = d;
     }
     (void)levels_at;
+    w->lod = (int)lang_directive_lod(p);
     /* Arbaro refuses splitting without an angle to split by. */
     for (int l = 0; l < 4 && l < (int)w->Levels; l++)
         if (w->SegSplits[l] > 0 && w->SplitAngle[l] == 0 && splits_at[l]) {

@@ -28,6 +28,7 @@ typedef struct WeberParams {
     uint64_t seed;       /* `Seed N`; Arbaro's command line default is 13 */
     const char *envelope;            /* `envelope "crown.obj"`: a closed mesh to prune to (NULL: none) */
     const SylDirective *envelope_at; /* where it was named, for errors */
+    int lod;             /* `lod N`: the levels of detail `sylva mesh` writes (Sylva's; 0: none) */
 } WeberParams;
 
 typedef struct WeberParamInfo {
@@ -52,5 +53,7 @@ void weber_params_default(WeberParams *w);
 /* Defaults, then the block's directives; every bad name or value is reported to diag
  * (file:line:col, the line and a caret) through syl_directive_error. Returns the error count. */
 int weber_params_read(const SylProgram *p, WeberParams *out, FILE *diag);
+/* The same for `sylva check`: the error count, negative when every error was of --set. */
+int weber_params_check(const SylProgram *p, FILE *diag);
 
 #endif

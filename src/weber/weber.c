@@ -9,10 +9,7 @@
 #include "util/budget.h"
 #include "weber/internal.h"
 
-int syl_weber_validate(const SylProgram *p, FILE *diag) {
-    WeberParams w;
-    return weber_params_read(p, &w, diag);
-}
+int syl_weber_validate(const SylProgram *p, FILE *diag) { return weber_params_check(p, diag); }
 
 static void free_gen(WeberGen *g) {
     budget_release(g->budget, g->charged);

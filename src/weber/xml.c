@@ -102,7 +102,7 @@ int weber_write_xml(const WeberParams *w, const char *species, FILE *out) {
         const WeberParamInfo *pi = info(arbaro_globals[i], false);
         if (pi) param(&x, pi->name, global_text(w, pi, v, sizeof v));
     }
-    /* Sylva's own: an Arbaro file means convention arbaro, no seed, no envelope, ZScale 1 0 */
+    /* Sylva's own: an Arbaro file means convention arbaro, no seed, no envelope, no lod, ZScale 1 0 */
     const WeberParamInfo *zs = info("ZScale", false), *zv = info("ZScaleV", false);
     if (zs && slot(w, zs)[0] != zs->def[0]) param(&x, "ZScale", global_text(w, zs, v, sizeof v));
     if (zv && slot(w, zv)[0] != zv->def[0]) param(&x, "ZScaleV", global_text(w, zv, v, sizeof v));
@@ -112,6 +112,10 @@ int weber_write_xml(const WeberParams *w, const char *species, FILE *out) {
         param(&x, "Seed", v);
     }
     if (w->envelope) param(&x, "envelope", w->envelope);
+    if (w->lod) {
+        snprintf(v, sizeof v, "%d", w->lod);
+        param(&x, "lod", v);
+    }
     for (int l = 0; l < 4; l++) {
         char comment[32], name[64];
         snprintf(comment, sizeof comment, " level %d ", l);
@@ -163,6 +167,7 @@ int weber_write_syl(const WeberParams *w, const char *species, const char *note,
     fprintf(out, "  convention %s\n", w->convention == WEBER_PAPER ? "paper" : "arbaro");
     if (w->has_seed) fprintf(out, "  Seed %llu\n", (unsigned long long)w->seed);
     if (w->envelope) fprintf(out, "  envelope \"%s\"\n", w->envelope);
+    if (w->lod) fprintf(out, "  lod %d\n", w->lod);
     for (int i = 0; i < weber_param_count; i++) {
         const WeberParamInfo *pi = &weber_param_table[i];
         if (pi->per_level) continue;

@@ -555,6 +555,12 @@ static void trunk_jitter(void **state) {
     }
     assert_int_equal(trunk, 2 * 9);
     assert_true(spread >= 3);
+    /* a trunk marked SYL_NODE_NO_JITTER (a scene's plant beside a jittered tree) stays round */
+    s->nodes[a].flags |= SYL_NODE_NO_JITTER;
+    s->nodes[b].flags |= SYL_NODE_NO_JITTER;
+    SylMesh *kept = build(s, &o1);
+    assert_true(same_mesh(kept, round));
+    syl_mesh_free(kept);
     syl_mesh_free(round);
     syl_mesh_free(m);
     syl_mesh_free(m3);

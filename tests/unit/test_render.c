@@ -536,6 +536,65 @@ static void windows_are_crops_of_the_picture(void **state) {
     syl_mesh_free(tree);
 }
 
+/* A leaf card facing +z: the quad x -1..1, y 0..2 carrying the whole card texture. */
+static SylMesh *one_card(int leaves) {
+    SylMesh *m = synth_new();
+    assert_non_null(m);
+    assert_true(reserve(m, 4, 6));
+    const float n[3] = {0, 0, 1};
+    uint32_t a = vert(m, (float[3]){-1, 0, 0}, n, 0, 0), b = vert(m, (float[3]){1, 0, 0}, n, 1, 0),
+             c = vert(m, (float[3]){1, 2, 0}, n, 1, 1), d = vert(m, (float[3]){-1, 2, 0}, n, 0, 1);
+    assert_true(tri(m, a, b, c, 1) && tri(m, a, c, d, 1));
+    m->leaves = (uint8_t)leaves, m->leaf_shape = 0;
+    return m;
+}
+
+/* The share of the card's pixels drawn (unlit: a miss is black) in an instanced render of
+ * one card seen head on; the card's own pixels are those whose centres project inside it. */
+static double instanced_card_share(const SylMesh *card, int threads, uint8_t *rgb, int w, int h) {
+    SylRenderProto proto = {.mesh = card};
+    SylRenderInstance inst = {.t = {0, 0, 0}, .scale = 1};
+    SylRenderCamera cam = {.eye = {0, 1, 8}, .target = {0, 1, 0}, .fov = 20};
+    SylRenderOptions o = {.width = w, .height = h, .samples = 1, .ao_samples = -1, .unlit = true, .threads = threads};
+    assert_int_equal(syl_render_instances(NULL, &proto, 1, &inst, 1, &cam, &o, NULL, 0, rgb, NULL), SYL_OK);
+    float x0, y0, x1, y1;
+    assert_true(syl_render_project(&cam, w, h, (float[3]){-1, 2, 0}, &x0, &y0));
+    assert_true(syl_render_project(&cam, w, h, (float[3]){1, 0, 0}, &x1, &y1));
+    long inside = 0, drawn = 0, outside = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const uint8_t *p = rgb + 3 * ((size_t)y * w + x);
+            bool hit = p[0] || p[1] || p[2], in = x + 0.5f > x0 && x + 0.5f < x1 && y + 0.5f > y0 && y + 0.5f < y1;
+            inside += in, drawn += in && hit, outside += !in && hit;
+        }
+    assert_true(inside > 1000);
+    assert_true(outside <= inside / 50); /* only the edge's rounding */
+    return (double)drawn / (double)inside;
+}
+
+/* Alpha-tested leaves in an instanced render (ecosystem views): a card prototype covers the
+ * card texture's opaque share of its quad (alpha >= 1/2, syl_leaf_card), as the single-mesh
+ * renderer and a viewer of the .glb draw it, and not the whole quad, which the same quad drawn
+ * as a plain leaf mesh covers; the same bytes for 1 and 3 threads. */
+static void instanced_cards_are_alpha_tested(void **state) {
+    (void)state;
+    enum { CW = 96, CH = 96, TS = 256 };
+    static uint8_t rgba[TS * TS * 4], a[CW * CH * 3], b[CW * CH * 3];
+    assert_true(syl_leaf_card(0, TS, rgba));
+    long opaque = 0;
+    for (int i = 0; i < TS * TS; i++) opaque += rgba[4 * i + 3] >= 128;
+    double share = (double)opaque / (TS * TS);
+    assert_true(share > 0.2 && share < 0.9); /* a leaf, not a square */
+    SylMesh *card = one_card(SYL_LEAVES_CARDS), *plain = one_card(SYL_LEAVES_MESH);
+    double got = instanced_card_share(card, 1, a, CW, CH);
+    assert_true(fabs(got - share) < 0.03);
+    assert_true(instanced_card_share(card, 3, b, CW, CH) == got);
+    assert_memory_equal(a, b, sizeof a);
+    assert_true(instanced_card_share(plain, 1, b, CW, CH) > 0.98);
+    syl_mesh_free(card);
+    syl_mesh_free(plain);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(same_picture_every_time),
@@ -560,6 +619,7 @@ int main(void) {
         cmocka_unit_test(textures_written_for_exporters),
         cmocka_unit_test(adaptive_sampling_keeps_coverage),
         cmocka_unit_test(windows_are_crops_of_the_picture),
+        cmocka_unit_test(instanced_cards_are_alpha_tested),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

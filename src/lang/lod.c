@@ -1,0 +1,50 @@
+/* The `lod N` line of a block of directives (grow, weber, strands): the levels of detail
+ * `sylva mesh` writes, as an lsystem's `lod` setting asks (settings.c). One range and one
+ * message for every kind of block. */
+#include <math.h>
+#include <string.h>
+
+#include "lang/program.h"
+
+enum { LOD_MOST = 8 }; /* SYL_LOD_MAX (sylva/lod.h), which this layer does not see */
+
+/* Its one value: a number, or (expr), which arrives evaluated as a one-value tuple. */
+static bool lod_value(const SylDirective *d, double *v) {
+    if (d->nargs != 1) return false;
+    const SylDirArg *a = &d->args[0];
+    if (a->kind == SYL_DARG_NUMBER) return *v = a->num, true;
+    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *v = a->values[0], true;
+    return false;
+}
+
+static bool lod_ok(double v) { return v >= 0 && v <= LOD_MOST && v == floor(v); }
+
+int lang_lod_check(const SylProgram *p, const SylDirective *d, FILE *diag) {
+    double v;
+    if (lod_value(d, &v) && lod_ok(v)) return 0;
+    const SylDirArg *a = d->nargs ? &d->args[d->nargs > 1 ? 1 : 0] : NULL;
+    if (d->nargs == 1 && lod_value(d, &v))
+        syl_directive_error(p, diag, d, a, "'lod' expects a whole number from 0 to %d, not %g", LOD_MOST, v);
+    else
+        syl_directive_error(p, diag, d, a, "'lod' takes one value, a whole number from 0 to %d", LOD_MOST);
+    return 1;
+}
+
+int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *diag) {
+    if (lod_ok(v)) return 0;
+    syl_program_error(p, diag, 0, 0, "--set %s: 'lod' expects a whole number from 0 to %d, not %g", typed, LOD_MOST, v);
+    return 1;
+}
+
+/* The block's last `lod` line, then the last --set lod= (unless `lod` is a param, whose
+ * value the line then has already). */
+double lang_directive_lod(const SylProgram *p) {
+    double v = 0, x;
+    for (int i = 0; i < p->ndirectives; i++)
+        if (!strcmp(p->directives[i].name, "lod") && lod_value(&p->directives[i], &x)) v = x;
+    bool param = false;
+    for (int i = 0; i < p->nparams; i++) param |= !strcmp(p->params[i].name, "lod");
+    for (int i = 0; i < p->noverrides && !param; i++)
+        if (p->set_local && p->set_local[i] && !strcmp(p->set_local[i], "lod")) v = p->overrides[i].value;
+    return lod_ok(v) ? v : 0;
+}
