@@ -22,7 +22,7 @@ typedef struct MeshRef {
     const SylMesh *m;
     int part, set;
     int view, accessor, material; /* its first buffer view, accessor and material */
-    bool wide;                    /* 32-bit indices (more than 65,535 vertices) */
+    GlbPrims pr;                  /* its primitives (glb_prims.c) */
     bool skinned;                 /* its part's wind: five more vertex accessors */
 } MeshRef;
 
@@ -50,7 +50,12 @@ typedef struct Layout {
 static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER};
 
 static bool has_geometry(const SylMesh *m) { return m && m->nverts > 0 && m->nidx > 0 && m->ngroups > 0; }
-static int accessors_of(const MeshRef *r) { return 3 + r->m->ngroups + (r->skinned ? 5 : 0); }
+/* Shared attributes then one index accessor a primitive; split, each primitive its own
+ * attributes and indices (and skin attributes). */
+static int skin_accessors(const MeshRef *r) { return r->skinned ? 5 : 0; }
+static int accessors_of(const MeshRef *r) {
+    return r->pr.split ? (int)r->pr.n * (4 + skin_accessors(r)) : 3 + (int)r->pr.n + skin_accessors(r);
+}
 
 /* KHR_mesh_quantization: x of a box centred on t of half-size k, as a normalized short. */
 static int16_t q16(float x, float t, float k) {
@@ -106,6 +111,7 @@ static void layout_attributes(Layout *l, MeshRef *r) {
     const SylMesh *m = r->m;
     const size_t nv = m->nverts;
     const float *q = r->set < 0 ? l->quant[r->part] : NULL;
+    const bool split = r->pr.split; /* accessors of several windows share each view: strided */
     r->view = l->nviews;
     if (q && q[3] > 0) { /* 16-bit positions and 8-bit normals, each padded to 4 bytes */
         l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 8};
@@ -116,26 +122,31 @@ static void layout_attributes(Layout *l, MeshRef *r) {
             io_put(&l->bin, b, 4);
         }
     } else {
-        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, split ? 12 : 0};
         glb_words(&l->bin, m->pos, 3 * nv);
-        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, split ? 12 : 0};
         glb_words(&l->bin, m->nrm, 3 * nv);
     }
-    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 0};
+    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, split ? 8 : 0};
     glb_words(&l->bin, m->uv, 2 * nv);
-    /* 16 bits up to 65,535 vertices: 65,535 itself is the primitive restart value */
-    r->wide = nv > 65535;
-    l->views[l->nviews++] = (View){l->bin.len, (r->wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
-    if (r->wide) {
+    /* 16-bit indices, less each primitive's first vertex; 32-bit only when a triangle spans
+     * more than 65,535 vertices (glb_prims.c) */
+    const bool wide = r->pr.wide;
+    l->views[l->nviews++] = (View){l->bin.len, (wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
+    if (wide) {
         glb_words(&l->bin, m->idx, m->nidx);
     } else {
-        for (size_t i = 0; i < m->nidx; i++) {
-            uint8_t p[2] = {(uint8_t)m->idx[i], (uint8_t)(m->idx[i] >> 8)};
-            io_put(&l->bin, p, 2);
+        for (size_t k = 0; k < r->pr.n; k++) {
+            const GlbPrim *pr = &r->pr.prim[k];
+            for (size_t i = pr->first; i < (size_t)pr->first + pr->count; i++) {
+                uint32_t v = m->idx[i] - (uint32_t)pr->lo;
+                uint8_t p[2] = {(uint8_t)v, (uint8_t)(v >> 8)};
+                io_put(&l->bin, p, 2);
+            }
         }
         glb_pad(&l->bin, 0);
     }
-    if (r->skinned) glb_skin_vertices(&l->sc->part[r->part], &l->bin, l->views, &l->nviews);
+    if (r->skinned) glb_skin_vertices(&l->sc->part[r->part], &l->bin, l->views, &l->nviews, split);
 }
 
 /* Each set's translations, rotations and scales: three views. Quantized: translations in
@@ -216,10 +227,12 @@ static void json_mesh(IoBuf *js, const Layout *l, int k) {
     io_printf(js, "%s{\"name\":", k ? "," : "");
     io_json_string(js, mesh_name(l, r));
     io_printf(js, ",\"primitives\":[");
-    for (int g = 0; g < r->m->ngroups; g++) {
-        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", g ? "," : "", a, a + 1, a + 2);
-        if (r->skinned) glb_skin_attributes(js, a + 3 + r->m->ngroups);
-        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", a + 3 + g, r->material + g);
+    for (size_t c = 0; c < r->pr.n; c++) {
+        int at = r->pr.split ? a + (int)c * (4 + skin_accessors(r)) : a; /* its attributes */
+        int idx = r->pr.split ? at + 3 : a + 3 + (int)c;
+        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", c ? "," : "", at, at + 1, at + 2);
+        if (r->skinned) glb_skin_attributes(js, r->pr.split ? at + 4 : a + 3 + (int)r->pr.n);
+        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", idx, r->material + r->pr.prim[c].group);
     }
     io_printf(js, "]}");
 }
@@ -256,30 +269,49 @@ static void json_materials(IoBuf *js, const Layout *l) {
     io_put(js, "]", 1);
 }
 
-/* Accessors: per mesh the three attributes, then each group's range of indices; per
- * instance set its TRANSLATION, ROTATION and SCALE. */
+/* A mesh's POSITION, NORMAL and TEXCOORD_0 over vertices lo .. lo + nv - 1; n: accessors so far. */
+static void json_attributes(IoBuf *js, const Layout *l, const MeshRef *r, size_t lo, size_t nv, int n) {
+    static const char *const types[3] = {"VEC3", "VEC3", "VEC2"};
+    const SylMesh *m = r->m;
+    const float *data[3] = {m->pos + 3 * lo, m->nrm + 3 * lo, m->uv + 2 * lo};
+    const float *q = r->set < 0 && l->quant[r->part][3] > 0 ? l->quant[r->part] : NULL;
+    for (int a = 0; a < 3; a++, n++) {
+        int type = q && a < 2 ? (a ? BYTE : SHORT) : FLOAT;
+        size_t size = q && a < 2 ? (a ? 4 : 8) : a == 2 ? 8 : 12; /* an element's bytes */
+        io_printf(js, "%s{\"bufferView\":%d,", n ? "," : "", r->view + a);
+        if (lo) io_printf(js, "\"byteOffset\":%zu,", lo * size);
+        io_printf(js, "\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"", type,
+                  type != FLOAT ? "\"normalized\":true," : "", nv, types[a]);
+        if (q && a == 0) min_max_q16(js, data[0], nv, q, q[3]);
+        else if (!(q && a == 1)) glb_min_max(js, data[a], nv, a == 2 ? 2 : 3);
+        io_put(js, "}", 1);
+    }
+}
+
+/* A primitive's range of indices. */
+static void json_indices(IoBuf *js, const MeshRef *r, const GlbPrim *pr) {
+    io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
+              r->view + 3, (size_t)pr->first * (r->pr.wide ? 4 : 2), r->pr.wide ? UNSIGNED_INT : UNSIGNED_SHORT, pr->count);
+}
+
+/* Accessors: per mesh the three attributes, then each group's range of indices (split: per
+ * primitive its attributes and indices); per instance set its TRANSLATION, ROTATION and SCALE. */
 static void json_accessors(IoBuf *js, const Layout *l) {
     io_printf(js, ",\"accessors\":[");
-    static const char *const types[3] = {"VEC3", "VEC3", "VEC2"};
     int n = 0;
     for (int k = 0; k < l->nmeshes; k++) {
         const MeshRef *r = &l->mesh[k];
         const SylMesh *m = r->m;
-        const float *data[3] = {m->pos, m->nrm, m->uv};
-        const float *q = r->set < 0 && l->quant[r->part][3] > 0 ? l->quant[r->part] : NULL;
-        for (int a = 0; a < 3; a++, n++) {
-            int type = q && a < 2 ? (a ? BYTE : SHORT) : FLOAT;
-            io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
-                      r->view + a, type, type != FLOAT ? "\"normalized\":true," : "", m->nverts, types[a]);
-            if (q && a == 0) min_max_q16(js, m->pos, m->nverts, q, q[3]);
-            else if (!(q && a == 1)) glb_min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
-            io_put(js, "}", 1);
+        for (size_t c = 0; c < r->pr.n; c++) {
+            const GlbPrim *pr = &r->pr.prim[c];
+            if (r->pr.split || c == 0) json_attributes(js, l, r, pr->lo, pr->nv, n), n += 3;
+            if (!r->pr.split) continue;
+            json_indices(js, r, pr), n++;
+            if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4, pr->lo, pr->nv), n += 5;
         }
-        for (int g = 0; g < m->ngroups; g++, n++)
-            io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
-                      r->view + 3, (size_t)m->groups[g].first * (r->wide ? 4 : 2),
-                      r->wide ? UNSIGNED_INT : UNSIGNED_SHORT, m->groups[g].count);
-        if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4), n += 5;
+        if (r->pr.split) continue;
+        for (size_t c = 0; c < r->pr.n; c++, n++) json_indices(js, r, &r->pr.prim[c]);
+        if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4, 0, m->nverts), n += 5;
     }
     int i = 0;
     for (int p = 0; p < l->sc->nparts; p++)
@@ -529,6 +561,8 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     IoBuf js = {0};
     bool ok = plan(&l);
     if (!ok) l.bin.failed = true;
+    for (int k = 0; k < l.nmeshes && ok; k++) ok = glb_primitives(l.mesh[k].m, &l.mesh[k].pr);
+    if (!ok) l.bin.failed = true;
     for (int k = 0; k < l.nmeshes && ok; k++) layout_attributes(&l, &l.mesh[k]);
     int i = 0;
     for (int p = 0; p < sc->nparts && ok; p++)
@@ -550,6 +584,7 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     io_free(&js);
     io_free(&l.bin);
     free(l.views);
+    for (int k = 0; k < l.nmeshes; k++) free(l.mesh[k].pr.prim);
     free(l.mesh);
     free(l.set_view);
     free(l.quant);

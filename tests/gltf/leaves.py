@@ -59,14 +59,18 @@ def rotate(q, p):  # unit quaternion (x, y, z, w) applied to p
 
 
 def leaf_vertices(js, bin_, mesh):
-    """Positions of the vertices the leaf primitives of a mesh use, in vertex order."""
-    used = set()
-    pos = None
+    """Positions of the vertices the leaf primitives of a mesh use, in vertex order (each
+    primitive's own: above 65,535 vertices a group is cut into primitives of their own windows)."""
+    used = {}
     for p in js["meshes"][mesh]["primitives"]:
         if leaf_material(js, p["material"]):
-            used.update(accessor(js, bin_, p["indices"]))
+            a = js["accessors"][p["attributes"]["POSITION"]]
             pos = accessor(js, bin_, p["attributes"]["POSITION"])
-    return [pos[i] for i in sorted(used)] if pos else []
+            stride = js["bufferViews"][a["bufferView"]].get("byteStride") or 4 * SIZE[a["type"]]
+            first = a.get("byteOffset", 0) // stride  # the window's first vertex in the mesh
+            for i in accessor(js, bin_, p["indices"]):
+                used[first + i] = pos[i]
+    return [used[k] for k in sorted(used)]
 
 
 def instances(js, bin_):
@@ -221,19 +225,59 @@ for name, instanced in (("cards.glb", False), ("instanced-cards.glb", True)):
         cover = sum(r[4 * x + 3] for r in rows for x in range(w)) / (255 * w * h)
         check("cards: coverage is the ovate leaf's area", abs(cover - area) < 0.01, "%.4f vs %.4f" % (cover, area))
 
-# 4. indices: 16-bit up to 65,535 vertices, 32-bit above, and within range
-for name in ("u16.glb", "u32.glb"):
+# 4. indices: 16-bit in every primitive; above 65,535 vertices a group is cut into primitives
+# that each use a window of at most 65,535 vertices, and put together they are the same
+# triangles as the OBJ writer's one list of the same mesh
+def windows(js, bin_, mesh):
+    """Per primitive: (material, its index type, its window's first vertex and size, its
+    triangles as indices of the whole mesh)."""
+    out = []
+    for p in js["meshes"][mesh]["primitives"]:
+        a = js["accessors"][p["attributes"]["POSITION"]]
+        stride = js["bufferViews"][a["bufferView"]].get("byteStride") or 4 * SIZE[a["type"]]
+        first = a.get("byteOffset", 0) // stride
+        out.append((p["material"], js["accessors"][p["indices"]]["componentType"], first, a["count"],
+                    [first + i for i in accessor(js, bin_, p["indices"])]))
+    return out
+
+
+def obj_faces(path):
+    """Positions and, per material in order, the triangles (0-based) of an OBJ file."""
+    pos, faces, mat = [], {}, None
+    for line in open(path):
+        w = line.split()
+        if not w: continue
+        if w[0] == "v": pos.append(tuple(float(x) for x in w[1:4]))
+        elif w[0] == "usemtl": mat = w[1]
+        elif w[0] == "f": faces.setdefault(mat, []).extend(int(x.split("/")[0]) - 1 for x in w[1:4])
+    return pos, faces
+
+
+for name in ("u16.glb", "big.glb", "big-instanced.glb"):
     js, bin_ = glb(os.path.join(D, name))
-    ok = True
-    for m in js["meshes"]:
-        for p in m["primitives"]:
-            nv = js["accessors"][p["attributes"]["POSITION"]]["count"]
-            ia = js["accessors"][p["indices"]]
-            want = 5123 if nv <= 65535 else 5125
-            ok &= ia["componentType"] == want and max(accessor(js, bin_, p["indices"])) < nv
-    nv0 = js["accessors"][js["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]["count"]
-    check("%s: %d vertices, the smallest index type that holds them" % (name, nv0),
-          ok and (nv0 <= 65535) == (name == "u16.glb"))
+    prims = [w for m in range(len(js["meshes"])) for w in windows(js, bin_, m)]
+    ok = all(t == 5123 and n <= 65535 and all(first <= i < first + n for i in tri) for _, t, first, n, tri in prims)
+    nv = max(first + n for _, _, first, n, _ in windows(js, bin_, 0))
+    groups = len({mat for mat, _, _, _, _ in windows(js, bin_, 0)})
+    split = len(windows(js, bin_, 0)) > groups
+    check("%s: %d vertices, 16-bit indices within each primitive's window, %s" %
+          (name, nv, "cut into primitives" if nv > 65535 else "one primitive a group"),
+          ok and split == (nv > 65535) and (nv <= 65535) == (name == "u16.glb"))
+js, bin_ = glb(os.path.join(D, "big.glb"))
+opos, ofaces = obj_faces(os.path.join(D, "big.obj"))
+gpos = {}
+tris = {}
+for p in js["meshes"][0]["primitives"]:
+    a = js["accessors"][p["attributes"]["POSITION"]]
+    first = a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
+    for i, q in enumerate(accessor(js, bin_, p["attributes"]["POSITION"])): gpos[first + i] = q
+    tris.setdefault(js["materials"][p["material"]]["name"], []).extend(first + i for i in accessor(js, bin_, p["indices"]))
+size = max(abs(c) for q in opos for c in q)
+same_pos = len(gpos) == len(opos) and all(max(abs(gpos[i][k] - opos[i][k]) for k in range(3)) <= 1e-6 * size
+                                          for i in range(len(opos)))
+check("big.glb: its primitives put together are the OBJ's triangles", tris == ofaces and same_pos,
+      "%d/%d triangles, positions %s" % (sum(len(t) for t in tris.values()) // 3,
+                                         sum(len(t) for t in ofaces.values()) // 3, "same" if same_pos else "differ"))
 
 print("leaves: %d passed, %d failed" % (sum(results), len(results) - sum(results)))
 sys.exit(0 if all(results) else 1)
