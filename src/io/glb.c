@@ -23,6 +23,9 @@ typedef struct MeshRef {
     int part, set;
     int view, accessor, material; /* its first buffer view, accessor and material */
     GlbPrims pr;                  /* its primitives (glb_prims.c) */
+    const SylMesh *proto;         /* a set's: the prototype, m its copy scaled by fold when fold > 0 */
+    float fold;                   /* the one size of its sets' instances, over their part's scale
+                                     when quantized: m is proto scaled by it (0: sizes differ) */
     bool skinned;                 /* its part's wind: five more vertex accessors */
 } MeshRef;
 
@@ -69,12 +72,14 @@ static void put16(IoBuf *b, int16_t v) {
     io_put(b, p, 2);
 }
 
-/* n vectors of k floats as normalized shorts (t, s: the box), padded to 4 bytes each. */
-static void put_q16(IoBuf *b, const float *x, size_t n, int k, const float *t, float s) {
+/* n vectors of k floats as normalized shorts (t, s: the box), with pad: each padded to 4
+ * bytes (a vertex attribute's elements must be aligned so; instance attributes need not). */
+static void put_q16(IoBuf *b, const float *x, size_t n, int k, const float *t, float s, bool pad) {
     for (size_t i = 0; i < n; i++) {
         for (int c = 0; c < k; c++) put16(b, q16(x[(size_t)k * i + (size_t)c], t ? t[c] : 0, s));
-        if (k == 3) put16(b, 0);
+        if (k == 3 && pad) put16(b, 0);
     }
+    glb_pad(b, 0);
 }
 
 /* ,"min":[..],"max":[..] of put_q16's values (the integers, as glTF wants). */
@@ -115,7 +120,7 @@ static void layout_attributes(Layout *l, MeshRef *r) {
     r->view = l->nviews;
     if (q && q[3] > 0) { /* 16-bit positions and 8-bit normals, each padded to 4 bytes */
         l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 8};
-        put_q16(&l->bin, m->pos, nv, 3, q, q[3]);
+        put_q16(&l->bin, m->pos, nv, 3, q, q[3], true);
         l->views[l->nviews++] = (View){l->bin.len, 4 * nv, ARRAY_BUFFER, 4};
         for (size_t i = 0; i < nv; i++) {
             uint8_t b[4] = {(uint8_t)q8(m->nrm[3 * i]), (uint8_t)q8(m->nrm[3 * i + 1]), (uint8_t)q8(m->nrm[3 * i + 2]), 0};
@@ -154,23 +159,27 @@ static void layout_attributes(Layout *l, MeshRef *r) {
  * applies again: a leaf is far smaller than its plant), all as normalized shorts. */
 static void layout_instances(Layout *l, const SylInstances *set, int i, const float *q) {
     size_t n = set->count;
+    bool scale = !(l->mesh[l->set_mesh[i]].fold > 0); /* else in the prototype */
     l->set_view[i] = l->nviews;
     if (q[3] > 0) {
-        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8}; /* VEC3s padded to 8 bytes */
-        put_q16(&l->bin, set->t, n, 3, q, q[3]);
+        l->views[l->nviews++] = (View){l->bin.len, 6 * n, 0, 0}; /* VEC3s packed */
+        put_q16(&l->bin, set->t, n, 3, q, q[3], false);
         l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 0};
-        put_q16(&l->bin, set->r, n, 4, NULL, 1);
-        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8};
-        put_q16(&l->bin, set->s, n, 3, NULL, q[3]);
+        put_q16(&l->bin, set->r, n, 4, NULL, 1, false);
+        if (scale) l->views[l->nviews++] = (View){l->bin.len, 6 * n, 0, 0};
+        if (scale) put_q16(&l->bin, set->s, n, 3, NULL, q[3], false);
         return;
     }
     l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
     glb_words(&l->bin, set->t, 3 * n);
     l->views[l->nviews++] = (View){l->bin.len, 16 * n, 0, 0};
     glb_words(&l->bin, set->r, 4 * n);
-    l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
-    glb_words(&l->bin, set->s, 3 * n);
+    if (scale) l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
+    if (scale) glb_words(&l->bin, set->s, 3 * n);
 }
+
+/* Set i's accessors: TRANSLATION, ROTATION and SCALE, unless its prototype has the scale. */
+static int set_accessors(const Layout *l, int i) { return l->mesh[l->set_mesh[i]].fold > 0 ? 2 : 3; }
 
 /* One PNG texture per slot used, each in a view of its own. */
 static void layout_textures(Layout *l) {
@@ -319,7 +328,7 @@ static void json_accessors(IoBuf *js, const Layout *l) {
             static const char *const ttypes[3] = {"VEC3", "VEC4", "VEC3"};
             if (l->set_view[i] < 0) continue;
             bool q = l->quant[p][3] > 0;
-            for (int a = 0; a < 3; a++, n++)
+            for (int a = 0; a < set_accessors(l, i); a++, n++)
                 io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
                           l->set_view[i] + a, q ? SHORT : FLOAT, q ? "\"normalized\":true," : "",
                           l->sc->part[p].sets[s].count, ttypes[a]);
@@ -434,9 +443,10 @@ static void json_nodes(IoBuf *js, const Layout *l) {
             io_printf(js, ",{\"name\":");
             io_json_string(js, sc->part[p].sets[s].name);
             io_printf(js, ",\"mesh\":%d,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
-                          "{\"TRANSLATION\":%d,\"ROTATION\":%d,\"SCALE\":%d}}}}",
-                      mesh, a, a + 1, a + 2);
-            a += 3;
+                          "{\"TRANSLATION\":%d,\"ROTATION\":%d", mesh, a, a + 1);
+            if (set_accessors(l, i) == 3) io_printf(js, ",\"SCALE\":%d", a + 2);
+            io_printf(js, "}}}}");
+            a += set_accessors(l, i);
         }
     if (l->wind) json_joints(js, l);
     io_put(js, "]", 1);
@@ -498,6 +508,31 @@ static void plan_quantization(const GlbPart *pt, float q[4]) {
     if (!(q[3] > 0) || !isfinite(q[3])) q[3] = 0; /* nothing to quantize: floats */
 }
 
+/* The size of every instance of set, when they all have the same one, the same along each
+ * axis (Weber-Penn leaves: LeafScale): it goes into the prototype, and the set has no SCALE
+ * (8 bytes a leaf quantized, 12 as floats). 0: they differ. */
+static float one_size(const SylInstances *set) {
+    const float s = set->s[0];
+    if (!(s > 0) || !isfinite(s)) return 0;
+    for (size_t i = 0; i < 3 * set->count; i++)
+        if (set->s[i] != s) return 0;
+    return s;
+}
+
+/* A copy of proto with its positions scaled by k (its other arrays shared); NULL: out of memory. */
+static SylMesh *scaled(const SylMesh *proto, float k) {
+    SylMesh *c = malloc(sizeof *c);
+    float *pos = malloc((3 * proto->nverts + 1) * sizeof *pos);
+    if (!c || !pos) {
+        free(c), free(pos);
+        return NULL;
+    }
+    *c = *proto;
+    for (size_t i = 0; i < 3 * proto->nverts; i++) pos[i] = proto->pos[i] * k;
+    c->pos = pos;
+    return c;
+}
+
 /* Number the meshes, sets and nodes: parts first, then the instance sets' nodes. */
 static bool plan(Layout *l) {
     const GlbScene *sc = l->sc;
@@ -526,6 +561,8 @@ static bool plan(Layout *l) {
             if (skinned) l->wind = pt->wind; /* one skin for all the parts */
         }
     }
+    if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
+    for (int p = 0; p < sc->nparts && sc->quantize && !l->wind; p++) plan_quantization(sc->part + p, l->quant[p]);
     int i = 0;
     for (int p = 0; p < sc->nparts; p++)
         for (int s = 0; s < sc->part[p].nsets; s++, i++) {
@@ -534,11 +571,15 @@ static bool plan(Layout *l) {
             if (!has_geometry(set->proto) || !set->count) continue; /* an empty set is left out */
             l->set_node[i] = l->nnodes++;
             l->nsets++;
-            for (int k = 0; k < l->nmeshes && l->set_mesh[i] < 0; k++) /* sets of one prototype share it */
-                if (l->mesh[k].set >= 0 && l->mesh[k].m == set->proto) l->set_mesh[i] = k;
+            float fold = one_size(set);
+            if (l->quant[p][3] > 0) fold /= l->quant[p][3]; /* the part's node scales it again */
+            for (int k = 0; k < l->nmeshes && l->set_mesh[i] < 0; k++) /* sets of one prototype and size share it */
+                if (l->mesh[k].set >= 0 && l->mesh[k].proto == set->proto && l->mesh[k].fold == fold) l->set_mesh[i] = k;
             if (l->set_mesh[i] < 0) {
                 l->set_mesh[i] = l->nmeshes;
-                l->mesh[l->nmeshes++] = (MeshRef){.m = set->proto, .part = p, .set = s};
+                MeshRef r = {.m = set->proto, .proto = set->proto, .fold = fold, .part = p, .set = s};
+                if (fold > 0 && !(r.m = scaled(set->proto, fold))) return false;
+                l->mesh[l->nmeshes++] = r;
             }
         }
     l->joint_node = l->nnodes;
@@ -550,8 +591,6 @@ static bool plan(Layout *l) {
             if (l->set_joint && l->set_joint[i] >= 0 && l->set_node[i] >= 0 && joints_at_root(l) && l->anchor_node[p] < 0)
                 l->anchor_node[p] = l->nnodes, l->nnodes += l->wind->njoints;
     }
-    if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
-    for (int p = 0; p < sc->nparts && sc->quantize && !l->wind; p++) plan_quantization(sc->part + p, l->quant[p]);
     return true;
 }
 
@@ -575,7 +614,9 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
         l.mesh[k].material = mat, mat += l.mesh[k].m->ngroups;
         l.mesh[k].accessor = acc, acc += accessors_of(&l.mesh[k]);
     }
-    for (int q = 0; q < l.nsets; q++) acc += 3;
+    for (int q = 0, i = 0; q < sc->nparts; q++)
+        for (int s = 0; s < sc->part[q].nsets; s++, i++)
+            if (l.set_node[i] >= 0) acc += set_accessors(&l, i);
     l.anim_accessor = acc;
     if (ok) layout_textures(&l);
     glb_pad(&l.bin, 0);
@@ -584,7 +625,10 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     io_free(&js);
     io_free(&l.bin);
     free(l.views);
-    for (int k = 0; k < l.nmeshes; k++) free(l.mesh[k].pr.prim);
+    for (int k = 0; k < l.nmeshes; k++) {
+        free(l.mesh[k].pr.prim);
+        if (l.mesh[k].m != l.mesh[k].proto && l.mesh[k].proto) free(l.mesh[k].m->pos), free((SylMesh *)l.mesh[k].m);
+    }
     free(l.mesh);
     free(l.set_view);
     free(l.quant);
