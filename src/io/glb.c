@@ -3,8 +3,8 @@
  * instance sets (child nodes with EXT_mesh_gpu_instancing), in any leaf mode.
  *
  * Each mesh has one primitive per material group; POSITION, NORMAL and TEXCOORD_0 are shared
- * by its primitives, each with its own range of indices (16-bit up to 65,535 vertices, 32-bit
- * above). Materials are metallic-roughness with the material's colour (converted to linear, as
+ * by its primitives, each with its own range of 16-bit indices. Above 65,535 vertices a group
+ * is several primitives, each with its own window of the attributes (glb_prims.c). Materials are metallic-roughness with the material's colour (converted to linear, as
  * glTF wants) and, for bark, leaf and flower kinds, the procedural texture; leaf cards and an
  * impostor's billboards are alpha-tested (PNGs embedded in the BIN chunk). */
 #include <math.h>
