@@ -20,6 +20,14 @@ static bool in_first_use_order(const SylMesh *m) {
     return next == m->nverts;
 }
 
+/* Whether the remap keeps the order of the vertices it keeps (it only drops some). */
+static bool keeps_order(const unsigned *remap, size_t n) {
+    size_t next = 0;
+    for (size_t v = 0; v < n; v++)
+        if (remap[v] != ~0u && remap[v] != next++) return false;
+    return true;
+}
+
 /* Vertices in first-use order, unused ones dropped; every attribute stream remapped. */
 static int reorder_vertices(SylMesh *m) {
     if (!m->nverts || !m->nidx || in_first_use_order(m)) return SYL_OK;
@@ -37,6 +45,20 @@ static int reorder_vertices(SylMesh *m) {
         return SYL_OK;
     }
     meshopt_remapIndexBuffer(m->idx, m->idx, m->nidx, remap);
+    if (keeps_order(remap, m->nverts)) { /* only unused vertices go (triangles without area): close the gaps */
+        for (size_t v = 0; v < m->nverts; v++) {
+            size_t to = remap[v];
+            if (to == ~0u || to == v) continue;
+            memcpy(m->pos + 3 * to, m->pos + 3 * v, 3 * sizeof *m->pos);
+            memcpy(m->nrm + 3 * to, m->nrm + 3 * v, 3 * sizeof *m->nrm);
+            memcpy(m->uv + 2 * to, m->uv + 2 * v, 2 * sizeof *m->uv);
+            if (m->node) m->node[to] = m->node[v];
+        }
+        m->nverts = nv;
+        free(remap);
+        free(tmp);
+        return SYL_OK;
+    }
     float *streams[3] = {m->pos, m->nrm, m->uv};
     for (int s = 0; s < 3; s++) {
         size_t k = s == 2 ? 2 : 3;
