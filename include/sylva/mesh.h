@@ -79,8 +79,9 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src);
 /* The radius the mesher gives the segment ending at each node (s->nnodes floats): the
  * model's, or the pipe model's. SYL_EMODEL when a parent does not precede its child. */
 int syl_mesh_radii(const SylSkeleton *s, const SylMeshOptions *opt, float *radius);
-/* meshoptimizer: triangles of each group reordered for the vertex cache, then vertices in
- * first-use order (unused ones dropped). SYL_OK or SYL_ELIMIT. */
+/* meshoptimizer: triangles without area (two corners at the same point) dropped, those of
+ * each group reordered for the vertex cache, then vertices in first-use order (unused ones
+ * dropped). SYL_OK or SYL_ELIMIT. */
 int syl_mesh_optimize(SylMesh *m);
 /* Simplify each group toward ratio of its triangles (meshopt_simplify; the sloppy simplifier
  * when many small parts keep it far above), moving the surface by at most max_error relative

@@ -3,8 +3,8 @@
  * instance sets (child nodes with EXT_mesh_gpu_instancing), in any leaf mode.
  *
  * Each mesh has one primitive per material group; POSITION, NORMAL and TEXCOORD_0 are shared
- * by its primitives, each with its own range of indices (16-bit up to 65,535 vertices, 32-bit
- * above). Materials are metallic-roughness with the material's colour (converted to linear, as
+ * by its primitives, each with its own range of 16-bit indices. Above 65,535 vertices a group
+ * is several primitives, each with its own window of the attributes (glb_prims.c). Materials are metallic-roughness with the material's colour (converted to linear, as
  * glTF wants) and, for bark, leaf and flower kinds, the procedural texture; leaf cards and an
  * impostor's billboards are alpha-tested (PNGs embedded in the BIN chunk). */
 #include <math.h>
@@ -22,7 +22,10 @@ typedef struct MeshRef {
     const SylMesh *m;
     int part, set;
     int view, accessor, material; /* its first buffer view, accessor and material */
-    bool wide;                    /* 32-bit indices (more than 65,535 vertices) */
+    GlbPrims pr;                  /* its primitives (glb_prims.c) */
+    const SylMesh *proto;         /* a set's: the prototype, m its copy scaled by fold when fold > 0 */
+    float fold;                   /* the one size of its sets' instances, over their part's scale
+                                     when quantized: m is proto scaled by it (0: sizes differ) */
     bool skinned;                 /* its part's wind: five more vertex accessors */
 } MeshRef;
 
@@ -50,7 +53,12 @@ typedef struct Layout {
 static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER};
 
 static bool has_geometry(const SylMesh *m) { return m && m->nverts > 0 && m->nidx > 0 && m->ngroups > 0; }
-static int accessors_of(const MeshRef *r) { return 3 + r->m->ngroups + (r->skinned ? 5 : 0); }
+/* Shared attributes then one index accessor a primitive; split, each primitive its own
+ * attributes and indices (and skin attributes). */
+static int skin_accessors(const MeshRef *r) { return r->skinned ? 5 : 0; }
+static int accessors_of(const MeshRef *r) {
+    return r->pr.split ? (int)r->pr.n * (4 + skin_accessors(r)) : 3 + (int)r->pr.n + skin_accessors(r);
+}
 
 /* KHR_mesh_quantization: x of a box centred on t of half-size k, as a normalized short. */
 static int16_t q16(float x, float t, float k) {
@@ -64,12 +72,14 @@ static void put16(IoBuf *b, int16_t v) {
     io_put(b, p, 2);
 }
 
-/* n vectors of k floats as normalized shorts (t, s: the box), padded to 4 bytes each. */
-static void put_q16(IoBuf *b, const float *x, size_t n, int k, const float *t, float s) {
+/* n vectors of k floats as normalized shorts (t, s: the box), with pad: each padded to 4
+ * bytes (a vertex attribute's elements must be aligned so; instance attributes need not). */
+static void put_q16(IoBuf *b, const float *x, size_t n, int k, const float *t, float s, bool pad) {
     for (size_t i = 0; i < n; i++) {
         for (int c = 0; c < k; c++) put16(b, q16(x[(size_t)k * i + (size_t)c], t ? t[c] : 0, s));
-        if (k == 3) put16(b, 0);
+        if (k == 3 && pad) put16(b, 0);
     }
+    glb_pad(b, 0);
 }
 
 /* ,"min":[..],"max":[..] of put_q16's values (the integers, as glTF wants). */
@@ -106,36 +116,42 @@ static void layout_attributes(Layout *l, MeshRef *r) {
     const SylMesh *m = r->m;
     const size_t nv = m->nverts;
     const float *q = r->set < 0 ? l->quant[r->part] : NULL;
+    const bool split = r->pr.split; /* accessors of several windows share each view: strided */
     r->view = l->nviews;
     if (q && q[3] > 0) { /* 16-bit positions and 8-bit normals, each padded to 4 bytes */
         l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 8};
-        put_q16(&l->bin, m->pos, nv, 3, q, q[3]);
+        put_q16(&l->bin, m->pos, nv, 3, q, q[3], true);
         l->views[l->nviews++] = (View){l->bin.len, 4 * nv, ARRAY_BUFFER, 4};
         for (size_t i = 0; i < nv; i++) {
             uint8_t b[4] = {(uint8_t)q8(m->nrm[3 * i]), (uint8_t)q8(m->nrm[3 * i + 1]), (uint8_t)q8(m->nrm[3 * i + 2]), 0};
             io_put(&l->bin, b, 4);
         }
     } else {
-        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, split ? 12 : 0};
         glb_words(&l->bin, m->pos, 3 * nv);
-        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, 0};
+        l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, split ? 12 : 0};
         glb_words(&l->bin, m->nrm, 3 * nv);
     }
-    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 0};
+    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, split ? 8 : 0};
     glb_words(&l->bin, m->uv, 2 * nv);
-    /* 16 bits up to 65,535 vertices: 65,535 itself is the primitive restart value */
-    r->wide = nv > 65535;
-    l->views[l->nviews++] = (View){l->bin.len, (r->wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
-    if (r->wide) {
+    /* 16-bit indices, less each primitive's first vertex; 32-bit only when a triangle spans
+     * more than 65,535 vertices (glb_prims.c) */
+    const bool wide = r->pr.wide;
+    l->views[l->nviews++] = (View){l->bin.len, (wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
+    if (wide) {
         glb_words(&l->bin, m->idx, m->nidx);
     } else {
-        for (size_t i = 0; i < m->nidx; i++) {
-            uint8_t p[2] = {(uint8_t)m->idx[i], (uint8_t)(m->idx[i] >> 8)};
-            io_put(&l->bin, p, 2);
+        for (size_t k = 0; k < r->pr.n; k++) {
+            const GlbPrim *pr = &r->pr.prim[k];
+            for (size_t i = pr->first; i < (size_t)pr->first + pr->count; i++) {
+                uint32_t v = m->idx[i] - (uint32_t)pr->lo;
+                uint8_t p[2] = {(uint8_t)v, (uint8_t)(v >> 8)};
+                io_put(&l->bin, p, 2);
+            }
         }
         glb_pad(&l->bin, 0);
     }
-    if (r->skinned) glb_skin_vertices(&l->sc->part[r->part], &l->bin, l->views, &l->nviews);
+    if (r->skinned) glb_skin_vertices(&l->sc->part[r->part], &l->bin, l->views, &l->nviews, split);
 }
 
 /* Each set's translations, rotations and scales: three views. Quantized: translations in
@@ -143,23 +159,27 @@ static void layout_attributes(Layout *l, MeshRef *r) {
  * applies again: a leaf is far smaller than its plant), all as normalized shorts. */
 static void layout_instances(Layout *l, const SylInstances *set, int i, const float *q) {
     size_t n = set->count;
+    bool scale = !(l->mesh[l->set_mesh[i]].fold > 0); /* else in the prototype */
     l->set_view[i] = l->nviews;
     if (q[3] > 0) {
-        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8}; /* VEC3s padded to 8 bytes */
-        put_q16(&l->bin, set->t, n, 3, q, q[3]);
+        l->views[l->nviews++] = (View){l->bin.len, 6 * n, 0, 0}; /* VEC3s packed */
+        put_q16(&l->bin, set->t, n, 3, q, q[3], false);
         l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 0};
-        put_q16(&l->bin, set->r, n, 4, NULL, 1);
-        l->views[l->nviews++] = (View){l->bin.len, 8 * n, 0, 8};
-        put_q16(&l->bin, set->s, n, 3, NULL, q[3]);
+        put_q16(&l->bin, set->r, n, 4, NULL, 1, false);
+        if (scale) l->views[l->nviews++] = (View){l->bin.len, 6 * n, 0, 0};
+        if (scale) put_q16(&l->bin, set->s, n, 3, NULL, q[3], false);
         return;
     }
     l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
     glb_words(&l->bin, set->t, 3 * n);
     l->views[l->nviews++] = (View){l->bin.len, 16 * n, 0, 0};
     glb_words(&l->bin, set->r, 4 * n);
-    l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
-    glb_words(&l->bin, set->s, 3 * n);
+    if (scale) l->views[l->nviews++] = (View){l->bin.len, 12 * n, 0, 0};
+    if (scale) glb_words(&l->bin, set->s, 3 * n);
 }
+
+/* Set i's accessors: TRANSLATION, ROTATION and SCALE, unless its prototype has the scale. */
+static int set_accessors(const Layout *l, int i) { return l->mesh[l->set_mesh[i]].fold > 0 ? 2 : 3; }
 
 /* One PNG texture per slot used, each in a view of its own. */
 static void layout_textures(Layout *l) {
@@ -216,10 +236,12 @@ static void json_mesh(IoBuf *js, const Layout *l, int k) {
     io_printf(js, "%s{\"name\":", k ? "," : "");
     io_json_string(js, mesh_name(l, r));
     io_printf(js, ",\"primitives\":[");
-    for (int g = 0; g < r->m->ngroups; g++) {
-        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", g ? "," : "", a, a + 1, a + 2);
-        if (r->skinned) glb_skin_attributes(js, a + 3 + r->m->ngroups);
-        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", a + 3 + g, r->material + g);
+    for (size_t c = 0; c < r->pr.n; c++) {
+        int at = r->pr.split ? a + (int)c * (4 + skin_accessors(r)) : a; /* its attributes */
+        int idx = r->pr.split ? at + 3 : a + 3 + (int)c;
+        io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", c ? "," : "", at, at + 1, at + 2);
+        if (r->skinned) glb_skin_attributes(js, r->pr.split ? at + 4 : a + 3 + (int)r->pr.n);
+        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", idx, r->material + r->pr.prim[c].group);
     }
     io_printf(js, "]}");
 }
@@ -256,30 +278,49 @@ static void json_materials(IoBuf *js, const Layout *l) {
     io_put(js, "]", 1);
 }
 
-/* Accessors: per mesh the three attributes, then each group's range of indices; per
- * instance set its TRANSLATION, ROTATION and SCALE. */
+/* A mesh's POSITION, NORMAL and TEXCOORD_0 over vertices lo .. lo + nv - 1; n: accessors so far. */
+static void json_attributes(IoBuf *js, const Layout *l, const MeshRef *r, size_t lo, size_t nv, int n) {
+    static const char *const types[3] = {"VEC3", "VEC3", "VEC2"};
+    const SylMesh *m = r->m;
+    const float *data[3] = {m->pos + 3 * lo, m->nrm + 3 * lo, m->uv + 2 * lo};
+    const float *q = r->set < 0 && l->quant[r->part][3] > 0 ? l->quant[r->part] : NULL;
+    for (int a = 0; a < 3; a++, n++) {
+        int type = q && a < 2 ? (a ? BYTE : SHORT) : FLOAT;
+        size_t size = q && a < 2 ? (a ? 4 : 8) : a == 2 ? 8 : 12; /* an element's bytes */
+        io_printf(js, "%s{\"bufferView\":%d,", n ? "," : "", r->view + a);
+        if (lo) io_printf(js, "\"byteOffset\":%zu,", lo * size);
+        io_printf(js, "\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"", type,
+                  type != FLOAT ? "\"normalized\":true," : "", nv, types[a]);
+        if (q && a == 0) min_max_q16(js, data[0], nv, q, q[3]);
+        else if (!(q && a == 1)) glb_min_max(js, data[a], nv, a == 2 ? 2 : 3);
+        io_put(js, "}", 1);
+    }
+}
+
+/* A primitive's range of indices. */
+static void json_indices(IoBuf *js, const MeshRef *r, const GlbPrim *pr) {
+    io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
+              r->view + 3, (size_t)pr->first * (r->pr.wide ? 4 : 2), r->pr.wide ? UNSIGNED_INT : UNSIGNED_SHORT, pr->count);
+}
+
+/* Accessors: per mesh the three attributes, then each group's range of indices (split: per
+ * primitive its attributes and indices); per instance set its TRANSLATION, ROTATION and SCALE. */
 static void json_accessors(IoBuf *js, const Layout *l) {
     io_printf(js, ",\"accessors\":[");
-    static const char *const types[3] = {"VEC3", "VEC3", "VEC2"};
     int n = 0;
     for (int k = 0; k < l->nmeshes; k++) {
         const MeshRef *r = &l->mesh[k];
         const SylMesh *m = r->m;
-        const float *data[3] = {m->pos, m->nrm, m->uv};
-        const float *q = r->set < 0 && l->quant[r->part][3] > 0 ? l->quant[r->part] : NULL;
-        for (int a = 0; a < 3; a++, n++) {
-            int type = q && a < 2 ? (a ? BYTE : SHORT) : FLOAT;
-            io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"", n ? "," : "",
-                      r->view + a, type, type != FLOAT ? "\"normalized\":true," : "", m->nverts, types[a]);
-            if (q && a == 0) min_max_q16(js, m->pos, m->nverts, q, q[3]);
-            else if (!(q && a == 1)) glb_min_max(js, data[a], m->nverts, a == 2 ? 2 : 3);
-            io_put(js, "}", 1);
+        for (size_t c = 0; c < r->pr.n; c++) {
+            const GlbPrim *pr = &r->pr.prim[c];
+            if (r->pr.split || c == 0) json_attributes(js, l, r, pr->lo, pr->nv, n), n += 3;
+            if (!r->pr.split) continue;
+            json_indices(js, r, pr), n++;
+            if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4, pr->lo, pr->nv), n += 5;
         }
-        for (int g = 0; g < m->ngroups; g++, n++)
-            io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
-                      r->view + 3, (size_t)m->groups[g].first * (r->wide ? 4 : 2),
-                      r->wide ? UNSIGNED_INT : UNSIGNED_SHORT, m->groups[g].count);
-        if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4), n += 5;
+        if (r->pr.split) continue;
+        for (size_t c = 0; c < r->pr.n; c++, n++) json_indices(js, r, &r->pr.prim[c]);
+        if (r->skinned) glb_skin_vertex_accessors(js, &l->sc->part[r->part], r->view + 4, 0, m->nverts), n += 5;
     }
     int i = 0;
     for (int p = 0; p < l->sc->nparts; p++)
@@ -287,7 +328,7 @@ static void json_accessors(IoBuf *js, const Layout *l) {
             static const char *const ttypes[3] = {"VEC3", "VEC4", "VEC3"};
             if (l->set_view[i] < 0) continue;
             bool q = l->quant[p][3] > 0;
-            for (int a = 0; a < 3; a++, n++)
+            for (int a = 0; a < set_accessors(l, i); a++, n++)
                 io_printf(js, "%s{\"bufferView\":%d,\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"}", n ? "," : "",
                           l->set_view[i] + a, q ? SHORT : FLOAT, q ? "\"normalized\":true," : "",
                           l->sc->part[p].sets[s].count, ttypes[a]);
@@ -402,9 +443,10 @@ static void json_nodes(IoBuf *js, const Layout *l) {
             io_printf(js, ",{\"name\":");
             io_json_string(js, sc->part[p].sets[s].name);
             io_printf(js, ",\"mesh\":%d,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
-                          "{\"TRANSLATION\":%d,\"ROTATION\":%d,\"SCALE\":%d}}}}",
-                      mesh, a, a + 1, a + 2);
-            a += 3;
+                          "{\"TRANSLATION\":%d,\"ROTATION\":%d", mesh, a, a + 1);
+            if (set_accessors(l, i) == 3) io_printf(js, ",\"SCALE\":%d", a + 2);
+            io_printf(js, "}}}}");
+            a += set_accessors(l, i);
         }
     if (l->wind) json_joints(js, l);
     io_put(js, "]", 1);
@@ -466,6 +508,31 @@ static void plan_quantization(const GlbPart *pt, float q[4]) {
     if (!(q[3] > 0) || !isfinite(q[3])) q[3] = 0; /* nothing to quantize: floats */
 }
 
+/* The size of every instance of set, when they all have the same one, the same along each
+ * axis (Weber-Penn leaves: LeafScale): it goes into the prototype, and the set has no SCALE
+ * (8 bytes a leaf quantized, 12 as floats). 0: they differ. */
+static float one_size(const SylInstances *set) {
+    const float s = set->s[0];
+    if (!(s > 0) || !isfinite(s)) return 0;
+    for (size_t i = 0; i < 3 * set->count; i++)
+        if (set->s[i] != s) return 0;
+    return s;
+}
+
+/* A copy of proto with its positions scaled by k (its other arrays shared); NULL: out of memory. */
+static SylMesh *scaled(const SylMesh *proto, float k) {
+    SylMesh *c = malloc(sizeof *c);
+    float *pos = malloc((3 * proto->nverts + 1) * sizeof *pos);
+    if (!c || !pos) {
+        free(c), free(pos);
+        return NULL;
+    }
+    *c = *proto;
+    for (size_t i = 0; i < 3 * proto->nverts; i++) pos[i] = proto->pos[i] * k;
+    c->pos = pos;
+    return c;
+}
+
 /* Number the meshes, sets and nodes: parts first, then the instance sets' nodes. */
 static bool plan(Layout *l) {
     const GlbScene *sc = l->sc;
@@ -494,6 +561,8 @@ static bool plan(Layout *l) {
             if (skinned) l->wind = pt->wind; /* one skin for all the parts */
         }
     }
+    if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
+    for (int p = 0; p < sc->nparts && sc->quantize && !l->wind; p++) plan_quantization(sc->part + p, l->quant[p]);
     int i = 0;
     for (int p = 0; p < sc->nparts; p++)
         for (int s = 0; s < sc->part[p].nsets; s++, i++) {
@@ -502,11 +571,15 @@ static bool plan(Layout *l) {
             if (!has_geometry(set->proto) || !set->count) continue; /* an empty set is left out */
             l->set_node[i] = l->nnodes++;
             l->nsets++;
-            for (int k = 0; k < l->nmeshes && l->set_mesh[i] < 0; k++) /* sets of one prototype share it */
-                if (l->mesh[k].set >= 0 && l->mesh[k].m == set->proto) l->set_mesh[i] = k;
+            float fold = one_size(set);
+            if (l->quant[p][3] > 0) fold /= l->quant[p][3]; /* the part's node scales it again */
+            for (int k = 0; k < l->nmeshes && l->set_mesh[i] < 0; k++) /* sets of one prototype and size share it */
+                if (l->mesh[k].set >= 0 && l->mesh[k].proto == set->proto && l->mesh[k].fold == fold) l->set_mesh[i] = k;
             if (l->set_mesh[i] < 0) {
                 l->set_mesh[i] = l->nmeshes;
-                l->mesh[l->nmeshes++] = (MeshRef){.m = set->proto, .part = p, .set = s};
+                MeshRef r = {.m = set->proto, .proto = set->proto, .fold = fold, .part = p, .set = s};
+                if (fold > 0 && !(r.m = scaled(set->proto, fold))) return false;
+                l->mesh[l->nmeshes++] = r;
             }
         }
     l->joint_node = l->nnodes;
@@ -518,8 +591,6 @@ static bool plan(Layout *l) {
             if (l->set_joint && l->set_joint[i] >= 0 && l->set_node[i] >= 0 && joints_at_root(l) && l->anchor_node[p] < 0)
                 l->anchor_node[p] = l->nnodes, l->nnodes += l->wind->njoints;
     }
-    if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
-    for (int p = 0; p < sc->nparts && sc->quantize && !l->wind; p++) plan_quantization(sc->part + p, l->quant[p]);
     return true;
 }
 
@@ -528,6 +599,8 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     Layout l = {.sc = sc, .tex_of_kind = {-1, -1, -1, -1, -1, -1}, .set_joint = set_joint};
     IoBuf js = {0};
     bool ok = plan(&l);
+    if (!ok) l.bin.failed = true;
+    for (int k = 0; k < l.nmeshes && ok; k++) ok = glb_primitives(l.mesh[k].m, &l.mesh[k].pr);
     if (!ok) l.bin.failed = true;
     for (int k = 0; k < l.nmeshes && ok; k++) layout_attributes(&l, &l.mesh[k]);
     int i = 0;
@@ -541,7 +614,9 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
         l.mesh[k].material = mat, mat += l.mesh[k].m->ngroups;
         l.mesh[k].accessor = acc, acc += accessors_of(&l.mesh[k]);
     }
-    for (int q = 0; q < l.nsets; q++) acc += 3;
+    for (int q = 0, i = 0; q < sc->nparts; q++)
+        for (int s = 0; s < sc->part[q].nsets; s++, i++)
+            if (l.set_node[i] >= 0) acc += set_accessors(&l, i);
     l.anim_accessor = acc;
     if (ok) layout_textures(&l);
     glb_pad(&l.bin, 0);
@@ -550,6 +625,10 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     io_free(&js);
     io_free(&l.bin);
     free(l.views);
+    for (int k = 0; k < l.nmeshes; k++) {
+        free(l.mesh[k].pr.prim);
+        if (l.mesh[k].m != l.mesh[k].proto && l.mesh[k].proto) free(l.mesh[k].m->pos), free((SylMesh *)l.mesh[k].m);
+    }
     free(l.mesh);
     free(l.set_view);
     free(l.quant);

@@ -66,13 +66,31 @@ typedef struct GlbScene {
 
 int glb_write(const GlbScene *sc, const char *path, FILE *diag);
 
+/* A primitive (glb_prims.c): count indices of the mesh from first, of group group, using
+ * vertices lo .. lo + nv - 1 (its indices are written less lo). */
+typedef struct GlbPrim {
+    uint32_t first, count;
+    size_t lo, nv;
+    int group;
+} GlbPrim;
+/* split: the mesh has more than 65,535 vertices and its groups are cut into primitives of
+ * 16-bit indices, each with attribute accessors of its own window; wide: that failed (a
+ * triangle spans more), one primitive a group with 32-bit indices. */
+typedef struct GlbPrims {
+    GlbPrim *prim;
+    size_t n;
+    bool split, wide;
+} GlbPrims;
+bool glb_primitives(const SylMesh *m, GlbPrims *out); /* false: out of memory */
+
 /* The skin of a part with wind (glb_skin.c): its five vertex views; the inverse bind
- * matrices', key times' and rotations' views; their accessors; the primitive's attributes;
+ * matrices', key times' and rotations' views (strided: with byteStride, as several windows'
+ * accessors share them); their accessors (of vertices lo .. lo + nv - 1); the primitive's attributes;
  * the root joints (child ids); the joint nodes (or a copy of them); "skins" and
  * "animations". */
-void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews);
+void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews, bool strided);
 void glb_skin_animation(const SylWind *w, IoBuf *bin, View *views, int *nviews);
-void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view);
+void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view, size_t lo, size_t nv);
 void glb_skin_anim_accessors(IoBuf *js, const SylWind *w, int anim);
 void glb_skin_attributes(IoBuf *js, int acc);
 void glb_skin_roots(IoBuf *js, const SylWind *w, int first_node, bool comma);

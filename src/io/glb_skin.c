@@ -117,7 +117,7 @@ void glb_skin_split_free(SylInstances *sets, int n) {
     free(sets);
 }
 
-void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
+void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews, bool strided) {
     const SylMesh *m = p->mesh;
     const SylWind *w = p->wind;
     size_t nv = m->nverts, at = bin->len;
@@ -136,11 +136,11 @@ void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
         if (wide) io_put(bin, shorts, 8);
         else io_put(bin, bytes, 4);
     }
-    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
+    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, strided ? (wide ? 8 : 4) : 0};
     at = bin->len; /* WEIGHTS_0: normalized bytes summing to 255, 1 exactly */
     io_put(bin, wt, 4 * nv);
     free(wt);
-    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
+    views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, strided ? 4 : 0};
     for (int a = 0; a < 3; a++) { /* _BRANCH_LEVEL, _PHASE, _STIFFNESS of the vertex's own stem */
         at = bin->len;
         for (size_t v = 0; v < nv; v++) {
@@ -148,7 +148,7 @@ void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews) {
             float x = a == 0 ? (float)st->order : a == 1 ? st->phase : st->stiffness;
             glb_words(bin, &x, 1);
         }
-        views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, 0};
+        views[(*nviews)++] = (View){at, bin->len - at, ARRAY_BUFFER, strided ? 4 : 0};
     }
 }
 
@@ -171,16 +171,17 @@ void glb_skin_animation(const SylWind *w, IoBuf *bin, View *views, int *nviews) 
     views[(*nviews)++] = (View){at, bin->len - at, 0, 0};
 }
 
-/* The mesh's five vertex accessors (views view..view+4). */
-void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view) {
+/* The mesh's five vertex accessors (views view..view+4) over vertices lo .. lo + nv - 1. */
+void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view, size_t lo, size_t nv) {
     const SylWind *w = p->wind;
-    size_t nv = p->mesh->nverts;
-    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC4\"}", view,
-              wide_joints(w) ? UNSIGNED_SHORT : UNSIGNED_BYTE, nv);
-    io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"normalized\":true,\"count\":%zu,\"type\":\"VEC4\"}",
-              view + 1, UNSIGNED_BYTE, nv);
-    for (int a = 0; a < 3; a++)
-        io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"SCALAR\"}", view + 2 + a, FLOAT, nv);
+    const size_t size[5] = {wide_joints(w) ? 8 : 4, 4, 4, 4, 4}; /* an element's bytes */
+    const int type[5] = {wide_joints(w) ? UNSIGNED_SHORT : UNSIGNED_BYTE, UNSIGNED_BYTE, FLOAT, FLOAT, FLOAT};
+    for (int a = 0; a < 5; a++) {
+        io_printf(js, ",{\"bufferView\":%d,", view + a);
+        if (lo) io_printf(js, "\"byteOffset\":%zu,", lo * size[a]);
+        io_printf(js, "\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"}", type[a],
+                  a == 1 ? "\"normalized\":true," : "", nv, a < 2 ? "VEC4" : "SCALAR");
+    }
 }
 
 /* From view anim on: the inverse bind matrices, the key times and each joint's rotations. */

@@ -20,6 +20,14 @@ static bool in_first_use_order(const SylMesh *m) {
     return next == m->nverts;
 }
 
+/* Whether the remap keeps the order of the vertices it keeps (it only drops some). */
+static bool keeps_order(const unsigned *remap, size_t n) {
+    size_t next = 0;
+    for (size_t v = 0; v < n; v++)
+        if (remap[v] != ~0u && remap[v] != next++) return false;
+    return true;
+}
+
 /* Vertices in first-use order, unused ones dropped; every attribute stream remapped. */
 static int reorder_vertices(SylMesh *m) {
     if (!m->nverts || !m->nidx || in_first_use_order(m)) return SYL_OK;
@@ -37,6 +45,20 @@ static int reorder_vertices(SylMesh *m) {
         return SYL_OK;
     }
     meshopt_remapIndexBuffer(m->idx, m->idx, m->nidx, remap);
+    if (keeps_order(remap, m->nverts)) { /* only unused vertices go (triangles without area): close the gaps */
+        for (size_t v = 0; v < m->nverts; v++) {
+            size_t to = remap[v];
+            if (to == ~0u || to == v) continue;
+            memcpy(m->pos + 3 * to, m->pos + 3 * v, 3 * sizeof *m->pos);
+            memcpy(m->nrm + 3 * to, m->nrm + 3 * v, 3 * sizeof *m->nrm);
+            memcpy(m->uv + 2 * to, m->uv + 2 * v, 2 * sizeof *m->uv);
+            if (m->node) m->node[to] = m->node[v];
+        }
+        m->nverts = nv;
+        free(remap);
+        free(tmp);
+        return SYL_OK;
+    }
     float *streams[3] = {m->pos, m->nrm, m->uv};
     for (int s = 0; s < 3; s++) {
         size_t k = s == 2 ? 2 : 3;
@@ -71,7 +93,32 @@ static bool cache_optimal(const uint32_t *ix, size_t n, uint32_t *stamp, uint32_
     return transformed <= distinct + distinct / 50;
 }
 
+/* Whether two corners of triangle t lie at the very same point: it has no area and draws
+ * nothing (a tube tapering to radius 0 ends in a ring of coincident vertices, its last
+ * segment has one such triangle a side and its cap is all of them). */
+static bool degenerate(const SylMesh *m, const uint32_t *t) {
+    const float *a = m->pos + 3 * (size_t)t[0], *b = m->pos + 3 * (size_t)t[1], *c = m->pos + 3 * (size_t)t[2];
+    return !memcmp(a, b, 3 * sizeof *a) || !memcmp(b, c, 3 * sizeof *b) || !memcmp(a, c, 3 * sizeof *a);
+}
+
+/* Drop the triangles without area, group by group (the vertices they alone used go with
+ * reorder_vertices); a group left empty is dropped. */
+static void drop_degenerate(SylMesh *m) {
+    size_t at = 0;
+    int ng = 0;
+    for (int g = 0; g < m->ngroups; g++) {
+        const SylMeshGroup gr = m->groups[g];
+        size_t first = at;
+        for (size_t i = gr.first; i < (size_t)gr.first + gr.count; i += 3)
+            if (!degenerate(m, m->idx + i)) memmove(m->idx + at, m->idx + i, 3 * sizeof *m->idx), at += 3;
+        if (at > first) m->groups[ng++] = (SylMeshGroup){(uint32_t)first, (uint32_t)(at - first), gr.material};
+    }
+    m->nidx = at;
+    m->ngroups = ng;
+}
+
 int syl_mesh_optimize(SylMesh *m) {
+    if (m) drop_degenerate(m);
     if (!m || !m->nidx) return SYL_OK;
     uint32_t *tmp = malloc(m->nidx * sizeof *tmp), *stamp = calloc(m->nverts, sizeof *stamp), clock = 0;
     if (!tmp || !stamp || m->nidx >= UINT32_MAX) {

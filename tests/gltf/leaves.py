@@ -59,25 +59,31 @@ def rotate(q, p):  # unit quaternion (x, y, z, w) applied to p
 
 
 def leaf_vertices(js, bin_, mesh):
-    """Positions of the vertices the leaf primitives of a mesh use, in vertex order."""
-    used = set()
-    pos = None
+    """Positions of the vertices the leaf primitives of a mesh use, in vertex order (each
+    primitive's own: above 65,535 vertices a group is cut into primitives of their own windows)."""
+    used = {}
     for p in js["meshes"][mesh]["primitives"]:
         if leaf_material(js, p["material"]):
-            used.update(accessor(js, bin_, p["indices"]))
+            a = js["accessors"][p["attributes"]["POSITION"]]
             pos = accessor(js, bin_, p["attributes"]["POSITION"])
-    return [pos[i] for i in sorted(used)] if pos else []
+            stride = js["bufferViews"][a["bufferView"]].get("byteStride") or 4 * SIZE[a["type"]]
+            first = a.get("byteOffset", 0) // stride  # the window's first vertex in the mesh
+            for i in accessor(js, bin_, p["indices"]):
+                used[first + i] = pos[i]
+    return [used[k] for k in sorted(used)]
 
 
 def instances(js, bin_):
-    """(prototype leaf positions, T, R, S) per instanced node."""
+    """(prototype leaf positions, T, R, S) per instanced node (no SCALE: 1, as the
+    extension says)."""
     out = []
     for n in js["nodes"]:
         ext = n.get("extensions", {}).get("EXT_mesh_gpu_instancing")
         if ext:
             at = ext["attributes"]
-            out.append((leaf_vertices(js, bin_, n["mesh"]), accessor(js, bin_, at["TRANSLATION"]),
-                        accessor(js, bin_, at["ROTATION"]), accessor(js, bin_, at["SCALE"])))
+            T = accessor(js, bin_, at["TRANSLATION"])
+            S = accessor(js, bin_, at["SCALE"]) if "SCALE" in at else [(1.0, 1.0, 1.0)] * len(T)
+            out.append((leaf_vertices(js, bin_, n["mesh"]), T, accessor(js, bin_, at["ROTATION"]), S))
     return out
 
 
@@ -116,33 +122,6 @@ def skeleton_leaves(path):
     return sum(1 for line in open(path) if line.rstrip().endswith(",leaf"))
 
 
-# 1. instances: count, and the transforms put the prototype where the copied leaves are
-copied_js, copied_bin = glb(os.path.join(D, "mesh.glb"))
-inst_js, inst_bin = glb(os.path.join(D, "instanced.glb"))
-sets = instances(inst_js, inst_bin)
-nleaves = skeleton_leaves(os.path.join(D, "skeleton.csv"))
-count = sum(len(t) for _, t, _, _ in sets)
-check("instance count equals the skeleton's leaves", count == nleaves > 0, "%d instances, %d leaves" % (count, nleaves))
-check("extension in extensionsUsed, not extensionsRequired",
-      "EXT_mesh_gpu_instancing" in inst_js.get("extensionsUsed", []) and
-      "EXT_mesh_gpu_instancing" not in inst_js.get("extensionsRequired", []))
-# the plant node's transform (KHR_mesh_quantization: a translation and a uniform scale)
-# applies to its children, the instance sets
-root = inst_js["nodes"][0]
-T0, k0 = root.get("translation", [0, 0, 0]), root.get("scale", [1, 1, 1])[0]
-quantized = "KHR_mesh_quantization" in inst_js.get("extensionsRequired", [])
-moved = []
-for proto, T, R, S in sets:
-    for t, r, s in zip(T, R, S):
-        check_unit = abs(math.sqrt(sum(c * c for c in r)) - 1) < (1e-5 if not quantized else 1e-4)
-        if not check_unit: moved = None; break
-        moved += [tuple(T0[k] + k0 * (t[k] + v[k]) for k in range(3))
-                  for v in (rotate(r, (p[0] * s[0], p[1] * s[1], p[2] * s[2])) for p in proto)]
-    if moved is None: break
-copied = leaf_vertices(copied_js, copied_bin, 0)
-scale = max(max(abs(c) for c in p) for p in copied) if copied else 1
-
-
 def farthest(a, b, tol):
     """The largest distance (max norm) from a point of a to its nearest point of b, looked up
     in a grid of cells of size tol: the writer reorders vertices for the GPU's caches
@@ -163,11 +142,42 @@ def farthest(a, b, tol):
     return worst
 
 
-# quantized: translations, rotations and scales are 16-bit steps of the plant's half size k0
-tol = 1e-5 * scale + (4 * k0 / 32767 if quantized else 0)
-err = max(farthest(moved, copied, tol), farthest(copied, moved, tol)) if moved and copied else math.inf
-check("instances reproduce the copied leaves' vertices", moved and len(moved) == len(copied) and err <= tol,
-      "%s moved, %d copied, max error %g" % (len(moved) if moved else "no", len(copied), err))
+# 1. instances: count, and the transforms put the prototype where the copied leaves are
+copied_js, copied_bin = glb(os.path.join(D, "mesh.glb"))
+inst_js, inst_bin = glb(os.path.join(D, "instanced.glb"))
+sets = instances(inst_js, inst_bin)
+nleaves = skeleton_leaves(os.path.join(D, "skeleton.csv"))
+count = sum(len(t) for _, t, _, _ in sets)
+check("instance count equals the skeleton's leaves", count == nleaves > 0, "%d instances, %d leaves" % (count, nleaves))
+check("extension in extensionsUsed, not extensionsRequired",
+      "EXT_mesh_gpu_instancing" in inst_js.get("extensionsUsed", []) and
+      "EXT_mesh_gpu_instancing" not in inst_js.get("extensionsRequired", []))
+
+def check_placed(name, copied_js, copied_bin, inst_js, inst_bin):
+    """The instances put the prototype where the copied leaves are."""
+    # the plant node's transform (KHR_mesh_quantization: a translation and a uniform scale)
+    # applies to its children, the instance sets
+    root = inst_js["nodes"][0]
+    T0, k0 = root.get("translation", [0, 0, 0]), root.get("scale", [1, 1, 1])[0]
+    quantized = "KHR_mesh_quantization" in inst_js.get("extensionsRequired", [])
+    moved = []
+    for proto, T, R, S in instances(inst_js, inst_bin):
+        for t, r, s in zip(T, R, S):
+            check_unit = abs(math.sqrt(sum(c * c for c in r)) - 1) < (1e-5 if not quantized else 1e-4)
+            if not check_unit: moved = None; break
+            moved += [tuple(T0[k] + k0 * (t[k] + v[k]) for k in range(3))
+                      for v in (rotate(r, (p[0] * s[0], p[1] * s[1], p[2] * s[2])) for p in proto)]
+        if moved is None: break
+    copied = leaf_vertices(copied_js, copied_bin, 0)
+    scale = max(max(abs(c) for c in p) for p in copied) if copied else 1
+    # quantized: translations, rotations and scales are 16-bit steps of the plant's half size k0
+    tol = 1e-5 * scale + (4 * k0 / 32767 if quantized else 0)
+    err = max(farthest(moved, copied, tol), farthest(copied, moved, tol)) if moved and copied else math.inf
+    check(name + "instances reproduce the copied leaves' vertices", moved and len(moved) == len(copied) and err <= tol,
+          "%s moved, %d copied, max error %g" % (len(moved) if moved else "no", len(copied), err))
+
+
+check_placed("", copied_js, copied_bin, inst_js, inst_bin)
 check("instanced file has no copied leaves", not leaf_vertices(inst_js, inst_bin, 0))
 
 # 2. the size of the leaves: instance data and the prototype against the copied leaves
@@ -221,19 +231,94 @@ for name, instanced in (("cards.glb", False), ("instanced-cards.glb", True)):
         cover = sum(r[4 * x + 3] for r in rows for x in range(w)) / (255 * w * h)
         check("cards: coverage is the ovate leaf's area", abs(cover - area) < 0.01, "%.4f vs %.4f" % (cover, area))
 
-# 4. indices: 16-bit up to 65,535 vertices, 32-bit above, and within range
-for name in ("u16.glb", "u32.glb"):
+# 4. indices: 16-bit in every primitive; above 65,535 vertices a group is cut into primitives
+# that each use a window of at most 65,535 vertices, and put together they are the same
+# triangles as the OBJ writer's one list of the same mesh
+def windows(js, bin_, mesh):
+    """Per primitive: (material, its index type, its window's first vertex and size, its
+    triangles as indices of the whole mesh)."""
+    out = []
+    for p in js["meshes"][mesh]["primitives"]:
+        a = js["accessors"][p["attributes"]["POSITION"]]
+        stride = js["bufferViews"][a["bufferView"]].get("byteStride") or 4 * SIZE[a["type"]]
+        first = a.get("byteOffset", 0) // stride
+        out.append((p["material"], js["accessors"][p["indices"]]["componentType"], first, a["count"],
+                    [first + i for i in accessor(js, bin_, p["indices"])]))
+    return out
+
+
+def obj_faces(path):
+    """Positions and, per material in order, the triangles (0-based) of an OBJ file."""
+    pos, faces, mat = [], {}, None
+    for line in open(path):
+        w = line.split()
+        if not w: continue
+        if w[0] == "v": pos.append(tuple(float(x) for x in w[1:4]))
+        elif w[0] == "usemtl": mat = w[1]
+        elif w[0] == "f": faces.setdefault(mat, []).extend(int(x.split("/")[0]) - 1 for x in w[1:4])
+    return pos, faces
+
+
+for name in ("u16.glb", "big.glb", "big-instanced.glb"):
     js, bin_ = glb(os.path.join(D, name))
-    ok = True
-    for m in js["meshes"]:
-        for p in m["primitives"]:
-            nv = js["accessors"][p["attributes"]["POSITION"]]["count"]
-            ia = js["accessors"][p["indices"]]
-            want = 5123 if nv <= 65535 else 5125
-            ok &= ia["componentType"] == want and max(accessor(js, bin_, p["indices"])) < nv
-    nv0 = js["accessors"][js["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]["count"]
-    check("%s: %d vertices, the smallest index type that holds them" % (name, nv0),
-          ok and (nv0 <= 65535) == (name == "u16.glb"))
+    prims = [w for m in range(len(js["meshes"])) for w in windows(js, bin_, m)]
+    ok = all(t == 5123 and n <= 65535 and all(first <= i < first + n for i in tri) for _, t, first, n, tri in prims)
+    nv = max(first + n for _, _, first, n, _ in windows(js, bin_, 0))
+    groups = len({mat for mat, _, _, _, _ in windows(js, bin_, 0)})
+    split = len(windows(js, bin_, 0)) > groups
+    check("%s: %d vertices, 16-bit indices within each primitive's window, %s" %
+          (name, nv, "cut into primitives" if nv > 65535 else "one primitive a group"),
+          ok and split == (nv > 65535) and (nv <= 65535) == (name == "u16.glb"))
+js, bin_ = glb(os.path.join(D, "big.glb"))
+opos, ofaces = obj_faces(os.path.join(D, "big.obj"))
+gpos = {}
+tris = {}
+for p in js["meshes"][0]["primitives"]:
+    a = js["accessors"][p["attributes"]["POSITION"]]
+    first = a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
+    for i, q in enumerate(accessor(js, bin_, p["attributes"]["POSITION"])): gpos[first + i] = q
+    tris.setdefault(js["materials"][p["material"]]["name"], []).extend(first + i for i in accessor(js, bin_, p["indices"]))
+size = max(abs(c) for q in opos for c in q)
+same_pos = len(gpos) == len(opos) and all(max(abs(gpos[i][k] - opos[i][k]) for k in range(3)) <= 1e-6 * size
+                                          for i in range(len(opos)))
+check("big.glb: its primitives put together are the OBJ's triangles", tris == ofaces and same_pos,
+      "%d/%d triangles, positions %s" % (sum(len(t) for t in tris.values()) // 3,
+                                         sum(len(t) for t in ofaces.values()) // 3, "same" if same_pos else "differ"))
+
+# 5. a Weber-Penn palm (leaves of one size): the size goes into the prototype (no SCALE), the
+# instances still put it where the copied leaves are, the instanced file is at most a quarter
+# of the copied one, and its quantized branches are the float ones to half a 16-bit step of
+# the node's scale k (positions: k / 65,534, with float rounding) and normals to 1/254
+def bark_vertices(js, bin_):
+    """{vertex of the mesh: (position, normal)} of the bark primitives of mesh 0."""
+    out = {}
+    for p in js["meshes"][0]["primitives"]:
+        if js["materials"][p["material"]]["name"].startswith("bark"):
+            a = js["accessors"][p["attributes"]["POSITION"]]
+            first = a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
+            P, N = accessor(js, bin_, p["attributes"]["POSITION"]), accessor(js, bin_, p["attributes"]["NORMAL"])
+            for i in set(accessor(js, bin_, p["indices"])): out[first + i] = (P[i], N[i])
+    return out
+
+
+pm_js, pm_bin = glb(os.path.join(D, "palm-mesh.glb"))
+pi_js, pi_bin = glb(os.path.join(D, "palm-instanced.glb"))
+inst_nodes = [n for n in pi_js["nodes"] if "EXT_mesh_gpu_instancing" in n.get("extensions", {})]
+check("palm: leaves of one size, sets without SCALE",
+      inst_nodes and all("SCALE" not in n["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] for n in inst_nodes))
+check_placed("palm: ", pm_js, pm_bin, pi_js, pi_bin)
+sizes = [os.path.getsize(os.path.join(D, f)) for f in ("palm-mesh.glb", "palm-instanced.glb")]
+check("palm: the instanced file is at most 1/4 of the copied one", sizes[1] * 4 <= sizes[0],
+      "%d vs %d bytes" % (sizes[1], sizes[0]))
+fl, qu = bark_vertices(pm_js, pm_bin), bark_vertices(pi_js, pi_bin)
+root = pi_js["nodes"][0]
+T0, k0 = root["translation"], root["scale"][0]
+ep = max((max(abs(T0[k] + k0 * qu[i][0][k] - fl[i][0][k]) for k in range(3)) for i in fl if i in qu), default=math.inf)
+en = max((max(abs(qu[i][1][k] - fl[i][1][k]) for k in range(3)) for i in fl if i in qu), default=math.inf)
+check("palm: quantized branch vertices are the float ones (positions within k/65534, normals 1/254)",
+      fl and fl.keys() == qu.keys() and ep <= k0 * (1 / 65534 + 1e-6) and en <= 1 / 254,
+      "%d/%d vertices, position error %g (bound %g), normal error %g" % (len(qu), len(fl), ep, k0 / 65534, en))
+print("note: palm files %d (copied) and %d (instanced) bytes, ratio %.3f" % (sizes[0], sizes[1], sizes[1] / sizes[0]))
 
 print("leaves: %d passed, %d failed" % (sum(results), len(results) - sum(results)))
 sys.exit(0 if all(results) else 1)

@@ -194,10 +194,13 @@ def check_blend(js, joints, base, parent, want, scale, pos, jw, ww, path):
 def check_skinned(js, bin_, node, joints, rest, base, parent, want, scale, orders, path):
     """One skinned node: weights, rest pose, blend and shader attributes."""
     path = f"{path} {node['name']}"
-    a = js["meshes"][node["mesh"]]["primitives"][0]["attributes"]
-    pos = accessor(js, bin_, a["POSITION"])
-    jw = accessor(js, bin_, a["JOINTS_0"])
-    ww = accessor(js, bin_, a["WEIGHTS_0"])
+    # every primitive's vertices (above 65,535 vertices each has its own window of them)
+    attrs = {p["attributes"]["POSITION"]: p["attributes"] for p in js["meshes"][node["mesh"]]["primitives"]}
+    pos, jw, ww = [], [], []
+    for a in attrs.values():
+        pos += accessor(js, bin_, a["POSITION"])
+        jw += accessor(js, bin_, a["JOINTS_0"])
+        ww += accessor(js, bin_, a["WEIGHTS_0"])
     worst = 0.0
     for p, jj, w in zip(pos, jw, ww):
         if abs(sum(w) - 1) > 1e-6 or any(x < 0 for x in w):
@@ -217,7 +220,7 @@ def check_skinned(js, bin_, node, joints, rest, base, parent, want, scale, order
     check_blend(js, joints, base, parent, want, scale, pos, jw, ww, path)
     for name, lo, hi, integral in (("_BRANCH_LEVEL", 0, 65535, True), ("_PHASE", 0, 2 * math.pi, False),
                                    ("_STIFFNESS", 1e-9, 1, False)):
-        vals = {v[0] for v in accessor(js, bin_, a[name])}
+        vals = {v[0] for a in attrs.values() for v in accessor(js, bin_, a[name])}
         if any(not (lo <= v <= hi) for v in vals) or (integral and not vals <= {float(o) for o in orders}):
             fail(f"{name} values out of range: {sorted(vals)[:5]}")
     print(f"ok {path}: _BRANCH_LEVEL, _PHASE, _STIFFNESS in range")

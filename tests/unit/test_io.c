@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/glb.h"
 #include "unit.h"
 #include "mesh_fixtures.h"
 
@@ -363,6 +364,50 @@ static void glb_structure(void **state) {
     syl_mesh_free(m);
 }
 
+/* glb_primitives: above 65,535 vertices each group is cut into runs of its triangles, in
+ * order, whose vertices lie in windows of at most 65,535; a triangle spanning more gives 32-bit
+ * indices, one primitive a group. Only the indices matter: no attributes are made. */
+static void glb_primitive_windows(void **state) {
+    (void)state;
+    enum { NV = 200000 };
+    SylMesh m = {.nverts = NV, .ngroups = 2};
+    SylMeshGroup groups[2];
+    m.groups = groups;
+    m.idx = malloc(3 * NV * sizeof *m.idx);
+    for (uint32_t t = 0; t + 2 < NV; t++) /* a strip of triangles over every vertex, in two groups */
+        m.idx[3 * t] = t, m.idx[3 * t + 1] = t + 1, m.idx[3 * t + 2] = t + 2;
+    m.nidx = 3 * (NV - 2);
+    groups[0] = (SylMeshGroup){0, 3 * 70000, 0}, groups[1] = (SylMeshGroup){3 * 70000, (uint32_t)m.nidx - 3 * 70000, 1};
+    GlbPrims p;
+    assert_true(glb_primitives(&m, &p));
+    assert_true(p.split && !p.wide);
+    size_t at = 0;
+    for (size_t k = 0; k < p.n; k++) {
+        const GlbPrim *q = &p.prim[k];
+        assert_int_equal(q->first, at); /* in order, nothing left out */
+        assert_true(q->count > 0 && q->count % 3 == 0 && q->nv <= 65535);
+        assert_true(at >= groups[q->group].first && at + q->count <= groups[q->group].first + groups[q->group].count);
+        for (size_t i = q->first; i < q->first + q->count; i++) assert_true(m.idx[i] >= q->lo && m.idx[i] < q->lo + q->nv);
+        at += q->count;
+    }
+    assert_int_equal(at, m.nidx);
+    assert_true(p.n >= 4 && p.n <= 5); /* 70,000 and 130,000 vertices: 2 and 2 or 3 windows */
+    free(p.prim);
+    m.idx[0] = 0, m.idx[1] = 1, m.idx[2] = NV - 1; /* one triangle too wide for a window */
+    assert_true(glb_primitives(&m, &p));
+    assert_true(p.wide && !p.split);
+    assert_int_equal(p.n, 2);
+    assert_int_equal(p.prim[1].first, groups[1].first);
+    free(p.prim);
+    m.nverts = 65535; /* at most 65,535 vertices: one primitive a group */
+    m.nidx = 3 * 65533, groups[1].count = (uint32_t)m.nidx - groups[1].first;
+    m.idx[2] = 2;
+    assert_true(glb_primitives(&m, &p));
+    assert_true(!p.split && !p.wide && p.n == 2);
+    free(p.prim);
+    free(m.idx);
+}
+
 static void failures_leave_nothing(void **state) {
     (void)state;
     SylMesh *m = sample_mesh();
@@ -393,6 +438,7 @@ int main(void) {
         cmocka_unit_test(obj_reads_back),
         cmocka_unit_test(ply_header_and_sizes),
         cmocka_unit_test(glb_structure),
+        cmocka_unit_test(glb_primitive_windows),
         cmocka_unit_test(failures_leave_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -616,6 +616,30 @@ static double area_of(const SylMesh *m, size_t first, size_t count) {
     return a;
 }
 
+/* A tube tapering to radius 0 ends in a ring of coincident vertices: its last segment has
+ * one triangle without area a side and its tip cap is nothing but such triangles. The
+ * optimizer drops them (and the vertices only they used); the surface keeps its area. */
+static void optimize_drops_degenerate(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("cone");
+    int32_t r = fx_node(s, -1, 0, 0, 0, 0, 0.5f, SYL_MATERIAL_BARK);
+    r = fx_node(s, r, 0, 0, 1, 0, 0.25f, SYL_MATERIAL_BARK);
+    fx_node(s, r, 0, 0, 2, 0, 0.0f, SYL_MATERIAL_BARK);
+    SylMeshOptions o = {.threads = 1, .sides = 8, .min_sides = 8};
+    SylMesh *m = NULL;
+    assert_int_equal(syl_mesh_build(s, &o, &m), SYL_OK);
+    size_t nt = m->nidx / 3, nv = m->nverts;
+    double area = area_of(m, 0, m->nidx);
+    assert_int_equal(syl_mesh_optimize(m), SYL_OK);
+    assert_int_equal(m->nidx / 3, nt - 8 - 8); /* the tip cap and one triangle a side of the last segment */
+    assert_int_equal(m->nverts, nv - 2);       /* the tip cap's centre and the tip ring's seam copy */
+    assert_near(area_of(m, 0, m->nidx), area, 1e-6 * area);
+    for (size_t t = 0; t < m->nidx / 3; t++) assert_true(tri_area(m, t) > 0);
+    assert_indices_valid(m);
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
 /* Leaf clusters: 30 clumps of 12 leaves (or needles) far apart, 12 a card: no more cards
  * than 360 / 12, each a flat unit-normal square with UVs over the unit square, and the cards
  * show (area x the texture's kept share) what the copied leaves show on one side (half
@@ -686,6 +710,7 @@ int main(void) {
         cmocka_unit_test(cluster_fill),
         cmocka_unit_test(lobed_rings),
         cmocka_unit_test(optimize_keeps_best_orders),
+        cmocka_unit_test(optimize_drops_degenerate),
         cmocka_unit_test(tree_is_closed_per_axis),
         cmocka_unit_test(uv_continuous_along_axis),
         cmocka_unit_test(thin_branches_get_fewer_sides),
