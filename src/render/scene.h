@@ -19,6 +19,8 @@ typedef struct Scene {
     RTCScene scene;
     float *pos_copy;            /* when the mesh's vertex array has no room for Embree's padding */
     uint8_t *tri_mat;           /* material of each triangle */
+    uint32_t (*quad_index)[4];  /* NULL, or the triangles paired into quads (quads.c) ... */
+    uint32_t (*quad_halves)[2]; /* ... and the triangles each quad is made of */
     Texture tex[4];             /* bark, leaf, flower, grass */
     float mat_lin[256][3];      /* material colours in linear light */
     uint8_t mat_kind[256];
@@ -64,6 +66,14 @@ void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt);
 void render_scene_free(Scene *s);
 int render_cpu_count(void);
 void render_embree_error(void *user, enum RTCError code, const char *msg);
+
+/* The mesh's triangles (tri_mat their materials) as Embree quads: index[q], the quad's
+ * corners, and halves[q], its triangles for render_quad_hit; SYL_OK or SYL_ELIMIT. */
+int render_quads(const SylMesh *m, const uint8_t *tri_mat, uint32_t (**index)[4], uint32_t (**halves)[2],
+                 size_t *nquads);
+/* Embree's hit of quad *prim at (*u, *v) as the hit of its triangle: the triangle's index
+ * and barycentric u, v (the weights of its corners 1 and 2). */
+void render_quad_hit(const uint32_t (*halves)[2], unsigned *prim, float *u, float *v);
 
 /* Shade tile number `tile` (TILE x TILE pixels, row by row) into s->out. */
 void render_tile(const Scene *s, int tile);
