@@ -48,7 +48,7 @@ static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg)
         diag_error(ps->diag, *loc, "unexpected end of file: '}' missing to close %s '%s' (line %d)",
                    model_kinds[ps->model->kind], ps->model->name, ps->model->loc.first_line);
     else if (strstr(msg, "unexpected end of line, expecting ->"))
-        diag_error(ps->diag, *loc, "%s (a rule needs '->'; the settings are derive, angle, step, width, widthfactor, seed, tropism, colour)",
+        diag_error(ps->diag, *loc, "%s (a rule needs '->'; the settings are derive, angle, step, width, widthfactor, seed, tropism, colour, lod)",
                    msg);
     else
         diag_error(ps->diag, *loc, "%s", msg);

@@ -171,6 +171,18 @@ int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name
 int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag);
 void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
 
+/* plants-YEAR.csv (src/eco/table.c), a snapshot's plants one row each under the header
+ * syl_ecosystem_table_header: x, z and height with the decimals that read back the same
+ * float. parse/read: strict, the first bad row reported as FILE:LINE:COL with a caret on
+ * diag; SYL_OK (*plants malloc'ed, in the table's order: by increasing id), SYL_EMODEL (a
+ * bad table), SYL_EIO (unreadable), SYL_ELIMIT. */
+extern const char syl_ecosystem_table_header[];
+void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p);
+int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, const SylEcoModel *m,
+                              const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, FILE *diag);
+int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTerrain *t, SylEcoPlant **plants,
+                             size_t *nplants, FILE *diag);
+
 /* Ranks of an MPI job (src/eco/mpi.c; built with MPI=1). start: NULL when the build has no
  * MPI or the program was not launched by mpirun (one process); else MPI is initialised,
  * errors abort the job with a message. exchange: the transport over tiles_x × tiles_z tiles,
@@ -184,6 +196,12 @@ const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebal
  * with a tile that re-balancing gave it, barriers. */
 void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent,
                          uint64_t *halo_received, uint64_t *plants_moved, uint64_t *barriers);
+/* For work split over ranks outside the simulation (a snapshot's picture, split by rows):
+ * sum adds v over the ranks, in place (one process: unchanged); gather puts every rank's
+ * bytes, in rank order, into *all (malloc'ed) on rank 0, with each rank's length in
+ * lens[rank] (lens: size entries, rank 0's); *all = NULL elsewhere. SYL_OK or SYL_ELIMIT. */
+void syl_eco_mpi_sum(SylEcoMpi *mpi, int64_t *v, size_t n);
+int syl_eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, size_t *lens);
 void syl_eco_mpi_abort(SylEcoMpi *mpi, int code, const char *message); /* ends every rank */
 void syl_eco_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
 

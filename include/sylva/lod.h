@@ -21,6 +21,8 @@ typedef struct SylLodLevel {
     float min_radius;   /* and only those at least this thick (model units) */
     float leaf_keep;    /* share of leaves kept, 0..1 */
     float leaf_scale;   /* the survivors' enlargement: 1 / sqrt(leaf_keep), at most 2 */
+    float cluster_leaves; /* > 0: leaves and needles drawn as clusters (SYL_LEAVES_CLUSTERS) of
+                             about this many on one card, all of them kept (leaf_keep 1) */
     float coverage;     /* MSFT_screencoverage: shown while the plant's screen height is above
                            this share of the screen; the last level's is where it is culled */
     float error;        /* meshoptimizer's deviation, model units */

@@ -28,20 +28,26 @@ typedef struct SylMesh {
     int ngroups;
     SylMaterial materials[256];
     int nmaterials;
+    uint8_t double_sided[256]; /* per material, with SylMeshOptions.one_sided: 1 when it has
+                                  leaves or petals made once, to be drawn from both sides */
     int32_t *node;         /* with SylMeshOptions.vertex_nodes: the skeleton node each vertex
                               was made for: a tube's last node (one of its axis), an organ's or
                               a polygon's node (-1: none); else NULL */
     char name[64];
-    uint8_t leaves, leaf_shape; /* SYL_LEAVES_* it was made with; for cards, the shape drawn */
+    uint8_t leaves, leaf_shape; /* SYL_LEAVES_* it was made with; for cards and clusters, the
+                                   shape drawn (clusters: SYL_CLUSTER_NEEDLES for needles) */
     SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
     uint64_t charged;
 } SylMesh;
 
 enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };
-/* How leaves are made (docs/mesh.md#leaves): copied blades; one alpha-tested card each; or
- * left out of the mesh, to be placed as instances of one leaf (syl_leaf_instances). */
-enum { SYL_LEAVES_MESH, SYL_LEAVES_CARDS, SYL_LEAVES_INSTANCED, SYL_LEAVES_INSTANCED_CARDS, SYL_LEAVES_MODES };
+/* How leaves are made (docs/mesh.md#leaves): copied blades; one alpha-tested card each; left
+ * out of the mesh, to be placed as instances of one leaf (syl_leaf_instances); or leaves and
+ * needles grouped into clusters, one alpha-tested card showing several leaves each. */
+enum { SYL_LEAVES_MESH, SYL_LEAVES_CARDS, SYL_LEAVES_INSTANCED, SYL_LEAVES_INSTANCED_CARDS, SYL_LEAVES_CLUSTERS,
+       SYL_LEAVES_MODES };
 extern const char *const syl_leaves_names[SYL_LEAVES_MODES]; /* "mesh", "cards", ... */
+enum { SYL_CLUSTER_LEAVES = 8 }; /* clusters: leaves per card by default (Pafčo's clusters hold 5 to 10) */
 
 typedef struct SylMeshOptions {
     int sides;            /* around a cylinder; 0: 8 */
@@ -52,8 +58,12 @@ typedef struct SylMeshOptions {
     int caps;             /* close axis ends (default on: set -1 for off) */
     int leaves;           /* SYL_LEAVES_*: the instanced modes leave leaves out */
     int leaf_shape;       /* cards: SYL_LEAF_* (texture.h) drawn in the card's alpha */
+    float cluster_leaves; /* clusters: leaves (and needles) per card on average; 0: SYL_CLUSTER_LEAVES */
     int threads;          /* <= 0: all cores; the mesh never depends on it */
     int vertex_nodes;     /* fill SylMesh.node (for skinning: wind, docs/mesh.md#wind) */
+    int one_sided;        /* leaves and petals made once, not once a side, their materials marked
+                           * in SylMesh.double_sided: for glTF, whose viewers then draw both sides
+                           * (half the leaves' vertices); 0: two faces, for formats that cannot */
     FILE *diag;           /* where problems are reported; NULL: nowhere */
     /* The mesh's size is estimated before anything is allocated: beyond the memory budget
      * it stops with SYL_ELIMIT and says so. */
@@ -88,6 +98,8 @@ typedef struct SylInstances {
     SylMesh *proto;
     size_t count;
     float *t, *r, *s; /* 3, 4 and 3 floats per instance */
+    int32_t *node;    /* with SylMeshOptions.vertex_nodes: each instance's skeleton node (the
+                         leaf's organ node, -1: none), for wind; else NULL */
     char name[64];
 } SylInstances;
 

@@ -70,6 +70,8 @@ typedef struct SylPlant {
     uint64_t rewritten;    /* L-systems: modules read by all passes of all steps */
     SylGrowStats grow;     /* grow blocks and scenes: counts and times */
     double derive_s, turtle_s, mesh_s; /* seconds per stage (derive_s: the growth, if grown) */
+    double derive_cpu_s;   /* the processor time of derive_s (every thread's), which a loaded
+                              machine does not inflate as it does the clock's */
 } SylPlant;
 
 /* Build p (kept by the caller; it may be freed as soon as this returns). SYL_OK, or a

@@ -88,13 +88,18 @@ typedef struct SylRenderCamera {
 typedef struct SylRenderCounts {
     size_t drawn, coarse, culled;
 } SylRenderCounts;
-/* Render a window of the opt->width x opt->height picture: columns window[0] .. window[2]-1
- * and rows window[1] .. window[3]-1 (window NULL: all of it) into rgb, the window's size
- * times 3 bytes; a window's pixels are byte for byte those of the whole picture, so pieces
- * rendered apart (on MPI ranks) tile it. counts may be NULL. SYL_OK, SYL_EUSAGE, SYL_ELIMIT. */
+/* Rays go to Embree in packets of SYL_RENDER_BLOCK x SYL_RENDER_BLOCK pixels from the
+ * window's corner, and a ray's result may differ in its last bit with its packet. */
+enum { SYL_RENDER_BLOCK = 4 };
+/* Render windows of the opt->width x opt->height picture, the scene built once: window k has
+ * columns windows[k][0] .. windows[k][2]-1 and rows windows[k][1] .. windows[k][3]-1, and its
+ * pixels follow window k-1's in rgb (each its size times 3 bytes); nwindows 0: the whole
+ * picture. A window whose [0] and [1] are multiples of SYL_RENDER_BLOCK has byte for byte the
+ * whole picture's pixels, so such pieces rendered apart (on MPI ranks) tile it. counts (the
+ * scene's, once) may be NULL. SYL_OK, SYL_EUSAGE, SYL_ELIMIT. */
 int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,
                          const SylRenderInstance *inst, size_t n, const SylRenderCamera *cam,
-                         const SylRenderOptions *opt, const int window[4], uint8_t *rgb,
+                         const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint8_t *rgb,
                          SylRenderCounts *counts);
 /* Where the camera puts world point p in the whole picture (pixels, y down, the centre of
  * the top-left pixel at (0.5, 0.5)); false behind the eye. */

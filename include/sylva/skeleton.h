@@ -91,10 +91,17 @@ typedef struct SylSkeleton {
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
-    /* The leaves' surface, for every SYL_KIND_LEAF organ (0: Sylva's blade): an oval of
-     * leaf_tris triangles (Arbaro's disc1..disc9), leaf_width wide per unit of length. */
+    /* The leaves' surface, for every SYL_KIND_LEAF organ (leaf_tris 0: Sylva's blade): the
+     * outline leaf_outline (0 an oval of leaf_tris triangles, Arbaro's disc1..disc9; 1 a
+     * square; 2 a folded palm leaflet: src/util/leafoutline.h), leaf_width wide per unit of
+     * length. */
     int leaf_tris;
     float leaf_width;
+    int leaf_outline;
+    /* Jitter of the trunk's surface (Weber–Penn's 0ScaleV, as Arbaro draws it): the mesher
+     * moves each vertex of an order-0 ring to (1 + u) times its distance from the axis, u
+     * uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex. 0: none. */
+    float trunk_jitter;
     SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
     uint64_t charged;
 } SylSkeleton;

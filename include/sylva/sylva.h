@@ -141,7 +141,7 @@ uint64_t syl_program_seed(const SylProgram *p);
 int syl_program_symbol_count(const SylProgram *p);
 const char *syl_program_symbol_name(const SylProgram *p, int sym);
 int syl_program_symbol_find(const SylProgram *p, const char *name); /* -1 if absent */
-double syl_program_setting(const SylProgram *p, const char *name);  /* angle, step, width */
+double syl_program_setting(const SylProgram *p, const char *name);  /* angle, step, width, derive, widthfactor, lod */
 /* Print modules, constants, parameters, rules and their bytecode. */
 void syl_program_dump(const SylProgram *p, FILE *out);
 

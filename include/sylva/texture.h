@@ -28,10 +28,21 @@ const char *syl_texture_name(int kind);
 enum { SYL_LEAF_OVATE, SYL_LEAF_LINEAR, SYL_LEAF_CORDATE, SYL_LEAF_MAPLE, SYL_LEAF_PALMATE, SYL_LEAF_SHAPES };
 extern const char *const syl_leaf_shape_names[SYL_LEAF_SHAPES]; /* "ovate", ... */
 int syl_leaf_shape_named(const char *name);                      /* -1: no such shape */
+/* shape may also be 128 and above: a skeleton's own outline (Weber–Penn's LeafShape, coded
+ * by the mesher as SylMesh.leaf_shape; src/util/leafoutline.h). */
 bool syl_leaf_inside(int shape, float s, float t);
 /* size x size RGBA: the leaf texture (white-based, as syl_texture) with the shape's
  * coverage in alpha; x is u (across), y is v (base at row 0). False when out of memory. */
 bool syl_leaf_card(int shape, int size, uint8_t *rgba);
+/* A leaf cluster card (docs/mesh.md#leaf-clusters): size x size RGBA, several leaves of the
+ * shape radiating from the centre (SYL_CLUSTER_NEEDLES: a tuft of needles), the leaf texture
+ * along each leaf in RGB and their coverage in alpha. False when out of memory. */
+enum { SYL_CLUSTER_NEEDLES = SYL_LEAF_SHAPES };
+bool syl_leaf_cluster(int shape, int size, uint8_t *rgba);
+/* The share of a cluster card an alpha cutoff of 1/2 keeps (measured on a 128 x 128 drawing
+ * of the same leaves): what a card must be enlarged by to show a given leaf area. 0: out of
+ * memory. */
+float syl_leaf_cluster_fill(int shape);
 
 /* Write width x height RGB (rows top to bottom) as a PNG. path "-": standard output;
  * otherwise as the mesh writers (mesh.h). */

@@ -28,7 +28,9 @@ typedef struct SylWindStem {
     int32_t joint;       /* its joint, or its nearest jointed ancestor's (-1: none) */
     int32_t parent;      /* the stem it grows on (-1: none) */
     float base[3];       /* where it starts */
+    float dir[3];        /* unit direction of its first segment (0: none) */
     float length, radius; /* along its segments; at its base */
+    float parent_radius; /* of the stem it grows on, where it leaves it (0: a root) */
     float phase;         /* 0..2π, from a hash of the stem's id */
     float stiffness;     /* 22.5 r / (22.5 r + L): 1 rigid, 0 limp */
     uint16_t order;
@@ -38,6 +40,10 @@ typedef struct SylWindJoint {
     int32_t stem, parent; /* its stem; the parent joint (-1: a root) */
     float amplitude;      /* bound of its rotation angle at any time, radians */
     float frequency;      /* of its first sine, Hz (a whole number of cycles per loop) */
+    /* Blending into the parent joint at the stem's base (docs/mesh.md#wind): the weight
+     * goes from the parent to this joint between blend_start and blend_start + blend_length
+     * along dir from the base (0, 0 for a root joint). */
+    float blend_start, blend_length;
 } SylWindJoint;
 
 typedef struct SylWind {
@@ -62,9 +68,18 @@ static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, i
 }
 
 /* m (meshed from s with SylMeshOptions.vertex_nodes) as a skinned .glb with w's joints and
- * its "wind" animation, and the shader attributes (docs/mesh.md#wind). SYL_OK, SYL_EUSAGE
- * (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
-int syl_write_glb_wind(const SylMesh *m, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag);
+ * its "wind" animation, and the shader attributes (docs/mesh.md#wind); n sets of instanced
+ * leaves (may be 0; made with vertex_nodes too) hang from the joints they follow, as child
+ * nodes. SYL_OK, SYL_EUSAGE (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
+int syl_write_glb_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
+                       const char *path, FILE *diag);
+
+/* A chain of levels of detail (lod.h) with wind: every level that has vertex nodes (of s)
+ * skinned to w's one set of joints and driven by the one animation; the others (crossed
+ * billboards) still. */
+struct SylLodChain;
+int syl_write_glb_lods_wind(const struct SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path,
+                            FILE *diag);
 
 #ifdef __cplusplus
 }

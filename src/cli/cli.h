@@ -56,8 +56,10 @@ typedef struct Plant {
     size_t modules;
     char name[64];  /* the model's name */
     double derive_s, turtle_s, mesh_s;
+    double derive_cpu_s; /* SylPlant's: the derivation's, growth's or tree's processor time */
     bool grown;          /* a grow block or a scene: see grow */
     SylGrowStats grow;   /* its counts and times (derive_s is then the growth) */
+    int lod;             /* the model's `lod` setting (0: none) */
 } Plant;
 int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant *out);
 void cli_plant_free(Plant *pl);
@@ -69,6 +71,7 @@ int out_close(OutFile *o, int status);       /* commit when status is SYL_OK; SY
 extern const OutHooks cli_temp_hooks;        /* main.c: the temporary files a signal removes */
 
 bool cli_view(const char *arg, SylView *v);                 /* --view */
+bool cli_view_or(const char *arg, SylView *v, const char *also); /* the same, naming other views */
 bool cli_picture_size(const char *arg, int *w, int *h);    /* --size WxH */
 
 /* [DIR/]NAME.EXT where NAME is the model named in FILE:Model, else the file's name without
@@ -92,6 +95,8 @@ int cmd_compare(int argc, char **argv);
 int cmd_convert(int argc, char **argv);
 int cmd_terrain(int argc, char **argv);
 int cmd_ecosystem(int argc, char **argv);
+/* sylva render FILE --plants CSV (snapshot.c): a saved ecosystem snapshot, split over MPI ranks */
+int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro);
 /* syl_compile's hook for every command: grow, scene and ecosystem directives */
 int cli_validate(void *user, const SylProgram *p, FILE *diag);
 

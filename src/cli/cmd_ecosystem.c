@@ -223,15 +223,8 @@ static int write_table(Run *r, int year, const SylEcoPlant *plants, size_t n) {
         free(path);
         return SYL_EIO;
     }
-    fprintf(o.f, "id,species,x,y,z,age,height,radius,vigour,state\n");
-    for (size_t j = 0; j < n; j++) {
-        const SylEcoPlant *p = &plants[j];
-        const SylEcoSpecies *s = &r->m->species[p->species];
-        double y = syl_terrain_factor_at(r->t, SYL_TERRAIN_ALTITUDE, p->x, p->z);
-        fprintf(o.f, "%016llx,%s,%.3f,%.3f,%.3f,%u,%.3f,%.3f,%.4f,%s\n", (unsigned long long)p->id, s->name, p->x, y,
-                p->z, p->age, p->height, s->radius_ratio * p->height, p->vigour,
-                p->state == SYL_ECO_DOMINATED ? "dominated" : "free");
-    }
+    fprintf(o.f, "%s\n", syl_ecosystem_table_header);
+    for (size_t j = 0; j < n; j++) syl_ecosystem_table_row(o.f, r->m, r->t, &plants[j]);
     int st = out_close(&o, SYL_OK);
     if (!st) printf("%s\n", path);
     free(path);
@@ -279,7 +272,7 @@ static int write_view(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     char *path = path_in(r->dir, "view-%d.png", year);
     SylRenderCounts counts;
     double t0 = cli_now(), c0 = cpu_now();
-    int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, rgb, &counts) : SYL_ELIMIT;
+    int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, 0, rgb, &counts) : SYL_ELIMIT;
     double wall = cli_now() - t0, cpu = cpu_now() - c0;
     if (!st) st = syl_write_png(path, rgb, ro.width, ro.height, stderr);
     if (!st) printf("%s\n", path);

@@ -104,6 +104,8 @@ int cmd_grow(int argc, char **argv) {
     SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
     d.budget = budget;
     SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};
+    const char *ext = output ? strrchr(output, '.') : NULL;
+    mo.one_sided = what == W_DEFAULT || (what == W_MESH && !strcasecmp(ext, ".glb")); /* a .glb is written */
     ro.threads = d.threads;
     ro.budget = budget;
     Plant pl;

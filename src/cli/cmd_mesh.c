@@ -18,7 +18,8 @@ const CliCommand cli_mesh_command = {
     .usage = "sylva mesh FILE[:Model] -o OUT.{glb,obj,ply} [options]",
     .about = "Derive the model, draw it with the 3D turtle and write a triangle mesh: a closed tube\n"
              "along every axis (rotation-minimising frames, end caps, smooth normals, bark UVs),\n"
-             "leaves and polygons as double-sided faces, one material group per colour. The format\n"
+             "leaves and polygons as double-sided faces (a .glb's leaves one face, their material\n"
+             "doubleSided), one material group per colour. The format\n"
              "follows the extension: glTF 2.0 binary (.glb), Wavefront OBJ with NAME.mtl and\n"
              "NAME_bark.png etc. (.obj), or binary PLY (.ply). Triangles are ordered for the\n"
              "vertex cache (meshoptimizer). --lod N adds levels of detail NAME_LOD1 .. NAME_LODN\n"
@@ -130,12 +131,12 @@ int cmd_mesh(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     bool levels = a.lod || a.impostor || a.billboards;
-    if (a.wind > 0 && (strcasecmp(dot, ".glb") || levels || instanced)) {
-        fprintf(stderr, "sylva: error: --wind writes a skinned .glb of one level with copied or card leaves "
-                        "(not with --lod, --impostor, --billboards or instanced leaves, for now)\n");
+    if (a.wind > 0 && strcasecmp(dot, ".glb")) {
+        fprintf(stderr, "sylva: error: --wind writes a skinned .glb, not '%s'\n", output);
         return SYL_EUSAGE;
     }
     mo.vertex_nodes = a.wind > 0;
+    mo.one_sided = !strcasecmp(dot, ".glb"); /* glTF's doubleSided draws a leaf's back */
     if (levels && strcasecmp(dot, ".glb")) {
         fprintf(stderr, "sylva: error: --lod, --impostor and --billboards write into a .glb only, not '%s'\n", output);
         return SYL_EUSAGE;
@@ -151,8 +152,17 @@ int cmd_mesh(int argc, char **argv) {
         syl_budget_free(budget);
         return status;
     }
+    /* the model's `lod` setting, when --lod does not say: a .glb without wind only */
+    if (!a.lod && pl.lod && !strcasecmp(dot, ".glb") && !(a.wind > 0)) a.lod = pl.lod, levels = true;
     const SylSkeleton *sk = pl.sk;
     SylMesh *mesh = pl.mesh;
+    if (a.wind > 0 && !mesh->node) { /* syl_mesh_append dropped them */
+        fprintf(stderr, "sylva: error: --wind cannot skin this mesh: part of it is not the plant's (a scene's "
+                        "obstacles)\n");
+        cli_plant_free(&pl);
+        syl_budget_free(budget);
+        return SYL_EUSAGE;
+    }
     SylLodChain lods = {0};
     SylImpostor imp = {0};
     char extras[1024];
@@ -190,9 +200,10 @@ int cmd_mesh(int argc, char **argv) {
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
-    if (!status) status = levels      ? syl_write_glb_lods(&lods, output, stderr)
+    if (!status) status = levels && a.wind > 0 ? syl_write_glb_lods_wind(&lods, sk, &wind, output, stderr)
+                          : levels    ? syl_write_glb_lods(&lods, output, stderr)
+                          : a.wind > 0 ? syl_write_glb_wind(mesh, sets, nsets, sk, &wind, output, stderr)
                           : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                          : a.wind > 0 ? syl_write_glb_wind(mesh, sk, &wind, output, stderr)
                                       : syl_write_mesh(mesh, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
@@ -207,8 +218,8 @@ int cmd_mesh(int argc, char **argv) {
                 sk->norgans, sk->npolys);
         fprintf(stderr, "vertices: %zu\ntriangles: %zu\nmaterial groups: %d\n", mesh->nverts, tris, mesh->ngroups);
         if (instanced) fprintf(stderr, "leaf instances: %zu\n", instances);
-        fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n", pl.derive_s, pl.turtle_s,
-                pl.mesh_s);
+        fprintf(stderr, "derive time: %.6f s\nderive cpu time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n",
+                pl.derive_s, pl.derive_cpu_s, pl.turtle_s, pl.mesh_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
         fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp - t_wind);
         if (levels) fprintf(stderr, "lod cpu time: %.6f s\n", c3 - c2 - c_imp);
@@ -217,9 +228,13 @@ int cmd_mesh(int argc, char **argv) {
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
             LodSilhouette sil;
             if (lod_silhouette(&lods, k, d.threads, &sil)) break;
-            fprintf(stderr, "LOD%d: %zu triangles (%.2f%%), max order %d, leaves %.0f%% x %.2f, silhouette error %.2f%% (coverage %.2f%%) at %d px\n",
-                    k, lods.level[k].mesh->nidx / 3, 100.0 * (double)lods.level[k].mesh->nidx / (double)(mesh->nidx ? mesh->nidx : 1),
-                    lods.level[k].max_order, 100.0 * lods.level[k].leaf_keep, lods.level[k].leaf_scale, sil.percent, sil.soft, sil.pixels);
+            const SylLodLevel *lv = &lods.level[k];
+            char leaves[64];
+            if (lv->cluster_leaves > 0) snprintf(leaves, sizeof leaves, "leaves in clusters of %.1f", (double)lv->cluster_leaves);
+            else snprintf(leaves, sizeof leaves, "leaves %.0f%% x %.2f", 100.0 * lv->leaf_keep, (double)lv->leaf_scale);
+            fprintf(stderr, "LOD%d: %zu triangles (%.2f%%), max order %d, %s, silhouette error %.2f%% (coverage %.2f%%) at %d px\n",
+                    k, lv->mesh->nidx / 3, 100.0 * (double)lv->mesh->nidx / (double)(mesh->nidx ? mesh->nidx : 1),
+                    lv->max_order, leaves, sil.percent, sil.soft, sil.pixels);
         }
         fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
     }

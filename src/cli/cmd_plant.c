@@ -43,7 +43,7 @@ int cmd_plant(int argc, char **argv) {
     cli_model_spec(&m, a.files[0]);
     SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
     d.budget = budget;
-    SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};
+    SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget, .one_sided = 1}; /* for the .glb */
     ro.budget = budget;
     Plant pl;
     int status = cli_plant(&m, &d, &mo, &pl);

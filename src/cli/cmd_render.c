@@ -15,20 +15,31 @@ const CliCommand cli_render_command = {
     .about = "Derive the model, draw it with the 3D turtle, mesh it and ray-trace a picture: sunlight\n"
              "with shadows, sky light with ambient occlusion, a grass ground, procedural bark, leaf\n"
              "and flower textures, the camera framed so the plant fills about 80% of the picture.\n"
-             "The picture never depends on the number of threads.\n",
+             "The picture never depends on the number of threads.\n"
+             "\n"
+             "With --plants DIR/plants-YEAR.csv, FILE is an ecosystem block and the picture is its\n"
+             "snapshot: the plant table that `sylva ecosystem` wrote, rendered as its view-YEAR.png\n"
+             "(the same bytes for the same --view, --size, --samples and --no-shadows). Under\n"
+             "`mpirun -np N` (a build with MPI) the picture's rows are split over the ranks and\n"
+             "gathered by rank 0, which writes the same PNG (docs/distributed.md).\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT,
          .help = "the PNG file (default: the model's name with .png, in the\n"
                  "current directory; - is standard output)"},
-        {.option = CLI_OPT_VIEW,
+        {.option = CLI_OPT_RENDER_VIEW,
          .help = "iso (from 35 degrees up, 45 around), front (looking along -Z),\n"
                  "side (along -X) or top (down from +Y); default: front for a\n"
-                 "plant drawn in a plane, iso otherwise"},
-        {.option = CLI_OPT_SIZE, .help = "picture size in pixels, 1 to 16384 each (default 1024x1024)"},
+                 "plant drawn in a plane, iso otherwise. With --plants: bird\n"
+                 "(default) or walker, as sylva ecosystem --view"},
+        {.option = CLI_OPT_SIZE, .help = "picture size in pixels, 1 to 16384 each (default 1024x1024;\n"
+                                         "with --plants 1280x720)"},
         {.option = CLI_OPT_SAMPLES},
         {.option = CLI_OPT_AO},
         {.option = CLI_OPT_NO_SHADOWS},
         {.option = CLI_OPT_STATS},
+        {.option = CLI_OPT_PLANTS},
+        {.option = CLI_OPT_GLB, .help = "with --plants, also write the snapshot as OUT.glb (the terrain\n"
+                                        "and the plants instanced, as sylva ecosystem --glb)"},
         {.group = cli_derive_uses},
         {0},
     },
@@ -44,6 +55,13 @@ int cmd_render(int argc, char **argv) {
     CliArgs a = {.m = &m, .d = &d, .ro = &ro};
     int done = cli_parse(&cli_render_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
+    ro.threads = d.threads;
+    if (a.plants) return cli_render_snapshot(&a, &m, &d, &ro);
+    if (a.eco_view_set || a.glb) {
+        fprintf(stderr, "sylva: error: %s renders an ecosystem snapshot: give its plant table, --plants CSV\n",
+                a.glb ? "--glb" : "--view bird|walker");
+        return SYL_EUSAGE;
+    }
     const char *output = a.output;
     bool stats = a.stats;
     ro.threads = d.threads;

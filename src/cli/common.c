@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "sylva/lod.h"
 
 void cli_model_spec(ModelArgs *m, const char *spec) {
     struct stat st;
@@ -148,6 +149,8 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     if (!p) return status;
     double compiled = cli_now() - t0;
     snprintf(out->name, sizeof out->name, "%s", syl_program_name(p));
+    double lod = syl_program_setting(p, "lod");
+    out->lod = lod > 0 && lod <= SYL_LOD_MAX ? (int)lod : 0;
     /* grow blocks grow; a file with a scene, named without a model, makes its scene */
     int nscene = 0;
     bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!m->model && syl_program_scene(p, &nscene));
@@ -178,6 +181,7 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     out->modules = pl.modules;
     out->grow = pl.grow;
     out->derive_s = (out->grown ? 0 : compiled) + pl.derive_s; /* growth alone, as --stats says */
+    out->derive_cpu_s = pl.derive_cpu_s;
     out->turtle_s = pl.turtle_s;
     out->mesh_s = pl.mesh_s;
     d->rewritten = pl.rewritten;
@@ -218,7 +222,9 @@ double cli_peak_mb(void) {
     return (double)ru.ru_maxrss / 1024.0;
 }
 
-bool cli_view(const char *arg, SylView *v) {
+bool cli_view(const char *arg, SylView *v) { return cli_view_or(arg, v, ""); }
+
+bool cli_view_or(const char *arg, SylView *v, const char *also) {
     static const struct { const char *name; SylView view; } views[] = {
         {"iso", SYL_VIEW_ISO}, {"front", SYL_VIEW_FRONT}, {"side", SYL_VIEW_SIDE},
         {"top", SYL_VIEW_TOP}, {"auto", SYL_VIEW_AUTO},
@@ -228,7 +234,7 @@ bool cli_view(const char *arg, SylView *v) {
             *v = views[i].view;
             return true;
         }
-    fprintf(stderr, "sylva: error: --view expects iso, front, side, top or auto, not '%s'\n", arg);
+    fprintf(stderr, "sylva: error: --view expects iso, front, side, top or auto%s, not '%s'\n", also, arg);
     return false;
 }
 

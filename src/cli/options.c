@@ -27,6 +27,13 @@ static bool read_eco_view(CliArgs *a, char *arg) {
     return false;
 }
 
+/* sylva render's --view: a plant's (iso, front, side, top) or a snapshot's (bird, walker) */
+static bool read_render_view(CliArgs *a, char *arg) {
+    if (strcmp(arg, "bird") && strcmp(arg, "walker")) return cli_view_or(arg, &a->ro->view, " (a plant), bird or walker (--plants)");
+    a->eco_view_set = true;
+    return read_eco_view(a, arg);
+}
+
 static bool read_ao(CliArgs *a, char *arg) {
     double v;
     if (!cli_integer("--ao", arg, 0, 64, &v)) return false;
@@ -59,7 +66,7 @@ static bool read_leaves(CliArgs *a, char *arg) {
             a->mo->leaves = k;
             return true;
         }
-    fprintf(stderr, "sylva: error: --leaves expects mesh, cards, instanced or instanced-cards, not '%s'\n", arg);
+    fprintf(stderr, "sylva: error: --leaves expects mesh, cards, instanced, instanced-cards or clusters, not '%s'\n", arg);
     return false;
 }
 
@@ -238,6 +245,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_LEAVES] = {"leaves", 0, "MODE",
                         "mesh (copied blades, default), cards (one alpha-tested quad each),\n"
                         "instanced or instanced-cards (one leaf placed by EXT_mesh_gpu_instancing;\n"
+                        ".glb only), clusters (about 8 leaves or needles on one alpha-tested card;\n"
                         ".glb only)",
                         CLI_READ, .read = read_leaves},
     [CLI_OPT_LEAF_SHAPE] = {"leaf-shape", 0, "NAME",
@@ -290,8 +298,12 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                           CLI_READ, .read = read_eco_view},
     [CLI_OPT_GLB] = {"glb", 0, NULL, "also write forest-YEAR.glb: the terrain and the plants as\n"
                      "EXT_mesh_gpu_instancing nodes, one per species, age class and cell", CLI_FLAG, ARGS(glb)},
+    [CLI_OPT_PLANTS] = {"plants", 0, "CSV", "render this plant table (plants-YEAR.csv of sylva ecosystem) of\n"
+                        "the model's ecosystem block, as view-YEAR.png", CLI_TEXT, ARGS(plants)},
+    [CLI_OPT_RENDER_VIEW] = {"view", 0, "V", "iso, front, side or top (default: chosen from the shape); with\n"
+                             "--plants, bird (default) or walker", CLI_READ, .read = read_render_view},
     /* sylva mesh */
-    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8)", CLI_INT, ARGS(lod), 1,
+    [CLI_OPT_LOD] = {"lod", 0, "N", "levels of detail LOD0 .. LODN in one .glb (1 to 8; default: the\nmodel's lod setting)", CLI_INT, ARGS(lod), 1,
                      SYL_LOD_MAX},
     [CLI_OPT_IMPOSTOR] = {"impostor", 0, NULL,
                           "bake an octahedral impostor (8 x 8 views of 256 x 256 pixels) into\n"

@@ -31,6 +31,8 @@ typedef enum CliOptionId {
     CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
     /* sylva ecosystem */
     CLI_OPT_SNAPSHOTS, CLI_OPT_TILES, CLI_OPT_REBALANCE, CLI_OPT_CHECKPOINT, CLI_OPT_EVERY, CLI_OPT_RESUME, CLI_OPT_ECO_VIEW, CLI_OPT_GLB,
+    /* sylva render of a snapshot */
+    CLI_OPT_PLANTS, CLI_OPT_RENDER_VIEW,
     /* sylva mesh: levels of detail */
     CLI_OPT_LOD, CLI_OPT_IMPOSTOR, CLI_OPT_IMPOSTOR_GRID, CLI_OPT_IMPOSTOR_VIEW, CLI_OPT_BILLBOARDS,
     CLI_OPT_WIND, CLI_OPT_WIND_DIR, CLI_OPT_WIND_SECONDS, CLI_OPT_WIND_LEVELS,
@@ -62,6 +64,8 @@ typedef struct CliArgs {
     const char *checkpoint, *resume; /* --checkpoint, --resume */
     int eco_view;            /* sylva ecosystem --view: SylForestView */
     bool glb;                /* sylva ecosystem --glb */
+    const char *plants;      /* sylva render --plants */
+    bool eco_view_set;       /* sylva render --view bird|walker */
     int lod, billboards;     /* sylva mesh: --lod, --billboards */
     int impostor_grid, impostor_view; /* --impostor-grid, --impostor-view */
     bool impostor;           /* --impostor */

@@ -245,6 +245,37 @@ void syl_eco_mpi_traffic(const SylEcoMpi *m, uint64_t *plants_sent, uint64_t *by
     *barriers = m ? m->barriers : 0;
 }
 
+void syl_eco_mpi_sum(SylEcoMpi *m, int64_t *v, size_t n) {
+    if (m) mpi_sum(m, v, n);
+}
+
+int syl_eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, size_t *lens) {
+    *all = NULL;
+    if (!m) { /* one process: a copy */
+        lens[0] = n;
+        if (!(*all = malloc(n ? n : 1))) return SYL_ELIMIT;
+        memcpy(*all, mine, n);
+        return SYL_OK;
+    }
+    if (n > INT_MAX) fail(m, "over 2 GB to gather from one rank");
+    int len = (int)n, *counts = NULL, *displs = NULL;
+    if (m->rank == 0 && (!(counts = malloc((size_t)m->size * sizeof *counts)) ||
+                         !(displs = malloc((size_t)m->size * sizeof *displs))))
+        fail(m, "out of memory for a gather");
+    MPI_Gather(&len, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm);
+    int64_t total = 0;
+    for (int r = 0; m->rank == 0 && r < m->size; r++) {
+        if (total + counts[r] > INT_MAX) fail(m, "over 2 GB to gather");
+        displs[r] = (int)total;
+        lens[r] = (size_t)counts[r];
+        total += counts[r];
+    }
+    if (m->rank == 0 && !(*all = malloc((size_t)(total ? total : 1)))) fail(m, "out of memory for a gather");
+    MPI_Gatherv(mine, len, MPI_BYTE, *all, counts, displs, MPI_BYTE, 0, m->comm);
+    free(counts), free(displs);
+    return SYL_OK;
+}
+
 void syl_eco_mpi_abort(SylEcoMpi *m, int code, const char *message) {
     if (!m) return;
     fprintf(stderr, "sylva: error: rank %d of %d: %s; aborting the job\n", m->rank, m->size, message);

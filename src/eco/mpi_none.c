@@ -1,4 +1,7 @@
 /* A build without MPI (make MPI=0, or no mpicc): one process, no ranks (mpi.c is the real one). */
+#include <stdlib.h>
+#include <string.h>
+
 #include "sylva/ecosystem.h"
 
 SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv) {
@@ -15,6 +18,14 @@ void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *
                          uint64_t *plants_moved, uint64_t *barriers) {
     (void)mpi;
     *plants_sent = *bytes_sent = *halo_received = *plants_moved = *barriers = 0;
+}
+void syl_eco_mpi_sum(SylEcoMpi *mpi, int64_t *v, size_t n) { (void)mpi, (void)v, (void)n; }
+int syl_eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, size_t *lens) {
+    (void)mpi;
+    lens[0] = n;
+    if (!(*all = malloc(n ? n : 1))) return SYL_ELIMIT;
+    memcpy(*all, mine, n);
+    return SYL_OK;
 }
 void syl_eco_mpi_abort(SylEcoMpi *mpi, int code, const char *message) { (void)mpi, (void)code, (void)message; }
 void syl_eco_mpi_end(SylEcoMpi *mpi) { (void)mpi; }

@@ -167,7 +167,8 @@ void syl_forest_instances(const SylForest *f, const SylEcoPlant *plants, size_t 
 }
 
 int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, const SylRenderCamera *cam,
-                      const SylRenderOptions *ro, const int window[4], uint8_t *rgb, SylRenderCounts *counts) {
+                      const SylRenderOptions *ro, const int (*windows)[4], int nwindows, uint8_t *rgb,
+                      SylRenderCounts *counts) {
     SylRenderInstance *inst = malloc((n ? n : 1) * sizeof *inst);
     if (!inst) return SYL_ELIMIT;
     syl_forest_instances(f, plants, n, inst);
@@ -175,7 +176,7 @@ int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, c
     size_t kept = 0;
     for (size_t i = 0; i < n; i++)
         if (inst[i].scale > 0 && f->nprotos) inst[kept++] = inst[i];
-    int st = syl_render_instances(f->ground, f->protos, f->nprotos, inst, kept, cam, ro, window, rgb, counts);
+    int st = syl_render_instances(f->ground, f->protos, f->nprotos, inst, kept, cam, ro, windows, nwindows, rgb, counts);
     free(inst);
     return st;
 }

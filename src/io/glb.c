@@ -15,7 +15,7 @@
 #include "sylva/lod.h"
 #include "sylva/texture.h"
 
-enum { KINDS = 5, CARD = 3, ATLAS = 4 }; /* texture slots: bark, leaf, flower, leaf card (RGBA), atlas */
+enum { KINDS = 6, CARD = 3, ATLAS = 4, CLUSTER = 5 }; /* texture slots: bark, leaf, flower, leaf card (RGBA), atlas, leaf cluster (RGBA) */
 
 /* A mesh written: the part it belongs to and which of its sets (-1: the part's own). */
 typedef struct MeshRef {
@@ -38,8 +38,13 @@ typedef struct Layout {
     int nsets, nnodes;
     int tex_of_kind[KINDS], ntex, image_view[KINDS], image_kind[KINDS];
     float (*quant)[4];            /* each part's dequantization: translation, scale (0: none) */
-    const SylWind *wind;          /* the first part's, when it is skinned */
+    const SylWind *wind;          /* the parts' one skin, when they are skinned */
     int anim_view, anim_accessor, joint_node; /* its first view, accessor and joint node */
+    /* Instanced leaves of skinned parts follow a joint each: set i's joint (-1: a child of its
+     * part), and per part its copy of the joints that carry them (-1: none; one plant's sets
+     * hang from the joints themselves) */
+    const int *set_joint;
+    int *set_mesh, *anchor_node;
 } Layout;
 
 static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER};
@@ -90,6 +95,7 @@ static int slot_of(const Layout *l, const MeshRef *r, int i) {
     if (sc->atlas && r->part == sc->nparts - 1 && r->set < 0 && i == sc->atlas_material) return ATLAS;
     int kind = r->m->materials[i].kind;
     if (kind == SYL_MATERIAL_LEAF && cards(r->m)) return CARD;
+    if (kind == SYL_MATERIAL_LEAF && r->m->leaves == SYL_LEAVES_CLUSTERS) return CLUSTER;
     for (int k = 0; k < 3; k++)
         if (kind == kinds[k]) return k;
     return -1;
@@ -158,12 +164,13 @@ static void layout_instances(Layout *l, const SylInstances *set, int i, const fl
 /* One PNG texture per slot used, each in a view of its own. */
 static void layout_textures(Layout *l) {
     bool used[KINDS] = {false};
-    int shape = 0;
+    int shape = 0, cluster_shape = 0;
     for (int k = 0; k < l->nmeshes; k++)
         for (int g = 0; g < l->mesh[k].m->ngroups; g++) {
             int t = slot_of(l, &l->mesh[k], l->mesh[k].m->groups[g].material);
             if (t >= 0) used[t] = true;
             if (t == CARD) shape = l->mesh[k].m->leaf_shape;
+            if (t == CLUSTER) cluster_shape = l->mesh[k].m->leaf_shape;
         }
     uint8_t *img = NULL;
     const GlbScene *sc = l->sc;
@@ -177,6 +184,8 @@ static void layout_textures(Layout *l) {
         bool ok = k == ATLAS  ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
                   : k == CARD ? syl_leaf_card(shape, SYL_TEXTURE_SIZE, img) &&
                                     io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
+                  : k == CLUSTER ? syl_leaf_cluster(cluster_shape, SYL_TEXTURE_SIZE, img) &&
+                                       io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
                               : syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, img) &&
                                     io_png(&l->bin, img, SYL_TEXTURE_SIZE);
         if (!ok) {
@@ -191,6 +200,10 @@ static void layout_textures(Layout *l) {
     }
     free(img);
 }
+
+/* With levels of detail the joints are the scene's own roots, beside NAME_LOD0: every level
+ * is skinned to them, whichever one is drawn. One plant's are children of its node. */
+static bool joints_at_root(const Layout *l) { return l->wind && l->sc->nparts > 1; }
 
 static const char *mesh_name(const Layout *l, const MeshRef *r) {
     return r->set < 0 ? l->sc->part[r->part].name : l->sc->part[r->part].sets[r->set].name;
@@ -235,7 +248,8 @@ static void json_materials(IoBuf *js, const Layout *l) {
             if (t >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", t);
             io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":%s}",
                       mat->kind == SYL_MATERIAL_BARK ? "0.95" : "0.7");
-            if (slot == CARD) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
+            if (slot == CARD || slot == CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
+            else if (m->double_sided[i]) io_printf(js, ",\"doubleSided\":true"); /* one-sided leaves */
             io_put(js, "}", 1);
         }
     }
@@ -286,8 +300,8 @@ static void json_accessors(IoBuf *js, const Layout *l) {
  * does not repeat, and wrapping would bleed the far edge's alpha into the base. */
 static void json_textures(IoBuf *js, const Layout *l) {
     if (!l->ntex) return;
-    bool clamped = l->tex_of_kind[CARD] >= 0 || l->tex_of_kind[ATLAS] >= 0;
-    bool tiled = l->ntex > (l->tex_of_kind[CARD] >= 0) + (l->tex_of_kind[ATLAS] >= 0);
+    int alpha = (l->tex_of_kind[CARD] >= 0) + (l->tex_of_kind[ATLAS] >= 0) + (l->tex_of_kind[CLUSTER] >= 0);
+    bool clamped = alpha > 0, tiled = l->ntex > alpha;
     io_printf(js, ",\"samplers\":[");
     if (tiled) io_printf(js, "{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}");
     if (clamped) io_printf(js, "%s{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}", tiled ? "," : "");
@@ -295,12 +309,48 @@ static void json_textures(IoBuf *js, const Layout *l) {
     for (int t = 0; t < l->ntex; t++) {
         int k = l->image_kind[t];
         io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
-                  k == CARD ? "leafcard" : k == ATLAS ? "impostor" : syl_texture_name(kinds[k]), l->image_view[t]);
+                  k == CARD ? "leafcard" : k == ATLAS ? "impostor" : k == CLUSTER ? "leafcluster" : syl_texture_name(kinds[k]),
+                  l->image_view[t]);
     }
     io_printf(js, "],\"textures\":[");
     for (int t = 0; t < l->ntex; t++)
         io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "", l->image_kind[t] >= CARD && tiled, t);
     io_put(js, "]", 1);
+}
+
+/* The joints, then each level's copy of them; instance sets hang from the joint they
+ * follow: the joints themselves for one plant, the level's copy with levels of detail. */
+static void json_joints(IoBuf *js, const Layout *l) {
+    const GlbScene *sc = l->sc;
+    int nj = l->wind->njoints;
+    bool lods = joints_at_root(l);
+    int *start = malloc(2 * ((size_t)nj + 1) * sizeof *start), *extra = malloc(((size_t)l->nsets + 1) * sizeof *extra);
+    if (!start || !extra) {
+        js->failed = true;
+        free(start), free(extra);
+        return;
+    }
+    int *at = start + nj + 1;
+    for (int p = lods ? -1 : 0; p < (lods ? sc->nparts : 1); p++) { /* -1: the joints, without sets */
+        if (p >= 0 && lods && l->anchor_node[p] < 0) continue;
+        for (int pass = 0; pass < 2; pass++) { /* count each joint's sets, then list them */
+            if (pass) {
+                for (int j = 0; j < nj; j++) start[j + 1] += start[j];
+                memcpy(at, start, ((size_t)nj + 1) * sizeof *at);
+            } else {
+                memset(start, 0, ((size_t)nj + 1) * sizeof *start);
+            }
+            for (int q = 0, i = 0; q < sc->nparts; q++)
+                for (int s = 0; s < sc->part[q].nsets; s++, i++) {
+                    if (q != p || l->set_node[i] < 0 || !l->set_joint || l->set_joint[i] < 0) continue;
+                    if (pass) extra[at[l->set_joint[i]]++] = l->set_node[i];
+                    else start[l->set_joint[i] + 1]++;
+                }
+        }
+        bool copy = p >= 0 && lods;
+        glb_skin_nodes(js, l->wind, copy ? l->anchor_node[p] : l->joint_node, copy ? sc->part[p].name : NULL, start, extra);
+    }
+    free(start), free(extra);
 }
 
 /* Each part a node (with its mesh, if it has one) and its instance sets child nodes of it;
@@ -318,14 +368,17 @@ static void json_nodes(IoBuf *js, const Layout *l) {
         if (q[3] > 0)
             io_printf(js, ",\"translation\":[%.9g,%.9g,%.9g],\"scale\":[%.9g,%.9g,%.9g]", (double)q[0], (double)q[1],
                       (double)q[2], (double)q[3], (double)q[3], (double)q[3]);
-        bool skin = p == 0 && l->wind;
+        bool skin = l->part_mesh[p] >= 0 && l->mesh[l->part_mesh[p]].skinned;
         if (skin) io_printf(js, ",\"skin\":0");
+        skin &= !joints_at_root(l) && p == 0;
         bool any = false;
         for (int s = 0; s < pt->nsets; s++)
-            if (l->set_node[i0 + s] >= 0) io_printf(js, "%s%d", any ? "," : ",\"children\":[", l->set_node[i0 + s]), any = true;
-        if (skin) {
+            if (l->set_node[i0 + s] >= 0 && !(l->set_joint && l->set_joint[i0 + s] >= 0))
+                io_printf(js, "%s%d", any ? "," : ",\"children\":[", l->set_node[i0 + s]), any = true;
+        int roots = skin ? l->joint_node : l->anchor_node[p];
+        if (roots >= 0) {
             if (!any) io_printf(js, ",\"children\":[");
-            glb_skin_roots(js, l->wind, l->joint_node, any);
+            glb_skin_roots(js, l->wind, roots, any);
             any = true;
         }
         if (any) io_put(js, "]", 1);
@@ -345,9 +398,7 @@ static void json_nodes(IoBuf *js, const Layout *l) {
     for (int p = 0; p < sc->nparts; p++)
         for (int s = 0; s < sc->part[p].nsets; s++, i++) {
             if (l->set_node[i] < 0) continue;
-            int mesh = -1;
-            for (int k = 0; k < l->nmeshes; k++)
-                if (l->mesh[k].part == p && l->mesh[k].set == s) mesh = k;
+            int mesh = l->set_mesh[i];
             io_printf(js, ",{\"name\":");
             io_json_string(js, sc->part[p].sets[s].name);
             io_printf(js, ",\"mesh\":%d,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
@@ -355,7 +406,7 @@ static void json_nodes(IoBuf *js, const Layout *l) {
                       mesh, a, a + 1, a + 2);
             a += 3;
         }
-    if (l->wind) glb_skin_nodes(js, l->wind, l->joint_node);
+    if (l->wind) json_joints(js, l);
     io_put(js, "]", 1);
 }
 
@@ -373,7 +424,9 @@ static void write_json(IoBuf *js, const Layout *l) {
     if (quant) io_printf(js, ",\"extensionsRequired\":[\"KHR_mesh_quantization\"]");
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
     io_json_string(js, sc->scene_name);
-    io_printf(js, ",\"nodes\":[0]}]");
+    io_printf(js, ",\"nodes\":[0");
+    if (joints_at_root(l)) glb_skin_roots(js, l->wind, l->joint_node, true);
+    io_printf(js, "]}]");
     json_nodes(js, l);
     if (l->nmeshes) {
         io_printf(js, ",\"meshes\":[");
@@ -382,7 +435,12 @@ static void write_json(IoBuf *js, const Layout *l) {
         json_materials(js, l);
         json_accessors(js, l);
         json_textures(js, l);
-        if (l->wind) glb_skin_json(js, l->wind, l->joint_node, l->anim_accessor);
+        if (l->wind) {
+            int copies[SYL_LOD_MAX + 2], ncopies = 0;
+            for (int p = 0; p < sc->nparts && ncopies < SYL_LOD_MAX + 2; p++)
+                if (l->anchor_node[p] >= 0) copies[ncopies++] = l->anchor_node[p];
+            glb_skin_json(js, l->wind, l->joint_node, l->anim_accessor, copies, ncopies);
+        }
         glb_buffer_views(js, l->views, l->nviews, l->bin.len);
     }
     io_put(js, "}", 1);
@@ -416,44 +474,58 @@ static bool plan(Layout *l) {
     size_t n = (size_t)(sc->nparts + sets) + 1;
     l->mesh = calloc(n, sizeof *l->mesh);
     l->views = malloc(sizeof *l->views * (9 * n + 3 * (size_t)sets + KINDS + 3));
-    int *ints = malloc(sizeof(int) * (3 * (size_t)sets + 2 * (size_t)sc->nparts + 1));
+    int *ints = malloc(sizeof(int) * (4 * (size_t)sets + 3 * (size_t)sc->nparts + 1));
     if (!l->mesh || !l->views || !ints) {
         free(ints);
         return false;
     }
     l->set_view = ints, l->set_accessor = ints + sets, l->set_node = ints + 2 * sets;
     l->part_mesh = ints + 3 * sets, l->part_node = ints + 3 * sets + sc->nparts;
+    l->anchor_node = ints + 3 * sets + 2 * sc->nparts, l->set_mesh = ints + 3 * sets + 3 * sc->nparts;
     l->nnodes = sc->nparts;
     for (int p = 0; p < sc->nparts; p++) {
         l->part_node[p] = p;
         l->part_mesh[p] = -1;
         if (has_geometry(sc->part[p].mesh)) {
             l->part_mesh[p] = l->nmeshes;
-            bool skinned = p == 0 && sc->part[0].wind && sc->part[0].wind->njoints > 0 && sc->part[0].skel;
-            l->mesh[l->nmeshes++] = (MeshRef){.m = sc->part[p].mesh, .part = p, .set = -1, .skinned = skinned};
-            if (skinned) l->wind = sc->part[0].wind;
+            const GlbPart *pt = &sc->part[p];
+            bool skinned = pt->wind && pt->wind->njoints > 0 && pt->skel && pt->mesh->node;
+            l->mesh[l->nmeshes++] = (MeshRef){.m = pt->mesh, .part = p, .set = -1, .skinned = skinned};
+            if (skinned) l->wind = pt->wind; /* one skin for all the parts */
         }
     }
     int i = 0;
     for (int p = 0; p < sc->nparts; p++)
         for (int s = 0; s < sc->part[p].nsets; s++, i++) {
             const SylInstances *set = &sc->part[p].sets[s];
-            l->set_view[i] = l->set_node[i] = -1;
+            l->set_view[i] = l->set_node[i] = l->set_mesh[i] = -1;
             if (!has_geometry(set->proto) || !set->count) continue; /* an empty set is left out */
             l->set_node[i] = l->nnodes++;
             l->nsets++;
-            l->mesh[l->nmeshes++] = (MeshRef){.m = set->proto, .part = p, .set = s};
+            for (int k = 0; k < l->nmeshes && l->set_mesh[i] < 0; k++) /* sets of one prototype share it */
+                if (l->mesh[k].set >= 0 && l->mesh[k].m == set->proto) l->set_mesh[i] = k;
+            if (l->set_mesh[i] < 0) {
+                l->set_mesh[i] = l->nmeshes;
+                l->mesh[l->nmeshes++] = (MeshRef){.m = set->proto, .part = p, .set = s};
+            }
         }
     l->joint_node = l->nnodes;
     if (l->wind) l->nnodes += l->wind->njoints;
+    i = 0;
+    for (int p = 0; p < sc->nparts; p++) { /* with levels, each level's copy of the joints */
+        l->anchor_node[p] = -1;
+        for (int s = 0; s < sc->part[p].nsets; s++, i++)
+            if (l->set_joint && l->set_joint[i] >= 0 && l->set_node[i] >= 0 && joints_at_root(l) && l->anchor_node[p] < 0)
+                l->anchor_node[p] = l->nnodes, l->nnodes += l->wind->njoints;
+    }
     if (!(l->quant = calloc((size_t)sc->nparts + 1, sizeof *l->quant))) return false;
-    for (int p = 0; p < sc->nparts && sc->quantize; p++)
-        if (!(p == 0 && l->wind)) plan_quantization(sc->part + p, l->quant[p]);
+    for (int p = 0; p < sc->nparts && sc->quantize && !l->wind; p++) plan_quantization(sc->part + p, l->quant[p]);
     return true;
 }
 
-int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
-    Layout l = {.sc = sc, .tex_of_kind = {-1, -1, -1, -1, -1}};
+/* The file of sc; set_joint (may be NULL): the joint each instance set follows. */
+static int write_scene(const GlbScene *sc, const int *set_joint, const char *path, FILE *diag) {
+    Layout l = {.sc = sc, .tex_of_kind = {-1, -1, -1, -1, -1, -1}, .set_joint = set_joint};
     IoBuf js = {0};
     bool ok = plan(&l);
     if (!ok) l.bin.failed = true;
@@ -481,6 +553,60 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
     free(l.mesh);
     free(l.set_view);
     free(l.quant);
+    return status;
+}
+
+/* A skinned scene's instance sets split by the joint each instance follows (glb_skin_split),
+ * into parts (a copy of sc's); set_joint numbers them over all parts (-1: not split). */
+static int write_split(const GlbScene *sc, GlbPart *parts, const char *path, FILE *diag) {
+    int total = 0, status = SYL_OK;
+    int *set_joint = NULL;
+    for (int p = 0; p < sc->nparts; p++) parts[p] = sc->part[p], parts[p].sets = NULL, parts[p].nsets = 0;
+    for (int p = 0; p < sc->nparts && !status; p++) {
+        const GlbPart *pt = &sc->part[p];
+        SylInstances *sets = NULL;
+        int *joint = NULL, n = 0;
+        bool skinned = pt->wind && pt->wind->njoints > 0 && pt->skel;
+        if (skinned && !glb_skin_split(pt, &sets, &joint, &n)) status = SYL_ELIMIT;
+        int *all = realloc(set_joint, ((size_t)total + (size_t)(skinned ? n : pt->nsets) + 1) * sizeof *all);
+        if (!all) status = SYL_ELIMIT;
+        else set_joint = all;
+        if (status) {
+            glb_skin_split_free(sets, n);
+            free(joint);
+            break;
+        }
+        if (skinned) {
+            parts[p].sets = sets, parts[p].nsets = n;
+            if (n) memcpy(set_joint + total, joint, (size_t)n * sizeof *joint);
+            total += n;
+        } else {
+            parts[p].sets = pt->sets, parts[p].nsets = pt->nsets;
+            for (int s = 0; s < pt->nsets; s++) set_joint[total++] = -1;
+        }
+        free(joint);
+    }
+    GlbScene split = *sc;
+    split.part = parts;
+    if (!status) status = write_scene(&split, set_joint, path, diag);
+    else if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+    for (int p = 0; p < sc->nparts; p++)
+        if (parts[p].sets != sc->part[p].sets) glb_skin_split_free((SylInstances *)parts[p].sets, parts[p].nsets);
+    free(set_joint);
+    return status;
+}
+
+int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
+    bool split = false;
+    for (int p = 0; p < sc->nparts; p++) split |= sc->part[p].wind && sc->part[p].nsets > 0;
+    if (!split) return write_scene(sc, NULL, path, diag);
+    GlbPart *parts = calloc((size_t)sc->nparts + 1, sizeof *parts);
+    if (!parts) {
+        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        return SYL_ELIMIT;
+    }
+    int status = write_split(sc, parts, path, diag);
+    free(parts);
     return status;
 }
 

@@ -68,14 +68,20 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag);
 
 /* The skin of a part with wind (glb_skin.c): its five vertex views; the inverse bind
  * matrices', key times' and rotations' views; their accessors; the primitive's attributes;
- * the root joints (child ids); the joint nodes; "skins" and "animations". */
+ * the root joints (child ids); the joint nodes (or a copy of them); "skins" and
+ * "animations". */
 void glb_skin_vertices(const GlbPart *p, IoBuf *bin, View *views, int *nviews);
 void glb_skin_animation(const SylWind *w, IoBuf *bin, View *views, int *nviews);
 void glb_skin_vertex_accessors(IoBuf *js, const GlbPart *p, int view);
 void glb_skin_anim_accessors(IoBuf *js, const SylWind *w, int anim);
 void glb_skin_attributes(IoBuf *js, int acc);
 void glb_skin_roots(IoBuf *js, const SylWind *w, int first_node, bool comma);
-void glb_skin_nodes(IoBuf *js, const SylWind *w, int first_node);
-void glb_skin_json(IoBuf *js, const SylWind *w, int first_node, int anim_acc);
+void glb_skin_nodes(IoBuf *js, const SylWind *w, int first_node, const char *prefix, const int *start, const int *extra);
+void glb_skin_json(IoBuf *js, const SylWind *w, int first_node, int anim_acc, const int *copies, int ncopies);
+/* A skinned part's instance sets split by the joint each instance follows (the heavier of
+ * its place's blend), translations from that joint's base: *n sets, *joint[k] the joint of
+ * set k; the prototypes are borrowed. False when out of memory. */
+bool glb_skin_split(const GlbPart *p, SylInstances **out, int **joint, int *n);
+void glb_skin_split_free(SylInstances *sets, int n);
 
 #endif

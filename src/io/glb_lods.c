@@ -4,8 +4,13 @@
 
 #include "io/glb.h"
 #include "sylva/lod.h"
+#include "sylva/wind.h"
 
-int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) {
+int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) { return syl_write_glb_lods_wind(c, NULL, NULL, path, diag); }
+
+/* With wind, every level meshed with vertex nodes (of s) is skinned to w's joints; a level
+ * without them (the billboards) is not. */
+int syl_write_glb_lods_wind(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
     GlbPart part[SYL_LOD_MAX + 1];
     char names[SYL_LOD_MAX + 1][80];
     float coverage[SYL_LOD_MAX + 1];
@@ -13,7 +18,7 @@ int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) {
     for (int k = 0; k < c->n; k++) {
         snprintf(names[k], sizeof names[k], "%s_LOD%d", name, k);
         part[k] = (GlbPart){.mesh = c->level[k].mesh, .sets = c->level[k].sets, .nsets = c->level[k].nsets,
-                            .name = names[k]};
+                            .name = names[k], .wind = w, .skel = s};
         coverage[k] = c->level[k].coverage;
     }
     bool instanced = false;

@@ -33,8 +33,9 @@ static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
         const float *c = m->materials[k].rgb;
         fprintf(f, "\nnewmtl %s\nKa 0 0 0\nKd %.4f %.4f %.4f\nKs 0 0 0\nNs 1\nd 1\nillum 1\n", name, c[0], c[1], c[2]);
         const char *tex = io_texture_kind(m, k);
-        bool card = m->materials[k].kind == SYL_MATERIAL_LEAF && m->leaves == SYL_LEAVES_CARDS;
-        if (card) tex = "leafcard"; /* RGBA: the leaf's silhouette in alpha, read again by map_d */
+        bool card = m->materials[k].kind == SYL_MATERIAL_LEAF &&
+                    (m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_CLUSTERS);
+        if (card) tex = m->leaves == SYL_LEAVES_CARDS ? "leafcard" : "leafcluster"; /* RGBA: silhouettes in alpha, read again by map_d */
         if (tex) fprintf(f, "map_Kd %s_%s.png\n", stem, tex); /* the rest of the line: spaces work */
         if (card) fprintf(f, "map_d %s_%s.png\n", stem, tex);
     }

@@ -5,14 +5,15 @@
 #include "io/io_internal.h"
 #include "sylva/texture.h"
 
-/* PREFIX_leafcard.png: the card texture, RGBA. */
-static int write_card(int shape, const char *prefix, char *path, size_t n, FILE *diag) {
+/* PREFIX_leafcard.png or PREFIX_leafcluster.png: the card or cluster texture, RGBA. */
+static int write_card(int shape, bool cluster, const char *prefix, char *path, size_t n, FILE *diag) {
     const int size = SYL_TEXTURE_SIZE;
     uint8_t *rgba = malloc((size_t)size * size * 4);
     IoBuf b = {0};
-    snprintf(path, n, "%s_leafcard.png", prefix);
+    snprintf(path, n, "%s_%s.png", prefix, cluster ? "leafcluster" : "leafcard");
     int status = SYL_OK;
-    if (!rgba || !syl_leaf_card(shape, size, rgba) || !io_png_rgba(&b, rgba, size, size)) {
+    if (!rgba || !(cluster ? syl_leaf_cluster(shape, size, rgba) : syl_leaf_card(shape, size, rgba)) ||
+        !io_png_rgba(&b, rgba, size, size)) {
         if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
         status = SYL_ELIMIT;
     }
@@ -31,7 +32,7 @@ int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
     static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
     const int size = SYL_TEXTURE_SIZE;
     uint8_t *img = malloc((size_t)size * size * 3);
-    size_t n = strlen(prefix) + 16;
+    size_t n = strlen(prefix) + 24; /* "_leafcluster.png" */
     char *path = malloc(n);
     if (!img || !path) {
         free(img);
@@ -52,10 +53,10 @@ int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
             status = SYL_ELIMIT;
         }
     }
-    bool card = false;
-    for (int g = 0; m && g < m->ngroups; g++)
-        card |= m->materials[m->groups[g].material].kind == SYL_MATERIAL_LEAF && m->leaves == SYL_LEAVES_CARDS;
-    if (card && !status) status = write_card(m->leaf_shape, prefix, path, n, diag);
+    bool leaf = false, cluster = m && m->leaves == SYL_LEAVES_CLUSTERS;
+    for (int g = 0; m && g < m->ngroups; g++) leaf |= m->materials[m->groups[g].material].kind == SYL_MATERIAL_LEAF;
+    if (leaf && (m->leaves == SYL_LEAVES_CARDS || cluster) && !status)
+        status = write_card(m->leaf_shape, cluster, prefix, path, n, diag);
     free(img);
     free(path);
     return status;

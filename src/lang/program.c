@@ -89,11 +89,27 @@ int syl_program_symbol_find(const SylProgram *p, const char *name) {
         if (!strcmp(p->syms[i].name, name)) return i;
     return -1;
 }
+/* A grow block's `lod N` directive (sot checks its range), or the last --set lod= of it
+ * (unless `lod` is a param, whose value the directive then has already). */
+static double grow_lod(const SylProgram *p) {
+    double v = 0;
+    for (int i = 0; i < p->ndirectives; i++)
+        if (!strcmp(p->directives[i].name, "lod") && p->directives[i].nargs == 1 &&
+            p->directives[i].args[0].kind == SYL_DARG_NUMBER)
+            v = p->directives[i].args[0].num;
+    bool param = false;
+    for (int i = 0; i < p->nparams; i++) param |= !strcmp(p->params[i].name, "lod");
+    for (int i = 0; i < p->noverrides && !param; i++)
+        if (p->set_local && p->set_local[i] && !strcmp(p->set_local[i], "lod")) v = p->overrides[i].value;
+    return v;
+}
+
 double syl_program_setting(const SylProgram *p, const char *name) {
     if (!strcmp(name, "angle")) return p->angle;
     if (!strcmp(name, "step")) return p->step;
     if (!strcmp(name, "width")) return p->width;
     if (!strcmp(name, "derive")) return p->derive;
     if (!strcmp(name, "widthfactor")) return p->widthfactor;
+    if (!strcmp(name, "lod")) return p->kind == SYL_MODEL_GROW ? grow_lod(p) : p->lod;
     return NAN;
 }

@@ -81,6 +81,13 @@ typedef struct Rule {
     uint8_t arith_kind[SLOT_PLAN], arith_local[SLOT_PLAN];
     double arith_k[SLOT_PLAN];
     double tmpl[SLOT_PLAN];
+    /* A plan whose copies and arithmetic all read one local, with at most one distinct
+     * arithmetic value (`F(l)F(l)`, `A(s) -> F(s)[+(85)A(s/R)]…`), is blended: slot k's bits are
+     * tmpl[k] | x & blend_x[k] | v & blend_v[k] (masks of all ones or none), two slots at a
+     * time, x the local blend_local and v its one arithmetic value (arith[0]). */
+    bool blend;
+    uint8_t blend_local, blend_pairs;
+    uint64_t blend_x[SLOT_PLAN], blend_v[SLOT_PLAN];
     SylLoc loc;               /* the predecessor */
     int line;
     int group;                /* index in SylProgram.groups, -1: outside any group */
@@ -226,6 +233,7 @@ struct SylProgram {
     bool skip[MAX_SYMBOLS]; /* ignored in context matching */
 
     int derive;
+    int lod;             /* the `lod` setting: levels of detail for `sylva mesh` (0: none) */
     double angle, step, width, widthfactor;
     double tropism[4];      /* direction and elasticity; elasticity 0: none */
     float colours[256][3];  /* `colour` settings, where colour_set */

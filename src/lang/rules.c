@@ -105,6 +105,21 @@ static void plan_arith(Rule *r, int k) {
     r->arith[r->narith++] = (uint8_t)k;
 }
 
+/* The blended form of a plan (Rule.blend), when its shape allows one. */
+static void plan_blend(Rule *r) {
+    if (!r->planned || r->narith > 1 || !r->nslots) return;
+    int local = r->narith ? r->arith_local[0] : r->ncopy ? r->copy_src[0] : -1;
+    if (local < 0) return; /* constants only: the template is the plan */
+    for (int c = 0; c < r->ncopy; c++)
+        if (r->copy_src[c] != local) return;
+    for (int c = 0; c < r->ncopy; c++) r->blend_x[r->copy_dst[c]] = UINT64_MAX;
+    for (int a = 0; a < r->narith; a++) r->blend_v[r->arith[a]] = UINT64_MAX;
+    for (int d = 0; d < r->ndup; d++) r->blend_v[r->dup_dst[d]] = UINT64_MAX;
+    r->blend_local = (uint8_t)local;
+    r->blend_pairs = (uint8_t)((r->nslots + 1) / 2);
+    r->blend = true;
+}
+
 void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *what) {
     SylProgram *p = c->p;
     r->nsucc = ms->n;
@@ -161,6 +176,7 @@ void cc_successor(Compiler *c, const Mods *ms, Scope *s, Rule *r, const char *wh
             r->copy_src[r->ncopy++] = sl->local;
         } else plan_arith(r, k);
     }
+    plan_blend(r);
 }
 
 void cc_rule(Compiler *c, const Stmt *s, Rule *out) {

@@ -26,6 +26,7 @@ static const SettingDef settings[] = {
     {"tropism", -1, -1e9, 1e9, false, 4, false}, /* direction x, y, z and elasticity */
     {"colour", -1, 0, 255, false, 4, true},      /* index, then red, green, blue in 0..1 */
     {"direction", -1, 0, 0, false, 1, false},    /* forward or backward [when EXPR]: direction() */
+    {"lod", -1, 0, 8, true, 1, false},           /* levels of detail of `sylva mesh` (--lod); 0: none */
 };
 
 static bool in_range(Compiler *c, const SettingDef *def, double v, SylLoc loc, const char *typed);
@@ -137,13 +138,14 @@ static void store(Compiler *c, const SettingDef *def, int block, double v) {
     else if (!strcmp(name, "width")) p->width = v;
     else if (!strcmp(name, "seed")) p->seed = (uint64_t)v;
     else if (!strcmp(name, "widthfactor")) p->widthfactor = v;
+    else if (!strcmp(name, "lod")) p->lod = (int)v;
     else p->tables[block == BLOCK_DECOMPOSE ? TABLE_DECOMPOSE : TABLE_INTERPRET].maxdepth = (int)v;
 }
 
 /* --set reaches a setting of one value by its name, a tropism component as tropism.1 to
  * tropism.4 (x, y, z, elasticity: the order of the line) and a block's maxdepth as
  * decompose.maxdepth or interpret.maxdepth, a colour's component as colour.I.r, .g or .b. */
-static const char *const set_names[] = {"derive", "angle", "step", "width", "seed", "widthfactor",
+static const char *const set_names[] = {"derive", "angle", "step", "width", "seed", "widthfactor", "lod",
                                         "tropism.1", "tropism.2", "tropism.3", "tropism.4",
                                         "decompose.maxdepth", "interpret.maxdepth"};
 enum { NSET_NAMES = sizeof set_names / sizeof *set_names };

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sylva/lod.h"
+#include "util/leafoutline.h"
 #include "util/rng.h"
 
 /* Each level drops one more branch order (never the trunk's children) and thicker twigs;
@@ -19,18 +20,21 @@ static const double tri_share[SYL_LOD_MAX + 1] = {1, 0.45, 0.15, 0.045, 0.02, 0.
 static const float switch_at[SYL_LOD_MAX + 1] = {0.6f, 0.3f, 0.12f, 0.05f, 0.025f, 0.0125f, 0.006f, 0.003f, 0.0015f};
 
 enum { MIN_LEAF_SHARE_LOG2 = 2, BLADE_SIDE_TRIS = 8 };
+/* From LOD2 on (where thinning stops at a quarter), a level draws its leaves as clusters when
+ * half its triangle share, in cards of 2 triangles, makes at least 4 leaves a card. */
+enum { CLUSTER_FROM = 2, CARD_TRIS = 2 };
+#define CLUSTER_MIN 4.0f
 #define BLADE_AREA 1.225f  /* the mesher's blade, per length x half width (shapes.c) */
 #define BLADE_WIDTH 0.22f  /* its half width per length */
 
 /* Area of the mesher's oval of n triangles a side (n + 2 points of an ellipse), per length
  * x full width. */
-static float oval_area(int n) {
-    int m = n + 2;
-    return 0.125f * (float)m * sinf(6.28318530718f / (float)m);
-}
+static float oval_area(int n) { return (float)leaf_outline_area(LEAF_OUTLINE_OVAL, n); }
 
-static bool thinned_kind(int kind) {
-    return kind == SYL_KIND_LEAF || kind == SYL_KIND_NEEDLE || kind == SYL_KIND_FLOWER;
+static bool clustered_kind(int kind) { return kind == SYL_KIND_LEAF || kind == SYL_KIND_NEEDLE; }
+
+static bool thinned_kind(const SylLodLevel *lv, int kind) {
+    return kind == SYL_KIND_FLOWER || (clustered_kind(kind) && !(lv->cluster_leaves > 0));
 }
 
 /* One uniform per organ or polygon, the same at every level, so a level's leaves are a
@@ -44,20 +48,25 @@ static void scale_about(float p[3], const float c[3], float k) {
     for (int a = 0; a < 3; a++) p[a] = c[a] + k * (p[a] - c[a]);
 }
 
-/* A copy of s that borrows nothing: the level's nodes, organs and polygons. */
-static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t) {
+/* A copy of s that borrows nothing: the level's nodes, organs and polygons; back[i]: the
+ * node of s that node i of the copy is. */
+static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t,
+                             int32_t *back) {
     *t = *s;
     t->budget = NULL;
     t->charged = 0;
     /* Coarser leaves of the same area: an oval of fewer triangles in place of the blade or
      * of LOD0's oval; shape: the linear factor that keeps each leaf's area. */
-    bool oval0 = s->leaf_tris >= 1 && s->leaf_tris <= 64 && s->leaf_width > 0 && isfinite(s->leaf_width);
+    bool own = s->leaf_tris >= 1 && s->leaf_width > 0 && isfinite(s->leaf_width) &&
+               leaf_outline_valid(s->leaf_outline, s->leaf_tris);
+    bool oval0 = own && s->leaf_outline == LEAF_OUTLINE_OVAL;
     int n0 = oval0 ? s->leaf_tris : BLADE_SIDE_TRIS, nk = n0 >> lv->level;
     if (nk < 1) nk = 1;
+    if (own && !oval0) nk = n0; /* a square or a palm leaflet keeps its outline */
     float width = oval0 ? s->leaf_width : 2 * BLADE_WIDTH;
     float area0 = oval0 ? oval_area(n0) * width : BLADE_AREA * BLADE_WIDTH;
     float shape = nk < n0 ? sqrtf(area0 / (oval_area(nk) * width)) : 1;
-    if (nk < n0) t->leaf_tris = nk, t->leaf_width = width;
+    if (nk < n0 && !(lv->cluster_leaves > 0)) t->leaf_tris = nk, t->leaf_width = width; /* clusters: LOD0's leaves' area */
     t->nodes = malloc((s->nnodes + 1) * sizeof *t->nodes);
     t->organs = malloc((s->norgans + 1) * sizeof *t->organs);
     t->polys = malloc((s->npolys + 1) * sizeof *t->polys);
@@ -77,13 +86,13 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         t->nodes[nn] = *n;
         t->nodes[nn].parent = n->parent < 0 ? -1 : map[n->parent];
         t->nodes[nn].radius = radius[i]; /* the pipe model's radii of the whole tree, kept */
-        nn++;
+        back[nn++] = (int32_t)i;
     }
     t->nnodes = t->node_cap = nn;
     size_t no = 0;
     for (size_t i = 0; i < s->norgans; i++) {
         SylOrgan o = s->organs[i];
-        if (thinned_kind(o.kind)) {
+        if (thinned_kind(lv, o.kind)) {
             if (keep_draw(1, i) >= lv->leaf_keep) continue;
             o.size *= lv->leaf_scale * (o.kind == SYL_KIND_LEAF ? shape : 1);
         }
@@ -114,6 +123,12 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
     return SYL_OK;
 }
 
+/* A level's vertex (or instance) nodes (SylMeshOptions.vertex_nodes) as nodes of the whole
+ * skeleton, so that every level is skinned to the same joints. */
+static void nodes_back(int32_t *node, size_t count, const int32_t *back, size_t n) {
+    for (size_t v = 0; node && v < count; v++) node[v] = node[v] >= 0 && (size_t)node[v] < n ? back[node[v]] : -1;
+}
+
 static void free_copy(SylSkeleton *t) {
     free(t->nodes), free(t->organs), free(t->polys), free(t->poly_verts);
 }
@@ -126,6 +141,16 @@ static int by_radius_down(const void *a, const void *b) {
 /* What level k keeps, from the skeleton's deepest order and thickest stem; down holds the
  * stems' radii, thickest first: a level never cuts more twigs than its triangle share asks
  * (a plant of countless thin twigs would lose its crown). */
+/* Leaves per cluster card at level k (0: no clusters): half the level's triangles for the cards;
+ * with --leaves clusters (per0: LOD0's), at least twice the level above's, as thinning halves. */
+static float cluster_leaves(int k, size_t leaves, size_t tris0, int mode, float per0) {
+    if (mode == SYL_LEAVES_INSTANCED || mode == SYL_LEAVES_INSTANCED_CARDS || !leaves) return 0;
+    double cards = 0.5 * tri_share[k] * (double)tris0 / CARD_TRIS;
+    float per = (float)((double)leaves / (cards > 1 ? cards : 1));
+    if (mode == SYL_LEAVES_CLUSTERS) return fmaxf(per, per0 * powf(2, (float)k));
+    return k >= CLUSTER_FROM && per >= CLUSTER_MIN ? per : 0;
+}
+
 static void plan_level(SylLodLevel *lv, int k, int levels, int top_order, float rmax, const float *down, size_t n) {
     lv->level = k;
     lv->max_order = top_order - k > 1 ? top_order - k : top_order < 1 ? top_order : 1;
@@ -134,6 +159,7 @@ static void plan_level(SylLodLevel *lv, int k, int levels, int top_order, float 
     if (keep < n && down[keep] < lv->min_radius) lv->min_radius = down[keep];
     lv->leaf_keep = powf(0.5f, (float)(k < MIN_LEAF_SHARE_LOG2 ? k : MIN_LEAF_SHARE_LOG2));
     lv->leaf_scale = fminf(2.0f, 1 / sqrtf(lv->leaf_keep));
+    if (lv->cluster_leaves > 0) lv->leaf_keep = 1, lv->leaf_scale = 1; /* flowers are still thinned */
     lv->coverage = syl_lod_coverage(k, levels);
 }
 
@@ -151,31 +177,39 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (radius[i] > rmax) rmax = radius[i];
     }
     float *down = malloc((s->nnodes + 1) * sizeof *down);
+    int32_t *back = malloc((s->nnodes + 1) * sizeof *back);
     size_t nstems = 0;
     for (size_t i = 0; down && i < s->nnodes; i++)
         if (s->nodes[i].kind == SYL_KIND_INTERNODE) down[nstems++] = radius[i];
-    if (!down) status = SYL_ELIMIT;
+    if (!down || !back) status = SYL_ELIMIT;
     else qsort(down, nstems, sizeof *down, by_radius_down);
     if (!status) status = syl_mesh_optimize(lod0);
+    size_t leaves = 0;
+    for (size_t i = 0; i < s->norgans; i++) leaves += clustered_kind(s->organs[i].kind) && s->organs[i].size > 0;
+    float per0 = mo->cluster_leaves > 0 ? mo->cluster_leaves : SYL_CLUSTER_LEAVES;
     out->level[0] = (SylLodLevel){.mesh = lod0, .max_order = top, .leaf_keep = 1, .leaf_scale = 1,
-                                  .coverage = syl_lod_coverage(0, levels)};
+                                  .coverage = syl_lod_coverage(0, levels),
+                                  .cluster_leaves = mo->leaves == SYL_LEAVES_CLUSTERS ? per0 : 0};
     out->n = 1;
     size_t tris0 = lod0->nidx / 3;
     int sides = mo->sides > 0 ? mo->sides : 8;
     for (int k = 1; k <= levels && !status; k++) {
         SylLodLevel *lv = &out->level[k];
+        lv->cluster_leaves = cluster_leaves(k, leaves, tris0, mo->leaves, per0);
         plan_level(lv, k, levels, top, rmax, down, nstems);
         SylSkeleton t;
-        status = truncate_skeleton(s, radius, lv, &t);
+        status = truncate_skeleton(s, radius, lv, &t, back);
         SylMeshOptions o = *mo;
         o.sides = (int)lroundf((float)sides * powf(0.75f, (float)k));
         if (o.sides < 3) o.sides = 3;
         o.min_sides = 3;
         o.radius = SYL_RADIUS_MODEL;
+        if (lv->cluster_leaves > 0) o.leaves = SYL_LEAVES_CLUSTERS, o.cluster_leaves = lv->cluster_leaves;
         if (!status) status = syl_mesh_build(&t, &o, &lv->mesh);
         if (lv->mesh) out->n = k + 1;
         if (!status && (mo->leaves == SYL_LEAVES_INSTANCED || mo->leaves == SYL_LEAVES_INSTANCED_CARDS))
             status = syl_leaf_instances(&t, &o, &lv->sets, &lv->nsets);
+        size_t kept = t.nnodes;
         free_copy(&t);
         if (status) break;
         size_t bark = 0;
@@ -188,9 +222,11 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         double ratio = bark ? fmax(want, 0.1 * (double)bark) / (double)bark : 1;
         status = syl_mesh_simplify_kind(lv->mesh, SYL_MATERIAL_BARK, ratio, 0.004f * powf(3, (float)(k - 1)),
                                         &lv->error);
+        nodes_back(lv->mesh->node, lv->mesh->nverts, back, kept);
+        for (int i = 0; i < lv->nsets; i++) nodes_back(lv->sets[i].node, lv->sets[i].count, back, kept);
         snprintf(lv->mesh->name, sizeof lv->mesh->name, "%s", lod0->name);
     }
-    free(radius), free(down);
+    free(radius), free(down), free(back);
     if (status) syl_lod_free(out);
     return status;
 }

@@ -164,6 +164,7 @@ static int select_table(Engine *e, int table, int step, const RuleTable **out) {
         }
     int k = e->ncache < TABLE_CACHE ? e->ncache++ : e->evict++ % TABLE_CACHE;
     arena_free(&e->cache[k].arena);
+    if (e->act_for == &e->cache[k].t) e->act_for = NULL; /* the same address, other rules */
     e->cache[k].table = table;
     e->cache[k].active = active;
     if (!lang_table_select(p, table, active, &e->cache[k].t, &e->cache[k].arena)) {

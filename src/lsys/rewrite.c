@@ -24,8 +24,44 @@ static inline void put_codes(uint16_t *dst, const Rule *r) {
 
 /* Successor parameters of a rule whose slots are all k, x, x + k, x - k, x * k or x / k:
  * no VM, no random stream. False if a value is not finite (emit then reports it). */
+typedef uint64_t Bits2 __attribute__((vector_size(16))); /* two slots' bits */
+
 static inline __attribute__((always_inline)) bool put_slots(double *restrict dst, const Rule *restrict r, const double *restrict x) {
     bool ok = true;
+    if (r->blend) { /* no loop per kind of slot: every slot is written from the same three values */
+        double y = x[r->blend_local], v = y;
+        if (r->narith) {
+            double k = r->arith_k[0];
+            switch (r->arith_kind[0]) {
+            case SLOT_ADDK: v = y + k; break;
+            case SLOT_SUBK: v = y - k; break;
+            case SLOT_MULK: v = y * k; break;
+            default: v = y / k; break; /* SLOT_DIVK */
+            }
+            ok = isfinite(v) != 0;
+        }
+        uint64_t yb, vb;
+        memcpy(&yb, &y, sizeof yb);
+        memcpy(&vb, &v, sizeof vb);
+        const Bits2 Y = {yb, yb}, V = {vb, vb};
+#define PAIR(p)                                                                                                   \
+    do {                                                                                                          \
+        Bits2 t, mx, mv;                                                                                          \
+        memcpy(&t, &r->tmpl[2 * (p)], sizeof t);                                                                  \
+        memcpy(&mx, &r->blend_x[2 * (p)], sizeof mx);                                                             \
+        memcpy(&mv, &r->blend_v[2 * (p)], sizeof mv);                                                             \
+        Bits2 d = t | (Y & mx) | (V & mv);                                                                        \
+        memcpy(&dst[2 * (p)], &d, sizeof d);                                                                      \
+    } while (0)
+        switch (r->blend_pairs) { /* unrolled: no loop counter for one to four pairs */
+        case 4: PAIR(3); /* fall through */
+        case 3: PAIR(2); /* fall through */
+        case 2: PAIR(1); /* fall through */
+        default: PAIR(0);
+        }
+#undef PAIR
+        return ok;
+    }
     if (r->planned) { /* the room of a successor's parameters holds MAX_ARITY more */
         memcpy(dst, r->tmpl, sizeof r->tmpl);
         const int ncopy = r->ncopy, narith = r->narith, ndup = r->ndup;

@@ -16,6 +16,7 @@ void syl_instances_free(SylInstances *sets, int n) {
         free(sets[i].t);
         free(sets[i].r);
         free(sets[i].s);
+        free(sets[i].node);
     }
     free(sets);
 }
@@ -28,6 +29,7 @@ static int prototype(const SylSkeleton *s, const SylMeshOptions *opt, int materi
     one->nmaterials = s->nmaterials;
     one->leaf_tris = s->leaf_tris;
     one->leaf_width = s->leaf_width;
+    one->leaf_outline = s->leaf_outline;
     SylOrgan leaf = {.h = {1, 0, 0}, .l = {0, 1, 0}, .u = {0, 0, 1}, .size = 1, .node = -1,
                      .kind = SYL_KIND_LEAF, .material = (uint8_t)material};
     int status = syl_skeleton_add_organ(one, &leaf) < 0 ? SYL_ELIMIT : SYL_OK;
@@ -61,7 +63,8 @@ int syl_leaf_instances(const SylSkeleton *s, const SylMeshOptions *opt, SylInsta
         set->t = malloc(count[m] * 3 * sizeof(float));
         set->r = malloc(count[m] * 4 * sizeof(float));
         set->s = malloc(count[m] * 3 * sizeof(float));
-        if (!set->t || !set->r || !set->s) status = SYL_ELIMIT;
+        if (opt->vertex_nodes) set->node = malloc(count[m] * sizeof *set->node);
+        if (!set->t || !set->r || !set->s || (opt->vertex_nodes && !set->node)) status = SYL_ELIMIT;
         if (!status) status = prototype(s, opt, m, &set->proto);
     }
     for (size_t i = 0; i < s->norgans && !status; i++) {
@@ -79,6 +82,7 @@ int syl_leaf_instances(const SylSkeleton *s, const SylMeshOptions *opt, SylInsta
         memcpy(set->t + 3 * k, o->pos, sizeof(vec3));
         memcpy(set->r + 4 * k, q, sizeof(versor));
         set->s[3 * k] = set->s[3 * k + 1] = set->s[3 * k + 2] = o->size;
+        if (set->node) set->node[k] = o->node;
     }
     if (status) {
         syl_instances_free(sets, nsets);
@@ -89,4 +93,4 @@ int syl_leaf_instances(const SylSkeleton *s, const SylMeshOptions *opt, SylInsta
     return SYL_OK;
 }
 
-const char *const syl_leaves_names[SYL_LEAVES_MODES] = {"mesh", "cards", "instanced", "instanced-cards"};
+const char *const syl_leaves_names[SYL_LEAVES_MODES] = {"mesh", "cards", "instanced", "instanced-cards", "clusters"};

@@ -28,6 +28,7 @@
 
 #include "mesh/mesh_internal.h"
 #include "util/budget.h"
+#include "util/rng.h"
 
 #define TWO_PI 6.28318530717958647692f
 /* fmaxf and fminf are calls (they care about NaN); these are one instruction */
@@ -78,6 +79,7 @@ static void plan_free(MeshPlan *pl) {
     free(pl->polys);
     free(pl->pv);
     free(pl->ptri);
+    free(pl->clusters);
     for (int i = 0; i <= MESH_MAX_SIDES; i++) free(pl->trig[i]);
 }
 
@@ -399,6 +401,20 @@ static void lobe_ring(int lobes, float depth, int S, const MeshTrig *tr, v4f C, 
     }
 }
 
+/* The trunk's jitter (SylSkeleton.trunk_jitter): each vertex of the ring moves out by a factor
+ * 1 + u, u uniform in [-k, k] from a stream keyed by the ring's point and the vertex, so
+ * that the mesh is the same for any number of threads. Normals are kept. */
+static void jitter_ring(float k, uint32_t ring, int S, v4f C, float *vp) {
+    for (int j = 0; j < S; j++) {
+        Rng r = rng_stream(0x0ca1e, ring, 0, (uint64_t)j);
+        const float f = 1.0f + k * (float)(2 * rng_unit(&r) - 1);
+        v4f p = {0};
+        memcpy(&p, vp + 3 * j, 3 * sizeof(float));
+        p = C + f * (p - C);
+        memcpy(vp + 3 * j, &p, 3 * sizeof(float));
+    }
+}
+
 static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
     const MeshPt *P = pl->pts + tb->first;
     const uint32_t n = tb->count;
@@ -408,6 +424,8 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
     vec3 ref, tprev = {0}, din = {0}, dout, t0 = {0}, tk = {0};
     glm_vec3_copy((float *)tb->ref, ref);
     float lin = 0, lout, v = 0;
+    const float jitter = tb->node >= 0 && pl->skel->nodes[tb->node].order == 0 && isfinite(pl->skel->trunk_jitter)
+                             ? pl->skel->trunk_jitter : 0;
     dir_len(P[0].p, P[1].p, dout, &lout);
     for (uint32_t k = 0; k < n; k++) {
         const bool inner = k > 0 && k + 1 < n;
@@ -472,6 +490,7 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
             vt[2 * j + 1] = v;
         }
         if (P[k].lobes) lobe_ring(P[k].lobes, P[k].lobe_depth * 1e-4f, S, tr, C, ninv, NT, ref, bb, vp, vn);
+        if (jitter > 0) jitter_ring(jitter, tb->first + k, S, C, vp);
         memcpy(vp + 3 * S, vp, 3 * sizeof *vp); /* the seam */
         memcpy(vn + 3 * S, vn, 3 * sizeof *vn);
         vt[2 * S] = 1.0f;
@@ -526,10 +545,27 @@ typedef struct Work {
     size_t item0, item1;
 } Work;
 
+/* The runs of tube t: up to the next tube's, or the first item's. */
+static size_t tube_runs_end(const MeshPlan *pl, size_t t) {
+    return t + 1 < pl->ntubes ? pl->tubes[t + 1].run : (pl->nitems ? pl->items[0].run : pl->nruns);
+}
+
 static void *work_run(void *arg) {
     const Work *w = arg;
-    for (size_t t = w->tube0; t < w->tube1; t++) emit_tube(w->pl, &w->pl->tubes[t], w->m);
-    for (size_t i = w->item0; i < w->item1; i++) mesh_emit_item(w->pl, &w->pl->items[i], w->m);
+    const MeshPlan *pl = w->pl;
+    MeshFirstUse fu = {0};
+    for (size_t t = w->tube0; t < w->tube1; t++) {
+        const MeshTube *tb = &pl->tubes[t];
+        emit_tube(pl, tb, w->m);
+        mesh_first_use(&fu, w->m, tb->vert, (size_t)tb->count * (tb->sides + 1u) + (pl->caps ? 2 : 0),
+                       pl->runs + tb->run, tube_runs_end(pl, t) - tb->run);
+    }
+    for (size_t i = w->item0; i < w->item1; i++) {
+        const MeshItem *it = &pl->items[i];
+        mesh_emit_item(pl, it, w->m);
+        mesh_first_use(&fu, w->m, it->vert, it->verts, pl->runs + it->run, 1);
+    }
+    mesh_first_use_free(&fu);
     return NULL;
 }
 
@@ -565,7 +601,7 @@ static void emit_all(const MeshPlan *pl, SylMesh *m, int nthreads) {
             size_t r0, r1;
             if (p < pl->ntubes) {
                 r0 = pl->tubes[p].run;
-                r1 = p + 1 < pl->ntubes ? pl->tubes[p + 1].run : (pl->nitems ? pl->items[0].run : pl->nruns);
+                r1 = tube_runs_end(pl, p);
             } else {
                 r0 = pl->items[p - pl->ntubes].run;
                 r1 = r0 + 1;
@@ -647,6 +683,18 @@ static void *big_alloc(size_t n) {
     return p;
 }
 
+/* The materials of the leaves and petals made with one face (cards are one face anyway). */
+static void mark_double_sided(const MeshPlan *pl, SylMesh *m) {
+    if (!pl->one_sided) return;
+    for (size_t i = 0; i < pl->nitems; i++) {
+        const MeshItem *it = &pl->items[i];
+        if (it->poly) continue;
+        const SylOrgan *o = &pl->skel->organs[it->index];
+        if (o->kind == SYL_KIND_FLOWER || (o->kind == SYL_KIND_LEAF && pl->leaves != SYL_LEAVES_CARDS))
+            m->double_sided[o->material] = 1;
+    }
+}
+
 static int ncpu(void) {
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > 64 ? 64 : (int)n;
@@ -699,9 +747,17 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     SylMeshOptions o;
     int status = resolve_options(s, opt, &o);
     if (status) return status;
-    MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1};
+    MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1,
+                   .one_sided = o.one_sided != 0};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
+    pl.leaf_shape = o.leaf_shape;
+    if (mesh_own_leaf(s)) /* cards and clusters draw the skeleton's own outline */
+        pl.leaf_shape = LEAF_OUTLINE_CARD(s->leaf_outline, s->leaf_tris < LEAF_OUTLINE_CARD_MAX_TRIS
+                                                               ? s->leaf_tris
+                                                               : LEAF_OUTLINE_CARD_MAX_TRIS);
+    pl.cluster_shape = pl.leaf_shape;
+    pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : SYL_CLUSTER_LEAVES;
     SylMesh *m = calloc(1, sizeof *m);
     float *rad = NULL;
     if (!m) goto oom;
@@ -755,9 +811,10 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     if (!m->pos || !m->nrm || !m->uv || !m->idx) goto oom;
     memcpy(m->materials, s->materials, sizeof m->materials);
     m->nmaterials = s->nmaterials;
+    mark_double_sided(&pl, m);
     snprintf(m->name, sizeof m->name, "%s", s->name);
     m->leaves = (uint8_t)o.leaves;
-    m->leaf_shape = (uint8_t)o.leaf_shape;
+    m->leaf_shape = (uint8_t)pl.cluster_shape;
     emit_all(&pl, m, o.threads > 0 ? o.threads : ncpu());
     if (o.vertex_nodes && !fill_nodes(&pl, m)) goto oom;
     goto done;

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "sylva/mesh.h"
+#include "util/leafoutline.h"
 
 enum { MESH_MAX_SIDES = 256 };
 
@@ -46,7 +47,15 @@ typedef struct MeshItem {
     uint32_t verts;
     int32_t node;   /* the node it hangs on (SylMesh.node; -1: none) */
     bool poly;
+    bool cluster;   /* index: into MeshPlan.clusters */
 } MeshItem;
+
+/* A leaf cluster's card (clusters.c): centre, half extents along and across, its normal. */
+typedef struct MeshCluster {
+    float c[3], a[3], b[3], n[3];
+    int32_t node; /* its first leaf's node */
+    uint8_t mat;
+} MeshCluster;
 
 /* A polygon after cleaning and triangulation. */
 typedef struct MeshPoly {
@@ -63,7 +72,11 @@ typedef struct MeshTrig {
 typedef struct MeshPlan {
     const SylSkeleton *skel;
     int sides, min_sides, sphere_stacks, leaves;
-    bool caps;
+    int leaf_shape, cluster_shape; /* clusters: the shape the cards show (SYL_CLUSTER_NEEDLES) */
+    float cluster_leaves;          /* clusters: leaves per card */
+    MeshCluster *clusters;
+    size_t nclusters, clusters_cap;
+    bool caps, one_sided; /* one_sided: SylMeshOptions.one_sided */
     MeshPt *pts;
     size_t npts, pts_cap;
     MeshTube *tubes;
@@ -78,7 +91,8 @@ typedef struct MeshPlan {
     size_t npv, pv_cap, nptri, ptri_cap;
     MeshTrig *trig[MESH_MAX_SIDES + 1]; /* by number of sides, as needed */
     size_t nverts;
-    float oval[66][2]; /* a skeleton's own leaf outline (along, across), computed once */
+    LeafPanel panels[LEAF_OUTLINE_MAX_PANELS]; /* a skeleton's own leaf outline, computed once */
+    int npanels;                               /* 0: Sylva's blade */
 } MeshPlan;
 
 /* Grow *arr to hold n + more elements; false when out of memory. */
@@ -89,11 +103,31 @@ const MeshTrig *mesh_trig(MeshPlan *pl, int sides);
 
 /* An organ's unit frame (H along, L across, U = H x L); false when it has none or no size. */
 bool mesh_organ_frame(const SylOrgan *o, float h[3], float l[3], float u[3]);
-/* The half width of a leaf per unit of length (the blade's or the skeleton's oval). */
+/* The half width of a leaf per unit of length (the blade's or the skeleton's own). */
 float mesh_leaf_width(const SylSkeleton *s);
+/* Does the skeleton name its own leaf surface (leaf_outline, leaf_tris, leaf_width)? */
+bool mesh_own_leaf(const SylSkeleton *s);
 
 /* Organs and polygons (shapes.c). Planning adds items and runs; emission fills them. */
 bool mesh_plan_shapes(MeshPlan *pl);
 void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m);
+/* The area one side of an organ shows as the mesher draws it (SYL_LEAVES_MESH): a leaf's
+ * blade or oval; half the surface of a closed needle, which shows as much on average. */
+float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o);
+
+/* Leaf clusters (clusters.c): one card item per group of about per_card leaves and needles
+ * (which organ planning then leaves out), and a card's 4 vertices and 2 triangles. */
+bool mesh_plan_clusters(MeshPlan *pl, float per_card);
+void mesh_emit_cluster(const MeshCluster *k, float *pos, float *nrm, float *uv, uint32_t *idx, uint32_t v0);
+
+/* firstuse.c: a piece's vertices (nv from vert on) in the order its runs' triangles first use
+ * them, the triangles renumbered; f is the caller's scratch, kept between pieces */
+typedef struct MeshFirstUse {
+    uint32_t *id;
+    float *tmp;
+    size_t cap;
+} MeshFirstUse;
+void mesh_first_use(MeshFirstUse *f, SylMesh *m, size_t vert, size_t nv, const MeshRun *runs, size_t nruns);
+void mesh_first_use_free(MeshFirstUse *f);
 
 #endif

@@ -1,5 +1,6 @@
 /* Organs and polygons. Leaves, petals and polygons are thin: both sides are made, each with
- * its own normals, so they shade right from either side without a double-sided material.
+ * its own normals, so they shade right from either side without a double-sided material
+ * (for glTF, leaves and petals are made once, their material double-sided: one_sided).
  * Needles and spheres are closed.
  *
  * Organ frame: H along the organ, L across, U = H x L its face. A leaf is a blade of length
@@ -7,7 +8,8 @@
  * main vein, u across). A flower is five such petals around H, tilted forward. A needle is a
  * slender three-sided spike. A sphere is a UV sphere of diameter size about H. A disc (cpfg's
  * circle) is a flat fan of diameter size in the H-L plane, facing U, made on both sides. A
- * skeleton may name its own leaf surface (leaf_tris, leaf_width: Weber–Penn's ovals). */
+ * skeleton may name its own leaf surface (leaf_outline, leaf_tris, leaf_width: Weber–Penn's
+ * named shapes, util/leafoutline.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +17,7 @@
 #include <cglm/cglm.h>
 
 #include "mesh/mesh_internal.h"
+#include "util/leafoutline.h"
 
 /* The blade: x along 0..1, y across -1..1; triangles counter-clockwise in (x, y). */
 static const float blade_xy[8][2] = {{0, 0},    {0.3f, 0},  {0.7f, 0},     {1, 0},
@@ -50,12 +53,19 @@ bool mesh_organ_frame(const SylOrgan *o, float h[3], float l[3], float u[3]) {
     return true;
 }
 
-/* A skeleton's own leaf surface (Weber–Penn's disc1..disc9): 0 for Sylva's blade. */
-static int oval_tris(const SylSkeleton *s) {
-    return s->leaf_tris >= 1 && s->leaf_tris <= 64 && s->leaf_width > 0 && isfinite(s->leaf_width) ? s->leaf_tris : 0;
+/* Does the skeleton name its own leaf surface (Weber–Penn's shapes)? Else Sylva's blade. */
+bool mesh_own_leaf(const SylSkeleton *s) {
+    return s->leaf_tris >= 1 && s->leaf_width > 0 && isfinite(s->leaf_width) &&
+           leaf_outline_valid(s->leaf_outline, s->leaf_tris);
 }
 
-float mesh_leaf_width(const SylSkeleton *s) { return oval_tris(s) ? s->leaf_width : LEAF_WIDTH; }
+float mesh_leaf_width(const SylSkeleton *s) { return mesh_own_leaf(s) ? 0.5f * s->leaf_width : LEAF_WIDTH; }
+
+/* Vertices and triangles of the skeleton's own leaf, both faces. */
+static void own_leaf_counts(const MeshPlan *pl, uint32_t *verts, uint32_t *tris) {
+    *verts = *tris = 0;
+    for (int k = 0; k < pl->npanels; k++) *verts += 2 * (uint32_t)pl->panels[k].n, *tris += 2 * (uint32_t)(pl->panels[k].n - 2);
+}
 
 static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts, uint32_t *tris) {
     vec3 h, l, u;
@@ -64,13 +74,20 @@ static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts,
     uint32_t st = (uint32_t)pl->sphere_stacks, sl = (uint32_t)pl->sides;
     switch (o->kind) {
     case SYL_KIND_LEAF:
-        if (pl->leaves == SYL_LEAVES_INSTANCED || pl->leaves == SYL_LEAVES_INSTANCED_CARDS) break; /* placed apart */
+        if (pl->leaves == SYL_LEAVES_INSTANCED || pl->leaves == SYL_LEAVES_INSTANCED_CARDS ||
+            pl->leaves == SYL_LEAVES_CLUSTERS)
+            break; /* placed apart */
         if (pl->leaves == SYL_LEAVES_CARDS) *verts = 4, *tris = 2;
-        else if (oval_tris(pl->skel)) *verts = 2 * (uint32_t)(oval_tris(pl->skel) + 2), *tris = 2 * (uint32_t)oval_tris(pl->skel);
+        else if (pl->npanels) own_leaf_counts(pl, verts, tris);
         else *verts = BLADE_V, *tris = BLADE_T;
+        if (pl->one_sided && pl->leaves != SYL_LEAVES_CARDS) *verts /= 2, *tris /= 2;
         break;
-    case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T; break;
-    case SYL_KIND_NEEDLE: *verts = NEEDLE_V, *tris = NEEDLE_T; break;
+    case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T;
+        if (pl->one_sided) *verts /= 2, *tris /= 2;
+        break;
+    case SYL_KIND_NEEDLE:
+        if (pl->leaves != SYL_LEAVES_CLUSTERS) *verts = NEEDLE_V, *tris = NEEDLE_T;
+        break;
     case SYL_KIND_SPHERE: *verts = (st + 1) * (sl + 1), *tris = 2 * sl * (st - 1); break;
     case SYL_KIND_DISC: *verts = 2 * (sl + 1), *tris = 2 * sl; break;
     default: break;
@@ -213,11 +230,9 @@ static bool plan_polygon(MeshPlan *pl, const SylPolygon *sp, PolyScratch *sc) {
     return true;
 }
 
-static void oval_outline(float (*uv)[2], int n);
-
 bool mesh_plan_shapes(MeshPlan *pl) {
     const SylSkeleton *s = pl->skel;
-    if (oval_tris(s)) oval_outline(pl->oval, oval_tris(s));
+    pl->npanels = mesh_own_leaf(s) ? leaf_outline_panels(s->leaf_outline, s->leaf_tris, pl->panels) : 0;
     for (size_t i = 0; i < s->norgans; i++) {
         uint32_t nv, nt;
         organ_counts(pl, &s->organs[i], &nv, &nt);
@@ -233,6 +248,7 @@ bool mesh_plan_shapes(MeshPlan *pl) {
                                              .node = s->organs[i].node};
         pl->nverts += nv;
     }
+    if (pl->leaves == SYL_LEAVES_CLUSTERS && !mesh_plan_clusters(pl, pl->cluster_leaves)) return false;
     PolyScratch sc = {0};
     bool ok = true;
     for (size_t i = 0; i < s->npolys && ok; i++) ok = plan_polygon(pl, &s->polys[i], &sc);
@@ -261,8 +277,9 @@ static void tri(Out *o, uint32_t a, uint32_t b, uint32_t c) {
     *o->ix++ = a, *o->ix++ = b, *o->ix++ = c;
 }
 
-/* A double-sided blade from origin along x (length len) and y (half width w). */
-static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w) {
+/* A double-sided blade from origin along x (length len) and y (half width w); one-sided: its
+ * front only. */
+static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w, bool one) {
     vec3 n, nb;
     glm_vec3_cross((float *)x, (float *)y, n);
     glm_vec3_normalize(n);
@@ -272,35 +289,32 @@ static void blade(Out *o, const float *origin, const vec3 x, const vec3 y, float
     for (int i = 0; i < 8; i++)
         for (int q = 0; q < 3; q++) p[i][q] = origin[q] + blade_xy[i][0] * len * x[q] + blade_xy[i][1] * w * y[q];
     for (int i = 0; i < 8; i++) f[i] = put(o, p[i], n, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
-    for (int i = 0; i < 8; i++) b[i] = put(o, p[i], nb, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
     for (int t = 0; t < 8; t++) tri(o, f[blade_tri[t][0]], f[blade_tri[t][1]], f[blade_tri[t][2]]);
+    if (one) return;
+    for (int i = 0; i < 8; i++) b[i] = put(o, p[i], nb, 0.5f + 0.5f * blade_xy[i][1], blade_xy[i][0]);
     for (int t = 0; t < 8; t++) tri(o, b[blade_tri[t][0]], b[blade_tri[t][2]], b[blade_tri[t][1]]);
 }
 
-/* A double-sided oval of n triangles (a fan over n + 2 points of its outline, from the base
- * through one side, the tip and the other side), len long along x and w wide along y. */
-static void oval_outline(float (*uv)[2], int n) {
-    for (int i = 0; i < n + 2; i++) {
-        float a = 3.14159265358979f + 6.28318530718f * (float)i / (float)(n + 2);
-        uv[i][0] = 0.5f + 0.5f * cosf(a), uv[i][1] = 0.5f * sinf(a); /* along, 0..1; across */
-    }
-}
-
-static void oval(Out *o, const float (*uv)[2], const float *origin, const vec3 x, const vec3 y, float len, float w, int n) {
-    vec3 nf, nb;
-    glm_vec3_cross((float *)x, (float *)y, nf);
+/* A double-sided (one: front only) panel of a named leaf outline (a fan over its points, util/leafoutline.h),
+ * len long along x and w wide across: in the plane of x and cos(fold) y + sin(fold) z. */
+static void panel(Out *o, const LeafPanel *pn, const float *origin, const vec3 x, const vec3 y, const vec3 z,
+                  float len, float w, bool one) {
+    vec3 e, nf, nb;
+    if (pn->fold == 0) glm_vec3_copy((float *)y, e);
+    else for (int q = 0; q < 3; q++) e[q] = cosf(pn->fold) * y[q] + sinf(pn->fold) * z[q];
+    glm_vec3_cross((float *)x, e, nf);
     glm_vec3_normalize(nf);
     glm_vec3_negate_to(nf, nb);
-    uint32_t f[66], b[66];
-    for (int i = 0; i < n + 2; i++) {
-        float u = uv[i][0], v = uv[i][1], p[3];
-        for (int q = 0; q < 3; q++) p[q] = origin[q] + u * len * x[q] + v * w * y[q];
+    uint32_t f[LEAF_OUTLINE_MAX_POINTS], b[LEAF_OUTLINE_MAX_POINTS];
+    for (int i = 0; i < pn->n; i++) {
+        float u = pn->st[i][0], v = 0.5f * pn->st[i][1], p[3]; /* along, 0..1; across, -1/2..1/2 */
+        for (int q = 0; q < 3; q++) p[q] = origin[q] + u * len * x[q] + v * w * e[q];
         f[i] = put(o, p, nf, 0.5f + v, u);
-        b[i] = put(o, p, nb, 0.5f + v, u);
+        if (!one) b[i] = put(o, p, nb, 0.5f + v, u);
     }
-    for (int i = 1; i + 1 < n + 2; i++) {
+    for (int i = 1; i + 1 < pn->n; i++) {
         tri(o, f[0], f[i], f[i + 1]);
-        tri(o, b[0], b[i + 1], b[i]);
+        if (!one) tri(o, b[0], b[i + 1], b[i]);
     }
 }
 
@@ -327,8 +341,9 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
     switch (og->kind) {
     case SYL_KIND_LEAF:
         if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(pl->skel) * size);
-        else if (oval_tris(pl->skel)) oval(o, pl->oval, c, h, l, size, pl->skel->leaf_width * size, oval_tris(pl->skel));
-        else blade(o, c, h, l, size, LEAF_WIDTH * size);
+        else if (pl->npanels)
+            for (int k = 0; k < pl->npanels; k++) panel(o, &pl->panels[k], c, h, l, u, size, pl->skel->leaf_width * size, pl->one_sided);
+        else blade(o, c, h, l, size, LEAF_WIDTH * size, pl->one_sided);
         break;
     case SYL_KIND_FLOWER:
         for (int k = 0; k < PETALS; k++) {
@@ -340,7 +355,7 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
                 x[q] = cosf(PETAL_TILT) * radial[q] + sinf(PETAL_TILT) * h[q];
             }
             float len = PETAL_LENGTH * size;
-            blade(o, c, x, across, len, PETAL_WIDTH * len);
+            blade(o, c, x, across, len, PETAL_WIDTH * len, pl->one_sided);
         }
         break;
     case SYL_KIND_NEEDLE: {
@@ -431,6 +446,23 @@ static void emit_polygon(const MeshPlan *pl, const MeshPoly *mp, Out *o) {
 void mesh_emit_item(const MeshPlan *pl, const MeshItem *it, SylMesh *m) {
     Out o = {m->pos + 3 * it->vert, m->nrm + 3 * it->vert, m->uv + 2 * it->vert, m->idx + pl->runs[it->run].idx,
              (uint32_t)it->vert, 0};
-    if (it->poly) emit_polygon(pl, &pl->polys[it->index], &o);
+    if (it->cluster) mesh_emit_cluster(&pl->clusters[it->index], o.pos, o.nrm, o.uv, o.ix, o.v0);
+    else if (it->poly) emit_polygon(pl, &pl->polys[it->index], &o);
     else emit_organ(pl, &pl->skel->organs[it->index], &o);
+}
+
+float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o) {
+    float size = o->size;
+    if (o->kind == SYL_KIND_NEEDLE) {
+        float r = NEEDLE_WIDTH * size, edge = r * sqrtf(3.0f);
+        float sides = 3 * 0.5f * edge * sqrtf(size * size + 0.25f * r * r), cap = 0.25f * sqrtf(3.0f) * edge * edge;
+        return 0.5f * (sides + cap);
+    }
+    if (pl->npanels) return (float)leaf_outline_area(pl->skel->leaf_outline, pl->skel->leaf_tris) * size * pl->skel->leaf_width * size;
+    float a = 0;
+    for (int t = 0; t < 8; t++) {
+        const float(*p[3]) = {blade_xy[blade_tri[t][0]], blade_xy[blade_tri[t][1]], blade_xy[blade_tri[t][2]]};
+        a += 0.5f * fabsf((p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[2][0] - p[0][0]) * (p[1][1] - p[0][1]));
+    }
+    return a * size * LEAF_WIDTH * size;
 }

@@ -7,11 +7,13 @@
 #include <string.h>
 #include <time.h>
 
-static double now(void) {
+static double clock_s(clockid_t id) {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    clock_gettime(id, &ts);
     return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
 }
+static double now(void) { return clock_s(CLOCK_MONOTONIC); }
+static double cpu_now(void) { return clock_s(CLOCK_PROCESS_CPUTIME_ID); }
 
 typedef struct StepProgress {
     const SylPlantOptions *opt;
@@ -31,12 +33,13 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
                         .max_modules = opt->max_modules, .max_work = opt->max_work, .max_memory = opt->max_memory,
                         .budget = budget, .diag = opt->diag, .progress = opt->progress, .user = opt->user};
     SylMesh *obstacles = NULL;
-    double t0 = now();
+    double t0 = now(), c0 = cpu_now();
     int st = scene ? syl_grow_scene(p, &g, &out->skeleton, &obstacles) : syl_grow(p, &g, &out->skeleton);
     if (opt->progress) opt->progress(opt->user, 1);
     double t1 = now();
     out->grow = g.stats;
     out->derive_s = t1 - t0;
+    out->derive_cpu_s = cpu_now() - c0;
     if (!st) out->modules = out->skeleton->nnodes;
     if (!st && opt->until == SYL_PLANT_MESH) {
         st = syl_mesh_build(out->skeleton, mo, &out->mesh);
@@ -54,12 +57,13 @@ static int build_tree(const SylProgram *p, const SylPlantOptions *opt, const Syl
                       SylPlant *out) {
     SylTreeOptions t = {.use_seed = opt->use_seed, .seed = opt->seed, .threads = opt->threads, .age = opt->age,
                         .levels = opt->levels, .max_memory = opt->max_memory, .budget = budget, .diag = opt->diag};
-    double t0 = now();
+    double t0 = now(), c0 = cpu_now();
     int st = syl_program_kind(p) == SYL_MODEL_WEBER ? syl_weber(p, &t, &out->skeleton)
                                                       : syl_strands(p, &t, &out->skeleton);
     if (opt->progress) opt->progress(opt->user, 1);
     double t1 = now();
     out->derive_s = t1 - t0;
+    out->derive_cpu_s = cpu_now() - c0;
     if (!st) out->modules = out->skeleton->nnodes;
     if (!st && opt->until == SYL_PLANT_MESH) st = syl_mesh_build(out->skeleton, mo, &out->mesh);
     out->mesh_s = now() - t1;
@@ -74,7 +78,7 @@ static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const 
                           .max_work = opt->max_work, .max_memory = opt->max_memory, .budget = budget,
                           .diag = opt->diag,
                           .on_step = opt->progress ? on_step : NULL, .user = &sp};
-    double t0 = now();
+    double t0 = now(), c0 = cpu_now();
     SylString *derived = NULL;
     int st = syl_derive(p, &d, &derived);
     if (opt->progress) opt->progress(opt->user, 1);
@@ -82,6 +86,7 @@ static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const 
     syl_string_free(derived);
     double t1 = now();
     out->derive_s = t1 - t0;
+    out->derive_cpu_s = cpu_now() - c0;
     out->rewritten = d.rewritten;
     if (!st) out->modules = syl_string_length(out->string);
     if (!st && opt->until != SYL_PLANT_STRING) {

@@ -212,20 +212,27 @@ static int place(Work *w, const SylRenderInstance *inst, size_t n, SylRenderCoun
 }
 
 static int check(const SylMesh *ground, const SylRenderProto *protos, int nprotos, const SylRenderInstance *inst,
-                 size_t n, const SylRenderOptions *opt, const int window[4], int win[4]) {
+                 size_t n, const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint64_t *pixels) {
     FILE *diag = opt->diag;
     int W = opt->width > 0 ? opt->width : 1024, H = opt->height > 0 ? opt->height : 1024;
     if (opt->width < 0 || opt->height < 0 || W > 65536 || H > 65536 || (size_t)W * (size_t)H > (size_t)1 << 28) {
         if (diag) fprintf(diag, "sylva: error: render: picture size %d x %d out of range\n", W, H);
         return SYL_EUSAGE;
     }
-    int full[4] = {0, 0, W, H};
-    memcpy(win, window ? window : full, 4 * sizeof *win);
-    if (win[0] < 0 || win[1] < 0 || win[2] > W || win[3] > H || win[0] >= win[2] || win[1] >= win[3]) {
-        if (diag)
-            fprintf(diag, "sylva: error: render: window %d,%d..%d,%d is not inside the %d x %d picture\n", win[0], win[1],
-                    win[2], win[3], W, H);
+    if (nwindows < 0 || (nwindows && !windows)) {
+        if (diag) fprintf(diag, "sylva: error: render: %d windows\n", nwindows);
         return SYL_EUSAGE;
+    }
+    *pixels = nwindows ? 0 : (uint64_t)W * (uint64_t)H;
+    for (int k = 0; k < nwindows; k++) {
+        const int *win = windows[k];
+        if (win[0] < 0 || win[1] < 0 || win[2] > W || win[3] > H || win[0] >= win[2] || win[1] >= win[3]) {
+            if (diag)
+                fprintf(diag, "sylva: error: render: window %d,%d..%d,%d is not inside the %d x %d picture\n", win[0],
+                        win[1], win[2], win[3], W, H);
+            return SYL_EUSAGE;
+        }
+        *pixels += (uint64_t)(win[2] - win[0]) * (uint64_t)(win[3] - win[1]);
     }
     if (nprotos < 0 || nprotos > 256) {
         if (diag) fprintf(diag, "sylva: error: render: %d prototypes (at most 256)\n", nprotos);
@@ -265,21 +272,22 @@ static void lighting(Scene *s, const SylMesh *ground, const SylRenderInstance *i
 
 int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,
                          const SylRenderInstance *inst, size_t n, const SylRenderCamera *cam,
-                         const SylRenderOptions *opt, const int window[4], uint8_t *rgb, SylRenderCounts *counts) {
+                         const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint8_t *rgb,
+                         SylRenderCounts *counts) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
     SylRenderCounts own_counts;
     if (!counts) counts = &own_counts;
     memset(counts, 0, sizeof *counts);
-    int win[4];
-    int status = check(ground, protos, nprotos, inst, n, opt, window, win);
+    uint64_t pixels;
+    int status = check(ground, protos, nprotos, inst, n, opt, windows, nwindows, &pixels);
     if (status) return status;
     Budget own;
     budget_init(&own, opt->max_memory);
     Budget *mem = opt->budget ? opt->budget : &own;
     uint64_t tris = ground ? ground->nidx / 3 : 0;
     for (int p = 0; p < nprotos; p++) tris += protos[p].mesh->nidx / 3 + (protos[p].coarse ? protos[p].coarse->nidx / 3 : 0);
-    uint64_t need = tris * 150 + (uint64_t)n * 600 + (uint64_t)(win[2] - win[0]) * (uint64_t)(win[3] - win[1]) * 3 + (8u << 20);
+    uint64_t need = tris * 150 + (uint64_t)n * 600 + pixels * 3 + (8u << 20);
     if (!budget_charge(mem, need)) {
         if (opt->diag)
             fprintf(opt->diag, "sylva: error: rendering %zu instances would need about %llu MB, more than --max-memory "
@@ -295,9 +303,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
     if (!status) {
         int W = opt->width > 0 ? opt->width : 1024, H = opt->height > 0 ? opt->height : 1024;
         s->m = ground;
-        s->full_w = W, s->full_h = H, s->ox = win[0], s->oy = win[1];
-        s->width = win[2] - win[0], s->height = win[3] - win[1];
-        s->out = rgb;
+        s->full_w = W, s->full_h = H;
         s->ground = false, s->unlit = opt->unlit;
         s->samples = opt->samples > 0 ? (opt->samples > MAX_SAMPLES ? MAX_SAMPLES : opt->samples) : 4;
         int ao = opt->ao_samples < 0 ? 0 : opt->ao_samples == 0 ? 8 : opt->ao_samples > MAX_AO ? MAX_AO : opt->ao_samples;
@@ -335,7 +341,14 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
         if (rtcGetDeviceError(s->dev) != RTC_ERROR_NONE) status = SYL_ELIMIT;
     }
     if (status == SYL_ELIMIT && opt->diag) fprintf(opt->diag, "sylva: error: render: out of memory\n");
-    if (!status) {
+    const int whole[1][4] = {{0, 0, s ? s->full_w : 0, s ? s->full_h : 0}};
+    if (!nwindows) windows = whole, nwindows = 1;
+    for (int k = 0; !status && k < nwindows; k++) { /* each window on the one scene */
+        const int *win = windows[k];
+        s->ox = win[0], s->oy = win[1];
+        s->width = win[2] - win[0], s->height = win[3] - win[1];
+        s->out = rgb;
+        rgb += (size_t)s->width * (size_t)s->height * 3;
         atomic_store(&s->next_tile, 0);
         atomic_store(&s->tiles_done, 0);
         render_all_tiles(s, threads, opt);

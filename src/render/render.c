@@ -75,6 +75,7 @@ void render_scene_free(Scene *s) {
     free(s->tri_mat);
     free(s->quad_index);
     free(s->quad_halves);
+    free(s->alphatest);
     free(s->pos_copy);
     free(s);
 }
@@ -143,6 +144,10 @@ static int build_scene(Scene *s, int threads, FILE *diag) {
         else
             rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->idx, 0,
                                        3 * sizeof(uint32_t), ntri);
+        if (render_alpha_test(s, geom)) { /* after the quads: its filter reads their halves */
+            rtcReleaseGeometry(geom);
+            return SYL_ELIMIT;
+        }
         rtcCommitGeometry(geom);
         rtcAttachGeometry(s->scene, geom);
         rtcReleaseGeometry(geom);

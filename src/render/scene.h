@@ -12,6 +12,8 @@
 
 enum { TILE = 32, MAX_SAMPLES = 64, MAX_AO = 64, TEX_SIZE = 256 };
 
+typedef struct AlphaTest AlphaTest; /* alphatest.c */
+
 typedef struct Scene {
     const SylMesh *m;
     RenderCamera cam;
@@ -21,6 +23,7 @@ typedef struct Scene {
     uint8_t *tri_mat;           /* material of each triangle */
     uint32_t (*quad_index)[4];  /* NULL, or the triangles paired into quads (quads.c) ... */
     uint32_t (*quad_halves)[2]; /* ... and the triangles each quad is made of */
+    AlphaTest *alphatest;       /* leaf cards' and clusters' alpha (NULL: none) */
     Texture tex[4];             /* bark, leaf, flower, grass */
     float mat_lin[256][3];      /* material colours in linear light */
     uint8_t mat_kind[256];
@@ -62,6 +65,9 @@ typedef struct Scene {
 /* render.c's pieces that instances.c shares. */
 void render_set_lighting(Scene *s); /* materials of s->m, scale from s->cam's bounds, the sun */
 void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt);
+/* Let rays through the transparent parts of s->m's leaf cards or clusters (on g, its
+ * geometry, before it is committed). SYL_OK or SYL_ELIMIT. */
+int render_alpha_test(Scene *s, RTCGeometry g);
 /* Release a scene: its Embree scene and device, textures and copies. */
 void render_scene_free(Scene *s);
 int render_cpu_count(void);

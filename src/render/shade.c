@@ -47,7 +47,7 @@ static void sky(const float d[3], float out[3]) {
 /* Rays go to Embree sixteen at a time: the pixels of a 4 x 4 block for one sample index,
  * so camera rays and sun rays in a packet are nearly parallel. The packets a pixel belongs to
  * depend only on its coordinates, never on the threads. */
-enum { BLOCK = 4, LANES = BLOCK * BLOCK };
+enum { BLOCK = SYL_RENDER_BLOCK, LANES = BLOCK * BLOCK };
 
 /* What a camera ray found. */
 typedef struct Surface {

@@ -58,6 +58,7 @@ static const Key k_years = {"years", V_INT, 0, 10000, G(years), 0};
 static const Key k_seed = {"seed", V_SEED, 0, 9007199254740991.0, G(seed), 0};
 static const Key k_internode = {"internode", V_NUM, 1e-6, 1e4, G(internode), 0};
 static const Key k_sensitivity = {"sensitivity", V_NUM, 0, 20, G(sensitivity), 0};
+static const Key k_lod = {"lod", V_INT, 0, 8, G(lod), 0};
 
 static const Key buds_keys[] = {
     {"divergence", V_NUM, -360, 360, G(divergence), 0},
@@ -204,6 +205,7 @@ static const Directive directives[] = {
     {"direction", false, false, -1, NO_MODE, NULL, NULL, direction_keys},
     {"shed", false, false, -1, NO_MODE, shed_modes, NULL, shed_keys},
     {"pipe", false, false, -1, NO_MODE, NULL, NULL, pipe_keys},
+    {"lod", false, false, -1, NO_MODE, NULL, &k_lod, NULL},
     {"organ", true, true, -1, O(kind), organ_modes, NULL, organ_keys},
 };
 enum { NDIRECTIVES = sizeof directives / sizeof *directives };

@@ -68,6 +68,7 @@ typedef struct GrowParams {
     float shed_threshold, bare_trunk;
     /* pipe model */
     float pipe_exponent, tip_radius;
+    int lod; /* levels of detail of `sylva mesh` (not read by the growth: syl_program_setting) */
     OrganSpec organs[MAX_ORGANS];
     int norgans;
 } GrowParams;

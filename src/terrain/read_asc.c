@@ -8,6 +8,7 @@
 
 #include "terrain/terrain.h"
 #include "util/diag.h"
+#include "util/number.h"
 
 typedef struct Scan {
     const char *s, *end;
@@ -38,17 +39,6 @@ static void advance(Scan *sc, size_t n) {
     sc->col += (int)n;
 }
 
-/* A whole token as a finite number. */
-static bool number(const char *s, size_t n, double *out) {
-    char buf[64];
-    if (n == 0 || n >= sizeof buf) return false;
-    memcpy(buf, s, n);
-    buf[n] = 0;
-    char *e;
-    *out = strtod(buf, &e);
-    return *e == 0 && isfinite(*out);
-}
-
 static bool is_word(const char *s, size_t n, const char *w) { return strlen(w) == n && !strncasecmp(s, w, n); }
 
 enum { K_NCOLS, K_NROWS, K_XLL, K_YLL, K_CELL, K_NODATA, K_N };
@@ -64,7 +54,7 @@ int terrain_read_asc(const char *path, const char *text, size_t len, const SylTe
     for (;;) {
         size_t n = token(&sc, &loc);
         double num;
-        if (n == 0 || number(sc.s, n, &num)) break; /* the grid begins */
+        if (n == 0 || number_read(sc.s, n, &num)) break; /* the grid begins */
         int key = -1;
         if (is_word(sc.s, n, "ncols")) key = K_NCOLS;
         else if (is_word(sc.s, n, "nrows")) key = K_NROWS;
@@ -90,7 +80,7 @@ int terrain_read_asc(const char *path, const char *text, size_t len, const SylTe
         int line = sc.line;
         advance(&sc, n);
         size_t m = token(&sc, &vloc);
-        if (m == 0 || sc.line != line || !number(sc.s, m, &v[key])) {
+        if (m == 0 || sc.line != line || !number_read(sc.s, m, &v[key])) {
             if (m == 0 || sc.line != line) vloc = (SylLoc){line, loc.last_column + 1, line, loc.last_column + 1};
             diag_error(&sc.d, vloc, "%s expects a number", key_name[key]);
             return SYL_EMODEL;
@@ -140,7 +130,7 @@ int terrain_read_asc(const char *path, const char *text, size_t len, const SylTe
             return SYL_EMODEL;
         }
         double h;
-        if (!number(sc.s, n, &h)) {
+        if (!number_read(sc.s, n, &h)) {
             char q[80];
             diag_error(&sc.d, loc, "'%s' is not a number (value %zu: row %zu, column %zu)",
                        diag_quote(q, sizeof q, sc.s, n), c + 1, c / nx + 1, c % nx + 1);

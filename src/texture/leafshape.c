@@ -7,6 +7,7 @@
 
 #include "sylva/skeleton.h"
 #include "texture/texture.h"
+#include "util/leafoutline.h"
 
 #define PI 3.14159265358979f
 
@@ -30,6 +31,8 @@ static bool lobed(float s, float t, float centre, int lobes, float depth, float 
 
 bool syl_leaf_inside(int shape, float s, float t) {
     if (!(s > 0 && s < 1 && t > -1 && t < 1)) return false;
+    if (shape >= LEAF_OUTLINE_CARD(0, 0)) /* a skeleton's own outline (Weber–Penn's shapes) */
+        return leaf_outline_inside((shape - LEAF_OUTLINE_CARD(0, 0)) / 32, (shape - LEAF_OUTLINE_CARD(0, 0)) % 32, s, t);
     float w;
     switch (shape) {
     case SYL_LEAF_LINEAR: w = 0.35f * sqrtf(sinf(PI * s)); break;                     /* a strap */
@@ -64,4 +67,122 @@ bool syl_leaf_card(int shape, int size, uint8_t *rgba) {
         }
     free(rgb);
     return ok;
+}
+
+/* ------------------------------------------------------------------ leaf clusters */
+
+/* A cluster card (Pafčo's spherical clusters, seen from one side): leaves radiating from the
+ * card's centre, an outer ring and a shorter inner one between them; or a tuft of needles.
+ * Each leaf has its base near the centre and its tip inside the card's inscribed circle. */
+typedef struct ClusterLeaf {
+    float base[2], dir[2], len, half; /* card units (0..1); half: the half width */
+} ClusterLeaf;
+
+enum { CLUSTER_MAX = 32, MASK = 256 };
+
+static int cluster_layout(int shape, ClusterLeaf *lf) {
+    int n = 0;
+    bool needles = shape == SYL_CLUSTER_NEEDLES;
+    int rings = needles ? 2 : 2, per[2] = {needles ? 16 : 8, needles ? 12 : 5};
+    for (int r = 0; r < rings; r++)
+        for (int i = 0; i < per[r]; i++) {
+            /* evenly round, the inner ring half a step over, a fixed wobble so it is not a star */
+            float a = 2 * PI * ((float)i + 0.5f * (float)r) / (float)per[r] + 0.23f * sinf(7.1f * (float)(i + 3 * r));
+            float len = needles ? (r ? 0.3f : 0.45f) : (r ? 0.3f : 0.44f);
+            float off = needles ? (r ? 0.1f : 0.02f) : 0.035f;
+            ClusterLeaf *l = &lf[n++];
+            l->dir[0] = cosf(a), l->dir[1] = sinf(a);
+            l->base[0] = 0.5f + off * l->dir[0], l->base[1] = 0.5f + off * l->dir[1];
+            l->len = len - (needles ? 0 : 0.02f * (float)(i % 2));
+            l->half = needles ? 0.09f * len : 0.22f * len; /* needles: the strap at a needle's width */
+        }
+    return n;
+}
+
+/* The shape in a MASK x MASK grid over (s, t) in 0..1 x -1..1: drawn once, looked up per sample. */
+static void shape_mask(int shape, uint8_t *mask) {
+    int drawn = shape == SYL_CLUSTER_NEEDLES ? SYL_LEAF_LINEAR : shape;
+    for (int j = 0; j < MASK; j++)
+        for (int i = 0; i < MASK; i++)
+            mask[j * MASK + i] = syl_leaf_inside(drawn, ((float)j + 0.5f) / MASK, 2 * ((float)i + 0.5f) / MASK - 1);
+}
+
+/* The last leaf of the layout over card point (x, y), -1: none; (s, t) its coordinates. */
+static int cluster_hit(const ClusterLeaf *lf, int n, const uint8_t *mask, float x, float y, float *s, float *t) {
+    for (int k = n - 1; k >= 0; k--) {
+        const ClusterLeaf *l = &lf[k];
+        float dx = x - l->base[0], dy = y - l->base[1];
+        float a = (dx * l->dir[0] + dy * l->dir[1]) / l->len, b = (dy * l->dir[0] - dx * l->dir[1]) / l->half;
+        if (!(a > 0 && a < 1 && b > -1 && b < 1)) continue;
+        int j = (int)(a * MASK), i = (int)((b + 1) * 0.5f * MASK);
+        if (mask[(j < MASK ? j : MASK - 1) * MASK + (i < MASK ? i : MASK - 1)]) {
+            *s = a, *t = b;
+            return k;
+        }
+    }
+    return -1;
+}
+
+/* Alpha (and, with rgb, colour) of a size x size cluster card. A texel whose four corners
+ * see the same leaf (or none) takes its centre's; the others, at edges, 4 x 4 samples. */
+static bool draw_cluster(int shape, int size, const uint8_t *rgb, uint8_t *rgba, size_t *opaque) {
+    ClusterLeaf lf[CLUSTER_MAX];
+    int n = cluster_layout(shape, lf);
+    uint8_t *mask = malloc(MASK * MASK);
+    int8_t *corner = malloc((size_t)(size + 1) * (size_t)(size + 1));
+    if (!mask || !corner) {
+        free(mask), free(corner);
+        return false;
+    }
+    shape_mask(shape, mask);
+    enum { SS = 4 };
+    *opaque = 0;
+    float s, t;
+    for (int y = 0; y <= size; y++)
+        for (int x = 0; x <= size; x++)
+            corner[y * (size + 1) + x] = (int8_t)cluster_hit(lf, n, mask, (float)x / (float)size, (float)y / (float)size, &s, &t);
+    for (int y = 0; y < size; y++)
+        for (int x = 0; x < size; x++) {
+            const int8_t *c = corner + y * (size + 1) + x;
+            bool same = c[0] == c[1] && c[0] == c[size + 1] && c[0] == c[size + 2];
+            int in = 0, top = -1, ss = same ? 1 : SS;
+            float ts = 0, tt = 0;
+            for (int j = 0; j < ss; j++)
+                for (int i = 0; i < ss; i++) {
+                    int k = cluster_hit(lf, n, mask, ((float)x + ((float)i + 0.5f) / (float)ss) / (float)size,
+                                        ((float)y + ((float)j + 0.5f) / (float)ss) / (float)size, &s, &t);
+                    if (k < 0) continue;
+                    in++;
+                    if (k >= top) top = k, ts = s, tt = t;
+                }
+            size_t p = (size_t)y * (size_t)size + (size_t)x;
+            uint8_t alpha = (uint8_t)((in * 255 + ss * ss / 2) / (ss * ss));
+            *opaque += alpha >= 128;
+            if (!rgba) continue;
+            /* the leaf texture in the top leaf's own coordinates, so its veins follow it */
+            size_t q = p;
+            if (top >= 0) {
+                int u = (int)((0.5f + 0.5f * tt) * (float)size), v = (int)(ts * (float)size);
+                q = (size_t)(v < size ? v : size - 1) * (size_t)size + (size_t)(u < size ? u : size - 1);
+            }
+            memcpy(rgba + 4 * p, rgb + 3 * q, 3);
+            rgba[4 * p + 3] = alpha;
+        }
+    free(mask), free(corner);
+    return true;
+}
+
+bool syl_leaf_cluster(int shape, int size, uint8_t *rgba) {
+    uint8_t *rgb = malloc((size_t)size * (size_t)size * 3);
+    size_t opaque;
+    bool ok = rgb && syl_texture(SYL_MATERIAL_LEAF, NULL, size, rgb) && draw_cluster(shape, size, rgb, rgba, &opaque);
+    free(rgb);
+    return ok;
+}
+
+float syl_leaf_cluster_fill(int shape) {
+    enum { FILL_SIZE = 128 };
+    size_t opaque = 0;
+    if (!draw_cluster(shape, FILL_SIZE, NULL, NULL, &opaque)) return 0;
+    return (float)opaque / (float)(FILL_SIZE * FILL_SIZE);
 }

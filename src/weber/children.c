@@ -2,7 +2,8 @@
  * where on the segment (BranchDist), and their down and rotation angles. */
 #include "weber/internal.h"
 
-Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids) {
+void weber_child_angles(WeberGen *g, WStem *st, double offset, int child_level, Rng *kids, double *down_out,
+                        double *rot_out) {
     const WeberParams *w = &g->w;
     int cl = weber_lv(child_level);
     double rot;
@@ -21,6 +22,12 @@ Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, in
         double len = st->level == 0 ? st->length * (1 - w->BaseSize) : st->length;
         down = w->DownAngle[cl] + w->DownAngleV[cl] * (1 - 2 * weber_shape_ratio(w, 0, (st->length - offset) / len));
     }
+    *down_out = down, *rot_out = rot;
+}
+
+Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids) {
+    double down, rot;
+    weber_child_angles(g, st, offset, child_level, kids, &down, &rot);
     frame_rotxz(&trf, down, rot);
     return trf;
 }

@@ -64,7 +64,7 @@ static bool leaf_shape(const char *s, WeberParams *w) {
     }
     if (!strcmp(s, "square")) { w->leaf_kind = WEBER_LEAF_SQUARE; w->leaf_tris = 2; return true; }
     if (!strcmp(s, "sphere")) { w->leaf_kind = WEBER_LEAF_SPHERE; w->leaf_tris = 20; return true; }
-    if (!strcmp(s, "palm")) { w->leaf_kind = WEBER_LEAF_PALM; w->leaf_tris = 4; return true; }
+    if (!strcmp(s, "palm")) { w->leaf_kind = WEBER_LEAF_PALM; w->leaf_tris = 6; return true; }
     return false;
 }
 static const char *const leaf_names[] = {"disc", "disc1", "disc2", "disc3", "disc4", "disc5", "disc6",

@@ -22,7 +22,7 @@ typedef struct WeberParams {
 #undef WP_G
 #undef WP_L
     int leaf_kind;       /* WEBER_LEAF_*, from LeafShape */
-    int leaf_tris;       /* disc1..disc9: triangles of the oval; disc: 6 */
+    int leaf_tris;       /* triangles a face: disc1..disc9 the oval's; disc 6; square 2; palm 6 */
     int convention;      /* WEBER_ARBARO (default) or WEBER_PAPER */
     bool has_seed;
     uint64_t seed;       /* `Seed N`; Arbaro's command line default is 13 */

@@ -1,5 +1,6 @@
 /* A stem's length from its parent's, its base radius, and its radius along its length:
- * taper (cone, rounded end, periodic beads), the trunk's flare and its 0Scale. */
+ * taper (cone, rounded end, periodic beads), the trunk's flare and its 0Scale (the paper:
+ * 0Scale ± 0ScaleV per trunk; Arbaro's 0ScaleV jitters the mesh instead, write.c). */
 #include "weber/internal.h"
 
 double weber_stem_length(WeberGen *g, const WStem *s, Rng *self) {
@@ -20,7 +21,9 @@ double weber_stem_length(WeberGen *g, const WStem *s, Rng *self) {
 double weber_base_radius(const WeberGen *g, const WStem *s) {
     if (s->level == 0) {
         double r = s->length * g->w.Ratio;
-        return g->w.convention == WEBER_PAPER ? r * g->w.Scale0 : r;
+        if (g->w.convention != WEBER_PAPER) return r;
+        Rng own = weber_rng(g, s->key, WRNG_SCALE0); /* a stream of its own: no other draw moves */
+        return r * (g->w.Scale0 + weber_var(&own, g->w.Scale0V));
     }
     const WStem *p = &g->stems[s->parent];
     double most = weber_radius(g, p, s->offset);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "util/leafoutline.h"
 #include "weber/internal.h"
 
 typedef struct Attach {
@@ -133,13 +134,18 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
             g->lvs[st->leaf_first + q].node = wr.ids[lo];
         }
     }
+    /* Arbaro's 0ScaleV: jitter of the trunk's surface (the paper's varies its radius, radius.c) */
+    if (g->w.convention == WEBER_ARBARO) sk->trunk_jitter = (float)g->w.Scale0V;
     if (!wr.failed && g->nlvs) { /* the leaves are the organs, in order already */
         sk->organs = g->lvs, sk->norgans = g->nlvs, sk->organ_cap = g->lvs_cap;
         g->lvs = NULL;
         if (sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
-        /* the leaves' surface: an oval of LeafShape's triangles, LeafScaleX wide */
+        /* the leaves' surface: LeafShape's outline (util/leafoutline.h), LeafScaleX wide */
         sk->leaf_tris = g->w.leaf_tris;
         sk->leaf_width = (float)g->w.LeafScaleX;
+        sk->leaf_outline = g->w.leaf_kind == WEBER_LEAF_SQUARE ? LEAF_OUTLINE_SQUARE
+                           : g->w.leaf_kind == WEBER_LEAF_PALM ? LEAF_OUTLINE_PALM
+                                                               : LEAF_OUTLINE_OVAL;
     }
     free(att);
     free(attach_node);

@@ -36,6 +36,12 @@ static int find_stems(const SylSkeleton *s, const float *radius, SylWind *w) {
             seen[nd->axis] = true;
             memcpy(st->base, par ? par->pos : nd->pos, sizeof st->base);
             st->parent = par && par->axis != nd->axis ? par->axis : -1;
+            if (par) {
+                double d[3], n = 0;
+                for (int c = 0; c < 3; c++) d[c] = (double)nd->pos[c] - par->pos[c], n += d[c] * d[c];
+                for (int c = 0; c < 3 && n > 0; c++) st->dir[c] = (float)(d[c] / sqrt(n));
+                if (st->parent >= 0) st->parent_radius = radius[nd->parent];
+            }
             st->order = nd->order;
             Rng r = rng_stream(WIND_SEED, (uint64_t)nd->axis, 1, 0);
             st->phase = (float)(TWO_PI * rng_unit(&r));
@@ -66,7 +72,14 @@ static int find_joints(SylWind *w, int levels) {
         int32_t up = st->parent >= 0 && st->parent < a ? w->stems[st->parent].joint : -1;
         if (st->order < levels && (st->length > 0 || st->parent < 0)) {
             st->joint = w->njoints;
-            w->joints[w->njoints++] = (SylWindJoint){.stem = a, .parent = up};
+            SylWindJoint jt = {.stem = a, .parent = up};
+            /* the part inside the parent moves with it; then a blend of four base radii,
+             * both within the stem's first quarter, so the base bends instead of creasing */
+            if (up >= 0 && (st->dir[0] || st->dir[1] || st->dir[2])) {
+                jt.blend_start = fminf(st->parent_radius, st->length / 4);
+                jt.blend_length = fminf(4 * st->radius, st->length / 4);
+            }
+            w->joints[w->njoints++] = jt;
         } else {
             st->joint = up;
         }

@@ -1,11 +1,19 @@
 #!/usr/bin/env python3
 """Independent reader for sylva's LOD .glb files and impostor PNGs (python3 stdlib only).
 
-  check.py glb FILE LEVELS [--max-last-share S] [--billboards K]
+  check.py glb FILE LEVELS [--max-last-share S] [--billboards K] [--clusters-from K]
       node names NAME_LOD0..NAME_LODn, MSFT_lod ids on LOD0, screen coverages decreasing,
       triangle counts decreasing, leaf area of every geometric level within 15% of
-      LOD0's (leaves thinned to 1/2, then 1/4, enlarged by 1/sqrt(keep)), the
-      billboard level's embedded atlas 2K*view x view with an alpha-MASK material.
+      LOD0's (leaves thinned to 1/2, then 1/4, enlarged by 1/sqrt(keep); or gathered on
+      cluster cards), the billboard level's embedded atlas 2K*view x view with an
+      alpha-MASK material. The leaf area is what the leaves show: the area of the
+      triangles of leaf materials, twice for a double-sided material (one face drawn from
+      both sides), times the share of the texture an alpha-MASK material keeps (alpha >=
+      1/2, decoded from the embedded PNG; such a triangle's UVs must lie in the unit
+      square its texture covers). With --clusters-from K: levels K..n have their leaves on
+      cluster cards (MASK, double-sided, the "leafcluster" image: alpha 0 at its corners
+      and edges, leaves at its centre, between 10% and 90% of it kept) and no other leaf
+      triangles, levels below K none.
   check.py modes FILE LEVELS MODE
       levels of detail with --leaves MODE (cards, instanced, instanced-cards): NAME_LODk
       nodes, MSFT_lod ids; cards: each level's leaf material alpha-tested (MASK) and
@@ -47,21 +55,46 @@ def accessor(js, bin_, i):
     return struct.unpack_from(fmt, bin_, off)
 
 
-def mesh_stats(js, bin_, m):
-    """Triangles, and the area of the triangles of leaf materials."""
+_fills = {}
+
+
+def texture_fill(js, bin_, mat):
+    """The share of an alpha-MASK material's texture kept by its cutoff (1 when opaque)."""
+    if mat.get("alphaMode") != "MASK":
+        return 1.0
+    src = js["textures"][mat["pbrMetallicRoughness"]["baseColorTexture"]["index"]]["source"]
+    if src not in _fills:
+        v = js["bufferViews"][js["images"][src]["bufferView"]]
+        w, h, ch, rows = read_png(bin_[v.get("byteOffset", 0):v.get("byteOffset", 0) + v["byteLength"]])
+        cut = 255 * mat.get("alphaCutoff", 0.5)
+        _fills[src] = sum(r[4 * x + 3] >= cut for r in rows for x in range(w)) / (w * h) if ch == 4 else 1.0
+    return _fills[src]
+
+
+def mesh_stats(js, bin_, m, shown=True):
+    """Triangles, and the leaf area the leaf materials' triangles show (see the header);
+    shown=False: the leaf triangles' own area, one face, whatever their texture and sides."""
     tris, leaf = 0, 0.0
     for p in js["meshes"][m]["primitives"]:
         idx = accessor(js, bin_, p["indices"])
         tris += len(idx) // 3
-        if not js["materials"][p["material"]]["name"].startswith("leaf"):
+        mat = js["materials"][p["material"]]
+        if not mat["name"].startswith("leaf"):
             continue
         pos = accessor(js, bin_, p["attributes"]["POSITION"])
+        k = texture_fill(js, bin_, mat) * (2 if mat.get("doubleSided") else 1) if shown else 1
+        if mat.get("alphaMode") == "MASK":
+            uv = accessor(js, bin_, p["attributes"]["TEXCOORD_0"])
+            if any(not (-1e-6 <= uv[2 * i + c] <= 1 + 1e-6) for i in set(idx) for c in (0, 1)):
+                fail(f"mesh {m}: an alpha-tested leaf's UVs leave the unit square")
+        area = 0.0
         for t in range(0, len(idx), 3):
             a, b, c = (pos[3 * idx[t + k]:3 * idx[t + k] + 3] for k in range(3))
             u = [b[i] - a[i] for i in range(3)]
             v = [c[i] - a[i] for i in range(3)]
             x = (u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0])
-            leaf += 0.5 * math.sqrt(sum(q * q for q in x))
+            area += 0.5 * math.sqrt(sum(q * q for q in x))
+        leaf += k * area
     return tris, leaf
 
 
@@ -102,7 +135,35 @@ def read_png(data):
     return w, h, ch, rows
 
 
-def check_glb(path, levels, max_last, billboards):
+def check_clusters(js, bin_, nodes, n, first):
+    """Levels first..n-1 draw leaves on cluster cards only; levels below, none."""
+    for k in range(n):
+        mats = leaf_materials(js, nodes[k]["mesh"])
+        named = [js["images"][js["textures"][m["pbrMetallicRoughness"]["baseColorTexture"]["index"]]["source"]]
+                 .get("name") if "baseColorTexture" in m["pbrMetallicRoughness"] else None for m in mats]
+        if k < first:
+            if "leafcluster" in named:
+                fail(f"LOD{k} has cluster cards (clusters from LOD{first})")
+            continue
+        if not mats or any(nm != "leafcluster" for nm in named):
+            fail(f"LOD{k}: leaves not all on cluster cards ({named})")
+        for m in mats:
+            if m.get("alphaMode") != "MASK" or not m.get("doubleSided"):
+                fail(f"LOD{k}: cluster material not alpha-tested and double-sided")
+        src = js["textures"][mats[0]["pbrMetallicRoughness"]["baseColorTexture"]["index"]]["source"]
+        v = js["bufferViews"][js["images"][src]["bufferView"]]
+        w, h, ch, rows = read_png(bin_[v.get("byteOffset", 0):v.get("byteOffset", 0) + v["byteLength"]])
+        if ch != 4 or any(rows[y][4 * x + 3] for y in (0, h - 1) for x in range(w)) or \
+                any(rows[y][4 * x + 3] for y in range(h) for x in (0, w - 1)):
+            fail(f"LOD{k}: cluster texture {w}x{h}x{ch}, alpha not 0 at its edges")
+        if not any(rows[h // 2 + d][4 * (w // 2 + e) + 3] >= 128 for d in range(-h // 8, h // 8) for e in range(-w // 8, w // 8)):
+            fail(f"LOD{k}: cluster texture empty near its centre")
+        f = texture_fill(js, bin_, mats[0])
+        if not 0.1 <= f <= 0.9:
+            fail(f"LOD{k}: cluster texture keeps {f:.3f} of the card")
+
+
+def check_glb(path, levels, max_last, billboards, clusters_from=-1):
     js, bin_ = read_glb(path)
     nodes = js["nodes"]
     n = levels + 1
@@ -144,6 +205,8 @@ def check_glb(path, levels, max_last, billboards):
             fail(f"billboard atlas {w}x{h}x{ch}")
         if any(r[3] for r in (rows[0][:4 * w],)) or not any(rows[h // 2][4 * x + 3] for x in range(w)):
             fail("billboard atlas alpha: not 0 at the top row or nothing across the middle")
+    if clusters_from >= 0:
+        check_clusters(js, bin_, nodes, geometric, clusters_from)
     print(f"ok {path}: {n} levels, triangles {tris}, leaf area {[round(a / area0, 3) if area0 else 0 for _, a in stats]}")
 
 
@@ -249,7 +312,8 @@ if __name__ == "__main__":
     a = sys.argv[1:]
     if a and a[0] == "glb":
         opt = dict(zip(a[3::2], a[4::2]))
-        check_glb(a[1], int(a[2]), float(opt.get("--max-last-share", 0)), int(opt.get("--billboards", 0)))
+        check_glb(a[1], int(a[2]), float(opt.get("--max-last-share", 0)), int(opt.get("--billboards", 0)),
+                  int(opt.get("--clusters-from", -1)))
     elif a and a[0] == "modes":
         check_modes(a[1], int(a[2]), a[3])
     elif a and a[0] == "atlas":

@@ -9,6 +9,8 @@ what is in them rather than a few magic bytes.
   inspect.py png FILE blue       also "N blue pixels" (blue above red and green: sky)
   inspect.py glb FILE            "glb: T triangles, M materials" from the JSON chunk, after
                                  checking the header, the chunks and every accessor's range
+  inspect.py glb FILE nodes      also "nodes: NAME ..." (the node names, in order) and, with
+                                 MSFT_lod on the scene's node, "MSFT_lod: ID ..."
   inspect.py obj FILE            "obj: V vertices, T triangles" (polygons split into fans)
   inspect.py ply FILE            "ply: V vertices, F faces" after reading every element of a
                                  binary little-endian file to its exact end
@@ -116,7 +118,7 @@ def glb(path):
             if prim.get("mode", 4) != 4:
                 fail("a primitive is not triangles")
             tris += accessors[prim["indices"]]["count"] // 3
-    return tris, len(doc.get("materials", []))
+    return tris, len(doc.get("materials", [])), doc
 
 
 def obj(path):
@@ -184,7 +186,14 @@ def main():
         elif rest[:1] == ["at"]:
             print("%d %d %d" % pixel(img, int(rest[1]), int(rest[2])))
     elif what == "glb":
-        print("glb: %d triangles, %d materials" % glb(path))
+        tris, mats, doc = glb(path)
+        print("glb: %d triangles, %d materials" % (tris, mats))
+        if rest[:1] == ["nodes"]:
+            nodes = doc.get("nodes", [])
+            print("nodes: " + " ".join(n.get("name", "?") for n in nodes))
+            lod = nodes[doc["scenes"][0]["nodes"][0]].get("extensions", {}).get("MSFT_lod") if nodes else None
+            if lod:
+                print("MSFT_lod: " + " ".join(str(i) for i in lod["ids"]))
     elif what == "ply":
         print("ply: %d vertices, %d faces" % ply(path))
     elif what == "obj":

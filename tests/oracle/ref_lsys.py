@@ -427,8 +427,8 @@ def parse_modules(text, declared):
 # --------------------------------------------------------------------------------------------
 # Models
 
-# (the turtle settings are read and ignored: they do not change a derivation)
-SETTINGS = ("derive", "angle", "step", "width", "seed", "widthfactor", "tropism", "colour", "direction")
+# (the turtle's and the mesher's settings are read and ignored: they do not change a derivation)
+SETTINGS = ("derive", "angle", "step", "width", "seed", "widthfactor", "tropism", "colour", "direction", "lod")
 
 
 class Rule:

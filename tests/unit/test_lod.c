@@ -7,6 +7,7 @@
 #include "sylva/impostor.h"
 #include "sylva/lod.h"
 #include "sylva/render.h"
+#include "sylva/texture.h"
 
 /* A tree with a leaf at every node but the roots. */
 static SylSkeleton *leafy_tree(void) {
@@ -107,6 +108,49 @@ static void chain_levels(void **state) {
     syl_skeleton_free(s);
 }
 
+/* A shoot of 4,000 needles: LOD1 thins them; LOD2 and LOD3 (where half their triangle
+ * share, 15% and 4.5% of LOD0's, in cards of 2 triangles makes 4 or more needles a card)
+ * keep all of them on at most that many needle-tuft cluster cards; instanced leaves are
+ * never clustered. */
+static void cluster_levels(void **state) {
+    (void)state;
+    SylSkeleton *s = fx_tree(4, 1);
+    for (int i = 0; i < 4000; i++) {
+        float a = 0.7f * (float)i;
+        SylOrgan o = fx_organ(SYL_KIND_NEEDLE, 0.2f * cosf(a), 0.001f * (float)i, 0.2f * sinf(a), 0.1f, 1);
+        o.node = 1;
+        assert_true(syl_skeleton_add_organ(s, &o) >= 0);
+    }
+    static const double share[4] = {1, 0.45, 0.15, 0.045};
+    for (int mode = 0; mode < 2; mode++) {
+        SylMeshOptions mo = {.leaves = mode ? SYL_LEAVES_INSTANCED : SYL_LEAVES_MESH};
+        SylMesh *m;
+        assert_int_equal(syl_mesh_build(s, &mo, &m), SYL_OK);
+        SylLodChain c;
+        assert_int_equal(syl_lod_build(s, &mo, m, 3, &c), SYL_OK);
+        double tris0 = (double)(m->nidx / 3);
+        for (int k = 1; k < c.n; k++) {
+            const SylLodLevel *lv = &c.level[k];
+            bool want = !mode && k >= 2;
+            assert_int_equal(lv->cluster_leaves > 0, want);
+            assert_int_equal(lv->mesh->leaves == SYL_LEAVES_CLUSTERS, want);
+            if (!want) continue;
+            assert_true(lv->leaf_keep == 1 && lv->leaf_scale == 1);
+            assert_int_equal(lv->mesh->leaf_shape, SYL_CLUSTER_NEEDLES);
+            size_t cards = 0;
+            for (int g = 0; g < lv->mesh->ngroups; g++)
+                if (lv->mesh->materials[lv->mesh->groups[g].material].kind == SYL_MATERIAL_LEAF)
+                    cards += lv->mesh->groups[g].count / 6;
+            double most = 0.5 * share[k] * tris0 / 2;
+            assert_true(cards >= 1 && (double)cards <= most);
+            assert_near(lv->cluster_leaves, 4000 / most, 1e-3 * lv->cluster_leaves);
+        }
+        syl_lod_free(&c);
+        syl_mesh_free(m);
+    }
+    syl_skeleton_free(s);
+}
+
 /* The documented hemi-octahedral mapping, run backwards: each cell's direction encodes to
  * the cell's centre. */
 static void impostor_directions(void **state) {
@@ -155,6 +199,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(optimize_keeps_the_surface), cmocka_unit_test(simplify_reduces),
         cmocka_unit_test(chain_levels),               cmocka_unit_test(impostor_directions),
+        cmocka_unit_test(cluster_levels),
         cmocka_unit_test(toward_frames_the_sphere),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

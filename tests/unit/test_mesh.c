@@ -4,6 +4,7 @@
 
 #include "unit.h"
 #include "mesh_fixtures.h"
+#include "sylva/texture.h"
 
 static SylMesh *build(const SylSkeleton *s, const SylMeshOptions *o) {
     SylMesh *m = NULL;
@@ -483,11 +484,20 @@ static void lobed_rings(void **state) {
     SylMesh *m = NULL;
     assert_int_equal(syl_mesh_build(s, &o, &m), SYL_OK);
     assert_int_equal(m->nverts, 2 * (20 + 1)); /* 4 x 5 sides and the seam, two rings */
+    /* each vertex's ring by its height and its place j on the ring by u = j / 20, whatever
+     * order the mesher stores them in */
+    int at[2][21];
+    memset(at, -1, sizeof at);
+    for (int i = 0; i < 42; i++) {
+        int ring = m->pos[3 * i + 1] > 1, j = (int)lrintf(m->uv[2 * i] * 20);
+        assert_true(j >= 0 && j <= 20 && at[ring][j] < 0);
+        at[ring][j] = i;
+    }
     for (int ring = 0; ring < 2; ring++) {
-        const float *v0 = m->pos + 3 * (size_t)ring * 21, y = ring ? 2.0f : 0.0f;
+        const float *v0 = m->pos + 3 * (size_t)at[ring][0], y = ring ? 2.0f : 0.0f;
         const float a0 = atan2f(v0[2], v0[0]);
         for (int j = 0; j < 21; j++) {
-            const float *v = m->pos + 3 * ((size_t)ring * 21 + (size_t)j), *n = m->nrm + 3 * ((size_t)ring * 21 + (size_t)j);
+            const float *v = m->pos + 3 * (size_t)at[ring][j], *n = m->nrm + 3 * (size_t)at[ring][j];
             assert_true(fabsf(v[1] - y) < 1e-5f);
             /* the angle from the first vertex, either way round (the frame's handedness) */
             float ang = atan2f(v[2], v[0]) - a0, d = sqrtf(v[0] * v[0] + v[2] * v[2]);
@@ -509,6 +519,45 @@ static void lobed_rings(void **state) {
     }
     assert_true(fits[0] == 19 || fits[1] == 19);
     syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
+/* The trunk's jitter (SylSkeleton.trunk_jitter, Weber–Penn's 0ScaleV): each vertex of an
+ * order-0 ring moves along its radius to between 1 - k and 1 + k times it, not all by the
+ * same factor; a branch (order 1) stays as it was; 1 and 3 threads give the same mesh. */
+static void trunk_jitter(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("jitter");
+    int32_t a = fx_node(s, -1, 0, 0, 0, 0, 0.5f, SYL_MATERIAL_BARK);
+    int32_t b = fx_node(s, a, 0, 0, 2, 0, 0.5f, SYL_MATERIAL_BARK);
+    int32_t c = fx_node(s, b, 1, 1, 2, 0, 0.2f, SYL_MATERIAL_BARK);
+    s->nodes[c].order = 1;
+    SylMeshOptions o1 = {.threads = 1, .caps = -1}, o3 = {.threads = 3, .caps = -1};
+    SylMesh *round = build(s, &o1);
+    s->trunk_jitter = 0.2f;
+    SylMesh *m = build(s, &o1), *m3 = build(s, &o3);
+    assert_true(same_mesh(m, m3));
+    assert_int_equal(m->nverts, round->nverts);
+    int trunk = 0, spread = 0;
+    for (size_t v = 0; v < m->nverts; v++) {
+        const float *p = m->pos + 3 * v, *q = round->pos + 3 * v;
+        float d0 = hypotf(q[0], q[2]);
+        if (fabsf(d0 - 0.5f) > 1e-4f) { /* the branch */
+            assert_memory_equal(p, q, 3 * sizeof(float));
+            continue;
+        }
+        float f = hypotf(p[0], p[2]) / d0;
+        trunk++;
+        assert_true(fabsf(p[1] - q[1]) < 1e-6f);
+        assert_true(fabsf(p[0] * q[2] - p[2] * q[0]) < 1e-5f); /* along its radius */
+        assert_true(f >= 0.8f - 1e-5f && f <= 1.2f + 1e-5f);
+        spread += fabsf(f - 1) > 0.1f;
+    }
+    assert_int_equal(trunk, 2 * 9);
+    assert_true(spread >= 3);
+    syl_mesh_free(round);
+    syl_mesh_free(m);
+    syl_mesh_free(m3);
     syl_skeleton_free(s);
 }
 
@@ -555,9 +604,80 @@ static void optimize_keeps_best_orders(void **state) {
     syl_skeleton_free(s);
 }
 
+static double area_of(const SylMesh *m, size_t first, size_t count) {
+    double a = 0;
+    for (size_t t = first / 3; t < (first + count) / 3; t++) a += tri_area(m, t);
+    return a;
+}
+
+/* Leaf clusters: 30 clumps of 12 leaves (or needles) far apart, 12 a card: no more cards
+ * than 360 / 12, each a flat unit-normal square with UVs over the unit square, and the cards
+ * show (area x the texture's kept share) what the copied leaves show on one side (half
+ * their triangles' area: both faces of a blade, or a closed needle on average). */
+static void leaf_clusters(void **state) {
+    (void)state;
+    for (int kind = 0; kind < 2; kind++) {
+        SylSkeleton *s = syl_skeleton_new("clusters");
+        for (int c = 0; c < 30; c++)
+            for (int i = 0; i < 12; i++) {
+                float a = 0.5f * (float)i;
+                SylOrgan o = fx_organ(kind ? SYL_KIND_NEEDLE : SYL_KIND_LEAF, 10.0f * (float)(c % 6) + 0.1f * cosf(a),
+                                      10.0f * (float)(c / 6), 0.1f * sinf(a), 0.3f, 1);
+                o.h[0] = cosf(a), o.h[1] = 0, o.h[2] = sinf(a);
+                o.l[0] = 0, o.l[1] = 1, o.l[2] = 0;
+                syl_skeleton_add_organ(s, &o);
+            }
+        SylMesh *copied = build(s, NULL);
+        double shown = 0.5 * area_of(copied, 0, copied->nidx);
+        SylMeshOptions o = {.leaves = SYL_LEAVES_CLUSTERS, .cluster_leaves = 12};
+        SylMesh *m = build(s, &o);
+        assert_int_equal(m->leaves, SYL_LEAVES_CLUSTERS);
+        assert_int_equal(m->leaf_shape, kind ? SYL_CLUSTER_NEEDLES : SYL_LEAF_OVATE);
+        assert_indices_valid(m);
+        assert_unit_normals(m);
+        size_t cards = ntris(m) / 2;
+        assert_true(cards >= 10 && cards <= 30);
+        assert_int_equal(m->nverts, 4 * cards);
+        for (size_t k = 0; k < cards; k++) {
+            const float *p = m->pos + 12 * k, *n = m->nrm + 12 * k, *uv = m->uv + 8 * k;
+            for (int v = 1; v < 4; v++) {
+                double d = 0;
+                for (int c = 0; c < 3; c++) d += (p[3 * v + c] - p[c]) * n[c];
+                assert_near(d, 0, 1e-5); /* flat, the normal across it */
+            }
+            double e1 = 0, e2 = 0;
+            for (int c = 0; c < 3; c++) e1 += (p[3 + c] - p[c]) * (p[3 + c] - p[c]), e2 += (p[9 + c] - p[c]) * (p[9 + c] - p[c]);
+            assert_near(e1, e2, 1e-3 * (e1 + e2)); /* square (to float precision 50 units out) */
+            for (int v = 0; v < 8; v++) assert_true(uv[v] == 0 || uv[v] == 1);
+        }
+        double fill = syl_leaf_cluster_fill(m->leaf_shape);
+        assert_near(fill * area_of(m, 0, m->nidx), shown, 1e-3 * shown);
+        syl_mesh_free(copied);
+        syl_mesh_free(m);
+        syl_skeleton_free(s);
+    }
+}
+
+/* The share a cluster card keeps, measured small, is the full-size texture's to 1%. */
+static void cluster_fill(void **state) {
+    (void)state;
+    enum { N = 512 };
+    uint8_t *rgba = malloc(4 * N * N);
+    for (int shape = 0; shape <= SYL_CLUSTER_NEEDLES; shape++) {
+        assert_true(syl_leaf_cluster(shape, N, rgba));
+        size_t kept = 0;
+        for (int i = 0; i < N * N; i++) kept += rgba[4 * i + 3] >= 128;
+        assert_near(syl_leaf_cluster_fill(shape), (double)kept / (N * N), 0.01);
+        for (int i = 0; i < N; i++) assert_int_equal(rgba[4 * i + 3] | rgba[4 * (N * (N - 1) + i) + 3], 0);
+    }
+    free(rgba);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(straight_tube),
+        cmocka_unit_test(leaf_clusters),
+        cmocka_unit_test(cluster_fill),
         cmocka_unit_test(lobed_rings),
         cmocka_unit_test(optimize_keeps_best_orders),
         cmocka_unit_test(tree_is_closed_per_axis),
@@ -566,6 +686,7 @@ int main(void) {
         cmocka_unit_test(pipe_model_at_forks),
         cmocka_unit_test(groups_by_material),
         cmocka_unit_test(deterministic_across_threads),
+        cmocka_unit_test(trunk_jitter),
         cmocka_unit_test(organs),
         cmocka_unit_test(disc),
         cmocka_unit_test(polygons),

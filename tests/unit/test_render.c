@@ -172,6 +172,53 @@ static void adaptive_sampling_keeps_coverage(void **state) {
     syl_mesh_free(tree);
 }
 
+/* Alpha-tested cards: rays pass where the card's texture is transparent, with Embree's
+ * triangles (full sampling) and with the quads the impostor bake pairs them into (adaptive).
+ * A 2 x 2 card of the maple shape seen face on: the share of its opaque pixels is the share
+ * of the texture's texels with alpha >= 1/2 (the card at the sphere's centre, so every texel
+ * is magnified alike), and the two paths agree pixel by pixel. */
+static void alpha_tested_card_shows_its_shape(void **state) {
+    (void)state;
+    SylMesh *card = synth_new();
+    assert_true(reserve(card, 4, 6));
+    const float n[3] = {0, 0, -1};
+    uint32_t v[4];
+    for (int k = 0; k < 4; k++)
+        v[k] = vert(card, (const float[3]){k & 1 ? 1.0f : -1.0f, k & 2 ? 1.0f : -1.0f, 0}, n, (float)(k & 1),
+                    (float)(k >> 1));
+    assert_true(tri(card, v[0], v[1], v[3], 1) && tri(card, v[0], v[3], v[2], 1));
+    enum { T = 256 };
+    uint8_t *tex = malloc(4 * T * T);
+    assert_true(syl_leaf_card(SYL_LEAF_MAPLE, T, tex));
+    double texels = 0;
+    for (int i = 0; i < T * T; i++) texels += tex[4 * i + 3] >= 128;
+    free(tex);
+    texels /= T * T;
+    int partial;
+    card->leaves = SYL_LEAVES_MESH;
+    double whole = coverage(card, false, &partial);
+    card->leaves = SYL_LEAVES_CARDS, card->leaf_shape = SYL_LEAF_MAPLE;
+    uint8_t alpha[2][W * H];
+    for (int a = 0; a < 2; a++) {
+        uint8_t *rgb = render(card, (SylRenderOptions){.toward = (const float[3]){0, 0, 1}, .ground = -1, .unlit = true,
+                                                        .ao_samples = -1, .shadows = -1, .alpha = alpha[a],
+                                                        .adaptive = a});
+        free(rgb);
+        double sum = 0;
+        for (int i = 0; i < W * H; i++) sum += alpha[a][i] / 255.0;
+        double share = sum / (W * H) / whole;
+        if (fabs(share - texels) > 0.03 * texels)
+            fail_msg("adaptive %d: the card shows %.4f of its area, its texture %.4f", a, share, texels);
+    }
+    int apart = 0, seen = 0;
+    for (int i = 0; i < W * H; i++) {
+        seen += alpha[0][i] > 0;
+        apart += abs(alpha[0][i] - alpha[1][i]) > 128;
+    }
+    if (apart > seen / 100) fail_msg("%d of %d pixels differ by more than half between triangles and quads", apart, seen);
+    syl_mesh_free(card);
+}
+
 static void tree_covers_a_plausible_share(void **state) {
     (void)state;
     SylMesh *m = synth_tree(6000);
@@ -499,6 +546,43 @@ static void textures_written_for_exporters(void **state) {
     syl_mesh_free(m);
 }
 
+/* syl_render_instances' windows (what sylva render --plants deals over MPI ranks): windows
+ * whose corners are at multiples of SYL_RENDER_BLOCK, rendered in one call on one scene, are
+ * the whole picture's pixels, crop for crop; the same windows rendered one call each too. */
+static void windows_are_crops_of_the_picture(void **state) {
+    (void)state;
+    SylMesh *ground = synth_new(), *tree = synth_tree(2000);
+    assert_non_null(ground);
+    assert_non_null(tree);
+    assert_true(synth_box(ground, (float[3]){-6, -0.1f, -6}, (float[3]){6, 0, 6}, 0));
+    SylRenderProto proto = {.mesh = tree};
+    SylRenderInstance inst[5];
+    for (int i = 0; i < 5; i++)
+        inst[i] = (SylRenderInstance){.t = {-4.0f + 2 * i, 0, (float)(i % 2) - 0.5f}, .yaw = 0.7f * i, .scale = 1.5f};
+    SylRenderCamera cam = {.eye = {4, 6, 12}, .target = {0, 1, 0}, .fov = 40};
+    enum { W = 44, H = 30 };
+    SylRenderOptions o = {.width = W, .height = H, .samples = 2, .ao_samples = 2, .shadows = true, .threads = 2};
+    static uint8_t whole[W * H * 3], parts[2 * W * H * 3], one[W * H * 3]; /* the windows overlap */
+    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, NULL, 0, whole, NULL), SYL_OK);
+    /* three bands (the last not a whole row of packets), then a block of columns */
+    const int win[4][4] = {{0, 0, W, 8}, {0, 8, W, 24}, {0, 24, W, H}, {12, 4, 32, 29}};
+    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, win, 4, parts, NULL), SYL_OK);
+    size_t at = 0;
+    for (int k = 0; k < 4; k++) {
+        size_t row = (size_t)(win[k][2] - win[k][0]) * 3;
+        for (int y = win[k][1]; y < win[k][3]; y++, at += row)
+            assert_memory_equal(parts + at, whole + ((size_t)y * W + (size_t)win[k][0]) * 3, row);
+        assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, &win[k], 1, one, NULL), SYL_OK);
+        assert_memory_equal(one, parts + at - row * (size_t)(win[k][3] - win[k][1]), row * (size_t)(win[k][3] - win[k][1]));
+    }
+    /* a window outside the picture, or a negative count, is refused */
+    const int out[1][4] = {{0, 0, W + 1, 4}};
+    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, out, 1, one, NULL), SYL_EUSAGE);
+    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, win, -1, one, NULL), SYL_EUSAGE);
+    syl_mesh_free(ground);
+    syl_mesh_free(tree);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(same_picture_every_time),
@@ -522,6 +606,8 @@ int main(void) {
         cmocka_unit_test(noise_is_bounded_and_periodic),
         cmocka_unit_test(textures_written_for_exporters),
         cmocka_unit_test(adaptive_sampling_keeps_coverage),
+        cmocka_unit_test(alpha_tested_card_shows_its_shape),
+        cmocka_unit_test(windows_are_crops_of_the_picture),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -112,11 +112,56 @@ static void radius_profile(void **state) {
     assert_true(fabs(weber_radius(&g, &t, 10.0 / 8) - 0.5) < 1e-12); /* no flare above an eighth */
 }
 
+/* 0Scale and 0ScaleV on the trunk's base radius: the paper's Ratio x length x (0Scale ± 0ScaleV),
+ * one uniform draw per trunk; Arbaro's Ratio x length (0Scale comes in weber_radius, 0ScaleV
+ * jitters the mesh: SylSkeleton.trunk_jitter). */
+static void trunk_scale(void **state) {
+    (void)state;
+    WeberGen g = {.seed = 13};
+    weber_params_default(&g.w);
+    g.w.Ratio = 0.02, g.w.Scale0 = 0.8, g.w.Scale0V = 0.3;
+    WStem t = {.level = 0, .length = 10};
+    assert_true(fabs(weber_base_radius(&g, &t) - 0.2) < 1e-12); /* Arbaro's */
+    g.w.convention = WEBER_PAPER;
+    double lo = INFINITY, hi = -INFINITY, sum = 0;
+    enum { N = 400 };
+    for (int k = 0; k < N; k++) {
+        t.key = weber_key(1, 0, (uint64_t)k);
+        double f = weber_base_radius(&g, &t) / 0.2;
+        assert_true(f >= 0.5 - 1e-12 && f <= 1.1 + 1e-12);
+        assert_true(weber_base_radius(&g, &t) == weber_base_radius(&g, &t)); /* the trunk's own draw */
+        lo = fmin(lo, f), hi = fmax(hi, f), sum += f;
+    }
+    assert_true(lo < 0.53 && hi > 1.07);                /* the whole range is used */
+    assert_true(fabs(sum / N - 0.8) < 3 * 0.3 / sqrt(3.0 * N)); /* mean 0Scale: 3 sigma of a uniform's */
+}
+
+/* weber_atan2 against libm's atan2: every octant, the axes, signed zeros, tiny and huge */
+static void atan2_matches_libm(void **state) {
+    (void)state;
+    Rng r = rng_stream(7, 0, 0, 0);
+    double worst = 0;
+    for (int i = 0; i < 200000; i++) {
+        double a = 2 * M_PI * rng_unit(&r), m = exp(40 * rng_unit(&r) - 20);
+        double y = m * sin(a), x = m * cos(a);
+        if (i % 16 == 0) y = 0; /* the axes */
+        if (i % 16 == 1) x = 0;
+        double e = fabs(weber_atan2(y, x) - atan2(y, x));
+        if (e > worst) worst = e;
+    }
+    assert_true(worst < 2e-9);
+    const double z[][2] = {{0.0, 0.0}, {-0.0, 0.0}, {0.0, -0.0}, {-0.0, -0.0}, {0.0, -1}, {-0.0, -1}, {1, 1}, {-1, -1}};
+    for (size_t i = 0; i < sizeof z / sizeof *z; i++) {
+        double w = atan2(z[i][0], z[i][1]), g = weber_atan2(z[i][0], z[i][1]);
+        assert_true(fabs(g - w) < 2e-9 && signbit(g) == signbit(w));
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shape_ratio_table),    cmocka_unit_test(defaults_are_arbaros),
         cmocka_unit_test(doc_lists_the_table),  cmocka_unit_test(frames_stay_orthonormal),
-        cmocka_unit_test(radius_profile),
+        cmocka_unit_test(radius_profile),       cmocka_unit_test(trunk_scale), cmocka_unit_test(atan2_matches_libm),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

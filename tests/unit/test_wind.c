@@ -5,6 +5,7 @@
 #include <math.h>
 
 #include "mesh_fixtures.h"
+#include "sylva/lod.h"
 #include "sylva/wind.h"
 
 /* A trunk of two 1 m segments (radius 0.1) with a branch of one 1 m segment (radius 0.01)
@@ -51,6 +52,12 @@ static void joints_and_amplitudes(void **state) {
     assert_near(w.joints[0].frequency, 4, 1e-6);
     assert_near(w.joints[1].frequency, 11 / 4.0, 1e-6);
     assert_int_equal(w.nkeys, 61);
+    /* the branch's blend: from the trunk's radius 0.1 (< L/4 = 0.25) over 4 r = 0.04, along its
+     * first segment, +x; the trunk (a root) has none */
+    assert_near(w.joints[1].blend_start, 0.1, 1e-6);
+    assert_near(w.joints[1].blend_length, 0.04, 1e-6);
+    assert_near(w.stems[1].dir[0], 1, 1e-6);
+    assert_near(w.joints[0].blend_length, 0, 0);
     for (int j = 0; j < w.njoints; j++) {
         const float *q = w.rot + 4 * (size_t)j * (size_t)w.nkeys;
         assert_memory_equal(q, q + 4 * (w.nkeys - 1), 4 * sizeof *q); /* the loop closes */
@@ -122,11 +129,45 @@ static void vertex_nodes(void **state) {
     syl_skeleton_free(s);
 }
 
+/* Every level of detail keeps vertex nodes of the whole skeleton (not of its truncated
+ * copy): a thin branch early in node order is dropped from LOD1, which would shift the
+ * nodes after it; each vertex still lies near its node's axis. */
+static void lod_vertex_nodes(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("t");
+    int32_t r = fx_node(s, -1, 0, 0, 0, 0, 0.1f, 0);
+    int32_t a = fx_node(s, r, 0, 0, 1, 0, 0.1f, 0);
+    fx_node(s, a, 1, -1, 1, 0, 0.0001f, 0); /* thinner than 2% of the trunk: not in LOD1 */
+    fx_node(s, a, 0, 0, 2, 0, 0.1f, 0);
+    int32_t b = fx_node(s, a, 2, 1, 1, 0, 0.01f, 0);
+    fx_node(s, b, 3, 1, 1.5f, 0, 0.005f, 0);
+    SylMesh *m;
+    SylMeshOptions mo = {.vertex_nodes = 1, .threads = 1};
+    assert_int_equal(syl_mesh_build(s, &mo, &m), SYL_OK);
+    SylLodChain c;
+    assert_int_equal(syl_lod_build(s, &mo, m, 1, &c), SYL_OK);
+    assert_int_equal(c.n, 2);
+    assert_true(c.level[1].mesh->nverts < m->nverts);
+    for (int k = 0; k < c.n; k++) {
+        const SylMesh *lm = c.level[k].mesh;
+        assert_non_null(lm->node);
+        for (size_t v = 0; v < lm->nverts; v++) {
+            int32_t n = lm->node[v];
+            assert_true(n > 0 && (size_t)n < s->nnodes);
+            assert_true(to_axis(s, s->nodes[n].axis, lm->pos + 3 * v) < 0.25);
+        }
+    }
+    syl_lod_free(&c);
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(joints_and_amplitudes),
         cmocka_unit_test(leans_downwind),
         cmocka_unit_test(vertex_nodes),
+        cmocka_unit_test(lod_vertex_nodes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
