@@ -254,13 +254,14 @@ void render_set_lighting(Scene *s) {
     for (int i = 0; i <= 4096; i++) s->lut[i] = (uint8_t)lrintf(255 * linear_to_srgb((float)i / 4096));
 }
 
-/* The textures of the kinds in use, and grass, on threads of their own while Embree builds
- * its hierarchy: SYL_OK, or the first failure, reported. */
+/* The textures of the kinds in use, and grass when the ground is drawn (not in an impostor's
+ * bake), on threads of their own while Embree builds its hierarchy: SYL_OK, or the first
+ * failure, reported. */
 static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
     const SylMesh *m = s->m;
     TexJob jobs[4];
     int njobs = 0;
-    bool used[4] = {false, false, false, true};
+    bool used[4] = {false, false, false, s->ground};
     for (int g = 0; m && g < m->ngroups; g++) {
         int k = m->materials[m->groups[g].material].kind;
         if (k <= SYL_MATERIAL_FLOWER) used[k] = true;
