@@ -13,6 +13,7 @@ enum { MASK_SIZE = 256 };
 struct AlphaTest {
     const SylMesh *m;
     const uint8_t *tri_mat;
+    const uint32_t (*halves)[2]; /* NULL, or the quads' triangles (an impostor bake, quads.c) */
     uint8_t which[256];          /* per material: 1 a leaf card (or cluster card), 0 opaque */
     uint8_t mask[MASK_SIZE * MASK_SIZE]; /* 1 where the cards' alpha >= 1/2 */
 };
@@ -24,9 +25,12 @@ static void filter(const struct RTCFilterFunctionNArguments *args) {
     const unsigned *prim = (const unsigned *)args->hit + 5 * N;
     for (unsigned i = 0; i < N; i++) {
         if (args->valid[i] != -1) continue;
-        if (!at->which[at->tri_mat[prim[i]]]) continue;
-        float b1 = hit[3 * N + i], b2 = hit[4 * N + i], b0 = 1 - b1 - b2, uv[2];
-        const uint32_t *t = at->m->idx + 3 * (size_t)prim[i];
+        unsigned tri = prim[i];
+        float b1 = hit[3 * N + i], b2 = hit[4 * N + i];
+        if (at->halves) render_quad_hit(at->halves, &tri, &b1, &b2); /* a quad's hit: its triangle's */
+        if (!at->which[at->tri_mat[tri]]) continue;
+        float b0 = 1 - b1 - b2, uv[2];
+        const uint32_t *t = at->m->idx + 3 * (size_t)tri;
         for (int c = 0; c < 2; c++)
             uv[c] = b0 * at->m->uv[2 * t[0] + c] + b1 * at->m->uv[2 * t[1] + c] + b2 * at->m->uv[2 * t[2] + c];
         int x = (int)(uv[0] * MASK_SIZE), y = (int)(uv[1] * MASK_SIZE); /* clamped, as the writer's sampler */
@@ -36,7 +40,8 @@ static void filter(const struct RTCFilterFunctionNArguments *args) {
     }
 }
 
-int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, RTCGeometry g, AlphaTest **out) {
+int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, const uint32_t (*halves)[2], RTCGeometry g,
+                        AlphaTest **out) {
     *out = NULL;
     bool cards = m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_INSTANCED_CARDS;
     bool clusters = m->leaves == SYL_LEAVES_CLUSTERS, any = false;
@@ -46,7 +51,7 @@ int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, RTCGeometry g,
     uint8_t *rgba = malloc(4 * MASK_SIZE * MASK_SIZE);
     bool ok = at && rgba && (clusters ? syl_leaf_cluster(m->leaf_shape, MASK_SIZE, rgba) : syl_leaf_card(m->leaf_shape, MASK_SIZE, rgba));
     if (ok) {
-        at->m = m, at->tri_mat = tri_mat;
+        at->m = m, at->tri_mat = tri_mat, at->halves = halves;
         for (int k = 0; k < 256; k++) at->which[k] = m->materials[k].kind == SYL_MATERIAL_LEAF;
         for (int p = 0; p < MASK_SIZE * MASK_SIZE; p++) at->mask[p] = rgba[4 * p + 3] >= 128;
         rtcSetGeometryUserData(g, at);
@@ -60,4 +65,6 @@ int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, RTCGeometry g,
     return ok ? SYL_OK : SYL_ELIMIT;
 }
 
-int render_alpha_test(Scene *s, RTCGeometry g) { return render_alpha_attach(s->m, s->tri_mat, g, &s->alphatest); }
+int render_alpha_test(Scene *s, RTCGeometry g) {
+    return render_alpha_attach(s->m, s->tri_mat, (const uint32_t (*)[2])s->quad_halves, g, &s->alphatest);
+}

@@ -77,7 +77,7 @@ static RTCScene mesh_scene(Work *w, RTCDevice dev, const SylMesh *m, const uint8
         RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, pos, 0, 3 * sizeof(float), m->nverts);
         rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->idx, 0, 3 * sizeof(uint32_t), ntri);
-        if (tri_mat && render_alpha_attach(m, tri_mat, g, alpha)) {
+        if (tri_mat && render_alpha_attach(m, tri_mat, NULL, g, alpha)) {
             rtcReleaseGeometry(g);
             rtcReleaseScene(sc);
             return NULL;

@@ -73,6 +73,8 @@ void render_scene_free(Scene *s) {
     if (s->dev) rtcReleaseDevice(s->dev);
     for (int i = 0; i < 4; i++) texture_free(&s->tex[i]);
     free(s->tri_mat);
+    free(s->quad_index);
+    free(s->quad_halves);
     free(s->alphatest);
     free(s->pos_copy);
     free(s);
@@ -129,12 +131,20 @@ static int build_scene(Scene *s, int threads, FILE *diag) {
             memset(s->pos_copy + m->nverts * 3, 0, 4 * sizeof(float));
             pos = s->pos_copy;
         }
-        RTCGeometry geom = rtcNewGeometry(s->dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+        /* Impostor baking (adaptive) traces millions of rays into one scene: quads there, for a
+         * quicker build and traversal; other pictures keep Embree's triangles. */
+        size_t nquads = 0;
+        if (s->adaptive && render_quads(m, s->tri_mat, &s->quad_index, &s->quad_halves, &nquads)) return SYL_ELIMIT;
+        RTCGeometry geom = rtcNewGeometry(s->dev, s->quad_index ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, pos, 0, 3 * sizeof(float),
                                    m->nverts);
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->idx, 0, 3 * sizeof(uint32_t),
-                                   ntri);
-        if (render_alpha_test(s, geom)) {
+        if (s->quad_index)
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT4, s->quad_index, 0,
+                                       4 * sizeof(uint32_t), nquads);
+        else
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m->idx, 0,
+                                       3 * sizeof(uint32_t), ntri);
+        if (render_alpha_test(s, geom)) { /* after the quads: its filter reads their halves */
             rtcReleaseGeometry(geom);
             return SYL_ELIMIT;
         }
@@ -244,13 +254,14 @@ void render_set_lighting(Scene *s) {
     for (int i = 0; i <= 4096; i++) s->lut[i] = (uint8_t)lrintf(255 * linear_to_srgb((float)i / 4096));
 }
 
-/* The textures of the kinds in use, and grass, on threads of their own while Embree builds
- * its hierarchy: SYL_OK, or the first failure, reported. */
+/* The textures of the kinds in use, and grass when the ground is drawn (not in an impostor's
+ * bake), on threads of their own while Embree builds its hierarchy: SYL_OK, or the first
+ * failure, reported. */
 static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
     const SylMesh *m = s->m;
     TexJob jobs[4];
     int njobs = 0;
-    bool used[4] = {false, false, false, true};
+    bool used[4] = {false, false, false, s->ground};
     for (int g = 0; m && g < m->ngroups; g++) {
         int k = m->materials[m->groups[g].material].kind;
         if (k <= SYL_MATERIAL_FLOWER) used[k] = true;

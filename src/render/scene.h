@@ -21,6 +21,8 @@ typedef struct Scene {
     RTCScene scene;
     float *pos_copy;            /* when the mesh's vertex array has no room for Embree's padding */
     uint8_t *tri_mat;           /* material of each triangle */
+    uint32_t (*quad_index)[4];  /* NULL, or the triangles paired into quads (quads.c) ... */
+    uint32_t (*quad_halves)[2]; /* ... and the triangles each quad is made of */
     AlphaTest *alphatest;       /* leaf cards' and clusters' alpha (NULL: none) */
     Texture tex[4];             /* bark, leaf, flower, grass */
     float mat_lin[256][3];      /* material colours in linear light */
@@ -66,13 +68,23 @@ void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt);
 /* Let rays through the transparent parts of s->m's leaf cards or clusters (on g, its
  * geometry, before it is committed). SYL_OK or SYL_ELIMIT. */
 int render_alpha_test(Scene *s, RTCGeometry g);
-/* The same for any mesh m whose triangles' materials are tri_mat (which must outlive it): *out
+/* The same for any mesh m whose triangles' materials are tri_mat (which must outlive it), on g
+ * made of triangles (halves NULL) or of quads (halves: their triangles, render_quad_hit): *out
  * the test to free() after the render (NULL: m has no leaf cards or clusters). */
-int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, RTCGeometry g, AlphaTest **out);
+int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, const uint32_t (*halves)[2], RTCGeometry g,
+                        AlphaTest **out);
 /* Release a scene: its Embree scene and device, textures and copies. */
 void render_scene_free(Scene *s);
 int render_cpu_count(void);
 void render_embree_error(void *user, enum RTCError code, const char *msg);
+
+/* The mesh's triangles (tri_mat their materials) as Embree quads: index[q], the quad's
+ * corners, and halves[q], its triangles for render_quad_hit; SYL_OK or SYL_ELIMIT. */
+int render_quads(const SylMesh *m, const uint8_t *tri_mat, uint32_t (**index)[4], uint32_t (**halves)[2],
+                 size_t *nquads);
+/* Embree's hit of quad *prim at (*u, *v) as the hit of its triangle: the triangle's index
+ * and barycentric u, v (the weights of its corners 1 and 2). */
+void render_quad_hit(const uint32_t (*halves)[2], unsigned *prim, float *u, float *v);
 
 /* Shade tile number `tile` (TILE x TILE pixels, row by row) into s->out. */
 void render_tile(const Scene *s, int tile);

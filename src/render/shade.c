@@ -162,9 +162,25 @@ static inline void set_ray16(struct RTCRay16 *r, int l, const float o[3], const 
     r->tfar[l] = tfar, r->mask[l] = 0xffffffffu, r->id[l] = (unsigned)l, r->flags[l] = 0;
 }
 
-/* Render the pixels of the block at (x0, y0) into acc (linear light, summed over samples);
- * returns the samples taken (fewer than s->samples only when adaptive). */
-static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int hits[LANES], uint8_t nd[LANES][4]) {
+/* Adaptive: after one sample each, the pixels of a mixed block that take the others — those
+ * with a neighbour in the block (of the 8 around) that disagrees with them on hitting the mesh.
+ * A pixel whose neighbours all agree is almost surely inside or outside (its alpha 0 or 255). */
+static void edge_pixels(const int valid[LANES], const int hits[LANES], int more[LANES]) {
+    for (int l = 0; l < LANES; l++) {
+        int bx = l % BLOCK, by = l / BLOCK, edge = 0;
+        for (int ny = by - 1; ny <= by + 1; ny++)
+            for (int nx = bx - 1; nx <= bx + 1; nx++) {
+                int j = ny * BLOCK + nx;
+                if (nx >= 0 && ny >= 0 && nx < BLOCK && ny < BLOCK && valid[j] && !hits[j] != !hits[l]) edge = 1;
+            }
+        more[l] = edge;
+    }
+}
+
+/* Render the pixels of the block at (x0, y0) into acc (linear light, summed over samples),
+ * with the samples each pixel took in taken (fewer than s->samples only when adaptive). */
+static void render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int hits[LANES], uint8_t nd[LANES][4],
+                         int taken[LANES]) {
     const RenderCamera *cam = &s->cam;
     _Alignas(64) int valid[LANES], lit[LANES], open_valid[LANES];
     _Alignas(64) struct RTCRayHit16 rh;
@@ -177,6 +193,12 @@ static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int
     rtcInitIntersectContext(&coherent);
     coherent.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcInitIntersectContext(&incoherent);
+    /* Impostor views (adaptive) look into foliage of sub-pixel leaves: a packet's rays part
+     * within a few levels of the hierarchy, and Embree's incoherent mode (single rays once
+     * few lanes share a node) takes about 10% less time there. */
+    struct RTCIntersectContext *camera_rays = s->adaptive ? &incoherent : &coherent;
+    int more[LANES]; /* the pixels still sampled */
+    for (int l = 0; l < LANES; l++) more[l] = 1;
     memset(acc, 0, LANES * sizeof *acc);
     memset(hits, 0, LANES * sizeof *hits);
     memset(nd, 0, LANES * sizeof *nd);
@@ -186,11 +208,12 @@ static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int
             int seen = 0, n = 0;
             for (int l = 0; l < LANES; l++) seen += valid[l] && hits[l], n += valid[l] != 0;
             if (seen == 0 || seen == n) break;
+            edge_pixels(valid, hits, more);
         }
         /* Camera rays, and the ground by hand (a plane: tfar stops Embree there). */
         for (int l = 0; l < LANES; l++) {
             int x = x0 + l % BLOCK, y = y0 + l / BLOCK;
-            valid[l] = x < s->width && y < s->height ? -1 : 0;
+            valid[l] = x < s->width && y < s->height && more[l] ? -1 : 0;
             x += s->ox, y += s->oy; /* in the whole picture: a tile's pixels are the picture's */
             rng[l] = rng_stream(0x5e1fa, (uint64_t)y * (uint64_t)s->full_w + (uint64_t)x, 0, (uint64_t)k);
             float sx = (2 * ((float)x + s->sub[k][0]) / (float)s->full_w - 1) * cam->tanx;
@@ -207,7 +230,10 @@ static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int
             set_ray16(&rh.ray, l, cam->eye, d, tg);
             rh.hit.geomID[l] = rh.hit.primID[l] = rh.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
         }
-        rtcIntersect16(valid, s->scene, &coherent, &rh);
+        rtcIntersect16(valid, s->scene, camera_rays, &rh);
+        for (int l = 0; s->quad_halves && l < LANES; l++)
+            if (valid[l] && rh.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID)
+                render_quad_hit(s->quad_halves, &rh.hit.primID[l], &rh.hit.u[l], &rh.hit.v[l]);
 
         /* Surfaces, and rays toward the sun. */
         for (int l = 0; l < LANES; l++) {
@@ -289,24 +315,25 @@ static int render_block(const Scene *s, int x0, int y0, float acc[LANES][3], int
             }
         }
     }
-    return k;
+    for (int l = 0; l < LANES; l++) taken[l] = more[l] ? k : 1;
 }
 
 void render_tile(const Scene *s, int tile) {
     int x0 = (tile % s->tiles_x) * TILE, y0 = (tile / s->tiles_x) * TILE;
     float acc[LANES][3];
-    int hits[LANES];
+    int hits[LANES], taken[LANES];
     uint8_t nd[LANES][4];
     for (int by = y0; by < y0 + TILE && by < s->height; by += BLOCK)
         for (int bx = x0; bx < x0 + TILE && bx < s->width; bx += BLOCK) {
-            int taken = render_block(s, bx, by, acc, hits, nd);
-            float inv = 1.0f / (float)taken;
+            render_block(s, bx, by, acc, hits, nd, taken);
             for (int l = 0; l < LANES; l++) {
                 int x = bx + l % BLOCK, y = by + l / BLOCK;
                 if (x >= s->width || y >= s->height) continue;
+                int n = taken[l];
+                float inv = 1.0f / (float)n;
                 if (s->normal) memcpy(s->normal + 4 * ((size_t)y * (size_t)s->width + (size_t)x), nd[l], 4);
                 if (s->alpha) /* coverage: the share of the pixel's samples that saw the plant */
-                    s->alpha[(size_t)y * (size_t)s->width + (size_t)x] = (uint8_t)((255 * hits[l] + taken / 2) / taken);
+                    s->alpha[(size_t)y * (size_t)s->width + (size_t)x] = (uint8_t)((255 * hits[l] + n / 2) / n);
                 uint8_t *o = s->out + 3 * ((size_t)y * (size_t)s->width + (size_t)x);
                 for (int c = 0; c < 3; c++) {
                     /* unlit: the colour of what was hit, not mixed with the background */

@@ -24,9 +24,12 @@ static int write_png(const char *path, const uint8_t *px, int width, int height,
     OutFile o; /* "-" is standard output */
     if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
     Rows src = {px, width, channels};
-    /* level 1: fast, pictures are big and noisy */
-    PngOutImage img = {.width = width, .height = height, .channels = channels, .depth = 8, .level = 1,
-                       .row = pixel_row, .ctx = &src};
+    /* RGB pictures: level 1, fast (they are big and noisy). RGBA, the impostor's atlases: mostly
+     * empty cells around views of sub-pixel leaves, where no filter at level 2 is both smaller and
+     * faster than libpng's filter choice at level 1 (the willow's 2048^2 colour atlas 1.30 MB
+     * against 2.00 MB, its encoding 0.06 s against 0.17 s of processor time). */
+    PngOutImage img = {.width = width, .height = height, .channels = channels, .depth = 8,
+                       .level = channels == 4 ? 2 : 1, .unfiltered = channels == 4, .row = pixel_row, .ctx = &src};
     int status = pngout_encode(&o, &img, diag);
     if (!outfile_close(&o, status == SYL_OK, diag) && !status) status = SYL_EIO;
     return status;

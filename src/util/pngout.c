@@ -51,6 +51,7 @@ int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag) {
             png_set_text(png, info, text, n);
         }
         png_set_compression_level(png, img->level);
+        if (img->unfiltered) png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
         png_write_info(png, info);
 #if __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
         if (img->depth == 16) png_set_swap(png); /* samples are host-order uint16_t; PNG is big-endian */

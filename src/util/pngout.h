@@ -3,6 +3,7 @@
  * RGB pictures of texture/png.c and the 16-bit factor maps of terrain/write.c. */
 #ifndef SYL_UTIL_PNGOUT_H
 #define SYL_UTIL_PNGOUT_H
+#include <stdbool.h>
 #include <stdint.h>
 #include <stdio.h>
 
@@ -17,6 +18,7 @@ typedef struct PngOutImage {
     int channels; /* 1 grey, 3 RGB, 4 RGBA */
     int depth;    /* bits per sample: 8, or 16 (host-order uint16_t samples) */
     int level;    /* zlib compression level, 0-9 */
+    bool unfiltered; /* rows as they are (PNG filter None), not libpng's best filter per row */
     const PngOutText *text;
     int ntext;
     /* Row y: a pointer to width * channels samples; scratch has room for one row, for a

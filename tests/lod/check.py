@@ -24,6 +24,12 @@
       PNG round trip: size GRID*VIEW square RGBA; alpha 0 at every view's corners (outside
       the framed bounding sphere), > 0 somewhere near every view's centre; normals unit
       length where the plant is.
+  check.py compare NEW OLD [--alpha-mean A] [--alpha-far F] [--color-mean C]
+      two colour atlases of one plant (RGBA, same size), e.g. one baked with fewer samples
+      against one baked with more: the mean |alpha difference| over all pixels at most A
+      (0..255), the share of pixels whose alpha differs by more than 64 (a quarter: one of
+      four samples) at most F, the mean |colour difference| where both see the plant at
+      most C. Prints the figures.
 Prints "ok ..." lines; exits 1 with "FAIL ..." on the first failed check."""
 import json, math, struct, sys, zlib
 import os
@@ -281,6 +287,27 @@ def check_atlas(color, normal, grid, view):
     print(f"ok {color}: {grid}x{grid} views of {view}, alpha 0 outside the plant, unit normals")
 
 
+def compare_atlas(new, old, alpha_mean, alpha_far, color_mean):
+    wn, hn, cn, rn = read_png(open(new, "rb").read())
+    wo, ho, co, ro = read_png(open(old, "rb").read())
+    if (wn, hn, cn) != (wo, ho, co) or cn != 4:
+        fail(f"{new}: {wn}x{hn}x{cn} against {old}: {wo}x{ho}x{co}")
+    da = far = dc = both = 0
+    for a, b in zip(rn, ro):
+        for i in range(0, len(a), 4):
+            d = abs(a[i + 3] - b[i + 3])
+            da += d
+            far += d > 64
+            if a[i + 3] and b[i + 3]:
+                both += 1
+                dc += abs(a[i] - b[i]) + abs(a[i + 1] - b[i + 1]) + abs(a[i + 2] - b[i + 2])
+    n = wn * hn
+    am, fs, cm = da / n, far / n, dc / (3 * both) if both else 0.0
+    print(f"{new} against {old}: mean |alpha difference| {am:.3f}, share > 64 {fs:.5f}, mean |colour difference| {cm:.3f}")
+    if am > alpha_mean or fs > alpha_far or cm > color_mean:
+        fail(f"{new}: beyond the tolerance (alpha mean {alpha_mean}, share {alpha_far}, colour {color_mean})")
+
+
 if __name__ == "__main__":
     a = sys.argv[1:]
     if a and a[0] == "glb":
@@ -291,6 +318,10 @@ if __name__ == "__main__":
         check_modes(a[1], int(a[2]), a[3])
     elif a and a[0] == "atlas":
         check_atlas(a[1], a[2], int(a[3]), int(a[4]))
+    elif a and a[0] == "compare":
+        opt = dict(zip(a[3::2], a[4::2]))
+        compare_atlas(a[1], a[2], float(opt.get("--alpha-mean", 255)), float(opt.get("--alpha-far", 1)),
+                      float(opt.get("--color-mean", 255)))
     else:
         print(__doc__)
         sys.exit(2)

@@ -172,6 +172,53 @@ static void adaptive_sampling_keeps_coverage(void **state) {
     syl_mesh_free(tree);
 }
 
+/* Alpha-tested cards: rays pass where the card's texture is transparent, with Embree's
+ * triangles (full sampling) and with the quads the impostor bake pairs them into (adaptive).
+ * A 2 x 2 card of the maple shape seen face on: the share of its opaque pixels is the share
+ * of the texture's texels with alpha >= 1/2 (the card at the sphere's centre, so every texel
+ * is magnified alike), and the two paths agree pixel by pixel. */
+static void alpha_tested_card_shows_its_shape(void **state) {
+    (void)state;
+    SylMesh *card = synth_new();
+    assert_true(reserve(card, 4, 6));
+    const float n[3] = {0, 0, -1};
+    uint32_t v[4];
+    for (int k = 0; k < 4; k++)
+        v[k] = vert(card, (const float[3]){k & 1 ? 1.0f : -1.0f, k & 2 ? 1.0f : -1.0f, 0}, n, (float)(k & 1),
+                    (float)(k >> 1));
+    assert_true(tri(card, v[0], v[1], v[3], 1) && tri(card, v[0], v[3], v[2], 1));
+    enum { T = 256 };
+    uint8_t *tex = malloc(4 * T * T);
+    assert_true(syl_leaf_card(SYL_LEAF_MAPLE, T, tex));
+    double texels = 0;
+    for (int i = 0; i < T * T; i++) texels += tex[4 * i + 3] >= 128;
+    free(tex);
+    texels /= T * T;
+    int partial;
+    card->leaves = SYL_LEAVES_MESH;
+    double whole = coverage(card, false, &partial);
+    card->leaves = SYL_LEAVES_CARDS, card->leaf_shape = SYL_LEAF_MAPLE;
+    uint8_t alpha[2][W * H];
+    for (int a = 0; a < 2; a++) {
+        uint8_t *rgb = render(card, (SylRenderOptions){.toward = (const float[3]){0, 0, 1}, .ground = -1, .unlit = true,
+                                                        .ao_samples = -1, .shadows = -1, .alpha = alpha[a],
+                                                        .adaptive = a});
+        free(rgb);
+        double sum = 0;
+        for (int i = 0; i < W * H; i++) sum += alpha[a][i] / 255.0;
+        double share = sum / (W * H) / whole;
+        if (fabs(share - texels) > 0.03 * texels)
+            fail_msg("adaptive %d: the card shows %.4f of its area, its texture %.4f", a, share, texels);
+    }
+    int apart = 0, seen = 0;
+    for (int i = 0; i < W * H; i++) {
+        seen += alpha[0][i] > 0;
+        apart += abs(alpha[0][i] - alpha[1][i]) > 128;
+    }
+    if (apart > seen / 100) fail_msg("%d of %d pixels differ by more than half between triangles and quads", apart, seen);
+    syl_mesh_free(card);
+}
+
 static void tree_covers_a_plausible_share(void **state) {
     (void)state;
     SylMesh *m = synth_tree(6000);
@@ -618,6 +665,7 @@ int main(void) {
         cmocka_unit_test(noise_is_bounded_and_periodic),
         cmocka_unit_test(textures_written_for_exporters),
         cmocka_unit_test(adaptive_sampling_keeps_coverage),
+        cmocka_unit_test(alpha_tested_card_shows_its_shape),
         cmocka_unit_test(windows_are_crops_of_the_picture),
         cmocka_unit_test(instanced_cards_are_alpha_tested),
     };
