@@ -36,6 +36,23 @@ typedef struct Links {
     size_t sp, scap;
 } Links;
 
+/* What a successor does to the links the pass keeps, made once a pass for each rule used, so
+ * that the entries of a successor are not found module by module. A successor whose brackets
+ * balance changes the links only through its modules outside its branches (nothing after it
+ * looks into a branch it closed), and of those a match reads at most the longest new context's
+ * length, up to a module no pattern names. Forward these are its last such modules, backward
+ * its first ones. */
+enum { PLAN_MAX = 8 };
+typedef struct Plan {
+    uint32_t stamp;          /* the pass it was made in (0: none) */
+    bool walk;               /* brackets that do not balance, or longer contexts: module by module */
+    bool cut;                /* a module no pattern names (or one beyond the longest context)
+                                stands between these entries and the links before the successor */
+    uint8_t n;               /* entries it adds, in string order */
+    uint16_t code[PLAN_MAX];
+    uint32_t poff[PLAN_MAX]; /* parameter offset in the successor */
+} Plan;
+
 static void links_free(Links *l) {
     pages_free(l->ent, l->entcap * sizeof *l->ent);
     free(l->link);
@@ -46,6 +63,36 @@ static void links_free(Links *l) {
     free(l->sclose);
     free(l->scode);
     memset(l, 0, sizeof *l);
+}
+
+/* The plan of rule r for a pass in direction `backward`: K is the longest new context. */
+static void plan_make(Plan *pl, const Rule *r, bool backward, const bool *skip, const bool *want, int K) {
+    *pl = (Plan){.walk = K > PLAN_MAX};
+    int depth = 0, n = 0;
+    uint32_t off = 0;
+    for (int j = 0; j < r->nsucc && !pl->walk; off += CODE_ARITY(r->succ[j]), j++) {
+        uint16_t c = r->succ[j];
+        int s = CODE_SYM(c);
+        if (s == SYM_OPEN) depth++;
+        else if (s == SYM_CLOSE) pl->walk = depth-- == 0;
+        else if (depth || skip[s] || (backward && (pl->cut || n == K))) continue;
+        else if (!want[c]) { /* forward, what came before is cut off; backward, what follows */
+            pl->cut = true;
+            n = backward ? n : 0;
+        } else {
+            if (n == K) { /* forward: the oldest can no longer be reached */
+                memmove(pl->code, pl->code + 1, (size_t)(K - 1) * sizeof *pl->code);
+                memmove(pl->poff, pl->poff + 1, (size_t)(K - 1) * sizeof *pl->poff);
+                n--;
+                pl->cut = true;
+            }
+            pl->code[n] = c;
+            pl->poff[n++] = off;
+            if (backward && n == K) pl->cut = true; /* backward: nothing after is read */
+        }
+    }
+    pl->walk |= depth != 0;
+    pl->n = (uint8_t)n;
 }
 
 static bool entries_room(Links *l, size_t need) {
@@ -183,31 +230,52 @@ static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool bac
     return r;
 }
 
-/* Rule or copy for input module i (parameters args) into o. SYL_OK or the fault's status. */
-static int rewrite_one(Work *w, size_t i, const double *args, const Here *h, bool backward, SylString *o) {
+/* Rule or copy for input module i (parameters args) into o, the rule used in *used (NULL: a
+ * copy). SYL_OK or the fault's status. */
+static int rewrite_one(Work *w, size_t i, const double *args, const Here *h, bool backward, SylString *o,
+                       const Rule **used) {
     uint16_t c = w->in->code[i];
     double locals[MAX_LOCALS + MAX_ARITY];
     Rng rng;
     bool ready = false;
     const Rule *r = NULL;
     const Dispatch *d = &w->t->dispatch[c];
-    if (d->plain) return rewrite_emit(w, d->plain, args, i, &rng, &ready); /* no context, no choice */
+    if (d->plain) return rewrite_emit(w, *used = d->plain, args, i, &rng, &ready); /* no context, no choice */
     if (d->count) {
         int status;
         if (CODE_ARITY(c)) memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
         r = choose(w, c, i, h, backward, locals, &rng, &ready, &status);
         if (status) return status;
     }
-    if (!r) {
+    if (!(*used = r)) {
         copy_module(o, c, args);
         return SYL_OK;
     }
     return rewrite_emit(w, r, locals, i, &rng, &ready);
 }
 
+/* The plans of one pass: for each rule of the table, made when the pass first uses it. */
+typedef struct Plans {
+    Plan *plan;
+    const Rule *rules;
+    uint32_t stamp;
+    const bool *skip, *want;
+    int K;
+    bool backward;
+} Plans;
+
+static inline const Plan *plan_of(const Plans *ps, const Rule *r) {
+    Plan *pl = &ps->plan[r - ps->rules];
+    if (pl->stamp != ps->stamp) {
+        plan_make(pl, r, ps->backward, ps->skip, ps->want, ps->K);
+        pl->stamp = ps->stamp;
+    }
+    return pl;
+}
+
 /* First module first: the output is w->out; the entries of its path grow as successors are
  * appended (match_link_left, one module at a time, kept only for the modules `<<` names). */
-static void forward(Work *w, Links *lp) {
+static void forward(Work *w, Links *lp, const Plans *ps) {
     const RuleTable *t = w->t;
     const View *in = w->in;
     SylString *o = w->out;
@@ -235,11 +303,23 @@ static void forward(Work *w, Links *lp) {
             break;
         }
         size_t at = o->n;
+        uint32_t pat = pofs;
         const Dispatch *d = &t->dispatch[in->code[i]];
+        const Rule *r = NULL;
         if (!d->plain && !d->count) copy_module(o, in->code[i], args); /* no rule for it */
         else {
             Here h = {.ent = l.ent, .cursor = last, .par = o->par};
-            if (rewrite_one(w, i, args, &h, false, o)) break;
+            if (rewrite_one(w, i, args, &h, false, o, &r)) break;
+        }
+        const Plan *pl = r ? plan_of(ps, r) : NULL;
+        if (pl && !pl->walk) {
+            if (pl->cut) last = -1;
+            for (int k = 0; k < pl->n; k++) {
+                l.ent[l.nent] = (Entry){.link = last, .code = pl->code[k], .poff = pat + pl->poff[k]};
+                last = (int32_t)l.nent++;
+            }
+            pofs = (uint32_t)o->np;
+            continue;
         }
         for (size_t j = at; j < o->n; j++) {
             uint16_t c = o->code[j];
@@ -335,7 +415,7 @@ static bool back_room(Back *b, SylString *out, Links *l, bool walk, size_t need,
 
 /* Last module first: each successor is written to a scratch string, then put in front of
  * the output (Back), whose right links (and bracket pairs) grow towards the front. */
-static void backward(Work *w, Links *lp, SylString *tmpp) {
+static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
     const RuleTable *t = w->t;
     const View *in = w->in;
     SylString *out = w->out;
@@ -391,6 +471,7 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
         uint16_t c0 = in->code[i];
         const Dispatch *d = &t->dispatch[c0];
         size_t nn, pn; /* modules and parameters put in front of the output */
+        const Rule *r = NULL;
         if (!d->plain && !d->count) { /* no rule for it: it stays, straight to the front */
             nn = 1;
             pn = CODE_ARITY(c0);
@@ -399,7 +480,7 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
             for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = args[k];
         } else {
             tmp.n = tmp.np = 0;
-            if (rewrite_one(w, i, args, &here, true, &tmp)) break;
+            if (rewrite_one(w, i, args, &here, true, &tmp, &r)) break;
             nn = tmp.n;
             pn = tmp.np;
             if (b.cap - b.h + nn > out->max_modules) {
@@ -410,6 +491,15 @@ static void backward(Work *w, Links *lp, SylString *tmpp) {
             b.ph -= pn;
             for (size_t k = 0; k < nn; k++) b.code[b.h + k] = tmp.code[k]; /* a few modules */
             for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = tmp.par[k];
+        }
+        const Plan *pl = !walk && r ? plan_of(ps, r) : NULL;
+        if (pl && !pl->walk) { /* its first modules on the axis, last first */
+            if (pl->cut) next = -1;
+            for (int k = pl->n; k-- > 0;) {
+                l.ent[l.nent] = (Entry){.link = next, .code = pl->code[k], .poff = (uint32_t)(b.pcap - b.ph - pl->poff[k])};
+                next = (int32_t)l.nent++;
+            }
+            continue;
         }
         if (!walk) { /* match_link_right over the new modules, kept for those `>>` names */
             size_t off = b.ph + pn;
@@ -487,6 +577,9 @@ done:
 struct NewctxScratch {
     Links links;
     SylString tmp;
+    Plan *plans;      /* one per rule of the pass's table */
+    size_t nplans;
+    uint32_t stamp;   /* the pass: plans made in an earlier one are made again */
     Budget *mem;      /* --max-memory: what the arrays hold is charged after each pass */
     uint64_t charged;
 };
@@ -505,8 +598,31 @@ void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
     }
     struct NewctxScratch *s = *scratch;
     s->mem = w->out->mem;
-    if (backward_step) backward(w, &s->links, &s->tmp);
-    else forward(w, &s->links);
+    const RuleTable *t = w->t;
+    if ((size_t)t->nrules > s->nplans) {
+        Plan *p = realloc(s->plans, (size_t)t->nrules * sizeof *p);
+        if (!p) {
+            fault(w, w->lo, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+            return;
+        }
+        memset(p + s->nplans, 0, ((size_t)t->nrules - s->nplans) * sizeof *p);
+        s->plans = p;
+        s->nplans = (size_t)t->nrules;
+    }
+    if (++s->stamp == 0) { /* after 2^32 passes: every plan made again */
+        memset(s->plans, 0, s->nplans * sizeof *s->plans);
+        s->stamp = 1;
+    }
+    static const bool none[CODE_COUNT];
+    const bool *want = backward_step ? t->newright_code : t->newleft_code;
+    Plans ps = {.plan = s->plans, .rules = t->rules, .stamp = s->stamp, .skip = w->in->skip,
+                .want = want ? want : none, .backward = backward_step};
+    for (int k = 0; k < t->nrules; k++) {
+        int n = backward_step ? t->rules[k].nnewright : t->rules[k].nnewleft;
+        if (n > ps.K) ps.K = n;
+    }
+    if (backward_step) backward(w, &s->links, &s->tmp, &ps);
+    else forward(w, &s->links, &ps);
     uint64_t now = scratch_bytes(s);
     if (!budget_resize(s->mem, s->charged, now)) {
         if (!w->fault.status) fault(w, w->hi, NULL, SYL_ELIMIT, LIMIT_MEMORY);
@@ -521,6 +637,7 @@ void newctx_release(struct NewctxScratch **scratch) {
     budget_release(s->mem, s->charged);
     links_free(&s->links);
     ms_release(&s->tmp);
+    free(s->plans);
     free(s);
     *scratch = NULL;
 }
