@@ -36,6 +36,9 @@ typedef struct Links {
     size_t sp, scap;
 } Links;
 
+/* Room is made for this many modules' successors at once. */
+enum { BATCH = 64 };
+
 /* What a successor does to the links the pass keeps, made once a pass for each rule used, so
  * that the entries of a successor are not found module by module. A successor whose brackets
  * balance changes the links only through its modules outside its branches (nothing after it
@@ -230,23 +233,20 @@ static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool bac
     return r;
 }
 
-/* Rule or copy for input module i (parameters args) into o, the rule used in *used (NULL: a
- * copy). SYL_OK or the fault's status. */
-static int rewrite_one(Work *w, size_t i, const double *args, const Here *h, bool backward, SylString *o,
-                       const Rule **used) {
+/* Input module i (parameters args), which has rules with contexts, conditions or weights:
+ * the rule chosen emitted into o (w->out), in *used, or the module copied (*used NULL). SYL_OK
+ * or the fault's status. */
+static inline __attribute__((always_inline)) int rewrite_one(Work *w, size_t i, const double *args,
+                                                             const Here *h, bool backward, SylString *o,
+                                                             const Rule **used) {
     uint16_t c = w->in->code[i];
     double locals[MAX_LOCALS + MAX_ARITY];
     Rng rng;
     bool ready = false;
-    const Rule *r = NULL;
-    const Dispatch *d = &w->t->dispatch[c];
-    if (d->plain) return rewrite_emit(w, *used = d->plain, args, i, &rng, &ready); /* no context, no choice */
-    if (d->count) {
-        int status;
-        if (CODE_ARITY(c)) memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
-        r = choose(w, c, i, h, backward, locals, &rng, &ready, &status);
-        if (status) return status;
-    }
+    int status;
+    if (CODE_ARITY(c)) memcpy(locals, args, sizeof(double) * CODE_ARITY(c));
+    const Rule *r = choose(w, c, i, h, backward, locals, &rng, &ready, &status);
+    if (status) return status;
     if (!(*used = r)) {
         copy_module(o, c, args);
         return SYL_OK;
@@ -278,68 +278,96 @@ static inline const Plan *plan_of(const Plans *ps, const Rule *r) {
 static void forward(Work *w, Links *lp, const Plans *ps) {
     const RuleTable *t = w->t;
     const View *in = w->in;
+    const bool *skip = in->skip;
     SylString *o = w->out;
-    const size_t need = (size_t)t->max_succ + SUCC_PAD, pneed = (size_t)t->max_succ_params + MAX_ARITY;
     Links l = *lp; /* a copy in registers, put back at the end */
     l.sp = l.nent = 0;
     static const bool none[CODE_COUNT]; /* a table with `>>` only: nothing to keep */
     const bool *want = t->newleft_code ? t->newleft_code : none;
     int32_t last = -1; /* the entry of the output's last path module */
-    uint32_t pofs = 0;
     size_t pi = w->plo;
     w->fault.status = SYL_OK;
-    for (size_t i = w->lo; i < w->hi; i++) {
-        const double *args = in->par ? in->par + pi : NULL;
-        pi += CODE_ARITY(in->code[i]);
-        if (o->n + need > o->cap || o->np + pneed > o->pcap) {
-            int st = ms_reserve(o, need + (w->hi - i), pneed);
+    for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
+        /* room for a batch of successors (and as many entries) at once, not module by module */
+        size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
+        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
+        if (o->n + room > o->cap || o->np + proom > o->pcap) {
+            int st = ms_reserve(o, room + (w->hi - lo), proom);
             if (st || o->n > o->max_modules) {
-                fault(w, i, NULL, SYL_ELIMIT, st ? LIMIT_MEMORY : LIMIT_MODULES);
+                fault(w, lo, NULL, SYL_ELIMIT, st ? LIMIT_MEMORY : LIMIT_MODULES);
                 break;
             }
         }
-        if (l.nent + need > l.entcap && !entries_room(&l, l.nent + need)) {
-            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+        if (l.nent + room > l.entcap && !entries_room(&l, l.nent + room)) {
+            fault(w, lo, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             break;
         }
-        size_t at = o->n;
-        uint32_t pat = pofs;
-        const Dispatch *d = &t->dispatch[in->code[i]];
-        const Rule *r = NULL;
-        if (!d->plain && !d->count) copy_module(o, in->code[i], args); /* no rule for it */
-        else {
-            Here h = {.ent = l.ent, .cursor = last, .par = o->par};
-            if (rewrite_one(w, i, args, &h, false, o, &r)) break;
-        }
-        const Plan *pl = r ? plan_of(ps, r) : NULL;
-        if (pl && !pl->walk) {
-            if (pl->cut) last = -1;
-            for (int k = 0; k < pl->n; k++) {
-                l.ent[l.nent] = (Entry){.link = last, .code = pl->code[k], .poff = pat + pl->poff[k]};
-                last = (int32_t)l.nent++;
+        for (size_t i = lo; i < hi; i++) {
+            uint16_t c = in->code[i];
+            const double *args = in->par ? in->par + pi : NULL;
+            pi += CODE_ARITY(c);
+            size_t at = o->n;
+            uint32_t pat = (uint32_t)o->np;
+            const Dispatch *d = &t->dispatch[c];
+            const Rule *r = d->plain;
+            if (r) { /* no context, no choice */
+                Rng rng;
+                bool ready = false;
+                if (rewrite_emit(w, r, args, i, &rng, &ready)) goto done;
+            } else if (d->count) {
+                Here h = {.ent = l.ent, .cursor = last, .par = o->par};
+                if (rewrite_one(w, i, args, &h, false, o, &r)) goto done;
             }
-            pofs = (uint32_t)o->np;
-            continue;
-        }
-        for (size_t j = at; j < o->n; j++) {
-            uint16_t c = o->code[j];
-            int s = CODE_SYM(c);
-            if (s == SYM_OPEN) {
-                if (!push(&l, last, 0, 0)) {
-                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
-                    goto done;
+            if (!r) { /* it stays: its own link, as below */
+                int s = CODE_SYM(c);
+                if (!d->count) copy_module(o, c, args);
+                if (s == SYM_OPEN) {
+                    if (!push(&l, last, 0, 0)) {
+                        fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                        goto done;
+                    }
+                } else if (s == SYM_CLOSE) {
+                    last = l.sp ? l.sidx[--l.sp] : -1;
+                } else if (!skip[s]) {
+                    if (want[c]) {
+                        l.ent[l.nent] = (Entry){.link = last, .code = c, .poff = pat};
+                        last = (int32_t)l.nent++;
+                    } else {
+                        last = -1;
+                    }
                 }
-            } else if (s == SYM_CLOSE) {
-                last = l.sp ? l.sidx[--l.sp] : -1;
-            } else if (!in->skip[s]) {
-                if (want[c]) {
-                    l.ent[l.nent] = (Entry){.link = last, .code = c, .poff = pofs};
+                continue;
+            }
+            const Plan *pl = plan_of(ps, r);
+            if (!pl->walk) {
+                if (pl->cut) last = -1;
+                for (int k = 0; k < pl->n; k++) {
+                    l.ent[l.nent] = (Entry){.link = last, .code = pl->code[k], .poff = pat + pl->poff[k]};
                     last = (int32_t)l.nent++;
-                } else {
-                    last = -1; /* no pattern names it: every match fails here */
                 }
+                continue;
             }
-            pofs += CODE_ARITY(c);
+            for (size_t j = at; j < o->n; j++) { /* match_link_left, one module at a time */
+                uint16_t oc = o->code[j];
+                int s = CODE_SYM(oc);
+                if (s == SYM_OPEN) {
+                    if (!push(&l, last, 0, 0)) {
+                        fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                        goto done;
+                    }
+                } else if (s == SYM_CLOSE) {
+                    last = l.sp ? l.sidx[--l.sp] : -1;
+                } else if (!skip[s]) {
+                    if (want[oc]) {
+                        l.ent[l.nent] = (Entry){.link = last, .code = oc, .poff = pat};
+                        last = (int32_t)l.nent++;
+                    } else {
+                        last = -1; /* no pattern names it: every match fails here */
+                    }
+                }
+                pat += CODE_ARITY(oc);
+            }
         }
     }
 done:
@@ -480,7 +508,11 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
             for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = args[k];
         } else {
             tmp.n = tmp.np = 0;
-            if (rewrite_one(w, i, args, &here, true, &tmp, &r)) break;
+            if ((r = d->plain)) {
+                Rng rng;
+                bool ready = false;
+                if (rewrite_emit(w, r, args, i, &rng, &ready)) break;
+            } else if (rewrite_one(w, i, args, &here, true, &tmp, &r)) break;
             nn = tmp.n;
             pn = tmp.np;
             if (b.cap - b.h + nn > out->max_modules) {
