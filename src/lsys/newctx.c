@@ -201,7 +201,7 @@ static bool match_new_right(const Here *h, const PatElem *pat, int n, double *lo
 
 /* Whether rule r applies to input module i, its contexts' parameters bound in locals. A rule
  * with `<<` takes part only in forward passes, one with `>>` only in backward ones. */
-static bool applies(const Work *w, const Rule *r, size_t i, const Here *h, bool backward, double *locals) {
+static inline bool applies(const Work *w, const Rule *r, size_t i, const Here *h, bool backward, double *locals) {
     if (r->nnewleft && (backward || !match_new_left(h, r->newleft, r->nnewleft, locals))) return false;
     if (r->nnewright && (!backward || !(h->nv ? match_right_pat(h->nv, h->at, r->newright, r->nnewright,
                                                                   r->newright_branches, locals)
@@ -220,6 +220,10 @@ static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool bac
     double total = 0;
     int nc = 0;
     *status = SYL_OK;
+    if (d->count == 1) { /* one rule without condition or weight: its contexts decide */
+        const Rule *r = &t->rules[t->order[d->first]];
+        if (r->cond < 0 && !r->weighted) return applies(w, r, i, h, backward, locals) ? r : NULL;
+    }
     for (uint32_t k = 0; k < d->count; k++) {
         const Rule *r = &t->rules[t->order[d->first + k]];
         if (nc && !r->weighted) continue;
@@ -468,130 +472,148 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
     static const bool none[CODE_COUNT];
     const bool *want = t->newright_code ? t->newright_code : none;
     l.nent = 0;
-    if (!b.code || !b.par || (walk && !links_room(&l, b.cap)) || ms_reserve(&tmp, need, pneed)) {
+    /* successors go to tmp after TMP_AT codes and TMP_PAT parameters, so that a short one is
+     * put in front of the output by one copy of a fixed size ending where it ends (what it
+     * copies before it lands in the free room) */
+    enum { TMP_AT = SUCC_PAD, TMP_PAT = SLOT_PLAN };
+    tmp.n = tmp.np = 0;
+    if (!b.code || !b.par || (walk && !links_room(&l, b.cap)) || ms_reserve(&tmp, need + TMP_AT, pneed + TMP_PAT)) {
         fault(w, w->hi, NULL, SYL_ELIMIT, LIMIT_MEMORY);
         goto done;
     }
+    memset(tmp.code, 0, TMP_AT * sizeof *tmp.code);
+    memset(tmp.par, 0, TMP_PAT * sizeof *tmp.par);
     w->out = &tmp;
     Here here = {0};
-    for (size_t i = w->hi; i-- > w->lo;) {
-        pi -= CODE_ARITY(in->code[i]);
-        const double *args = in->par ? in->par + pi : NULL;
-        if (((b.h < need + 1 || b.ph < pneed) && !back_room(&b, out, &l, walk, need, pneed, &next)) ||
-            (!walk && l.nent + need > l.entcap && !entries_room(&l, l.nent + need))) {
-            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+    for (size_t hi = w->hi; hi > w->lo;) {
+        /* room for a batch of successors (and as many entries) at once, not module by module */
+        size_t lo = hi - w->lo > BATCH ? hi - BATCH : w->lo;
+        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
+        if (((b.h < room + 1 || b.ph < proom) && !back_room(&b, out, &l, walk, room, proom, &next)) ||
+            (!walk && l.nent + room > l.entcap && !entries_room(&l, l.nent + room))) {
+            fault(w, hi - 1, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             break;
         }
-        size_t at = b.h - 1;
-        View nv; /* filled only when walking */
-        here.ent = l.ent; /* fields, not a new struct: this loop runs once a module */
-        here.cursor = next;
-        here.par = b.par;
-        here.pend = b.pcap;
-        here.at = at;
-        if (walk) {
-            nv = (View){.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
-                        .pair = l.pair, .n = b.cap, .skip = in->skip};
-            here.nv = &nv;
-            l.link[at] = next;
-            l.code[at] = nextcode;
-        }
-        uint16_t c0 = in->code[i];
-        const Dispatch *d = &t->dispatch[c0];
-        size_t nn, pn; /* modules and parameters put in front of the output */
-        const Rule *r = NULL;
-        if (!d->plain && !d->count) { /* no rule for it: it stays, straight to the front */
-            nn = 1;
-            pn = CODE_ARITY(c0);
-            b.code[--b.h] = c0;
-            b.ph -= pn;
-            for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = args[k];
-        } else {
-            tmp.n = tmp.np = 0;
-            if ((r = d->plain)) {
-                Rng rng;
-                bool ready = false;
-                if (rewrite_emit(w, r, args, i, &rng, &ready)) break;
-            } else if (rewrite_one(w, i, args, &here, true, &tmp, &r)) break;
-            nn = tmp.n;
-            pn = tmp.np;
-            if (b.cap - b.h + nn > out->max_modules) {
-                fault(w, i, NULL, SYL_ELIMIT, LIMIT_MODULES);
-                break;
+        for (size_t i = hi; i-- > lo;) {
+            pi -= CODE_ARITY(in->code[i]);
+            const double *args = in->par ? in->par + pi : NULL;
+            size_t at = b.h - 1;
+            View nv; /* filled only when walking */
+            here.ent = l.ent; /* fields, not a new struct: this loop runs once a module */
+            here.cursor = next;
+            here.par = b.par;
+            here.pend = b.pcap;
+            here.at = at;
+            if (walk) {
+                nv = (View){.code = b.code, .par = b.par, .poff = l.poff, .right = l.link, .rcode = l.code,
+                            .pair = l.pair, .n = b.cap, .skip = in->skip};
+                here.nv = &nv;
+                l.link[at] = next;
+                l.code[at] = nextcode;
             }
-            b.h -= nn;
-            b.ph -= pn;
-            for (size_t k = 0; k < nn; k++) b.code[b.h + k] = tmp.code[k]; /* a few modules */
-            for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = tmp.par[k];
-        }
-        const Plan *pl = !walk && r ? plan_of(ps, r) : NULL;
-        if (pl && !pl->walk) { /* its first modules on the axis, last first */
-            if (pl->cut) next = -1;
-            for (int k = pl->n; k-- > 0;) {
-                l.ent[l.nent] = (Entry){.link = next, .code = pl->code[k], .poff = (uint32_t)(b.pcap - b.ph - pl->poff[k])};
-                next = (int32_t)l.nent++;
+            uint16_t c0 = in->code[i];
+            const Dispatch *d = &t->dispatch[c0];
+            size_t nn, pn; /* modules and parameters put in front of the output */
+            const Rule *r = NULL;
+            if (!d->plain && !d->count) { /* no rule for it: it stays, straight to the front */
+                nn = 1;
+                pn = CODE_ARITY(c0);
+                b.code[--b.h] = c0;
+                b.ph -= pn;
+                for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = args[k];
+            } else {
+                tmp.n = TMP_AT;
+                tmp.np = TMP_PAT;
+                if ((r = d->plain)) {
+                    Rng rng;
+                    bool ready = false;
+                    if (rewrite_emit(w, r, args, i, &rng, &ready)) goto done;
+                } else if (rewrite_one(w, i, args, &here, true, &tmp, &r)) goto done;
+                nn = tmp.n - TMP_AT;
+                pn = tmp.np - TMP_PAT;
+                if (b.cap - b.h + nn > out->max_modules) {
+                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MODULES);
+                    goto done;
+                }
+                b.h -= nn;
+                b.ph -= pn;
+                if (nn <= TMP_AT) memcpy(b.code + b.h + nn - TMP_AT, tmp.code + nn, TMP_AT * sizeof *b.code);
+                else memcpy(b.code + b.h, tmp.code + TMP_AT, nn * sizeof *b.code);
+                if (pn <= TMP_PAT) memcpy(b.par + b.ph + pn - TMP_PAT, tmp.par + pn, TMP_PAT * sizeof *b.par);
+                else memcpy(b.par + b.ph, tmp.par + TMP_PAT, pn * sizeof *b.par);
             }
-            continue;
-        }
-        if (!walk) { /* match_link_right over the new modules, kept for those `>>` names */
-            size_t off = b.ph + pn;
-            for (size_t j = b.h + nn; j-- > b.h;) {
+            const Plan *pl = !walk && r ? plan_of(ps, r) : NULL;
+            if (pl && !pl->walk) { /* its first modules on the axis, last first */
+                if (pl->cut) next = -1;
+                for (int k = pl->n; k-- > 0;) {
+                    uint32_t poff = (uint32_t)(b.pcap - b.ph - pl->poff[k]);
+                    l.ent[l.nent] = (Entry){.link = next, .code = pl->code[k], .poff = poff};
+                    next = (int32_t)l.nent++;
+                }
+                continue;
+            }
+            if (!walk) { /* match_link_right over the new modules, kept for those `>>` names */
+                size_t off = b.ph + pn;
+                for (size_t j = b.h + nn; j-- > b.h;) {
+                    uint16_t c = b.code[j];
+                    int s = CODE_SYM(c);
+                    off -= CODE_ARITY(c);
+                    if (s == SYM_CLOSE) {
+                        if (!push(&l, next, 0, 0)) {
+                            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                            goto done;
+                        }
+                        next = -1;
+                    } else if (s == SYM_OPEN) {
+                        next = l.sp ? l.sidx[--l.sp] : -1;
+                    } else if (!in->skip[s]) {
+                        if (want[c]) {
+                            l.ent[l.nent] = (Entry){.link = next, .code = c, .poff = (uint32_t)(b.pcap - off)};
+                            next = (int32_t)l.nent++;
+                        } else {
+                            next = -1;
+                        }
+                    }
+                }
+                continue;
+            }
+            uint32_t off = (uint32_t)b.ph;
+            for (size_t j = b.h; j < b.h + nn; j++) {
+                l.poff[j] = off;
+                off += CODE_ARITY(b.code[j]);
+            }
+            for (size_t j = b.h + nn; j-- > b.h;) { /* match_link_right, one module at a time */
                 uint16_t c = b.code[j];
                 int s = CODE_SYM(c);
-                off -= CODE_ARITY(c);
-                if (s == SYM_CLOSE) {
-                    if (!push(&l, next, 0, 0)) {
+                l.link[j] = next;
+                l.code[j] = nextcode;
+                l.pair[j] = -1;
+                if (s == SYM_CLOSE) { /* entering a branch from its end */
+                    if (!push(&l, next, nextcode, (int32_t)j)) {
                         fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
                         goto done;
                     }
                     next = -1;
-                } else if (s == SYM_OPEN) {
-                    next = l.sp ? l.sidx[--l.sp] : -1;
-                } else if (!in->skip[s]) {
-                    if (want[c]) {
-                        l.ent[l.nent] = (Entry){.link = next, .code = c, .poff = (uint32_t)(b.pcap - off)};
-                        next = (int32_t)l.nent++;
-                    } else {
-                        next = -1;
-                    }
-                }
-            }
-            continue;
-        }
-        uint32_t off = (uint32_t)b.ph;
-        for (size_t j = b.h; j < b.h + nn; j++) {
-            l.poff[j] = off;
-            off += CODE_ARITY(b.code[j]);
-        }
-        for (size_t j = b.h + nn; j-- > b.h;) { /* match_link_right, one module at a time */
-            uint16_t c = b.code[j];
-            int s = CODE_SYM(c);
-            l.link[j] = next;
-            l.code[j] = nextcode;
-            l.pair[j] = -1;
-            if (s == SYM_CLOSE) { /* entering a branch from its end */
-                if (!push(&l, next, nextcode, (int32_t)j)) {
-                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
-                    goto done;
-                }
-                next = -1;
-                nextcode = CODE_NONE;
-            } else if (s == SYM_OPEN) {
-                if (l.sp) {
-                    l.sp--;
-                    next = l.sidx[l.sp];
-                    nextcode = l.scode[l.sp];
-                    l.pair[j] = l.sclose[l.sp];
-                } else { /* never in a balanced string: a walk past it ends the string */
-                    next = -1;
                     nextcode = CODE_NONE;
-                    l.pair[j] = (int32_t)b.cap - 1;
+                } else if (s == SYM_OPEN) {
+                    if (l.sp) {
+                        l.sp--;
+                        next = l.sidx[l.sp];
+                        nextcode = l.scode[l.sp];
+                        l.pair[j] = l.sclose[l.sp];
+                    } else { /* never in a balanced string: a walk past it ends the string */
+                        next = -1;
+                        nextcode = CODE_NONE;
+                        l.pair[j] = (int32_t)b.cap - 1;
+                    }
+                } else if (!in->skip[s]) {
+                    next = (int32_t)j;
+                    nextcode = c;
                 }
-            } else if (!in->skip[s]) {
-                next = (int32_t)j;
-                nextcode = c;
             }
         }
+        hi = lo;
     }
     if (!w->fault.status) {
         out->n = b.cap - b.h;
