@@ -176,7 +176,10 @@ typedef struct Here {
     size_t at;
 } Here;
 
-static bool match_new_left(const Here *h, const PatElem *pat, int n, double *locals) {
+/* Inlined, like applies and choose below, into each pass, whose direction is then a constant. */
+#define HOT static inline __attribute__((always_inline))
+
+HOT bool match_new_left(const Here *h, const PatElem *pat, int n, double *locals) {
     int32_t pos = h->cursor;
     for (int j = n - 1; j >= 0; j--) {
         if (pos < 0 || h->ent[pos].code != pat[j].code) return false;
@@ -188,7 +191,7 @@ static bool match_new_left(const Here *h, const PatElem *pat, int n, double *loc
 }
 
 /* Backward without branches in `>>` contexts: the entries of the axis that follows. */
-static bool match_new_right(const Here *h, const PatElem *pat, int n, double *locals) {
+HOT bool match_new_right(const Here *h, const PatElem *pat, int n, double *locals) {
     int32_t pos = h->cursor;
     for (int j = 0; j < n; j++) {
         if (pos < 0 || h->ent[pos].code != pat[j].code) return false;
@@ -201,7 +204,7 @@ static bool match_new_right(const Here *h, const PatElem *pat, int n, double *lo
 
 /* Whether rule r applies to input module i, its contexts' parameters bound in locals. A rule
  * with `<<` takes part only in forward passes, one with `>>` only in backward ones. */
-static inline bool applies(const Work *w, const Rule *r, size_t i, const Here *h, bool backward, double *locals) {
+HOT bool applies(const Work *w, const Rule *r, size_t i, const Here *h, bool backward, double *locals) {
     if (r->nnewleft && (backward || !match_new_left(h, r->newleft, r->nnewleft, locals))) return false;
     if (r->nnewright && (!backward || !(h->nv ? match_right_pat(h->nv, h->at, r->newright, r->nnewright,
                                                                   r->newright_branches, locals)
@@ -213,8 +216,8 @@ static inline bool applies(const Work *w, const Rule *r, size_t i, const Here *h
 }
 
 /* As rewrite.c's choice (rewrite_weigh, rewrite_pick), with the new contexts matched too. */
-static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool backward, double *locals,
-                          Rng *rng, bool *rng_ready, int *status) {
+HOT const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool backward, double *locals, Rng *rng,
+                       bool *rng_ready, int *status) {
     const RuleTable *t = w->t;
     const Dispatch *d = &t->dispatch[c];
     double total = 0;
@@ -240,9 +243,8 @@ static const Rule *choose(Work *w, uint16_t c, size_t i, const Here *h, bool bac
 /* Input module i (parameters args), which has rules with contexts, conditions or weights:
  * the rule chosen emitted into o (w->out), in *used, or the module copied (*used NULL). SYL_OK
  * or the fault's status. */
-static inline __attribute__((always_inline)) int rewrite_one(Work *w, size_t i, const double *args,
-                                                             const Here *h, bool backward, SylString *o,
-                                                             const Rule **used) {
+HOT int rewrite_one(Work *w, size_t i, const double *args, const Here *h, bool backward, SylString *o,
+                    const Rule **used) {
     uint16_t c = w->in->code[i];
     double locals[MAX_LOCALS + MAX_ARITY];
     Rng rng;
