@@ -149,6 +149,36 @@ static inline bool push(Links *l, int32_t idx, uint16_t code, int32_t close) {
     return true;
 }
 
+/* match_link_left one module on: output module c (parameters at poff) after the path whose
+ * last entry is *last. False when the bracket stack cannot grow. */
+static inline bool link_left(Links *l, uint16_t c, uint32_t poff, const bool *skip, const bool *want,
+                             int32_t *last) {
+    int s = CODE_SYM(c);
+    if (s == SYM_OPEN) return push(l, *last, 0, 0);
+    if (s == SYM_CLOSE) *last = l->sp ? l->sidx[--l->sp] : -1;
+    else if (!skip[s] && want[c]) { /* a module no pattern names: every match fails there */
+        l->ent[l->nent] = (Entry){.link = *last, .code = c, .poff = poff};
+        *last = (int32_t)l->nent++;
+    } else if (!skip[s]) *last = -1;
+    return true;
+}
+
+/* The same backward (match_link_right): module c put in front of the axis whose first entry
+ * is *next; poff counts back from the end of the parameters. */
+static inline bool link_right(Links *l, uint16_t c, uint32_t poff, const bool *skip, const bool *want,
+                              int32_t *next) {
+    int s = CODE_SYM(c);
+    if (s == SYM_CLOSE) {
+        if (!push(l, *next, 0, 0)) return false;
+        *next = -1;
+    } else if (s == SYM_OPEN) *next = l->sp ? l->sidx[--l->sp] : -1;
+    else if (!skip[s] && want[c]) {
+        l->ent[l->nent] = (Entry){.link = *next, .code = c, .poff = poff};
+        *next = (int32_t)l->nent++;
+    } else if (!skip[s]) *next = -1;
+    return true;
+}
+
 static int fault(Work *w, size_t pos, const Rule *r, int status, int limit) {
     w->fault.status = status;
     w->fault.limit = limit;
@@ -325,23 +355,11 @@ static void forward(Work *w, Links *lp, const Plans *ps) {
                 Here h = {.ent = l.ent, .cursor = last, .par = o->par};
                 if (rewrite_one(w, i, args, &h, false, o, &r)) goto done;
             }
-            if (!r) { /* it stays: its own link, as below */
-                int s = CODE_SYM(c);
+            if (!r) { /* it stays */
                 if (!d->count) copy_module(o, c, args);
-                if (s == SYM_OPEN) {
-                    if (!push(&l, last, 0, 0)) {
-                        fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
-                        goto done;
-                    }
-                } else if (s == SYM_CLOSE) {
-                    last = l.sp ? l.sidx[--l.sp] : -1;
-                } else if (!skip[s]) {
-                    if (want[c]) {
-                        l.ent[l.nent] = (Entry){.link = last, .code = c, .poff = pat};
-                        last = (int32_t)l.nent++;
-                    } else {
-                        last = -1;
-                    }
+                if (!link_left(&l, c, pat, skip, want, &last)) {
+                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                    goto done;
                 }
                 continue;
             }
@@ -354,26 +372,11 @@ static void forward(Work *w, Links *lp, const Plans *ps) {
                 }
                 continue;
             }
-            for (size_t j = at; j < o->n; j++) { /* match_link_left, one module at a time */
-                uint16_t oc = o->code[j];
-                int s = CODE_SYM(oc);
-                if (s == SYM_OPEN) {
-                    if (!push(&l, last, 0, 0)) {
-                        fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
-                        goto done;
-                    }
-                } else if (s == SYM_CLOSE) {
-                    last = l.sp ? l.sidx[--l.sp] : -1;
-                } else if (!skip[s]) {
-                    if (want[oc]) {
-                        l.ent[l.nent] = (Entry){.link = last, .code = oc, .poff = pat};
-                        last = (int32_t)l.nent++;
-                    } else {
-                        last = -1; /* no pattern names it: every match fails here */
-                    }
+            for (size_t j = at; j < o->n; pat += CODE_ARITY(o->code[j]), j++) /* one module at a time */
+                if (!link_left(&l, o->code[j], pat, skip, want, &last)) {
+                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                    goto done;
                 }
-                pat += CODE_ARITY(oc);
-            }
         }
     }
 done:
@@ -471,6 +474,7 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
     b.h = b.cap;
     b.ph = b.pcap;
     const bool walk = t->newright_branches; /* else entries, as forward */
+    const bool *skip = in->skip;
     static const bool none[CODE_COUNT];
     const bool *want = t->newright_code ? t->newright_code : none;
     l.nent = 0;
@@ -498,8 +502,21 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
             break;
         }
         for (size_t i = hi; i-- > lo;) {
-            pi -= CODE_ARITY(in->code[i]);
+            uint16_t c0 = in->code[i];
+            pi -= CODE_ARITY(c0);
             const double *args = in->par ? in->par + pi : NULL;
+            const Dispatch *d = &t->dispatch[c0];
+            if (!walk && !d->plain && !d->count) { /* no rule for it: it stays, linked as below */
+                size_t pn = CODE_ARITY(c0);
+                b.code[--b.h] = c0;
+                b.ph -= pn;
+                for (size_t k = 0; k < pn; k++) b.par[b.ph + k] = args[k];
+                if (!link_right(&l, c0, (uint32_t)(b.pcap - b.ph), skip, want, &next)) {
+                    fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                    goto done;
+                }
+                continue;
+            }
             size_t at = b.h - 1;
             View nv; /* filled only when walking */
             here.ent = l.ent; /* fields, not a new struct: this loop runs once a module */
@@ -514,8 +531,6 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
                 l.link[at] = next;
                 l.code[at] = nextcode;
             }
-            uint16_t c0 = in->code[i];
-            const Dispatch *d = &t->dispatch[c0];
             size_t nn, pn; /* modules and parameters put in front of the output */
             const Rule *r = NULL;
             if (!d->plain && !d->count) { /* no rule for it: it stays, straight to the front */
@@ -558,24 +573,10 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
             if (!walk) { /* match_link_right over the new modules, kept for those `>>` names */
                 size_t off = b.ph + pn;
                 for (size_t j = b.h + nn; j-- > b.h;) {
-                    uint16_t c = b.code[j];
-                    int s = CODE_SYM(c);
-                    off -= CODE_ARITY(c);
-                    if (s == SYM_CLOSE) {
-                        if (!push(&l, next, 0, 0)) {
-                            fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
-                            goto done;
-                        }
-                        next = -1;
-                    } else if (s == SYM_OPEN) {
-                        next = l.sp ? l.sidx[--l.sp] : -1;
-                    } else if (!in->skip[s]) {
-                        if (want[c]) {
-                            l.ent[l.nent] = (Entry){.link = next, .code = c, .poff = (uint32_t)(b.pcap - off)};
-                            next = (int32_t)l.nent++;
-                        } else {
-                            next = -1;
-                        }
+                    off -= CODE_ARITY(b.code[j]);
+                    if (!link_right(&l, b.code[j], (uint32_t)(b.pcap - off), skip, want, &next)) {
+                        fault(w, i, NULL, SYL_ELIMIT, LIMIT_MEMORY);
+                        goto done;
                     }
                 }
                 continue;
