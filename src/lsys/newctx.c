@@ -321,12 +321,13 @@ static void forward(Work *w, Links *lp, const Plans *ps) {
     static const bool none[CODE_COUNT]; /* a table with `>>` only: nothing to keep */
     const bool *want = t->newleft_code ? t->newleft_code : none;
     int32_t last = -1; /* the entry of the output's last path module */
+    const size_t per = t->max_succ > 1 ? (size_t)t->max_succ : 1; /* codes a module may add: one stays */
     size_t pi = w->plo;
     w->fault.status = SYL_OK;
     for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
         /* room for a batch of successors (and as many entries) at once, not module by module */
         size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
-        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        size_t room = (hi - lo) * per + SUCC_PAD;
         size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
         if (o->n + room > o->cap || o->np + proom > o->pcap) {
             int st = ms_reserve(o, room + (w->hi - lo), proom);
@@ -474,6 +475,7 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
     b.h = b.cap;
     b.ph = b.pcap;
     const bool walk = t->newright_branches; /* else entries, as forward */
+    const size_t per = t->max_succ > 1 ? (size_t)t->max_succ : 1; /* codes a module may add: one stays */
     const bool *skip = in->skip;
     static const bool none[CODE_COUNT];
     const bool *want = t->newright_code ? t->newright_code : none;
@@ -494,7 +496,7 @@ static void backward(Work *w, Links *lp, SylString *tmpp, const Plans *ps) {
     for (size_t hi = w->hi; hi > w->lo;) {
         /* room for a batch of successors (and as many entries) at once, not module by module */
         size_t lo = hi - w->lo > BATCH ? hi - BATCH : w->lo;
-        size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
+        size_t room = (hi - lo) * per + SUCC_PAD;
         size_t proom = (hi - lo) * ((size_t)t->max_succ_params + MAX_ARITY);
         if (((b.h < room + 1 || b.ph < proom) && !back_room(&b, out, &l, walk, room, proom, &next)) ||
             (!walk && l.nent + room > l.entcap && !entries_room(&l, l.nent + room))) {
