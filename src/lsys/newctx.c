@@ -647,7 +647,7 @@ static uint64_t scratch_bytes(const struct NewctxScratch *s) {
     const Links *l = &s->links;
     return l->entcap * sizeof *l->ent +
            l->cap * (sizeof *l->link + sizeof *l->code + sizeof *l->pair + sizeof *l->poff) +
-           l->scap * (sizeof *l->sidx + sizeof *l->sclose + sizeof *l->scode);
+           l->scap * (sizeof *l->sidx + sizeof *l->sclose + sizeof *l->scode) + s->nplans * sizeof *s->plans;
 }
 
 void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
