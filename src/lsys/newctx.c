@@ -657,16 +657,18 @@ void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
     }
     struct NewctxScratch *s = *scratch;
     s->mem = w->out->mem;
-    const RuleTable *t = w->t;
-    if ((size_t)t->nrules > s->nplans) {
-        Plan *p = realloc(s->plans, (size_t)t->nrules * sizeof *p);
+    /* a table of the active groups keeps the rules' indices in the model's table (all): the
+     * plans are indexed by those, and the longest context is the longest of all */
+    const RuleTable *t = w->t, *all = &w->p->tables[w->table];
+    if ((size_t)all->nrules > s->nplans) {
+        Plan *p = realloc(s->plans, (size_t)all->nrules * sizeof *p);
         if (!p) {
             fault(w, w->lo, NULL, SYL_ELIMIT, LIMIT_MEMORY);
             return;
         }
-        memset(p + s->nplans, 0, ((size_t)t->nrules - s->nplans) * sizeof *p);
+        memset(p + s->nplans, 0, ((size_t)all->nrules - s->nplans) * sizeof *p);
         s->plans = p;
-        s->nplans = (size_t)t->nrules;
+        s->nplans = (size_t)all->nrules;
     }
     if (++s->stamp == 0) { /* after 2^32 passes: every plan made again */
         memset(s->plans, 0, s->nplans * sizeof *s->plans);
@@ -676,10 +678,11 @@ void newctx_chunk(Work *w, bool backward_step, struct NewctxScratch **scratch) {
     const bool *want = backward_step ? t->newright_code : t->newleft_code;
     Plans ps = {.plan = s->plans, .rules = t->rules, .stamp = s->stamp, .skip = w->in->skip,
                 .want = want ? want : none, .backward = backward_step};
-    for (int k = 0; k < t->nrules; k++) {
-        int n = backward_step ? t->rules[k].nnewright : t->rules[k].nnewleft;
+    for (int k = 0; k < all->nrules; k++) {
+        int n = backward_step ? all->rules[k].nnewright : all->rules[k].nnewleft;
         if (n > ps.K) ps.K = n;
     }
+    if (ps.K < 1) ps.K = 1; /* no such context: nothing is wanted, every plan cuts or keeps */
     if (backward_step) backward(w, &s->links, &s->tmp, &ps);
     else forward(w, &s->links, &ps);
     uint64_t now = scratch_bytes(s);
