@@ -37,11 +37,12 @@ static void print_step(void *user, int step, const SylString *s) {
     if (!sp->status && fputc('\n', sp->out) == EOF) sp->status = SYL_EIO;
 }
 
-static void print_stats(const SylProgram *p, const SylString *s, int steps, double seconds, uint64_t rewritten) {
+static void print_stats(const SylProgram *p, const SylString *s, int steps, double seconds, double cpu,
+                        uint64_t rewritten) {
     int ns = syl_program_symbol_count(p);
     uint64_t *counts = calloc((size_t)ns, sizeof *counts);
     size_t n = syl_string_length(s);
-    fprintf(stderr, "steps: %d\nmodules: %zu\nderive time: %.6f s\n", steps, n, seconds);
+    fprintf(stderr, "steps: %d\nmodules: %zu\nderive time: %.6f s\nderive cpu time: %.6f s\n", steps, n, seconds, cpu);
     if (seconds > 0) fprintf(stderr, "rate: %.2f M modules/s\n", (double)n / seconds / 1e6);
     fprintf(stderr, "rewritten: %llu modules in all steps", (unsigned long long)rewritten);
     if (seconds > 0) fprintf(stderr, " (%.2f M/s)", (double)rewritten / seconds / 1e6);
@@ -86,14 +87,14 @@ int cmd_derive(int argc, char **argv) {
         d.user = &sp;
     }
     SylString *s = NULL;
-    double t0 = cli_now();
+    double t0 = cli_now(), c0 = cli_cpu_now();
     SylEnvStandalone *alone = syl_env_standalone_new(p, d.diag); /* the plant alone, for ?E */
     d.queries = syl_env_standalone_ops();
     d.queries_user = alone;
     status = alone ? syl_derive(p, &d, &s) : SYL_ELIMIT;
     if (!alone) fprintf(stderr, "sylva: error: out of memory\n");
     syl_env_standalone_free(alone);
-    double t1 = cli_now();
+    double t1 = cli_now(), c1 = cli_cpu_now();
     if (!status && interpret) {
         SylString *t = NULL;
         status = syl_interpret(p, s, &d, &t);
@@ -106,7 +107,7 @@ int cmd_derive(int argc, char **argv) {
         if (!status && fputc('\n', out.f) == EOF) status = SYL_EIO;
     }
     status = out_close(&out, status);
-    if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, d.rewritten);
+    if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, c1 - c0, d.rewritten);
     syl_string_free(s);
     syl_program_free(p);
     syl_budget_free(budget);
