@@ -34,6 +34,8 @@ typedef struct Work {
     bool applied;     /* a rule other than identity was used */
     bool codes_only;  /* no parameters in or out, plain or fast rules: run_chunk_codes */
     uint8_t *stack;   /* set for run_chunk_classes (in->rclass): room for n left classes */
+    uint8_t *rnext;   /* with stack: the output's right classes (room for the output and SUCC_PAD) */
+    uint8_t **pend;   /* with stack: room for n modules of rnext */
     /* in place (derive.c): out is also the string read, whose module i sits at out->code[at +
      * i] and parameter j at out->par[pat + j]; n_in and np_in are its sizes */
     bool inplace;
