@@ -368,9 +368,10 @@ static void run_chunk_classes(Work *w) {
         for (size_t i = lo; i < hi; i++) {
             uint16_t c = code[i];
             ClassCode k = plan[c];
-            const ClassSucc *e = &succ[k.base + (k.mask & (left * nclass + rclass[i]))];
-            const Rule *r = e->rule;
             uint32_t a = k.act; /* the left link of match_link_left, one module on */
+            const ClassSucc *e = succ; /* a module no rule rewrites (base 0) is not looked up */
+            const Rule *r = NULL;
+            if (k.base) r = (e = &succ[k.base + (k.mask & (left * nclass + rclass[i]))])->rule;
             if (r) {
                 put_codes(oc, r);
                 memcpy(ro, e->rt, sizeof e->rt);
