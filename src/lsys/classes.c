@@ -48,7 +48,8 @@ bool class_plan_build(ClassPlan *cp, const RuleTable *t, const bool *skip) {
         return false;
     }
     match_class_actions(t->ctx_class, skip, act);
-    for (int c = 0; c < CODE_COUNT; c++) cp->code[c] = (ClassCode){.act = act[c]};
+    for (int c = 0; c < CODE_COUNT; c++)
+        cp->code[c] = (ClassCode){.act = act[c], .row = (uint8_t)(act[c] < ACT_SKIP ? act[c] * t->nclass : 0)};
     cp->none = t->ctx_class[CODE_NONE];
     cp->writes_right = true;
     set_succ(&cp->succ[0], NULL, act, cp->none);

@@ -28,6 +28,7 @@ typedef struct ClassCode {
     uint32_t base; /* the code's first entry */
     uint8_t mask;  /* 0xff: the entry is base + left class * nclass + right class; 0: base */
     uint8_t act;   /* match_class_actions */
+    uint8_t row;   /* with act a class: act * nclass, the row of pick tables it is the left of */
 } ClassCode;
 
 typedef struct ClassPlan {

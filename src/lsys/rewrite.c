@@ -352,9 +352,9 @@ static void run_chunk_classes(Work *w) {
     const ClassCode *plan = in->plan->code;
     const ClassSucc *succ = in->plan->succ;
     const uint8_t *rclass = in->rclass;
-    const uint32_t nclass = (uint32_t)t->nclass, none = in->plan->none;
+    const uint32_t none = in->plan->none, none_row = none * (uint32_t)t->nclass;
     uint8_t *stack = w->stack, **pstack = w->pend, nowhere = 0, *pend = &nowhere;
-    uint32_t left = none;
+    uint32_t left = none_row; /* the left neighbour's class, as its row in the pick tables */
     size_t sp = 0, psp = 0;
     SylString *o = w->out;
     uint32_t applied = 0;
@@ -371,7 +371,7 @@ static void run_chunk_classes(Work *w) {
             uint32_t a = k.act; /* the left link of match_link_left, one module on */
             const ClassSucc *e = succ; /* a module no rule rewrites (base 0) is not looked up */
             const Rule *r = NULL;
-            if (k.base) r = (e = &succ[k.base + (k.mask & (left * nclass + rclass[i]))])->rule;
+            if (k.base) r = (e = &succ[k.base + (k.mask & (left + rclass[i]))])->rule;
             if (r) {
                 put_codes(oc, r);
                 memcpy(ro, e->rt, sizeof e->rt);
@@ -382,14 +382,14 @@ static void run_chunk_classes(Work *w) {
                 oc += r->nsucc;
                 ro += r->nsucc;
                 applied = 1;
-                if (a < ACT_SKIP) left = a;
+                if (a < ACT_SKIP) left = k.row;
                 else if (a == ACT_OPEN) stack[sp++] = (uint8_t)left;
-                else if (a == ACT_CLOSE) left = sp ? stack[--sp] : none;
+                else if (a == ACT_CLOSE) left = sp ? stack[--sp] : none_row;
                 continue;
             }
             *oc++ = c; /* it stays: its own link and the output's are the same */
             if (a < ACT_SKIP) {
-                left = a;
+                left = k.row;
                 *pend = (uint8_t)a;
                 pend = ro;
             } else if (a == ACT_OPEN) {
@@ -397,7 +397,7 @@ static void run_chunk_classes(Work *w) {
                 pstack[psp++] = pend;
                 pend = &nowhere;
             } else if (a == ACT_CLOSE) {
-                left = sp ? stack[--sp] : none;
+                left = sp ? stack[--sp] : none_row;
                 *pend = (uint8_t)none;
                 pend = psp ? pstack[--psp] : &nowhere;
             }
