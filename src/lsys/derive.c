@@ -43,8 +43,8 @@ typedef struct Engine {
     int32_t *left, *right, *pair, *stack;
     uint16_t *lcode, *rcode;
     uint8_t *rclass, *cstack; /* run_chunk_classes: right neighbours' classes, left classes' stack */
-    uint8_t *rnext;             /* and those of the string it writes, */
-    uint8_t **pend;             /* with the modules waiting for theirs */
+    uint8_t *rnext;             /* and those of the string it writes (both from [1]), */
+    uint32_t *pend;             /* with the modules waiting for theirs */
     ClassPlan plan;             /* of the table plan_for */
     const RuleTable *plan_for;
     /* rclass holds the right classes of rclass_of (rclass_n modules) under plan_for's plan,
@@ -118,7 +118,7 @@ static void engine_free(Engine *e) {
     ms_scratch_free(e->rclass, e->cap_rclass, 1);
     ms_scratch_free(e->cstack, e->cap_cstack, 1);
     ms_scratch_free(e->rnext, e->cap_rnext, 1);
-    ms_scratch_free(e->pend, e->cap_pend, sizeof *e->pend);
+    free(e->pend);
     class_plan_free(&e->plan);
     newctx_release(&e->newctx);
 }
@@ -254,19 +254,21 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
                    !t->ctx_branches && !t->has_newctx;
     if (classes) {
         bool known = e->plan_for == t && rclass_of == in && e->rclass_n == n_in; /* cap_rclass >= n_in */
-        size_t most = n_in * (size_t)(t->max_succ > 1 ? t->max_succ : 1) + SUCC_PAD;
-        if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in, 1) ||
-            !ms_scratch_reserve(&e->cstack, &e->cap_cstack, n_in + 1, 1) ||
-            !ms_scratch_reserve(&e->rnext, &e->cap_rnext, most, 1) ||
-            !ms_scratch_reserve(&e->pend, &e->cap_pend, n_in + 1, sizeof *e->pend))
+        if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in + 1, 1) ||
+            !ms_scratch_reserve(&e->cstack, &e->cap_cstack, n_in + 1, 1))
             return SYL_ELIMIT;
+        if (e->cap_pend < n_in + 1) { /* in small pages: only the depth of the branches is used */
+            free(e->pend);
+            if (!(e->pend = malloc((n_in + 1) * sizeof *e->pend))) return e->cap_pend = 0, SYL_ELIMIT;
+            e->cap_pend = n_in + 1;
+        }
         if (e->plan_for != t) { /* once per table: 64 K codes */
             e->plan_for = NULL;
             if (!class_plan_build(&e->plan, t, p->skip)) return SYL_ELIMIT;
             e->plan_for = t;
         }
-        if (!known) match_class_right(v.code, n_in, e->plan.act, e->plan.none, e->rclass, e->cstack);
-        v.rclass = e->rclass;
+        if (!known) match_class_right(v.code, n_in, e->plan.act, e->plan.none, e->rclass + 1, e->cstack);
+        v.rclass = e->rclass + 1;
         v.plan = &e->plan;
     } else if (t->has_context) {
         if (np_in) {
@@ -326,7 +328,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
                           .codes_only = codes_only, .stack = classes ? e->cstack : NULL,
-                          .rnext = e->rnext, .pend = e->pend,
+                          .rnext = &e->rnext, .cap_rnext = &e->cap_rnext, .pend = e->pend,
                           .inplace = place.inplace, .at = place.at, .pat = place.pat, .n_in = place.n_in,
                           .np_in = place.np_in, .np_all = nt == 1 ? np_in : 0};
         parts[k].mem = e->mem;

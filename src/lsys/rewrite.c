@@ -353,7 +353,8 @@ static void run_chunk_classes(Work *w) {
     const ClassSucc *succ = in->plan->succ;
     const uint8_t *rclass = in->rclass;
     const uint32_t none = in->plan->none, none_row = none * (uint32_t)t->nclass;
-    uint8_t *stack = w->stack, **pstack = w->pend, nowhere = 0, *pend = &nowhere;
+    uint8_t *stack = w->stack, *rn = NULL;
+    uint32_t *pstack = w->pend, pend = 0; /* where the right class waited for goes (0: nowhere) */
     uint32_t left = none_row; /* the left neighbour's class, as its row in the pick tables */
     size_t sp = 0, psp = 0;
     SylString *o = w->out;
@@ -364,7 +365,11 @@ static void run_chunk_classes(Work *w) {
         if (make_room(w, lo, 0, room, 0)) return;
         const uint16_t *code = in_code(w);
         uint16_t *oc = o->code + o->n;
-        uint8_t *ro = w->rnext + o->n;
+        if (!ms_scratch_grow(w->rnext, w->cap_rnext, 1 + o->n + room, 1 + o->n, 1)) {
+            over_limit(w, lo, SYL_ELIMIT);
+            return;
+        }
+        uint8_t *ro = (rn = *w->rnext) + 1 + o->n;
         for (size_t i = lo; i < hi; i++) {
             uint16_t c = code[i];
             ClassCode k = plan[c];
@@ -376,8 +381,8 @@ static void run_chunk_classes(Work *w) {
                 put_codes(oc, r);
                 memcpy(ro, e->rt, sizeof e->rt);
                 if (e->has_base) {
-                    *pend = e->first;
-                    pend = ro + e->last;
+                    rn[pend] = e->first;
+                    pend = (uint32_t)(ro - rn) + e->last;
                 }
                 oc += r->nsucc;
                 ro += r->nsucc;
@@ -390,22 +395,23 @@ static void run_chunk_classes(Work *w) {
             *oc++ = c; /* it stays: its own link and the output's are the same */
             if (a < ACT_SKIP) {
                 left = k.row;
-                *pend = (uint8_t)a;
-                pend = ro;
+                rn[pend] = (uint8_t)a;
+                pend = (uint32_t)(ro - rn);
             } else if (a == ACT_OPEN) {
                 stack[sp++] = (uint8_t)left;
                 pstack[psp++] = pend;
-                pend = &nowhere;
+                pend = 0;
             } else if (a == ACT_CLOSE) {
                 left = sp ? stack[--sp] : none_row;
-                *pend = (uint8_t)none;
-                pend = psp ? pstack[--psp] : &nowhere;
+                rn[pend] = (uint8_t)none;
+                pend = psp ? pstack[--psp] : 0;
             }
             ro++;
         }
         o->n = (size_t)(oc - o->code);
     }
-    for (*pend = (uint8_t)none; psp;) *pstack[--psp] = (uint8_t)none; /* the axes the string ends */
+    if (rn) /* the axes the string ends */
+        for (rn[pend] = (uint8_t)none; psp;) rn[pstack[--psp]] = (uint8_t)none;
     w->applied |= applied != 0;
 }
 
