@@ -365,7 +365,7 @@ static void run_chunk_classes(Work *w) {
         if (make_room(w, lo, 0, room, 0)) return;
         const uint16_t *code = in_code(w);
         uint16_t *oc = o->code + o->n;
-        if (!ms_scratch_grow(w->rnext, w->cap_rnext, 1 + o->n + room, 1 + o->n, 1)) {
+        if (1 + o->n + room > *w->cap_rnext && !ms_scratch_grow(w->rnext, w->cap_rnext, 1 + o->n + room, 1 + o->n, 1)) {
             over_limit(w, lo, SYL_ELIMIT);
             return;
         }
