@@ -14,6 +14,8 @@ static bool set_succ(ClassSucc *e, const Rule *r, const uint8_t *act, uint8_t no
     memset(e, 0, sizeof *e);
     e->rule = r;
     if (!r) return true;
+    e->n = (uint32_t)r->nsucc;
+    memcpy(e->code, r->succ, sizeof e->code); /* successors are padded to SUCC_PAD */
     if (r->nsucc > SUCC_PAD) return false;
     int pend[SUCC_PAD + 1], depth = 0; /* per depth, the module whose right class is not known */
     pend[0] = -1;

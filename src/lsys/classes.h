@@ -18,6 +18,8 @@
 
 typedef struct ClassSucc {
     const Rule *rule;      /* NULL: the module stays */
+    uint32_t n;            /* its successor's length */
+    uint16_t code[SUCC_PAD]; /* its first SUCC_PAD codes (the rule's own, one load nearer) */
     uint8_t rt[SUCC_PAD];  /* the right classes its successor's modules find inside it */
     uint8_t has_base;      /* its successor has a module, outside its branches, that is not ignored */
     uint8_t first;         /* the class of the first such: the right class of the module before */

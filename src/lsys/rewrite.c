@@ -378,14 +378,15 @@ static void run_chunk_classes(Work *w) {
             const Rule *r = NULL;
             if (k.base) r = (e = &succ[k.base + (k.mask & (left + rclass[i]))])->rule;
             if (r) {
-                put_codes(oc, r);
+                memcpy(oc, e->code, sizeof e->code);
+                if (e->n > SUCC_PAD) put_codes(oc, r);
                 memcpy(ro, e->rt, sizeof e->rt);
                 if (e->has_base) {
                     rn[pend] = e->first;
                     pend = (uint32_t)(ro - rn) + e->last;
                 }
-                oc += r->nsucc;
-                ro += r->nsucc;
+                oc += e->n;
+                ro += e->n;
                 applied = 1;
                 if (a < ACT_SKIP) left = k.row;
                 else if (a == ACT_OPEN) stack[sp++] = (uint8_t)left;
