@@ -116,7 +116,7 @@ static void engine_free(Engine *e) {
     ms_scratch_free(e->lcode, e->cap_lcode, sizeof *e->lcode);
     ms_scratch_free(e->rcode, e->cap_rcode, sizeof *e->rcode);
     ms_scratch_free(e->rclass, e->cap_rclass, 1);
-    ms_scratch_free(e->cstack, e->cap_cstack, 1);
+    free(e->cstack);
     ms_scratch_free(e->rnext, e->cap_rnext, 1);
     free(e->pend);
     class_plan_free(&e->plan);
@@ -213,6 +213,15 @@ static int move_back(Engine *e, int table, SylString *s, Work *w) {
     return SYL_OK;
 }
 
+/* A stack as deep as n modules may nest, in small pages (malloc): only the depth of the
+ * branches is used, and a 2 MB page would be zeroed for its first bytes. Not kept. */
+static bool stack_reserve(void **arr, size_t *cap, size_t n, size_t elem) {
+    if (n <= *cap) return true;
+    free(*arr);
+    *cap = (*arr = malloc(n * elem)) ? n : 0;
+    return *arr != NULL;
+}
+
 /* Rewrite *cur with table t (of kind `table`) into *spare (emptied first), or over itself,
  * then make the result *cur. Returns a SYL_* status. */
 static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, SylString **cur,
@@ -255,13 +264,9 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     if (classes) {
         bool known = e->plan_for == t && rclass_of == in && e->rclass_n == n_in; /* cap_rclass >= n_in */
         if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in + 1, 1) ||
-            !ms_scratch_reserve(&e->cstack, &e->cap_cstack, n_in + 1, 1))
+            !stack_reserve((void **)&e->cstack, &e->cap_cstack, n_in + 1, 1) ||
+            !stack_reserve((void **)&e->pend, &e->cap_pend, n_in + 1, sizeof *e->pend))
             return SYL_ELIMIT;
-        if (e->cap_pend < n_in + 1) { /* in small pages: only the depth of the branches is used */
-            free(e->pend);
-            if (!(e->pend = malloc((n_in + 1) * sizeof *e->pend))) return e->cap_pend = 0, SYL_ELIMIT;
-            e->cap_pend = n_in + 1;
-        }
         if (e->plan_for != t) { /* once per table: 64 K codes */
             e->plan_for = NULL;
             if (!class_plan_build(&e->plan, t, p->skip)) return SYL_ELIMIT;
