@@ -43,8 +43,14 @@ bool class_plan_build(ClassPlan *cp, const RuleTable *t, const bool *skip) {
     const uint32_t nn = (uint32_t)(t->nclass * t->nclass);
     uint8_t *act = cp->act = malloc(CODE_COUNT);
     cp->code = malloc(sizeof *cp->code * CODE_COUNT);
-    /* at most one block per rule's predecessor, and the entry of modules that stay */
-    cp->succ = malloc(sizeof *cp->succ * ((size_t)t->nrules * nn + 1));
+    /* the entry of modules that stay, and one block per predecessor code: t->order lists the
+     * rules taking part (in a table of groups not all of t->rules) grouped by code */
+    size_t n = 1;
+    for (uint32_t j = 0; j < (uint32_t)t->nrules; j++) {
+        const Dispatch *d = &t->dispatch[t->rules[t->order[j]].pred];
+        if (d->first == j) n += d->plain ? 1 : nn;
+    }
+    cp->succ = malloc(sizeof *cp->succ * n);
     if (!act || !cp->code || !cp->succ) {
         class_plan_free(cp);
         return false;
@@ -56,10 +62,10 @@ bool class_plan_build(ClassPlan *cp, const RuleTable *t, const bool *skip) {
     cp->writes_right = true;
     set_succ(&cp->succ[0], NULL, act, cp->none);
     uint32_t at = 1;
-    for (int k = 0; k < t->nrules; k++) {
-        uint16_t c = t->rules[k].pred;
+    for (uint32_t j = 0; j < (uint32_t)t->nrules; j++) {
+        uint16_t c = t->rules[t->order[j]].pred;
         const Dispatch *d = &t->dispatch[c];
-        if (cp->code[c].base || !d->count) continue; /* done, or not in this table's dispatch */
+        if (d->first != j) continue; /* not the first rule of its code */
         cp->code[c].base = at;
         if (d->plain) {
             cp->writes_right &= set_succ(&cp->succ[at++], d->plain, act, cp->none);
