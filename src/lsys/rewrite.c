@@ -394,7 +394,8 @@ static void run_chunk_classes(Work *w) {
                 continue;
             }
             *oc++ = c; /* it stays: its own link and the output's are the same */
-            if (a < ACT_SKIP) {
+            if (a == ACT_SKIP) { /* ignored (most often, as F in model c): nothing to follow */
+            } else if (a < ACT_SKIP) {
                 left = k.row;
                 rn[pend] = (uint8_t)a;
                 pend = (uint32_t)(ro - rn);
