@@ -14,6 +14,7 @@
 #include "util/budget.h"
 #include "util/pages.h"
 #include "lsys/derive.h"
+#include "lsys/classes.h"
 #include "lsys/rewrite.h"
 #include "lsys/match.h"
 #include "lsys/modstr.h"
@@ -42,10 +43,16 @@ typedef struct Engine {
     int32_t *left, *right, *pair, *stack;
     uint16_t *lcode, *rcode;
     uint8_t *rclass, *cstack; /* run_chunk_classes: right neighbours' classes, left classes' stack */
-    uint8_t *act;               /* match_class_actions of act_for */
-    const RuleTable *act_for;
+    uint8_t *rnext;             /* and those of the string it writes (both from [1]), */
+    uint32_t *pend;             /* with the modules waiting for theirs */
+    ClassPlan plan;             /* of the table plan_for */
+    const RuleTable *plan_for;
+    /* rclass holds the right classes of rclass_of (rclass_n modules) under plan_for's plan,
+     * written by the pass that wrote it; NULL when any other pass or the cut came since */
+    const SylString *rclass_of;
+    size_t rclass_n;
     struct NewctxScratch *newctx; /* the arrays of passes with new contexts */
-    size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack;
+    size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack, cap_rnext, cap_pend;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
@@ -109,8 +116,10 @@ static void engine_free(Engine *e) {
     ms_scratch_free(e->lcode, e->cap_lcode, sizeof *e->lcode);
     ms_scratch_free(e->rcode, e->cap_rcode, sizeof *e->rcode);
     ms_scratch_free(e->rclass, e->cap_rclass, 1);
-    ms_scratch_free(e->cstack, e->cap_cstack, 1);
-    free(e->act);
+    free(e->cstack);
+    ms_scratch_free(e->rnext, e->cap_rnext, 1);
+    free(e->pend);
+    class_plan_free(&e->plan);
     newctx_release(&e->newctx);
 }
 
@@ -164,7 +173,7 @@ static int select_table(Engine *e, int table, int step, const RuleTable **out) {
         }
     int k = e->ncache < TABLE_CACHE ? e->ncache++ : e->evict++ % TABLE_CACHE;
     arena_free(&e->cache[k].arena);
-    if (e->act_for == &e->cache[k].t) e->act_for = NULL; /* the same address, other rules */
+    if (e->plan_for == &e->cache[k].t) e->plan_for = NULL; /* the same address, other rules */
     e->cache[k].table = table;
     e->cache[k].active = active;
     if (!lang_table_select(p, table, active, &e->cache[k].t, &e->cache[k].arena)) {
@@ -204,12 +213,23 @@ static int move_back(Engine *e, int table, SylString *s, Work *w) {
     return SYL_OK;
 }
 
+/* A stack as deep as n modules may nest, in small pages (malloc): only the depth of the
+ * branches is used, and a 2 MB page would be zeroed for its first bytes. Not kept. */
+static bool stack_reserve(void **arr, size_t *cap, size_t n, size_t elem) {
+    if (n <= *cap) return true;
+    free(*arr);
+    *cap = (*arr = malloc(n * elem)) ? n : 0;
+    return *arr != NULL;
+}
+
 /* Rewrite *cur with table t (of kind `table`) into *spare (emptied first), or over itself,
  * then make the result *cur. Returns a SYL_* status. */
 static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, SylString **cur,
                         SylString **spare, bool *applied, int step, const char *what) {
     const SylProgram *p = e->p;
     SylString *in = *cur, *out = *spare;
+    const SylString *rclass_of = e->rclass_of;
+    e->rclass_of = NULL; /* whatever this pass writes, the classes kept describe another string */
     e->rewritten += in->n;
     /* a pass costs at least as much as rewriting 100 modules: a million steps of one module
      * is work too */
@@ -242,17 +262,19 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     bool classes = nt == 1 && codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
                    !t->ctx_branches && !t->has_newctx;
     if (classes) {
-        if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in, 1) ||
-            !ms_scratch_reserve(&e->cstack, &e->cap_cstack, n_in + 1, 1))
+        bool known = e->plan_for == t && rclass_of == in && e->rclass_n == n_in; /* cap_rclass >= n_in */
+        if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in + 1, 1) ||
+            !stack_reserve((void **)&e->cstack, &e->cap_cstack, n_in + 1, 1) ||
+            !stack_reserve((void **)&e->pend, &e->cap_pend, n_in + 1, sizeof *e->pend))
             return SYL_ELIMIT;
-        if (e->act_for != t) { /* once per table: a 64 K table */
-            if (!e->act && !(e->act = malloc(CODE_COUNT))) return SYL_ELIMIT;
-            match_class_actions(t->ctx_class, p->skip, e->act);
-            e->act_for = t;
+        if (e->plan_for != t) { /* once per table: 64 K codes */
+            e->plan_for = NULL;
+            if (!class_plan_build(&e->plan, t, p->skip)) return SYL_ELIMIT;
+            e->plan_for = t;
         }
-        match_class_right(v.code, n_in, e->act, t->ctx_class[CODE_NONE], e->rclass, e->cstack);
-        v.rclass = e->rclass;
-        v.act = e->act;
+        if (!known) match_class_right(v.code, n_in, e->plan.act, e->plan.none, e->rclass + 1, e->cstack);
+        v.rclass = e->rclass + 1;
+        v.plan = &e->plan;
     } else if (t->has_context) {
         if (np_in) {
             v.poff = ms_offsets(in);
@@ -311,6 +333,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         works[k] = (Work){.p = p, .t = t, .in = &v, .lo = lo, .hi = hi, .plo = plo, .key = key,
                           .table = table, .seed = e->seed, .out = k ? &parts[k] : out,
                           .codes_only = codes_only, .stack = classes ? e->cstack : NULL,
+                          .rnext = &e->rnext, .cap_rnext = &e->cap_rnext, .pend = e->pend,
                           .inplace = place.inplace, .at = place.at, .pat = place.pat, .n_in = place.n_in,
                           .np_in = place.np_in, .np_all = nt == 1 ? np_in : 0};
         parts[k].mem = e->mem;
@@ -368,6 +391,14 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     if (!status && !place.inplace) {
         *spare = in;
         *cur = out;
+    }
+    if (!status && classes && e->plan.writes_right) { /* the next pass of t reads them */
+        uint8_t *r = e->rclass;
+        size_t cap = e->cap_rclass;
+        e->rclass = e->rnext, e->cap_rclass = e->cap_rnext;
+        e->rnext = r, e->cap_rnext = cap;
+        e->rclass_of = *cur;
+        e->rclass_n = (*cur)->n;
     }
     return status;
 }
@@ -526,6 +557,7 @@ static int fill_queries(Engine *e, SylString *s, int step) {
     }
     syl_string_free(cur);
     syl_string_free(spare);
+    e->rclass_of = NULL; /* a string of the same address may come */
     return st;
 }
 
@@ -612,7 +644,10 @@ int syl_derive_step(SylDeriver *d) {
         st = rewrite_pass(e, t, TABLE_PRODUCE, (uint64_t)step << 16, &d->cur, &d->spare, &applied, step, "step");
     }
     if (!st) st = rewrite_until_stable(e, TABLE_DECOMPOSE, step, &d->cur, &d->spare);
-    if (!st && d->may_cut) cut_branches(d->cur, e->cut_sym);
+    if (!st && d->may_cut) {
+        cut_branches(d->cur, e->cut_sym);
+        e->rclass_of = NULL;
+    }
     if (!st) st = fill_queries(e, d->cur, step);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, step, d->cur);
     d->opt->rewritten = e->rewritten;

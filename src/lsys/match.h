@@ -24,7 +24,7 @@ typedef struct View {
     const uint16_t *lcode, *rcode; /* the codes of those neighbours (CODE_NONE: none) */
     const int32_t *pair;   /* for '[' the index of its ']' and the other way round */
     const uint8_t *rclass; /* or, for run_chunk_classes, the class of the right neighbour's code */
-    const uint8_t *act;    /* with rclass: match_class_actions */
+    const struct ClassPlan *plan; /* with rclass: the class pass's table (classes.h) */
     size_t n;
     const bool *skip;      /* symbols ignored in contexts */
 } View;
@@ -82,7 +82,8 @@ void match_pairs(const uint16_t *code, size_t n, int32_t *pair);
 enum { ACT_SKIP = 0xfd, ACT_CLOSE = 0xfe, ACT_OPEN = 0xff };
 void match_class_actions(const uint8_t *cls, const bool *skip, uint8_t *act);
 /* rclass[i] = the class of module i's right neighbour (cls[CODE_NONE], in act: none); the
- * right links of match_link_right in one byte a module; stack must hold n entries. */
+ * right links of match_link_right in one byte a module; stack must hold n entries. (The
+ * class pass writes them as it writes a string, run_chunk_classes: this is for the first.) */
 void match_class_right(const uint16_t *code, size_t n, const uint8_t *act, uint8_t none, uint8_t *rclass,
                        uint8_t *stack);
 

@@ -12,17 +12,21 @@
 /* Strings are written once per step into fresh memory, and page faults dominated filling
  * them (on a virtual machine a 4 KB fault costs microseconds): their arrays live in whole
  * 2 MB pages (util/pages.c). */
-bool ms_scratch_reserve(void *arrp, size_t *cap, size_t need, size_t elem) {
+bool ms_scratch_grow(void *arrp, size_t *cap, size_t need, size_t used, size_t elem) {
     void **arr = arrp;
     if (need <= *cap) return true;
     if (!elem || need > PTRDIFF_MAX / elem / 2) return false;
     size_t c = *cap ? *cap : 1024;
     while (c < need) c *= 2;
-    void *p = pages_grow(*arr, *cap * elem, 0, c * elem);
+    void *p = pages_grow(*arr, *cap * elem, used * elem, c * elem);
     if (!p) return false;
     *arr = p;
     *cap = c;
     return true;
+}
+
+bool ms_scratch_reserve(void *arrp, size_t *cap, size_t need, size_t elem) {
+    return ms_scratch_grow(arrp, cap, need, 0, elem);
 }
 
 void ms_scratch_free(void *arr, size_t cap, size_t elem) { pages_free(arr, cap * elem); }

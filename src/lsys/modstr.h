@@ -46,6 +46,7 @@ void ms_release(SylString *s); /* free the arrays, keep the struct */
 /* The engine's scratch arrays (context links), kept between steps in the same storage as
  * strings: array_reserve's contract, except that the contents are not kept when they grow. */
 bool ms_scratch_reserve(void *arrp, size_t *cap, size_t need, size_t elem);
+bool ms_scratch_grow(void *arrp, size_t *cap, size_t need, size_t used, size_t elem); /* keeps `used` */
 void ms_scratch_free(void *arr, size_t cap, size_t elem);
 
 #endif

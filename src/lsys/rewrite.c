@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "lang/builtins.h"
+#include "lsys/classes.h"
 #include "lsys/rewrite.h"
 #include "sylva/sylva.h"
 
@@ -340,42 +341,80 @@ static void run_chunk_codes(Work *w) {
 /* run_chunk_codes for a whole string in one thread when every context is one module without
  * parameters and pick tables exist: the left neighbour's class is followed while scanning
  * (a stack of the branch parents'), the right one's read from in->rclass, a byte a module.
- * No link pass and no link arrays for the left side, a quarter of the memory for the right. */
+ * No link pass and no link arrays for the left side, a quarter of the memory for the right.
+ * The rule of each module is read from the plan (classes.h), and the right classes of the
+ * output are written to w->rnext as it is written: the module whose right class is not
+ * known yet on the current axis (*pend) gets the class of the next one written there, or
+ * none at the ']' that ends the axis. */
 static void run_chunk_classes(Work *w) {
     const RuleTable *t = w->t;
     const View *in = w->in;
-    const uint8_t *cls = t->ctx_class, *rclass = in->rclass, *act = in->act;
-    const size_t nclass = (size_t)t->nclass;
-    uint8_t *stack = w->stack, none = cls[CODE_NONE], left = none;
-    size_t sp = 0;
+    const ClassCode *plan = in->plan->code;
+    const ClassSucc *succ = in->plan->succ;
+    const uint8_t *rclass = in->rclass;
+    const uint32_t none = in->plan->none, none_row = none * (uint32_t)t->nclass;
+    uint8_t *stack = w->stack, *rn = NULL;
+    uint32_t *pstack = w->pend, pend = 0; /* where the right class waited for goes (0: nowhere) */
+    uint32_t left = none_row; /* the left neighbour's class, as its row in the pick tables */
+    size_t sp = 0, psp = 0;
     SylString *o = w->out;
-    bool applied = false;
+    uint32_t applied = 0;
     for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
         size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
         size_t room = (hi - lo) * (size_t)t->max_succ + SUCC_PAD;
         if (make_room(w, lo, 0, room, 0)) return;
         const uint16_t *code = in_code(w);
         uint16_t *oc = o->code + o->n;
+        if (1 + o->n + room > *w->cap_rnext && !ms_scratch_grow(w->rnext, w->cap_rnext, 1 + o->n + room, 1 + o->n, 1)) {
+            over_limit(w, lo, SYL_ELIMIT);
+            return;
+        }
+        uint8_t *ro = (rn = *w->rnext) + 1 + o->n;
         for (size_t i = lo; i < hi; i++) {
             uint16_t c = code[i];
-            const Dispatch *d = &t->dispatch[c];
-            const Rule *r = d->plain;
-            if (!r && d->fast) r = d->pick[left * nclass + rclass[i]];
+            ClassCode k = plan[c];
+            uint32_t a = k.act; /* the left link of match_link_left, one module on */
+            const ClassSucc *e = succ; /* a module no rule rewrites (base 0) is not looked up */
+            const Rule *r = NULL;
+            if (k.base) r = (e = &succ[k.base + (k.mask & (left + rclass[i]))])->rule;
             if (r) {
-                put_codes(oc, r);
-                oc += r->nsucc;
-                applied = true;
-            } else {
-                *oc++ = c;
+                memcpy(oc, e->code, sizeof e->code);
+                if (e->n > SUCC_PAD) put_codes(oc, r);
+                memcpy(ro, e->rt, sizeof e->rt);
+                if (e->has_base) {
+                    rn[pend] = e->first;
+                    pend = (uint32_t)(ro - rn) + e->last;
+                }
+                oc += e->n;
+                ro += e->n;
+                applied = 1;
+                if (a < ACT_SKIP) left = k.row;
+                else if (a == ACT_OPEN) stack[sp++] = (uint8_t)left;
+                else if (a == ACT_CLOSE) left = sp ? stack[--sp] : none_row;
+                continue;
             }
-            uint8_t a = act[c]; /* the left link of match_link_left, one module on */
-            if (a < ACT_SKIP) left = a;
-            else if (a == ACT_OPEN) stack[sp++] = left;
-            else if (a == ACT_CLOSE) left = sp ? stack[--sp] : none;
+            *oc++ = c; /* it stays: its own link and the output's are the same */
+            if (a == ACT_SKIP) { /* ignored (most often, as F in model c): nothing to follow */
+            } else if (a < ACT_SKIP) {
+                left = k.row;
+                rn[pend] = (uint8_t)a;
+                pend = (uint32_t)(ro - rn);
+            } else if (a == ACT_OPEN) {
+                stack[sp++] = (uint8_t)left;
+                pstack[psp++] = pend;
+                pend = 0;
+            } else if (a == ACT_CLOSE) {
+                left = sp ? stack[--sp] : none_row;
+                rn[pend] = (uint8_t)none;
+                pend = psp ? pstack[--psp] : 0;
+            }
+            ro++;
         }
         o->n = (size_t)(oc - o->code);
     }
-    w->applied |= applied;
+    if (rn) /* the axes the string ends */
+        for (rn[pend] = (uint8_t)none; psp;) rn[pstack[--psp]] = (uint8_t)none;
+    w->applied |= applied != 0;
 }
 
 static void run_chunk(Work *w) {

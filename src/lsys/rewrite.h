@@ -34,6 +34,11 @@ typedef struct Work {
     bool applied;     /* a rule other than identity was used */
     bool codes_only;  /* no parameters in or out, plain or fast rules: run_chunk_codes */
     uint8_t *stack;   /* set for run_chunk_classes (in->rclass): room for n left classes */
+    /* with stack: the output's right classes, module j's at (*rnext)[1 + j] ([0] is written
+     * for no module), grown with the output; room for n positions in it waiting for theirs */
+    uint8_t **rnext;
+    size_t *cap_rnext;
+    uint32_t *pend;
     /* in place (derive.c): out is also the string read, whose module i sits at out->code[at +
      * i] and parameter j at out->par[pat + j]; n_in and np_in are its sizes */
     bool inplace;
