@@ -2,6 +2,7 @@
  * diffused), place and direction (the next level's down and rotation angles), LeafBend, and
  * the fans of palms (Leaves < 0). */
 #include "weber/internal.h"
+#include "weber/lanes.h"
 
 double weber_leaves_per_stem(const WeberGen *g, const WStem *st) {
     if (g->leaves == 0 || st->level == 0) return 0;
@@ -10,65 +11,90 @@ double weber_leaves_per_stem(const WeberGen *g, const WStem *st) {
            g->w.LeafQuality;
 }
 
-/* A leaf turns by single-precision sines and weber_atan2, several times cheaper than libm's
- * double ones (the leaves were two thirds of the tree's time): nothing grows from a leaf, and
- * its frame is stored in floats, so the error (about 1e-7 radian) ends there. */
-static void sincos_f(double rad, double *c, double *s) {
-    float sf, cf;
-    sincosf((float)rad, &sf, &cf);
-    *c = cf, *s = sf;
-}
+/* Up to four leaves at once, in the lanes of lanes.h: their axes (lane k: leaf k) and their
+ * bases. The leaves were two thirds of the tree's time, libm's sines and arctangents most
+ * of it; nothing grows from a leaf and its frame is stored in floats, so floats do. */
+typedef struct Leaves4 {
+    v4f x[3], y[3], z[3];
+    double t[4][3], dist[4];
+    int n;
+} Leaves4;
 
-static void turn_x_f(Frame *f, double rad) {
-    double c, s;
-    sincos_f(rad, &c, &s);
-    frame_turn_x(f, c, s);
-}
-
-/* Turn a leaf outward (about the vertical) and up (about its x) toward the light. */
-static void bend(const WeberGen *g, Frame *f) {
-    double b = g->w.LeafBend, c, s;
+/* Turn the leaves outward (about the vertical) and up (about their x) toward the light. */
+static void bend(const WeberGen *g, Leaves4 *q) {
+    float b = (float)g->w.LeafBend;
     if (b == 0) return;
-    double tbend = weber_atan2(f->t[1], f->t[0]) - weber_atan2(f->y[1], f->y[0]);
-    sincos_f(b * tbend, &c, &s);
-    frame_turn_vertical(f, c, s);
-    double fbend = weber_atan2(sqrt(f->y[0] * f->y[0] + f->y[1] * f->y[1]), f->y[2]);
-    turn_x_f(f, b * fbend);
+    v4f tx = {0}, ty = {0}, c, s;
+    for (int k = 0; k < q->n; k++) tx[k] = (float)q->t[k][0], ty[k] = (float)q->t[k][1];
+    v4_sincos(b * (v4_atan2(ty, tx) - v4_atan2(q->y[1], q->y[0])), &c, &s);
+    v4f *axes[3] = {q->x, q->y, q->z};
+    for (int a = 0; a < 3; a++) {
+        v4f *v = axes[a], x = v[0], y = v[1];
+        v[0] = c * x - s * y;
+        v[1] = s * x + c * y;
+    }
+    v4f *y = q->y, *z = q->z;
+    v4_sincos(b * v4_atan2(v4_sqrt(y[0] * y[0] + y[1] * y[1]), y[2]), &c, &s);
+    for (int i = 0; i < 3; i++) {
+        v4f p = y[i], r = z[i];
+        y[i] = c * p + s * r;
+        z[i] = c * r - s * p;
+    }
 }
 
-/* The leaf's direction from its segment's frame, as weber_child_direction turns a child */
-static void leaf_direction(WeberGen *g, WStem *st, Frame *trf, double offset, Rng *kids) {
-    double down, rot, c, s;
-    weber_child_angles(g, st, offset, st->level + 1, kids, &down, &rot);
-    sincos_f(rot * (M_PI / 180), &c, &s);
-    frame_turn_z(trf, c, s);
-    turn_x_f(trf, down * (M_PI / 180));
+/* The leaves on a segment: its frame f turned by rot about its z, then by down about the new
+ * x (radians), as weber_child_direction turns a child. */
+static void turn_leaves(const Frame *f, v4f rot, v4f down, Leaves4 *q) {
+    v4f cr, sr, cd, sd;
+    v4_sincos(rot, &cr, &sr);
+    v4_sincos(down, &cd, &sd);
+    for (int i = 0; i < 3; i++) {
+        float fx = (float)f->x[i], fy = (float)f->y[i], fz = (float)f->z[i];
+        v4f y = cr * fy - sr * fx;
+        q->x[i] = cr * fx + sr * fy;
+        q->y[i] = cd * y + sd * fz;
+        q->z[i] = cd * fz - sd * y;
+    }
 }
 
 /* Tree coordinates (z up) to Sylva's (Y up), as write.c does. */
-static void to_sylva(float out[3], const double in[3]) {
-    out[0] = (float)in[0], out[1] = (float)in[2], out[2] = (float)-in[1];
+static void to_sylva(float out[3], double x, double y, double z) {
+    out[0] = (float)x, out[1] = (float)z, out[2] = (float)-y;
 }
 
-/* (frames by pointer: copies of the 96-byte struct were a sixth of the leaves' time) */
-static void put_leaf(WeberGen *g, int id, Frame *f, double dist) {
-    bend(g, f);
-    if (!weber_grow(g, (void **)&g->lvs, &g->lvs_cap, g->nlvs + 1, sizeof *g->lvs) ||
-        !weber_grow(g, (void **)&g->ldist, &g->ldist_cap, g->nlvs + 1, sizeof *g->ldist))
+/* Bend the leaves and store them (their base moved out along the petiole, not drawn). */
+static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
+    bend(g, q);
+    if (!weber_grow(g, (void **)&g->lvs, &g->lvs_cap, g->nlvs + q->n, sizeof *g->lvs) ||
+        !weber_grow(g, (void **)&g->ldist, &g->ldist_cap, g->nlvs + q->n, sizeof *g->ldist))
         return;
-    SylOrgan *o = &g->lvs[g->nlvs];
-    g->ldist[g->nlvs++] = (float)dist;
-    double stem = g->w.LeafStemLen * g->leaf_len, p[3]; /* the petiole, not drawn */
-    for (int i = 0; i < 3; i++) p[i] = f->t[i] + f->z[i] * stem;
-    to_sylva(o->pos, p);
-    to_sylva(o->h, f->z);
-    to_sylva(o->l, f->x);
-    to_sylva(o->u, f->y); /* y = z x x */
-    o->size = (float)g->leaf_len;
-    o->node = -1;
-    o->kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
-    o->material = SYL_MATERIAL_LEAF;
-    o->module = (uint32_t)id;
+    double stem = g->w.LeafStemLen * g->leaf_len;
+    uint8_t kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
+    for (int k = 0; k < q->n; k++) {
+        SylOrgan *o = &g->lvs[g->nlvs];
+        g->ldist[g->nlvs++] = (float)q->dist[k];
+        const double *t = q->t[k];
+        double zx = q->z[0][k], zy = q->z[1][k], zz = q->z[2][k];
+        to_sylva(o->pos, t[0] + zx * stem, t[1] + zy * stem, t[2] + zz * stem);
+        to_sylva(o->h, zx, zy, zz);
+        to_sylva(o->l, q->x[0][k], q->x[1][k], q->x[2][k]);
+        to_sylva(o->u, q->y[0][k], q->y[1][k], q->y[2][k]); /* y = z x x */
+        o->size = (float)g->leaf_len;
+        o->node = -1;
+        o->kind = kind;
+        o->material = SYL_MATERIAL_LEAF;
+        o->module = (uint32_t)id;
+    }
+    q->n = 0;
+}
+
+/* A fan's leaf, its frame made one by one; stored four at a time. */
+static void push_leaf(WeberGen *g, int id, Leaves4 *q, const Frame *f, double dist) {
+    int k = q->n++;
+    for (int i = 0; i < 3; i++)
+        q->x[i][k] = (float)f->x[i], q->y[i][k] = (float)f->y[i], q->z[i][k] = (float)f->z[i], q->t[k][i] = f->t[i];
+    q->dist[k] = dist;
+    if (q->n == 4) put_leaves(g, id, q);
 }
 
 void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids) {
@@ -80,13 +106,19 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
         if (n <= 0) return;
         double offs = seg == 0 ? weber_radius(g, &g->stems[st->parent], st->offset) / len : 0;
         double dist = (1.0 - offs) / n;
+        Leaves4 q = {0};
+        v4f rot = {0}, down = {0};
         for (int k = 0; k < n && !g->failed; k++) {
-            double where = offs + dist / 2 + k * dist + weber_var(kids, dist / 2);
+            double where = offs + dist / 2 + k * dist + weber_var(kids, dist / 2), d, r;
             double at = (seg + where) * len;
-            Frame f = segs[seg].f;
-            leaf_direction(g, st, &f, at, kids);
-            for (int i = 0; i < 3; i++) f.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
-            put_leaf(g, id, &f, at);
+            weber_child_angles(g, st, at, st->level + 1, kids, &d, &r);
+            rot[q.n] = (float)(r * (M_PI / 180)), down[q.n] = (float)(d * (M_PI / 180));
+            for (int i = 0; i < 3; i++) q.t[q.n][i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
+            q.dist[q.n++] = at;
+            if (q.n == 4 || k == n - 1) {
+                turn_leaves(&segs[seg].f, rot, down, &q);
+                put_leaves(g, id, &q);
+            }
         }
     } else if (seg == st->nseg - 1) { /* a fan at the tip */
         int cl = weber_lv(st->level + 1);
@@ -94,10 +126,10 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
         if (n <= 0) return;
         Frame tip = segs[seg].f;
         frame_move(&tip, len);
+        Leaves4 q = {0};
         double step = w->Rotate[cl] / n, stepv = w->RotateV[cl] / n, off;
         if (n % 2 == 1) {
-            Frame f = tip;
-            put_leaf(g, id, &f, st->length);
+            push_leaf(g, id, &q, &tip, st->length);
             off = step;
         } else {
             off = step / 2;
@@ -107,7 +139,8 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
                 Frame f = tip;
                 frame_rot_local(&f, 0, 1, 0, -side * (off + k * step + weber_var(kids, stepv))); /* Arbaro's roty */
                 frame_rot_local(&f, 1, 0, 0, w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]));
-                put_leaf(g, id, &f, st->length);
+                push_leaf(g, id, &q, &f, st->length);
             }
+        if (q.n && !g->failed) put_leaves(g, id, &q);
     }
 }

@@ -64,7 +64,18 @@ static Counts count(const SylProgram *p, uint64_t seed) {
         c.stems++;
     }
     free(seen);
-    for (size_t i = 0; i < sk->norgans; i++) c.leaves += sk->organs[i].kind == SYL_KIND_LEAF;
+    for (size_t i = 0; i < sk->norgans; i++) {
+        const SylOrgan *o = &sk->organs[i];
+        c.leaves += o->kind == SYL_KIND_LEAF;
+        /* its frame orthonormal, u = h x l (leaves turn in floats: within 1e-5) */
+        const float *h = o->h, *l = o->l, *u = o->u;
+        float hl = h[0] * l[0] + h[1] * l[1] + h[2] * l[2];
+        float cx = h[1] * l[2] - h[2] * l[1], cy = h[2] * l[0] - h[0] * l[2], cz = h[0] * l[1] - h[1] * l[0];
+        float hh = h[0] * h[0] + h[1] * h[1] + h[2] * h[2], ll = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
+        if (!(fabsf(hl) < 1e-5f && fabsf(hh - 1) < 1e-5f && fabsf(ll - 1) < 1e-5f && fabsf(cx - u[0]) < 1e-5f &&
+              fabsf(cy - u[1]) < 1e-5f && fabsf(cz - u[2]) < 1e-5f))
+            fail_msg("leaf %zu: its frame is not orthonormal", i);
+    }
     c.height = hi[1];
     c.width = sqrt(fmax(lo[0] * lo[0] + lo[2] * lo[2], hi[0] * hi[0] + hi[2] * hi[2]));
     syl_skeleton_free(sk);
