@@ -73,6 +73,13 @@ typedef struct WeberGen {
     SylOrgan *lvs;     /* the leaves, in Sylva's coordinates, in the skeleton's order; */
     float *ldist;      /* each one's distance along its stem (for the node it hangs from) */
     size_t nlvs, lvs_cap, ldist_cap;
+    /* The last level's stems, in the order their leaves come, and their segments' frames
+     * (from each one's first_seg): the leaves are made after the stems, once their count
+     * is known, so their arrays are filled once and never copied. */
+    int *leafy;
+    size_t nleafy, leafy_cap;
+    Frame *leafy_f;
+    size_t nleafy_f, leafy_f_cap;
     double sub_err[10], split_err[10], leaf_err; /* error diffusion, per level (Arbaro's) */
     Budget *budget;
     uint64_t charged;
@@ -166,7 +173,10 @@ double weber_radius(const WeberGen *g, const WStem *s, double h);
 /* stem.c */
 bool weber_make_stem(WeberGen *g, WStem st);
 int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs);
+/* grow one of the generator's arrays (util/pages.h: free with pages_free, cap * size bytes) */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
+/* an array the skeleton will own and free(): big ones aligned and marked for huge pages */
+void *weber_alloc_owned(size_t bytes);
 
 /* splits.c */
 int weber_split_count(WeberGen *g, const WStem *st, int seg);
@@ -180,8 +190,9 @@ void weber_child_angles(WeberGen *g, WStem *st, double offset, int child_level, 
                         double *rot);
 
 /* leaves.c */
-void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids);
 double weber_leaves_per_stem(const WeberGen *g, const WStem *st);
+bool weber_defer_leaves(WeberGen *g, int id, const WStem *st, const WSeg *segs); /* a last-level stem */
+void weber_place_leaves(WeberGen *g); /* every deferred stem's leaves */
 
 /* prune.c */
 bool weber_inside(const WeberGen *g, const double p[3]);

@@ -65,9 +65,10 @@ static void to_sylva(float out[3], double x, double y, double z) {
 /* Bend the leaves and store them (their base moved out along the petiole, not drawn). */
 static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
     bend(g, q);
-    if (!weber_grow(g, (void **)&g->lvs, &g->lvs_cap, g->nlvs + q->n, sizeof *g->lvs) ||
-        !weber_grow(g, (void **)&g->ldist, &g->ldist_cap, g->nlvs + q->n, sizeof *g->ldist))
+    if (g->nlvs + q->n > g->lvs_cap) { /* (sized by the count: cannot happen) */
+        g->failed = true;
         return;
+    }
     double stem = g->w.LeafStemLen * g->leaf_len;
     uint8_t kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
     for (int k = 0; k < q->n; k++) {
@@ -97,13 +98,18 @@ static void push_leaf(WeberGen *g, int id, Leaves4 *q, const Frame *f, double di
     if (q->n == 4) put_leaves(g, id, q);
 }
 
-void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids) {
+/* The leaves of segment seg (its frame f), or n of them when count (nothing made). */
+static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, Rng *kids, size_t *count) {
     const WeberParams *w = &g->w;
     double len = st->seglen;
     if (g->leaves > 0) {
         int n = (int)(st->lps + g->leaf_err + 0.5);
         g->leaf_err -= n - st->lps;
         if (n <= 0) return;
+        if (count) {
+            *count += (size_t)n;
+            return;
+        }
         double offs = seg == 0 ? weber_radius(g, &g->stems[st->parent], st->offset) / len : 0;
         double dist = (1.0 - offs) / n;
         Leaves4 q = {0};
@@ -113,10 +119,10 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
             double at = (seg + where) * len;
             weber_child_angles(g, st, at, st->level + 1, kids, &d, &r);
             rot[q.n] = (float)(r * (M_PI / 180)), down[q.n] = (float)(d * (M_PI / 180));
-            for (int i = 0; i < 3; i++) q.t[q.n][i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
+            for (int i = 0; i < 3; i++) q.t[q.n][i] = (*f).t[i] + (*f).z[i] * where * len;
             q.dist[q.n++] = at;
             if (q.n == 4 || k == n - 1) {
-                turn_leaves(&segs[seg].f, rot, down, &q);
+                turn_leaves(f, rot, down, &q);
                 put_leaves(g, id, &q);
             }
         }
@@ -124,7 +130,11 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
         int cl = weber_lv(st->level + 1);
         int n = (int)(weber_leaves_per_stem(g, st) + 0.5);
         if (n <= 0) return;
-        Frame tip = segs[seg].f;
+        if (count) {
+            *count += (size_t)n;
+            return;
+        }
+        Frame tip = *f;
         frame_move(&tip, len);
         Leaves4 q = {0};
         double step = w->Rotate[cl] / n, stepv = w->RotateV[cl] / n, off;
@@ -142,5 +152,46 @@ void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng
                 push_leaf(g, id, &q, &f, st->length);
             }
         if (q.n && !g->failed) put_leaves(g, id, &q);
+    }
+}
+
+bool weber_defer_leaves(WeberGen *g, int id, const WStem *st, const WSeg *segs) {
+    size_t n = (size_t)(st->nseg - st->first_seg);
+    if (!weber_grow(g, (void **)&g->leafy, &g->leafy_cap, g->nleafy + 1, sizeof *g->leafy) ||
+        !weber_grow(g, (void **)&g->leafy_f, &g->leafy_f_cap, g->nleafy_f + n, sizeof *g->leafy_f))
+        return false;
+    g->leafy[g->nleafy++] = id;
+    for (int s = st->first_seg; s < st->nseg; s++) g->leafy_f[g->nleafy_f++] = segs[s].f;
+    return true;
+}
+
+/* Two passes over the last level's stems in the order they were made (the order of the
+ * leaves' error diffusion): the count, then the leaves into arrays of that size. A stem's
+ * leaves draw from its own stream and turn from its first rotation, as they would have
+ * while it was made. */
+void weber_place_leaves(WeberGen *g) {
+    double err = g->leaf_err;
+    for (int pass = 0; pass < 2 && !g->failed; pass++) {
+        size_t count = 0, fi = 0;
+        g->leaf_err = err;
+        for (size_t i = 0; i < g->nleafy && !g->failed; i++) {
+            int id = g->leafy[i];
+            WStem st = g->stems[id]; /* (its rotation advances here, not in the list) */
+            Rng kids = weber_rng(g, st.key, WRNG_KIDS);
+            g->stems[id].leaf_first = (uint32_t)g->nlvs;
+            for (int s = st.first_seg; s < st.nseg; s++, fi++)
+                leaves_on(g, id, &st, s, &g->leafy_f[fi], &kids, pass == 0 ? &count : NULL);
+            g->stems[id].leaf_count = (uint32_t)(g->nlvs - g->stems[id].leaf_first);
+        }
+        if (pass == 0 && count) { /* the organs' array, the skeleton's to free; the distances, ours */
+            if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
+                !(g->lvs = weber_alloc_owned(count * sizeof *g->lvs))) {
+                g->failed = true;
+                return;
+            }
+            g->charged += (uint64_t)count * sizeof *g->lvs;
+            g->lvs_cap = count;
+            if (!weber_grow(g, (void **)&g->ldist, &g->ldist_cap, count, sizeof *g->ldist)) return;
+        }
     }
 }

@@ -7,6 +7,7 @@
 
 #include "sylva/trees.h"
 #include "util/budget.h"
+#include "util/pages.h"
 #include "weber/internal.h"
 
 int syl_weber_validate(const SylProgram *p, FILE *diag) {
@@ -16,10 +17,12 @@ int syl_weber_validate(const SylProgram *p, FILE *diag) {
 
 static void free_gen(WeberGen *g) {
     budget_release(g->budget, g->charged);
-    free(g->stems);
-    free(g->pts);
+    pages_free(g->stems, g->stems_cap * sizeof *g->stems);
+    pages_free(g->pts, g->pts_cap * sizeof *g->pts);
     free(g->lvs);
-    free(g->ldist);
+    pages_free(g->ldist, g->ldist_cap * sizeof *g->ldist);
+    pages_free(g->leafy, g->leafy_cap * sizeof *g->leafy);
+    pages_free(g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
 }
 
 /* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
@@ -127,6 +130,7 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     }
     g->scale_tree = w->Scale + w->ScaleV * (2 * u - 1);
     make_trunks(g, java ? &j0 : NULL, &j1);
+    if (!g->failed) weber_place_leaves(g);
     int st = SYL_OK;
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;

@@ -91,7 +91,7 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
     qsort(att, na, sizeof *att, by_host);
     /* every node at once: at most a root per trunk, the points, and one per attachment */
     size_t most = g->npts + na + ns;
-    if (!(sk->nodes = malloc((most ? most : 1) * sizeof *sk->nodes))) wr.failed = true;
+    if (!(sk->nodes = weber_alloc_owned(most * sizeof *sk->nodes))) wr.failed = true;
     else sk->node_cap = most;
     size_t a = 0;
     for (size_t i = 0; i < ns && !wr.failed; i++) {
