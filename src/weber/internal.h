@@ -186,8 +186,30 @@ Frame weber_split(WeberGen *g, WStem *st, Rng *r, Frame trf, double s_angle, int
 void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids);
 Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids);
 /* its down and rotation angles (degrees), the stem's rotation advanced */
-void weber_child_angles(WeberGen *g, WStem *st, double offset, int child_level, Rng *kids, double *down,
-                        double *rot);
+static inline void weber_child_angles(WeberGen *g, WStem *st, double offset, int child_level, Rng *kids,
+                                      double *down_out, double *rot_out) { /* (inline: every leaf) */
+    const WeberParams *w = &g->w;
+    int cl = weber_lv(child_level);
+    double rot;
+    if (w->Rotate[cl] >= 0) { /* a spiral */
+        double a = st->rot + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]) + 360;
+        /* fmod's value, without its call when one subtraction gives it (exact there: Sterbenz) */
+        st->rot = a >= 0 && a < 360 ? a : a >= 360 && a < 720 ? a - 360 : fmod(a, 360);
+        rot = st->rot;
+    } else { /* alternate sides */
+        if (fabs(st->rot) != 1) st->rot = 1;
+        st->rot = -st->rot;
+        rot = st->rot * (180 + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]));
+    }
+    double down;
+    if (w->DownAngleV[cl] >= 0 || st->level < 0) { /* (trunks: always so) */
+        down = w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]);
+    } else { /* lower children hang lower */
+        double len = st->level == 0 ? st->length * (1 - w->BaseSize) : st->length;
+        down = w->DownAngle[cl] + w->DownAngleV[cl] * (1 - 2 * weber_shape_ratio(w, 0, (st->length - offset) / len));
+    }
+    *down_out = down, *rot_out = rot;
+}
 
 /* leaves.c */
 double weber_leaves_per_stem(const WeberGen *g, const WStem *st);

@@ -155,13 +155,18 @@ static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, R
     }
 }
 
+/* A stem's first segment starts at its start frame unless it is a clone (the first turn of
+ * a stem comes after its first segment): that one is not kept twice. */
+static int first_kept(const WStem *st) { return st->clone ? st->first_seg : st->first_seg + 1; }
+
 bool weber_defer_leaves(WeberGen *g, int id, const WStem *st, const WSeg *segs) {
-    size_t n = (size_t)(st->nseg - st->first_seg);
+    int s0 = first_kept(st);
+    size_t n = (size_t)(st->nseg > s0 ? st->nseg - s0 : 0);
     if (!weber_grow(g, (void **)&g->leafy, &g->leafy_cap, g->nleafy + 1, sizeof *g->leafy) ||
         !weber_grow(g, (void **)&g->leafy_f, &g->leafy_f_cap, g->nleafy_f + n, sizeof *g->leafy_f))
         return false;
     g->leafy[g->nleafy++] = id;
-    for (int s = st->first_seg; s < st->nseg; s++) g->leafy_f[g->nleafy_f++] = segs[s].f;
+    for (int s = s0; s < st->nseg; s++) g->leafy_f[g->nleafy_f++] = segs[s].f;
     return true;
 }
 
@@ -179,8 +184,9 @@ void weber_place_leaves(WeberGen *g) {
             WStem st = g->stems[id]; /* (its rotation advances here, not in the list) */
             Rng kids = weber_rng(g, st.key, WRNG_KIDS);
             g->stems[id].leaf_first = (uint32_t)g->nlvs;
-            for (int s = st.first_seg; s < st.nseg; s++, fi++)
-                leaves_on(g, id, &st, s, &g->leafy_f[fi], &kids, pass == 0 ? &count : NULL);
+            int s0 = first_kept(&st);
+            for (int s = st.first_seg; s < st.nseg; s++)
+                leaves_on(g, id, &st, s, s < s0 ? &st.start : &g->leafy_f[fi++], &kids, pass == 0 ? &count : NULL);
             g->stems[id].leaf_count = (uint32_t)(g->nlvs - g->stems[id].leaf_first);
         }
         if (pass == 0 && count) { /* the organs' array, the skeleton's to free; the distances, ours */
