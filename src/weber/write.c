@@ -13,11 +13,32 @@ typedef struct Attach {
     double at; /* distance along the host */
 } Attach;
 
-static int by_host(const void *a, const void *b) {
-    const Attach *x = a, *y = b;
-    if (x->host != y->host) return x->host < y->host ? -1 : 1;
-    if (x->at != y->at) return x->at < y->at ? -1 : 1;
-    return x->stem < y->stem ? -1 : x->stem > y->stem;
+/* Sort the attachments by host, then distance, then stem: a counting sort by host (stable:
+ * they come in stem order), then each host's few by distance, nearly in order already (a
+ * stem's children come along it), by insertion. qsort's merge sort took more time and
+ * memory. */
+static bool sort_by_host(Attach *att, size_t na, size_t ns) {
+    uint32_t *start = calloc(ns + 1, sizeof *start);
+    Attach *out = malloc((na ? na : 1) * sizeof *out);
+    if (!start || !out) {
+        free(start);
+        free(out);
+        return false;
+    }
+    for (size_t i = 0; i < na; i++) start[att[i].host + 1]++;
+    for (size_t h = 0; h < ns; h++) start[h + 1] += start[h];
+    for (size_t i = 0; i < na; i++) out[start[att[i].host]++] = att[i]; /* start[h]: now host h's end */
+    for (size_t h = 0, lo = 0; h < ns; lo = start[h++])
+        for (size_t i = lo + 1; i < start[h]; i++) {
+            Attach a = out[i];
+            size_t k = i;
+            for (; k > lo && out[k - 1].at > a.at; k--) out[k] = out[k - 1];
+            out[k] = a;
+        }
+    memcpy(att, out, na * sizeof *att);
+    free(start);
+    free(out);
+    return true;
 }
 
 static void to_sylva(float out[3], const float in[3]) {
@@ -88,7 +109,11 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
         if (s->from < 0) continue;
         att[na++] = (Attach){s->from, (int)j, s->clone ? s->first_seg * s->seglen : s->offset};
     }
-    qsort(att, na, sizeof *att, by_host);
+    if (!sort_by_host(att, na, ns)) {
+        free(att);
+        free(attach_node);
+        return SYL_ELIMIT;
+    }
     /* every node at once: at most a root per trunk, the points, and one per attachment */
     size_t most = g->npts + na + ns;
     if (!(sk->nodes = weber_alloc_owned(most * sizeof *sk->nodes))) wr.failed = true;
