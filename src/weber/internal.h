@@ -36,6 +36,7 @@ typedef struct WStem {
     double sps, lps;   /* children and leaves per segment */
     double rot;        /* the last child's rotation angle */
     uint32_t pt_first, pt_count, leaf_first, leaf_count;
+    uint32_t node_first, node_count; /* its own nodes in the skeleton (write.c) */
     double u_length, u_lcm; /* the first trunk's draws for its length and its children's, when
                              * they come from Arbaro's streams (else negative) */
 } WStem;
@@ -70,12 +71,13 @@ typedef struct WeberGen {
     size_t nstems, stems_cap;
     WPoint *pts;
     size_t npts, pts_cap;
-    SylOrgan *lvs;     /* the leaves, in Sylva's coordinates, in the skeleton's order; */
-    float *ldist;      /* each one's distance along its stem (for the node it hangs from) */
-    size_t nlvs, lvs_cap, ldist_cap;
+    SylOrgan *lvs;     /* the leaves, in Sylva's coordinates, in the skeleton's order */
+    size_t nlvs, lvs_cap;
+    float *node_dist;  /* each skeleton node's distance along its stem (for the leaves' nodes) */
+    size_t node_dist_cap;
     /* The last level's stems, in the order their leaves come, and their segments' frames
-     * (from each one's first_seg): the leaves are made after the stems, once their count
-     * is known, so their arrays are filled once and never copied. */
+     * (from each one's first_seg): the leaves are made after the stems and their nodes,
+     * once their count is known, so their array is filled once and never copied. */
     int *leafy;
     size_t nleafy, leafy_cap;
     Frame *leafy_f;
@@ -220,7 +222,9 @@ void weber_place_leaves(WeberGen *g); /* every deferred stem's leaves */
 bool weber_inside(const WeberGen *g, const double p[3]);
 void weber_prune(WeberGen *g, WStem *st);
 
-/* write.c */
-int weber_write(WeberGen *g, SylSkeleton *sk);
+/* write.c: the stems' nodes, then (after weber_place_leaves) the leaves as organs */
+int weber_write_nodes(WeberGen *g, SylSkeleton *sk);
+int32_t weber_leaf_node(const WeberGen *g, int id, float dist); /* the node a leaf hangs from */
+void weber_write_leaves(WeberGen *g, SylSkeleton *sk);
 
 #endif

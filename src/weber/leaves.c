@@ -72,8 +72,7 @@ static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
     double stem = g->w.LeafStemLen * g->leaf_len;
     uint8_t kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
     for (int k = 0; k < q->n; k++) {
-        SylOrgan *o = &g->lvs[g->nlvs];
-        g->ldist[g->nlvs++] = (float)q->dist[k];
+        SylOrgan *o = &g->lvs[g->nlvs++];
         const double *t = q->t[k];
         double zx = q->z[0][k], zy = q->z[1][k], zz = q->z[2][k];
         to_sylva(o->pos, t[0] + zx * stem, t[1] + zy * stem, t[2] + zz * stem);
@@ -81,7 +80,7 @@ static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
         to_sylva(o->l, q->x[0][k], q->x[1][k], q->x[2][k]);
         to_sylva(o->u, q->y[0][k], q->y[1][k], q->y[2][k]); /* y = z x x */
         o->size = (float)g->leaf_len;
-        o->node = -1;
+        o->node = weber_leaf_node(g, id, (float)q->dist[k]);
         o->kind = kind;
         o->material = SYL_MATERIAL_LEAF;
         o->module = (uint32_t)id;
@@ -189,7 +188,7 @@ void weber_place_leaves(WeberGen *g) {
                 leaves_on(g, id, &st, s, s < s0 ? &st.start : &g->leafy_f[fi++], &kids, pass == 0 ? &count : NULL);
             g->stems[id].leaf_count = (uint32_t)(g->nlvs - g->stems[id].leaf_first);
         }
-        if (pass == 0 && count) { /* the organs' array, the skeleton's to free; the distances, ours */
+        if (pass == 0 && count) { /* the organs' array, the skeleton's to free */
             if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
                 !(g->lvs = weber_alloc_owned(count * sizeof *g->lvs))) {
                 g->failed = true;
@@ -197,7 +196,6 @@ void weber_place_leaves(WeberGen *g) {
             }
             g->charged += (uint64_t)count * sizeof *g->lvs;
             g->lvs_cap = count;
-            if (!weber_grow(g, (void **)&g->ldist, &g->ldist_cap, count, sizeof *g->ldist)) return;
         }
     }
 }

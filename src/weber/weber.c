@@ -20,7 +20,7 @@ static void free_gen(WeberGen *g) {
     pages_free(g->stems, g->stems_cap * sizeof *g->stems);
     pages_free(g->pts, g->pts_cap * sizeof *g->pts);
     free(g->lvs);
-    pages_free(g->ldist, g->ldist_cap * sizeof *g->ldist);
+    pages_free(g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
     pages_free(g->leafy, g->leafy_cap * sizeof *g->leafy);
     pages_free(g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
 }
@@ -130,12 +130,14 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     }
     g->scale_tree = w->Scale + w->ScaleV * (2 * u - 1);
     make_trunks(g, java ? &j0 : NULL, &j1);
-    if (!g->failed) weber_place_leaves(g);
     int st = SYL_OK;
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;
     if (!st && !(sk = syl_skeleton_new(syl_program_name(p)))) st = SYL_ELIMIT;
-    if (!st) st = weber_write(g, sk);
+    if (!st) st = weber_write_nodes(g, sk);
+    if (!st) weber_place_leaves(g);
+    if (!st && g->failed) st = SYL_ELIMIT;
+    if (!st) weber_write_leaves(g, sk);
     if (!st) {
         uint64_t bytes = (uint64_t)sk->node_cap * sizeof *sk->nodes + (uint64_t)sk->organ_cap * sizeof *sk->organs;
         if (budget_charge(g->budget == &local ? NULL : g->budget, bytes)) {
