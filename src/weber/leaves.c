@@ -57,10 +57,11 @@ static void turn_leaves(const Frame *f, v4f rot, v4f down, Leaves4 *q) {
     }
 }
 
-/* Tree coordinates (z up) to Sylva's (Y up), as write.c does. */
+/* Tree coordinates (z up) to Sylva's (Y up), as write.c does: a position, an axis. */
 static void to_sylva(float out[3], double x, double y, double z) {
     out[0] = (float)x, out[1] = (float)z, out[2] = (float)-y;
 }
+static void axis_to_sylva(float out[3], const v4f v[3], int k) { out[0] = v[0][k], out[1] = v[2][k], out[2] = -v[1][k]; }
 
 /* Bend the leaves and store them (their base moved out along the petiole, not drawn). */
 static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
@@ -76,9 +77,9 @@ static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
         const double *t = q->t[k];
         double zx = q->z[0][k], zy = q->z[1][k], zz = q->z[2][k];
         to_sylva(o->pos, t[0] + zx * stem, t[1] + zy * stem, t[2] + zz * stem);
-        to_sylva(o->h, zx, zy, zz);
-        to_sylva(o->l, q->x[0][k], q->x[1][k], q->x[2][k]);
-        to_sylva(o->u, q->y[0][k], q->y[1][k], q->y[2][k]); /* y = z x x */
+        axis_to_sylva(o->h, q->z, k);
+        axis_to_sylva(o->l, q->x, k);
+        axis_to_sylva(o->u, q->y, k); /* y = z x x */
         o->size = (float)g->leaf_len;
         o->node = weber_leaf_node(g, id, (float)q->dist[k]);
         o->kind = kind;
@@ -180,12 +181,13 @@ void weber_place_leaves(WeberGen *g) {
         g->leaf_err = err;
         for (size_t i = 0; i < g->nleafy && !g->failed; i++) {
             int id = g->leafy[i];
-            WStem st = g->stems[id]; /* (its rotation advances here, not in the list) */
-            Rng kids = weber_rng(g, st.key, WRNG_KIDS);
+            WStem copy, *st = &g->stems[id]; /* (the count changes nothing) */
+            if (pass == 1) copy = *st, st = &copy; /* its rotation advances here, not in the list */
+            Rng kids = pass == 1 ? weber_rng(g, st->key, WRNG_KIDS) : (Rng){0};
             g->stems[id].leaf_first = (uint32_t)g->nlvs;
-            int s0 = first_kept(&st);
-            for (int s = st.first_seg; s < st.nseg; s++)
-                leaves_on(g, id, &st, s, s < s0 ? &st.start : &g->leafy_f[fi++], &kids, pass == 0 ? &count : NULL);
+            int s0 = first_kept(st);
+            for (int s = st->first_seg; s < st->nseg; s++)
+                leaves_on(g, id, st, s, s < s0 ? &st->start : &g->leafy_f[fi++], &kids, pass == 0 ? &count : NULL);
             g->stems[id].leaf_count = (uint32_t)(g->nlvs - g->stems[id].leaf_first);
         }
         if (pass == 0 && count) { /* the organs' array, the skeleton's to free */
