@@ -75,6 +75,9 @@ static Counts count(const SylProgram *p, uint64_t seed) {
         if (!(fabsf(hl) < 1e-5f && fabsf(hh - 1) < 1e-5f && fabsf(ll - 1) < 1e-5f && fabsf(cx - u[0]) < 1e-5f &&
               fabsf(cy - u[1]) < 1e-5f && fabsf(cz - u[2]) < 1e-5f))
             fail_msg("leaf %zu: its frame is not orthonormal", i);
+        /* it hangs from a node of its own stem (the axis its module names) */
+        if (o->node < 0 || (size_t)o->node >= sk->nnodes || sk->nodes[o->node].axis != (int32_t)o->module)
+            fail_msg("leaf %zu: node %d is not on its stem %u", i, o->node, o->module);
     }
     c.height = hi[1];
     c.width = sqrt(fmax(lo[0] * lo[0] + lo[2] * lo[2], hi[0] * hi[0] + hi[2] * hi[2]));
