@@ -196,7 +196,7 @@ static inline void weber_child_angles(WeberGen *g, WStem *st, double offset, int
     if (w->Rotate[cl] >= 0) { /* a spiral */
         double a = st->rot + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]) + 360;
         /* fmod's value, without its call when one subtraction gives it (exact there: Sterbenz) */
-        st->rot = a >= 0 && a < 360 ? a : a >= 360 && a < 720 ? a - 360 : fmod(a, 360);
+        st->rot = a >= 0 && a < 360 ? a : a >= 360 && a < 720 ? a - 360 : a >= 720 && a < 1080 ? a - 720 : fmod(a, 360);
         rot = st->rot;
     } else { /* alternate sides */
         if (fabs(st->rot) != 1) st->rot = 1;
