@@ -95,40 +95,6 @@ static inline Rng weber_rng(const WeberGen *g, uint64_t key, int table) { return
 static inline double weber_var(Rng *r, double v) { return v * (2 * rng_unit(r) - 1); }
 static inline uint64_t weber_key(uint64_t parent, uint64_t kind, uint64_t n) { return rng_mix(parent * 0x9e3779b97f4a7c15ull ^ (kind << 48) ^ n); }
 
-/* atan2(y, x) within 2e-9, a few times faster than libm's (a leaf takes three): atan t / t
- * as a polynomial in t^2 over [0, 1] (Chebyshev interpolation, degree 9), t the smaller
- * coordinate over the larger, then the octant, without branches. */
-static inline double weber_atan2(double y, double x) {
-    static const double c[10] = {0.999999997160544,     -0.33333276291968977,  0.1999807528082414,
-                                 -0.14260016079705623,  0.10932341485896302,   -0.083497249245010619,
-                                 0.057089555186985316,  -0.030351864043404932, 0.010487648853086284,
-                                 -0.0017011699732393027};
-    double ax = fabs(x), ay = fabs(y), hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
-    double t = hi > 0 ? lo / hi : 0, z = t * t, z2 = z * z, z4 = z2 * z2; /* Estrin's scheme: short chains */
-    double p = (c[0] + c[1] * z) + z2 * (c[2] + c[3] * z) + z4 * ((c[4] + c[5] * z) + z2 * (c[6] + c[7] * z)) +
-               z4 * z4 * (c[8] + c[9] * z);
-    double r = t * p;
-    r = ay > ax ? M_PI / 2 - r : r;
-    r = signbit(x) ? M_PI - r : r;
-    return copysign(r, y);
-}
-
-/* sin and cos of x (radians) within 1e-11, several times cheaper than libm's sincos and
- * without its calls, so a leaf's turns overlap the next leaf's: x = k pi/2 + r with |r| <=
- * pi/4 (the rounding by 1.5 * 2^52 is round-to-nearest for |x| < 2^50), Taylor polynomials
- * to r^11 and r^12, then the quadrant. */
-static inline void weber_sincos(double x, double *c, double *s) {
-    const double round = 0x1.8p52;
-    double k = (x * (2 / M_PI) + round) - round;
-    double r = (x - k * 1.5707963267948966) - k * 6.123233995736766e-17, z = r * r;
-    double sn = r + r * z * (-1.0 / 6 + z * (1.0 / 120 + z * (-1.0 / 5040 + z * (1.0 / 362880 + z * (-1.0 / 39916800)))));
-    double cs = 1 + z * (-0.5 + z * (1.0 / 24 + z * (-1.0 / 720 + z * (1.0 / 40320 + z * (-1.0 / 3628800 + z * (1.0 / 479001600))))));
-    int q = (int)(int64_t)k & 3;
-    double ss = q & 1 ? cs : sn, cc = q & 1 ? sn : cs;
-    *s = q & 2 ? -ss : ss;
-    *c = (q + 1) & 2 ? -cc : cc;
-}
-
 /* arbaro_rng.c: java.util.Random, for Arbaro's tree size */
 typedef struct JRand {
     uint64_t s;

@@ -137,27 +137,6 @@ static void trunk_scale(void **state) {
     assert_true(fabs(sum / N - 0.8) < 3 * 0.3 / sqrt(3.0 * N)); /* mean 0Scale: 3 sigma of a uniform's */
 }
 
-/* weber_atan2 against libm's atan2: every octant, the axes, signed zeros, tiny and huge */
-static void atan2_matches_libm(void **state) {
-    (void)state;
-    Rng r = rng_stream(7, 0, 0, 0);
-    double worst = 0;
-    for (int i = 0; i < 200000; i++) {
-        double a = 2 * M_PI * rng_unit(&r), m = exp(40 * rng_unit(&r) - 20);
-        double y = m * sin(a), x = m * cos(a);
-        if (i % 16 == 0) y = 0; /* the axes */
-        if (i % 16 == 1) x = 0;
-        double e = fabs(weber_atan2(y, x) - atan2(y, x));
-        if (e > worst) worst = e;
-    }
-    assert_true(worst < 2e-9);
-    const double z[][2] = {{0.0, 0.0}, {-0.0, 0.0}, {0.0, -0.0}, {-0.0, -0.0}, {0.0, -1}, {-0.0, -1}, {1, 1}, {-1, -1}};
-    for (size_t i = 0; i < sizeof z / sizeof *z; i++) {
-        double w = atan2(z[i][0], z[i][1]), g = weber_atan2(z[i][0], z[i][1]);
-        assert_true(fabs(g - w) < 2e-9 && signbit(g) == signbit(w));
-    }
-}
-
 /* lanes.h's four-lane sines and arctangents against libm's: angles a leaf turns by (within
  * a few turns), larger ones, every octant, the axes and signed zeros */
 static void lanes_match_libm(void **state) {
@@ -193,7 +172,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(shape_ratio_table),    cmocka_unit_test(defaults_are_arbaros),
         cmocka_unit_test(doc_lists_the_table),  cmocka_unit_test(frames_stay_orthonormal),
-        cmocka_unit_test(radius_profile),       cmocka_unit_test(trunk_scale), cmocka_unit_test(atan2_matches_libm),
+        cmocka_unit_test(radius_profile),       cmocka_unit_test(trunk_scale),
         cmocka_unit_test(lanes_match_libm),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
