@@ -29,6 +29,7 @@ void frame_rot_global(Frame *f, const double axis[3], double deg) {
 }
 
 void frame_rot_local(Frame *f, double ax, double ay, double az, double deg) {
+    if (deg == 0) return; /* (as frame_rot_global: a straight stem's segments turn by nothing) */
     /* the frame's own axes, the common case, by a plane turn */
     if (ay == 0 && az == 0 && ax == 1) {
         double a = deg * (M_PI / 180);
