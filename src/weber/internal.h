@@ -35,7 +35,7 @@ typedef struct WStem {
     double split_corr; /* turn per segment that straightens a split out again */
     double sps, lps;   /* children and leaves per segment */
     double rot;        /* the last child's rotation angle */
-    uint32_t pt_first, pt_count, leaf_first, leaf_count;
+    uint32_t pt_first, pt_count;
     uint32_t node_first, node_count; /* its own nodes in the skeleton (write.c) */
     double u_length, u_lcm; /* the first trunk's draws for its length and its children's, when
                              * they come from Arbaro's streams (else negative) */

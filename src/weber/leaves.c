@@ -11,49 +11,72 @@ double weber_leaves_per_stem(const WeberGen *g, const WStem *st) {
            g->w.LeafQuality;
 }
 
-/* Up to four leaves at once, in the lanes of lanes.h: their axes (lane k: leaf k) and their
- * bases. The leaves were two thirds of the tree's time, libm's sines and arctangents most
- * of it; nothing grows from a leaf and its frame is stored in floats, so floats do. */
+/* Four leaves in the lanes of lanes.h: their axes (lane k: leaf k), bases and stems. The
+ * leaves were two thirds of the tree's time, libm's sines and arctangents most of it;
+ * nothing grows from a leaf and its frame is stored in floats, so floats do. */
 typedef struct Leaves4 {
     v4f x[3], y[3], z[3];
     double t[4][3], dist[4];
-    int n;
+    int id[4];
 } Leaves4;
 
+/* Eight leaves, from any stems, in the order they come: two sets of lanes turned side by side
+ * (two independent chains of sines and arctangents keep the processor busier than one).
+ * Before a flush a plain leaf's lanes hold its segment's axes and rot, down its angles; a
+ * fan's leaf's, its own axes. */
+typedef struct LeafBatch {
+    Leaves4 q[2];
+    v4f rot[2], down[2];
+    int n;
+    bool turned; /* a fan's leaves come turned */
+} LeafBatch;
+
 /* Turn the leaves outward (about the vertical) and up (about their x) toward the light. */
-static void bend(const WeberGen *g, Leaves4 *q) {
+static void bend(const WeberGen *g, Leaves4 *q, int nq) {
     float b = (float)g->w.LeafBend;
     if (b == 0) return;
-    v4f tx = {0}, ty = {0}, c, s;
-    for (int k = 0; k < q->n; k++) tx[k] = (float)q->t[k][0], ty[k] = (float)q->t[k][1];
-    v4_sincos(b * (v4_atan2(ty, tx) - v4_atan2(q->y[1], q->y[0])), &c, &s);
-    v4f *axes[3] = {q->x, q->y, q->z};
-    for (int a = 0; a < 3; a++) {
-        v4f *v = axes[a], x = v[0], y = v[1];
-        v[0] = c * x - s * y;
-        v[1] = s * x + c * y;
+    v4f c[2], s[2], a[2];
+    for (int j = 0; j < nq; j++) {
+        v4f tx, ty;
+        for (int k = 0; k < 4; k++) tx[k] = (float)q[j].t[k][0], ty[k] = (float)q[j].t[k][1];
+        a[j] = b * (v4_atan2(ty, tx) - v4_atan2(q[j].y[1], q[j].y[0]));
     }
-    v4f *y = q->y, *z = q->z;
-    v4_sincos(b * v4_atan2(v4_sqrt(y[0] * y[0] + y[1] * y[1]), y[2]), &c, &s);
-    for (int i = 0; i < 3; i++) {
-        v4f p = y[i], r = z[i];
-        y[i] = c * p + s * r;
-        z[i] = c * r - s * p;
+    for (int j = 0; j < nq; j++) v4_sincos(a[j], &c[j], &s[j]);
+    for (int j = 0; j < nq; j++) {
+        v4f *axes[3] = {q[j].x, q[j].y, q[j].z};
+        for (int i = 0; i < 3; i++) {
+            v4f *v = axes[i], x = v[0], y = v[1];
+            v[0] = c[j] * x - s[j] * y;
+            v[1] = s[j] * x + c[j] * y;
+        }
     }
+    for (int j = 0; j < nq; j++) {
+        const v4f *y = q[j].y;
+        a[j] = b * v4_atan2(v4_sqrt(y[0] * y[0] + y[1] * y[1]), y[2]);
+    }
+    for (int j = 0; j < nq; j++) v4_sincos(a[j], &c[j], &s[j]);
+    for (int j = 0; j < nq; j++)
+        for (int i = 0; i < 3; i++) {
+            v4f p = q[j].y[i], r = q[j].z[i];
+            q[j].y[i] = c[j] * p + s[j] * r;
+            q[j].z[i] = c[j] * r - s[j] * p;
+        }
 }
 
-/* The leaves on a segment: its frame f turned by rot about its z, then by down about the new
- * x (radians), as weber_child_direction turns a child. */
-static void turn_leaves(const Frame *f, v4f rot, v4f down, Leaves4 *q) {
-    v4f cr, sr, cd, sd;
-    v4_sincos(rot, &cr, &sr);
-    v4_sincos(down, &cd, &sd);
-    for (int i = 0; i < 3; i++) {
-        float fx = (float)f->x[i], fy = (float)f->y[i], fz = (float)f->z[i];
-        v4f y = cr * fy - sr * fx;
-        q->x[i] = cr * fx + sr * fy;
-        q->y[i] = cd * y + sd * fz;
-        q->z[i] = cd * fz - sd * y;
+/* Plain leaves: each one's segment frame (in its lanes) turned by rot about its z, then by
+ * down about the new x (radians), as weber_child_direction turns a child. */
+static void turn_leaves(LeafBatch *b, int nq) {
+    v4f cr[2], sr[2], cd[2], sd[2];
+    for (int j = 0; j < nq; j++) v4_sincos(b->rot[j], &cr[j], &sr[j]), v4_sincos(b->down[j], &cd[j], &sd[j]);
+    for (int j = 0; j < nq; j++) {
+        Leaves4 *q = &b->q[j];
+        for (int i = 0; i < 3; i++) {
+            v4f fx = q->x[i], fy = q->y[i], fz = q->z[i];
+            v4f y = cr[j] * fy - sr[j] * fx;
+            q->x[i] = cr[j] * fx + sr[j] * fy;
+            q->y[i] = cd[j] * y + sd[j] * fz;
+            q->z[i] = cd[j] * fz - sd[j] * y;
+        }
     }
 }
 
@@ -63,16 +86,20 @@ static void to_sylva(float out[3], double x, double y, double z) {
 }
 static void axis_to_sylva(float out[3], const v4f v[3], int k) { out[0] = v[0][k], out[1] = v[2][k], out[2] = -v[1][k]; }
 
-/* Bend the leaves and store them (their base moved out along the petiole, not drawn). */
-static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
-    bend(g, q);
-    if (g->nlvs + q->n > g->lvs_cap) { /* (sized by the count: cannot happen) */
+/* Turn, bend and store the batch's leaves (their base moved out along the petiole, not drawn). */
+static void flush(WeberGen *g, LeafBatch *b) {
+    int nq = (b->n + 3) / 4;
+    if (!b->turned) turn_leaves(b, nq);
+    bend(g, b->q, nq);
+    if (g->nlvs + (size_t)b->n > g->lvs_cap) { /* (sized by the count: cannot happen) */
         g->failed = true;
         return;
     }
     double stem = g->w.LeafStemLen * g->leaf_len;
     uint8_t kind = g->w.leaf_kind == WEBER_LEAF_SPHERE ? SYL_KIND_SPHERE : SYL_KIND_LEAF;
-    for (int k = 0; k < q->n; k++) {
+    for (int m = 0; m < b->n; m++) {
+        const Leaves4 *q = &b->q[m / 4];
+        int k = m % 4;
         SylOrgan *o = &g->lvs[g->nlvs++];
         const double *t = q->t[k];
         double zx = q->z[0][k], zy = q->z[1][k], zz = q->z[2][k];
@@ -81,25 +108,31 @@ static void put_leaves(WeberGen *g, int id, Leaves4 *q) {
         axis_to_sylva(o->l, q->x, k);
         axis_to_sylva(o->u, q->y, k); /* y = z x x */
         o->size = (float)g->leaf_len;
-        o->node = weber_leaf_node(g, id, (float)q->dist[k]);
+        o->node = weber_leaf_node(g, q->id[k], (float)q->dist[k]);
         o->kind = kind;
         o->material = SYL_MATERIAL_LEAF;
-        o->module = (uint32_t)id;
+        o->module = (uint32_t)q->id[k];
     }
-    q->n = 0;
+    b->n = 0;
 }
 
-/* A fan's leaf, its frame made one by one; stored four at a time. */
-static void push_leaf(WeberGen *g, int id, Leaves4 *q, const Frame *f, double dist) {
-    int k = q->n++;
+/* A leaf into the batch: frame f's axes (a plain leaf: its segment's, to be turned by rot
+ * and down; a fan's: its own), its base t. */
+static void push_leaf(WeberGen *g, LeafBatch *b, int id, const Frame *f, const double t[3], double dist,
+                      float rot, float down) {
+    Leaves4 *q = &b->q[b->n / 4];
+    int k = b->n % 4;
     for (int i = 0; i < 3; i++)
-        q->x[i][k] = (float)f->x[i], q->y[i][k] = (float)f->y[i], q->z[i][k] = (float)f->z[i], q->t[k][i] = f->t[i];
-    q->dist[k] = dist;
-    if (q->n == 4) put_leaves(g, id, q);
+        q->x[i][k] = (float)f->x[i], q->y[i][k] = (float)f->y[i], q->z[i][k] = (float)f->z[i], q->t[k][i] = t[i];
+    q->dist[k] = dist, q->id[k] = id;
+    b->rot[b->n / 4][k] = rot, b->down[b->n / 4][k] = down;
+    if (++b->n == 8) flush(g, b);
 }
 
-/* The leaves of segment seg (its frame f), or n of them when count (nothing made). */
-static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, Rng *kids, size_t *count) {
+/* The leaves of segment seg (its frame f) into the batch, or n of them when count (nothing
+ * made). */
+static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, Rng *kids, LeafBatch *b,
+                      size_t *count) {
     const WeberParams *w = &g->w;
     double len = st->seglen;
     if (g->leaves > 0) {
@@ -112,19 +145,12 @@ static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, R
         }
         double offs = seg == 0 ? weber_radius(g, &g->stems[st->parent], st->offset) / len : 0;
         double dist = (1.0 - offs) / n;
-        Leaves4 q = {0};
-        v4f rot = {0}, down = {0};
         for (int k = 0; k < n && !g->failed; k++) {
-            double where = offs + dist / 2 + k * dist + weber_var(kids, dist / 2), d, r;
+            double where = offs + dist / 2 + k * dist + weber_var(kids, dist / 2), d, r, t[3];
             double at = (seg + where) * len;
             weber_child_angles(g, st, at, st->level + 1, kids, &d, &r);
-            rot[q.n] = (float)(r * (M_PI / 180)), down[q.n] = (float)(d * (M_PI / 180));
-            for (int i = 0; i < 3; i++) q.t[q.n][i] = (*f).t[i] + (*f).z[i] * where * len;
-            q.dist[q.n++] = at;
-            if (q.n == 4 || k == n - 1) {
-                turn_leaves(f, rot, down, &q);
-                put_leaves(g, id, &q);
-            }
+            for (int i = 0; i < 3; i++) t[i] = f->t[i] + f->z[i] * where * len;
+            push_leaf(g, b, id, f, t, at, (float)(r * (M_PI / 180)), (float)(d * (M_PI / 180)));
         }
     } else if (seg == st->nseg - 1) { /* a fan at the tip */
         int cl = weber_lv(st->level + 1);
@@ -136,22 +162,21 @@ static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, R
         }
         Frame tip = *f;
         frame_move(&tip, len);
-        Leaves4 q = {0};
+        b->turned = true;
         double step = w->Rotate[cl] / n, stepv = w->RotateV[cl] / n, off;
         if (n % 2 == 1) {
-            push_leaf(g, id, &q, &tip, st->length);
+            push_leaf(g, b, id, &tip, tip.t, st->length, 0, 0);
             off = step;
         } else {
             off = step / 2;
         }
         for (int k = 0; k < n / 2 && !g->failed; k++)
             for (int side = 1; side >= -1; side -= 2) {
-                Frame f = tip;
-                frame_rot_local(&f, 0, 1, 0, -side * (off + k * step + weber_var(kids, stepv))); /* Arbaro's roty */
-                frame_rot_local(&f, 1, 0, 0, w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]));
-                push_leaf(g, id, &q, &f, st->length);
+                Frame lf = tip;
+                frame_rot_local(&lf, 0, 1, 0, -side * (off + k * step + weber_var(kids, stepv))); /* Arbaro's roty */
+                frame_rot_local(&lf, 1, 0, 0, w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]));
+                push_leaf(g, b, id, &lf, lf.t, st->length, 0, 0);
             }
-        if (q.n && !g->failed) put_leaves(g, id, &q);
     }
 }
 
@@ -178,18 +203,18 @@ void weber_place_leaves(WeberGen *g) {
     double err = g->leaf_err;
     for (int pass = 0; pass < 2 && !g->failed; pass++) {
         size_t count = 0, fi = 0;
+        LeafBatch b = {0};
         g->leaf_err = err;
         for (size_t i = 0; i < g->nleafy && !g->failed; i++) {
             int id = g->leafy[i];
             WStem copy, *st = &g->stems[id]; /* (the count changes nothing) */
             if (pass == 1) copy = *st, st = &copy; /* its rotation advances here, not in the list */
             Rng kids = pass == 1 ? weber_rng(g, st->key, WRNG_KIDS) : (Rng){0};
-            g->stems[id].leaf_first = (uint32_t)g->nlvs;
             int s0 = first_kept(st);
             for (int s = st->first_seg; s < st->nseg; s++)
-                leaves_on(g, id, st, s, s < s0 ? &st->start : &g->leafy_f[fi++], &kids, pass == 0 ? &count : NULL);
-            g->stems[id].leaf_count = (uint32_t)(g->nlvs - g->stems[id].leaf_first);
+                leaves_on(g, id, st, s, s < s0 ? &st->start : &g->leafy_f[fi++], &kids, &b, pass == 0 ? &count : NULL);
         }
+        if (b.n && !g->failed) flush(g, &b);
         if (pass == 0 && count) { /* the organs' array, the skeleton's to free */
             if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
                 !(g->lvs = weber_alloc_owned(count * sizeof *g->lvs))) {

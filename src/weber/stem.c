@@ -196,7 +196,6 @@ static void run_stem(WeberGen *g, int id, Traced *t) {
         t->pend.c[i].st.from = id;
         if (add_stem(g, &t->pend.c[i].st, &cid)) run_stem(g, cid, &t->pend.c[i]);
     }
-    g->stems[id].leaf_first = g->stems[id].leaf_count = 0; /* (leaves.c sets a last-level stem's) */
     if (st->level < g->levels - 1) {
         Rng kids = weber_rng(g, st->key, WRNG_KIDS);
         for (int s = st->first_seg; s < st->nseg && !g->failed; s++) weber_children(g, id, st, s, t->segs, &kids);
