@@ -1,29 +1,6 @@
 /* Children of a stem: how many on each segment (error diffusion, the trunk's bare base),
- * where on the segment (BranchDist), and their down and rotation angles. */
+ * where on the segment (BranchDist), and their direction (the angles: internal.h). */
 #include "weber/internal.h"
-
-void weber_child_angles(WeberGen *g, WStem *st, double offset, int child_level, Rng *kids, double *down_out,
-                        double *rot_out) {
-    const WeberParams *w = &g->w;
-    int cl = weber_lv(child_level);
-    double rot;
-    if (w->Rotate[cl] >= 0) { /* a spiral */
-        st->rot = fmod(st->rot + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]) + 360, 360);
-        rot = st->rot;
-    } else { /* alternate sides */
-        if (fabs(st->rot) != 1) st->rot = 1;
-        st->rot = -st->rot;
-        rot = st->rot * (180 + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]));
-    }
-    double down;
-    if (w->DownAngleV[cl] >= 0 || st->level < 0) { /* (trunks: always so) */
-        down = w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]);
-    } else { /* lower children hang lower */
-        double len = st->level == 0 ? st->length * (1 - w->BaseSize) : st->length;
-        down = w->DownAngle[cl] + w->DownAngleV[cl] * (1 - 2 * weber_shape_ratio(w, 0, (st->length - offset) / len));
-    }
-    *down_out = down, *rot_out = rot;
-}
 
 Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids) {
     double down, rot;

@@ -13,15 +13,6 @@ static void rot_vec(double v[3], const double k[3], double c, double s) {
     for (int i = 0; i < 3; i++) v[i] = v[i] * c + (i == 0 ? cx : i == 1 ? cy : cz) * s + k[i] * kv * (1 - c);
 }
 
-void frame_turn_vertical(Frame *f, double c, double s) {
-    double *v[3] = {f->x, f->y, f->z};
-    for (int k = 0; k < 3; k++) {
-        double x = v[k][0], y = v[k][1];
-        v[k][0] = c * x - s * y;
-        v[k][1] = s * x + c * y;
-    }
-}
-
 void frame_rot_global(Frame *f, const double axis[3], double deg) {
     if (axis[0] == 0 && axis[1] == 0 && axis[2] > 0) { /* about the vertical */
         double a = deg * (M_PI / 180);
@@ -37,19 +28,8 @@ void frame_rot_global(Frame *f, const double axis[3], double deg) {
     rot_vec(f->z, k, c, s);
 }
 
-/* a <- c a + s b, b <- c b - s a: the turn of the plane (a, b) that takes a toward b */
-static void turn(double a[3], double b[3], double c, double s) {
-    for (int i = 0; i < 3; i++) {
-        double p = a[i], q = b[i];
-        a[i] = c * p + s * q;
-        b[i] = c * q - s * p;
-    }
-}
-
-void frame_turn_x(Frame *f, double c, double s) { turn(f->y, f->z, c, s); }
-void frame_turn_z(Frame *f, double c, double s) { turn(f->x, f->y, c, s); }
-
 void frame_rot_local(Frame *f, double ax, double ay, double az, double deg) {
+    if (deg == 0) return; /* (as frame_rot_global: a straight stem's segments turn by nothing) */
     /* the frame's own axes, the common case, by a plane turn */
     if (ay == 0 && az == 0 && ax == 1) {
         double a = deg * (M_PI / 180);

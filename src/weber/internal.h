@@ -35,7 +35,8 @@ typedef struct WStem {
     double split_corr; /* turn per segment that straightens a split out again */
     double sps, lps;   /* children and leaves per segment */
     double rot;        /* the last child's rotation angle */
-    uint32_t pt_first, pt_count, leaf_first, leaf_count;
+    uint32_t pt_first, pt_count;
+    uint32_t node_first, node_count; /* its own nodes in the skeleton (write.c) */
     double u_length, u_lcm; /* the first trunk's draws for its length and its children's, when
                              * they come from Arbaro's streams (else negative) */
 } WStem;
@@ -70,9 +71,17 @@ typedef struct WeberGen {
     size_t nstems, stems_cap;
     WPoint *pts;
     size_t npts, pts_cap;
-    SylOrgan *lvs;     /* the leaves, in Sylva's coordinates, in the skeleton's order; */
-    float *ldist;      /* each one's distance along its stem (for the node it hangs from) */
-    size_t nlvs, lvs_cap, ldist_cap;
+    SylOrgan *lvs;     /* the leaves, in Sylva's coordinates, in the skeleton's order */
+    size_t nlvs, lvs_cap;
+    float *node_dist;  /* each skeleton node's distance along its stem (for the leaves' nodes) */
+    size_t node_dist_cap;
+    /* The last level's stems, in the order their leaves come, and their segments' frames
+     * (from each one's first_seg): the leaves are made after the stems and their nodes,
+     * once their count is known, so their array is filled once and never copied. */
+    int *leafy;
+    size_t nleafy, leafy_cap;
+    Frame *leafy_f;
+    size_t nleafy_f, leafy_f_cap;
     double sub_err[10], split_err[10], leaf_err; /* error diffusion, per level (Arbaro's) */
     Budget *budget;
     uint64_t charged;
@@ -85,24 +94,6 @@ static inline Rng weber_rng(const WeberGen *g, uint64_t key, int table) { return
 /* Arbaro's var(v): uniform in [-v, v]. */
 static inline double weber_var(Rng *r, double v) { return v * (2 * rng_unit(r) - 1); }
 static inline uint64_t weber_key(uint64_t parent, uint64_t kind, uint64_t n) { return rng_mix(parent * 0x9e3779b97f4a7c15ull ^ (kind << 48) ^ n); }
-
-/* atan2(y, x) within 2e-9, a few times faster than libm's (a leaf takes three): atan t / t
- * as a polynomial in t^2 over [0, 1] (Chebyshev interpolation, degree 9), t the smaller
- * coordinate over the larger, then the octant, without branches. */
-static inline double weber_atan2(double y, double x) {
-    static const double c[10] = {0.999999997160544,     -0.33333276291968977,  0.1999807528082414,
-                                 -0.14260016079705623,  0.10932341485896302,   -0.083497249245010619,
-                                 0.057089555186985316,  -0.030351864043404932, 0.010487648853086284,
-                                 -0.0017011699732393027};
-    double ax = fabs(x), ay = fabs(y), hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
-    double t = hi > 0 ? lo / hi : 0, z = t * t, z2 = z * z, z4 = z2 * z2; /* Estrin's scheme: short chains */
-    double p = (c[0] + c[1] * z) + z2 * (c[2] + c[3] * z) + z4 * ((c[4] + c[5] * z) + z2 * (c[6] + c[7] * z)) +
-               z4 * z4 * (c[8] + c[9] * z);
-    double r = t * p;
-    r = ay > ax ? M_PI / 2 - r : r;
-    r = signbit(x) ? M_PI - r : r;
-    return copysign(r, y);
-}
 
 /* arbaro_rng.c: java.util.Random, for Arbaro's tree size */
 typedef struct JRand {
@@ -120,10 +111,24 @@ void frame_rot_local(Frame *f, double ax, double ay, double az, double deg); /* 
 void frame_rotxz(Frame *f, double down, double rot);  /* about local z by rot, then the new x by down */
 void frame_move(Frame *f, double d);                  /* along its z */
 /* the same turns by an angle's cosine c and sine s: about the frame's x (y toward z), its z
- * (x toward y), and the tree's vertical */
-void frame_turn_x(Frame *f, double c, double s);
-void frame_turn_z(Frame *f, double c, double s);
-void frame_turn_vertical(Frame *f, double c, double s);
+ * (x toward y), and the tree's vertical (inline: a leaf makes four) */
+static inline void frame_turn(double a[3], double b[3], double c, double s) { /* a toward b */
+    for (int i = 0; i < 3; i++) {
+        double p = a[i], q = b[i];
+        a[i] = c * p + s * q;
+        b[i] = c * q - s * p;
+    }
+}
+static inline void frame_turn_x(Frame *f, double c, double s) { frame_turn(f->y, f->z, c, s); }
+static inline void frame_turn_z(Frame *f, double c, double s) { frame_turn(f->x, f->y, c, s); }
+static inline void frame_turn_vertical(Frame *f, double c, double s) {
+    double *v[3] = {f->x, f->y, f->z};
+    for (int k = 0; k < 3; k++) {
+        double x = v[k][0], y = v[k][1];
+        v[k][0] = c * x - s * y;
+        v[k][1] = s * x + c * y;
+    }
+}
 
 /* shape.c */
 double weber_shape_ratio(const WeberParams *w, int shape, double r);
@@ -136,7 +141,10 @@ double weber_radius(const WeberGen *g, const WStem *s, double h);
 /* stem.c */
 bool weber_make_stem(WeberGen *g, WStem st);
 int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs);
+/* grow one of the generator's arrays (util/pages.h: free with pages_free, cap * size bytes) */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
+/* an array the skeleton will own and free(): big ones aligned and marked for huge pages */
+void *weber_alloc_owned(size_t bytes);
 
 /* splits.c */
 int weber_split_count(WeberGen *g, const WStem *st, int seg);
@@ -146,18 +154,43 @@ Frame weber_split(WeberGen *g, WStem *st, Rng *r, Frame trf, double s_angle, int
 void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids);
 Frame weber_child_direction(WeberGen *g, WStem *st, Frame trf, double offset, int child_level, Rng *kids);
 /* its down and rotation angles (degrees), the stem's rotation advanced */
-void weber_child_angles(WeberGen *g, WStem *st, double offset, int child_level, Rng *kids, double *down,
-                        double *rot);
+static inline void weber_child_angles(WeberGen *g, WStem *st, double offset, int child_level, Rng *kids,
+                                      double *down_out, double *rot_out) { /* (inline: every leaf) */
+    const WeberParams *w = &g->w;
+    int cl = weber_lv(child_level);
+    double rot;
+    if (w->Rotate[cl] >= 0) { /* a spiral */
+        double a = st->rot + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]) + 360;
+        /* fmod's value, without its call when one subtraction gives it (exact there: Sterbenz) */
+        st->rot = a >= 0 && a < 360 ? a : a >= 360 && a < 720 ? a - 360 : a >= 720 && a < 1080 ? a - 720 : fmod(a, 360);
+        rot = st->rot;
+    } else { /* alternate sides */
+        if (fabs(st->rot) != 1) st->rot = 1;
+        st->rot = -st->rot;
+        rot = st->rot * (180 + w->Rotate[cl] + weber_var(kids, w->RotateV[cl]));
+    }
+    double down;
+    if (w->DownAngleV[cl] >= 0 || st->level < 0) { /* (trunks: always so) */
+        down = w->DownAngle[cl] + weber_var(kids, w->DownAngleV[cl]);
+    } else { /* lower children hang lower */
+        double len = st->level == 0 ? st->length * (1 - w->BaseSize) : st->length;
+        down = w->DownAngle[cl] + w->DownAngleV[cl] * (1 - 2 * weber_shape_ratio(w, 0, (st->length - offset) / len));
+    }
+    *down_out = down, *rot_out = rot;
+}
 
 /* leaves.c */
-void weber_leaves(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, Rng *kids);
 double weber_leaves_per_stem(const WeberGen *g, const WStem *st);
+bool weber_defer_leaves(WeberGen *g, int id, const WStem *st, const WSeg *segs); /* a last-level stem */
+void weber_place_leaves(WeberGen *g); /* every deferred stem's leaves */
 
 /* prune.c */
 bool weber_inside(const WeberGen *g, const double p[3]);
 void weber_prune(WeberGen *g, WStem *st);
 
-/* write.c */
-int weber_write(WeberGen *g, SylSkeleton *sk);
+/* write.c: the stems' nodes, then (after weber_place_leaves) the leaves as organs */
+int weber_write_nodes(WeberGen *g, SylSkeleton *sk);
+int32_t weber_leaf_node(const WeberGen *g, int id, float dist); /* the node a leaf hangs from */
+void weber_write_leaves(WeberGen *g, SylSkeleton *sk);
 
 #endif

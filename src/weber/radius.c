@@ -27,7 +27,8 @@ double weber_base_radius(const WeberGen *g, const WStem *s) {
     }
     const WStem *p = &g->stems[s->parent];
     double most = weber_radius(g, p, s->offset);
-    double r = p->base_radius * pow(s->length / p->length, g->w.RatioPower);
+    double q = s->length / p->length, rp = g->w.RatioPower;
+    double r = p->base_radius * (rp == 2 ? q * q : pow(q, rp)); /* (the common power without its call) */
     return r < most ? r : most;
 }
 

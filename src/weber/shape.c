@@ -16,7 +16,7 @@ double weber_shape_ratio(const WeberParams *w, int shape, double r) {
     case 8: { /* the pruning envelope */
         double peak = w->PruneWidthPeak;
         if (r < 0 || r > 1) return 0;
-        if (r < 1 - peak) return pow(r / (1 - peak), w->PrunePowerHigh);
+        if (r < 1 - peak) return w->PrunePowerHigh == 0.5 ? sqrt(r / (1 - peak)) : pow(r / (1 - peak), w->PrunePowerHigh);
         /* Arbaro divides by 1 - peak here too (a jump at the peak unless it is 0.5) */
         double d = w->convention == WEBER_PAPER ? peak : 1 - peak;
         return d > 0 ? pow((1 - r) / d, w->PrunePowerLow) : 0;

@@ -4,26 +4,17 @@
 #include <string.h>
 #include <sys/mman.h>
 
+#include "util/pages.h"
 #include "weber/internal.h"
 
+/* The generator's own arrays: big ones mapped in 2 MB pages (util/pages.h), which grow by
+ * moving their pages, not copying them (page faults were a fifth of the time). */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) {
     if (need <= *cap) return true;
-    size_t nc = *cap ? *cap : 256;
+    size_t nc = *cap ? *cap : need > 256 ? need : 256; /* a first size asked for exactly: kept */
     while (nc < need) nc *= 2;
     if (!budget_resize(g->budget, (uint64_t)*cap * size, (uint64_t)nc * size)) return g->failed = true, false;
-    void *p;
-    const size_t huge = (size_t)2 << 20, bytes = nc * size;
-    if (bytes >= 2 * huge) { /* big arrays on huge pages: page faults were a fifth of the time */
-        size_t round = (bytes + huge - 1) / huge * huge;
-        p = aligned_alloc(huge, round);
-#ifdef MADV_HUGEPAGE
-        if (p) madvise(p, round, MADV_HUGEPAGE);
-#endif
-        if (p && *cap) memcpy(p, *arr, *cap * size);
-        if (p) free(*arr);
-    } else {
-        p = realloc(*arr, bytes);
-    }
+    void *p = pages_grow(*arr, *cap * size, *cap * size, nc * size);
     if (!p) {
         budget_resize(g->budget, (uint64_t)nc * size, (uint64_t)*cap * size);
         return g->failed = true, false;
@@ -32,6 +23,17 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) 
     *arr = p;
     *cap = nc;
     return true;
+}
+
+void *weber_alloc_owned(size_t bytes) {
+    const size_t huge = (size_t)2 << 20;
+    if (bytes < 2 * huge) return malloc(bytes ? bytes : 1);
+    size_t round = (bytes + huge - 1) / huge * huge;
+    void *p = aligned_alloc(huge, round);
+#ifdef MADV_HUGEPAGE
+    if (p) madvise(p, round, MADV_HUGEPAGE);
+#endif
+    return p;
 }
 
 /* The turn at the start of segment seg (none at the first: the down and rotation angles
@@ -194,14 +196,12 @@ static void run_stem(WeberGen *g, int id, Traced *t) {
         t->pend.c[i].st.from = id;
         if (add_stem(g, &t->pend.c[i].st, &cid)) run_stem(g, cid, &t->pend.c[i]);
     }
-    Rng kids = weber_rng(g, st->key, WRNG_KIDS);
-    g->stems[id].leaf_first = (uint32_t)g->nlvs;
-    for (int s = st->first_seg; s < st->nseg && !g->failed; s++) {
-        if (st->level < g->levels - 1) weber_children(g, id, st, s, t->segs, &kids);
-        else if (g->leaves != 0) weber_leaves(g, id, st, s, t->segs, &kids);
+    if (st->level < g->levels - 1) {
+        Rng kids = weber_rng(g, st->key, WRNG_KIDS);
+        for (int s = st->first_seg; s < st->nseg && !g->failed; s++) weber_children(g, id, st, s, t->segs, &kids);
+    } else if (g->leaves != 0) {
+        weber_defer_leaves(g, id, st, t->segs);
     }
-    /* (a stem with children has no leaves; the leaves made meanwhile are its descendants') */
-    g->stems[id].leaf_count = st->level < g->levels - 1 ? 0 : (uint32_t)(g->nlvs - g->stems[id].leaf_first);
 }
 
 /* The counts of children and leaves per segment, and the most length of a child. */

@@ -7,16 +7,19 @@
 
 #include "sylva/trees.h"
 #include "util/budget.h"
+#include "util/pages.h"
 #include "weber/internal.h"
 
 int syl_weber_validate(const SylProgram *p, FILE *diag) { return weber_params_check(p, diag); }
 
 static void free_gen(WeberGen *g) {
     budget_release(g->budget, g->charged);
-    free(g->stems);
-    free(g->pts);
+    pages_free(g->stems, g->stems_cap * sizeof *g->stems);
+    pages_free(g->pts, g->pts_cap * sizeof *g->pts);
     free(g->lvs);
-    free(g->ldist);
+    pages_free(g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
+    pages_free(g->leafy, g->leafy_cap * sizeof *g->leafy);
+    pages_free(g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
 }
 
 /* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
@@ -128,7 +131,10 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;
     if (!st && !(sk = syl_skeleton_new(syl_program_name(p)))) st = SYL_ELIMIT;
-    if (!st) st = weber_write(g, sk);
+    if (!st) st = weber_write_nodes(g, sk);
+    if (!st) weber_place_leaves(g);
+    if (!st && g->failed) st = SYL_ELIMIT;
+    if (!st) weber_write_leaves(g, sk);
     if (!st) {
         uint64_t bytes = (uint64_t)sk->node_cap * sizeof *sk->nodes + (uint64_t)sk->organ_cap * sizeof *sk->organs;
         if (budget_charge(g->budget == &local ? NULL : g->budget, bytes)) {

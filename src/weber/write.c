@@ -13,11 +13,32 @@ typedef struct Attach {
     double at; /* distance along the host */
 } Attach;
 
-static int by_host(const void *a, const void *b) {
-    const Attach *x = a, *y = b;
-    if (x->host != y->host) return x->host < y->host ? -1 : 1;
-    if (x->at != y->at) return x->at < y->at ? -1 : 1;
-    return x->stem < y->stem ? -1 : x->stem > y->stem;
+/* Sort the attachments by host, then distance, then stem: a counting sort by host (stable:
+ * they come in stem order), then each host's few by distance, nearly in order already (a
+ * stem's children come along it), by insertion. qsort's merge sort took more time and
+ * memory. */
+static bool sort_by_host(Attach *att, size_t na, size_t ns) {
+    uint32_t *start = calloc(ns + 1, sizeof *start);
+    Attach *out = malloc((na ? na : 1) * sizeof *out);
+    if (!start || !out) {
+        free(start);
+        free(out);
+        return false;
+    }
+    for (size_t i = 0; i < na; i++) start[att[i].host + 1]++;
+    for (size_t h = 0; h < ns; h++) start[h + 1] += start[h];
+    for (size_t i = 0; i < na; i++) out[start[att[i].host]++] = att[i]; /* start[h]: now host h's end */
+    for (size_t h = 0, lo = 0; h < ns; lo = start[h++])
+        for (size_t i = lo + 1; i < start[h]; i++) {
+            Attach a = out[i];
+            size_t k = i;
+            for (; k > lo && out[k - 1].at > a.at; k--) out[k] = out[k - 1];
+            out[k] = a;
+        }
+    memcpy(att, out, na * sizeof *att);
+    free(start);
+    free(out);
+    return true;
 }
 
 static void to_sylva(float out[3], const float in[3]) {
@@ -26,9 +47,7 @@ static void to_sylva(float out[3], const float in[3]) {
 
 typedef struct Writer {
     SylSkeleton *sk;
-    float *dists;    /* of the current stem's nodes */
-    int32_t *ids;
-    size_t n, cap;
+    float *dist;     /* each node's distance along its stem */
     bool failed;
     uint8_t lobes;       /* the trunk's cross-section (Lobes, LobeDepth) */
     uint16_t lobe_depth;
@@ -54,21 +73,11 @@ static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], cons
     if (wr->sk->nnodes >= wr->sk->node_cap) return wr->failed = true, -1; /* (sized in advance) */
     int32_t k = (int32_t)wr->sk->nnodes;
     wr->sk->nodes[wr->sk->nnodes++] = nd;
-    if (wr->n == wr->cap) {
-        size_t nc = wr->cap ? 2 * wr->cap : 64;
-        float *d = realloc(wr->dists, nc * sizeof *d);
-        if (!d) return wr->failed = true, -1;
-        wr->dists = d;
-        int32_t *q = realloc(wr->ids, nc * sizeof *q);
-        if (!q) return wr->failed = true, -1;
-        wr->ids = q;
-        wr->cap = nc;
-    }
-    wr->dists[wr->n] = dist, wr->ids[wr->n++] = k;
+    wr->dist[k] = dist;
     return k;
 }
 
-int weber_write(WeberGen *g, SylSkeleton *sk) {
+int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
     size_t ns = g->nstems, na = 0;
     Attach *att = malloc((ns ? ns : 1) * sizeof *att);
     int32_t *attach_node = malloc((ns ? ns : 1) * sizeof *attach_node);
@@ -88,15 +97,23 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
         if (s->from < 0) continue;
         att[na++] = (Attach){s->from, (int)j, s->clone ? s->first_seg * s->seglen : s->offset};
     }
-    qsort(att, na, sizeof *att, by_host);
+    if (!sort_by_host(att, na, ns)) {
+        free(att);
+        free(attach_node);
+        return SYL_ELIMIT;
+    }
     /* every node at once: at most a root per trunk, the points, and one per attachment */
     size_t most = g->npts + na + ns;
-    if (!(sk->nodes = malloc((most ? most : 1) * sizeof *sk->nodes))) wr.failed = true;
-    else sk->node_cap = most;
+    if (!(sk->nodes = weber_alloc_owned(most * sizeof *sk->nodes)) ||
+        !weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist))
+        wr.failed = true;
+    else
+        sk->node_cap = most;
+    wr.dist = g->node_dist;
     size_t a = 0;
     for (size_t i = 0; i < ns && !wr.failed; i++) {
-        const WStem *st = &g->stems[i];
-        wr.n = 0;
+        WStem *st = &g->stems[i];
+        st->node_first = (uint32_t)sk->nnodes;
         float base[3], z0[3], x0[3];
         for (int k = 0; k < 3; k++)
             base[k] = (float)st->start.t[k], z0[k] = (float)st->start.z[k], x0[k] = (float)st->start.x[k];
@@ -124,19 +141,29 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
             prev = p->pos, prev_d = p->dist;
         }
         for (; a < na && att[a].host == (int)i; a++) attach_node[att[a].stem] = last;
-        for (uint32_t q = 0; q < st->leaf_count && wr.n; q++) {
-            float d = g->ldist[st->leaf_first + q];
-            size_t lo = 0, hi = wr.n; /* the last node at or below the leaf */
-            while (hi - lo > 1) {
-                size_t mid = (lo + hi) / 2;
-                if (wr.dists[mid] <= d) lo = mid; else hi = mid;
-            }
-            g->lvs[st->leaf_first + q].node = wr.ids[lo];
-        }
+        st->node_count = (uint32_t)(sk->nnodes - st->node_first);
     }
     /* Arbaro's 0ScaleV: jitter of the trunk's surface (the paper's varies its radius, radius.c) */
     if (g->w.convention == WEBER_ARBARO) sk->trunk_jitter = (float)g->w.Scale0V;
-    if (!wr.failed && g->nlvs) { /* the leaves are the organs, in order already */
+    free(att);
+    free(attach_node);
+    return wr.failed ? SYL_ELIMIT : SYL_OK;
+}
+
+int32_t weber_leaf_node(const WeberGen *g, int id, float dist) {
+    const WStem *st = &g->stems[id];
+    if (!st->node_count) return -1;
+    const float *d = g->node_dist + st->node_first;
+    size_t lo = 0, hi = st->node_count; /* the last node at or below the leaf */
+    while (hi - lo > 1) {
+        size_t mid = (lo + hi) / 2;
+        if (d[mid] <= dist) lo = mid; else hi = mid;
+    }
+    return (int32_t)(st->node_first + lo);
+}
+
+void weber_write_leaves(WeberGen *g, SylSkeleton *sk) {
+    if (g->nlvs) { /* the leaves are the organs, in order already */
         sk->organs = g->lvs, sk->norgans = g->nlvs, sk->organ_cap = g->lvs_cap;
         g->lvs = NULL;
         if (sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
@@ -147,9 +174,4 @@ int weber_write(WeberGen *g, SylSkeleton *sk) {
                            : g->w.leaf_kind == WEBER_LEAF_PALM ? LEAF_OUTLINE_PALM
                                                                : LEAF_OUTLINE_OVAL;
     }
-    free(att);
-    free(attach_node);
-    free(wr.dists);
-    free(wr.ids);
-    return wr.failed ? SYL_ELIMIT : SYL_OK;
 }

@@ -64,7 +64,21 @@ static Counts count(const SylProgram *p, uint64_t seed) {
         c.stems++;
     }
     free(seen);
-    for (size_t i = 0; i < sk->norgans; i++) c.leaves += sk->organs[i].kind == SYL_KIND_LEAF;
+    for (size_t i = 0; i < sk->norgans; i++) {
+        const SylOrgan *o = &sk->organs[i];
+        c.leaves += o->kind == SYL_KIND_LEAF;
+        /* its frame orthonormal, u = h x l (leaves turn in floats: within 1e-5) */
+        const float *h = o->h, *l = o->l, *u = o->u;
+        float hl = h[0] * l[0] + h[1] * l[1] + h[2] * l[2];
+        float cx = h[1] * l[2] - h[2] * l[1], cy = h[2] * l[0] - h[0] * l[2], cz = h[0] * l[1] - h[1] * l[0];
+        float hh = h[0] * h[0] + h[1] * h[1] + h[2] * h[2], ll = l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
+        if (!(fabsf(hl) < 1e-5f && fabsf(hh - 1) < 1e-5f && fabsf(ll - 1) < 1e-5f && fabsf(cx - u[0]) < 1e-5f &&
+              fabsf(cy - u[1]) < 1e-5f && fabsf(cz - u[2]) < 1e-5f))
+            fail_msg("leaf %zu: its frame is not orthonormal", i);
+        /* it hangs from a node of its own stem (the axis its module names) */
+        if (o->node < 0 || (size_t)o->node >= sk->nnodes || sk->nodes[o->node].axis != (int32_t)o->module)
+            fail_msg("leaf %zu: node %d is not on its stem %u", i, o->node, o->module);
+    }
     c.height = hi[1];
     c.width = sqrt(fmax(lo[0] * lo[0] + lo[2] * lo[2], hi[0] * hi[0] + hi[2] * hi[2]));
     syl_skeleton_free(sk);
