@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <meshoptimizer.h>
+
 #include "io/glb.h"
 #include "sylva/lod.h"
 #include "sylva/texture.h"
@@ -28,6 +30,7 @@ typedef struct MeshRef {
                                      when quantized: m is proto scaled by it (0: sizes differ) */
     bool skinned;                 /* its part's wind: five more vertex accessors */
     float uvq[4];                 /* quantized UVs: offset and scale of KHR_texture_transform (scale 0: floats) */
+    bool strips;                  /* quantized: each primitive a triangle strip (pr's first, count: the strip's) */
 } MeshRef;
 
 /* What goes in the file, numbered before the JSON refers to it. */
@@ -135,6 +138,34 @@ static void put_uv16(IoBuf *b, const float *uv, size_t n, const float uvq[4]) {
         }
 }
 
+/* A quantized mesh's primitives as triangle strips, the same triangles in the same order
+ * and winding joined by triangles without area (meshoptimizer's stripify; every reader
+ * drops those): about 0.6 of a list's indices on tubes, whose bands are strips already.
+ * Each primitive's first and count become its strip's; the view is set by the caller's. */
+static void layout_strips(Layout *l, MeshRef *r) {
+    const SylMesh *m = r->m;
+    size_t at = 0, most = 0;
+    for (size_t k = 0; k < r->pr.n; k++) most = r->pr.prim[k].count > most ? r->pr.prim[k].count : most;
+    unsigned *src = malloc((most + 1) * sizeof *src), *dst = malloc((meshopt_stripifyBound(most) + 1) * sizeof *dst);
+    if (!src || !dst) {
+        l->bin.failed = true;
+        free(src), free(dst);
+        return;
+    }
+    for (size_t k = 0; k < r->pr.n; k++) {
+        GlbPrim *pr = &r->pr.prim[k];
+        for (uint32_t i = 0; i < pr->count; i++) src[i] = m->idx[pr->first + i] - (uint32_t)pr->lo;
+        size_t n = meshopt_stripify(dst, src, pr->count, pr->nv, 0);
+        for (size_t i = 0; i < n; i++) {
+            uint8_t b[2] = {(uint8_t)dst[i], (uint8_t)(dst[i] >> 8)};
+            io_put(&l->bin, b, 2);
+        }
+        pr->first = (uint32_t)at, pr->count = (uint32_t)n;
+        at += n;
+    }
+    free(src), free(dst);
+}
+
 /* POSITION, NORMAL and TEXCOORD_0, then the indices, the smallest type that holds them. */
 static void layout_attributes(Layout *l, MeshRef *r) {
     const SylMesh *m = r->m;
@@ -156,7 +187,8 @@ static void layout_attributes(Layout *l, MeshRef *r) {
         l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, split ? 12 : 0};
         glb_words(&l->bin, m->nrm, 3 * nv);
     }
-    if (q && q[3] > 0) plan_uvs(m, r->uvq);
+    const bool atlas = l->sc->atlas && r->part == l->sc->nparts - 1; /* its texture may be finer than a tile */
+    if (q && q[3] > 0 && !atlas) plan_uvs(m, r->uvq);
     if (r->uvq[2] > 0) {
         l->views[l->nviews++] = (View){l->bin.len, 4 * nv, ARRAY_BUFFER, split ? 4 : 0};
         put_uv16(&l->bin, m->uv, nv, r->uvq);
@@ -167,9 +199,16 @@ static void layout_attributes(Layout *l, MeshRef *r) {
     /* 16-bit indices, less each primitive's first vertex; 32-bit only when a triangle spans
      * more than 65,535 vertices (glb_prims.c) */
     const bool wide = r->pr.wide;
-    l->views[l->nviews++] = (View){l->bin.len, (wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
+    const size_t at = l->bin.len;
+    View *iv = &l->views[l->nviews++];
+    *iv = (View){at, (wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
     if (wide) {
         glb_words(&l->bin, m->idx, m->nidx);
+    } else if (q && q[3] > 0 && !r->skinned) {
+        r->strips = true;
+        layout_strips(l, r);
+        iv->length = l->bin.len - at;
+        glb_pad(&l->bin, 0);
     } else {
         for (size_t k = 0; k < r->pr.n; k++) {
             const GlbPrim *pr = &r->pr.prim[k];
@@ -271,7 +310,8 @@ static void json_mesh(IoBuf *js, const Layout *l, int k) {
         int idx = r->pr.split ? at + 3 : a + 3 + (int)c;
         io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", c ? "," : "", at, at + 1, at + 2);
         if (r->skinned) glb_skin_attributes(js, r->pr.split ? at + 4 : a + 3 + (int)r->pr.n);
-        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", idx, r->material + r->pr.prim[c].group);
+        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":%d}", idx, r->material + r->pr.prim[c].group,
+                  r->strips ? 5 : 4);
     }
     io_printf(js, "]}");
 }

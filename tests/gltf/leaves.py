@@ -332,6 +332,35 @@ eu = max((max(abs(qu[i][2][k] - fl[i][2][k]) for k in range(2)) for i in fl if i
 check("palm: bark UVs are 16-bit, KHR_texture_transform gives them back within half a step",
       half > 0 and "KHR_texture_transform" in pi_js.get("extensionsRequired", []) and eu <= half * (1 + 1e-3) + 1e-6,
       "UV error %g (bound %g)" % (eu, half))
+
+
+def triangles(js, bin_, p, first):
+    """A primitive's triangles (indices of the whole mesh, each turned to start at its least
+    index, winding kept) by glTF's rule for its mode: 4 a list, 5 a strip whose triangle i is
+    (v_i, v_i+1+i%2, v_i+2-i%2); triangles without area (a strip's joins) dropped."""
+    ix = [first + i for i in accessor(js, bin_, p["indices"])]
+    mode = p.get("mode", 4)
+    if mode == 4: tris = [tuple(ix[k:k + 3]) for k in range(0, len(ix), 3)]
+    elif mode == 5: tris = [(ix[i], ix[i + 1 + i % 2], ix[i + 2 - i % 2]) for i in range(len(ix) - 2)]
+    else: return None
+    tris = [t for t in tris if len(set(t)) == 3]
+    return [min(t[k:] + t[:k] for k in range(3)) for t in tris]
+
+
+def bark_triangles(js, bin_):
+    out = []
+    for p in js["meshes"][0]["primitives"]:
+        if js["materials"][p["material"]]["name"].startswith("bark"):
+            a = js["accessors"][p["attributes"]["POSITION"]]
+            first = a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
+            out.extend(triangles(js, bin_, p, first) or [])
+    return sorted(out)
+
+
+ft, qt = bark_triangles(pm_js, pm_bin), bark_triangles(pi_js, pi_bin)
+check("palm: the quantized file's bark is triangle strips that are the float file's list of triangles",
+      all(p.get("mode") == 5 for p in pi_js["meshes"][0]["primitives"]) and ft and qt == ft,
+      "%d/%d triangles" % (len(qt), len(ft)))
 print("note: palm files %d (copied) and %d (instanced) bytes, ratio %.3f" % (sizes[0], sizes[1], sizes[1] / sizes[0]))
 
 print("leaves: %d passed, %d failed" % (sum(results), len(results) - sum(results)))
