@@ -11,6 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <meshoptimizer.h>
+
 #include "io/glb.h"
 #include "sylva/lod.h"
 #include "sylva/texture.h"
@@ -27,6 +29,8 @@ typedef struct MeshRef {
     float fold;                   /* the one size of its sets' instances, over their part's scale
                                      when quantized: m is proto scaled by it (0: sizes differ) */
     bool skinned;                 /* its part's wind: five more vertex accessors */
+    float uvq[4];                 /* quantized UVs: offset and scale of KHR_texture_transform (scale 0: floats) */
+    bool strips;                  /* quantized: each primitive a triangle strip (pr's first, count: the strip's) */
 } MeshRef;
 
 /* What goes in the file, numbered before the JSON refers to it. */
@@ -111,6 +115,57 @@ static int slot_of(const Layout *l, const MeshRef *r, int i) {
     return -1;
 }
 
+/* A quantized mesh's UVs as normalized unsigned shorts over their box, which
+ * KHR_texture_transform's offset and scale give back (KHR_mesh_quantization's way): when a
+ * step of that is at most one texel of a texture tile (an error of half a texel at most);
+ * floats otherwise (uvq[2] = 0). */
+static void plan_uvs(const SylMesh *m, float uvq[4]) {
+    float lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+    for (size_t i = 0; i < m->nverts; i++)
+        for (int c = 0; c < 2; c++) lo[c] = fminf(lo[c], m->uv[2 * i + c]), hi[c] = fmaxf(hi[c], m->uv[2 * i + c]);
+    uvq[2] = uvq[3] = 0;
+    for (int c = 0; c < 2; c++)
+        if (!isfinite(lo[c]) || !isfinite(hi[c]) || (hi[c] - lo[c]) * SYL_TEXTURE_SIZE > 65535) return;
+    for (int c = 0; c < 2; c++) uvq[c] = lo[c], uvq[2 + c] = hi[c] > lo[c] ? hi[c] - lo[c] : 1;
+}
+static void put_uv16(IoBuf *b, const float *uv, size_t n, const float uvq[4]) {
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 2; c++) {
+            float x = (uv[2 * i + c] - uvq[c]) / uvq[2 + c];
+            uint16_t v = (uint16_t)lrintf((x < 0 ? 0 : x > 1 ? 1 : x) * 65535);
+            uint8_t p[2] = {(uint8_t)(v & 0xff), (uint8_t)(v >> 8)};
+            io_put(b, p, 2);
+        }
+}
+
+/* A quantized mesh's primitives as triangle strips, the same triangles in the same order
+ * and winding joined by triangles without area (meshoptimizer's stripify; every reader
+ * drops those): about 0.6 of a list's indices on tubes, whose bands are strips already.
+ * Each primitive's first and count become its strip's; the view is set by the caller's. */
+static void layout_strips(Layout *l, MeshRef *r) {
+    const SylMesh *m = r->m;
+    size_t at = 0, most = 0;
+    for (size_t k = 0; k < r->pr.n; k++) most = r->pr.prim[k].count > most ? r->pr.prim[k].count : most;
+    unsigned *src = malloc((most + 1) * sizeof *src), *dst = malloc((meshopt_stripifyBound(most) + 1) * sizeof *dst);
+    if (!src || !dst) {
+        l->bin.failed = true;
+        free(src), free(dst);
+        return;
+    }
+    for (size_t k = 0; k < r->pr.n; k++) {
+        GlbPrim *pr = &r->pr.prim[k];
+        for (uint32_t i = 0; i < pr->count; i++) src[i] = m->idx[pr->first + i] - (uint32_t)pr->lo;
+        size_t n = meshopt_stripify(dst, src, pr->count, pr->nv, 0);
+        for (size_t i = 0; i < n; i++) {
+            uint8_t b[2] = {(uint8_t)dst[i], (uint8_t)(dst[i] >> 8)};
+            io_put(&l->bin, b, 2);
+        }
+        pr->first = (uint32_t)at, pr->count = (uint32_t)n;
+        at += n;
+    }
+    free(src), free(dst);
+}
+
 /* POSITION, NORMAL and TEXCOORD_0, then the indices, the smallest type that holds them. */
 static void layout_attributes(Layout *l, MeshRef *r) {
     const SylMesh *m = r->m;
@@ -132,14 +187,28 @@ static void layout_attributes(Layout *l, MeshRef *r) {
         l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, split ? 12 : 0};
         glb_words(&l->bin, m->nrm, 3 * nv);
     }
-    l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, split ? 8 : 0};
-    glb_words(&l->bin, m->uv, 2 * nv);
+    const bool atlas = l->sc->atlas && r->part == l->sc->nparts - 1; /* its texture may be finer than a tile */
+    if (q && q[3] > 0 && !atlas) plan_uvs(m, r->uvq);
+    if (r->uvq[2] > 0) {
+        l->views[l->nviews++] = (View){l->bin.len, 4 * nv, ARRAY_BUFFER, split ? 4 : 0};
+        put_uv16(&l->bin, m->uv, nv, r->uvq);
+    } else {
+        l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, split ? 8 : 0};
+        glb_words(&l->bin, m->uv, 2 * nv);
+    }
     /* 16-bit indices, less each primitive's first vertex; 32-bit only when a triangle spans
      * more than 65,535 vertices (glb_prims.c) */
     const bool wide = r->pr.wide;
-    l->views[l->nviews++] = (View){l->bin.len, (wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
+    const size_t at = l->bin.len;
+    View *iv = &l->views[l->nviews++];
+    *iv = (View){at, (wide ? 4 : 2) * m->nidx, ELEMENT_ARRAY_BUFFER, 0};
     if (wide) {
         glb_words(&l->bin, m->idx, m->nidx);
+    } else if (q && q[3] > 0 && !r->skinned) {
+        r->strips = true;
+        layout_strips(l, r);
+        iv->length = l->bin.len - at;
+        glb_pad(&l->bin, 0);
     } else {
         for (size_t k = 0; k < r->pr.n; k++) {
             const GlbPrim *pr = &r->pr.prim[k];
@@ -241,7 +310,8 @@ static void json_mesh(IoBuf *js, const Layout *l, int k) {
         int idx = r->pr.split ? at + 3 : a + 3 + (int)c;
         io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d,\"TEXCOORD_0\":%d", c ? "," : "", at, at + 1, at + 2);
         if (r->skinned) glb_skin_attributes(js, r->pr.split ? at + 4 : a + 3 + (int)r->pr.n);
-        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", idx, r->material + r->pr.prim[c].group);
+        io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":%d}", idx, r->material + r->pr.prim[c].group,
+                  r->strips ? 5 : 4);
     }
     io_printf(js, "]}");
 }
@@ -267,7 +337,12 @@ static void json_materials(IoBuf *js, const Layout *l) {
             io_printf(js, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.6f,%.6f,%.6f,1]",
                       k || g ? "," : "", mname, glb_linear(mat->rgb[0]), glb_linear(mat->rgb[1]),
                       glb_linear(mat->rgb[2]));
-            if (t >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", t);
+            const float *uq = l->mesh[k].uvq;
+            if (t >= 0 && uq[2] > 0)
+                io_printf(js, ",\"baseColorTexture\":{\"index\":%d,\"extensions\":{\"KHR_texture_transform\":"
+                              "{\"offset\":[%.9g,%.9g],\"scale\":[%.9g,%.9g]}}}", t, (double)uq[0], (double)uq[1],
+                          (double)uq[2], (double)uq[3]);
+            else if (t >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", t);
             io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":%s}",
                       mat->kind == SYL_MATERIAL_BARK ? "0.95" : "0.7");
             if (slot == CARD || slot == CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
@@ -284,15 +359,16 @@ static void json_attributes(IoBuf *js, const Layout *l, const MeshRef *r, size_t
     const SylMesh *m = r->m;
     const float *data[3] = {m->pos + 3 * lo, m->nrm + 3 * lo, m->uv + 2 * lo};
     const float *q = r->set < 0 && l->quant[r->part][3] > 0 ? l->quant[r->part] : NULL;
+    const bool quv = r->uvq[2] > 0;
     for (int a = 0; a < 3; a++, n++) {
-        int type = q && a < 2 ? (a ? BYTE : SHORT) : FLOAT;
-        size_t size = q && a < 2 ? (a ? 4 : 8) : a == 2 ? 8 : 12; /* an element's bytes */
+        int type = q && a < 2 ? (a ? BYTE : SHORT) : a == 2 && quv ? UNSIGNED_SHORT : FLOAT;
+        size_t size = q && a < 2 ? (a ? 4 : 8) : a == 2 ? (quv ? 4 : 8) : 12; /* an element's bytes */
         io_printf(js, "%s{\"bufferView\":%d,", n ? "," : "", r->view + a);
         if (lo) io_printf(js, "\"byteOffset\":%zu,", lo * size);
         io_printf(js, "\"componentType\":%d,%s\"count\":%zu,\"type\":\"%s\"", type,
                   type != FLOAT ? "\"normalized\":true," : "", nv, types[a]);
         if (q && a == 0) min_max_q16(js, data[0], nv, q, q[3]);
-        else if (!(q && a == 1)) glb_min_max(js, data[a], nv, a == 2 ? 2 : 3);
+        else if (!(q && a == 1) && !(quv && a == 2)) glb_min_max(js, data[a], nv, a == 2 ? 2 : 3);
         io_put(js, "}", 1);
     }
 }
@@ -457,13 +533,14 @@ static void json_nodes(IoBuf *js, const Layout *l) {
 static void write_json(IoBuf *js, const Layout *l) {
     const GlbScene *sc = l->sc;
     io_printf(js, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"Sylva\"}");
-    bool lod = sc->lods && sc->nparts > 1, quant = false;
+    bool lod = sc->lods && sc->nparts > 1, quant = false, uvt = false;
     for (int p = 0; p < sc->nparts; p++) quant |= l->quant[p][3] > 0;
+    for (int k = 0; k < l->nmeshes; k++) uvt |= l->mesh[k].uvq[2] > 0;
     if (lod || l->nsets || quant)
-        io_printf(js, ",\"extensionsUsed\":[%s%s%s%s%s]", lod ? "\"MSFT_lod\"" : "", lod && l->nsets ? "," : "",
+        io_printf(js, ",\"extensionsUsed\":[%s%s%s%s%s%s]", lod ? "\"MSFT_lod\"" : "", lod && l->nsets ? "," : "",
                   l->nsets ? "\"EXT_mesh_gpu_instancing\"" : "", quant && (lod || l->nsets) ? "," : "",
-                  quant ? "\"KHR_mesh_quantization\"" : "");
-    if (quant) io_printf(js, ",\"extensionsRequired\":[\"KHR_mesh_quantization\"]");
+                  quant ? "\"KHR_mesh_quantization\"" : "", uvt ? ",\"KHR_texture_transform\"" : "");
+    if (quant) io_printf(js, ",\"extensionsRequired\":[\"KHR_mesh_quantization\"%s]", uvt ? ",\"KHR_texture_transform\"" : "");
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
     io_json_string(js, sc->scene_name);
     io_printf(js, ",\"nodes\":[0");

@@ -58,9 +58,10 @@ typedef struct GlbScene {
     int atlas_w, atlas_h, atlas_material;
     const char *extras;
     /* KHR_mesh_quantization: each part's own mesh has 16-bit positions (its node's
-     * translation and uniform scale bring them back) and 8-bit normals, its instances 16-bit
-     * translations and rotations. Not for a skinned part (a skinned node's transform is not
-     * used). */
+     * translation and uniform scale bring them back), 8-bit normals, 16-bit UVs (the
+     * materials' KHR_texture_transform brings them back; floats when that is coarser than a
+     * texel) and triangle strips, its instances 16-bit translations and rotations. Not for a
+     * skinned part (a skinned node's transform is not used). */
     bool quantize;
 } GlbScene;
 

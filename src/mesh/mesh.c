@@ -16,7 +16,10 @@
  *
  * Bark UVs: u goes once around (the seam is duplicated), v is the length along the axis
  * divided by the local circumference, so texels stay square and v is continuous from the
- * base of an axis to its tip. */
+ * base of an axis to its tip. The radius in v is at least 1/100 of the thickest tube's: a
+ * twig so thin is about 5 texels of the trunk's bark tile around, so its bark stretching
+ * along it does not show, and v no longer diverges on twigs that taper to a point (a range
+ * a 16-bit v holds to half a texel: the .glb writer's quantized UVs). */
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -346,6 +349,7 @@ static bool plan_tubes(MeshPlan *pl, const float *rad) {
 static bool size_tubes(MeshPlan *pl) {
     float rmax = 0;
     for (size_t t = 0; t < pl->ntubes; t++) rmax = MAXF(rmax, pl->tubes[t].rmax);
+    pl->uv_rmin = rmax / 100; /* 5 texels of the thickest tube's bark around: the head of this file */
     for (size_t t = 0; t < pl->ntubes; t++) {
         MeshTube *tb = &pl->tubes[t];
         const MeshPt *p = pl->pts + tb->first;
@@ -472,7 +476,7 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
         float slope = span > 0 ? (rn - rp) / span : 0; /* dr/ds: the normal leans back on a taper */
         slope = MAXF(-4.f, MINF(4.f, slope));
         const float ninv = 1.0f / sqrtf(1.0f + slope * slope);
-        if (k) v += lin / (TWO_PI * MAXF(0.5f * (rp + r), 1e-6f));
+        if (k) v += lin / (TWO_PI * MAXF(0.5f * (rp + r), MAXF(pl->uv_rmin, 1e-6f)));
         const float rm = glm_vec3_dot(ref, mdir) * mitre, bm = glm_vec3_dot(bb, mdir) * mitre;
         /* vertex j: c + r (w + (w.m) mitre m), normal (w - slope t) / |..|, w = cos ref + sin bb */
         const v4f C = {P[k].p[0], P[k].p[1], P[k].p[2], 0};

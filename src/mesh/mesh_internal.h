@@ -91,6 +91,7 @@ typedef struct MeshPlan {
     size_t npv, pv_cap, nptri, ptri_cap;
     MeshTrig *trig[MESH_MAX_SIDES + 1]; /* by number of sides, as needed */
     size_t nverts;
+    float uv_rmin; /* bark v's radius floor: 1/100 of the thickest tube's (mesh.c) */
     LeafPanel panels[LEAF_OUTLINE_MAX_PANELS]; /* a skeleton's own leaf outline, computed once */
     int npanels;                               /* 0: Sylva's blade */
 } MeshPlan;

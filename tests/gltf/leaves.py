@@ -28,7 +28,7 @@ def glb(path):
 
 SIZE = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
 FMT = {5126: "f", 5125: "I", 5123: "H", 5122: "h", 5120: "b"}
-NORM = {5122: 32767.0, 5120: 127.0}  # KHR_mesh_quantization's normalized types
+NORM = {5122: 32767.0, 5120: 127.0, 5123: 65535.0}  # KHR_mesh_quantization's normalized types
 
 
 def accessor(js, bin_, i):
@@ -288,17 +288,27 @@ check("big.glb: its primitives put together are the OBJ's triangles", tris == of
 # 5. a Weber-Penn palm (leaves of one size): the size goes into the prototype (no SCALE), the
 # instances still put it where the copied leaves are, the instanced file is at most a quarter
 # of the copied one, and its quantized branches are the float ones to half a 16-bit step of
-# the node's scale k (positions: k / 65,534, with float rounding) and normals to 1/254
+# the node's scale k (positions: k / 65,534, with float rounding), normals to 1/254, and UVs
+# (16-bit steps of their range, given back by the bark material's KHR_texture_transform) to
+# half a step of that range
 def bark_vertices(js, bin_):
-    """{vertex of the mesh: (position, normal)} of the bark primitives of mesh 0."""
-    out = {}
+    """{vertex of the mesh: (position, normal, uv as the texture sees it)} of the bark
+    primitives of mesh 0, and the largest half step of the UVs (0: floats)."""
+    out, half = {}, 0.0
     for p in js["meshes"][0]["primitives"]:
-        if js["materials"][p["material"]]["name"].startswith("bark"):
+        mat = js["materials"][p["material"]]
+        if mat["name"].startswith("bark"):
             a = js["accessors"][p["attributes"]["POSITION"]]
             first = a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
             P, N = accessor(js, bin_, p["attributes"]["POSITION"]), accessor(js, bin_, p["attributes"]["NORMAL"])
-            for i in set(accessor(js, bin_, p["indices"])): out[first + i] = (P[i], N[i])
-    return out
+            T = accessor(js, bin_, p["attributes"]["TEXCOORD_0"])
+            tt = mat["pbrMetallicRoughness"]["baseColorTexture"].get("extensions", {}).get("KHR_texture_transform", {})
+            o, s = tt.get("offset", [0, 0]), tt.get("scale", [1, 1])
+            if js["accessors"][p["attributes"]["TEXCOORD_0"]].get("normalized"):
+                half = max(half, max(s) / 131070)
+            for i in set(accessor(js, bin_, p["indices"])):
+                out[first + i] = (P[i], N[i], (o[0] + s[0] * T[i][0], o[1] + s[1] * T[i][1]))
+    return out, half
 
 
 pm_js, pm_bin = glb(os.path.join(D, "palm-mesh.glb"))
@@ -310,7 +320,7 @@ check_placed("palm: ", pm_js, pm_bin, pi_js, pi_bin)
 sizes = [os.path.getsize(os.path.join(D, f)) for f in ("palm-mesh.glb", "palm-instanced.glb")]
 check("palm: the instanced file is at most 1/4 of the copied one", sizes[1] * 4 <= sizes[0],
       "%d vs %d bytes" % (sizes[1], sizes[0]))
-fl, qu = bark_vertices(pm_js, pm_bin), bark_vertices(pi_js, pi_bin)
+(fl, _), (qu, half) = bark_vertices(pm_js, pm_bin), bark_vertices(pi_js, pi_bin)
 root = pi_js["nodes"][0]
 T0, k0 = root["translation"], root["scale"][0]
 ep = max((max(abs(T0[k] + k0 * qu[i][0][k] - fl[i][0][k]) for k in range(3)) for i in fl if i in qu), default=math.inf)
@@ -318,6 +328,39 @@ en = max((max(abs(qu[i][1][k] - fl[i][1][k]) for k in range(3)) for i in fl if i
 check("palm: quantized branch vertices are the float ones (positions within k/65534, normals 1/254)",
       fl and fl.keys() == qu.keys() and ep <= k0 * (1 / 65534 + 1e-6) and en <= 1 / 254,
       "%d/%d vertices, position error %g (bound %g), normal error %g" % (len(qu), len(fl), ep, k0 / 65534, en))
+eu = max((max(abs(qu[i][2][k] - fl[i][2][k]) for k in range(2)) for i in fl if i in qu), default=math.inf)
+check("palm: bark UVs are 16-bit, KHR_texture_transform gives them back within half a step",
+      half > 0 and "KHR_texture_transform" in pi_js.get("extensionsRequired", []) and eu <= half * (1 + 1e-3) + 1e-6,
+      "UV error %g (bound %g)" % (eu, half))
+
+
+def triangles(js, bin_, p, first):
+    """A primitive's triangles (indices of the whole mesh, each turned to start at its least
+    index, winding kept) by glTF's rule for its mode: 4 a list, 5 a strip whose triangle i is
+    (v_i, v_i+1+i%2, v_i+2-i%2); triangles without area (a strip's joins) dropped."""
+    ix = [first + i for i in accessor(js, bin_, p["indices"])]
+    mode = p.get("mode", 4)
+    if mode == 4: tris = [tuple(ix[k:k + 3]) for k in range(0, len(ix), 3)]
+    elif mode == 5: tris = [(ix[i], ix[i + 1 + i % 2], ix[i + 2 - i % 2]) for i in range(len(ix) - 2)]
+    else: return None
+    tris = [t for t in tris if len(set(t)) == 3]
+    return [min(t[k:] + t[:k] for k in range(3)) for t in tris]
+
+
+def bark_triangles(js, bin_):
+    out = []
+    for p in js["meshes"][0]["primitives"]:
+        if js["materials"][p["material"]]["name"].startswith("bark"):
+            a = js["accessors"][p["attributes"]["POSITION"]]
+            first = a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
+            out.extend(triangles(js, bin_, p, first) or [])
+    return sorted(out)
+
+
+ft, qt = bark_triangles(pm_js, pm_bin), bark_triangles(pi_js, pi_bin)
+check("palm: the quantized file's bark is triangle strips that are the float file's list of triangles",
+      all(p.get("mode") == 5 for p in pi_js["meshes"][0]["primitives"]) and ft and qt == ft,
+      "%d/%d triangles" % (len(qt), len(ft)))
 print("note: palm files %d (copied) and %d (instanced) bytes, ratio %.3f" % (sizes[0], sizes[1], sizes[1] / sizes[0]))
 
 print("leaves: %d passed, %d failed" % (sum(results), len(results) - sum(results)))

@@ -71,12 +71,21 @@ def texture_fill(js, bin_, mat):
     return _fills[src]
 
 
+def as_list(idx, mode):
+    """A primitive's indices as a triangle list: a strip's (mode 5) triangle i is
+    (v_i, v_i+1+i%2, v_i+2-i%2), glTF's rule; its joins, triangles without area, dropped."""
+    if mode == 4: return idx
+    if mode != 5: fail(f"primitive mode {mode}: not triangles")
+    tris = [(idx[i], idx[i + 1 + i % 2], idx[i + 2 - i % 2]) for i in range(len(idx) - 2)]
+    return [v for t in tris if len(set(t)) == 3 for v in t]
+
+
 def mesh_stats(js, bin_, m, shown=True):
     """Triangles, and the leaf area the leaf materials' triangles show (see the header);
     shown=False: the leaf triangles' own area, one face, whatever their texture and sides."""
     tris, leaf = 0, 0.0
     for p in js["meshes"][m]["primitives"]:
-        idx = accessor(js, bin_, p["indices"])
+        idx = as_list(accessor(js, bin_, p["indices"]), p.get("mode", 4))
         tris += len(idx) // 3
         mat = js["materials"][p["material"]]
         if not mat["name"].startswith("leaf"):

@@ -90,6 +90,31 @@ static void tree_is_closed_per_axis(void **state) {
     syl_skeleton_free(s);
 }
 
+/* On a twig thinner than 1/100 of the thickest tube, v grows as if its radius were that:
+ * bounded (docs/mesh.md, Bark UVs), where length / circumference diverges at a point. */
+static void uv_radius_floor(void **state) {
+    (void)state;
+    SylSkeleton *s = syl_skeleton_new("uv floor");
+    const float ys[] = {0, 1, 2, 3, 4}, rs[] = {1, 1, 0.5f, 0.005f, 0.0001f};
+    int32_t p = -1;
+    for (int k = 0; k < 5; k++) p = fx_node(s, p, 0, 0, ys[k], 0, rs[k], 0);
+    SylMeshOptions o = {.caps = -1};
+    SylMesh *m = build(s, &o);
+    double expect[5] = {0};
+    for (int k = 1; k < 5; k++) {
+        double r = 0.5 * ((k == 1 ? rs[1] : rs[k - 1]) + rs[k]);
+        expect[k] = expect[k - 1] + (ys[k] - ys[k - 1]) / (2 * M_PI * fmax(r, 0.01));
+    }
+    for (size_t v = 0; v < m->nverts; v++) {
+        int k = (int)lrintf(m->pos[3 * v + 1]);
+        assert_true(k >= 0 && k < 5 && fabsf(m->pos[3 * v + 1] - ys[k]) < 1e-4f);
+        assert_near(m->uv[2 * v + 1], expect[k], 1e-4 * expect[k] + 1e-5);
+    }
+    assert_true(expect[4] < 20); /* without the floor: over 60 */
+    syl_mesh_free(m);
+    syl_skeleton_free(s);
+}
+
 /* v grows by segment length / circumference along a tapering, straight axis. */
 static void uv_continuous_along_axis(void **state) {
     (void)state;
@@ -713,6 +738,7 @@ int main(void) {
         cmocka_unit_test(optimize_drops_degenerate),
         cmocka_unit_test(tree_is_closed_per_axis),
         cmocka_unit_test(uv_continuous_along_axis),
+        cmocka_unit_test(uv_radius_floor),
         cmocka_unit_test(thin_branches_get_fewer_sides),
         cmocka_unit_test(pipe_model_at_forks),
         cmocka_unit_test(groups_by_material),
