@@ -226,6 +226,22 @@ def check_skinned(js, bin_, node, joints, rest, base, parent, want, scale, order
     print(f"ok {path}: _BRANCH_LEVEL, _PHASE, _STIFFNESS in range")
 
 
+def triangles(idx, mode):
+    """A primitive's triangles as a sorted list, each turned to start at its smallest index
+    (its winding kept): a file without wind is quantized and written as strips (mode 5,
+    glTF's rule: triangle i is v_i, v_i+1+i%2, v_i+2-i%2, the joins without area dropped)."""
+    idx = [v[0] if isinstance(v, (list, tuple)) else v for v in idx]
+    if mode == 4:
+        tris = [tuple(idx[i:i + 3]) for i in range(0, len(idx), 3)]
+    elif mode == 5:
+        tris = [(idx[i], idx[i + 1 + i % 2], idx[i + 2 - i % 2]) for i in range(len(idx) - 2)]
+        tris = [t for t in tris if len(set(t)) == 3]
+    else:
+        fail(f"primitive mode {mode}: not triangles")
+    turn = lambda t: min((t[k:] + t[:k] for k in range(3)))
+    return sorted(turn(t) for t in tris)
+
+
 def check_levels(js, bin_, skinned, other):
     """Each level of the same chain written without wind has the same vertices as this
     one's (whose rest pose is its vertices); every level but the billboards is skinned."""
@@ -249,7 +265,8 @@ def check_levels(js, bin_, skinned, other):
                 theirs = [transform_point(trs(n), p) for p in theirs]
                 tol = 2 * max(n.get("scale", [1])) / 32767
             if len(ours) != len(theirs) or any(abs(a - b) > tol for p, q in zip(ours, theirs) for a, b in zip(p, q)) or \
-                    accessor(js, bin_, mp["indices"]) != accessor(ojs, obin, op["indices"]):
+                    triangles(accessor(js, bin_, mp["indices"]), mp.get("mode", 4)) != \
+                    triangles(accessor(ojs, obin, op["indices"]), op.get("mode", 4)):
                 fail(f"{n['name']}: primitive {k}'s vertices or triangles differ from {other}'s")
         count += 1
     if count < 2:
