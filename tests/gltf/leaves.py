@@ -6,6 +6,7 @@ glTF 2.0 and EXT_mesh_gpu_instancing specifications (and the PNG one, via zlib).
 
 One line per check, "ok NAME" or "FAIL NAME: why"; the last line counts them."""
 import json, math, os, struct, sys, zlib
+from glbio import triangles as mode_triangles
 
 D = sys.argv[1]
 results = []
@@ -338,12 +339,8 @@ def triangles(js, bin_, p, first):
     """A primitive's triangles (indices of the whole mesh, each turned to start at its least
     index, winding kept) by glTF's rule for its mode: 4 a list, 5 a strip whose triangle i is
     (v_i, v_i+1+i%2, v_i+2-i%2); triangles without area (a strip's joins) dropped."""
-    ix = [first + i for i in accessor(js, bin_, p["indices"])]
-    mode = p.get("mode", 4)
-    if mode == 4: tris = [tuple(ix[k:k + 3]) for k in range(0, len(ix), 3)]
-    elif mode == 5: tris = [(ix[i], ix[i + 1 + i % 2], ix[i + 2 - i % 2]) for i in range(len(ix) - 2)]
-    else: return None
-    tris = [t for t in tris if len(set(t)) == 3]
+    tris = mode_triangles([first + i for i in accessor(js, bin_, p["indices"])], p.get("mode", 4))
+    if tris is None: return None
     return [min(t[k:] + t[:k] for k in range(3)) for t in tris]
 
 

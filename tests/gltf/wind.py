@@ -30,7 +30,7 @@ SKELETON.csv is `sylva skeleton` of the same model. Checks:
   - _BRANCH_LEVEL are the skeleton's orders, _PHASE in [0, 2 pi), _STIFFNESS in (0, 1].
 Prints "ok ..." lines, or "FAIL ..." and exits 1."""
 import csv, json, math, struct, sys
-from glbio import read_glb as _read_glb
+from glbio import read_glb as _read_glb, triangles
 
 AT_NODES = False
 BOUND = 0.1 + math.sqrt(2) * 0.12  # directed + undirected caps (docs/mesh.md#wind)
@@ -226,20 +226,12 @@ def check_skinned(js, bin_, node, joints, rest, base, parent, want, scale, order
     print(f"ok {path}: _BRANCH_LEVEL, _PHASE, _STIFFNESS in range")
 
 
-def triangles(idx, mode):
+def turned(idx, mode):
     """A primitive's triangles as a sorted list, each turned to start at its smallest index
-    (its winding kept): a file without wind is quantized and written as strips (mode 5,
-    glTF's rule: triangle i is v_i, v_i+1+i%2, v_i+2-i%2, the joins without area dropped)."""
-    idx = [v[0] if isinstance(v, (list, tuple)) else v for v in idx]
-    if mode == 4:
-        tris = [tuple(idx[i:i + 3]) for i in range(0, len(idx), 3)]
-    elif mode == 5:
-        tris = [(idx[i], idx[i + 1 + i % 2], idx[i + 2 - i % 2]) for i in range(len(idx) - 2)]
-        tris = [t for t in tris if len(set(t)) == 3]
-    else:
-        fail(f"primitive mode {mode}: not triangles")
-    turn = lambda t: min((t[k:] + t[:k] for k in range(3)))
-    return sorted(turn(t) for t in tris)
+    (its winding kept): a file without wind is quantized and written as strips."""
+    tris = triangles([v[0] if isinstance(v, (list, tuple)) else v for v in idx], mode)
+    if tris is None: fail(f"primitive mode {mode}: not triangles")
+    return sorted(min(t[k:] + t[:k] for k in range(3)) for t in tris)
 
 
 def check_levels(js, bin_, skinned, other):
@@ -265,8 +257,8 @@ def check_levels(js, bin_, skinned, other):
                 theirs = [transform_point(trs(n), p) for p in theirs]
                 tol = 2 * max(n.get("scale", [1])) / 32767
             if len(ours) != len(theirs) or any(abs(a - b) > tol for p, q in zip(ours, theirs) for a, b in zip(p, q)) or \
-                    triangles(accessor(js, bin_, mp["indices"]), mp.get("mode", 4)) != \
-                    triangles(accessor(ojs, obin, op["indices"]), op.get("mode", 4)):
+                    turned(accessor(js, bin_, mp["indices"]), mp.get("mode", 4)) != \
+                    turned(accessor(ojs, obin, op["indices"]), op.get("mode", 4)):
                 fail(f"{n['name']}: primitive {k}'s vertices or triangles differ from {other}'s")
         count += 1
     if count < 2:

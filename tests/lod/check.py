@@ -34,7 +34,7 @@ Prints "ok ..." lines; exits 1 with "FAIL ..." on the first failed check."""
 import json, math, struct, sys, zlib
 import os
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "gltf"))
-from glbio import read_glb as _read_glb  # noqa: E402
+from glbio import read_glb as _read_glb, triangles  # noqa: E402
 
 
 def fail(msg):
@@ -72,12 +72,10 @@ def texture_fill(js, bin_, mat):
 
 
 def as_list(idx, mode):
-    """A primitive's indices as a triangle list: a strip's (mode 5) triangle i is
-    (v_i, v_i+1+i%2, v_i+2-i%2), glTF's rule; its joins, triangles without area, dropped."""
-    if mode == 4: return idx
-    if mode != 5: fail(f"primitive mode {mode}: not triangles")
-    tris = [(idx[i], idx[i + 1 + i % 2], idx[i + 2 - i % 2]) for i in range(len(idx) - 2)]
-    return [v for t in tris if len(set(t)) == 3 for v in t]
+    """A primitive's indices as a flat triangle list (glbio.triangles: a strip's joins dropped)."""
+    tris = triangles(idx, mode)
+    if tris is None: fail(f"primitive mode {mode}: not triangles")
+    return [v for t in tris for v in t]
 
 
 def mesh_stats(js, bin_, m, shown=True):
