@@ -71,10 +71,11 @@ static int16_t q16(float x, float t, float k) {
     return (int16_t)lrintf(v * 32767);
 }
 static int8_t q8(float x) { return (int8_t)lrintf((x < -1 ? -1 : x > 1 ? 1 : x) * 127); }
-static void put16(IoBuf *b, int16_t v) {
-    uint8_t p[2] = {(uint8_t)((uint16_t)v & 0xff), (uint8_t)((uint16_t)v >> 8)};
+static void put_u16(IoBuf *b, uint16_t v) { /* little-endian, as glTF's buffers */
+    uint8_t p[2] = {(uint8_t)(v & 0xff), (uint8_t)(v >> 8)};
     io_put(b, p, 2);
 }
+static void put16(IoBuf *b, int16_t v) { put_u16(b, (uint16_t)v); }
 
 /* n vectors of k floats as normalized shorts (t, s: the box), with pad: each padded to 4
  * bytes (a vertex attribute's elements must be aligned so; instance attributes need not). */
@@ -132,9 +133,7 @@ static void put_uv16(IoBuf *b, const float *uv, size_t n, const float uvq[4]) {
     for (size_t i = 0; i < n; i++)
         for (int c = 0; c < 2; c++) {
             float x = (uv[2 * i + c] - uvq[c]) / uvq[2 + c];
-            uint16_t v = (uint16_t)lrintf((x < 0 ? 0 : x > 1 ? 1 : x) * 65535);
-            uint8_t p[2] = {(uint8_t)(v & 0xff), (uint8_t)(v >> 8)};
-            io_put(b, p, 2);
+            put_u16(b, (uint16_t)lrintf((x < 0 ? 0 : x > 1 ? 1 : x) * 65535));
         }
 }
 
@@ -156,10 +155,7 @@ static void layout_strips(Layout *l, MeshRef *r) {
         GlbPrim *pr = &r->pr.prim[k];
         for (uint32_t i = 0; i < pr->count; i++) src[i] = m->idx[pr->first + i] - (uint32_t)pr->lo;
         size_t n = meshopt_stripify(dst, src, pr->count, pr->nv, 0);
-        for (size_t i = 0; i < n; i++) {
-            uint8_t b[2] = {(uint8_t)dst[i], (uint8_t)(dst[i] >> 8)};
-            io_put(&l->bin, b, 2);
-        }
+        for (size_t i = 0; i < n; i++) put_u16(&l->bin, (uint16_t)dst[i]);
         pr->first = (uint32_t)at, pr->count = (uint32_t)n;
         at += n;
     }
@@ -212,11 +208,8 @@ static void layout_attributes(Layout *l, MeshRef *r) {
     } else {
         for (size_t k = 0; k < r->pr.n; k++) {
             const GlbPrim *pr = &r->pr.prim[k];
-            for (size_t i = pr->first; i < (size_t)pr->first + pr->count; i++) {
-                uint32_t v = m->idx[i] - (uint32_t)pr->lo;
-                uint8_t p[2] = {(uint8_t)v, (uint8_t)(v >> 8)};
-                io_put(&l->bin, p, 2);
-            }
+            for (size_t i = pr->first; i < (size_t)pr->first + pr->count; i++)
+                put_u16(&l->bin, (uint16_t)(m->idx[i] - (uint32_t)pr->lo));
         }
         glb_pad(&l->bin, 0);
     }
