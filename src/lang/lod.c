@@ -5,8 +5,7 @@
 #include <string.h>
 
 #include "lang/program.h"
-
-enum { LOD_MOST = 8 }; /* SYL_LOD_MAX (sylva/lod.h), which this layer does not see */
+#include "sylva/lod.h"
 
 /* Its one value: a number, or (expr), which arrives evaluated as a one-value tuple. */
 static bool lod_value(const SylDirective *d, double *v) {
@@ -17,22 +16,22 @@ static bool lod_value(const SylDirective *d, double *v) {
     return false;
 }
 
-static bool lod_ok(double v) { return v >= 0 && v <= LOD_MOST && v == floor(v); }
+static bool lod_ok(double v) { return v >= 0 && v <= SYL_LOD_MAX && v == floor(v); }
 
 int lang_lod_check(const SylProgram *p, const SylDirective *d, FILE *diag) {
     double v;
     if (lod_value(d, &v) && lod_ok(v)) return 0;
     const SylDirArg *a = d->nargs ? &d->args[d->nargs > 1 ? 1 : 0] : NULL;
     if (d->nargs == 1 && lod_value(d, &v))
-        syl_directive_error(p, diag, d, a, "'lod' expects a whole number from 0 to %d, not %g", LOD_MOST, v);
+        syl_directive_error(p, diag, d, a, "'lod' expects a whole number from 0 to %d, not %g", SYL_LOD_MAX, v);
     else
-        syl_directive_error(p, diag, d, a, "'lod' takes one value, a whole number from 0 to %d", LOD_MOST);
+        syl_directive_error(p, diag, d, a, "'lod' takes one value, a whole number from 0 to %d", SYL_LOD_MAX);
     return 1;
 }
 
 int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *diag) {
     if (lod_ok(v)) return 0;
-    syl_program_error(p, diag, 0, 0, "--set %s: 'lod' expects a whole number from 0 to %d, not %g", typed, LOD_MOST, v);
+    syl_program_error(p, diag, 0, 0, "--set %s: 'lod' expects a whole number from 0 to %d, not %g", typed, SYL_LOD_MAX, v);
     return 1;
 }
 

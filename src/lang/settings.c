@@ -5,6 +5,7 @@
 
 #include "lang/compiler.h"
 #include "lang/parse_state.h"
+#include "sylva/lod.h"
 
 typedef struct SettingDef {
     const char *name;
@@ -26,7 +27,7 @@ static const SettingDef settings[] = {
     {"tropism", -1, -1e9, 1e9, false, 4, false}, /* direction x, y, z and elasticity */
     {"colour", -1, 0, 255, false, 4, true},      /* index, then red, green, blue in 0..1 */
     {"direction", -1, 0, 0, false, 1, false},    /* forward or backward [when EXPR]: direction() */
-    {"lod", -1, 0, 8, true, 1, false},           /* levels of detail of `sylva mesh` (--lod); 0: none */
+    {"lod", -1, 0, SYL_LOD_MAX, true, 1, false},           /* levels of detail of `sylva mesh` (--lod); 0: none */
 };
 
 static bool in_range(Compiler *c, const SettingDef *def, double v, SylLoc loc, const char *typed);
