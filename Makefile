@@ -47,6 +47,7 @@ help:
 	@echo "make deps       install missing Debian packages (as root)"
 	@echo "make test       unit, case and golden tests, again under ASan+UBSan, and a fuzz run"
 	@echo "make test-fast  the same tests once, without sanitizers and fuzzing"
+	@echo "make test-quick the edit loop: unit, case and golden tests of the release build"
 	@echo "make test-times the 20 slowest tests, by CPU time"
 	@echo "make fuzz       a fuzz campaign: every harness FUZZ_SECONDS long (default 300)"
 	@echo "make bench      speed figures against peer tools"
@@ -110,7 +111,11 @@ units: $(UNIT_BIN)
 
 # The test targets build with -j$(JOBS) whatever -j make itself was given (.ci/run gives none).
 # make test builds its three trees at once under one job server (the packages checked first,
-# once), then tests/run-all runs the release and the ASan pass side by side (JOBS > 1).
+# once), then tests/run-all runs the release and the ASan pass side by side (JOBS > 1), a line
+# per job as it ends (docs/testing.md).
+test-quick:
+	@$(MAKE) --no-print-directory -j$(JOBS) all units
+	@JOBS=$(JOBS) tests/run-all --only units,cases,golden $(BUILD)
 test-fast:
 	@$(MAKE) --no-print-directory -j$(JOBS) all units
 	@JOBS=$(JOBS) tests/run-all $(BUILD)
@@ -119,9 +124,10 @@ test-asan:
 	@JOBS=$(JOBS) tests/run-all build-asan
 test:
 	@$(MAKE) --no-print-directory $(DEPS_OK)
-	@$(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz
+	@t0=$$(date +%s); $(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz && \
+	    echo "make test: built $(BUILD)/, build-asan/ and build-fuzz/ in $$(( $$(date +%s) - t0 )) s"
 	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
-.PHONY: test-build-release test-build-asan test-build-fuzz test-times
+.PHONY: test-build-release test-build-asan test-build-fuzz test-times test-quick
 test-build-release:
 	@$(MAKE) --no-print-directory all units
 test-build-asan:
@@ -144,7 +150,7 @@ FUZZ_HARNESS := $(patsubst tests/fuzz/%.c,build-fuzz/%,$(wildcard tests/fuzz/fuz
 FUZZ_LIB_SRC := $(NOMPI_LIB_SRC) $(filter-out src/cli/main.c,$(CLI_SRC))
 FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.o) build-fuzz/obj/gen/parser.o build-fuzz/obj/gen/lexer.o
 FUZZ_SECONDS ?= 300
-FUZZ_TEST_SECONDS ?= 10
+FUZZ_TEST_SECONDS ?= 5
 build-fuzz/gen/.made: grammar/lexer.l grammar/parser.y | $(DEPS_OK)
 	@mkdir -p $(@D)
 	bison -Wall -Werror -d -o build-fuzz/gen/parser.c grammar/parser.y

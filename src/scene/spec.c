@@ -216,7 +216,7 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
             pl->line = d->line, pl->col = d->col;
             if (a0->kind == SYL_DARG_WORD) {
                 pl->model = a0->text;
-                if (!model_exists(p, names, a0->text)) ERR(&r, a0->line, a0->col, "no lsystem or grow block '%s' in this file", a0->text);
+                if (!model_exists(p, names, a0->text)) ERR(&r, a0->line, a0->col, "no plant model '%s' in this file (an lsystem, grow, weber or strands block)", a0->text);
             } else pl->file = a0->text;
             bool at_given = false;
             for (int k = 1; k < d->nargs; k++)

@@ -593,7 +593,7 @@ static void scene_errors(void **state) {
     char *diag = NULL;
     SylProgram *p = unit_compile(text, &diag, NULL);
     assert_null(p);
-    assert_contains(diag, "test.syl:5:9: error: no lsystem or grow block 'Nope' in this file");
+    assert_contains(diag, "test.syl:5:9: error: no plant model 'Nope' in this file (an lsystem, grow, weber or strands block)");
     assert_contains(diag, "test.syl:6:14: error: 'at' expects a point (x, y, z)");
     assert_contains(diag, "test.syl:7:17: error: the sun must be above the horizon (y > 0)");
     assert_contains(diag, "test.syl:8:3: error: unknown directive 'fog' in a scene");
