@@ -51,7 +51,8 @@ help:
 	@echo "make test-times the 20 slowest tests, by CPU time"
 	@echo "make fuzz       a fuzz campaign: every harness FUZZ_SECONDS long (default 300)"
 	@echo "make bench      speed figures against peer tools"
-	@echo "make demo       render every example into out/: pictures, meshes and out/gallery.md"
+	@echo "make demo       render every example into out/ (pictures, meshes, out/gallery.md), an ecosystem,"
+	@echo "                terrain maps, a LOD chain, a wind file and an animation"
 	@echo "make gallery    render every example into docs/gallery/ and write docs/gallery.md"
 	@echo "make install PREFIX=/usr/local"
 
