@@ -151,7 +151,7 @@ FUZZ_HARNESS := $(patsubst tests/fuzz/%.c,build-fuzz/%,$(wildcard tests/fuzz/fuz
 FUZZ_LIB_SRC := $(NOMPI_LIB_SRC) $(filter-out src/cli/main.c,$(CLI_SRC))
 FUZZ_LIB_OBJ := $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.o) build-fuzz/obj/gen/parser.o build-fuzz/obj/gen/lexer.o
 FUZZ_SECONDS ?= 300
-FUZZ_TEST_SECONDS ?= 5
+FUZZ_TEST_SECONDS ?= 3
 build-fuzz/gen/.made: grammar/lexer.l grammar/parser.y | $(DEPS_OK)
 	@mkdir -p $(@D)
 	bison -Wall -Werror -d -o build-fuzz/gen/parser.c grammar/parser.y
