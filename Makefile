@@ -12,6 +12,10 @@ OPT     := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sani
 else
 OPT     := -O2 -g
 endif
+# PIC=1: position-independent objects, for the Python extension's shared object (make python).
+ifeq ($(PIC),1)
+OPT     += -fPIC
+endif
 CFLAGS   = -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
            -Iinclude -Isrc -I$(BUILD)/gen $(PKG_CFLAGS) $(MPI_CFLAGS)
 PKGS    := cglm libpng libxml-2.0
@@ -39,7 +43,7 @@ UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 DEPS_OK := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units
+.PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units python python-lib
 all: $(BUILD)/sylva $(BUILD)/libsylva.a
 
 help:
@@ -53,6 +57,7 @@ help:
 	@echo "make demo       render every example into out/: pictures, meshes and out/gallery.md"
 	@echo "make gallery    render every example into docs/gallery/ and write docs/gallery.md"
 	@echo "make install PREFIX=/usr/local"
+	@echo "make python     the Python package in place (python/sylva; docs/python.md)"
 
 deps:
 	@tools/deps.sh
@@ -167,6 +172,16 @@ fuzz: $(FUZZ_HARNESS)
 	@tests/fuzz/run-all build-fuzz $(FUZZ_SECONDS) --keep
 -include $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.d) build-fuzz/obj/gen/parser.d build-fuzz/obj/gen/lexer.d
 
+# ---- Python (docs/python.md) ----
+# The extension links libsylva.a built position-independent and without MPI into build-pic/
+# (python/setup.py runs `make python-lib` when it is missing); `make python` builds it in place,
+# so PYTHONPATH=python finds the package; `pip install ./python` installs it into a venv.
+PYTHON ?= /usr/bin/python3
+python-lib:
+	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-pic PIC=1 MPI=0 build-pic/libsylva.a
+python: python-lib
+	cd python && $(PYTHON) setup.py -q build_ext --inplace
+
 # ---- user-facing ----
 bench: all
 	@bench/run
@@ -187,6 +202,6 @@ install: all
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sylva.pc
 
 clean:
-	rm -rf build build-asan build-fuzz out
+	rm -rf build build-asan build-fuzz build-pic out python/build python/sylva/*.so
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

@@ -3,6 +3,9 @@
 # glTF validator the tests use (npm ci from tests/gltf/package-lock.json). gdal-bin is the
 # terrain tests' oracle (gdaldem); ffmpeg encodes `sylva animate`'s videos.
 PKGS="flex bison pkg-config g++ libcglm-dev libembree-dev libxml2-dev libpng-dev libcmocka-dev libmeshoptimizer-dev clang libclang-rt-dev pngquant python3 gdal-bin ffmpeg libopenmpi-dev openmpi-bin"
+# The Python package (docs/python.md): its build, a venv with Debian's numpy, pytest, and the
+# notebooks executed by nbclient (matplotlib draws their plots).
+PKGS="$PKGS python3-dev python3-venv python3-numpy python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib"
 # node and npm for the glTF validator, from Debian unless a node is installed already
 # (one from elsewhere, such as NodeSource's, brings its own npm).
 command -v node >/dev/null 2>&1 || PKGS="$PKGS nodejs npm"
