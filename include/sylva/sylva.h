@@ -240,6 +240,9 @@ void syl_string_symbols(const SylString *s, int32_t *out);
  * row of nparams after another into out (NULL: only count); returns how many rows. One pass,
  * for readers that want all the lengths of the Fs (the Python package's String.params). */
 size_t syl_string_gather(const SylString *s, int sym, int nparams, double *out);
+/* How many modules of symbol sym have k parameters, for k < SYL_MAX_PARAMS + 1, into counts. */
+enum { SYL_MAX_PARAMS = 31 };
+void syl_string_arities(const SylString *s, int sym, uint64_t counts[SYL_MAX_PARAMS + 1]);
 void syl_string_free(SylString *s);
 /* Every parameter of s, module after module (*n of them; NULL when there are none): where a
  * query environment writes its answers, at a SylEnvProbe's par. Valid until s changes. */

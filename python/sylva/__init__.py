@@ -22,7 +22,7 @@ import numpy as np
 from . import _core
 from .errors import CompileError, LimitError, SylvaError
 
-__all__ = ["load", "compile", "compare", "File", "Model", "String", "Module", "Plant", "Skeleton", "Mesh",
+__all__ = ["load", "compile", "compare", "File", "Model", "String", "Module", "Plant", "Skeleton", "Mesh", "Queries",
            "Picture", "Param", "CompileError", "LimitError", "SylvaError", "__version__"]
 __version__ = _core.VERSION
 
@@ -151,13 +151,19 @@ class Model:
         return self._program.setting(name)
 
     def derive(self, steps: int | None = None, *, seed: int | None = None, threads: int = 0,
-               max_modules: int = 0, max_memory: int = 0, **overrides) -> "String":
+               max_modules: int = 0, max_memory: int = 0, environment=None, **overrides) -> "String":
         """Derive the module string (`sylva derive`); steps None: the model's `derive`.
+        environment: a function(step, queries) that answers the ?E modules after every step
+        (see Queries); None: the stand-alone environment of `sylva derive`.
         Ctrl-C stops it between steps with KeyboardInterrupt."""
         if self.kind != "lsystem":
             raise ValueError(f"{self.name} is a {self.kind} model: it has no string; use build()")
+        if environment is not None and not callable(environment):
+            raise TypeError("environment is a function(step, queries)")
         prog = self._prog(overrides)
-        s = prog.derive(-1 if steps is None else _count("steps", steps), seed, threads, max_modules, max_memory)
+        env = None if environment is None else _environment(environment)
+        s = prog.derive(-1 if steps is None else _count("steps", steps), seed, threads, max_modules, max_memory,
+                        env)
         return String(s, self.symbols)
 
     def build(self, steps: int | None = None, *, until: str = "mesh", **kw) -> "Plant":
@@ -202,6 +208,31 @@ class Model:
 
     def __repr__(self) -> str:
         return f"<sylva.Model {self.name} ({self.kind}) of {self.file.path!r}>"
+
+
+class Queries:
+    """The ?E modules of one step, as an environment function receives them: .positions and
+    .headings (k, 3) float32 where the turtle stands at each; .params (k, n) float64, each
+    row the module's parameters (its first says what is asked, docs/language.md §19), which
+    the function overwrites with its answers; .nparams (k,) how many of a row's entries are
+    the module's; .tips (k,) bool, whether it stands at the end of the segment just drawn;
+    .ends (m, 3) every segment end drawn this step."""
+
+    __slots__ = ("step", "positions", "headings", "params", "nparams", "tips", "ends")
+
+    def __len__(self) -> int:
+        return len(self.params)
+
+
+def _environment(fn):
+    def call(step, pos, hd, par, na, tip, ends):
+        q = Queries()
+        q.step = step
+        q.positions, q.headings = np.asarray(pos), np.asarray(hd)
+        q.params, q.nparams = np.asarray(par), np.asarray(na)
+        q.tips, q.ends = np.asarray(tip).astype(bool), np.asarray(ends)
+        fn(step, q)
+    return call
 
 
 def _count(what: str, v) -> int:
@@ -255,14 +286,7 @@ class String:
         Modules of one name with different parameter counts: say which count with nparams."""
         if name not in self._ids:
             raise KeyError(f"no module {name!r} in this model (it has {' '.join(self.symbols)})")
-        sym = self._ids[name]
-        if nparams is None:
-            ar = self._core.arities().get(sym, {})
-            if len(ar) > 1:
-                raise ValueError(f"{name} has {' or '.join(map(str, sorted(ar)))} parameters in this string: "
-                                 "say which with nparams=")
-            nparams = next(iter(ar), 0)
-        return np.asarray(self._core.gather(sym, _count("nparams", nparams)))
+        return np.asarray(self._core.gather(self._ids[name], -1 if nparams is None else _count("nparams", nparams)))
 
     @property
     def text(self) -> str:
@@ -274,7 +298,13 @@ class String:
 
     @property
     def seconds(self) -> float:
+        """The derivation's wall time."""
         return self._core.stats()["seconds"]
+
+    @property
+    def cpu_seconds(self) -> float:
+        """The derivation's processor time (every thread's), which a busy machine does not inflate."""
+        return self._core.stats()["cpu_seconds"]
 
     def __str__(self) -> str:
         return self.text

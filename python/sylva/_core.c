@@ -308,7 +308,7 @@ typedef struct {
     SylString *s;
     PyObject *program; /* for its symbol names */
     uint64_t rewritten;
-    double seconds;
+    double seconds, cpu_seconds; /* the derivation's wall and processor time (every thread's) */
 } StringObject;
 
 static void string_dealloc(StringObject *o) {
@@ -349,57 +349,39 @@ static PyObject *string_symbols(StringObject *o, PyObject *unused) {
     return buffer_new(NULL, ids, "i", 4, (Py_ssize_t)n, -1);
 }
 
+/* gather(sym, nparams): the parameters of every module of sym as rows x nparams doubles;
+ * nparams < 0: the count its modules have, a ValueError when they differ. */
 static PyObject *string_gather(StringObject *o, PyObject *args) {
     int sym, np;
     if (!PyArg_ParseTuple(args, "ii", &sym, &np)) return NULL;
-    if (np < 0) return PyErr_Format(PyExc_ValueError, "a parameter count is not negative (%d)", np);
-    size_t rows;
+    if (np > SYL_MAX_PARAMS) return PyErr_Format(PyExc_ValueError, "a module has at most %d parameters", SYL_MAX_PARAMS);
+    uint64_t counts[SYL_MAX_PARAMS + 1];
     Py_BEGIN_ALLOW_THREADS
-    rows = syl_string_gather(o->s, sym, np, NULL);
+    syl_string_arities(o->s, sym, counts);
     Py_END_ALLOW_THREADS
+    if (np < 0) {
+        int kinds = 0;
+        char seen[160] = "";
+        for (int k = 0; k <= SYL_MAX_PARAMS; k++)
+            if (counts[k]) {
+                np = k;
+                size_t at = strlen(seen);
+                snprintf(seen + at, sizeof seen - at, "%s%d", kinds++ ? " or " : "", k);
+            }
+        if (kinds > 1)
+            return PyErr_Format(PyExc_ValueError, "the modules of this name have %s parameters in this string: "
+                                "say which with nparams=", seen);
+        if (np < 0) np = 0;
+    }
+    size_t rows = counts[np];
     double *out = malloc(rows && np ? rows * (size_t)np * sizeof *out : 1);
     if (!out) return PyErr_NoMemory();
-    Py_BEGIN_ALLOW_THREADS
-    syl_string_gather(o->s, sym, np, out);
-    Py_END_ALLOW_THREADS
+    if (rows && np) {
+        Py_BEGIN_ALLOW_THREADS
+        syl_string_gather(o->s, sym, np, out);
+        Py_END_ALLOW_THREADS
+    }
     return buffer_new(NULL, out, "d", 8, (Py_ssize_t)rows, np);
-}
-
-/* How many parameters the modules of each symbol have: {sym: {nparams: count}}. */
-static PyObject *string_arities(StringObject *o, PyObject *unused) {
-    PyObject *d = PyDict_New();
-    size_t n = syl_string_length(o->s);
-    /* one pass over (symbol, arity) pairs, counted in a small table */
-    int nsym = syl_program_symbol_count(((ProgramObject *)o->program)->p);
-    uint64_t *c = calloc((size_t)nsym * 16 + 1, sizeof *c);
-    if (!d || !c) {
-        free(c);
-        Py_XDECREF(d);
-        return PyErr_NoMemory();
-    }
-    for (size_t i = 0; i < n; i++) {
-        int np;
-        int sym = syl_string_module(o->s, i, &np, NULL);
-        if (sym >= 0 && sym < nsym && np < 16) c[(size_t)sym * 16 + (size_t)np]++;
-    }
-    for (int s = 0; d && s < nsym; s++)
-        for (int k = 0; k < 16; k++) {
-            if (!c[(size_t)s * 16 + (size_t)k]) continue;
-            PyObject *key = PyLong_FromLong(s);
-            PyObject *inner = key ? PyDict_GetItemWithError(d, key) : NULL;
-            if (key && !inner && !PyErr_Occurred()) {
-                inner = PyDict_New();
-                if (inner && PyDict_SetItem(d, key, inner)) Py_CLEAR(inner);
-                Py_XDECREF(inner); /* the dict holds it */
-            }
-            PyObject *kk = PyLong_FromLong(k), *vv = PyLong_FromUnsignedLongLong(c[(size_t)s * 16 + (size_t)k]);
-            if (!inner || !kk || !vv || PyDict_SetItem(inner, kk, vv)) Py_CLEAR(d);
-            Py_XDECREF(key);
-            Py_XDECREF(kk);
-            Py_XDECREF(vv);
-        }
-    free(c);
-    return d;
 }
 
 static PyObject *string_text(StringObject *o, PyObject *unused) {
@@ -414,14 +396,14 @@ static PyObject *string_text(StringObject *o, PyObject *unused) {
 }
 
 static PyObject *string_stats(StringObject *o, PyObject *unused) {
-    return Py_BuildValue("{s:K,s:d}", "rewritten", (unsigned long long)o->rewritten, "seconds", o->seconds);
+    return Py_BuildValue("{s:K,s:d,s:d}", "rewritten", (unsigned long long)o->rewritten, "seconds", o->seconds,
+                         "cpu_seconds", o->cpu_seconds);
 }
 
 static PyMethodDef string_methods[] = {
     {"module", (PyCFunction)string_module, METH_VARARGS, "module(i) -> (symbol id, parameters)"},
     {"symbols", (PyCFunction)string_symbols, METH_NOARGS, "every module's symbol id (int32 buffer)"},
-    {"gather", (PyCFunction)string_gather, METH_VARARGS, "gather(sym, nparams) -> rows x nparams doubles"},
-    {"arities", (PyCFunction)string_arities, METH_NOARGS, "{sym: {nparams: count}}"},
+    {"gather", (PyCFunction)string_gather, METH_VARARGS, "gather(sym, nparams=-1) -> rows x nparams doubles"},
     {"text", (PyCFunction)string_text, METH_NOARGS, "the string as `sylva derive` prints it"},
     {"stats", (PyCFunction)string_stats, METH_NOARGS, "modules rewritten and seconds"},
     {NULL, NULL, 0, NULL},
@@ -439,15 +421,100 @@ static PyTypeObject StringType = {
     .tp_doc = "a derived module string",
 };
 
+/* ---- a Python function as the environment of an open L-system ---- */
+
+/* After each step the turtle's query pass fills ?P ?H ?L ?U and lists the ?E modules; the
+ * Python side (sylva._environment) gets them as arrays in one call per step and writes its
+ * answers into the parameter array, which is copied back into the string. */
+typedef struct PyEnv {
+    PyObject *fn;    /* fn(step, positions, headings, params, nparams, tips, ends) */
+    PyObject *et, *ev, *etb; /* an exception the function raised, kept until the step returns */
+    size_t answered; /* ?E modules answered */
+} PyEnv;
+
+static PyObject *floats_of(const float (*v)[3], size_t n) {
+    float *c = malloc(n ? n * sizeof *v : 1);
+    if (!c) return PyErr_NoMemory();
+    if (n) memcpy(c, v, n * sizeof *v);
+    return buffer_new(NULL, c, "f", 4, (Py_ssize_t)n, 3);
+}
+
+static int pyenv_call(PyEnv *e, SylString *s, const SylEnvFill *f, int step) {
+    size_t k = f->nprobes;
+    int maxna = 0;
+    for (size_t i = 0; i < k; i++)
+        if (f->probes[i].na > maxna) maxna = f->probes[i].na;
+    float(*pos)[3] = malloc(k ? k * sizeof *pos : 1), (*hd)[3] = malloc(k ? k * sizeof *hd : 1);
+    double *par = calloc(k && maxna ? k * (size_t)maxna : 1, sizeof *par);
+    int32_t *na = malloc(k ? k * sizeof *na : 1);
+    uint8_t *tip = malloc(k ? k : 1);
+    size_t npar;
+    double *all = syl_string_params(s, &npar);
+    if (!pos || !hd || !par || !na || !tip) {
+        free(pos), free(hd), free(par), free(na), free(tip);
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (size_t i = 0; i < k; i++) {
+        const SylEnvProbe *pr = &f->probes[i];
+        memcpy(pos[i], pr->pos, sizeof pos[i]);
+        memcpy(hd[i], pr->h, sizeof hd[i]);
+        na[i] = pr->na;
+        tip[i] = (uint8_t)(pr->tip != 0);
+        for (int j = 0; j < pr->na; j++) par[i * (size_t)maxna + (size_t)j] = all[pr->par + (size_t)j];
+    }
+    PyObject *bpos = buffer_new(NULL, pos, "f", 4, (Py_ssize_t)k, 3);
+    PyObject *bhd = buffer_new(NULL, hd, "f", 4, (Py_ssize_t)k, 3);
+    PyObject *bpar = buffer_new(NULL, par, "d", 8, (Py_ssize_t)k, maxna);
+    PyObject *bna = buffer_new(NULL, na, "i", 4, (Py_ssize_t)k, -1);
+    PyObject *btip = buffer_new(NULL, tip, "B", 1, (Py_ssize_t)k, -1);
+    PyObject *bends = floats_of((const float(*)[3])f->ends, f->nends);
+    PyObject *r = NULL;
+    if (bpos && bhd && bpar && bna && btip && bends)
+        r = PyObject_CallFunction(e->fn, "iOOOOOO", step, bpos, bhd, bpar, bna, btip, bends);
+    if (r) { /* the answers, as the function left them in params */
+        for (size_t i = 0; i < k; i++) {
+            const SylEnvProbe *pr = &f->probes[i];
+            for (int j = 0; j < pr->na; j++) all[pr->par + (size_t)j] = par[i * (size_t)maxna + (size_t)j];
+        }
+        e->answered += k;
+    }
+    Py_XDECREF(r);
+    Py_XDECREF(bpos), Py_XDECREF(bhd), Py_XDECREF(bpar), Py_XDECREF(bna), Py_XDECREF(btip), Py_XDECREF(bends);
+    return r ? 0 : -1;
+}
+
+static int pyenv_fill(void *user, const SylProgram *p, SylString *s, int step) {
+    PyEnv *e = user;
+    SylEnvFill f = {0};
+    int st = syl_turtle_query(p, s, &f);
+    if (!st) {
+        PyGILState_STATE g = PyGILState_Ensure();
+        if (pyenv_call(e, s, &f, step)) {
+            st = SYL_EMODEL;
+            if (!e->et) PyErr_Fetch(&e->et, &e->ev, &e->etb);
+            else PyErr_Clear();
+        }
+        PyGILState_Release(g);
+    }
+    free(f.ends);
+    free(f.probes);
+    return st;
+}
+
+static const SylQueryOps pyenv_ops = {pyenv_fill};
+
 /* Derive step by step, the GIL released during each step and Ctrl-C looked at between them. */
 static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) {
-    static char *kwl[] = {"steps", "seed", "threads", "max_modules", "max_memory", NULL};
+    static char *kwl[] = {"steps", "seed", "threads", "max_modules", "max_memory", "environment", NULL};
     int steps = -1, threads = 0;
-    PyObject *seedo = Py_None;
+    PyObject *seedo = Py_None, *envfn = Py_None;
     unsigned long long max_modules = 0, max_memory = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "|iOiKK", kwl, &steps, &seedo, &threads, &max_modules,
-                                     &max_memory))
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "|iOiKKO", kwl, &steps, &seedo, &threads, &max_modules,
+                                     &max_memory, &envfn))
         return NULL;
+    if (envfn != Py_None && !PyCallable_Check(envfn)) return PyErr_Format(PyExc_TypeError, "environment is a function");
+    PyEnv env = {.fn = envfn};
     Diag d;
     if (diag_open(&d)) return NULL;
     SylDeriveOptions *opt = calloc(1, sizeof *opt); /* the deriver keeps it */
@@ -460,6 +527,10 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
     opt->max_modules = max_modules;
     opt->max_memory = max_memory;
     opt->diag = d.f;
+    if (envfn != Py_None) {
+        opt->queries = &pyenv_ops;
+        opt->queries_user = &env;
+    }
     if (seedo != Py_None) {
         opt->use_seed = 1;
         opt->seed = PyLong_AsUnsignedLongLongMask(seedo);
@@ -472,12 +543,14 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
     int target = steps < 0 ? syl_program_steps(o->p) : steps;
     SylDeriver *dv = NULL;
     int st;
-    struct timespec t0, t1;
+    struct timespec t0, t1, c0, c1;
     clock_gettime(CLOCK_MONOTONIC, &t0);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
     Py_BEGIN_ALLOW_THREADS
     st = syl_derive_begin(o->p, opt, NULL, &dv);
     Py_END_ALLOW_THREADS
     while (!st && syl_deriver_steps(dv) < target) {
+        if (env.et) break;
         if (PyErr_CheckSignals()) { /* KeyboardInterrupt: free all, let it propagate */
             syl_derive_end(dv, NULL);
             free(opt);
@@ -492,6 +565,14 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
     int st2 = dv ? syl_derive_end(dv, st ? NULL : &s) : st;
     if (!st) st = st2;
     clock_gettime(CLOCK_MONOTONIC, &t1);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
+    if (env.et) { /* the environment's own exception, as it raised it */
+        syl_string_free(s);
+        free(opt);
+        diag_drop(&d);
+        PyErr_Restore(env.et, env.ev, env.etb);
+        return NULL;
+    }
     uint64_t rewritten = opt->rewritten;
     free(opt);
     if (st || !s) {
@@ -509,6 +590,7 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
     Py_INCREF(o);
     so->rewritten = rewritten;
     so->seconds = (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+    so->cpu_seconds = (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec);
     return (PyObject *)so;
 }
 

@@ -266,3 +266,54 @@ def test_no_leak_over_many_calls():
     tracemalloc.stop()
     assert grown < 200_000, grown  # Python objects
     assert _rss_kb() - rss0 < 20_000  # C memory: 200 plants of about 1 MB each are freed
+
+
+# ---- Python as the environment of an open L-system ----
+
+PROBE = """lsystem Probe {
+  derive 2
+  angle 30
+  axiom F(2) [ &(120) A ?E(2, 0) ] [ &(100) /(90) F(1) A ?E(2, 0) ] [ A ?E(2, 0) ] [ &(170) F(0.5) A ?E(2, 0) ] ?P(0, 0, 0)
+  A -> F(0.5) A
+}
+"""
+
+
+def ground_distance(step, q):
+    """?E(2, d): how far ahead along the heading the ground plane y = 0 is (1e9: never)."""
+    asked = q.params[:, 0] == 2
+    hy = q.headings[:, 1].astype(np.float64)
+    y = q.positions[:, 1].astype(np.float64)
+    down = hy < 0
+    q.params[asked, 1] = np.where(down, y / np.where(down, -hy, 1), 1e9)[asked]
+
+
+def test_python_environment_answers_as_the_stand_alone_one(tmp_path):
+    # alone on the ground with no obstacle, the stand-alone environment's obstacle distance is
+    # the ground plane's: the same question answered in numpy gives the same string
+    path = tmp_path / "probe.syl"
+    path.write_text(PROBE)
+    m = sylva.load(path).model
+    seen = []
+
+    def env(step, q):
+        seen.append((step, len(q), q.nparams.tolist(), bool(q.tips.any()), len(q.ends)))
+        ground_distance(step, q)
+
+    s = m.derive(environment=env)
+    assert s.text.strip() == cli("derive", str(path)).stdout.strip()
+    assert [st for st, *_ in seen] == [0, 1, 2]          # after the axiom and every step
+    assert all(k == 4 and na == [2, 2, 2, 2] for _, k, na, _, _ in seen)
+    assert s.text.rstrip().endswith("?P(0,2,0)")  # the turtle fills ?P: after the branches, at the trunk top
+
+
+def test_environment_exceptions_reach_the_caller():
+    m = sylva.compile(PROBE)["Probe"]
+
+    def broken(step, q):
+        raise ZeroDivisionError("the model of the world failed")
+
+    with pytest.raises(ZeroDivisionError, match="the world"):
+        m.derive(environment=broken)
+    with pytest.raises(TypeError):
+        m.derive(environment=42)

@@ -199,6 +199,14 @@ void syl_string_symbols(const SylString *s, int32_t *out) {
     for (size_t i = 0; i < s->n; i++) out[i] = CODE_SYM(s->code[i]);
 }
 
+_Static_assert((int)SYL_MAX_PARAMS == (int)MAX_ARITY, "the public bound on parameters is the code's");
+
+void syl_string_arities(const SylString *s, int sym, uint64_t counts[SYL_MAX_PARAMS + 1]) {
+    memset(counts, 0, sizeof *counts * (SYL_MAX_PARAMS + 1));
+    for (size_t i = 0; i < s->n; i++)
+        if (CODE_SYM(s->code[i]) == sym) counts[CODE_ARITY(s->code[i])]++;
+}
+
 /* Walks the parameters alongside the codes, so it needs no offsets table. */
 size_t syl_string_gather(const SylString *s, int sym, int nparams, double *out) {
     size_t rows = 0;
