@@ -23,7 +23,7 @@ from . import _core
 from .errors import CompileError, LimitError, SylvaError
 
 __all__ = ["load", "compile", "compare", "File", "Model", "String", "Module", "Plant", "Skeleton", "Mesh", "Queries",
-           "Picture", "Param", "CompileError", "LimitError", "SylvaError", "__version__"]
+           "Picture", "Param", "Ecosystem", "CompileError", "LimitError", "SylvaError", "__version__"]
 __version__ = _core.VERSION
 
 _core._set_errors(CompileError, LimitError)
@@ -192,6 +192,20 @@ class Model:
         plant = self.build(steps, one_sided=path.lower().endswith(".glb"), optimize=True, **kw)
         plant.mesh.save(path)
         return plant
+
+    def run(self, years: int | None = None, *, seed: int | None = None, snapshots=None, threads: int = 0,
+            max_plants: int = 0, tiles: tuple[int, int] = (1, 1), **overrides) -> "Ecosystem":
+        """Run an ecosystem block as `sylva ecosystem` does: its years (None: the block's),
+        with snapshots of every plant at the given years (None: the block's). Ctrl-C stops it
+        at the end of a year with KeyboardInterrupt."""
+        if self.kind != "ecosystem":
+            raise ValueError(f"{self.name} is a {self.kind} model, not an ecosystem block")
+        tx, tz = tiles
+        core = self._prog(overrides).ecosystem(
+            years=0 if years is None else _count("years", years), seed=seed, threads=threads,
+            max_plants=_count("max_plants", max_plants), tiles_x=_count("tiles", tx), tiles_z=_count("tiles", tz),
+            snapshots=None if snapshots is None else [_count("a snapshot year", y) for y in snapshots])
+        return Ecosystem(core, self.name)
 
     def skeleton(self, steps: int | None = None, **kw) -> "Skeleton":
         return self.build(steps, until="skeleton", **kw).skeleton
@@ -434,6 +448,74 @@ class Plant:
     def __repr__(self) -> str:
         i = self.info
         return f"<sylva.Plant {self.name}: {i['nodes']} nodes, {i['triangles']} triangles>"
+
+
+ECO_PLANT_DTYPE = _dtype(_core.LAYOUT["eco_plant"], {"id": "<u8", "x": "<f4", "z": "<f4", "height": "<f4",
+                                                     "vigour": "<f4", "age": "<u2", "species": "u1", "state": "u1"})
+_NSP = _core.LAYOUT["eco_max_species"]
+ECO_YEAR_DTYPE = _dtype(_core.LAYOUT["eco_year"], {"year": "<i4", "count": ("<u4", _NSP), "cover": ("<f8", _NSP),
+                                                   "mean_height": ("<f8", _NSP)})
+
+
+def _table(columns: dict):
+    """A pandas DataFrame when pandas is importable, else a numpy record array."""
+    try:
+        import pandas as pd
+        return pd.DataFrame(columns)
+    except ImportError:
+        return np.rec.fromarrays(list(columns.values()), names=list(columns))
+
+
+class Ecosystem:
+    """An ecosystem run: iterate it for its yearly summaries; .years is every year as one table
+    (year, species, count, cover, mean_height: `species.csv`), .snapshots[year] the plants of
+    a snapshot (id, x, z, height, vigour, age, species, state), .terrain the factor maps as
+    2-D arrays (rows along z, columns along x), .species the names."""
+
+    def __init__(self, core, name: str):
+        self._core = core
+        self.name = name
+        self.info = core.info()
+        self.species = self.info["species"]
+        self._years = np.frombuffer(core.years(), dtype=ECO_YEAR_DTYPE)
+        self._snaps = {y: np.frombuffer(b, dtype=ECO_PLANT_DTYPE) for y, b in core.snapshots().items()}
+
+    def __iter__(self):
+        for r in self._years:
+            yield {"year": int(r["year"]),
+                   "count": {n: int(r["count"][i]) for i, n in enumerate(self.species)},
+                   "cover": {n: float(r["cover"][i]) for i, n in enumerate(self.species)},
+                   "mean_height": {n: float(r["mean_height"][i]) for i, n in enumerate(self.species)}}
+
+    def __len__(self) -> int:
+        return len(self._years)
+
+    @property
+    def years(self):
+        k = len(self.species)
+        y = self._years
+        return _table({"year": np.repeat(y["year"], k), "species": np.tile(np.array(self.species), len(y)),
+                       "count": y["count"][:, :k].reshape(-1), "cover": y["cover"][:, :k].reshape(-1),
+                       "mean_height": y["mean_height"][:, :k].reshape(-1)})
+
+    @property
+    def snapshots(self) -> dict:
+        names = np.array(self.species)
+        return {year: _table({"id": p["id"], "x": p["x"], "z": p["z"], "height": p["height"], "vigour": p["vigour"],
+                              "age": p["age"], "species": names[p["species"]] if len(p) else names[:0],
+                              "state": p["state"]})
+                for year, p in sorted(self._snaps.items())}
+
+    def plants(self, year: int) -> np.ndarray:
+        """A snapshot's plants as a structured array (a view of the run's own records)."""
+        return self._snaps[year]
+
+    @property
+    def terrain(self) -> dict:
+        return {k: np.asarray(v) for k, v in self._core.terrain().items()}
+
+    def __repr__(self) -> str:
+        return f"<sylva.Ecosystem {self.name}: {len(self)} years, snapshots {sorted(self._snaps)}>"
 
 
 def compare(*models: Model, seeds: Iterable[int] = (1,), steps: int | None = None, **overrides):

@@ -10,12 +10,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include <sylva/ecosystem.h>
 #include <sylva/grow.h>
 #include <sylva/metrics.h>
 #include <sylva/plant.h>
 #include <sylva/render.h>
 #include <sylva/skeleton.h>
 #include <sylva/sylva.h>
+#include <sylva/terrain.h>
 #if __has_include(<sylva/describe.h>)
 #include <sylva/describe.h>
 #define HAVE_DESCRIBE 1
@@ -851,12 +853,198 @@ static PyTypeObject PlantType = {
     .tp_doc = "a built plant: skeleton and mesh",
 };
 
+/* ---- Ecosystem: a run's years, snapshots and terrain ---- */
+
+typedef struct {
+    PyObject_HEAD
+    SylEcoYear *years;
+    size_t nyears, years_cap;
+    PyObject *snapshots; /* {year: Buffer of SylEcoPlant records} */
+    SylTerrain *terrain;
+    SylEcoModel *model;
+    SylEcoStats stats;
+    int interrupted;
+} EcoObject;
+
+static void eco_dealloc(EcoObject *o) {
+    free(o->years);
+    Py_XDECREF(o->snapshots);
+    syl_terrain_free(o->terrain);
+    free(o->model);
+    Py_TYPE(o)->tp_free((PyObject *)o);
+}
+
+static void eco_on_year(void *user, const SylEcoYear *y) {
+    EcoObject *o = user;
+    if (o->nyears == o->years_cap) {
+        size_t cap = o->years_cap ? 2 * o->years_cap : 64;
+        SylEcoYear *n = realloc(o->years, cap * sizeof *n);
+        if (!n) return; /* the year is left out; the run's own limits catch a real shortage */
+        o->years = n, o->years_cap = cap;
+    }
+    o->years[o->nyears++] = *y;
+}
+
+static int eco_on_snapshot(void *user, int year, const SylEcoPlant *plants, size_t n) {
+    EcoObject *o = user;
+    PyGILState_STATE g = PyGILState_Ensure();
+    int stop = 0;
+    SylEcoPlant *copy = malloc(n ? n * sizeof *copy : 1);
+    PyObject *key = PyLong_FromLong(year), *buf = NULL;
+    if (copy) {
+        if (n) memcpy(copy, plants, n * sizeof *copy);
+        buf = buffer_new(NULL, copy, "B", 1, (Py_ssize_t)n, (Py_ssize_t)sizeof *copy);
+    }
+    if (!key || !buf || PyDict_SetItem(o->snapshots, key, buf)) stop = 1;
+    if (PyErr_CheckSignals()) stop = 1, o->interrupted = 1;
+    if (stop && !o->interrupted) PyErr_Clear();
+    Py_XDECREF(key);
+    Py_XDECREF(buf);
+    PyGILState_Release(g);
+    return stop ? SYL_ELIMIT : 0;
+}
+
+/* Ctrl-C is looked at once a year, and the run stops at the year's end through the
+ * checkpoint hook (every year), the only place a simulation can be stopped from outside. */
+static int eco_on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t n) {
+    EcoObject *o = user;
+    PyGILState_STATE g = PyGILState_Ensure();
+    if (PyErr_CheckSignals()) o->interrupted = 1;
+    PyGILState_Release(g);
+    return o->interrupted ? SYL_ELIMIT : 0;
+}
+
+static PyTypeObject EcoType;
+
+static PyObject *program_ecosystem(ProgramObject *o, PyObject *args, PyObject *kw) {
+    static char *kwl[] = {"years", "seed", "threads", "max_plants", "tiles_x", "tiles_z", "snapshots", NULL};
+    int years = 0, threads = 0, tx = 0, tz = 0;
+    PyObject *seedo = Py_None, *snaps = Py_None;
+    unsigned long long max_plants = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "|iOiKiiO", kwl, &years, &seedo, &threads, &max_plants, &tx, &tz,
+                                     &snaps))
+        return NULL;
+    int snap[SYL_ECO_MAX_SNAPSHOTS], nsnap = 0;
+    if (snaps != Py_None) {
+        PyObject *seq = PySequence_Fast(snaps, "snapshots is a sequence of years");
+        if (!seq) return NULL;
+        Py_ssize_t k = PySequence_Fast_GET_SIZE(seq);
+        if (k > SYL_ECO_MAX_SNAPSHOTS) {
+            Py_DECREF(seq);
+            return PyErr_Format(PyExc_ValueError, "at most %d snapshots", SYL_ECO_MAX_SNAPSHOTS);
+        }
+        for (Py_ssize_t i = 0; i < k; i++) {
+            long y = PyLong_AsLong(PySequence_Fast_GET_ITEM(seq, i));
+            if (y == -1 && PyErr_Occurred()) {
+                Py_DECREF(seq);
+                return NULL;
+            }
+            snap[nsnap++] = (int)y;
+        }
+        Py_DECREF(seq);
+    }
+    EcoObject *e = PyObject_New(EcoObject, &EcoType);
+    if (!e) return NULL;
+    e->years = NULL, e->nyears = e->years_cap = 0, e->terrain = NULL, e->interrupted = 0;
+    memset(&e->stats, 0, sizeof e->stats);
+    e->model = calloc(1, sizeof *e->model);
+    e->snapshots = PyDict_New();
+    Diag d;
+    if (!e->model || !e->snapshots || diag_open(&d)) {
+        Py_DECREF(e);
+        return PyErr_Occurred() ? NULL : PyErr_NoMemory();
+    }
+    SylEcoOptions eo = {.years = years, .threads = threads, .max_plants = max_plants, .tiles_x = tx, .tiles_z = tz,
+                        .on_year = eco_on_year, .on_snapshot = eco_on_snapshot, .on_checkpoint = eco_on_checkpoint,
+                        .every = 1, .user = e, .diag = d.f};
+    if (snaps != Py_None) eo.snapshots = snap, eo.nsnapshots = nsnap;
+    if (seedo != Py_None) {
+        eo.use_seed = 1;
+        eo.seed = PyLong_AsUnsignedLongLongMask(seedo);
+        if (PyErr_Occurred()) {
+            diag_drop(&d);
+            Py_DECREF(e);
+            return NULL;
+        }
+    }
+    int st;
+    Py_BEGIN_ALLOW_THREADS
+    st = syl_ecosystem_run(o->p, &eo, e->model, &e->terrain, &e->stats);
+    Py_END_ALLOW_THREADS
+    if (e->interrupted || PyErr_Occurred()) {
+        diag_drop(&d);
+        Py_DECREF(e);
+        if (!PyErr_Occurred()) PyErr_SetNone(PyExc_KeyboardInterrupt);
+        return NULL;
+    }
+    if (st) {
+        Py_DECREF(e);
+        return raise_status(st, &d);
+    }
+    diag_drop(&d);
+    return (PyObject *)e;
+}
+
+static PyObject *eco_info(EcoObject *o, PyObject *unused) {
+    PyObject *names = PyList_New(o->model->nspecies);
+    for (int i = 0; names && i < o->model->nspecies; i++) {
+        PyObject *n = PyUnicode_FromString(o->model->species[i].name);
+        if (!n) Py_CLEAR(names);
+        else PyList_SET_ITEM(names, i, n);
+    }
+    if (!names) return NULL;
+    const SylTerrain *t = o->terrain;
+    return Py_BuildValue("{s:N,s:i,s:K,s:n,s:d,s:d,s:i,s:i,s:d,s:d,s:d}", "species", names, "years", o->model->years,
+                         "plant_years", (unsigned long long)o->stats.plant_years, "peak_plants",
+                         (Py_ssize_t)o->stats.peak_plants, "seconds", o->stats.seconds, "cpu_seconds",
+                         o->stats.cpu_seconds, "nx", t ? t->nx : 0, "nz", t ? t->nz : 0, "cell", t ? t->cell : 0.0,
+                         "x0", t ? t->x0 : 0.0, "z0", t ? t->z0 : 0.0);
+}
+
+static PyObject *eco_years(EcoObject *o, PyObject *unused) {
+    return buffer_new((PyObject *)o, o->years, "B", 1, (Py_ssize_t)o->nyears, (Py_ssize_t)sizeof(SylEcoYear));
+}
+
+static PyObject *eco_snapshots(EcoObject *o, PyObject *unused) { return PyDict_Copy(o->snapshots); }
+
+/* {name: (nz, nx) float32 view} of the terrain's computed factors */
+static PyObject *eco_terrain(EcoObject *o, PyObject *unused) {
+    PyObject *d = PyDict_New();
+    const SylTerrain *t = o->terrain;
+    for (int f = 0; d && t && f < SYL_TERRAIN_FACTORS; f++) {
+        float *a = f == SYL_TERRAIN_ALTITUDE ? t->height : t->factor[f];
+        if (!a) continue;
+        PyObject *b = buffer_new((PyObject *)o, a, "f", 4, t->nz, t->nx);
+        if (!b || PyDict_SetItemString(d, syl_terrain_factor_name((SylTerrainFactor)f), b)) Py_CLEAR(d);
+        Py_XDECREF(b);
+    }
+    return d;
+}
+
+static PyMethodDef eco_methods[] = {
+    {"info", (PyCFunction)eco_info, METH_NOARGS, "species, terrain size, statistics"},
+    {"years", (PyCFunction)eco_years, METH_NOARGS, "every year's record, raw"},
+    {"snapshots", (PyCFunction)eco_snapshots, METH_NOARGS, "{year: plant records, raw}"},
+    {"terrain", (PyCFunction)eco_terrain, METH_NOARGS, "{factor: 2-D float32 view}"},
+    {NULL, NULL, 0, NULL},
+};
+
+static PyTypeObject EcoType = {
+    PyVarObject_HEAD_INIT(NULL, 0).tp_name = "sylva._core.Ecosystem",
+    .tp_basicsize = sizeof(EcoObject),
+    .tp_dealloc = (destructor)eco_dealloc,
+    .tp_flags = Py_TPFLAGS_DEFAULT,
+    .tp_methods = eco_methods,
+    .tp_doc = "an ecosystem run",
+};
+
 static PyMethodDef program_methods[] = {
     {"info", (PyCFunction)program_info, METH_NOARGS, "name, kind, steps, seed, symbols, path"},
     {"setting", (PyCFunction)program_setting, METH_VARARGS, "setting(name) -> float"},
     {"describe", (PyCFunction)program_describe, METH_NOARGS, "every model's parameters as JSON (or None)"},
     {"derive", (PyCFunction)(void (*)(void))program_derive, METH_VARARGS | METH_KEYWORDS, "derive the string"},
     {"build", (PyCFunction)(void (*)(void))program_build, METH_VARARGS | METH_KEYWORDS, "build skeleton and mesh"},
+    {"ecosystem", (PyCFunction)(void (*)(void))program_ecosystem, METH_VARARGS | METH_KEYWORDS, "run an ecosystem"},
     {NULL, NULL, 0, NULL},
 };
 
@@ -881,13 +1069,19 @@ static PyObject *core_set_errors(PyObject *self, PyObject *args) {
 static PyObject *layouts(void) {
 #define F(T, f) #f, (Py_ssize_t)offsetof(T, f)
     return Py_BuildValue("{s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n},"
-                         "s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n}}",
+                         "s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n},"
+                         "s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n},s:{s:n,s:n,s:n,s:n,s:n},s:i}",
                          "node", F(SylNode, pos), F(SylNode, h), F(SylNode, l), F(SylNode, u), F(SylNode, radius),
                          F(SylNode, parent), F(SylNode, axis), F(SylNode, order), F(SylNode, kind),
                          F(SylNode, material), F(SylNode, flags), F(SylNode, module), "itemsize",
                          (Py_ssize_t)sizeof(SylNode), "organ", F(SylOrgan, pos), F(SylOrgan, h), F(SylOrgan, l),
                          F(SylOrgan, u), F(SylOrgan, size), F(SylOrgan, node), F(SylOrgan, kind),
-                         F(SylOrgan, material), F(SylOrgan, module), "itemsize", (Py_ssize_t)sizeof(SylOrgan));
+                         F(SylOrgan, material), F(SylOrgan, module), "itemsize", (Py_ssize_t)sizeof(SylOrgan),
+                         "eco_plant", F(SylEcoPlant, id), F(SylEcoPlant, x), F(SylEcoPlant, z),
+                         F(SylEcoPlant, height), F(SylEcoPlant, vigour), F(SylEcoPlant, age), F(SylEcoPlant, species),
+                         F(SylEcoPlant, state), "itemsize", (Py_ssize_t)sizeof(SylEcoPlant), "eco_year",
+                         F(SylEcoYear, year), F(SylEcoYear, count), F(SylEcoYear, cover), F(SylEcoYear, mean_height),
+                         "itemsize", (Py_ssize_t)sizeof(SylEcoYear), "eco_max_species", SYL_ECO_MAX_SPECIES);
 #undef F
 }
 
@@ -903,7 +1097,7 @@ static struct PyModuleDef core_module = {PyModuleDef_HEAD_INIT, "sylva._core", "
                                          core_methods, NULL, NULL, NULL, NULL};
 
 PyMODINIT_FUNC PyInit__core(void) {
-    PyTypeObject *types[] = {&BufferType, &ProgramType, &StringType, &PlantType};
+    PyTypeObject *types[] = {&BufferType, &ProgramType, &StringType, &PlantType, &EcoType};
     for (size_t i = 0; i < sizeof types / sizeof *types; i++)
         if (PyType_Ready(types[i])) return NULL;
     PyObject *m = PyModule_Create(&core_module);

@@ -317,3 +317,48 @@ def test_environment_exceptions_reach_the_caller():
         m.derive(environment=broken)
     with pytest.raises(TypeError):
         m.derive(environment=42)
+
+
+# ---- ecosystems ----
+
+def test_ecosystem_run_is_the_commands(tmp_path):
+    import csv
+    path = ex("ecosystem", "meadow.syl")
+    eco = next(m for m in sylva.load(path) if m.kind == "ecosystem")
+    run = eco.run(12, snapshots=[5, 12], threads=1)
+    cli("ecosystem", path, "--years", "12", "--snapshots", "5,12", "-o", str(tmp_path), "-j", "1",
+        "--size", "64x36", "--samples", "1")
+    rows = list(csv.DictReader(open(tmp_path / "species.csv")))
+    years = run.years
+    assert len(years["year"]) == len(rows)
+    for i, r in enumerate(rows):
+        assert int(years["year"][i]) == int(r["year"]) and years["species"][i] == r["species"]
+        assert int(years["count"][i]) == int(r["count"])
+        assert abs(float(years["mean_height"][i]) - float(r["mean_height"])) < 0.0006
+    summaries = list(run)
+    assert [s["year"] for s in summaries] == list(range(1, 13))
+    assert summaries[-1]["count"] == {r["species"]: int(r["count"]) for r in rows if r["year"] == "12"}
+    for year in (5, 12):
+        table = run.snapshots[year]
+        theirs = list(csv.DictReader(open(tmp_path / f"plants-{year}.csv")))
+        assert len(table["id"]) == len(theirs) == sum(summaries[year - 1]["count"].values())
+        mine = sorted(zip((f"{i:016x}" for i in table["id"]), table["species"]))
+        assert mine == sorted((r["id"], r["species"]) for r in theirs)
+
+
+def test_ecosystem_terrain_factors_are_arrays():
+    eco = next(m for m in sylva.load(ex("ecosystem", "meadow.syl")) if m.kind == "ecosystem")
+    t = eco.run(1, threads=1).terrain
+    alt, slope = t["altitude"], t["slope"]
+    assert alt.ndim == 2 and alt.shape == slope.shape and alt.dtype == np.float32
+    assert (slope >= 0).all() and (slope < 90).all()
+    # Horn's slope from the altitude grid by central differences, inside the border
+    info = eco.run(1, threads=1).info
+    gz, gx = np.gradient(alt.astype(np.float64), info["cell"])
+    horn = np.degrees(np.arctan(np.hypot(gx, gz)))[2:-2, 2:-2]
+    assert np.abs(horn - slope[2:-2, 2:-2]).mean() < 0.5
+
+
+def test_plants_are_not_ecosystems():
+    with pytest.raises(ValueError, match="not an ecosystem"):
+        sylva.load(ex("abop", "fig1_24e_plant.syl")).model.run()
