@@ -43,7 +43,7 @@ UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 DEPS_OK := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units python python-lib
+.PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units python python-lib blender-addon
 all: $(BUILD)/sylva $(BUILD)/libsylva.a
 
 help:
@@ -58,6 +58,7 @@ help:
 	@echo "make gallery    render every example into docs/gallery/ and write docs/gallery.md"
 	@echo "make install PREFIX=/usr/local"
 	@echo "make python     the Python package in place (python/sylva; docs/python.md)"
+	@echo "make blender-addon  build/sylva-blender.zip, the Blender add-on (docs/blender.md)"
 
 deps:
 	@tools/deps.sh
@@ -118,6 +119,7 @@ units: $(UNIT_BIN)
 # once), then tests/run-all runs the release and the ASan pass side by side (JOBS > 1).
 test-fast:
 	@$(MAKE) --no-print-directory -j$(JOBS) all units
+	@$(MAKE) --no-print-directory -j$(JOBS) blender-addon
 	@JOBS=$(JOBS) tests/run-all $(BUILD)
 test-asan:
 	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-asan SAN=1 all units
@@ -125,6 +127,7 @@ test-asan:
 test:
 	@$(MAKE) --no-print-directory $(DEPS_OK)
 	@$(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz
+	@$(MAKE) --no-print-directory -j$(JOBS) blender-addon
 	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
 .PHONY: test-build-release test-build-asan test-build-fuzz test-times
 test-build-release:
@@ -181,6 +184,16 @@ python-lib:
 	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-pic PIC=1 MPI=0 build-pic/libsylva.a
 python: python-lib
 	cd python && $(PYTHON) setup.py -q build_ext --inplace
+
+# The Blender add-on (docs/blender.md): blender/ with the sylva package built for Blender's
+# Python (Debian's Blender 3.4 runs the system's Python 3.11), zipped for Preferences → Install.
+blender-addon: python
+	@rm -rf $(BUILD)/blender && mkdir -p $(BUILD)/blender/sylva_blender/sylva
+	cp blender/sylva_blender/*.py blender/blender_manifest.toml $(BUILD)/blender/sylva_blender/
+	cp python/sylva/*.py python/sylva/py.typed python/sylva/_core*.so $(BUILD)/blender/sylva_blender/sylva/
+	@rm -f $(BUILD)/sylva-blender.zip
+	cd $(BUILD)/blender && $(PYTHON) -m zipfile -c ../sylva-blender.zip sylva_blender
+	@echo "$(BUILD)/sylva-blender.zip: Blender → Preferences → Add-ons → Install…"
 
 # ---- user-facing ----
 bench: all
