@@ -12,6 +12,10 @@ OPT     := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sani
 else
 OPT     := -O2 -g
 endif
+# PIC=1: position-independent objects, for the Python extension's shared object (make python).
+ifeq ($(PIC),1)
+OPT     += -fPIC
+endif
 CFLAGS   = -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
            -Iinclude -Isrc -I$(BUILD)/gen $(PKG_CFLAGS) $(MPI_CFLAGS)
 PKGS    := cglm libpng libxml-2.0
@@ -39,7 +43,7 @@ UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 DEPS_OK := $(BUILD)/.deps-ok
 
-.PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units
+.PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units python python-lib blender-addon
 all: $(BUILD)/sylva $(BUILD)/libsylva.a
 
 help:
@@ -55,6 +59,8 @@ help:
 	@echo "                terrain maps, a LOD chain, a wind file and an animation"
 	@echo "make gallery    render every example into docs/gallery/ and write docs/gallery.md"
 	@echo "make install PREFIX=/usr/local"
+	@echo "make python     the Python package in place (python/sylva; docs/python.md)"
+	@echo "make blender-addon  build/sylva-blender.zip, the Blender add-on (docs/blender.md)"
 
 deps:
 	@tools/deps.sh
@@ -119,14 +125,15 @@ test-quick:
 	@JOBS=$(JOBS) tests/run-all --only units,cases,golden $(BUILD)
 test-fast:
 	@$(MAKE) --no-print-directory -j$(JOBS) all units
+	@$(MAKE) --no-print-directory -j$(JOBS) blender-addon
 	@JOBS=$(JOBS) tests/run-all $(BUILD)
 test-asan:
 	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-asan SAN=1 all units
 	@JOBS=$(JOBS) tests/run-all build-asan
 test:
 	@$(MAKE) --no-print-directory $(DEPS_OK)
-	@t0=$$(date +%s); $(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz && \
-	    echo "make test: built $(BUILD)/, build-asan/ and build-fuzz/ in $$(( $$(date +%s) - t0 )) s"
+	@t0=$$(date +%s); $(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz blender-addon && \
+	    echo "make test: built $(BUILD)/, build-asan/, build-fuzz/, build-pic/ and the Blender add-on in $$(( $$(date +%s) - t0 )) s"
 	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
 .PHONY: test-build-release test-build-asan test-build-fuzz test-times test-quick
 test-build-release:
@@ -174,6 +181,26 @@ fuzz: $(FUZZ_HARNESS)
 	@tests/fuzz/run-all build-fuzz $(FUZZ_SECONDS) --keep
 -include $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.d) build-fuzz/obj/gen/parser.d build-fuzz/obj/gen/lexer.d
 
+# ---- Python (docs/python.md) ----
+# The extension links libsylva.a built position-independent and without MPI into build-pic/
+# (python/setup.py runs `make python-lib` when it is missing); `make python` builds it in place,
+# so PYTHONPATH=python finds the package; `pip install ./python` installs it into a venv.
+PYTHON ?= /usr/bin/python3
+python-lib:
+	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-pic PIC=1 MPI=0 build-pic/libsylva.a
+python: python-lib
+	cd python && $(PYTHON) setup.py -q build_ext --inplace
+
+# The Blender add-on (docs/blender.md): blender/ with the sylva package built for Blender's
+# Python (Debian's Blender 3.4 runs the system's Python 3.11), zipped for Preferences → Install.
+blender-addon: python
+	@rm -rf $(BUILD)/blender && mkdir -p $(BUILD)/blender/sylva_blender/sylva
+	cp blender/sylva_blender/*.py blender/blender_manifest.toml $(BUILD)/blender/sylva_blender/
+	cp python/sylva/*.py python/sylva/py.typed python/sylva/_core*.so $(BUILD)/blender/sylva_blender/sylva/
+	@rm -f $(BUILD)/sylva-blender.zip
+	cd $(BUILD)/blender && $(PYTHON) -m zipfile -c ../sylva-blender.zip sylva_blender
+	@echo "$(BUILD)/sylva-blender.zip: Blender → Preferences → Add-ons → Install…"
+
 # ---- user-facing ----
 bench: all
 	@bench/run
@@ -194,6 +221,6 @@ install: all
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sylva.pc
 
 clean:
-	rm -rf build build-asan build-fuzz out
+	rm -rf build build-asan build-fuzz build-pic out python/build python/sylva/*.so
 
 -include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)

@@ -3,6 +3,13 @@
 # glTF validator the tests use (npm ci from tests/gltf/package-lock.json). gdal-bin is the
 # terrain tests' oracle (gdaldem); ffmpeg encodes `sylva animate`'s videos.
 PKGS="flex bison pkg-config g++ libcglm-dev libembree-dev libxml2-dev libpng-dev libcmocka-dev libmeshoptimizer-dev clang libclang-rt-dev pngquant python3 gdal-bin ffmpeg libopenmpi-dev openmpi-bin"
+# The Python package (docs/python.md): its build, a venv with Debian's numpy, pytest, and the
+# notebooks executed by nbclient (matplotlib draws their plots).
+PKGS="$PKGS python3-dev python3-venv python3-numpy python3-pytest python3-nbclient python3-nbformat python3-ipykernel python3-matplotlib"
+# The Blender add-on's tests (docs/blender.md): Debian's Blender 3.4 runs the add-on headless.
+# It is large (about 165 packages, 150 MB to download, 560 MB installed: 1-3 minutes of a
+# fresh CI machine's apt time).
+PKGS="$PKGS blender"
 # node and npm for the glTF validator, from Debian unless a node is installed already
 # (one from elsewhere, such as NodeSource's, brings its own npm).
 command -v node >/dev/null 2>&1 || PKGS="$PKGS nodejs npm"

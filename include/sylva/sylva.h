@@ -234,6 +234,15 @@ int syl_string_module(const SylString *s, size_t i, int *nparams, const double *
 int syl_string_write(const SylProgram *p, const SylString *s, FILE *out);
 /* Count modules per symbol: counts must hold syl_program_symbol_count(p) entries. */
 void syl_string_count(const SylString *s, uint64_t *counts);
+/* Every module's symbol id, in order, into out (syl_string_length(s) entries). */
+void syl_string_symbols(const SylString *s, int32_t *out);
+/* The parameters of every module of symbol sym that has nparams of them, in string order, a
+ * row of nparams after another into out (NULL: only count); returns how many rows. One pass,
+ * for readers that want all the lengths of the Fs (the Python package's String.params). */
+size_t syl_string_gather(const SylString *s, int sym, int nparams, double *out);
+/* How many modules of symbol sym have k parameters, for k < SYL_MAX_PARAMS + 1, into counts. */
+enum { SYL_MAX_PARAMS = 31 };
+void syl_string_arities(const SylString *s, int sym, uint64_t counts[SYL_MAX_PARAMS + 1]);
 void syl_string_free(SylString *s);
 /* Every parameter of s, module after module (*n of them; NULL when there are none): where a
  * query environment writes its answers, at a SylEnvProbe's par. Valid until s changes. */

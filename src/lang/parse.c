@@ -4,6 +4,7 @@
 
 #include "lang/arbaro.h"
 #include "lang/parse_state.h"
+#include "lang/sapling.h"
 #include "parser.h"
 #define YYSTYPE SYL_YYSTYPE /* as in grammar/lexer.l */
 #define YYLTYPE SYL_YYLTYPE
@@ -42,6 +43,8 @@ int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
             rc = 1;
         } else if (syl_picek_detect(src)) {
             rc = syl_picek_parse(src, arena, diag, ast);
+        } else if (syl_sapling_detect(src)) {
+            rc = syl_sapling_parse(src, arena, diag, ast);
         } else {
             YY_BUFFER_STATE buf = syl_yy_scan_bytes(src->text, (int)src->len, scanner);
             rc = syl_yyparse(scanner, &ps);

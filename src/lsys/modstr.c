@@ -195,6 +195,34 @@ int syl_string_module(const SylString *s, size_t i, int *nparams, const double *
     return CODE_SYM(s->code[i]);
 }
 
+void syl_string_symbols(const SylString *s, int32_t *out) {
+    for (size_t i = 0; i < s->n; i++) out[i] = CODE_SYM(s->code[i]);
+}
+
+_Static_assert((int)SYL_MAX_PARAMS == (int)MAX_ARITY, "the public bound on parameters is the code's");
+
+void syl_string_arities(const SylString *s, int sym, uint64_t counts[SYL_MAX_PARAMS + 1]) {
+    memset(counts, 0, sizeof *counts * (SYL_MAX_PARAMS + 1));
+    for (size_t i = 0; i < s->n; i++)
+        if (CODE_SYM(s->code[i]) == sym) counts[CODE_ARITY(s->code[i])]++;
+}
+
+/* Walks the parameters alongside the codes, so it needs no offsets table. */
+size_t syl_string_gather(const SylString *s, int sym, int nparams, double *out) {
+    size_t rows = 0;
+    const double *par = s->par;
+    for (size_t i = 0; i < s->n; i++) {
+        uint16_t c = s->code[i];
+        int arity = CODE_ARITY(c);
+        if (CODE_SYM(c) == sym && arity == nparams) {
+            if (out) memcpy(out + rows * (size_t)nparams, par, sizeof *par * (size_t)nparams);
+            rows++;
+        }
+        par += arity;
+    }
+    return rows;
+}
+
 void syl_string_count(const SylString *s, uint64_t *counts) {
     for (size_t i = 0; i < s->n; i++) counts[CODE_SYM(s->code[i])]++;
 }

@@ -1,0 +1,231 @@
+"""Sylva in Blender: grow any Sylva model (.syl, Arbaro .xml) into the scene, as a mesh with
+bark and leaf materials or as Bézier curves you can still reshape (docs/blender.md).
+
+Add → Mesh → Sylva Tree adds one with a redo panel; the sidebar's Sylva tab picks the file,
+the model and its parameters. The add-on ships the `sylva` Python package (built for
+Blender's Python) beside this file."""
+from __future__ import annotations
+
+import os
+import sys
+
+import bpy
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
+
+bl_info = {
+    "name": "Sylva",
+    "author": "Sylva developers",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "View3D > Add > Mesh > Sylva Tree; View3D > Sidebar > Sylva",
+    "description": "Plants from grammar files: L-systems, grown trees, Weber-Penn and strand trees",
+    "category": "Add Mesh",
+}
+
+_HERE = os.path.dirname(os.path.abspath(__file__))
+if _HERE not in sys.path:  # the bundled `sylva` package
+    sys.path.insert(0, _HERE)
+
+import sylva  # noqa: E402
+
+LEAVES = [("copied", "Copied", "every leaf its own geometry"),
+          ("cards", "Cards", "one alpha-tested card a leaf")]
+OUTPUTS = [("MESH", "Mesh", "branches as tubes, leaves as faces"),
+           ("CURVES", "Curves", "a Bézier curve a stem, with the radius per point (editable)")]
+
+
+def _overrides(text: str) -> dict:
+    """`angle=30 width=0.2` → {"angle": 30.0, "width": 0.2}: the --set values of the redo panel."""
+    out = {}
+    for item in text.replace(",", " ").split():
+        name, _, value = item.partition("=")
+        if not value:
+            raise ValueError(f"{item!r}: a parameter is NAME=VALUE")
+        out[name.strip()] = float(value)
+    return out
+
+
+def _material(name: str, rgb, leaf: bool) -> bpy.types.Material:
+    mat = bpy.data.materials.get(name) or bpy.data.materials.new(name)
+    mat.diffuse_color = (*rgb, 1.0)
+    mat.use_nodes = True
+    bsdf = mat.node_tree.nodes.get("Principled BSDF")
+    if bsdf:
+        bsdf.inputs["Base Color"].default_value = (*rgb, 1.0)
+        bsdf.inputs["Roughness"].default_value = 0.6 if leaf else 0.85
+    if leaf:
+        mat.blend_method = "CLIP"
+        mat.use_backface_culling = False
+    return mat
+
+
+def mesh_object(plant, name: str) -> bpy.types.Object:
+    """The plant's mesh as one object, filled from Sylva's arrays with foreach_set (no Python
+    loop per vertex): Sylva's y-up metres turned to Blender's z-up, one material per group."""
+    import numpy as np
+    m = plant.mesh
+    v = m.vertices
+    co = np.empty_like(v)
+    co[:, 0], co[:, 1], co[:, 2] = v[:, 0], -v[:, 2], v[:, 1]
+    tris = m.triangles
+    nt = len(tris)
+    me = bpy.data.meshes.new(name)
+    me.vertices.add(len(v))
+    me.vertices.foreach_set("co", co.ravel())
+    me.loops.add(3 * nt)
+    me.loops.foreach_set("vertex_index", tris.astype(np.int32).ravel())
+    me.polygons.add(nt)
+    me.polygons.foreach_set("loop_start", np.arange(0, 3 * nt, 3, dtype=np.int32))
+    me.polygons.foreach_set("loop_total", np.full(nt, 3, dtype=np.int32))
+    kinds = {0: "Bark", 1: "Leaf", 2: "Flower", 3: "Plain"}
+    index = np.zeros(nt, dtype=np.int32)
+    for k, g in enumerate(m.groups):
+        leaf = g["kind"] in (1, 2)
+        me.materials.append(_material(f"{name} {kinds.get(g['kind'], 'Plain')} {g['material']}", g["rgb"], leaf))
+        index[g["first"]:g["first"] + g["count"]] = k
+    me.polygons.foreach_set("material_index", index)
+    uv = me.uv_layers.new(name="UVMap")
+    uvs = m.uvs[tris.ravel()].astype(np.float32)
+    uvs[:, 1] = 1.0 - uvs[:, 1]  # glTF's v runs down a texture, Blender's up
+    uv.data.foreach_set("uv", uvs.ravel())
+    me.update()
+    return bpy.data.objects.new(name, me)
+
+
+def curve_object(plant, name: str) -> bpy.types.Object:
+    """The skeleton as Bézier curves, one spline per stem (axis), with the radius per point:
+    the Blender plug-in's (and Sapling's) editable output."""
+    sk = plant.skeleton
+    nodes = sk.nodes
+    cu = bpy.data.curves.new(name, "CURVE")
+    cu.dimensions = "3D"
+    cu.bevel_depth = 1.0  # radius × 1: the tube's width is the point's radius
+    cu.bevel_resolution = 2
+    cu.use_fill_caps = True
+    by_axis: dict[int, list[int]] = {}
+    for i, n in enumerate(nodes):
+        if n["kind"] in (0, 1):  # roots and segment ends draw the stems; organs do not
+            by_axis.setdefault(int(n["axis"]), []).append(i)
+    for axis, ids in by_axis.items():
+        start = int(nodes[ids[0]]["parent"])
+        chain = ([start] if start >= 0 else []) + ids
+        if len(chain) < 2:
+            continue
+        sp = cu.splines.new("BEZIER")
+        sp.bezier_points.add(len(chain) - 1)
+        for bp, i in zip(sp.bezier_points, chain):
+            x, y, z = (float(c) for c in nodes[i]["pos"])
+            bp.co = (x, -z, y)
+            bp.handle_left_type = bp.handle_right_type = "AUTO"
+            bp.radius = float(nodes[ids[0] if i == start else i]["radius"])
+    cu.materials.append(_material(f"{name} Bark", (0.35, 0.25, 0.18), False))
+    return bpy.data.objects.new(name, cu)
+
+
+def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
+             leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0)):
+    """Build the model and put it in the scene under an empty named after it; returns the empty."""
+    f = sylva.load(bpy.path.abspath(path))
+    m = f[model] if model else f.model
+    kw = dict(overrides or {})
+    if seed >= 0:
+        kw["seed"] = seed
+    # the mesh `sylva mesh -o tree.obj` writes: two-sided leaves, triangles without area dropped
+    plant = m.build(None if steps < 0 else steps, until="skeleton" if output == "CURVES" else "mesh",
+                    leaves=leaves, optimize=output != "CURVES", **kw)
+    coll = context.collection
+    root = bpy.data.objects.new(m.name, None)
+    root.empty_display_type = "PLAIN_AXES"
+    root.location = location
+    root["sylva_file"] = path
+    root["sylva_model"] = m.name
+    coll.objects.link(root)
+    obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh")
+    obj["sylva_nodes"] = plant.info["nodes"]
+    coll.objects.link(obj)
+    obj.parent = root
+    return root
+
+
+def _models(self, context):
+    path = bpy.path.abspath(getattr(self, "filepath", "") or "")
+    try:
+        names = sylva.load(path).models if os.path.isfile(path) else []
+    except Exception:  # a broken file lists nothing; adding it reports the error
+        names = []
+    return [("", "First model", "the file's first model")] + [(n, n, "") for n in names]
+
+
+class SYLVA_OT_add_tree(bpy.types.Operator):
+    """Add a plant grown by Sylva from a model file"""
+    bl_idname = "mesh.sylva_tree_add"
+    bl_label = "Sylva Tree"
+    bl_options = {"REGISTER", "UNDO"}
+
+    filepath: StringProperty(name="File", subtype="FILE_PATH", description="a .syl model or an Arbaro .xml species")
+    model: StringProperty(name="Model", description="the model's name in the file (empty: its first)")
+    seed: IntProperty(name="Seed", default=-1, min=-1, description="the random seed (-1: the model's)")
+    steps: IntProperty(name="Steps", default=-1, min=-1, max=10000,
+                       description="derivation steps or years of growth (-1: the model's)")
+    output: EnumProperty(name="Output", items=OUTPUTS, default="MESH")
+    leaves: EnumProperty(name="Leaves", items=LEAVES, default="copied")
+    overrides: StringProperty(name="Parameters", description="--set values: NAME=VALUE NAME=VALUE …")
+
+    def execute(self, context):
+        if not self.filepath:
+            self.report({"ERROR"}, "Sylva: choose a model file")
+            return {"CANCELLED"}
+        try:
+            add_tree(context, self.filepath, self.model, self.seed, self.steps, self.output, self.leaves,
+                     _overrides(self.overrides), tuple(context.scene.cursor.location))
+        except (sylva.SylvaError, ValueError, OSError, KeyError, TypeError) as e:
+            self.report({"ERROR"}, f"Sylva: {e}")
+            return {"CANCELLED"}
+        return {"FINISHED"}
+
+
+class SylvaSettings(bpy.types.PropertyGroup):
+    filepath: StringProperty(name="File", subtype="FILE_PATH")
+    model: EnumProperty(name="Model", items=_models)
+    seed: IntProperty(name="Seed", default=-1, min=-1)
+    steps: IntProperty(name="Steps", default=-1, min=-1, max=10000)
+    output: EnumProperty(name="Output", items=OUTPUTS, default="MESH")
+    leaves: EnumProperty(name="Leaves", items=LEAVES, default="copied")
+    overrides: StringProperty(name="Parameters")
+
+
+class SYLVA_PT_panel(bpy.types.Panel):
+    bl_label = "Sylva"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "Sylva"
+
+    def draw(self, context):
+        s = context.scene.sylva
+        col = self.layout.column()
+        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
+            col.prop(s, prop)
+        op = col.operator(SYLVA_OT_add_tree.bl_idname, text="Add tree", icon="OUTLINER_OB_MESH")
+        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
+            setattr(op, prop, getattr(s, prop))
+
+
+def _menu(self, context):
+    self.layout.operator(SYLVA_OT_add_tree.bl_idname, text="Sylva Tree", icon="OUTLINER_OB_MESH")
+
+
+CLASSES = (SylvaSettings, SYLVA_OT_add_tree, SYLVA_PT_panel)
+
+
+def register():
+    for c in CLASSES:
+        bpy.utils.register_class(c)
+    bpy.types.Scene.sylva = bpy.props.PointerProperty(type=SylvaSettings)
+    bpy.types.VIEW3D_MT_mesh_add.append(_menu)
+
+
+def unregister():
+    bpy.types.VIEW3D_MT_mesh_add.remove(_menu)
+    del bpy.types.Scene.sylva
+    for c in reversed(CLASSES):
+        bpy.utils.unregister_class(c)

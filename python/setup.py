@@ -1,0 +1,49 @@
+"""Build the sylva package: a CPython extension over libsylva (docs/python.md).
+
+It links ../build-pic/libsylva.a, built position-independent by `make python-lib`, which is
+run here when the library is missing, so `pip install ./python` works from a fresh clone once
+`make deps` has installed the Debian packages. Nothing is fetched from a package index."""
+import os
+import re
+import subprocess
+
+from setuptools import Extension, setup
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+LIB = os.path.join(ROOT, "build-pic", "libsylva.a")
+
+
+def pkg_config(flag):
+    return subprocess.check_output(["pkg-config", flag, "cglm", "libpng", "libxml-2.0"], text=True).split()
+
+
+def version():
+    with open(os.path.join(ROOT, "include", "sylva", "sylva.h"), encoding="utf-8") as f:
+        return re.search(r'#define SYLVA_VERSION "([^"]+)"', f.read()).group(1)
+
+
+# make decides whether the library is up to date with its sources.
+subprocess.check_call(["make", "-C", ROOT, "--no-print-directory", "python-lib"])
+
+core = Extension(
+    "sylva._core",
+    sources=["sylva/_core.c"],
+    include_dirs=[os.path.join(ROOT, "include")],
+    extra_compile_args=["-std=c11", "-D_GNU_SOURCE", "-Wall", "-Wextra", "-Werror", "-Wno-missing-field-initializers",
+                        "-Wno-cast-function-type", "-Wno-unused-parameter"],
+    extra_objects=[LIB],
+    extra_link_args=pkg_config("--libs") + ["-lembree3", "-lmeshoptimizer", "-lm", "-pthread"],
+    depends=[LIB],
+)
+
+setup(
+    name="sylva",
+    version=version(),
+    description="Plants from grammar files: L-systems, grown trees, Weber-Penn, strands, ecosystems",
+    packages=["sylva"],
+    package_data={"sylva": ["py.typed"]},
+    ext_modules=[core],
+    install_requires=["numpy"],
+    python_requires=">=3.11",
+)

@@ -1,0 +1,536 @@
+"""Sylva from Python: compile plant models, derive their strings, build skeletons and meshes,
+render pictures, and read every result as numpy arrays (docs/python.md).
+
+    >>> import sylva
+    >>> plant = sylva.load("examples/abop/fig1_24e_plant.syl").model
+    >>> s = plant.derive(5)
+    >>> len(s), s.counts()["F"]
+    >>> tree = plant.build(angle=30)          # skeleton and mesh, --set angle=30
+    >>> tree.mesh.vertices.shape, tree.skeleton.positions[:3]
+    >>> tree.mesh.save("plant.glb")
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+from dataclasses import dataclass
+from typing import Iterable, Iterator, Mapping
+
+import numpy as np
+
+from . import _core
+from .errors import CompileError, LimitError, SylvaError
+
+__all__ = ["load", "compile", "compare", "File", "Model", "String", "Module", "Plant", "Skeleton", "Mesh", "Queries",
+           "Picture", "Param", "Ecosystem", "CompileError", "LimitError", "SylvaError", "__version__"]
+__version__ = _core.VERSION
+
+_core._set_errors(CompileError, LimitError)
+
+KINDS = ("lsystem", "grow", "scene", "weber", "strands", "ecosystem")  # SylModelKind's order
+VIEWS = {"iso": 0, "front": 1, "side": 2, "top": 3, "auto": 4}
+LEAVES = {"copied": 0, "cards": 1, "instanced": 2, "instanced-cards": 3, "clusters": 4}
+_UNTIL = {"mesh": 0, "skeleton": 1, "string": 2}
+# Keyword arguments of the building calls; every other keyword is a model parameter (--set).
+_OPTIONS = {"seed", "threads", "max_modules", "max_memory", "scene", "leaves", "sides", "age", "one_sided",
+            "optimize"}
+
+
+def load(path: str | os.PathLike, **overrides) -> "File":
+    """Read a model file (.syl, Arbaro .xml, ...). Keyword arguments are --set values for
+    every model of it. Raises CompileError (with .path, .line, .col) for a wrong model."""
+    path = os.fspath(path)
+    return File(path, None, overrides)
+
+
+def compile(text: str, name: str = "<text>", **overrides) -> "File":  # noqa: A001 (as sylva compile)
+    """Compile model source text; name is the path its messages give."""
+    if not isinstance(text, str):
+        raise TypeError(f"compile() takes the model's text as str, not {type(text).__name__}")
+    return File(name, text.encode("utf-8"), overrides)
+
+
+def _pairs(overrides: Mapping[str, object]) -> list[tuple[str, float]]:
+    out = []
+    for k, v in overrides.items():
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating)):
+            raise TypeError(f"parameter {k} takes a number, not {type(v).__name__}")
+        out.append((k, float(v)))
+    return out
+
+
+class File:
+    """A model file: its models by name (`file["Birch"]`, `file.model` for the first)."""
+
+    def __init__(self, path: str, text: bytes | None, overrides: Mapping[str, object]):
+        self.path = path
+        self._text = text
+        self._overrides = dict(overrides)
+        # Compiling the first model checks the whole file (and the --set names) now.
+        self._first, self.warnings = _core.compile(path, text, None, _pairs(self._overrides))
+        self.models = _core.models(path, text) or [self._first.info()["name"]]
+        self._cache: dict[str, Model] = {}
+
+    def __getitem__(self, name: str) -> "Model":
+        if name not in self.models:
+            close = [m for m in self.models if m.lower() == name.lower()]
+            hint = f"; did you mean {close[0]}?" if close else ""
+            raise KeyError(f"{self.path} has no model {name!r} (it has {', '.join(self.models)}){hint}")
+        if name not in self._cache:
+            self._cache[name] = Model(self, name)
+        return self._cache[name]
+
+    def __iter__(self) -> Iterator["Model"]:
+        return (self[n] for n in self.models)
+
+    def __len__(self) -> int:
+        return len(self.models)
+
+    @property
+    def model(self) -> "Model":
+        """The first model (the one `sylva FILE` builds)."""
+        return self[self._first.info()["name"]] if self._first.info()["name"] in self.models else self[self.models[0]]
+
+    def _compile(self, name: str, overrides: Mapping[str, object]):
+        merged = {**self._overrides, **overrides}
+        prog, _ = _core.compile(self.path, self._text, name, _pairs(merged))
+        return prog
+
+    def __repr__(self) -> str:
+        return f"<sylva.File {self.path!r}: {', '.join(self.models)}>"
+
+
+@dataclass(frozen=True)
+class Param:
+    """One parameter of a model, as `sylva describe` lists it."""
+    name: str
+    type: str
+    min: float | None
+    max: float | None
+    default: object
+    value: object
+    unit: str
+    doc: str
+    values: list | None = None
+    aliases: tuple = ()
+
+
+class Model:
+    """One model of a file. Every call takes --set overrides as keyword arguments
+    (`model.derive(7, angle=30)`), checked as `sylva --set` checks them."""
+
+    def __init__(self, file: File, name: str):
+        self.file = file
+        self.name = name
+        self._program = file._compile(name, {})
+        info = self._program.info()
+        self.kind = KINDS[info["kind"]] if info["kind"] < len(KINDS) else info["kind_name"]
+        self.symbols = info["symbols"]
+        self.steps = info["steps"]
+        self.seed = info["seed"]
+
+    def _prog(self, overrides: Mapping[str, object]):
+        return self._program if not overrides else self.file._compile(self.name, overrides)
+
+    @property
+    def params(self) -> dict[str, Param]:
+        """Every parameter with its range, default, unit and meaning (the directive schema)."""
+        text = self._program.describe()
+        if text is None:
+            raise NotImplementedError("this build of libsylva has no sylva_describe_json")
+        for m in json.loads(text)["models"]:
+            if m["name"] == self.name:
+                return {p["name"]: Param(p["name"], p["type"], p.get("min"), p.get("max"), p.get("default"),
+                                         p.get("value"), p.get("unit", ""), p.get("doc", ""), p.get("values"),
+                                         tuple(p.get("aliases") or ())) for p in m["params"]}
+        return {}
+
+    def setting(self, name: str) -> float:
+        """An lsystem setting: angle, step, width, derive, widthfactor, lod."""
+        return self._program.setting(name)
+
+    def derive(self, steps: int | None = None, *, seed: int | None = None, threads: int = 0,
+               max_modules: int = 0, max_memory: int = 0, environment=None, **overrides) -> "String":
+        """Derive the module string (`sylva derive`); steps None: the model's `derive`.
+        environment: a function(step, queries) that answers the ?E modules after every step
+        (see Queries); None: the stand-alone environment of `sylva derive`.
+        Ctrl-C stops it between steps with KeyboardInterrupt."""
+        if self.kind != "lsystem":
+            raise ValueError(f"{self.name} is a {self.kind} model: it has no string; use build()")
+        if environment is not None and not callable(environment):
+            raise TypeError("environment is a function(step, queries)")
+        prog = self._prog(overrides)
+        env = None if environment is None else _environment(environment)
+        s = prog.derive(-1 if steps is None else _count("steps", steps), seed, threads, max_modules, max_memory,
+                        env)
+        return String(s, self.symbols)
+
+    def build(self, steps: int | None = None, *, until: str = "mesh", **kw) -> "Plant":
+        """Build the plant as `sylva mesh` does: skeleton and mesh (until="skeleton" stops
+        earlier). steps: derivation steps, or years of a grown tree."""
+        opts = {k: kw.pop(k) for k in list(kw) if k in _OPTIONS}
+        if until not in _UNTIL:
+            raise ValueError(f"until is one of {', '.join(_UNTIL)}, not {until!r}")
+        leaves = opts.pop("leaves", "copied")
+        if leaves not in LEAVES:
+            raise ValueError(f"leaves is one of {', '.join(LEAVES)}, not {leaves!r}")
+        prog = self._prog(kw)
+        core = prog.build(until=_UNTIL[until], steps=-1 if steps is None else _count("steps", steps),
+                          seed=opts.get("seed"), threads=opts.get("threads", 0),
+                          max_modules=opts.get("max_modules", 0), max_memory=opts.get("max_memory", 0),
+                          scene=bool(opts.get("scene", False)), leaves=LEAVES[leaves], sides=opts.get("sides", 0),
+                          age=float(opts.get("age", 0.0)), one_sided=bool(opts.get("one_sided", False)),
+                          optimize=bool(opts.get("optimize", False)))
+        return Plant(core, self.name)
+
+    def save(self, path: str | os.PathLike, steps: int | None = None, **kw) -> "Plant":
+        """Build and write a mesh file as `sylva mesh -o PATH` does (.glb, .obj or .ply; the
+        same bytes): for glTF, leaves made once and drawn double-sided; triangles without area
+        dropped. Returns the plant."""
+        path = os.fspath(path)
+        plant = self.build(steps, one_sided=path.lower().endswith(".glb"), optimize=True, **kw)
+        plant.mesh.save(path)
+        return plant
+
+    def run(self, years: int | None = None, *, seed: int | None = None, snapshots=None, threads: int = 0,
+            max_plants: int = 0, tiles: tuple[int, int] = (1, 1), **overrides) -> "Ecosystem":
+        """Run an ecosystem block as `sylva ecosystem` does: its years (None: the block's),
+        with snapshots of every plant at the given years (None: the block's). Ctrl-C stops it
+        at the end of a year with KeyboardInterrupt."""
+        if self.kind != "ecosystem":
+            raise ValueError(f"{self.name} is a {self.kind} model, not an ecosystem block")
+        tx, tz = tiles
+        core = self._prog(overrides).ecosystem(
+            years=0 if years is None else _count("years", years), seed=seed, threads=threads,
+            max_plants=_count("max_plants", max_plants), tiles_x=_count("tiles", tx), tiles_z=_count("tiles", tz),
+            snapshots=None if snapshots is None else [_count("a snapshot year", y) for y in snapshots])
+        return Ecosystem(core, self.name)
+
+    def skeleton(self, steps: int | None = None, **kw) -> "Skeleton":
+        return self.build(steps, until="skeleton", **kw).skeleton
+
+    def mesh(self, steps: int | None = None, **kw) -> "Mesh":
+        return self.build(steps, **kw).mesh
+
+    def render(self, width: int = 512, height: int = 512, *, view: str = "auto", steps: int | None = None,
+               **kw) -> "Picture":
+        return self.build(steps, **kw).render(width, height, view=view)
+
+    def _repr_png_(self):
+        return self.render(384, 384)._repr_png_()
+
+    def __repr__(self) -> str:
+        return f"<sylva.Model {self.name} ({self.kind}) of {self.file.path!r}>"
+
+
+class Queries:
+    """The ?E modules of one step, as an environment function receives them: .positions and
+    .headings (k, 3) float32 where the turtle stands at each; .params (k, n) float64, each
+    row the module's parameters (its first says what is asked, docs/language.md §19), which
+    the function overwrites with its answers; .nparams (k,) how many of a row's entries are
+    the module's; .tips (k,) bool, whether it stands at the end of the segment just drawn;
+    .ends (m, 3) every segment end drawn this step."""
+
+    __slots__ = ("step", "positions", "headings", "params", "nparams", "tips", "ends")
+
+    def __len__(self) -> int:
+        return len(self.params)
+
+
+def _environment(fn):
+    def call(step, pos, hd, par, na, tip, ends):
+        q = Queries()
+        q.step = step
+        q.positions, q.headings = np.asarray(pos), np.asarray(hd)
+        q.params, q.nparams = np.asarray(par), np.asarray(na)
+        q.tips, q.ends = np.asarray(tip).astype(bool), np.asarray(ends)
+        fn(step, q)
+    return call
+
+
+def _count(what: str, v) -> int:
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+        raise TypeError(f"{what} is a whole number, not {type(v).__name__}")
+    if v < 0:
+        raise ValueError(f"{what} is not negative ({v})")
+    return int(v)
+
+
+@dataclass(frozen=True)
+class Module:
+    name: str
+    params: tuple
+
+
+class String:
+    """A derived string: len(), modules by index and slice, parameters per module name as numpy
+    arrays (`s.params("F")`: one row per F), counts per name, and its text."""
+
+    def __init__(self, core, symbols: list[str]):
+        self._core = core
+        self.symbols = symbols
+        self._ids = {n: i for i, n in enumerate(symbols)}
+
+    def __len__(self) -> int:
+        return len(self._core)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[k] for k in range(*i.indices(len(self)))]
+        if not isinstance(i, (int, np.integer)) or isinstance(i, bool):
+            raise TypeError(f"modules are indexed by int or slice, not {type(i).__name__}")
+        sym, par = self._core.module(int(i))
+        return Module(self.symbols[sym], par)
+
+    def __iter__(self) -> Iterator[Module]:
+        return (self[i] for i in range(len(self)))
+
+    @property
+    def ids(self) -> np.ndarray:
+        """Every module's symbol id (int32), an index into .symbols."""
+        return np.asarray(self._core.symbols())
+
+    def counts(self) -> dict[str, int]:
+        c = np.bincount(self.ids, minlength=len(self.symbols))
+        return {n: int(c[i]) for i, n in enumerate(self.symbols) if c[i]}
+
+    def params(self, name: str, nparams: int | None = None) -> np.ndarray:
+        """The parameters of every `name` module, one row each, in string order (float64).
+        Modules of one name with different parameter counts: say which count with nparams."""
+        if name not in self._ids:
+            raise KeyError(f"no module {name!r} in this model (it has {' '.join(self.symbols)})")
+        return np.asarray(self._core.gather(self._ids[name], -1 if nparams is None else _count("nparams", nparams)))
+
+    @property
+    def text(self) -> str:
+        return self._core.text()
+
+    @property
+    def rewritten(self) -> int:
+        return self._core.stats()["rewritten"]
+
+    @property
+    def seconds(self) -> float:
+        """The derivation's wall time."""
+        return self._core.stats()["seconds"]
+
+    @property
+    def cpu_seconds(self) -> float:
+        """The derivation's processor time (every thread's), which a busy machine does not inflate."""
+        return self._core.stats()["cpu_seconds"]
+
+    def __str__(self) -> str:
+        return self.text
+
+    def __repr__(self) -> str:
+        return f"<sylva.String of {len(self)} modules>"
+
+
+def _dtype(layout: dict, fields: dict) -> np.dtype:
+    names = [n for n in fields if n in layout]
+    return np.dtype({"names": names, "formats": [fields[n] for n in names], "offsets": [layout[n] for n in names],
+                     "itemsize": layout["itemsize"]})
+
+
+NODE_DTYPE = _dtype(_core.LAYOUT["node"], {"pos": ("<f4", 3), "h": ("<f4", 3), "l": ("<f4", 3), "u": ("<f4", 3),
+                                           "radius": "<f4", "parent": "<i4", "axis": "<i4", "order": "<u2",
+                                           "kind": "u1", "material": "u1", "flags": "u1", "module": "<u4"})
+ORGAN_DTYPE = _dtype(_core.LAYOUT["organ"], {"pos": ("<f4", 3), "h": ("<f4", 3), "l": ("<f4", 3),
+                                             "u": ("<f4", 3), "size": "<f4", "node": "<i4", "kind": "u1",
+                                             "material": "u1", "module": "<u4"})
+ORGAN_KINDS = tuple(_core.ORGAN_KINDS)
+
+
+class Skeleton:
+    """A plant's skeleton as numpy views of Sylva's own records (no copy): .nodes and .organs
+    are structured arrays; positions, parent, radius, order and kind are their columns."""
+
+    def __init__(self, plant: "Plant"):
+        self._plant = plant
+        self.nodes = np.frombuffer(plant._core.nodes(), dtype=NODE_DTYPE)
+        self.organs = np.frombuffer(plant._core.organs(), dtype=ORGAN_DTYPE)
+
+    positions = property(lambda self: self.nodes["pos"])
+    parent = property(lambda self: self.nodes["parent"])
+    radius = property(lambda self: self.nodes["radius"])
+    order = property(lambda self: self.nodes["order"])
+    kind = property(lambda self: self.nodes["kind"])
+
+    def __len__(self) -> int:
+        return len(self.nodes)
+
+    def csv(self) -> str:
+        """As `sylva skeleton` writes it."""
+        return self._plant._core.skeleton_csv()
+
+    def __repr__(self) -> str:
+        return f"<sylva.Skeleton: {len(self.nodes)} nodes, {len(self.organs)} organs>"
+
+
+class Mesh:
+    """A mesh as numpy views (no copy): vertices (n, 3), normals (n, 3), uvs (n, 2) float32 and
+    triangles (m, 3) uint32; groups say which triangles have which material."""
+
+    def __init__(self, plant: "Plant"):
+        self._plant = plant
+        a = plant._core.mesh_arrays()
+        self.vertices = np.asarray(a["positions"])
+        self.normals = np.asarray(a["normals"])
+        self.uvs = np.asarray(a["uvs"])
+        self.triangles = np.asarray(a["triangles"])
+        self.groups = a["groups"]
+
+    def save(self, path: str | os.PathLike) -> None:
+        """Write .glb, .obj or .ply (by the extension) through the writers of `sylva mesh`."""
+        self._plant._core.write(os.fspath(path))
+
+    def __repr__(self) -> str:
+        return f"<sylva.Mesh: {len(self.vertices)} vertices, {len(self.triangles)} triangles>"
+
+
+class Picture(np.ndarray):
+    """An (H, W, 4) uint8 RGBA picture; notebooks show it (_repr_png_)."""
+
+    def _repr_png_(self) -> bytes:
+        return _png(np.asarray(self))
+
+
+def _png(rgba: np.ndarray) -> bytes:
+    """PNG bytes of an RGBA array (zlib from Python's standard library)."""
+    import struct
+    import zlib
+    h, w, _ = rgba.shape
+    raw = np.zeros((h, w * 4 + 1), np.uint8)
+    raw[:, 1:] = rgba.reshape(h, w * 4)
+
+    def chunk(tag, data):
+        return struct.pack(">I", len(data)) + tag + data + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw.tobytes(), 6)) + chunk(b"IEND", b""))
+
+
+class Plant:
+    """What a build made: .skeleton and .mesh (numpy views), counts and timings in .info,
+    pictures by .render(), compare's figures by .metrics()."""
+
+    def __init__(self, core, name: str):
+        self._core = core
+        self.name = name
+        self.info = core.info()
+
+    @property
+    def skeleton(self) -> Skeleton:
+        return Skeleton(self)
+
+    @property
+    def mesh(self) -> Mesh:
+        return Mesh(self)
+
+    def render(self, width: int = 512, height: int = 512, *, view: str = "auto", samples: int = 0,
+               transparent: bool = False, threads: int = 0) -> Picture:
+        if view not in VIEWS:
+            raise ValueError(f"view is one of {', '.join(VIEWS)}, not {view!r}")
+        buf = self._core.render(_count("width", width), _count("height", height), VIEWS[view],
+                                _count("samples", samples), threads, transparent)
+        return np.asarray(buf).view(Picture)
+
+    def metrics(self, threads: int = 0) -> dict[str, float]:
+        return self._core.metrics(threads=threads)
+
+    def save(self, path: str | os.PathLike) -> None:
+        self.mesh.save(path)
+
+    def _repr_png_(self):
+        return self.render(384, 384)._repr_png_()
+
+    def __repr__(self) -> str:
+        i = self.info
+        return f"<sylva.Plant {self.name}: {i['nodes']} nodes, {i['triangles']} triangles>"
+
+
+ECO_PLANT_DTYPE = _dtype(_core.LAYOUT["eco_plant"], {"id": "<u8", "x": "<f4", "z": "<f4", "height": "<f4",
+                                                     "vigour": "<f4", "age": "<u2", "species": "u1", "state": "u1"})
+_NSP = _core.LAYOUT["eco_max_species"]
+ECO_YEAR_DTYPE = _dtype(_core.LAYOUT["eco_year"], {"year": "<i4", "count": ("<u4", _NSP), "cover": ("<f8", _NSP),
+                                                   "mean_height": ("<f8", _NSP)})
+
+
+def _table(columns: dict):
+    """A pandas DataFrame when pandas is importable, else a numpy record array."""
+    try:
+        import pandas as pd
+        return pd.DataFrame(columns)
+    except ImportError:
+        return np.rec.fromarrays(list(columns.values()), names=list(columns))
+
+
+class Ecosystem:
+    """An ecosystem run: iterate it for its yearly summaries; .years is every year as one table
+    (year, species, count, cover, mean_height: `species.csv`), .snapshots[year] the plants of
+    a snapshot (id, x, z, height, vigour, age, species, state), .terrain the factor maps as
+    2-D arrays (rows along z, columns along x), .species the names."""
+
+    def __init__(self, core, name: str):
+        self._core = core
+        self.name = name
+        self.info = core.info()
+        self.species = self.info["species"]
+        self._years = np.frombuffer(core.years(), dtype=ECO_YEAR_DTYPE)
+        self._snaps = {y: np.frombuffer(b, dtype=ECO_PLANT_DTYPE) for y, b in core.snapshots().items()}
+
+    def __iter__(self):
+        for r in self._years:
+            yield {"year": int(r["year"]),
+                   "count": {n: int(r["count"][i]) for i, n in enumerate(self.species)},
+                   "cover": {n: float(r["cover"][i]) for i, n in enumerate(self.species)},
+                   "mean_height": {n: float(r["mean_height"][i]) for i, n in enumerate(self.species)}}
+
+    def __len__(self) -> int:
+        return len(self._years)
+
+    @property
+    def years(self):
+        k = len(self.species)
+        y = self._years
+        return _table({"year": np.repeat(y["year"], k), "species": np.tile(np.array(self.species), len(y)),
+                       "count": y["count"][:, :k].reshape(-1), "cover": y["cover"][:, :k].reshape(-1),
+                       "mean_height": y["mean_height"][:, :k].reshape(-1)})
+
+    @property
+    def snapshots(self) -> dict:
+        names = np.array(self.species)
+        return {year: _table({"id": p["id"], "x": p["x"], "z": p["z"], "height": p["height"], "vigour": p["vigour"],
+                              "age": p["age"], "species": names[p["species"]] if len(p) else names[:0],
+                              "state": p["state"]})
+                for year, p in sorted(self._snaps.items())}
+
+    def plants(self, year: int) -> np.ndarray:
+        """A snapshot's plants as a structured array (a view of the run's own records)."""
+        return self._snaps[year]
+
+    @property
+    def terrain(self) -> dict:
+        return {k: np.asarray(v) for k, v in self._core.terrain().items()}
+
+    def __repr__(self) -> str:
+        return f"<sylva.Ecosystem {self.name}: {len(self)} years, snapshots {sorted(self._snaps)}>"
+
+
+def compare(*models: Model, seeds: Iterable[int] = (1,), steps: int | None = None, **overrides):
+    """Compare's figures for each model and seed, one row each (`sylva compare`): a pandas
+    DataFrame when pandas is importable, else a numpy record array."""
+    rows = []
+    for m in models:
+        for seed in seeds:
+            plant = m.build(steps, seed=seed, **overrides)
+            rows.append({"model": m.name, "seed": seed, **plant.metrics()})
+    keys = list(dict.fromkeys(k for r in rows for k in r))
+    try:
+        import pandas as pd
+        return pd.DataFrame(rows, columns=keys)
+    except ImportError:
+        formats = ["U64" if k == "model" else "i8" if k == "seed" else "f8" for k in keys]
+        return np.rec.fromrecords([tuple(r.get(k, np.nan) for k in keys) for r in rows], names=keys,
+                                  formats=formats)
