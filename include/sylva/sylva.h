@@ -88,9 +88,11 @@ int syl_list_models(const char *path, const char *text, size_t len, const char *
 
 /* What a compiled model is: an L-system, a `grow` block (self-organizing tree), — for a
  * file that holds only a `scene` block — the scene, a `weber` block (Weber–Penn parametric
- * tree) or a `strands` block (Holton's strand model). */
-typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW, SYL_MODEL_SCENE, SYL_MODEL_WEBER, SYL_MODEL_STRANDS,
-               SYL_MODEL_ECOSYSTEM } SylModelKind;
+ * tree), a `strands` block (Holton's strand model) or an `ecosystem` block (sylva/ecosystem.h).
+ * The values are fixed; the library lists each kind once, with what it can do, in
+ * src/lang/kinds.def (docs/architecture.md, "Adding a model kind"). */
+typedef enum { SYL_MODEL_LSYSTEM = 0, SYL_MODEL_GROW = 1, SYL_MODEL_SCENE = 2, SYL_MODEL_WEBER = 3,
+               SYL_MODEL_STRANDS = 4, SYL_MODEL_ECOSYSTEM = 5 } SylModelKind;
 /* "lsystem", "grow block", "scene", "weber block", "strands block", "ecosystem block"
  * (an ecosystem on a terrain: sylva/ecosystem.h) */
 const char *syl_model_kind_name(SylModelKind k);

@@ -1,0 +1,38 @@
+/* The kinds of model, read from lang/kinds.def: flags, keywords and names. */
+#include "lang/kinds.h"
+
+#include <string.h>
+
+/* kinds.def lists the kinds in the order of the public enum, whose values are explicit */
+enum {
+#define SYL_KIND(id, keyword, noun, flags) KIND_ROW_##id,
+#include "lang/kinds.def"
+#undef SYL_KIND
+};
+#define SYL_KIND(id, keyword, noun, flags) \
+    _Static_assert((int)SYL_MODEL_##id == (int)KIND_ROW_##id, "lang/kinds.def is in SylModelKind order");
+#include "lang/kinds.def"
+#undef SYL_KIND
+
+typedef struct KindRow {
+    const char *keyword, *noun;
+    unsigned flags;
+} KindRow;
+
+static const KindRow rows[LANG_KIND_COUNT] = {
+#define SYL_KIND(id, keyword, noun, flags) [SYL_MODEL_##id] = {keyword, noun, flags},
+#include "lang/kinds.def"
+#undef SYL_KIND
+};
+
+static const KindRow *row(SylModelKind k) { return (unsigned)k < LANG_KIND_COUNT ? &rows[k] : NULL; }
+
+unsigned lang_kind_flags(SylModelKind k) { return row(k) ? row(k)->flags : 0; }
+const char *lang_kind_keyword(SylModelKind k) { return row(k) ? row(k)->keyword : NULL; }
+const char *syl_model_kind_name(SylModelKind k) { return row(k) ? row(k)->noun : "model"; }
+
+int lang_kind_of_keyword(const char *word, size_t len) {
+    for (int k = 0; k < LANG_KIND_COUNT; k++)
+        if (strlen(rows[k].keyword) == len && !memcmp(rows[k].keyword, word, len)) return k;
+    return -1;
+}
