@@ -5,11 +5,11 @@
 
 /* kinds.def lists the kinds in the order of the public enum, whose values are explicit */
 enum {
-#define SYL_KIND(id, keyword, noun, flags) KIND_ROW_##id,
+#define SYL_KIND(id, keyword, noun, flags, instead) KIND_ROW_##id,
 #include "lang/kinds.def"
 #undef SYL_KIND
 };
-#define SYL_KIND(id, keyword, noun, flags) \
+#define SYL_KIND(id, keyword, noun, flags, instead) \
     _Static_assert((int)SYL_MODEL_##id == (int)KIND_ROW_##id, "lang/kinds.def is in SylModelKind order");
 #include "lang/kinds.def"
 #undef SYL_KIND
@@ -17,10 +17,11 @@ enum {
 typedef struct KindRow {
     const char *keyword, *noun;
     unsigned flags;
+    const char *instead;
 } KindRow;
 
 static const KindRow rows[LANG_KIND_COUNT] = {
-#define SYL_KIND(id, keyword, noun, flags) [SYL_MODEL_##id] = {keyword, noun, flags},
+#define SYL_KIND(id, keyword, noun, flags, instead) [SYL_MODEL_##id] = {keyword, noun, flags, instead},
 #include "lang/kinds.def"
 #undef SYL_KIND
 };
@@ -35,4 +36,13 @@ int lang_kind_of_keyword(const char *word, size_t len) {
     for (int k = 0; k < LANG_KIND_COUNT; k++)
         if (strlen(rows[k].keyword) == len && !memcmp(rows[k].keyword, word, len)) return k;
     return -1;
+}
+
+const char *lang_kind_article(SylModelKind k) { return strchr("aeiou", syl_model_kind_name(k)[0]) ? "an" : "a"; }
+
+void lang_kind_refuse(FILE *diag, const char *name, SylModelKind k, bool as_plant) {
+    if (!diag) return;
+    as_plant |= lang_kind_is(k, KF_NOT_A_PLANT);
+    fprintf(diag, "sylva: error: '%s' is %s %s, not %s: %s\n", name, lang_kind_article(k), syl_model_kind_name(k),
+            as_plant ? "a plant" : "an lsystem", row(k) ? row(k)->instead : "");
 }

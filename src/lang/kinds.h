@@ -4,6 +4,7 @@
 #ifndef SYL_LANG_KINDS_H
 #define SYL_LANG_KINDS_H
 #include <stdbool.h>
+#include <stdio.h>
 
 #include "sylva/sylva.h"
 
@@ -12,7 +13,7 @@ enum {
     KF_STRING = 1 << 1,      /* its plant is a string of modules before it is a skeleton */
     KF_DIRECTIVES = 1 << 2,  /* a named block of directive lines, read by the engine that owns it */
     KF_UNNAMED = 1 << 3,     /* `scene {`: the file's one scene, its lines kept apart; not a model */
-    KF_GROWS = 1 << 4,       /* grows year by year among others (sot's forest): frames are years */
+    KF_GROWS = 1 << 4,       /* grows year by year in sot's forest (with a scene's): frames are years */
     KF_AGES = 1 << 5,        /* built at an age in (0, 1] (SylTreeOptions.age): frames are ages */
     KF_IN_SCENE = 1 << 6,    /* may stand in a scene: `plant NAME at (x, y, z)` */
     KF_LOOK = 1 << 7,        /* may be an ecosystem species' look (`model NAME`) */
@@ -21,7 +22,7 @@ enum {
 
 /* How many kinds kinds.def lists (SylModelKind runs 0 .. LANG_KIND_COUNT - 1). */
 enum {
-#define SYL_KIND(id, keyword, noun, flags) +1
+#define SYL_KIND(id, keyword, noun, flags, instead) +1
     LANG_KIND_COUNT = 0
 #include "lang/kinds.def"
 #undef SYL_KIND
@@ -32,6 +33,13 @@ enum {
 unsigned lang_kind_flags(SylModelKind k);
 const char *lang_kind_keyword(SylModelKind k);
 int lang_kind_of_keyword(const char *word, size_t len);
+
+/* Why a model of kind k cannot be what it was asked to be, to diag: "'T' is a strands block,
+ * not an lsystem: it has no string; mesh or render it" (as_plant: "..., not a plant: ...", what
+ * a KF_NOT_A_PLANT kind says whatever it was asked). */
+void lang_kind_refuse(FILE *diag, const char *name, SylModelKind k, bool as_plant);
+/* "a" or "an", before the kind's noun */
+const char *lang_kind_article(SylModelKind k);
 
 static inline bool lang_kind_is(SylModelKind k, unsigned flags) { return (lang_kind_flags(k) & flags) != 0; }
 

@@ -250,6 +250,10 @@ struct SylProgram {
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 
+/* syl_list_models, with each model's kind in kinds[i] (NULL: not wanted). */
+int lang_list_models(const char *path, const char *text, size_t len, const char **names, SylModelKind *kinds,
+                     int max, char *buf, size_t bufsize);
+
 /* grow, weber, strands and ecosystem blocks are lines of directives read by their engines, not rules */
 static inline bool syl_kind_has_directives(SylModelKind k) { return lang_kind_is(k, KF_DIRECTIVES); }
 
