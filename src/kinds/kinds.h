@@ -1,6 +1,7 @@
-/* The registry of model kinds: for each kind of lang/kinds.def, the functions of the engine
- * that owns it, so that code above the generators asks here instead of naming kinds. What a
- * kind can do (derived, grows, has ages, stands in a scene, ...) is its flags (lang/kinds.h). */
+/* The registry of model kinds: for each kind, the functions of the engine that owns it, as its
+ * row of lang/kinds.def names them, so that code above the generators asks here instead of
+ * naming kinds. What a kind can do (derived, grows, has ages, stands in a scene, ...) is its
+ * flags (lang/kinds.h). */
 #ifndef SYL_KINDS_H
 #define SYL_KINDS_H
 #include <stdio.h>

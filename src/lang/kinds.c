@@ -5,11 +5,11 @@
 
 /* kinds.def lists the kinds in the order of the public enum, whose values are explicit */
 enum {
-#define SYL_KIND(id, keyword, noun, flags, instead) KIND_ROW_##id,
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) KIND_ROW_##id,
 #include "lang/kinds.def"
 #undef SYL_KIND
 };
-#define SYL_KIND(id, keyword, noun, flags, instead) \
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) \
     _Static_assert((int)SYL_MODEL_##id == (int)KIND_ROW_##id, "lang/kinds.def is in SylModelKind order");
 #include "lang/kinds.def"
 #undef SYL_KIND
@@ -21,7 +21,7 @@ typedef struct KindRow {
 } KindRow;
 
 static const KindRow rows[LANG_KIND_COUNT] = {
-#define SYL_KIND(id, keyword, noun, flags, instead) [SYL_MODEL_##id] = {keyword, noun, flags, instead},
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) [SYL_MODEL_##id] = {keyword, noun, flags, instead},
 #include "lang/kinds.def"
 #undef SYL_KIND
 };

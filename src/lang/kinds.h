@@ -1,6 +1,7 @@
 /* The kinds of model as the language knows them: one row each in lang/kinds.def. Code that
  * must know what a kind does asks its flags here, never compares it with a list of kinds;
- * the functions of each kind (validate, build) are in src/kinds. */
+ * the functions of each kind (validate, build) are the last columns of its row, which only
+ * src/kinds reads. */
 #ifndef SYL_LANG_KINDS_H
 #define SYL_LANG_KINDS_H
 #include <stdbool.h>
@@ -22,7 +23,7 @@ enum {
 
 /* How many kinds kinds.def lists (SylModelKind runs 0 .. LANG_KIND_COUNT - 1). */
 enum {
-#define SYL_KIND(id, keyword, noun, flags, instead) +1
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) +1
     LANG_KIND_COUNT = 0
 #include "lang/kinds.def"
 #undef SYL_KIND
