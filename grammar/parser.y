@@ -13,7 +13,10 @@
 %parse-param {ParseState *ps}
 
 %code requires {
+#include "lang/kinds.h"
 #include "lang/parse_state.h"
+/* how bison names KW_BLOCK in a message; yyerror puts the keyword written in its place */
+#define BLOCK_ALIAS "block keyword"
 }
 
 %code {
@@ -23,7 +26,6 @@
 #include <string.h>
 
 int syl_yylex(SYL_YYSTYPE *lval, SylLoc *lloc, void *scanner);
-static const char *const model_kinds[] = {"lsystem", "grow", "scene", "weber", "strands", "ecosystem"};
 /* The parser's stack holds one to four entries per level of nesting (the lexer counts
  * parentheses exactly): full, it says "memory exhausted", reported as what it is. */
 #define YYMAXDEPTH (5 * SYL_MAX_NESTING + 64)
@@ -44,9 +46,17 @@ static void yyerror(SylLoc *loc, void *scanner, ParseState *ps, const char *msg)
         ps->lex->eof_reported = 1;
         return;
     }
+    /* KW_BLOCK stands for every directive block's keyword: the message names the one written */
+    char named[512];
+    const char *block = strstr(msg, BLOCK_ALIAS);
+    if (block) {
+        snprintf(named, sizeof named, "%.*s%s%s", (int)(block - msg), msg, lang_kind_keyword(ps->lex->kind),
+                 block + strlen(BLOCK_ALIAS));
+        msg = named;
+    }
     if (at_eof && ps->model != &ps->ast->top)
         diag_error(ps->diag, *loc, "unexpected end of file: '}' missing to close %s '%s' (line %d)",
-                   model_kinds[ps->model->kind], ps->model->name, ps->model->loc.first_line);
+                   lang_kind_keyword(ps->model->kind), ps->model->name, ps->model->loc.first_line);
     else if (strstr(msg, "unexpected end of line, expecting ->"))
         diag_error(ps->diag, *loc, "%s (a rule needs '->'; the settings are derive, angle, step, width, widthfactor, seed, tropism, colour, lod)",
                    msg);
@@ -91,14 +101,14 @@ static Stmt *add_stmt(ParseState *ps, StmtKind kind, SylLoc loc) {
     s->group = ps->group;
     return s;
 }
-static void begin_model(ParseState *ps, ModelKind kind, const char *name, SylLoc loc) {
+static void begin_model(ParseState *ps, SylModelKind kind, const char *name, SylLoc loc) {
     for (int i = 0; i < ps->ast->nmodels; i++)
         if (!strcmp(ps->ast->models[i].name, name)) {
-            if (kind == MODEL_SCENE)
+            if (lang_kind_is(kind, KF_UNNAMED))
                 diag_error(ps->diag, loc, "a file holds one scene (the first is at line %d)",
                            ps->ast->models[i].loc.first_line);
             else
-                diag_error(ps->diag, loc, "%s '%s' is already defined at line %d", model_kinds[kind], name,
+                diag_error(ps->diag, loc, "%s '%s' is already defined at line %d", lang_kind_keyword(kind), name,
                            ps->ast->models[i].loc.first_line);
         }
     Model *m = VEC_PUSH(ps->arena, ps->ast->models, ps->ast->nmodels, ps->ast->cap);
@@ -150,6 +160,7 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 
 %union {
     char *str;
+    int kind; /* SylModelKind, of a model's keyword */
     Expr *expr;
     ExprList exprs;
     Item item;
@@ -165,10 +176,12 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 %token ARROW "->" NEWLINE "end of line" ANDAND "&&" OROR "||" EQ "==" NE "!=" LE "<=" GE ">="
 /* The lexer gives SETTING and the KW_ tokens only as the first word of a statement that is
  * not a rule (grammar/lexer.l, lex_word); anywhere else the same words are WORD, a name. */
-%token KW_LSYSTEM "lsystem" KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
+%token KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
 %token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
-%token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROW "grow" KW_SCENE "scene"
-%token KW_GROUP "group" KW_USE "use" KW_WEBER "weber" KW_STRANDS "strands" KW_ECOSYSTEM "ecosystem"
+%token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROUP "group" KW_USE "use"
+/* A model's keyword (lang/kinds.def), by what its body holds: rules, the scene's lines, or a
+ * named block of directive lines. Each carries its kind. */
+%token <kind> KW_LSYSTEM "lsystem" KW_SCENE "scene" KW_BLOCK "block keyword" /* BLOCK_ALIAS */
 
 %type <expr> expr cond_opt weight_opt use_when
 %type <exprs> exprs exprs_opt args_opt points
@@ -198,17 +211,14 @@ file: %empty
 
 top: NEWLINE
    | decl NEWLINE
-   | KW_LSYSTEM WORD '{' { begin_model(ps, MODEL_LSYSTEM, $2, @2); } body '}' { ps->model = &ps->ast->top; }
-   | KW_GROW WORD '{' { begin_model(ps, MODEL_GROW, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
-   | KW_SCENE '{' { begin_model(ps, MODEL_SCENE, "scene", @1); } gbody '}' { ps->model = &ps->ast->top; }
-   | KW_WEBER WORD '{' { begin_model(ps, MODEL_WEBER, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
-   | KW_STRANDS WORD '{' { begin_model(ps, MODEL_STRANDS, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
-   | KW_ECOSYSTEM WORD '{' { begin_model(ps, MODEL_ECOSYSTEM, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
+   | KW_LSYSTEM WORD '{' { begin_model(ps, $1, $2, @2); } body '}' { ps->model = &ps->ast->top; }
+   | KW_SCENE '{' { begin_model(ps, $1, "scene", @1); } gbody '}' { ps->model = &ps->ast->top; }
+   | KW_BLOCK WORD '{' { begin_model(ps, $1, $2, @2); } gbody '}' { ps->model = &ps->ast->top; }
    | use { diag_error(ps->diag, @1, "'use' stands in an lsystem's body, not outside a model"); }
    | error NEWLINE { yyerrok; ps->model = ps->model ? ps->model : &ps->ast->top; }
    ;
 
-/* grow, scene, weber, strands and ecosystem blocks: lines of directives, read by the engine that owns them */
+/* directive blocks and the scene: lines of directives, read by the engine that owns them */
 gbody: %empty
      | gbody gstmt
      ;
@@ -222,9 +232,7 @@ gstmt: NEWLINE
 /* the lsystem words that head a line are directive words here, like any other */
 gword: KW_USE { $$ = "use"; }
      | KW_GROUP { $$ = "group"; }
-     | KW_WEBER { $$ = "weber"; }
-     | KW_STRANDS { $$ = "strands"; }
-     | KW_ECOSYSTEM { $$ = "ecosystem"; }
+     | KW_BLOCK { $$ = (char *)lang_kind_keyword($1); }
      ;
 dargs: %empty { memset(&$$, 0, sizeof $$); }
      | dargs darg { $$ = $1; *VEC_PUSH(ps->arena, $$.v, $$.n, $$.cap) = $2; }

@@ -55,13 +55,8 @@ typedef struct SylGrowOptions {
 /* The most years a tree may grow (`years`, --years, -n). */
 enum { SYL_GROW_MAX_YEARS = 10000 };
 
-/* The validation hook for syl_compile (SylCompileOptions.validate; user: NULL, or an int *
- * that is not 0 to also warn about a scene's files that cannot be read, as `sylva check`
- * does — the commands that grow fail on them with an error of their own): checks
- * a `grow` model's directives and, for the file's first model (or a file that holds only a
- * scene), the `scene` block, each error with file:line:col, the source line and a caret.
- * Returns the number of errors. syl_grow and syl_grow_scene read the same directives, so a
- * program compiled without the hook reports the same errors there, when it grows. */
+/* The old name of syl_validate (sylva.h), kept for programs written against it: it checks
+ * every kind of block now, as syl_validate does. */
 int syl_grow_validate(void *user, const SylProgram *p, FILE *diag);
 
 /* Grow a `grow` model alone, its base at the origin. */

@@ -63,12 +63,24 @@ typedef struct SylCompileOptions {
      * only, then, once the program compiled without errors, calls validate (when not NULL)
      * with validate_user, the program and diag. It returns how many errors it reported to
      * diag; any fails the compile with SYL_EMODEL (a negative count: SYL_EUSAGE, errors of
-     * the --set values only). syl_grow_validate (grow.h) checks `grow`
-     * and `scene` directives as `sylva check` reports them. A sibling compile passes none:
-     * its file was checked with the model it serves. */
+     * the --set values only). syl_validate (below) checks every kind's directives and the
+     * `scene` as `sylva check` reports them. A sibling compile passes none: its file was
+     * checked with the model it serves. */
     int (*validate)(void *user, const SylProgram *p, FILE *diag);
     void *validate_user;
 } SylCompileOptions;
+
+/* The validation hook for syl_compile (SylCompileOptions.validate; user: NULL, or an int *
+ * that is not 0 to also warn about a scene's files that cannot be read, as `sylva check`
+ * does — the commands that grow fail on them with an error of their own). It checks the
+ * model's block as the engine of its kind reads it (grow, weber, strands, ecosystem: the
+ * library's whole check, as `sylva check` runs it) and, for the file's first model (or a
+ * file that holds only a scene), the `scene` block, including that each plant is of a kind
+ * that can stand in a scene; each error with file:line:col, the source line and a caret.
+ * Returns the number of errors, negative when every error was of a --set value. The engines
+ * read the same directives, so a program compiled without the hook reports the same errors
+ * there, when it is built. */
+int syl_validate(void *user, const SylProgram *p, FILE *diag);
 
 /* Compile source text (path is used in messages only). On failure *status is set and NULL
  * is returned; a NULL text reads the file at path ("-": standard input). The directives of
@@ -88,9 +100,11 @@ int syl_list_models(const char *path, const char *text, size_t len, const char *
 
 /* What a compiled model is: an L-system, a `grow` block (self-organizing tree), — for a
  * file that holds only a `scene` block — the scene, a `weber` block (Weber–Penn parametric
- * tree) or a `strands` block (Holton's strand model). */
-typedef enum { SYL_MODEL_LSYSTEM, SYL_MODEL_GROW, SYL_MODEL_SCENE, SYL_MODEL_WEBER, SYL_MODEL_STRANDS,
-               SYL_MODEL_ECOSYSTEM } SylModelKind;
+ * tree), a `strands` block (Holton's strand model) or an `ecosystem` block (sylva/ecosystem.h).
+ * The values are fixed; the library lists each kind once, with what it can do, in
+ * src/lang/kinds.def (docs/architecture.md, "Adding a model kind"). */
+typedef enum { SYL_MODEL_LSYSTEM = 0, SYL_MODEL_GROW = 1, SYL_MODEL_SCENE = 2, SYL_MODEL_WEBER = 3,
+               SYL_MODEL_STRANDS = 4, SYL_MODEL_ECOSYSTEM = 5 } SylModelKind;
 /* "lsystem", "grow block", "scene", "weber block", "strands block", "ecosystem block"
  * (an ecosystem on a terrain: sylva/ecosystem.h) */
 const char *syl_model_kind_name(SylModelKind k);

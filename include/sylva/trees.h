@@ -33,7 +33,7 @@ typedef struct SylTreeOptions {
 int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 
-/* Check a block's parameters as `sylva check` does (syl_grow_validate calls these): returns
+/* Check a block's parameters as `sylva check` does (syl_validate calls these): returns
  * the number of errors reported to diag, each with file:line:col, the line and a caret
  * (negative when every error was of --set, a bad command line). */
 int syl_weber_validate(const SylProgram *p, FILE *diag);

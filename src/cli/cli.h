@@ -97,8 +97,6 @@ int cmd_terrain(int argc, char **argv);
 int cmd_ecosystem(int argc, char **argv);
 /* sylva render FILE --plants CSV (snapshot.c): a saved ecosystem snapshot, split over MPI ranks */
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro);
-/* syl_compile's hook for every command: grow, scene and ecosystem directives */
-int cli_validate(void *user, const SylProgram *p, FILE *diag);
 
 /* Each command's options and --help (cli/options.h), beside its cmd_ function. */
 extern const CliCommand cli_derive_command, cli_check_command, cli_compile_command, cli_skeleton_command,

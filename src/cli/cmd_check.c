@@ -59,7 +59,7 @@ int cmd_check(int argc, char **argv) {
             FILE *mem = open_memstream(&msg, &msglen);
             SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1,
                                      .overrides = m.sets, .noverrides = m.nsets,
-                                     .validate = cli_validate, .validate_user = &files};
+                                     .validate = syl_validate, .validate_user = &files};
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
             if (mem) fclose(mem);

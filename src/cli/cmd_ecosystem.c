@@ -62,14 +62,6 @@ const CliCommand cli_ecosystem_command = {
     .args_error = "expects one model file",
 };
 
-/* The validate hook of every compile: grow and scene directives (syl_grow_validate), then an
- * ecosystem block's. */
-int cli_validate(void *user, const SylProgram *p, FILE *diag) {
-    int e = syl_grow_validate(user, p, diag);
-    if (e >= 0 && syl_program_kind(p) == SYL_MODEL_ECOSYSTEM) e += syl_ecosystem_validate(p, diag);
-    return e;
-}
-
 typedef struct Run {
     const char *dir;
     const SylEcoModel *m;

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "lang/kinds.h"
 #include "sylva/lod.h"
 
 void cli_model_spec(ModelArgs *m, const char *spec) {
@@ -108,7 +109,7 @@ bool cli_set(ModelArgs *m, char *arg) {
 
 SylProgram *cli_compile(ModelArgs *m, int warn, int *status) {
     SylCompileOptions opt = {.model = m->model, .overrides = m->sets, .noverrides = m->nsets,
-                             .diag = stderr, .warn = m->warned ? 0 : warn, .validate = cli_validate};
+                             .diag = stderr, .warn = m->warned ? 0 : warn, .validate = syl_validate};
     m->warned = true; /* a model compiled again (each seed of compare) says them once */
     return syl_compile(m->path, NULL, 0, &opt, status);
 }
@@ -153,8 +154,8 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     out->lod = lod > 0 && lod <= SYL_LOD_MAX ? (int)lod : 0;
     /* grow blocks grow; a file with a scene, named without a model, makes its scene */
     int nscene = 0;
-    bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!m->model && syl_program_scene(p, &nscene));
-    out->grown = scene || syl_program_kind(p) == SYL_MODEL_GROW;
+    bool scene = lang_kind_is(syl_program_kind(p), KF_UNNAMED) || (!m->model && syl_program_scene(p, &nscene));
+    out->grown = scene || lang_kind_is(syl_program_kind(p), KF_GROWS);
     /* -n is the years of a grow block or scene: the limit of --years, with its message */
     if (out->grown && d->steps > SYL_GROW_MAX_YEARS) {
         char arg[32];

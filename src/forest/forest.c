@@ -7,6 +7,7 @@
 #include "sylva/forest.h"
 #include "sylva/plant.h"
 #include "forest/forest_internal.h"
+#include "lang/kinds.h"
 #include "util/rng.h"
 
 /* The terrain as triangles between its cells' centres, one grass-coloured material. */
@@ -92,10 +93,15 @@ static int species_looks(SylForest *f, const SylProgram *p, int s, const SylFore
     int st;
     SylProgram *q = syl_compile_model(p, sp->model, o->diag, &st);
     if (!q) return st ? st : SYL_EMODEL;
+    if (!lang_kind_is(syl_program_kind(q), KF_LOOK)) {
+        lang_kind_refuse(o->diag, syl_program_name(q), syl_program_kind(q), true);
+        syl_program_free(q);
+        return SYL_EUSAGE;
+    }
     SylGrowth *g = NULL;
     SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .budget = o->budget};
     SylPlantOptions po = {.threads = o->threads, .diag = o->diag, .budget = o->budget, .mesh = &mo};
-    if (syl_program_kind(q) != SYL_MODEL_WEBER && syl_growth_new(q, &po, &g)) g = NULL;
+    if (lang_kind_is(syl_program_kind(q), KF_RULES | KF_GROWS | KF_AGES) && syl_growth_new(q, &po, &g)) g = NULL;
     int frames = g ? syl_growth_count(g) : 1;
     st = SYL_OK;
     for (int c = 0; c < SYL_FOREST_CLASSES && !st; c++) {

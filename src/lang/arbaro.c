@@ -185,7 +185,7 @@ static const char *attr(Reader *r, xmlNodePtr n, const char *name) {
 
 static Model *model(Reader *r, xmlNodePtr n, const char *name) {
     Model *m = VEC_PUSH(r->arena, r->ast->models, r->ast->nmodels, r->ast->cap);
-    m->kind = MODEL_WEBER;
+    m->kind = SYL_MODEL_WEBER;
     m->name = name;
     m->loc = element_loc(r, n);
     return m;

@@ -5,6 +5,7 @@
 
 #include "util/arena.h"
 #include "util/diag.h"
+#include "sylva/sylva.h"
 
 typedef enum {
     EX_NUM,  /* num */
@@ -117,11 +118,8 @@ typedef struct Stmt {
     const Source *file; /* a directive spliced from another file (splice.c); NULL: this file's */
 } Stmt;
 
-/* in the order of SylModelKind, whose values they share */
-typedef enum { MODEL_LSYSTEM, MODEL_GROW, MODEL_SCENE, MODEL_WEBER, MODEL_STRANDS, MODEL_ECOSYSTEM } ModelKind;
-
 typedef struct Model {
-    ModelKind kind;
+    SylModelKind kind;
     const char *name; /* NULL for the file's top level; "scene" for the scene */
     SylLoc loc;
     Stmt *v;

@@ -135,7 +135,7 @@ static void compile_rules(Compiler *c, Stmt **all, int n, Model *model) {
             cc_successor(c, &ms, &none, &p->axiom, "the axiom");
         }
     }
-    if (!axioms && model->kind == MODEL_LSYSTEM) diag_error(c->d, model->loc, "model '%s' has no axiom", model->name);
+    if (!axioms && lang_kind_is(model->kind, KF_RULES)) diag_error(c->d, model->loc, "model '%s' has no axiom", model->name);
 }
 
 static void apply_consider(Compiler *c, const bool *considered) {
@@ -194,14 +194,14 @@ static void compile_model(Compiler *c, Model *top, Model *model) {
 /* The named model, or the file's first lsystem or grow block (a scene is not a model). */
 static Model *find_model(FileAst *ast, const char *name) {
     for (int i = 0; i < ast->nmodels; i++)
-        if (ast->models[i].kind != MODEL_SCENE && (!name || !strcmp(ast->models[i].name, name)))
+        if (!lang_kind_is(ast->models[i].kind, KF_UNNAMED) && (!name || !strcmp(ast->models[i].name, name)))
             return &ast->models[i];
     return NULL;
 }
 
 static Model *find_scene(FileAst *ast) {
     for (int i = 0; i < ast->nmodels; i++)
-        if (ast->models[i].kind == MODEL_SCENE) return &ast->models[i];
+        if (lang_kind_is(ast->models[i].kind, KF_UNNAMED)) return &ast->models[i];
     return NULL;
 }
 
@@ -334,10 +334,10 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             diag_error(&d, (SylLoc){0}, "this file holds no lsystem");
         } else {
             p->name = arena_strndup(&p->arena, m->name, strlen(m->name));
-            p->kind = (SylModelKind)m->kind; /* the two enums share their values */
+            p->kind = m->kind;
             cc_splice_from(&c, m);
             compile_model(&c, &ast.top, m);
-            if (m->kind != MODEL_LSYSTEM) directives(&c, m, &p->directives, &p->ndirectives);
+            if (lang_kind_is(m->kind, KF_DIRECTIVES)) directives(&c, m, &p->directives, &p->ndirectives);
             if (scene) {
                 p->has_scene = true;
                 directives(&c, scene, &p->scene, &p->nscene);
@@ -396,6 +396,11 @@ SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag
 
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max, char *buf,
                     size_t bufsize) {
+    return lang_list_models(path, text, len, names, NULL, max, buf, bufsize);
+}
+
+int lang_list_models(const char *path, const char *text, size_t len, const char **names, SylModelKind *kinds,
+                     int max, char *buf, size_t bufsize) {
     if (len >= 3 && !memcmp(text, "\xef\xbb\xbf", 3)) text += 3, len -= 3; /* as syl_compile */
     Source src = {.path = path, .text = text, .len = len};
     Arena tmp = {0};
@@ -405,10 +410,11 @@ int syl_list_models(const char *path, const char *text, size_t len, const char *
     size_t used = 0;
     if (syl_parse(&src, &tmp, &d, &ast) == 0)
         for (int i = 0; i < ast.nmodels && n < max; i++) {
-            if (ast.models[i].kind == MODEL_SCENE) continue;
+            if (lang_kind_is(ast.models[i].kind, KF_UNNAMED)) continue;
             size_t l = strlen(ast.models[i].name) + 1;
             if (used + l > bufsize) break;
             memcpy(buf + used, ast.models[i].name, l);
+            if (kinds) kinds[n] = ast.models[i].kind;
             names[n++] = buf + used;
             used += l;
         }

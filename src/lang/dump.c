@@ -148,8 +148,7 @@ static void directive(FILE *out, const SylDirective *d) {
 
 /* grow, weber and strands blocks: their parameters and directive lines */
 static void dump_directives(const SylProgram *p, FILE *out) {
-    static const char *const words[] = {"lsystem", "grow", "scene", "weber", "strands", "ecosystem"};
-    fprintf(out, "%s %s\n", words[p->kind], p->name);
+    fprintf(out, "%s %s\n", lang_kind_keyword(p->kind), p->name);
     for (int i = 0; i < p->nparams; i++)
         fprintf(out, "param %s = %g%s\n", p->params[i].name, p->params[i].value,
                 p->params[i].overridden ? " (set on the command line)" : "");

@@ -181,7 +181,7 @@ static bool draws(const SylProgram *p, const bool *made) {
 
 void cc_warn(Compiler *c) {
     const SylProgram *p = c->p;
-    if (p->kind != SYL_MODEL_LSYSTEM) return;
+    if (!lang_kind_is(p->kind, KF_RULES)) return;
     bool *made = reached(c);
     if (!c->opt->lint && (c->warn & SYL_WARN_MISTAKES)) /* check's lint says it with the others */
         for (int t = 0; t < TABLE_COUNT; t++)

@@ -18,7 +18,7 @@ void cc_localise_overrides(Compiler *c) {
             const char *mn = c->ast->models[m].name;
             if (strlen(mn) == (size_t)(dot - name) && !strncmp(mn, name, (size_t)(dot - name)))
                 /* scene.ground: the scene's reader takes it (scene/spec.c) */
-                p->set_local[i] = strcmp(mn, p->name) || c->ast->models[m].kind == MODEL_SCENE ? NULL : dot + 1;
+                p->set_local[i] = strcmp(mn, p->name) || c->ast->models[m].kind == SYL_MODEL_SCENE ? NULL : dot + 1;
         }
     }
 }

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "lang/arbaro.h"
+#include "lang/kinds.h"
 #include "lang/parse_state.h"
 #include "lang/sapling.h"
 #include "parser.h"
@@ -10,13 +11,20 @@
 #define YYLTYPE SYL_YYLTYPE
 #include "lexer.h"
 
+/* The words that head a statement; the ones that open a model are the kinds' (lang/kinds.def,
+ * lang_kind_token). */
 const SylKeyword syl_keywords[] = {
-    {"lsystem", KW_LSYSTEM}, {"module", KW_MODULE}, {"const", KW_CONST}, {"param", KW_PARAM},
+    {"module", KW_MODULE}, {"const", KW_CONST}, {"param", KW_PARAM},
     {"fn", KW_FN}, {"curve", KW_CURVE}, {"axiom", KW_AXIOM}, {"ignore", KW_IGNORE},
     {"consider", KW_CONSIDER}, {"decompose", KW_DECOMPOSE}, {"interpret", KW_INTERPRET},
-    {"grow", KW_GROW}, {"scene", KW_SCENE}, {"group", KW_GROUP}, {"use", KW_USE},
-    {"weber", KW_WEBER}, {"strands", KW_STRANDS}, {"ecosystem", KW_ECOSYSTEM}, {NULL, 0},
+    {"group", KW_GROUP}, {"use", KW_USE}, {NULL, 0},
 };
+
+/* A model's keyword is one of three tokens, by what its body holds: rules (KW_LSYSTEM), the
+ * file's unnamed scene (KW_SCENE) or directive lines (KW_BLOCK); each carries its kind. */
+int lang_kind_token(SylModelKind k) {
+    return lang_kind_is(k, KF_RULES) ? KW_LSYSTEM : lang_kind_is(k, KF_UNNAMED) ? KW_SCENE : KW_BLOCK;
+}
 
 int syl_yyparse(void *scanner, ParseState *ps);
 

@@ -30,6 +30,7 @@ typedef struct LexState {
     int hint_line; /* a line whose mistake the lexer explained: the parser stays silent there */
     int arrow_known; /* arrow_at is known for this statement */
     size_t arrow_at; /* just after the start of its rule's arrow; 0: it has none ahead */
+    int kind;        /* the model kind of the last keyword that opens a model */
 } LexState;
 
 typedef struct ParseState {
@@ -51,6 +52,8 @@ typedef struct SylKeyword {
     int token;
 } SylKeyword;
 extern const SylKeyword syl_keywords[];
+/* The token a model kind's keyword is (parse.c). */
+int lang_kind_token(SylModelKind k);
 
 /* Pícek's plant files (picek.c): whether the text is one (its first line that is not blank
  * or a `;` comment opens with one of its keys and a colon), and reading it into ast as one

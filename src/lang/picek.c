@@ -221,7 +221,7 @@ int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     memset(ast, 0, sizeof *ast);
     int before = diag->errors;
     Model *m = VEC_PUSH(arena, ast->models, ast->nmodels, ast->cap);
-    m->kind = MODEL_LSYSTEM;
+    m->kind = SYL_MODEL_LSYSTEM;
     m->name = model_name(arena, src->path);
     m->loc = (SylLoc){1, 1, 1, 1};
     Reader r = {arena, diag, m};

@@ -17,10 +17,6 @@ void syl_program_free(SylProgram *p) {
 const char *syl_program_name(const SylProgram *p) { return p->name; }
 SylModelKind syl_program_kind(const SylProgram *p) { return p->kind; }
 
-const char *syl_model_kind_name(SylModelKind k) {
-    static const char *const names[] = {"lsystem", "grow block", "scene", "weber block", "strands block", "ecosystem block"};
-    return (unsigned)k < sizeof names / sizeof *names ? names[k] : "model";
-}
 const Curve *lang_curve_find(const SylProgram *p, const char *name) {
     for (int i = 0; i < p->ncurves; i++)
         if (p->curves[i].n && !strcmp(p->curves[i].name, name)) return &p->curves[i];

@@ -7,6 +7,7 @@
 
 #include "util/arena.h"
 #include "util/diag.h"
+#include "lang/kinds.h"
 #include "lang/turtle_commands.h"
 #include "sylva/sylva.h"
 
@@ -249,11 +250,12 @@ struct SylProgram {
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 
-/* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */
+/* syl_list_models, with each model's kind in kinds[i] (NULL: not wanted). */
+int lang_list_models(const char *path, const char *text, size_t len, const char **names, SylModelKind *kinds,
+                     int max, char *buf, size_t bufsize);
+
 /* grow, weber, strands and ecosystem blocks are lines of directives read by their engines, not rules */
-static inline bool syl_kind_has_directives(SylModelKind k) {
-    return k == SYL_MODEL_GROW || k == SYL_MODEL_WEBER || k == SYL_MODEL_STRANDS || k == SYL_MODEL_ECOSYSTEM;
-}
+static inline bool syl_kind_has_directives(SylModelKind k) { return lang_kind_is(k, KF_DIRECTIVES); }
 
 /* The `lod N` line of a grow, weber or strands block (lod.c): its check (the error count, 0
  * or 1, reported at the line), a --set lod= value's, and the levels the block asks for (its
@@ -262,6 +264,7 @@ int lang_lod_check(const SylProgram *p, const SylDirective *d, FILE *diag);
 int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *diag);
 double lang_directive_lod(const SylProgram *p);
 
+/* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */
 static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {
     return (turtle_command_flags(p->syms[sym].turtle) & TF_QUERY) != 0;
 }

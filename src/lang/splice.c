@@ -39,11 +39,11 @@ static const Source *read_source(Compiler *c, const char *path, SylLoc at) {
 /* The file's weber model: the one named, else its first. */
 static const Model *pick(Compiler *c, const FileAst *fa, const char *name, const Source *src, SylLoc at) {
     for (int i = 0; i < fa->nmodels; i++)
-        if (fa->models[i].kind == MODEL_WEBER && (!name || !strcmp(fa->models[i].name, name))) return &fa->models[i];
+        if (fa->models[i].kind == SYL_MODEL_WEBER && (!name || !strcmp(fa->models[i].name, name))) return &fa->models[i];
     char shown[256], names[512] = "";
     size_t used = 0;
     for (int i = 0; i < fa->nmodels && used + 2 < sizeof names; i++)
-        if (fa->models[i].kind == MODEL_WEBER)
+        if (fa->models[i].kind == SYL_MODEL_WEBER)
             used += (size_t)snprintf(names + used, sizeof names - used, "%s%s", used ? ", " : "", fa->models[i].name);
     diag_quote(shown, sizeof shown, src->path, strlen(src->path));
     if (name) diag_error(c->d, at, "'%s' has no weber model '%s'%s%s%s", shown, name, used ? " (it has " : "", names, used ? ")" : "");
@@ -52,7 +52,7 @@ static const Model *pick(Compiler *c, const FileAst *fa, const char *name, const
 }
 
 void cc_splice_from(Compiler *c, Model *m) {
-    if (m->kind != MODEL_WEBER) return;
+    if (m->kind != SYL_MODEL_WEBER) return;
     int at = -1;
     for (int i = 0; i < m->n; i++) {
         const Stmt *s = &m->v[i];

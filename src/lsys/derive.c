@@ -604,13 +604,8 @@ static int said(Engine *e, int st, int step, const char *what) {
 int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, const LsysQueries *q,
                       SylDeriver **out) {
     *out = NULL;
-    if (p->kind != SYL_MODEL_LSYSTEM) {
-        if (opt && opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: %s\n", p->name,
-                    syl_model_kind_name(p->kind),
-                    syl_kind_has_directives(p->kind) && p->kind != SYL_MODEL_GROW
-                        ? "it has no string; mesh or render it"
-                        : "grow it with `sylva grow`");
+    if (!lang_kind_is(p->kind, KF_RULES)) {
+        if (opt) lang_kind_refuse(opt->diag, p->name, p->kind, false);
         if (q && q->release) q->release(q->user);
         return SYL_EUSAGE;
     }

@@ -1,6 +1,7 @@
 /* Growth as a sequence of plants (sylva animate): an L-system's steps from one derivation, a
  * grown plant's years and a strands tree's ages, each frame built as syl_plant_build would. */
 #include "sylva/plant.h"
+#include "lang/kinds.h"
 
 #include <stdbool.h>
 #include <stdlib.h>
@@ -52,7 +53,7 @@ static int derive_steps(SylGrowth *g) {
 static SylPlantOptions frame_options(const SylGrowth *g, int k) {
     SylPlantOptions o = g->opt;
     o.progress = NULL;
-    if (g->kind == SYL_MODEL_STRANDS) {
+    if (lang_kind_is(g->kind, KF_AGES)) {
         o.age = (double)(k + 1) / g->count; /* the seam: ages k/N, S' = t^2 S in the generator */
     } else {
         o.use_steps = 1;
@@ -77,9 +78,9 @@ int syl_growth_new(const SylProgram *p, const SylPlantOptions *opt, SylGrowth **
     g->opt.mesh = &g->mesh;
     g->kind = syl_program_kind(p);
     int nscene = 0;
-    g->scene = g->kind == SYL_MODEL_SCENE || (opt->scene && syl_program_scene(p, &nscene));
+    g->scene = lang_kind_is(g->kind, KF_UNNAMED) || (opt->scene && syl_program_scene(p, &nscene));
     int st = SYL_OK;
-    if (g->scene || g->kind == SYL_MODEL_GROW) {
+    if (g->scene || lang_kind_is(g->kind, KF_GROWS)) {
         /* the last year first: it tells the count (a scene's plants may each have their own) */
         st = syl_plant_build(p, &g->opt, &g->last);
         g->have_last = !st;
@@ -89,19 +90,24 @@ int syl_growth_new(const SylProgram *p, const SylPlantOptions *opt, SylGrowth **
                                    syl_program_name(p));
             st = SYL_EUSAGE;
         }
-    } else if (g->kind == SYL_MODEL_STRANDS) {
+    } else if (lang_kind_is(g->kind, KF_AGES)) {
         g->count = opt->use_steps ? opt->steps : STRANDS_AGES;
         if (g->count < 1) {
-            if (opt->diag) fprintf(opt->diag, "sylva: error: a strands tree needs at least one age to animate\n");
+            if (opt->diag)
+                fprintf(opt->diag, "sylva: error: %s %s tree needs at least one age to animate\n",
+                        lang_kind_article(g->kind), lang_kind_keyword(g->kind));
             st = SYL_EUSAGE;
         }
-    } else if (g->kind == SYL_MODEL_WEBER) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is a weber block: it is built full grown and has no growth to "
-                               "animate\n", syl_program_name(p));
+    } else if (lang_kind_is(g->kind, KF_RULES)) {
+        st = derive_steps(g);
+    } else if (lang_kind_is(g->kind, KF_NOT_A_PLANT)) {
+        lang_kind_refuse(opt->diag, syl_program_name(p), g->kind, true);
         st = SYL_EUSAGE;
     } else {
-        st = derive_steps(g);
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' is %s %s: it is built full grown and has no growth to animate\n",
+                    syl_program_name(p), lang_kind_article(g->kind), syl_model_kind_name(g->kind));
+        st = SYL_EUSAGE;
     }
     if (st) {
         syl_growth_free(g);
@@ -120,7 +126,7 @@ int syl_growth_build(SylGrowth *g, int k, SylPlant *out) {
     if (k < 0 || k >= g->count) return SYL_EUSAGE;
     if (g->strings) { /* draw and mesh the kept string */
         const SylPlantOptions *o = &g->opt;
-        out->kind = SYL_MODEL_LSYSTEM;
+        out->kind = g->kind;
         out->modules = syl_string_length(g->strings[k]);
         SylTurtleOptions t = {.diag = o->diag, .max_memory = o->max_memory, .budget = o->budget};
         int st = syl_turtle(g->p, g->strings[k], &t, &out->skeleton);

@@ -1,7 +1,10 @@
 /* syl_plant_build: the pipeline every drawing command runs, above every engine (lsys,
- * turtle, sot, mesh) and using only their public API, so that nothing below calls it. */
+ * turtle, sot, mesh) and using only their public API and the table of kinds (lang/kinds.h,
+ * kinds/kinds.h), so that nothing below calls it. */
 #include "sylva/plant.h"
 #include "sylva/trees.h"
+#include "kinds/kinds.h"
+#include "lang/kinds.h"
 
 #include <stdbool.h>
 #include <string.h>
@@ -52,14 +55,14 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
     return st;
 }
 
-/* weber and strands blocks: the skeleton straight from the parameters */
-static int build_tree(const SylProgram *p, const SylPlantOptions *opt, const SylMeshOptions *mo, SylBudget *budget,
-                      SylPlant *out) {
+/* a kind built from its parameters (its row's build, kinds/kinds.c: weber, strands): the
+ * skeleton straight from them */
+static int build_tree(const KindOps *ops, const SylProgram *p, const SylPlantOptions *opt, const SylMeshOptions *mo,
+                      SylBudget *budget, SylPlant *out) {
     SylTreeOptions t = {.use_seed = opt->use_seed, .seed = opt->seed, .threads = opt->threads, .age = opt->age,
                         .levels = opt->levels, .max_memory = opt->max_memory, .budget = budget, .diag = opt->diag};
     double t0 = now(), c0 = cpu_now();
-    int st = syl_program_kind(p) == SYL_MODEL_WEBER ? syl_weber(p, &t, &out->skeleton)
-                                                      : syl_strands(p, &t, &out->skeleton);
+    int st = ops->build(p, &t, &out->skeleton);
     if (opt->progress) opt->progress(opt->user, 1);
     double t1 = now();
     out->derive_s = t1 - t0;
@@ -114,36 +117,24 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
     if (!mo.budget) mo.budget = budget;
     if (!mo.max_memory) mo.max_memory = opt->max_memory;
     SylModelKind kind = syl_program_kind(p);
+    const KindOps *ops = kinds_ops(kind);
     int nscene = 0;
-    bool scene = kind == SYL_MODEL_SCENE || (opt->scene && syl_program_scene(p, &nscene));
-    int st;
-    if (scene || kind == SYL_MODEL_GROW) {
-        out->kind = scene ? SYL_MODEL_SCENE : SYL_MODEL_GROW;
-        if (opt->until == SYL_PLANT_STRING) {
-            if (opt->diag)
-                fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: it has no string\n",
-                        syl_program_name(p), scene ? "scene" : "grow block");
-            return SYL_EUSAGE;
-        }
-        st = build_grown(p, scene, opt, &mo, budget, out);
-    } else if (kind == SYL_MODEL_WEBER || kind == SYL_MODEL_STRANDS) {
-        out->kind = kind;
-        if (opt->until == SYL_PLANT_STRING) {
-            if (opt->diag)
-                fprintf(opt->diag, "sylva: error: '%s' is a %s, not an lsystem: it has no string\n",
-                        syl_program_name(p), syl_model_kind_name(kind));
-            return SYL_EUSAGE;
-        }
-        st = build_tree(p, opt, &mo, budget, out);
-    } else if (kind == SYL_MODEL_ECOSYSTEM) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is an ecosystem block, not a plant: run `sylva ecosystem`\n",
-                    syl_program_name(p));
+    bool scene = lang_kind_is(kind, KF_UNNAMED) || (opt->scene && syl_program_scene(p, &nscene));
+    if (!scene && lang_kind_is(kind, KF_NOT_A_PLANT)) {
+        lang_kind_refuse(opt->diag, syl_program_name(p), kind, true);
         return SYL_EUSAGE;
-    } else {
-        out->kind = SYL_MODEL_LSYSTEM;
-        st = build_lsystem(p, opt, &mo, budget, out);
     }
+    out->kind = scene ? SYL_MODEL_SCENE : kind;
+    if (opt->until == SYL_PLANT_STRING && !lang_kind_is(out->kind, KF_STRING)) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' is %s %s, not an lsystem: it has no string\n",
+                    syl_program_name(p), lang_kind_article(out->kind), syl_model_kind_name(out->kind));
+        return SYL_EUSAGE;
+    }
+    int st;
+    if (scene || lang_kind_is(kind, KF_GROWS)) st = build_grown(p, scene, opt, &mo, budget, out);
+    else if (ops->build) st = build_tree(ops, p, opt, &mo, budget, out);
+    else st = build_lsystem(p, opt, &mo, budget, out); /* KF_RULES: test_kinds holds every other kind to one above */
     if (st) syl_plant_free(out);
     return st;
 }

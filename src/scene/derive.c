@@ -21,7 +21,7 @@ static void release_standalone(void *user) { syl_env_standalone_free(user); }
 int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString *start, SylDeriver **out) {
     LsysQueries q = {0};
     if (opt && opt->queries) q = (LsysQueries){.ops = opt->queries, .user = opt->queries_user};
-    else if (p->kind == SYL_MODEL_LSYSTEM && p->uses_env) {
+    else if (lang_kind_is(p->kind, KF_RULES) && p->uses_env) {
         q = (LsysQueries){.ops = syl_env_standalone_ops(), .release = release_standalone,
                           .user = syl_env_standalone_new(p, opt ? opt->diag : NULL)};
         if (!q.user) {

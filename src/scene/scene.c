@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "kinds/kinds.h"
 #include "lang/program.h"
 #include "scene/open.h"
 #include "util/arena.h"
@@ -72,7 +73,7 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
         *colon = 0;
         copt.model = colon + 1;
     }
-    copt.validate = syl_grow_validate; /* another file: checked as `sylva check` would */
+    copt.validate = syl_validate; /* another file: checked as `sylva check` would */
     SylProgram *q = syl_compile(path, NULL, 0, &copt, status);
     free(path);
     return q;
@@ -114,7 +115,8 @@ static int draw_lsystem(const SylProgram *q, const SylGrowOptions *opt, const Sc
     return st;
 }
 
-/* A weber or strands plant: built once from its parameters and moved to where it stands. Its
+/* A plant built from its parameters (its kind's build, kinds/kinds.c: weber, strands): built
+ * once and moved to where it stands. Its
  * seed is the plant line's, else the command's plus its place in the list, else the block's
  * own plus that place, so that a row of one species is a row of different trees. */
 static int draw_tree(const SylProgram *q, const SylGrowOptions *opt, const ScenePlant *pl, int index, Forest *f,
@@ -124,7 +126,7 @@ static int draw_tree(const SylProgram *q, const SylGrowOptions *opt, const Scene
                         .seed_offset = pl->seed_set || opt->use_seed ? 0 : (uint64_t)index,
                         .threads = opt->threads, .max_memory = opt->max_memory, .budget = opt->budget,
                         .diag = opt->diag};
-    int st = syl_program_kind(q) == SYL_MODEL_WEBER ? syl_weber(q, &t, out) : syl_strands(q, &t, out);
+    int st = kinds_ops(syl_program_kind(q))->build(q, &t, out);
     if (st) {
         f->reported = true; /* the generator says why */
         return st;
@@ -249,7 +251,7 @@ static SceneModel *plant_model(const SylProgram *p, const ScenePlant *pl, SceneM
     SceneModel *md = &m->v[m->n];
     memset(md, 0, sizeof *md);
     if (!(md->q = plant_program(p, pl, diag, status))) return NULL;
-    if (syl_program_kind(md->q) == SYL_MODEL_GROW && grow_params_read(md->q, &md->P, diag)) {
+    if (lang_kind_is(syl_program_kind(md->q), KF_GROWS) && grow_params_read(md->q, &md->P, diag)) {
         syl_program_free(md->q);
         *status = SYL_EMODEL;
         return NULL;
@@ -275,8 +277,14 @@ static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, Sc
             else if (diag) fprintf(diag, "sylva: error: out of memory\n");
             return st ? st : SYL_EMODEL;
         }
-        if (syl_program_kind(progs[i]->q) == SYL_MODEL_SCENE) {
+        SylModelKind kind = syl_program_kind(progs[i]->q);
+        if (lang_kind_is(kind, KF_UNNAMED)) {
             syl_program_error(p, diag, pl->line, pl->col, "a scene cannot be a plant of a scene");
+            return SYL_EMODEL;
+        }
+        if (!lang_kind_is(kind, KF_IN_SCENE)) { /* another file's: sylva check said so of this file's */
+            syl_program_error(p, diag, pl->line, pl->col, "the %s '%s' cannot stand in a scene",
+                              syl_model_kind_name(kind), syl_program_name(progs[i]->q));
             return SYL_EMODEL;
         }
     }
@@ -294,7 +302,7 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
     bool trees = false;
     float ground = S->ground, lowest = INFINITY;
     for (int i = 0; i < S->nplants; i++) {
-        trees |= syl_program_kind(progs[i]->q) == SYL_MODEL_GROW;
+        trees |= lang_kind_is(syl_program_kind(progs[i]->q), KF_GROWS);
         if (plants[i].at[1] < lowest) lowest = plants[i].at[1];
     }
     if (trees && !(*lsys = scene_lsys_new(f, S->nplants))) return SYL_ELIMIT;
@@ -303,7 +311,7 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
         const ScenePlant *pl = &plants[i];
         SylProgram *q = progs[i]->q;
         placed[i].tree = placed[i].lockstep = -1;
-        if (syl_program_kind(q) == SYL_MODEL_GROW) {
+        if (lang_kind_is(syl_program_kind(q), KF_GROWS)) {
             GrowParams P = progs[i]->P;
             if (pl->seed_set) P.seed = pl->seed;
             else if (opt->use_seed) P.seed = opt->seed + (uint64_t)i;
@@ -311,7 +319,7 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
             int years = opt->years >= 0 ? opt->years : pl->years_set ? pl->years : P.years;
             placed[i].tree = f->ntrees;
             if (!st) st = forest_add_tree(f, &P, pl->at, years);
-        } else if (syl_program_kind(q) == SYL_MODEL_WEBER || syl_program_kind(q) == SYL_MODEL_STRANDS) {
+        } else if (kinds_ops(syl_program_kind(q))->build) {
             /* a tree made from parameters does not grow: it shades and crowds from the start */
             st = draw_tree(q, opt, pl, i, f, &placed[i].lsys);
             opt->stats.plants++;

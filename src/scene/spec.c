@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "kinds/kinds.h"
 #include "lang/program.h"
 #include "scene/spec.h"
 #include "sot/params.h"
@@ -91,19 +92,22 @@ static bool read_keys(Reader *r, const SylDirective *d, int i, int allowed, floa
 /* The file's model names, listed once per scene (listing parses the whole file). */
 typedef struct Names {
     const char *v[512];
+    SylModelKind kind[512];
     char buf[16384];
     int n; /* -1: not listed yet */
 } Names;
 
-static bool model_exists(const SylProgram *p, Names *names, const char *name) {
+/* The kind of the file's model called name; -1: none. */
+static int model_kind(const SylProgram *p, Names *names, const char *name) {
     if (names->n < 0) {
         size_t len = 0;
         const char *text = syl_program_source(p, &len);
-        names->n = syl_list_models(syl_program_path(p), text, len, names->v, 512, names->buf, sizeof names->buf);
+        names->n = lang_list_models(syl_program_path(p), text, len, names->v, names->kind, 512, names->buf,
+                                    sizeof names->buf);
     }
     for (int i = 0; i < names->n; i++)
-        if (!strcmp(names->v[i], name)) return true;
-    return false;
+        if (!strcmp(names->v[i], name)) return (int)names->kind[i];
+    return -1;
 }
 
 /* A zeroed slot at the end of *arr, doubling its capacity (NULL: out of memory). */
@@ -216,7 +220,13 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
             pl->line = d->line, pl->col = d->col;
             if (a0->kind == SYL_DARG_WORD) {
                 pl->model = a0->text;
-                if (!model_exists(p, names, a0->text)) ERR(&r, a0->line, a0->col, "no plant model '%s' in this file (an lsystem, grow, weber or strands block)", a0->text);
+                int kind = model_kind(p, names, a0->text);
+                if (kind < 0)
+                    ERR(&r, a0->line, a0->col, "no plant model '%s' in this file (an lsystem, grow, weber or strands block)",
+                        a0->text);
+                else if (!lang_kind_is((SylModelKind)kind, KF_IN_SCENE))
+                    ERR(&r, a0->line, a0->col, "the %s '%s' cannot stand in a scene", syl_model_kind_name((SylModelKind)kind),
+                        a0->text);
             } else pl->file = a0->text;
             bool at_given = false;
             for (int k = 1; k < d->nargs; k++)
@@ -328,15 +338,16 @@ int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     return errors && errors == set_errors ? -errors : errors;
 }
 
-/* syl_compile's hook (grow.h): a grow block's directives and the scene's. The scene is checked with the file's first model only, so that checking every model of a
- * file (`sylva check`) reports it once. */
-int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) {
+/* syl_compile's hook (sylva.h): the block's own check, from its kind's row (kinds/kinds.c),
+ * then the scene's. The scene is checked with the file's first model only, so that checking
+ * every model of a file (`sylva check`) reports it once. */
+int syl_validate(void *user, const SylProgram *p, FILE *diag) {
     bool files = user && *(const int *)user;
-    int errors = p->kind == SYL_MODEL_GROW      ? sot_check_grow(p, diag)
-                 : p->kind == SYL_MODEL_WEBER   ? syl_weber_validate(p, diag)
-                 : p->kind == SYL_MODEL_STRANDS ? syl_strands_validate(p, diag)
-                                                : 0;
+    const KindOps *ops = kinds_ops(p->kind);
+    int errors = ops->validate ? ops->validate(p, diag) : 0;
     if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag, files);
     /* negative: every error was of --set, a bad command line */
     return errors;
 }
+
+int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) { return syl_validate(user, p, diag); }

@@ -6,18 +6,12 @@
 
 #include "fuzz.h"
 #include "sylva/ecosystem.h"
-#include "sylva/grow.h"
 #include "sylva/sylva.h"
-
-static int validate(void *user, const SylProgram *p, FILE *diag) {
-    int e = syl_grow_validate(user, p, diag);
-    return e >= 0 ? e + syl_ecosystem_validate(p, diag) : e;
-}
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     int status;
     FILE *diag = fuzz_diag();
-    SylCompileOptions opt = {.diag = diag, .validate = validate};
+    SylCompileOptions opt = {.diag = diag, .validate = syl_validate}; /* every kind, the ecosystem too */
     SylProgram *p = syl_compile("fuzz.syl", (const char *)data, size, &opt, &status);
     if (!p) return 0;
     static SylEcoModel m;

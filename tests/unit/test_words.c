@@ -1,9 +1,10 @@
 /* Every word of the language is contextual (docs/language.md, Names): a fn, const, param,
  * module and formal parameter may be named by any keyword or setting word. The words come
- * from the one list of each (syl_keywords, syl_setting_name), so a new word is covered. */
+ * from the one list of each (syl_keywords, lang/kinds.def, syl_setting_name), so a new word is covered. */
 #include <stdbool.h>
 
 #include "unit.h"
+#include "lang/kinds.h"
 #include "lang/parse_state.h"
 
 /* Each program derives one step; %1$s is the word. `derive 1` stands in statement position
@@ -50,6 +51,7 @@ static void every_keyword_is_a_name(void **state) {
         group |= !strcmp(k->word, "group");
         use |= !strcmp(k->word, "use");
     }
+    for (int k = 0; k < LANG_KIND_COUNT; k++, n++) check_word(lang_kind_keyword((SylModelKind)k)); /* lang/kinds.def */
     assert_true(n >= 15);
     assert_true(group && use);
 }

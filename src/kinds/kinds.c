@@ -1,0 +1,24 @@
+/* The registry: each row of lang/kinds.def, its engine's functions. The switch is made from
+ * the table and has no default: a value of SylModelKind without its row is a compiler
+ * warning (an error under -Werror). */
+#include "kinds/kinds.h"
+
+#include <stddef.h>
+
+#include "sot/params.h"
+#include "sylva/ecosystem.h"
+#include "sylva/trees.h"
+
+const KindOps *kinds_ops(SylModelKind k) {
+    static const KindOps none = {0};
+    switch (k) {
+#define SYL_KIND(id, keyword, noun, flags, instead, validate_, build_, describe_) \
+    case SYL_MODEL_##id: {                                                         \
+        static const KindOps ops = {.validate = validate_, .build = build_, .describe = describe_}; \
+        return &ops;                                                               \
+    }
+#include "lang/kinds.def"
+#undef SYL_KIND
+    }
+    return &none;
+}

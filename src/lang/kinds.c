@@ -1,0 +1,48 @@
+/* The kinds of model, read from lang/kinds.def: flags, keywords and names. */
+#include "lang/kinds.h"
+
+#include <string.h>
+
+/* kinds.def lists the kinds in the order of the public enum, whose values are explicit */
+enum {
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) KIND_ROW_##id,
+#include "lang/kinds.def"
+#undef SYL_KIND
+};
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) \
+    _Static_assert((int)SYL_MODEL_##id == (int)KIND_ROW_##id, "lang/kinds.def is in SylModelKind order");
+#include "lang/kinds.def"
+#undef SYL_KIND
+
+typedef struct KindRow {
+    const char *keyword, *noun;
+    unsigned flags;
+    const char *instead;
+} KindRow;
+
+static const KindRow rows[LANG_KIND_COUNT] = {
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) [SYL_MODEL_##id] = {keyword, noun, flags, instead},
+#include "lang/kinds.def"
+#undef SYL_KIND
+};
+
+static const KindRow *row(SylModelKind k) { return (unsigned)k < LANG_KIND_COUNT ? &rows[k] : NULL; }
+
+unsigned lang_kind_flags(SylModelKind k) { return row(k) ? row(k)->flags : 0; }
+const char *lang_kind_keyword(SylModelKind k) { return row(k) ? row(k)->keyword : NULL; }
+const char *syl_model_kind_name(SylModelKind k) { return row(k) ? row(k)->noun : "model"; }
+
+int lang_kind_of_keyword(const char *word, size_t len) {
+    for (int k = 0; k < LANG_KIND_COUNT; k++)
+        if (strlen(rows[k].keyword) == len && !memcmp(rows[k].keyword, word, len)) return k;
+    return -1;
+}
+
+const char *lang_kind_article(SylModelKind k) { return strchr("aeiou", syl_model_kind_name(k)[0]) ? "an" : "a"; }
+
+void lang_kind_refuse(FILE *diag, const char *name, SylModelKind k, bool as_plant) {
+    if (!diag) return;
+    as_plant |= lang_kind_is(k, KF_NOT_A_PLANT);
+    fprintf(diag, "sylva: error: '%s' is %s %s, not %s: %s\n", name, lang_kind_article(k), syl_model_kind_name(k),
+            as_plant ? "a plant" : "an lsystem", row(k) ? row(k)->instead : "");
+}

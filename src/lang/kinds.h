@@ -1,0 +1,47 @@
+/* The kinds of model as the language knows them: one row each in lang/kinds.def. Code that
+ * must know what a kind does asks its flags here, never compares it with a list of kinds;
+ * the functions of each kind (validate, build) are the last columns of its row, which only
+ * src/kinds reads. */
+#ifndef SYL_LANG_KINDS_H
+#define SYL_LANG_KINDS_H
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "sylva/sylva.h"
+
+enum {
+    KF_RULES = 1 << 0,       /* a body of rules, derived step by step (lsys) */
+    KF_STRING = 1 << 1,      /* its plant is a string of modules before it is a skeleton */
+    KF_DIRECTIVES = 1 << 2,  /* a named block of directive lines, read by the engine that owns it */
+    KF_UNNAMED = 1 << 3,     /* `scene {`: the file's one scene, its lines kept apart; not a model */
+    KF_GROWS = 1 << 4,       /* grows year by year in sot's forest (with a scene's): frames are years */
+    KF_AGES = 1 << 5,        /* built at an age in (0, 1] (SylTreeOptions.age): frames are ages */
+    KF_IN_SCENE = 1 << 6,    /* may stand in a scene: `plant NAME at (x, y, z)` */
+    KF_LOOK = 1 << 7,        /* may be an ecosystem species' look (`model NAME`) */
+    KF_NOT_A_PLANT = 1 << 8, /* syl_plant_build refuses it: a command of its own makes it */
+};
+
+/* How many kinds kinds.def lists (SylModelKind runs 0 .. LANG_KIND_COUNT - 1). */
+enum {
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) +1
+    LANG_KIND_COUNT = 0
+#include "lang/kinds.def"
+#undef SYL_KIND
+};
+
+/* A kind's flags (0 for a value outside the enum), keyword ("weber") and noun ("weber block";
+ * syl_model_kind_name). lang_kind_of_keyword: the kind a keyword opens, or -1. */
+unsigned lang_kind_flags(SylModelKind k);
+const char *lang_kind_keyword(SylModelKind k);
+int lang_kind_of_keyword(const char *word, size_t len);
+
+/* Why a model of kind k cannot be what it was asked to be, to diag: "'T' is a strands block,
+ * not an lsystem: it has no string; mesh or render it" (as_plant: "..., not a plant: ...", what
+ * a KF_NOT_A_PLANT kind says whatever it was asked). */
+void lang_kind_refuse(FILE *diag, const char *name, SylModelKind k, bool as_plant);
+/* "a" or "an", before the kind's noun */
+const char *lang_kind_article(SylModelKind k);
+
+static inline bool lang_kind_is(SylModelKind k, unsigned flags) { return (lang_kind_flags(k) & flags) != 0; }
+
+#endif

@@ -1,0 +1,138 @@
+/* The kinds of model are listed once (src/lang/kinds.def) and each has a row in the registry
+ * (src/kinds/kinds.c): every value of SylModelKind has both, the keyword, the noun and the id
+ * agree (a block opened by the keyword compiles to that kind), and the flags and functions
+ * are consistent, so that code that asks them never falls through to a wrong engine. */
+#include <stdbool.h>
+
+#include "unit.h"
+#include "kinds/kinds.h"
+#include "lang/kinds.h"
+
+/* Compile text without the validate hook (the language only); the program or NULL. */
+static SylProgram *compile_bare(const char *text) {
+    int st;
+    SylCompileOptions opt = {0};
+    return syl_compile("test.syl", text, strlen(text), &opt, &st);
+}
+
+static void every_enum_value_has_a_row(void **state) {
+    (void)state;
+    /* the last value of the public enum is the table's last row */
+    assert_int_equal(LANG_KIND_COUNT, SYL_MODEL_ECOSYSTEM + 1);
+    for (int k = 0; k < LANG_KIND_COUNT; k++) {
+        assert_non_null(lang_kind_keyword((SylModelKind)k));
+        assert_string_not_equal(syl_model_kind_name((SylModelKind)k), "model");
+        assert_true(lang_kind_flags((SylModelKind)k) != 0);
+        assert_non_null(kinds_ops((SylModelKind)k));
+    }
+    /* outside the enum: no flags, the generic noun, the empty row */
+    assert_int_equal(lang_kind_flags((SylModelKind)LANG_KIND_COUNT), 0);
+    assert_null(lang_kind_keyword((SylModelKind)-1));
+    assert_string_equal(syl_model_kind_name((SylModelKind)LANG_KIND_COUNT), "model");
+    assert_null(kinds_ops((SylModelKind)LANG_KIND_COUNT)->validate);
+}
+
+static void keyword_noun_and_id_agree(void **state) {
+    (void)state;
+    for (int k = 0; k < LANG_KIND_COUNT; k++) {
+        const char *kw = lang_kind_keyword((SylModelKind)k), *noun = syl_model_kind_name((SylModelKind)k);
+        assert_int_equal(lang_kind_of_keyword(kw, strlen(kw)), k); /* and so no keyword twice */
+        /* the noun is the keyword, or "KEYWORD block" for a block of directive lines */
+        char block[64];
+        snprintf(block, sizeof block, "%s block", kw);
+        assert_string_equal(noun, lang_kind_is((SylModelKind)k, KF_DIRECTIVES) ? block : kw);
+    }
+    assert_int_equal(lang_kind_of_keyword("webe", 4), -1);
+    assert_int_equal(lang_kind_of_keyword("weberx", 6), -1);
+}
+
+/* A named block opened by each keyword compiles to its kind, and --dump names it back. */
+static void each_keyword_opens_its_kind(void **state) {
+    (void)state;
+    for (int k = 0; k < LANG_KIND_COUNT; k++) {
+        if (lang_kind_is((SylModelKind)k, KF_UNNAMED)) continue; /* the scene: below */
+        char text[256];
+        snprintf(text, sizeof text, "%s Some {\n%s}\n", lang_kind_keyword((SylModelKind)k),
+                 lang_kind_is((SylModelKind)k, KF_RULES) ? "  axiom F\n" : "");
+        SylProgram *p = compile_bare(text);
+        if (!p) fail_msg("a %s does not compile:\n%s", syl_model_kind_name((SylModelKind)k), text);
+        assert_int_equal(syl_program_kind(p), k);
+        assert_string_equal(syl_program_name(p), "Some");
+        syl_program_free(p);
+    }
+    SylProgram *p = compile_bare("scene {\n  plant \"other.syl\" at (0, 0, 0)\n}\n");
+    assert_non_null(p);
+    assert_int_equal(syl_program_kind(p), SYL_MODEL_SCENE);
+    syl_program_free(p);
+}
+
+/* What the engines above ask: a block of directives has its check; each kind that stands in a
+ * scene is made exactly one way (grown, built from parameters, or derived); ages are a build's;
+ * a string is a derived model's; what is not a plant stands nowhere a plant does. */
+static void flags_and_functions_agree(void **state) {
+    (void)state;
+    for (int k = 0; k < LANG_KIND_COUNT; k++) {
+        SylModelKind kind = (SylModelKind)k;
+        const KindOps *ops = kinds_ops(kind);
+        const char *noun = syl_model_kind_name(kind);
+        if (lang_kind_is(kind, KF_DIRECTIVES) && !ops->validate) fail_msg("the %s has no validate", noun);
+        if (lang_kind_is(kind, KF_IN_SCENE)) {
+            int ways = lang_kind_is(kind, KF_GROWS) + (ops->build != NULL) + lang_kind_is(kind, KF_RULES);
+            if (ways != 1) fail_msg("the %s stands in a scene and is made %d ways", noun, ways);
+        }
+        if (lang_kind_is(kind, KF_AGES) && !ops->build) fail_msg("the %s has ages but no build", noun);
+        if (lang_kind_is(kind, KF_STRING) && !lang_kind_is(kind, KF_RULES)) fail_msg("the %s has a string", noun);
+        if (lang_kind_is(kind, KF_LOOK) && !lang_kind_is(kind, KF_IN_SCENE)) fail_msg("the %s is a look only", noun);
+        if (lang_kind_is(kind, KF_NOT_A_PLANT) && lang_kind_is(kind, KF_IN_SCENE | KF_LOOK | KF_RULES))
+            fail_msg("the %s is not a plant, yet a plant's flag is set", noun);
+        if (lang_kind_is(kind, KF_UNNAMED) && lang_kind_is(kind, KF_DIRECTIVES | KF_RULES | KF_IN_SCENE))
+            fail_msg("the scene is a model");
+    }
+}
+
+/* The refusal is worded from the row: the article follows the noun, and a kind that is not a
+ * plant says so whatever it was asked for. */
+static void refusals_are_worded_from_the_row(void **state) {
+    (void)state;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&buf, &len);
+    lang_kind_refuse(mem, "E", SYL_MODEL_ECOSYSTEM, false);
+    lang_kind_refuse(mem, "T", SYL_MODEL_STRANDS, false);
+    lang_kind_refuse(NULL, "T", SYL_MODEL_STRANDS, false); /* no sink: nothing */
+    fclose(mem);
+    assert_string_equal(buf, "sylva: error: 'E' is an ecosystem block, not a plant: run `sylva ecosystem`\n"
+                             "sylva: error: 'T' is a strands block, not an lsystem: it has no string; mesh or "
+                             "render it\n");
+    free(buf);
+}
+
+/* syl_validate (and its old name) checks an ecosystem block, which the language alone does not. */
+static void validate_covers_every_directive_kind(void **state) {
+    (void)state;
+    const char *text = "ecosystem Field {\n  yeras 3\n}\n";
+    SylProgram *p = compile_bare(text);
+    assert_non_null(p); /* the language has nothing to say */
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *mem = open_memstream(&buf, &len);
+    int e1 = syl_validate(NULL, p, mem), e2 = syl_grow_validate(NULL, p, mem);
+    fclose(mem);
+    assert_true(e1 > 0);
+    assert_int_equal(e1, e2);
+    assert_non_null(strstr(buf, "test.syl:2:3: error:"));
+    free(buf);
+    syl_program_free(p);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(every_enum_value_has_a_row),
+        cmocka_unit_test(keyword_noun_and_id_agree),
+        cmocka_unit_test(each_keyword_opens_its_kind),
+        cmocka_unit_test(flags_and_functions_agree),
+        cmocka_unit_test(refusals_are_worded_from_the_row),
+        cmocka_unit_test(validate_covers_every_directive_kind),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
