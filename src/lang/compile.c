@@ -326,6 +326,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             /* A file with a scene and no model of its own: its plants come from other files. */
             p->name = "scene";
             p->kind = SYL_MODEL_SCENE;
+            p->model_loc = scene->loc;
             compile_model(&c, &ast.top, scene);
             p->has_scene = true;
             p->first_model = true;
@@ -335,6 +336,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         } else {
             p->name = arena_strndup(&p->arena, m->name, strlen(m->name));
             p->kind = (SylModelKind)m->kind; /* the two enums share their values */
+            p->model_loc = m->loc;
             cc_splice_from(&c, m);
             compile_model(&c, &ast.top, m);
             if (m->kind != MODEL_LSYSTEM) directives(&c, m, &p->directives, &p->ndirectives);

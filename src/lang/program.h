@@ -208,6 +208,7 @@ struct SylProgram {
     Source src;
     char *text; /* owned copy of the source */
     const char *name;
+    SylLoc model_loc; /* where the model (or the file's scene) begins */
 
     Symbol *syms;
     int nsyms, symcap;
