@@ -303,12 +303,14 @@ static int apply_sets(const SylProgram *p, SylEcoModel *m, FILE *diag) {
 static int read_lines(const SylProgram *p, SylEcoModel *m, FILE *diag, int *set_errors);
 
 int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag) {
+    if (sch_kept(p, m, sizeof *m)) return 0;
     int set_errors;
     return read_lines(p, m, diag, &set_errors);
 }
 
 static int read_lines(const SylProgram *p, SylEcoModel *m, FILE *diag, int *set_errors) {
     memset(m, 0, sizeof *m);
+    sch_count_read(p);
     m->years = 100;
     m->seed = syl_program_seed(p);
     m->combine = SYL_ECO_MEAN;
@@ -365,5 +367,6 @@ int syl_ecosystem_validate(const SylProgram *p, FILE *diag) {
     if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) return 0;
     SylEcoModel m;
     int set_errors, errors = read_lines(p, &m, diag, &set_errors);
+    if (!errors) sch_keep(p, &m, sizeof m); /* the run takes it: read once */
     return errors && errors == set_errors ? -errors : errors; /* negative: only the command line's */
 }

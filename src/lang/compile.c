@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "lang/compiler.h"
+#include "lang/schema.h"
 #include "util/file.h"
 
 /* ---- reading sources ---- */
@@ -268,6 +269,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         return NULL;
     }
     g->p = p;
+    p->read_cache = arena_alloc(&p->arena, sizeof *p->read_cache); /* zeroed; NULL: nothing kept */
     p->arena.oom = &g->oom;
     g->tmp.oom = &g->oom;
     if (text) {

@@ -425,3 +425,57 @@ static int describe(const SylProgram *p, FILE *out, bool json) {
 
 int syl_describe_json(const SylProgram *p, FILE *out) { return describe(p, out, true); }
 int syl_describe_text(const SylProgram *p, FILE *out) { return describe(p, out, false); }
+
+/* ---- the reference of every table, for docs/directives.md (tests/unit/test_schema.c keeps
+ * the doc equal to it; tools/gen-directives writes it) ---- */
+
+static void md_cell(FILE *out, const char *s) {
+    for (; s && *s; s++) {
+        if (*s == '|') fputc('\\', out);
+        fputc(*s, out);
+    }
+}
+
+static void md_table(FILE *out, const SchTable *t, const char *title, const char *intro) {
+    fprintf(out, "\n## %s\n\n%s\n\n| name | type | range | default | unit | meaning |\n|---|---|---|---|---|---|\n", title,
+            intro);
+    for (int i = 0; i < t->n; i++) {
+        const SchRow *r = &t->rows[i];
+        char range[96] = "", def[96] = "";
+        if (r->type == SCH_ENUM && r->words) snprintf(range, sizeof range, "%s", r->words);
+        else if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->levels || r->type == SCH_LIST) &&
+                 !(r->lo == 0 && r->hi == 0))
+            sch_range_text(r, range, sizeof range);
+        Val v;
+        row_default(r, &v);
+        tval(def, sizeof def, &v);
+        fprintf(out, "| `%s%s`%s | %s%s | ", r->levels ? "N" : "", r->name, r->group ? " (species)" : "",
+                r->levels ? "list per level of " : "", sch_type_name(r->type));
+        md_cell(out, range);
+        fputs(" | ", out);
+        md_cell(out, def);
+        fprintf(out, " | %s | ", r->unit ? r->unit : "");
+        md_cell(out, r->doc);
+        fputs(" |\n", out);
+    }
+}
+
+void lang_directives_reference(FILE *out) {
+    fputs("# Directives: the reference tables\n\n"
+          "Generated from the tables the readers check lines and `--set` against (src/lang/settings.def,\n"
+          "src/weber/params.def, src/strands/params.def, src/eco/params.def) by `tools/gen-directives`;\n"
+          "do not edit by hand (`build/tests/test_schema` fails when this file and the tables differ).\n"
+          "`sylva describe FILE` prints the same rows with a model's values ([cli.md](cli.md#sylva-describe)).\n"
+          "A range is written `[lo, hi]`, `(` `)` for an open end; `-` is no default.\n",
+          out);
+    md_table(out, &sch_lsystem, "`lsystem` settings", "[language.md §5](language.md#5-settings) explains them.");
+    md_table(out, &sch_weber, "`weber` parameters",
+             "[weberpenn.md](weberpenn.md) explains them. `N` is a level, 0 to 3: `1DownAngle 60` sets level 1, "
+             "`DownAngle 0 60 45 45` levels 0 to 3.");
+    md_table(out, &sch_strands, "`strands` parameters",
+             "[strands.md](strands.md#parameters) explains them. A per-order parameter's range is its Gravelius "
+             "factor's.");
+    md_table(out, &sch_ecosystem, "`ecosystem` directives",
+             "[ecosystem.md](ecosystem.md) explains them; a species' lines follow its `species NAME` line "
+             "(`--set NAME.maturity=30` for one species).");
+}

@@ -2,6 +2,7 @@
  * --set, the same for every kind of block. */
 #include "lang/schema.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 #include "lang/program.h"
@@ -154,4 +155,26 @@ int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char
     }
     *row = r;
     return 0;
+}
+
+void sch_count_read(const SylProgram *p) {
+    if (p->read_cache) p->read_cache->reads++;
+}
+
+int sch_reads(const SylProgram *p) { return p->read_cache ? p->read_cache->reads : 0; }
+
+void sch_keep(const SylProgram *p, const void *v, size_t size) {
+    SchCache *c = p->read_cache;
+    if (!c || c->value) return;
+    c->value = malloc(size);
+    if (!c->value) return; /* then the build reads the block again */
+    memcpy(c->value, v, size);
+    c->size = size;
+}
+
+bool sch_kept(const SylProgram *p, void *out, size_t size) {
+    const SchCache *c = p->read_cache;
+    if (!c || !c->value || c->size != size) return false;
+    memcpy(out, c->value, size);
+    return true;
 }

@@ -73,4 +73,24 @@ bool sch_value_ok(const SchRow *r, double x, char *why, size_t size);
 int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char *typed, const char *name,
                   double value, const SchRow **row, int *level);
 
+/* The markdown of docs/directives.md: every table (describe.c). */
+void lang_directives_reference(FILE *out);
+
+/* A block is read once: its reader, called by the validate hook while syl_compile runs (one
+ * thread, before the program is shared), keeps what it read in the program; a build then takes
+ * that copy instead of reading the lines again. reads counts the full reads of the block (the
+ * test that a block is read once, tests/unit/test_schema.c, looks at it). */
+typedef struct SchCache {
+    _Atomic int reads;
+    void *value; /* malloc'd copy of the reader's result; NULL: none kept */
+    size_t size;
+} SchCache;
+/* A full read of p's block begins. */
+void sch_count_read(const SylProgram *p);
+int sch_reads(const SylProgram *p);
+/* Keep size bytes at v as the block's reading (only while compiling: the validate hook). */
+void sch_keep(const SylProgram *p, const void *v, size_t size);
+/* The kept reading into out; false when there is none of that size. */
+bool sch_kept(const SylProgram *p, void *out, size_t size);
+
 #endif

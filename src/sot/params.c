@@ -16,6 +16,7 @@
 #include <string.h>
 
 #include "lang/program.h"
+#include "lang/schema.h"
 #include "util/closest.h"
 #include "sylva/grow.h"
 #include "sylva/skeleton.h"
@@ -698,6 +699,7 @@ static int read_all(const SylProgram *p, GrowParams *g, FILE *diag, int *set_err
     grow_params_default(g);
     g->from = p;
     g->seed = syl_program_seed(p) ? syl_program_seed(p) : 1;
+    sch_count_read(p);
     Reader r = {.p = p, .diag = diag};
     int n = 0;
     const SylDirective *dirs = syl_program_directives(p, &n);
@@ -737,6 +739,7 @@ static int read_all(const SylProgram *p, GrowParams *g, FILE *diag, int *set_err
 }
 
 int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
+    if (sch_kept(p, g, sizeof *g)) return 0;
     int set_errors;
     return read_all(p, g, diag, &set_errors);
 }
@@ -760,5 +763,6 @@ int sot_check_grow(const SylProgram *p, FILE *diag) {
     GrowParams g;
     int set_errors, errors = read_all(p, &g, diag, &set_errors);
     if (!errors) warn_grows_nothing(p, &g, diag);
+    if (!errors) sch_keep(p, &g, sizeof g); /* the growth takes it: read once */
     return errors && errors == set_errors ? -errors : errors; /* only the command line's */
 }

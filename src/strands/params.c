@@ -225,6 +225,7 @@ static void defaults(StrandsParams *P) {
 static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_errors) {
     Reader r = {.p = p, .diag = diag};
     defaults(P);
+    sch_count_read(p);
     int n = 0;
     const SylDirective *dirs = syl_program_directives(p, &n);
     const SylDirective *seen[NGLOBALS + SP_ORDER_COUNT + 2] = {0};
@@ -268,6 +269,7 @@ static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_
 }
 
 int strands_params_read(const SylProgram *p, StrandsParams *P, FILE *diag) {
+    if (sch_kept(p, P, sizeof *P)) return 0;
     int set_errors;
     return read_all(p, P, diag, &set_errors);
 }
@@ -275,6 +277,7 @@ int strands_params_read(const SylProgram *p, StrandsParams *P, FILE *diag) {
 int strands_params_check(const SylProgram *p, FILE *diag) {
     StrandsParams P;
     int set_errors, errors = read_all(p, &P, diag, &set_errors);
+    if (!errors) sch_keep(p, &P, sizeof P); /* the build takes it: read once */
     return errors && errors == set_errors ? -errors : errors; /* only the command line's */
 }
 

@@ -177,15 +177,18 @@ static int table_sets(const SylProgram *p, WeberParams *w, FILE *diag) {
 int weber_params_check(const SylProgram *p, FILE *diag) {
     WeberParams w;
     int errors = read_all(p, &w, diag), set_errors = lod_sets(p, diag) + table_sets(p, &w, diag);
+    if (!errors && !set_errors) sch_keep(p, &w, sizeof w); /* the build takes it: read once */
     return !errors && set_errors ? -set_errors : errors + set_errors; /* negative: only the command line's */
 }
 
 int weber_params_read(const SylProgram *p, WeberParams *w, FILE *diag) {
+    if (sch_kept(p, w, sizeof *w)) return 0;
     return read_all(p, w, diag) + lod_sets(p, diag) + table_sets(p, w, diag);
 }
 
 static int read_all(const SylProgram *p, WeberParams *w, FILE *diag) {
     weber_params_default(w);
+    sch_count_read(p);
     int n = 0, errors = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
     const SylDirective *splits_at[4] = {0}, *levels_at = NULL;
