@@ -19,6 +19,7 @@
 #include "lang/schema.h"
 #include "util/closest.h"
 #include "sylva/grow.h"
+#include "sylva/lod.h"
 #include "sylva/skeleton.h"
 
 /* V_SEED: a whole number in a uint64_t; V_NAME: a model's name, into a char[64] */
@@ -59,7 +60,7 @@ static const Key k_years = {"years", V_INT, 0, 10000, G(years), 0};
 static const Key k_seed = {"seed", V_SEED, 0, 9007199254740991.0, G(seed), 0};
 static const Key k_internode = {"internode", V_NUM, 1e-6, 1e4, G(internode), 0};
 static const Key k_sensitivity = {"sensitivity", V_NUM, 0, 20, G(sensitivity), 0};
-static const Key k_lod = {"lod", V_INT, 0, 8, G(lod), 0};
+static const Key k_lod = {"lod", V_INT, 0, SYL_LOD_MAX, G(lod), 0};
 
 static const Key buds_keys[] = {
     {"divergence", V_NUM, -360, 360, G(divergence), 0},
