@@ -86,6 +86,7 @@ double cli_peak_mb(void);
 int cmd_derive(int argc, char **argv);
 int cmd_check(int argc, char **argv);
 int cmd_compile(int argc, char **argv);
+int cmd_describe(int argc, char **argv);
 int cmd_skeleton(int argc, char **argv);
 int cmd_mesh(int argc, char **argv);
 int cmd_render(int argc, char **argv);
@@ -101,7 +102,7 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
 /* Each command's options and --help (cli/options.h), beside its cmd_ function. */
 extern const CliCommand cli_derive_command, cli_check_command, cli_compile_command, cli_skeleton_command,
     cli_mesh_command, cli_render_command, cli_grow_command, cli_compare_command,
-    cli_convert_command, cli_terrain_command, cli_animate_command, cli_ecosystem_command;
+    cli_convert_command, cli_terrain_command, cli_animate_command, cli_ecosystem_command, cli_describe_command;
 extern const CliCommand cli_plant_command; /* sylva FILE */
 /* The commands, in the order `sylva --help` lists them; NULL ends the list. */
 extern const CliCommand *const cli_commands[];

@@ -6,6 +6,8 @@
 #include <string.h>
 
 #include "sylva/ecosystem.h"
+#include "lang/program.h"
+#include "lang/schema.h"
 #include "util/closest.h"
 
 typedef struct NumInfo {
@@ -17,29 +19,17 @@ typedef struct NumInfo {
 
 #define SP(f) offsetof(SylEcoSpecies, f)
 static const NumInfo species_nums[] = {
-    {"maturity", SP(maturity), 0, 1e4, 20, "years"},
-    {"old_age", SP(old_age), 0, 1e4, 100, "years"},
-    {"max_age", SP(max_age), 1, 60000, 150, "years"},
-    {"height_max", SP(height_max), 0.01, 200, 20, "metres"},
-    {"growth_rate", SP(growth_rate), 0, 10, 0.03, "per year"},
-    {"start_height", SP(start_height), 0.001, 200, 0.3, "metres"},
-    {"radius_ratio", SP(radius_ratio), 0.001, 10, 0.25, "radius / height"},
-    {"seeds", SP(seeds), 0, 1000, 2, "per year"},
-    {"dispersal", SP(dispersal), 0, 1e4, 10, "metres"},
-    {"arrivals", SP(arrivals), 0, 1e4, 0.5, "per hectare per year"},
-    {"arrive_until", SP(arrive_until), 0, 60000, 0, "years"},
-    {"shade_tolerance", SP(shade_tolerance), 0, 1, 0.3, "a probability"},
-    {"stress_mortality", SP(stress_mortality), 0, 1, 0.05, "a probability"},
+#define ECO_S(f, nm, lo, hi, d, unit, mean) {nm, SP(f), lo, hi, d, unit},
+#include "params.def"
 };
 enum { NNUMS = sizeof species_nums / sizeof species_nums[0] };
-static const char *const block_words[] = {"terrain", "years", "snapshots", "seed", "latitude", "vigour", "species"};
+static const char *const block_words[] = {
+#define ECO_B(nm, ...) nm,
+#include "params.def"
+};
 enum { NBLOCK = sizeof block_words / sizeof block_words[0] };
 
-static bool number_of(const SylDirArg *a, double *x) {
-    if (a->kind == SYL_DARG_NUMBER) return *x = a->num, true;
-    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *x = a->values[0], true;
-    return false;
-}
+#define number_of sch_number
 
 /* The factor a directive names, or -1 (flow has no curve: wetness is its ecological form). */
 static int factor_named(const char *s) {
@@ -203,14 +193,16 @@ static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *
         return e;
     }
     if (!strcmp(d->name, "vigour")) {
-        static const char *const words[] = {"mean", "product", "minimum"};
+        const char *words = sch_find(&sch_ecosystem, "vigour", NULL)->words; /* in SylEcoCombine's order */
         if (arity(p, diag, d, 1, 1)) return 1;
-        for (int i = 0; i < 3; i++)
-            if (d->args[0].kind == SYL_DARG_WORD && !strcmp(d->args[0].text, words[i])) {
-                m->combine = (SylEcoCombine)i;
-                return 0;
-            }
-        syl_directive_error(p, diag, d, &d->args[0], "vigour is 'mean', 'product' or 'minimum'");
+        int k = d->args[0].kind == SYL_DARG_WORD ? sch_word_index(words, d->args[0].text) : -1;
+        if (k >= 0) {
+            m->combine = (SylEcoCombine)k;
+            return 0;
+        }
+        char near[200] = "";
+        if (d->args[0].kind == SYL_DARG_WORD) sch_suggest_word(words, d->args[0].text, near, sizeof near);
+        syl_directive_error(p, diag, d, &d->args[0], "vigour is 'mean', 'product' or 'minimum'%s", near);
         return 1;
     }
     if (!strcmp(d->name, "snapshots")) {
@@ -249,8 +241,76 @@ static int check_species(const SylProgram *p, FILE *diag, const SylEcoSpecies *s
     return e;
 }
 
+static bool is_param(const SylProgram *p, const char *name) {
+    for (int i = 0; i < p->nparams; i++)
+        if (!strcmp(p->params[i].name, name)) return true;
+    return false;
+}
+
+/* --set NAME=VALUE over the block's lines, in the order given: a number of the block
+ * (`years`, `seed`, `latitude`), a species' number for every species (`maturity`) or for
+ * one (`beech.maturity`), checked by the schema's reader (lang/schema.c) for name and range.
+ * The line numbers of later messages stay the file's. */
+static int apply_sets(const SylProgram *p, SylEcoModel *m, FILE *diag) {
+    int errors = 0;
+    for (int i = 0; i < p->noverrides; i++) {
+        const char *name = p->set_local ? p->set_local[i] : NULL, *typed = p->overrides[i].name;
+        if (!name || is_param(p, name)) continue;
+        double v = p->overrides[i].value;
+        const char *dot = strchr(name, '.');
+        int only = -1; /* the species named, -1: every species */
+        if (dot) {
+            for (int k = 0; k < m->nspecies; k++)
+                if (strlen(m->species[k].name) == (size_t)(dot - name) &&
+                    !strncmp(m->species[k].name, name, (size_t)(dot - name)))
+                    only = k;
+            if (only < 0) {
+                const char *names[SYL_ECO_MAX_SPECIES];
+                char prefix[96], near[400];
+                for (int k = 0; k < m->nspecies; k++) names[k] = m->species[k].name;
+                snprintf(prefix, sizeof prefix, "%.*s", (int)(dot - name), name);
+                int n = closest_list(prefix, names, m->nspecies, near, sizeof near);
+                syl_program_error(p, diag, 0, 0, "--set %s: ecosystem '%s' has no species '%s'%s%s%s", typed,
+                                  syl_program_name(p), prefix, n ? " (did you mean " : "", n ? near : "", n ? "?)" : "");
+                errors++;
+                continue;
+            }
+            name = dot + 1;
+        }
+        const SchRow *row;
+        int level;
+        if (sch_set_check(p, diag, &sch_ecosystem, typed, name, v, &row, &level)) {
+            errors++;
+            continue;
+        }
+        if (dot && !row->group) {
+            syl_program_error(p, diag, 0, 0, "--set %s: '%s' is the block's, not a species': write --set %s=%g",
+                              typed, name, name, v);
+            errors++;
+            continue;
+        }
+        if (!strcmp(name, "years")) m->years = (int)v;
+        else if (!strcmp(name, "seed")) m->seed = (uint64_t)v;
+        else if (!strcmp(name, "latitude")) m->latitude = v, m->latitude_set = true;
+        for (int n = 0; n < NNUMS; n++)
+            if (!strcmp(name, species_nums[n].name))
+                for (int k = 0; k < m->nspecies; k++)
+                    if (only < 0 || only == k) *(double *)((char *)&m->species[k] + species_nums[n].offset) = v;
+    }
+    return errors;
+}
+
+static int read_lines(const SylProgram *p, SylEcoModel *m, FILE *diag, int *set_errors);
+
 int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag) {
+    if (sch_kept(p, m, sizeof *m)) return 0;
+    int set_errors;
+    return read_lines(p, m, diag, &set_errors);
+}
+
+static int read_lines(const SylProgram *p, SylEcoModel *m, FILE *diag, int *set_errors) {
     memset(m, 0, sizeof *m);
+    sch_count_read(p);
     m->years = 100;
     m->seed = syl_program_seed(p);
     m->combine = SYL_ECO_MEAN;
@@ -288,7 +348,9 @@ int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag) {
         if (cur && !block) errors += read_species_line(p, diag, d, cur);
         else errors += read_block_line(p, diag, d, m);
     }
-    for (int k = 0; k < m->nspecies; k++) errors += check_species(p, diag, &m->species[k]);
+    *set_errors = errors ? 0 : apply_sets(p, m, diag);
+    errors += *set_errors;
+    for (int k = 0; k < m->nspecies && !*set_errors; k++) errors += check_species(p, diag, &m->species[k]);
     if (!errors && !m->terrain[0]) {
         syl_program_error(p, diag, 0, 0, "ecosystem '%s' names no terrain (terrain \"dem.png\" cell 10 heights 0 400)",
                           syl_program_name(p));
@@ -304,5 +366,7 @@ int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag) {
 int syl_ecosystem_validate(const SylProgram *p, FILE *diag) {
     if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) return 0;
     SylEcoModel m;
-    return syl_ecosystem_read(p, &m, diag);
+    int set_errors, errors = read_lines(p, &m, diag, &set_errors);
+    if (!errors) sch_keep(p, &m, sizeof m); /* the run takes it: read once */
+    return errors && errors == set_errors ? -errors : errors; /* negative: only the command line's */
 }

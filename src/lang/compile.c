@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "lang/compiler.h"
+#include "lang/schema.h"
 #include "util/file.h"
 
 /* ---- reading sources ---- */
@@ -268,6 +269,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         return NULL;
     }
     g->p = p;
+    p->read_cache = arena_alloc(&p->arena, sizeof *p->read_cache); /* zeroed; NULL: nothing kept */
     p->arena.oom = &g->oom;
     g->tmp.oom = &g->oom;
     if (text) {
@@ -326,6 +328,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             /* A file with a scene and no model of its own: its plants come from other files. */
             p->name = "scene";
             p->kind = SYL_MODEL_SCENE;
+            p->model_loc = scene->loc;
             compile_model(&c, &ast.top, scene);
             p->has_scene = true;
             p->first_model = true;
@@ -335,6 +338,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         } else {
             p->name = arena_strndup(&p->arena, m->name, strlen(m->name));
             p->kind = m->kind;
+            p->model_loc = m->loc;
             cc_splice_from(&c, m);
             compile_model(&c, &ast.top, m);
             if (lang_kind_is(m->kind, KF_DIRECTIVES)) directives(&c, m, &p->directives, &p->ndirectives);

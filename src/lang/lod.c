@@ -5,15 +5,13 @@
 #include <string.h>
 
 #include "lang/program.h"
+#include "lang/schema.h"
 #include "sylva/lod.h"
 
 /* Its one value: a number, or (expr), which arrives evaluated as a one-value tuple. */
 static bool lod_value(const SylDirective *d, double *v) {
     if (d->nargs != 1) return false;
-    const SylDirArg *a = &d->args[0];
-    if (a->kind == SYL_DARG_NUMBER) return *v = a->num, true;
-    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *v = a->values[0], true;
-    return false;
+    return sch_number(&d->args[0], v);
 }
 
 static bool lod_ok(double v) { return v >= 0 && v <= SYL_LOD_MAX && v == floor(v); }

@@ -5,10 +5,12 @@
 #include <string.h>
 
 #include "lang/program.h"
+#include "lang/schema.h"
 #include "util/diag.h"
 
 void syl_program_free(SylProgram *p) {
     if (!p) return;
+    if (p->read_cache) free(p->read_cache->value);
     arena_free(&p->arena);
     free(p->text);
     free(p);

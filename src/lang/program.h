@@ -209,6 +209,8 @@ struct SylProgram {
     Source src;
     char *text; /* owned copy of the source */
     const char *name;
+    SylLoc model_loc; /* where the model (or the file's scene) begins */
+    struct SchCache *read_cache; /* the block's reading, kept at compile time (lang/schema.h) */
 
     Symbol *syms;
     int nsyms, symcap;

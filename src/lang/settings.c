@@ -5,6 +5,7 @@
 
 #include "lang/compiler.h"
 #include "lang/parse_state.h"
+#include "lang/schema.h"
 #include "sylva/lod.h"
 
 typedef struct SettingDef {
@@ -17,17 +18,9 @@ typedef struct SettingDef {
 } SettingDef;
 
 static const SettingDef settings[] = {
-    {"derive", -1, 0, 1e6, true, 1, false},
-    {"angle", -1, -1e9, 1e9, false, 1, false},
-    {"step", -1, -1e9, 1e9, false, 1, false},
-    {"width", -1, 0, 1e9, false, 1, false},
-    {"seed", -1, 0, 9007199254740991.0, true, 1, false},
-    {"maxdepth", 1, 1, 1000, true, 1, false},
-    {"widthfactor", -1, 0, 1e9, false, 1, false},
-    {"tropism", -1, -1e9, 1e9, false, 4, false}, /* direction x, y, z and elasticity */
-    {"colour", -1, 0, 255, false, 4, true},      /* index, then red, green, blue in 0..1 */
-    {"direction", -1, 0, 0, false, 1, false},    /* forward or backward [when EXPR]: direction() */
-    {"lod", -1, 0, SYL_LOD_MAX, true, 1, false},           /* levels of detail of `sylva mesh` (--lod); 0: none */
+#define SETTING(nm, ty, blk, na, rep, lo, hi, d, words, unit, doc) {nm, blk, lo, hi, ty == SCH_INTEGER, na, rep},
+#include "settings.def"
+#undef SETTING
 };
 
 static bool in_range(Compiler *c, const SettingDef *def, double v, SylLoc loc, const char *typed);

@@ -16,8 +16,10 @@
 #include <string.h>
 
 #include "lang/program.h"
+#include "lang/schema.h"
 #include "util/closest.h"
 #include "sylva/grow.h"
+#include "sylva/lod.h"
 #include "sylva/skeleton.h"
 
 /* V_SEED: a whole number in a uint64_t; V_NAME: a model's name, into a char[64] */
@@ -58,7 +60,7 @@ static const Key k_years = {"years", V_INT, 0, 10000, G(years), 0};
 static const Key k_seed = {"seed", V_SEED, 0, 9007199254740991.0, G(seed), 0};
 static const Key k_internode = {"internode", V_NUM, 1e-6, 1e4, G(internode), 0};
 static const Key k_sensitivity = {"sensitivity", V_NUM, 0, 20, G(sensitivity), 0};
-static const Key k_lod = {"lod", V_INT, 0, 8, G(lod), 0};
+static const Key k_lod = {"lod", V_INT, 0, SYL_LOD_MAX, G(lod), 0};
 
 static const Key buds_keys[] = {
     {"divergence", V_NUM, -360, 360, G(divergence), 0},
@@ -698,6 +700,7 @@ static int read_all(const SylProgram *p, GrowParams *g, FILE *diag, int *set_err
     grow_params_default(g);
     g->from = p;
     g->seed = syl_program_seed(p) ? syl_program_seed(p) : 1;
+    sch_count_read(p);
     Reader r = {.p = p, .diag = diag};
     int n = 0;
     const SylDirective *dirs = syl_program_directives(p, &n);
@@ -737,6 +740,7 @@ static int read_all(const SylProgram *p, GrowParams *g, FILE *diag, int *set_err
 }
 
 int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag) {
+    if (sch_kept(p, g, sizeof *g)) return 0;
     int set_errors;
     return read_all(p, g, diag, &set_errors);
 }
@@ -760,5 +764,6 @@ int sot_check_grow(const SylProgram *p, FILE *diag) {
     GrowParams g;
     int set_errors, errors = read_all(p, &g, diag, &set_errors);
     if (!errors) warn_grows_nothing(p, &g, diag);
+    if (!errors) sch_keep(p, &g, sizeof g); /* the growth takes it: read once */
     return errors && errors == set_errors ? -errors : errors; /* only the command line's */
 }

@@ -7,6 +7,7 @@
 #include <stdbool.h>
 #include <string.h>
 
+#include "lang/schema.h"
 #include "util/closest.h"
 
 typedef struct Reader {
@@ -26,14 +27,8 @@ typedef struct Global {
 
 #define OFF(m) offsetof(StrandsParams, m)
 static const Global globals[] = {
-    {"strands", "S", 1, 4000000, 1000, true, OFF(strands)},
-    {"trunk_length", "l_0", 0, 100, 1, false, OFF(trunk_length)},
-    {"thickness", "k_d", 0, 1, 0.01, false, OFF(thickness)},
-    {"gravicentralism", "k_c", 0, 1, 1, false, OFF(gravicentral)},
-    {"phyllotaxis", "alpha_p", 0, 360, 85, false, OFF(phyllotaxis)},
-    {"leaf_density", "rho_l", 0, 30, 5, false, OFF(leaf_density)},
-    {"leaf_size", "l_l", 0, 1, 0.1, false, OFF(leaf_size)},
-    {"seed", "seed", 0, 9007199254740991.0, 0, true, OFF(seed)},
+#define ST_G(f, nm, sym, integer, lo, hi, d, unit, mean) {nm, sym, lo, hi, d, integer, OFF(f)},
+#include "params.def"
 };
 enum { NGLOBALS = sizeof globals / sizeof *globals };
 
@@ -45,38 +40,15 @@ typedef struct OrderDef {
 } OrderDef;
 
 static const OrderDef orders[SP_ORDER_COUNT] = {
-    [SP_SPLIT] = {"split_ratio", "k_s", 0.5, 1, 0, 2, 0.5, 1, 0.75},
-    [SP_ANGLE] = {"angle", "alpha", 0, 180, 0, 2, 0, 180, 45},
-    [SP_GRAVIMORPHISM] = {"gravimorphism", "alpha_m", -180, 180, 0, 2, -180, 180, 0},
-    [SP_LENGTH_MAX] = {"length_max", "M", 0, 10, 0, 2, 0, 20, 1},
-    [SP_LENGTH_MIN] = {"length_min", "m", 0, 10, 0, 2, 0, 20, 0},
-    [SP_LENGTH_SCALE] = {"length_scale", "k_l", 0, 10, 0, 2, 0, 20, 1},
-    [SP_LAT_LENGTH_MAX] = {"lateral_length_max", "M_minor", 0, 10, 0, 2, 0, 20, 1},
-    [SP_LAT_LENGTH_MIN] = {"lateral_length_min", "m_minor", 0, 10, 0, 2, 0, 20, 0},
-    [SP_LAT_LENGTH_SCALE] = {"lateral_length_scale", "k_l_minor", 0, 10, 0, 2, 0, 20, 1},
+#define ST_O(i, nm, sym, glo, ghi, wlo, whi, lo, hi, d, unit, mean) [i] = {nm, sym, glo, ghi, wlo, whi, lo, hi, d},
+#include "params.def"
 };
-
-static const char *const leaf_names[] = {"none", "stacked", "staggered", "spiral", "bunched", "coniferous"};
-enum { NLEAF = sizeof leaf_names / sizeof *leaf_names };
 
 #define ERR_AT(r, d, a, ...) (syl_directive_error((r)->p, (r)->diag, (d), (a), __VA_ARGS__), (r)->errors++)
 
-static bool number_of(const SylDirArg *a, double *out) {
-    if (a->kind == SYL_DARG_NUMBER) return *out = a->num, true;
-    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *out = a->values[0], true;
-    return false;
-}
+#define number_of sch_number
 
-/* Every name a directive may have, for "did you mean". */
-static int all_names(const char **names) {
-    int n = 0;
-    for (int i = 0; i < NGLOBALS; i++) names[n++] = globals[i].name;
-    for (int i = 0; i < SP_ORDER_COUNT; i++) names[n++] = orders[i].name;
-    names[n++] = "leaves";
-    names[n++] = "lod";
-    return n;
-}
-
+/* " (did you mean 'x'?)" for a name or word the block does not know. */
 static void suggest(const char *typed, const char *const *names, int n, char *buf, size_t size) {
     char list[512];
     if (closest_list(typed, names, n, list, sizeof list) > 0) snprintf(buf, size, " (did you mean %s?)", list);
@@ -186,13 +158,14 @@ static void read_leaves(Reader *r, const SylDirective *d, StrandsParams *P) {
                                                      "or coniferous");
         return;
     }
-    for (int k = 0; k < NLEAF; k++)
-        if (!strcmp(d->args[0].text, leaf_names[k])) {
-            P->leaf_type = (LeafType)k;
-            return;
-        }
+    const char *words = sch_find(&sch_strands, "leaves", NULL)->words; /* in LeafType's order */
+    int k = sch_word_index(words, d->args[0].text);
+    if (k >= 0) {
+        P->leaf_type = (LeafType)k;
+        return;
+    }
     char hint[600];
-    suggest(d->args[0].text, leaf_names, NLEAF, hint, sizeof hint);
+    sch_suggest_word(words, d->args[0].text, hint, sizeof hint);
     ERR_AT(r, d, &d->args[0], "no leaf type '%s'%s: none, stacked, staggered, spiral, bunched or coniferous",
            d->args[0].text, hint);
 }
@@ -231,10 +204,8 @@ static void apply_set(Reader *r, StrandsParams *P, const char *typed, const char
             goto done;
         }
     if (r->p->sibling) return; /* meant for another model of the file */
-    const char *names[64];
-    int n = all_names(names);
     char hint[600];
-    suggest(name, names, n, hint, sizeof hint);
+    sch_suggest(&sch_strands, name, hint, sizeof hint);
     syl_program_error(r->p, r->diag, 0, 0, "--set %s: strands block '%s' has no parameter '%s'%s", typed,
                       syl_program_name(r->p), name, hint);
     r->errors++;
@@ -254,6 +225,7 @@ static void defaults(StrandsParams *P) {
 static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_errors) {
     Reader r = {.p = p, .diag = diag};
     defaults(P);
+    sch_count_read(p);
     int n = 0;
     const SylDirective *dirs = syl_program_directives(p, &n);
     const SylDirective *seen[NGLOBALS + SP_ORDER_COUNT + 2] = {0};
@@ -267,10 +239,8 @@ static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_
         if (slot < 0 && !strcmp(d->name, "leaves")) slot = NGLOBALS + SP_ORDER_COUNT;
         if (slot < 0 && !strcmp(d->name, "lod")) slot = NGLOBALS + SP_ORDER_COUNT + 1;
         if (slot < 0) {
-            const char *names[64];
-            int nn = all_names(names);
             char hint[600];
-            suggest(d->name, names, nn, hint, sizeof hint);
+            sch_suggest(&sch_strands, d->name, hint, sizeof hint);
             ERR_AT(&r, d, NULL, "a strands block has no parameter '%s'%s", d->name, hint);
             continue;
         }
@@ -299,6 +269,7 @@ static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_
 }
 
 int strands_params_read(const SylProgram *p, StrandsParams *P, FILE *diag) {
+    if (sch_kept(p, P, sizeof *P)) return 0;
     int set_errors;
     return read_all(p, P, diag, &set_errors);
 }
@@ -306,6 +277,7 @@ int strands_params_read(const SylProgram *p, StrandsParams *P, FILE *diag) {
 int strands_params_check(const SylProgram *p, FILE *diag) {
     StrandsParams P;
     int set_errors, errors = read_all(p, &P, diag, &set_errors);
+    if (!errors) sch_keep(p, &P, sizeof P); /* the build takes it: read once */
     return errors && errors == set_errors ? -errors : errors; /* only the command line's */
 }
 

@@ -18,9 +18,6 @@ const WeberParamInfo weber_param_table[] = {
 #undef WP_L
 const int weber_param_count = (int)(sizeof weber_param_table / sizeof weber_param_table[0]);
 
-/* Directives that are not parameters of the model. */
-static const char *const extra_names[] = {"convention", "Seed", "envelope", "Species", "lod"};
-enum { NEXTRA = sizeof extra_names / sizeof extra_names[0] };
 
 static double *slot(WeberParams *w, const WeberParamInfo *pi) { return (double *)((char *)w + pi->offset); }
 
@@ -47,14 +44,6 @@ static const WeberParamInfo *find(const char *name, bool per_level) {
     return NULL;
 }
 
-static void range_text(const WeberParamInfo *pi, char *buf, size_t n) {
-    char lo[32], hi[32];
-    if (isinf(pi->lo)) snprintf(lo, sizeof lo, "-inf"); else snprintf(lo, sizeof lo, "%g", pi->lo);
-    if (isinf(pi->hi)) snprintf(hi, sizeof hi, "inf"); else snprintf(hi, sizeof hi, "%g", pi->hi);
-    snprintf(buf, n, "%s%s, %s%s", pi->lo_open || isinf(pi->lo) ? "(" : "[", lo, hi,
-             pi->hi_open || isinf(pi->hi) ? ")" : "]");
-}
-
 /* The leaf shape words Arbaro's mesher knows (any number is its "0", the disc). */
 static bool leaf_shape(const char *s, WeberParams *w) {
     if (!strcmp(s, "disc") || !strcmp(s, "0")) { w->leaf_kind = WEBER_LEAF_DISC; w->leaf_tris = 6; return true; }
@@ -68,15 +57,8 @@ static bool leaf_shape(const char *s, WeberParams *w) {
     if (!strcmp(s, "palm")) { w->leaf_kind = WEBER_LEAF_PALM; w->leaf_tris = 6; return true; }
     return false;
 }
-static const char *const leaf_names[] = {"disc", "disc1", "disc2", "disc3", "disc4", "disc5", "disc6",
-                                         "disc7", "disc8", "disc9", "square", "sphere", "palm"};
 
-/* A number: written plainly, or as (expr), which arrives evaluated as a one-value tuple. */
-static bool number_of(const SylDirArg *a, double *x) {
-    if (a->kind == SYL_DARG_NUMBER) return *x = a->num, true;
-    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *x = a->values[0], true;
-    return false;
-}
+#define number_of sch_number
 
 /* One value of parameter pi; stores it at *v. Returns the errors (0 or 1). */
 static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, const SylDirArg *a,
@@ -85,12 +67,10 @@ static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, co
         double unused;
         if (number_of(a, &unused)) { leaf_shape("0", w); return 0; }
         if ((a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING) && leaf_shape(a->text, w)) return 0;
-        char near[160];
-        int k = a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING
-                    ? closest_list(a->text, leaf_names, (int)(sizeof leaf_names / sizeof *leaf_names), near, sizeof near)
-                    : 0;
-        syl_directive_error(p, diag, d, a, "LeafShape must be 0, disc, disc1 .. disc9, square, sphere or palm%s%s%s",
-                            k ? " (did you mean " : "", k ? near : "", k ? "?)" : "");
+        char near[200] = "";
+        if (a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING)
+            sch_suggest_word(sch_find(&sch_weber, "LeafShape", NULL)->words, a->text, near, sizeof near);
+        syl_directive_error(p, diag, d, a, "LeafShape must be 0, disc, disc1 .. disc9, square, sphere or palm%s", near);
         return 1;
     }
     double x;
@@ -98,14 +78,9 @@ static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, co
         syl_directive_error(p, diag, d, a, "%s takes a number", shown);
         return 1;
     }
-    char r[80];
-    range_text(pi, r, sizeof r);
-    if (isnan(x) || x < pi->lo || x > pi->hi || (pi->lo_open && x == pi->lo) || (pi->hi_open && x == pi->hi)) {
-        syl_directive_error(p, diag, d, a, "%s must be in %s, not %g", shown, r, x);
-        return 1;
-    }
-    if (pi->type == WP_INT && x != floor(x)) {
-        syl_directive_error(p, diag, d, a, "%s takes a whole number, not %g", shown, x);
+    char why[160];
+    if (!sch_value_ok(&sch_weber.rows[pi - weber_param_table], x, why, sizeof why)) { /* the same row of params.def */
+        syl_directive_error(p, diag, d, a, "%s %s", shown, why);
         return 1;
     }
     *v = x;
@@ -113,26 +88,10 @@ static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, co
 }
 
 static int unknown(const SylProgram *p, FILE *diag, const SylDirective *d) {
-    /* 1DownAngel is compared with 1DownAngle, 1Rotate, ...; DownAngel with every name */
-    char pre[128][32];
-    const char *names[128 + NEXTRA];
-    int n = 0;
-    char digit = d->name[0] >= '0' && d->name[0] <= '3' && d->name[1] ? d->name[0] : 0;
-    for (int i = 0; i < weber_param_count && n < 128; i++) {
-        if (digit && weber_param_table[i].per_level) {
-            snprintf(pre[n], sizeof pre[n], "%c%s", digit, weber_param_table[i].name);
-            names[n] = pre[n];
-            n++;
-        } else
-            names[n++] = weber_param_table[i].name;
-    }
-    for (int i = 0; i < NEXTRA; i++) names[n++] = extra_names[i];
-    char near[200] = "";
-    int k = closest_list(d->name, names, n, near, sizeof near);
-    if (k)
-        syl_directive_error(p, diag, d, NULL, "unknown weber parameter '%s' (did you mean %s?)", d->name, near);
-    else
-        syl_directive_error(p, diag, d, NULL, "unknown weber parameter '%s' (docs/weberpenn.md lists them)", d->name);
+    char near[480];
+    sch_suggest(&sch_weber, d->name, near, sizeof near);
+    syl_directive_error(p, diag, d, NULL, "unknown weber parameter '%s'%s", d->name,
+                        near[0] ? near : " (docs/weberpenn.md lists them)");
     return 1;
 }
 
@@ -146,10 +105,13 @@ static int read_extra(const SylProgram *p, FILE *diag, const SylDirective *d, We
         return 1;
     }
     if (!strcmp(d->name, "convention")) {
-        if (a->kind == SYL_DARG_WORD && !strcmp(a->text, "arbaro")) w->convention = WEBER_ARBARO;
-        else if (a->kind == SYL_DARG_WORD && !strcmp(a->text, "paper")) w->convention = WEBER_PAPER;
+        const char *words = sch_find(&sch_weber, "convention", NULL)->words; /* WEBER_ARBARO, WEBER_PAPER */
+        int k = a->kind == SYL_DARG_WORD ? sch_word_index(words, a->text) : -1;
+        if (k >= 0) w->convention = k;
         else {
-            syl_directive_error(p, diag, d, a, "convention is 'arbaro' or 'paper'");
+            char near[200] = "";
+            if (a->kind == SYL_DARG_WORD) sch_suggest_word(words, a->text, near, sizeof near);
+            syl_directive_error(p, diag, d, a, "convention is 'arbaro' or 'paper'%s", near);
             return 1;
         }
     } else if (!strcmp(d->name, "Seed")) {
@@ -182,27 +144,59 @@ static int lod_sets(const SylProgram *p, FILE *diag) {
     return errors;
 }
 
+static bool is_param(const SylProgram *p, const char *name) {
+    for (int i = 0; i < p->nparams; i++)
+        if (!strcmp(p->params[i].name, name)) return true;
+    return false;
+}
+
+/* --set NAME=VALUE over the block's lines, in the order given (the last one wins): any
+ * number of the table (`Levels`, `Scale`, `1DownAngle`), checked by the schema's reader
+ * (lang/schema.c) for its name and range; `lod` as lod_sets checks it. A param takes its
+ * own value (lang/overrides.c). */
+static int table_sets(const SylProgram *p, WeberParams *w, FILE *diag) {
+    int errors = 0;
+    for (int i = 0; i < p->noverrides; i++) {
+        const char *name = p->set_local ? p->set_local[i] : NULL;
+        if (!name || is_param(p, name) || !strcmp(name, "lod")) continue;
+        const SchRow *row;
+        int level;
+        if (p->sibling && !sch_find(&sch_weber, name, &level)) continue; /* meant for another model */
+        if (sch_set_check(p, diag, &sch_weber, p->overrides[i].name, name, p->overrides[i].value, &row, &level)) {
+            errors++;
+            continue;
+        }
+        double v = p->overrides[i].value;
+        const WeberParamInfo *pi = find(row->name, row->levels > 0);
+        if (pi) slot(w, pi)[pi->per_level ? level : 0] = v;
+        else if (!strcmp(row->name, "Seed")) w->has_seed = true, w->seed = (uint64_t)v;
+    }
+    return errors;
+}
+
 int weber_params_check(const SylProgram *p, FILE *diag) {
     WeberParams w;
-    int errors = read_all(p, &w, diag), set_errors = lod_sets(p, diag);
+    int errors = read_all(p, &w, diag), set_errors = lod_sets(p, diag) + table_sets(p, &w, diag);
+    if (!errors && !set_errors) sch_keep(p, &w, sizeof w); /* the build takes it: read once */
     return !errors && set_errors ? -set_errors : errors + set_errors; /* negative: only the command line's */
 }
 
 int weber_params_read(const SylProgram *p, WeberParams *w, FILE *diag) {
-    return read_all(p, w, diag) + lod_sets(p, diag);
+    if (sch_kept(p, w, sizeof *w)) return 0;
+    return read_all(p, w, diag) + lod_sets(p, diag) + table_sets(p, w, diag);
 }
 
 static int read_all(const SylProgram *p, WeberParams *w, FILE *diag) {
     weber_params_default(w);
+    sch_count_read(p);
     int n = 0, errors = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
     const SylDirective *splits_at[4] = {0}, *levels_at = NULL;
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &ds[i];
-        bool extra = false;
-        for (int e = 0; e < NEXTRA; e++) extra |= !strcmp(d->name, extra_names[e]);
-        if (extra) { errors += read_extra(p, diag, d, w); continue; }
         const WeberParamInfo *pi = find(d->name, false);
+        const SchRow *row = pi ? NULL : sch_find(&sch_weber, d->name, NULL);
+        if (row && !row->levels) { errors += read_extra(p, diag, d, w); continue; } /* convention, Seed, ... */
         int level = -1; /* a single level (digit prefix); -1: a list from level 0 */
         if (!pi) pi = find(d->name, true);
         if (!pi && d->name[0] >= '0' && d->name[0] <= '9' && (pi = find(d->name + 1, true)) != NULL) {

@@ -9,9 +9,10 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "lang/schema.h"
 #include "sylva/sylva.h"
 
-enum { WP_NUM, WP_INT, WP_LEAFSHAPE };
+enum { WP_NUM = SCH_NUMBER, WP_INT = SCH_INTEGER, WP_LEAFSHAPE = SCH_ENUM }; /* params.def's types */
 enum { WEBER_ARBARO, WEBER_PAPER }; /* convention: shapes 0 and 5, AttractionUp, split angle */
 enum { WEBER_LEAF_DISC, WEBER_LEAF_SQUARE, WEBER_LEAF_SPHERE, WEBER_LEAF_PALM };
 

@@ -1,0 +1,481 @@
+/* sylva describe: every model of a file with every parameter, from the schema's rows
+ * (schema.h) and the model's values. The JSON is the contract of sylva/describe.h. */
+#include "sylva/describe.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/program.h"
+#include "lang/schema.h"
+
+/* A value: none, a number, a list of numbers, or text. */
+typedef struct Val {
+    enum { V_NULL, V_NUM, V_LIST, V_TEXT } kind;
+    double x[8];
+    int n;
+    char text[256];
+} Val;
+
+typedef struct Entry {
+    char name[128];
+    SchType type;
+    double lo, hi; /* NAN: unbounded */
+    Val def, val;
+    const char *unit, *doc, *words, *aliases;
+    int levels;
+} Entry;
+
+typedef struct DModel {
+    const char *name, *kind;
+    int line;
+    Entry *e;
+    int n, cap;
+} DModel;
+
+static Entry *add(DModel *m) {
+    if (m->n == m->cap) {
+        int cap = m->cap ? 2 * m->cap : 64;
+        Entry *e = realloc(m->e, (size_t)cap * sizeof *e);
+        if (!e) return NULL;
+        m->e = e, m->cap = cap;
+    }
+    Entry *e = &m->e[m->n++];
+    memset(e, 0, sizeof *e);
+    e->lo = e->hi = NAN;
+    e->unit = "";
+    e->doc = "";
+    return e;
+}
+
+static void num(Val *v, double x) { *v = (Val){.kind = isnan(x) ? V_NULL : V_NUM, .x = {x}, .n = 1}; }
+static void text(Val *v, const char *s) {
+    v->kind = s ? V_TEXT : V_NULL;
+    snprintf(v->text, sizeof v->text, "%s", s ? s : "");
+}
+
+static void row_default(const SchRow *r, Val *v) {
+    if (r->levels) {
+        *v = (Val){.kind = V_LIST, .n = r->levels};
+        for (int l = 0; l < r->levels && l < 8; l++) v->x[l] = r->def[l];
+    } else if (r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->type == SCH_BOOLEAN)
+        num(v, r->def[0]);
+    else if (r->def_text)
+        text(v, r->def_text);
+    else
+        v->kind = V_NULL;
+}
+
+static Entry *add_row(DModel *m, const SchRow *r, const char *prefix) {
+    Entry *e = add(m);
+    if (!e) return NULL;
+    snprintf(e->name, sizeof e->name, "%s%s", prefix ? prefix : "", r->name);
+    e->type = r->levels ? SCH_LIST : r->type;
+    if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->type == SCH_LIST) && !(r->lo == 0 && r->hi == 0)) {
+        e->lo = isinf(r->lo) ? NAN : r->lo;
+        e->hi = isinf(r->hi) ? NAN : r->hi;
+    }
+    row_default(r, &e->def);
+    e->val = e->def;
+    e->unit = r->unit ? r->unit : "";
+    e->doc = r->doc ? r->doc : "";
+    e->words = r->words;
+    e->aliases = r->aliases;
+    e->levels = r->levels;
+    return e;
+}
+
+/* A directive's values as written: its number, its numbers, or its words. */
+static void arg_text(const SylDirArg *a, char *buf, size_t size) {
+    if (a->kind == SYL_DARG_NUMBER) snprintf(buf, size, "%.15g", a->num);
+    else if (a->kind == SYL_DARG_TUPLE || a->kind == SYL_DARG_SYMBOL) {
+        size_t k = (size_t)snprintf(buf, size, "%s(", a->kind == SYL_DARG_SYMBOL && a->text ? a->text : "");
+        for (int i = 0; i < a->nvalues && k < size; i++)
+            k += (size_t)snprintf(buf + k, size - k, "%s%.15g", i ? ", " : "", a->values[i]);
+        if (k < size) snprintf(buf + k, size - k, ")");
+    } else
+        snprintf(buf, size, "%s", a->text ? a->text : "");
+}
+
+static void directive_value(const SylDirective *d, int level, Entry *e) {
+    double x;
+    if (e->levels) {
+        if (e->val.kind != V_LIST) return;
+        for (int k = 0; k < d->nargs; k++) {
+            int l = level >= 0 ? level : k;
+            if (l < e->levels && sch_number(&d->args[k], &x)) e->val.x[l] = x;
+        }
+        return;
+    }
+    bool all = d->nargs > 0 && d->nargs <= 8;
+    for (int k = 0; all && k < d->nargs; k++) all = sch_number(&d->args[k], &x);
+    if (all && d->nargs == 1 && e->type != SCH_LIST) {
+        num(&e->val, d->args[0].kind == SYL_DARG_NUMBER ? d->args[0].num : d->args[0].values[0]);
+        return;
+    }
+    if (all && e->type == SCH_LIST) {
+        e->val = (Val){.kind = V_LIST, .n = d->nargs};
+        for (int k = 0; k < d->nargs; k++) sch_number(&d->args[k], &e->val.x[k]);
+        return;
+    }
+    e->val.kind = V_TEXT;
+    size_t used = 0;
+    for (int k = 0; k < d->nargs && used < sizeof e->val.text; k++) {
+        char one[128];
+        arg_text(&d->args[k], one, sizeof one);
+        used += (size_t)snprintf(e->val.text + used, sizeof e->val.text - used, "%s%s", k ? " " : "", one);
+    }
+}
+
+static Entry *find_entry(DModel *m, const char *name) {
+    for (int i = 0; i < m->n; i++)
+        if (!strcmp(m->e[i].name, name)) return &m->e[i];
+    return NULL;
+}
+
+static bool is_param(const SylProgram *p, const char *name) {
+    for (int i = 0; i < p->nparams; i++)
+        if (!strcmp(p->params[i].name, name)) return true;
+    return false;
+}
+
+/* --set NAME=VALUE over the values (the reader has checked them). */
+static void apply_sets(const SylProgram *p, const SchTable *t, DModel *m) {
+    for (int i = 0; i < p->noverrides; i++) {
+        const char *name = p->set_local ? p->set_local[i] : NULL;
+        if (!name || is_param(p, name)) continue;
+        int level;
+        const SchRow *r = sch_find(t, name, &level);
+        Entry *e = r ? find_entry(m, r->name) : find_entry(m, name);
+        if (!e) continue;
+        if (e->levels && level >= 0 && level < e->levels && e->val.kind == V_LIST) e->val.x[level] = p->overrides[i].value;
+        else if (!e->levels) num(&e->val, p->overrides[i].value);
+    }
+}
+
+static void describe_block(const SylProgram *p, const SchTable *t, DModel *m) {
+    int n = 0;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    if (t == &sch_ecosystem) { /* the block's lines, then each species' under its name */
+        for (int i = 0; i < t->n; i++)
+            if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
+        const char *species = NULL;
+        for (int k = 0; k < n; k++) {
+            const SylDirective *d = &ds[k];
+            if (!strcmp(d->name, "species") && d->nargs == 1 && d->args[0].text) {
+                species = d->args[0].text;
+                char prefix[80];
+                snprintf(prefix, sizeof prefix, "%s.", species);
+                for (int i = 0; i < t->n; i++)
+                    if (t->rows[i].group) add_row(m, &t->rows[i], prefix);
+                continue;
+            }
+            const SchRow *r = sch_find(t, d->name, NULL);
+            if (!r) continue;
+            char name[160];
+            snprintf(name, sizeof name, "%s%s%s", r->group && species ? species : "", r->group && species ? "." : "",
+                     r->name);
+            Entry *e = find_entry(m, name);
+            if (e) directive_value(d, -1, e);
+        }
+        for (int i = 0; i < p->noverrides; i++) { /* years=3, beech.maturity=30 */
+            const char *name = p->set_local ? p->set_local[i] : NULL;
+            Entry *e = name && !is_param(p, name) ? find_entry(m, name) : NULL;
+            if (e && (e->type == SCH_NUMBER || e->type == SCH_INTEGER)) num(&e->val, p->overrides[i].value);
+        }
+        return;
+    }
+    for (int i = 0; i < t->n; i++) add_row(m, &t->rows[i], NULL);
+    for (int k = 0; k < n; k++) {
+        int level;
+        const SchRow *r = sch_find(t, ds[k].name, &level);
+        Entry *e = r ? find_entry(m, r->name) : NULL;
+        if (e) directive_value(&ds[k], level, e);
+    }
+    apply_sets(p, t, m);
+}
+
+/* A grow block's directives have no schema table yet (sot/params.c reads them): each line
+ * is listed as written. */
+static void describe_lines(const SylProgram *p, DModel *m) {
+    int n = 0;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    for (int k = 0; k < n; k++) {
+        Entry *e = find_entry(m, ds[k].name);
+        if (!e && !(e = add(m))) return;
+        snprintf(e->name, sizeof e->name, "%s", ds[k].name);
+        e->type = SCH_STRING;
+        e->doc = "a line of the block (docs/growth.md)";
+        directive_value(&ds[k], -1, e);
+        if (e->val.kind == V_NUM) e->type = SCH_NUMBER;
+    }
+}
+
+static void describe_settings(const SylProgram *p, DModel *m) {
+    for (int i = 0; i < sch_lsystem.n; i++) {
+        const SchRow *r = &sch_lsystem.rows[i];
+        Entry *e = add_row(m, r, NULL);
+        if (!e) return;
+        const char *s = r->name;
+        if (!strcmp(s, "derive")) num(&e->val, p->derive);
+        else if (!strcmp(s, "angle")) num(&e->val, p->angle);
+        else if (!strcmp(s, "step")) num(&e->val, p->step);
+        else if (!strcmp(s, "width")) num(&e->val, p->width);
+        else if (!strcmp(s, "seed")) num(&e->val, (double)p->seed);
+        else if (!strcmp(s, "widthfactor")) num(&e->val, p->widthfactor);
+        else if (!strcmp(s, "lod")) num(&e->val, p->lod);
+        else if (!strcmp(s, "direction")) text(&e->val, p->backward ? "backward" : "forward");
+        else if (!strcmp(s, "tropism")) {
+            e->val = (Val){.kind = V_LIST, .n = 4};
+            for (int k = 0; k < 4; k++) e->val.x[k] = p->tropism[k];
+        } else if (!strcmp(s, "maxdepth")) {
+            num(&e->val, p->tables[TABLE_DECOMPOSE].maxdepth ? p->tables[TABLE_DECOMPOSE].maxdepth : r->def[0]);
+        } else
+            e->val.kind = V_NULL; /* colour: one line per index */
+    }
+}
+
+static void describe_params(const SylProgram *p, DModel *m) {
+    for (int i = 0; i < p->nparams; i++) {
+        Entry *e = add(m);
+        if (!e) return;
+        snprintf(e->name, sizeof e->name, "%s", p->params[i].name);
+        e->type = SCH_NUMBER;
+        e->doc = "a param of the file";
+        num(&e->val, p->params[i].value);
+        if (!p->params[i].overridden) e->def = e->val;
+    }
+}
+
+/* The kind's keyword, as a file writes it (the kinds table will give it once merged). */
+static const char *keyword(SylModelKind k) {
+    switch (k) {
+    case SYL_MODEL_GROW: return "grow";
+    case SYL_MODEL_SCENE: return "scene";
+    case SYL_MODEL_WEBER: return "weber";
+    case SYL_MODEL_STRANDS: return "strands";
+    case SYL_MODEL_ECOSYSTEM: return "ecosystem";
+    default: return "lsystem";
+    }
+}
+
+static void describe_model(const SylProgram *p, DModel *m) {
+    m->name = syl_program_name(p);
+    m->kind = keyword(p->kind);
+    m->line = p->model_loc.first_line;
+    describe_params(p, m);
+    switch (p->kind) {
+    case SYL_MODEL_LSYSTEM: describe_settings(p, m); break;
+    case SYL_MODEL_WEBER: describe_block(p, &sch_weber, m); break;
+    case SYL_MODEL_STRANDS: describe_block(p, &sch_strands, m); break;
+    case SYL_MODEL_ECOSYSTEM: describe_block(p, &sch_ecosystem, m); break;
+    case SYL_MODEL_GROW: describe_lines(p, m); break;
+    default: break;
+    }
+}
+
+/* ---- JSON ---- */
+
+static void jstr(FILE *out, const char *s) {
+    fputc('"', out);
+    for (; s && *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') fprintf(out, "\\%c", c);
+        else if (c < 0x20) fprintf(out, "\\u%04x", c);
+        else fputc(c, out);
+    }
+    fputc('"', out);
+}
+
+static void jnum(FILE *out, double x) {
+    if (isnan(x) || isinf(x)) fputs("null", out);
+    else fprintf(out, "%.15g", x);
+}
+
+static void jval(FILE *out, const Val *v) {
+    if (v->kind == V_NUM) jnum(out, v->x[0]);
+    else if (v->kind == V_TEXT) jstr(out, v->text);
+    else if (v->kind == V_LIST) {
+        fputc('[', out);
+        for (int i = 0; i < v->n; i++) {
+            if (i) fputc(',', out);
+            jnum(out, v->x[i]);
+        }
+        fputc(']', out);
+    } else
+        fputs("null", out);
+}
+
+/* "a|b" as ["a","b"] */
+static void jwords(FILE *out, const char *words, bool null_if_none) {
+    if (!words || !*words) {
+        fputs(null_if_none ? "null" : "[]", out);
+        return;
+    }
+    fputc('[', out);
+    for (const char *w = words; w;) {
+        const char *end = strchr(w, '|');
+        size_t len = end ? (size_t)(end - w) : strlen(w);
+        fprintf(out, "%s\"%.*s\"", w == words ? "" : ",", (int)len, w);
+        w = end ? end + 1 : NULL;
+    }
+    fputc(']', out);
+}
+
+static void json_model(FILE *out, const DModel *m) {
+    fputs("{\"name\":", out);
+    jstr(out, m->name);
+    fputs(",\"kind\":", out);
+    jstr(out, m->kind);
+    fprintf(out, ",\"line\":%d,\"params\":[", m->line);
+    for (int i = 0; i < m->n; i++) {
+        const Entry *e = &m->e[i];
+        fputs(i ? ",\n  {\"name\":" : "\n  {\"name\":", out);
+        jstr(out, e->name);
+        fprintf(out, ",\"type\":\"%s\",\"min\":", sch_type_name(e->type));
+        jnum(out, e->lo);
+        fputs(",\"max\":", out);
+        jnum(out, e->hi);
+        fputs(",\"default\":", out);
+        jval(out, &e->def);
+        fputs(",\"value\":", out);
+        jval(out, &e->val);
+        fputs(",\"unit\":", out);
+        jstr(out, e->unit);
+        fputs(",\"doc\":", out);
+        jstr(out, e->doc);
+        fputs(",\"values\":", out);
+        jwords(out, e->type == SCH_ENUM ? e->words : NULL, true);
+        fputs(",\"aliases\":", out);
+        jwords(out, e->aliases, false);
+        if (e->levels) fprintf(out, ",\"levels\":%d", e->levels);
+        fputc('}', out);
+    }
+    fputs("]}", out);
+}
+
+/* ---- text ---- */
+
+static void tval(char *buf, size_t size, const Val *v) {
+    if (v->kind == V_NUM) snprintf(buf, size, "%.15g", v->x[0]);
+    else if (v->kind == V_TEXT) snprintf(buf, size, "%s", v->text);
+    else if (v->kind == V_LIST) {
+        size_t k = 0;
+        buf[0] = 0;
+        for (int i = 0; i < v->n && k < size; i++) k += (size_t)snprintf(buf + k, size - k, "%s%.15g", i ? " " : "", v->x[i]);
+    } else
+        snprintf(buf, size, "-");
+}
+
+static void text_model(FILE *out, const DModel *m) {
+    fprintf(out, "%s (%s, line %d)\n", m->name, m->kind, m->line);
+    for (int i = 0; i < m->n; i++) {
+        const Entry *e = &m->e[i];
+        char val[300], def[300], range[96] = "";
+        tval(val, sizeof val, &e->val);
+        tval(def, sizeof def, &e->def);
+        if (e->type == SCH_ENUM && e->words) snprintf(range, sizeof range, "%s", e->words);
+        else if (!isnan(e->lo) || !isnan(e->hi)) {
+            char lo[32] = "-inf", hi[32] = "inf";
+            if (!isnan(e->lo)) snprintf(lo, sizeof lo, "%g", e->lo);
+            if (!isnan(e->hi)) snprintf(hi, sizeof hi, "%g", e->hi);
+            snprintf(range, sizeof range, "%s .. %s", lo, hi);
+        }
+        fprintf(out, "  %-24s %-8s %-14s %-24s default %-12s %s%s%s%s\n", e->name, sch_type_name(e->type), val,
+                range, def, e->unit, *e->unit ? "; " : "", e->doc, "");
+    }
+}
+
+/* Every model of the file, p's own first in file order. */
+static int describe(const SylProgram *p, FILE *out, bool json) {
+    size_t len = 0;
+    const char *src = syl_program_source(p, &len);
+    const char *names[256];
+    char buf[8192];
+    int n = syl_list_models(syl_program_path(p), src, len, names, 256, buf, sizeof buf);
+    if (n == 0) names[0] = syl_program_name(p), n = 1;
+    if (json) {
+        fputs("{\"file\":", out);
+        jstr(out, syl_program_path(p));
+        fputs(",\"models\":[", out);
+    }
+    int written = 0;
+    for (int i = 0; i < n; i++) {
+        int status;
+        const SylProgram *q = p;
+        SylProgram *own = NULL;
+        if (strcmp(names[i], syl_program_name(p))) q = own = syl_compile_model(p, names[i], NULL, &status);
+        if (!q) continue;
+        DModel m = {0};
+        describe_model(q, &m);
+        if (json) {
+            if (written) fputs(",\n", out);
+            json_model(out, &m);
+        } else {
+            if (written) fputc('\n', out);
+            text_model(out, &m);
+        }
+        written++;
+        free(m.e);
+        syl_program_free(own);
+    }
+    if (json) fputs("]}\n", out);
+    return ferror(out) ? SYL_EIO : SYL_OK;
+}
+
+int syl_describe_json(const SylProgram *p, FILE *out) { return describe(p, out, true); }
+int syl_describe_text(const SylProgram *p, FILE *out) { return describe(p, out, false); }
+
+/* ---- the reference of every table, for docs/directives.md (tests/unit/test_schema.c keeps
+ * the doc equal to it; tools/gen-directives writes it) ---- */
+
+static void md_cell(FILE *out, const char *s) {
+    for (; s && *s; s++) {
+        if (*s == '|') fputc('\\', out);
+        fputc(*s, out);
+    }
+}
+
+static void md_table(FILE *out, const SchTable *t, const char *title, const char *intro) {
+    fprintf(out, "\n## %s\n\n%s\n\n| name | type | range | default | unit | meaning |\n|---|---|---|---|---|---|\n", title,
+            intro);
+    for (int i = 0; i < t->n; i++) {
+        const SchRow *r = &t->rows[i];
+        char range[96] = "", def[96] = "";
+        if (r->type == SCH_ENUM && r->words) snprintf(range, sizeof range, "%s", r->words);
+        else if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->levels || r->type == SCH_LIST) &&
+                 !(r->lo == 0 && r->hi == 0))
+            sch_range_text(r, range, sizeof range);
+        Val v;
+        row_default(r, &v);
+        tval(def, sizeof def, &v);
+        fprintf(out, "| `%s%s`%s | %s%s | ", r->levels ? "N" : "", r->name, r->group ? " (species)" : "",
+                r->levels ? "list per level of " : "", sch_type_name(r->type));
+        md_cell(out, range);
+        fputs(" | ", out);
+        md_cell(out, def);
+        fprintf(out, " | %s | ", r->unit ? r->unit : "");
+        md_cell(out, r->doc);
+        fputs(" |\n", out);
+    }
+}
+
+void lang_directives_reference(FILE *out) {
+    fputs("# Directives: the reference tables\n\n"
+          "Generated from the tables the readers check lines and `--set` against (src/lang/settings.def,\n"
+          "src/weber/params.def, src/strands/params.def, src/eco/params.def) by `tools/gen-directives`;\n"
+          "do not edit by hand (`build/tests/test_schema` fails when this file and the tables differ).\n"
+          "`sylva describe FILE` prints the same rows with a model's values ([cli.md](cli.md#sylva-describe)).\n"
+          "A range is written `[lo, hi]`, `(` `)` for an open end; `-` is no default.\n",
+          out);
+    md_table(out, &sch_lsystem, "`lsystem` settings", "[language.md §5](language.md#5-settings) explains them.");
+    md_table(out, &sch_weber, "`weber` parameters",
+             "[weberpenn.md](weberpenn.md) explains them. `N` is a level, 0 to 3: `1DownAngle 60` sets level 1, "
+             "`DownAngle 0 60 45 45` levels 0 to 3.");
+    md_table(out, &sch_strands, "`strands` parameters",
+             "[strands.md](strands.md#parameters) explains them. A per-order parameter's range is its Gravelius "
+             "factor's.");
+    md_table(out, &sch_ecosystem, "`ecosystem` directives",
+             "[ecosystem.md](ecosystem.md) explains them; a species' lines follow its `species NAME` line "
+             "(`--set NAME.maturity=30` for one species).");
+}

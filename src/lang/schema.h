@@ -1,0 +1,96 @@
+/* The directive schema: a block's directives described as data (name, type, range, default,
+ * unit, meaning, aliases), one table per kind, each written once as an X-macro .def in its
+ * generator's folder (weber/params.def, strands/params.def, eco/params.def) or here
+ * (lang/settings.def). This file is the one reader of those tables: a name's row (with a
+ * level digit, an alias), did-you-mean, a value as a number or `(expr)`, its range, an enum's
+ * word, and `--set NAME=VALUE` checked against the row. `sylva describe` (describe.c) and the
+ * generated reference (tools/gen-directives → docs/directives.md) read the same rows. */
+#ifndef SYL_SCHEMA_H
+#define SYL_SCHEMA_H
+#include <math.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "sylva/sylva.h"
+
+/* The types, as `sylva describe --json` names them. */
+#define SCH_TYPES(X) X(NUMBER, "number") X(INTEGER, "integer") X(BOOLEAN, "boolean") X(ENUM, "enum") \
+    X(LIST, "list") X(CURVE, "curve") X(FILE, "file") X(STRING, "string")
+typedef enum {
+#define X(t, s) SCH_##t,
+    SCH_TYPES(X)
+#undef X
+} SchType;
+const char *sch_type_name(SchType t);
+
+typedef struct SchRow {
+    const char *name;
+    SchType type;
+    double lo, hi;          /* the accepted range (numbers, integers, a list's elements); ±inf: unbounded */
+    bool lo_open, hi_open;  /* the bound itself is excluded */
+    int levels;             /* a list per level: how many levels (0: not per level) */
+    double def[4];          /* the default (per level: one a level); NAN: none */
+    const char *def_text;   /* the default of an enum, file or string; NULL: none */
+    const char *words;      /* an enum's words, "a|b|c"; NULL otherwise */
+    const char *unit;       /* "" when none */
+    const char *doc;        /* one line */
+    const char *aliases;    /* other names, "a|b"; NULL: none */
+    const char *group;      /* the rows it belongs with (an ecosystem species': "species"); NULL: the block */
+} SchRow;
+
+typedef struct SchTable {
+    const char *kind;  /* "weber", "strands", ... */
+    const char *noun;  /* "weber parameter", "ecosystem directive": for messages */
+    const SchRow *rows;
+    int n;
+} SchTable;
+
+/* The tables (schema_tables.c). */
+extern const SchTable sch_lsystem, sch_weber, sch_strands, sch_ecosystem;
+
+/* The row of a directive name: the name, an alias, or a per-level name with its level digit
+ * ("1DownAngle": *level 1); *level -1 when none. NULL: no such row. group NULL: any row. */
+const SchRow *sch_find(const SchTable *t, const char *name, int *level);
+/* " (did you mean 'a' or 'b'?)" for a name the table lacks (level digits kept), or "". */
+void sch_suggest(const SchTable *t, const char *typed, char *buf, size_t size);
+/* The same for a word of an enum row ("disc|square"), or "". */
+void sch_suggest_word(const char *words, const char *typed, char *buf, size_t size);
+/* The index of word among an enum's words, -1 if absent. */
+int sch_word_index(const char *words, const char *word);
+
+/* A number written plainly or as (expr) (which arrives evaluated as a one-value tuple). */
+bool sch_number(const SylDirArg *a, double *x);
+/* "[0, 1]", "(0, inf)", … */
+void sch_range_text(const SchRow *r, char *buf, size_t size);
+/* Whether x is allowed in r (range, whole for integers); when not, why ("must be in [0, 9],
+ * not 12" / "takes a whole number, not 2.5") into why. */
+bool sch_value_ok(const SchRow *r, double x, char *why, size_t size);
+
+/* --set NAME=VALUE for a block of kind t: checks that name (within the model) is a row that
+ * takes a number and that value is in its range; reports to diag as "--set TYPED: ..." and
+ * returns 1, or returns 0 and sets *row, *level. */
+int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char *typed, const char *name,
+                  double value, const SchRow **row, int *level);
+
+/* The markdown of docs/directives.md: every table (describe.c). */
+void lang_directives_reference(FILE *out);
+
+/* A block is read once: its reader, called by the validate hook while syl_compile runs (one
+ * thread, before the program is shared), keeps what it read in the program; a build then takes
+ * that copy instead of reading the lines again. reads counts the full reads of the block (the
+ * test that a block is read once, tests/unit/test_schema.c, looks at it). */
+typedef struct SchCache {
+    _Atomic int reads;
+    void *value; /* malloc'd copy of the reader's result; NULL: none kept */
+    size_t size;
+} SchCache;
+/* A full read of p's block begins. */
+void sch_count_read(const SylProgram *p);
+int sch_reads(const SylProgram *p);
+/* Keep size bytes at v as the block's reading (only while compiling: the validate hook). */
+void sch_keep(const SylProgram *p, const void *v, size_t size);
+/* The kept reading into out; false when there is none of that size. */
+bool sch_kept(const SylProgram *p, void *out, size_t size);
+
+#endif
