@@ -252,7 +252,7 @@ int syl_sapling_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast)
     base = base ? base + 1 : src->path ? src->path : "sapling";
     size_t bn = strcspn(base, ".");
     Model *m = VEC_PUSH(arena, ast->models, ast->nmodels, ast->cap);
-    m->kind = MODEL_WEBER;
+    m->kind = SYL_MODEL_WEBER;
     m->name = arena_strndup(arena, bn ? base : "sapling", bn ? bn : 7);
     m->loc = open.loc;
     word(arena, directive(arena, m, "convention", open.loc), "arbaro", open.loc);
