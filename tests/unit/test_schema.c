@@ -9,10 +9,8 @@
 #include "sylva/ecosystem.h"
 #include "sylva/plant.h"
 
-static int validate_all(void *user, const SylProgram *p, FILE *diag) { /* as the CLI's hook */
-    int e = syl_grow_validate(user, p, diag);
-    if (e >= 0 && syl_program_kind(p) == SYL_MODEL_ECOSYSTEM) e += syl_ecosystem_validate(p, diag);
-    return e;
+static int validate_all(void *user, const SylProgram *p, FILE *diag) { /* the CLI's hook: every kind's check */
+    return syl_validate(user, p, diag);
 }
 
 static SylProgram *compile(const char *text, const char *model, bool hook) {
