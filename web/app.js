@@ -273,6 +273,8 @@ async function load(frameIt = false) {
     boxHelper = new THREE.Box3Helper(bounds(lod || gltf.scene), 0x1a4fa0);
     root.add(boxHelper);
     mixer = null;
+    state.animations = gltf.animations.length;
+    state.levels = lod ? lod.levels.length : 1;
     if (gltf.animations.length) {
       mixer = new THREE.AnimationMixer(gltf.scene);
       gltf.animations.forEach((a) => mixer.clipAction(a).play());

@@ -26,7 +26,7 @@ const CliCommand cli_view_command = {
     .usage = "sylva view FILE [--port N] [--host ADDR] [--open]",
     .about = "Start a web server on this machine and print its address: a page that draws the file's\n"
              "models from the .glb `sylva mesh` writes, shows the messages of `sylva check` and the\n"
-             "figures of --stats, gives every parameter a slider, and exports .glb, .obj, .png and\n"
+             "counts and times of `sylva mesh`, gives every parameter a slider, and exports .glb, .obj, .png and\n"
              "the skeleton through the CLI's writers. When the file, or a file it names, changes on\n"
              "disk the page is updated, keeping its camera. Only requests that carry the printed\n"
              "address's token are answered. Ctrl-C stops it. docs/view.md describes the page.\n",

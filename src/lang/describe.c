@@ -2,6 +2,8 @@
  * cheap to know here — an L-system's settings, a model's `param`s, and the one-number lines of
  * a grow, weber, strands or ecosystem block (without their ranges or meanings, which their
  * engines' tables hold: the `schema` branch's version brings them and replaces this file). */
+#include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 #include "lang/program.h"
@@ -10,21 +12,21 @@
 
 typedef struct Setting {
     const char *name, *type, *unit, *doc;
-    double min, max; /* max < min: unbounded above */
+    double min, max; /* NAN: unbounded */
 } Setting;
 
 /* The settings of an lsystem block that --set takes (lang/settings.c checks the same ranges). */
 static const Setting settings[] = {
     {"derive", "integer", "", "derivation steps", 0, 1e6},
     {"angle", "number", "deg", "turn angle of + and -", 0, 360},
-    {"step", "number", "", "length of F", 0, -1},
-    {"width", "number", "", "line width at the start", 0, -1},
-    {"widthfactor", "number", "", "width change of !", 0, -1},
+    {"step", "number", "", "length of F", 0, NAN},
+    {"width", "number", "", "line width at the start", 0, NAN},
+    {"widthfactor", "number", "", "width change of !", 0, NAN},
     {"seed", "integer", "", "seed of the stochastic rules", 0, 9007199254740991.0},
 };
 
 static void num(FILE *out, double x) {
-    if (x != x || x > 1e300 || x < -1e300) fputs("null", out);
+    if (isnan(x) || x > 1e300 || x < -1e300) fputs("null", out);
     else fprintf(out, "%.17g", x);
 }
 
@@ -35,8 +37,7 @@ static void param(FILE *out, bool first, const char *name, const char *type, dou
     fprintf(out, ",\"type\":\"%s\",\"min\":", type);
     num(out, min);
     fputs(",\"max\":", out);
-    if (max < min) fputs("null", out);
-    else num(out, max);
+    num(out, max);
     fputs(",\"default\":", out);
     num(out, def);
     fputs(",\"value\":", out);
@@ -66,7 +67,10 @@ static int model_line(const SylProgram *p, const char *kind) {
 }
 
 static void model(const SylProgram *p, FILE *out, bool first) {
-    const char *kind = syl_model_kind_name(p->kind);
+    /* the block's keyword: "weber" of "weber block" */
+    char kind[32];
+    snprintf(kind, sizeof kind, "%s", syl_model_kind_name(p->kind));
+    kind[strcspn(kind, " ")] = 0;
     fputs(first ? "{\"name\":" : ",{\"name\":", out);
     json_string_file(out, p->name ? p->name : "");
     fputs(",\"kind\":", out);
@@ -74,7 +78,7 @@ static void model(const SylProgram *p, FILE *out, bool first) {
     fprintf(out, ",\"line\":%d,\"params\":[", model_line(p, kind));
     bool any = false;
     for (int i = 0; i < p->nparams; i++, any = true)
-        param(out, !any, p->params[i].name, "number", 1, 0, p->params[i].value, p->params[i].value, "", "a param of the model");
+        param(out, !any, p->params[i].name, "number", NAN, NAN, p->params[i].value, p->params[i].value, "", "a param of the model");
     if (p->kind == SYL_MODEL_LSYSTEM) {
         for (size_t i = 0; i < sizeof settings / sizeof *settings; i++, any = true) {
             const Setting *s = &settings[i];
@@ -85,7 +89,7 @@ static void model(const SylProgram *p, FILE *out, bool first) {
         for (int i = 0; i < p->ndirectives; i++) {
             const SylDirective *d = &p->directives[i];
             if (d->nargs != 1 || d->args[0].kind != SYL_DARG_NUMBER) continue;
-            param(out, !any, d->name, "number", 1, 0, d->args[0].num, d->args[0].num, "", "");
+            param(out, !any, d->name, "number", NAN, NAN, d->args[0].num, d->args[0].num, "", "");
             any = true;
         }
     }

@@ -121,6 +121,7 @@ try {
   const differ = (a, b) => { let n = 0; for (let i = 0; i < a.sig.length; i++) n += Math.abs(a.sig[i] - b.sig[i]) > 24 ? 1 : 0; return n / a.sig.length; };
 
   const first = await picture('view-mesh');
+  if (shots) await page.screenshot({ path: join(shots, 'view-page.png') });
   const s0 = await stat();
   check(first.plant > first.w * first.h * 0.002, 'the canvas shows the plant (bark-coloured pixels inside the frame)',
     `${first.plant} of ${first.w * first.h}`);
@@ -198,6 +199,45 @@ try {
   edit(MODEL(25, 4));
   await page.waitForFunction(() => window.sylvaView.error === '', { timeout: 10000 });
   check(true, 'fixing the file clears the overlay');
+
+  // ---- levels of detail (MSFT_lod) and wind (the file's animation) ----
+  let loads3 = (await stat()).loads;
+  await page.select('#lod', '2');
+  await page.waitForFunction((n) => window.sylvaView.loads > n, { timeout: 20000 }, loads3);
+  const lodState = await page.evaluate(() => ({ levels: window.sylvaView.levels, tris: window.sylvaView.stats.lod_triangles,
+    options: document.querySelectorAll('#forcelod option').length }));
+  check(lodState.levels === 3 && lodState.options === 4 && lodState.tris.length === 3 && lodState.tris[2] < lodState.tris[0],
+    'lod 2: three MSFT_lod levels drawn as a THREE.LOD, each selectable', JSON.stringify(lodState));
+  const lod0 = await picture();
+  await page.select('#forcelod', '2');
+  const lod2 = await picture('view-lod2');
+  check(differ(lod0, lod2) > 0.005, 'forcing LOD2 changes the picture', differ(lod0, lod2).toFixed(4));
+  await page.select('#forcelod', 'auto');
+  await page.select('#lod', '');
+  await page.waitForFunction(() => window.sylvaView.levels === 1, { timeout: 20000 });
+  await page.click('#wind');
+  const wind = await page.waitForFunction(() => window.sylvaView.animations >= 1, { timeout: 20000 }).then(() => true, () => false);
+  check(wind, 'wind: the .glb of sylva mesh --wind plays its animation');
+  await page.click('#wind');
+  await page.waitForFunction(() => window.sylvaView.animations === 0, { timeout: 20000 });
+
+  // ---- save as…: a new file only, unless the overwrite is confirmed ----
+  function post(path, body) {
+    return new Promise((resolve) => {
+      const u = new URL(base);
+      const req = http.request({ host: u.hostname, port: u.port, path, method: 'POST', headers: t }, (res) => {
+        let b = ''; res.on('data', (d) => { b += d; }); res.on('end', () => resolve({ status: res.statusCode, body: b }));
+      });
+      req.end(body);
+    });
+  }
+  const own = readFileSync(file, 'utf8');
+  check((await post('/api/save?name=bush.syl', 'x')).status === 409 && readFileSync(file, 'utf8') === own,
+    'save as… the model\'s own name is refused without the confirmation, the file untouched');
+  check((await post('/api/save?name=..%2Fescape.syl', 'x')).status === 403 || (await post('/api/save?name=sub%2Fx.syl', 'x')).status === 400,
+    'save as… a name with a directory is refused');
+  const saved = await post('/api/save?name=copy.syl', MODEL(30, 5));
+  check(saved.status === 200 && readFileSync(join(dir, 'copy.syl'), 'utf8') === MODEL(30, 5), 'save as… writes a new file beside the model');
 
   // ---- two tabs at once, then one closed: the server goes on ----
   const page2 = await browser.newPage();
