@@ -22,6 +22,7 @@ const state = {
   loads: 0,           // models drawn, for the tests
   error: '',          // the overlay's text ('' : none)
   gen: 0,
+  placed: [],         // plants placed by clicks: {model, x, y, z}; the file is not rewritten
 };
 window.sylvaView = state;
 
@@ -246,7 +247,11 @@ async function load(frameIt = false) {
     $('status').textContent = 'building…';
     const q = query();
     let b;
-    try { b = await getJSON('/api/build?' + q); } catch (e) { b = { ok: false, diag: String(e) }; }
+    const text = await editedText();
+    try {
+      b = text === null ? await getJSON('/api/build?' + q)
+        : await (await fetch('/api/build?' + q, { method: 'POST', body: text })).json();
+    } catch (e) { b = { ok: false, diag: String(e) }; }
     state.build = b;
     const warnings = (b.diag || '').split('\n').filter((l) => / warning: /.test(l));
     $('warnings').textContent = b.ok ? (b.diag || '') : '';
@@ -369,7 +374,7 @@ function setLine() {
 // The file's text with the moved parameters written into it: `param NAME = VALUE` and setting
 // lines `NAME VALUE`. The user's file is not touched: this goes to a new file (save as…).
 async function textWithSets() {
-  let text = await fetch('/api/source').then((r) => r.text());
+  let text = (await editedText()) ?? await fetch('/api/source').then((r) => r.text());
   for (const [k, v] of Object.entries(state.sets)) {
     const esc = k.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
     const asParam = new RegExp(`^(\\s*param\\s+${esc}\\s*=\\s*)([^#\\n]*?)(\\s*(#.*)?)$`, 'm');
@@ -390,9 +395,63 @@ async function saveAs() {
   $('status').textContent = r.ok ? `saved ${name}` : `not saved: ${(await r.json()).error}`;
 }
 
+// ---- scenes: plants placed by clicks on the ground ----
+// The file's text with a `plant MODEL at (x, y, z)` line for each placed plant: into its `scene`
+// block, or a new one that also keeps the model at the origin. null: nothing placed.
+async function editedText() {
+  if (!state.placed.length) return null;
+  const text = await fetch('/api/source').then((r) => r.text());
+  const lines = state.placed.map((p) => `  plant ${p.model} at (${p.x}, ${p.y}, ${p.z})`).join('\n') + '\n';
+  const m = /^scene\s*\{[^]*?\n\}/m.exec(text);
+  if (m) {
+    const end = m.index + m[0].length - 1; // the closing brace
+    return text.slice(0, end) + lines + text.slice(end);
+  }
+  const first = state.placed[0].origin;
+  return text + `\nscene {\n  plant ${first} at (0, 0, 0)\n${lines}}\n`;
+}
+
+function showPlaced() {
+  $('placed').textContent = state.placed.map((p) => `plant ${p.model} at (${p.x}, ${p.y}, ${p.z})`).join('\n');
+}
+
+const pointer = { x: 0, y: 0 };
+canvas.addEventListener('pointerdown', (e) => { pointer.x = e.clientX; pointer.y = e.clientY; });
+canvas.addEventListener('pointerup', (e) => {
+  if (!$('placing').checked || Math.hypot(e.clientX - pointer.x, e.clientY - pointer.y) > 4) return; // a drag orbits
+  const r = canvas.getBoundingClientRect();
+  const ndc = new THREE.Vector2((e.clientX - r.left) / r.width * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
+  const ray = new THREE.Raycaster();
+  ray.setFromCamera(ndc, camera);
+  const hit = ray.intersectObject(ground)[0];
+  if (!hit) return;
+  const round = (x) => +x.toFixed(2);
+  const model = $('placemodel').value;
+  state.placed.push({ model, origin: state.model || $('placemodel').options[0]?.value || model,
+    x: round(hit.point.x), y: 0, z: round(hit.point.z) });
+  showPlaced();
+  state.model = ''; $('model').value = ''; // the scene
+  load();
+});
+
 function updateExports() {
   for (const f of ['glb', 'obj', 'csv']) $('exp-' + f).href = '/api/export?' + query({ format: f });
   $('exp-png').href = '/api/export?' + query({ format: 'png', size: $('pngsize').value });
+}
+
+// With placed plants the export is of the edited text: posted, and the answer saved as a file.
+async function exportEdited(e) {
+  const text = await editedText();
+  if (text === null) return; // the link as it is
+  e.preventDefault();
+  const a = e.currentTarget;
+  const r = await fetch(a.href, { method: 'POST', body: text });
+  if (!r.ok) { showError((await r.json()).diag || 'the export failed'); return; }
+  const url = URL.createObjectURL(await r.blob());
+  const tmp = document.createElement('a');
+  tmp.href = url; tmp.download = (r.headers.get('Content-Disposition') || '').replace(/.*filename="([^"]*)".*/, '$1') || 'export';
+  tmp.click();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 
 // ---- time ----
@@ -418,6 +477,9 @@ async function loadModels() {
   const sel = $('model');
   sel.replaceChildren(new Option('(the file\'s first, or its scene)', ''), ...d.models.map((m) => new Option(m, m)));
   sel.value = state.model;
+  const place = $('placemodel'), keep = place.value;
+  place.replaceChildren(...d.models.map((m) => new Option(m, m)));
+  if (keep) place.value = keep;
 }
 
 function listen() {
@@ -460,6 +522,8 @@ function wire() {
   $('defaults').addEventListener('click', () => { state.sets = {}; buildParams(); $('setline').value = ''; load(); });
   $('saveas').addEventListener('click', saveAs);
   $('pngsize').addEventListener('change', updateExports);
+  for (const f of ['glb', 'obj', 'csv', 'png']) $('exp-' + f).addEventListener('click', exportEdited);
+  $('unplace').addEventListener('click', () => { state.placed = []; showPlaced(); load(); });
 }
 
 wire();

@@ -27,6 +27,9 @@ typedef struct ViewRequest {
     int leaves;            /* < 0: the mesher's default; else SYL_LEAVES_* */
     float wind;            /* > 0: skinned, swaying (sylva mesh --wind) */
     int width, height;     /* of a picture (export png) */
+    const char *text;      /* NULL: the file as it is on disk; else the page's edited text of it
+                              (plants placed by clicks), built as if it were the file's */
+    size_t text_len;
 } ViewRequest;
 
 /* One model built: the .glb, the messages, the figures of --stats, the skeleton. */

@@ -106,7 +106,7 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
                              .validate = cli_validate, .validate_user = &files};
     double t0 = cli_now();
     int status;
-    SylProgram *p = syl_compile(v->path, NULL, 0, &opt, &status);
+    SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
     m->compile_s = cli_now() - t0;
     if (!p) return status;
     double lod = syl_program_setting(p, "lod");
@@ -349,7 +349,7 @@ char *view_describe_json(View *v, const ViewRequest *rq, char **diag) {
     SylCompileOptions opt = {.model = rq->model[0] ? rq->model : NULL, .overrides = rq->sets,
                              .noverrides = rq->nsets, .diag = df, .validate = cli_validate,
                              .validate_user = &files};
-    SylProgram *p = syl_compile(v->path, NULL, 0, &opt, &status);
+    SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
     FILE *f = p ? open_memstream(&s, &len) : NULL;
     if (f) {
         if (syl_describe_json(p, f)) {

@@ -375,6 +375,16 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     }
     Query q;
     bool ok = read_query(c, &q);
+    if (post && strcmp(url, "/api/save")) { /* the page's edited text, built in place of the file's */
+        if (conn->too_big) return send_error_json(c, MHD_HTTP_CONTENT_TOO_LARGE, "the text is too long", NULL);
+        q.rq.text = conn->body ? conn->body : "";
+        q.rq.text_len = conn->len;
+        /* the cache knows it by its hash (FNV-1a) */
+        uint64_t h = 1469598103934665603ull;
+        for (size_t i = 0; i < conn->len; i++) h = (h ^ (unsigned char)conn->body[i]) * 1099511628211ull;
+        int n = snprintf(q.key + q.klen, sizeof q.key - q.klen, "text=%016llx&", (unsigned long long)h);
+        if (n > 0 && q.klen + (size_t)n < sizeof q.key) q.klen += (size_t)n;
+    }
     if (!strncmp(url, "/api/", 5) && !ok) return send_error_json(c, MHD_HTTP_BAD_REQUEST, q.err, NULL);
     if (!strcmp(url, "/api/build")) return api_build(c, v, &q);
     if (!strcmp(url, "/api/glb")) return api_part(c, v, q.id, true);
@@ -382,6 +392,7 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     if (!strcmp(url, "/api/export")) return api_export(c, v, &q);
     if (!strcmp(url, "/api/describe")) return api_describe(c, v, &q);
     if (!strcmp(url, "/api/save") && post) return api_save(c, v, &q, conn);
+    if (post) return send_text(c, MHD_HTTP_METHOD_NOT_ALLOWED, "method not allowed\n");
     return send_text(c, MHD_HTTP_NOT_FOUND, "not found\n");
 }
 

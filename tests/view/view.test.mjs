@@ -239,6 +239,26 @@ try {
   const saved = await post('/api/save?name=copy.syl', MODEL(30, 5));
   check(saved.status === 200 && readFileSync(join(dir, 'copy.syl'), 'utf8') === MODEL(30, 5), 'save as… writes a new file beside the model');
 
+  // ---- a scene: a click on the ground places a second plant ----
+  const single = (await stat()).triangles;
+  const onDisk = readFileSync(file, 'utf8');
+  await page.click('#placing');
+  const box = await (await page.$('#canvas')).boundingBox();
+  const loads4 = (await stat()).loads;
+  await page.mouse.click(box.x + box.width * 0.8, box.y + box.height * 0.9);
+  await page.waitForFunction((n) => window.sylvaView.loads > n && window.sylvaView.stats.kind === 'scene', { timeout: 20000 }, loads4)
+    .catch(() => {});
+  const sc = await stat();
+  const placedLine = await page.$eval('#placed', (e) => e.textContent);
+  check(sc.kind === 'scene' && sc.triangles === 2 * single, 'a click on the ground places a plant: a scene of two, twice the triangles',
+    `${sc.kind} ${sc.triangles} vs 2 x ${single}`);
+  check(/^plant Bush at \(-?[0-9.]+, 0, -?[0-9.]+\)$/.test(placedLine), 'the new plant line is shown', placedLine);
+  await picture('view-scene');
+  check(readFileSync(file, 'utf8') === onDisk, 'placing a plant does not rewrite the file');
+  await page.click('#unplace');
+  await page.click('#placing');
+  await page.waitForFunction(() => window.sylvaView.stats.kind === 'lsystem', { timeout: 20000 });
+
   // ---- two tabs at once, then one closed: the server goes on ----
   const page2 = await browser.newPage();
   await page2.goto(url);
