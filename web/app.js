@@ -314,7 +314,7 @@ function paramRange(p) {
   let lo = p.min, hi = p.max;
   if (lo === null) lo = v < 0 ? v * 3 : 0;
   if (hi === null) hi = Math.max(Math.abs(v) * 3, lo + 1);
-  if (p.name === 'derive') hi = Math.min(hi, Math.max(12, v * 2));
+  if (p.name === 'derive' || p.name === 'years') hi = Math.min(hi, Math.max(12, v * 2));
   if (p.name === 'seed') hi = Math.min(hi, 1e6);
   return [lo, hi];
 }
@@ -331,10 +331,28 @@ function buildParams() {
   const box = $('params');
   box.replaceChildren();
   for (const p of state.params) {
-    if (!['number', 'integer', 'boolean'].includes(p.type)) continue;
-    if (p.name === 'seed' || p.name === 'derive') continue; // their own fields
+    if (p.name === 'seed' || p.name === 'derive' || p.name === 'years') continue; // their own fields
     const div = document.createElement('div');
     div.className = 'param';
+    if (!['number', 'integer', 'boolean'].includes(p.type)) { // --set takes numbers: shown, not moved
+      div.innerHTML = '<div><span class="name"></span> <span class="dim"></span></div><div class="doc"></div>';
+      div.querySelector('.name').textContent = p.name;
+      div.querySelector('.dim').textContent = `${p.type}: ${JSON.stringify(p.value)}`;
+      div.querySelector('.doc').textContent = p.doc || '';
+      box.appendChild(div);
+      continue;
+    }
+    if (p.type === 'boolean') {
+      div.innerHTML = '<label><input type="checkbox"> <span class="name"></span></label><div class="doc"></div>';
+      const cb = div.querySelector('input');
+      cb.checked = !!(p.name in state.sets ? state.sets[p.name] : p.value);
+      cb.dataset.param = p.name;
+      div.querySelector('.name').textContent = p.name;
+      div.querySelector('.doc').textContent = p.doc || '';
+      cb.addEventListener('change', () => paramChanged(p.name, cb.checked ? 1 : 0, p.default ? 1 : 0));
+      box.appendChild(div);
+      continue;
+    }
     const [lo, hi] = paramRange(p);
     const step = p.type === 'number' ? (hi - lo) / 200 : 1;
     const value = p.name in state.sets ? state.sets[p.name] : p.value;
@@ -352,7 +370,8 @@ function buildParams() {
     num.addEventListener('change', () => { range.value = num.value; paramChanged(p.name, +num.value, p.default); });
     box.appendChild(div);
   }
-  const derive = state.params.find((p) => p.name === 'derive');
+  // the step slider: an L-system's `derive`, a grow block's `years`
+  const derive = state.params.find((p) => p.name === 'derive' || p.name === 'years');
   if (derive) { $('step').max = paramRange(derive)[1]; if (state.step === '') $('step').value = derive.value; }
 }
 
