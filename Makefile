@@ -22,6 +22,12 @@ PKGS    := cglm libpng libxml-2.0
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 LDLIBS   = $(PKG_LIBS) -lembree3 -lmeshoptimizer -lm -pthread $(MPI_LIBS)
+# The CLI's own: libmicrohttpd serves `sylva view` (docs/view.md); libsylva does not use it.
+CLI_PKGS := libmicrohttpd
+CLI_LIBS  = $(shell pkg-config --libs $(CLI_PKGS) 2>/dev/null)
+$(BUILD)/src/cli/%.o build-fuzz/obj/src/cli/%.o: PKG_CFLAGS += $(shell pkg-config --cflags $(CLI_PKGS) 2>/dev/null)
+# Where `sylva view` finds its page (web/, with three.js from npm ci --prefix web); SYLVA_WEB overrides.
+$(BUILD)/src/cli/cmd_view.o: CFLAGS += -DSYL_WEB_DIR='"$(CURDIR)/web"'
 
 # MPI (docs/distributed.md): on when mpicc is found (make MPI=0 builds without it). Only then
 # is src/eco/mpi.c compiled, with mpicc's flags; src/eco/mpi_none.c stands in otherwise.
@@ -103,7 +109,7 @@ $(BUILD)/libsylva.a: $(LIB_OBJ) $(wildcard include/sylva/*.h)
 	ar rcs $@ $(BUILD)/sylva-api.o
 	@rm -f $(BUILD)/sylva-all.o
 $(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva-internal.a
-	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) $(CLI_LIBS)
 
 # ---- tests ----
 $(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva-internal.a
@@ -113,7 +119,7 @@ $(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva-internal.a
 $(BUILD)/tests/test_cli: tests/unit/test_cli.c tests/unit/unit.h $(filter-out $(BUILD)/src/cli/main.o,$(CLI_OBJ)) \
                          $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(filter %.o,$^) $(BUILD)/libsylva-internal.a $(LDLIBS) -lcmocka
+	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(filter %.o,$^) $(BUILD)/libsylva-internal.a $(LDLIBS) $(CLI_LIBS) -lcmocka
 units: $(UNIT_BIN)
 
 # The test targets build with -j$(JOBS) whatever -j make itself was given (.ci/run gives none).
@@ -174,7 +180,7 @@ build-fuzz/libsylva-fuzz.a: $(FUZZ_LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 build-fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.h build-fuzz/libsylva-fuzz.a
-	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< build-fuzz/libsylva-fuzz.a $(filter-out $(MPI_LIBS),$(LDLIBS))
+	clang $(FUZZ_CFLAGS) -fsanitize=fuzzer -o $@ $< build-fuzz/libsylva-fuzz.a $(filter-out $(MPI_LIBS),$(LDLIBS)) $(CLI_LIBS)
 fuzz-build: $(FUZZ_HARNESS)
 # A campaign: every harness for FUZZ_SECONDS, its corpus kept in tests/fuzz/corpus/NAME/.
 fuzz: $(FUZZ_HARNESS)

@@ -10,6 +10,7 @@ PKGS="$PKGS python3-dev python3-venv python3-numpy python3-pytest python3-nbclie
 # It is large (about 165 packages, 150 MB to download, 560 MB installed: 1-3 minutes of a
 # fresh CI machine's apt time).
 PKGS="$PKGS blender"
+PKGS="$PKGS libmicrohttpd-dev"  # sylva view's web server (the CLI only)
 # node and npm for the glTF validator, from Debian unless a node is installed already
 # (one from elsewhere, such as NodeSource's, brings its own npm).
 command -v node >/dev/null 2>&1 || PKGS="$PKGS nodejs npm"
@@ -25,8 +26,19 @@ gltf_validator() {
         echo "sylva: npm ci --prefix tests/gltf failed; tests/run-gltf will try again" >&2
     return 0
 }
+# three.js for sylva view's page (web/), and puppeteer-core for its browser tests (tests/view/),
+# from their package-lock.json files.
+npm_folder() {
+    [ -f "$1/node_modules/$2/package.json" ] && return 0
+    command -v npm >/dev/null 2>&1 || return 0
+    echo "sylva: installing $2 into $1/node_modules (npm ci)"
+    npm ci --prefix "$1" --no-audit --no-fund >/dev/null 2>&1 ||
+        echo "sylva: npm ci --prefix $1 failed" >&2
+    return 0
+}
+npm_all() { gltf_validator; npm_folder web three; npm_folder tests/view puppeteer-core; }
 cd "$(dirname "$0")/.." || exit 1
-[ -z "$missing" ] && { gltf_validator; exit 0; }
+[ -z "$missing" ] && { npm_all; exit 0; }
 if [ "$(id -u)" = 0 ]; then
     echo "sylva: installing$missing"
     export DEBIAN_FRONTEND=noninteractive
@@ -37,4 +49,4 @@ else
     echo "  apt-get update && apt-get install -y$missing" >&2
     exit 1
 fi
-gltf_validator
+npm_all

@@ -96,6 +96,7 @@ int cmd_compare(int argc, char **argv);
 int cmd_convert(int argc, char **argv);
 int cmd_terrain(int argc, char **argv);
 int cmd_ecosystem(int argc, char **argv);
+int cmd_view(int argc, char **argv);
 /* sylva render FILE --plants CSV (snapshot.c): a saved ecosystem snapshot, split over MPI ranks */
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro);
 
@@ -103,6 +104,7 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
 extern const CliCommand cli_derive_command, cli_check_command, cli_compile_command, cli_skeleton_command,
     cli_mesh_command, cli_render_command, cli_grow_command, cli_compare_command,
     cli_convert_command, cli_terrain_command, cli_animate_command, cli_ecosystem_command, cli_describe_command;
+extern const CliCommand cli_view_command; /* sylva view (cmd_view.c) */
 extern const CliCommand cli_plant_command; /* sylva FILE */
 /* The commands, in the order `sylva --help` lists them; NULL ends the list. */
 extern const CliCommand *const cli_commands[];

@@ -323,6 +323,12 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                               ARGS(wind_seconds), 0.5, 600},
     [CLI_OPT_WIND_LEVELS] = {"wind-levels", 0, "N", "stems of branch order below N get a joint (1 to 8; default 2)",
                              CLI_INT, ARGS(wind_levels), 1, 8},
+    /* sylva view */
+    [CLI_OPT_PORT] = {"port", 0, "N", "listen on this TCP port (default 8470; 0: any free one)", CLI_INT, ARGS(port), 0,
+                      65535},
+    [CLI_OPT_HOST] = {"host", 0, "ADDR", "listen on this IPv4 address (default 127.0.0.1, this machine only;\n"
+                      "0.0.0.0 lets every machine that can reach this one try the token)", CLI_TEXT, ARGS(host)},
+    [CLI_OPT_OPEN] = {"open", 0, NULL, "open the page in the desktop's browser (xdg-open)", CLI_FLAG, ARGS(open)},
 };
 
 const CliUse cli_limits[] = {

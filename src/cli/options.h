@@ -36,6 +36,8 @@ typedef enum CliOptionId {
     /* sylva mesh: levels of detail */
     CLI_OPT_LOD, CLI_OPT_IMPOSTOR, CLI_OPT_IMPOSTOR_GRID, CLI_OPT_IMPOSTOR_VIEW, CLI_OPT_BILLBOARDS,
     CLI_OPT_WIND, CLI_OPT_WIND_DIR, CLI_OPT_WIND_SECONDS, CLI_OPT_WIND_LEVELS,
+    /* sylva view */
+    CLI_OPT_PORT, CLI_OPT_HOST, CLI_OPT_OPEN,
     CLI_OPT_COUNT
 } CliOptionId;
 
@@ -71,6 +73,9 @@ typedef struct CliArgs {
     bool impostor;           /* --impostor */
     float wind, wind_dir[2], wind_seconds; /* --wind, --wind-dir, --wind-seconds */
     int wind_levels;         /* --wind-levels */
+    int port;                /* sylva view: --port */
+    const char *host;        /* --host */
+    bool open;               /* --open */
     char **files;            /* the arguments after the options: the models */
     int nfiles;
 } CliArgs;

@@ -15,6 +15,7 @@
 
 #include "io/glb.h"
 #include "sylva/lod.h"
+#include "sylva/stream.h"
 #include "sylva/texture.h"
 
 enum { KINDS = 6, CARD = 3, ATLAS = 4, CLUSTER = 5 }; /* texture slots: bark, leaf, flower, leaf card (RGBA), atlas, leaf cluster (RGBA) */
@@ -691,7 +692,7 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     if (ok) layout_textures(&l);
     glb_pad(&l.bin, 0);
     if (ok) write_json(&js, &l);
-    int status = glb_container(path, &js, &l.bin, l.nmeshes > 0, diag);
+    int status = glb_container_to(path, sc->stream, &js, &l.bin, l.nmeshes > 0, diag);
     io_free(&js);
     io_free(&l.bin);
     free(l.views);
@@ -759,11 +760,21 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
     return status;
 }
 
-int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
+static int write_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *stream,
+                           FILE *diag) {
     const char *name = m->name[0] ? m->name : "plant";
     GlbPart part = {.mesh = m, .sets = sets, .nsets = n > 0 ? n : 0, .name = name};
-    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .quantize = n > 0}; /* instanced: small */
+    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .quantize = n > 0, /* instanced: small */
+                   .stream = stream};
     return glb_write(&sc, path, diag);
+}
+
+int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
+    return write_instanced(m, sets, n, path, NULL, diag);
+}
+
+int syl_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag) {
+    return write_instanced(m, sets, n, "(stream)", out, diag);
 }
 
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_write_glb_instanced(m, NULL, 0, path, diag); }

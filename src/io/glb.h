@@ -30,6 +30,8 @@ void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len);
 /* The GLB container: header, JSON chunk and (with geometry) BIN chunk, through a temporary
  * file. SYL_OK, SYL_ELIMIT or SYL_EIO, reported. */
 int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
+/* The same into stream when it is not NULL (SYL_EIO when a write to it failed). */
+int glb_container_to(const char *path, FILE *stream, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
 
 #include "sylva/mesh.h"
 #include "sylva/wind.h"
@@ -63,6 +65,7 @@ typedef struct GlbScene {
      * texel) and triangle strips, its instances 16-bit translations and rotations. Not for a
      * skinned part (a skinned node's transform is not used). */
     bool quantize;
+    FILE *stream; /* set: the file is written here (path only names it in messages) */
 } GlbScene;
 
 int glb_write(const GlbScene *sc, const char *path, FILE *diag);

@@ -4,13 +4,15 @@
 
 #include "io/glb.h"
 #include "sylva/lod.h"
+#include "sylva/stream.h"
 #include "sylva/wind.h"
 
 int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) { return syl_write_glb_lods_wind(c, NULL, NULL, path, diag); }
 
 /* With wind, every level meshed with vertex nodes (of s) is skinned to w's joints; a level
  * without them (the billboards) is not. */
-int syl_write_glb_lods_wind(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
+static int write_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *stream,
+                      FILE *diag) {
     GlbPart part[SYL_LOD_MAX + 1];
     char names[SYL_LOD_MAX + 1][80];
     float coverage[SYL_LOD_MAX + 1];
@@ -25,6 +27,14 @@ int syl_write_glb_lods_wind(const SylLodChain *c, const SylSkeleton *s, const Sy
     for (int k = 0; k < c->n; k++) instanced |= c->level[k].nsets > 0;
     GlbScene sc = {.quantize = instanced,.part = part, .nparts = c->n, .scene_name = name, .lods = true, .coverage = coverage,
                    .atlas = c->atlas, .atlas_w = c->atlas_w, .atlas_h = c->atlas_h,
-                   .atlas_material = c->atlas_material, .extras = c->extras};
+                   .atlas_material = c->atlas_material, .extras = c->extras, .stream = stream};
     return glb_write(&sc, path, diag);
+}
+
+int syl_write_glb_lods_wind(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
+    return write_lods(c, s, w, path, NULL, diag);
+}
+
+int syl_write_glb_lods_wind_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out, FILE *diag) {
+    return write_lods(c, s, w, "(stream)", out, diag);
 }

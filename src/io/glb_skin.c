@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "io/glb.h"
+#include "sylva/stream.h"
 
 static bool wide_joints(const SylWind *w) { return w->njoints > 256; }
 
@@ -270,14 +271,24 @@ void glb_skin_json(IoBuf *js, const SylWind *w, int first_node, int anim_acc, co
     io_printf(js, "]}]");
 }
 
-int syl_write_glb_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
-                       const char *path, FILE *diag) {
+static int write_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
+                      const char *path, FILE *stream, FILE *diag) {
     if (!m->node) {
         if (diag) fprintf(diag, "sylva: error: the mesh has no vertex nodes to skin (SylMeshOptions.vertex_nodes)\n");
         return SYL_EUSAGE;
     }
     const char *name = m->name[0] ? m->name : "plant";
     GlbPart part = {.mesh = m, .sets = sets, .nsets = n > 0 ? n : 0, .name = name, .wind = w, .skel = s};
-    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name};
+    GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .stream = stream};
     return glb_write(&sc, path, diag);
+}
+
+int syl_write_glb_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
+                       const char *path, FILE *diag) {
+    return write_wind(m, sets, n, s, w, path, NULL, diag);
+}
+
+int syl_write_glb_wind_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
+                              const SylWind *w, FILE *out, FILE *diag) {
+    return write_wind(m, sets, n, s, w, "(stream)", out, diag);
 }

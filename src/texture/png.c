@@ -1,6 +1,7 @@
 /* PNG output of RGB and RGBA pictures, encoded by util/pngout and written through util/outfile. */
 #include <stdint.h>
 
+#include "sylva/stream.h"
 #include "sylva/texture.h"
 #include "util/outfile.h"
 #include "util/pngout.h"
@@ -16,13 +17,14 @@ static const void *pixel_row(void *ctx, int y, void *scratch) {
     return r->px + (size_t)y * (size_t)r->width * (size_t)r->channels;
 }
 
-static int write_png(const char *path, const uint8_t *px, int width, int height, int channels, FILE *diag) {
+static int write_png(const char *path, FILE *stream, const uint8_t *px, int width, int height, int channels,
+                     FILE *diag) {
     if (width <= 0 || height <= 0) {
         if (diag) fprintf(diag, "sylva: error: cannot write '%s': empty picture\n", path);
         return SYL_EUSAGE;
     }
-    OutFile o; /* "-" is standard output */
-    if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
+    OutFile o = {.f = stream, .path = (char *)path}; /* "-" is standard output */
+    if (!stream && !outfile_open(&o, path, NULL, diag)) return SYL_EIO;
     Rows src = {px, width, channels};
     /* RGB pictures: level 1, fast (they are big and noisy). RGBA, the impostor's atlases: mostly
      * empty cells around views of sub-pixel leaves, where no filter at level 2 is both smaller and
@@ -31,14 +33,22 @@ static int write_png(const char *path, const uint8_t *px, int width, int height,
     PngOutImage img = {.width = width, .height = height, .channels = channels, .depth = 8,
                        .level = channels == 4 ? 2 : 1, .unfiltered = channels == 4, .row = pixel_row, .ctx = &src};
     int status = pngout_encode(&o, &img, diag);
-    if (!outfile_close(&o, status == SYL_OK, diag) && !status) status = SYL_EIO;
+    if (stream) {
+        if (!status && (fflush(stream) || ferror(stream))) status = SYL_EIO;
+    } else if (!outfile_close(&o, status == SYL_OK, diag) && !status) {
+        status = SYL_EIO;
+    }
     return status;
 }
 
 int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
-    return write_png(path, rgb, width, height, 3, diag);
+    return write_png(path, NULL, rgb, width, height, 3, diag);
 }
 
 int syl_write_png_rgba(const char *path, const uint8_t *rgba, int width, int height, FILE *diag) {
-    return write_png(path, rgba, width, height, 4, diag);
+    return write_png(path, NULL, rgba, width, height, 4, diag);
+}
+
+int syl_write_png_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag) {
+    return write_png("(stream)", out, rgb, width, height, 3, diag);
 }

@@ -1,0 +1,33 @@
+/* Writers into an open stream rather than a path: the same bytes `sylva mesh` and
+ * `sylva render` write into files, for a program that keeps them in memory (open_memstream)
+ * or sends them on (`sylva view` serves them to the browser). Each returns SYL_OK or a SYL_*
+ * status reported on diag (SYL_EIO when a write to out failed); out is flushed, not closed. */
+#ifndef SYLVA_STREAM_H
+#define SYLVA_STREAM_H
+#include <stdint.h>
+#include <stdio.h>
+
+#include "lod.h"
+#include "mesh.h"
+#include "skeleton.h"
+#include "wind.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* syl_write_glb_instanced (mesh.h): a .glb of m and its instance sets (n may be 0). */
+int syl_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag);
+/* syl_write_glb_lods_wind (wind.h): a chain of levels (MSFT_lod), skinned when w is not NULL. */
+int syl_write_glb_lods_wind_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out,
+                                   FILE *diag);
+/* syl_write_glb_wind (wind.h): a skinned mesh swaying in a looping animation. */
+int syl_write_glb_wind_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
+                              const SylWind *w, FILE *out, FILE *diag);
+/* syl_write_png (texture.h): width x height RGB as a PNG. */
+int syl_write_png_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,94 @@
+/* `sylva view`: a local web server (libmicrohttpd) that shows a model file in the browser
+ * and follows its edits. cmd_view.c starts it, view_http.c answers the requests, view_build.c
+ * turns a request into the bytes `sylva mesh`, `check`, `skeleton` and `render` would write,
+ * view_watch.c follows the files with inotify. docs/view.md describes the page. */
+#ifndef SYL_CLI_VIEW_H
+#define SYL_CLI_VIEW_H
+#include <pthread.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cli/cli.h"
+
+enum { VIEW_CACHE = 8, VIEW_TOKEN = 32 };
+
+/* What the page asks for: a model of the file, with --set values, a seed, a derivation
+ * length (the time slider) and the mesh options of `sylva mesh`. */
+typedef struct ViewRequest {
+    char model[128];       /* "": the file's first model (its scene, when it has one) */
+    char names[MAX_SETS][64];
+    SylOverride sets[MAX_SETS];
+    int nsets;
+    bool use_seed;
+    uint64_t seed;
+    int steps;             /* < 0: the model's `derive` (years of a grow block) */
+    int lod;               /* < 0: the model's `lod` setting */
+    int leaves;            /* < 0: the mesher's default; else SYL_LEAVES_* */
+    float wind;            /* > 0: skinned, swaying (sylva mesh --wind) */
+    int width, height;     /* of a picture (export png) */
+    const char *text;      /* NULL: the file as it is on disk; else the page's edited text of it
+                              (plants placed by clicks), built as if it were the file's */
+    size_t text_len;
+} ViewRequest;
+
+/* One model built: the .glb, the messages, the figures of --stats, the skeleton. */
+typedef struct ViewBuild {
+    unsigned id;           /* the page fetches the parts by it; 0: free slot */
+    unsigned gen;          /* of the files it was built from */
+    char key[2048];        /* the request, as a canonical query */
+    int status;            /* SYL_* */
+    char *diag;            /* compile and build messages, as `sylva check` prints them */
+    char *glb;
+    size_t glb_len;
+    char *csv;             /* the skeleton (sylva skeleton's CSV) */
+    size_t csv_len;
+    char *stats;           /* a JSON object */
+    double used;           /* when last asked for, for the cache's order */
+} ViewBuild;
+
+typedef struct View {
+    char path[4096];       /* the model file, as given */
+    char dir[4096];        /* its directory */
+    char web[4096];        /* the page's files: web/ (and web/node_modules/three) */
+    char token[VIEW_TOKEN + 1];
+    int threads;
+    uint64_t max_memory, max_modules;
+    /* Builds are one at a time (the engines use every core already). */
+    pthread_mutex_t lock;
+    ViewBuild cache[VIEW_CACHE];
+    unsigned next_id;
+    /* Changes: gen counts them; waiters (the pages' event streams) are woken at each. */
+    pthread_mutex_t gen_lock;
+    pthread_cond_t changed;
+    unsigned gen;
+    bool stopping;
+} View;
+
+/* view_build.c */
+void view_request_init(ViewRequest *rq);
+/* One argument of the page's query (model, seed, n, lod, leaves, wind, size, set=NAME=VALUE);
+ * false with the reason in err. Other names are not the model's and are passed over. */
+bool view_request_arg(ViewRequest *rq, const char *key, const char *value, char *err, size_t n);
+/* Build (or find in the cache) what rq asks for; returns the entry (v->lock held by the
+ * caller). */
+ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key);
+/* An export through the CLI's writers: format "glb", "obj", "png", "csv". *out malloc'ed;
+ * SYL_* status with the messages in *diag (malloc'ed). */
+int view_export(View *v, const ViewRequest *rq, const char *format, char **out, size_t *len, char **diag);
+/* The models of the file as a JSON array text (malloc'ed). */
+char *view_models_json(View *v);
+/* The parameters of the file's models (syl_describe_json), malloc'ed; NULL with *diag set. */
+char *view_describe_json(View *v, const ViewRequest *rq, char **diag);
+void view_cache_free(View *v);
+
+/* view_watch.c: follow the file and every file it names; bump v->gen at each change. */
+bool view_watch_start(View *v, pthread_t *thread, int *stop_fd);
+void view_watch_stop(pthread_t thread, int stop_fd);
+void view_changed(View *v); /* gen++ and wake the streams */
+
+/* view_http.c */
+struct MHD_Daemon;
+struct MHD_Daemon *view_http_start(View *v, const char *host, int port, int *bound_port);
+
+#endif

@@ -1,0 +1,366 @@
+/* sylva view: a request made into what the CLI would write — the .glb of `sylva mesh`, the
+ * messages of `sylva check`, the figures of `--stats`, the CSV of `sylva skeleton`, the
+ * picture of `sylva render` — by the same library calls, in memory. */
+#include <dirent.h>
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <unistd.h>
+
+#include "cli/view.h"
+#include "sylva/describe.h"
+#include "sylva/lod.h"
+#include "sylva/stream.h"
+#include "sylva/wind.h"
+#include "util/json.h"
+
+/* One query argument of the page into rq; false with the reason in err. */
+bool view_request_arg(ViewRequest *rq, const char *key, const char *value, char *err, size_t n) {
+    char *end = NULL;
+    if (!value) value = "";
+    errno = 0;
+    if (!strcmp(key, "model")) {
+        if (strlen(value) >= sizeof rq->model) return snprintf(err, n, "model name too long"), false;
+        snprintf(rq->model, sizeof rq->model, "%s", value);
+    } else if (!strcmp(key, "seed")) {
+        if (!*value) return true;
+        unsigned long long s = strtoull(value, &end, 10);
+        if (*end || errno || *value == '-') return snprintf(err, n, "seed: a whole number from 0"), false;
+        rq->use_seed = true, rq->seed = s;
+    } else if (!strcmp(key, "n") || !strcmp(key, "lod")) {
+        if (!*value) return true;
+        long s = strtol(value, &end, 10);
+        long max = !strcmp(key, "n") ? 1000000 : SYL_LOD_MAX;
+        if (*end || errno || s < 0 || s > max) return snprintf(err, n, "%s: a whole number from 0 to %ld", key, max), false;
+        if (!strcmp(key, "n")) rq->steps = (int)s;
+        else rq->lod = (int)s;
+    } else if (!strcmp(key, "leaves")) {
+        if (!*value) return true;
+        int k = 0;
+        while (k < SYL_LEAVES_MODES && strcmp(syl_leaves_names[k], value)) k++;
+        if (k == SYL_LEAVES_MODES) return snprintf(err, n, "leaves: unknown mode '%s'", value), false;
+        rq->leaves = k;
+    } else if (!strcmp(key, "wind")) {
+        if (!*value) return true;
+        double w = strtod(value, &end);
+        if (*end || !(w >= 0 && w <= 100)) return snprintf(err, n, "wind: a speed from 0 to 100 m/s"), false;
+        rq->wind = (float)w;
+    } else if (!strcmp(key, "size")) {
+        int w, h;
+        char extra;
+        if (sscanf(value, "%dx%d%c", &w, &h, &extra) != 2 || w < 16 || h < 16 || w > 4096 || h > 4096)
+            return snprintf(err, n, "size: WxH, 16 to 4096 pixels each way"), false;
+        rq->width = w, rq->height = h;
+    } else if (!strcmp(key, "set")) {
+        const char *eq = strchr(value, '=');
+        if (!eq || eq == value || (size_t)(eq - value) >= sizeof rq->names[0])
+            return snprintf(err, n, "set: name=value"), false;
+        if (rq->nsets >= MAX_SETS) return snprintf(err, n, "set: at most %d", MAX_SETS), false;
+        double x = strtod(eq + 1, &end);
+        if (end == eq + 1 || *end || !isfinite(x)) return snprintf(err, n, "set: '%s' is not a number", eq + 1), false;
+        char *name = rq->names[rq->nsets];
+        memcpy(name, value, (size_t)(eq - value));
+        name[eq - value] = 0;
+        rq->sets[rq->nsets++] = (SylOverride){.name = name, .value = x};
+    }
+    /* other names (the token, a cache breaker) are not the model's */
+    return true;
+}
+
+void view_request_init(ViewRequest *rq) {
+    memset(rq, 0, sizeof *rq);
+    rq->steps = -1, rq->lod = -1, rq->leaves = -1;
+}
+
+/* Everything one build makes, freed by made_free. */
+typedef struct Made {
+    SylPlant pl;
+    SylMeshOptions mo;
+    SylLodChain lods;
+    SylWind wind;
+    SylInstances *sets;
+    int nsets;
+    size_t instances;
+    int lod;
+    double compile_s, lod_s, write_s;
+    SylBudget *budget;
+} Made;
+
+static void made_free(Made *m) {
+    syl_instances_free(m->sets, m->nsets);
+    syl_lod_free(&m->lods);
+    syl_wind_free(&m->wind);
+    syl_plant_free(&m->pl);
+    syl_budget_free(m->budget);
+    memset(m, 0, sizeof *m);
+}
+
+/* Compile (with every warning of `sylva check`) and build as `sylva mesh` does. */
+static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
+    memset(m, 0, sizeof *m);
+    int files = 1; /* cli_validate reads the scene's files, as `sylva check` does */
+    SylCompileOptions opt = {.model = rq->model[0] ? rq->model : NULL, .overrides = rq->sets,
+                             .noverrides = rq->nsets, .diag = diag, .lint = 1,
+                             .validate = cli_validate, .validate_user = &files};
+    double t0 = cli_now();
+    int status;
+    SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
+    m->compile_s = cli_now() - t0;
+    if (!p) return status;
+    double lod = syl_program_setting(p, "lod");
+    m->lod = rq->lod >= 0 ? rq->lod : lod > 0 && lod <= SYL_LOD_MAX ? (int)lod : 0;
+    if (rq->wind > 0) m->lod = rq->lod > 0 ? rq->lod : 0; /* as sylva mesh: the setting, without wind */
+    m->budget = syl_budget_new(v->max_memory);
+    m->mo = (SylMeshOptions){.diag = diag, .threads = v->threads, .budget = m->budget, .one_sided = 1,
+                             .vertex_nodes = rq->wind > 0};
+    if (rq->leaves >= 0) m->mo.leaves = rq->leaves;
+    SylPlantOptions po = {.use_steps = rq->steps >= 0, .steps = rq->steps, .use_seed = rq->use_seed,
+                          .seed = rq->seed, .threads = v->threads, .max_modules = v->max_modules,
+                          .max_memory = v->max_memory, .budget = m->budget, .until = SYL_PLANT_MESH,
+                          .drop_string = 1, .scene = !rq->model[0], .mesh = &m->mo, .diag = diag};
+    status = syl_plant_build(p, &po, &m->pl);
+    syl_program_free(p);
+    if (status) return status;
+    double t1 = cli_now();
+    if (m->lod > 0) {
+        status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod, &m->lods);
+        if (status) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
+    } else {
+        status = syl_mesh_optimize(m->pl.mesh);
+    }
+    if (!status && rq->wind > 0) {
+        if (!m->pl.mesh->node) {
+            fprintf(diag, "sylva: error: --wind cannot skin this mesh: part of it is not the plant's\n");
+            return SYL_EUSAGE;
+        }
+        const SylSkeleton *sk = m->pl.skeleton;
+        SylWindOptions wo = {.speed = rq->wind, .dir = {1, 0}};
+        float *radius = malloc((sk->nnodes + 1) * sizeof *radius);
+        status = radius ? syl_mesh_radii(sk, &m->mo, radius) : SYL_ELIMIT;
+        if (!status) status = syl_wind_build(sk, radius, &wo, &m->wind);
+        free(radius);
+        if (status) fprintf(diag, "sylva: error: cannot build the wind's joints\n");
+    }
+    bool instanced = m->mo.leaves == SYL_LEAVES_INSTANCED || m->mo.leaves == SYL_LEAVES_INSTANCED_CARDS;
+    if (!status && instanced) {
+        status = syl_leaf_instances(m->pl.skeleton, &m->mo, &m->sets, &m->nsets);
+        for (int i = 0; i < m->nsets; i++) m->instances += m->sets[i].count;
+        if (m->lod > 0) m->lods.level[0].sets = m->sets, m->lods.level[0].nsets = m->nsets;
+    }
+    m->lod_s = cli_now() - t1;
+    return status;
+}
+
+/* The .glb as `sylva mesh` writes it, into out. */
+static int write_glb(Made *m, FILE *out, FILE *diag) {
+    bool wind = m->wind.njoints > 0;
+    return m->lod > 0 ? syl_write_glb_lods_wind_stream(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, out, diag)
+           : wind     ? syl_write_glb_wind_stream(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, out, diag)
+                      : syl_write_glb_instanced_stream(m->pl.mesh, m->sets, m->nsets, out, diag);
+}
+
+/* What `sylva mesh --stats` prints, as JSON. */
+static char *stats_json(const Made *m) {
+    char *s = NULL;
+    size_t n = 0;
+    FILE *f = open_memstream(&s, &n);
+    if (!f) return NULL;
+    const SylSkeleton *sk = m->pl.skeleton;
+    const SylMesh *me = m->pl.mesh;
+    float lo[3], hi[3];
+    syl_skeleton_bounds(sk, lo, hi);
+    fprintf(f, "{\"kind\":\"%s\",\"modules\":%zu,\"nodes\":%zu,\"organs\":%zu,\"polygons\":%zu,"
+               "\"vertices\":%zu,\"triangles\":%zu,\"material_groups\":%d,\"leaf_instances\":%zu,",
+            syl_model_kind_name(m->pl.kind), m->pl.modules, sk->nnodes, sk->norgans, sk->npolys, me->nverts,
+            me->nidx / 3, me->ngroups, m->instances);
+    fprintf(f, "\"lod_levels\":%d,\"lod_triangles\":[", m->lods.n);
+    for (int k = 0; k < m->lods.n; k++) fprintf(f, "%s%zu", k ? "," : "", m->lods.level[k].mesh->nidx / 3);
+    fprintf(f, "],\"bounds\":[%g,%g,%g,%g,%g,%g],", (double)lo[0], (double)lo[1], (double)lo[2], (double)hi[0],
+            (double)hi[1], (double)hi[2]);
+    fprintf(f, "\"compile_time\":%.6f,\"derive_time\":%.6f,\"derive_cpu_time\":%.6f,\"turtle_time\":%.6f,"
+               "\"mesh_time\":%.6f,\"lod_time\":%.6f,\"write_time\":%.6f,\"memory_mb\":%.2f,\"peak_memory_mb\":%.2f}",
+            m->compile_s, m->pl.derive_s, m->pl.derive_cpu_s, m->pl.turtle_s, m->pl.mesh_s, m->lod_s, m->write_s,
+            (double)syl_budget_used(m->budget) / 1048576.0, cli_peak_mb());
+    fclose(f);
+    return s;
+}
+
+static void entry_free(ViewBuild *b) {
+    free(b->diag);
+    free(b->glb);
+    free(b->csv);
+    free(b->stats);
+    memset(b, 0, sizeof *b);
+}
+
+void view_cache_free(View *v) {
+    for (int i = 0; i < VIEW_CACHE; i++) entry_free(&v->cache[i]);
+}
+
+ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
+    pthread_mutex_lock(&v->gen_lock);
+    unsigned gen = v->gen;
+    pthread_mutex_unlock(&v->gen_lock);
+    ViewBuild *slot = &v->cache[0];
+    for (int i = 0; i < VIEW_CACHE; i++) {
+        ViewBuild *b = &v->cache[i];
+        if (b->id && b->gen == gen && !strcmp(b->key, key)) {
+            b->used = cli_now();
+            return b;
+        }
+        if (!b->id || b->used < slot->used) slot = b;
+    }
+    entry_free(slot);
+    slot->id = ++v->next_id;
+    slot->gen = gen;
+    slot->used = cli_now();
+    snprintf(slot->key, sizeof slot->key, "%s", key);
+    size_t dlen = 0;
+    FILE *diag = open_memstream(&slot->diag, &dlen);
+    if (!diag) {
+        slot->status = SYL_ELIMIT;
+        return slot;
+    }
+    Made m;
+    int status = make(v, rq, diag, &m);
+    if (!status) {
+        double t = cli_now();
+        FILE *out = open_memstream(&slot->glb, &slot->glb_len);
+        status = out ? write_glb(&m, out, diag) : SYL_ELIMIT;
+        if (out) fclose(out);
+        m.write_s = cli_now() - t;
+        out = open_memstream(&slot->csv, &slot->csv_len);
+        if (!status && out) status = syl_skeleton_write_csv(m.pl.skeleton, out);
+        if (out) fclose(out);
+        if (!status) slot->stats = stats_json(&m);
+    }
+    made_free(&m);
+    fclose(diag);
+    slot->status = status;
+    if (status) { /* keep the messages only */
+        free(slot->glb), slot->glb = NULL, slot->glb_len = 0;
+        free(slot->csv), slot->csv = NULL, slot->csv_len = 0;
+    }
+    return slot;
+}
+
+/* A picture as `sylva render` draws it (its default camera and light), as PNG. */
+static int write_png(Made *m, const ViewRequest *rq, FILE *out, FILE *diag, int threads) {
+    int w = rq->width ? rq->width : 1024, h = rq->height ? rq->height : 1024;
+    uint8_t *rgb = malloc((size_t)w * (size_t)h * 3);
+    if (!rgb) return SYL_ELIMIT;
+    SylRenderOptions ro = {.width = w, .height = h, .threads = threads, .diag = diag, .budget = m->budget};
+    int status = syl_render(m->pl.mesh, &ro, rgb);
+    if (!status) status = syl_write_png_stream(out, rgb, w, h, diag);
+    free(rgb);
+    return status;
+}
+
+/* An .obj (with its .mtl and textures) needs a directory: written into a private one by
+ * syl_write_obj, the .obj read back. */
+static int write_obj(Made *m, FILE *out, FILE *diag) {
+    char dir[] = "/tmp/sylva-view-XXXXXX";
+    if (!mkdtemp(dir)) {
+        fprintf(diag, "sylva: error: cannot make a temporary directory: %s\n", strerror(errno));
+        return SYL_EIO;
+    }
+    char path[64];
+    snprintf(path, sizeof path, "%s/plant.obj", dir);
+    int status = syl_write_obj(m->pl.mesh, path, diag);
+    size_t len = 0;
+    char *text = status ? NULL : syl_read_file(path, &len);
+    if (!status && !text) status = SYL_EIO;
+    if (text) fwrite(text, 1, len, out);
+    free(text);
+    /* the .obj, its .mtl and the texture PNGs beside them */
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "%s", dir);
+    DIR *d = opendir(dir);
+    for (struct dirent *e; d && (e = readdir(d));) {
+        if (e->d_name[0] == '.') continue;
+        char p[512];
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        unlink(p);
+    }
+    if (d) closedir(d);
+    rmdir(cmd);
+    return status;
+}
+
+int view_export(View *v, const ViewRequest *rq, const char *format, char **out, size_t *len, char **diag) {
+    size_t dlen = 0;
+    *out = NULL, *len = 0, *diag = NULL;
+    FILE *df = open_memstream(diag, &dlen);
+    FILE *of = open_memstream(out, len);
+    if (!df || !of) {
+        if (df) fclose(df);
+        if (of) fclose(of);
+        return SYL_ELIMIT;
+    }
+    Made m;
+    int status = make(v, rq, df, &m);
+    if (!status) {
+        if (!strcmp(format, "glb")) status = write_glb(&m, of, df);
+        else if (!strcmp(format, "csv")) status = syl_skeleton_write_csv(m.pl.skeleton, of);
+        else if (!strcmp(format, "png")) status = write_png(&m, rq, of, df, v->threads);
+        else if (!strcmp(format, "obj")) status = write_obj(&m, of, df);
+        else status = SYL_EUSAGE;
+    }
+    made_free(&m);
+    fclose(df);
+    fclose(of);
+    return status;
+}
+
+char *view_models_json(View *v) {
+    size_t len = 0;
+    char *text = syl_read_file(v->path, &len);
+    const char *names[256];
+    char buf[8192];
+    int n = text ? syl_list_models(v->path, text, len, names, 256, buf, sizeof buf) : 0;
+    char *s = NULL;
+    size_t sl = 0;
+    FILE *f = open_memstream(&s, &sl);
+    if (!f) return free(text), NULL;
+    fputs("{\"file\":", f);
+    json_string_file(f, v->path);
+    pthread_mutex_lock(&v->gen_lock);
+    fprintf(f, ",\"gen\":%u,\"models\":[", v->gen);
+    pthread_mutex_unlock(&v->gen_lock);
+    for (int i = 0; i < n; i++) {
+        fputs(i ? "," : "", f);
+        json_string_file(f, names[i]);
+    }
+    fputs("]}", f);
+    fclose(f);
+    free(text);
+    return s;
+}
+
+char *view_describe_json(View *v, const ViewRequest *rq, char **diag) {
+    size_t dlen = 0, len = 0;
+    char *s = NULL;
+    *diag = NULL;
+    FILE *df = open_memstream(diag, &dlen);
+    if (!df) return NULL;
+    int files = 1, status;
+    SylCompileOptions opt = {.model = rq->model[0] ? rq->model : NULL, .overrides = rq->sets,
+                             .noverrides = rq->nsets, .diag = df, .validate = cli_validate,
+                             .validate_user = &files};
+    SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
+    FILE *f = p ? open_memstream(&s, &len) : NULL;
+    if (f) {
+        if (syl_describe_json(p, f)) {
+            fclose(f);
+            free(s);
+            s = NULL;
+        } else {
+            fclose(f);
+        }
+    }
+    syl_program_free(p);
+    fclose(df);
+    return s;
+}

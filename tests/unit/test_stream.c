@@ -1,0 +1,141 @@
+/* The stream writers (sylva/stream.h), which `sylva view` serves from memory: each writes the
+ * same bytes as its file writer, and a failing stream is SYL_EIO. */
+#include "unit.h"
+
+#include <unistd.h>
+
+#include "sylva/lod.h"
+#include "sylva/plant.h"
+#include "sylva/stream.h"
+#include "sylva/texture.h"
+#include "sylva/wind.h"
+
+static const char *model = "lsystem P {\n derive 3\n angle 30\n width 0.1\n axiom A\n"
+                           " A -> F[+A~leaf][-A]/(90)FA\n}\n";
+
+static SylPlant build(const SylMeshOptions *mo) {
+    SylProgram *p = unit_compile(model, NULL, NULL);
+    assert_non_null(p);
+    SylPlant pl;
+    SylPlantOptions po = {.threads = 1, .mesh = mo};
+    assert_int_equal(syl_plant_build(p, &po, &pl), SYL_OK);
+    syl_program_free(p);
+    return pl;
+}
+
+static char *slurp(const char *path, size_t *len) {
+    char *s = syl_read_file(path, len);
+    assert_non_null(s);
+    return s;
+}
+
+/* The bytes of the file writer (into a temporary file) and of the stream writer agree. */
+static void same(const char *file_bytes, size_t flen, const char *mem, size_t mlen) {
+    assert_true(flen > 12);
+    assert_int_equal(flen, mlen);
+    assert_memory_equal(file_bytes, mem, flen);
+}
+
+static void glb_instanced_and_lods(void **state) {
+    (void)state;
+    SylMeshOptions mo = {.one_sided = 1, .leaves = SYL_LEAVES_INSTANCED, .threads = 1};
+    SylPlant pl = build(&mo);
+    SylInstances *sets = NULL;
+    int nsets = 0;
+    assert_int_equal(syl_leaf_instances(pl.skeleton, &mo, &sets, &nsets), SYL_OK);
+    char path[] = "/tmp/sylva-test-stream-XXXXXX.glb";
+    int fd = mkstemps(path, 4);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(syl_write_glb_instanced(pl.mesh, sets, nsets, path, NULL), SYL_OK);
+    char *mem = NULL;
+    size_t mlen = 0, flen = 0;
+    FILE *f = open_memstream(&mem, &mlen);
+    assert_int_equal(syl_write_glb_instanced_stream(pl.mesh, sets, nsets, f, NULL), SYL_OK);
+    fclose(f);
+    char *file = slurp(path, &flen);
+    same(file, flen, mem, mlen);
+    free(file), free(mem);
+
+    SylLodChain c = {0};
+    assert_int_equal(syl_lod_build(pl.skeleton, &mo, pl.mesh, 2, &c), SYL_OK);
+    assert_int_equal(syl_write_glb_lods_wind(&c, NULL, NULL, path, NULL), SYL_OK);
+    f = open_memstream(&mem, &mlen);
+    assert_int_equal(syl_write_glb_lods_wind_stream(&c, NULL, NULL, f, NULL), SYL_OK);
+    fclose(f);
+    file = slurp(path, &flen);
+    same(file, flen, mem, mlen);
+    free(file), free(mem);
+    syl_lod_free(&c);
+    syl_instances_free(sets, nsets);
+    syl_plant_free(&pl);
+    unlink(path);
+}
+
+static void glb_wind(void **state) {
+    (void)state;
+    SylMeshOptions mo = {.one_sided = 1, .vertex_nodes = 1, .threads = 1};
+    SylPlant pl = build(&mo);
+    assert_int_equal(syl_mesh_optimize(pl.mesh), SYL_OK);
+    float *radius = malloc((pl.skeleton->nnodes + 1) * sizeof *radius);
+    assert_int_equal(syl_mesh_radii(pl.skeleton, &mo, radius), SYL_OK);
+    SylWind w = {0};
+    assert_int_equal(syl_wind_build(pl.skeleton, radius, &(SylWindOptions){.speed = 8}, &w), SYL_OK);
+    free(radius);
+    char path[] = "/tmp/sylva-test-stream-XXXXXX.glb";
+    int fd = mkstemps(path, 4);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(syl_write_glb_wind(pl.mesh, NULL, 0, pl.skeleton, &w, path, NULL), SYL_OK);
+    char *mem = NULL;
+    size_t mlen = 0, flen = 0;
+    FILE *f = open_memstream(&mem, &mlen);
+    assert_int_equal(syl_write_glb_wind_stream(pl.mesh, NULL, 0, pl.skeleton, &w, f, NULL), SYL_OK);
+    fclose(f);
+    char *file = slurp(path, &flen);
+    same(file, flen, mem, mlen);
+    free(file), free(mem);
+    syl_wind_free(&w);
+    syl_plant_free(&pl);
+    unlink(path);
+}
+
+static void png_and_a_failing_stream(void **state) {
+    (void)state;
+    uint8_t rgb[8 * 4 * 3];
+    for (size_t i = 0; i < sizeof rgb; i++) rgb[i] = (uint8_t)(i * 7);
+    char path[] = "/tmp/sylva-test-stream-XXXXXX.png";
+    int fd = mkstemps(path, 4);
+    assert_true(fd >= 0);
+    close(fd);
+    assert_int_equal(syl_write_png(path, rgb, 8, 4, NULL), SYL_OK);
+    char *mem = NULL;
+    size_t mlen = 0, flen = 0;
+    FILE *f = open_memstream(&mem, &mlen);
+    assert_int_equal(syl_write_png_stream(f, rgb, 8, 4, NULL), SYL_OK);
+    fclose(f);
+    char *file = slurp(path, &flen);
+    same(file, flen, mem, mlen);
+    free(file), free(mem);
+    unlink(path);
+    /* a stream that cannot be written: /dev/full fails every flush */
+    FILE *full = fopen("/dev/full", "w");
+    if (!full) skip();
+    assert_int_equal(syl_write_png_stream(full, rgb, 8, 4, NULL), SYL_EIO);
+    fclose(full);
+    SylMeshOptions mo = {.one_sided = 1, .threads = 1};
+    SylPlant pl = build(&mo);
+    full = fopen("/dev/full", "w");
+    assert_int_equal(syl_write_glb_instanced_stream(pl.mesh, NULL, 0, full, NULL), SYL_EIO);
+    fclose(full);
+    syl_plant_free(&pl);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(glb_instanced_and_lods),
+        cmocka_unit_test(glb_wind),
+        cmocka_unit_test(png_and_a_failing_stream),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,553 @@
+// The page of `sylva view` (docs/view.md): draws the .glb the server builds with the library's
+// own writers, follows the file's edits through the server's event stream, and gives every
+// parameter a slider. The server is the only source: no request leaves this machine.
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const $ = (id) => document.getElementById(id);
+
+// ---- state ----
+const state = {
+  model: '',          // '' : the file's first model (or its scene)
+  seed: '',
+  step: '',           // '' : the model's `derive`
+  leaves: '', lod: '', wind: false,
+  sets: {},           // name -> value, the parameters moved away from the file's
+  params: [],         // the chosen model's, from /api/describe
+  mode: 'mesh',
+  forceLod: 'auto',
+  stats: null,
+  build: null,        // the last build's answer (ok or not)
+  loads: 0,           // models drawn, for the tests
+  error: '',          // the overlay's text ('' : none)
+  gen: 0,
+  placed: [],         // plants placed by clicks: {model, x, y, z}; the file is not rewritten
+};
+window.sylvaView = state;
+
+// ---- three.js ----
+const canvas = $('canvas');
+const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+renderer.shadowMap.enabled = true;
+renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0xdce6ef);
+const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 5000);
+camera.position.set(6, 4, 8);
+const controls = new OrbitControls(camera, canvas);
+controls.enableDamping = false;
+const hemi = new THREE.HemisphereLight(0xeef4ff, 0x8a8070, 1.2);
+scene.add(hemi);
+const sun = new THREE.DirectionalLight(0xffffff, 2.2);
+sun.castShadow = true;
+sun.shadow.mapSize.set(2048, 2048);
+scene.add(sun, sun.target);
+const ground = new THREE.Mesh(new THREE.CircleGeometry(1, 64), new THREE.MeshStandardMaterial({ color: 0xa3a39a, roughness: 1 }));
+ground.rotation.x = -Math.PI / 2;
+ground.receiveShadow = true;
+scene.add(ground);
+
+let root = null;        // the drawn model (a group)
+let lodObject = null;   // THREE.LOD when the file has levels
+let skeletonLines = null, boxHelper = null;
+let mixer = null;
+const clock = new THREE.Clock();
+const originals = new Map(); // mesh -> its own material (lighting and texture toggles swap them)
+
+// where the camera is, for the tests (rounded: it must not move on a reload)
+window.sylvaCamera = () => ({ position: camera.position.toArray().map((x) => +x.toFixed(4)),
+  target: controls.target.toArray().map((x) => +x.toFixed(4)) });
+
+function resize() {
+  const w = canvas.clientWidth, h = canvas.clientHeight;
+  if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
+    renderer.setSize(w, h, false);
+    camera.aspect = w / Math.max(h, 1);
+    camera.updateProjectionMatrix();
+  }
+}
+
+function animate() {
+  resize();
+  if (mixer) mixer.update(clock.getDelta());
+  controls.update();
+  renderer.render(scene, camera);
+  requestAnimationFrame(animate);
+}
+
+// ---- the server ----
+function query(extra = {}) {
+  const q = new URLSearchParams();
+  if (state.model) q.set('model', state.model);
+  if (state.seed !== '') q.set('seed', state.seed);
+  if (state.step !== '') q.set('n', state.step);
+  if (state.leaves) q.set('leaves', state.leaves);
+  if (state.lod !== '') q.set('lod', state.lod);
+  if (state.wind) q.set('wind', '8');
+  for (const [k, v] of Object.entries(state.sets)) q.append('set', `${k}=${v}`);
+  for (const [k, v] of Object.entries(extra)) q.set(k, v);
+  return q.toString();
+}
+
+async function getJSON(url) {
+  const r = await fetch(url, { credentials: 'same-origin' });
+  return r.json();
+}
+
+// ---- drawing a build ----
+function bounds(obj) {
+  return new THREE.Box3().setFromObject(obj);
+}
+
+function frame() {
+  if (!root) return;
+  const box = bounds(root);
+  const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
+  const r = Math.max(size.length() / 2, 1e-3);
+  const dist = r / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
+  controls.target.copy(centre);
+  camera.position.copy(centre).add(new THREE.Vector3(0.55, 0.35, 0.76).normalize().multiplyScalar(dist));
+  camera.near = dist / 200; camera.far = dist * 50;
+  camera.updateProjectionMatrix();
+  controls.update();
+}
+
+function placeGroundAndSun() {
+  const box = bounds(root);
+  const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
+  const r = Math.max(size.length() / 2, 1e-3);
+  ground.position.set(centre.x, box.min.y - r * 0.002, centre.z);
+  ground.scale.setScalar(r * 4);
+  sun.position.set(centre.x + r * 1.5, centre.y + r * 3, centre.z + r * 1.0);
+  sun.target.position.copy(centre);
+  const cam = sun.shadow.camera;
+  cam.left = cam.bottom = -r * 1.5; cam.right = cam.top = r * 1.5;
+  cam.near = r * 0.1; cam.far = r * 8;
+  cam.updateProjectionMatrix();
+}
+
+// MSFT_lod (what `sylva mesh --lod` writes): three.js's GLTFLoader draws the first level only;
+// the others are nodes of the file, gathered into a THREE.LOD switched by distance, each level
+// where its MSFT_screencoverage says.
+async function gatherLods(gltf) {
+  const json = gltf.parser.json;
+  const nodes = json.nodes || [];
+  const first = nodes.findIndex((n) => n.extensions && n.extensions.MSFT_lod);
+  if (first < 0) return null;
+  const ids = [first, ...nodes[first].extensions.MSFT_lod.ids];
+  const coverage = (nodes[first].extras && nodes[first].extras.MSFT_screencoverage) || [];
+  const lod = new THREE.LOD();
+  const objects = await Promise.all(ids.map((i) => gltf.parser.getDependency('node', i)));
+  const box = bounds(objects[0]);
+  const r = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-3);
+  const t = Math.tan(THREE.MathUtils.degToRad(camera.fov / 2));
+  objects.forEach((o, k) => {
+    const c = k === 0 ? 1 : (coverage[k - 1] || Math.pow(0.5, k));
+    // a level is drawn while the sphere covers less than the previous level's share of the screen
+    const d = k === 0 ? 0 : r / (Math.sqrt(c) * t);
+    lod.addLevel(o.clone ? o : o, d);
+  });
+  return lod;
+}
+
+function skeletonFrom(csv) {
+  // id,parent,x,y,z,radius,order,kind (sylva skeleton's CSV): a segment from each node's parent
+  const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
+  const pos = new Map();
+  for (const r of rows) if (r[7] === 'internode' || r[7] === 'root') pos.set(r[0], [+r[2], +r[3], +r[4]]);
+  const p = [], c = [];
+  const colours = [0x5a3a1a, 0xc0392b, 0xe67e22, 0x27ae60, 0x2980b9, 0x8e44ad, 0x16a085, 0x7f8c8d];
+  const col = new THREE.Color();
+  for (const r of rows) {
+    if (r[7] !== 'internode' || !pos.has(r[1])) continue;
+    const a = pos.get(r[1]), b = [+r[2], +r[3], +r[4]];
+    col.setHex(colours[Math.min(+r[6], colours.length - 1)]);
+    p.push(...a, ...b); c.push(col.r, col.g, col.b, col.r, col.g, col.b);
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
+  g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
+  return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+}
+
+function meshes(fn) {
+  if (root) root.traverse((o) => { if (o.isMesh) fn(o); });
+}
+
+function applyLook() {
+  const lit = $('lighting').checked, tex = $('textures').checked, mode = state.mode;
+  meshes((m) => {
+    if (!originals.has(m)) originals.set(m, m.material);
+    const own = originals.get(m);
+    const list = Array.isArray(own) ? own : [own];
+    const made = list.map((o) => {
+      const mat = lit ? o.clone() : new THREE.MeshBasicMaterial({ color: o.color, map: o.map, alphaTest: o.alphaTest,
+        transparent: o.transparent, side: o.side });
+      if (!tex) mat.map = null;
+      mat.wireframe = mode === 'wireframe';
+      mat.needsUpdate = true;
+      return mat;
+    });
+    m.material = Array.isArray(own) ? made : made[0];
+    m.castShadow = $('shadows').checked;
+    m.visible = mode === 'mesh' || mode === 'wireframe';
+  });
+  sun.visible = $('shadows').checked || lit;
+  sun.castShadow = $('shadows').checked;
+  ground.receiveShadow = $('shadows').checked;
+  if (skeletonLines) skeletonLines.visible = mode === 'skeleton';
+  if (boxHelper) boxHelper.visible = mode === 'box';
+  if (lodObject) {
+    lodObject.autoUpdate = state.forceLod === 'auto';
+    if (state.forceLod !== 'auto') lodObject.levels.forEach((l, k) => { l.object.visible = k === +state.forceLod; });
+  }
+}
+
+function setMode(mode) {
+  state.mode = mode;
+  document.querySelectorAll('#modes button').forEach((b) => b.classList.toggle('on', b.dataset.mode === mode));
+  applyLook();
+}
+
+function showError(text) {
+  state.error = text;
+  const el = $('error');
+  el.hidden = !text;
+  el.textContent = text;
+}
+
+function showStats(s) {
+  const rows = s ? [
+    ['kind', s.kind], ['modules', s.modules], ['nodes', s.nodes], ['organs', s.organs], ['polygons', s.polygons],
+    ['vertices', s.vertices], ['triangles', s.triangles], ['leaf instances', s.leaf_instances],
+    ['levels of detail', s.lod_levels ? s.lod_triangles.join(' / ') + ' triangles' : 'none'],
+    ['compile', (s.compile_time * 1000).toFixed(1) + ' ms'], ['derive', (s.derive_time * 1000).toFixed(1) + ' ms'],
+    ['turtle', (s.turtle_time * 1000).toFixed(1) + ' ms'], ['mesh', (s.mesh_time * 1000).toFixed(1) + ' ms'],
+    ['write .glb', (s.write_time * 1000).toFixed(1) + ' ms'], ['memory', s.memory_mb + ' MB'],
+  ] : [];
+  $('stats').replaceChildren(...rows.map(([k, v]) => {
+    const tr = document.createElement('tr');
+    tr.innerHTML = '<td></td><td></td>';
+    tr.children[0].textContent = k; tr.children[1].textContent = v;
+    tr.children[1].id = 'stat-' + k.replace(/ /g, '-');
+    return tr;
+  }));
+}
+
+const loader = new GLTFLoader();
+let loading = null, again = false;
+
+// Build what the controls say and draw it; the camera stays unless frameIt.
+async function load(frameIt = false) {
+  if (loading) { again = true; return loading; }
+  loading = (async () => {
+    const t0 = performance.now();
+    $('status').textContent = 'building…';
+    const q = query();
+    let b;
+    const text = await editedText();
+    try {
+      b = text === null ? await getJSON('/api/build?' + q)
+        : await (await fetch('/api/build?' + q, { method: 'POST', body: text })).json();
+    } catch (e) { b = { ok: false, diag: String(e) }; }
+    state.build = b;
+    const warnings = (b.diag || '').split('\n').filter((l) => / warning: /.test(l));
+    $('warnings').textContent = b.ok ? (b.diag || '') : '';
+    if (!b.ok) { // the last good model stays
+      showError(b.diag || 'the build failed');
+      $('status').textContent = 'error (the last good model is shown)';
+      return;
+    }
+    const [glb, csv] = await Promise.all([
+      fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer()),
+      fetch('/api/skeleton?id=' + b.id).then((r) => r.text()),
+    ]);
+    const gltf = await loader.parseAsync(glb, '');
+    const lod = await gatherLods(gltf);
+    const group = new THREE.Group();
+    group.add(lod || gltf.scene);
+    skeletonLines = skeletonFrom(csv);
+    group.add(skeletonLines);
+    if (root) scene.remove(root);
+    originals.clear();
+    root = group;
+    lodObject = lod;
+    scene.add(root);
+    boxHelper = new THREE.Box3Helper(bounds(lod || gltf.scene), 0x1a4fa0);
+    root.add(boxHelper);
+    mixer = null;
+    state.animations = gltf.animations.length;
+    state.levels = lod ? lod.levels.length : 1;
+    if (gltf.animations.length) {
+      mixer = new THREE.AnimationMixer(gltf.scene);
+      gltf.animations.forEach((a) => mixer.clipAction(a).play());
+    }
+    const levels = lod ? lod.levels.length : 1;
+    const sel = $('forcelod');
+    const keep = state.forceLod;
+    sel.replaceChildren(new Option('by distance', 'auto'), ...Array.from({ length: levels }, (_, k) => new Option('LOD' + k, String(k))));
+    state.forceLod = keep !== 'auto' && +keep < levels ? keep : 'auto';
+    sel.value = state.forceLod;
+    placeGroundAndSun();
+    if (frameIt || state.loads === 0) frame();
+    state.stats = b.stats;
+    showStats(b.stats);
+    showError('');
+    applyLook();
+    state.loads++;
+    state.gen = b.gen;
+    $('status').textContent = `${b.stats.triangles} triangles · ${b.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms` +
+      (warnings.length ? ` · ${warnings.length} warning${warnings.length > 1 ? 's' : ''}` : '');
+    updateExports();
+  })();
+  try { await loading; } finally {
+    loading = null;
+    if (again) { again = false; load(); }
+  }
+}
+
+// ---- parameters (syl_describe_json) ----
+function paramRange(p) {
+  const v = p.default;
+  let lo = p.min, hi = p.max;
+  if (lo === null) lo = v < 0 ? v * 3 : 0;
+  if (hi === null) hi = Math.max(Math.abs(v) * 3, lo + 1);
+  if (p.name === 'derive' || p.name === 'years') hi = Math.min(hi, Math.max(12, v * 2));
+  if (p.name === 'seed') hi = Math.min(hi, 1e6);
+  return [lo, hi];
+}
+
+let paramTimer = null;
+function paramChanged(name, value, def) {
+  if (value === def) delete state.sets[name]; else state.sets[name] = value;
+  $('setline').value = setLine();
+  clearTimeout(paramTimer);
+  paramTimer = setTimeout(() => load(), 120); // debounced: a drag re-derives at most every 120 ms
+}
+
+function buildParams() {
+  const box = $('params');
+  box.replaceChildren();
+  for (const p of state.params) {
+    if (p.name === 'seed' || p.name === 'derive' || p.name === 'years') continue; // their own fields
+    const div = document.createElement('div');
+    div.className = 'param';
+    if (!['number', 'integer', 'boolean'].includes(p.type)) { // --set takes numbers: shown, not moved
+      div.innerHTML = '<div><span class="name"></span> <span class="dim"></span></div><div class="doc"></div>';
+      div.querySelector('.name').textContent = p.name;
+      div.querySelector('.dim').textContent = `${p.type}: ${JSON.stringify(p.value)}`;
+      div.querySelector('.doc').textContent = p.doc || '';
+      box.appendChild(div);
+      continue;
+    }
+    if (p.type === 'boolean') {
+      div.innerHTML = '<label><input type="checkbox"> <span class="name"></span></label><div class="doc"></div>';
+      const cb = div.querySelector('input');
+      cb.checked = !!(p.name in state.sets ? state.sets[p.name] : p.value);
+      cb.dataset.param = p.name;
+      div.querySelector('.name').textContent = p.name;
+      div.querySelector('.doc').textContent = p.doc || '';
+      cb.addEventListener('change', () => paramChanged(p.name, cb.checked ? 1 : 0, p.default ? 1 : 0));
+      box.appendChild(div);
+      continue;
+    }
+    const [lo, hi] = paramRange(p);
+    const step = p.type === 'number' ? (hi - lo) / 200 : 1;
+    const value = p.name in state.sets ? state.sets[p.name] : p.value;
+    div.innerHTML = `<div><span class="name"></span> <span class="unit dim"></span></div>
+      <input type="range"> <input type="number"><div class="doc"></div>`;
+    div.querySelector('.name').textContent = p.name;
+    div.querySelector('.unit').textContent = `${p.unit || ''} [${lo} … ${hi}] default ${p.default}`;
+    div.querySelector('.doc').textContent = p.doc || '';
+    const range = div.querySelector('input[type=range]'), num = div.querySelector('input[type=number]');
+    for (const el of [range, num]) {
+      el.min = lo; el.max = hi; el.step = step; el.value = value;
+      el.dataset.param = p.name;
+    }
+    range.addEventListener('input', () => { num.value = range.value; paramChanged(p.name, +range.value, p.default); });
+    num.addEventListener('change', () => { range.value = num.value; paramChanged(p.name, +num.value, p.default); });
+    box.appendChild(div);
+  }
+  // the step slider: an L-system's `derive`, a grow block's `years`
+  const derive = state.params.find((p) => p.name === 'derive' || p.name === 'years');
+  if (derive) { $('step').max = paramRange(derive)[1]; if (state.step === '') $('step').value = derive.value; }
+}
+
+async function loadParams() {
+  const q = new URLSearchParams();
+  if (state.model) q.set('model', state.model);
+  const d = await getJSON('/api/describe?' + q);
+  if (!d.models) return; // does not compile: the overlay says why
+  const m = d.models.find((x) => x.name === state.model) || d.models[0];
+  state.params = m ? m.params : [];
+  buildParams();
+}
+
+function setLine() {
+  return Object.entries(state.sets).map(([k, v]) => `--set ${k}=${v}`).join(' ') +
+    (state.seed !== '' ? ` --seed ${state.seed}` : '') + (state.step !== '' ? ` -n ${state.step}` : '');
+}
+
+// The file's text with the moved parameters written into it: `param NAME = VALUE` and setting
+// lines `NAME VALUE`. The user's file is not touched: this goes to a new file (save as…).
+async function textWithSets() {
+  let text = (await editedText()) ?? await fetch('/api/source').then((r) => r.text());
+  for (const [k, v] of Object.entries(state.sets)) {
+    const esc = k.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
+    const asParam = new RegExp(`^(\\s*param\\s+${esc}\\s*=\\s*)([^#\\n]*?)(\\s*(#.*)?)$`, 'm');
+    const asSetting = new RegExp(`^(\\s*${esc}\\s+)([^#\\n]*?)(\\s*(#.*)?)$`, 'm');
+    if (asParam.test(text)) text = text.replace(asParam, `$1${v}$3`);
+    else if (asSetting.test(text)) text = text.replace(asSetting, `$1${v}$3`);
+  }
+  return text;
+}
+
+async function saveAs() {
+  const name = prompt('Save as a new file beside the model (a file name):', 'copy.syl');
+  if (!name) return;
+  const body = await textWithSets();
+  let r = await fetch('/api/save?name=' + encodeURIComponent(name), { method: 'POST', body });
+  if (r.status === 409 && confirm(`${name} exists. Overwrite it?`))
+    r = await fetch('/api/save?overwrite=yes&name=' + encodeURIComponent(name), { method: 'POST', body });
+  $('status').textContent = r.ok ? `saved ${name}` : `not saved: ${(await r.json()).error}`;
+}
+
+// ---- scenes: plants placed by clicks on the ground ----
+// The file's text with a `plant MODEL at (x, y, z)` line for each placed plant: into its `scene`
+// block, or a new one that also keeps the model at the origin. null: nothing placed.
+async function editedText() {
+  if (!state.placed.length) return null;
+  const text = await fetch('/api/source').then((r) => r.text());
+  const lines = state.placed.map((p) => `  plant ${p.model} at (${p.x}, ${p.y}, ${p.z})`).join('\n') + '\n';
+  const m = /^scene\s*\{[^]*?\n\}/m.exec(text);
+  if (m) {
+    const end = m.index + m[0].length - 1; // the closing brace
+    return text.slice(0, end) + lines + text.slice(end);
+  }
+  const first = state.placed[0].origin;
+  return text + `\nscene {\n  plant ${first} at (0, 0, 0)\n${lines}}\n`;
+}
+
+function showPlaced() {
+  $('placed').textContent = state.placed.map((p) => `plant ${p.model} at (${p.x}, ${p.y}, ${p.z})`).join('\n');
+}
+
+const pointer = { x: 0, y: 0 };
+canvas.addEventListener('pointerdown', (e) => { pointer.x = e.clientX; pointer.y = e.clientY; });
+canvas.addEventListener('pointerup', (e) => {
+  if (!$('placing').checked || Math.hypot(e.clientX - pointer.x, e.clientY - pointer.y) > 4) return; // a drag orbits
+  const r = canvas.getBoundingClientRect();
+  const ndc = new THREE.Vector2((e.clientX - r.left) / r.width * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
+  const ray = new THREE.Raycaster();
+  ray.setFromCamera(ndc, camera);
+  const hit = ray.intersectObject(ground)[0];
+  if (!hit) return;
+  const round = (x) => +x.toFixed(2);
+  const model = $('placemodel').value;
+  state.placed.push({ model, origin: state.model || $('placemodel').options[0]?.value || model,
+    x: round(hit.point.x), y: 0, z: round(hit.point.z) });
+  showPlaced();
+  state.model = ''; $('model').value = ''; // the scene
+  load();
+});
+
+function updateExports() {
+  for (const f of ['glb', 'obj', 'csv']) $('exp-' + f).href = '/api/export?' + query({ format: f });
+  $('exp-png').href = '/api/export?' + query({ format: 'png', size: $('pngsize').value });
+}
+
+// With placed plants the export is of the edited text: posted, and the answer saved as a file.
+async function exportEdited(e) {
+  const text = await editedText();
+  if (text === null) return; // the link as it is
+  e.preventDefault();
+  const a = e.currentTarget;
+  const r = await fetch(a.href, { method: 'POST', body: text });
+  if (!r.ok) { showError((await r.json()).diag || 'the export failed'); return; }
+  const url = URL.createObjectURL(await r.blob());
+  const tmp = document.createElement('a');
+  tmp.href = url; tmp.download = (r.headers.get('Content-Disposition') || '').replace(/.*filename="([^"]*)".*/, '$1') || 'export';
+  tmp.click();
+  setTimeout(() => URL.revokeObjectURL(url), 1000);
+}
+
+// ---- time ----
+let playing = null;
+function play() {
+  if (playing) { clearInterval(playing); playing = null; $('play').textContent = 'play'; return; }
+  $('play').textContent = 'stop';
+  let k = 0;
+  const max = +$('step').max;
+  const next = async () => {
+    state.step = String(k); $('step').value = k; $('stepval').textContent = k;
+    await load();
+    k = k >= max ? 0 : k + 1;
+  };
+  next();
+  playing = setInterval(() => { if (!loading) next(); }, 400);
+}
+
+// ---- the file's models and its edits ----
+async function loadModels() {
+  const d = await getJSON('/api/models');
+  $('file').textContent = d.file;
+  const sel = $('model');
+  sel.replaceChildren(new Option('(the file\'s first, or its scene)', ''), ...d.models.map((m) => new Option(m, m)));
+  sel.value = state.model;
+  const place = $('placemodel'), keep = place.value;
+  place.replaceChildren(...d.models.map((m) => new Option(m, m)));
+  if (keep) place.value = keep;
+}
+
+function listen() {
+  const es = new EventSource('/api/events');
+  es.addEventListener('change', async () => {
+    await load();           // the camera stays
+    loadParams();
+    loadModels();
+  });
+}
+
+// ---- controls ----
+function wire() {
+  document.querySelectorAll('#modes button').forEach((b) => b.addEventListener('click', () => setMode(b.dataset.mode)));
+  for (const id of ['textures', 'lighting', 'shadows']) $(id).addEventListener('change', applyLook);
+  $('wind').addEventListener('change', () => { state.wind = $('wind').checked; load(); });
+  $('leaves').addEventListener('change', () => { state.leaves = $('leaves').value; load(); });
+  $('lod').addEventListener('change', () => { state.lod = $('lod').value; load(); });
+  $('forcelod').addEventListener('change', () => { state.forceLod = $('forcelod').value; applyLook(); });
+  $('frame').addEventListener('click', frame);
+  $('reset').addEventListener('click', () => { camera.fov = 40; frame(); });
+  $('model').addEventListener('change', async () => {
+    state.model = $('model').value; state.sets = {}; state.step = '';
+    await loadParams(); load(true);
+  });
+  $('seed').addEventListener('change', () => { state.seed = $('seed').value; load(); });
+  $('newseed').addEventListener('click', () => {
+    state.seed = String(Math.floor(Math.random() * 1e9)); $('seed').value = state.seed; load();
+  });
+  $('step').addEventListener('input', () => {
+    state.step = $('step').value; $('stepval').textContent = state.step;
+    clearTimeout(paramTimer); paramTimer = setTimeout(() => load(), 120);
+  });
+  $('stepreset').addEventListener('click', () => { state.step = ''; $('stepval').textContent = 'the file\'s'; load(); });
+  $('play').addEventListener('click', play);
+  $('copyset').addEventListener('click', async () => {
+    $('setline').value = setLine();
+    try { await navigator.clipboard.writeText($('setline').value); } catch (e) { $('setline').select(); }
+  });
+  $('defaults').addEventListener('click', () => { state.sets = {}; buildParams(); $('setline').value = ''; load(); });
+  $('saveas').addEventListener('click', saveAs);
+  $('pngsize').addEventListener('change', updateExports);
+  for (const f of ['glb', 'obj', 'csv', 'png']) $('exp-' + f).addEventListener('click', exportEdited);
+  $('unplace').addEventListener('click', () => { state.placed = []; showPlaced(); load(); });
+}
+
+wire();
+animate();
+await loadModels();
+await loadParams().catch(() => {});
+await load(true);
+listen();
