@@ -24,13 +24,13 @@ static double fit_distance(const double (*v)[3], size_t n, double cx, double cy,
     return need;
 }
 
-/* From 20 degrees east of south, 40 degrees up: centred and pulled back until every sampled
+/* From the south (the terrain square to the frame), 40 degrees up: centred and pulled back until every sampled
  * point of the terrain (a grid over it with its edges, at their heights) lies within `fit` of
  * the frame, so the terrain fills the picture (its bounding sphere left half of it empty). */
 static void bird(const SylTerrain *t, double aspect, SylRenderCamera *cam) {
     enum { GRID = 48 };
     double v[(GRID + 1) * (GRID + 1)][3]; /* 58 kB: the grid's points in the view's axes */
-    const double fit = 0.96, fov = 40, az = 20 * M_PI / 180, el = 40 * M_PI / 180;
+    const double fit = 0.98, fov = 30, az = 0, el = 50 * M_PI / 180;
     double w = t->nx * t->cell, d = t->nz * t->cell, c[3] = {t->x0 + w / 2, 0, t->z0 + d / 2};
     double back[3] = {sin(az) * cos(el), sin(el), cos(az) * cos(el)}, fwd[3] = {-back[0], -back[1], -back[2]};
     double right[3], up[3], world_up[3] = {0, 1, 0};
