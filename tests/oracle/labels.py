@@ -9,6 +9,9 @@
   labels.py legend MAP.png N    an ecosystem's map-YEAR.png: in its top left corner N rows of
       a swatch, each of another colour, beside white (240) letters on the dark legend box.
       Prints "legend of N species".
+  labels.py colourmap MAP.png   a `sylva terrain --maps` NAME-colour.png: the map coloured (most
+      of its pixels far from grey), and below it a light legend strip holding dark letters and
+      the colour bar from the ramp's dark blue to its yellow. Prints "a coloured map with a legend".
 Exit 1 otherwise."""
 import os
 import sys
@@ -55,5 +58,29 @@ def legend(path, want):
     print("legend of %d species" % want)
 
 
+def colourmap(path):
+    img = png(path)
+    w, h = img[0], img[1]
+    paper = lambda p: min(p) >= 245  # noqa: E731
+    # the legend's first row: the first light one down the middle (no ramp colour is light)
+    strip = next((y for y in range(h) if paper(pixel(img, w // 2, y))), h)
+    legend = [pixel(img, x, y) for y in range(strip, h) for x in range(w)]
+    ink = sum(max(p) < 60 and max(p) - min(p) < 20 for p in legend)
+    blue = any(p[2] > p[0] + 40 and p[2] > p[1] + 40 and max(p) < 110 for p in legend)
+    yellow = any(p[0] > 200 and p[1] > 180 and p[2] < 80 for p in legend)
+    mapped = [pixel(img, x, y) for y in range(0, strip, 4) for x in range(0, w, 4)]
+    coloured = sum(max(p) - min(p) > 30 for p in mapped)
+    if not (strip < h - 10 and ink > 20 and blue and yellow):
+        print("no legend below the map (strip from row %d, %d ink pixels, blue %s, yellow %s)" % (strip, ink, blue, yellow))
+        sys.exit(1)
+    if coloured < 0.5 * len(mapped):
+        print("%d of %d map pixels coloured" % (coloured, len(mapped)))
+        sys.exit(1)
+    print("a coloured map with a legend")
+
+
 if __name__ == "__main__":
-    {"names": names, "legend": legend}[sys.argv[1]](sys.argv[2], int(sys.argv[3]))
+    if sys.argv[1] == "colourmap":
+        colourmap(sys.argv[2])
+    else:
+        {"names": names, "legend": legend}[sys.argv[1]](sys.argv[2], int(sys.argv[3]))
