@@ -79,6 +79,8 @@ def covers(view, least):
 
 def walker(stats, path):
     eye, target, _, _, _ = camera(stats)
+    # Sylva's z runs south (north is -z): the grid's y (north) is -z
+    eye, target = (eye[0], eye[1], -eye[2]), (target[0], target[1], -target[2])
     head, rows = grid(path)
     c = head["cellsize"]
     x0, z0, w, d = head["xllcorner"], head["yllcorner"], len(rows[0]) * c, len(rows) * c
