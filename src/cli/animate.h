@@ -6,10 +6,20 @@
 #include <stdint.h>
 #include <sys/types.h>
 
+#include "sylva/mesh.h"
+
 /* Draw number in the top left corner of a width x height RGB picture: white digits on a dark
  * box, scaled with the picture's height. The box is all it changes: *box_w x *box_h pixels
  * from (0, 0), which it returns when not NULL. */
 void cli_label_draw(uint8_t *rgb, int width, int height, int number, int *box_w, int *box_h);
+
+/* The box frame number t (0 the first, 1 the last) is framed to: from the frame's own plant
+ * toward the last frame's, as a mesh of its 8 corners for SylRenderOptions.frame. */
+typedef struct CliFrameBox {
+    float corners[8][3];
+    SylMesh mesh;
+} CliFrameBox;
+void cli_frame_box(const SylMesh *own, const SylMesh *last, double t, CliFrameBox *box);
 
 /* ffmpeg reading raw RGB frames on a pipe and writing an MP4 (H.264, yuv420p) or a GIF (one
  * palette for the whole animation). */

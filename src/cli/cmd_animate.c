@@ -1,6 +1,7 @@
 /* sylva animate: growth as a picture sequence — an L-system's derivation steps, a grown
- * plant's years, a strands tree's ages — every frame seen by one camera fitted to the last,
- * written as PNG frames or encoded by ffmpeg into an MP4 or a GIF. */
+ * plant's years, a strands tree's ages — the camera pulling back from the first frame's plant
+ * to the last frame's (framing.c), written as PNG frames or encoded by ffmpeg into an MP4 or
+ * a GIF. */
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
@@ -19,8 +20,9 @@ const CliCommand cli_animate_command = {
     .usage = "sylva animate FILE[:Model] -o OUT.mp4|OUT.gif|DIR/ [options]",
     .about = "Render a model's growth frame by frame: an L-system's derivation steps 0 to n (derived\n"
              "once, each step drawn and meshed), a grow block's or a scene's years 1 to N (grown\n"
-             "again to each year), a strands block's ages 1/N to 1. The camera, the ground and the\n"
-             "light are fitted to the last frame, so the plant grows inside a steady picture.\n"
+             "again to each year), a strands block's ages 1/N to 1. The first frame is framed to its\n"
+             "own plant and the last to the last frame's; between them the camera pulls back\n"
+             "steadily, so a seedling is readable and the grown plant fills the last frame.\n"
              "An MP4 (H.264, yuv420p) or a GIF is encoded by ffmpeg, which must be on PATH; a\n"
              "directory gets frame_0000.png, frame_0001.png ... and needs no ffmpeg. The frames\n"
              "never depend on the number of threads.\n",
@@ -220,10 +222,9 @@ int cmd_animate(int argc, char **argv) {
     cli_progress(&bar, 1);
     double build_s = cli_now() - t0, render_s = 0;
     int n = status ? 0 : syl_growth_count(g);
-    /* the last frame first: the camera every frame is seen with */
+    /* the last frame first: the box every frame's camera moves toward */
     if (!status) status = syl_growth_build(g, n - 1, &last);
     build_s = cli_now() - t0;
-    if (!status) ro.frame = last.mesh;
     if (!status && !(rgb = malloc((size_t)w * h * 3))) {
         fprintf(stderr, "sylva: error: out of memory for a %dx%d frame\n", w, h);
         status = SYL_ELIMIT;
@@ -240,7 +241,12 @@ int cmd_animate(int argc, char **argv) {
             build_s += cli_now() - r0;
             r0 = cli_now();
         }
-        if (!status) status = syl_render(pl->mesh, &ro, rgb);
+        CliFrameBox box;
+        if (!status) {
+            cli_frame_box(pl->mesh, last.mesh, n > 1 ? (double)k / (n - 1) : 1, &box);
+            ro.frame = &box.mesh;
+            status = syl_render(pl->mesh, &ro, rgb);
+        }
         render_s += cli_now() - r0;
         if (!status && a.steps) cli_label_draw(rgb, w, h, syl_growth_label(g, k), NULL, NULL);
         for (int r = 0; r < a.frames_per_step && !status; r++) status = sink_frame(&sink, rgb, w, h);

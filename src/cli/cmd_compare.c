@@ -390,9 +390,10 @@ static int write_image(const Column *cols, int ncols, const char *path, SylRende
     double *ground = calloc((size_t)ncols, sizeof *ground);
     SylMesh *all = NULL;
     int status = SYL_ELIMIT;
-    if (meshes && ground) {
-        for (int c = 0; c < ncols; c++) meshes[c] = cols[c].mesh, ground[c] = cols[c].ground;
-        all = lineup_build(meshes, ground, ncols);
+    const char **names = calloc((size_t)ncols, sizeof *names);
+    if (meshes && ground && names) {
+        for (int c = 0; c < ncols; c++) meshes[c] = cols[c].mesh, ground[c] = cols[c].ground, names[c] = cols[c].name;
+        all = lineup_build(meshes, ground, names, ncols);
     }
     if (!all) fprintf(stderr, "sylva: error: out of memory\n");
     else {
@@ -405,6 +406,7 @@ static int write_image(const Column *cols, int ncols, const char *path, SylRende
     syl_mesh_free(all);
     free(meshes);
     free(ground);
+    free(names);
     return status;
 }
 

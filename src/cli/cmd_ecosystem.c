@@ -12,6 +12,7 @@
 #include <time.h>
 
 #include "cli/cli.h"
+#include "cli/font.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
 #include "sylva/render.h"
@@ -161,6 +162,22 @@ static bool hillshade(Run *r) {
     return true;
 }
 
+/* The species' colours and names in the top left corner, on a dark box. */
+static void map_legend(const Run *r, uint8_t *rgb) {
+    static const uint8_t dark[3] = {24, 24, 24}, white[3] = {240, 240, 240};
+    int s = r->w >= 400 ? 2 : 1, line = 10 * s, wide = 0;
+    for (int i = 0; i < r->m->nspecies; i++) {
+        int tw = cli_text_width(r->m->species[i].name, s);
+        wide = tw > wide ? tw : wide;
+    }
+    cli_fill_rect(rgb, r->w, r->h, 0, 0, wide + 14 * s, r->m->nspecies * line + 4 * s, dark);
+    for (int i = 0; i < r->m->nspecies; i++) {
+        int y = 3 * s + i * line;
+        cli_fill_rect(rgb, r->w, r->h, 3 * s, y, 7 * s, 7 * s, palette[i % NPAL]);
+        cli_text_draw(rgb, r->w, r->h, 12 * s, y, r->m->species[i].name, s, white);
+    }
+}
+
 static int by_height(const void *a, const void *b, void *plants) {
     const SylEcoPlant *p = (const SylEcoPlant *)plants + *(const uint32_t *)a,
                       *q = (const SylEcoPlant *)plants + *(const uint32_t *)b;
@@ -200,6 +217,7 @@ static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
             }
         }
     }
+    map_legend(r, rgb);
     char *path = path_in(r->dir, "map-%d.png", year);
     int st = path ? syl_write_png(path, rgb, r->w, r->h, stderr) : SYL_ELIMIT;
     if (!st) printf("%s\n", path);

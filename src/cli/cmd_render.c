@@ -29,7 +29,9 @@ const CliCommand cli_render_command = {
         {.option = CLI_OPT_RENDER_VIEW,
          .help = "iso (from 35 degrees up, 45 around), front (looking along -Z),\n"
                  "side (along -X) or top (down from +Y); default: front for a\n"
-                 "plant drawn in a plane, iso otherwise. With --plants: bird\n"
+                 "plant drawn in a plane, otherwise eye level (6 degrees up, 45\n"
+                 "around: the trunk under the crown, the horizon above the middle).\n"
+                 "With --plants: bird\n"
                  "(default) or walker, as sylva ecosystem --view"},
         {.option = CLI_OPT_SIZE, .help = "picture size in pixels, 1 to 16384 each (default 1024x1024;\n"
                                          "with --plants 1280x720)"},

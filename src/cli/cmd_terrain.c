@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "cli/terrain_colour.h"
 #include "sylva/terrain.h"
 
 const CliCommand cli_terrain_command = {
@@ -112,6 +113,7 @@ int cmd_terrain(int argc, char **argv) {
     double t1 = cli_now();
     if (!st) {
         if (a.maps) st = write_maps(t, a.maps);
+        if (a.maps && !st) st = cli_terrain_colour_maps(t, a.maps);
         else summary(t);
     }
     if (!st && a.stats) {

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/font.h"
 #include "cli/lineup.h"
 
 typedef struct Box {
@@ -56,6 +57,22 @@ static bool add_text(Boxes *bx, const char *text, float right, float y, float z,
         x += w + gap;
     }
     return ok;
+}
+
+/* Text in the 5 x 7 font, a box a dot, h high, centred on x, its foot at y = 0, its face at
+ * z (toward +z, the camera's side). */
+static bool add_words(Boxes *bx, const char *text, float x, float z, float h) {
+    float s = h / 7, left = x - (float)cli_text_width(text, 1) * s / 2;
+    for (int i = 0; text[i]; i++) {
+        const uint8_t *g = cli_glyph(text[i]);
+        for (int r = 0; r < 7; r++)
+            for (int c = 0; c < 5; c++)
+                if (g[r] >> (4 - c) & 1) {
+                    float x0 = left + (float)(6 * i + c) * s, y0 = (float)(6 - r) * s;
+                    if (!add_box(bx, x0, y0, z - s, x0 + s, y0 + s, z)) return false;
+                }
+    }
+    return true;
 }
 
 /* 1, 2 or 5 times a power of ten, at least v. */
@@ -118,7 +135,7 @@ static int find_material(SylMaterial *mats, int *n, const SylMaterial *want) {
     return (*n)++;
 }
 
-SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, int n) {
+SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, const char *const *names, int n) {
     SylMesh *m = calloc(1, sizeof *m);
     float(*lo)[3] = calloc((size_t)n + 1, sizeof *lo), (*hi)[3] = calloc((size_t)n + 1, sizeof *hi);
     float(*shift)[3] = calloc((size_t)n + 1, sizeof *shift);
@@ -153,6 +170,13 @@ SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, int n)
         x += hi[i][0] - lo[i][0] + gap;
     }
     ok = ruler(&bx, tallest, x - gap, -gap / 2);
+    /* each name as tall as a ruler's figure, at most a plant's width for its length */
+    for (int i = 0; ok && names && i < n; i++) {
+        float width = hi[i][0] - lo[i][0] + 0.6f * gap, h = (float)(0.035 * fmax(tallest, x - gap));
+        float len = (float)cli_text_width(names[i], 1) / 7;
+        if (len * h > width) h = width / len;
+        ok = add_words(&bx, names[i], shift[i][0] + (lo[i][0] + hi[i][0]) / 2, (hi[i][2] - lo[i][2]) / 2 + 0.1f * gap, h);
+    }
     if (!ok) goto done;
 
     /* Materials: shared when equal; the ruler's last. */

@@ -8,7 +8,9 @@
  * a height ruler left of the first: a pole from 0 to the next tick above the tallest plant,
  * ticks at round heights (1, 2 or 5 times a power of ten) and their values written with
  * seven-segment digits, all as boxes of a material of its own (the last one). Materials that
- * are the same (colour and kind) are shared. NULL when out of memory. */
-SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, int n);
+ * are the same (colour and kind) are shared. names: NULL, or each plant's name, written in
+ * the ruler's material with the 5 x 7 letters of font.c, upright on the ground in front of
+ * its plant. NULL when out of memory. */
+SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, const char *const *names, int n);
 
 #endif

@@ -1,6 +1,7 @@
 /* How far a level of detail strays from LOD0 where it switches on: both rendered at the
  * size the plant then has on a 1080-line screen, their silhouettes compared pixel by pixel.
  * Here because the renderer and the LOD builder are peers; only the CLI uses both. */
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,6 +11,17 @@
 
 enum { SCREEN_LINES = 1080, MIN_PIXELS = 32, MAX_PIXELS = 1024 };
 
+/* The view the levels are compared in: from 35 degrees up (iso), or the front for a plant
+ * drawn in a plane, as the silhouette bounds of tests/run-lod were set in; not the eye-level
+ * view pictures now default to. */
+static SylView lod_view(const SylMesh *m) {
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY}, size = 0;
+    for (size_t i = 0; i < m->nverts; i++)
+        for (int k = 0; k < 3; k++) lo[k] = fminf(lo[k], m->pos[3 * i + k]), hi[k] = fmaxf(hi[k], m->pos[3 * i + k]);
+    for (int k = 0; k < 3; k++) size = fmaxf(size, hi[k] - lo[k]);
+    return hi[2] - lo[2] < 0.05f * size ? SYL_VIEW_FRONT : SYL_VIEW_ISO; /* camera.c's rule for auto */
+}
+
 int lod_silhouette(const SylLodChain *c, int k, int threads, LodSilhouette *out) {
     /* The renderer frames the plant in 80% of the picture: the picture is 1/0.8 of it. */
     int size = (int)((double)c->level[k - 1].coverage * SCREEN_LINES / 0.8 + 0.5);
@@ -17,7 +29,7 @@ int lod_silhouette(const SylLodChain *c, int k, int threads, LodSilhouette *out)
     size_t n = (size_t)size * (size_t)size;
     uint8_t *rgb = malloc(3 * n), *a0 = malloc(n), *ak = malloc(n);
     int status = rgb && a0 && ak ? SYL_OK : SYL_ELIMIT;
-    SylRenderOptions ro = {.width = size, .height = size, .view = SYL_VIEW_AUTO, .samples = 4, .ao_samples = -1,
+    SylRenderOptions ro = {.width = size, .height = size, .view = lod_view(c->level[0].mesh), .samples = 4, .ao_samples = -1,
                            .shadows = -1, .threads = threads, .diag = stderr, .frame = c->level[0].mesh};
     ro.alpha = a0;
     if (!status) status = syl_render(c->level[0].mesh, &ro, rgb);
@@ -45,7 +57,7 @@ int lod_picture(const SylLodChain *c, const char *path, int size, int threads) {
     size_t row = (size_t)size * (size_t)c->n * 3;
     uint8_t *sheet = malloc(row * (size_t)size), *one = malloc((size_t)size * (size_t)size * 3);
     int status = sheet && one ? SYL_OK : SYL_ELIMIT;
-    SylRenderOptions ro = {.width = size, .height = size, .view = SYL_VIEW_AUTO, .threads = threads, .diag = stderr,
+    SylRenderOptions ro = {.width = size, .height = size, .view = lod_view(c->level[0].mesh), .threads = threads, .diag = stderr,
                            .frame = c->level[0].mesh};
     for (int k = 0; k < c->n && !status; k++) {
         status = syl_render(c->level[k].mesh, &ro, one);

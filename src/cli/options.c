@@ -257,7 +257,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_WERROR] = {"werror", 0, NULL, "treat warnings as errors", CLI_FLAG, ARGS(werror)},
     [CLI_OPT_DUMP] = {"dump", 0, NULL, "print the compiled program: rules and bytecode", CLI_FLAG, ARGS(dump)},
     /* sylva terrain */
-    [CLI_OPT_MAPS] = {"maps", 0, "DIR", "write every factor's map as DIR/NAME.png and DIR/NAME.asc", CLI_TEXT,
+    [CLI_OPT_MAPS] = {"maps", 0, "DIR", "write every factor's map as DIR/NAME.png and DIR/NAME.asc, and\nin colour with a legend as DIR/NAME-colour.png", CLI_TEXT,
                       ARGS(maps)},
     [CLI_OPT_CELL] = {"cell", 0, "SIZE",
                       "a PNG's cell size (default 1); an OBJ's grid spacing (default:\n"

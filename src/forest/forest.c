@@ -63,9 +63,11 @@ static void normalise(SylMesh *m, float y0, float k) {
     }
 }
 
-static int build_look(SylGrowth *g, const SylProgram *q, int frame, const SylForestOptions *o, Look *look) {
+static int build_look(SylGrowth *g, const SylProgram *q, int frame, int variant, const SylForestOptions *o,
+                      Look *look) {
     SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .budget = o->budget};
-    SylPlantOptions po = {.threads = o->threads, .diag = o->diag, .budget = o->budget, .mesh = &mo, .drop_string = 1};
+    SylPlantOptions po = {.threads = o->threads, .diag = o->diag, .budget = o->budget, .mesh = &mo, .drop_string = 1,
+                          .use_seed = variant > 0, .seed = 7919 * (uint64_t)variant}; /* variant 0: the model's own */
     SylPlant pl = {0};
     int st = g ? syl_growth_build(g, frame, &pl) : syl_plant_build(q, &po, &pl);
     if (st) return st;
@@ -84,11 +86,12 @@ static int build_look(SylGrowth *g, const SylProgram *q, int frame, const SylFor
 }
 
 /* A species' classes: an L-system's derivation steps, a grown tree's years, a strands
- * block's ages spread over the growth (frame round(N (c + 1) / C)); a Weber–Penn tree has no
- * growth and is one mesh scaled. */
+ * block's ages spread over the growth, variant v of class c at frame round(N (c + (v + 1) / V)
+ * / C); a Weber–Penn tree has no growth: its variants are other seeds of one tree, scaled. */
 static int species_looks(SylForest *f, const SylProgram *p, int s, const SylForestOptions *o) {
     const SylEcoSpecies *sp = &f->m->species[s];
-    for (int c = 0; c < SYL_FOREST_CLASSES; c++) f->proto_of[s][c] = -1;
+    for (int c = 0; c < SYL_FOREST_CLASSES; c++)
+        for (int v = 0; v < FOREST_VARIANTS; v++) f->proto_of[s][c][v] = -1;
     if (!sp->model[0]) return SYL_OK;
     int st;
     SylProgram *q = syl_compile_model(p, sp->model, o->diag, &st);
@@ -104,22 +107,26 @@ static int species_looks(SylForest *f, const SylProgram *p, int s, const SylFore
     if (lang_kind_is(syl_program_kind(q), KF_RULES | KF_GROWS | KF_AGES) && syl_growth_new(q, &po, &g)) g = NULL;
     int frames = g ? syl_growth_count(g) : 1;
     st = SYL_OK;
-    for (int c = 0; c < SYL_FOREST_CLASSES && !st; c++) {
-        int frame = g ? (int)lround((double)(frames - 1) * (c + 1) / SYL_FOREST_CLASSES) : 0;
-        if (c && (!g || frame == (int)lround((double)(frames - 1) * c / SYL_FOREST_CLASSES))) {
-            f->proto_of[s][c] = f->proto_of[s][c - 1]; /* the same look as the class before */
-            continue;
+    int last_frame = -1, last_k = -1;
+    for (int c = 0; c < SYL_FOREST_CLASSES && !st; c++)
+        for (int v = 0; v < FOREST_VARIANTS && !st; v++) {
+            double at = c + (double)(v + 1) / FOREST_VARIANTS;
+            int frame = g ? (int)lround((double)(frames - 1) * at / SYL_FOREST_CLASSES) : 0;
+            if (g ? frame == last_frame : c > 0) { /* the same look as one before */
+                f->proto_of[s][c][v] = g ? last_k : f->proto_of[s][0][v];
+                continue;
+            }
+            int k = f->nprotos;
+            st = build_look(g, q, frame, g ? 0 : v, o, &f->looks[k]);
+            if (st) break;
+            f->protos[k].mesh = f->looks[k].mesh;
+            f->protos[k].coarse = f->looks[k].lod.n > 1 ? f->looks[k].lod.level[1].mesh : NULL;
+            snprintf(f->looks[k].mesh->name, sizeof f->looks[k].mesh->name, "%.40s_class%d_v%d", sp->name, c, v);
+            f->proto_species[k] = s, f->proto_class[k] = c, f->proto_variant[k] = v;
+            f->proto_of[s][c][v] = k;
+            last_frame = frame, last_k = k;
+            f->nprotos++;
         }
-        int k = f->nprotos;
-        st = build_look(g, q, frame, o, &f->looks[k]);
-        if (st) break;
-        f->protos[k].mesh = f->looks[k].mesh;
-        f->protos[k].coarse = f->looks[k].lod.n > 1 ? f->looks[k].lod.level[1].mesh : NULL;
-        snprintf(f->looks[k].mesh->name, sizeof f->looks[k].mesh->name, "%.40s_class%d", sp->name, c);
-        f->proto_species[k] = s, f->proto_class[k] = c;
-        f->proto_of[s][c] = k;
-        f->nprotos++;
-    }
     syl_growth_free(g);
     syl_program_free(q);
     return st;
@@ -162,9 +169,10 @@ void syl_forest_instances(const SylForest *f, const SylEcoPlant *plants, size_t 
     for (size_t i = 0; i < n; i++) {
         const SylEcoPlant *p = &plants[i];
         int sp = p->species < f->m->nspecies ? p->species : -1;
-        int k = sp >= 0 ? f->proto_of[sp][forest_class_of(&f->m->species[sp], p->height)] : -1;
+        uint64_t hash = rng_mix(p->id ^ 0x7f4a7c159e3779b9ull); /* the turn and the look: the plant's own */
+        int v = (int)((hash & 0xffff) % FOREST_VARIANTS);
+        int k = sp >= 0 ? f->proto_of[sp][forest_class_of(&f->m->species[sp], p->height)][v] : -1;
         double y = syl_terrain_factor_at(f->t, SYL_TERRAIN_ALTITUDE, p->x, p->z);
-        uint64_t hash = rng_mix(p->id ^ 0x7f4a7c159e3779b9ull); /* the turn: the plant's own */
         inst[i] = (SylRenderInstance){.t = {p->x, (float)y, p->z},
                                       .yaw = (float)((double)(hash >> 40) * 0x1p-24 * 2 * M_PI),
                                       .scale = k >= 0 ? p->height : 0,
@@ -185,54 +193,4 @@ int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, c
     int st = syl_render_instances(f->ground, f->protos, f->nprotos, inst, kept, cam, ro, windows, nwindows, rgb, counts);
     free(inst);
     return st;
-}
-
-/* The ground's height at (x, z), and the walker's valley floor. */
-static float height_at(const SylTerrain *t, double x, double z) {
-    return (float)syl_terrain_factor_at(t, SYL_TERRAIN_ALTITUDE, x, z);
-}
-
-void syl_forest_camera(const SylForest *f, SylForestView v, int width, int height, SylRenderCamera *cam) {
-    const SylTerrain *t = f->t;
-    double w = t->nx * t->cell, d = t->nz * t->cell, cx = t->x0 + w / 2, cz = t->z0 + d / 2;
-    double lo = INFINITY, hi = -INFINITY, gx = 0, gz = 0;
-    size_t nx = (size_t)t->nx, nz = (size_t)t->nz;
-    for (size_t k = 0; k < nz; k++)
-        for (size_t i = 0; i < nx; i++) {
-            double h = t->height[k * nx + i];
-            lo = fmin(lo, h), hi = fmax(hi, h);
-            if (i + 1 < nx) gx += fabs(t->height[k * nx + i + 1] - h);
-            if (k + 1 < nz) gz += fabs(t->height[(k + 1) * nx + i] - h);
-        }
-    if (!(lo <= hi)) lo = hi = 0;
-    double aspect = height > 0 ? (double)width / height : 1;
-    if (v == SYL_FOREST_BIRD) {
-        float fov = 40;
-        double az = 20 * M_PI / 180, el = 40 * M_PI / 180;
-        double r = 0.5 * sqrt(w * w + d * d + (hi - lo) * (hi - lo));
-        double half = tan(fov * 0.5 * M_PI / 180) * fmin(1, aspect); /* the narrower half-angle */
-        double dist = 1.05 * r / sin(atan(half));
-        double ty = 0.5 * (lo + hi);
-        *cam = (SylRenderCamera){.eye = {(float)(cx + dist * sin(az) * cos(el)), (float)(ty + dist * sin(el)),
-                                         (float)(cz + dist * cos(az) * cos(el))},
-                                 .target = {(float)cx, (float)ty, (float)cz},
-                                 .fov = fov};
-        return;
-    }
-    /* along z when the ground rises less that way per cell (the valley runs along z) */
-    bool along_z = gz / (double)(nx * (nz > 1 ? nz - 1 : 1)) < gx / (double)(nz * (nx > 1 ? nx - 1 : 1));
-    double ex = cx, ez = cz, best = INFINITY;
-    for (int j = 0; j < (along_z ? t->nx : t->nz); j++) { /* the floor across the valley's middle */
-        double x = along_z ? t->x0 + (j + 0.5) * t->cell : cx, z = along_z ? cz : t->z0 + (j + 0.5) * t->cell;
-        double h = height_at(t, x, z);
-        if (h < best) best = h, ex = x, ez = z;
-    }
-    double a = along_z ? height_at(t, ex, t->z0) : height_at(t, t->x0, ez);
-    double b = along_z ? height_at(t, ex, t->z0 + d) : height_at(t, t->x0 + w, ez);
-    double dir = b <= a ? 1 : -1; /* downhill */
-    float ey = height_at(t, ex, ez) + 1.7f;
-    *cam = (SylRenderCamera){.eye = {(float)ex, ey, (float)ez},
-                             .target = {(float)(ex + (along_z ? 0 : 100 * dir)), ey - 4,
-                                        (float)(ez + (along_z ? 100 * dir : 0))},
-                             .fov = 55};
 }

@@ -62,7 +62,8 @@ int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n
             s->proto = f->looks[p].mesh;
             s->count = count[b];
             s->t = t3 + 3 * start[b], s->r = r4 + 4 * start[b], s->s = s3 + 3 * start[b];
-            snprintf(s->name, sizeof s->name, "%.30s_class%d_cell%d_%d", sp->name, f->proto_class[p], ix, kz);
+            snprintf(s->name, sizeof s->name, "%.24s_class%d_v%d_cell%d_%d", sp->name, f->proto_class[p] % 10,
+                     f->proto_variant[p] % 10, ix % 10000, kz % 10000);
             double x0 = t->x0 + ix * cell, z0 = t->z0 + kz * cell;
             double x1 = ix == cx - 1 ? t->x0 + w : x0 + cell, z1 = kz == cz - 1 ? t->z0 + d : z0 + cell;
             extras[k] = malloc(256);
@@ -70,8 +71,9 @@ int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n
                 st = SYL_ELIMIT;
                 break;
             }
-            snprintf(extras[k], 256, "{\"species\":\"%s\",\"class\":%d,\"cell\":[%d,%d],\"bounds\":[%.3f,%.3f,%.3f,%.3f]}",
-                     sp->name, f->proto_class[p], ix, kz, x0, z0, x1, z1);
+            snprintf(extras[k], 256,
+                     "{\"species\":\"%s\",\"class\":%d,\"variant\":%d,\"cell\":[%d,%d],\"bounds\":[%.3f,%.3f,%.3f,%.3f]}",
+                     sp->name, f->proto_class[p], f->proto_variant[p], ix, kz, x0, z0, x1, z1);
             k++;
         }
     }

@@ -10,15 +10,20 @@ typedef struct Look {
     SylLodChain lod; /* lod.level[1].mesh: the coarse mesh, or n == 0 */
 } Look;
 
+/* Looks per species and age class, one of which each plant wears (by a hash of its id), so a
+ * stand is not one clone: growing models at ages spread through the class, others with other
+ * seeds. */
+enum { FOREST_VARIANTS = 3, FOREST_LOOKS = SYL_ECO_MAX_SPECIES * SYL_FOREST_CLASSES * FOREST_VARIANTS };
+
 struct SylForest {
     const SylEcoModel *m;
     const SylTerrain *t;
     SylMesh *ground;
-    Look looks[SYL_ECO_MAX_SPECIES * SYL_FOREST_CLASSES];
-    int proto_of[SYL_ECO_MAX_SPECIES][SYL_FOREST_CLASSES]; /* -1: nothing drawn */
-    SylRenderProto protos[SYL_ECO_MAX_SPECIES * SYL_FOREST_CLASSES];
+    Look looks[FOREST_LOOKS];
+    int proto_of[SYL_ECO_MAX_SPECIES][SYL_FOREST_CLASSES][FOREST_VARIANTS]; /* -1: nothing drawn */
+    SylRenderProto protos[FOREST_LOOKS];
     int nprotos;
-    int proto_species[SYL_ECO_MAX_SPECIES * SYL_FOREST_CLASSES], proto_class[SYL_ECO_MAX_SPECIES * SYL_FOREST_CLASSES];
+    int proto_species[FOREST_LOOKS], proto_class[FOREST_LOOKS], proto_variant[FOREST_LOOKS];
 };
 
 /* A plant's age class for its species: floor(C h / height_max), clamped. */

@@ -8,6 +8,7 @@
 
 static const float fit = 0.8f;            /* the plant fills this share of the frame */
 static const float half_fov_y = 17.5f;    /* degrees: a 35 degree vertical field of view */
+static const float eye_level = 6;         /* degrees above the horizontal of the auto view */
 
 /* The points to frame in view coordinates (x right, y up, z depth from the centre): the
  * mesh's vertices, or the corners of its box when there are none or memory is short. */
@@ -135,10 +136,16 @@ void render_camera(const SylMesh *m, SylView view, int width, int height, Render
     glm_vec3_copy(hi, cam->hi);
     float size = fmaxf(hi[0] - lo[0], fmaxf(hi[1] - lo[1], hi[2] - lo[2]));
     if (!(size > 0)) size = 1;
-    if (view == SYL_VIEW_AUTO) view = hi[2] - lo[2] < 0.05f * size ? SYL_VIEW_FRONT : SYL_VIEW_ISO;
+    /* auto: a plant drawn in a plane from the front; any other from eye level, a little
+     * above the horizontal, so the trunk stands under the crown and the horizon crosses the
+     * picture above its middle (a view from 35 degrees up hides the trunk in the crown) */
+    float el = glm_rad(35), az = glm_rad(45);
+    if (view == SYL_VIEW_AUTO) {
+        view = hi[2] - lo[2] < 0.05f * size ? SYL_VIEW_FRONT : SYL_VIEW_ISO;
+        el = glm_rad(eye_level);
+    }
 
     vec3 back, upref = {0, 1, 0};
-    float el = glm_rad(35), az = glm_rad(45);
     switch (view) {
     case SYL_VIEW_FRONT: glm_vec3_copy((vec3){0, 0, 1}, back); break;
     case SYL_VIEW_SIDE: glm_vec3_copy((vec3){1, 0, 0}, back); break;

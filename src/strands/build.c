@@ -44,6 +44,31 @@ static void frame_rotate(StrandsFrame *f, const double axis[3], double angle) {
     x[0] = y[1] * z[2] - y[2] * z[1], x[1] = y[2] * z[0] - y[0] * z[2], x[2] = y[0] * z[1] - y[1] * z[0];
 }
 
+/* Turned toward the ground by angle (negative: up) about y x y_m; a vertical frame has no
+ * such axis and stays. */
+static void droop(StrandsFrame *f, double angle) {
+    double ax[3] = {f->y[2], 0, -f->y[0]}, an = hypot(ax[0], ax[2]); /* y x (0,-1,0) */
+    if (angle == 0 || an < 1e-12) return;
+    ax[0] /= an, ax[2] /= an;
+    frame_rotate(f, ax, angle);
+}
+
+/* Turned the shortest way until y points up. */
+static void upright(StrandsFrame *f) {
+    double tilt = acos(fmax(-1, fmin(1, f->y[1])));
+    if (tilt < 1e-12) return;
+    droop(f, -tilt);
+}
+
+/* A segment of length l that would end below the ground is turned up until it ends on it:
+ * a hanging branch that reaches the ground trails along it (nothing grows into the soil). */
+static void above_ground(StrandsFrame *f, double l) {
+    double end = f->pos[1] + l * f->y[1];
+    if (!(l > 0) || end >= 0 || f->y[1] >= 0) return;
+    double want = asin(fmax(-1, fmin(0, -f->pos[1] / l))); /* elevation that ends at y = 0 */
+    droop(f, -(want - asin(f->y[1])));
+}
+
 int strands_leaf_count(const StrandsParams *P) {
     if (P->leaf_type == LEAVES_NONE || !(P->leaf_size > 0)) return 0;
     return (int)lround(P->leaf_density);
@@ -94,6 +119,7 @@ int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *
     int status = SYL_OK;
     for (;;) {
         /* 1. d = k_d sqrt(S_0) (3.4); the segment along the frame's y */
+        above_ground(&b.f, b.l);
         double tip[3], d = P->thickness * sqrt((double)b.S);
         for (int i = 0; i < 3; i++) tip[i] = b.f.pos[i] + b.l * b.f.y[i];
         int32_t node = add_node(sk, &b, tip, d / 2);
@@ -126,32 +152,34 @@ int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *
         double L1 = r1 * b.L, L2 = r2 * b.L;
         double l1 = strands_order_value(&o[SP_LENGTH_SCALE], b.g, b.w) * L1;
         double l2 = strands_order_value(&o[SP_LAT_LENGTH_SCALE], b.g, b.w) * L2;
-        /* 4. at the tip: gravimorphism about y x y_m (y_m the world's down), phyllotaxis about
-         * y, then each child turns about z, the two apart by alpha */
+        /* 4. at the tip: phyllotaxis about y, then each child turns about z, the two apart by
+         * alpha. The trunk's continuation (g = 0) turns from the vertical, not from its parent:
+         * k_c's "correction toward the centre", so that the trunk swings about its axis but
+         * cannot fall (docs/strands.md). Every other sub-branch then turns toward the ground by
+         * alpha_m about y x y_m (y_m the world's down). */
         StrandsFrame f = b.f;
         memcpy(f.pos, tip, sizeof tip);
-        double am = strands_order_value(&o[SP_GRAVIMORPHISM], b.g, b.w) * DEG;
-        double ax[3] = {f.y[2], 0, -f.y[0]}, an = hypot(ax[0], ax[2]); /* y x (0,-1,0) */
-        if (am != 0 && an > 1e-12) {
-            ax[0] /= an, ax[2] /= an;
-            frame_rotate(&f, ax, am);
-        }
+        if (b.g == 0) upright(&f);
         if (P->phyllotaxis != 0) {
             double y[3] = {f.y[0], f.y[1], f.y[2]};
             frame_rotate(&f, y, P->phyllotaxis * DEG);
         }
+        double am = strands_order_value(&o[SP_GRAVIMORPHISM], b.g, b.w) * DEG;
+        double z[3] = {f.z[0], f.z[1], f.z[2]};
         Pending lat = {.f = f, .L = L2, .l = l2, .S = S2, .g = b.g + 1, .w = b.w + 1, .parent = node,
                        .axis = next_axis++};
-        double z[3] = {f.z[0], f.z[1], f.z[2]};
         frame_rotate(&lat.f, z, -a2);
+        droop(&lat.f, am);
         if (!array_reserve(&stack, &cap, nstack + 1, sizeof *stack)) {
             status = SYL_ELIMIT;
             break;
         }
         stack[nstack++] = lat;
         /* 5. the main branch continues this axis: the thicker bundle, the same order */
+        int trunk = b.g == 0;
         b = (Pending){.f = f, .L = L1, .l = l1, .S = S1, .g = b.g, .w = b.w + 1, .parent = node, .axis = b.axis};
         frame_rotate(&b.f, z, a1);
+        if (!trunk) droop(&b.f, am);
     }
     free(stack);
     return status;

@@ -9,6 +9,11 @@ library only), so that the cases test what the pictures show.
                              "plant grows" when the pixels that differ from frame 0 (by more
                              than 24 in a channel) are never fewer than in the frame before,
                              and more in the last frame than in the first
+  frames.py pulls DIR        "horizon steady" when the horizon (framing.py) lies within 5% of
+                             the height in every frame: the camera pulls back, it does not turn;
+                             "plant readable" when in every frame but the first the plant
+                             rises above the horizon to the top 35% of the picture (the first
+                             may be empty: an axiom that draws nothing)
   frames.py corner A B       "only the top left corner changed" when the pixels where A and B
                              differ all lie in the top left 1/4 x 1/4 of the picture (and
                              some do)
@@ -61,6 +66,14 @@ def main():
             counts.append(n)
         grows = all(b >= a for a, b in zip(counts, counts[1:])) and counts[-1] > counts[0]
         print("plant grows" if grows else "plant pixels per frame: %s" % counts)
+    elif what == "pulls":
+        from framing import measure_image
+        m = [measure_image(i) for i in frames(sys.argv[2])]
+        steady = max(h for h, _, _ in m) - min(h for h, _, _ in m) <= 0.05  # the ground ends 40 sizes away: a row or two
+        print("horizon steady" if steady else "horizon rows: %s" % [round(h, 2) for h, _, _ in m])
+        tops = [t for _, t, _ in m[1:]]
+        print("plant readable" if all(t <= 0.35 for t in tops) else "plant's top per frame: %s"
+              % [round(t, 2) for t in tops])
     elif what == "corner":
         a, b = png(sys.argv[2]), png(sys.argv[3])
         if (a[0], a[1]) != (b[0], b[1]):

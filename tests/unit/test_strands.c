@@ -131,7 +131,7 @@ static void thickness_is_leonardo(void **state) {
 }
 
 /* The two sub-branches are alpha apart, the main one alpha_1 = k_c sqrt(S2/S0) alpha off its
- * parent (k_c only on the trunk), whatever the phyllotaxis. */
+ * parent, or on the trunk (k_c only there) off the vertical, whatever the phyllotaxis. */
 static void branching_angles(void **state) {
     (void)state;
     Tree t = tree_of(MODEL(400, "  angle 40\n  gravicentralism 0.5\n  phyllotaxis 137\n"), 0);
@@ -144,9 +144,10 @@ static void branching_angles(void **state) {
         heading(t.sk, (size_t)k[i].main, hm);
         heading(t.sk, (size_t)k[i].lat, hl);
         assert_float_equal(angle_deg(hm, hl), 40, 1e-3);
-        double kc = t.sk->nodes[i].order == 0 ? 0.5 : 1;
-        double a1 = kc * sqrt((double)t.S[k[i].lat] / (double)t.S[i]) * 40;
-        assert_float_equal(angle_deg(hp, hm), a1, 1e-3);
+        int trunk = t.sk->nodes[i].order == 0;
+        double a1 = (trunk ? 0.5 : 1) * sqrt((double)t.S[k[i].lat] / (double)t.S[i]) * 40;
+        static const double up[3] = {0, 1, 0};
+        assert_float_equal(angle_deg(trunk ? up : hp, hm), a1, 1e-3); /* the trunk: off the vertical */
         forks++;
     }
     assert_int_equal(forks, 399);
@@ -201,6 +202,28 @@ static void gravimorphism_bends_down(void **state) {
     }
     assert_true(seen > 10);
     free(k);
+    tree_free(&t);
+}
+
+/* However strongly the branches droop, the trunk stands: its continuation is never bent by
+ * gravimorphism and turns alpha_1 off the vertical, so every trunk segment is within alpha_1
+ * of it; and no node, branch or leaf goes below the ground (hanging twigs trail on it). */
+static void trunk_stands_nothing_below_ground(void **state) {
+    (void)state;
+    Tree t = tree_of("strands T {\n  strands 1500\n  trunk_length 1\n  angle 30\n  gravicentralism 0.8\n"
+                     "  gravimorphism 90\n  length_max 1.8\n  leaves coniferous\n  leaf_size 0.3\n}\n",
+                     0);
+    int hanging = 0;
+    for (size_t i = 1; i < t.sk->nnodes; i++) {
+        const SylNode *n = &t.sk->nodes[i];
+        assert_true(n->pos[1] >= -1e-5f);
+        double h[3];
+        heading(t.sk, i, h);
+        if (n->order == 0) assert_true(acos(h[1]) * 180 / M_PI <= 0.8 * 30 + 1e-3);
+        hanging += h[1] < -0.99;
+    }
+    for (size_t i = 0; i < t.sk->norgans; i++) assert_true(t.sk->organs[i].pos[1] >= -1e-5f);
+    assert_true(hanging > 100); /* the droop is real: many twigs hang straight down */
     tree_free(&t);
 }
 
@@ -314,7 +337,7 @@ int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(counts_and_conservation), cmocka_unit_test(thickness_is_leonardo),
         cmocka_unit_test(branching_angles),        cmocka_unit_test(lengths_clamped),
-        cmocka_unit_test(gravimorphism_bends_down), cmocka_unit_test(age_scales),
+        cmocka_unit_test(gravimorphism_bends_down), cmocka_unit_test(trunk_stands_nothing_below_ground), cmocka_unit_test(age_scales),
         cmocka_unit_test(leaves_on_tips),          cmocka_unit_test(same_for_any_threads),
         cmocka_unit_test(bad_parameters),          cmocka_unit_test(docs_list_every_parameter),
     };
