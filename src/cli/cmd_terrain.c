@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "cli/cli.h"
@@ -106,6 +107,10 @@ int cmd_terrain(int argc, char **argv) {
     SylTerrain *t = NULL;
     int st = syl_terrain_read(a.files[0], &o, &t);
     double read_s = cli_now() - t0;
+    size_t plen = strlen(a.files[0]);
+    if (!st && !a.heights_set && plen > 4 && !strcasecmp(a.files[0] + plen - 4, ".png"))
+        fprintf(stderr, "%s: warning: no --heights: black is 0 m and white 1 m; give the heights of black and "
+                        "white, e.g. --heights 0,400\n", a.files[0]);
     /* Once the DEM is read (a bad one makes no directory), before the work of the factors. */
     if (!st && a.maps) st = make_dir(a.maps);
     if (!st) st = syl_terrain_compute(t, &o);

@@ -89,6 +89,9 @@ static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, co
         int k = a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING
                     ? closest_list(a->text, leaf_names, (int)(sizeof leaf_names / sizeof *leaf_names), near, sizeof near)
                     : 0;
+        if (!k && (a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING) &&
+            (!strcmp(a->text, "oval") || closest_near(a->text, "oval"))) /* what docs/weberpenn.md calls disc */
+            k = snprintf(near, sizeof near, "'disc', the oval") > 0;
         syl_directive_error(p, diag, d, a, "LeafShape must be 0, disc, disc1 .. disc9, square, sphere or palm%s%s%s",
                             k ? " (did you mean " : "", k ? near : "", k ? "?)" : "");
         return 1;
