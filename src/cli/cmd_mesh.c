@@ -190,6 +190,10 @@ int cmd_mesh(int argc, char **argv) {
         t_imp = cli_now() - ti, c_imp = cli_cpu_now() - ci;
     } else {
         status = syl_mesh_optimize(mesh);
+        for (int i = 0; !status && i < pl.nparts; i++) status = syl_mesh_optimize(pl.parts[i]);
+        if (!status && pl.nparts > 1 && !strcasecmp(dot, ".ply"))
+            fprintf(stderr, "sylva: warning: a PLY file holds one mesh: the scene's %d objects are merged into it "
+                            "(write .obj or .glb for one object each)\n", pl.nparts);
     }
     SylWind wind = {0};
     double t_wind = cli_now();
@@ -217,7 +221,7 @@ int cmd_mesh(int argc, char **argv) {
                           : levels    ? syl_write_glb_lods(&lods, output, stderr)
                           : a.wind > 0 ? syl_write_glb_wind(mesh, sets, nsets, sk, &wind, output, stderr)
                           : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                                      : syl_write_mesh(mesh, output, stderr);
+                                      : syl_write_mesh_parts(mesh, pl.parts, pl.nparts, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */

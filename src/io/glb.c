@@ -548,6 +548,7 @@ static void write_json(IoBuf *js, const Layout *l) {
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
     io_json_string(js, sc->scene_name);
     io_printf(js, ",\"nodes\":[0");
+    for (int p = 1; !sc->lods && p < sc->nparts; p++) io_printf(js, ",%d", p); /* a scene's objects */
     if (joints_at_root(l)) glb_skin_roots(js, l->wind, l->joint_node, true);
     io_printf(js, "]}]");
     json_nodes(js, l);
@@ -778,3 +779,13 @@ int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, c
 }
 
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_write_glb_instanced(m, NULL, 0, path, diag); }
+
+int syl_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag) {
+    GlbPart *part = calloc((size_t)(n > 0 ? n : 1), sizeof *part);
+    if (!part) return SYL_ELIMIT;
+    for (int i = 0; i < n; i++) part[i] = (GlbPart){.mesh = parts[i], .name = parts[i]->name};
+    GlbScene sc = {.part = part, .nparts = n, .scene_name = name};
+    int st = glb_write(&sc, path, diag);
+    free(part);
+    return st;
+}
