@@ -14,7 +14,7 @@ const CliCommand cli_terrain_command = {
     .name = "terrain",
     .what = "a DEM's factors: altitude, slope, aspect, flow, wetness, sun, wind",
     .run = cmd_terrain,
-    .usage = "sylva terrain DEM.{png,asc,obj} [--maps DIR] [options]",
+    .usage = "sylva terrain DEM.{png,asc,obj,dmr} [--maps DIR] [options]",
     .about = "Read a digital elevation model — a greyscale PNG (8 or 16 bits), an ESRI ASCII grid or an\n"
              "OBJ terrain mesh — and compute its factors as GIS does (docs/terrain.md): altitude,\n"
              "slope and aspect (Horn), D8 flow accumulation after priority-flood filling, the\n"
