@@ -76,6 +76,12 @@ void syl_mesh_free(SylMesh *m);
 /* Add src's vertices and triangles to dst (groups stay one per material, sorted; src's
  * materials replace dst's of the same index). SYL_OK or SYL_ELIMIT. */
 int syl_mesh_append(SylMesh *dst, const SylMesh *src);
+/* A scene's objects (sk->parts): each plant's triangles of plants and each obstacle's of
+ * obstacles (may be NULL) as a mesh of its own, named after it, *n of them in *out (none when
+ * sk has no parts, or a mesh was made without SylMeshOptions.vertex_nodes). SYL_OK or
+ * SYL_ELIMIT. */
+int syl_mesh_parts(const SylMesh *plants, const SylMesh *obstacles, const SylSkeleton *sk, SylMesh ***out, int *n);
+void syl_mesh_parts_free(SylMesh **parts, int n);
 /* The radius the mesher gives the segment ending at each node (s->nnodes floats): the
  * model's, or the pipe model's. SYL_EMODEL when a parent does not precede its child. */
 int syl_mesh_radii(const SylSkeleton *s, const SylMeshOptions *opt, float *radius);
@@ -115,6 +121,10 @@ void syl_instances_free(SylInstances *sets, int n);
  * nothing; a symlink is followed, a FIFO or device written through (docs/cli.md#output-files).
  * OBJ writes its textures (PNG) beside the file; GLB embeds them. */
 int syl_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
+/* m (its materials and textures) written as the objects parts[0..n), `o NAME` each */
+int syl_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
+/* parts[0..n) as one node each, named after them, in the scene */
+int syl_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag);
 int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
 /* m and n sets of instances in one .glb: each set a node with EXT_mesh_gpu_instancing (in
@@ -126,6 +136,9 @@ int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, c
 int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
                          const char *path, FILE *diag);
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
+/* A scene (m: all of it) as its objects, parts[0..n): one `o NAME` each in an OBJ, one node each
+ * in a .glb; a PLY has no objects, so it is m whole. */
+int syl_write_mesh_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
 
 enum { SYL_TEXTURE_SIZE = 512 };
 /* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if

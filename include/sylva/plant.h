@@ -66,6 +66,8 @@ typedef struct SylPlant {
                               NULL for grown plants and with drop_string */
     SylSkeleton *skeleton; /* NULL with SYL_PLANT_STRING */
     SylMesh *mesh;         /* with SYL_PLANT_MESH; a scene's obstacles are part of it */
+    SylMesh **parts;       /* a scene's: each plant's and obstacle's mesh (mesh is them all) */
+    int nparts;
     size_t modules;        /* L-systems: the string's length; grown plants: skeleton nodes */
     uint64_t rewritten;    /* L-systems: modules read by all passes of all steps */
     SylGrowStats grow;     /* grow blocks and scenes: counts and times */

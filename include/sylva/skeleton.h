@@ -81,6 +81,12 @@ typedef struct SylMaterial {
     uint8_t kind;   /* SYL_MATERIAL_*: chooses the procedural texture */
 } SylMaterial;
 
+typedef struct SylSkeletonPart {
+    size_t first_node; /* a plant's first node */
+    int obstacle;      /* 0: a plant; k > 0: the scene's obstacle k - 1 */
+    char name[64];
+} SylSkeletonPart;
+
 typedef struct SylSkeleton {
     SylNode *nodes;
     size_t nnodes, node_cap;
@@ -107,10 +113,18 @@ typedef struct SylSkeleton {
     float trunk_jitter;
     SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
     uint64_t charged;
+    /* A scene's objects, each written as an object or node of its own (docs/mesh.md#scenes):
+     * its plants, in order, each from its first node to the next one's, then its obstacles,
+     * whose meshes (SylMesh.node) number them from 0. Unique names. */
+    SylSkeletonPart *parts;
+    int nparts;
 } SylSkeleton;
 
 SylSkeleton *syl_skeleton_new(const char *name); /* default palette: bark, leaf, flower, ... */
 void syl_skeleton_free(SylSkeleton *s);
+/* A scene's next object (plant: from the next node on; obstacle: k > 0, its k - 1), named name
+ * or, when an object has that name already, name_2, name_3 …; -1: out of memory. */
+int syl_skeleton_add_part(SylSkeleton *s, const char *name, int obstacle);
 int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n);   /* returns its index; -1 out of memory */
 int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o);
 int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32_t n, int32_t node,

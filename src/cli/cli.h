@@ -53,6 +53,8 @@ void cli_progress(void *progress, double fraction); /* 0..1; 1 clears the line *
 typedef struct Plant {
     SylSkeleton *sk;
     SylMesh *mesh;
+    SylMesh **parts; /* a scene's objects (SylPlant's) */
+    int nparts;
     size_t modules;
     char name[64];  /* the model's name */
     double derive_s, turtle_s, mesh_s;

@@ -59,17 +59,30 @@ static void beside(const char *output, const char *suffix, char *buf, size_t n) 
     snprintf(buf, n, "%.*s%s", (int)stem, output, suffix);
 }
 
-/* Bake the impostor from LOD0, write the octahedral atlas beside the file and make the
- * crossed billboards the chain's last level (which imp then owns). */
-static int add_impostor(SylLodChain *c, const CliArgs *a, int threads, const char *output, SylImpostor *imp,
-                        char *extras, size_t n) {
+/* Bake the impostor from LOD0 as it is drawn, write the octahedral atlas beside the file and
+ * make the crossed billboards the chain's last level (which imp then owns). LOD0's mesh leaves
+ * instanced leaves out (they are instances of the file): the picture is baked from the plant
+ * meshed again with those leaves in it, copied blades or cards as the instances are. */
+static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk, const SylMeshOptions *mo,
+                        int threads, const char *output, SylImpostor *imp, char *extras, size_t n) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
                              .threads = threads, .diag = stderr};
     if (!c->level[0].mesh->nidx) {
         fprintf(stderr, "sylva: error: the model draws nothing: there is no impostor to bake\n");
         return SYL_EMODEL;
     }
-    int status = syl_impostor_bake(c->level[0].mesh, &io, imp);
+    const SylMesh *drawn = c->level[0].mesh;
+    SylMesh *leafy = NULL;
+    int status = SYL_OK;
+    if (mo->leaves == SYL_LEAVES_INSTANCED || mo->leaves == SYL_LEAVES_INSTANCED_CARDS) {
+        SylMeshOptions with = *mo;
+        with.leaves = mo->leaves == SYL_LEAVES_INSTANCED_CARDS ? SYL_LEAVES_CARDS : SYL_LEAVES_MESH;
+        with.vertex_nodes = 0;
+        status = syl_mesh_build(sk, &with, &leafy);
+        if (!status) drawn = leafy;
+    }
+    if (!status) status = syl_impostor_bake(drawn, &io, imp);
+    syl_mesh_free(leafy);
     if (status) {
         fprintf(stderr, "sylva: error: cannot bake the impostor (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad request");
         return status;
@@ -173,10 +186,14 @@ int cmd_mesh(int argc, char **argv) {
         status = syl_lod_build(sk, &mo, mesh, geometric, &lods);
         if (status) fprintf(stderr, "sylva: error: cannot build the levels of detail (out of memory)\n");
         double ti = cli_now(), ci = cli_cpu_now();
-        if (!status && last_billboard) status = add_impostor(&lods, &a, d.threads, output, &imp, extras, sizeof extras);
+        if (!status && last_billboard) status = add_impostor(&lods, &a, sk, &mo, d.threads, output, &imp, extras, sizeof extras);
         t_imp = cli_now() - ti, c_imp = cli_cpu_now() - ci;
     } else {
         status = syl_mesh_optimize(mesh);
+        for (int i = 0; !status && i < pl.nparts; i++) status = syl_mesh_optimize(pl.parts[i]);
+        if (!status && pl.nparts > 1 && !strcasecmp(dot, ".ply"))
+            fprintf(stderr, "sylva: warning: a PLY file holds one mesh: the scene's %d objects are merged into it "
+                            "(write .obj or .glb for one object each)\n", pl.nparts);
     }
     SylWind wind = {0};
     double t_wind = cli_now();
@@ -204,7 +221,7 @@ int cmd_mesh(int argc, char **argv) {
                           : levels    ? syl_write_glb_lods(&lods, output, stderr)
                           : a.wind > 0 ? syl_write_glb_wind(mesh, sets, nsets, sk, &wind, output, stderr)
                           : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                                      : syl_write_mesh(mesh, output, stderr);
+                                      : syl_write_mesh_parts(mesh, pl.parts, pl.nparts, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 #include "cli/cli.h"
@@ -14,7 +15,7 @@ const CliCommand cli_terrain_command = {
     .name = "terrain",
     .what = "a DEM's factors: altitude, slope, aspect, flow, wetness, sun, wind",
     .run = cmd_terrain,
-    .usage = "sylva terrain DEM.{png,asc,obj} [--maps DIR] [options]",
+    .usage = "sylva terrain DEM.{png,asc,obj,dmr} [--maps DIR] [options]",
     .about = "Read a digital elevation model — a greyscale PNG (8 or 16 bits), an ESRI ASCII grid or an\n"
              "OBJ terrain mesh — and compute its factors as GIS does (docs/terrain.md): altitude,\n"
              "slope and aspect (Horn), D8 flow accumulation after priority-flood filling, the\n"
@@ -107,6 +108,10 @@ int cmd_terrain(int argc, char **argv) {
     SylTerrain *t = NULL;
     int st = syl_terrain_read(a.files[0], &o, &t);
     double read_s = cli_now() - t0;
+    size_t plen = strlen(a.files[0]);
+    if (!st && !a.heights_set && plen > 4 && !strcasecmp(a.files[0] + plen - 4, ".png"))
+        fprintf(stderr, "%s: warning: no --heights: black is 0 m and white 1 m; give the heights of black and "
+                        "white, e.g. --heights 0,400\n", a.files[0]);
     /* Once the DEM is read (a bad one makes no directory), before the work of the factors. */
     if (!st && a.maps) st = make_dir(a.maps);
     if (!st) st = syl_terrain_compute(t, &o);

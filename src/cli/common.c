@@ -179,6 +179,8 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     if (status) return status;
     out->sk = pl.skeleton;
     out->mesh = pl.mesh;
+    out->parts = pl.parts;
+    out->nparts = pl.nparts;
     out->modules = pl.modules;
     out->grow = pl.grow;
     out->derive_s = (out->grown ? 0 : compiled) + pl.derive_s; /* growth alone, as --stats says */
@@ -191,6 +193,9 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
 
 void cli_plant_free(Plant *pl) {
     syl_mesh_free(pl->mesh);
+    syl_mesh_parts_free(pl->parts, pl->nparts);
+    pl->parts = NULL;
+    pl->nparts = 0;
     syl_skeleton_free(pl->sk);
     pl->mesh = NULL;
     pl->sk = NULL;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "util/closest.h"
 
 /* The named temporary files of this run (util/outfile reports them), removed when SIGINT,
  * SIGTERM or SIGHUP stops it. A slot's path is written before it is marked live, so the
@@ -98,6 +99,14 @@ int main(int argc, char **argv) {
     ModelArgs m; /* `sylva FILE[:Model]`: a picture and a mesh in out/ */
     cli_model_spec(&m, cmd);
     if (access(m.path, R_OK) == 0 || !strcmp(cmd, "-")) return cmd_plant(argc, argv);
+    const char *names[64];
+    int n = 0;
+    for (const CliCommand *const *c = cli_commands; *c && n < 64; c++) names[n++] = (*c)->name;
+    char near[160];
+    if (closest_list(cmd, names, n, near, sizeof near)) { /* a typo: one line, not the whole list */
+        fprintf(stderr, "sylva: unknown command '%s' (did you mean %s?)\n", cmd, near);
+        return SYL_EUSAGE;
+    }
     fprintf(stderr, "sylva: unknown command '%s'\n\n", cmd);
     help(stderr);
     return SYL_EUSAGE;

@@ -1,22 +1,17 @@
 /* syl_ecosystem_run: the block, its terrain and its factors, then the simulation. */
-#include <libgen.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "eco/eco.h"
 
-/* The DEM's path: as written when absolute, else beside the program's file. */
-static char *terrain_path(const SylProgram *p, const char *file) {
-    if (file[0] == '/') return strdup(file);
-    char *prog = strdup(syl_program_path(p));
-    if (!prog) return NULL;
-    const char *dir = dirname(prog);
-    size_t n = strlen(dir) + strlen(file) + 2;
-    char *out = malloc(n);
-    if (out && !strcmp(dir, ".")) snprintf(out, n, "%s", file);
-    else if (out) snprintf(out, n, "%s/%s", dir, file);
-    free(prog);
-    return out;
+static void cannot_use(const SylProgram *p, FILE *diag, const char *file) {
+    int n = 0;
+    const SylDirective *d = syl_program_directives(p, &n);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(d[i].name, "terrain") && d[i].nargs) {
+            syl_directive_error(p, diag, &d[i], &d[i].args[0], "cannot use the terrain \"%s\"", file);
+            return;
+        }
 }
 
 int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *m, SylTerrain **terrain) {
@@ -28,12 +23,14 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
         return SYL_EUSAGE;
     }
     if (syl_ecosystem_read(p, m, diag)) return SYL_EMODEL;
-    char *path = terrain_path(p, m->terrain);
+    char *path = syl_program_file_path(p, m->terrain);
     if (!path) return SYL_ELIMIT;
     SylTerrain *t = NULL;
     SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
                             .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag};
     int st = syl_terrain_read(path, &to, &t);
+    if (st == SYL_EIO && diag) /* the reader named the file: say which line of the model names it */
+        cannot_use(p, diag, m->terrain);
     if (!st) st = syl_terrain_compute(t, &to);
     free(path);
     if (st) syl_terrain_free(t);

@@ -199,6 +199,14 @@ bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int w, int h) { return png_encod
 
 /* ---- by extension ---- */
 
+int syl_write_mesh_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
+    const char *dot = strrchr(path, '.');
+    if (n > 0 && dot && !strchr(dot, '/') && !strcasecmp(dot, ".obj")) return syl_write_obj_parts(m, parts, n, path, diag);
+    if (n > 0 && dot && !strchr(dot, '/') && !strcasecmp(dot, ".glb"))
+        return syl_write_glb_parts(parts, n, m->name[0] ? m->name : "scene", path, diag);
+    return syl_write_mesh(m, path, diag); /* a PLY holds one mesh */
+}
+
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag) {
     const char *dot = strrchr(path, '.');
     if (dot && !strchr(dot, '/')) {

@@ -18,7 +18,7 @@
 #include "sylva/stream.h"
 #include "sylva/texture.h"
 
-enum { KINDS = 6, CARD = 3, ATLAS = 4, CLUSTER = 5 }; /* texture slots: bark, leaf, flower, leaf card (RGBA), atlas, leaf cluster (RGBA) */
+enum { KINDS = GLB_SLOTS, CARD = GLB_CARD, ATLAS = GLB_ATLAS, CLUSTER = GLB_CLUSTER }; /* texture slots (glb.h) */
 
 /* A mesh written: the part it belongs to and which of its sets (-1: the part's own). */
 typedef struct MeshRef {
@@ -105,16 +105,32 @@ static void min_max_q16(IoBuf *j, const float *x, size_t n, const float *t, floa
 }
 static bool cards(const SylMesh *m) { return m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_INSTANCED_CARDS; }
 
+int glb_slot(const SylMesh *m, int i) {
+    int kind = m->materials[i].kind;
+    if (kind == SYL_MATERIAL_LEAF && cards(m)) return CARD;
+    if (kind == SYL_MATERIAL_LEAF && m->leaves == SYL_LEAVES_CLUSTERS) return CLUSTER;
+    for (int k = 0; k < 3; k++)
+        if (kind == kinds[k]) return k;
+    return -1;
+}
+
 /* The texture slot material i of mesh r uses (-1: none). */
 static int slot_of(const Layout *l, const MeshRef *r, int i) {
     const GlbScene *sc = l->sc;
     if (sc->atlas && r->part == sc->nparts - 1 && r->set < 0 && i == sc->atlas_material) return ATLAS;
-    int kind = r->m->materials[i].kind;
-    if (kind == SYL_MATERIAL_LEAF && cards(r->m)) return CARD;
-    if (kind == SYL_MATERIAL_LEAF && r->m->leaves == SYL_LEAVES_CLUSTERS) return CLUSTER;
-    for (int k = 0; k < 3; k++)
-        if (kind == kinds[k]) return k;
-    return -1;
+    return glb_slot(r->m, i);
+}
+
+bool glb_slot_png(IoBuf *b, int k, int shape, uint8_t *img) {
+    enum { N = SYL_TEXTURE_SIZE };
+    return k == CARD      ? syl_leaf_card(shape, N, img) && io_png_rgba(b, img, N, N)
+           : k == CLUSTER ? syl_leaf_cluster(shape, N, img) && io_png_rgba(b, img, N, N)
+           : k < 3        ? syl_texture(kinds[k], NULL, N, img) && io_png(b, img, N)
+                          : false;
+}
+
+const char *glb_slot_name(int k) {
+    return k == CARD ? "leafcard" : k == ATLAS ? "impostor" : k == CLUSTER ? "leafcluster" : syl_texture_name(kinds[k]);
 }
 
 /* A quantized mesh's UVs as normalized unsigned shorts over their box, which
@@ -264,13 +280,8 @@ static void layout_textures(Layout *l) {
             break;
         }
         size_t at = l->bin.len;
-        bool ok = k == ATLAS  ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
-                  : k == CARD ? syl_leaf_card(shape, SYL_TEXTURE_SIZE, img) &&
-                                    io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
-                  : k == CLUSTER ? syl_leaf_cluster(cluster_shape, SYL_TEXTURE_SIZE, img) &&
-                                       io_png_rgba(&l->bin, img, SYL_TEXTURE_SIZE, SYL_TEXTURE_SIZE)
-                              : syl_texture(kinds[k], NULL, SYL_TEXTURE_SIZE, img) &&
-                                    io_png(&l->bin, img, SYL_TEXTURE_SIZE);
+        bool ok = k == ATLAS ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
+                             : glb_slot_png(&l->bin, k, k == CLUSTER ? cluster_shape : shape, img);
         if (!ok) {
             l->bin.failed = true;
             break;
@@ -420,7 +431,7 @@ static void json_textures(IoBuf *js, const Layout *l) {
     for (int t = 0; t < l->ntex; t++) {
         int k = l->image_kind[t];
         io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
-                  k == CARD ? "leafcard" : k == ATLAS ? "impostor" : k == CLUSTER ? "leafcluster" : syl_texture_name(kinds[k]),
+                  glb_slot_name(k),
                   l->image_view[t]);
     }
     io_printf(js, "],\"textures\":[");
@@ -538,6 +549,7 @@ static void write_json(IoBuf *js, const Layout *l) {
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
     io_json_string(js, sc->scene_name);
     io_printf(js, ",\"nodes\":[0");
+    for (int p = 1; !sc->lods && p < sc->nparts; p++) io_printf(js, ",%d", p); /* a scene's objects */
     if (joints_at_root(l)) glb_skin_roots(js, l->wind, l->joint_node, true);
     io_printf(js, "]}]");
     json_nodes(js, l);
@@ -778,3 +790,13 @@ int syl_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, i
 }
 
 int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_write_glb_instanced(m, NULL, 0, path, diag); }
+
+int syl_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag) {
+    GlbPart *part = calloc((size_t)(n > 0 ? n : 1), sizeof *part);
+    if (!part) return SYL_ELIMIT;
+    for (int i = 0; i < n; i++) part[i] = (GlbPart){.mesh = parts[i], .name = parts[i]->name};
+    GlbScene sc = {.part = part, .nparts = n, .scene_name = name};
+    int st = glb_write(&sc, path, diag);
+    free(part);
+    return st;
+}

@@ -70,6 +70,15 @@ typedef struct GlbScene {
 
 int glb_write(const GlbScene *sc, const char *path, FILE *diag);
 
+/* Texture slots of a material (glb.c): its kind's tiled picture (bark, leaf, flower), a leaf
+ * card (RGBA), an impostor's atlas, a leaf cluster (RGBA); -1: none. */
+enum { GLB_BARK, GLB_LEAF, GLB_FLOWER, GLB_CARD, GLB_ATLAS, GLB_CLUSTER, GLB_SLOTS };
+int glb_slot(const SylMesh *m, int material); /* never GLB_ATLAS */
+/* Slot k's picture (not the atlas) as PNG bytes into b; img: SYL_TEXTURE_SIZE² RGBA of scratch.
+ * shape: the leaf shape of cards and clusters. False when it failed. */
+bool glb_slot_png(IoBuf *b, int k, int shape, uint8_t *img);
+const char *glb_slot_name(int k); /* the image's name: "bark", "leafcard", ... */
+
 /* A primitive (glb_prims.c): count indices of the mesh from first, of group group, using
  * vertices lo .. lo + nv - 1 (its indices are written less lo). */
 typedef struct GlbPrim {

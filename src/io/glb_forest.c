@@ -10,6 +10,8 @@ typedef struct Forest {
     int nmeshes, ground;
     int set_mesh[4096];
     int first_view[257], first_acc[257], first_mat[257], set_view0, set_acc0;
+    bool uv[257];                                     /* mesh k has UVs (an accessor after NORMAL) */
+    int tex_of[GLB_SLOTS], image_view[GLB_SLOTS], image_slot[GLB_SLOTS], ntex; /* as a tree's file */
     View *views;
     int nviews;
     IoBuf bin;
@@ -29,6 +31,32 @@ static void view(Forest *f, const void *x, size_t words, int target) {
     size_t at = f->bin.len;
     glb_words(&f->bin, x, words);
     f->views[f->nviews++] = (View){.offset = at, .length = words * 4, .target = target};
+}
+
+/* One picture per texture slot the meshes' materials use, each in a view of its own. */
+static bool textures(Forest *f) {
+    int shape[GLB_SLOTS] = {0};
+    for (int k = 0; k < GLB_SLOTS; k++) f->tex_of[k] = -1;
+    for (int k = 0; k < f->nmeshes; k++)
+        for (int g = 0; f->uv[k] && g < f->mesh[k]->ngroups; g++) {
+            int slot = glb_slot(f->mesh[k], f->mesh[k]->groups[g].material);
+            if (slot >= 0) f->tex_of[slot] = 0, shape[slot] = f->mesh[k]->leaf_shape;
+        }
+    uint8_t *img = NULL;
+    for (int k = 0; k < GLB_SLOTS; k++) {
+        if (f->tex_of[k] < 0) continue;
+        if (!img && !(img = malloc((size_t)SYL_TEXTURE_SIZE * SYL_TEXTURE_SIZE * 4))) return false;
+        glb_pad(&f->bin, 0);
+        size_t at = f->bin.len;
+        if (!glb_slot_png(&f->bin, k, shape[k], img)) {
+            free(img);
+            return false;
+        }
+        f->image_view[f->ntex] = f->nviews, f->image_slot[f->ntex] = k, f->tex_of[k] = f->ntex++;
+        f->views[f->nviews++] = (View){.offset = at, .length = f->bin.len - at};
+    }
+    free(img);
+    return !f->bin.failed;
 }
 
 static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *const *extras, int n) {
@@ -55,18 +83,29 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
         io_printf(js, "%s{\"name\":", k ? "," : "");
         io_json_string(js, m->name[0] ? m->name : "mesh");
         io_printf(js, ",\"primitives\":[");
-        for (int g = 0; g < m->ngroups; g++)
-            io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d},\"indices\":%d,\"material\":%d,\"mode\":4}",
-                      g ? "," : "", f->first_acc[k], f->first_acc[k] + 1, f->first_acc[k] + 2 + g, f->first_mat[k] + g);
+        int a = f->first_acc[k], uv = f->uv[k];
+        for (int g = 0; g < m->ngroups; g++) {
+            io_printf(js, "%s{\"attributes\":{\"POSITION\":%d,\"NORMAL\":%d", g ? "," : "", a, a + 1);
+            if (uv) io_printf(js, ",\"TEXCOORD_0\":%d", a + 2);
+            io_printf(js, "},\"indices\":%d,\"material\":%d,\"mode\":4}", a + 2 + uv + g, f->first_mat[k] + g);
+        }
         io_printf(js, "]}");
     }
     io_printf(js, "],\"materials\":[");
     for (int k = 0; k < f->nmeshes; k++)
-        for (int g = 0; g < f->mesh[k]->ngroups; g++) {
-            const float *c = f->mesh[k]->materials[f->mesh[k]->groups[g].material].rgb;
-            io_printf(js, "%s{\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.4f,%.4f,%.4f,1],\"metallicFactor\":0,"
-                          "\"roughnessFactor\":0.9},\"doubleSided\":true}",
-                      k || g ? "," : "", glb_linear(c[0]), glb_linear(c[1]), glb_linear(c[2]));
+        for (int g = 0; g < f->mesh[k]->ngroups; g++) { /* named and textured as a tree's own file */
+            const SylMesh *m = f->mesh[k];
+            int i = m->groups[g].material, slot = f->uv[k] ? glb_slot(m, i) : -1;
+            const float *c = m->materials[i].rgb;
+            char name[32];
+            if (k == f->ground) snprintf(name, sizeof name, g ? "terrain%d" : "terrain", g);
+            else io_material_name(m, i, name, sizeof name);
+            io_printf(js, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.4f,%.4f,%.4f,1]",
+                      k || g ? "," : "", name, glb_linear(c[0]), glb_linear(c[1]), glb_linear(c[2]));
+            if (slot >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", f->tex_of[slot]);
+            io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":0.9},\"doubleSided\":true");
+            if (slot == GLB_CARD || slot == GLB_CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5");
+            io_put(js, "}", 1);
         }
     io_printf(js, "],\"accessors\":[");
     bool first = true;
@@ -78,9 +117,12 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
         glb_min_max(js, m->pos, m->nverts, 3);
         io_printf(js, "},{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC3\"}", v + 1, FLOAT,
                   m->nverts);
+        if (f->uv[k])
+            io_printf(js, ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC2\"}", v + 2, FLOAT,
+                      m->nverts);
         for (int g = 0; g < m->ngroups; g++)
             io_printf(js, ",{\"bufferView\":%d,\"byteOffset\":%zu,\"componentType\":%d,\"count\":%u,\"type\":\"SCALAR\"}",
-                      v + 2, (size_t)m->groups[g].first * 4, UNSIGNED_INT, m->groups[g].count);
+                      v + 2 + f->uv[k], (size_t)m->groups[g].first * 4, UNSIGNED_INT, m->groups[g].count);
         first = false;
     }
     for (int i = 0; i < n; i++) {
@@ -94,6 +136,17 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
         first = false;
     }
     io_put(js, "]", 1);
+    if (f->ntex) { /* as a tree's file: tiled bark and leaves, clamped cards */
+        io_printf(js, ",\"samplers\":[{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497},"
+                      "{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}],\"images\":[");
+        for (int t = 0; t < f->ntex; t++)
+            io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
+                      glb_slot_name(f->image_slot[t]), f->image_view[t]);
+        io_printf(js, "],\"textures\":[");
+        for (int t = 0; t < f->ntex; t++)
+            io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "", f->image_slot[t] >= GLB_CARD, t);
+        io_put(js, "]", 1);
+    }
     glb_buffer_views(js, f->views, f->nviews, f->bin.len);
     io_put(js, "}", 1);
     glb_pad(js, ' ');
@@ -118,14 +171,15 @@ int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const 
             return SYL_EUSAGE;
         }
     }
-    f->views = malloc(sizeof *f->views * (size_t)(3 * f->nmeshes + 3 * n + 1));
+    f->views = malloc(sizeof *f->views * (size_t)(4 * f->nmeshes + 3 * n + GLB_SLOTS + 1));
     int st = SYL_ELIMIT;
     if (f->views) {
         int acc = 0, mat = 0;
         for (int k = 0; k < f->nmeshes; k++) {
             const SylMesh *m = f->mesh[k];
             f->first_view[k] = f->nviews, f->first_acc[k] = acc, f->first_mat[k] = mat;
-            acc += 2 + m->ngroups, mat += m->ngroups;
+            f->uv[k] = m->uv != NULL;
+            acc += 2 + f->uv[k] + m->ngroups, mat += m->ngroups;
             view(f, m->pos, 3 * m->nverts, ARRAY_BUFFER);
             if (m->nrm) view(f, m->nrm, 3 * m->nverts, ARRAY_BUFFER);
             else { /* glTF wants what it is told: up, when the mesh has no normals */
@@ -133,6 +187,7 @@ int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const 
                 for (size_t i = 0; i < m->nverts; i++) glb_words(&f->bin, (const float[3]){0, 1, 0}, 3);
                 f->views[f->nviews++] = (View){.offset = at, .length = 12 * m->nverts, .target = ARRAY_BUFFER};
             }
+            if (f->uv[k]) view(f, m->uv, 2 * m->nverts, ARRAY_BUFFER);
             view(f, m->idx, m->nidx, ELEMENT_ARRAY_BUFFER);
         }
         f->set_view0 = f->nviews, f->set_acc0 = acc;
@@ -141,10 +196,11 @@ int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const 
             view(f, sets[i].r, 4 * sets[i].count, 0);
             view(f, sets[i].s, 3 * sets[i].count, 0);
         }
+        st = textures(f) ? SYL_OK : SYL_ELIMIT;
         glb_pad(&f->bin, 0);
         IoBuf js = {0};
         json(&js, f, sets, extras, n);
-        st = glb_container(path, &js, &f->bin, f->nmeshes > 0, diag);
+        if (!st) st = glb_container(path, &js, &f->bin, f->nmeshes > 0, diag);
         io_free(&js);
     }
     io_free(&f->bin);

@@ -41,18 +41,23 @@ static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
     }
 }
 
-/* Vertices, UVs, normals and faces, through a buffer; false when out of memory. */
-static bool write_obj_body(const SylMesh *m, FILE *f, const char *stem) {
+/* Vertices, UVs, normals and faces of all (m: one object; a scene: its objects parts[0..n),
+ * numbered on from the last one's vertices), through a buffer; false when out of memory. */
+static bool write_obj_body(const SylMesh *all, SylMesh *const *parts, int nparts, FILE *f, const char *stem) {
     enum { CHUNK = 1 << 16 };
     char *buf = malloc(CHUNK + 256), *p = buf;
     if (!buf) return false;
     /* mtllib takes the rest of the line (Blender, Assimp, trimesh), so a stem with spaces
      * works; object and material names are single words. */
-    char comment[sizeof m->name], object[sizeof m->name];
-    io_line_text(comment, sizeof comment, m->name, false);
+    char comment[sizeof all->name], object[sizeof all->name];
+    io_line_text(comment, sizeof comment, all->name, false);
+    fprintf(f, "# Sylva %s: %s, %zu vertices, %zu triangles\nmtllib %s.mtl\n", SYLVA_VERSION, comment, all->nverts,
+            all->nidx / 3, stem);
+    size_t base = 0;
+    for (int o = 0; o < (nparts ? nparts : 1); o++) {
+    const SylMesh *m = nparts ? parts[o] : all;
     io_line_text(object, sizeof object, m->name[0] ? m->name : "plant", true);
-    fprintf(f, "# Sylva %s: %s, %zu vertices, %zu triangles\nmtllib %s.mtl\no %s\n", SYLVA_VERSION, comment,
-            m->nverts, m->nidx / 3, stem, object);
+    p += sprintf(p, "o %s\n", object); /* after the last object's faces, still in buf */
 #define FLUSH()                                      \
     do {                                             \
         if (p - buf > CHUNK) {                       \
@@ -91,9 +96,9 @@ static bool write_obj_body(const SylMesh *m, FILE *f, const char *stem) {
         for (uint32_t t = 0; t < m->groups[g].count; t += 3) {
             *p++ = 'f';
             for (int k = 0; k < 3; k++) {
-                char num[12];
+                char num[24];
                 int n = 0;
-                uint32_t x = ix[t + (uint32_t)k] + 1;
+                size_t x = base + ix[t + (uint32_t)k] + 1;
                 do num[n++] = (char)('0' + x % 10), x /= 10;
                 while (x);
                 *p++ = ' ';
@@ -106,13 +111,15 @@ static bool write_obj_body(const SylMesh *m, FILE *f, const char *stem) {
             FLUSH();
         }
     }
+    base += m->nverts;
+    }
 #undef FLUSH
     fwrite(buf, 1, (size_t)(p - buf), f);
     free(buf);
     return true;
 }
 
-int syl_write_obj(const SylMesh *m, const char *path, FILE *diag) {
+static int write_obj(const SylMesh *m, SylMesh *const *parts, int nparts, const char *path, FILE *diag) {
     if (!strcmp(path, "-")) {
         if (diag) fprintf(diag, "sylva: error: an OBJ cannot go to standard output: its .mtl is written beside it\n");
         return SYL_EUSAGE;
@@ -132,7 +139,7 @@ int syl_write_obj(const SylMesh *m, const char *path, FILE *diag) {
     int status = SYL_EIO;
     if (io_open(&fo, path, diag)) {
         status = SYL_OK;
-        if (!write_obj_body(m, fo.f, stem)) {
+        if (!write_obj_body(m, parts, nparts, fo.f, stem)) {
             if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
             status = SYL_ELIMIT;
         }
@@ -152,4 +159,10 @@ int syl_write_obj(const SylMesh *m, const char *path, FILE *diag) {
     free(prefix);
     free(mtl);
     return status;
+}
+
+int syl_write_obj(const SylMesh *m, const char *path, FILE *diag) { return write_obj(m, NULL, 0, path, diag); }
+
+int syl_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
+    return write_obj(m, parts, n, path, diag);
 }

@@ -134,5 +134,8 @@ typedef struct FileAst {
 
 /* Parse source text into ast. Returns the number of errors (reported through diag). */
 int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast);
+/* An image, a mesh, an archive or another binary given as a model (foreign.c): one error that
+ * says which; true when it is one. */
+bool syl_not_a_model(const Source *src, Diag *diag);
 
 #endif

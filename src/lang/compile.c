@@ -317,7 +317,9 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
     namemap_init(&c.declared, tmp);
     FileAst ast;
     *status = SYL_OK;
-    if (syl_parse(&p->src, tmp, &d, &ast) == 0) {
+    if (syl_not_a_model(&p->src, &d)) {
+        *status = SYL_EUSAGE;
+    } else if (syl_parse(&p->src, tmp, &d, &ast) == 0) {
         c.ast = &ast;
         Model *m = find_model(&ast, opt->model);
         Model *scene = find_scene(&ast);

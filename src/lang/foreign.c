@@ -1,5 +1,6 @@
 /* Whole files written for cpfg (.l) or L-Py (.lpy): one error that says how Sylva writes them. */
 #include <ctype.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lang/parse_state.h"
@@ -52,5 +53,85 @@ bool syl_foreign_file(const Source *src, Diag *diag) {
         diag_error(diag, found,
                    "this is an L-Py (.lpy) file, not Sylva's: write the model as 'lsystem Name { … }' with "
                    "'derive N', 'axiom …' and one rule per successor (docs/language.md §18)");
+    return true;
+}
+
+/* Files people give by mistake, told by their first bytes (their "magic"): what each is. */
+static const struct {
+    size_t at;
+    const char *magic;
+    size_t n;
+    const char *what;
+} kinds[] = {
+    {0, "\x89PNG\r\n\x1a\n", 8, "a PNG image"},
+    {0, "\xff\xd8\xff", 3, "a JPEG image"},
+    {0, "GIF8", 4, "a GIF image"},
+    {0, "II*\0", 4, "a TIFF image"},
+    {0, "MM\0*", 4, "a TIFF image"},
+    {0, "glTF", 4, "a binary glTF (.glb) file"},
+    {0, "ply\n", 4, "a PLY mesh"},
+    {0, "ply\r\n", 5, "a PLY mesh"},
+    {0, "PK\x03\x04", 4, "a ZIP archive"},
+    {0, "\x1f\x8b", 2, "a gzip archive"},
+    {0, "\xfd" "7zXZ", 5, "an xz archive"},
+    {0, "BZh", 3, "a bzip2 archive"},
+    {0, "7z\xbc\xaf\x27\x1c", 6, "a 7-Zip archive"},
+    {257, "ustar", 5, "a tar archive"},
+    {0, "%PDF-", 5, "a PDF document"},
+    {0, "\x7f" "ELF", 4, "an executable (ELF)"},
+    {0, "SQLite format 3", 15, "an SQLite database"},
+};
+
+/* A Wavefront OBJ mesh: every line that is not blank or a comment opens with one of its
+ * keywords, and a `v x y z` line is among them (a rule `v -> F` is not). Its material library
+ * opens with `newmtl`. */
+static const char *wavefront(const char *p, const char *end) {
+    static const char *const keys[] = {"v", "vt", "vn", "vp", "f", "l", "p", "o", "g", "s", "usemtl", "mtllib"};
+    bool vertex = false;
+    for (int lines = 0; p < end && lines < 200; lines++) {
+        const char *nl = memchr(p, '\n', (size_t)(end - p)), *e = nl ? nl : end;
+        while (p < e && (*p == ' ' || *p == '\t')) p++;
+        const char *w = p;
+        while (w < e && !isspace((unsigned char)*w)) w++;
+        if (p < e && *p != '#') {
+            size_t k = 0, n = (size_t)(w - p);
+            if (n == 6 && !memcmp(p, "newmtl", 6) && !vertex) return "a Wavefront MTL material library";
+            while (k < sizeof keys / sizeof *keys && (strlen(keys[k]) != n || memcmp(keys[k], p, n))) k++;
+            if (k == sizeof keys / sizeof *keys) return NULL;
+            if (k == 0) {
+                char *stop;
+                const char *q = w;
+                int numbers = 0;
+                for (; numbers < 3; numbers++, q = stop) {
+                    strtod(q, &stop);
+                    if (stop == q || stop > e) break;
+                }
+                if (numbers < 3) return NULL;
+                vertex = true;
+            }
+        }
+        p = nl ? nl + 1 : end;
+    }
+    return vertex ? "a Wavefront OBJ mesh" : NULL;
+}
+
+bool syl_not_a_model(const Source *src, Diag *diag) {
+    const char *t = src->text, *what = NULL;
+    size_t len = src->len;
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds && !what; k++)
+        if (len >= kinds[k].at + kinds[k].n && !memcmp(t + kinds[k].at, kinds[k].magic, kinds[k].n))
+            what = kinds[k].what;
+    if (!what) { /* a text has few control bytes; a stray one is an error at its place, later */
+        size_t n = len < 4096 ? len : 4096, control = 0;
+        for (size_t i = 0; i < n; i++) {
+            unsigned char c = (unsigned char)t[i];
+            control += c < 0x20 && !isspace(c);
+        }
+        if (n && control * 10 > n) what = "a binary file";
+    }
+    if (!what) what = wavefront(t, t + len);
+    if (!what) return false;
+    diag_error(diag, (SylLoc){0}, "this is %s, not a model: give a .syl file, or a Pícek, Arbaro, cpfg or L-Py file "
+               "(docs/language.md)", what);
     return true;
 }

@@ -200,21 +200,45 @@ static const char *model_name(Arena *a, const char *path) {
     return n && !isdigit((unsigned char)s[0]) ? s : "picek";
 }
 
-/* An interpret rule `pred -> succ…` (one-letter predecessor) that the turtle alone sees. */
+/* An interpret rule `pred -> succ…` (one-character predecessor) that the turtle alone sees. */
 static void interpret(Reader *r, const char *pred, const Item *succ, int n, SylLoc loc) {
     Stmt *s = add(r, ST_RULE, loc);
     s->block = BLOCK_INTERPRET;
     Production *p = &s->rule;
     p->loc = p->arrow_loc = loc;
-    *VEC_PUSH(r->arena, p->pred.v, p->pred.n, p->pred.cap) = item(r, IT_WORD, pred, 1, loc);
+    *VEC_PUSH(r->arena, p->pred.v, p->pred.n, p->pred.cap) =
+        item(r, isalpha((unsigned char)*pred) ? IT_WORD : IT_SYMBOL, pred, 1, loc);
     for (int j = 0; j < n; j++) *VEC_PUSH(r->arena, p->succ.v, p->succ.n, p->succ.cap) = succ[j];
 }
 
-/* The first `L` of items, or NULL. */
-static const Item *leaf_of(const Items *items) {
+/* The first item of items named name, or NULL. */
+static const Item *first_of(const Items *items, const char *name) {
     for (int i = 0; i < items->n; i++)
-        if (items->v[i].kind == IT_WORD && !strcmp(items->v[i].text, "L")) return &items->v[i];
+        if (!strcmp(items->v[i].text, name)) return &items->v[i];
     return NULL;
+}
+
+/* The first item named name in the axiom or a successor, or NULL. */
+static const Item *first_in(const Model *m, const int *rules, int nrules, const char *name) {
+    const Item *it = NULL;
+    for (int i = 0; i < m->n && !it; i++)
+        if (m->v[i].kind == ST_AXIOM) it = first_of(&m->v[i].items, name);
+    for (int i = 0; i < nrules && !it; i++) it = first_of(&m->v[rules[i]].rule.succ, name);
+    return it;
+}
+
+/* Table 2.2 rolls left with `/` and right with `\`, the other way round from ABOP and Sylva: the
+ * interpret rule `/ -> \\(angle)` (and back) turns the file's roll into Sylva's. The successor
+ * has a parameter, so a second pass matches it no more. */
+static void roll(Reader *r, const Model *m, const int *rules, int nrules, const char *sym, const char *as,
+                 double angle) {
+    const Item *at = first_in(m, rules, nrules, sym);
+    if (!at) return;
+    SylLoc loc = at->loc; /* copied: the rule's statement may move m->v */
+    Item to = item(r, IT_SYMBOL, as, 1, loc);
+    to.parens = true;
+    *VEC_PUSH(r->arena, to.args.v, to.args.n, to.args.cap) = num(r, angle, loc);
+    interpret(r, sym, &to, 1, loc);
 }
 
 int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
@@ -266,18 +290,15 @@ int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     if (!seen[K_AXIOM].first_line && diag->errors == before)
         diag_error(diag, m->loc, "a Pícek file needs an 'axiom:' line");
     /* A uniform choice among the rules that share a predecessor: each weighs 1. */
-    const Item *leaf = NULL; /* the first L, in the axiom or a successor */
-    for (int i = 0; i < m->n && !leaf; i++)
-        if (m->v[i].kind == ST_AXIOM) leaf = leaf_of(&m->v[i].items);
     int share[256] = {0}; /* rules per predecessor, a single byte */
     for (int i = 0; i < nrules; i++) share[(unsigned char)m->v[rules[i]].rule.pred.v[0].text[0]]++;
     for (int i = 0; i < nrules; i++) {
         Production *pi = &m->v[rules[i]].rule;
-        if (!leaf) leaf = leaf_of(&pi->succ);
         if (share[(unsigned char)pi->pred.v[0].text[0]] > 1) pi->weight = num(&r, 1, pi->arrow_loc);
     }
     /* The thesis's turtle draws `L` as a leaf and tapers every segment by `reduction`: interpret
      * rules say so to Sylva's, and leave the derived string as the file makes it. */
+    const Item *leaf = first_in(m, rules, nrules, "L");
     if (leaf) {
         SylLoc loc = leaf->loc; /* copied: the rule's statement may move m->v */
         interpret(&r, "L", (Item[]){item(&r, IT_SYMBOL, "~leaf", 5, loc)}, 1, loc);
@@ -287,5 +308,8 @@ int syl_picek_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
         setting(&r, "widthfactor", value[K_REDUCTION], loc);
         interpret(&r, "F", (Item[]){item(&r, IT_WORD, "G", 1, loc), item(&r, IT_SYMBOL, "!", 1, loc)}, 2, loc);
     }
+    double angle = seen[K_ANGLE].first_line ? value[K_ANGLE] : 45; /* Sylva's default angle */
+    roll(&r, m, rules, nrules, "/", "\\", angle);
+    roll(&r, m, rules, nrules, "\\", "/", angle);
     return diag->errors - before;
 }

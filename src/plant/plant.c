@@ -7,6 +7,7 @@
 #include "lang/kinds.h"
 
 #include <stdbool.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -45,7 +46,14 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
     out->derive_cpu_s = cpu_now() - c0;
     if (!st) out->modules = out->skeleton->nnodes;
     if (!st && opt->until == SYL_PLANT_MESH) {
-        st = syl_mesh_build(out->skeleton, mo, &out->mesh);
+        SylMeshOptions each = *mo; /* a scene's objects are told apart by their vertices' nodes */
+        if (scene) each.vertex_nodes = 1;
+        st = syl_mesh_build(out->skeleton, &each, &out->mesh);
+        if (!st && scene) st = syl_mesh_parts(out->mesh, obstacles, out->skeleton, &out->parts, &out->nparts);
+        if (!st && scene && !mo->vertex_nodes && !obstacles) { /* as it was asked for */
+            free(out->mesh->node);
+            out->mesh->node = NULL;
+        }
         /* the walls the trees grew around belong in the picture */
         if (!st && obstacles && (st = syl_mesh_append(out->mesh, obstacles)) && opt->diag)
             fprintf(opt->diag, "sylva: error: out of memory adding the obstacles to the mesh\n");
@@ -142,6 +150,7 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
 void syl_plant_free(SylPlant *pl) {
     if (!pl) return;
     syl_mesh_free(pl->mesh);
+    syl_mesh_parts_free(pl->parts, pl->nparts);
     syl_skeleton_free(pl->skeleton);
     syl_string_free(pl->string);
     memset(pl, 0, sizeof *pl);

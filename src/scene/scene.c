@@ -167,8 +167,9 @@ static int append_skeleton(SylSkeleton *a, const SylSkeleton *b, int32_t axis) {
     return SYL_OK;
 }
 
-/* The obstacles' triangles as a mesh, one flat-shaded material. */
-static SylMesh *obstacle_mesh(const Obstacles *o) {
+/* The obstacles' triangles as a mesh, one flat-shaded material; each vertex's node is the
+ * number of the obstacle it belongs to (first_tri: each one's first triangle, nobst of them). */
+static SylMesh *obstacle_mesh(const Obstacles *o, const size_t *first_tri, int nobst) {
     SylMesh *m = calloc(1, sizeof *m);
     if (!m) return NULL;
     size_t nv = 3 * o->nt;
@@ -177,7 +178,8 @@ static SylMesh *obstacle_mesh(const Obstacles *o) {
     m->uv = calloc(2 * nv, sizeof *m->uv);
     m->idx = malloc(nv * sizeof *m->idx);
     m->groups = malloc(sizeof *m->groups);
-    if (!m->pos || !m->nrm || !m->uv || !m->idx || !m->groups) {
+    m->node = malloc((nv + 1) * sizeof *m->node);
+    if (!m->pos || !m->nrm || !m->uv || !m->idx || !m->groups || !m->node) {
         syl_mesh_free(m);
         return NULL;
     }
@@ -194,6 +196,9 @@ static SylMesh *obstacle_mesh(const Obstacles *o) {
             memcpy(m->pos + 3 * i, p[v], 3 * sizeof(float));
             memcpy(m->nrm + 3 * i, n, 3 * sizeof(float));
             m->idx[i] = (uint32_t)i;
+            int k = 0;
+            while (k + 1 < nobst && first_tri[k + 1] <= t) k++;
+            m->node[i] = k;
         }
     }
     memset(m->pos + 3 * nv, 0, 4 * sizeof(float));
@@ -208,9 +213,10 @@ static SylMesh *obstacle_mesh(const Obstacles *o) {
     return m;
 }
 
-static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, FILE *diag) {
+static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, size_t *first_tri, FILE *diag) {
     for (int i = 0; i < S->nobstacles; i++) {
         const SceneObstacle *o = &S->obstacles[i];
+        first_tri[i] = f->env.obstacles.nt;
         char *path = scene_spec_path(p, o->file);
         if (!path) return SYL_ELIMIT;
         int st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
@@ -293,10 +299,10 @@ static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, Sc
 
 static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec *S, Forest *f, Placed *placed,
                       ScenePlant *plants, SceneModel **progs, SceneModels *models, SceneLsys **lsys,
-                      SylSkeleton **out, SylMesh **obstacles) {
+                      size_t *first_tri, SylSkeleton **out, SylMesh **obstacles) {
     FILE *diag = opt->diag;
     double ts = forest_now();
-    int st = load_obstacles(f, p, S, diag);
+    int st = load_obstacles(f, p, S, first_tri, diag);
     if (!st) st = compile_plants(p, S, f, plants, progs, models, diag);
     if (st) return st;
     bool trees = false;
@@ -355,6 +361,7 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
     SceneSurface surface = {0};
     for (int i = 0; i < S->nplants && !st; i++) {
         size_t first = sk->nnodes, first_organ = sk->norgans;
+        if (syl_skeleton_add_part(sk, syl_program_name(progs[i]->q), 0) < 0) st = SYL_ELIMIT;
         if (placed[i].tree >= 0)
             st = tree_to_skeleton(&f->trees[placed[i].tree], f->years, sk, axis, &opt->stats.organs);
         else if (placed[i].lsys) st = append_skeleton(sk, placed[i].lsys, axis);
@@ -365,8 +372,14 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
             if (sk->nodes[k].axis >= axis) axis = sk->nodes[k].axis + 1;
     }
     if (!st && obstacles && f->env.obstacles.nt) {
-        *obstacles = obstacle_mesh(&f->env.obstacles);
+        *obstacles = obstacle_mesh(&f->env.obstacles, first_tri, S->nobstacles);
         if (!*obstacles) st = SYL_ELIMIT;
+    }
+    for (int i = 0; !st && obstacles && i < S->nobstacles; i++) { /* named after their files */
+        const char *file = S->obstacles[i].file, *base = strrchr(file, '/');
+        char name[64];
+        snprintf(name, sizeof name, "%.*s", (int)strcspn(base ? base + 1 : file, "."), base ? base + 1 : file);
+        if (syl_skeleton_add_part(sk, name[0] ? name : "obstacle", i + 1) < 0) st = SYL_ELIMIT;
     }
     if (st) {
         syl_skeleton_free(sk);
@@ -399,14 +412,15 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     Placed *placed = calloc((size_t)S.nplants, sizeof *placed);
     ScenePlant *plants = calloc((size_t)S.nplants, sizeof *plants);
     SceneModel **progs = calloc((size_t)S.nplants, sizeof *progs);
+    size_t *first_tri = calloc((size_t)S.nobstacles + 1, sizeof *first_tri);
     SceneModels models = {0};
     namemap_init(&models.index, &models.keys);
     SceneLsys *lsys = NULL;
-    int st = placed && plants && progs ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
+    int st = placed && plants && progs && first_tri ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
     if (!st) {
         forest_limits(&f, opt);
         f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
-        st = grow_scene(p, opt, &S, &f, placed, plants, progs, &models, &lsys, out, obstacles);
+        st = grow_scene(p, opt, &S, &f, placed, plants, progs, &models, &lsys, first_tri, out, obstacles);
         st = forest_said(&f, st, 0);
         scene_lsys_free(lsys);
         forest_free(&f);
@@ -416,6 +430,7 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     free(placed);
     free(plants);
     free(progs);
+    free(first_tri);
     scene_spec_free(&S);
     if (st && obstacles) {
         syl_mesh_free(*obstacles);

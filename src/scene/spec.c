@@ -8,7 +8,6 @@
  *   sun direction (x, y, z)                          towards the sun
  */
 #include <errno.h>
-#include <libgen.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -294,48 +293,37 @@ void scene_spec_free(SceneSpec *s) {
     memset(s, 0, sizeof *s);
 }
 
-char *scene_spec_path(const SylProgram *p, const char *file) {
-    if (file[0] == '/') return strdup(file);
-    char *scene = strdup(syl_program_path(p));
-    if (!scene) return NULL;
-    const char *dir = dirname(scene);
-    size_t n = strlen(dir) + strlen(file) + 2;
-    char *out = malloc(n);
-    if (out && !strcmp(dir, ".")) snprintf(out, n, "%s", file); /* messages name it as written */
-    else if (out) snprintf(out, n, "%s/%s", dir, file);
-    free(scene);
-    return out;
-}
-
-/* A file the scene names that cannot be read: a warning, since the commands that grow the
- * scene fail on it (the file may yet be made, or the model derived on its own). */
-static void warn_unreadable(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
-    char *path = scene_spec_path(p, file);
-    if (!path) return;
-    char *colon = strrchr(path, ':'); /* "file.syl:Model" */
-    if (colon && colon > path && colon[1] && (!strrchr(path, '/') || colon > strrchr(path, '/'))) *colon = 0;
-    errno = 0;
-    FILE *f = fopen(path, "rb");
-    if (f && fgetc(f) == EOF && ferror(f)) {
-        fclose(f);
-        f = NULL;
-    }
-    if (!f) program_warning(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, strerror(errno));
-    else fclose(f);
-    free(path);
-}
+char *scene_spec_path(const SylProgram *p, const char *file) { return syl_program_file_path(p, file); }
 
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     SceneSpec s;
     int errors = scene_spec_read(p, &s, diag), set_errors = s.set_errors;
+    /* `sylva check` (files): a file the scene names that cannot be read is an error, since the
+     * commands that grow the scene fail on it */
+    int missing = 0;
     for (int i = 0; files && !errors && i < s.nobstacles; i++)
-        warn_unreadable(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
-                        s.obstacles[i].line, s.obstacles[i].col);
+        missing += syl_program_check_file(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
+                                          s.obstacles[i].line, s.obstacles[i].col);
     for (int i = 0; files && !errors && i < s.nplants; i++)
         if (s.plants[i].file)
-            warn_unreadable(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
+            missing += syl_program_check_file(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
     scene_spec_free(&s);
+    errors += missing;
     return errors && errors == set_errors ? -errors : errors;
+}
+
+/* `sylva check`: an ecosystem's terrain and a weber block's envelope that cannot be read are
+ * errors at their line (the runs fail on them). */
+static int check_inputs(const SylProgram *p, FILE *diag) {
+    static const char *const named[] = {"terrain", "envelope"};
+    int n = 0, errors = 0;
+    const SylDirective *d = syl_program_directives(p, &n);
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 2; k++)
+            if (!d[i].file && !strcmp(d[i].name, named[k]) && d[i].nargs && d[i].args[0].kind == SYL_DARG_STRING)
+                errors += syl_program_check_file(p, diag, named[k], d[i].args[0].text, d[i].args[0].line,
+                                                 d[i].args[0].col);
+    return errors;
 }
 
 /* syl_compile's hook (sylva.h): the block's own check, from its kind's row (kinds/kinds.c),
@@ -345,7 +333,9 @@ int syl_validate(void *user, const SylProgram *p, FILE *diag) {
     bool files = user && *(const int *)user;
     const KindOps *ops = kinds_ops(p->kind);
     int errors = ops->validate ? ops->validate(p, diag) : 0;
+    int missing = !errors && files ? check_inputs(p, diag) : 0;
     if (!errors && p->has_scene && p->first_model) errors += scene_spec_check(p, diag, files);
+    if (missing) errors = (errors < 0 ? -errors : errors) + missing;
     /* negative: every error was of --set, a bad command line */
     return errors;
 }

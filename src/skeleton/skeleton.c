@@ -1,6 +1,7 @@
 /* Skeleton storage, bounds and export. */
 #include <math.h>
 #include <stdbool.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -38,7 +39,24 @@ void syl_skeleton_free(SylSkeleton *s) {
     free(s->organs);
     free(s->polys);
     free(s->poly_verts);
+    free(s->parts);
     free(s);
+}
+
+int syl_skeleton_add_part(SylSkeleton *s, const char *name, int obstacle) {
+    SylSkeletonPart *p = realloc(s->parts, (size_t)(s->nparts + 1) * sizeof *p);
+    if (!p) return -1;
+    s->parts = p;
+    p += s->nparts;
+    *p = (SylSkeletonPart){.first_node = s->nnodes, .obstacle = obstacle};
+    snprintf(p->name, sizeof p->name, "%s", name);
+    for (int k = 2, again = 1; again; k++) { /* unique: Beech, Beech_2, Beech_3 */
+        again = 0;
+        for (int i = 0; i < s->nparts && !again; i++)
+            if (!strcmp(s->parts[i].name, p->name)) again = 1;
+        if (again) snprintf(p->name, sizeof p->name, "%.50s_%d", name, k);
+    }
+    return s->nparts++;
 }
 
 static void note_material(SylSkeleton *s, uint8_t m) {

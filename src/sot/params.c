@@ -478,6 +478,15 @@ static void read_directive(Reader *r, const Directive *dir, const SylDirective *
                 for (size_t j = 0; all[t] && all[t][j].name && n < 64; j++) names[n++] = all[t][j].name;
             char list[512];
             list_words(list, sizeof list, names, sizeof *names, n);
+            /* did you mean: a key, or a mode word where the mode goes (`buds alternat`) */
+            size_t nn = n;
+            for (int m = 0; !mode && i == 0 && dir->modes && dir->modes[m].word && nn < 64; m++)
+                names[nn++] = dir->modes[m].word;
+            char near[160];
+            if (closest_list(a->text, names, (int)nn, near, sizeof near)) {
+                ERR(r, a->line, a->col, "unknown key '%s' of '%s' (did you mean %s?)", a->text, d->name, near);
+                return;
+            }
             bool other_mode = false;
             for (int m = 0; dir->modes && dir->modes[m].word; m++)
                 if (find_key(dir->modes[m].keys, a->text)) other_mode = true;
@@ -713,9 +722,12 @@ static int read_all(const SylProgram *p, GrowParams *g, FILE *diag, int *set_err
         if (k == NDIRECTIVES) {
             const char *names[NDIRECTIVES];
             for (int j = 0; j < NDIRECTIVES; j++) names[j] = directives[j].name;
-            char list[512];
+            char list[512], near[160];
             list_words(list, sizeof list, names, sizeof *names, NDIRECTIVES);
-            ERR(&r, d->line, d->col, "unknown directive '%s' in a grow block (known: %s)", d->name, list);
+            if (closest_list(d->name, names, NDIRECTIVES, near, sizeof near))
+                ERR(&r, d->line, d->col, "unknown directive '%s' in a grow block (did you mean %s?)", d->name, near);
+            else
+                ERR(&r, d->line, d->col, "unknown directive '%s' in a grow block (known: %s)", d->name, list);
             continue;
         }
         if (first[k] >= 0 && !directives[k].repeat) {

@@ -156,9 +156,10 @@ static bool ends_with(const char *s, const char *ext) {
 int syl_terrain_read(const char *path, const SylTerrainOptions *o, SylTerrain **out) {
     *out = NULL;
     FILE *diag = o->diag;
-    bool png = ends_with(path, ".png"), asc = ends_with(path, ".asc"), obj = ends_with(path, ".obj");
-    if (!png && !asc && !obj) {
-        if (diag) fprintf(diag, "%s: error: cannot tell the DEM's format: name it *.png, *.asc or *.obj\n", path);
+    bool png = ends_with(path, ".png"), asc = ends_with(path, ".asc"), obj = ends_with(path, ".obj"),
+         dmr = ends_with(path, ".dmr");
+    if (!png && !asc && !obj && !dmr) {
+        if (diag) fprintf(diag, "%s: error: cannot tell the DEM's format: name it *.png, *.asc, *.obj or *.dmr\n", path);
         return SYL_EUSAGE;
     }
     if (o->cell != 0 && !(o->cell >= TERRAIN_MIN_CELL && o->cell <= TERRAIN_MAX_CELL)) {
@@ -178,8 +179,9 @@ int syl_terrain_read(const char *path, const SylTerrainOptions *o, SylTerrain **
         if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
         return errno == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     }
-    int st = png ? terrain_read_png(path, (const uint8_t *)data, len, o, out)
-                 : terrain_read_asc(path, data, len, o, out);
+    int st = png   ? terrain_read_png(path, (const uint8_t *)data, len, o, out)
+             : dmr ? terrain_read_dmr(path, data, len, o, out)
+                   : terrain_read_asc(path, data, len, o, out);
     free(data);
     return st;
 }

@@ -54,6 +54,8 @@ int terrain_read_png(const char *path, const uint8_t *data, size_t len, const Sy
                      Terrain **out);
 int terrain_read_asc(const char *path, const char *text, size_t len, const SylTerrainOptions *o, Terrain **out);
 int terrain_read_obj(const char *path, const SylTerrainOptions *o, Terrain **out);
+/* Zamuda's DMR text: x, z and height, one value a line, a vertex per cell centre (read_dmr.c). */
+int terrain_read_dmr(const char *path, const char *text, size_t len, const SylTerrainOptions *o, Terrain **out);
 /* Cells whose height is not known (NODATA, or no surface under them) get the lowest known
  * height, so that every factor is defined; valid[] remembers them. False when none is known. */
 bool terrain_fill_unknown(Terrain *t);

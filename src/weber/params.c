@@ -68,8 +68,10 @@ static int read_value(const SylProgram *p, FILE *diag, const SylDirective *d, co
         if (number_of(a, &unused)) { leaf_shape("0", w); return 0; }
         if ((a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING) && leaf_shape(a->text, w)) return 0;
         char near[200] = "";
-        if (a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING)
-            sch_suggest_word(sch_find(&sch_weber, "LeafShape", NULL)->words, a->text, near, sizeof near);
+        bool word = a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING;
+        if (word) sch_suggest_word(sch_find(&sch_weber, "LeafShape", NULL)->words, a->text, near, sizeof near);
+        if (!near[0] && word && (!strcmp(a->text, "oval") || closest_near(a->text, "oval"))) /* docs/weberpenn.md's name of disc */
+            snprintf(near, sizeof near, " (did you mean 'disc', the oval?)");
         syl_directive_error(p, diag, d, a, "LeafShape must be 0, disc, disc1 .. disc9, square, sphere or palm%s", near);
         return 1;
     }

@@ -274,11 +274,16 @@ js, bin_ = glb(os.path.join(D, "big.glb"))
 opos, ofaces = obj_faces(os.path.join(D, "big.obj"))
 gpos = {}
 tris = {}
-for p in js["meshes"][0]["primitives"]:
-    a = js["accessors"][p["attributes"]["POSITION"]]
-    first = a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
-    for i, q in enumerate(accessor(js, bin_, p["attributes"]["POSITION"])): gpos[first + i] = q
-    tris.setdefault(js["materials"][p["material"]]["name"], []).extend(first + i for i in accessor(js, bin_, p["indices"]))
+base = 0  # a scene (hedge.syl) is one mesh per object, numbered on in the OBJ as in the meshes' order
+for mesh in js["meshes"]:
+    top = base
+    for p in mesh["primitives"]:
+        a = js["accessors"][p["attributes"]["POSITION"]]
+        first = base + a.get("byteOffset", 0) // (js["bufferViews"][a["bufferView"]].get("byteStride") or 12)
+        for i, q in enumerate(accessor(js, bin_, p["attributes"]["POSITION"])): gpos[first + i] = q
+        top = max(top, first + a["count"])
+        tris.setdefault(js["materials"][p["material"]]["name"], []).extend(first + i for i in accessor(js, bin_, p["indices"]))
+    base = top
 size = max(abs(c) for q in opos for c in q)
 same_pos = len(gpos) == len(opos) and all(max(abs(gpos[i][k] - opos[i][k]) for k in range(3)) <= 1e-6 * size
                                           for i in range(len(opos)))
