@@ -61,17 +61,17 @@ static void beside(const char *output, const char *suffix, char *buf, size_t n) 
 
 /* Bake the impostor from LOD0, write the octahedral atlas beside the file and make the
  * crossed billboards the chain's last level (which imp then owns). */
-static int add_impostor(SylLodChain *c, const CliArgs *a, int threads, const char *output, SylImpostor *imp,
-                        char *extras, size_t n) {
+static int add_impostor(SylLodChain *c, const CliArgs *a, int threads, SylBudget *budget, const char *output,
+                        SylImpostor *imp, char *extras, size_t n) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
-                             .threads = threads, .diag = stderr};
+                             .threads = threads, .diag = stderr, .budget = budget};
     if (!c->level[0].mesh->nidx) {
         fprintf(stderr, "sylva: error: the model draws nothing: there is no impostor to bake\n");
         return SYL_EMODEL;
     }
     int status = syl_impostor_bake(c->level[0].mesh, &io, imp);
-    if (status) {
-        fprintf(stderr, "sylva: error: cannot bake the impostor (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad request");
+    if (status) { /* the bake said why it ran out of memory */
+        if (status != SYL_ELIMIT) fprintf(stderr, "sylva: error: cannot bake the impostor (bad request)\n");
         return status;
     }
     char color[4096], normal[4096];
@@ -173,7 +173,7 @@ int cmd_mesh(int argc, char **argv) {
         status = syl_lod_build(sk, &mo, mesh, geometric, &lods);
         if (status) fprintf(stderr, "sylva: error: cannot build the levels of detail (out of memory)\n");
         double ti = cli_now(), ci = cli_cpu_now();
-        if (!status && last_billboard) status = add_impostor(&lods, &a, d.threads, output, &imp, extras, sizeof extras);
+        if (!status && last_billboard) status = add_impostor(&lods, &a, d.threads, budget, output, &imp, extras, sizeof extras);
         t_imp = cli_now() - ti, c_imp = cli_cpu_now() - ci;
     } else {
         status = syl_mesh_optimize(mesh);

@@ -174,8 +174,9 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                              CLI_COUNT, DERIVE(max_modules), 1, 2147483647.0},
     [CLI_OPT_MAX_MEMORY] = {"max-memory", 0, "SIZE",
                             "stop with exit code 3 beyond SIZE of memory for strings, trees,\n"
-                            "meshes and pictures, e.g. 2G (default: half the machine's\n"
-                            "memory, at most 16G)",
+                            "meshes, pictures and files, e.g. 2G (default: half the least of\n"
+                            "the machine's memory, ulimit -v, ulimit -d and the cgroup's\n"
+                            "limit, at most 16G)",
                             CLI_SIZE, DERIVE(max_memory)},
     [CLI_OPT_MAX_WORK] = {"max-work", 0, "N",
                           "stop with exit code 3 beyond N modules rewritten by all steps\n"

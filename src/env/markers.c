@@ -74,6 +74,8 @@ static bool make_cell(MarkerCloud *c, int x, int y, int z, const PointGrid *occu
     Rng r = rng_stream(c->seed, key, 7, 0);
     /* a whole number of markers with the right mean */
     double want = c->per_cell;
+    /* a cell's markers are counted and indexed in 32 bits: more is more than memory holds */
+    if (!(want < (double)UINT32_MAX - 1 - (double)c->n)) return false;
     uint32_t count = (uint32_t)want + (rng_unit(&r) < want - floor(want));
     size_t pcap = c->cap;
     if (!array_reserve(&c->pos, &pcap, c->n + count, sizeof *c->pos)) return false;
