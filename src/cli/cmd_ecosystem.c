@@ -43,6 +43,8 @@ const CliCommand cli_ecosystem_command = {
         {.option = CLI_OPT_RESUME},
         {.option = CLI_OPT_SEED},
         {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_MAX_MEMORY},
+        {.option = CLI_OPT_MAX_PLANTS},
         {.option = CLI_OPT_THREADS, .help = "threads over the tiles (default: all cores); the output\n"
                                             "never depends on N"},
         {.option = CLI_OPT_ECO_VIEW},
@@ -463,14 +465,15 @@ int cmd_ecosystem(int argc, char **argv) {
     SylEcoOptions o = {.years = d.steps, .snapshots = a.nsnapshots ? a.snapshots : NULL, .nsnapshots = a.nsnapshots,
                        .tiles_x = a.tiles_x, .tiles_z = a.tiles_z, .threads = d.threads, .use_seed = d.use_seed,
                        .seed = d.seed, .on_year = on_year, .on_snapshot = on_snapshot, .progress = writer ? progress : NULL,
-                       .user = &r, .diag = stderr};
+                       .user = &r, .diag = stderr, .max_plants = a.max_plants ? a.max_plants : 100000000};
+    SylBudget *budget = o.budget = syl_budget_new(d.max_memory); /* the DEM, its grids and the plants */
     SylTerrain *t = NULL;
     SylEcoStats stats = {0};
     SylEcoCheckpoint ck = {0};
     char *ck_path = NULL;
     double rss_delta = -1; /* bytes: the simulation's peak resident memory beyond what was there */
     /* the block and its DEM are read before the directory is made: a bad one makes none */
-    st = syl_ecosystem_load(p, &o, &model, &t);
+    st = budget ? syl_ecosystem_load(p, &o, &model, &t) : SYL_ELIMIT;
     r.t = t;
     if (!st) r.hash = syl_ecosystem_hash(&model, t, d.use_seed ? d.seed : model.seed);
     int years = o.years > 0 ? o.years : model.years;
@@ -555,6 +558,7 @@ int cmd_ecosystem(int argc, char **argv) {
     free(r.shade);
     syl_forest_free(forest);
     syl_terrain_free(t);
+    syl_budget_free(budget);
     syl_program_free(p);
     syl_eco_mpi_end(mpi);
     return st;

@@ -186,6 +186,10 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                               CLI_COUNT, MODEL(max_metamers), 1, 4e9},
     [CLI_OPT_MAX_BUDS] = {"max-buds", 0, "N", "stop with exit code 3 beyond N buds (default 100000000)",
                           CLI_COUNT, MODEL(max_buds), 1, 4e9},
+    [CLI_OPT_MAX_PLANTS] = {"max-plants", 0, "N",
+                            "stop with exit code 3 beyond N plants alive at once\n"
+                            "(default 100000000)",
+                            CLI_COUNT, ARGS(max_plants), 1, 4e9},
     [CLI_OPT_YEARS] = {"years", 0, "N",
                        "years to grow (default: the model's `years`; a scene: each\n"
                        "plant's)",

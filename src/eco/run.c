@@ -32,7 +32,8 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
     if (!path) return SYL_ELIMIT;
     SylTerrain *t = NULL;
     SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
-                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag};
+                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag,
+                            .budget = o->budget};
     int st = syl_terrain_read(path, &to, &t);
     if (!st) st = syl_terrain_compute(t, &to);
     free(path);

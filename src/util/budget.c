@@ -63,8 +63,14 @@ uint64_t budget_default_why(const char **why) {
     long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
     uint64_t least = pages > 0 && size > 0 ? (uint64_t)pages * (uint64_t)size : (8ull << 30);
     struct rlimit rl;
-    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < least)
-        least = rl.rlim_cur, which = "RLIMIT_AS (ulimit -v)";
+    /* the address space holds more than memory: the code, and each thread's stack and malloc
+     * arena (8 + 64 MB), reserved whether used or not */
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    uint64_t reserved = (192ull << 20) + (uint64_t)(cores > 0 ? cores : 1) * (72ull << 20);
+    if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY) {
+        uint64_t as = rl.rlim_cur > reserved ? rl.rlim_cur - reserved : (16ull << 20);
+        if (as < least) least = as, which = "RLIMIT_AS (ulimit -v)";
+    }
     if (!getrlimit(RLIMIT_DATA, &rl) && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < least)
         least = rl.rlim_cur, which = "RLIMIT_DATA (ulimit -d)";
     const char *cg = NULL;

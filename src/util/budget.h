@@ -17,8 +17,9 @@ struct SylBudget {
 };
 typedef struct SylBudget Budget;
 
-/* The default of --max-memory: half the smallest of the machine's memory, RLIMIT_AS,
- * RLIMIT_DATA and the cgroup's memory limit (v2 memory.max or v1 memory.limit_in_bytes, its
+/* The default of --max-memory: half the smallest of the machine's memory, RLIMIT_AS (less
+ * 192 MB and 72 MB a core of code, stacks and malloc arenas), RLIMIT_DATA and the cgroup's
+ * memory limit (v2 memory.max or v1 memory.limit_in_bytes, its
  * own or a parent's), at most 16 GiB; the half left covers what the budget does not count.
  * budget_default_why also says which of them set it. */
 uint64_t budget_default_limit(void);

@@ -82,7 +82,7 @@ void file_free_named(char *text, size_t len, Budget *mem) {
 
 const char *file_strerror(int err) {
     switch (err) {
-    case FILE_ENOTREG: return "not a regular file (a model may name only regular files: no devices, FIFOs or sockets)";
+    case FILE_ENOTREG: return "not a regular file: Sylva reads only regular files here (no devices, FIFOs or sockets)";
     case EFBIG: return "larger than 1 GiB, the most Sylva reads of one file";
     case FILE_EBUDGET: return "reading it would go beyond --max-memory";
     default: return strerror(err);
