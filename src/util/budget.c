@@ -92,6 +92,11 @@ void budget_init(Budget *b, uint64_t limit) {
 
 bool budget_charge(Budget *b, uint64_t bytes) {
     if (!b || !bytes) return true;
+    if (bytes > b->limit) { /* and so never added, even for a moment, to what other threads see */
+        uint64_t none = 0;
+        atomic_compare_exchange_strong(&b->refused, &none, bytes);
+        return false;
+    }
     uint64_t now = atomic_fetch_add(&b->used, bytes) + bytes;
     if (now > b->limit || now < bytes) {
         atomic_fetch_sub(&b->used, bytes);
