@@ -182,12 +182,13 @@ int cmd_mesh(int argc, char **argv) {
     double t_wind = cli_now();
     if (!status && a.wind > 0) {
         SylWindOptions wo = {.speed = a.wind, .dir = {a.wind_dir[0], a.wind_dir[1]}, .seconds = a.wind_seconds,
-                             .levels = a.wind_levels};
+                             .levels = a.wind_levels, .budget = budget, .diag = stderr};
         float *radius = malloc((sk->nnodes + 1) * sizeof *radius);
         status = radius ? syl_mesh_radii(sk, &mo, radius) : SYL_ELIMIT;
+        if (!radius) fprintf(stderr, "sylva: error: out of memory\n");
         if (!status) status = syl_wind_build(sk, radius, &wo, &wind);
         free(radius);
-        if (status) fprintf(stderr, "sylva: error: cannot build the wind's joints (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad model");
+        if (status && status != SYL_ELIMIT) fprintf(stderr, "sylva: error: cannot build the wind's joints (bad model)\n");
     }
     t_wind = cli_now() - t_wind;
     double t3 = cli_now(), c3 = cli_cpu_now();
