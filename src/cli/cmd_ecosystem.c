@@ -129,6 +129,12 @@ static void on_year(void *user, const SylEcoYear *y) {
         fflush(stderr);
         raise(SIGKILL);
     }
+    const char *sr = getenv("SYLVA_TEST_STOP_RANK"), *sy = getenv("SYLVA_TEST_STOP_YEAR");
+    if (sr && sy && atoi(sr) == r->rank && atoi(sy) == y->year) { /* a stopped rank: the others must not wait for ever */
+        fprintf(stderr, "sylva: test: rank %d stops itself at year %d (SYLVA_TEST_STOP_YEAR)\n", r->rank, y->year);
+        fflush(stderr);
+        raise(SIGSTOP);
+    }
 }
 
 static int on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t n) {
