@@ -58,9 +58,10 @@ const CliCommand cli_ecosystem_command = {
     },
     .width = 24,
     .epilogue = "\nExit codes: 0 ok, 1 the model or its DEM is malformed, 2 bad command line, 3 limit hit,\n"
-                "4 I/O error (under mpirun: a rank failed or was killed; the job is aborted).\n"
+                "4 I/O error (under mpirun: a rank failed or was killed, or stopped answering for\n"
+                "SYLVA_RANK_TIMEOUT seconds, default 600; the job is aborted).\n"
                 "SYLVA_TEST_FAIL_RANK=R SYLVA_TEST_FAIL_YEAR=Y (tests only): rank R kills itself\n"
-                "with SIGKILL at the end of year Y.\n",
+                "with SIGKILL at the end of year Y (SYLVA_TEST_STOP_*: stops itself, SIGSTOP).\n",
     .args_error = "expects one model file",
 };
 
