@@ -31,7 +31,7 @@ const CliCommand cli_terrain_command = {
         {.option = CLI_OPT_THREADS, .help = "threads (default: all cores); the maps never depend on N"},
         {.option = CLI_OPT_MAX_MEMORY, .help = "stop with exit code 3 beyond SIZE of memory for the grids,\n"
                                                "e.g. 2G (default: half the least of the machine's memory,\n"
-                                               "ulimit -v, ulimit -d and the cgroup's limit, at most 16G)"},
+                                               "RLIMIT_AS, RLIMIT_DATA and the cgroup's limit, at most 16G)"},
         {.option = CLI_OPT_STATS, .help = "print the grid's size and each factor's time to stderr"},
         {0},
     },

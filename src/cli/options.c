@@ -175,7 +175,7 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_MAX_MEMORY] = {"max-memory", 0, "SIZE",
                             "stop with exit code 3 beyond SIZE of memory for strings, trees,\n"
                             "meshes, pictures and files, e.g. 2G (default: half the least of\n"
-                            "the machine's memory, ulimit -v, ulimit -d and the cgroup's\n"
+                            "the machine's memory, RLIMIT_AS, RLIMIT_DATA and the cgroup's\n"
                             "limit, at most 16G)",
                             CLI_SIZE, DERIVE(max_memory)},
     [CLI_OPT_MAX_WORK] = {"max-work", 0, "N",

@@ -69,10 +69,10 @@ uint64_t budget_default_why(const char **why) {
     uint64_t reserved = (192ull << 20) + (uint64_t)(cores > 0 ? cores : 1) * (72ull << 20);
     if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY) {
         uint64_t as = rl.rlim_cur > reserved ? rl.rlim_cur - reserved : (16ull << 20);
-        if (as < least) least = as, which = "RLIMIT_AS (ulimit -v)";
+        if (as < least) least = as, which = "RLIMIT_AS, the address space (ulimit)";
     }
     if (!getrlimit(RLIMIT_DATA, &rl) && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < least)
-        least = rl.rlim_cur, which = "RLIMIT_DATA (ulimit -d)";
+        least = rl.rlim_cur, which = "RLIMIT_DATA, the data segment (ulimit)";
     const char *cg = NULL;
     uint64_t c = cgroup_limit(&cg);
     if (c < least) least = c, which = cg;
