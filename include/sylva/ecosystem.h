@@ -118,6 +118,8 @@ typedef struct SylEcoOptions {
     uint64_t seed;
     const SylEcoExchange *exchange; /* NULL: in-process */
     uint64_t max_plants;   /* SYL_ELIMIT when more live at once (0: no limit) */
+    SylBudget *budget;     /* the plants' buffers are counted against it (NULL: none); beyond
+                              it the run stops with SYL_ELIMIT, naming the year */
     /* called after every year, and with the year's plants (sorted by id) at each snapshot */
     void (*on_year)(void *user, const SylEcoYear *y);
     int (*on_snapshot)(void *user, int year, const SylEcoPlant *plants, size_t n); /* non-0 stops */

@@ -19,6 +19,8 @@ typedef struct SylImpostorOptions {
     int billboards;  /* quads of the crossed billboard, 2 to 4; 0: none */
     int threads;
     FILE *diag;
+    SylBudget *budget; /* the bake's pictures and atlases are counted against it (NULL: none);
+                          beyond it the bake stops with SYL_ELIMIT before it allocates */
 } SylImpostorOptions;
 
 typedef struct SylImpostor {
@@ -30,6 +32,8 @@ typedef struct SylImpostor {
     uint8_t *bb_color;         /* bb_width x view RGBA */
     SylMesh *bb_mesh;          /* the quads (material 0 of m's table is replaced by none:
                                   one group of the material SYL_IMPOSTOR_MATERIAL) */
+    SylBudget *budget;         /* what the atlases are counted against until freed */
+    uint64_t charged;
 } SylImpostor;
 
 enum { SYL_IMPOSTOR_MATERIAL = 255 };

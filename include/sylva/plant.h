@@ -40,8 +40,8 @@ typedef struct SylPlantOptions {
     uint64_t max_work;     /* modules rewritten by all steps of a derivation (0: 100 billion) */
     uint64_t max_metamers; /* grow blocks and scenes: living metamers (0: 20 million) */
     uint64_t max_buds;     /* grow blocks and scenes: living buds (0: 100 million) */
-    uint64_t max_memory;   /* bytes of every engine's memory, when budget is NULL; 0: half the
-                              machine's memory, at most 16 GiB */
+    uint64_t max_memory;   /* bytes of every engine's memory, when budget is NULL; 0: the
+                              default (syl_budget_new) */
     SylBudget *budget;     /* a memory budget shared by every engine of the build (and the
                               caller's other work); it must outlive what the build returns.
                               NULL: each engine keeps its own limit of max_memory */

@@ -30,8 +30,9 @@ typedef struct SylString SylString;
  * whole run: derivation, growth, scenes, the mesher and the renderer each count their large
  * arrays against it and stop with SYL_ELIMIT, before allocating, when it would be passed.
  * Give the same budget to each engine's options (their `budget` field); NULL there: the
- * engine keeps its own, of its max_memory or the default (half the machine's memory, at most
- * 16 GiB). Thread-safe. */
+ * engine keeps its own, of its max_memory or the default (half the least of the machine's
+ * memory, RLIMIT_AS, RLIMIT_DATA and the cgroup's memory limit, at most 16 GiB: docs/cli.md,
+ * "The default memory budget"). Thread-safe. */
 typedef struct SylBudget SylBudget;
 SylBudget *syl_budget_new(uint64_t max_bytes); /* 0: the default; NULL when out of memory */
 void syl_budget_free(SylBudget *b);
@@ -213,7 +214,7 @@ typedef struct SylDeriveOptions {
     uint64_t seed;
     int threads;          /* <= 0: all cores */
     uint64_t max_modules; /* 0: default (200 million) */
-    uint64_t max_memory;  /* bytes; 0: default (half the machine's memory, at most 16 GiB) */
+    uint64_t max_memory;  /* bytes; 0: the default (syl_budget_new) */
     FILE *diag;
     /* Called with step 0 (the axiom, decomposed) and after every step; may be NULL. */
     void (*on_step)(void *user, int step, const SylString *s);

@@ -21,6 +21,9 @@ typedef struct SylWindOptions {
     float seconds;  /* length of the loop; 0: 4 */
     int levels;     /* stems of branch order below this get a joint; 0: 2 */
     int fps;        /* keys per second; 0: 15 */
+    SylBudget *budget; /* the stems, joints and keys (twice: the file's copy) count against it
+                          (NULL: none); beyond it SYL_ELIMIT, said on diag, before the keys are made */
+    FILE *diag;
 } SylWindOptions;
 
 /* A stem (axis) of the skeleton. */
@@ -54,6 +57,8 @@ typedef struct SylWind {
     int nkeys;            /* key times k * seconds / (nkeys - 1); the last key is the first */
     float seconds;
     float *rot;           /* njoints x nkeys unit quaternions x, y, z, w (joint-major) */
+    SylBudget *budget;    /* what it is counted against until syl_wind_free */
+    uint64_t charged;
 } SylWind;
 
 /* The sway of s; radius: the mesher's radius of each node (syl_mesh_radii). SYL_OK,

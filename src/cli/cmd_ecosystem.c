@@ -44,6 +44,8 @@ const CliCommand cli_ecosystem_command = {
         {.option = CLI_OPT_RESUME},
         {.option = CLI_OPT_SEED},
         {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_MAX_MEMORY},
+        {.option = CLI_OPT_MAX_PLANTS},
         {.option = CLI_OPT_THREADS, .help = "threads over the tiles (default: all cores); the output\n"
                                             "never depends on N"},
         {.option = CLI_OPT_ECO_VIEW},
@@ -57,9 +59,10 @@ const CliCommand cli_ecosystem_command = {
     },
     .width = 24,
     .epilogue = "\nExit codes: 0 ok, 1 the model or its DEM is malformed, 2 bad command line, 3 limit hit,\n"
-                "4 I/O error (under mpirun: a rank failed or was killed; the job is aborted).\n"
+                "4 I/O error (under mpirun: a rank failed or was killed, or stopped answering for\n"
+                "SYLVA_RANK_TIMEOUT seconds, default 600; the job is aborted).\n"
                 "SYLVA_TEST_FAIL_RANK=R SYLVA_TEST_FAIL_YEAR=Y (tests only): rank R kills itself\n"
-                "with SIGKILL at the end of year Y.\n",
+                "with SIGKILL at the end of year Y (SYLVA_TEST_STOP_*: stops itself, SIGSTOP).\n",
     .args_error = "expects one model file",
 };
 
@@ -119,6 +122,12 @@ static void on_year(void *user, const SylEcoYear *y) {
         fprintf(stderr, "sylva: test: rank %d kills itself at year %d (SYLVA_TEST_FAIL_YEAR)\n", r->rank, y->year);
         fflush(stderr);
         raise(SIGKILL);
+    }
+    const char *sr = getenv("SYLVA_TEST_STOP_RANK"), *sy = getenv("SYLVA_TEST_STOP_YEAR");
+    if (sr && sy && atoi(sr) == r->rank && atoi(sy) == y->year) { /* a stopped rank: the others must not wait for ever */
+        fprintf(stderr, "sylva: test: rank %d stops itself at year %d (SYLVA_TEST_STOP_YEAR)\n", r->rank, y->year);
+        fflush(stderr);
+        raise(SIGSTOP);
     }
 }
 
@@ -473,14 +482,15 @@ int cmd_ecosystem(int argc, char **argv) {
     SylEcoOptions o = {.years = d.steps, .snapshots = a.nsnapshots ? a.snapshots : NULL, .nsnapshots = a.nsnapshots,
                        .tiles_x = a.tiles_x, .tiles_z = a.tiles_z, .threads = d.threads, .use_seed = d.use_seed,
                        .seed = d.seed, .on_year = on_year, .on_snapshot = on_snapshot, .progress = writer ? progress : NULL,
-                       .user = &r, .diag = stderr};
+                       .user = &r, .diag = stderr, .max_plants = a.max_plants ? a.max_plants : 100000000};
+    SylBudget *budget = o.budget = syl_budget_new(d.max_memory); /* the DEM, its grids and the plants */
     SylTerrain *t = NULL;
     SylEcoStats stats = {0};
     SylEcoCheckpoint ck = {0};
     char *ck_path = NULL;
     double rss_delta = -1; /* bytes: the simulation's peak resident memory beyond what was there */
     /* the block and its DEM are read before the directory is made: a bad one makes none */
-    st = syl_ecosystem_load(p, &o, &model, &t);
+    st = budget ? syl_ecosystem_load(p, &o, &model, &t) : SYL_ELIMIT;
     r.t = t;
     if (!st) r.hash = syl_ecosystem_hash(&model, t, d.use_seed ? d.seed : model.seed);
     int years = o.years > 0 ? o.years : model.years;
@@ -565,6 +575,7 @@ int cmd_ecosystem(int argc, char **argv) {
     free(r.shade);
     syl_forest_free(forest);
     syl_terrain_free(t);
+    syl_budget_free(budget);
     syl_program_free(p);
     syl_eco_mpi_end(mpi);
     return st;

@@ -64,9 +64,10 @@ static void beside(const char *output, const char *suffix, char *buf, size_t n) 
  * instanced leaves out (they are instances of the file): the picture is baked from the plant
  * meshed again with those leaves in it, copied blades or cards as the instances are. */
 static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk, const SylMeshOptions *mo,
-                        int threads, const char *output, SylImpostor *imp, char *extras, size_t n) {
+                        int threads, SylBudget *budget, const char *output, SylImpostor *imp, char *extras,
+                        size_t n) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
-                             .threads = threads, .diag = stderr};
+                             .threads = threads, .diag = stderr, .budget = budget};
     if (!c->level[0].mesh->nidx) {
         fprintf(stderr, "sylva: error: the model draws nothing: there is no impostor to bake\n");
         return SYL_EMODEL;
@@ -83,8 +84,8 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
     }
     if (!status) status = syl_impostor_bake(drawn, &io, imp);
     syl_mesh_free(leafy);
-    if (status) {
-        fprintf(stderr, "sylva: error: cannot bake the impostor (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad request");
+    if (status) { /* the mesher and the bake said why they ran out of memory */
+        if (status != SYL_ELIMIT) fprintf(stderr, "sylva: error: cannot bake the impostor (bad request)\n");
         return status;
     }
     char color[4096], normal[4096];
@@ -186,7 +187,8 @@ int cmd_mesh(int argc, char **argv) {
         status = syl_lod_build(sk, &mo, mesh, geometric, &lods);
         if (status) fprintf(stderr, "sylva: error: cannot build the levels of detail (out of memory)\n");
         double ti = cli_now(), ci = cli_cpu_now();
-        if (!status && last_billboard) status = add_impostor(&lods, &a, sk, &mo, d.threads, output, &imp, extras, sizeof extras);
+        if (!status && last_billboard)
+            status = add_impostor(&lods, &a, sk, &mo, d.threads, budget, output, &imp, extras, sizeof extras);
         t_imp = cli_now() - ti, c_imp = cli_cpu_now() - ci;
     } else {
         status = syl_mesh_optimize(mesh);
@@ -199,12 +201,13 @@ int cmd_mesh(int argc, char **argv) {
     double t_wind = cli_now();
     if (!status && a.wind > 0) {
         SylWindOptions wo = {.speed = a.wind, .dir = {a.wind_dir[0], a.wind_dir[1]}, .seconds = a.wind_seconds,
-                             .levels = a.wind_levels};
+                             .levels = a.wind_levels, .budget = budget, .diag = stderr};
         float *radius = malloc((sk->nnodes + 1) * sizeof *radius);
         status = radius ? syl_mesh_radii(sk, &mo, radius) : SYL_ELIMIT;
+        if (!radius) fprintf(stderr, "sylva: error: out of memory\n");
         if (!status) status = syl_wind_build(sk, radius, &wo, &wind);
         free(radius);
-        if (status) fprintf(stderr, "sylva: error: cannot build the wind's joints (%s)\n", status == SYL_ELIMIT ? "out of memory" : "bad model");
+        if (status && status != SYL_ELIMIT) fprintf(stderr, "sylva: error: cannot build the wind's joints (bad model)\n");
     }
     t_wind = cli_now() - t_wind;
     double t3 = cli_now(), c3 = cli_cpu_now();

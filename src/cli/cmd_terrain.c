@@ -32,7 +32,8 @@ const CliCommand cli_terrain_command = {
         {.option = CLI_OPT_WIND_DISTANCE},
         {.option = CLI_OPT_THREADS, .help = "threads (default: all cores); the maps never depend on N"},
         {.option = CLI_OPT_MAX_MEMORY, .help = "stop with exit code 3 beyond SIZE of memory for the grids,\n"
-                                               "e.g. 2G (default: half the machine's memory, at most 16G)"},
+                                               "e.g. 2G (default: half the least of the machine's memory,\n"
+                                               "RLIMIT_AS, RLIMIT_DATA and the cgroup's limit, at most 16G)"},
         {.option = CLI_OPT_STATS, .help = "print the grid's size and each factor's time to stderr"},
         {0},
     },

@@ -35,7 +35,10 @@ bool cli_encode_start(Encoder *e, EncodeFormat f, int width, int height, int fps
                              path ? "+faststart" : "frag_keyframe+empty_moov", "-f", "mp4"};
         for (size_t i = 0; i < sizeof mp4 / sizeof *mp4; i++) argv[n++] = mp4[i];
     } else {
-        const char *gif[] = {"-filter_complex", "[0:v]split[a][b];[a]palettegen[p];[b][p]paletteuse", "-f", "gif"};
+        /* a palette per frame (stats_mode=single, new=1): one for the whole animation would make
+         * ffmpeg hold every frame until the last (1000 frames of 1024²: 7 GB) */
+        const char *gif[] = {"-filter_complex",
+                             "[0:v]split[a][b];[a]palettegen=stats_mode=single[p];[b][p]paletteuse=new=1", "-f", "gif"};
         for (size_t i = 0; i < sizeof gif / sizeof *gif; i++) argv[n++] = gif[i];
     }
     argv[n++] = "-y";

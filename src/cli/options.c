@@ -174,8 +174,9 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                              CLI_COUNT, DERIVE(max_modules), 1, 2147483647.0},
     [CLI_OPT_MAX_MEMORY] = {"max-memory", 0, "SIZE",
                             "stop with exit code 3 beyond SIZE of memory for strings, trees,\n"
-                            "meshes and pictures, e.g. 2G (default: half the machine's\n"
-                            "memory, at most 16G)",
+                            "meshes, pictures and files, e.g. 2G (default: half the least of\n"
+                            "the machine's memory, RLIMIT_AS, RLIMIT_DATA and the cgroup's\n"
+                            "limit, at most 16G)",
                             CLI_SIZE, DERIVE(max_memory)},
     [CLI_OPT_MAX_WORK] = {"max-work", 0, "N",
                           "stop with exit code 3 beyond N modules rewritten by all steps\n"
@@ -185,6 +186,10 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                               CLI_COUNT, MODEL(max_metamers), 1, 4e9},
     [CLI_OPT_MAX_BUDS] = {"max-buds", 0, "N", "stop with exit code 3 beyond N buds (default 100000000)",
                           CLI_COUNT, MODEL(max_buds), 1, 4e9},
+    [CLI_OPT_MAX_PLANTS] = {"max-plants", 0, "N",
+                            "stop with exit code 3 beyond N plants alive at once\n"
+                            "(default 100000000)",
+                            CLI_COUNT, ARGS(max_plants), 1, 4e9},
     [CLI_OPT_YEARS] = {"years", 0, "N",
                        "years to grow (default: the model's `years`; a scene: each\n"
                        "plant's)",

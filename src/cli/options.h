@@ -17,7 +17,7 @@ struct ModelArgs;
 typedef enum CliOptionId {
     CLI_OPT_NONE, /* ends a table */
     CLI_OPT_DERIVE, CLI_OPT_SEED, CLI_OPT_SET, CLI_OPT_THREADS,
-    CLI_OPT_MAX_MODULES, CLI_OPT_MAX_MEMORY, CLI_OPT_MAX_WORK, CLI_OPT_MAX_METAMERS, CLI_OPT_MAX_BUDS,
+    CLI_OPT_MAX_MODULES, CLI_OPT_MAX_MEMORY, CLI_OPT_MAX_WORK, CLI_OPT_MAX_METAMERS, CLI_OPT_MAX_BUDS, CLI_OPT_MAX_PLANTS,
     CLI_OPT_YEARS, CLI_OPT_SEEDS, CLI_OPT_AGE, CLI_OPT_LEVELS,
     CLI_OPT_OUTPUT, CLI_OPT_OUT, CLI_OPT_IMAGE, CLI_OPT_FORMAT, CLI_OPT_CSV, CLI_OPT_JSON,
     CLI_OPT_STEPS, CLI_OPT_INTERPRET, CLI_OPT_QUIET,
@@ -63,6 +63,7 @@ typedef struct CliArgs {
     int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
     int snapshots[64], nsnapshots, tiles_x, tiles_z; /* sylva ecosystem: --snapshots, --tiles */
     int rebalance, every;    /* --rebalance, --every */
+    uint64_t max_plants;     /* --max-plants */
     const char *checkpoint, *resume; /* --checkpoint, --resume */
     int eco_view;            /* sylva ecosystem --view: SylForestView */
     bool glb;                /* sylva ecosystem --glb */

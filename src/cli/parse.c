@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "util/budget.h"
 
 /* A command's options flattened: row[i] the i-th row of its --help. */
 typedef struct Rows {
@@ -45,6 +46,11 @@ static void print_row(FILE *out, const CliOption *o, const char *help, int width
         }
         fprintf(out, "%.*s\n%*s", (int)(end - line), line, width + 2, "");
         line = end + 1;
+    }
+    if (o == &cli_options[CLI_OPT_MAX_MEMORY]) { /* the default here, and what set it */
+        const char *why;
+        uint64_t d = budget_default_why(&why);
+        fprintf(out, "%*shere %.1fM, set by %s\n", width + 2, "", (double)d / (1 << 20), why);
     }
 }
 

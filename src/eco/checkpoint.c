@@ -4,13 +4,16 @@
  * of all that. The state is the plants alone: every random draw is keyed by (seed, year,
  * plant id, purpose), so nothing else needs saving. Little-endian, as the machines MPI runs on. */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "eco/eco.h"
+#include "util/file.h"
 #include "util/outfile.h"
 #include "util/rng.h"
 
@@ -197,47 +200,26 @@ int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name
 
 int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag) {
     memset(c, 0, sizeof *c);
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        if (diag) fprintf(diag, "sylva: error: cannot read the checkpoint '%s': %s\n", path, strerror(errno));
-        return SYL_EIO;
-    }
-    /* a regular file is mapped, not copied (10 M plants: 320 MB read once); a pipe is read */
+    /* a regular file only (O_NONBLOCK: a FIFO without a writer would wait for one), mapped,
+     * not copied (10 M plants: 320 MB read once) */
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
     struct stat sb;
-    if (!fstat(fileno(f), &sb) && S_ISREG(sb.st_mode) && sb.st_size > 0) {
-        void *map = mmap(NULL, (size_t)sb.st_size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fileno(f), 0);
-        if (map != MAP_FAILED) {
-            fclose(f);
-            int st = syl_ecosystem_checkpoint_parse(map, (size_t)sb.st_size, path, c, diag);
-            munmap(map, (size_t)sb.st_size);
-            return st;
-        }
-    }
-    size_t cap = 1 << 16;
-    size_t len = 0;
-    uint8_t *buf = malloc(cap);
-    for (size_t got; buf; len += got) {
-        if (len == cap) {
-            uint8_t *nb = realloc(buf, cap *= 2);
-            if (!nb) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = nb;
-        }
-        if (!(got = fread(buf + len, 1, cap - len, f))) break;
-    }
-    int err = ferror(f);
-    fclose(f);
-    if (!buf) return SYL_ELIMIT;
-    int st;
+    int err = fd < 0                    ? errno
+              : fstat(fd, &sb)          ? errno
+              : S_ISDIR(sb.st_mode)     ? EISDIR
+              : !S_ISREG(sb.st_mode)    ? FILE_ENOTREG
+              : (uint64_t)sb.st_size > SIZE_MAX / 2 ? EFBIG : 0;
+    void *map = NULL;
+    size_t size = err ? 0 : (size_t)sb.st_size;
+    if (!err && size && (map = mmap(NULL, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0)) == MAP_FAILED)
+        err = errno;
+    if (fd >= 0) close(fd);
     if (err) {
-        if (diag) fprintf(diag, "sylva: error: cannot read the checkpoint '%s'\n", path);
-        st = SYL_EIO;
-    } else
-        st = syl_ecosystem_checkpoint_parse(buf, len, path, c, diag);
-    free(buf);
+        if (diag) fprintf(diag, "sylva: error: cannot read the checkpoint '%s': %s\n", path, file_strerror(err));
+        return err == ENOMEM ? SYL_ELIMIT : SYL_EIO;
+    }
+    int st = syl_ecosystem_checkpoint_parse(map ? map : (const void *)"", size, path, c, diag);
+    if (map) munmap(map, size);
     return st;
 }
 

@@ -7,9 +7,13 @@
  * through collectives, so every rank sees the same totals in the same order. */
 #include <limits.h>
 #include <mpi.h>
+#include <pthread.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "eco/eco.h"
 
@@ -39,6 +43,13 @@ struct SylEcoMpi {
     uint64_t *send_len, *recv_len;
     MPI_Request *req;
     uint64_t plants_sent, bytes_sent, halo_received, plants_moved, barriers;
+    /* the watchdog: a rank that waits on the others longer than timeout seconds ends the job */
+    double timeout;         /* SYLVA_RANK_TIMEOUT; 0: none */
+    _Atomic int64_t since;  /* ms (CLOCK_MONOTONIC) when this rank began to wait; 0: it is not */
+    _Atomic int quit;
+    pthread_t watch;
+    int watching;
+    int *pid, *host;        /* each rank's pid, and a hash of its host's name */
 };
 
 static Box *box_of(SylEcoMpi *m, int channel, int to, int from) {
@@ -60,6 +71,57 @@ static void on_mpi_error(MPI_Comm *comm, int *code, ...) {
     fprintf(stderr, "sylva: error: rank %d: MPI: %s; aborting the job\n", rank, text);
     fflush(stderr);
     MPI_Abort(*comm, SYL_EIO);
+}
+
+static int64_t now_ms(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (int64_t)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
+}
+
+static void wait_begin(SylEcoMpi *m) { atomic_store(&m->since, now_ms()); }
+static void wait_end(SylEcoMpi *m) { atomic_store(&m->since, 0); }
+
+/* The ranks of this host that are stopped (SIGSTOP, a debugger), from /proc: "rank 1 (pid
+ * 123) is stopped" into buf, or "" when none is, or they are on other hosts. */
+static void stopped_ranks(const SylEcoMpi *m, char *buf, size_t n) {
+    size_t at = 0;
+    buf[0] = 0;
+    for (int r = 0; r < m->size && at + 80 < n; r++) {
+        if (r == m->rank || m->host[r] != m->host[m->rank]) continue;
+        char path[64], line[512];
+        snprintf(path, sizeof path, "/proc/%d/stat", m->pid[r]);
+        FILE *f = fopen(path, "re");
+        if (!f) continue;
+        char *got = fgets(line, sizeof line, f);
+        fclose(f);
+        const char *paren = got ? strrchr(line, ')') : NULL; /* "pid (name) S ..." */
+        if (paren && (paren[2] == 'T' || paren[2] == 't'))
+            at += (size_t)snprintf(buf + at, n - at, "%srank %d (pid %d) is stopped", at ? ", " : "; ", r, m->pid[r]);
+    }
+}
+
+/* A rank that stops answering (stopped, hung, its host gone) would leave the others waiting in
+ * MPI for ever: past the timeout this rank says so and exits, and the launcher ends the job
+ * (as when a rank is killed). The main thread may be inside MPI: this thread makes no MPI
+ * call, and leaves by _exit. */
+static void *watchdog(void *arg) {
+    SylEcoMpi *m = arg;
+    const struct timespec tick = {0, 200 * 1000000};
+    while (!atomic_load(&m->quit)) {
+        nanosleep(&tick, NULL);
+        int64_t since = atomic_load(&m->since);
+        if (!since || now_ms() - since < (int64_t)(m->timeout * 1000)) continue;
+        char who[1024];
+        stopped_ranks(m, who, sizeof who);
+        fprintf(stderr,
+                "sylva: error: rank %d of %d: no answer from the other ranks for %g s%s; ending the job "
+                "(SYLVA_RANK_TIMEOUT sets the time)\n",
+                m->rank, m->size, m->timeout, who);
+        fflush(stderr);
+        _exit(SYL_EIO);
+    }
+    return NULL;
 }
 
 static void mpi_post(void *ctx, int channel, int from, int to, const SylEcoPlant *p, size_t n) {
@@ -112,6 +174,7 @@ static void mpi_barrier(void *ctx) {
                     m->send_len[r] += len;
                 }
     }
+    wait_begin(m);
     MPI_Alltoall(m->send_len, 1, MPI_UINT64_T, m->recv_len, 1, MPI_UINT64_T, m->comm);
     int nreq = 0;
     for (int r = 0; r < m->size; r++) {
@@ -127,6 +190,7 @@ static void mpi_barrier(void *ctx) {
             m->bytes_sent += m->send_len[r];
         }
     MPI_Waitall(nreq, m->req, MPI_STATUSES_IGNORE);
+    wait_end(m);
     for (int r = 0; r < m->size; r++)
         for (uint64_t at = 0; at < m->recv_len[r];) {
             Record h;
@@ -159,7 +223,9 @@ static int mpi_owns(void *ctx, int tile) {
 static void mpi_sum(void *ctx, int64_t *v, size_t n) {
     SylEcoMpi *m = ctx;
     if (n > INT_MAX) fail(m, "too many sums");
+    wait_begin(m);
     MPI_Allreduce(MPI_IN_PLACE, v, (int)n, MPI_INT64_T, MPI_SUM, m->comm);
+    wait_end(m);
 }
 
 static int mpi_gather(void *ctx, const SylEcoPlant *p, size_t n, SylEcoPlant **all, size_t *nall) {
@@ -173,7 +239,9 @@ static int mpi_gather(void *ctx, const SylEcoPlant *p, size_t n, SylEcoPlant **a
         displs = malloc((size_t)m->size * sizeof *displs);
         if (!counts || !displs) fail(m, "out of memory for a gather");
     }
+    wait_begin(m);
     MPI_Gather(&mine, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm);
+    wait_end(m);
     int64_t total = 0;
     for (int r = 0; m->rank == 0 && r < m->size; r++) {
         if (total + counts[r] > INT_MAX) fail(m, "over 2^31 plants to gather");
@@ -181,7 +249,9 @@ static int mpi_gather(void *ctx, const SylEcoPlant *p, size_t n, SylEcoPlant **a
         total += counts[r];
     }
     if (m->rank == 0 && !(*all = malloc((size_t)(total ? total : 1) * sizeof **all))) fail(m, "out of memory for a gather");
+    wait_begin(m);
     MPI_Gatherv(p, mine, m->plant, *all, counts, displs, m->plant, 0, m->comm);
+    wait_end(m);
     *nall = (size_t)total;
     free(counts), free(displs);
     return 0;
@@ -209,6 +279,21 @@ SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv) {
     MPI_Comm_set_errhandler(m->comm, m->errh);
     MPI_Type_contiguous((int)sizeof(SylEcoPlant), MPI_BYTE, &m->plant);
     MPI_Type_commit(&m->plant);
+    const char *t = getenv("SYLVA_RANK_TIMEOUT");
+    m->timeout = t ? atof(t) : 600;
+    m->pid = calloc((size_t)m->size, sizeof *m->pid);
+    m->host = calloc((size_t)m->size, sizeof *m->host);
+    if (!m->pid || !m->host) fail(m, "out of memory");
+    char name[256] = "";
+    gethostname(name, sizeof name - 1);
+    unsigned h = 2166136261u; /* FNV-1a */
+    for (const char *c = name; *c; c++) h = (h ^ (unsigned char)*c) * 16777619u;
+    int mine[2] = {(int)getpid(), (int)h}, *all = malloc(2 * (size_t)m->size * sizeof *all);
+    if (!all) fail(m, "out of memory");
+    MPI_Allgather(mine, 2, MPI_INT, all, 2, MPI_INT, m->comm);
+    for (int r = 0; r < m->size; r++) m->pid[r] = all[2 * r], m->host[r] = all[2 * r + 1];
+    free(all);
+    if (m->timeout > 0) m->watching = !pthread_create(&m->watch, NULL, watchdog, m);
     return m;
 }
 
@@ -262,7 +347,9 @@ int syl_eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, 
     if (m->rank == 0 && (!(counts = malloc((size_t)m->size * sizeof *counts)) ||
                          !(displs = malloc((size_t)m->size * sizeof *displs))))
         fail(m, "out of memory for a gather");
+    wait_begin(m);
     MPI_Gather(&len, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm);
+    wait_end(m);
     int64_t total = 0;
     for (int r = 0; m->rank == 0 && r < m->size; r++) {
         if (total + counts[r] > INT_MAX) fail(m, "over 2 GB to gather");
@@ -271,7 +358,9 @@ int syl_eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, 
         total += counts[r];
     }
     if (m->rank == 0 && !(*all = malloc((size_t)(total ? total : 1)))) fail(m, "out of memory for a gather");
+    wait_begin(m);
     MPI_Gatherv(mine, len, MPI_BYTE, *all, counts, displs, MPI_BYTE, 0, m->comm);
+    wait_end(m);
     free(counts), free(displs);
     return SYL_OK;
 }
@@ -290,6 +379,10 @@ void syl_eco_mpi_end(SylEcoMpi *m) {
         free(m->req);
     MPI_Type_free(&m->plant);
     MPI_Errhandler_free(&m->errh);
+    wait_begin(m); /* MPI_Finalize waits for every rank too */
     MPI_Finalize();
+    atomic_store(&m->quit, 1);
+    if (m->watching) pthread_join(m->watch, NULL);
+    free(m->pid), free(m->host);
     free(m);
 }

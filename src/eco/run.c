@@ -27,7 +27,8 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
     if (!path) return SYL_ELIMIT;
     SylTerrain *t = NULL;
     SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
-                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag};
+                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag,
+                            .budget = o->budget};
     int st = syl_terrain_read(path, &to, &t);
     if (st == SYL_EIO && diag) /* the reader named the file: say which line of the model names it */
         cannot_use(p, diag, m->terrain);

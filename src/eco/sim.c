@@ -17,11 +17,13 @@
 #include <unistd.h>
 
 #include "eco/eco.h"
+#include "util/budget.h"
 #include "util/rng.h"
 
 typedef struct Buf {
     SylEcoPlant *p;
     size_t n, cap;
+    Budget *mem;  /* what its array is counted against (NULL: nothing) */
 } Buf;
 
 typedef struct Inbox {
@@ -62,11 +64,22 @@ typedef struct Sim {
 static bool buf_reserve(Buf *b, size_t need) {
     if (need <= b->cap) return true;
     size_t cap = need + need / 8 + 64;
+    if (!budget_resize(b->mem, (uint64_t)b->cap * sizeof *b->p, (uint64_t)cap * sizeof *b->p)) return false;
     SylEcoPlant *p = realloc(b->p, cap * sizeof *p);
-    if (!p) return false;
+    if (!p) {
+        budget_resize(b->mem, (uint64_t)cap * sizeof *b->p, (uint64_t)b->cap * sizeof *b->p);
+        return false;
+    }
     b->p = p;
     b->cap = cap;
     return true;
+}
+
+/* Free the array, release its charge; the buffer stays counted against the same budget. */
+static void buf_free(Buf *b) {
+    free(b->p);
+    budget_release(b->mem, (uint64_t)b->cap * sizeof *b->p);
+    *b = (Buf){.mem = b->mem};
 }
 
 static bool buf_push(Buf *b, const SylEcoPlant *p) {
@@ -353,10 +366,9 @@ static void step_tile(Sim *s, int ti) {
     /* the grid and the halo are done with: not held while the seedlings pile up */
     T->peak_bytes = 0;
     note_bytes(T, s->ntiles);
-    free(T->cell_start), free(T->order), free(T->halo.p);
+    free(T->cell_start), free(T->order), buf_free(&T->halo);
     T->cell_start = T->order = NULL;
     T->grid_cap = T->order_cap = 0;
-    T->halo = (Buf){0};
     T->alive_start = T->own.n;
     for (int u = 0; u < s->ntiles; u++) T->out[u].n = 0;
     /* deaths, growth and seeds */
@@ -625,6 +637,8 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         T->border = calloc((size_t)s.ntiles, sizeof *T->border);
         T->inbox = calloc((size_t)s.ntiles, sizeof *T->inbox);
         if (!T->out || !T->border || !T->inbox) st = SYL_ELIMIT;
+        for (int u = 0; !st && u < s.ntiles; u++) T->out[u].mem = T->border[u].mem = o->budget;
+        T->own.mem = T->halo.mem = o->budget;
     }
     if (!st) st = place_start(&s, o);
     /* what the processes add up each year: failed, alive, plant-years, bytes, then per species
@@ -662,24 +676,29 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
             }
         }
         if (s.x->sum) s.x->sum(s.x->ctx, v, nv);
-        if (v[V_FAILED]) st = SYL_ELIMIT;
+        if (v[V_FAILED]) {
+            if (o->diag && !o->budget) fprintf(o->diag, "sylva: error: year %d: out of memory\n", y);
+            else if (o->diag) /* the buffers ran past the budget (or malloc failed) */
+                fprintf(o->diag,
+                        "sylva: error: year %d: the plants need more memory than --max-memory allows (%llu MB in "
+                        "all); raise the limit with --max-memory\n",
+                        y, (unsigned long long)budget_limit_mb(o->budget));
+            st = SYL_ELIMIT;
+        }
         plant_years += (uint64_t)v[V_PY];
         size_t alive = (size_t)v[V_ALIVE], bytes = (size_t)v[V_BYTES];
         const int64_t *area = v + V_AREA, *height = v + V_HEIGHT;
         for (int sp = 0; sp < m->nspecies; sp++) yr.count[sp] = (uint32_t)v[V_COUNT + sp];
         if (!st && o->max_plants && alive > o->max_plants) {
             if (o->diag)
-                fprintf(o->diag, "sylva: error: year %d: %zu plants, more than the limit of %llu\n", y, alive,
+                fprintf(o->diag, "sylva: error: year %d: %zu plants, more than the limit of %llu; raise it with --max-plants\n", y, alive,
                         (unsigned long long)o->max_plants);
             st = SYL_ELIMIT;
         }
         if (st) break;
         /* the seedlings have settled: their buffers are not held until next year's seeds */
         for (int ti = 0; ti < s.ntiles; ti++)
-            for (int u = 0; u < s.ntiles; u++) {
-                free(s.tile[ti].out[u].p);
-                s.tile[ti].out[u] = (Buf){0};
-            }
+            for (int u = 0; u < s.ntiles; u++) buf_free(&s.tile[ti].out[u]);
         double terrain_area = (double)t->nx * t->nz * t->cell * t->cell;
         for (int sp = 0; sp < m->nspecies; sp++) {
             yr.cover[sp] = (double)area[sp] * 1e-4 / terrain_area;
@@ -722,9 +741,9 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
     }
     for (int ti = 0; s.tile && ti < s.ntiles; ti++) {
         Tile *T = &s.tile[ti];
-        free(T->own.p), free(T->halo.p), free(T->inbox);
-        for (int u = 0; T->out && u < s.ntiles; u++) free(T->out[u].p);
-        for (int u = 0; T->border && u < s.ntiles; u++) free(T->border[u].p);
+        buf_free(&T->own), buf_free(&T->halo), free(T->inbox);
+        for (int u = 0; T->out && u < s.ntiles; u++) buf_free(&T->out[u]);
+        for (int u = 0; T->border && u < s.ntiles; u++) buf_free(&T->border[u]);
         free(T->out), free(T->border), free(T->cell_start), free(T->order);
     }
     free(all.p);

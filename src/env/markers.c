@@ -25,6 +25,7 @@ void markers_init(MarkerCloud *c, float cell, float density, float kill, float g
 }
 
 void markers_free(MarkerCloud *c) {
+    budget_release(c->mem, c->charged);
     free(c->keys);
     free(c->slot_block);
     free(c->blocks);
@@ -74,6 +75,14 @@ static bool make_cell(MarkerCloud *c, int x, int y, int z, const PointGrid *occu
     Rng r = rng_stream(c->seed, key, 7, 0);
     /* a whole number of markers with the right mean */
     double want = c->per_cell;
+    /* counted before they are made: a position and a flag each (density 1e4 with a perception
+     * of 1e4 internodes asks for 1e16 a cell) */
+    double need = (want + 1) * (double)(sizeof *c->pos + 1) + (double)sizeof *c->blocks;
+    uint64_t bytes = need < 1e19 ? (uint64_t)need : UINT64_MAX;
+    if (!budget_charge(c->mem, bytes)) return false;
+    c->charged += bytes;
+    /* a cell's markers are counted and indexed in 32 bits (and 1e16 is no uint32_t) */
+    if (!(want < (double)UINT32_MAX - 1 - (double)c->n)) return false;
     uint32_t count = (uint32_t)want + (rng_unit(&r) < want - floor(want));
     size_t pcap = c->cap;
     if (!array_reserve(&c->pos, &pcap, c->n + count, sizeof *c->pos)) return false;

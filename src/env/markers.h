@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "env/pointgrid.h"
+#include "util/budget.h"
 
 typedef struct MarkerBlock {
     uint64_t key;
@@ -30,6 +31,8 @@ typedef struct MarkerCloud {
     float (*pos)[3];
     uint8_t *alive;
     size_t n, cap;
+    Budget *mem;         /* the markers count against it (NULL: nothing); set after init */
+    uint64_t charged;
 } MarkerCloud;
 
 /* density: markers per cubic model unit. */

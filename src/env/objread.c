@@ -152,10 +152,11 @@ int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, FILE
 int obj_read(const char *path, ObjMesh *out, FILE *diag) {
     memset(out, 0, sizeof *out);
     size_t len = 0;
-    char *text = file_read(path, &len);
+    char *text = file_read_named(path, &len, NULL);
     if (!text) {
-        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
-        return SYL_EIO;
+        int e = errno; /* before the message, which may change it */
+        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(e));
+        return e == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     }
     int st = obj_parse(path, text, len, out, diag);
     free(text);

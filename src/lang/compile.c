@@ -276,9 +276,11 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         p->text = malloc(len + 1);
         if (p->text) memcpy(p->text, text, len);
     } else {
-        p->text = file_read(path, &len);
+        /* a scene's plant file is named by the model: a regular file only */
+        p->text = opt->sibling ? file_read_named(path, &len, NULL) : file_read(path, &len);
         if (!p->text) {
-            if (opt->diag) fprintf(opt->diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
+            int e = errno; /* before the message, which may change it */
+            if (opt->diag) fprintf(opt->diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(e));
             free(p);
             *status = SYL_EIO;
             return NULL;

@@ -19,11 +19,12 @@ static char *resolve(Arena *a, const char *program, const char *name) {
 
 static const Source *read_source(Compiler *c, const char *path, SylLoc at) {
     size_t len;
-    char *text = file_read(path, &len);
+    char *text = file_read_named(path, &len, NULL);
     if (!text) {
+        int e = errno; /* before the message, which may change it */
         char shown[256];
         diag_error(c->d, at, "cannot read '%s': %s", diag_quote(shown, sizeof shown, path, strlen(path)),
-                   strerror(errno));
+                   file_strerror(e));
         return NULL;
     }
     Arena *pa = &c->p->arena;

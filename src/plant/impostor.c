@@ -6,6 +6,7 @@
 
 #include "sylva/impostor.h"
 #include "sylva/render.h"
+#include "util/budget.h"
 
 void syl_impostor_direction(int grid, int col, int row, float d[3]) {
     float ex = 2 * ((float)col + 0.5f) / (float)grid - 1, ey = 2 * ((float)row + 0.5f) / (float)grid - 1;
@@ -112,11 +113,27 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
         float *d = dirs[g * g + q];
         d[0] = side * sinf(th), d[1] = 0, d[2] = side * cosf(th);
     }
+    /* the views' pictures (RGB, alpha, RGBA, normal and depth: 12 bytes a pixel), then the
+     * two atlases and the billboards' row: counted before anything is drawn */
+    size_t side = (size_t)g * (size_t)v;
+    uint64_t views = 12ull * (uint64_t)v * (uint64_t)v * (uint64_t)nviews,
+             atlases = 8ull * side * side + 8ull * (uint64_t)k * (uint64_t)v * (uint64_t)v;
+    if (!budget_charge(o->budget, views + atlases)) {
+        if (o->diag)
+            fprintf(o->diag,
+                    "sylva: error: the impostor would need %llu MB (%d views of %dx%d pixels and a %zux%zu atlas), "
+                    "more than --max-memory allows (%llu MB in all); raise the limit with --max-memory, or use a "
+                    "smaller --impostor-grid or --impostor-view\n",
+                    (unsigned long long)((views + atlases) >> 20), nviews, v, v, side, side,
+                    (unsigned long long)budget_limit_mb(o->budget));
+        free(dirs);
+        return SYL_ELIMIT;
+    }
     uint8_t *rgba = NULL, *nd = NULL;
     int status = bake_views(m, o, nviews, (const float (*)[3])dirs, v, &rgba, &nd);
     *out = (SylImpostor){.grid = g, .view = v, .size = g * v, .billboards = k, .bb_width = 2 * k * v};
+    out->budget = o->budget, out->charged = views + atlases;
     bounds_sphere(m, out->centre, &out->radius);
-    size_t side = (size_t)g * (size_t)v;
     if (!status) {
         out->color = g ? malloc(4 * side * side) : NULL;
         out->normal = g ? malloc(4 * side * side) : NULL;
@@ -131,12 +148,15 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
         }
     for (int q = 0; !status && q < 2 * k; q++) place(out->bb_color, out->bb_width, rgba, g * g + q, v, q, 0);
     free(rgba), free(nd), free(dirs);
+    if (status && o->diag) fprintf(o->diag, "sylva: error: out of memory baking the impostor\n");
     if (status) syl_impostor_free(out);
+    else budget_release(out->budget, views), out->charged = atlases; /* the views are freed */
     return status;
 }
 
 void syl_impostor_free(SylImpostor *imp) {
     free(imp->color), free(imp->normal), free(imp->bb_color);
     syl_mesh_free(imp->bb_mesh);
+    budget_release(imp->budget, imp->charged);
     memset(imp, 0, sizeof *imp);
 }

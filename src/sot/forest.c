@@ -158,6 +158,7 @@ int forest_setup(Forest *f, float ground, const float sun[3], bool sun_set) {
                 if (f->trees[i].P.perception * f->trees[i].P.internode > reach)
                     reach = f->trees[i].P.perception * f->trees[i].P.internode;
             markers_init(&e->cloud, reach, space->density / il3, e->occupancy, ground, space->seed ^ 0x3a7c3u);
+            e->cloud.mem = f->mem;
             e->cloud_on = true;
         }
     }

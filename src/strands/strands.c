@@ -42,6 +42,7 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     }
     SylSkeleton *sk = syl_skeleton_new(syl_program_name(p));
     if (!sk) {
+        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
         budget_release(mem, bytes);
         return SYL_ELIMIT;
     }
@@ -51,6 +52,10 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     /* the counts are known (3.1): one allocation each, not a doubling series */
     if (!array_reserve(&sk->nodes, &sk->node_cap, c.nodes, sizeof(SylNode)) ||
         (c.organs && !array_reserve(&sk->organs, &sk->organ_cap, c.organs, sizeof(SylOrgan)))) {
+        if (opt->diag) /* within the budget, but the system said no (ulimit -v, a cgroup) */
+            fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton's %llu nodes and %llu leaves (%llu MB)\n",
+                    syl_program_name(p), (unsigned long long)c.nodes, (unsigned long long)c.organs,
+                    (unsigned long long)(bytes >> 20));
         syl_skeleton_free(sk);
         return SYL_ELIMIT;
     }

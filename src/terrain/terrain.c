@@ -174,14 +174,15 @@ int syl_terrain_read(const char *path, const SylTerrainOptions *o, SylTerrain **
     }
     if (obj) return terrain_read_obj(path, o, out);
     size_t len;
-    char *data = file_read(path, &len);
+    char *data = file_read_named(path, &len, o->budget);
     if (!data) {
-        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
-        return errno == ENOMEM ? SYL_ELIMIT : SYL_EIO;
+        int e = errno; /* before the message, which may change it */
+        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(e));
+        return e == ENOMEM || e == FILE_EBUDGET ? SYL_ELIMIT : SYL_EIO;
     }
     int st = png   ? terrain_read_png(path, (const uint8_t *)data, len, o, out)
              : dmr ? terrain_read_dmr(path, data, len, o, out)
                    : terrain_read_asc(path, data, len, o, out);
-    free(data);
+    file_free_named(data, len, o->budget);
     return st;
 }

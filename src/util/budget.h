@@ -17,8 +17,13 @@ struct SylBudget {
 };
 typedef struct SylBudget Budget;
 
-/* Half the machine's memory, at most 16 GiB: the default of --max-memory. */
+/* The default of --max-memory: half the smallest of the machine's memory, RLIMIT_AS (less
+ * 192 MB and 72 MB a core of code, stacks and malloc arenas), RLIMIT_DATA and the cgroup's
+ * memory limit (v2 memory.max or v1 memory.limit_in_bytes, its
+ * own or a parent's), at most 16 GiB; the half left covers what the budget does not count.
+ * budget_default_why also says which of them set it. */
 uint64_t budget_default_limit(void);
+uint64_t budget_default_why(const char **why);
 /* A budget of limit bytes (0: the default), nothing charged. */
 void budget_init(Budget *b, uint64_t limit);
 /* Count bytes more; false (nothing counted, the refusal remembered) when the total would pass

@@ -81,12 +81,15 @@ struct Traced {
     Pending pend;
 };
 
-static void free_pending(Pending *p) {
+/* Frees the clones, releasing what they were charged. */
+static void free_pending(WeberGen *g, Pending *p) {
     for (size_t i = 0; i < p->n; i++) {
         free(p->c[i].segs);
-        free_pending(&p->c[i].pend);
+        budget_release(g->budget, (uint64_t)p->c[i].st.nseg * sizeof(WSeg));
+        free_pending(g, &p->c[i].pend);
     }
     free(p->c);
+    budget_release(g->budget, (uint64_t)p->cap * sizeof *p->c);
     *p = (Pending){0};
 }
 
@@ -115,16 +118,27 @@ static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *
             }
             if (pend->n == pend->cap) {
                 size_t nc = pend->cap ? 2 * pend->cap : 4;
+                if (!budget_resize(g->budget, (uint64_t)pend->cap * sizeof *pend->c, (uint64_t)nc * sizeof *pend->c))
+                    return g->failed = true, -1;
                 Traced *q = realloc(pend->c, nc * sizeof *q);
-                if (!q) return g->failed = true, -1;
+                if (!q) {
+                    budget_resize(g->budget, (uint64_t)nc * sizeof *pend->c, (uint64_t)pend->cap * sizeof *pend->c);
+                    return g->failed = true, -1;
+                }
                 pend->c = q, pend->cap = nc;
             }
             Traced *t = &pend->c[pend->n];
-            t->segs = malloc((size_t)c.nseg * sizeof *t->segs);
             t->pend = (Pending){0};
-            if (!t->segs) return g->failed = true, -1;
+            if (!budget_charge(g->budget, (uint64_t)c.nseg * sizeof *t->segs)) return g->failed = true, -1;
+            t->segs = malloc((size_t)c.nseg * sizeof *t->segs);
+            if (!t->segs) {
+                budget_release(g->budget, (uint64_t)c.nseg * sizeof *t->segs);
+                return g->failed = true, -1;
+            }
+            t->st = c; /* nseg: what free_pending releases */
             pend->n++;
             trace_in(g, &c, s + 1, c.start, false, t->segs, &t->pend);
+            if (g->failed) return -1;
             t->st = c;
         }
         Frame t2 = weber_split(g, st, &r, trf, 0, s, n, test);
@@ -242,6 +256,6 @@ bool weber_make_stem(WeberGen *g, WStem st) {
     trace_in(g, &t.st, 0, t.st.start, false, t.segs, &t.pend);
     if (!g->failed && add_stem(g, &t.st, &id)) run_stem(g, id, &t);
     free(t.segs);
-    free_pending(&t.pend);
+    free_pending(g, &t.pend);
     return !g->failed;
 }

@@ -54,6 +54,26 @@ static void make_trunks(WeberGen *g, JRand *j0, JRand *j1) {
     }
 }
 
+/* The stems the parameters make (clones too), as many as Branches allows at each level, each
+ * split doubling or more what follows it: SegSplits 2 on 40 segments is 3^39 clones, 0BaseSplits
+ * a number of trunks. Their bytes (the stem, each segment's frame while it is traced, its axis
+ * points and skeleton nodes) are compared with the budget before any stem is made. */
+static double estimate_stems(const WeberGen *g, double *bytes) {
+    const WeberParams *w = &g->w;
+    double parents = 1, stems = 0;
+    *bytes = 0;
+    for (int lv = 0; lv < g->levels; lv++) {
+        int l = weber_lv(lv);
+        double res = w->CurveRes[l];
+        parents *= w->Branches[l];
+        double pieces = parents * pow(1 + w->SegSplits[l], res - 1);
+        if (lv == 0 && w->BaseSplits > 0) pieces *= (1 + w->BaseSplits) / (1 + w->SegSplits[l]);
+        stems += pieces;
+        *bytes += pieces * (sizeof(WStem) + res * (sizeof(WSeg) + sizeof(WPoint) + sizeof(SylNode)));
+    }
+    return stems;
+}
+
 /* The envelope's file, beside the program's unless absolute. */
 static char *beside(const SylProgram *p, const char *file) {
     const char *prog = syl_program_path(p);
@@ -114,6 +134,20 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
             return est;
         }
         g->envelope = &env;
+    }
+    double bytes, stems = estimate_stems(g, &bytes);
+    uint64_t used = atomic_load(&g->budget->used);
+    if (!(bytes < (double)(g->budget->limit - (used < g->budget->limit ? used : g->budget->limit)))) {
+        if (diag)
+            fprintf(diag,
+                    "sylva: error: '%s': the tree would have about %.3g stems (%.0f MB), more than --max-memory "
+                    "allows (%llu MB in all); raise the limit with --max-memory, or lower SegSplits, 0BaseSplits "
+                    "or Branches\n",
+                    syl_program_name(p), stems, bytes / (1 << 20), (unsigned long long)budget_limit_mb(g->budget));
+        obstacles_free(&env.obs);
+        if (env.dev) rtcReleaseDevice(env.dev);
+        free(g);
+        return SYL_ELIMIT;
     }
     JRand j0, j1;
     bool java = w->convention == WEBER_ARBARO;

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "sylva/wind.h"
+#include "util/budget.h"
 #include "util/rng.h"
 
 #define TWO_PI 6.28318530717958647692
@@ -141,6 +142,20 @@ int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptio
     else dir[0] = 1, dir[1] = 0;
     int status = find_stems(s, radius, out);
     if (!status && out->nstems) status = find_joints(out, levels);
+    uint64_t bytes = (uint64_t)out->nstems * (sizeof *out->stems + sizeof *out->joints) +
+                     2 * 4 * sizeof *out->rot * (uint64_t)out->njoints * (uint64_t)out->nkeys;
+    if (!status && !budget_charge(o->budget, bytes)) {
+        if (o->diag)
+            fprintf(o->diag,
+                    "sylva: error: the wind's %d joints and %d keys would need %llu MB, more than --max-memory "
+                    "allows (%llu MB in all); raise the limit with --max-memory, or use fewer --wind-levels or "
+                    "--wind-seconds\n",
+                    out->njoints, out->nkeys, (unsigned long long)(bytes >> 20),
+                    (unsigned long long)budget_limit_mb(o->budget));
+        syl_wind_free(out);
+        return SYL_ELIMIT;
+    }
+    if (!status) out->budget = o->budget, out->charged = bytes;
     if (!status && out->njoints &&
         !(out->rot = malloc(4 * sizeof *out->rot * (size_t)out->njoints * (size_t)out->nkeys)))
         status = SYL_ELIMIT;
@@ -148,11 +163,13 @@ int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptio
     for (int32_t a = 0; a < out->nstems && !status; a++)
         if (out->stems[a].parent < 0 && out->stems[a].radius > r0) r0 = out->stems[a].radius;
     for (int j = 0; j < out->njoints && !status; j++) sway(o, dir, r0, out, j);
+    if (status == SYL_ELIMIT && o->diag) fprintf(o->diag, "sylva: error: out of memory building the wind's joints\n");
     if (status) syl_wind_free(out);
     return status;
 }
 
 void syl_wind_free(SylWind *w) {
+    budget_release(w->budget, w->charged);
     free(w->stems);
     free(w->joints);
     free(w->rot);
