@@ -103,7 +103,7 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     int files = 1; /* cli_validate reads the scene's files, as `sylva check` does */
     SylCompileOptions opt = {.model = rq->model[0] ? rq->model : NULL, .overrides = rq->sets,
                              .noverrides = rq->nsets, .diag = diag, .lint = 1,
-                             .validate = cli_validate, .validate_user = &files};
+                             .validate = syl_validate, .validate_user = &files};
     double t0 = cli_now();
     int status;
     SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
@@ -347,7 +347,7 @@ char *view_describe_json(View *v, const ViewRequest *rq, char **diag) {
     if (!df) return NULL;
     int files = 1, status;
     SylCompileOptions opt = {.model = rq->model[0] ? rq->model : NULL, .overrides = rq->sets,
-                             .noverrides = rq->nsets, .diag = df, .validate = cli_validate,
+                             .noverrides = rq->nsets, .diag = df, .validate = syl_validate,
                              .validate_user = &files};
     SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
     FILE *f = p ? open_memstream(&s, &len) : NULL;
