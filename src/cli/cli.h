@@ -13,7 +13,7 @@
 #include "sylva/sylva.h"
 #include "util/outfile.h"
 
-enum { MAX_SETS = 64 };
+enum { MAX_SETS = 64, MAX_ALLOW_PATHS = 64 };
 
 /* What every command that compiles a model accepts. */
 typedef struct ModelArgs {
@@ -26,6 +26,8 @@ typedef struct ModelArgs {
     float age;         /* --age (strands blocks); 0: full grown */
     int levels;        /* --levels (weber blocks); 0: the block's Levels */
     bool warned;       /* its warnings were printed (cli_compile) */
+    const char *allow[MAX_ALLOW_PATHS]; /* --allow-path: more folders the files it names may be in */
+    int nallow;
 } ModelArgs;
 
 /* Split FILE:Model. */

@@ -43,6 +43,7 @@ const CliCommand cli_animate_command = {
                  "of ages, default 10); default: the model's `derive` or `years`"},
         {.option = CLI_OPT_SEED},
         {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_ALLOW_PATH},
         {.option = CLI_OPT_THREADS},
         {.group = cli_limits},
         {.group = cli_grow_limits},

@@ -19,6 +19,7 @@ const CliCommand cli_check_command = {
         {.option = CLI_OPT_WERROR},
         {.option = CLI_OPT_SET, .help = "check the model with this value, as other commands would\n"
                                          "take it; repeatable"},
+        {.option = CLI_OPT_ALLOW_PATH},
         {0},
     },
     .width = 18,
@@ -59,7 +60,8 @@ int cmd_check(int argc, char **argv) {
             FILE *mem = open_memstream(&msg, &msglen);
             SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1,
                                      .overrides = m.sets, .noverrides = m.nsets,
-                                     .validate = cli_validate, .validate_user = &files};
+                                     .validate = cli_validate, .validate_user = &files,
+                                     .allow_paths = sets.allow, .nallow_paths = sets.nallow};
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
             if (mem) fclose(mem);

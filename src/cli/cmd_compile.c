@@ -14,6 +14,7 @@ const CliCommand cli_compile_command = {
     .options = (const CliUse[]){
         {.option = CLI_OPT_DUMP, .help = ""}, /* no rows: the usage line names them */
         {.option = CLI_OPT_SET, .help = ""},
+        {.option = CLI_OPT_ALLOW_PATH},
         {0},
     },
 };

@@ -43,6 +43,7 @@ const CliCommand cli_ecosystem_command = {
         {.option = CLI_OPT_RESUME},
         {.option = CLI_OPT_SEED},
         {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_ALLOW_PATH},
         {.option = CLI_OPT_THREADS, .help = "threads over the tiles (default: all cores); the output\n"
                                             "never depends on N"},
         {.option = CLI_OPT_ECO_VIEW},

@@ -16,7 +16,7 @@ struct ModelArgs;
  * that fits several ("--s") is refused with them listed in it, so keep it when adding one. */
 typedef enum CliOptionId {
     CLI_OPT_NONE, /* ends a table */
-    CLI_OPT_DERIVE, CLI_OPT_SEED, CLI_OPT_SET, CLI_OPT_THREADS,
+    CLI_OPT_DERIVE, CLI_OPT_SEED, CLI_OPT_SET, CLI_OPT_ALLOW_PATH, CLI_OPT_THREADS,
     CLI_OPT_MAX_MODULES, CLI_OPT_MAX_MEMORY, CLI_OPT_MAX_WORK, CLI_OPT_MAX_METAMERS, CLI_OPT_MAX_BUDS,
     CLI_OPT_YEARS, CLI_OPT_SEEDS, CLI_OPT_AGE, CLI_OPT_LEVELS,
     CLI_OPT_OUTPUT, CLI_OPT_OUT, CLI_OPT_IMAGE, CLI_OPT_FORMAT, CLI_OPT_CSV, CLI_OPT_JSON,

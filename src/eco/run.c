@@ -1,23 +1,8 @@
 /* syl_ecosystem_run: the block, its terrain and its factors, then the simulation. */
-#include <libgen.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "eco/eco.h"
-
-/* The DEM's path: as written when absolute, else beside the program's file. */
-static char *terrain_path(const SylProgram *p, const char *file) {
-    if (file[0] == '/') return strdup(file);
-    char *prog = strdup(syl_program_path(p));
-    if (!prog) return NULL;
-    const char *dir = dirname(prog);
-    size_t n = strlen(dir) + strlen(file) + 2;
-    char *out = malloc(n);
-    if (out && !strcmp(dir, ".")) snprintf(out, n, "%s", file);
-    else if (out) snprintf(out, n, "%s/%s", dir, file);
-    free(prog);
-    return out;
-}
 
 int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *m, SylTerrain **terrain) {
     FILE *diag = o->diag;
@@ -28,8 +13,10 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
         return SYL_EUSAGE;
     }
     if (syl_ecosystem_read(p, m, diag)) return SYL_EMODEL;
-    char *path = terrain_path(p, m->terrain);
-    if (!path) return SYL_ELIMIT;
+    char *path = NULL; /* beside the program's file unless absolute */
+    int refused = syl_program_file(p, m->terrain, &path);
+    if (refused == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read the terrain '%s': %s\n", m->terrain, syl_file_refused);
+    if (refused) return refused;
     SylTerrain *t = NULL;
     SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
                             .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag};

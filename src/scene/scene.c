@@ -4,6 +4,7 @@
  * L-systems only, each is derived and drawn in turn and stands, for the plants after it, as
  * static shadow casters and occupants. The skeleton holds every plant in the order the scene
  * lists them. */
+#include <errno.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdlib.h>
@@ -62,19 +63,31 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
         copt.model = pl->model;
         return syl_compile(syl_program_path(p), text, len, &copt, status);
     }
-    char *path = scene_spec_path(p, pl->file);
-    if (!path) {
-        *status = SYL_ELIMIT;
+    char *path = NULL, *model = NULL;
+    *status = scene_spec_path(p, pl->file, &model, &path);
+    if (*status) {
+        if (*status == SYL_EIO && diag) syl_program_error(p, diag, pl->line, pl->col, "cannot read the plant file \"%s\": %s", pl->file, syl_file_refused);
         return NULL;
     }
-    char *colon = strrchr(path, ':');
-    if (colon && colon > strrchr(path, '/') && colon[1]) {
-        *colon = 0;
-        copt.model = colon + 1;
+    copt.model = model;
+    copt.allow_paths = p->roots; /* its own folder is within them: it may read no further than p */
+    copt.nallow_paths = p->nroots;
+    size_t len = 0;
+    char *text = syl_read_file(path, &len);
+    if (!text) {
+        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
+        *status = SYL_EIO;
+    } else if (!syl_text_is_model(text, len)) { /* its lines are not shown: it may be anything */
+        if (diag) syl_program_error(p, diag, pl->line, pl->col, "the plant file \"%s\" is not a model file (no lsystem, grow, weber or strands block)", pl->file);
+        *status = SYL_EMODEL;
+    }
+    if (*status) {
+        free(text), free(path), free(model);
+        return NULL;
     }
     copt.validate = syl_grow_validate; /* another file: checked as `sylva check` would */
-    SylProgram *q = syl_compile(path, NULL, 0, &copt, status);
-    free(path);
+    SylProgram *q = syl_compile(path, text, len, &copt, status);
+    free(text), free(path), free(model);
     return q;
 }
 
@@ -209,9 +222,10 @@ static SylMesh *obstacle_mesh(const Obstacles *o) {
 static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, FILE *diag) {
     for (int i = 0; i < S->nobstacles; i++) {
         const SceneObstacle *o = &S->obstacles[i];
-        char *path = scene_spec_path(p, o->file);
-        if (!path) return SYL_ELIMIT;
-        int st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
+        char *path = NULL;
+        int st = scene_spec_path(p, o->file, NULL, &path);
+        if (st == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", o->file, syl_file_refused);
+        if (!st) st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
         free(path);
         if (st) {
             if (diag) syl_program_error(p, diag, o->line, o->col, "cannot use the obstacle \"%s\"", o->file);

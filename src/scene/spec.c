@@ -8,7 +8,6 @@
  *   sun direction (x, y, z)                          towards the sun
  */
 #include <errno.h>
-#include <libgen.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -284,26 +283,31 @@ void scene_spec_free(SceneSpec *s) {
     memset(s, 0, sizeof *s);
 }
 
-char *scene_spec_path(const SylProgram *p, const char *file) {
-    if (file[0] == '/') return strdup(file);
-    char *scene = strdup(syl_program_path(p));
-    if (!scene) return NULL;
-    const char *dir = dirname(scene);
-    size_t n = strlen(dir) + strlen(file) + 2;
-    char *out = malloc(n);
-    if (out && !strcmp(dir, ".")) snprintf(out, n, "%s", file); /* messages name it as written */
-    else if (out) snprintf(out, n, "%s/%s", dir, file);
-    free(scene);
-    return out;
+int scene_spec_path(const SylProgram *p, const char *file, char **model, char **out) {
+    char *name = strdup(file);
+    if (!name) return SYL_ELIMIT;
+    char *colon = model ? strrchr(name, ':') : NULL; /* "file.syl:Model", split before the file is judged */
+    if (colon && colon > name && colon[1] && (!strrchr(name, '/') || colon > strrchr(name, '/'))) *colon = 0;
+    else colon = NULL;
+    if (model) *model = NULL;
+    int st = syl_program_file(p, name, out);
+    if (!st && colon && !(*model = strdup(colon + 1))) {
+        free(*out);
+        *out = NULL;
+        st = SYL_ELIMIT;
+    }
+    free(name);
+    return st;
 }
 
 /* A file the scene names that cannot be read: a warning, since the commands that grow the
  * scene fail on it (the file may yet be made, or the model derived on its own). */
-static void warn_unreadable(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
-    char *path = scene_spec_path(p, file);
-    if (!path) return;
-    char *colon = strrchr(path, ':'); /* "file.syl:Model" */
-    if (colon && colon > path && colon[1] && (!strrchr(path, '/') || colon > strrchr(path, '/'))) *colon = 0;
+static int warn_unreadable(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
+    char *path = NULL, *model = NULL;
+    int st = scene_spec_path(p, file, strcmp(what, "plant") ? NULL : &model, &path);
+    free(model);
+    if (st == SYL_EIO) syl_program_error(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, syl_file_refused);
+    if (st) return st == SYL_EIO;
     errno = 0;
     FILE *f = fopen(path, "rb");
     if (f && fgetc(f) == EOF && ferror(f)) {
@@ -313,17 +317,19 @@ static void warn_unreadable(const SylProgram *p, FILE *diag, const char *what, c
     if (!f) program_warning(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, strerror(errno));
     else fclose(f);
     free(path);
+    return 0;
 }
 
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     SceneSpec s;
-    int errors = scene_spec_read(p, &s, diag), set_errors = s.set_errors;
+    int errors = scene_spec_read(p, &s, diag), set_errors = s.set_errors, refused = 0;
     for (int i = 0; files && !errors && i < s.nobstacles; i++)
-        warn_unreadable(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
-                        s.obstacles[i].line, s.obstacles[i].col);
+        refused += warn_unreadable(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
+                                   s.obstacles[i].line, s.obstacles[i].col);
     for (int i = 0; files && !errors && i < s.nplants; i++)
         if (s.plants[i].file)
-            warn_unreadable(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
+            refused += warn_unreadable(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
+    errors += refused;
     scene_spec_free(&s);
     return errors && errors == set_errors ? -errors : errors;
 }
