@@ -20,7 +20,7 @@
 extern "C" {
 #endif
 
-enum { SYL_ECO_MAX_SPECIES = 32, SYL_ECO_MAX_SNAPSHOTS = 64 };
+enum { SYL_ECO_MAX_SPECIES = 32, SYL_ECO_MAX_SNAPSHOTS = 64, SYL_ECO_MAX_YEARS = 60000 /* `years`, --years */ };
 enum { SYL_ECO_FREE = 0, SYL_ECO_DOMINATED = 1 }; /* SylEcoPlant.state */
 
 /* One plant: 32 bytes. Its altitude is the terrain's at (x, z); its ecological radius is its
@@ -76,6 +76,10 @@ typedef struct SylEcoModel {
  * syl_compile's hook (`sylva check`). */
 int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag);
 int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
+/* Read an ecosystem block's DEM as the run will (not its factors), for `sylva check`: 0, or 1
+ * when it cannot be read, lies outside the folders the model may read or is malformed
+ * (reported to diag). */
+int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag);
 
 /* How tiles talk: a tile posts plants to another tile (its border plants, for the other's
  * halo, or the seedlings that sprouted there, germinated by the sender) and, after a

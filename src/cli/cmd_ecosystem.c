@@ -34,7 +34,7 @@ const CliCommand cli_ecosystem_command = {
              "every year; rank 0 writes the same files as one process (docs/distributed.md).\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT, .help = "the directory to write into (made if missing)"},
-        {.option = CLI_OPT_YEARS, .help = "years to simulate (default: the block's `years`)"},
+        {.option = CLI_OPT_ECO_YEARS},
         {.option = CLI_OPT_SNAPSHOTS},
         {.option = CLI_OPT_TILES},
         {.option = CLI_OPT_REBALANCE},
@@ -68,6 +68,8 @@ const CliCommand cli_ecosystem_command = {
 int cli_validate(void *user, const SylProgram *p, FILE *diag) {
     int e = syl_grow_validate(user, p, diag);
     if (e >= 0 && syl_program_kind(p) == SYL_MODEL_ECOSYSTEM) e += syl_ecosystem_validate(p, diag);
+    /* sylva check (user: its files flag) reads the DEM as the run will */
+    if (!e && user && *(const int *)user) e += syl_ecosystem_check_terrain(p, diag);
     return e;
 }
 
@@ -475,6 +477,10 @@ int cmd_ecosystem(int argc, char **argv) {
     r.t = t;
     if (!st) r.hash = syl_ecosystem_hash(&model, t, d.use_seed ? d.seed : model.seed);
     int years = o.years > 0 ? o.years : model.years;
+    const int *snaps = a.nsnapshots ? a.snapshots : model.snapshots;
+    for (int i = a.nsnapshots ? a.nsnapshots : model.nsnapshots; !st && writer && i-- > 0 && snaps[i] > years;)
+        fprintf(stderr, "sylva: warning: the snapshot of year %d is past the run's last year (%d): it is not written\n",
+                snaps[i], years);
     if (!st && a.resume) {
         char *path = path_in(a.resume, "ecosystem.ckpt", 0);
         st = path ? syl_ecosystem_checkpoint_read(path, &ck, writer ? stderr : NULL) : SYL_ELIMIT;
@@ -496,8 +502,12 @@ int cmd_ecosystem(int argc, char **argv) {
         o.every = a.every > 0 ? a.every : 10;
         o.on_checkpoint = on_checkpoint;
         r.checkpoint = ck_path = path_in(a.checkpoint, "ecosystem.ckpt", 0);
+        struct stat sb;
         if (!ck_path) st = SYL_ELIMIT;
-        else if (writer) st = make_dir(a.checkpoint);
+        else if (writer && !(st = make_dir(a.checkpoint)) && (stat(a.checkpoint, &sb) || !S_ISDIR(sb.st_mode))) {
+            fprintf(stderr, "sylva: error: --checkpoint expects a directory, and '%s' is not one\n", a.checkpoint);
+            st = SYL_EUSAGE; /* before the run, not at its first checkpoint */
+        }
     }
     if (mpi) { /* the tiles over the ranks; a rank that failed above still joins the check below */
         if (!st && !o.tiles_x) {

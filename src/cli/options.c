@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "sylva/ecosystem.h"
 #include "sylva/texture.h"
 #include "sylva/lod.h"
 
@@ -132,7 +133,11 @@ static bool read_snapshots(CliArgs *a, char *arg) {
         char save = *end;
         *end = 0;
         double v;
-        bool ok = a->nsnapshots < 64 && cli_integer("--snapshots", s, 0, 60000, &v);
+        if (a->nsnapshots == SYL_ECO_MAX_SNAPSHOTS) {
+            fprintf(stderr, "sylva: error: --snapshots takes at most %d years\n", SYL_ECO_MAX_SNAPSHOTS);
+            return false;
+        }
+        bool ok = cli_integer("--snapshots", s, 0, SYL_ECO_MAX_YEARS, &v);
         *end = save;
         if (!ok || (a->nsnapshots && v <= a->snapshots[a->nsnapshots - 1])) {
             if (ok) fprintf(stderr, "sylva: error: --snapshots expects increasing years, as 20,60,180\n");
@@ -210,6 +215,8 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                        "years to grow (default: the model's `years`; a scene: each\n"
                        "plant's)",
                        CLI_INT, DERIVE(steps), 0, SYL_GROW_MAX_YEARS},
+    [CLI_OPT_ECO_YEARS] = {"years", 0, "N", "years to simulate (default: the block's `years`)", CLI_INT,
+                           DERIVE(steps), 1, SYL_ECO_MAX_YEARS},
     [CLI_OPT_SEEDS] = {"seeds", 0, "N",
                        "grow each model with N seeds (its seed, +1, +2, ...) and print\n"
                        "mean +- sample standard deviation (default 1)",

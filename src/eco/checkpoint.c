@@ -213,6 +213,7 @@ int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *d
             return st;
         }
     }
+    errno = 0;
     size_t cap = 1 << 16;
     size_t len = 0;
     uint8_t *buf = malloc(cap);
@@ -228,12 +229,12 @@ int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *d
         }
         if (!(got = fread(buf + len, 1, cap - len, f))) break;
     }
-    int err = ferror(f);
+    int err = ferror(f) ? (errno ? errno : EIO) : 0;
     fclose(f);
     if (!buf) return SYL_ELIMIT;
     int st;
     if (err) {
-        if (diag) fprintf(diag, "sylva: error: cannot read the checkpoint '%s'\n", path);
+        if (diag) fprintf(diag, "sylva: error: cannot read the checkpoint '%s': %s\n", path, strerror(err));
         st = SYL_EIO;
     } else
         st = syl_ecosystem_checkpoint_parse(buf, len, path, c, diag);

@@ -19,7 +19,7 @@ typedef struct NumInfo {
 static const NumInfo species_nums[] = {
     {"maturity", SP(maturity), 0, 1e4, 20, "years"},
     {"old_age", SP(old_age), 0, 1e4, 100, "years"},
-    {"max_age", SP(max_age), 1, 60000, 150, "years"},
+    {"max_age", SP(max_age), 1, SYL_ECO_MAX_YEARS, 150, "years"},
     {"height_max", SP(height_max), 0.01, 200, 20, "metres"},
     {"growth_rate", SP(growth_rate), 0, 10, 0.03, "per year"},
     {"start_height", SP(start_height), 0.001, 200, 0.3, "metres"},
@@ -27,7 +27,7 @@ static const NumInfo species_nums[] = {
     {"seeds", SP(seeds), 0, 1000, 2, "per year"},
     {"dispersal", SP(dispersal), 0, 1e4, 10, "metres"},
     {"arrivals", SP(arrivals), 0, 1e4, 0.5, "per hectare per year"},
-    {"arrive_until", SP(arrive_until), 0, 60000, 0, "years"},
+    {"arrive_until", SP(arrive_until), 0, SYL_ECO_MAX_YEARS, 0, "years"},
     {"shade_tolerance", SP(shade_tolerance), 0, 1, 0.3, "a probability"},
     {"stress_mortality", SP(stress_mortality), 0, 1, 0.05, "a probability"},
 };
@@ -188,7 +188,7 @@ static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *
     double x;
     if (!strcmp(d->name, "terrain")) return read_terrain(p, diag, d, m);
     if (!strcmp(d->name, "years")) {
-        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, 1, 60000, true, &x);
+        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, 1, SYL_ECO_MAX_YEARS, true, &x);
         if (!e) m->years = (int)x;
         return e;
     }
@@ -217,7 +217,7 @@ static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *
         if (arity(p, diag, d, 1, SYL_ECO_MAX_SNAPSHOTS)) return 1;
         m->nsnapshots = 0;
         for (int i = 0; i < d->nargs; i++) {
-            if (number(p, diag, d, i, 0, 60000, true, &x)) return 1;
+            if (number(p, diag, d, i, 0, SYL_ECO_MAX_YEARS, true, &x)) return 1;
             if (m->nsnapshots && x <= m->snapshots[m->nsnapshots - 1]) {
                 syl_directive_error(p, diag, d, &d->args[i], "snapshots must be increasing years");
                 return 1;

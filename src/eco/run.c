@@ -1,8 +1,27 @@
 /* syl_ecosystem_run: the block, its terrain and its factors, then the simulation. */
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "eco/eco.h"
+
+/* The block's DEM, read as the run reads it (and its factors computed when compute is set). */
+static int read_terrain(const SylProgram *p, const SylEcoModel *m, int threads, bool compute, FILE *diag,
+                        SylTerrain **terrain) {
+    char *path = NULL; /* beside the program's file unless absolute */
+    int refused = syl_program_file(p, m->terrain, &path);
+    if (refused == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read the terrain '%s': %s\n", m->terrain, syl_file_refused);
+    if (refused) return refused;
+    SylTerrain *t = NULL;
+    SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
+                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = threads, .diag = diag};
+    int st = syl_terrain_read(path, &to, &t);
+    if (!st && compute) st = syl_terrain_compute(t, &to);
+    free(path);
+    if (st) syl_terrain_free(t);
+    else *terrain = t;
+    return st;
+}
 
 int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *m, SylTerrain **terrain) {
     FILE *diag = o->diag;
@@ -13,19 +32,17 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
         return SYL_EUSAGE;
     }
     if (syl_ecosystem_read(p, m, diag)) return SYL_EMODEL;
-    char *path = NULL; /* beside the program's file unless absolute */
-    int refused = syl_program_file(p, m->terrain, &path);
-    if (refused == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read the terrain '%s': %s\n", m->terrain, syl_file_refused);
-    if (refused) return refused;
+    return read_terrain(p, m, o->threads, true, diag, terrain);
+}
+
+int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag) {
+    if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) return 0;
+    SylEcoModel *m = malloc(sizeof *m);
     SylTerrain *t = NULL;
-    SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
-                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag};
-    int st = syl_terrain_read(path, &to, &t);
-    if (!st) st = syl_terrain_compute(t, &to);
-    free(path);
-    if (st) syl_terrain_free(t);
-    else *terrain = t;
-    return st;
+    int st = !m ? SYL_ELIMIT : syl_ecosystem_read(p, m, NULL) ? SYL_EMODEL : read_terrain(p, m, 1, false, diag, &t);
+    syl_terrain_free(t);
+    free(m);
+    return st != SYL_OK;
 }
 
 int syl_ecosystem_run(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *model_out, SylTerrain **terrain_out,

@@ -63,32 +63,7 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
         copt.model = pl->model;
         return syl_compile(syl_program_path(p), text, len, &copt, status);
     }
-    char *path = NULL, *model = NULL;
-    *status = scene_spec_path(p, pl->file, &model, &path);
-    if (*status) {
-        if (*status == SYL_EIO && diag) syl_program_error(p, diag, pl->line, pl->col, "cannot read the plant file \"%s\": %s", pl->file, syl_file_refused);
-        return NULL;
-    }
-    copt.model = model;
-    copt.allow_paths = p->roots; /* its own folder is within them: it may read no further than p */
-    copt.nallow_paths = p->nroots;
-    size_t len = 0;
-    char *text = syl_read_file(path, &len);
-    if (!text) {
-        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
-        *status = SYL_EIO;
-    } else if (!syl_text_is_model(text, len)) { /* its lines are not shown: it may be anything */
-        if (diag) syl_program_error(p, diag, pl->line, pl->col, "the plant file \"%s\" is not a model file (no lsystem, grow, weber or strands block)", pl->file);
-        *status = SYL_EMODEL;
-    }
-    if (*status) {
-        free(text), free(path), free(model);
-        return NULL;
-    }
-    copt.validate = syl_grow_validate; /* another file: checked as `sylva check` would */
-    SylProgram *q = syl_compile(path, text, len, &copt, status);
-    free(text), free(path), free(model);
-    return q;
+    return scene_plant_file(p, pl->file, pl->line, pl->col, diag, status);
 }
 
 /* How an L-system plant of the scene derives: its seed, and its steps (the plant line's

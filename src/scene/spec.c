@@ -12,10 +12,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "env/objread.h"
 #include "lang/program.h"
 #include "scene/spec.h"
 #include "sot/params.h"
 #include "sot/reader.h"
+#include "sylva/grow.h"
 #include "sylva/trees.h"
 
 static bool vec3_of(Reader *r, const SylDirArg *a, const char *what, float out[3]) {
@@ -300,11 +302,42 @@ int scene_spec_path(const SylProgram *p, const char *file, char **model, char **
     return st;
 }
 
-/* A file the scene names that cannot be read: a warning, since the commands that grow the
- * scene fail on it (the file may yet be made, or the model derived on its own). */
-static int warn_unreadable(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
+SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, int col, FILE *diag, int *status) {
     char *path = NULL, *model = NULL;
-    int st = scene_spec_path(p, file, strcmp(what, "plant") ? NULL : &model, &path);
+    *status = scene_spec_path(p, file, &model, &path);
+    if (*status) {
+        if (*status == SYL_EIO && diag)
+            syl_program_error(p, diag, line, col, "the plant file \"%s\" cannot be read: %s", file, syl_file_refused);
+        return NULL;
+    }
+    /* the --set values reach every plant; its own folder is within p's: it reads no further */
+    SylCompileOptions copt = {.diag = diag, .overrides = p->overrides, .noverrides = p->noverrides, .sibling = 1,
+                              .model = model, .allow_paths = p->roots, .nallow_paths = p->nroots,
+                              .validate = syl_grow_validate}; /* another file: checked as `sylva check` would */
+    size_t len = 0;
+    char *text = syl_read_file(path, &len);
+    SylProgram *q = NULL;
+    if (!text) {
+        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
+        *status = SYL_EIO;
+    } else if (!syl_text_is_model(text, len)) { /* its lines are not shown: it may be anything */
+        if (diag)
+            syl_program_error(p, diag, line, col, "the plant file \"%s\" is not a model file (no lsystem, grow, weber or strands block)", file);
+        *status = SYL_EMODEL;
+    } else {
+        q = syl_compile(path, text, len, &copt, status);
+    }
+    free(text), free(path), free(model);
+    return q;
+}
+
+/* A file the scene names, read as the run will read it: one that cannot be read is a warning
+ * (the file may yet be made, or the model derived on its own), one outside the folders the
+ * model may read or malformed is an error (returns 1). */
+static int check_file(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
+    bool plant = !strcmp(what, "plant");
+    char *path = NULL, *model = NULL;
+    int st = scene_spec_path(p, file, plant ? &model : NULL, &path);
     free(model);
     if (st == SYL_EIO) syl_program_error(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, syl_file_refused);
     if (st) return st == SYL_EIO;
@@ -316,19 +349,30 @@ static int warn_unreadable(const SylProgram *p, FILE *diag, const char *what, co
     }
     if (!f) program_warning(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, strerror(errno));
     else fclose(f);
+    int bad = 0;
+    if (f && plant) {
+        SylProgram *q = scene_plant_file(p, file, line, col, diag, &st);
+        bad = !q;
+        syl_program_free(q);
+    } else if (f) {
+        ObjMesh m;
+        bad = obj_read(path, &m, diag) != SYL_OK;
+        obj_free(&m);
+        if (bad) syl_program_error(p, diag, line, col, "cannot use the %s \"%s\"", what, file);
+    }
     free(path);
-    return 0;
+    return bad;
 }
 
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     SceneSpec s;
     int errors = scene_spec_read(p, &s, diag), set_errors = s.set_errors, refused = 0;
     for (int i = 0; files && !errors && i < s.nobstacles; i++)
-        refused += warn_unreadable(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
+        refused += check_file(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
                                    s.obstacles[i].line, s.obstacles[i].col);
     for (int i = 0; files && !errors && i < s.nplants; i++)
         if (s.plants[i].file)
-            refused += warn_unreadable(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
+            refused += check_file(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
     errors += refused;
     scene_spec_free(&s);
     return errors && errors == set_errors ? -errors : errors;

@@ -48,6 +48,11 @@ void scene_spec_free(SceneSpec *s);
  * *model is the model's name (malloc'd) or NULL. */
 int scene_spec_path(const SylProgram *p, const char *file, char **model, char **out);
 
+/* Compile the model of a plant file a scene names ("file.syl[:Model]"), as syl_program_file
+ * and syl_text_is_model allow, checked as `sylva check` would; NULL with *status on failure
+ * (reported on diag at the plant's line and column). */
+SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, int col, FILE *diag, int *status);
+
 /* Check p's scene block, as syl_grow_validate does with a file's first model. Returns the
  * number of errors reported, negated when all are of --set. */
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files); /* files: warn about unreadable ones */
