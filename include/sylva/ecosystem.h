@@ -182,6 +182,9 @@ void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
  * bad table), SYL_EIO (unreadable), SYL_ELIMIT. */
 extern const char syl_ecosystem_table_header[];
 void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p);
+/* A text field of a CSV file as RFC 4180 writes it: quoted when it holds a comma, a quote or a
+ * line end (a species' name in the plant table and species.csv). */
+void syl_ecosystem_csv_text(FILE *f, const char *s);
 int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, const SylEcoModel *m,
                               const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, FILE *diag);
 int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTerrain *t, SylEcoPlant **plants,

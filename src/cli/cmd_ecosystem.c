@@ -314,9 +314,11 @@ static int write_species_csv(Run *r) {
     }
     fprintf(o.f, "year,species,count,cover,mean_height\n");
     for (int y = 0; y < r->nyears; y++)
-        for (int s = 0; s < r->m->nspecies; s++)
-            fprintf(o.f, "%d,%s,%u,%.6f,%.3f\n", r->years[y].year, r->m->species[s].name, r->years[y].count[s],
-                    r->years[y].cover[s], r->years[y].mean_height[s]);
+        for (int s = 0; s < r->m->nspecies; s++) {
+            fprintf(o.f, "%d,", r->years[y].year);
+            syl_ecosystem_csv_text(o.f, r->m->species[s].name);
+            fprintf(o.f, ",%u,%.6f,%.3f\n", r->years[y].count[s], r->years[y].cover[s], r->years[y].mean_height[s]);
+        }
     int st = out_close(&o, SYL_OK);
     if (!st) printf("%s\n", path);
     free(path);
