@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "cli/animate.h"
+#include "cli/cli.h"
 
 extern char **environ;
 
@@ -65,6 +66,7 @@ bool cli_encode_start(Encoder *e, EncodeFormat f, int width, int height, int fps
         return false;
     }
     e->in = sv[1];
+    cli_child_started(e->pid); /* a signal now stops it before removing the file it writes */
     return true;
 }
 
@@ -85,6 +87,7 @@ bool cli_encode_finish(Encoder *e) {
     pid_t r;
     while ((r = waitpid(e->pid, &ws, 0)) < 0 && errno == EINTR) {
     }
+    cli_child_gone();
     if (r < 0) {
         fprintf(stderr, "sylva: error: lost ffmpeg: %s\n", strerror(errno));
         return false;

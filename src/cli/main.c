@@ -1,9 +1,11 @@
 /* sylva: the command line. Each subcommand lives in its own file. */
+#include <errno.h>
 #include <limits.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -37,7 +39,18 @@ static void temp_gone(void *ctx, const char *tmp) {
 
 const OutHooks cli_temp_hooks = {temp_created, temp_gone, NULL};
 
+/* A child that writes into a temporary file (ffmpeg): stopped, and waited for, before the
+ * temporary files go, or it would write its file after they went. */
+static atomic_int child_pid;
+void cli_child_started(int pid) { atomic_store(&child_pid, pid); }
+void cli_child_gone(void) { atomic_store(&child_pid, 0); }
+
 static void on_signal(int sig) {
+    int child = atomic_exchange(&child_pid, 0), saved = errno;
+    if (child > 0 && !kill(child, SIGKILL))
+        while (waitpid(child, NULL, 0) < 0 && errno == EINTR) {
+        }
+    errno = saved;
     for (int i = 0; i < MAX_TEMPS; i++)
         if (atomic_exchange(&temp_live[i], 0)) unlink(temp_path[i]);
     raise(sig); /* SA_RESETHAND: the default action, once this handler returns */
