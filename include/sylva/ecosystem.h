@@ -173,6 +173,12 @@ int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, 
  * foreign one (SYL_EIO: unreadable), reported on diag as "sylva: error: checkpoint 'NAME': ..." */
 int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, FILE *diag);
 int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag);
+/* Whether c's plants are a state the simulation of m on t could have made (the checksum
+ * only says the file is whole): each of a species of m, standing on a cell of t with data,
+ * its cell that one, no taller than its species' height_max, no older than its max_age or
+ * the checkpoint's year. SYL_OK, or SYL_EMODEL reported with the first plant that is not. */
+int syl_ecosystem_checkpoint_check(const SylEcoCheckpoint *c, const SylEcoModel *m, const SylTerrain *t, const char *name,
+                                   FILE *diag);
 void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
 
 /* plants-YEAR.csv (src/eco/table.c), a snapshot's plants one row each under the header

@@ -493,6 +493,7 @@ int cmd_ecosystem(int argc, char **argv) {
             if (writer) fprintf(stderr, "sylva: error: the checkpoint '%s' is at year %d, the run ends at %d\n", path, ck.year, years);
             st = SYL_EUSAGE;
         }
+        if (!st) st = syl_ecosystem_checkpoint_check(&ck, &model, t, path, writer ? stderr : NULL); /* as the run makes them */
         free(path);
         if (!st) {
             r.years = ck.years, r.nyears = r.cap = ck.year; /* the counts so far */
