@@ -77,8 +77,8 @@ typedef struct SylEcoModel {
 int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag);
 int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
 /* Read an ecosystem block's DEM as the run will (not its factors), for `sylva check`: 0, or 1
- * when it cannot be read, lies outside the folders the model may read or is malformed
- * (reported to diag). */
+ * when it lies outside the folders the model may read or is malformed (reported to diag); one
+ * that cannot be read is a warning (it may yet be made). */
 int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag);
 
 /* How tiles talk: a tile posts plants to another tile (its border plants, for the other's

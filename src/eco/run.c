@@ -1,7 +1,9 @@
 /* syl_ecosystem_run: the block, its terrain and its factors, then the simulation. */
+#include <errno.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "eco/eco.h"
 
@@ -39,7 +41,15 @@ int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag) {
     if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) return 0;
     SylEcoModel *m = malloc(sizeof *m);
     SylTerrain *t = NULL;
-    int st = !m ? SYL_ELIMIT : syl_ecosystem_read(p, m, NULL) ? SYL_EMODEL : read_terrain(p, m, 1, false, diag, &t);
+    int st = !m ? SYL_ELIMIT : syl_ecosystem_read(p, m, NULL) ? SYL_EMODEL : SYL_OK;
+    char *path = NULL;
+    if (!st && !syl_program_file(p, m->terrain, &path) && access(path, R_OK)) {
+        /* a warning, as a scene's unreadable files: the DEM may yet be made */
+        if (diag) fprintf(diag, "%s: warning: the terrain \"%s\" cannot be read: %s\n", syl_program_path(p), m->terrain, strerror(errno));
+    } else if (!st) {
+        st = read_terrain(p, m, 1, false, diag, &t);
+    }
+    free(path);
     syl_terrain_free(t);
     free(m);
     return st != SYL_OK;
