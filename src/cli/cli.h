@@ -71,8 +71,11 @@ void cli_plant_free(Plant *pl);
 bool out_open(OutFile *o, const char *path); /* reported when false */
 int out_close(OutFile *o, int status);       /* commit when status is SYL_OK; SYL_EIO when writing failed */
 extern const OutHooks cli_temp_hooks;        /* main.c: the temporary files a signal removes */
-void cli_child_started(int pid);             /* main.c: a child a signal stops (and waits for) first */
+/* ffmpeg.c: the child running now (ffmpeg), which main.c's signal handler stops and waits
+ * for before removing the temporary files: noted, forgotten, and taken (0: none). */
+void cli_child_started(int pid);
 void cli_child_gone(void);
+int cli_child_take(void); /* async-signal-safe */
 
 bool cli_view(const char *arg, SylView *v);                 /* --view */
 bool cli_view_or(const char *arg, SylView *v, const char *also); /* the same, naming other views */

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
@@ -69,6 +70,11 @@ bool cli_encode_start(Encoder *e, EncodeFormat f, int width, int height, int fps
     cli_child_started(e->pid); /* a signal now stops it before removing the file it writes */
     return true;
 }
+
+static atomic_int child_pid;
+void cli_child_started(int pid) { atomic_store(&child_pid, pid); }
+void cli_child_gone(void) { atomic_store(&child_pid, 0); }
+int cli_child_take(void) { return atomic_exchange(&child_pid, 0); }
 
 bool cli_encode_frame(Encoder *e, const uint8_t *rgb, size_t bytes) {
     while (bytes && !e->broken) {

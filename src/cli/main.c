@@ -39,14 +39,10 @@ static void temp_gone(void *ctx, const char *tmp) {
 
 const OutHooks cli_temp_hooks = {temp_created, temp_gone, NULL};
 
-/* A child that writes into a temporary file (ffmpeg): stopped, and waited for, before the
- * temporary files go, or it would write its file after they went. */
-static atomic_int child_pid;
-void cli_child_started(int pid) { atomic_store(&child_pid, pid); }
-void cli_child_gone(void) { atomic_store(&child_pid, 0); }
-
 static void on_signal(int sig) {
-    int child = atomic_exchange(&child_pid, 0), saved = errno;
+    /* ffmpeg, which writes into a temporary file, is stopped and waited for before the
+     * temporary files go, or it would write its file after they went */
+    int child = cli_child_take(), saved = errno;
     if (child > 0 && !kill(child, SIGKILL))
         while (waitpid(child, NULL, 0) < 0 && errno == EINTR) {
         }
