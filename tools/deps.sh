@@ -14,6 +14,7 @@ PKGS="$PKGS libmicrohttpd-dev"  # sylva view's web server (the CLI only)
 # node and npm for the glTF validator, from Debian unless a node is installed already
 # (one from elsewhere, such as NodeSource's, brings its own npm).
 command -v node >/dev/null 2>&1 || PKGS="$PKGS nodejs npm"
+PKGS="$PKGS strace"  # tests/cases/trust.test: a model, and libxml2, open no file they should not (traced)
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}\n' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"

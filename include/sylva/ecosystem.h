@@ -20,7 +20,7 @@
 extern "C" {
 #endif
 
-enum { SYL_ECO_MAX_SPECIES = 32, SYL_ECO_MAX_SNAPSHOTS = 64 };
+enum { SYL_ECO_MAX_SPECIES = 32, SYL_ECO_MAX_SNAPSHOTS = 64, SYL_ECO_MAX_YEARS = 60000 /* `years`, --years */ };
 enum { SYL_ECO_FREE = 0, SYL_ECO_DOMINATED = 1 }; /* SylEcoPlant.state */
 
 /* One plant: 32 bytes. Its altitude is the terrain's at (x, z); its ecological radius is its
@@ -76,6 +76,10 @@ typedef struct SylEcoModel {
  * syl_compile's hook (`sylva check`). */
 int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag);
 int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
+/* Read an ecosystem block's DEM as the run will (not its factors), for `sylva check`: 0, or 1
+ * when it lies outside the folders the model may read or is malformed (reported to diag); one
+ * that cannot be read is a warning (it may yet be made). */
+int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag);
 
 /* How tiles talk: a tile posts plants to another tile (its border plants, for the other's
  * halo, or the seedlings that sprouted there, germinated by the sender) and, after a
@@ -171,6 +175,12 @@ int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, 
  * foreign one (SYL_EIO: unreadable), reported on diag as "sylva: error: checkpoint 'NAME': ..." */
 int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, FILE *diag);
 int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag);
+/* Whether c's plants are a state the simulation of m on t could have made (the checksum
+ * only says the file is whole): each of a species of m, standing on a cell of t with data,
+ * its cell that one, no taller than its species' height_max, no older than its max_age or
+ * the checkpoint's year. SYL_OK, or SYL_EMODEL reported with the first plant that is not. */
+int syl_ecosystem_checkpoint_check(const SylEcoCheckpoint *c, const SylEcoModel *m, const SylTerrain *t, const char *name,
+                                   FILE *diag);
 void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
 
 /* plants-YEAR.csv (src/eco/table.c), a snapshot's plants one row each under the header
@@ -180,6 +190,9 @@ void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
  * bad table), SYL_EIO (unreadable), SYL_ELIMIT. */
 extern const char syl_ecosystem_table_header[];
 void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p);
+/* A text field of a CSV file as RFC 4180 writes it: quoted when it holds a comma, a quote or a
+ * line end (a species' name in the plant table and species.csv). */
+void syl_ecosystem_csv_text(FILE *f, const char *s);
 int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, const SylEcoModel *m,
                               const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, FILE *diag);
 int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTerrain *t, SylEcoPlant **plants,

@@ -69,6 +69,10 @@ typedef struct SylCompileOptions {
      * checked with the model it serves. */
     int (*validate)(void *user, const SylProgram *p, FILE *diag);
     void *validate_user;
+    /* The folders, besides the model file's own folder and what is below it, where the files
+     * a model names (syl_program_file) may be (--allow-path); "/" allows every file. */
+    const char *const *allow_paths;
+    int nallow_paths;
 } SylCompileOptions;
 
 /* The validation hook for syl_compile (SylCompileOptions.validate; user: NULL, or an int *
@@ -95,6 +99,19 @@ SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag
 /* Read a whole file ("-": standard input), NUL-terminated, as syl_compile reads a NULL text
  * (a file utility, kept here for embedders); NULL with errno set on failure. Free with free(). */
 char *syl_read_file(const char *path, size_t *len);
+/* A file the model names (a weber block's `from` and `envelope`, a scene's `plant`, `obstacle`
+ * and `ground`, an ecosystem's `terrain`): name relative to p's file's folder unless absolute,
+ * into *path (malloc'd). Every reader of such a file calls this first: a file whose real path
+ * (symlinks and `..` resolved) lies outside the model's own folder tree and the allowed
+ * folders of SylCompileOptions.allow_paths is refused with SYL_EIO (errno EACCES) and
+ * *path NULL; SYL_ELIMIT when out of memory. syl_file_refused says why, the same way
+ * everywhere. */
+int syl_program_file(const SylProgram *p, const char *name, char **path);
+extern const char syl_file_refused[]; /* "outside the folders this model may read (...)" */
+/* Whether text is recognisably a model (a block of the language, an Arbaro, Pícek, cpfg or
+ * L-Py file): the lines of another file that a model names are shown in messages only then,
+ * so that a model cannot print a file it names (`from "/etc/passwd"`). */
+int syl_text_is_model(const char *text, size_t len);
 /* Names of the models in a file, for listing; returns how many, writes at most max. */
 int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,
                     char *buf, size_t bufsize);

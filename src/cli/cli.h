@@ -13,7 +13,7 @@
 #include "sylva/sylva.h"
 #include "util/outfile.h"
 
-enum { MAX_SETS = 64 };
+enum { MAX_SETS = 64, MAX_ALLOW_PATHS = 64 };
 
 /* What every command that compiles a model accepts. */
 typedef struct ModelArgs {
@@ -26,6 +26,8 @@ typedef struct ModelArgs {
     float age;         /* --age (strands blocks); 0: full grown */
     int levels;        /* --levels (weber blocks); 0: the block's Levels */
     bool warned;       /* its warnings were printed (cli_compile) */
+    const char *allow[MAX_ALLOW_PATHS]; /* --allow-path: more folders the files it names may be in */
+    int nallow;
 } ModelArgs;
 
 /* Split FILE:Model. */
@@ -71,6 +73,11 @@ void cli_plant_free(Plant *pl);
 bool out_open(OutFile *o, const char *path); /* reported when false */
 int out_close(OutFile *o, int status);       /* commit when status is SYL_OK; SYL_EIO when writing failed */
 extern const OutHooks cli_temp_hooks;        /* main.c: the temporary files a signal removes */
+/* ffmpeg.c: the child running now (ffmpeg), which main.c's signal handler stops and waits
+ * for before removing the temporary files: noted, forgotten, and taken (0: none). */
+void cli_child_started(int pid);
+void cli_child_gone(void);
+int cli_child_take(void); /* async-signal-safe */
 
 bool cli_view(const char *arg, SylView *v);                 /* --view */
 bool cli_view_or(const char *arg, SylView *v, const char *also); /* the same, naming other views */

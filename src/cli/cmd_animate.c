@@ -10,6 +10,7 @@
 
 #include "cli/animate.h"
 #include "cli/cli.h"
+#include "util/outgroup.h"
 
 int cmd_animate(int argc, char **argv);
 
@@ -45,6 +46,7 @@ const CliCommand cli_animate_command = {
                  "of ages, default 10); default: the model's `derive` or `years`"},
         {.option = CLI_OPT_SEED},
         {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_ALLOW_PATH},
         {.option = CLI_OPT_THREADS},
         {.group = cli_limits},
         {.group = cli_grow_limits},
@@ -53,7 +55,8 @@ const CliCommand cli_animate_command = {
     .epilogue = "\nA progress bar is shown on stderr when it is a terminal and the work takes more than a\n"
                 "second. Without ffmpeg, an MP4 or a GIF is an I/O error (exit code 4); so is ffmpeg\n"
                 "failing. Nothing is left at OUT when it fails: the video is written to a temporary\n"
-                "file and renamed, and a directory loses the frames this run wrote.\n\n" CLI_EXIT_CODES,
+                "file and renamed, and a directory keeps what it held: the frames this run wrote are\n"
+                "removed, and those it replaced are put back.\n\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",
 };
 
@@ -98,6 +101,7 @@ typedef struct Sink {
     char *dir;          /* OUT_FRAMES: without the final / */
     bool made_dir;      /* this run made it: removed again on failure */
     int written;        /* frame files written */
+    OutGroup frames;    /* what was at their paths: put back when a later frame fails */
     OutFile file;       /* OUT_MP4, OUT_GIF */
     bool file_open;
     Encoder enc;
@@ -151,7 +155,7 @@ static int sink_frame(Sink *s, const uint8_t *rgb, int width, int height) {
     char *path = malloc(strlen(s->dir) + 32);
     if (!path) return SYL_ELIMIT;
     sprintf(path, "%s/frame_%04d.png", s->dir, s->written);
-    int st = syl_write_png(path, rgb, width, height, stderr);
+    int st = outgroup_add(&s->frames, path, stderr) ? syl_write_png(path, rgb, width, height, stderr) : SYL_EIO;
     free(path);
     if (!st) s->written++;
     return st;
@@ -161,15 +165,9 @@ static int sink_frame(Sink *s, const uint8_t *rgb, int width, int height) {
 static int sink_close(Sink *s, int status) {
     if (s->enc_started && !cli_encode_finish(&s->enc) && !status) status = SYL_EIO;
     if (s->file_open) status = out_close(&s->file, status);
-    if (s->kind == OUT_FRAMES && status && s->dir) {
-        char *path = malloc(strlen(s->dir) + 32);
-        for (int i = 0; path && i < s->written; i++) {
-            sprintf(path, "%s/frame_%04d.png", s->dir, i);
-            unlink(path);
-        }
-        free(path);
-        if (s->made_dir) rmdir(s->dir);
-    }
+    if (status) outgroup_undo(&s->frames); /* the user's frames as they were */
+    else outgroup_commit(&s->frames);
+    if (s->kind == OUT_FRAMES && status && s->made_dir) rmdir(s->dir);
     free(s->dir);
     return status;
 }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "cli/cli.h"
+#include "sylva/ecosystem.h"
 
 const CliCommand cli_check_command = {
     .name = "check",
@@ -19,6 +20,7 @@ const CliCommand cli_check_command = {
         {.option = CLI_OPT_WERROR},
         {.option = CLI_OPT_SET, .help = "check the model with this value, as other commands would\n"
                                          "take it; repeatable"},
+        {.option = CLI_OPT_ALLOW_PATH},
         {0},
     },
     .width = 18,
@@ -59,9 +61,16 @@ int cmd_check(int argc, char **argv) {
             FILE *mem = open_memstream(&msg, &msglen);
             SylCompileOptions opt = {.model = names[i], .diag = mem ? mem : stderr, .lint = 1,
                                      .overrides = m.sets, .noverrides = m.nsets,
-                                     .validate = syl_validate, .validate_user = &files};
+                                     .validate = syl_validate, .validate_user = &files,
+                                     .allow_paths = sets.allow, .nallow_paths = sets.nallow};
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
+            /* an ecosystem's DEM is parsed as the run parses it (0 for other kinds): malformed is an error */
+            if (p && syl_ecosystem_check_terrain(p, mem ? mem : stderr)) {
+                syl_program_free(p);
+                p = NULL;
+                status = SYL_EMODEL;
+            }
             if (mem) fclose(mem);
             if (msg) fputs(msg, stderr);
             bool warned = msg && strstr(msg, ": warning: ");

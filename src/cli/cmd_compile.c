@@ -7,13 +7,14 @@ const CliCommand cli_compile_command = {
     .name = "compile",
     .what = "compile a model; --dump prints rules and bytecode",
     .run = cmd_compile,
-    .usage = "sylva compile FILE[:Model] [--dump] [--set NAME=VALUE]...",
+    .usage = "sylva compile FILE[:Model] [--dump] [--set NAME=VALUE]... [--allow-path DIR]...",
     .about = "Compile the model and report errors. With --dump, print the compiled program: modules,\n"
              "settings, parameters, the axiom, every rule's contexts, condition, weight and successor,\n"
              "and the bytecode of each expression.\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_DUMP, .help = ""}, /* no rows: the usage line names them */
         {.option = CLI_OPT_SET, .help = ""},
+        {.option = CLI_OPT_ALLOW_PATH, .help = ""},
         {0},
     },
 };

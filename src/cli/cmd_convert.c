@@ -22,6 +22,7 @@ const CliCommand cli_convert_command = {
         {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a weber block\n"
                                            "for *.syl"},
         {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_ALLOW_PATH},
         {0},
     },
     .epilogue = "\n" CLI_EXIT_CODES,

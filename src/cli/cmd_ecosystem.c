@@ -35,7 +35,7 @@ const CliCommand cli_ecosystem_command = {
              "every year; rank 0 writes the same files as one process (docs/distributed.md).\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT, .help = "the directory to write into (made if missing)"},
-        {.option = CLI_OPT_YEARS, .help = "years to simulate (default: the block's `years`)"},
+        {.option = CLI_OPT_ECO_YEARS},
         {.option = CLI_OPT_SNAPSHOTS},
         {.option = CLI_OPT_TILES},
         {.option = CLI_OPT_REBALANCE},
@@ -46,6 +46,7 @@ const CliCommand cli_ecosystem_command = {
         {.option = CLI_OPT_SET},
         {.option = CLI_OPT_MAX_MEMORY},
         {.option = CLI_OPT_MAX_PLANTS},
+        {.option = CLI_OPT_ALLOW_PATH},
         {.option = CLI_OPT_THREADS, .help = "threads over the tiles (default: all cores); the output\n"
                                             "never depends on N"},
         {.option = CLI_OPT_ECO_VIEW},
@@ -330,9 +331,11 @@ static int write_species_csv(Run *r) {
     }
     fprintf(o.f, "year,species,count,cover,mean_height\n");
     for (int y = 0; y < r->nyears; y++)
-        for (int s = 0; s < r->m->nspecies; s++)
-            fprintf(o.f, "%d,%s,%u,%.6f,%.3f\n", r->years[y].year, r->m->species[s].name, r->years[y].count[s],
-                    r->years[y].cover[s], r->years[y].mean_height[s]);
+        for (int s = 0; s < r->m->nspecies; s++) {
+            fprintf(o.f, "%d,", r->years[y].year);
+            syl_ecosystem_csv_text(o.f, r->m->species[s].name);
+            fprintf(o.f, ",%u,%.6f,%.3f\n", r->years[y].count[s], r->years[y].cover[s], r->years[y].mean_height[s]);
+        }
     int st = out_close(&o, SYL_OK);
     if (!st) printf("%s\n", path);
     free(path);
@@ -494,6 +497,10 @@ int cmd_ecosystem(int argc, char **argv) {
     r.t = t;
     if (!st) r.hash = syl_ecosystem_hash(&model, t, d.use_seed ? d.seed : model.seed);
     int years = o.years > 0 ? o.years : model.years;
+    const int *snaps = a.nsnapshots ? a.snapshots : model.snapshots;
+    for (int i = a.nsnapshots ? a.nsnapshots : model.nsnapshots; !st && writer && i-- > 0 && snaps[i] > years;)
+        fprintf(stderr, "sylva: warning: the snapshot of year %d is past the run's last year (%d): it is not written\n",
+                snaps[i], years);
     if (!st && a.resume) {
         char *path = path_in(a.resume, "ecosystem.ckpt", 0);
         st = path ? syl_ecosystem_checkpoint_read(path, &ck, writer ? stderr : NULL) : SYL_ELIMIT;
@@ -504,6 +511,7 @@ int cmd_ecosystem(int argc, char **argv) {
             if (writer) fprintf(stderr, "sylva: error: the checkpoint '%s' is at year %d, the run ends at %d\n", path, ck.year, years);
             st = SYL_EUSAGE;
         }
+        if (!st) st = syl_ecosystem_checkpoint_check(&ck, &model, t, path, writer ? stderr : NULL); /* as the run makes them */
         free(path);
         if (!st) {
             r.years = ck.years, r.nyears = r.cap = ck.year; /* the counts so far */
@@ -515,8 +523,12 @@ int cmd_ecosystem(int argc, char **argv) {
         o.every = a.every > 0 ? a.every : 10;
         o.on_checkpoint = on_checkpoint;
         r.checkpoint = ck_path = path_in(a.checkpoint, "ecosystem.ckpt", 0);
+        struct stat sb;
         if (!ck_path) st = SYL_ELIMIT;
-        else if (writer) st = make_dir(a.checkpoint);
+        else if (writer && !(st = make_dir(a.checkpoint)) && (stat(a.checkpoint, &sb) || !S_ISDIR(sb.st_mode))) {
+            fprintf(stderr, "sylva: error: --checkpoint expects a directory, and '%s' is not one\n", a.checkpoint);
+            st = SYL_EUSAGE; /* before the run, not at its first checkpoint */
+        }
     }
     if (mpi) { /* the tiles over the ranks; a rank that failed above still joins the check below */
         if (!st && !o.tiles_x) {

@@ -24,6 +24,7 @@ const CliCommand cli_grow_command = {
         {.option = CLI_OPT_YEARS},
         {.option = CLI_OPT_SEED, .help = "random seed (a scene: S + the plant's number)"},
         {.option = CLI_OPT_SET},
+        {.option = CLI_OPT_ALLOW_PATH},
         {.option = CLI_OPT_THREADS, .help = "threads (default: all cores); the result never depends on N"},
         {.group = cli_grow_limits},
         {.group = cli_limits},

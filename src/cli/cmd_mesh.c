@@ -6,6 +6,7 @@
 #include "cli/cli.h"
 #include "cli/lodcheck.h"
 #include "sylva/impostor.h"
+#include "util/outgroup.h"
 #include "sylva/lod.h"
 #include "sylva/texture.h"
 #include "sylva/mesh.h"
@@ -65,7 +66,7 @@ static void beside(const char *output, const char *suffix, char *buf, size_t n) 
  * meshed again with those leaves in it, copied blades or cards as the instances are. */
 static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk, const SylMeshOptions *mo,
                         int threads, SylBudget *budget, const char *output, SylImpostor *imp, char *extras,
-                        size_t n) {
+                        size_t n, OutGroup *outs) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
                              .threads = threads, .diag = stderr, .budget = budget};
     if (!c->level[0].mesh->nidx) {
@@ -92,8 +93,8 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
     beside(output, "_impostor.png", color, sizeof color);
     beside(output, "_impostor_normal.png", normal, sizeof normal);
     if (a->impostor) {
-        status = syl_write_png_rgba(color, imp->color, imp->size, imp->size, stderr);
-        if (!status) status = syl_write_png_rgba(normal, imp->normal, imp->size, imp->size, stderr);
+        status = outgroup_add(outs, color, stderr) ? syl_write_png_rgba(color, imp->color, imp->size, imp->size, stderr) : SYL_EIO;
+        if (!status) status = outgroup_add(outs, normal, stderr) ? syl_write_png_rgba(normal, imp->normal, imp->size, imp->size, stderr) : SYL_EIO;
         if (status) return status;
     }
     const char *cs = strrchr(color, '/'), *ns = strrchr(normal, '/');
@@ -161,6 +162,7 @@ int cmd_mesh(int argc, char **argv) {
     d.budget = budget;
     mo.budget = budget;
     Plant pl;
+    OutGroup outs = {0}; /* the atlases, the mesh and --image: one transaction */
     int status = cli_plant(&m, &d, &mo, &pl);
     if (status) {
         syl_budget_free(budget);
@@ -188,7 +190,7 @@ int cmd_mesh(int argc, char **argv) {
         if (status) fprintf(stderr, "sylva: error: cannot build the levels of detail (out of memory)\n");
         double ti = cli_now(), ci = cli_cpu_now();
         if (!status && last_billboard)
-            status = add_impostor(&lods, &a, sk, &mo, d.threads, budget, output, &imp, extras, sizeof extras);
+            status = add_impostor(&lods, &a, sk, &mo, d.threads, budget, output, &imp, extras, sizeof extras, &outs);
         t_imp = cli_now() - ti, c_imp = cli_cpu_now() - ci;
     } else {
         status = syl_mesh_optimize(mesh);
@@ -220,6 +222,7 @@ int cmd_mesh(int argc, char **argv) {
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
+    if (!status && !outgroup_add(&outs, output, stderr)) status = SYL_EIO;
     if (!status) status = levels && a.wind > 0 ? syl_write_glb_lods_wind(&lods, sk, &wind, output, stderr)
                           : levels    ? syl_write_glb_lods(&lods, output, stderr)
                           : a.wind > 0 ? syl_write_glb_wind(mesh, sets, nsets, sk, &wind, output, stderr)
@@ -230,8 +233,10 @@ int cmd_mesh(int argc, char **argv) {
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */
         SylLodChain shown = lods;
         shown.n -= imp.billboards ? 1 : 0;
-        status = lod_picture(&shown, a.image, 256, d.threads);
+        status = outgroup_add(&outs, a.image, stderr) ? lod_picture(&shown, a.image, 256, d.threads) : SYL_EIO;
     }
+    if (status) outgroup_undo(&outs); /* the command's files are one: all written, or none changed */
+    else outgroup_commit(&outs);
     if (!status && stats) {
         size_t tris = mesh->nidx / 3;
         fprintf(stderr, "modules: %zu\nnodes: %zu\norgans: %zu\npolygons: %zu\n", pl.modules, sk->nnodes,

@@ -109,7 +109,8 @@ bool cli_set(ModelArgs *m, char *arg) {
 
 SylProgram *cli_compile(ModelArgs *m, int warn, int *status) {
     SylCompileOptions opt = {.model = m->model, .overrides = m->sets, .noverrides = m->nsets,
-                             .diag = stderr, .warn = m->warned ? 0 : warn, .validate = syl_validate};
+                             .diag = stderr, .warn = m->warned ? 0 : warn, .validate = syl_validate,
+                             .allow_paths = m->allow, .nallow_paths = m->nallow};
     m->warned = true; /* a model compiled again (each seed of compare) says them once */
     return syl_compile(m->path, NULL, 0, &opt, status);
 }

@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
@@ -12,6 +13,7 @@
 #include <unistd.h>
 
 #include "cli/animate.h"
+#include "cli/cli.h"
 
 extern char **environ;
 
@@ -68,8 +70,14 @@ bool cli_encode_start(Encoder *e, EncodeFormat f, int width, int height, int fps
         return false;
     }
     e->in = sv[1];
+    cli_child_started(e->pid); /* a signal now stops it before removing the file it writes */
     return true;
 }
+
+static atomic_int child_pid;
+void cli_child_started(int pid) { atomic_store(&child_pid, pid); }
+void cli_child_gone(void) { atomic_store(&child_pid, 0); }
+int cli_child_take(void) { return atomic_exchange(&child_pid, 0); }
 
 bool cli_encode_frame(Encoder *e, const uint8_t *rgb, size_t bytes) {
     while (bytes && !e->broken) {
@@ -88,6 +96,7 @@ bool cli_encode_finish(Encoder *e) {
     pid_t r;
     while ((r = waitpid(e->pid, &ws, 0)) < 0 && errno == EINTR) {
     }
+    cli_child_gone();
     if (r < 0) {
         fprintf(stderr, "sylva: error: lost ffmpeg: %s\n", strerror(errno));
         return false;

@@ -1,9 +1,11 @@
 /* sylva: the command line. Each subcommand lives in its own file. */
+#include <errno.h>
 #include <limits.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
@@ -39,6 +41,13 @@ static void temp_gone(void *ctx, const char *tmp) {
 const OutHooks cli_temp_hooks = {temp_created, temp_gone, NULL};
 
 static void on_signal(int sig) {
+    /* ffmpeg, which writes into a temporary file, is stopped and waited for before the
+     * temporary files go, or it would write its file after they went */
+    int child = cli_child_take(), saved = errno;
+    if (child > 0 && !kill(child, SIGKILL))
+        while (waitpid(child, NULL, 0) < 0 && errno == EINTR) {
+        }
+    errno = saved;
     for (int i = 0; i < MAX_TEMPS; i++)
         if (atomic_exchange(&temp_live[i], 0)) unlink(temp_path[i]);
     raise(sig); /* SA_RESETHAND: the default action, once this handler returns */

@@ -1,8 +1,11 @@
 /* Every option of `sylva`: its names, its help row and what it sets (cli/options.h). */
+#include <errno.h>
 #include <stddef.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "cli/cli.h"
+#include "sylva/ecosystem.h"
 #include "sylva/texture.h"
 #include "sylva/lod.h"
 
@@ -15,6 +18,22 @@ static bool read_seed(CliArgs *a, char *arg) {
 }
 
 static bool read_set(CliArgs *a, char *arg) { return cli_set(a->m, arg); }
+
+/* --allow-path DIR: a folder (that must exist) whose files a model may name */
+static bool read_allow_path(CliArgs *a, char *arg) {
+    struct stat st;
+    if (stat(arg, &st) || !S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "sylva: error: --allow-path expects a folder, and '%s' is %s\n", arg,
+                errno == ENOENT ? "not there" : "not a folder");
+        return false;
+    }
+    if (a->m->nallow == MAX_ALLOW_PATHS) {
+        fprintf(stderr, "sylva: error: at most %d --allow-path options\n", MAX_ALLOW_PATHS);
+        return false;
+    }
+    a->m->allow[a->m->nallow++] = arg;
+    return true;
+}
 static bool read_view(CliArgs *a, char *arg) { return cli_view(arg, &a->ro->view); }
 static bool read_size(CliArgs *a, char *arg) { return cli_picture_size(arg, &a->ro->width, &a->ro->height); }
 
@@ -114,7 +133,11 @@ static bool read_snapshots(CliArgs *a, char *arg) {
         char save = *end;
         *end = 0;
         double v;
-        bool ok = a->nsnapshots < 64 && cli_integer("--snapshots", s, 0, 60000, &v);
+        if (a->nsnapshots == SYL_ECO_MAX_SNAPSHOTS) {
+            fprintf(stderr, "sylva: error: --snapshots takes at most %d years\n", SYL_ECO_MAX_SNAPSHOTS);
+            return false;
+        }
+        bool ok = cli_integer("--snapshots", s, 0, SYL_ECO_MAX_YEARS, &v);
         *end = save;
         if (!ok || (a->nsnapshots && v <= a->snapshots[a->nsnapshots - 1])) {
             if (ok) fprintf(stderr, "sylva: error: --snapshots expects increasing years, as 20,60,180\n");
@@ -166,6 +189,9 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
     [CLI_OPT_SET] = {"set", 0, "NAME=VALUE", "give a `param`, a setting (angle, step...) or a grow\n"
                      "directive's number (lambda...) this value; repeatable", CLI_READ,
                      .read = read_set},
+    [CLI_OPT_ALLOW_PATH] = {"allow-path", 0, "DIR", "let the model read files it names in DIR too (by default only\n"
+                            "files in its own folder and below); repeatable", CLI_READ,
+                            .read = read_allow_path},
     [CLI_OPT_THREADS] = {"threads", 'j', "N", "threads (default: all cores); the output never depends on N",
                          CLI_INT, DERIVE(threads), 1, 256},
     [CLI_OPT_MAX_MODULES] = {"max-modules", 0, "N",
@@ -194,6 +220,8 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                        "years to grow (default: the model's `years`; a scene: each\n"
                        "plant's)",
                        CLI_INT, DERIVE(steps), 0, SYL_GROW_MAX_YEARS},
+    [CLI_OPT_ECO_YEARS] = {"years", 0, "N", "years to simulate (default: the block's `years`)", CLI_INT,
+                           DERIVE(steps), 1, SYL_ECO_MAX_YEARS},
     [CLI_OPT_SEEDS] = {"seeds", 0, "N",
                        "grow each model with N seeds (its seed, +1, +2, ...) and print\n"
                        "mean +- sample standard deviation (default 1)",
@@ -341,6 +369,6 @@ const CliUse cli_limits[] = {
 };
 const CliUse cli_grow_limits[] = {{.option = CLI_OPT_MAX_METAMERS}, {.option = CLI_OPT_MAX_BUDS}, {0}};
 const CliUse cli_derive_uses[] = {
-    {.option = CLI_OPT_DERIVE}, {.option = CLI_OPT_SEED}, {.option = CLI_OPT_SET},
+    {.option = CLI_OPT_DERIVE}, {.option = CLI_OPT_SEED}, {.option = CLI_OPT_SET}, {.option = CLI_OPT_ALLOW_PATH},
     {.option = CLI_OPT_THREADS}, {.option = CLI_OPT_AGE}, {.option = CLI_OPT_LEVELS}, {.group = cli_limits}, {0},
 };

@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "sylva/ecosystem.h"
 #include "sylva/mesh.h"
 #include "sylva/render.h"
 #include "sylva/sylva.h"
@@ -16,9 +17,9 @@ struct ModelArgs;
  * that fits several ("--s") is refused with them listed in it, so keep it when adding one. */
 typedef enum CliOptionId {
     CLI_OPT_NONE, /* ends a table */
-    CLI_OPT_DERIVE, CLI_OPT_SEED, CLI_OPT_SET, CLI_OPT_THREADS,
+    CLI_OPT_DERIVE, CLI_OPT_SEED, CLI_OPT_SET, CLI_OPT_ALLOW_PATH, CLI_OPT_THREADS,
     CLI_OPT_MAX_MODULES, CLI_OPT_MAX_MEMORY, CLI_OPT_MAX_WORK, CLI_OPT_MAX_METAMERS, CLI_OPT_MAX_BUDS, CLI_OPT_MAX_PLANTS,
-    CLI_OPT_YEARS, CLI_OPT_SEEDS, CLI_OPT_AGE, CLI_OPT_LEVELS,
+    CLI_OPT_YEARS, CLI_OPT_ECO_YEARS, CLI_OPT_SEEDS, CLI_OPT_AGE, CLI_OPT_LEVELS,
     CLI_OPT_OUTPUT, CLI_OPT_OUT, CLI_OPT_IMAGE, CLI_OPT_FORMAT, CLI_OPT_CSV, CLI_OPT_JSON,
     CLI_OPT_STEPS, CLI_OPT_INTERPRET, CLI_OPT_QUIET,
     CLI_OPT_VIEW, CLI_OPT_SIZE, CLI_OPT_SAMPLES, CLI_OPT_AO, CLI_OPT_NO_SHADOWS,
@@ -61,7 +62,7 @@ typedef struct CliArgs {
     double heights[2];
     bool heights_set;
     int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */
-    int snapshots[64], nsnapshots, tiles_x, tiles_z; /* sylva ecosystem: --snapshots, --tiles */
+    int snapshots[SYL_ECO_MAX_SNAPSHOTS], nsnapshots, tiles_x, tiles_z; /* sylva ecosystem: --snapshots, --tiles */
     int rebalance, every;    /* --rebalance, --every */
     uint64_t max_plants;     /* --max-plants */
     const char *checkpoint, *resume; /* --checkpoint, --resume */

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "util/outgroup.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
 #include "sylva/texture.h"
@@ -137,10 +138,10 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
         }
         out = a->output ? strdup(a->output) : cli_output_name(m, NULL, "png");
         if (!st && !out) st = SYL_ELIMIT;
-        /* The .glb first, the PNG last: when the PNG cannot be written, a .glb this run
-         * created is removed again, so a failed command leaves neither. */
+        /* The .glb and the PNG are one transaction (util/outgroup.h): when the PNG cannot be
+         * written, the .glb is taken back, the file that was there before put back. */
         char *glb = NULL;
-        bool glb_new = false;
+        OutGroup outs = {0};
         if (!st && a->glb) {
             size_t n = strlen(out);
             glb = malloc(n + 5);
@@ -148,15 +149,12 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
                 memcpy(glb, out, n + 1);
                 if (n > 4 && !strcmp(glb + n - 4, ".png")) glb[n - 4] = 0;
                 strcat(glb, ".glb");
-                struct stat sb;
-                glb_new = lstat(glb, &sb) != 0 && errno == ENOENT;
             }
-            st = glb ? syl_forest_write_glb(forest, plants, nplants, 0, glb, stderr) : SYL_ELIMIT;
+            st = !glb ? SYL_ELIMIT : !outgroup_add(&outs, glb, stderr) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, glb, stderr);
         }
-        if (!st) {
-            st = syl_write_png(out, rgb, w, h, stderr);
-            if (st && glb && glb_new) unlink(glb);
-        }
+        if (!st) st = outgroup_add(&outs, out, stderr) ? syl_write_png(out, rgb, w, h, stderr) : SYL_EIO;
+        if (st) outgroup_undo(&outs);
+        else outgroup_commit(&outs);
         free(glb);
     }
     st = agree(mpi, st, kept, &said, &said_len); /* rank 0's writes: every rank exits with their status */

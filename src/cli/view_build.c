@@ -100,7 +100,7 @@ static void made_free(Made *m) {
 /* Compile (with every warning of `sylva check`) and build as `sylva mesh` does. */
 static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     memset(m, 0, sizeof *m);
-    int files = 1; /* cli_validate reads the scene's files, as `sylva check` does */
+    int files = 1; /* syl_validate reads the scene's files, as `sylva check` does */
     SylCompileOptions opt = {.model = rq->model[0] ? rq->model : NULL, .overrides = rq->sets,
                              .noverrides = rq->nsets, .diag = diag, .lint = 1,
                              .validate = syl_validate, .validate_user = &files};

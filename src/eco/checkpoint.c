@@ -198,6 +198,28 @@ int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name
     return st;
 }
 
+int syl_ecosystem_checkpoint_check(const SylEcoCheckpoint *c, const SylEcoModel *m, const SylTerrain *t, const char *name,
+                                   FILE *diag) {
+    char what[256];
+    for (size_t j = 0; j < c->nplants; j++) {
+        const SylEcoPlant *q = &c->plants[j];
+        const char *why = NULL;
+        double i = floor((q->x - t->x0) / t->cell), k = floor((q->z - t->z0) / t->cell); /* as the simulation places it */
+        const SylEcoSpecies *s = q->species < m->nspecies ? &m->species[q->species] : NULL;
+        if (!s) why = "a species the block does not have";
+        else if (!(i >= 0 && k >= 0 && i < t->nx && k < t->nz)) why = "off the terrain";
+        else if (!t->valid[(size_t)k * (size_t)t->nx + (size_t)i]) why = "on a cell the DEM has no data for";
+        else if (q->cell != (uint32_t)((size_t)k * (size_t)t->nx + (size_t)i)) why = "its cell is not the one it stands on";
+        else if (q->height > (float)s->height_max * (1 + 1e-6f)) why = "taller than its species' height_max";
+        else if (q->age > s->max_age || q->age > c->year) why = "older than its species' max_age or the run";
+        if (!why) continue;
+        snprintf(what, sizeof what, "plant %zu of %zu (id %016llx) is %s: not a state the simulation makes", j + 1,
+                 c->nplants, (unsigned long long)q->id, why);
+        return bad(diag, name, what);
+    }
+    return SYL_OK;
+}
+
 int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag) {
     memset(c, 0, sizeof *c);
     /* a regular file only (O_NONBLOCK: a FIFO without a writer would wait for one), mapped,

@@ -178,7 +178,7 @@ static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *
     double x;
     if (!strcmp(d->name, "terrain")) return read_terrain(p, diag, d, m);
     if (!strcmp(d->name, "years")) {
-        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, 1, 60000, true, &x);
+        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, 1, SYL_ECO_MAX_YEARS, true, &x);
         if (!e) m->years = (int)x;
         return e;
     }
@@ -209,7 +209,7 @@ static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *
         if (arity(p, diag, d, 1, SYL_ECO_MAX_SNAPSHOTS)) return 1;
         m->nsnapshots = 0;
         for (int i = 0; i < d->nargs; i++) {
-            if (number(p, diag, d, i, 0, 60000, true, &x)) return 1;
+            if (number(p, diag, d, i, 0, SYL_ECO_MAX_YEARS, true, &x)) return 1;
             if (m->nsnapshots && x <= m->snapshots[m->nsnapshots - 1]) {
                 syl_directive_error(p, diag, d, &d->args[i], "snapshots must be increasing years");
                 return 1;

@@ -1,6 +1,9 @@
 /* syl_ecosystem_run: the block, its terrain and its factors, then the simulation. */
+#include <errno.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "eco/eco.h"
 
@@ -14,6 +17,28 @@ static void cannot_use(const SylProgram *p, FILE *diag, const char *file) {
         }
 }
 
+/* The block's DEM, read as the run reads it (and its factors computed when compute is set),
+ * counted against budget (NULL: its own). */
+static int read_terrain(const SylProgram *p, const SylEcoModel *m, int threads, SylBudget *budget, bool compute,
+                        FILE *diag, SylTerrain **terrain) {
+    char *path = NULL; /* beside the program's file unless absolute */
+    int refused = syl_program_file(p, m->terrain, &path);
+    if (refused == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read the terrain '%s': %s\n", m->terrain, syl_file_refused);
+    if (refused) return refused;
+    SylTerrain *t = NULL;
+    SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
+                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = threads, .diag = diag,
+                            .budget = budget};
+    int st = syl_terrain_read(path, &to, &t);
+    if (st == SYL_EIO && diag) /* the reader named the file: say which line of the model names it */
+        cannot_use(p, diag, m->terrain);
+    if (!st && compute) st = syl_terrain_compute(t, &to);
+    free(path);
+    if (st) syl_terrain_free(t);
+    else *terrain = t;
+    return st;
+}
+
 int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *m, SylTerrain **terrain) {
     FILE *diag = o->diag;
     *terrain = NULL;
@@ -23,20 +48,25 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
         return SYL_EUSAGE;
     }
     if (syl_ecosystem_read(p, m, diag)) return SYL_EMODEL;
-    char *path = syl_program_file_path(p, m->terrain);
-    if (!path) return SYL_ELIMIT;
+    return read_terrain(p, m, o->threads, o->budget, true, diag, terrain);
+}
+
+int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag) {
+    if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) return 0;
+    SylEcoModel *m = malloc(sizeof *m);
     SylTerrain *t = NULL;
-    SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
-                            .latitude = m->latitude, .sun_set = m->latitude_set, .threads = o->threads, .diag = diag,
-                            .budget = o->budget};
-    int st = syl_terrain_read(path, &to, &t);
-    if (st == SYL_EIO && diag) /* the reader named the file: say which line of the model names it */
-        cannot_use(p, diag, m->terrain);
-    if (!st) st = syl_terrain_compute(t, &to);
+    int st = !m ? SYL_ELIMIT : syl_ecosystem_read(p, m, NULL) ? SYL_EMODEL : SYL_OK;
+    char *path = NULL;
+    if (!st && !syl_program_file(p, m->terrain, &path) && access(path, R_OK)) {
+        /* a warning, as a scene's unreadable files: the DEM may yet be made */
+        if (diag) fprintf(diag, "%s: warning: the terrain \"%s\" cannot be read: %s\n", syl_program_path(p), m->terrain, strerror(errno));
+    } else if (!st) {
+        st = read_terrain(p, m, 1, NULL, false, diag, &t);
+    }
     free(path);
-    if (st) syl_terrain_free(t);
-    else *terrain = t;
-    return st;
+    syl_terrain_free(t);
+    free(m);
+    return st != SYL_OK;
 }
 
 int syl_ecosystem_run(const SylProgram *p, const SylEcoOptions *o, SylEcoModel *model_out, SylTerrain **terrain_out,

@@ -27,9 +27,24 @@ static void put_float(FILE *f, float v) {
     fprintf(f, "%.9g", (double)v);
 }
 
+void syl_ecosystem_csv_text(FILE *f, const char *s) {
+    if (!s[strcspn(s, ",\"\r\n")]) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f); /* RFC 4180: quoted, a quote doubled */
+    for (; *s; s++) {
+        if (*s == '"') fputc('"', f);
+        fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
 void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p) {
     const SylEcoSpecies *s = &m->species[p->species];
-    fprintf(f, "%016llx,%s,", (unsigned long long)p->id, s->name);
+    fprintf(f, "%016llx,", (unsigned long long)p->id);
+    syl_ecosystem_csv_text(f, s->name);
+    fputc(',', f);
     put_float(f, p->x);
     fprintf(f, ",%.3f,", syl_terrain_factor_at(t, SYL_TERRAIN_ALTITUDE, p->x, p->z));
     put_float(f, p->z);
@@ -69,9 +84,15 @@ static bool hex_id(const char *s, size_t n, uint64_t *out) {
     return true;
 }
 
-static int species_named(const SylEcoModel *m, const char *s, size_t n) {
-    for (int k = 0; k < m->nspecies; k++)
-        if (strlen(m->species[k].name) == n && !memcmp(m->species[k].name, s, n)) return k;
+/* s[0..n): a field's text, within quotes when quoted (a quote there is doubled) */
+static int species_named(const SylEcoModel *m, const char *s, size_t n, bool quoted) {
+    for (int k = 0; k < m->nspecies; k++) {
+        const char *name = m->species[k].name;
+        size_t i = 0;
+        for (; i < n && *name == s[i]; name++, i++)
+            if (quoted && s[i] == '"') i++; /* the second of the pair */
+        if (i == n && !*name) return k;
+    }
     return -1;
 }
 
@@ -84,16 +105,30 @@ static int cell_of(double v, double v0, double g, int n) {
 static bool row(Reader *r, const char *line, size_t len, uint64_t last_id, bool first, SylEcoPlant *p) {
     const char *f[NFIELDS];
     size_t n[NFIELDS];
+    bool quoted[NFIELDS];
     const char *s = line, *end = line + len;
     int k = 0;
     for (;; k++) {
-        const char *c = memchr(s, ',', (size_t)(end - s));
         if (k == NFIELDS) {
             diag_error(&r->d, at(r, line, s, (size_t)(end - s)), "a row has %d fields (%s); this one has more", NFIELDS,
                        syl_ecosystem_table_header);
             return false;
         }
-        f[k] = s, n[k] = (size_t)((c ? c : end) - s);
+        const char *c;
+        quoted[k] = s < end && *s == '"'; /* RFC 4180: "a, b" with a quote doubled */
+        if (quoted[k]) {
+            const char *e = s + 1;
+            while (e < end && (*e != '"' || (e + 1 < end && e[1] == '"'))) e += *e == '"' ? 2 : 1;
+            if (e >= end || (e + 1 < end && e[1] != ',')) {
+                diag_error(&r->d, at(r, line, s, (size_t)(end - s)), "a quoted field that does not end with a quote before a comma");
+                return false;
+            }
+            f[k] = s + 1, n[k] = (size_t)(e - s - 1);
+            c = e + 1 < end ? e + 1 : NULL;
+        } else {
+            c = memchr(s, ',', (size_t)(end - s));
+            f[k] = s, n[k] = (size_t)((c ? c : end) - s);
+        }
         if (!c) break;
         s = c + 1;
     }
@@ -126,7 +161,7 @@ static bool row(Reader *r, const char *line, size_t len, uint64_t last_id, bool 
                    (unsigned long long)id, (unsigned long long)last_id);
         return false;
     }
-    int sp = species_named(r->m, f[F_SPECIES], n[F_SPECIES]);
+    int sp = species_named(r->m, f[F_SPECIES], n[F_SPECIES], quoted[F_SPECIES]);
     if (sp < 0) {
         char near[256], name[64];
         const char *known[SYL_ECO_MAX_SPECIES];

@@ -358,6 +358,11 @@ static void read_guarded(Reader *r, xmlParserCtxtPtr ctxt, const char *text, siz
     jmp_buf *outer = arena->oom, oom;
     xmlDocPtr volatile doc = NULL;
     volatile int failed = 1;
+    /* what libxml2 reports without its parser context (an encoding it cannot convert) goes
+     * to this thread's handler: to ours too, not raw to stderr; restored on every way out */
+    xmlStructuredErrorFunc before_handler = xmlStructuredError;
+    void *before_user = xmlStructuredErrorContext;
+    xmlSetStructuredErrorFunc(ctxt, on_error);
     if (!setjmp(oom)) {
         arena->oom = &oom;
         ctxt->_private = r;
@@ -372,6 +377,7 @@ static void read_guarded(Reader *r, xmlParserCtxtPtr ctxt, const char *text, siz
         failed = 0;
     }
     arena->oom = outer;
+    xmlSetStructuredErrorFunc(before_user, before_handler);
     xmlFreeDoc(doc);
     xmlFreeParserCtxt(ctxt);
     if (failed && outer) longjmp(*outer, 1);

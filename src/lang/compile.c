@@ -297,6 +297,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
     }
     /* the path is kept: callers may free theirs while the program lives on */
     p->src = (Source){.path = arena_strndup(&p->arena, path, strlen(path)), .text = p->text, .len = len};
+    lang_program_roots(p, opt);
     if (opt->noverrides > 0) {
         p->overrides = arena_alloc(&p->arena, (size_t)opt->noverrides * sizeof *p->overrides);
         for (int i = 0; i < opt->noverrides; i++) {
@@ -398,7 +399,7 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
 
 SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag, int *status) {
     SylCompileOptions opt = {.model = model, .overrides = p->overrides, .noverrides = p->noverrides, .diag = diag,
-                             .sibling = 1};
+                             .sibling = 1, .allow_paths = p->roots, .nallow_paths = p->nroots};
     return syl_compile(p->src.path, p->src.text, p->src.len, &opt, status);
 }
 

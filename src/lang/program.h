@@ -201,6 +201,9 @@ struct SylProgram {
     bool uses_env;          /* ?E appears: the environment answers it after every step */
     SylOverride *overrides; /* the --set values it was compiled with, for its file's other models */
     int noverrides;
+    const char **roots;     /* the real paths of the folders the files it names may be in:
+                               its own, then --allow-path's (syl_program_file) */
+    int nroots;
     const char **set_local; /* per --set: the name within this model ("Birch.lambda" in Birch:
                                "lambda"), NULL when meant for another model (lang/overrides.c) */
     bool sibling;           /* compiled for another model of the file: --set names it lacks are
@@ -270,5 +273,8 @@ double lang_directive_lod(const SylProgram *p);
 static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {
     return (turtle_command_flags(p->syms[sym].turtle) & TF_QUERY) != 0;
 }
+
+/* Resolve the folders p's named files may be in (lang/files.c): its own, then opt's. */
+void lang_program_roots(SylProgram *p, const SylCompileOptions *opt);
 
 #endif

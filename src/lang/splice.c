@@ -3,19 +3,12 @@
  * Each spliced line keeps its file, so that an error in its value names that file and shows
  * its line (SylDirective.file, syl_directive_error). */
 #include <errno.h>
+#include <setjmp.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "lang/compiler.h"
 #include "util/file.h"
-
-/* The path named relative to the program's folder (as written when absolute, or when the
- * program has no folder: standard input, a bare name). */
-static char *resolve(Arena *a, const char *program, const char *name) {
-    const char *slash = program ? strrchr(program, '/') : NULL;
-    if (name[0] == '/' || !slash || !strcmp(program, "-")) return arena_strndup(a, name, strlen(name));
-    return arena_printf(a, "%.*s/%s", (int)(slash - program + 1), program, name);
-}
 
 static const Source *read_source(Compiler *c, const char *path, SylLoc at) {
     size_t len;
@@ -70,9 +63,22 @@ void cc_splice_from(Compiler *c, Model *m) {
                    "from \"aspen.xml\" [Name]");
         return;
     }
-    const char *path = resolve(c->tmp, c->p->src.path, a->v[0].text);
+    char *path = NULL, shown[256];
+    int st = syl_program_file(c->p, a->v[0].text, &path);
+    if (st == SYL_ELIMIT) longjmp(*c->tmp->oom, 1);
+    if (st) {
+        diag_error(c->d, a->v[0].loc, "cannot read '%s': %s", diag_quote(shown, sizeof shown, a->v[0].text, strlen(a->v[0].text)),
+                   syl_file_refused);
+        return;
+    }
     const Source *src = read_source(c, path, a->v[0].loc);
+    free(path);
     if (!src) return;
+    if (!syl_text_is_model(src->text, src->len)) { /* its lines are not shown: it may be anything */
+        diag_error(c->d, a->v[0].loc, "'%s' is not a species file (no weber block, no Arbaro XML)",
+                   diag_quote(shown, sizeof shown, src->path, strlen(src->path)));
+        return;
+    }
     Diag sub = {.out = c->d->out, .src = src, .max_shown = c->d->max_shown};
     FileAst fa;
     int errors = syl_parse(src, c->tmp, &sub, &fa);

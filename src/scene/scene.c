@@ -4,6 +4,7 @@
  * L-systems only, each is derived and drawn in turn and stands, for the plants after it, as
  * static shadow casters and occupants. The skeleton holds every plant in the order the scene
  * lists them. */
+#include <errno.h>
 #include <libgen.h>
 #include <math.h>
 #include <stdlib.h>
@@ -63,20 +64,7 @@ static SylProgram *plant_program(const SylProgram *p, const ScenePlant *pl, FILE
         copt.model = pl->model;
         return syl_compile(syl_program_path(p), text, len, &copt, status);
     }
-    char *path = scene_spec_path(p, pl->file);
-    if (!path) {
-        *status = SYL_ELIMIT;
-        return NULL;
-    }
-    char *colon = strrchr(path, ':');
-    if (colon && colon > strrchr(path, '/') && colon[1]) {
-        *colon = 0;
-        copt.model = colon + 1;
-    }
-    copt.validate = syl_validate; /* another file: checked as `sylva check` would */
-    SylProgram *q = syl_compile(path, NULL, 0, &copt, status);
-    free(path);
-    return q;
+    return scene_plant_file(p, pl->file, pl->line, pl->col, diag, status);
 }
 
 /* How an L-system plant of the scene derives: its seed, and its steps (the plant line's
@@ -217,9 +205,10 @@ static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, si
     for (int i = 0; i < S->nobstacles; i++) {
         const SceneObstacle *o = &S->obstacles[i];
         first_tri[i] = f->env.obstacles.nt;
-        char *path = scene_spec_path(p, o->file);
-        if (!path) return SYL_ELIMIT;
-        int st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
+        char *path = NULL;
+        int st = scene_spec_path(p, o->file, NULL, &path);
+        if (st == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", o->file, syl_file_refused);
+        if (!st) st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
         free(path);
         if (st) {
             if (diag) syl_program_error(p, diag, o->line, o->col, "cannot use the obstacle \"%s\"", o->file);

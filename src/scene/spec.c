@@ -13,10 +13,12 @@
 #include <string.h>
 
 #include "kinds/kinds.h"
+#include "env/objread.h"
 #include "lang/program.h"
 #include "scene/spec.h"
 #include "sot/params.h"
 #include "sot/reader.h"
+#include "sylva/grow.h"
 #include "sylva/trees.h"
 
 static bool vec3_of(Reader *r, const SylDirArg *a, const char *what, float out[3]) {
@@ -293,22 +295,92 @@ void scene_spec_free(SceneSpec *s) {
     memset(s, 0, sizeof *s);
 }
 
-char *scene_spec_path(const SylProgram *p, const char *file) { return syl_program_file_path(p, file); }
+int scene_spec_path(const SylProgram *p, const char *file, char **model, char **out) {
+    char *name = strdup(file);
+    if (!name) return SYL_ELIMIT;
+    char *colon = model ? strrchr(name, ':') : NULL; /* "file.syl:Model", split before the file is judged */
+    if (colon && colon > name && colon[1] && (!strrchr(name, '/') || colon > strrchr(name, '/'))) *colon = 0;
+    else colon = NULL;
+    if (model) *model = NULL;
+    int st = syl_program_file(p, name, out);
+    if (!st && colon && !(*model = strdup(colon + 1))) {
+        free(*out);
+        *out = NULL;
+        st = SYL_ELIMIT;
+    }
+    free(name);
+    return st;
+}
+
+SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, int col, FILE *diag, int *status) {
+    char *path = NULL, *model = NULL;
+    *status = scene_spec_path(p, file, &model, &path);
+    if (*status) {
+        if (*status == SYL_EIO && diag)
+            syl_program_error(p, diag, line, col, "the plant file \"%s\" cannot be read: %s", file, syl_file_refused);
+        return NULL;
+    }
+    /* the --set values reach every plant; its own folder is within p's: it reads no further */
+    SylCompileOptions copt = {.diag = diag, .overrides = p->overrides, .noverrides = p->noverrides, .sibling = 1,
+                              .model = model, .allow_paths = p->roots, .nallow_paths = p->nroots,
+                              .validate = syl_validate}; /* another file: checked as `sylva check` would */
+    size_t len = 0;
+    char *text = syl_read_file(path, &len);
+    SylProgram *q = NULL;
+    if (!text) {
+        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
+        *status = SYL_EIO;
+    } else if (!syl_text_is_model(text, len)) { /* its lines are not shown: it may be anything */
+        if (diag)
+            syl_program_error(p, diag, line, col, "the plant file \"%s\" is not a model file (no lsystem, grow, weber or strands block)", file);
+        *status = SYL_EMODEL;
+    } else {
+        q = syl_compile(path, text, len, &copt, status);
+    }
+    free(text), free(path), free(model);
+    return q;
+}
+
+/* A file the scene names, read as the run will read it: one outside the folders the model may
+ * read, one that cannot be read (said with the path it was looked for at) or a malformed one is
+ * an error at its line (returns 1), since the commands that grow the scene fail on it. */
+static int check_file(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
+    bool plant = !strcmp(what, "plant");
+    char *path = NULL, *model = NULL;
+    int st = scene_spec_path(p, file, plant ? &model : NULL, &path);
+    free(model);
+    if (st == SYL_EIO) syl_program_error(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, syl_file_refused);
+    if (st) return st == SYL_EIO;
+    if (syl_program_check_file(p, diag, what, file, line, col)) {
+        free(path);
+        return 1;
+    }
+    int bad = 0;
+    if (plant) {
+        SylProgram *q = scene_plant_file(p, file, line, col, diag, &st);
+        bad = !q;
+        syl_program_free(q);
+    } else {
+        ObjMesh m;
+        bad = obj_read(path, &m, diag) != SYL_OK;
+        obj_free(&m);
+        if (bad) syl_program_error(p, diag, line, col, "cannot use the %s \"%s\"", what, file);
+    }
+    free(path);
+    return bad;
+}
 
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     SceneSpec s;
-    int errors = scene_spec_read(p, &s, diag), set_errors = s.set_errors;
-    /* `sylva check` (files): a file the scene names that cannot be read is an error, since the
-     * commands that grow the scene fail on it */
-    int missing = 0;
+    int errors = scene_spec_read(p, &s, diag), set_errors = s.set_errors, refused = 0;
     for (int i = 0; files && !errors && i < s.nobstacles; i++)
-        missing += syl_program_check_file(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
-                                          s.obstacles[i].line, s.obstacles[i].col);
+        refused += check_file(p, diag, s.obstacles[i].terrain ? "ground" : "obstacle", s.obstacles[i].file,
+                                   s.obstacles[i].line, s.obstacles[i].col);
     for (int i = 0; files && !errors && i < s.nplants; i++)
         if (s.plants[i].file)
-            missing += syl_program_check_file(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
+            refused += check_file(p, diag, "plant", s.plants[i].file, s.plants[i].line, s.plants[i].col);
+    errors += refused;
     scene_spec_free(&s);
-    errors += missing;
     return errors && errors == set_errors ? -errors : errors;
 }
 

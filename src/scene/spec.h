@@ -42,9 +42,16 @@ typedef struct SceneSpec {
  * plants are checked against the models of the file. */
 int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag);
 void scene_spec_free(SceneSpec *s);
-/* A file the scene names (obstacle, ground, plant), relative to the scene's own file;
- * malloc'd (NULL: out of memory). */
-char *scene_spec_path(const SylProgram *p, const char *file);
+/* A file the scene names (obstacle, ground, plant), relative to the scene's own file, into
+ * *out (malloc'd), as syl_program_file decides (SYL_EIO: outside the folders the model may
+ * read; SYL_ELIMIT: out of memory). With model not NULL (a plant), "file.syl:Model" is split:
+ * *model is the model's name (malloc'd) or NULL. */
+int scene_spec_path(const SylProgram *p, const char *file, char **model, char **out);
+
+/* Compile the model of a plant file a scene names ("file.syl[:Model]"), as syl_program_file
+ * and syl_text_is_model allow, checked as `sylva check` would; NULL with *status on failure
+ * (reported on diag at the plant's line and column). */
+SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, int col, FILE *diag, int *status);
 
 /* Check p's scene block, as syl_grow_validate does with a file's first model. Returns the
  * number of errors reported, negated when all are of --set. */

@@ -1,6 +1,7 @@
 /* Factor maps: a 16-bit greyscale PNG (grey 0 the grid's lowest value, white its highest;
  * the two values in the text chunk "sylva:range", the factor's name in "sylva:factor") and
- * an ESRI ASCII grid of the values themselves (NODATA_value −9999 where the DEM had none).
+ * an ESRI ASCII grid of the values themselves (NODATA_value where the DEM had none: −9999, or
+ * −99999, −999999 ... when the data reach −9999, so that no value reads back as missing).
  * Both go through util/outfile: nothing half-written is left at the path. */
 #include <math.h>
 #include <stdlib.h>
@@ -65,14 +66,19 @@ int terrain_write_png(const Terrain *t, const float *grid, const char *name, con
 int terrain_write_asc(const Terrain *t, const float *grid, const char *path, FILE *diag) {
     OutFile o;
     if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
-    fprintf(o.f, "ncols %d\nnrows %d\nxllcorner %.17g\nyllcorner %.17g\ncellsize %.17g\nNODATA_value -9999\n", t->nx,
-            t->nz, t->x0 + 0.0, -(t->z0 + t->nz * t->cell) + 0.0, t->cell); /* + 0.0: never "-0" */
+    double lo, hi, nodata = -9999;
+    grid_range(t, grid, &lo, &hi);
+    while (nodata >= lo && nodata > -1e300) nodata = nodata * 10 - 9; /* below every value */
+    char nd[32];
+    snprintf(nd, sizeof nd, "%.0f", nodata);
+    fprintf(o.f, "ncols %d\nnrows %d\nxllcorner %.17g\nyllcorner %.17g\ncellsize %.17g\nNODATA_value %s\n", t->nx,
+            t->nz, t->x0 + 0.0, -(t->z0 + t->nz * t->cell) + 0.0, t->cell, nd); /* + 0.0: never "-0" */
     for (int k = 0; k < t->nz; k++) {
         const float *r = grid + (size_t)k * (size_t)t->nx;
         const uint8_t *ok = t->valid + (size_t)k * (size_t)t->nx;
         for (int i = 0; i < t->nx; i++) {
             if (ok[i]) fprintf(o.f, i ? " %.9g" : "%.9g", r[i]);
-            else fputs(i ? " -9999" : "-9999", o.f);
+            else fprintf(o.f, i ? " %s" : "%s", nd);
         }
         fputc('\n', o.f);
     }

@@ -66,6 +66,8 @@ static char *follow(const char *path) {
     return NULL;
 }
 
+char *outfile_follow(const char *path) { return follow(path); }
+
 static char *dir_of(const char *path) {
     const char *slash = strrchr(path, '/');
     if (!slash) return strdup(".");

@@ -47,4 +47,8 @@ bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, FILE *dia
  * a write error is reported whether or not commit is set. */
 bool outfile_close(OutFile *o, bool commit, FILE *diag);
 
+/* path with its symlinks followed (also a dangling one's): the file outfile_open writes;
+ * malloc'd, NULL with errno on failure. */
+char *outfile_follow(const char *path);
+
 #endif

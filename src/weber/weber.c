@@ -74,23 +74,13 @@ static double estimate_stems(const WeberGen *g, double *bytes) {
     return stems;
 }
 
-/* The envelope's file, beside the program's unless absolute. */
-static char *beside(const SylProgram *p, const char *file) {
-    const char *prog = syl_program_path(p);
-    const char *slash = prog ? strrchr(prog, '/') : NULL;
-    size_t dir = file[0] == '/' || !slash ? 0 : (size_t)(slash - prog + 1);
-    char *out = malloc(dir + strlen(file) + 1);
-    if (!out) return NULL;
-    memcpy(out, prog, dir);
-    strcpy(out + dir, file);
-    return out;
-}
-
 static int load_envelope(const SylProgram *p, const WeberParams *w, WeberEnvelope *e, FILE *diag) {
-    char *path = beside(p, w->envelope);
-    if (!path) return SYL_ELIMIT;
+    char *path = NULL;
+    int st = syl_program_file(p, w->envelope, &path); /* beside the program's file unless absolute */
+    if (st == SYL_ELIMIT) return st;
+    if (st && diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", w->envelope, syl_file_refused);
     static const float zero[3] = {0, 0, 0};
-    int st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
+    if (!st) st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
     free(path);
     if (!st && e->obs.nt == 0) st = SYL_EMODEL;
     if (!st) {

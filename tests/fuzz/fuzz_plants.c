@@ -1,5 +1,5 @@
 /* libFuzzer harness: the plant table reader (plants-YEAR.csv, sylva render --plants) on
- * arbitrary bytes, for a model of two species on a 12 x 12 terrain of 2 m cells at (-6, 4).
+ * arbitrary bytes, for a model of two species (one whose name CSV quotes) on a 12 x 12 terrain of 2 m cells at (-6, 4).
  * A table that reads must hold what the reader promises (ids increasing, species known,
  * positions on the terrain, cells in the grid), and written back by the one writer it must
  * read again as the same plants and write the same text (x, z and height round-trip). */
@@ -28,7 +28,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (!m.nspecies) {
         m.nspecies = 2;
         strcpy(m.species[0].name, "tall"), m.species[0].radius_ratio = 0.3;
-        strcpy(m.species[1].name, "short"), m.species[1].radius_ratio = 0.4;
+        strcpy(m.species[1].name, "short, \"x\""), m.species[1].radius_ratio = 0.4; /* written quoted */
         for (int c = 0; c < N * N; c++) h[c] = (float)(c % N) * 0.5f + (float)(c / N), valid[c] = 1;
     }
     t.factor[SYL_TERRAIN_ALTITUDE] = h;
