@@ -121,7 +121,9 @@ static int species_looks(SylForest *f, const SylProgram *p, int s, const SylFore
             if (st) break;
             f->protos[k].mesh = f->looks[k].mesh;
             f->protos[k].coarse = f->looks[k].lod.n > 1 ? f->looks[k].lod.level[1].mesh : NULL;
-            snprintf(f->looks[k].mesh->name, sizeof f->looks[k].mesh->name, "%.40s_class%d_v%d", sp->name, c, v);
+            /* a species name is at most 47 bytes; the class and variant are small: cut the name so it fits */
+            snprintf(f->looks[k].mesh->name, sizeof f->looks[k].mesh->name, "%.40s_class%d_v%d", sp->name, c & 0xff,
+                     v & 0xff);
             f->proto_species[k] = s, f->proto_class[k] = c, f->proto_variant[k] = v;
             f->proto_of[s][c][v] = k;
             last_frame = frame, last_k = k;

@@ -1,32 +1,23 @@
-/* libFuzzer harness: the DEM readers (a PNG when the input starts with PNG's signature, an
- * ESRI ASCII grid otherwise) on arbitrary bytes, then every factor of what they read, with
- * checks on the factors' ranges. Small limits keep each input fast: 64 MB, grids of at most
- * 4096 cells computed, two days of four suns. (OBJ terrains are read by fuzz_obj's reader.) */
+/* libFuzzer harness: the DEM readers (a PNG when the input starts with PNG's signature, else
+ * the same text as an ESRI ASCII grid and as Zamuda's DMR list) on arbitrary bytes, then every
+ * factor of what they read, with checks on the factors' ranges. Small limits keep each input
+ * fast: 64 MB, grids of at most 4096 cells computed, two days of four suns. (OBJ terrains are
+ * read by fuzz_obj's reader.) */
 #include <math.h>
 
 #include "fuzz.h"
 #include "sylva/sylva.h"
 #include "terrain/terrain.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    FILE *diag = fuzz_diag();
-    SylTerrainOptions o = {.cell = 2, .height_lo = -5, .height_hi = 50, .threads = 1, .max_memory = 64u << 20,
-                           .diag = diag, .sun_days = 2, .sun_minutes = 360};
-    Terrain *t = NULL;
-    int st;
-    if (size >= 8 && !memcmp(data, "\x89PNG\r\n\x1a\n", 8)) st = terrain_read_png("fuzz.png", data, size, &o, &t);
-    else {
-        char *text = fuzz_text(data, size);
-        st = terrain_read_asc("fuzz.asc", text, size, &o, &t);
-        free(text);
-    }
+/* What a reader gave: nothing when it failed, else factors within their ranges. */
+static void check(int st, Terrain *t, SylTerrainOptions *o) {
     if (st != SYL_OK) {
         if (t) abort(); /* a failed read leaves nothing */
-        return 0;
+        return;
     }
     if ((size_t)t->nx * (size_t)t->nz <= 4096) {
-        o.wind_distance = 10 * t->cell;
-        if (syl_terrain_compute(t, &o) == SYL_OK) {
+        o->wind_distance = 10 * t->cell;
+        if (syl_terrain_compute(t, o) == SYL_OK) {
             size_t n = (size_t)t->nx * (size_t)t->nz;
             for (size_t c = 0; c < n; c++) {
                 float s = t->factor[SYL_TERRAIN_SLOPE][c], a = t->factor[SYL_TERRAIN_ASPECT][c];
@@ -42,5 +33,23 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         }
     }
     syl_terrain_free(t);
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    FILE *diag = fuzz_diag();
+    SylTerrainOptions o = {.cell = 2, .height_lo = -5, .height_hi = 50, .threads = 1, .max_memory = 64u << 20,
+                           .diag = diag, .sun_days = 2, .sun_minutes = 360};
+    Terrain *t = NULL;
+    if (size >= 8 && !memcmp(data, "\x89PNG\r\n\x1a\n", 8)) {
+        check(terrain_read_png("fuzz.png", data, size, &o, &t), t, &o);
+        return 0;
+    }
+    char *text = fuzz_text(data, size);
+    int st = terrain_read_asc("fuzz.asc", text, size, &o, &t);
+    check(st, t, &o);
+    t = NULL;
+    st = terrain_read_dmr("fuzz.dmr", text, size, &o, &t);
+    check(st, t, &o);
+    free(text);
     return 0;
 }
