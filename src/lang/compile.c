@@ -281,12 +281,14 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         if (!p->text) {
             int e = errno; /* before the message, which may change it */
             if (opt->diag) fprintf(opt->diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(e));
+            arena_free(&p->arena); /* the read cache's room */
             free(p);
             *status = SYL_EIO;
             return NULL;
         }
     }
     if (!p->text) {
+        arena_free(&p->arena);
         free(p);
         *status = SYL_ELIMIT;
         return NULL;

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "kinds/kinds.h"
+#include "util/file.h"
 #include "env/objread.h"
 #include "lang/program.h"
 #include "scene/spec.h"
@@ -325,11 +326,11 @@ SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, in
                               .model = model, .allow_paths = p->roots, .nallow_paths = p->nroots,
                               .validate = syl_validate}; /* another file: checked as `sylva check` would */
     size_t len = 0;
-    char *text = syl_read_file(path, &len);
+    char *text = file_read_named(path, &len, NULL); /* a regular file, of a bounded size */
     SylProgram *q = NULL;
     if (!text) {
-        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, strerror(errno));
-        *status = SYL_EIO;
+        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(errno));
+        *status = errno == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     } else if (!syl_text_is_model(text, len)) { /* its lines are not shown: it may be anything */
         if (diag)
             syl_program_error(p, diag, line, col, "the plant file \"%s\" is not a model file (no lsystem, grow, weber or strands block)", file);
@@ -337,7 +338,7 @@ SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, in
     } else {
         q = syl_compile(path, text, len, &copt, status);
     }
-    free(text), free(path), free(model);
+    file_free_named(text, len, NULL), free(path), free(model);
     return q;
 }
 

@@ -523,7 +523,7 @@ static void directive_errors(void **state) {
         const char *line, *message;
     } cases[] = {
         {"  lite shadow\n", "test.syl:2:3: error: unknown directive 'lite' in a grow block"},
-        {"  allocate bh lamda 0.5\n", "test.syl:2:15: error: unknown key 'lamda' of 'allocate' (keys: lambda or alpha)"},
+        {"  allocate bh lamda 0.5\n", "test.syl:2:15: error: unknown key 'lamda' of 'allocate' (did you mean 'lambda'?)"},
         {"  allocate bh lambda 1.5\n", "test.syl:2:22: error: 'lambda' expects a number from 0 to 1, not 1.5"},
         {"  light sky voxel 2\n", "test.syl:2:13: error: 'voxel' is not a key of 'light sky'"},
         {"  buds whorled\n", "test.syl:2:8: error: 'whorled' expects a whole number of buds from 1 to 32 after it"},
