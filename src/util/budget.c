@@ -9,7 +9,7 @@
 
 /* A cgroup's limit in bytes from its file ("max" or a huge number: none, UINT64_MAX). */
 static uint64_t cgroup_file(const char *dir, const char *sub, const char *name) {
-    char path[4096];
+    char path[3 * 4096]; /* dir, sub and name, each at most a line of /proc/self/cgroup */
     snprintf(path, sizeof path, "%s%s/%s", dir, sub, name);
     FILE *f = fopen(path, "re");
     if (!f) return UINT64_MAX;
@@ -33,25 +33,32 @@ static uint64_t cgroup_chain(const char *dir, char *sub, const char *name) {
     return least;
 }
 
-/* The cgroup (v2 memory.max, or v1 memory.limit_in_bytes) memory limit of this process. */
-static uint64_t cgroup_limit(const char **which) {
-    FILE *f = fopen("/proc/self/cgroup", "re");
+uint64_t budget_cgroup_limit(const char *proc_cgroup, const char *sys_root, const char **which) {
+    FILE *f = fopen(proc_cgroup, "re");
     if (!f) return UINT64_MAX;
-    char line[4096];
+    char line[4096], v2[4096], v2u[4096], v1[4096];
+    snprintf(v2, sizeof v2, "%s", sys_root);
+    snprintf(v2u, sizeof v2u, "%s/unified", sys_root); /* v2 beside v1 (a hybrid mount) */
+    snprintf(v1, sizeof v1, "%s/memory", sys_root);
     uint64_t least = UINT64_MAX;
     while (fgets(line, sizeof line, f)) {
         line[strcspn(line, "\n")] = 0;
         char *c1 = strchr(line, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
         if (!c2) continue;
         *c2 = 0;
-        const char *ctrl = c1 + 1, *name, *dir;
-        if (!*ctrl && line[0] == '0') dir = "/sys/fs/cgroup", name = "memory.max";
-        else if (strstr(ctrl, "memory")) dir = "/sys/fs/cgroup/memory", name = "memory.limit_in_bytes";
-        else continue;
-        uint64_t v = cgroup_chain(dir, c2 + 1, name);
-        if (v < least) {
-            least = v;
-            *which = !strcmp(name, "memory.max") ? "the cgroup's memory.max" : "the cgroup's memory.limit_in_bytes";
+        const char *ctrl = c1 + 1;
+        for (int hybrid = 0; hybrid < 2; hybrid++) {
+            const char *name, *dir;
+            if (!*ctrl && line[0] == '0') dir = hybrid ? v2u : v2, name = "memory.max";
+            else if (strstr(ctrl, "memory") && !hybrid) dir = v1, name = "memory.limit_in_bytes";
+            else continue;
+            char sub[4096];
+            snprintf(sub, sizeof sub, "%s", c2 + 1);
+            uint64_t v = cgroup_chain(dir, sub, name);
+            if (v < least) {
+                least = v;
+                if (which) *which = !strcmp(name, "memory.max") ? "the cgroup's memory.max" : "the cgroup's memory.limit_in_bytes";
+            }
         }
     }
     fclose(f);
@@ -74,7 +81,7 @@ uint64_t budget_default_why(const char **why) {
     if (!getrlimit(RLIMIT_DATA, &rl) && rl.rlim_cur != RLIM_INFINITY && rl.rlim_cur < least)
         least = rl.rlim_cur, which = "RLIMIT_DATA, the data segment (ulimit)";
     const char *cg = NULL;
-    uint64_t c = cgroup_limit(&cg);
+    uint64_t c = budget_cgroup_limit("/proc/self/cgroup", "/sys/fs/cgroup", &cg);
     if (c < least) least = c, which = cg;
     uint64_t half = least / 2;
     if (half > (16ull << 30)) half = 16ull << 30, which = "the cap of 16 GiB";

@@ -24,6 +24,11 @@ typedef struct SylBudget Budget;
  * budget_default_why also says which of them set it. */
 uint64_t budget_default_limit(void);
 uint64_t budget_default_why(const char **why);
+/* The smallest cgroup memory limit over the process's cgroups listed in proc_cgroup (the form
+ * of /proc/self/cgroup) and their parents, read under sys_root (/sys/fs/cgroup: v2 memory.max
+ * there or under unified/, v1 memory.limit_in_bytes under memory/); UINT64_MAX for none.
+ * *which (when not NULL) names the file that set it. */
+uint64_t budget_cgroup_limit(const char *proc_cgroup, const char *sys_root, const char **which);
 /* A budget of limit bytes (0: the default), nothing charged. */
 void budget_init(Budget *b, uint64_t limit);
 /* Count bytes more; false (nothing counted, the refusal remembered) when the total would pass
