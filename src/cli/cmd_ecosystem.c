@@ -438,7 +438,7 @@ static int write_maps(const SylTerrain *t, const char *dir) {
     char *maps = path_in(dir, "maps", 0);
     int st = maps ? make_dir(maps) : SYL_ELIMIT;
     for (int f = 0; !st && f < SYL_TERRAIN_FACTORS; f++)
-        for (int e = 0; !st && e < 2; e++) {
+        for (int e = 0; !st && e < 2 && t->factor[f]; e++) {
             size_t len = strlen(maps) + 32;
             char *path = malloc(len);
             if (!path) {

@@ -11,7 +11,7 @@
 #include "util/file.h"
 
 static const char *const names[SYL_TERRAIN_FACTORS] = {
-    "altitude", "slope", "aspect", "flow", "wetness", "insolation", "wind",
+    "altitude", "slope", "aspect", "flow", "wetness", "insolation", "wind", "humidity", "sunniness", "windiness",
 };
 
 const char *syl_terrain_factor_name(SylTerrainFactor f) {

@@ -105,6 +105,13 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
  * clockwise from north) within distance dmax. */
 void terrain_wind(const Terrain *t, double from, double dmax, float *out, int threads);
 
+/* Zamuda's (2006) measures, one file each (docs/terrain.md): runoff.c his Algorithm 3 (SYL_OK
+ * or SYL_ELIMIT), lee.c his Algorithm 4 (wind from the azimuth from, degrees), sunniness.c
+ * his Algorithm 5 (SYL_OK, SYL_ELIMIT, or SYL_EUSAGE for an even or out-of-range count). */
+int terrain_runoff(Terrain *t, const float *slope, double k_m, double water_level, float *out, FILE *diag);
+void terrain_lee(const Terrain *t, double from, int samples, double theta0_deg, float *out, int threads);
+int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, float *out, int threads, FILE *diag);
+
 /* ---- maps (write.c) ---- */
 int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, FILE *diag);
 int terrain_write_asc(const Terrain *t, const float *grid, const char *path, FILE *diag);
