@@ -385,8 +385,9 @@ static int read_lines(const SylProgram *p, SylEcoModel *m, FILE *diag, int *set_
     }
     *set_errors = errors ? 0 : apply_sets(p, m, diag);
     errors += *set_errors;
+    int line_errors = errors; /* a misspelt `measures` says nothing of the curves */
     for (int k = 0; k < m->nspecies && !*set_errors; k++)
-        errors += check_species(p, diag, &m->species[k]) + check_measures(p, diag, m, &m->species[k]);
+        errors += check_species(p, diag, &m->species[k]) + (line_errors ? 0 : check_measures(p, diag, m, &m->species[k]));
     if (!errors && !m->terrain[0]) {
         syl_program_error(p, diag, 0, 0, "ecosystem '%s' names no terrain (terrain \"dem.png\" cell 10 heights 0 400)",
                           syl_program_name(p));
