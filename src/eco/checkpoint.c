@@ -165,7 +165,7 @@ int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name
     c->model_hash = get64(b + 16);
     c->year = (int)year;
     c->nplants = (size_t)n;
-    c->years = malloc(year * sizeof *c->years);
+    c->years = calloc(year, sizeof *c->years); /* deaths by cause are not kept: 0 */
     c->plants = malloc((n ? n : 1) * sizeof *c->plants);
     if (!c->years || !c->plants) {
         syl_ecosystem_checkpoint_free(c);
