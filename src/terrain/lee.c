@@ -24,21 +24,11 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
     (void)thread;
     const Job *j = ctx;
     const Terrain *t = j->t;
-    double xlo = t->x0 + t->cell / 2, xhi = t->x0 + (t->nx - 0.5) * t->cell;
-    double zlo = t->z0 + t->cell / 2, zhi = t->z0 + (t->nz - 0.5) * t->cell, e = 1e-9 * t->cell;
     for (size_t k = lo; k < hi; k++)
         for (int i = 0; i < t->nx; i++) {
-            size_t c = k * (size_t)t->nx + (size_t)i;
-            double x = t->x0 + (i + 0.5) * t->cell, z = t->z0 + (k + 0.5) * t->cell, h = t->height[c];
-            double rise = 0; /* the steepest rise per distance upwind, at least level */
-            for (int s = 1; s <= j->samples; s++) {
-                double d = s * t->cell, sx = x + j->ux * d, sz = z + j->uz * d;
-                if (sx < xlo - e || sx > xhi + e || sz < zlo - e || sz > zhi + e) break;
-                double r = (terrain_height_at(t, sx, sz) - h) / d;
-                if (r > rise) rise = r;
-            }
-            double phi = atan(rise);
-            j->out[c] = phi <= j->theta0 ? (float)(1 - phi / j->theta0) : 1;
+            /* the steepest rise per distance upwind, at least level */
+            double phi = atan(fmax(0, terrain_max_rise(t, (size_t)i, k, j->ux, j->uz, j->samples)));
+            j->out[k * (size_t)t->nx + (size_t)i] = phi <= j->theta0 ? (float)(1 - phi / j->theta0) : 1;
         }
 }
 

@@ -45,6 +45,10 @@ void terrain_horn(const Terrain *t, int i, int k, double *gx, double *gz);
 double terrain_factor_at(const Terrain *t, TerrainFactor f, double x, double z);
 /* Bilinear height, clamped: what the wind's march samples. */
 double terrain_height_at(const Terrain *t, double x, double z);
+/* The wind's march (wind.c, lee.c): from cell (i, k)'s centre, the terrain sampled every
+ * cell width along the unit (ux, uz) for up to steps samples, stopping at the grid's edge;
+ * the largest rise per distance, (h_s − h) / d, or −INFINITY when no sample lies on the grid. */
+double terrain_max_rise(const Terrain *t, size_t i, size_t k, double ux, double uz, int steps);
 
 /* ---- readers (read_png.c, read_asc.c, read_obj.c) ---- */
 
