@@ -174,15 +174,12 @@ static int read_species_line(const SylProgram *p, FILE *diag, const SylDirective
     return unknown(p, diag, d, true);
 }
 
-/* A word of the directive's row (its index: the enum's value), or an error with a guess. */
-static int word_of(const SylProgram *p, FILE *diag, const SylDirective *d, int *out) {
+/* The index of the directive's word in its row (the enum's value), or -1 reported with a guess. */
+static int word_of(const SylProgram *p, FILE *diag, const SylDirective *d) {
     const char *words = sch_find(&sch_ecosystem, d->name, NULL)->words; /* in the enum's order */
-    if (arity(p, diag, d, 1, 1)) return 1;
+    if (arity(p, diag, d, 1, 1)) return -1;
     int k = d->args[0].kind == SYL_DARG_WORD ? sch_word_index(words, d->args[0].text) : -1;
-    if (k >= 0) {
-        *out = k;
-        return 0;
-    }
+    if (k >= 0) return k;
     char near[200] = "", list[200] = "";
     if (d->args[0].kind == SYL_DARG_WORD) sch_suggest_word(words, d->args[0].text, near, sizeof near);
     for (const char *w = words; *w;) { /* 'a', 'b' or 'c' */
@@ -191,7 +188,7 @@ static int word_of(const SylProgram *p, FILE *diag, const SylDirective *d, int *
         w += len + (w[len] == '|');
     }
     syl_directive_error(p, diag, d, &d->args[0], "%s is %s%s", d->name, list, near);
-    return 1;
+    return -1;
 }
 
 static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *d, SylEcoModel *m) {
@@ -217,9 +214,15 @@ static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *
         m->wind_set = !e;
         return e;
     }
-    if (!strcmp(d->name, "vigour")) return word_of(p, diag, d, (int *)&m->combine);
-    if (!strcmp(d->name, "measures")) return word_of(p, diag, d, (int *)&m->measures);
-    if (!strcmp(d->name, "mortality")) return word_of(p, diag, d, (int *)&m->mortality);
+    bool vigour = !strcmp(d->name, "vigour"), measures = !strcmp(d->name, "measures");
+    if (vigour || measures || !strcmp(d->name, "mortality")) {
+        int k = word_of(p, diag, d);
+        if (k < 0) return 1;
+        if (vigour) m->combine = (SylEcoCombine)k;
+        else if (measures) m->measures = (SylEcoMeasures)k;
+        else m->mortality = (SylEcoMortality)k;
+        return 0;
+    }
     if (!strcmp(d->name, "snapshots")) {
         if (arity(p, diag, d, 1, SYL_ECO_MAX_SNAPSHOTS)) return 1;
         m->nsnapshots = 0;
