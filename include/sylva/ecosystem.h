@@ -57,6 +57,21 @@ typedef struct SylEcoSpecies {
 } SylEcoSpecies;
 
 typedef enum { SYL_ECO_MEAN, SYL_ECO_PRODUCT, SYL_ECO_MINIMUM } SylEcoCombine;
+typedef enum { SYL_ECO_GIS, SYL_ECO_ZAMUDA } SylEcoMeasures; /* `measures` */
+typedef enum { SYL_ECO_STRESS, SYL_ECO_PER_FACTOR } SylEcoMortality; /* `mortality stress|zamuda` */
+
+/* Why plants died (SylEcoYear.deaths): their age, domination, and then (mortality stress) the
+ * site's stress, or (mortality zamuda, Zamuda 2006's generators of death) each factor that
+ * does not suit them; the water, sun and wind causes are the measures' (wetness or humidity,
+ * insolation or sunniness, wind or windiness). */
+#define SYL_ECO_DEATH_LIST(X) X(AGE, "age") X(DOMINANCE, "dominance") X(STRESS, "stress") X(ALTITUDE, "altitude") \
+    X(SLOPE, "slope") X(ASPECT, "aspect") X(HUMIDITY, "humidity") X(SUNNINESS, "sunniness") X(WINDINESS, "windiness")
+#define SYL_ECO_DEATH_ENUM(id, name) SYL_ECO_DEATH_##id,
+typedef enum { SYL_ECO_DEATH_LIST(SYL_ECO_DEATH_ENUM) SYL_ECO_DEATH_CAUSES } SylEcoDeath;
+#undef SYL_ECO_DEATH_ENUM
+const char *syl_ecosystem_death_name(SylEcoDeath cause); /* "age", "dominance", ... */
+/* The cause of death a factor's suitability stands for (-1: none, the flow). */
+int syl_ecosystem_death_of(SylTerrainFactor f);
 
 /* An ecosystem block read from its directives. */
 typedef struct SylEcoModel {
@@ -69,6 +84,10 @@ typedef struct SylEcoModel {
     SylEcoCombine combine;
     SylEcoSpecies species[SYL_ECO_MAX_SPECIES];
     int nspecies;
+    SylEcoMeasures measures;   /* which terrain measures the species' curves read */
+    SylEcoMortality mortality;
+    double wind_from;          /* degrees: where the wind blows from (default 270) */
+    int wind_set;
 } SylEcoModel;
 
 /* Read (and check) an ecosystem block: returns the number of errors reported to diag, each
@@ -110,6 +129,7 @@ typedef struct SylEcoYear {
     uint32_t count[SYL_ECO_MAX_SPECIES];  /* living plants at the end of the year */
     double cover[SYL_ECO_MAX_SPECIES];    /* their crowns' area (π r²) over the terrain's area */
     double mean_height[SYL_ECO_MAX_SPECIES];
+    uint32_t deaths[SYL_ECO_MAX_SPECIES][SYL_ECO_DEATH_CAUSES]; /* plants that died in the year, by cause */
 } SylEcoYear;
 
 typedef struct SylEcoOptions {

@@ -1,6 +1,7 @@
 /* libsylva: terrains (digital elevation models) and the factors a plant's site has on them:
  * altitude, slope, aspect, flow accumulation, wetness, insolation and wind exposure,
- * computed as GIS computes them (docs/terrain.md).
+ * computed as GIS computes them, or Zamuda's (2006) runoff humidity, sunniness and
+ * windiness computed as his thesis does (docs/terrain.md).
  *
  * A terrain is a grid of nx × nz cells of one size lying in Sylva's x–z plane, heights along
  * y (up). North is −z and east is +x, so a raster's first row (its northern edge) is the
@@ -28,8 +29,18 @@ typedef enum SylTerrainFactor {
     SYL_TERRAIN_INSOLATION, /* a year's direct sun with the terrain's shadows, relative to open
                                flat ground at the same latitude */
     SYL_TERRAIN_WIND,       /* Winstral's Sx, degrees: > 0 sheltered, < 0 exposed */
+    /* Zamuda's measures (computed only with SYL_TERRAIN_ZAMUDA) */
+    SYL_TERRAIN_HUMIDITY,   /* his runoff humidity (Algorithm 3), in rain units: 1 where water
+                               neither comes nor goes */
+    SYL_TERRAIN_SUNNINESS,  /* his sunniness (Algorithm 5): weighted cosines of a day's suns */
+    SYL_TERRAIN_WINDINESS,  /* his lee-angle windiness (Algorithm 4): 1 open, 0 sheltered */
     SYL_TERRAIN_FACTORS
 } SylTerrainFactor;
+
+/* Which measures of water, sun and wind syl_terrain_compute makes (altitude, slope and aspect
+ * always): GIS's flow, wetness, insolation and wind, Zamuda's humidity, sunniness and
+ * windiness, or both. 0 is GIS's. */
+enum { SYL_TERRAIN_GIS = 1, SYL_TERRAIN_ZAMUDA = 2, SYL_TERRAIN_BOTH = 3 };
 
 typedef struct SylTerrainOptions {
     /* reading */
@@ -46,6 +57,16 @@ typedef struct SylTerrainOptions {
     double wind_from;       /* azimuth the prevailing wind comes from, degrees (default 270) */
     double wind_distance;   /* Winstral's search distance d_max (default 300) */
     int wind_set;           /* wind_from was given */
+    /* Zamuda's measures (0: his values, docs/terrain.md) */
+    int measures;           /* SYL_TERRAIN_GIS (0 too), SYL_TERRAIN_ZAMUDA or SYL_TERRAIN_BOTH */
+    double runoff;          /* k_m: a patch of his slope s sheds min(1, s k_m) of its water to
+                               its lower neighbours (default 10) */
+    double water_level;     /* normalised height below which patches are water, + 10 (default 0:
+                               none) */
+    int lee_samples;        /* N_w, patches marched upwind (default 10) */
+    double lee_angle;       /* Θ0, degrees: lee angles above it shelter nothing (default 45) */
+    int sun_samples;        /* N_l, odd: the day's sun positions (default 9) */
+    double ambient;         /* l_ambient: light of a shadowed or back-lit sample (default 0.2) */
     int threads;            /* <= 0: all cores; the maps never depend on it */
     SylBudget *budget;      /* NULL: a budget of max_memory (or the default) */
     uint64_t max_memory;

@@ -329,12 +329,20 @@ static int write_species_csv(Run *r) {
         free(path);
         return path ? SYL_EIO : SYL_ELIMIT;
     }
-    fprintf(o.f, "year,species,count,cover,mean_height\n");
+    /* mortality zamuda: the year's deaths by cause too (stress is not one of his) */
+    bool by_cause = r->m->mortality == SYL_ECO_PER_FACTOR;
+    fprintf(o.f, "year,species,count,cover,mean_height");
+    for (int c = 0; by_cause && c < SYL_ECO_DEATH_CAUSES; c++)
+        if (c != SYL_ECO_DEATH_STRESS) fprintf(o.f, ",died_%s", syl_ecosystem_death_name((SylEcoDeath)c));
+    fputc('\n', o.f);
     for (int y = 0; y < r->nyears; y++)
         for (int s = 0; s < r->m->nspecies; s++) {
             fprintf(o.f, "%d,", r->years[y].year);
             syl_ecosystem_csv_text(o.f, r->m->species[s].name);
-            fprintf(o.f, ",%u,%.6f,%.3f\n", r->years[y].count[s], r->years[y].cover[s], r->years[y].mean_height[s]);
+            fprintf(o.f, ",%u,%.6f,%.3f", r->years[y].count[s], r->years[y].cover[s], r->years[y].mean_height[s]);
+            for (int c = 0; by_cause && c < SYL_ECO_DEATH_CAUSES; c++)
+                if (c != SYL_ECO_DEATH_STRESS) fprintf(o.f, ",%u", r->years[y].deaths[s][c]);
+            fputc('\n', o.f);
         }
     int st = out_close(&o, SYL_OK);
     if (!st) printf("%s\n", path);
@@ -438,7 +446,7 @@ static int write_maps(const SylTerrain *t, const char *dir) {
     char *maps = path_in(dir, "maps", 0);
     int st = maps ? make_dir(maps) : SYL_ELIMIT;
     for (int f = 0; !st && f < SYL_TERRAIN_FACTORS; f++)
-        for (int e = 0; !st && e < 2; e++) {
+        for (int e = 0; !st && e < 2 && t->factor[f]; e++) {
             size_t len = strlen(maps) + 32;
             char *path = malloc(len);
             if (!path) {

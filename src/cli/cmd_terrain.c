@@ -20,7 +20,9 @@ const CliCommand cli_terrain_command = {
              "OBJ terrain mesh — and compute its factors as GIS does (docs/terrain.md): altitude,\n"
              "slope and aspect (Horn), D8 flow accumulation after priority-flood filling, the\n"
              "topographic wetness index, a year's insolation with the terrain's shadows, and\n"
-             "Winstral's wind shelter Sx. Prints each factor's range, or with --maps writes them.\n",
+             "Winstral's wind shelter Sx; or with --measures zamuda (or both) Zamuda's (2006) runoff\n"
+             "humidity, sunniness and lee-angle windiness as his thesis computes them. Prints each\n"
+             "factor's range, or with --maps writes them.\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_MAPS},
         {.option = CLI_OPT_CELL},
@@ -30,6 +32,7 @@ const CliCommand cli_terrain_command = {
         {.option = CLI_OPT_SUN_MINUTES},
         {.option = CLI_OPT_WIND_FROM},
         {.option = CLI_OPT_WIND_DISTANCE},
+        {.option = CLI_OPT_MEASURES},
         {.option = CLI_OPT_THREADS, .help = "threads (default: all cores); the maps never depend on N"},
         {.option = CLI_OPT_MAX_MEMORY, .help = "stop with exit code 3 beyond SIZE of memory for the grids,\n"
                                                "e.g. 2G (default: half the least of the machine's memory,\n"
@@ -48,6 +51,7 @@ static void summary(const SylTerrain *t) {
     size_t n = (size_t)t->nx * (size_t)t->nz;
     for (int f = 0; f < SYL_TERRAIN_FACTORS; f++) {
         const float *g = t->factor[f];
+        if (!g) continue; /* not among the measures asked for */
         double lo = INFINITY, hi = -INFINITY, sum = 0;
         size_t m = 0;
         for (size_t c = 0; c < n; c++) {
@@ -73,7 +77,7 @@ static int make_dir(const char *dir) {
 static int write_maps(const SylTerrain *t, const char *dir) {
     static const char *const ext[] = {"png", "asc"};
     for (int f = 0; f < SYL_TERRAIN_FACTORS; f++)
-        for (int e = 0; e < 2; e++) {
+        for (int e = 0; e < 2 && t->factor[f]; e++) {
             size_t len = strlen(dir) + 32;
             char *path = malloc(len);
             if (!path) {
@@ -103,7 +107,7 @@ int cmd_terrain(int argc, char **argv) {
     SylTerrainOptions o = {
         .cell = a.cell, .height_lo = a.heights_set ? a.heights[0] : 0, .height_hi = a.heights_set ? a.heights[1] : 1,
         .latitude = a.latitude, .sun_days = a.sun_days, .sun_minutes = a.sun_minutes, .sun_set = 1,
-        .wind_from = a.wind_from, .wind_distance = a.wind_distance, .wind_set = 1,
+        .wind_from = a.wind_from, .wind_distance = a.wind_distance, .wind_set = 1, .measures = a.measures,
         .threads = d.threads, .budget = budget, .diag = stderr,
     };
     SylTerrain *t = NULL;
@@ -126,7 +130,7 @@ int cmd_terrain(int argc, char **argv) {
         fprintf(stderr, "cells: %d x %d\ncell size: %g\nread time: %.6f s\n", t->nx, t->nz, t->cell, read_s);
         double sum = 0, cpu = 0;
         for (int f = SYL_TERRAIN_SLOPE; f < SYL_TERRAIN_FACTORS; f++) {
-            if (f == SYL_TERRAIN_ASPECT) continue; /* computed with the slope */
+            if (f == SYL_TERRAIN_ASPECT || !t->factor[f]) continue; /* computed with the slope; not asked for */
             fprintf(stderr, "%s time: %.6f s (cpu %.6f s)\n",
                     f == SYL_TERRAIN_SLOPE ? "slope and aspect" : syl_terrain_factor_name((SylTerrainFactor)f),
                     t->seconds[f], t->cpu_seconds[f]);

@@ -174,6 +174,17 @@ static bool read_heights(CliArgs *a, char *arg) {
     return false;
 }
 
+static bool read_measures(CliArgs *a, char *arg) {
+    static const char *const words[] = {"gis", "zamuda", "both"};
+    for (int i = 0; i < 3; i++)
+        if (!strcmp(arg, words[i])) {
+            a->measures = i + 1; /* SYL_TERRAIN_GIS, _ZAMUDA, _BOTH */
+            return true;
+        }
+    fprintf(stderr, "sylva: error: --measures expects gis, zamuda or both, not '%s'\n", arg);
+    return false;
+}
+
 #define IN(where, type, member) .in = CLI_IN_##where, .at = offsetof(type, member)
 #define ARGS(member) IN(ARGS, CliArgs, member)
 #define DERIVE(member) IN(DERIVE, SylDeriveOptions, member)
@@ -310,6 +321,9 @@ const CliOption cli_options[CLI_OPT_COUNT] = {
                            CLI_REAL, ARGS(wind_from), 0, 360},
     [CLI_OPT_WIND_DISTANCE] = {"wind-distance", 0, "D", "how far upwind the terrain shelters (default 300)",
                                CLI_REAL, ARGS(wind_distance), 1e-6, 1e9},
+    [CLI_OPT_MEASURES] = {"measures", 0, "WHICH", "gis (default): wetness, insolation and wind as GIS computes\n"
+                          "them; zamuda: Zamuda's humidity, sunniness and windiness; both",
+                          CLI_READ, .read = read_measures},
     /* sylva animate */
     [CLI_OPT_FPS] = {"fps", 0, "N", "frames per second of the video (default 4)", CLI_INT, ARGS(fps), 1, 120},
     [CLI_OPT_FRAMES_PER_STEP] = {"frames-per-step", 0, "N", "frames that show each step or year (default 1)",

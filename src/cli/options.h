@@ -27,7 +27,7 @@ typedef enum CliOptionId {
     CLI_OPT_STATS, CLI_OPT_WERROR, CLI_OPT_DUMP,
     /* sylva terrain */
     CLI_OPT_MAPS, CLI_OPT_CELL, CLI_OPT_HEIGHTS, CLI_OPT_LATITUDE, CLI_OPT_SUN_DAYS, CLI_OPT_SUN_MINUTES,
-    CLI_OPT_WIND_FROM, CLI_OPT_WIND_DISTANCE,
+    CLI_OPT_WIND_FROM, CLI_OPT_WIND_DISTANCE, CLI_OPT_MEASURES,
     /* sylva animate */
     CLI_OPT_FPS, CLI_OPT_FRAMES_PER_STEP,
     /* sylva ecosystem */
@@ -59,6 +59,7 @@ typedef struct CliArgs {
     const char *maps;
     float cell, latitude, sun_minutes, wind_from, wind_distance;
     int sun_days;
+    int measures;            /* --measures: SYL_TERRAIN_GIS, _ZAMUDA or _BOTH (0: GIS) */
     double heights[2];
     bool heights_set;
     int fps, frames_per_step; /* sylva animate: --fps, --frames-per-step */

@@ -33,6 +33,8 @@ static const char *const units[SYL_TERRAIN_FACTORS] = {
     [SYL_TERRAIN_ALTITUDE] = "M", [SYL_TERRAIN_SLOPE] = "DEGREES", [SYL_TERRAIN_ASPECT] = "DEGREES FROM NORTH",
     [SYL_TERRAIN_FLOW] = "CELLS DRAINING, LOG SCALE", [SYL_TERRAIN_WETNESS] = "LN(A / TAN B)",
     [SYL_TERRAIN_INSOLATION] = "RELATIVE TO OPEN FLAT GROUND", [SYL_TERRAIN_WIND] = "DEGREES, + SHELTERED",
+    [SYL_TERRAIN_HUMIDITY] = "RAIN UNITS, 1 WHERE NONE RUNS", [SYL_TERRAIN_SUNNINESS] = "MEAN WEIGHTED COSINE TO THE SUN",
+    [SYL_TERRAIN_WINDINESS] = "1 OPEN, 0 SHELTERED",
 };
 
 /* The value a colour stands for: flow on a log scale. */
@@ -138,6 +140,7 @@ int cli_terrain_colour_maps(const SylTerrain *t, const char *dir) {
     }
     int st = SYL_OK;
     for (int f = 0; f < SYL_TERRAIN_FACTORS && !st; f++) {
+        if (!t->factor[f]) continue; /* not among the measures asked for */
         size_t len = strlen(dir) + 48;
         char *path = malloc(len);
         if (!path) {

@@ -65,11 +65,19 @@ uint64_t syl_ecosystem_hash(const SylEcoModel *m, const SylTerrain *t, uint64_t 
                             S->start_height, S->radius_ratio, S->seeds,         S->dispersal,       S->arrivals,
                             S->arrive_until, S->shade_tolerance, S->stress_mortality};
         for (size_t i = 0; i < sizeof v / sizeof *v; i++) mix_double(&h, v[i]);
-        for (int f = 0; f < SYL_TERRAIN_FACTORS; f++) {
+        for (int f = 0; f <= SYL_TERRAIN_WIND; f++) { /* the GIS factors, as before Zamuda's */
             mix_double(&h, S->set[f] ? S->optimum[f] : 0), mix_double(&h, S->set[f] ? S->range[f] : 0);
             mix_double(&h, S->set[f] ? S->falloff[f] : 0);
         }
     }
+    /* what later versions added, mixed only when not the default: older checkpoints still match */
+    if (m->measures || m->mortality) h = rng_mix(h ^ (uint64_t)m->measures << 1 ^ (uint64_t)m->mortality << 9 ^ 0x2a3da);
+    if (m->wind_set) mix_double(&h, m->wind_from);
+    for (int s = 0; s < m->nspecies; s++)
+        for (int f = SYL_TERRAIN_WIND + 1; f < SYL_TERRAIN_FACTORS; f++) {
+            const SylEcoSpecies *S = &m->species[s];
+            if (S->set[f]) mix_double(&h, S->optimum[f]), mix_double(&h, S->range[f]), mix_double(&h, S->falloff[f]);
+        }
     h = rng_mix(h ^ (uint64_t)(unsigned)t->nx << 32 ^ (uint64_t)(unsigned)t->nz);
     mix_double(&h, t->cell), mix_double(&h, t->x0), mix_double(&h, t->z0);
     Hash d = {.h = h};
@@ -157,7 +165,7 @@ int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name
     c->model_hash = get64(b + 16);
     c->year = (int)year;
     c->nplants = (size_t)n;
-    c->years = malloc(year * sizeof *c->years);
+    c->years = calloc(year, sizeof *c->years); /* deaths by cause are not kept: 0 */
     c->plants = malloc((n ? n : 1) * sizeof *c->plants);
     if (!c->years || !c->plants) {
         syl_ecosystem_checkpoint_free(c);

@@ -174,6 +174,23 @@ static int read_species_line(const SylProgram *p, FILE *diag, const SylDirective
     return unknown(p, diag, d, true);
 }
 
+/* The index of the directive's word in its row (the enum's value), or -1 reported with a guess. */
+static int word_of(const SylProgram *p, FILE *diag, const SylDirective *d) {
+    const char *words = sch_find(&sch_ecosystem, d->name, NULL)->words; /* in the enum's order */
+    if (arity(p, diag, d, 1, 1)) return -1;
+    int k = d->args[0].kind == SYL_DARG_WORD ? sch_word_index(words, d->args[0].text) : -1;
+    if (k >= 0) return k;
+    char near[200] = "", list[200] = "";
+    if (d->args[0].kind == SYL_DARG_WORD) sch_suggest_word(words, d->args[0].text, near, sizeof near);
+    for (const char *w = words; *w;) { /* 'a', 'b' or 'c' */
+        size_t len = strcspn(w, "|"), used = strlen(list);
+        snprintf(list + used, sizeof list - used, "%s'%.*s'", !used ? "" : w[len] ? ", " : " or ", (int)len, w);
+        w += len + (w[len] == '|');
+    }
+    syl_directive_error(p, diag, d, &d->args[0], "%s is %s%s", d->name, list, near);
+    return -1;
+}
+
 static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *d, SylEcoModel *m) {
     double x;
     if (!strcmp(d->name, "terrain")) return read_terrain(p, diag, d, m);
@@ -192,18 +209,19 @@ static int read_block_line(const SylProgram *p, FILE *diag, const SylDirective *
         m->latitude_set = !e;
         return e;
     }
-    if (!strcmp(d->name, "vigour")) {
-        const char *words = sch_find(&sch_ecosystem, "vigour", NULL)->words; /* in SylEcoCombine's order */
-        if (arity(p, diag, d, 1, 1)) return 1;
-        int k = d->args[0].kind == SYL_DARG_WORD ? sch_word_index(words, d->args[0].text) : -1;
-        if (k >= 0) {
-            m->combine = (SylEcoCombine)k;
-            return 0;
-        }
-        char near[200] = "";
-        if (d->args[0].kind == SYL_DARG_WORD) sch_suggest_word(words, d->args[0].text, near, sizeof near);
-        syl_directive_error(p, diag, d, &d->args[0], "vigour is 'mean', 'product' or 'minimum'%s", near);
-        return 1;
+    if (!strcmp(d->name, "wind_from")) {
+        int e = arity(p, diag, d, 1, 1) || number(p, diag, d, 0, 0, 360, false, &m->wind_from);
+        m->wind_set = !e;
+        return e;
+    }
+    bool vigour = !strcmp(d->name, "vigour"), measures = !strcmp(d->name, "measures");
+    if (vigour || measures || !strcmp(d->name, "mortality")) {
+        int k = word_of(p, diag, d);
+        if (k < 0) return 1;
+        if (vigour) m->combine = (SylEcoCombine)k;
+        else if (measures) m->measures = (SylEcoMeasures)k;
+        else m->mortality = (SylEcoMortality)k;
+        return 0;
     }
     if (!strcmp(d->name, "snapshots")) {
         if (arity(p, diag, d, 1, SYL_ECO_MAX_SNAPSHOTS)) return 1;
@@ -236,6 +254,24 @@ static int check_species(const SylProgram *p, FILE *diag, const SylEcoSpecies *s
     if (s->start_height > s->height_max) {
         syl_program_error(p, diag, s->line, s->col, "species '%s': start_height (%g) is above height_max (%g)",
                           s->name, s->start_height, s->height_max);
+        e++;
+    }
+    return e;
+}
+
+/* A species' curves must read the measures the block computes. */
+static int check_measures(const SylProgram *p, FILE *diag, const SylEcoModel *m, const SylEcoSpecies *s) {
+    static const int gis[] = {SYL_TERRAIN_WETNESS, SYL_TERRAIN_INSOLATION, SYL_TERRAIN_WIND},
+                     zam[] = {SYL_TERRAIN_HUMIDITY, SYL_TERRAIN_SUNNINESS, SYL_TERRAIN_WINDINESS};
+    int e = 0;
+    for (int k = 0; k < 3; k++) {
+        int bad = m->measures == SYL_ECO_ZAMUDA ? gis[k] : zam[k], good = m->measures == SYL_ECO_ZAMUDA ? zam[k] : gis[k];
+        if (!s->set[bad]) continue;
+        syl_program_error(p, diag, s->line, s->col, "species '%s': '%s' is a curve of %s measures, and the block's are %s: "
+                          "write its curve as '%s'%s", s->name, syl_terrain_factor_name((SylTerrainFactor)bad),
+                          m->measures == SYL_ECO_ZAMUDA ? "the GIS" : "Zamuda's", m->measures == SYL_ECO_ZAMUDA ? "Zamuda's" : "GIS's",
+                          syl_terrain_factor_name((SylTerrainFactor)good),
+                          m->measures == SYL_ECO_ZAMUDA ? "" : ", or choose his with `measures zamuda`");
         e++;
     }
     return e;
@@ -292,6 +328,7 @@ static int apply_sets(const SylProgram *p, SylEcoModel *m, FILE *diag) {
         if (!strcmp(name, "years")) m->years = (int)v;
         else if (!strcmp(name, "seed")) m->seed = (uint64_t)v;
         else if (!strcmp(name, "latitude")) m->latitude = v, m->latitude_set = true;
+        else if (!strcmp(name, "wind_from")) m->wind_from = v, m->wind_set = true;
         for (int n = 0; n < NNUMS; n++)
             if (!strcmp(name, species_nums[n].name))
                 for (int k = 0; k < m->nspecies; k++)
@@ -314,6 +351,7 @@ static int read_lines(const SylProgram *p, SylEcoModel *m, FILE *diag, int *set_
     m->years = 100;
     m->seed = syl_program_seed(p);
     m->combine = SYL_ECO_MEAN;
+    m->wind_from = 270;
     int n = 0, errors = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
     SylEcoSpecies *cur = NULL;
@@ -350,7 +388,9 @@ static int read_lines(const SylProgram *p, SylEcoModel *m, FILE *diag, int *set_
     }
     *set_errors = errors ? 0 : apply_sets(p, m, diag);
     errors += *set_errors;
-    for (int k = 0; k < m->nspecies && !*set_errors; k++) errors += check_species(p, diag, &m->species[k]);
+    int line_errors = errors; /* a misspelt `measures` says nothing of the curves */
+    for (int k = 0; k < m->nspecies && !*set_errors; k++)
+        errors += check_species(p, diag, &m->species[k]) + (line_errors ? 0 : check_measures(p, diag, m, &m->species[k]));
     if (!errors && !m->terrain[0]) {
         syl_program_error(p, diag, 0, 0, "ecosystem '%s' names no terrain (terrain \"dem.png\" cell 10 heights 0 400)",
                           syl_program_name(p));

@@ -3,7 +3,7 @@
  *   B. every tile, on its own plants and its halo as they were at the year's start: who is
  *      dominated (a more powerful plant's ecological circle overlaps, Deussen et al. 1998;
  *      power v h p_r as Zamuda 2006), deaths
- *      (age, domination, stress), growth, seeds and random arrivals on its own cells, each
+ *      (age, domination, stress or, as Zamuda, each factor), growth, seeds and random arrivals on its own cells, each
  *      germinating (or not) where it fell and posted as a seedling to the tile there;
  *   C. every tile takes the seedlings posted to it and merges them into its plants, kept
  *      sorted by (cell, id).
@@ -41,6 +41,7 @@ typedef struct Tile {
     size_t grid_cap, order_cap;
     int64_t area_u[SYL_ECO_MAX_SPECIES], height_u[SYL_ECO_MAX_SPECIES]; /* fixed point: exact sums */
     uint32_t count[SYL_ECO_MAX_SPECIES];
+    uint32_t deaths[SYL_ECO_MAX_SPECIES][SYL_ECO_DEATH_CAUSES]; /* this year's, by cause */
     uint64_t alive_start;
     size_t peak_bytes;        /* this year's most memory held at once */
     int failed;
@@ -303,6 +304,19 @@ static int poisson(Rng *r, double lambda) {
     return k - 1;
 }
 
+/* Zamuda's per-factor mortality: each factor the species has a curve for, in turn, kills the
+ * plant with probability stress_mortality × (1 − its suitability), each from its own stream
+ * (his generator of death per factor). The cause of the first that does, or -1. */
+static int factor_death(const Sim *s, const SylEcoSpecies *sp, const SylEcoPlant *p) {
+    for (int f = 0; f < SYL_TERRAIN_FACTORS; f++) {
+        if (!sp->set[f]) continue;
+        double v = eco_suitability(sp, f, syl_terrain_factor_at(s->t, (SylTerrainFactor)f, p->x, p->z));
+        Rng r = rng_stream(s->seed, (uint64_t)s->year, ECO_RNG_FACTOR + (unsigned)f, p->id);
+        if (rng_unit(&r) < sp->stress_mortality * (1 - v)) return syl_ecosystem_death_of((SylTerrainFactor)f);
+    }
+    return -1;
+}
+
 /* A seed (or an arrival) at (x, z): if it germinates (with probability its vigour there, on a
  * cell with data), the seedling is sent to the tile it fell on. The sender decides, as every
  * tile holds the whole terrain: only seedlings travel and wait, not every seed. */
@@ -372,6 +386,7 @@ static void step_tile(Sim *s, int ti) {
     T->alive_start = T->own.n;
     for (int u = 0; u < s->ntiles; u++) T->out[u].n = 0;
     /* deaths, growth and seeds */
+    memset(T->deaths, 0, sizeof T->deaths);
     size_t kept = 0;
     for (size_t j = 0; j < T->own.n; j++) {
         SylEcoPlant p = T->own.p[j];
@@ -381,13 +396,31 @@ static void step_tile(Sim *s, int ti) {
         double lifespan = sp->old_age + (sp->max_age - sp->old_age) * rng_unit(&life);
         double spread = 0.8 + 0.4 * rng_unit(&life); /* the plant's own growth rate, ±20 % */
         p.age = p.age < 65535 ? (uint16_t)(p.age + 1) : p.age;
-        if (p.age > lifespan) continue;
+        uint32_t *died = T->deaths[p.species];
+        if (p.age > lifespan) {
+            died[SYL_ECO_DEATH_AGE]++;
+            continue;
+        }
         if (dom) {
             Rng r = rng_stream(s->seed, (uint64_t)year, ECO_RNG_SHADE, p.id);
-            if (rng_unit(&r) >= sp->shade_tolerance) continue;
+            if (rng_unit(&r) >= sp->shade_tolerance) {
+                died[SYL_ECO_DEATH_DOMINANCE]++;
+                continue;
+            }
         }
-        Rng r = rng_stream(s->seed, (uint64_t)year, ECO_RNG_STRESS, p.id);
-        if (rng_unit(&r) < sp->stress_mortality * (1 - p.vigour)) continue;
+        if (m->mortality == SYL_ECO_PER_FACTOR) {
+            int cause = factor_death(s, sp, &p);
+            if (cause >= 0) {
+                died[cause]++;
+                continue;
+            }
+        } else {
+            Rng r = rng_stream(s->seed, (uint64_t)year, ECO_RNG_STRESS, p.id);
+            if (rng_unit(&r) < sp->stress_mortality * (1 - p.vigour)) {
+                died[SYL_ECO_DEATH_STRESS]++;
+                continue;
+            }
+        }
         if (!dom && p.age <= sp->old_age) {
             double h = p.height + p.vigour * spread * sp->growth_rate * (sp->height_max - p.height);
             p.height = (float)(h < sp->height_max ? h : sp->height_max);
@@ -644,7 +677,8 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
     /* what the processes add up each year: failed, alive, plant-years, bytes, then per species
      * count, area, height, then per tile its plants */
     enum { V_FAILED, V_ALIVE, V_PY, V_BYTES, V_COUNT, V_AREA = V_COUNT + SYL_ECO_MAX_SPECIES,
-           V_HEIGHT = V_AREA + SYL_ECO_MAX_SPECIES, V_TILE = V_HEIGHT + SYL_ECO_MAX_SPECIES };
+           V_HEIGHT = V_AREA + SYL_ECO_MAX_SPECIES, V_DEATHS = V_HEIGHT + SYL_ECO_MAX_SPECIES,
+           V_TILE = V_DEATHS + SYL_ECO_MAX_SPECIES * SYL_ECO_DEATH_CAUSES };
     size_t nv = V_TILE + (size_t)s.ntiles;
     int64_t *v = calloc(nv, sizeof *v);
     if (!v) st = SYL_ELIMIT;
@@ -673,6 +707,8 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
                 v[V_COUNT + sp] += T->count[sp];
                 v[V_AREA + sp] += T->area_u[sp];
                 v[V_HEIGHT + sp] += T->height_u[sp];
+                for (int c = 0; c < SYL_ECO_DEATH_CAUSES; c++)
+                    v[V_DEATHS + sp * SYL_ECO_DEATH_CAUSES + c] += T->deaths[sp][c];
             }
         }
         if (s.x->sum) s.x->sum(s.x->ctx, v, nv);
@@ -688,7 +724,11 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         plant_years += (uint64_t)v[V_PY];
         size_t alive = (size_t)v[V_ALIVE], bytes = (size_t)v[V_BYTES];
         const int64_t *area = v + V_AREA, *height = v + V_HEIGHT;
-        for (int sp = 0; sp < m->nspecies; sp++) yr.count[sp] = (uint32_t)v[V_COUNT + sp];
+        for (int sp = 0; sp < m->nspecies; sp++) {
+            yr.count[sp] = (uint32_t)v[V_COUNT + sp];
+            for (int c = 0; c < SYL_ECO_DEATH_CAUSES; c++)
+                yr.deaths[sp][c] = (uint32_t)v[V_DEATHS + sp * SYL_ECO_DEATH_CAUSES + c];
+        }
         if (!st && o->max_plants && alive > o->max_plants) {
             if (o->diag)
                 fprintf(o->diag, "sylva: error: year %d: %zu plants, more than the limit of %llu; raise it with --max-plants\n", y, alive,

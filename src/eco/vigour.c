@@ -2,11 +2,11 @@
  * combined as the block's `vigour` says (Zamuda 2006, eq. 4.20–4.25). */
 #include <math.h>
 
-#include "sylva/ecosystem.h"
+#include "eco/eco.h"
 
 /* 1 within range of the optimum, then falling linearly to 0 over falloff (Zamuda's
  * 1 − min{1, |x − x_o| f}, with the tolerance band kept flat). */
-static double suitability(const SylEcoSpecies *s, int f, double x) {
+double eco_suitability(const SylEcoSpecies *s, int f, double x) {
     double d = fabs(x - s->optimum[f]);
     if (f == SYL_TERRAIN_ASPECT) {
         if (x < 0) return 1; /* flat ground faces nowhere: any aspect suits it */
@@ -24,7 +24,7 @@ double syl_ecosystem_vigour(const SylEcoModel *m, int species, const SylTerrain 
     int n = 0;
     for (int f = 0; f < SYL_TERRAIN_FACTORS; f++) {
         if (!s->set[f]) continue;
-        double v = suitability(s, f, syl_terrain_factor_at(t, (SylTerrainFactor)f, x, z));
+        double v = eco_suitability(s, f, syl_terrain_factor_at(t, (SylTerrainFactor)f, x, z));
         sum += v;
         prod *= v;
         if (v < min) min = v;

@@ -11,7 +11,7 @@
 #include "util/file.h"
 
 static const char *const names[SYL_TERRAIN_FACTORS] = {
-    "altitude", "slope", "aspect", "flow", "wetness", "insolation", "wind",
+    "altitude", "slope", "aspect", "flow", "wetness", "insolation", "wind", "humidity", "sunniness", "windiness",
 };
 
 const char *syl_terrain_factor_name(SylTerrainFactor f) {
@@ -131,6 +131,22 @@ static double bilinear(const Terrain *t, const float *g, double x, double z) {
 }
 
 double terrain_height_at(const Terrain *t, double x, double z) { return bilinear(t, t->height, x, z); }
+
+double terrain_max_rise(const Terrain *t, size_t i, size_t k, double ux, double uz, int steps) {
+    double xlo = t->x0 + t->cell / 2, xhi = t->x0 + (t->nx - 0.5) * t->cell;
+    double zlo = t->z0 + t->cell / 2, zhi = t->z0 + (t->nz - 0.5) * t->cell;
+    double x = t->x0 + (i + 0.5) * t->cell, z = t->z0 + (k + 0.5) * t->cell, h = t->height[k * (size_t)t->nx + i];
+    double best = -INFINITY;
+    for (int s = 1; s <= steps; s++) {
+        double d = s * t->cell, sx = x + ux * d, sz = z + uz * d;
+        /* a little slack: a march along a row or column stays on it despite rounding */
+        double e = 1e-9 * t->cell;
+        if (sx < xlo - e || sx > xhi + e || sz < zlo - e || sz > zhi + e) break;
+        double r = (terrain_height_at(t, sx, sz) - h) / d;
+        if (r > best) best = r;
+    }
+    return best;
+}
 
 double terrain_factor_at(const Terrain *t, TerrainFactor f, double x, double z) {
     if ((unsigned)f >= SYL_TERRAIN_FACTORS) return NAN;

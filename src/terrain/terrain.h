@@ -45,6 +45,10 @@ void terrain_horn(const Terrain *t, int i, int k, double *gx, double *gz);
 double terrain_factor_at(const Terrain *t, TerrainFactor f, double x, double z);
 /* Bilinear height, clamped: what the wind's march samples. */
 double terrain_height_at(const Terrain *t, double x, double z);
+/* The wind's march (wind.c, lee.c): from cell (i, k)'s centre, the terrain sampled every
+ * cell width along the unit (ux, uz) for up to steps samples, stopping at the grid's edge;
+ * the largest rise per distance, (h_s − h) / d, or −INFINITY when no sample lies on the grid. */
+double terrain_max_rise(const Terrain *t, size_t i, size_t k, double ux, double uz, int steps);
 
 /* ---- readers (read_png.c, read_asc.c, read_obj.c) ---- */
 
@@ -104,6 +108,13 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
 /* wind.c: Winstral et al. (2002) Sx, degrees, for wind from the azimuth from (degrees
  * clockwise from north) within distance dmax. */
 void terrain_wind(const Terrain *t, double from, double dmax, float *out, int threads);
+
+/* Zamuda's (2006) measures, one file each (docs/terrain.md): runoff.c his Algorithm 3 (SYL_OK
+ * or SYL_ELIMIT), lee.c his Algorithm 4 (wind from the azimuth from, degrees), sunniness.c
+ * his Algorithm 5 (SYL_OK, SYL_ELIMIT, or SYL_EUSAGE for an even or out-of-range count). */
+int terrain_runoff(Terrain *t, const float *slope, double k_m, double water_level, float *out, FILE *diag);
+void terrain_lee(const Terrain *t, double from, int samples, double theta0_deg, float *out, int threads);
+int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, float *out, int threads, FILE *diag);
 
 /* ---- maps (write.c) ---- */
 int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, FILE *diag);

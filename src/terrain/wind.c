@@ -19,22 +19,10 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
     (void)thread;
     const Job *j = ctx;
     const Terrain *t = j->t;
-    double xlo = t->x0 + t->cell / 2, xhi = t->x0 + (t->nx - 0.5) * t->cell;
-    double zlo = t->z0 + t->cell / 2, zhi = t->z0 + (t->nz - 0.5) * t->cell;
     for (size_t k = lo; k < hi; k++)
         for (int i = 0; i < t->nx; i++) {
-            size_t c = k * (size_t)t->nx + (size_t)i;
-            double x = t->x0 + (i + 0.5) * t->cell, z = t->z0 + (k + 0.5) * t->cell, h = t->height[c];
-            double best = -INFINITY; /* the largest rise per distance; one atan at the end */
-            for (int s = 1; s <= j->steps; s++) {
-                double d = s * t->cell, sx = x + j->ux * d, sz = z + j->uz * d;
-                /* a little slack: a march along a row or column stays on it despite rounding */
-                double e = 1e-9 * t->cell;
-                if (sx < xlo - e || sx > xhi + e || sz < zlo - e || sz > zhi + e) break;
-                double r = (terrain_height_at(t, sx, sz) - h) / d;
-                if (r > best) best = r;
-            }
-            j->out[c] = best == -INFINITY ? 0 : (float)(atan(best) * (180 / M_PI));
+            double best = terrain_max_rise(t, (size_t)i, k, j->ux, j->uz, j->steps); /* one atan at the end */
+            j->out[k * (size_t)t->nx + (size_t)i] = best == -INFINITY ? 0 : (float)(atan(best) * (180 / M_PI));
         }
 }
 

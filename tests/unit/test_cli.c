@@ -52,7 +52,7 @@ static const char *example(const CliOption *o, char *buf, size_t n) {
         {"S", "1"}, {"NAME=VALUE", "k=1"}, {"V", "top"}, {"WxH", "8x8"},
         {"csv|json", "json"}, {"model|pipe[:EXP]", "pipe:3"}, {"N", "1"},
         {"LO,HI", "0,1"}, {"Y1,Y2,..", "10,20"}, {"NxM", "3x2"}, {"MODE", "cards"}, {"NAME", "maple"},
-        {"X,Z", "1,1"}, {"CAMERA", "walker"}, {"DIR", "."},
+        {"X,Z", "1,1"}, {"CAMERA", "walker"}, {"DIR", "."}, {"WHICH", "zamuda"},
     };
     switch (o->kind) {
     case CLI_FLAG:
