@@ -7,14 +7,14 @@ JOBS   ?= $(shell nproc 2>/dev/null || echo 2)
 
 VERSION := $(shell sed -n 's/^#define SYLVA_VERSION "\(.*\)"/\1/p' include/sylva/sylva.h)
 WARN    := -Wall -Wextra -Werror
+# The sanitizer build keeps line tables only (-g1: what a report's stack needs; a quarter less
+# compile time than -g). The release objects are position-independent, so the same objects make
+# the program, libsylva.a and the Python extension's shared object (make python); without
+# semantic interposition the calls inside the library stay direct and inlinable, as in -fPIE.
 ifeq ($(SAN),1)
-OPT     := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+OPT     := -O1 -g1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 else
-OPT     := -O2 -g
-endif
-# PIC=1: position-independent objects, for the Python extension's shared object (make python).
-ifeq ($(PIC),1)
-OPT     += -fPIC
+OPT     := -O2 -g -fPIC -fno-semantic-interposition
 endif
 CFLAGS   = -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
            -Iinclude -Isrc -I$(BUILD)/gen $(PKG_CFLAGS) $(MPI_CFLAGS)
@@ -85,12 +85,17 @@ $(BUILD)/gen/lexer.c: grammar/lexer.l $(BUILD)/gen/parser.h | $(DEPS_OK)
 $(BUILD)/gen/lexer.h: $(BUILD)/gen/lexer.c
 
 # Generated code is not ours to lint.
-$(BUILD)/gen/%.o: $(BUILD)/gen/%.c
+$(BUILD)/gen/%.o: $(BUILD)/gen/%.c $(BUILD)/.cflags
 	$(CC) $(CFLAGS) -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter -c -o $@ $<
 $(BUILD)/src/lang/parse.o: $(BUILD)/gen/lexer.h $(BUILD)/gen/parser.h
-$(BUILD)/%.o: %.c | $(DEPS_OK) $(BUILD)/gen/parser.h
+$(BUILD)/%.o: %.c $(BUILD)/.cflags | $(DEPS_OK) $(BUILD)/gen/parser.h
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -c -o $@ $<
+# The flags a tree was compiled with: when they change (say -fPIC added), its objects are remade.
+$(BUILD)/.cflags: FORCE
+	@mkdir -p $(@D)
+	@echo '$(CC) $(CFLAGS)' | cmp -s - $@ || echo '$(CC) $(CFLAGS)' > $@
+FORCE:
 
 # libsylva.a, the installed library, exports the public API only: every object is linked into
 # one (ld -r) whose globals are made local except the syl_ names the public headers declare,
@@ -101,13 +106,20 @@ $(BUILD)/%.o: %.c | $(DEPS_OK) $(BUILD)/gen/parser.h
 $(BUILD)/libsylva-internal.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
-$(BUILD)/libsylva.a: $(LIB_OBJ) $(wildcard include/sylva/*.h)
+define public_archive # $(call public_archive,OBJECTS): the recipe of such an archive, $@
 	@rm -f $@
-	ld -r -o $(BUILD)/sylva-all.o $(LIB_OBJ)
-	grep -ohE '\bsyl_[a-z0-9_]+' include/sylva/*.h | sort -u > $(BUILD)/sylva-api.syms
-	objcopy --keep-global-symbols=$(BUILD)/sylva-api.syms $(BUILD)/sylva-all.o $(BUILD)/sylva-api.o
-	ar rcs $@ $(BUILD)/sylva-api.o
-	@rm -f $(BUILD)/sylva-all.o
+	ld -r -o $@.all.o $(1)
+	grep -ohE '\bsyl_[a-z0-9_]+' include/sylva/*.h | sort -u > $@.syms
+	objcopy --keep-global-symbols=$@.syms $@.all.o $@.api.o
+	ar rcs $@ $@.api.o
+	@rm -f $@.all.o $@.api.o $@.syms
+endef
+$(BUILD)/libsylva.a: $(LIB_OBJ) $(wildcard include/sylva/*.h)
+	$(call public_archive,$(LIB_OBJ))
+# The same library without MPI, for the Python extension: a Python process does not start MPI.
+NOMPI_LIB_OBJ := $(filter-out $(BUILD)/src/eco/mpi.o,$(LIB_OBJ)) $(BUILD)/src/eco/mpi_none.o
+$(BUILD)/libsylva-nompi.a: $(sort $(NOMPI_LIB_OBJ)) $(wildcard include/sylva/*.h)
+	$(call public_archive,$(sort $(NOMPI_LIB_OBJ)))
 $(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva-internal.a
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) $(CLI_LIBS)
 
@@ -139,7 +151,7 @@ test-asan:
 test:
 	@$(MAKE) --no-print-directory $(DEPS_OK)
 	@t0=$$(date +%s); $(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz blender-addon && \
-	    echo "make test: built $(BUILD)/, build-asan/, build-fuzz/, build-pic/ and the Blender add-on in $$(( $$(date +%s) - t0 )) s"
+	    echo "make test: built $(BUILD)/, build-asan/, build-fuzz/ and the Blender add-on in $$(( $$(date +%s) - t0 )) s"
 	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
 .PHONY: test-build-release test-build-asan test-build-fuzz test-times test-quick
 test-build-release:
@@ -157,7 +169,7 @@ test-times:
 # One harness per reader: tests/fuzz/fuzz_NAME.c becomes build-fuzz/fuzz_NAME, linked against
 # the library (and the CLI without its main) built once with the sanitizers; tests/fuzz/harnesses
 # lists them with their dictionary. A new reader's harness is one file there and one line here.
-FUZZ_CFLAGS = -std=c11 -O1 -g -Wall -Wextra -D_GNU_SOURCE -pthread -Iinclude -Isrc -Ibuild-fuzz/gen $(PKG_CFLAGS) \
+FUZZ_CFLAGS = -std=c11 -O1 -g1 -Wall -Wextra -D_GNU_SOURCE -pthread -Iinclude -Isrc -Ibuild-fuzz/gen $(PKG_CFLAGS) \
                -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer \
                -Wno-unused-function -Wno-sign-compare -Wno-unused-parameter
 FUZZ_HARNESS := $(patsubst tests/fuzz/%.c,build-fuzz/%,$(wildcard tests/fuzz/fuzz_*.c))
@@ -188,12 +200,12 @@ fuzz: $(FUZZ_HARNESS)
 -include $(FUZZ_LIB_SRC:%.c=build-fuzz/obj/%.d) build-fuzz/obj/gen/parser.d build-fuzz/obj/gen/lexer.d
 
 # ---- Python (docs/python.md) ----
-# The extension links libsylva.a built position-independent and without MPI into build-pic/
-# (python/setup.py runs `make python-lib` when it is missing); `make python` builds it in place,
+# The extension links build/libsylva-nompi.a, the library without MPI (python/setup.py runs
+# `make python-lib`, which brings it up to date); `make python` builds it in place,
 # so PYTHONPATH=python finds the package; `pip install ./python` installs it into a venv.
 PYTHON ?= /usr/bin/python3
 python-lib:
-	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-pic PIC=1 MPI=0 build-pic/libsylva.a
+	@$(MAKE) --no-print-directory -j$(JOBS) build/libsylva-nompi.a
 python: python-lib
 	cd python && $(PYTHON) setup.py -q build_ext --inplace
 

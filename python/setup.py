@@ -1,7 +1,7 @@
 """Build the sylva package: a CPython extension over libsylva (docs/python.md).
 
-It links ../build-pic/libsylva.a, built position-independent by `make python-lib`, which is
-run here when the library is missing, so `pip install ./python` works from a fresh clone once
+It links ../build/libsylva-nompi.a, the library without MPI (its objects are position-independent),
+brought up to date here by `make python-lib`, so `pip install ./python` works from a fresh clone once
 `make deps` has installed the Debian packages. Nothing is fetched from a package index."""
 import os
 import re
@@ -11,7 +11,7 @@ from setuptools import Extension, setup
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-LIB = os.path.join(ROOT, "build-pic", "libsylva.a")
+LIB = os.path.join(ROOT, "build", "libsylva-nompi.a")
 
 
 def pkg_config(flag):
