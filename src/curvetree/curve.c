@@ -190,7 +190,8 @@ static bool obj_index(const char **q, const char *end, size_t nv, size_t *out) {
 
 int ct_curve_obj(const char *path, const char *text, size_t len, CtCurve *c, FILE *diag) {
     memset(c, 0, sizeof *c);
-    ObjText o = {.src = {path, text, len}};
+    /* its lines are not shown (as the obstacles' reader): a file a model names may be anything */
+    ObjText o = {.src = {path, NULL, 0}};
     o.diag = (Diag){.out = diag, .src = &o.src};
     double (*v)[3] = NULL;
     size_t nv = 0, vcap = 0, ne = 0, ecap = 0;

@@ -47,8 +47,9 @@ bool ct_curve_make(CtCurve *c, int kind, const double (*pts)[3], int n);
  * forms are checked (a file is read by the build). */
 int ct_curve_of_directive(const SylProgram *p, const SylDirective *d, bool read_files, CtCurve *c, FILE *diag);
 /* An OBJ file's curve: its `v` vertices joined by its `l` lines into one open chain (as
- * Blender exports a curve), from the end lower in y (Y is up). Errors as file:line:col with the
- * line and a caret. SYL_OK, SYL_EMODEL or SYL_ELIMIT. */
+ * Blender exports a curve), from the end lower in y (Y is up). Errors as file:line:col (its
+ * lines are not shown: a file a model names may be anything). SYL_OK, SYL_EMODEL or
+ * SYL_ELIMIT. */
 int ct_curve_obj(const char *path, const char *text, size_t len, CtCurve *c, FILE *diag);
 void ct_curve_free(CtCurve *c);
 /* The point at arc length s (clamped), the heading of its piece, and the piece's index. */
