@@ -176,13 +176,19 @@ static int obj_error(ObjText *o, const char *at, const char *what) {
 
 /* One vertex index of an `l` line: i, i/t, negative ones counting back from the last vertex. */
 static bool obj_index(const char **q, const char *end, size_t nv, size_t *out) {
-    char *e;
+    char num[32], *e; /* the text is not NUL-terminated: the number is copied */
+    size_t k = 0;
+    while (*q + k < end && k < sizeof num - 1 && (*q)[k] != ' ' && (*q)[k] != '\t' && (*q)[k] != '\r' &&
+           (*q)[k] != '/')
+        num[k] = (*q)[k], k++;
+    num[k] = 0;
     errno = 0;
-    long long v = strtoll(*q, &e, 10);
-    if (e == *q || errno) return false;
-    if (e < end && *e == '/') /* a texture coordinate: skipped */
-        for (e++; e < end && *e != ' ' && *e != '\t' && *e != '\r'; e++) {}
-    *q = e;
+    long long v = strtoll(num, &e, 10);
+    if (e == num || *e || errno) return false;
+    const char *at = *q + k;
+    if (at < end && *at == '/') /* a texture coordinate: skipped */
+        for (at++; at < end && *at != ' ' && *at != '\t' && *at != '\r'; at++) {}
+    *q = at;
     if (v > 0 && (unsigned long long)v <= nv) return *out = (size_t)v - 1, true;
     if (v < 0 && (unsigned long long)(-v) <= nv) return *out = nv - (size_t)(-v), true;
     return false;
