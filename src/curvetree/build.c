@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "curvetree/curvetree.h"
+#include "util/array.h"
 #include "util/rng.h"
 
 #define PI 3.14159265358979323846
@@ -94,13 +95,12 @@ typedef struct Inside {
     double total;
 } Inside;
 
-static void inside_part(Ct *ct, double len, void (*at)(const void *, double, double[3]), const void *parent,
-                        Inside *in) {
-    enum { SAMPLES = 256 };
+static void inside_part(Ct *ct, double len, int samples, void (*at)(const void *, double, double[3]),
+                        const void *parent, Inside *in) {
     in->n = 0, in->total = 0;
     bool was = false;
-    for (int i = 0; i <= SAMPLES; i++) {
-        double s = len * i / SAMPLES, q[3];
+    for (int i = 0; i <= samples; i++) {
+        double s = len * i / samples, q[3];
         at(parent, s, q);
         bool is = ct->inside(ct->user, q);
         if (is && !was && in->n < 64) in->lo[in->n] = s, in->hi[in->n] = s, in->n++;
@@ -303,7 +303,7 @@ static int children(Ct *ct, const Path *pa, int count, int level, Rng *rng, Bran
     if (count <= 0) return 0;
     Inside in;
     PathRef ref = {pa};
-    inside_part(ct, pa->len, path_point, &ref, &in);
+    inside_part(ct, pa->len, 4 * (pa->n - 1), path_point, &ref, &in); /* its points are inside: 4 a segment */
     if (!(in.total > 0)) return 0;
     double avg = in.total / count, u = 0;
     int quadrant = (int)(rng_unit(rng) * 4), made = 0;
@@ -345,6 +345,11 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     ct.seg1 = trunk->length / 16;
     ct.leaves = ct_leaves_per_branch(P->leavesDensity);
     Rng rng = rng_stream(seed, 0, 0, 0);
+    uint64_t most_nodes, most_leaves; /* reserved at once (counted by the caller's budget): no doubling series */
+    ct_bounds(P, trunk, &most_nodes, &most_leaves);
+    if (!array_reserve(&sk->nodes, &sk->node_cap, sk->nnodes + most_nodes, sizeof(SylNode)) ||
+        (most_leaves && !array_reserve(&sk->organs, &sk->organ_cap, sk->norgans + most_leaves, sizeof(SylOrgan))))
+        return SYL_ELIMIT;
     /* the trunk: Eq. (3), width = length / 10 x trunkWidth at the base, linear to trunkEndWidth
      * of it at the top, each control point's width Gaussian about the linear one */
     double r0 = trunk->length / 10 * P->trunkWidth / 2, r1 = r0 * P->trunkEndWidth;
@@ -385,7 +390,7 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     int made1 = 0;
     {
         Inside in;
-        inside_part(&ct, trunk->length, curve_point, trunk, &in);
+        inside_part(&ct, trunk->length, 256, curve_point, trunk, &in);
         double avg = n1 ? in.total / n1 : 0, u = 0;
         int quadrant = (int)(rng_unit(&rng) * 4);
         for (int i = 0; i < n1 && in.total > 0; i++) {
