@@ -12,6 +12,7 @@
 
 #include "unit.h"
 
+#include "lang/schema.h"
 #include "sylva/trees.h"
 
 #define PI 3.14159265358979323846
@@ -340,6 +341,20 @@ static void the_same_seed_gives_the_same_tree(void **state) {
     syl_skeleton_free(c);
 }
 
+/* docs/curvetree.md's parameter table names every row of the block's table, once. */
+static void the_doc_lists_every_parameter(void **state) {
+    (void)state;
+    size_t len;
+    char *doc = syl_read_file("docs/curvetree.md", &len);
+    assert_non_null(doc);
+    for (int i = 0; i < sch_curvetree.n; i++) {
+        char cell[64];
+        snprintf(cell, sizeof cell, "| `%s` |", sch_curvetree.rows[i].name);
+        if (unit_occurrences(doc, cell) != 1) fail_msg("docs/curvetree.md's table lacks (or repeats) %s", cell);
+    }
+    free(doc);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(trunk_follows_the_curve),
@@ -348,6 +363,7 @@ int main(void) {
         cmocka_unit_test(leaf_counts_follow_the_step_rule),
         cmocka_unit_test(gaussian_variation_is_ten_percent),
         cmocka_unit_test(the_same_seed_gives_the_same_tree),
+        cmocka_unit_test(the_doc_lists_every_parameter),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
