@@ -341,6 +341,25 @@ static void the_same_seed_gives_the_same_tree(void **state) {
     syl_skeleton_free(c);
 }
 
+/* The quadrant spiral: on a straight vertical trunk, each first-level branch (in order up the
+ * trunk) lies in the quadrant after the previous one's, about the trunk (azimuth measured
+ * from +x toward -z, the generator's frame for a vertical parent). */
+static void branches_spiral_by_quadrants(void **state) {
+    (void)state;
+    SylSkeleton *sk = tree("trunk polyline (0,0,0) (0,8,0)\nenvelope \"box.obj\"\nbranch1Density 3\nbranch2Density 0", 9);
+    int prev = -1, n = 0;
+    for (size_t i = 0; i < sk->nnodes; i++) { /* the trunk's nodes come first, in order up it */
+        if (!first_of_branch(sk, i) || sk->nodes[i].order != 1) continue;
+        const SylNode *b = &sk->nodes[i], *at = &sk->nodes[b->parent];
+        double az = atan2(-(b->pos[2] - at->pos[2]), b->pos[0] - at->pos[0]) * 180 / PI;
+        int q = (int)floor((az < 0 ? az + 360 : az) / 90) % 4;
+        if (prev >= 0 && q != (prev + 1) % 4) fail_msg("branch %d is in quadrant %d after one in %d", n, q, prev);
+        prev = q, n++;
+    }
+    assert_int_equal(n, 90); /* round(10 x 3^2) */
+    syl_skeleton_free(sk);
+}
+
 /* docs/curvetree.md's parameter table names every row of the block's table, once. */
 static void the_doc_lists_every_parameter(void **state) {
     (void)state;
@@ -363,6 +382,7 @@ int main(void) {
         cmocka_unit_test(leaf_counts_follow_the_step_rule),
         cmocka_unit_test(gaussian_variation_is_ten_percent),
         cmocka_unit_test(the_same_seed_gives_the_same_tree),
+        cmocka_unit_test(branches_spiral_by_quadrants),
         cmocka_unit_test(the_doc_lists_every_parameter),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
