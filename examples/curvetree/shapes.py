@@ -24,7 +24,7 @@ def sphere(path, centre, radii, lobes=0, depth=0.0, rings=16, segs=32):
         for j in range(segs):
             a = 2 + i * segs + j
             b = 2 + i * segs + (j + 1) % segs
-            f.append((a, b, b + segs, a + segs) if False else (a, b, b + segs))
+            f.append((a, b, b + segs))
             f.append((a, b + segs, a + segs))
     last = 2 + (rings - 2) * segs
     for j in range(segs):
