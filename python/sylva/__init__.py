@@ -28,7 +28,7 @@ __version__ = _core.VERSION
 
 _core._set_errors(CompileError, LimitError)
 
-KINDS = ("lsystem", "grow", "scene", "weber", "strands", "ecosystem")  # SylModelKind's order
+KINDS = ("lsystem", "grow", "scene", "weber", "strands", "ecosystem", "curvetree")  # SylModelKind's order
 VIEWS = {"iso": 0, "front": 1, "side": 2, "top": 3, "auto": 4}
 LEAVES = {"copied": 0, "cards": 1, "instanced": 2, "instanced-cards": 3, "clusters": 4}
 _UNTIL = {"mesh": 0, "skeleton": 1, "string": 2}

@@ -89,6 +89,7 @@ KINDS = [
     (ex("sot", "birch.syl"), "grow"),
     (ex("weberpenn", "lombardy_poplar.syl"), "weber"),
     (ex("strands", "holton_fir.syl"), "strands"),
+    (ex("curvetree", "bezier_oak.syl"), "curvetree"),
 ]
 
 

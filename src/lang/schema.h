@@ -47,7 +47,7 @@ typedef struct SchTable {
 } SchTable;
 
 /* The tables (schema_tables.c). */
-extern const SchTable sch_lsystem, sch_weber, sch_strands, sch_ecosystem;
+extern const SchTable sch_lsystem, sch_weber, sch_strands, sch_ecosystem, sch_curvetree;
 
 /* The row of a directive name: the name, an alias, or a per-level name with its level digit
  * ("1DownAngle": *level 1); *level -1 when none. NULL: no such row. group NULL: any row. */

@@ -39,6 +39,13 @@ static const SchRow strands_rows[] = {
 #include "strands/params.def"
 };
 
+static const SchRow curvetree_rows[] = {
+#define CT_N(f, nm, ty, l, h, d, u, mean) {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .unit = u, .doc = mean},
+#define CT_X(nm, ty, l, h, d, dt, u, mean) \
+    {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean},
+#include "curvetree/params.def"
+};
+
 static const SchRow ecosystem_rows[] = {
 #define ECO_B(nm, ty, l, h, d, dt, w, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
@@ -54,4 +61,5 @@ static const SchRow ecosystem_rows[] = {
 TABLE(sch_lsystem, "lsystem", "setting", lsystem_rows)
 TABLE(sch_weber, "weber", "weber parameter", weber_rows)
 TABLE(sch_strands, "strands", "strands parameter", strands_rows)
+TABLE(sch_curvetree, "curvetree", "curvetree parameter", curvetree_rows)
 TABLE(sch_ecosystem, "ecosystem", "ecosystem directive", ecosystem_rows)

@@ -385,14 +385,14 @@ int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     return errors && errors == set_errors ? -errors : errors;
 }
 
-/* `sylva check`: an ecosystem's terrain and a weber block's envelope that cannot be read are
- * errors at their line (the runs fail on them). */
+/* `sylva check`: an ecosystem's terrain, a weber or curvetree block's envelope and a
+ * curvetree's trunk file that cannot be read are errors at their line (the runs fail on them). */
 static int check_inputs(const SylProgram *p, FILE *diag) {
-    static const char *const named[] = {"terrain", "envelope"};
+    static const char *const named[] = {"terrain", "envelope", "trunk"};
     int n = 0, errors = 0;
     const SylDirective *d = syl_program_directives(p, &n);
     for (int i = 0; i < n; i++)
-        for (int k = 0; k < 2; k++)
+        for (int k = 0; k < (int)(sizeof named / sizeof *named); k++)
             if (!d[i].file && !strcmp(d[i].name, named[k]) && d[i].nargs && d[i].args[0].kind == SYL_DARG_STRING)
                 errors += syl_program_check_file(p, diag, named[k], d[i].args[0].text, d[i].args[0].line,
                                                  d[i].args[0].col);
