@@ -3,7 +3,6 @@
  * snapshot a top-down map, a rendered picture of the plants as instances of their species'
  * looks, and (--glb) the scene as a .glb. */
 #include <errno.h>
-#include <signal.h>
 #include <libxml/xmlwriter.h>
 #include <math.h>
 #include <stdlib.h>
@@ -13,6 +12,7 @@
 
 #include "cli/cli.h"
 #include "cli/font.h"
+#include "cli/testfaults.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
 #include "sylva/render.h"
@@ -61,9 +61,7 @@ const CliCommand cli_ecosystem_command = {
     .width = 24,
     .epilogue = "\nExit codes: 0 ok, 1 the model or its DEM is malformed, 2 bad command line, 3 limit hit,\n"
                 "4 I/O error (under mpirun: a rank failed or was killed, or stopped answering for\n"
-                "SYLVA_RANK_TIMEOUT seconds, default 600; the job is aborted).\n"
-                "SYLVA_TEST_FAIL_RANK=R SYLVA_TEST_FAIL_YEAR=Y (tests only): rank R kills itself\n"
-                "with SIGKILL at the end of year Y (SYLVA_TEST_STOP_*: stops itself, SIGSTOP).\n",
+                "SYLVA_RANK_TIMEOUT seconds, default 600; the job is aborted).\n",
     .args_error = "expects one model file",
 };
 
@@ -117,19 +115,7 @@ static void on_year(void *user, const SylEcoYear *y) {
         r->cap = cap;
     }
     r->years[r->nyears++] = *y;
-    /* a killed rank, for tests/run-mpi: the job must end with nothing half-written */
-    const char *fr = getenv("SYLVA_TEST_FAIL_RANK"), *fy = getenv("SYLVA_TEST_FAIL_YEAR");
-    if (fr && fy && atoi(fr) == r->rank && atoi(fy) == y->year) {
-        fprintf(stderr, "sylva: test: rank %d kills itself at year %d (SYLVA_TEST_FAIL_YEAR)\n", r->rank, y->year);
-        fflush(stderr);
-        raise(SIGKILL);
-    }
-    const char *sr = getenv("SYLVA_TEST_STOP_RANK"), *sy = getenv("SYLVA_TEST_STOP_YEAR");
-    if (sr && sy && atoi(sr) == r->rank && atoi(sy) == y->year) { /* a stopped rank: the others must not wait for ever */
-        fprintf(stderr, "sylva: test: rank %d stops itself at year %d (SYLVA_TEST_STOP_YEAR)\n", r->rank, y->year);
-        fflush(stderr);
-        raise(SIGSTOP);
-    }
+    cli_test_fault_year(r->rank, y->year);
 }
 
 static int on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t n) {

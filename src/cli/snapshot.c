@@ -5,13 +5,13 @@
  * picture on it (syl_render_instances: bands starting at multiples of SYL_RENDER_BLOCK rows
  * have the whole picture's bytes), rank 0 gathers them and writes the PNG. */
 #include <errno.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "cli/testfaults.h"
 #include "util/outgroup.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
@@ -108,13 +108,7 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
     if (!st) syl_forest_camera(forest, (SylForestView)a->eco_view, w, h, &cam);
     if (!st && nwin) st = syl_forest_render(forest, plants, nplants, &cam, ro, (const int(*)[4])windows, nwin, mine, &counts);
     double cpu = cli_cpu_now() - c0, wall = cli_now() - t0;
-    /* a killed rank, for tests/run-mpi: the job must end with nothing written */
-    const char *fr = getenv("SYLVA_TEST_FAIL_RANK");
-    if (mpi && fr && atoi(fr) == rank && !getenv("SYLVA_TEST_FAIL_YEAR")) {
-        fprintf(stderr, "sylva: test: rank %d kills itself before the gather (SYLVA_TEST_FAIL_RANK)\n", rank);
-        fflush(stderr);
-        raise(SIGKILL);
-    }
+    cli_test_fault_gather(mpi != NULL, rank);
     if (!st && !(lens = calloc((size_t)nranks, sizeof *lens))) st = SYL_ELIMIT;
     st = agree(mpi, st, kept, &said, &said_len);
     if (!st) st = syl_eco_mpi_gather(mpi, mine, rows * row_bytes, &all, lens);
