@@ -26,6 +26,8 @@ int syl_write_glb_wind_stream(const SylMesh *m, const SylInstances *sets, int n,
                               const SylWind *w, FILE *out, FILE *diag);
 /* syl_write_png (texture.h): width x height RGB as a PNG. */
 int syl_write_png_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag);
+/* syl_write_png_rgba (texture.h): width x height RGBA as a PNG. */
+int syl_write_png_rgba_stream(FILE *out, const uint8_t *rgba, int width, int height, FILE *diag);
 
 #ifdef __cplusplus
 }

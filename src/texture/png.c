@@ -52,3 +52,7 @@ int syl_write_png_rgba(const char *path, const uint8_t *rgba, int width, int hei
 int syl_write_png_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag) {
     return write_png("(stream)", out, rgb, width, height, 3, diag);
 }
+
+int syl_write_png_rgba_stream(FILE *out, const uint8_t *rgba, int width, int height, FILE *diag) {
+    return write_png("(stream)", out, rgba, width, height, 4, diag);
+}
