@@ -164,12 +164,6 @@ void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, 
                          const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* The path the program was read from (for files a model names, such as obstacles). */
 const char *syl_program_path(const SylProgram *p);
-/* A file the model names: as written when absolute, else beside the program's file (malloc'ed;
- * NULL: out of memory). */
-char *syl_program_file_path(const SylProgram *p, const char *file);
-/* Whether that file (a "file.syl:Model" without its model) can be read: 1, with an error at
- * line:col that names it as written and where it was looked for, when it cannot. */
-int syl_program_check_file(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col);
 /* The source text it was compiled from. */
 const char *syl_program_source(const SylProgram *p, size_t *len);
 
