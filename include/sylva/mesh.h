@@ -135,6 +135,23 @@ int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, c
  * sets with the same proto pointer share one mesh. For a forest split into cells. */
 int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
                          const char *path, FILE *diag);
+/* The mesh formats, one table by extension (src/io/formats.def: .glb, .obj, .ply, any case),
+ * with what each can hold. */
+enum {
+    SYL_FORMAT_PARTS = 1,        /* a scene's objects, one each */
+    SYL_FORMAT_INSTANCES = 2,    /* instance sets (--leaves instanced) */
+    SYL_FORMAT_LEVELS = 4,       /* levels of detail and impostors */
+    SYL_FORMAT_WIND = 8,         /* a skinned, animated mesh */
+    SYL_FORMAT_DOUBLE_SIDED = 16 /* materials drawn from both sides: a leaf is written once */
+};
+typedef struct SylMeshFormat {
+    const char *ext;  /* ".glb" */
+    const char *name; /* "glTF 2.0 binary" */
+    int can;          /* SYL_FORMAT_* */
+} SylMeshFormat;
+/* The format of a file by its name's extension; NULL when it names none, said to diag (NULL:
+ * silently) as "cannot tell the format of PATH: name it *.glb, *.obj or *.ply". */
+const SylMeshFormat *syl_mesh_format(const char *path, FILE *diag);
 int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
 /* A scene (m: all of it) as its objects, parts[0..n): one `o NAME` each in an OBJ, one node each
  * in a .glb; a PLY has no objects, so it is m whole. */

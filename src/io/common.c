@@ -184,24 +184,3 @@ static bool png_encode(IoBuf *b, const uint8_t *px, int w, int h, int channels) 
 
 bool io_png(IoBuf *b, const uint8_t *rgb, int size) { return png_encode(b, rgb, size, size, 3); }
 bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int w, int h) { return png_encode(b, rgba, w, h, 4); }
-
-/* ---- by extension ---- */
-
-int syl_write_mesh_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
-    const char *dot = strrchr(path, '.');
-    if (n > 0 && dot && !strchr(dot, '/') && !strcasecmp(dot, ".obj")) return syl_write_obj_parts(m, parts, n, path, diag);
-    if (n > 0 && dot && !strchr(dot, '/') && !strcasecmp(dot, ".glb"))
-        return syl_write_glb_parts(parts, n, m->name[0] ? m->name : "scene", path, diag);
-    return syl_write_mesh(m, path, diag); /* a PLY holds one mesh */
-}
-
-int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag) {
-    const char *dot = strrchr(path, '.');
-    if (dot && !strchr(dot, '/')) {
-        if (!strcasecmp(dot, ".obj")) return syl_write_obj(m, path, diag);
-        if (!strcasecmp(dot, ".ply")) return syl_write_ply(m, path, diag);
-        if (!strcasecmp(dot, ".glb")) return syl_write_glb(m, path, diag);
-    }
-    if (diag) fprintf(diag, "sylva: error: cannot tell the format of '%s': name it *.glb, *.obj or *.ply\n", path);
-    return SYL_EUSAGE;
-}
