@@ -56,7 +56,7 @@ static int agree(SylEcoMpi *mpi, int st, FILE *said, char *const *text, const si
 }
 
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro) {
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL); /* NULL: one process */
+    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, stderr); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
     /* every rank finds the same faults, which rank 0 says; another rank's are kept, to be said
      * when it alone failed (agree) */
