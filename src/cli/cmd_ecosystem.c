@@ -215,7 +215,7 @@ static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     }
     map_legend(r, rgb);
     char *path = path_in(r->dir, "map-%d.png", year);
-    int st = path ? syl_write_png(path, rgb, r->w, r->h, stderr) : SYL_ELIMIT;
+    int st = path ? syl_png_write(path, rgb, r->w, r->h, stderr) : SYL_ELIMIT;
     if (!st) printf("%s\n", path);
     free(path), free(rgb), free(order);
     return st;
@@ -280,7 +280,7 @@ static int write_view(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     double t0 = cli_now(), c0 = cpu_now();
     int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, 0, rgb, &counts) : SYL_ELIMIT;
     double wall = cli_now() - t0, cpu = cpu_now() - c0;
-    if (!st) st = syl_write_png(path, rgb, ro.width, ro.height, stderr);
+    if (!st) st = syl_png_write(path, rgb, ro.width, ro.height, stderr);
     if (!st) printf("%s\n", path);
     if (!st && r->stats)
         fprintf(stderr, "view %d: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n"

@@ -93,8 +93,8 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
     beside(output, "_impostor.png", color, sizeof color);
     beside(output, "_impostor_normal.png", normal, sizeof normal);
     if (a->impostor) {
-        status = outgroup_add(outs, color, stderr) ? syl_write_png_rgba(color, imp->color, imp->size, imp->size, stderr) : SYL_EIO;
-        if (!status) status = outgroup_add(outs, normal, stderr) ? syl_write_png_rgba(normal, imp->normal, imp->size, imp->size, stderr) : SYL_EIO;
+        status = outgroup_add(outs, color, stderr) ? syl_png_write_rgba(color, imp->color, imp->size, imp->size, stderr) : SYL_EIO;
+        if (!status) status = outgroup_add(outs, normal, stderr) ? syl_png_write_rgba(normal, imp->normal, imp->size, imp->size, stderr) : SYL_EIO;
         if (status) return status;
     }
     const char *cs = strrchr(color, '/'), *ns = strrchr(normal, '/');
@@ -220,11 +220,11 @@ int cmd_mesh(int argc, char **argv) {
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
     if (!status && !outgroup_add(&outs, output, stderr)) status = SYL_EIO;
-    if (!status) status = levels && a.wind > 0 ? syl_write_glb_lods_wind(&lods, sk, &wind, output, stderr)
-                          : levels    ? syl_write_glb_lods(&lods, output, stderr)
-                          : a.wind > 0 ? syl_write_glb_wind(mesh, sets, nsets, sk, &wind, output, stderr)
-                          : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                                      : syl_write_mesh_parts(mesh, pl.parts, pl.nparts, output, stderr);
+    if (!status) status = levels && a.wind > 0 ? syl_wind_write_glb_lods(&lods, sk, &wind, output, stderr)
+                          : levels    ? syl_lod_write_glb(&lods, output, stderr)
+                          : a.wind > 0 ? syl_wind_write_glb(mesh, sets, nsets, sk, &wind, output, stderr)
+                          : instanced ? syl_mesh_write_glb_instanced(mesh, sets, nsets, output, stderr)
+                                      : syl_mesh_write_parts(mesh, pl.parts, pl.nparts, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */

@@ -146,7 +146,7 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
             }
             st = !glb ? SYL_ELIMIT : !outgroup_add(&outs, glb, stderr) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, glb, stderr);
         }
-        if (!st) st = outgroup_add(&outs, out, stderr) ? syl_write_png(out, rgb, w, h, stderr) : SYL_EIO;
+        if (!st) st = outgroup_add(&outs, out, stderr) ? syl_png_write(out, rgb, w, h, stderr) : SYL_EIO;
         if (st) outgroup_undo(&outs);
         else outgroup_commit(&outs);
         free(glb);

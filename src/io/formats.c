@@ -8,7 +8,7 @@
 
 /* a scene's parts in a .glb: one node each, under the mesh's name */
 static int glb_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
-    return syl_write_glb_parts(parts, n, m->name[0] ? m->name : "scene", path, diag);
+    return syl_mesh_write_glb_parts(parts, n, m->name[0] ? m->name : "scene", path, diag);
 }
 
 typedef struct Format {
@@ -42,12 +42,12 @@ const SylMeshFormat *syl_mesh_format(const char *path, FILE *diag) {
     return f ? &f->f : NULL;
 }
 
-int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag) {
+int syl_mesh_write(const SylMesh *m, const char *path, FILE *diag) {
     const Format *f = format_of(path, diag);
     return f ? f->write(m, path, diag) : SYL_EUSAGE;
 }
 
-int syl_write_mesh_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
+int syl_mesh_write_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
     const Format *f = format_of(path, diag);
     if (!f) return SYL_EUSAGE;
     return n > 0 && f->write_parts ? f->write_parts(m, parts, n, path, diag) : f->write(m, path, diag);

@@ -369,7 +369,7 @@ int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *pa
         return SYL_ELIMIT;
     }
     int status = syl_render(m, opt, rgb);
-    if (!status) status = syl_write_png(path, rgb, w, h, opt->diag);
+    if (!status) status = syl_png_write(path, rgb, w, h, opt->diag);
     free(rgb);
     return status;
 }
