@@ -122,6 +122,16 @@ $(BUILD)/libsylva-nompi.a: $(sort $(NOMPI_LIB_OBJ)) $(wildcard include/sylva/*.h
 	$(call public_archive,$(sort $(NOMPI_LIB_OBJ)))
 $(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva-internal.a
 	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) $(CLI_LIBS)
+# The test-only fault switches (src/cli/testfaults.h) are compiled into $(BUILD)/sylva, which
+# the tests run, and left out of the binary make install installs, $(BUILD)/installed/sylva.
+$(BUILD)/src/cli/testfaults.o: CFLAGS += -DSYL_TEST_FAULTS
+$(BUILD)/src/cli/testfaults-none.o: src/cli/testfaults.c | $(DEPS_OK) $(BUILD)/gen/parser.h
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -c -o $@ $<
+$(BUILD)/installed/sylva: $(filter-out $(BUILD)/src/cli/testfaults.o,$(CLI_OBJ)) $(BUILD)/src/cli/testfaults-none.o \
+                          $(BUILD)/libsylva-internal.a
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) -o $@ $^ $(LDLIBS) $(CLI_LIBS)
 
 # ---- tests ----
 $(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva-internal.a
@@ -230,9 +240,9 @@ demo: all
 gallery: all
 	@tools/gallery --sylva $(BUILD)/sylva --size 384 --small --md docs/gallery.md docs/gallery
 
-install: all
+install: all $(BUILD)/installed/sylva
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/sylva
-	install -m 755 $(BUILD)/sylva $(DESTDIR)$(PREFIX)/bin/sylva
+	install -m 755 $(BUILD)/installed/sylva $(DESTDIR)$(PREFIX)/bin/sylva
 	install -m 644 $(BUILD)/libsylva.a $(DESTDIR)$(PREFIX)/lib/libsylva.a
 	install -m 644 include/sylva/*.h $(DESTDIR)$(PREFIX)/include/sylva/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@MPI_LIBS@|$(MPI_LIBS)|' tools/sylva.pc.in \
@@ -241,4 +251,4 @@ install: all
 clean:
 	rm -rf build build-asan build-fuzz build-pic out python/build python/sylva/*.so
 
--include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(BUILD)/src/cli/testfaults-none.d

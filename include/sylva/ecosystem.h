@@ -219,11 +219,12 @@ int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTe
                              size_t *nplants, FILE *diag);
 
 /* Ranks of an MPI job (src/eco/mpi.c; built with MPI=1). start: NULL when the build has no
- * MPI or the program was not launched by mpirun (one process); else MPI is initialised,
- * errors abort the job with a message. exchange: the transport over tiles_x × tiles_z tiles,
+ * MPI or the program was not launched by mpirun (one process); else MPI is initialised, and
+ * an MPI error, a rank that stops answering (SYLVA_RANK_TIMEOUT) or running out of memory
+ * ends the job with exit code SYL_EIO and a message to diag (NULL: none). exchange: the transport over tiles_x × tiles_z tiles,
  * spread over the ranks, re-balanced every `rebalance` years (0: never). */
 typedef struct SylEcoMpi SylEcoMpi;
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv);
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag);
 int syl_eco_mpi_rank(const SylEcoMpi *mpi);
 int syl_eco_mpi_size(const SylEcoMpi *mpi);
 const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance);
@@ -237,7 +238,6 @@ void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *
  * lens[rank] (lens: size entries, rank 0's); *all = NULL elsewhere. SYL_OK or SYL_ELIMIT. */
 void syl_eco_mpi_sum(SylEcoMpi *mpi, int64_t *v, size_t n);
 int syl_eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, size_t *lens);
-void syl_eco_mpi_abort(SylEcoMpi *mpi, int code, const char *message); /* ends every rank */
 void syl_eco_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
 
 /* A species' vigour at (x, z): its suitabilities combined as the block says. */

@@ -120,25 +120,37 @@ void syl_instances_free(SylInstances *sets, int n);
 /* Files (docs/mesh.md). Each writes to a temporary file and renames it, so a failure leaves
  * nothing; a symlink is followed, a FIFO or device written through (docs/cli.md#output-files).
  * OBJ writes its textures (PNG) beside the file; GLB embeds them. */
-int syl_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
+int syl_mesh_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
 /* m (its materials and textures) written as the objects parts[0..n), `o NAME` each */
-int syl_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
+int syl_mesh_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
 /* parts[0..n) as one node each, named after them, in the scene */
-int syl_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag);
-int syl_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
-int syl_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
+int syl_mesh_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag);
+int syl_mesh_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
+int syl_mesh_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
 /* m and n sets of instances in one .glb: each set a node with EXT_mesh_gpu_instancing (in
  * extensionsUsed only: a viewer without it shows the prototype once, at the origin). */
-int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag);
-/* A ground mesh (may be NULL) and n sets of instances (each a node with
- * EXT_mesh_gpu_instancing, extras[i] — JSON object text, or NULL — in its node's extras);
- * sets with the same proto pointer share one mesh. For a forest split into cells. */
-int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                         const char *path, FILE *diag);
-int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
+int syl_mesh_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag);
+/* The mesh formats, one table by extension (src/io/formats.def: .glb, .obj, .ply, any case),
+ * with what each can hold. */
+enum {
+    SYL_FORMAT_PARTS = 1,        /* a scene's objects, one each */
+    SYL_FORMAT_INSTANCES = 2,    /* instance sets (--leaves instanced) */
+    SYL_FORMAT_LEVELS = 4,       /* levels of detail and impostors */
+    SYL_FORMAT_WIND = 8,         /* a skinned, animated mesh */
+    SYL_FORMAT_DOUBLE_SIDED = 16 /* materials drawn from both sides: a leaf is written once */
+};
+typedef struct SylMeshFormat {
+    const char *ext;  /* ".glb" */
+    const char *name; /* "glTF 2.0 binary" */
+    int can;          /* SYL_FORMAT_* */
+} SylMeshFormat;
+/* The format of a file by its name's extension; NULL when it names none, said to diag (NULL:
+ * silently) as "cannot tell the format of PATH: name it *.glb, *.obj or *.ply". */
+const SylMeshFormat *syl_mesh_format(const char *path, FILE *diag);
+int syl_mesh_write(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
 /* A scene (m: all of it) as its objects, parts[0..n): one `o NAME` each in an OBJ, one node each
  * in a .glb; a PLY has no objects, so it is m whole. */
-int syl_write_mesh_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
+int syl_mesh_write_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
 
 enum { SYL_TEXTURE_SIZE = 512 };
 /* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if
@@ -147,7 +159,7 @@ enum { SYL_TEXTURE_SIZE = 512 };
  * material's colour goes in the material (glTF baseColorFactor, MTL Kd), which multiplies
  * them — as the renderer does. Each file is written through a temporary file. Returns
  * SYL_OK, SYL_EIO or SYL_ELIMIT. */
-int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag);
+int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag);
 
 #ifdef __cplusplus
 }

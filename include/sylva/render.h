@@ -107,7 +107,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
  * the top-left pixel at (0.5, 0.5)); false behind the eye. */
 bool syl_render_project(const SylRenderCamera *cam, int width, int height, const float p[3], float *x, float *y);
 
-/* The PNG writer (syl_write_png) and the textures the renderer uses are in texture.h. */
+/* The PNG writer (syl_png_write) and the textures the renderer uses are in texture.h. */
 
 #ifdef __cplusplus
 }

@@ -16,16 +16,18 @@
 extern "C" {
 #endif
 
-/* syl_write_glb_instanced (mesh.h): a .glb of m and its instance sets (n may be 0). */
-int syl_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag);
-/* syl_write_glb_lods_wind (wind.h): a chain of levels (MSFT_lod), skinned when w is not NULL. */
-int syl_write_glb_lods_wind_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out,
+/* syl_mesh_write_glb_instanced (mesh.h): a .glb of m and its instance sets (n may be 0). */
+int syl_mesh_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag);
+/* syl_wind_write_glb_lods (wind.h): a chain of levels (MSFT_lod), skinned when w is not NULL. */
+int syl_wind_write_glb_lods_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out,
                                    FILE *diag);
-/* syl_write_glb_wind (wind.h): a skinned mesh swaying in a looping animation. */
-int syl_write_glb_wind_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
+/* syl_wind_write_glb (wind.h): a skinned mesh swaying in a looping animation. */
+int syl_wind_write_glb_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
                               const SylWind *w, FILE *out, FILE *diag);
-/* syl_write_png (texture.h): width x height RGB as a PNG. */
-int syl_write_png_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag);
+/* syl_png_write (texture.h): width x height RGB as a PNG. */
+int syl_png_write_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag);
+/* syl_png_write_rgba (texture.h): width x height RGBA as a PNG. */
+int syl_png_write_rgba_stream(FILE *out, const uint8_t *rgba, int width, int height, FILE *diag);
 
 #ifdef __cplusplus
 }

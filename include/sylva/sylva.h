@@ -26,6 +26,29 @@ enum {
 typedef struct SylProgram SylProgram;
 typedef struct SylString SylString;
 
+/* Diagnostics as records, for a program that embeds the library: the library never writes to
+ * stderr by itself; it reports to the FILE * diag its caller gives. A caller that wants
+ * records rather than text gives it syl_sink_open(sink): every diagnostic written there
+ * reaches sink->report as one SylDiagnostic (docs/embedding.md, "Diagnostics"). */
+typedef enum { SYL_DIAG_ERROR, SYL_DIAG_WARNING, SYL_DIAG_NOTE } SylSeverity;
+typedef struct SylDiagnostic {
+    SylSeverity severity;
+    const char *path;        /* the file it is about; NULL: none (a message of the library's) */
+    int line, column;        /* from 1, columns in bytes; 0: no place */
+    const char *message;     /* without "error: "; controls shown escaped (^X, <U+XXXX>) */
+    const char *source_line; /* the line at `line` as shown, tabs kept; NULL: not shown */
+} SylDiagnostic;
+typedef struct SylSink {
+    void (*report)(void *user, const SylDiagnostic *d); /* the record lives during the call */
+    void *user;
+} SylSink;
+/* A stream for any function's diag that hands each diagnostic to sink (copied) as a record;
+ * the last one arrives at the latest at fclose. NULL when out of memory. */
+FILE *syl_sink_open(const SylSink *sink);
+/* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
+ * line and a caret under the column. */
+void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
+
 /* A memory budget that several engines share, so that one limit (--max-memory) holds for a
  * whole run: derivation, growth, scenes, the mesher and the renderer each count their large
  * arrays against it and stop with SYL_ELIMIT, before allocating, when it would be passed.
@@ -165,12 +188,6 @@ void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, 
                          const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* The path the program was read from (for files a model names, such as obstacles). */
 const char *syl_program_path(const SylProgram *p);
-/* A file the model names: as written when absolute, else beside the program's file (malloc'ed;
- * NULL: out of memory). */
-char *syl_program_file_path(const SylProgram *p, const char *file);
-/* Whether that file (a "file.syl:Model" without its model) can be read: 1, with an error at
- * line:col that names it as written and where it was looked for, when it cannot. */
-int syl_program_check_file(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col);
 /* The source text it was compiled from. */
 const char *syl_program_source(const SylProgram *p, size_t *len);
 

@@ -76,14 +76,14 @@ static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, i
  * its "wind" animation, and the shader attributes (docs/mesh.md#wind); n sets of instanced
  * leaves (may be 0; made with vertex_nodes too) hang from the joints they follow, as child
  * nodes. SYL_OK, SYL_EUSAGE (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
-int syl_write_glb_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
+int syl_wind_write_glb(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
                        const char *path, FILE *diag);
 
 /* A chain of levels of detail (lod.h) with wind: every level that has vertex nodes (of s)
  * skinned to w's one set of joints and driven by the one animation; the others (crossed
  * billboards) still. */
 struct SylLodChain;
-int syl_write_glb_lods_wind(const struct SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path,
+int syl_wind_write_glb_lods(const struct SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path,
                             FILE *diag);
 
 #ifdef __cplusplus

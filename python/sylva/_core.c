@@ -16,6 +16,7 @@
 #include <sylva/plant.h>
 #include <sylva/render.h>
 #include <sylva/skeleton.h>
+#include <sylva/stream.h>
 #include <sylva/sylva.h>
 #include <sylva/terrain.h>
 #if __has_include(<sylva/describe.h>)
@@ -264,6 +265,36 @@ static PyObject *core_models(PyObject *self, PyObject *args) {
     }
     free(buf);
     return l;
+}
+
+/* PNG bytes of an (H, W, 4) uint8 picture, by the library's encoder (sylva/stream.h). */
+static PyObject *core_png_rgba(PyObject *self, PyObject *args) {
+    Py_buffer px;
+    int width, height;
+    if (!PyArg_ParseTuple(args, "y*ii", &px, &width, &height)) return NULL;
+    if (width <= 0 || height <= 0 || px.len != (Py_ssize_t)width * height * 4) {
+        PyBuffer_Release(&px);
+        return PyErr_Format(PyExc_ValueError, "png_rgba: %zd bytes are not %d x %d RGBA", px.len, width, height);
+    }
+    Diag d;
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *out = diag_open(&d) ? NULL : open_memstream(&buf, &len);
+    if (!out) {
+        diag_drop(&d);
+        PyBuffer_Release(&px);
+        return PyErr_NoMemory();
+    }
+    int st;
+    Py_BEGIN_ALLOW_THREADS
+    st = syl_png_write_rgba_stream(out, px.buf, width, height, d.f);
+    Py_END_ALLOW_THREADS
+    fclose(out);
+    PyBuffer_Release(&px);
+    PyObject *r = st ? raise_status(st, &d) : PyBytes_FromStringAndSize(buf, (Py_ssize_t)len);
+    if (!st) diag_drop(&d);
+    free(buf);
+    return r;
 }
 
 static PyObject *program_info(ProgramObject *o, PyObject *unused) {
@@ -732,7 +763,7 @@ static PyObject *plant_write(PlantObject *o, PyObject *args) {
     if (diag_open(&d)) return NULL;
     int st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_write_mesh(o->pl.mesh, path, d.f);
+    st = syl_mesh_write(o->pl.mesh, path, d.f);
     Py_END_ALLOW_THREADS
     if (st) return raise_status(st, &d);
     diag_drop(&d);
@@ -1089,6 +1120,7 @@ static PyMethodDef core_methods[] = {
     {"compile", (PyCFunction)(void (*)(void))core_compile, METH_VARARGS | METH_KEYWORDS,
      "compile(path, text=None, model=None, overrides=None, lint=False, validate=True) -> (Program, warnings)"},
     {"models", core_models, METH_VARARGS, "models(path, text=None) -> names"},
+    {"png_rgba", core_png_rgba, METH_VARARGS, "png_rgba(bytes, width, height) -> PNG bytes"},
     {"_set_errors", core_set_errors, METH_VARARGS, "the package's CompileError and LimitError"},
     {NULL, NULL, 0, NULL},
 };

@@ -3,7 +3,6 @@
  * snapshot a top-down map, a rendered picture of the plants as instances of their species'
  * looks, and (--glb) the scene as a .glb. */
 #include <errno.h>
-#include <signal.h>
 #include <libxml/xmlwriter.h>
 #include <math.h>
 #include <stdlib.h>
@@ -13,6 +12,7 @@
 
 #include "cli/cli.h"
 #include "cli/font.h"
+#include "cli/testfaults.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
 #include "sylva/render.h"
@@ -61,9 +61,7 @@ const CliCommand cli_ecosystem_command = {
     .width = 24,
     .epilogue = "\nExit codes: 0 ok, 1 the model or its DEM is malformed, 2 bad command line, 3 limit hit,\n"
                 "4 I/O error (under mpirun: a rank failed or was killed, or stopped answering for\n"
-                "SYLVA_RANK_TIMEOUT seconds, default 600; the job is aborted).\n"
-                "SYLVA_TEST_FAIL_RANK=R SYLVA_TEST_FAIL_YEAR=Y (tests only): rank R kills itself\n"
-                "with SIGKILL at the end of year Y (SYLVA_TEST_STOP_*: stops itself, SIGSTOP).\n",
+                "SYLVA_RANK_TIMEOUT seconds, default 600; the job is aborted).\n",
     .args_error = "expects one model file",
 };
 
@@ -117,19 +115,7 @@ static void on_year(void *user, const SylEcoYear *y) {
         r->cap = cap;
     }
     r->years[r->nyears++] = *y;
-    /* a killed rank, for tests/run-mpi: the job must end with nothing half-written */
-    const char *fr = getenv("SYLVA_TEST_FAIL_RANK"), *fy = getenv("SYLVA_TEST_FAIL_YEAR");
-    if (fr && fy && atoi(fr) == r->rank && atoi(fy) == y->year) {
-        fprintf(stderr, "sylva: test: rank %d kills itself at year %d (SYLVA_TEST_FAIL_YEAR)\n", r->rank, y->year);
-        fflush(stderr);
-        raise(SIGKILL);
-    }
-    const char *sr = getenv("SYLVA_TEST_STOP_RANK"), *sy = getenv("SYLVA_TEST_STOP_YEAR");
-    if (sr && sy && atoi(sr) == r->rank && atoi(sy) == y->year) { /* a stopped rank: the others must not wait for ever */
-        fprintf(stderr, "sylva: test: rank %d stops itself at year %d (SYLVA_TEST_STOP_YEAR)\n", r->rank, y->year);
-        fflush(stderr);
-        raise(SIGSTOP);
-    }
+    cli_test_fault_year(r->rank, y->year);
 }
 
 static int on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t n) {
@@ -229,7 +215,7 @@ static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     }
     map_legend(r, rgb);
     char *path = path_in(r->dir, "map-%d.png", year);
-    int st = path ? syl_write_png(path, rgb, r->w, r->h, stderr) : SYL_ELIMIT;
+    int st = path ? syl_png_write(path, rgb, r->w, r->h, stderr) : SYL_ELIMIT;
     if (!st) printf("%s\n", path);
     free(path), free(rgb), free(order);
     return st;
@@ -294,7 +280,7 @@ static int write_view(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     double t0 = cli_now(), c0 = cpu_now();
     int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, 0, rgb, &counts) : SYL_ELIMIT;
     double wall = cli_now() - t0, cpu = cpu_now() - c0;
-    if (!st) st = syl_write_png(path, rgb, ro.width, ro.height, stderr);
+    if (!st) st = syl_png_write(path, rgb, ro.width, ro.height, stderr);
     if (!st) printf("%s\n", path);
     if (!st && r->stats)
         fprintf(stderr, "view %d: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n"
@@ -484,7 +470,7 @@ int cmd_ecosystem(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     static SylEcoModel model; /* 14 kB: off the stack */
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL); /* NULL: one process */
+    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, stderr); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
     bool writer = rank == 0;
     ro.threads = d.threads;

@@ -43,7 +43,7 @@ static What what_of(const char *path) {
     const char *dot = strrchr(path, '.');
     if (!dot || strchr(dot, '/')) return W_DEFAULT;
     if (!strcasecmp(dot, ".png")) return W_PNG;
-    if (!strcasecmp(dot, ".glb") || !strcasecmp(dot, ".obj") || !strcasecmp(dot, ".ply")) return W_MESH;
+    if (syl_mesh_format(path, NULL)) return W_MESH;
     if (!strcasecmp(dot, ".csv")) return W_CSV;
     if (!strcasecmp(dot, ".json")) return W_JSON;
     return W_DEFAULT;
@@ -105,8 +105,8 @@ int cmd_grow(int argc, char **argv) {
     SylBudget *budget = syl_budget_new(d.max_memory); /* one --max-memory for every engine */
     d.budget = budget;
     SylMeshOptions mo = {.threads = d.threads, .diag = stderr, .budget = budget};
-    const char *ext = output ? strrchr(output, '.') : NULL;
-    mo.one_sided = what == W_DEFAULT || (what == W_MESH && !strcasecmp(ext, ".glb")); /* a .glb is written */
+    /* a .glb is written by default */
+    mo.one_sided = what == W_DEFAULT || (what == W_MESH && (syl_mesh_format(output, NULL)->can & SYL_FORMAT_DOUBLE_SIDED));
     ro.threads = d.threads;
     ro.budget = budget;
     Plant pl;
@@ -124,7 +124,7 @@ int cmd_grow(int argc, char **argv) {
     }
     double t0 = cli_now();
     if (what == W_PNG) status = render(&pl, &ro, output);
-    else if (what == W_MESH) status = syl_write_mesh(pl.mesh, output, stderr);
+    else if (what == W_MESH) status = syl_mesh_write(pl.mesh, output, stderr);
     else if (what == W_CSV || what == W_JSON) status = write_skeleton(pl.sk, output, what == W_JSON);
     else {
         char *png = cli_output_name(&m, dir, "png"), *glb = cli_output_name(&m, dir, "glb");
@@ -132,7 +132,7 @@ int cmd_grow(int argc, char **argv) {
             fprintf(stderr, "sylva: error: out of memory\n");
             status = SYL_ELIMIT;
         }
-        if (!status) status = syl_write_glb(pl.mesh, glb, stderr);
+        if (!status) status = syl_mesh_write_glb(pl.mesh, glb, stderr);
         if (!status) status = render(&pl, &ro, png);
         if (!status) printf("%s\n%s\n", png, glb);
         free(png);

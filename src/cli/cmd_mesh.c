@@ -93,8 +93,8 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
     beside(output, "_impostor.png", color, sizeof color);
     beside(output, "_impostor_normal.png", normal, sizeof normal);
     if (a->impostor) {
-        status = outgroup_add(outs, color, stderr) ? syl_write_png_rgba(color, imp->color, imp->size, imp->size, stderr) : SYL_EIO;
-        if (!status) status = outgroup_add(outs, normal, stderr) ? syl_write_png_rgba(normal, imp->normal, imp->size, imp->size, stderr) : SYL_EIO;
+        status = outgroup_add(outs, color, stderr) ? syl_png_write_rgba(color, imp->color, imp->size, imp->size, stderr) : SYL_EIO;
+        if (!status) status = outgroup_add(outs, normal, stderr) ? syl_png_write_rgba(normal, imp->normal, imp->size, imp->size, stderr) : SYL_EIO;
         if (status) return status;
     }
     const char *cs = strrchr(color, '/'), *ns = strrchr(normal, '/');
@@ -134,25 +134,22 @@ int cmd_mesh(int argc, char **argv) {
         fprintf(stderr, "sylva mesh: -o OUT.glb, OUT.obj or OUT.ply is required\n");
         return SYL_EUSAGE;
     }
-    const char *dot = strrchr(output, '.');
-    if (!dot || strchr(dot, '/') || (strcasecmp(dot, ".glb") && strcasecmp(dot, ".obj") && strcasecmp(dot, ".ply"))) {
-        fprintf(stderr, "sylva: error: cannot tell the format of '%s': name it *.glb, *.obj or *.ply\n", output);
-        return SYL_EUSAGE;
-    }
+    const SylMeshFormat *format = syl_mesh_format(output, stderr);
+    if (!format) return SYL_EUSAGE;
     bool instanced = mo.leaves == SYL_LEAVES_INSTANCED || mo.leaves == SYL_LEAVES_INSTANCED_CARDS;
-    if (instanced && strcasecmp(dot, ".glb")) {
+    if (instanced && !(format->can & SYL_FORMAT_INSTANCES)) {
         fprintf(stderr, "sylva: error: --leaves %s needs a .glb (OBJ and PLY cannot instance)\n",
                 syl_leaves_names[mo.leaves]);
         return SYL_EUSAGE;
     }
     bool levels = a.lod || a.impostor || a.billboards;
-    if (a.wind > 0 && strcasecmp(dot, ".glb")) {
+    if (a.wind > 0 && !(format->can & SYL_FORMAT_WIND)) {
         fprintf(stderr, "sylva: error: --wind writes a skinned .glb, not '%s'\n", output);
         return SYL_EUSAGE;
     }
     mo.vertex_nodes = a.wind > 0;
-    mo.one_sided = !strcasecmp(dot, ".glb"); /* glTF's doubleSided draws a leaf's back */
-    if (levels && strcasecmp(dot, ".glb")) {
+    mo.one_sided = (format->can & SYL_FORMAT_DOUBLE_SIDED) != 0; /* glTF's doubleSided draws a leaf's back */
+    if (levels && !(format->can & SYL_FORMAT_LEVELS)) {
         fprintf(stderr, "sylva: error: --lod, --impostor and --billboards write into a .glb only, not '%s'\n", output);
         return SYL_EUSAGE;
     }
@@ -169,7 +166,7 @@ int cmd_mesh(int argc, char **argv) {
         return status;
     }
     /* the model's `lod` setting, when --lod does not say: a .glb without wind only */
-    if (!a.lod && pl.lod && !strcasecmp(dot, ".glb") && !(a.wind > 0)) a.lod = pl.lod, levels = true;
+    if (!a.lod && pl.lod && (format->can & SYL_FORMAT_LEVELS) && !(a.wind > 0)) a.lod = pl.lod, levels = true;
     const SylSkeleton *sk = pl.sk;
     SylMesh *mesh = pl.mesh;
     if (a.wind > 0 && !mesh->node) { /* syl_mesh_append dropped them */
@@ -195,7 +192,7 @@ int cmd_mesh(int argc, char **argv) {
     } else {
         status = syl_mesh_optimize(mesh);
         for (int i = 0; !status && i < pl.nparts; i++) status = syl_mesh_optimize(pl.parts[i]);
-        if (!status && pl.nparts > 1 && !strcasecmp(dot, ".ply"))
+        if (!status && pl.nparts > 1 && !(format->can & SYL_FORMAT_PARTS))
             fprintf(stderr, "sylva: warning: a PLY file holds one mesh: the scene's %d objects are merged into it "
                             "(write .obj or .glb for one object each)\n", pl.nparts);
     }
@@ -223,11 +220,11 @@ int cmd_mesh(int argc, char **argv) {
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
     if (!status && !outgroup_add(&outs, output, stderr)) status = SYL_EIO;
-    if (!status) status = levels && a.wind > 0 ? syl_write_glb_lods_wind(&lods, sk, &wind, output, stderr)
-                          : levels    ? syl_write_glb_lods(&lods, output, stderr)
-                          : a.wind > 0 ? syl_write_glb_wind(mesh, sets, nsets, sk, &wind, output, stderr)
-                          : instanced ? syl_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                                      : syl_write_mesh_parts(mesh, pl.parts, pl.nparts, output, stderr);
+    if (!status) status = levels && a.wind > 0 ? syl_wind_write_glb_lods(&lods, sk, &wind, output, stderr)
+                          : levels    ? syl_lod_write_glb(&lods, output, stderr)
+                          : a.wind > 0 ? syl_wind_write_glb(mesh, sets, nsets, sk, &wind, output, stderr)
+                          : instanced ? syl_mesh_write_glb_instanced(mesh, sets, nsets, output, stderr)
+                                      : syl_mesh_write_parts(mesh, pl.parts, pl.nparts, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */

@@ -65,7 +65,7 @@ int lod_picture(const SylLodChain *c, const char *path, int size, int threads) {
             memcpy(sheet + (size_t)y * row + (size_t)k * (size_t)size * 3, one + (size_t)y * (size_t)size * 3,
                    (size_t)size * 3);
     }
-    if (!status) status = syl_write_png(path, sheet, size * c->n, size, stderr);
+    if (!status) status = syl_png_write(path, sheet, size * c->n, size, stderr);
     free(sheet), free(one);
     return status;
 }

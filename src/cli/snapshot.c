@@ -5,13 +5,13 @@
  * picture on it (syl_render_instances: bands starting at multiples of SYL_RENDER_BLOCK rows
  * have the whole picture's bytes), rank 0 gathers them and writes the PNG. */
 #include <errno.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include "cli/cli.h"
+#include "cli/testfaults.h"
 #include "util/outgroup.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
@@ -56,7 +56,7 @@ static int agree(SylEcoMpi *mpi, int st, FILE *said, char *const *text, const si
 }
 
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro) {
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL); /* NULL: one process */
+    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, stderr); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
     /* every rank finds the same faults, which rank 0 says; another rank's are kept, to be said
      * when it alone failed (agree) */
@@ -108,13 +108,7 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
     if (!st) syl_forest_camera(forest, (SylForestView)a->eco_view, w, h, &cam);
     if (!st && nwin) st = syl_forest_render(forest, plants, nplants, &cam, ro, (const int(*)[4])windows, nwin, mine, &counts);
     double cpu = cli_cpu_now() - c0, wall = cli_now() - t0;
-    /* a killed rank, for tests/run-mpi: the job must end with nothing written */
-    const char *fr = getenv("SYLVA_TEST_FAIL_RANK");
-    if (mpi && fr && atoi(fr) == rank && !getenv("SYLVA_TEST_FAIL_YEAR")) {
-        fprintf(stderr, "sylva: test: rank %d kills itself before the gather (SYLVA_TEST_FAIL_RANK)\n", rank);
-        fflush(stderr);
-        raise(SIGKILL);
-    }
+    cli_test_fault_gather(mpi != NULL, rank);
     if (!st && !(lens = calloc((size_t)nranks, sizeof *lens))) st = SYL_ELIMIT;
     st = agree(mpi, st, kept, &said, &said_len);
     if (!st) st = syl_eco_mpi_gather(mpi, mine, rows * row_bytes, &all, lens);
@@ -152,7 +146,7 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
             }
             st = !glb ? SYL_ELIMIT : !outgroup_add(&outs, glb, stderr) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, glb, stderr);
         }
-        if (!st) st = outgroup_add(&outs, out, stderr) ? syl_write_png(out, rgb, w, h, stderr) : SYL_EIO;
+        if (!st) st = outgroup_add(&outs, out, stderr) ? syl_png_write(out, rgb, w, h, stderr) : SYL_EIO;
         if (st) outgroup_undo(&outs);
         else outgroup_commit(&outs);
         free(glb);

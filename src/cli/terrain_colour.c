@@ -122,7 +122,7 @@ static int write_one(const SylTerrain *t, SylTerrainFactor f, const float *shade
         }
         cli_text_draw(rgb, w, h, right + 4 * s, y0 + s, b, s, ink);
     }
-    int st = syl_write_png(path, rgb, w, h, stderr);
+    int st = syl_png_write(path, rgb, w, h, stderr);
     free(rgb);
     return st;
 }

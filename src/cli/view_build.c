@@ -156,9 +156,9 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
 /* The .glb as `sylva mesh` writes it, into out. */
 static int write_glb(Made *m, FILE *out, FILE *diag) {
     bool wind = m->wind.njoints > 0;
-    return m->lod > 0 ? syl_write_glb_lods_wind_stream(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, out, diag)
-           : wind     ? syl_write_glb_wind_stream(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, out, diag)
-                      : syl_write_glb_instanced_stream(m->pl.mesh, m->sets, m->nsets, out, diag);
+    return m->lod > 0 ? syl_wind_write_glb_lods_stream(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, out, diag)
+           : wind     ? syl_wind_write_glb_stream(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, out, diag)
+                      : syl_mesh_write_glb_instanced_stream(m->pl.mesh, m->sets, m->nsets, out, diag);
 }
 
 /* What `sylva mesh --stats` prints, as JSON. */
@@ -253,13 +253,13 @@ static int write_png(Made *m, const ViewRequest *rq, FILE *out, FILE *diag, int 
     if (!rgb) return SYL_ELIMIT;
     SylRenderOptions ro = {.width = w, .height = h, .threads = threads, .diag = diag, .budget = m->budget};
     int status = syl_render(m->pl.mesh, &ro, rgb);
-    if (!status) status = syl_write_png_stream(out, rgb, w, h, diag);
+    if (!status) status = syl_png_write_stream(out, rgb, w, h, diag);
     free(rgb);
     return status;
 }
 
 /* An .obj (with its .mtl and textures) needs a directory: written into a private one by
- * syl_write_obj, the .obj read back. */
+ * syl_mesh_write_obj, the .obj read back. */
 static int write_obj(Made *m, FILE *out, FILE *diag) {
     char dir[] = "/tmp/sylva-view-XXXXXX";
     if (!mkdtemp(dir)) {
@@ -268,7 +268,7 @@ static int write_obj(Made *m, FILE *out, FILE *diag) {
     }
     char path[64];
     snprintf(path, sizeof path, "%s/plant.obj", dir);
-    int status = syl_write_obj(m->pl.mesh, path, diag);
+    int status = syl_mesh_write_obj(m->pl.mesh, path, diag);
     size_t len = 0;
     char *text = status ? NULL : syl_read_file(path, &len);
     if (!status && !text) status = SYL_EIO;

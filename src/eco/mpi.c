@@ -34,7 +34,7 @@ struct SylEcoMpi {
     int rank, size;
     MPI_Comm comm;
     MPI_Datatype plant;
-    MPI_Errhandler errh;
+    FILE *diag;             /* where a failure that ends the job is said (NULL: nowhere) */
     SylEcoExchange ops;
     int ntiles, every, pending;
     int *owner, *next;
@@ -57,20 +57,23 @@ static Box *box_of(SylEcoMpi *m, int channel, int to, int from) {
 }
 
 static void fail(SylEcoMpi *m, const char *what) {
-    fprintf(stderr, "sylva: error: rank %d of %d: %s; aborting the job\n", m->rank, m->size, what);
-    fflush(stderr);
+    if (m->diag) {
+        fprintf(m->diag, "sylva: error: rank %d of %d: %s; aborting the job\n", m->rank, m->size, what);
+        fflush(m->diag);
+    }
     MPI_Abort(m->comm, SYL_EIO);
 }
 
-/* Any MPI error (a rank gone, a message lost) ends the whole job with a message, not a hang. */
-static void on_mpi_error(MPI_Comm *comm, int *code, ...) {
-    char text[MPI_MAX_ERROR_STRING];
-    int len = 0, rank = -1;
-    MPI_Error_string(*code, text, &len);
-    MPI_Comm_rank(*comm, &rank);
-    fprintf(stderr, "sylva: error: rank %d: MPI: %s; aborting the job\n", rank, text);
-    fflush(stderr);
-    MPI_Abort(*comm, SYL_EIO);
+/* Any MPI error (a rank gone, a message lost) ends the whole job with a message, not a hang:
+ * the communicator returns errors (MPI_ERRORS_RETURN) and every call is checked here, so that
+ * the message goes to the caller's diag. */
+static void check(SylEcoMpi *m, int code) {
+    if (code == MPI_SUCCESS) return;
+    char text[MPI_MAX_ERROR_STRING], what[MPI_MAX_ERROR_STRING + 8];
+    int len = 0;
+    MPI_Error_string(code, text, &len);
+    snprintf(what, sizeof what, "MPI: %s", text);
+    fail(m, what);
 }
 
 static int64_t now_ms(void) {
@@ -114,11 +117,13 @@ static void *watchdog(void *arg) {
         if (!since || now_ms() - since < (int64_t)(m->timeout * 1000)) continue;
         char who[1024];
         stopped_ranks(m, who, sizeof who);
-        fprintf(stderr,
-                "sylva: error: rank %d of %d: no answer from the other ranks for %g s%s; ending the job "
-                "(SYLVA_RANK_TIMEOUT sets the time)\n",
-                m->rank, m->size, m->timeout, who);
-        fflush(stderr);
+        if (m->diag) {
+            fprintf(m->diag,
+                    "sylva: error: rank %d of %d: no answer from the other ranks for %g s%s; ending the job "
+                    "(SYLVA_RANK_TIMEOUT sets the time)\n",
+                    m->rank, m->size, m->timeout, who);
+            fflush(m->diag);
+        }
         _exit(SYL_EIO);
     }
     return NULL;
@@ -175,21 +180,21 @@ static void mpi_barrier(void *ctx) {
                 }
     }
     wait_begin(m);
-    MPI_Alltoall(m->send_len, 1, MPI_UINT64_T, m->recv_len, 1, MPI_UINT64_T, m->comm);
+    check(m, MPI_Alltoall(m->send_len, 1, MPI_UINT64_T, m->recv_len, 1, MPI_UINT64_T, m->comm));
     int nreq = 0;
     for (int r = 0; r < m->size; r++) {
         if (m->recv_len[r] > INT_MAX || m->send_len[r] > INT_MAX) fail(m, "a message over 2 GB (use more tiles or ranks)");
         if (m->recv_len[r]) {
             if (!(m->recv[r] = malloc(m->recv_len[r]))) fail(m, "out of memory for a message");
-            MPI_Irecv(m->recv[r], (int)m->recv_len[r], MPI_BYTE, r, 0, m->comm, &m->req[nreq++]);
+            check(m, MPI_Irecv(m->recv[r], (int)m->recv_len[r], MPI_BYTE, r, 0, m->comm, &m->req[nreq++]));
         }
     }
     for (int r = 0; r < m->size; r++)
         if (m->send_len[r]) {
-            MPI_Isend(m->send[r], (int)m->send_len[r], MPI_BYTE, r, 0, m->comm, &m->req[nreq++]);
+            check(m, MPI_Isend(m->send[r], (int)m->send_len[r], MPI_BYTE, r, 0, m->comm, &m->req[nreq++]));
             m->bytes_sent += m->send_len[r];
         }
-    MPI_Waitall(nreq, m->req, MPI_STATUSES_IGNORE);
+    check(m, MPI_Waitall(nreq, m->req, MPI_STATUSES_IGNORE));
     wait_end(m);
     for (int r = 0; r < m->size; r++)
         for (uint64_t at = 0; at < m->recv_len[r];) {
@@ -224,7 +229,7 @@ static void mpi_sum(void *ctx, int64_t *v, size_t n) {
     SylEcoMpi *m = ctx;
     if (n > INT_MAX) fail(m, "too many sums");
     wait_begin(m);
-    MPI_Allreduce(MPI_IN_PLACE, v, (int)n, MPI_INT64_T, MPI_SUM, m->comm);
+    check(m, MPI_Allreduce(MPI_IN_PLACE, v, (int)n, MPI_INT64_T, MPI_SUM, m->comm));
     wait_end(m);
 }
 
@@ -240,7 +245,7 @@ static int mpi_gather(void *ctx, const SylEcoPlant *p, size_t n, SylEcoPlant **a
         if (!counts || !displs) fail(m, "out of memory for a gather");
     }
     wait_begin(m);
-    MPI_Gather(&mine, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm);
+    check(m, MPI_Gather(&mine, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm));
     wait_end(m);
     int64_t total = 0;
     for (int r = 0; m->rank == 0 && r < m->size; r++) {
@@ -250,7 +255,7 @@ static int mpi_gather(void *ctx, const SylEcoPlant *p, size_t n, SylEcoPlant **a
     }
     if (m->rank == 0 && !(*all = malloc((size_t)(total ? total : 1) * sizeof **all))) fail(m, "out of memory for a gather");
     wait_begin(m);
-    MPI_Gatherv(p, mine, m->plant, *all, counts, displs, m->plant, 0, m->comm);
+    check(m, MPI_Gatherv(p, mine, m->plant, *all, counts, displs, m->plant, 0, m->comm));
     wait_end(m);
     *nall = (size_t)total;
     free(counts), free(displs);
@@ -265,7 +270,7 @@ static int mpi_rebalance(void *ctx, int year, const int64_t *plants, int ntiles)
     return m->pending;
 }
 
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv) {
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag) {
     /* only under a launcher: a plain run stays one plain process */
     if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK") && !getenv("PMI_RANK")) return NULL;
     SylEcoMpi *m = calloc(1, sizeof *m);
@@ -273,12 +278,12 @@ SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv) {
     int provided;
     MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided); /* MPI from the main thread only */
     m->comm = MPI_COMM_WORLD;
-    MPI_Comm_rank(m->comm, &m->rank);
-    MPI_Comm_size(m->comm, &m->size);
-    MPI_Comm_create_errhandler(on_mpi_error, &m->errh);
-    MPI_Comm_set_errhandler(m->comm, m->errh);
-    MPI_Type_contiguous((int)sizeof(SylEcoPlant), MPI_BYTE, &m->plant);
-    MPI_Type_commit(&m->plant);
+    m->diag = diag;
+    check(m, MPI_Comm_rank(m->comm, &m->rank));
+    check(m, MPI_Comm_size(m->comm, &m->size));
+    MPI_Comm_set_errhandler(m->comm, MPI_ERRORS_RETURN);
+    check(m, MPI_Type_contiguous((int)sizeof(SylEcoPlant), MPI_BYTE, &m->plant));
+    check(m, MPI_Type_commit(&m->plant));
     const char *t = getenv("SYLVA_RANK_TIMEOUT");
     m->timeout = t ? atof(t) : 600;
     m->pid = calloc((size_t)m->size, sizeof *m->pid);
@@ -290,7 +295,7 @@ SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv) {
     for (const char *c = name; *c; c++) h = (h ^ (unsigned char)*c) * 16777619u;
     int mine[2] = {(int)getpid(), (int)h}, *all = malloc(2 * (size_t)m->size * sizeof *all);
     if (!all) fail(m, "out of memory");
-    MPI_Allgather(mine, 2, MPI_INT, all, 2, MPI_INT, m->comm);
+    check(m, MPI_Allgather(mine, 2, MPI_INT, all, 2, MPI_INT, m->comm));
     for (int r = 0; r < m->size; r++) m->pid[r] = all[2 * r], m->host[r] = all[2 * r + 1];
     free(all);
     if (m->timeout > 0) m->watching = !pthread_create(&m->watch, NULL, watchdog, m);
@@ -348,7 +353,7 @@ int syl_eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, 
                          !(displs = malloc((size_t)m->size * sizeof *displs))))
         fail(m, "out of memory for a gather");
     wait_begin(m);
-    MPI_Gather(&len, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm);
+    check(m, MPI_Gather(&len, 1, MPI_INT, counts, 1, MPI_INT, 0, m->comm));
     wait_end(m);
     int64_t total = 0;
     for (int r = 0; m->rank == 0 && r < m->size; r++) {
@@ -359,17 +364,10 @@ int syl_eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, 
     }
     if (m->rank == 0 && !(*all = malloc((size_t)(total ? total : 1)))) fail(m, "out of memory for a gather");
     wait_begin(m);
-    MPI_Gatherv(mine, len, MPI_BYTE, *all, counts, displs, MPI_BYTE, 0, m->comm);
+    check(m, MPI_Gatherv(mine, len, MPI_BYTE, *all, counts, displs, MPI_BYTE, 0, m->comm));
     wait_end(m);
     free(counts), free(displs);
     return SYL_OK;
-}
-
-void syl_eco_mpi_abort(SylEcoMpi *m, int code, const char *message) {
-    if (!m) return;
-    fprintf(stderr, "sylva: error: rank %d of %d: %s; aborting the job\n", m->rank, m->size, message);
-    fflush(stderr);
-    MPI_Abort(m->comm, code);
 }
 
 void syl_eco_mpi_end(SylEcoMpi *m) {
@@ -378,7 +376,6 @@ void syl_eco_mpi_end(SylEcoMpi *m) {
     free(m->owner), free(m->next), free(m->box), free(m->send), free(m->recv), free(m->send_len), free(m->recv_len),
         free(m->req);
     MPI_Type_free(&m->plant);
-    MPI_Errhandler_free(&m->errh);
     wait_begin(m); /* MPI_Finalize waits for every rank too */
     MPI_Finalize();
     atomic_store(&m->quit, 1);

@@ -4,8 +4,8 @@
 
 #include "sylva/ecosystem.h"
 
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv) {
-    (void)argc, (void)argv;
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag) {
+    (void)argc, (void)argv, (void)diag;
     return NULL;
 }
 int syl_eco_mpi_rank(const SylEcoMpi *mpi) { return (void)mpi, 0; }
@@ -27,5 +27,4 @@ int syl_eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all
     memcpy(*all, mine, n);
     return SYL_OK;
 }
-void syl_eco_mpi_abort(SylEcoMpi *mpi, int code, const char *message) { (void)mpi, (void)code, (void)message; }
 void syl_eco_mpi_end(SylEcoMpi *mpi) { (void)mpi; }

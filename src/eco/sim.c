@@ -18,6 +18,7 @@
 
 #include "eco/eco.h"
 #include "util/budget.h"
+#include "util/parallel.h"
 #include "util/rng.h"
 
 typedef struct Buf {
@@ -513,11 +514,12 @@ static void run_phase(Sim *s, int ti) {
     else settle_tile(s, ti);
 }
 
-static void *worker(void *arg) {
+static void worker(void *arg, int k) {
+    (void)k;
     Sim *s = arg;
     for (;;) {
         int ti = __atomic_fetch_add(&s->next, 1, __ATOMIC_RELAXED);
-        if (ti >= s->ntiles) return NULL;
+        if (ti >= s->ntiles) return;
         if (!s->x->owns || s->x->owns(s->x->ctx, ti)) run_phase(s, ti); /* another process's tile */
     }
 }
@@ -525,13 +527,8 @@ static void *worker(void *arg) {
 static void parallel(Sim *s, int phase, int threads) {
     s->phase = phase;
     s->next = 0;
-    pthread_t th[64];
-    int n = threads < s->ntiles ? threads : s->ntiles, started = 0;
-    if (n > 64) n = 64;
-    for (int i = 1; i < n; i++)
-        if (!pthread_create(&th[started], NULL, worker, s)) started++;
-    worker(s);
-    for (int i = 0; i < started; i++) pthread_join(th[i], NULL);
+    int n = threads < s->ntiles ? threads : s->ntiles;
+    par_run(n > 64 ? 64 : n, worker, s); /* workers taking tiles in turn; this thread works too */
     s->x->barrier(s->x->ctx);
 }
 
@@ -639,7 +636,7 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
     for (int i = 0; i < m->nspecies; i++)
         if (m->species[i].max_age > longest) longest = m->species[i].max_age;
     for (int i = 0; i < m->nspecies; i++) s.rel_life[i] = m->species[i].max_age / longest;
-    int threads = o->threads > 0 ? o->threads : (int)sysconf(_SC_NPROCESSORS_ONLN);
+    int threads = o->threads > 0 ? o->threads : par_threads(0);
     if (threads < 1) threads = 1;
     SylEcoExchange local_ops;
     EcoLocal *local = NULL;

@@ -1,7 +1,6 @@
 /* What the mesh writers share: files, buffers, numbers, names, PNG, format by extension. */
 #include <errno.h>
 #include <math.h>
-#include <png.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -12,6 +11,7 @@
 #include "io/io_internal.h"
 #include "sylva/texture.h"
 #include "util/json.h"
+#include "util/pngout.h"
 
 bool io_open(OutFile *o, const char *path, FILE *diag) { return outfile_open(o, path, NULL, diag); }
 
@@ -160,60 +160,27 @@ void io_material_name(const SylMesh *m, int material, char *buf, size_t n) {
     snprintf(buf, n, "%s%d", kind ? kind : "plain", material);
 }
 
-/* ---- PNG into memory ---- */
+/* ---- PNG into memory (util/pngout, the one encoder) ---- */
 
-static void png_mem_write(png_structp png, png_bytep data, png_size_t n) {
-    io_put(png_get_io_ptr(png), data, n);
-}
-static void png_mem_flush(png_structp png) { (void)png; }
-static void png_quiet(png_structp png, png_const_charp msg) {
-    (void)msg;
-    png_longjmp(png, 1);
-}
-static void png_no_warning(png_structp png, png_const_charp msg) {
-    (void)png;
-    (void)msg;
+static void png_mem_write(void *ctx, const void *data, size_t n) { io_put(ctx, data, n); }
+
+typedef struct PngRows {
+    const uint8_t *px;
+    size_t stride;
+} PngRows;
+
+static const void *png_row(void *ctx, int y, void *scratch) {
+    (void)scratch;
+    const PngRows *r = ctx;
+    return r->px + (size_t)y * r->stride;
 }
 
 static bool png_encode(IoBuf *b, const uint8_t *px, int w, int h, int channels) {
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, png_quiet, png_no_warning);
-    if (!png) return false;
-    png_infop info = png_create_info_struct(png);
-    volatile bool ok = false;
-    if (info && !setjmp(png_jmpbuf(png))) {
-        png_set_write_fn(png, b, png_mem_write, png_mem_flush);
-        png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, 8, channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
-                     PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-        png_set_compression_level(png, 2); /* fast: the textures are small beside the mesh */
-        png_write_info(png, info);
-        for (int y = 0; y < h; y++) png_write_row(png, (png_const_bytep)(px + (size_t)y * (size_t)w * (size_t)channels));
-        png_write_end(png, info);
-        ok = !b->failed;
-    }
-    png_destroy_write_struct(&png, info ? &info : NULL);
-    return ok;
+    PngRows rows = {px, (size_t)w * (size_t)channels};
+    /* level 2, fast: the textures are small beside the mesh */
+    PngOutImage img = {.width = w, .height = h, .channels = channels, .depth = 8, .level = 2, .row = png_row, .ctx = &rows};
+    return pngout_encode_to(png_mem_write, b, "(texture)", &img, NULL) == SYL_OK && !b->failed;
 }
 
 bool io_png(IoBuf *b, const uint8_t *rgb, int size) { return png_encode(b, rgb, size, size, 3); }
 bool io_png_rgba(IoBuf *b, const uint8_t *rgba, int w, int h) { return png_encode(b, rgba, w, h, 4); }
-
-/* ---- by extension ---- */
-
-int syl_write_mesh_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
-    const char *dot = strrchr(path, '.');
-    if (n > 0 && dot && !strchr(dot, '/') && !strcasecmp(dot, ".obj")) return syl_write_obj_parts(m, parts, n, path, diag);
-    if (n > 0 && dot && !strchr(dot, '/') && !strcasecmp(dot, ".glb"))
-        return syl_write_glb_parts(parts, n, m->name[0] ? m->name : "scene", path, diag);
-    return syl_write_mesh(m, path, diag); /* a PLY holds one mesh */
-}
-
-int syl_write_mesh(const SylMesh *m, const char *path, FILE *diag) {
-    const char *dot = strrchr(path, '.');
-    if (dot && !strchr(dot, '/')) {
-        if (!strcasecmp(dot, ".obj")) return syl_write_obj(m, path, diag);
-        if (!strcasecmp(dot, ".ply")) return syl_write_ply(m, path, diag);
-        if (!strcasecmp(dot, ".glb")) return syl_write_glb(m, path, diag);
-    }
-    if (diag) fprintf(diag, "sylva: error: cannot tell the format of '%s': name it *.glb, *.obj or *.ply\n", path);
-    return SYL_EUSAGE;
-}

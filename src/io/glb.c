@@ -781,17 +781,17 @@ static int write_instanced(const SylMesh *m, const SylInstances *sets, int n, co
     return glb_write(&sc, path, diag);
 }
 
-int syl_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
+int syl_mesh_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
     return write_instanced(m, sets, n, path, NULL, diag);
 }
 
-int syl_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag) {
+int syl_mesh_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag) {
     return write_instanced(m, sets, n, "(stream)", out, diag);
 }
 
-int syl_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_write_glb_instanced(m, NULL, 0, path, diag); }
+int syl_mesh_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_mesh_write_glb_instanced(m, NULL, 0, path, diag); }
 
-int syl_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag) {
+int syl_mesh_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag) {
     GlbPart *part = calloc((size_t)(n > 0 ? n : 1), sizeof *part);
     if (!part) return SYL_ELIMIT;
     for (int i = 0; i < n; i++) part[i] = (GlbPart){.mesh = parts[i], .name = parts[i]->name};

@@ -1,4 +1,4 @@
-/* syl_write_glb_forest: a ground mesh and sets of instances in one .glb, the sets that share a
+/* glb_write_forest: a ground mesh and sets of instances in one .glb, the sets that share a
  * prototype sharing its mesh (a forest's cells: docs/ecosystem.md#gltf). */
 #include <stdlib.h>
 #include <string.h>
@@ -152,8 +152,8 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
     glb_pad(js, ' ');
 }
 
-int syl_write_glb_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                         const char *path, FILE *diag) {
+int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
+                     const char *path, FILE *diag) {
     Forest *f = calloc(1, sizeof *f);
     if (!f) return SYL_ELIMIT;
     f->ground = -1;

@@ -7,7 +7,7 @@
 #include "sylva/stream.h"
 #include "sylva/wind.h"
 
-int syl_write_glb_lods(const SylLodChain *c, const char *path, FILE *diag) { return syl_write_glb_lods_wind(c, NULL, NULL, path, diag); }
+int syl_lod_write_glb(const SylLodChain *c, const char *path, FILE *diag) { return syl_wind_write_glb_lods(c, NULL, NULL, path, diag); }
 
 /* With wind, every level meshed with vertex nodes (of s) is skinned to w's joints; a level
  * without them (the billboards) is not. */
@@ -31,10 +31,10 @@ static int write_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind 
     return glb_write(&sc, path, diag);
 }
 
-int syl_write_glb_lods_wind(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
+int syl_wind_write_glb_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
     return write_lods(c, s, w, path, NULL, diag);
 }
 
-int syl_write_glb_lods_wind_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out, FILE *diag) {
+int syl_wind_write_glb_lods_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out, FILE *diag) {
     return write_lods(c, s, w, "(stream)", out, diag);
 }

@@ -283,12 +283,12 @@ static int write_wind(const SylMesh *m, const SylInstances *sets, int n, const S
     return glb_write(&sc, path, diag);
 }
 
-int syl_write_glb_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
+int syl_wind_write_glb(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
                        const char *path, FILE *diag) {
     return write_wind(m, sets, n, s, w, path, NULL, diag);
 }
 
-int syl_write_glb_wind_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
+int syl_wind_write_glb_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
                               const SylWind *w, FILE *out, FILE *diag) {
     return write_wind(m, sets, n, s, w, "(stream)", out, diag);
 }

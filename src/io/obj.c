@@ -148,7 +148,7 @@ static int write_obj(const SylMesh *m, SylMesh *const *parts, int nparts, const 
             if (io_open(&fm, mtl, diag)) {
                 write_mtl(m, fm.f, stem);
                 fflush(fm.f);
-                if (!fm.err) status = syl_write_textures(m, prefix, diag);
+                if (!fm.err) status = syl_mesh_write_textures(m, prefix, diag);
                 status = io_close(&fm, status, diag);
             } else {
                 status = SYL_EIO;
@@ -161,8 +161,8 @@ static int write_obj(const SylMesh *m, SylMesh *const *parts, int nparts, const 
     return status;
 }
 
-int syl_write_obj(const SylMesh *m, const char *path, FILE *diag) { return write_obj(m, NULL, 0, path, diag); }
+int syl_mesh_write_obj(const SylMesh *m, const char *path, FILE *diag) { return write_obj(m, NULL, 0, path, diag); }
 
-int syl_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
+int syl_mesh_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
     return write_obj(m, parts, n, path, diag);
 }

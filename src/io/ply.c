@@ -18,7 +18,7 @@ static void put_u32(uint8_t *p, uint32_t u) {
     p[0] = (uint8_t)u, p[1] = (uint8_t)(u >> 8), p[2] = (uint8_t)(u >> 16), p[3] = (uint8_t)(u >> 24);
 }
 
-int syl_write_ply(const SylMesh *m, const char *path, FILE *diag) {
+int syl_mesh_write_ply(const SylMesh *m, const char *path, FILE *diag) {
     OutFile fo;
     if (!io_open(&fo, path, diag)) return SYL_EIO;
     FILE *f = fo.f;

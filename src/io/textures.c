@@ -28,7 +28,7 @@ static int write_card(int shape, bool cluster, const char *prefix, char *path, s
     return status;
 }
 
-int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
+int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
     static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
     const int size = SYL_TEXTURE_SIZE;
     uint8_t *img = malloc((size_t)size * size * 3);
@@ -47,7 +47,7 @@ int syl_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
         if (!used) continue;
         snprintf(path, n, "%s_%s.png", prefix, syl_texture_name(kinds[k]));
         if (syl_texture(kinds[k], NULL, size, img)) {
-            status = syl_write_png(path, img, size, size, diag);
+            status = syl_png_write(path, img, size, size, diag);
         } else {
             if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
             status = SYL_ELIMIT;

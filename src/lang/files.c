@@ -1,12 +1,16 @@
 /* The files a model names: where they are (relative to the model's folder), whether the model
  * may read them (util/pathpolicy.h), and whether another file is recognisably a model. */
 #include <errno.h>
+#include <libgen.h>
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "lang/arbaro.h"
 #include "lang/parse_state.h"
 #include "lang/program.h"
+#include "util/file.h"
 #include "util/pathpolicy.h"
 
 const char syl_file_refused[] =
@@ -24,18 +28,39 @@ void lang_program_roots(SylProgram *p, const SylCompileOptions *opt) {
 }
 
 int syl_program_file(const SylProgram *p, const char *name, char **path) {
-    const char *prog = p->src.path, *slash = strrchr(prog, '/');
-    size_t dir = name[0] == '/' || !slash || !strcmp(prog, "-") ? 0 : (size_t)(slash - prog + 1);
-    if (dir == 2 && prog[0] == '.') dir = 0; /* "./model.syl" */
-    *path = malloc(dir + strlen(name) + 1);
-    if (!*path) return SYL_ELIMIT;
-    memcpy(*path, prog, dir); /* "dir/name"; as written when the model is in the working folder */
-    strcpy(*path + dir, name);
+    if (!(*path = file_beside(p->src.path, name))) return SYL_ELIMIT;
     if (pathpolicy_allows(*path, p->roots, p->nroots)) return SYL_OK;
     free(*path);
     *path = NULL;
     errno = EACCES;
     return SYL_EIO;
+}
+
+int lang_check_file(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col) {
+    char *path = file_beside(p->src.path, file);
+    if (!path) return 0;
+    char *colon = strrchr(path, ':'); /* "file.syl:Model" */
+    if (colon && colon > path && colon[1] && (!strrchr(path, '/') || colon > strrchr(path, '/'))) *colon = 0;
+    errno = 0;
+    FILE *f = fopen(path, "rb");
+    if (f && fgetc(f) == EOF && ferror(f)) {
+        fclose(f);
+        f = NULL;
+    }
+    int err = errno;
+    if (f) fclose(f);
+    else { /* where it was looked for, from the root: the model's folder, not the shell's */
+        char dir[PATH_MAX], *copy = strdup(path);
+        const char *base = copy ? basename(copy) : path;
+        char *d = copy ? strdup(path) : NULL;
+        bool whole = d && realpath(dirname(d), dir);
+        syl_program_error(p, diag, line, col, "the %s file \"%s\" cannot be read (looked for %s%s%s): %s", what, file,
+                          whole ? dir : "", whole ? "/" : "", whole ? base : path, strerror(err));
+        free(copy);
+        free(d);
+    }
+    free(path);
+    return !f;
 }
 
 /* a line that opens a block of the language: `lsystem Name {`, `scene {` ... */

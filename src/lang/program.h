@@ -276,5 +276,9 @@ static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {
 
 /* Resolve the folders p's named files may be in (lang/files.c): its own, then opt's. */
 void lang_program_roots(SylProgram *p, const SylCompileOptions *opt);
+/* Whether a file the model names (a "file.syl:Model" without its model), beside the model's
+ * file (file_beside), can be read: 1, with an error at line:col that names it as written and
+ * where it was looked for, when it cannot. */
+int lang_check_file(const SylProgram *p, FILE *diag, const char *what, const char *file, int line, int col);
 
 #endif

@@ -4,7 +4,6 @@
  * rewrite independently (rewrite.c); every random draw comes from a stream keyed by (seed,
  * step, table, module position), so the result is the same for any number of threads. */
 #include <math.h>
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -12,6 +11,7 @@
 #include "lang/builtins.h"
 #include "lang/groups.h"
 #include "util/budget.h"
+#include "util/parallel.h"
 #include "util/pages.h"
 #include "lsys/derive.h"
 #include "lsys/classes.h"
@@ -24,9 +24,18 @@
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256, TABLE_CACHE = 8 };
 
-static void *run_thread(void *arg) {
-    rewrite_chunk(arg);
-    return NULL;
+/* The chunks of a pass (par_run): chunk k of works; a pass with new contexts is one chunk,
+ * on the calling thread. */
+typedef struct Chunks {
+    Work *works;
+    bool newctx, back;
+    struct NewctxScratch **scratch;
+} Chunks;
+
+static void run_chunk(void *arg, int k) {
+    Chunks *c = arg;
+    if (c->newctx) newctx_chunk(&c->works[k], c->back, c->scratch);
+    else rewrite_chunk(&c->works[k]);
 }
 
 /* ---- one pass over a string ---- */
@@ -341,15 +350,8 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(v.code[i]);
         lo = hi;
     }
-    pthread_t tid[MAX_THREADS];
-    bool started[MAX_THREADS] = {false};
-    for (int k = 1; k < nt; k++) started[k] = !pthread_create(&tid[k], NULL, run_thread, &works[k]);
-    if (t->has_newctx) newctx_chunk(&works[0], back, &e->newctx);
-    else rewrite_chunk(&works[0]);
-    for (int k = 1; k < nt; k++) {
-        if (started[k]) pthread_join(tid[k], NULL);
-        else rewrite_chunk(&works[k]);
-    }
+    Chunks chunks = {works, t->has_newctx, back, &e->newctx}; /* has_newctx: nt is 1 */
+    par_run(nt, run_chunk, &chunks);
     for (int k = 0; k < nt; k++) {
         free(works[k].cand);
         free(works[k].weight);
@@ -439,10 +441,7 @@ static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *
     e->diag = opt->diag;
     e->seed = opt->use_seed ? opt->seed : p->seed;
     e->threads = opt->threads;
-    if (e->threads <= 0) {
-        long n = sysconf(_SC_NPROCESSORS_ONLN);
-        e->threads = n > 0 ? (int)n : 1;
-    }
+    if (e->threads <= 0) e->threads = par_threads(0);
     if (e->threads > MAX_THREADS) e->threads = MAX_THREADS;
     e->max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
     if (e->max_modules > INT32_MAX) e->max_modules = INT32_MAX;

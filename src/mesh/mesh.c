@@ -31,6 +31,7 @@
 
 #include "mesh/mesh_internal.h"
 #include "util/budget.h"
+#include "util/parallel.h"
 #include "util/rng.h"
 
 #define TWO_PI 6.28318530717958647692f
@@ -555,8 +556,7 @@ static size_t tube_runs_end(const MeshPlan *pl, size_t t) {
     return t + 1 < pl->ntubes ? pl->tubes[t + 1].run : (pl->nitems ? pl->items[0].run : pl->nruns);
 }
 
-static void *work_run(void *arg) {
-    const Work *w = arg;
+static void work_run(const Work *w) {
     const MeshPlan *pl = w->pl;
     MeshFirstUse fu = {0};
     for (size_t t = w->tube0; t < w->tube1; t++) {
@@ -571,8 +571,9 @@ static void *work_run(void *arg) {
         mesh_first_use(&fu, w->m, it->vert, it->verts, pl->runs + it->run, 1);
     }
     mesh_first_use_free(&fu);
-    return NULL;
 }
+
+static void work_chunk(void *works, int k) { work_run((const Work *)works + k); }
 
 static size_t piece_tris(const MeshPlan *pl, size_t run0, size_t run1) {
     size_t n = 0;
@@ -590,10 +591,7 @@ static void emit_all(const MeshPlan *pl, SylMesh *m, int nthreads) {
         return;
     }
     Work *w = calloc((size_t)nthreads, sizeof *w);
-    pthread_t *th = calloc((size_t)nthreads, sizeof *th);
-    if (!w || !th) {
-        free(w);
-        free(th);
+    if (!w) {
         Work one = {pl, m, 0, pl->ntubes, 0, pl->nitems};
         work_run(&one);
         return;
@@ -622,18 +620,8 @@ static void emit_all(const MeshPlan *pl, SylMesh *m, int nthreads) {
         w[t].item1 = p > pl->ntubes ? p - pl->ntubes : 0;
         if (w[t].item1 < w[t].item0) w[t].item1 = w[t].item0;
     }
-    int started = 0;
-    for (int t = 1; t < nthreads; t++) {
-        if (pthread_create(&th[t], NULL, work_run, &w[t]) != 0) {
-            work_run(&w[t]);
-            continue;
-        }
-        th[started++] = th[t];
-    }
-    work_run(&w[0]);
-    for (int t = 0; t < started; t++) pthread_join(th[t], NULL);
+    par_run(nthreads, work_chunk, w);
     free(w);
-    free(th);
 }
 
 /* ------------------------------------------------------------------ build */
@@ -701,8 +689,8 @@ static void mark_double_sided(const MeshPlan *pl, SylMesh *m) {
 }
 
 static int ncpu(void) {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > 64 ? 64 : (int)n;
+    int n = par_threads(0);
+    return n > 64 ? 64 : n;
 }
 
 /* Defaults filled in and checked: SYL_OK, or the status of the (reported) problem. */

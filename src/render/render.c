@@ -17,6 +17,7 @@
 
 #include "render/scene.h"
 #include "util/budget.h"
+#include "util/parallel.h"
 #include "util/coord.h"
 
 void render_embree_error(void *user, enum RTCError code, const char *msg) {
@@ -61,11 +62,13 @@ static void render_tiles(Scene *s) {
     }
 }
 
-static void *worker(void *arg) {
+/* A tile worker (par_run), in the fast float mode while it works. */
+static void worker(void *arg, int k) {
+    (void)k;
     Scene *s = arg;
-    render_fast_floats();
+    unsigned csr = render_fast_floats();
     render_tiles(s);
-    return NULL;
+    render_restore_floats(csr);
 }
 
 void render_scene_free(Scene *s) {
@@ -80,24 +83,31 @@ void render_scene_free(Scene *s) {
     free(s);
 }
 
-int render_cpu_count(void) {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
-}
+int render_cpu_count(void) { return par_threads(0); }
 
 /* Textures are made on threads of their own while Embree builds its hierarchy. */
 typedef struct TexJob {
     Texture *tex;
     int kind;
     bool ok;
-    bool started;
-    pthread_t thread;
 } TexJob;
 
-static void *tex_job(void *arg) {
-    TexJob *j = arg;
-    j->ok = texture_build(j->tex, j->kind, TEX_SIZE);
-    return NULL;
+static void tex_job(TexJob *j) { j->ok = texture_build(j->tex, j->kind, TEX_SIZE); }
+
+static int build_scene(Scene *s, int threads, FILE *diag);
+
+/* The scene's hierarchy on the calling thread (k = 0) and each texture on one of its own. */
+typedef struct Prepare {
+    Scene *s;
+    int threads, status;
+    FILE *diag;
+    TexJob *jobs;
+} Prepare;
+
+static void prepare_part(void *arg, int k) {
+    Prepare *p = arg;
+    if (k == 0) p->status = build_scene(p->s, p->threads, p->diag);
+    else tex_job(&p->jobs[k - 1]);
 }
 
 /* Embree: the mesh as one triangle geometry on the mesh's own arrays. */
@@ -268,13 +278,12 @@ static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
     }
     for (int k = 0; k < 4; k++)
         if (used[k]) jobs[njobs++] = (TexJob){.tex = &s->tex[k], .kind = k == 3 ? -1 : k};
-    for (int j = 0; j < njobs; j++)
-        jobs[j].started = threads > 1 && pthread_create(&jobs[j].thread, NULL, tex_job, &jobs[j]) == 0;
-    int status = build_scene(s, threads, diag);
+    Prepare prep = {s, threads, SYL_OK, diag, jobs};
+    par_run(threads > 1 ? njobs + 1 : 1, prepare_part, &prep); /* one thread: the textures below */
+    int status = prep.status;
     if (status == SYL_ELIMIT && diag) fprintf(diag, "sylva: error: render: cannot build the scene\n");
     for (int j = 0; j < njobs; j++) {
-        if (jobs[j].started) pthread_join(jobs[j].thread, NULL);
-        else tex_job(&jobs[j]);
+        if (threads <= 1) tex_job(&jobs[j]);
         if (!jobs[j].ok && !status) {
             if (diag) fprintf(diag, "sylva: error: render: out of memory\n");
             status = SYL_ELIMIT;
@@ -291,14 +300,7 @@ void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt) {
     s->tiles_x = (s->width + TILE - 1) / TILE;
     s->ntiles = s->tiles_x * ((s->height + TILE - 1) / TILE);
     if (threads > s->ntiles) threads = s->ntiles;
-    pthread_t tid[256];
-    int started = 0;
-    for (int i = 1; i < threads; i++)
-        if (pthread_create(&tid[started], NULL, worker, s) == 0) started++;
-    unsigned csr = render_fast_floats();
-    render_tiles(s);
-    render_restore_floats(csr);
-    for (int i = 0; i < started; i++) pthread_join(tid[i], NULL);
+    par_run(threads, worker, s); /* workers taking tiles in turn; this thread works too */
     pthread_mutex_destroy(&s->progress_lock);
 }
 
@@ -369,7 +371,7 @@ int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *pa
         return SYL_ELIMIT;
     }
     int status = syl_render(m, opt, rgb);
-    if (!status) status = syl_write_png(path, rgb, w, h, opt->diag);
+    if (!status) status = syl_png_write(path, rgb, w, h, opt->diag);
     free(rgb);
     return status;
 }

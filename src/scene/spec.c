@@ -352,7 +352,7 @@ static int check_file(const SylProgram *p, FILE *diag, const char *what, const c
     free(model);
     if (st == SYL_EIO) syl_program_error(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, syl_file_refused);
     if (st) return st == SYL_EIO;
-    if (syl_program_check_file(p, diag, what, file, line, col)) {
+    if (lang_check_file(p, diag, what, file, line, col)) {
         free(path);
         return 1;
     }
@@ -394,8 +394,8 @@ static int check_inputs(const SylProgram *p, FILE *diag) {
     for (int i = 0; i < n; i++)
         for (int k = 0; k < (int)(sizeof named / sizeof *named); k++)
             if (!d[i].file && !strcmp(d[i].name, named[k]) && d[i].nargs && d[i].args[0].kind == SYL_DARG_STRING)
-                errors += syl_program_check_file(p, diag, named[k], d[i].args[0].text, d[i].args[0].line,
-                                                 d[i].args[0].col);
+                errors += lang_check_file(p, diag, named[k], d[i].args[0].text, d[i].args[0].line,
+                                         d[i].args[0].col);
     return errors;
 }
 

@@ -41,14 +41,18 @@ static int write_png(const char *path, FILE *stream, const uint8_t *px, int widt
     return status;
 }
 
-int syl_write_png(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
+int syl_png_write(const char *path, const uint8_t *rgb, int width, int height, FILE *diag) {
     return write_png(path, NULL, rgb, width, height, 3, diag);
 }
 
-int syl_write_png_rgba(const char *path, const uint8_t *rgba, int width, int height, FILE *diag) {
+int syl_png_write_rgba(const char *path, const uint8_t *rgba, int width, int height, FILE *diag) {
     return write_png(path, NULL, rgba, width, height, 4, diag);
 }
 
-int syl_write_png_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag) {
+int syl_png_write_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag) {
     return write_png("(stream)", out, rgb, width, height, 3, diag);
+}
+
+int syl_png_write_rgba_stream(FILE *out, const uint8_t *rgba, int width, int height, FILE *diag) {
+    return write_png("(stream)", out, rgba, width, height, 4, diag);
 }

@@ -1,5 +1,6 @@
 /* The shared memory budget (--max-memory): counting, refusing, releasing. */
 #include "util/budget.h"
+#include "util/parallel.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -72,8 +73,7 @@ uint64_t budget_default_why(const char **why) {
     struct rlimit rl;
     /* the address space holds more than memory: the code, and each thread's stack and malloc
      * arena (8 + 64 MB), reserved whether used or not */
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    uint64_t reserved = (192ull << 20) + (uint64_t)(cores > 0 ? cores : 1) * (72ull << 20);
+    uint64_t reserved = (192ull << 20) + (uint64_t)par_threads(0) * (72ull << 20); /* threads are at most that */
     if (!getrlimit(RLIMIT_AS, &rl) && rl.rlim_cur != RLIM_INFINITY) {
         uint64_t as = rl.rlim_cur > reserved ? rl.rlim_cur - reserved : (16ull << 20);
         if (as < least) least = as, which = "RLIMIT_AS, the address space (ulimit)";

@@ -88,3 +88,14 @@ const char *file_strerror(int err) {
     default: return strerror(err);
     }
 }
+
+char *file_beside(const char *model_path, const char *name) {
+    const char *slash = strrchr(model_path, '/');
+    size_t dir = name[0] == '/' || !slash || !strcmp(model_path, "-") ? 0 : (size_t)(slash - model_path + 1);
+    if (dir == 2 && model_path[0] == '.') dir = 0; /* "./model.syl" */
+    char *path = malloc(dir + strlen(name) + 1);
+    if (!path) return NULL;
+    memcpy(path, model_path, dir); /* "dir/name"; as written when the model is in the working folder */
+    strcpy(path + dir, name);
+    return path;
+}

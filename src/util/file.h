@@ -24,5 +24,9 @@ char *file_read_named(const char *path, size_t *len, Budget *mem);
 void file_free_named(char *text, size_t len, Budget *mem);
 /* The reason for errno err of the functions above, for a message. */
 const char *file_strerror(int err);
+/* The one "file beside the model" rule: name as written when absolute or when the model is in
+ * the working folder (or standard input, "-"), else in the model file's folder (malloc'd; NULL
+ * when out of memory). Whether the model may read it is syl_program_file's (sylva.h). */
+char *file_beside(const char *model_path, const char *name);
 
 #endif

@@ -2,6 +2,7 @@
 #include "util/parallel.h"
 
 #include <pthread.h>
+#include <stdbool.h>
 #include <unistd.h>
 
 typedef struct Chunk {
@@ -21,6 +22,33 @@ int par_threads(int threads) {
     if (threads > 0) return threads > 256 ? 256 : threads;
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n < 1 ? 1 : n > 256 ? 256 : (int)n;
+}
+
+typedef struct Job {
+    void (*fn)(void *ctx, int k);
+    void *ctx;
+    int k;
+} Job;
+
+static void *run_job(void *arg) {
+    Job *j = arg;
+    j->fn(j->ctx, j->k);
+    return NULL;
+}
+
+void par_run(int n, void (*fn)(void *ctx, int k), void *ctx) {
+    enum { MAX = 256 };
+    if (n > MAX) n = MAX;
+    Job job[MAX];
+    pthread_t th[MAX];
+    bool started[MAX] = {false};
+    for (int k = 0; k < n; k++) job[k] = (Job){fn, ctx, k};
+    for (int k = 1; k < n; k++) started[k] = pthread_create(&th[k], NULL, run_job, &job[k]) == 0;
+    if (n > 0) fn(ctx, 0);
+    for (int k = 1; k < n; k++) {
+        if (started[k]) pthread_join(th[k], NULL);
+        else fn(ctx, k);
+    }
 }
 
 void par_for(int threads, size_t n, size_t min_per_thread, ParFn fn, void *ctx) {

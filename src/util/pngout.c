@@ -9,35 +9,45 @@
 
 typedef struct PngErr {
     FILE *diag;
-    const OutFile *o;
+    const OutFile *o; /* NULL: written through write */
+    const char *name;
+    void (*write)(void *ctx, const void *data, size_t n);
+    void *ctx;
 } PngErr;
 
 static void on_error(png_structp png, png_const_charp msg) {
     PngErr *e = png_get_error_ptr(png);
     /* A failed write ("Write Error") is reported with its reason by outfile_close. */
-    if (e->diag && !e->o->err) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->o->path, msg);
+    if (e->diag && !(e->o && e->o->err)) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->name, msg);
     png_longjmp(png, 1);
 }
+
+static void on_write(png_structp png, png_bytep data, png_size_t n) {
+    PngErr *e = png_get_io_ptr(png);
+    e->write(e->ctx, data, n);
+}
+static void on_flush(png_structp png) { (void)png; }
 
 static void on_warning(png_structp png, png_const_charp msg) {
     (void)png;
     (void)msg;
 }
 
-int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag) {
-    PngErr err = {diag, o};
-    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &err, on_error, on_warning);
+static int encode(PngErr *e, const PngOutImage *img) {
+    FILE *diag = e->diag;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, e, on_error, on_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     void *scratch = malloc((size_t)img->width * (size_t)img->channels * (size_t)(img->depth / 8));
     if (!info || !scratch) {
         png_destroy_write_struct(&png, &info);
         free(scratch);
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", o->path);
+        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", e->name);
         return SYL_ELIMIT;
     }
     volatile bool ok = false;
     if (!setjmp(png_jmpbuf(png))) {
-        png_init_io(png, o->f);
+        if (e->o) png_init_io(png, e->o->f);
+        else png_set_write_fn(png, e, on_write, on_flush);
         int type = img->channels == 1 ? PNG_COLOR_TYPE_GRAY : img->channels == 4 ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB;
         png_set_IHDR(png, info, (png_uint_32)img->width, (png_uint_32)img->height, img->depth, type,
                      PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -63,4 +73,15 @@ int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag) {
     png_destroy_write_struct(&png, &info);
     free(scratch);
     return ok ? SYL_OK : SYL_EIO;
+}
+
+int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag) {
+    PngErr e = {.diag = diag, .o = o, .name = o->path};
+    return encode(&e, img);
+}
+
+int pngout_encode_to(void (*write)(void *ctx, const void *data, size_t n), void *ctx, const char *name,
+                     const PngOutImage *img, FILE *diag) {
+    PngErr e = {.diag = diag, .name = name, .write = write, .ctx = ctx};
+    return encode(&e, img);
 }

@@ -1,6 +1,7 @@
-/* PNG encoding through libpng into an open util/outfile output: the one place that drives
- * libpng's writer, its longjmp error handling and its messages. Both writers use it: the
- * RGB pictures of texture/png.c and the 16-bit factor maps of terrain/write.c. */
+/* PNG encoding through libpng into an open util/outfile output or a write callback: the one
+ * place that drives libpng's writer, its longjmp error handling and its messages. Every PNG
+ * Sylva writes goes through it: the RGB and RGBA pictures of texture/png.c, the 16-bit factor
+ * maps of terrain/write.c and the textures io/ embeds in a .glb (in memory). */
 #ifndef SYL_UTIL_PNGOUT_H
 #define SYL_UTIL_PNGOUT_H
 #include <stdbool.h>
@@ -29,5 +30,9 @@ typedef struct PngOutImage {
 
 /* Encode img into o: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported to diag. */
 int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag);
+/* Encode img through write(ctx, bytes, n) (into memory): the same bytes as into a file;
+ * SYL_OK, SYL_ELIMIT or SYL_EIO, reported to diag (NULL: silently) as about `name`. */
+int pngout_encode_to(void (*write)(void *ctx, const void *data, size_t n), void *ctx, const char *name,
+                     const PngOutImage *img, FILE *diag);
 
 #endif

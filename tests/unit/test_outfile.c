@@ -417,9 +417,9 @@ static void under_failing_allocations(int (*write)(const SylMesh *, const char *
 #endif
 }
 
-static void obj_under_failing_allocations(void **state) { under_failing_allocations(syl_write_obj, "t.obj", "t.mtl"); }
-static void ply_under_failing_allocations(void **state) { under_failing_allocations(syl_write_ply, "t.ply", NULL); }
-static void glb_under_failing_allocations(void **state) { under_failing_allocations(syl_write_glb, "t.glb", NULL); }
+static void obj_under_failing_allocations(void **state) { under_failing_allocations(syl_mesh_write_obj, "t.obj", "t.mtl"); }
+static void ply_under_failing_allocations(void **state) { under_failing_allocations(syl_mesh_write_ply, "t.ply", NULL); }
+static void glb_under_failing_allocations(void **state) { under_failing_allocations(syl_mesh_write_glb, "t.glb", NULL); }
 
 int main(void) {
     const struct CMUnitTest tests[] = {

@@ -122,7 +122,7 @@ static void bad_sizes_are_refused(void **state) {
     FILE *null = fopen("/dev/null", "w");
     SylRenderOptions o = {.width = -1, .height = 10, .diag = null};
     assert_int_equal(syl_render(NULL, &o, px), SYL_EUSAGE);
-    assert_int_equal(syl_write_png("/nonexistent-dir/x.png", px, 1, 1, null), SYL_EIO);
+    assert_int_equal(syl_png_write("/nonexistent-dir/x.png", px, 1, 1, null), SYL_EIO);
     fclose(null);
 }
 
@@ -525,14 +525,14 @@ static void textures_written_for_exporters(void **state) {
     /* a mesh with bark only: only the bark texture */
     SylMesh *m = synth_new();
     assert_true(synth_box(m, (float[3]){0, 0, 0}, (float[3]){1, 1, 1}, 0));
-    assert_int_equal(syl_write_textures(m, prefix, NULL), SYL_OK);
+    assert_int_equal(syl_mesh_write_textures(m, prefix, NULL), SYL_OK);
     for (int k = 0; k < 4; k++) {
         snprintf(path, sizeof path, "%s_%s.png", prefix, names[k]);
         assert_int_equal(access(path, F_OK) == 0, k == 0);
         unlink(path);
     }
     /* NULL: all four */
-    assert_int_equal(syl_write_textures(NULL, prefix, NULL), SYL_OK);
+    assert_int_equal(syl_mesh_write_textures(NULL, prefix, NULL), SYL_OK);
     for (int k = 0; k < 4; k++) {
         snprintf(path, sizeof path, "%s_%s.png", prefix, names[k]);
         struct stat st;

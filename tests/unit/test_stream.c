@@ -47,11 +47,11 @@ static void glb_instanced_and_lods(void **state) {
     int fd = mkstemps(path, 4);
     assert_true(fd >= 0);
     close(fd);
-    assert_int_equal(syl_write_glb_instanced(pl.mesh, sets, nsets, path, NULL), SYL_OK);
+    assert_int_equal(syl_mesh_write_glb_instanced(pl.mesh, sets, nsets, path, NULL), SYL_OK);
     char *mem = NULL;
     size_t mlen = 0, flen = 0;
     FILE *f = open_memstream(&mem, &mlen);
-    assert_int_equal(syl_write_glb_instanced_stream(pl.mesh, sets, nsets, f, NULL), SYL_OK);
+    assert_int_equal(syl_mesh_write_glb_instanced_stream(pl.mesh, sets, nsets, f, NULL), SYL_OK);
     fclose(f);
     char *file = slurp(path, &flen);
     same(file, flen, mem, mlen);
@@ -59,9 +59,9 @@ static void glb_instanced_and_lods(void **state) {
 
     SylLodChain c = {0};
     assert_int_equal(syl_lod_build(pl.skeleton, &mo, pl.mesh, 2, &c), SYL_OK);
-    assert_int_equal(syl_write_glb_lods_wind(&c, NULL, NULL, path, NULL), SYL_OK);
+    assert_int_equal(syl_wind_write_glb_lods(&c, NULL, NULL, path, NULL), SYL_OK);
     f = open_memstream(&mem, &mlen);
-    assert_int_equal(syl_write_glb_lods_wind_stream(&c, NULL, NULL, f, NULL), SYL_OK);
+    assert_int_equal(syl_wind_write_glb_lods_stream(&c, NULL, NULL, f, NULL), SYL_OK);
     fclose(f);
     file = slurp(path, &flen);
     same(file, flen, mem, mlen);
@@ -86,11 +86,11 @@ static void glb_wind(void **state) {
     int fd = mkstemps(path, 4);
     assert_true(fd >= 0);
     close(fd);
-    assert_int_equal(syl_write_glb_wind(pl.mesh, NULL, 0, pl.skeleton, &w, path, NULL), SYL_OK);
+    assert_int_equal(syl_wind_write_glb(pl.mesh, NULL, 0, pl.skeleton, &w, path, NULL), SYL_OK);
     char *mem = NULL;
     size_t mlen = 0, flen = 0;
     FILE *f = open_memstream(&mem, &mlen);
-    assert_int_equal(syl_write_glb_wind_stream(pl.mesh, NULL, 0, pl.skeleton, &w, f, NULL), SYL_OK);
+    assert_int_equal(syl_wind_write_glb_stream(pl.mesh, NULL, 0, pl.skeleton, &w, f, NULL), SYL_OK);
     fclose(f);
     char *file = slurp(path, &flen);
     same(file, flen, mem, mlen);
@@ -108,11 +108,11 @@ static void png_and_a_failing_stream(void **state) {
     int fd = mkstemps(path, 4);
     assert_true(fd >= 0);
     close(fd);
-    assert_int_equal(syl_write_png(path, rgb, 8, 4, NULL), SYL_OK);
+    assert_int_equal(syl_png_write(path, rgb, 8, 4, NULL), SYL_OK);
     char *mem = NULL;
     size_t mlen = 0, flen = 0;
     FILE *f = open_memstream(&mem, &mlen);
-    assert_int_equal(syl_write_png_stream(f, rgb, 8, 4, NULL), SYL_OK);
+    assert_int_equal(syl_png_write_stream(f, rgb, 8, 4, NULL), SYL_OK);
     fclose(f);
     char *file = slurp(path, &flen);
     same(file, flen, mem, mlen);
@@ -121,12 +121,12 @@ static void png_and_a_failing_stream(void **state) {
     /* a stream that cannot be written: /dev/full fails every flush */
     FILE *full = fopen("/dev/full", "w");
     if (!full) skip();
-    assert_int_equal(syl_write_png_stream(full, rgb, 8, 4, NULL), SYL_EIO);
+    assert_int_equal(syl_png_write_stream(full, rgb, 8, 4, NULL), SYL_EIO);
     fclose(full);
     SylMeshOptions mo = {.one_sided = 1, .threads = 1};
     SylPlant pl = build(&mo);
     full = fopen("/dev/full", "w");
-    assert_int_equal(syl_write_glb_instanced_stream(pl.mesh, NULL, 0, full, NULL), SYL_EIO);
+    assert_int_equal(syl_mesh_write_glb_instanced_stream(pl.mesh, NULL, 0, full, NULL), SYL_EIO);
     fclose(full);
     syl_plant_free(&pl);
 }

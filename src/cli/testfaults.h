@@ -1,0 +1,14 @@
+/* Test-only fault switches: a rank that kills or stops itself, for tests/run-mpi and
+ * checkpoint.test. They exist only in a build compiled with -DSYL_TEST_FAULTS (the Makefile's
+ * tested tree, build/sylva); the installed binary (make install) has them compiled out. */
+#ifndef SYL_CLI_TESTFAULTS_H
+#define SYL_CLI_TESTFAULTS_H
+#include <stdbool.h>
+
+/* The end of year `year` on rank `rank`: SYLVA_TEST_FAIL_RANK/_YEAR kill it (SIGKILL),
+ * SYLVA_TEST_STOP_RANK/_YEAR stop it (SIGSTOP). */
+void cli_test_fault_year(int rank, int year);
+/* Before a distributed picture's gather: SYLVA_TEST_FAIL_RANK without _YEAR kills the rank. */
+void cli_test_fault_gather(bool mpi, int rank);
+
+#endif

@@ -1,0 +1,54 @@
+/* The mesh formats by extension (io/formats.def): what each holds, and the writers that go
+ * by the output's name. */
+#include <stdio.h>
+#include <string.h>
+#include <strings.h>
+
+#include "sylva/mesh.h"
+
+/* a scene's parts in a .glb: one node each, under the mesh's name */
+static int glb_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
+    return syl_mesh_write_glb_parts(parts, n, m->name[0] ? m->name : "scene", path, diag);
+}
+
+typedef struct Format {
+    SylMeshFormat f;
+    int (*write)(const SylMesh *m, const char *path, FILE *diag);
+    int (*write_parts)(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
+} Format;
+
+static const Format formats[] = {
+#define FORMAT(ext, name, can, write, parts) {{ext, name, can}, write, parts},
+#include "io/formats.def"
+#undef FORMAT
+};
+enum { NFORMATS = sizeof formats / sizeof *formats };
+
+static const Format *format_of(const char *path, FILE *diag) {
+    const char *dot = strrchr(path, '.');
+    for (int i = 0; dot && !strchr(dot, '/') && i < NFORMATS; i++)
+        if (!strcasecmp(dot, formats[i].f.ext)) return &formats[i];
+    if (diag) { /* "name it *.glb, *.obj or *.ply" */
+        fprintf(diag, "sylva: error: cannot tell the format of '%s': name it ", path);
+        for (int i = 0; i < NFORMATS; i++)
+            fprintf(diag, "%s*%s", i == 0 ? "" : i == NFORMATS - 1 ? " or " : ", ", formats[i].f.ext);
+        fputc('\n', diag);
+    }
+    return NULL;
+}
+
+const SylMeshFormat *syl_mesh_format(const char *path, FILE *diag) {
+    const Format *f = format_of(path, diag);
+    return f ? &f->f : NULL;
+}
+
+int syl_mesh_write(const SylMesh *m, const char *path, FILE *diag) {
+    const Format *f = format_of(path, diag);
+    return f ? f->write(m, path, diag) : SYL_EUSAGE;
+}
+
+int syl_mesh_write_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
+    const Format *f = format_of(path, diag);
+    if (!f) return SYL_EUSAGE;
+    return n > 0 && f->write_parts ? f->write_parts(m, parts, n, path, diag) : f->write(m, path, diag);
+}
