@@ -1,6 +1,6 @@
 /* The directive schema: a block's directives described as data (name, type, range, default,
  * unit, meaning, aliases), one table per kind, each written once as an X-macro .def in its
- * generator's folder (weber/params.def, strands/params.def, eco/params.def) or here
+ * generator's folder (sot/params.def, weber/params.def, strands/params.def, eco/params.def) or here
  * (lang/settings.def). This file is the one reader of those tables: a name's row (with a
  * level digit, an alias), did-you-mean, a value as a number or `(expr)`, its range, an enum's
  * word, and `--set NAME=VALUE` checked against the row. `sylva describe` (describe.c) and the
@@ -39,15 +39,24 @@ typedef struct SchRow {
     const char *group;      /* the rows it belongs with (an ecosystem species': "species"); NULL: the block */
 } SchRow;
 
+/* How a block's lines give the rows their values (what `sylva describe` reads them by). */
+typedef enum {
+    SCH_SETTINGS, /* an lsystem's settings, kept in the program */
+    SCH_LINES,    /* NAME VALUE... (weber, strands) */
+    SCH_GROUPS,   /* NAME VALUE..., a group's rows after its opening line (ecosystem: species NAME) */
+    SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow) */
+} SchShape;
+
 typedef struct SchTable {
     const char *kind;  /* "weber", "strands", ... */
     const char *noun;  /* "weber parameter", "ecosystem directive": for messages */
     const SchRow *rows;
     int n;
+    SchShape shape;
 } SchTable;
 
 /* The tables (schema_tables.c). */
-extern const SchTable sch_lsystem, sch_weber, sch_strands, sch_ecosystem;
+extern const SchTable sch_lsystem, sch_grow, sch_weber, sch_strands, sch_ecosystem;
 
 /* The row of a directive name: the name, an alias, or a per-level name with its level digit
  * ("1DownAngle": *level 1); *level -1 when none. NULL: no such row. group NULL: any row. */
