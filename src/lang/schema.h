@@ -93,10 +93,18 @@ typedef struct SchCache {
     _Atomic int reads;
     void *value; /* malloc'd copy of the reader's result; NULL: none kept */
     size_t size;
+    double lod;             /* the block's `lod` (lang_directive_lod), scanned once by syl_compile */
+    bool lod_kept;
+    _Atomic int lod_scans;  /* scans of the lines for `lod` */
+    _Atomic int *also;      /* a program's count that this one's reads add to too (sch_count_into) */
 } SchCache;
 /* A full read of p's block begins. */
 void sch_count_read(const SylProgram *p);
 int sch_reads(const SylProgram *p);
+int sch_lod_scans(const SylProgram *p);
+/* q's reads count in p's too (a look compiled beside p's ecosystem: the test that a run reads
+ * each block once counts them on the program it has); q is freed before p. */
+void sch_count_into(const SylProgram *q, const SylProgram *p);
 /* Keep size bytes at v as the block's reading (only while compiling: the validate hook). */
 void sch_keep(const SylProgram *p, const void *v, size_t size);
 /* The kept reading into out; false when there is none of that size. */
