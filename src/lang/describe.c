@@ -470,9 +470,9 @@ static void md_cell(FILE *out, const char *s) {
     }
 }
 
-static void md_table(FILE *out, const SchTable *t, const char *title, const char *intro) {
-    fprintf(out, "\n## %s\n\n%s\n\n| name | type | range | default | unit | meaning |\n|---|---|---|---|---|---|\n", title,
-            intro);
+static void md_table(FILE *out, const SchTable *t) {
+    fprintf(out, "\n## `%s` %ss\n\n%s\n\n| name | type | range | default | unit | meaning |\n|---|---|---|---|---|---|\n",
+            t->kind, t->noun, t->intro);
     for (int i = 0; i < t->n; i++) {
         const SchRow *r = &t->rows[i];
         char range[96] = "", def[96] = "";
@@ -504,19 +504,6 @@ void lang_directives_reference(FILE *out) {
           "`sylva describe FILE` prints the same rows with a model's values ([cli.md](cli.md#sylva-describe)).\n"
           "A range is written `[lo, hi]`, `(` `)` for an open end; `-` is no default.\n",
           out);
-    md_table(out, &sch_lsystem, "`lsystem` settings", "[language.md §5](language.md#5-settings) explains them.");
-    md_table(out, &sch_grow, "`grow` directives",
-             "[growth.md](growth.md#directives) explains them. A line is `DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...`: "
-             "a row `DIRECTIVE` is its mode or value, `DIRECTIVE.KEY` a key (`--set buds.angle=35`); an organ "
-             "line's rows are `organ.N` and `organ.N.KEY` for the N-th line from 1. `unit` is the model's unit "
-             "of length.");
-    md_table(out, &sch_weber, "`weber` parameters",
-             "[weberpenn.md](weberpenn.md) explains them. `N` is a level, 0 to 3: `1DownAngle 60` sets level 1, "
-             "`DownAngle 0 60 45 45` levels 0 to 3.");
-    md_table(out, &sch_strands, "`strands` parameters",
-             "[strands.md](strands.md#parameters) explains them. A per-order parameter's range is its Gravelius "
-             "factor's.");
-    md_table(out, &sch_ecosystem, "`ecosystem` directives",
-             "[ecosystem.md](ecosystem.md) explains them; a species' lines follow its `species NAME` line "
-             "(`--set NAME.maturity=30` for one species).");
+    for (int k = 0; k < LANG_KIND_COUNT; k++) /* in the kinds' order, each by its table */
+        if (lang_kind_schema((SylModelKind)k)) md_table(out, lang_kind_schema((SylModelKind)k));
 }

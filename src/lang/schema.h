@@ -49,10 +49,11 @@ typedef enum {
 
 typedef struct SchTable {
     const char *kind;  /* "weber", "strands", ... */
-    const char *noun;  /* "weber parameter", "ecosystem directive": for messages */
+    const char *noun;  /* what a row is: "setting", "parameter", "directive" */
     const SchRow *rows;
     int n;
     SchShape shape;
+    const char *intro; /* docs/directives.md's paragraph about the table */
 } SchTable;
 
 /* The tables (schema_tables.c). */

@@ -86,9 +86,23 @@ static const SchRow grow_rows[] = {
 #include "sot/params.def"
 };
 
-#define TABLE(var, k, nn, rows, shape) const SchTable var = {k, nn, rows, (int)(sizeof rows / sizeof *rows), shape};
-TABLE(sch_lsystem, "lsystem", "setting", lsystem_rows, SCH_SETTINGS)
-TABLE(sch_grow, "grow", "grow directive", grow_rows, SCH_KEYED)
-TABLE(sch_weber, "weber", "weber parameter", weber_rows, SCH_LINES)
-TABLE(sch_strands, "strands", "strands parameter", strands_rows, SCH_LINES)
-TABLE(sch_ecosystem, "ecosystem", "ecosystem directive", ecosystem_rows, SCH_GROUPS)
+/* noun: what a row is ("setting"; docs/directives.md's title, "`weber` parameters"); intro:
+ * the title's paragraph there */
+#define TABLE(var, k, nn, rows, shape, intro) \
+    const SchTable var = {k, nn, rows, (int)(sizeof rows / sizeof *rows), shape, intro};
+TABLE(sch_lsystem, "lsystem", "setting", lsystem_rows, SCH_SETTINGS,
+      "[language.md §5](language.md#5-settings) explains them.")
+TABLE(sch_grow, "grow", "directive", grow_rows, SCH_KEYED,
+      "[growth.md](growth.md#directives) explains them. A line is `DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...`: "
+      "a row `DIRECTIVE` is its mode or value, `DIRECTIVE.KEY` a key (`--set buds.angle=35`); an organ "
+      "line's rows are `organ.N` and `organ.N.KEY` for the N-th line from 1. `unit` is the model's unit "
+      "of length.")
+TABLE(sch_weber, "weber", "parameter", weber_rows, SCH_LINES,
+      "[weberpenn.md](weberpenn.md) explains them. `N` is a level, 0 to 3: `1DownAngle 60` sets level 1, "
+      "`DownAngle 0 60 45 45` levels 0 to 3.")
+TABLE(sch_strands, "strands", "parameter", strands_rows, SCH_LINES,
+      "[strands.md](strands.md#parameters) explains them. A per-order parameter's range is its Gravelius "
+      "factor's.")
+TABLE(sch_ecosystem, "ecosystem", "directive", ecosystem_rows, SCH_GROUPS,
+      "[ecosystem.md](ecosystem.md) explains them; a species' lines follow its `species NAME` line "
+      "(`--set NAME.maturity=30` for one species).")
