@@ -27,14 +27,7 @@ static SylProgram *compile_file(const char *path) {
 
 static char dir[] = "/tmp/sylva-readonce-XXXXXX";
 
-static void put(const char *name, const char *text) {
-    char path[256];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
+static void put(const char *name, const char *text) { unit_write_file(dir, name, text); }
 
 static const char weber[] = "weber W {\n  Levels 2\n  Branches 1 5\n  lod 2\n}\n";
 
