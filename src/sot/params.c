@@ -1,6 +1,7 @@
-/* The directives of a `grow` block: one table says what each accepts, with ranges; reading
- * fills GrowParams over the defaults and reports every wrong line. docs/growth.md is the
- * user's side of this table — keep the two in step.
+/* The directives of a `grow` block: one table (params.def, which the schema's sch_grow and
+ * `sylva describe` read too) says what each accepts, with ranges and defaults; reading fills
+ * GrowParams over the defaults and reports every wrong line. docs/growth.md is the user's
+ * side of this table — keep the two in step.
  *
  *   DIRECTIVE [MODE [COUNT]] [VALUE] [KEY VALUE]...
  *
