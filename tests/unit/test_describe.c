@@ -72,6 +72,7 @@ static void describe_prints_every_row(void **state) {
                                "ecosystem E {\n  terrain \"flat.asc\"\n  species a\n    model L\n}\n";
     char *json = NULL;
     describe(text, "L", &json);
+    assert_non_null(json);
     int models = 0;
     for (int k = 0; k < LANG_KIND_COUNT; k++) {
         const SchTable *t = lang_kind_schema((SylModelKind)k);
@@ -79,7 +80,10 @@ static void describe_prints_every_row(void **state) {
         char kind[64];
         snprintf(kind, sizeof kind, "\"kind\":\"%s\"", t->kind);
         const char *at = strstr(json, kind);
-        if (!at) fail_msg("describe has no %s model", t->kind);
+        if (!at) {
+            fail_msg("describe has no %s model", t->kind);
+            return;
+        }
         models++;
         const char *end = strstr(at + 1, "\"kind\":"); /* the next model's */
         if (!end) end = at + strlen(at);
