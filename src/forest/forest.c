@@ -7,7 +7,9 @@
 #include "sylva/forest.h"
 #include "sylva/plant.h"
 #include "forest/forest_internal.h"
+#include "kinds/kinds.h"
 #include "lang/kinds.h"
+#include "lang/schema.h"
 #include "util/rng.h"
 
 /* The terrain as triangles between its cells' centres, one grass-coloured material. */
@@ -88,17 +90,32 @@ static int build_look(SylGrowth *g, const SylProgram *q, int frame, int variant,
 /* A species' classes: an L-system's derivation steps, a grown tree's years, a strands
  * block's ages spread over the growth, variant v of class c at frame round(N (c + (v + 1) / V)
  * / C); a Weber–Penn tree has no growth: its variants are other seeds of one tree, scaled. */
-static int species_looks(SylForest *f, const SylProgram *p, int s, const SylForestOptions *o) {
+/* A species' model, compiled once for every species that names it (programs[s]; freed by
+ * syl_forest_new), its block read once: the kind's check keeps its reading, as syl_compile's
+ * hook does, for every look built from it (quietly: a block that fails it is read again by
+ * the build, which reports why). */
+static SylProgram *look_program(const SylForest *f, const SylProgram *p, int s, SylProgram **programs,
+                                const SylForestOptions *o, int *st) {
+    for (int k = 0; k < s; k++)
+        if (programs[k] && !strcmp(f->m->species[k].model, f->m->species[s].model)) return programs[k];
+    SylProgram *q = syl_compile_model(p, f->m->species[s].model, o->diag, st);
+    if (!q) return NULL;
+    sch_count_into(q, p);
+    const KindOps *ops = kinds_ops(syl_program_kind(q));
+    if (lang_kind_is(syl_program_kind(q), KF_LOOK) && ops->validate) ops->validate(q, NULL);
+    return q;
+}
+
+static int species_looks(SylForest *f, const SylProgram *p, int s, SylProgram **programs, const SylForestOptions *o) {
     const SylEcoSpecies *sp = &f->m->species[s];
     for (int c = 0; c < SYL_FOREST_CLASSES; c++)
         for (int v = 0; v < FOREST_VARIANTS; v++) f->proto_of[s][c][v] = -1;
     if (!sp->model[0]) return SYL_OK;
     int st;
-    SylProgram *q = syl_compile_model(p, sp->model, o->diag, &st);
+    SylProgram *q = programs[s] = look_program(f, p, s, programs, o, &st);
     if (!q) return st ? st : SYL_EMODEL;
     if (!lang_kind_is(syl_program_kind(q), KF_LOOK)) {
         lang_kind_refuse(o->diag, syl_program_name(q), syl_program_kind(q), true);
-        syl_program_free(q);
         return SYL_EUSAGE;
     }
     SylGrowth *g = NULL;
@@ -130,7 +147,6 @@ static int species_looks(SylForest *f, const SylProgram *p, int s, const SylFore
             f->nprotos++;
         }
     syl_growth_free(g);
-    syl_program_free(q);
     return st;
 }
 
@@ -143,7 +159,13 @@ int syl_forest_new(const SylProgram *p, const SylEcoModel *m, const SylTerrain *
     if (!f) return SYL_ELIMIT;
     f->m = m, f->t = t;
     int st = (f->ground = terrain_mesh(t)) ? SYL_OK : SYL_ELIMIT;
-    for (int s = 0; s < m->nspecies && !st; s++) st = species_looks(f, p, s, o);
+    SylProgram *programs[SYL_ECO_MAX_SPECIES] = {0};
+    for (int s = 0; s < m->nspecies && !st; s++) st = species_looks(f, p, s, programs, o);
+    for (int s = 0; s < m->nspecies; s++) { /* each once: species may share one */
+        bool first = true;
+        for (int k = 0; k < s; k++) first &= programs[k] != programs[s];
+        if (first) syl_program_free(programs[s]);
+    }
     if (st) {
         syl_forest_free(f);
         return st;

@@ -5,6 +5,7 @@
 
 #include <stddef.h>
 
+#include "lang/schema.h"
 #include "sot/params.h"
 #include "sylva/ecosystem.h"
 #include "sylva/trees.h"

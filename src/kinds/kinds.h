@@ -18,9 +18,10 @@ typedef struct KindOps {
      * KF_AGES (its frames), with opt->levels where it has levels. NULL: an engine above makes
      * it (lsys derives an lsystem; sot grows a grow block among the others of its scene). */
     int (*build)(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
-    /* Print the block's parameters with their ranges, defaults and meanings (the directive
-     * schema's slot; NULL: none described yet). */
-    int (*describe)(const SylProgram *p, FILE *out);
+    /* What describes the block's parameters: its directive table, with names, types, ranges,
+     * defaults, units and meanings (lang/schema.h; syl_describe_json reads it through
+     * lang_kind_schema, the same column). NULL: none (a scene). */
+    const struct SchTable *describe;
 } KindOps;
 
 /* Every kind has a row (tests/unit/test_kinds.c); a kind the enum does not know gets the

@@ -387,6 +387,7 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
     }
     SylProgram *p = compile_text(g, path, text, len, opt, status);
     free(g);
+    if (p) lang_keep_lod(p); /* before the hook, whose readers ask for it */
     /* What the language leaves to others (grow and scene directives) is checked by the
      * caller's hook, once the program is whole: a sibling model it compiles is a compile of
      * its own, not one nested in this. */

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/kinds.h"
 #include "lang/program.h"
 #include "lang/schema.h"
 
@@ -156,7 +157,7 @@ static void apply_sets(const SylProgram *p, const SchTable *t, DModel *m) {
 static void describe_block(const SylProgram *p, const SchTable *t, DModel *m) {
     int n = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
-    if (t == &sch_ecosystem) { /* the block's lines, then each species' under its name */
+    if (t->shape == SCH_GROUPS) { /* the block's lines, then each group's (species) under its name */
         for (int i = 0; i < t->n; i++)
             if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
         const char *species = NULL;
@@ -195,19 +196,63 @@ static void describe_block(const SylProgram *p, const SchTable *t, DModel *m) {
     apply_sets(p, t, m);
 }
 
-/* A grow block's directives have no schema table yet (sot/params.c reads them): each line
- * is listed as written. */
-static void describe_lines(const SylProgram *p, DModel *m) {
-    int n = 0;
+/* A grow block (SCH_KEYED): a directive's mode or bare value under its name, its keys as
+ * DIRECTIVE.KEY; a repeated line's (organ) as organ.N and organ.N.KEY, N from 1, as --set
+ * names them. */
+static void keyed_line(const SylDirective *d, const char *head, DModel *m) {
+    int i = 0;
+    Entry *e = find_entry(m, head);
+    if (e && d->nargs > 0) { /* buds whorled 3, years 18 */
+        const SylDirArg *a = &d->args[0];
+        double x;
+        if (e->type == SCH_ENUM && a->kind == SYL_DARG_WORD && sch_word_index(e->words, a->text) >= 0)
+            text(&e->val, a->text), i = 1;
+        else if (e->type != SCH_ENUM && sch_number(a, &x))
+            num(&e->val, x), i = 1;
+    }
+    for (; i + 1 < d->nargs; i++) { /* KEY VALUE; a count (whorled 3) or ~leaf(s) is passed over */
+        const SylDirArg *a = &d->args[i];
+        char name[160];
+        snprintf(name, sizeof name, "%s.%s", head, a->kind == SYL_DARG_WORD ? a->text : "");
+        if (a->kind != SYL_DARG_WORD || !(e = find_entry(m, name))) continue;
+        const SylDirArg *v = &d->args[++i];
+        if (e->type == SCH_BOOLEAN && v->kind == SYL_DARG_WORD)
+            num(&e->val, !strcmp(v->text, "on") || !strcmp(v->text, "yes"));
+        else
+            directive_value(&(SylDirective){.nargs = 1, .args = v}, -1, e);
+    }
+}
+
+static void describe_keyed(const SylProgram *p, const SchTable *t, DModel *m) {
+    int n = 0, repeats = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
+    for (int i = 0; i < t->n; i++)
+        if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
     for (int k = 0; k < n; k++) {
-        Entry *e = find_entry(m, ds[k].name);
-        if (!e && !(e = add(m))) return;
-        snprintf(e->name, sizeof e->name, "%s", ds[k].name);
-        e->type = SCH_STRING;
-        e->doc = "a line of the block (docs/growth.md)";
-        directive_value(&ds[k], -1, e);
-        if (e->val.kind == V_NUM) e->type = SCH_NUMBER;
+        const SchRow *h = sch_find(t, ds[k].name, NULL);
+        char head[64];
+        snprintf(head, sizeof head, "%s", ds[k].name);
+        if (h && h->group) { /* organ: this line's rows, numbered */
+            snprintf(head, sizeof head, "%s.%d", ds[k].name, ++repeats);
+            size_t len = strlen(ds[k].name);
+            for (int i = 0; i < t->n; i++) {
+                const SchRow *r = &t->rows[i];
+                Entry *e = r->group ? add_row(m, r, NULL) : NULL;
+                if (e) snprintf(e->name, sizeof e->name, "%s%s", head, r->name + len);
+            }
+        }
+        keyed_line(&ds[k], head, m);
+    }
+    for (int i = 0; i < p->noverrides; i++) { /* years=3, buds.angle=35, lambda=0.48, organ.1.size=0.2 */
+        const char *name = p->set_local ? p->set_local[i] : NULL;
+        if (!name || is_param(p, name)) continue;
+        Entry *e = find_entry(m, name);
+        for (int j = 0; !e && j < m->n; j++) { /* a key by its name alone: DIRECTIVE.KEY */
+            const char *dot = strchr(m->e[j].name, '.');
+            if (dot && !strchr(dot + 1, '.') && !strcmp(dot + 1, name)) e = &m->e[j];
+        }
+        if (e && (e->type == SCH_NUMBER || e->type == SCH_INTEGER || e->type == SCH_BOOLEAN))
+            num(&e->val, p->overrides[i].value);
     }
 }
 
@@ -247,32 +292,19 @@ static void describe_params(const SylProgram *p, DModel *m) {
     }
 }
 
-/* The kind's keyword, as a file writes it (the kinds table will give it once merged). */
-static const char *keyword(SylModelKind k) {
-    switch (k) {
-    case SYL_MODEL_GROW: return "grow";
-    case SYL_MODEL_SCENE: return "scene";
-    case SYL_MODEL_WEBER: return "weber";
-    case SYL_MODEL_STRANDS: return "strands";
-    case SYL_MODEL_ECOSYSTEM: return "ecosystem";
-    case SYL_MODEL_CURVETREE: return "curvetree";
-    default: return "lsystem";
-    }
-}
-
+/* The kind's table says which rows; its shape how the lines give their values. */
 static void describe_model(const SylProgram *p, DModel *m) {
     m->name = syl_program_name(p);
-    m->kind = keyword(p->kind);
+    m->kind = lang_kind_keyword(p->kind);
     m->line = p->model_loc.first_line;
     describe_params(p, m);
-    switch (p->kind) {
-    case SYL_MODEL_LSYSTEM: describe_settings(p, m); break;
-    case SYL_MODEL_WEBER: describe_block(p, &sch_weber, m); break;
-    case SYL_MODEL_STRANDS: describe_block(p, &sch_strands, m); break;
-    case SYL_MODEL_ECOSYSTEM: describe_block(p, &sch_ecosystem, m); break;
-    case SYL_MODEL_CURVETREE: describe_block(p, &sch_curvetree, m); break;
-    case SYL_MODEL_GROW: describe_lines(p, m); break;
-    default: break;
+    const SchTable *t = lang_kind_schema(p->kind);
+    if (!t) return;
+    switch (t->shape) {
+    case SCH_SETTINGS: describe_settings(p, m); break;
+    case SCH_LINES:
+    case SCH_GROUPS: describe_block(p, t, m); break;
+    case SCH_KEYED: describe_keyed(p, t, m); break;
     }
 }
 
@@ -438,9 +470,9 @@ static void md_cell(FILE *out, const char *s) {
     }
 }
 
-static void md_table(FILE *out, const SchTable *t, const char *title, const char *intro) {
-    fprintf(out, "\n## %s\n\n%s\n\n| name | type | range | default | unit | meaning |\n|---|---|---|---|---|---|\n", title,
-            intro);
+static void md_table(FILE *out, const SchTable *t) {
+    fprintf(out, "\n## `%s` %ss\n\n%s\n\n| name | type | range | default | unit | meaning |\n|---|---|---|---|---|---|\n",
+            t->kind, t->noun, t->intro);
     for (int i = 0; i < t->n; i++) {
         const SchRow *r = &t->rows[i];
         char range[96] = "", def[96] = "";
@@ -451,7 +483,8 @@ static void md_table(FILE *out, const SchTable *t, const char *title, const char
         Val v;
         row_default(r, &v);
         tval(def, sizeof def, &v);
-        fprintf(out, "| `%s%s`%s | %s%s | ", r->levels ? "N" : "", r->name, r->group ? " (species)" : "",
+        fprintf(out, "| `%s%s`%s%s%s | %s%s | ", r->levels ? "N" : "", r->name, r->group ? " (" : "",
+                r->group ? r->group : "", r->group ? ")" : "",
                 r->levels ? "list per level of " : "", sch_type_name(r->type));
         md_cell(out, range);
         fputs(" | ", out);
@@ -465,22 +498,13 @@ static void md_table(FILE *out, const SchTable *t, const char *title, const char
 void lang_directives_reference(FILE *out) {
     fputs("# Directives: the reference tables\n\n"
           "Generated from the tables the readers check lines and `--set` against (src/lang/settings.def,\n"
-          "src/weber/params.def, src/strands/params.def, src/curvetree/params.def, src/eco/params.def) by `tools/gen-directives`;\n"
-          "do not edit by hand (`build/tests/test_schema` fails when this file and the tables differ).\n"
+          "src/sot/params.def, src/weber/params.def, src/strands/params.def, src/eco/params.def,\n"
+          "src/curvetree/params.def) by "
+          "`tools/gen-directives`; do not edit by hand (`build/tests/test_schema` fails when this file and\n"
+          "the tables differ).\n"
           "`sylva describe FILE` prints the same rows with a model's values ([cli.md](cli.md#sylva-describe)).\n"
           "A range is written `[lo, hi]`, `(` `)` for an open end; `-` is no default.\n",
           out);
-    md_table(out, &sch_lsystem, "`lsystem` settings", "[language.md §5](language.md#5-settings) explains them.");
-    md_table(out, &sch_weber, "`weber` parameters",
-             "[weberpenn.md](weberpenn.md) explains them. `N` is a level, 0 to 3: `1DownAngle 60` sets level 1, "
-             "`DownAngle 0 60 45 45` levels 0 to 3.");
-    md_table(out, &sch_strands, "`strands` parameters",
-             "[strands.md](strands.md#parameters) explains them. A per-order parameter's range is its Gravelius "
-             "factor's.");
-    md_table(out, &sch_curvetree, "`curvetree` parameters",
-             "[curvetree.md](curvetree.md#parameters) explains them: the Blender plug-in's names, as its panel "
-             "shows them.");
-    md_table(out, &sch_ecosystem, "`ecosystem` directives",
-             "[ecosystem.md](ecosystem.md) explains them; a species' lines follow its `species NAME` line "
-             "(`--set NAME.maturity=30` for one species).");
+    for (int k = 0; k < LANG_KIND_COUNT; k++) /* in the kinds' order, each by its table */
+        if (lang_kind_schema((SylModelKind)k)) md_table(out, lang_kind_schema((SylModelKind)k));
 }

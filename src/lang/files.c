@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "lang/arbaro.h"
+#include "lang/kinds.h"
 #include "lang/parse_state.h"
 #include "lang/program.h"
 #include "util/file.h"
@@ -63,16 +64,13 @@ int lang_check_file(const SylProgram *p, FILE *diag, const char *what, const cha
     return !f;
 }
 
-/* a line that opens a block of the language: `lsystem Name {`, `scene {` ... */
+/* a line that opens a block of the language: `lsystem Name {`, `scene {` ... (a kind's keyword,
+ * lang/kinds.def) */
 static bool opens_block(const char *b, const char *e) {
-    static const char *const kw[] = {"lsystem", "grow", "scene", "weber", "strands", "ecosystem"};
     while (b < e && (*b == ' ' || *b == '\t')) b++;
-    for (size_t k = 0; k < sizeof kw / sizeof *kw; k++) {
-        size_t n = strlen(kw[k]);
-        if ((size_t)(e - b) > n && !memcmp(b, kw[k], n) && (b[n] == ' ' || b[n] == '\t' || b[n] == '{'))
-            return true;
-    }
-    return false;
+    size_t n = 0;
+    while (b + n < e && ((b[n] >= 'a' && b[n] <= 'z') || (b[n] >= 'A' && b[n] <= 'Z'))) n++;
+    return b + n < e && (b[n] == ' ' || b[n] == '\t' || b[n] == '{') && lang_kind_of_keyword(b, n) >= 0;
 }
 
 int syl_text_is_model(const char *text, size_t len) {

@@ -3,6 +3,8 @@
 
 #include <string.h>
 
+#include "lang/schema.h"
+
 /* kinds.def lists the kinds in the order of the public enum, whose values are explicit */
 enum {
 #define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) KIND_ROW_##id,
@@ -18,10 +20,11 @@ typedef struct KindRow {
     const char *keyword, *noun;
     unsigned flags;
     const char *instead;
+    const SchTable *schema;
 } KindRow;
 
 static const KindRow rows[LANG_KIND_COUNT] = {
-#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) [SYL_MODEL_##id] = {keyword, noun, flags, instead},
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) [SYL_MODEL_##id] = {keyword, noun, flags, instead, describe},
 #include "lang/kinds.def"
 #undef SYL_KIND
 };
@@ -31,6 +34,7 @@ static const KindRow *row(SylModelKind k) { return (unsigned)k < LANG_KIND_COUNT
 unsigned lang_kind_flags(SylModelKind k) { return row(k) ? row(k)->flags : 0; }
 const char *lang_kind_keyword(SylModelKind k) { return row(k) ? row(k)->keyword : NULL; }
 const char *syl_model_kind_name(SylModelKind k) { return row(k) ? row(k)->noun : "model"; }
+const struct SchTable *lang_kind_schema(SylModelKind k) { return row(k) ? row(k)->schema : NULL; }
 
 int lang_kind_of_keyword(const char *word, size_t len) {
     for (int k = 0; k < LANG_KIND_COUNT; k++)

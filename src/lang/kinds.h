@@ -33,6 +33,8 @@ enum {
  * syl_model_kind_name). lang_kind_of_keyword: the kind a keyword opens, or -1. */
 unsigned lang_kind_flags(SylModelKind k);
 const char *lang_kind_keyword(SylModelKind k);
+/* The kind's directive table, its row's describe column (lang/schema.h); NULL: none (scene). */
+const struct SchTable *lang_kind_schema(SylModelKind k);
 int lang_kind_of_keyword(const char *word, size_t len);
 
 /* Why a model of kind k cannot be what it was asked to be, to diag: "'T' is a strands block,

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "lang/kinds.h"
 #include "lang/program.h"
 #include "lang/schema.h"
 #include "sylva/lod.h"
@@ -34,8 +35,10 @@ int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *d
 }
 
 /* The block's last `lod` line, then the last --set lod= (unless `lod` is a param, whose
- * value the line then has already). */
+ * value the line then has already): scanned once, by syl_compile (lang_keep_lod), and kept. */
 double lang_directive_lod(const SylProgram *p) {
+    if (p->read_cache && p->read_cache->lod_kept) return p->read_cache->lod;
+    if (p->read_cache) p->read_cache->lod_scans++;
     double v = 0, x;
     for (int i = 0; i < p->ndirectives; i++)
         if (!strcmp(p->directives[i].name, "lod") && lod_value(&p->directives[i], &x)) v = x;
@@ -44,4 +47,10 @@ double lang_directive_lod(const SylProgram *p) {
     for (int i = 0; i < p->noverrides && !param; i++)
         if (p->set_local && p->set_local[i] && !strcmp(p->set_local[i], "lod")) v = p->overrides[i].value;
     return lod_ok(v) ? v : 0;
+}
+
+void lang_keep_lod(SylProgram *p) {
+    if (!p->read_cache || !lang_kind_is(p->kind, KF_DIRECTIVES)) return;
+    p->read_cache->lod = lang_directive_lod(p);
+    p->read_cache->lod_kept = true;
 }

@@ -2,6 +2,7 @@
 #include <string.h>
 
 #include "lang/compiler.h"
+#include "lang/kinds.h"
 #include "util/closest.h"
 
 /* "Birch.lambda" is meant for the model Birch when the file has one of that name, and
@@ -18,7 +19,7 @@ void cc_localise_overrides(Compiler *c) {
             const char *mn = c->ast->models[m].name;
             if (strlen(mn) == (size_t)(dot - name) && !strncmp(mn, name, (size_t)(dot - name)))
                 /* scene.ground: the scene's reader takes it (scene/spec.c) */
-                p->set_local[i] = strcmp(mn, p->name) || c->ast->models[m].kind == SYL_MODEL_SCENE ? NULL : dot + 1;
+                p->set_local[i] = strcmp(mn, p->name) || lang_kind_is(c->ast->models[m].kind, KF_UNNAMED) ? NULL : dot + 1;
         }
     }
 }

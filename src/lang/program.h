@@ -268,6 +268,8 @@ static inline bool syl_kind_has_directives(SylModelKind k) { return lang_kind_is
 int lang_lod_check(const SylProgram *p, const SylDirective *d, FILE *diag);
 int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *diag);
 double lang_directive_lod(const SylProgram *p);
+/* Scan a directive block's lod once, while compiling, for lang_directive_lod to answer. */
+void lang_keep_lod(SylProgram *p);
 
 /* Whether symbol sym is a query module (?P ?H ?L ?U ?E): the turtle fills it after every step. */
 static inline bool lang_symbol_is_query(const SylProgram *p, int sym) {

@@ -158,10 +158,17 @@ int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char
 }
 
 void sch_count_read(const SylProgram *p) {
-    if (p->read_cache) p->read_cache->reads++;
+    if (!p->read_cache) return;
+    p->read_cache->reads++;
+    if (p->read_cache->also) (*p->read_cache->also)++;
 }
 
 int sch_reads(const SylProgram *p) { return p->read_cache ? p->read_cache->reads : 0; }
+int sch_lod_scans(const SylProgram *p) { return p->read_cache ? p->read_cache->lod_scans : 0; }
+
+void sch_count_into(const SylProgram *q, const SylProgram *p) {
+    if (q->read_cache && p->read_cache) q->read_cache->also = &p->read_cache->reads;
+}
 
 void sch_keep(const SylProgram *p, const void *v, size_t size) {
     SchCache *c = p->read_cache;

@@ -1,6 +1,6 @@
 /* The directive schema: a block's directives described as data (name, type, range, default,
  * unit, meaning, aliases), one table per kind, each written once as an X-macro .def in its
- * generator's folder (weber/params.def, strands/params.def, eco/params.def) or here
+ * generator's folder (sot/params.def, weber/params.def, strands/params.def, eco/params.def) or here
  * (lang/settings.def). This file is the one reader of those tables: a name's row (with a
  * level digit, an alias), did-you-mean, a value as a number or `(expr)`, its range, an enum's
  * word, and `--set NAME=VALUE` checked against the row. `sylva describe` (describe.c) and the
@@ -39,15 +39,25 @@ typedef struct SchRow {
     const char *group;      /* the rows it belongs with (an ecosystem species': "species"); NULL: the block */
 } SchRow;
 
+/* How a block's lines give the rows their values (what `sylva describe` reads them by). */
+typedef enum {
+    SCH_SETTINGS, /* an lsystem's settings, kept in the program */
+    SCH_LINES,    /* NAME VALUE... (weber, strands) */
+    SCH_GROUPS,   /* NAME VALUE..., a group's rows after its opening line (ecosystem: species NAME) */
+    SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow) */
+} SchShape;
+
 typedef struct SchTable {
     const char *kind;  /* "weber", "strands", ... */
-    const char *noun;  /* "weber parameter", "ecosystem directive": for messages */
+    const char *noun;  /* what a row is: "setting", "parameter", "directive" */
     const SchRow *rows;
     int n;
+    SchShape shape;
+    const char *intro; /* docs/directives.md's paragraph about the table */
 } SchTable;
 
 /* The tables (schema_tables.c). */
-extern const SchTable sch_lsystem, sch_weber, sch_strands, sch_ecosystem, sch_curvetree;
+extern const SchTable sch_lsystem, sch_grow, sch_weber, sch_strands, sch_ecosystem, sch_curvetree;
 
 /* The row of a directive name: the name, an alias, or a per-level name with its level digit
  * ("1DownAngle": *level 1); *level -1 when none. NULL: no such row. group NULL: any row. */
@@ -84,10 +94,18 @@ typedef struct SchCache {
     _Atomic int reads;
     void *value; /* malloc'd copy of the reader's result; NULL: none kept */
     size_t size;
+    double lod;             /* the block's `lod` (lang_directive_lod), scanned once by syl_compile */
+    bool lod_kept;
+    _Atomic int lod_scans;  /* scans of the lines for `lod` */
+    _Atomic int *also;      /* a program's count that this one's reads add to too (sch_count_into) */
 } SchCache;
 /* A full read of p's block begins. */
 void sch_count_read(const SylProgram *p);
 int sch_reads(const SylProgram *p);
+int sch_lod_scans(const SylProgram *p);
+/* q's reads count in p's too (a look compiled beside p's ecosystem: the test that a run reads
+ * each block once counts them on the program it has); q is freed before p. */
+void sch_count_into(const SylProgram *q, const SylProgram *p);
 /* Keep size bytes at v as the block's reading (only while compiling: the validate hook). */
 void sch_keep(const SylProgram *p, const void *v, size_t size);
 /* The kept reading into out; false when there is none of that size. */

@@ -17,14 +17,14 @@ static const SchRow lsystem_rows[] = {
 
 #define LEAF_WORDS "0|disc|disc1|disc2|disc3|disc4|disc5|disc6|disc7|disc8|disc9|square|sphere|palm"
 static const SchRow weber_rows[] = {
-#define WP_G(f, nm, ty, l, h, lop, hop, d, mean) \
+#define WP_G(f, nm, ty, l, h, lop, hop, d, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .lo_open = lop, .hi_open = hop, .def = {d}, \
-     .words = (ty) == SCH_ENUM ? LEAF_WORDS : NULL, .def_text = (ty) == SCH_ENUM ? "0" : NULL, .unit = "", .doc = mean},
-#define WP_L(f, nm, ty, l, h, lop, hop, d0, d1, d2, d3, mean) \
+     .words = (ty) == SCH_ENUM ? LEAF_WORDS : NULL, .def_text = (ty) == SCH_ENUM ? "0" : NULL, .unit = u, .doc = mean},
+#define WP_L(f, nm, ty, l, h, lop, hop, d0, d1, d2, d3, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .lo_open = lop, .hi_open = hop, .levels = 4, \
-     .def = {d0, d1, d2, d3}, .unit = "", .doc = mean},
-#define WP_X(nm, ty, l, h, d, dt, w, mean) \
-    {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = "", .doc = mean},
+     .def = {d0, d1, d2, d3}, .unit = u, .doc = mean},
+#define WP_X(nm, ty, l, h, d, dt, w, u, mean) \
+    {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
 #include "weber/params.def"
 };
 
@@ -57,9 +57,62 @@ static const SchRow ecosystem_rows[] = {
 #include "eco/params.def"
 };
 
-#define TABLE(var, k, nn, rows) const SchTable var = {k, nn, rows, (int)(sizeof rows / sizeof *rows)};
-TABLE(sch_lsystem, "lsystem", "setting", lsystem_rows)
-TABLE(sch_weber, "weber", "weber parameter", weber_rows)
-TABLE(sch_strands, "strands", "strands parameter", strands_rows)
-TABLE(sch_curvetree, "curvetree", "curvetree parameter", curvetree_rows)
-TABLE(sch_ecosystem, "ecosystem", "ecosystem directive", ecosystem_rows)
+/* a grow block: a bare value by its directive's name (years), a mode by its directive's
+ * (buds: alternate|opposite|whorled), a key as DIRECTIVE.KEY (buds.angle), as --set names them */
+#define GT_NUM SCH_NUMBER
+#define GT_INT SCH_INTEGER
+#define GT_SEED SCH_INTEGER
+#define GT_BOOL SCH_BOOLEAN
+#define GT_VEC3 SCH_LIST
+#define GT_WORD SCH_ENUM
+#define GT_NAME SCH_STRING
+#define GROUP_G NULL
+#define GROUP_O "organ line" /* OrganSpec: the rows of each organ line */
+#define GD_NUM(d) d
+#define GD_INT(d) d
+#define GD_SEED(d) d
+#define GD_BOOL(d) d
+#define GD_VEC3(d) d
+#define GD_NAME(d) d
+#define GD_WORD(d) NAN /* a word's default is its text */
+#define GW_WORD(d) d
+#define GW_NUM(d) NULL
+#define GW_INT(d) NULL
+#define GW_SEED(d) NULL
+#define GW_BOOL(d) NULL
+#define GW_VEC3(d) NULL
+#define GW_NAME(d) NULL
+static const SchRow grow_rows[] = {
+#define GROW_VALUE(var, nm, ty, l, h, f, d, u, mean) \
+    {.name = nm, .type = GT_##ty, .lo = l, .hi = h, .def = {d}, .unit = u, .doc = mean},
+#define GROW_MODES(list, dir, dw, w, grp, mean) \
+    {.name = dir, .type = SCH_ENUM, .def = {NAN}, .def_text = dw, .words = w, .unit = "", .doc = mean, .group = grp},
+#define GROW_KEY(base, f, dir, nm, ty, l, h, d, w, u, mean) \
+    {.name = dir "." nm, .type = GT_##ty, .lo = l, .hi = h, .def = {GD_##ty(d)}, .def_text = GW_##ty(d), \
+     .words = w, .unit = u, .doc = mean, .group = GROUP_##base},
+#include "sot/params.def"
+};
+
+/* noun: what a row is ("setting"; docs/directives.md's title, "`weber` parameters"); intro:
+ * the title's paragraph there */
+#define TABLE(var, k, nn, rows, shape, intro) \
+    const SchTable var = {k, nn, rows, (int)(sizeof rows / sizeof *rows), shape, intro};
+TABLE(sch_lsystem, "lsystem", "setting", lsystem_rows, SCH_SETTINGS,
+      "[language.md §5](language.md#5-settings) explains them.")
+TABLE(sch_grow, "grow", "directive", grow_rows, SCH_KEYED,
+      "[growth.md](growth.md#directives) explains them. A line is `DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...`: "
+      "a row `DIRECTIVE` is its mode or value, `DIRECTIVE.KEY` a key (`--set buds.angle=35`); an organ "
+      "line's rows are `organ.N` and `organ.N.KEY` for the N-th line from 1. `unit` is the model's unit "
+      "of length.")
+TABLE(sch_weber, "weber", "parameter", weber_rows, SCH_LINES,
+      "[weberpenn.md](weberpenn.md) explains them. `N` is a level, 0 to 3: `1DownAngle 60` sets level 1, "
+      "`DownAngle 0 60 45 45` levels 0 to 3.")
+TABLE(sch_strands, "strands", "parameter", strands_rows, SCH_LINES,
+      "[strands.md](strands.md#parameters) explains them. A per-order parameter's range is its Gravelius "
+      "factor's.")
+TABLE(sch_ecosystem, "ecosystem", "directive", ecosystem_rows, SCH_GROUPS,
+      "[ecosystem.md](ecosystem.md) explains them; a species' lines follow its `species NAME` line "
+      "(`--set NAME.maturity=30` for one species).")
+TABLE(sch_curvetree, "curvetree", "parameter", curvetree_rows, SCH_LINES,
+      "[curvetree.md](curvetree.md#parameters) explains them: the Blender plug-in's names, as its panel "
+      "shows them.")

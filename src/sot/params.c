@@ -1,6 +1,7 @@
-/* The directives of a `grow` block: one table says what each accepts, with ranges; reading
- * fills GrowParams over the defaults and reports every wrong line. docs/growth.md is the
- * user's side of this table — keep the two in step.
+/* The directives of a `grow` block: one table (params.def, which the schema's sch_grow and
+ * `sylva describe` read too) says what each accepts, with ranges and defaults; reading fills
+ * GrowParams over the defaults and reports every wrong line. docs/growth.md is the user's
+ * side of this table — keep the two in step.
  *
  *   DIRECTIVE [MODE [COUNT]] [VALUE] [KEY VALUE]...
  *
@@ -30,7 +31,7 @@ typedef struct Key {
     VType type;
     double lo, hi;      /* inclusive range (V_NUM, V_INT) */
     size_t off;         /* into GrowParams, or OrganSpec for `organ` */
-    const char *const *words; /* V_WORD: the words, their index stored as int */
+    const char *words;  /* V_WORD: the words "a|b", the index of the one written stored */
 } Key;
 
 typedef struct Mode {
@@ -54,222 +55,60 @@ typedef struct Directive {
 #define G(f) offsetof(GrowParams, f)
 #define O(f) offsetof(OrganSpec, f)
 #define END {0}
-#define BIG 1e9
-
-static const Key k_years = {"years", V_INT, 0, 10000, G(years), 0};
-static const Key k_seed = {"seed", V_SEED, 0, 9007199254740991.0, G(seed), 0};
-static const Key k_internode = {"internode", V_NUM, 1e-6, 1e4, G(internode), 0};
-static const Key k_sensitivity = {"sensitivity", V_NUM, 0, 20, G(sensitivity), 0};
-static const Key k_lod = {"lod", V_INT, 0, SYL_LOD_MAX, G(lod), 0};
-
-static const Key buds_keys[] = {
-    {"divergence", V_NUM, -360, 360, G(divergence), 0},
-    {"angle", V_NUM, 0, 180, G(branch_angle), 0},
-    {"life", V_INT, 1, 10000, G(bud_life), 0},
-    END,
-};
-static const Mode buds_modes[] = {
-    {"alternate", PHYL_ALTERNATE, false, NULL},
-    {"opposite", PHYL_OPPOSITE, false, NULL},
-    {"whorled", PHYL_WHORLED, true, NULL},
-    {0},
-};
-
-static const Key grav_keys[] = {
-    {"horizontal", V_NUM, 1e-3, 100, G(grav_h), 0},
-    {"vertical", V_NUM, 1e-3, 100, G(grav_v), 0},
-    {"up", V_NUM, -100, 100, G(grav_up), 0},
-    END,
-};
-
-static const Key shadow_keys[] = {
-    {"voxel", V_NUM, 1e-6, 1e4, G(voxel), 0},
-    {"a", V_NUM, 1e-4, 1000, G(shadow_a), 0},
-    {"b", V_NUM, 1, 1e6, G(shadow_b), 0},
-    {"depth", V_INT, 0, 64, G(depth), 0},
-    END,
-};
-static const Key sky_keys[] = {
-    {"rays", V_INT, 1, 4096, G(sky_rays), 0},
-    {"foliage", V_NUM, 1e-6, 1e4, G(foliage), 0},
-    END,
-};
-static const Key light_keys[] = {
-    {"full", V_NUM, 1e-6, 1e6, G(full), 0},
-    {"sun", V_VEC3, -BIG, BIG, G(sun), 0},
-    END,
-};
-static const Mode light_modes[] = {
-    {"shadow", LIGHT_SHADOW, false, shadow_keys},
-    {"sky", LIGHT_SKY, false, sky_keys},
-    {"off", LIGHT_OFF, false, NULL},
-    {0},
-};
-
-static const Key space_bud_keys[] = {{"markers", V_INT, 1, 10000, G(markers), 0}, END};
-static const Key space_global_keys[] = {{"density", V_NUM, 1e-6, 1e4, G(density), 0}, END};
-static const Key space_keys[] = {
-    {"occupancy", V_NUM, 1e-3, 1e4, G(occupancy), 0},
-    {"perception", V_NUM, 1e-3, 1e4, G(perception), 0},
-    {"cone", V_NUM, 1, 360, G(cone), 0},
-    END,
-};
-static const Mode space_modes[] = {
-    {"bud", SPACEM_BUD, false, space_bud_keys},
-    {"global", SPACEM_GLOBAL, false, space_global_keys},
-    {"off", SPACEM_OFF, false, NULL},
-    {0},
-};
-
-static const Key bh_keys[] = {{"lambda", V_NUM, 0, 1, G(lambda), 0}, END};
-static const Key priority_keys[] = {
-    {"kappa", V_NUM, 0, 1, G(kappa), 0},
-    {"wmax", V_NUM, 0, 1e6, G(wmax), 0},
-    {"wmin", V_NUM, 0, 1e6, G(wmin), 0},
-    END,
-};
-static const Key alloc_keys[] = {{"alpha", V_NUM, 1e-6, 1e6, G(alpha), 0}, END};
-static const Mode alloc_modes[] = {
-    {"bh", ALLOC_BH, false, bh_keys},
-    {"priority", ALLOC_PRIORITY, false, priority_keys},
-    {0},
-};
-
-static const Key shoot_keys[] = {
-    {"max", V_INT, 1, 1000, G(shoot_max), 0},
-    {"rule", V_NAME, 0, 0, G(rule), 0},
-    {"keep", V_INT, 0, 10000, G(rule_keep), 0},
-    END,
-};
-static const Mode shoot_modes[] = {
-    {"relative", SHOOT_RELATIVE, false, NULL},
-    {"vigor", SHOOT_VIGOR, false, NULL},
-    {0},
-};
-
-static const Key direction_keys[] = {
-    {"bud", V_NUM, 0, 1e6, G(w_bud), 0},
-    {"space", V_NUM, 0, 1e6, G(w_space), 0},
-    {"light", V_NUM, 0, 1e6, G(w_light), 0},
-    {"tropism", V_NUM, -1e6, 1e6, G(w_tropism), 0},
-    {"at", V_NUM, 0, 180, G(tropism_angle), 0},
-    {"trunk", V_NUM, 0, 1e6, G(w_trunk), 0},
-    {"trunk_tropism", V_BOOL, 0, 1, G(trunk_tropism), 0},
-    {"jitter", V_NUM, 0, 90, G(jitter), 0},
-    END,
-};
-
-static const Key shed_keys[] = {
-    {"threshold", V_NUM, 0, 1e6, G(shed_threshold), 0},
-    {"bare_trunk", V_NUM, 0, 1e6, G(bare_trunk), 0},
-    END,
-};
-static const Mode shed_modes[] = {{"off", 0, false, NULL}, {0}};
-
-static const Key pipe_keys[] = {
-    {"exponent", V_NUM, 1, 10, G(pipe_exponent), 0},
-    {"tip", V_NUM, 1e-7, 1e3, G(tip_radius), 0},
-    END,
-};
-
-static const char *const organ_places[] = {"young", "tips", NULL};
-static const Key organ_keys[] = {
-    {"size", V_NUM, 1e-6, 1e4, O(size), 0},
-    {"count", V_INT, 1, 64, O(count), 0},
-    {"angle", V_NUM, 0, 180, O(angle), 0},
-    {"age", V_INT, 1, 10000, O(age), 0},
-    {"chance", V_NUM, 0, 1, O(chance), 0},
-    {"on", V_WORD, 0, 0, O(place), organ_places},
-    END,
-};
-static const Mode organ_modes[] = {
-    {"leaf", SYL_KIND_LEAF, false, NULL},
-    {"flower", SYL_KIND_FLOWER, false, NULL},
-    {"needle", SYL_KIND_NEEDLE, false, NULL},
-    {0},
-};
 
 enum { NO_MODE = (size_t)-1 };
 
-/* `light voxel 0.3` means light shadow, `space markers 20` space bud, `allocate lambda 0.52`
- * allocate bh, `shoot max 4` shoot relative: the implied modes. */
+/* the lists of params.def, as the reader's structures */
+#define GROW_VALUE(var, nm, ty, l, h, f, d, u, mean) static const Key var = {nm, V_##ty, l, h, G(f), NULL};
+#define GROW_KEYS(list) static const Key list##_keys[] = {
+#define GROW_KEY(base, f, dir, nm, ty, l, h, d, w, u, mean) {nm, V_##ty, l, h, base(f), w},
+#define GROW_KEYS_END END};
+#define GROW_MODES(list, dir, dw, w, grp, mean) static const Mode list##_modes[] = {
+#define GROW_MODE(word, value, count, keys) {word, value, count, keys},
+#define GROW_MODES_END {0}};
+#include "sot/params.def"
 static const Directive directives[] = {
-    {"years", false, false, -1, NO_MODE, NULL, &k_years, NULL},
-    {"seed", false, false, -1, NO_MODE, NULL, &k_seed, NULL},
-    {"internode", false, false, -1, NO_MODE, NULL, &k_internode, NULL},
-    {"buds", false, false, -1, G(phyllotaxis), buds_modes, NULL, buds_keys},
-    {"gravimorphism", false, false, -1, NO_MODE, NULL, NULL, grav_keys},
-    {"light", false, true, 0, G(light), light_modes, NULL, light_keys},
-    {"space", false, true, 0, G(space), space_modes, NULL, space_keys},
-    {"allocate", false, true, 0, G(alloc), alloc_modes, NULL, alloc_keys},
-    {"sensitivity", false, false, -1, NO_MODE, NULL, &k_sensitivity, NULL},
-    {"shoot", false, false, 0, G(shoot), shoot_modes, NULL, shoot_keys},
-    {"direction", false, false, -1, NO_MODE, NULL, NULL, direction_keys},
-    {"shed", false, false, -1, NO_MODE, shed_modes, NULL, shed_keys},
-    {"pipe", false, false, -1, NO_MODE, NULL, NULL, pipe_keys},
-    {"lod", false, false, -1, NO_MODE, NULL, &k_lod, NULL},
-    {"organ", true, true, -1, O(kind), organ_modes, NULL, organ_keys},
+#define GROW_DIRECTIVE(nm, rep, req, implied, off, modes, value, keys) {nm, rep, req, implied, off, modes, value, keys},
+#include "sot/params.def"
 };
 enum { NDIRECTIVES = sizeof directives / sizeof *directives };
 
+/* A default of params.def into its field (a mode's word, a direction and a name are set below). */
+#define DEF_NUM(lv, d, w) lv = (float)(d);
+#define DEF_INT(lv, d, w) lv = (int)(d);
+#define DEF_SEED(lv, d, w) lv = (uint64_t)(d);
+#define DEF_BOOL(lv, d, w) lv = (d) != 0;
+#define DEF_WORD(lv, d, w) lv = (uint8_t)sch_word_index(w, d);
+#define DEF_VEC3(lv, d, w)
+#define DEF_NAME(lv, d, w)
+
 void grow_params_default(GrowParams *g) {
     memset(g, 0, sizeof *g);
-    g->years = 20;
-    g->seed = 1;
-    g->internode = 0.25f;
+#define ON_G(ty, f, d, w) DEF_##ty(g->f, d, w)
+#define ON_O(ty, f, d, w)
+#define GROW_VALUE(var, nm, ty, l, h, f, d, u, mean) ON_G(ty, f, d, NULL)
+#define GROW_KEY(base, f, dir, nm, ty, l, h, d, w, u, mean) ON_##base(ty, f, d, w)
+#include "sot/params.def"
+#undef ON_G
+#undef ON_O
     g->phyllotaxis = PHYL_ALTERNATE;
     g->laterals = 1;
-    g->divergence = 137.5f;
-    g->branch_angle = 45;
-    g->bud_life = 2;
-    g->grav_h = g->grav_v = 1;
     g->light = LIGHT_SHADOW;
-    g->voxel = 0; /* 0: the internode */
-    g->full = 1;
-    g->shadow_a = 0.2f;
-    g->shadow_b = 3;
-    g->depth = 6;
     g->sun[1] = 1;
-    g->sky_rays = 16;
-    g->foliage = 0; /* 0: the internode */
     g->space = SPACEM_OFF;
-    g->markers = 12;
-    g->density = 2;
-    g->occupancy = 2;
-    g->perception = 5;
-    g->cone = 90;
     g->alloc = ALLOC_BH;
-    g->lambda = 0.5f;
-    g->alpha = 2;
-    g->kappa = 0.5f;
-    g->wmax = 1;
-    g->wmin = 0.1f;
-    g->sensitivity = 1;
     g->shoot = SHOOT_RELATIVE;
-    g->shoot_max = 3;
-    g->w_bud = 1;
-    g->w_space = 0.5f;
-    g->w_light = 0.2f;
-    g->w_tropism = 0.1f;
-    g->tropism_angle = 0;
-    g->w_trunk = 0.2f;
-    g->trunk_tropism = false;
-    g->jitter = 5;
-    g->shed_threshold = 0;
-    g->bare_trunk = 0;
-    g->pipe_exponent = 2.5f;
-    g->tip_radius = 0.004f;
 }
 
 static void organ_default(OrganSpec *o) {
     memset(o, 0, sizeof *o);
     o->kind = SYL_KIND_LEAF;
-    o->place = ORGAN_YOUNG;
-    o->size = 0.1f;
-    o->count = 1;
-    o->angle = 50;
-    o->age = 1;
-    o->chance = 1;
+#define ON_G(ty, f, d, w)
+#define ON_O(ty, f, d, w) DEF_##ty(o->f, d, w)
+#define GROW_KEY(base, f, dir, nm, ty, l, h, d, w, u, mean) ON_##base(ty, f, d, w)
+#include "sot/params.def"
+#undef ON_G
+#undef ON_O
 }
 
 static const char *kind_name(SylDirArgKind k) {
@@ -352,19 +191,24 @@ static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylD
         }
         strcpy(field, a->text);
         return 1;
-    case V_WORD:
-        for (int j = 0; k->words[j]; j++)
-            if (a->kind == SYL_DARG_WORD && !strcmp(a->text, k->words[j])) {
-                *(uint8_t *)field = (uint8_t)j;
-                return 1;
-            }
-        {
-            char list[256];
-            size_t n = 0;
-            while (k->words[n]) n++;
-            list_words(list, sizeof list, k->words, sizeof *k->words, n);
-            ERR(r, a->line, a->col, "'%s' expects %s", k->name, list);
+    case V_WORD: {
+        int j = a->kind == SYL_DARG_WORD ? sch_word_index(k->words, a->text) : -1;
+        if (j >= 0) {
+            *(uint8_t *)field = (uint8_t)j;
+            return 1;
         }
+        const char *names[16];
+        char tmp[256], list[256];
+        size_t n = 0;
+        snprintf(tmp, sizeof tmp, "%s", k->words);
+        for (char *w = tmp; w && n < 16; n++) { /* "a|b" into names */
+            names[n] = w;
+            w = strchr(w, '|');
+            if (w) *w++ = 0;
+        }
+        list_words(list, sizeof list, names, sizeof *names, n);
+        ERR(r, a->line, a->col, "'%s' expects %s", k->name, list);
+    }
         return 0;
     }
     return 0;

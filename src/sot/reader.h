@@ -5,6 +5,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "lang/schema.h"
 #include "sylva/sylva.h"
 
 typedef struct Reader {
@@ -15,11 +16,7 @@ typedef struct Reader {
 
 #define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
 
-/* A number, written as such or as a one-value tuple `(expr)`. */
-static inline bool reader_number(const SylDirArg *a, double *out) {
-    if (a->kind == SYL_DARG_NUMBER) return *out = a->num, true;
-    if (a->kind == SYL_DARG_TUPLE && a->nvalues == 1) return *out = a->values[0], true;
-    return false;
-}
+/* A number, written as such or as a one-value tuple `(expr)`: the schema's reading of one. */
+static inline bool reader_number(const SylDirArg *a, double *out) { return sch_number(a, out); }
 
 #endif

@@ -7,9 +7,9 @@
 #include "lang/program.h"
 #include "util/closest.h"
 
-#define WP_G(f, nm, ty, lo, hi, lop, hop, d, mean) \
+#define WP_G(f, nm, ty, lo, hi, lop, hop, d, unit, mean) \
     {nm, false, ty, lo, hi, lop, hop, {d, d, d, d}, offsetof(WeberParams, f), mean},
-#define WP_L(f, nm, ty, lo, hi, lop, hop, d0, d1, d2, d3, mean) \
+#define WP_L(f, nm, ty, lo, hi, lop, hop, d0, d1, d2, d3, unit, mean) \
     {nm, true, ty, lo, hi, lop, hop, {d0, d1, d2, d3}, offsetof(WeberParams, f), mean},
 const WeberParamInfo weber_param_table[] = {
 #include "params.def"

@@ -199,14 +199,7 @@ static void lambda_raises_apical_dominance(void **state) {
 
 static char tmpdir[64];
 
-static void write_file(const char *name, const char *text) {
-    char path[256];
-    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
+static void write_file(const char *name, const char *text) { unit_write_file(tmpdir, name, text); }
 
 static int setup_dir(void **state) {
     (void)state;

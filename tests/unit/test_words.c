@@ -65,7 +65,7 @@ static void group_and_use_as_names_beside_tables(void **state) {
                    -1, "usegroup(2)use");
 }
 
-/* The directive words of grow and scene blocks are listed where they are read (src/sot/params.c,
+/* The directive words of grow and scene blocks are listed where they are read (src/sot/params.def,
  * src/scene/spec.c, outside the language): every word-like string literal there is tried, so a
  * new directive, mode or key is covered. Run from the top of the source tree (tests/run-all). */
 static int directive_words_in(const char *path) {
@@ -93,7 +93,7 @@ static int directive_words_in(const char *path) {
 
 static void every_directive_word_is_a_name(void **state) {
     (void)state;
-    assert_true(directive_words_in("src/sot/params.c") >= 40);
+    assert_true(directive_words_in("src/sot/params.def") >= 40);
     assert_true(directive_words_in("src/scene/spec.c") >= 4);
 }
 

@@ -29,6 +29,16 @@ static inline SylProgram *unit_compile(const char *text, char **diag, int *statu
     return p;
 }
 
+/* Write text to the file dir/name (a fixture of a test's own folder). */
+static inline void unit_write_file(const char *dir, const char *name, const char *text) {
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
 /* Derive with n steps (n < 0: the model's) and return the canonical string (free it). */
 static inline char *unit_derive(const char *text, int n, int threads) {
     SylProgram *p = unit_compile(text, NULL, NULL);
