@@ -48,7 +48,7 @@ static void mesh_to_glb_reads_a_weber_block_once(void **state) {
     assert_int_equal(syl_plant_build(p, &po, &pl), SYL_OK);
     SylLodChain chain = {0};
     assert_int_equal(syl_lod_build(pl.skeleton, &mo, pl.mesh, lod, &chain), SYL_OK);
-    assert_int_equal(syl_write_glb_lods(&chain, out, NULL), SYL_OK);
+    assert_int_equal(syl_lod_write_glb(&chain, out, NULL), SYL_OK);
     assert_int_equal((int)syl_program_setting(p, "lod"), 2); /* asked again: the kept value */
     assert_int_equal(sch_reads(p), 1);
     assert_int_equal(sch_lod_scans(p), 1);
