@@ -144,7 +144,7 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
         st->node_count = (uint32_t)(sk->nnodes - st->node_first);
     }
     /* Arbaro's 0ScaleV: jitter of the trunk's surface (the paper's varies its radius, radius.c) */
-    if (g->w.convention == WEBER_ARBARO) sk->trunk_jitter = (float)g->w.Scale0V;
+    if (g->w.convention == WEBER_ARBARO) sk->materials[SYL_MATERIAL_BARK].trunk_jitter = (float)g->w.Scale0V;
     free(att);
     free(attach_node);
     return wr.failed ? SYL_ELIMIT : SYL_OK;
@@ -168,9 +168,10 @@ void weber_write_leaves(WeberGen *g, SylSkeleton *sk) {
         g->lvs = NULL;
         if (sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
         /* the leaves' surface: LeafShape's outline (util/leafoutline.h), LeafScaleX wide */
-        sk->leaf_tris = g->w.leaf_tris;
-        sk->leaf_width = (float)g->w.LeafScaleX;
-        sk->leaf_outline = g->w.leaf_kind == WEBER_LEAF_SQUARE ? LEAF_OUTLINE_SQUARE
+        SylMaterial *m = &sk->materials[SYL_MATERIAL_LEAF];
+        m->leaf_tris = (uint16_t)g->w.leaf_tris;
+        m->leaf_width = (float)g->w.LeafScaleX;
+        m->leaf_outline = g->w.leaf_kind == WEBER_LEAF_SQUARE ? LEAF_OUTLINE_SQUARE
                            : g->w.leaf_kind == WEBER_LEAF_PALM ? LEAF_OUTLINE_PALM
                                                                : LEAF_OUTLINE_OVAL;
     }
