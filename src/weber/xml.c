@@ -7,6 +7,7 @@
 
 #include <libxml/xmlwriter.h>
 
+#include "util/number.h"
 #include "weber/xml.h"
 
 /* Arbaro's order (its writer's, as in its species files): the globals, then per level. */
@@ -33,16 +34,7 @@ static const double *slot(const WeberParams *w, const WeberParamInfo *pi) {
 
 /* The shortest %.Ng that strtod reads back as v; whole numbers without an exponent (60, not
  * 6e+01: %g turns to one only for them or for tiny values). */
-static void number(char *buf, size_t n, double v) {
-    if (v == (double)(long long)v && v > -1e15 && v < 1e15) {
-        snprintf(buf, n, "%.0f", v == 0 ? 0.0 : v); /* -0 as 0 */
-        return;
-    }
-    for (int prec = 1; prec <= 17; prec++) {
-        snprintf(buf, n, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v) return;
-    }
-}
+static void number(char *buf, size_t n, double v) { number_write(buf, n, v); }
 
 static const char *leaf_shape(const WeberParams *w, char *buf, size_t n) {
     switch (w->leaf_kind) {
