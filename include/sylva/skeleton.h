@@ -100,25 +100,26 @@ typedef struct SylSkeletonPart {
     char name[64];
 } SylSkeletonPart;
 
+/* Build one with syl_skeleton_new and the syl_skeleton_add_* functions, which keep the arrays'
+ * room and the memory budget in store (the library's own). */
 typedef struct SylSkeleton {
     SylNode *nodes;
-    size_t nnodes, node_cap;
+    size_t nnodes;
     SylOrgan *organs;
-    size_t norgans, organ_cap;
+    size_t norgans;
     SylPolygon *polys;
-    size_t npolys, poly_cap;
+    size_t npolys;
     float (*poly_verts)[3];
-    size_t nverts, vert_cap;
+    size_t nverts;
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
-    SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
-    uint64_t charged;
     /* A scene's objects, each written as an object or node of its own (docs/mesh.md#scenes):
      * its plants, in order, each from its first node to the next one's, then its obstacles,
      * whose meshes (SylMesh.node) number them from 0. Unique names. */
     SylSkeletonPart *parts;
     int nparts;
+    struct SylSkeletonStore *store;
 } SylSkeleton;
 
 SylSkeleton *syl_skeleton_new(const char *name); /* default palette: bark, leaf, flower, ... */

@@ -53,8 +53,7 @@ static void scale_about(float p[3], const float c[3], float k) {
 static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t,
                              int32_t *back) {
     *t = *s;
-    t->budget = NULL;
-    t->charged = 0;
+    t->store = NULL; /* the mesher's copy: nothing is added to it, it is not freed as a skeleton */
     /* Coarser leaves of the same area, material by material: an oval of fewer triangles in
      * place of the blade or of LOD0's oval; shape: the linear factor that keeps each leaf's area. */
     float shape[256];
@@ -93,7 +92,7 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         t->nodes[nn].radius = radius[i]; /* the pipe model's radii of the whole tree, kept */
         back[nn++] = (int32_t)i;
     }
-    t->nnodes = t->node_cap = nn;
+    t->nnodes = nn;
     size_t no = 0;
     for (size_t i = 0; i < s->norgans; i++) {
         SylOrgan o = s->organs[i];
@@ -104,7 +103,7 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         o.node = o.node >= 0 && (size_t)o.node < s->nnodes ? map[o.node] : -1;
         t->organs[no++] = o;
     }
-    t->norgans = t->organ_cap = no;
+    t->norgans = no;
     size_t np = 0, nv = 0;
     for (size_t i = 0; i < s->npolys; i++) {
         SylPolygon p = s->polys[i];
@@ -122,8 +121,8 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         nv += p.count;
         t->polys[np++] = p;
     }
-    t->npolys = t->poly_cap = np;
-    t->nverts = t->vert_cap = nv;
+    t->npolys = np;
+    t->nverts = nv;
     free(map);
     return SYL_OK;
 }
