@@ -71,7 +71,7 @@ int cmd_convert(int argc, char **argv) {
     const char *output = a.output;
     bool xml = output && ends_with(output, ".xml"), syl = output && ends_with(output, ".syl");
     if (!xml && !syl) {
-        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML) or *.syl (a weber block) "
+        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML, a grow preset) or *.syl (a block) "
                         "with -o\n", output ? "cannot tell the format" : "no output");
         return SYL_EUSAGE;
     }

@@ -1,16 +1,15 @@
 /* A grow block as a preset file (docs/growth.md#presets): each directive as it stands after
  * compiling (params, expressions and a --set of a param worked out), as XML that
- * lang/arbaro.c reads back (<grow-presets>, libxml2's writer doing the escaping), or as a
+ * lang/arbaro.c reads back (<grow-presets>, util/paramxml.h), or as a
  * grow block. The mapping follows no list of its own: a directive's name and its words go
  * across as they are, and the grow reader checks them on the way back. */
 #include <stdlib.h>
 #include <string.h>
 
-#include <libxml/xmlwriter.h>
-
 #include "lang/arbaro.h"
 #include "sylva/grow.h"
 #include "util/number.h"
+#include "util/paramxml.h"
 
 /* One argument as the XML reader takes it back: a number in the fewest digits that read back
  * exactly (an expression's value too), a word, a tuple (x,y,z) or a symbol ~leaf(0.06), without blanks. false: a string,
@@ -86,54 +85,22 @@ static int writable(const SylProgram *p, FILE *diag) {
     return SYL_OK;
 }
 
-typedef struct Xml {
-    xmlTextWriterPtr tw;
-    int rc; /* the first negative result of a writer call */
-} Xml;
-
-static void check(Xml *x, int rc) {
-    if (rc < 0 && x->rc >= 0) x->rc = rc;
-}
-
 int syl_grow_write_preset(const SylProgram *p, FILE *out, FILE *diag) {
     int st = writable(p, diag);
     if (st) return st;
-    xmlBufferPtr buf = xmlBufferCreate();
-    xmlTextWriterPtr tw = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;
-    if (!tw) {
-        xmlBufferFree(buf);
-        return SYL_ELIMIT;
-    }
-    Xml x = {tw, 0};
-    check(&x, xmlTextWriterSetIndent(tw, 1));
-    check(&x, xmlTextWriterSetIndentString(tw, BAD_CAST "  "));
-    check(&x, xmlTextWriterSetQuoteChar(tw, '\''));
-    check(&x, xmlTextWriterStartDocument(tw, "1.0", NULL, NULL));
-    check(&x, xmlTextWriterStartElement(tw, BAD_CAST SYL_GROW_PRESET_ROOT));
-    check(&x, xmlTextWriterStartElement(tw, BAD_CAST "species"));
-    check(&x, xmlTextWriterWriteAttribute(tw, BAD_CAST "name", BAD_CAST syl_program_name(p)));
+    ParamXml *x = paramxml_begin(SYL_GROW_PRESET_ROOT, syl_program_name(p));
+    if (!x) return SYL_ELIMIT;
     int n;
     const SylDirective *ds = syl_program_directives(p, &n);
-    for (int i = 0; i < n && x.rc >= 0; i++) {
+    for (int i = 0; i < n && !st; i++) {
         const SylDirArg *bad = NULL;
         char *value = line_text(&ds[i], &bad);
-        if (!value) {
-            x.rc = -1;
-            break;
-        }
-        check(&x, xmlTextWriterStartElement(tw, BAD_CAST "param"));
-        check(&x, xmlTextWriterWriteAttribute(tw, BAD_CAST "name", BAD_CAST ds[i].name));
-        check(&x, xmlTextWriterWriteAttribute(tw, BAD_CAST "value", BAD_CAST value));
-        check(&x, xmlTextWriterEndElement(tw));
+        if (!value) st = SYL_ELIMIT;
+        else paramxml_param(x, ds[i].name, value);
         free(value);
     }
-    check(&x, xmlTextWriterEndDocument(tw));
-    xmlFreeTextWriter(tw); /* flushes into buf */
-    st = x.rc < 0 ? SYL_ELIMIT : SYL_OK;
-    if (!st && fwrite(xmlBufferContent(buf), 1, (size_t)xmlBufferLength(buf), out) != (size_t)xmlBufferLength(buf))
-        st = SYL_EIO;
-    xmlBufferFree(buf);
-    return st;
+    int written = paramxml_end(x, st ? NULL : out);
+    return st ? st : written;
 }
 
 int syl_grow_write_syl(const SylProgram *p, const char *note, FILE *out, FILE *diag) {
