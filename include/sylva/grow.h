@@ -55,6 +55,15 @@ typedef struct SylGrowOptions {
 /* The most years a tree may grow (`years`, --years, -n). */
 enum { SYL_GROW_MAX_YEARS = 10000 };
 
+/* A grow model as a preset (docs/growth.md#presets): each of its directives with its values
+ * worked out (params, expressions, a --set of a param), as an XML preset file that `sylva
+ * FILE.xml` reads back (<grow-presets><species name=…><param name=… value=…/>), or as a grow
+ * block. Read back, either one writes the same bytes again. SYL_OK; SYL_EUSAGE for another
+ * kind of block or a directive a preset cannot hold (a shoot rule, a string), reported on
+ * diag; SYL_ELIMIT out of memory; SYL_EIO. */
+int syl_grow_write_preset(const SylProgram *p, FILE *out, FILE *diag);
+int syl_grow_write_syl(const SylProgram *p, const char *note, FILE *out, FILE *diag);
+
 /* The old name of syl_validate (sylva.h), kept for programs written against it: it checks
  * every kind of block now, as syl_validate does. */
 int syl_grow_validate(void *user, const SylProgram *p, FILE *diag);

@@ -31,9 +31,7 @@ typedef enum {
 extern const char *const syl_kind_names[SYL_KIND_COUNT]; /* "root", "internode", ... */
 
 enum {
-    SYL_NODE_SMOOTH = 1,    /* inside @Gc ... @Ge: the mesher smooths the axis through it */
-    SYL_NODE_NO_JITTER = 2, /* a trunk node the skeleton's trunk_jitter leaves round (a scene's
-                               plant beside a Weber–Penn tree with one) */
+    SYL_NODE_SMOOTH = 1, /* inside @Gc ... @Ge: the mesher smooths the axis through it */
 };
 
 /* A node: the root of an axis, or the end of one drawn segment whose start is its parent. */
@@ -76,9 +74,24 @@ typedef struct SylPolygon {
 
 enum { SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, SYL_MATERIAL_PLAIN };
 
+enum { SYL_LEAF_OUTLINE_OVAL, SYL_LEAF_OUTLINE_SQUARE, SYL_LEAF_OUTLINE_PALM };
+
+/* A material is a plant's surface: its colour, and what the mesher draws with it, so that each
+ * plant of a scene keeps its own (a scene's skeleton gives each plant's materials slots of
+ * their own, docs/mesh.md#scenes). */
 typedef struct SylMaterial {
     float rgb[3];   /* base colour, 0..1 */
     uint8_t kind;   /* SYL_MATERIAL_*: chooses the procedural texture */
+    /* The surface of every SYL_KIND_LEAF organ of this material (leaf_tris 0: Sylva's blade):
+     * the outline leaf_outline (SYL_LEAF_OUTLINE_OVAL of leaf_tris triangles, Arbaro's
+     * disc1..disc9; _SQUARE; _PALM, a folded leaflet), leaf_width wide per unit of length. */
+    uint8_t leaf_outline;
+    uint16_t leaf_tris;
+    float leaf_width;
+    /* Jitter of a trunk's surface drawn with it (Weber–Penn's 0ScaleV, as Arbaro draws it):
+     * the mesher moves each vertex of an order-0 ring to (1 + u) times its distance from the
+     * axis, u uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex. 0: none. */
+    float trunk_jitter;
 } SylMaterial;
 
 typedef struct SylSkeletonPart {
@@ -87,37 +100,26 @@ typedef struct SylSkeletonPart {
     char name[64];
 } SylSkeletonPart;
 
+/* Build one with syl_skeleton_new and the syl_skeleton_add_* functions, which keep the arrays'
+ * room and the memory budget in store (the library's own). */
 typedef struct SylSkeleton {
     SylNode *nodes;
-    size_t nnodes, node_cap;
+    size_t nnodes;
     SylOrgan *organs;
-    size_t norgans, organ_cap;
+    size_t norgans;
     SylPolygon *polys;
-    size_t npolys, poly_cap;
+    size_t npolys;
     float (*poly_verts)[3];
-    size_t nverts, vert_cap;
+    size_t nverts;
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
-    /* The leaves' surface, for every SYL_KIND_LEAF organ (leaf_tris 0: Sylva's blade): the
-     * outline leaf_outline (0 an oval of leaf_tris triangles, Arbaro's disc1..disc9; 1 a
-     * square; 2 a folded palm leaflet: src/util/leafoutline.h), leaf_width wide per unit of
-     * length. */
-    int leaf_tris;
-    float leaf_width;
-    int leaf_outline;
-    /* Jitter of the trunk's surface (Weber–Penn's 0ScaleV, as Arbaro draws it): the mesher
-     * moves each vertex of an order-0 ring to (1 + u) times its distance from the axis, u
-     * uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex (not at nodes marked
-     * SYL_NODE_NO_JITTER). 0: none. */
-    float trunk_jitter;
-    SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
-    uint64_t charged;
     /* A scene's objects, each written as an object or node of its own (docs/mesh.md#scenes):
      * its plants, in order, each from its first node to the next one's, then its obstacles,
      * whose meshes (SylMesh.node) number them from 0. Unique names. */
     SylSkeletonPart *parts;
     int nparts;
+    struct SylSkeletonStore *store;
 } SylSkeleton;
 
 SylSkeleton *syl_skeleton_new(const char *name); /* default palette: bark, leaf, flower, ... */

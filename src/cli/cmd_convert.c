@@ -1,23 +1,28 @@
 /* sylva convert: a weber block, or a species of an Arbaro XML file, written as Arbaro XML or
- * as a .syl weber block (docs/arbaro.md). */
+ * as a .syl weber block (docs/arbaro.md); a grow block, or a grow preset file, written as a
+ * grow preset or a .syl grow block (docs/growth.md#presets). */
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "cli/cli.h"
+#include "sylva/grow.h"
 #include "weber/params.h"
 #include "weber/xml.h"
 
 const CliCommand cli_convert_command = {
     .name = "convert",
-    .what = "write a weber block as Arbaro XML, or an Arbaro species file as a .syl block",
+    .what = "write a weber or grow block as XML (Arbaro's, a grow preset), or such a file as a .syl block",
     .run = cmd_convert,
     .usage = "sylva convert FILE[:Model] -o OUT.xml|OUT.syl [--set NAME=VALUE]...",
     .about = "Read a weber model (a `weber` block of a .syl file, or a species of an Arbaro XML\n"
              "file) and write every one of its parameters: as an Arbaro species file for *.xml, in\n"
              "Arbaro's order and spelling, or as a `weber` block for *.syl, per-level parameters as\n"
              "lists over levels 0 to 3. Values are written so that they read back exactly: converting\n"
-             "the written file again gives the same bytes.\n",
+             "the written file again gives the same bytes.\n"
+             "A grow model (a `grow` block, or a grow preset file) is written as a grow preset for\n"
+             "*.xml (<grow-presets>) or a `grow` block for *.syl: each directive with its values\n"
+             "worked out (params and expressions), read back to the same bytes.\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a weber block\n"
                                            "for *.syl"},
@@ -46,6 +51,18 @@ static const char *species_name(const SylProgram *p) {
     return name;
 }
 
+/* A grow block as a preset (*.xml) or a grow block (*.syl), through a temporary file. */
+static int convert_grow(const SylProgram *p, const char *path, const char *output, bool xml) {
+    OutFile out;
+    if (!out_open(&out, output)) return SYL_EIO;
+    const char *src = strrchr(path, '/');
+    char note[4200];
+    snprintf(note, sizeof note, "%s, converted by `sylva convert`", src ? src + 1 : path);
+    int status = xml ? syl_grow_write_preset(p, out.f, stderr) : syl_grow_write_syl(p, note, out.f, stderr);
+    if (status == SYL_ELIMIT) fprintf(stderr, "sylva convert: error: out of memory\n");
+    return out_close(&out, status);
+}
+
 int cmd_convert(int argc, char **argv) {
     ModelArgs m = {0};
     CliArgs a = {.m = &m};
@@ -54,7 +71,7 @@ int cmd_convert(int argc, char **argv) {
     const char *output = a.output;
     bool xml = output && ends_with(output, ".xml"), syl = output && ends_with(output, ".syl");
     if (!xml && !syl) {
-        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML) or *.syl (a weber block) "
+        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML, a grow preset) or *.syl (a block) "
                         "with -o\n", output ? "cannot tell the format" : "no output");
         return SYL_EUSAGE;
     }
@@ -62,8 +79,13 @@ int cmd_convert(int argc, char **argv) {
     int status;
     SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (!p) return status;
+    if (syl_program_kind(p) == SYL_MODEL_GROW) {
+        status = convert_grow(p, m.path, output, xml);
+        syl_program_free(p);
+        return status;
+    }
     if (syl_program_kind(p) != SYL_MODEL_WEBER) {
-        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes weber blocks and Arbaro species\n",
+        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes weber and grow blocks\n",
                 syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
         syl_program_free(p);
         return SYL_EUSAGE;

@@ -1,5 +1,6 @@
 /* Arbaro's XML species files and Helios's WeberPennTreeLibrary.xml, read with libxml2 into
- * weber models (docs/arbaro.md). Each parameter becomes a directive line at its element's XML
+ * weber models (docs/arbaro.md), and grow presets (<grow-presets>, docs/growth.md#presets) into
+ * grow models. Each parameter becomes a directive line at its element's XML
  * line, so that the weber reader reports a bad value or an unknown name where the XML has it.
  * libxml2 reads with no network, no DTD (a DOCTYPE stops the parse: no entity is declared,
  * so none can expand) and its default depth limit; the file's size is capped before. */
@@ -18,7 +19,7 @@
 static bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 
 bool syl_arbaro_detect(const Source *src) {
-    static const char *const heads[] = {"<?xml", "<!--", "<arbaro", "<helios"};
+    static const char *const heads[] = {"<?xml", "<!--", "<arbaro", "<helios", "<" SYL_GROW_PRESET_ROOT};
     size_t i = 0;
     while (i < src->len && blank(src->text[i])) i++;
     for (size_t k = 0; k < sizeof heads / sizeof *heads; k++) {
@@ -116,22 +117,62 @@ static Stmt *add(Reader *r, Model *m, const char *name, int line, int col) {
     return s;
 }
 
-/* A value word: a number when strtod reads all of it as a finite decimal, else a word
- * (LeafShape disc2; the weber reader says what a parameter takes). */
+static Expr *number_expr(Reader *r, double v, SylLoc loc) {
+    Expr *e = arena_alloc(r->arena, sizeof *e);
+    memset(e, 0, sizeof *e);
+    e->kind = EX_NUM;
+    e->num = v;
+    e->loc = loc;
+    return e;
+}
+
+/* s[0..n) as a finite decimal number. */
+static bool decimal(const char *s, size_t n, double *v) {
+    char buf[64];
+    if (!n || n >= sizeof buf || memchr(s, 'x', n) || memchr(s, 'X', n) || memchr(s, 'p', n) || memchr(s, 'P', n))
+        return false;
+    memcpy(buf, s, n);
+    buf[n] = 0;
+    char *stop;
+    *v = strtod(buf, &stop);
+    return stop == buf + n && isfinite(*v) && !blank(buf[0]);
+}
+
+/* A grow preset's `(x,y,z)` or `~leaf(0.06)` (preset.c writes them without blanks): its
+ * numbers into a's list; false when one is not a number or the parentheses do not close. */
+static bool number_list(Reader *r, DirArg *a, const char *open, const char *end) {
+    if (*open != '(' || end[-1] != ')') return false;
+    for (const char *p = open + 1; p < end;) {
+        const char *q = p;
+        while (q < end - 1 && *q != ',') q++;
+        double v;
+        if (!decimal(p, (size_t)(q - p), &v)) return false;
+        *VEC_PUSH(r->arena, a->args.v, a->args.n, a->args.cap) = number_expr(r, v, a->loc);
+        p = q + 1;
+    }
+    return true;
+}
+
+/* A value word: a number when strtod reads all of it as a finite decimal, a tuple or a
+ * symbol as a grow preset writes them, else a word (LeafShape disc2; the weber reader says
+ * what a parameter takes). */
 static void argument(Reader *r, Stmt *s, const char *tok, size_t n, SylLoc loc) {
     DirArg *a = VEC_PUSH(r->arena, s->dargs.v, s->dargs.n, s->dargs.cap);
     a->text = arena_strndup(r->arena, tok, n);
     a->loc = loc;
-    char *stop;
-    double v = strtod(a->text, &stop);
-    bool hex = strpbrk(a->text, "xXpP") != NULL;
-    if (stop == a->text + n && n && isfinite(v) && !hex) {
+    double v;
+    const char *paren = memchr(tok, '(', n);
+    if (decimal(tok, n, &v)) {
         a->kind = DARG_NUMBER;
-        a->value = arena_alloc(r->arena, sizeof *a->value);
-        a->value->kind = EX_NUM;
-        a->value->num = v;
-        a->value->loc = loc;
+        a->value = number_expr(r, v, loc);
+    } else if (n > 2 && tok[0] == '(' && number_list(r, a, tok, tok + n)) {
+        a->kind = DARG_TUPLE;
+        a->text = "(";
+    } else if (n > 1 && tok[0] == '~' && (!paren || number_list(r, a, paren, tok + n))) {
+        a->kind = DARG_SYMBOL;
+        a->text = arena_strndup(r->arena, tok, paren ? (size_t)(paren - tok) : n);
     } else {
+        a->args.n = 0;
         a->kind = DARG_WORD;
     }
 }
@@ -183,9 +224,9 @@ static const char *attr(Reader *r, xmlNodePtr n, const char *name) {
     return s;
 }
 
-static Model *model(Reader *r, xmlNodePtr n, const char *name) {
+static Model *model(Reader *r, xmlNodePtr n, const char *name, SylModelKind kind) {
     Model *m = VEC_PUSH(r->arena, r->ast->models, r->ast->nmodels, r->ast->cap);
-    m->kind = SYL_MODEL_WEBER;
+    m->kind = kind;
     m->name = name;
     m->loc = element_loc(r, n);
     return m;
@@ -202,17 +243,20 @@ static void stray_text(Reader *r, xmlNodePtr n, const char *where) {
         }
 }
 
-/* <species name='…'> holding <param name='…' value='…'/>: Arbaro's conventions. */
-static void species(Reader *r, xmlNodePtr sp) {
+/* <species name='…'> holding <param name='…' value='…'/>: Arbaro's conventions, which grow
+ * presets follow (a directive's name and its words). */
+static void species(Reader *r, xmlNodePtr sp, SylModelKind kind) {
     const char *name = attr(r, sp, "name");
     if (!name || !*name) {
         diag_error(r->diag, element_loc(r, sp), "a <species> needs a name attribute (the model's name)");
         return;
     }
-    Model *m = model(r, sp, name);
-    Stmt *conv = add(r, m, "convention", m->loc.first_line, m->loc.first_column);
-    DirArg *a = VEC_PUSH(r->arena, conv->dargs.v, conv->dargs.n, conv->dargs.cap);
-    *a = (DirArg){.kind = DARG_WORD, .text = "arbaro", .loc = m->loc};
+    Model *m = model(r, sp, name, kind);
+    if (kind == SYL_MODEL_WEBER) {
+        Stmt *conv = add(r, m, "convention", m->loc.first_line, m->loc.first_column);
+        DirArg *a = VEC_PUSH(r->arena, conv->dargs.v, conv->dargs.n, conv->dargs.cap);
+        *a = (DirArg){.kind = DARG_WORD, .text = "arbaro", .loc = m->loc};
+    }
     for (xmlNodePtr n = sp->children; n; n = n->next) {
         stray_text(r, n, "a <species>");
         if (n->type != XML_ELEMENT_NODE) continue;
@@ -247,7 +291,7 @@ static void helios_tree(Reader *r, xmlNodePtr t) {
         diag_error(r->diag, element_loc(r, t), "a <WeberPennTree> needs a label attribute (the model's name)");
         return;
     }
-    Model *m = model(r, t, name);
+    Model *m = model(r, t, name, SYL_MODEL_WEBER);
     for (xmlNodePtr n = t->children; n; n = n->next) {
         stray_text(r, n, "a <WeberPennTree>");
         if (n->type != XML_ELEMENT_NODE) continue;
@@ -326,26 +370,30 @@ static void read_document(Reader *r, xmlDocPtr doc) {
         diag_error(r->diag, (SylLoc){0}, "this XML file has no element");
         return;
     }
-    bool helios = named(root, "helios");
-    if (!helios && !named(root, "arbaro")) {
+    /* which kind of file: its root element says */
+    bool helios = named(root, "helios"), grow = named(root, SYL_GROW_PRESET_ROOT);
+    if (!helios && !grow && !named(root, "arbaro")) {
         char shown[64];
         diag_error(r->diag, element_loc(r, root),
-                   "not an Arbaro species file (<arbaro>) nor a Helios tree library (<helios>): its root is <%s>",
+                   "not an Arbaro species file (<arbaro>), a grow preset file (<" SYL_GROW_PRESET_ROOT
+                   ">) nor a Helios tree library (<helios>): its root is <%s>",
                    diag_quote(shown, sizeof shown, (const char *)root->name, strlen((const char *)root->name)));
         return;
     }
-    const char *want = helios ? "WeberPennTree" : "species";
+    const char *want = helios ? "WeberPennTree" : "species", *rootname = (const char *)root->name;
     for (xmlNodePtr n = root->children; n; n = n->next) {
-        stray_text(r, n, helios ? "<helios>" : "<arbaro>");
+        char where[32];
+        snprintf(where, sizeof where, "<%s>", rootname);
+        stray_text(r, n, where);
         if (n->type != XML_ELEMENT_NODE) continue;
         if (!named(n, want)) {
             char shown[64];
-            diag_error(r->diag, element_loc(r, n), "<%s> holds <%s> elements, not <%s>", helios ? "helios" : "arbaro",
-                       want, diag_quote(shown, sizeof shown, (const char *)n->name, strlen((const char *)n->name)));
+            diag_error(r->diag, element_loc(r, n), "<%s> holds <%s> elements, not <%s>", rootname, want,
+                       diag_quote(shown, sizeof shown, (const char *)n->name, strlen((const char *)n->name)));
             continue;
         }
         if (helios) helios_tree(r, n);
-        else species(r, n);
+        else species(r, n, grow ? SYL_MODEL_GROW : SYL_MODEL_WEBER);
     }
     if (!r->ast->nmodels && !r->diag->errors)
         diag_error(r->diag, element_loc(r, root), "this file holds no <%s>", want);

@@ -53,20 +53,24 @@ static void scale_about(float p[3], const float c[3], float k) {
 static int truncate_skeleton(const SylSkeleton *s, const float *radius, const SylLodLevel *lv, SylSkeleton *t,
                              int32_t *back) {
     *t = *s;
-    t->budget = NULL;
-    t->charged = 0;
-    /* Coarser leaves of the same area: an oval of fewer triangles in place of the blade or
-     * of LOD0's oval; shape: the linear factor that keeps each leaf's area. */
-    bool own = s->leaf_tris >= 1 && s->leaf_width > 0 && isfinite(s->leaf_width) &&
-               leaf_outline_valid(s->leaf_outline, s->leaf_tris);
-    bool oval0 = own && s->leaf_outline == LEAF_OUTLINE_OVAL;
-    int n0 = oval0 ? s->leaf_tris : BLADE_SIDE_TRIS, nk = n0 >> lv->level;
-    if (nk < 1) nk = 1;
-    if (own && !oval0) nk = n0; /* a square or a palm leaflet keeps its outline */
-    float width = oval0 ? s->leaf_width : 2 * BLADE_WIDTH;
-    float area0 = oval0 ? oval_area(n0) * width : BLADE_AREA * BLADE_WIDTH;
-    float shape = nk < n0 ? sqrtf(area0 / (oval_area(nk) * width)) : 1;
-    if (nk < n0 && !(lv->cluster_leaves > 0)) t->leaf_tris = nk, t->leaf_width = width; /* clusters: LOD0's leaves' area */
+    t->store = NULL; /* the mesher's copy: nothing is added to it, it is not freed as a skeleton */
+    /* Coarser leaves of the same area, material by material: an oval of fewer triangles in
+     * place of the blade or of LOD0's oval; shape: the linear factor that keeps each leaf's area. */
+    float shape[256];
+    for (int m = 0; m < 256; m++) {
+        const SylMaterial *ms = &s->materials[m];
+        bool own = ms->leaf_tris >= 1 && ms->leaf_width > 0 && isfinite(ms->leaf_width) &&
+                   leaf_outline_valid(ms->leaf_outline, ms->leaf_tris);
+        bool oval0 = own && ms->leaf_outline == LEAF_OUTLINE_OVAL;
+        int n0 = oval0 ? ms->leaf_tris : BLADE_SIDE_TRIS, nk = n0 >> lv->level;
+        if (nk < 1) nk = 1;
+        if (own && !oval0) nk = n0; /* a square or a palm leaflet keeps its outline */
+        float width = oval0 ? ms->leaf_width : 2 * BLADE_WIDTH;
+        float area0 = oval0 ? oval_area(n0) * width : BLADE_AREA * BLADE_WIDTH;
+        shape[m] = nk < n0 ? sqrtf(area0 / (oval_area(nk) * width)) : 1;
+        if (nk < n0 && !(lv->cluster_leaves > 0)) /* clusters: LOD0's leaves' area */
+            t->materials[m].leaf_tris = (uint16_t)nk, t->materials[m].leaf_width = width;
+    }
     t->nodes = malloc((s->nnodes + 1) * sizeof *t->nodes);
     t->organs = malloc((s->norgans + 1) * sizeof *t->organs);
     t->polys = malloc((s->npolys + 1) * sizeof *t->polys);
@@ -88,18 +92,18 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         t->nodes[nn].radius = radius[i]; /* the pipe model's radii of the whole tree, kept */
         back[nn++] = (int32_t)i;
     }
-    t->nnodes = t->node_cap = nn;
+    t->nnodes = nn;
     size_t no = 0;
     for (size_t i = 0; i < s->norgans; i++) {
         SylOrgan o = s->organs[i];
         if (thinned_kind(lv, o.kind)) {
             if (keep_draw(1, i) >= lv->leaf_keep) continue;
-            o.size *= lv->leaf_scale * (o.kind == SYL_KIND_LEAF ? shape : 1);
+            o.size *= lv->leaf_scale * (o.kind == SYL_KIND_LEAF ? shape[o.material] : 1);
         }
         o.node = o.node >= 0 && (size_t)o.node < s->nnodes ? map[o.node] : -1;
         t->organs[no++] = o;
     }
-    t->norgans = t->organ_cap = no;
+    t->norgans = no;
     size_t np = 0, nv = 0;
     for (size_t i = 0; i < s->npolys; i++) {
         SylPolygon p = s->polys[i];
@@ -117,8 +121,8 @@ static int truncate_skeleton(const SylSkeleton *s, const float *radius, const Sy
         nv += p.count;
         t->polys[np++] = p;
     }
-    t->npolys = t->poly_cap = np;
-    t->nverts = t->vert_cap = nv;
+    t->npolys = np;
+    t->nverts = nv;
     free(map);
     return SYL_OK;
 }

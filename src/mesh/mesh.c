@@ -85,6 +85,7 @@ static void plan_free(MeshPlan *pl) {
     free(pl->ptri);
     free(pl->clusters);
     for (int i = 0; i <= MESH_MAX_SIDES; i++) free(pl->trig[i]);
+    for (int i = 0; i < 256; i++) free(pl->panels[i]);
 }
 
 void syl_mesh_free(SylMesh *m) {
@@ -406,7 +407,7 @@ static void lobe_ring(int lobes, float depth, int S, const MeshTrig *tr, v4f C, 
     }
 }
 
-/* The trunk's jitter (SylSkeleton.trunk_jitter): each vertex of the ring moves out by a factor
+/* The trunk's jitter (SylMaterial.trunk_jitter): each vertex of the ring moves out by a factor
  * 1 + u, u uniform in [-k, k] from a stream keyed by the ring's point and the vertex, so
  * that the mesh is the same for any number of threads. Normals are kept. */
 static void jitter_ring(float k, uint32_t ring, int S, v4f C, float *vp) {
@@ -429,9 +430,8 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
     vec3 ref, tprev = {0}, din = {0}, dout, t0 = {0}, tk = {0};
     glm_vec3_copy((float *)tb->ref, ref);
     float lin = 0, lout, v = 0;
-    const float jitter = tb->node >= 0 && pl->skel->nodes[tb->node].order == 0 &&
-                                 !(pl->skel->nodes[tb->node].flags & SYL_NODE_NO_JITTER) && isfinite(pl->skel->trunk_jitter)
-                             ? pl->skel->trunk_jitter : 0;
+    const float tj = tb->node >= 0 ? pl->skel->materials[pl->skel->nodes[tb->node].material].trunk_jitter : 0;
+    const float jitter = tb->node >= 0 && pl->skel->nodes[tb->node].order == 0 && isfinite(tj) ? tj : 0;
     dir_len(P[0].p, P[1].p, dout, &lout);
     for (uint32_t k = 0; k < n; k++) {
         const bool inner = k > 0 && k + 1 < n;
@@ -735,6 +735,15 @@ int syl_mesh_radii(const SylSkeleton *s, const SylMeshOptions *opt, float *radiu
     return status;
 }
 
+/* The material of the first leaf with an outline of its own (NULL: none): a mesh's cards share
+ * one texture, so they draw that one outline. */
+static const SylMaterial *own_leaf_material(const SylSkeleton *s) {
+    for (size_t i = 0; i < s->norgans; i++)
+        if (s->organs[i].kind == SYL_KIND_LEAF && mesh_own_leaf(&s->materials[s->organs[i].material]))
+            return &s->materials[s->organs[i].material];
+    return NULL;
+}
+
 int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out) {
     *out = NULL;
     SylMeshOptions o;
@@ -745,10 +754,11 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
     pl.leaf_shape = o.leaf_shape;
-    if (mesh_own_leaf(s)) /* cards and clusters draw the skeleton's own outline */
-        pl.leaf_shape = LEAF_OUTLINE_CARD(s->leaf_outline, s->leaf_tris < LEAF_OUTLINE_CARD_MAX_TRIS
-                                                               ? s->leaf_tris
-                                                               : LEAF_OUTLINE_CARD_MAX_TRIS);
+    const SylMaterial *leafm = own_leaf_material(s);
+    if (leafm) /* cards and clusters draw the leaves' own outline */
+        pl.leaf_shape = LEAF_OUTLINE_CARD(leafm->leaf_outline, leafm->leaf_tris < LEAF_OUTLINE_CARD_MAX_TRIS
+                                                                 ? leafm->leaf_tris
+                                                                 : LEAF_OUTLINE_CARD_MAX_TRIS);
     pl.cluster_shape = pl.leaf_shape;
     pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : SYL_CLUSTER_LEAVES;
     SylMesh *m = calloc(1, sizeof *m);

@@ -92,8 +92,8 @@ typedef struct MeshPlan {
     MeshTrig *trig[MESH_MAX_SIDES + 1]; /* by number of sides, as needed */
     size_t nverts;
     float uv_rmin; /* bark v's radius floor: 1/100 of the thickest tube's (mesh.c) */
-    LeafPanel panels[LEAF_OUTLINE_MAX_PANELS]; /* a skeleton's own leaf outline, computed once */
-    int npanels;                               /* 0: Sylva's blade */
+    LeafPanel *panels[256]; /* by material: its own leaf outline, computed once (NULL: the blade) */
+    uint8_t npanels[256];
 } MeshPlan;
 
 /* Grow *arr to hold n + more elements; false when out of memory. */
@@ -104,10 +104,10 @@ const MeshTrig *mesh_trig(MeshPlan *pl, int sides);
 
 /* An organ's unit frame (H along, L across, U = H x L); false when it has none or no size. */
 bool mesh_organ_frame(const SylOrgan *o, float h[3], float l[3], float u[3]);
-/* The half width of a leaf per unit of length (the blade's or the skeleton's own). */
-float mesh_leaf_width(const SylSkeleton *s);
-/* Does the skeleton name its own leaf surface (leaf_outline, leaf_tris, leaf_width)? */
-bool mesh_own_leaf(const SylSkeleton *s);
+/* The half width of a leaf per unit of length (the blade's or its material's own). */
+float mesh_leaf_width(const SylMaterial *m);
+/* Does the material name its own leaf surface (leaf_outline, leaf_tris, leaf_width)? */
+bool mesh_own_leaf(const SylMaterial *m);
 
 /* Organs and polygons (shapes.c). Planning adds items and runs; emission fills them. */
 bool mesh_plan_shapes(MeshPlan *pl);

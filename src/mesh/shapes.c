@@ -8,8 +8,8 @@
  * main vein, u across). A flower is five such petals around H, tilted forward. A needle is a
  * slender three-sided spike. A sphere is a UV sphere of diameter size about H. A disc (cpfg's
  * circle) is a flat fan of diameter size in the H-L plane, facing U, made on both sides. A
- * skeleton may name its own leaf surface (leaf_outline, leaf_tris, leaf_width: Weber–Penn's
- * named shapes, util/leafoutline.h). */
+ * leaf's material may name its own leaf surface (leaf_outline, leaf_tris, leaf_width:
+ * Weber–Penn's named shapes, util/leafoutline.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -53,18 +53,23 @@ bool mesh_organ_frame(const SylOrgan *o, float h[3], float l[3], float u[3]) {
     return true;
 }
 
-/* Does the skeleton name its own leaf surface (Weber–Penn's shapes)? Else Sylva's blade. */
-bool mesh_own_leaf(const SylSkeleton *s) {
-    return s->leaf_tris >= 1 && s->leaf_width > 0 && isfinite(s->leaf_width) &&
-           leaf_outline_valid(s->leaf_outline, s->leaf_tris);
+_Static_assert((int)SYL_LEAF_OUTLINE_OVAL == (int)LEAF_OUTLINE_OVAL && (int)SYL_LEAF_OUTLINE_SQUARE == (int)LEAF_OUTLINE_SQUARE &&
+                   (int)SYL_LEAF_OUTLINE_PALM == (int)LEAF_OUTLINE_PALM,
+               "the public outline numbers are util/leafoutline.h's");
+
+/* Does the material name its own leaf surface (Weber–Penn's shapes)? Else Sylva's blade. */
+bool mesh_own_leaf(const SylMaterial *m) {
+    return m->leaf_tris >= 1 && m->leaf_width > 0 && isfinite(m->leaf_width) &&
+           leaf_outline_valid(m->leaf_outline, m->leaf_tris);
 }
 
-float mesh_leaf_width(const SylSkeleton *s) { return mesh_own_leaf(s) ? 0.5f * s->leaf_width : LEAF_WIDTH; }
+float mesh_leaf_width(const SylMaterial *m) { return mesh_own_leaf(m) ? 0.5f * m->leaf_width : LEAF_WIDTH; }
 
-/* Vertices and triangles of the skeleton's own leaf, both faces. */
-static void own_leaf_counts(const MeshPlan *pl, uint32_t *verts, uint32_t *tris) {
+/* Vertices and triangles of a material's own leaf, both faces. */
+static void own_leaf_counts(const MeshPlan *pl, int mat, uint32_t *verts, uint32_t *tris) {
     *verts = *tris = 0;
-    for (int k = 0; k < pl->npanels; k++) *verts += 2 * (uint32_t)pl->panels[k].n, *tris += 2 * (uint32_t)(pl->panels[k].n - 2);
+    for (int k = 0; k < pl->npanels[mat]; k++)
+        *verts += 2 * (uint32_t)pl->panels[mat][k].n, *tris += 2 * (uint32_t)(pl->panels[mat][k].n - 2);
 }
 
 static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts, uint32_t *tris) {
@@ -78,7 +83,7 @@ static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts,
             pl->leaves == SYL_LEAVES_CLUSTERS)
             break; /* placed apart */
         if (pl->leaves == SYL_LEAVES_CARDS) *verts = 4, *tris = 2;
-        else if (pl->npanels) own_leaf_counts(pl, verts, tris);
+        else if (pl->npanels[o->material]) own_leaf_counts(pl, o->material, verts, tris);
         else *verts = BLADE_V, *tris = BLADE_T;
         if (pl->one_sided && pl->leaves != SYL_LEAVES_CARDS) *verts /= 2, *tris /= 2;
         break;
@@ -232,7 +237,11 @@ static bool plan_polygon(MeshPlan *pl, const SylPolygon *sp, PolyScratch *sc) {
 
 bool mesh_plan_shapes(MeshPlan *pl) {
     const SylSkeleton *s = pl->skel;
-    pl->npanels = mesh_own_leaf(s) ? leaf_outline_panels(s->leaf_outline, s->leaf_tris, pl->panels) : 0;
+    for (int m = 0; m < 256; m++) /* each material's own leaf outline, once */
+        if (mesh_own_leaf(&s->materials[m])) {
+            if (!(pl->panels[m] = malloc(LEAF_OUTLINE_MAX_PANELS * sizeof *pl->panels[m]))) return false;
+            pl->npanels[m] = (uint8_t)leaf_outline_panels(s->materials[m].leaf_outline, s->materials[m].leaf_tris, pl->panels[m]);
+        }
     for (size_t i = 0; i < s->norgans; i++) {
         uint32_t nv, nt;
         organ_counts(pl, &s->organs[i], &nv, &nt);
@@ -340,9 +349,11 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
     const float *c = og->pos, size = og->size;
     switch (og->kind) {
     case SYL_KIND_LEAF:
-        if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(pl->skel) * size);
-        else if (pl->npanels)
-            for (int k = 0; k < pl->npanels; k++) panel(o, &pl->panels[k], c, h, l, u, size, pl->skel->leaf_width * size, pl->one_sided);
+        if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(&pl->skel->materials[og->material]) * size);
+        else if (pl->npanels[og->material])
+            for (int k = 0; k < pl->npanels[og->material]; k++)
+                panel(o, &pl->panels[og->material][k], c, h, l, u, size, pl->skel->materials[og->material].leaf_width * size,
+                      pl->one_sided);
         else blade(o, c, h, l, size, LEAF_WIDTH * size, pl->one_sided);
         break;
     case SYL_KIND_FLOWER:
@@ -458,7 +469,8 @@ float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o) {
         float sides = 3 * 0.5f * edge * sqrtf(size * size + 0.25f * r * r), cap = 0.25f * sqrtf(3.0f) * edge * edge;
         return 0.5f * (sides + cap);
     }
-    if (pl->npanels) return (float)leaf_outline_area(pl->skel->leaf_outline, pl->skel->leaf_tris) * size * pl->skel->leaf_width * size;
+    const SylMaterial *m = &pl->skel->materials[o->material];
+    if (pl->npanels[o->material]) return (float)leaf_outline_area(m->leaf_outline, m->leaf_tris) * size * m->leaf_width * size;
     float a = 0;
     for (int t = 0; t < 8; t++) {
         const float(*p[3]) = {blade_xy[blade_tri[t][0]], blade_xy[blade_tri[t][1]], blade_xy[blade_tri[t][2]]};

@@ -129,29 +129,29 @@ static int draw_tree(const SylProgram *q, const SylGrowOptions *opt, const Scene
     return SYL_OK;
 }
 
-/* Append skeleton b to a, whose axes are below `axis`: indices and axes renumbered,
- * materials carried over. */
-static int append_skeleton(SylSkeleton *a, const SylSkeleton *b, int32_t axis) {
+/* Append skeleton b to a, whose axes are below `axis`: indices and axes renumbered, b's
+ * material m drawn with a's map[m] (surface.h). */
+static int append_skeleton(SylSkeleton *a, const SylSkeleton *b, int32_t axis, const uint8_t map[256]) {
     size_t first = a->nnodes;
     for (size_t i = 0; i < b->nnodes; i++) {
         SylNode n = b->nodes[i];
         if (n.parent >= 0) n.parent += (int32_t)first;
         n.axis += axis;
+        n.material = map[n.material];
         if (syl_skeleton_add_node(a, &n) < 0) return SYL_ELIMIT;
     }
     for (size_t i = 0; i < b->norgans; i++) {
         SylOrgan o = b->organs[i];
         if (o.node >= 0) o.node += (int32_t)first;
+        o.material = map[o.material];
         if (syl_skeleton_add_organ(a, &o) < 0) return SYL_ELIMIT;
     }
     for (size_t i = 0; i < b->npolys; i++) {
         const SylPolygon *p = &b->polys[i];
         if (syl_skeleton_add_polygon(a, (const float(*)[3])b->poly_verts[p->first], p->count,
-                                     p->node >= 0 ? p->node + (int32_t)first : -1, p->material, p->module) < 0)
+                                     p->node >= 0 ? p->node + (int32_t)first : -1, map[p->material], p->module) < 0)
             return SYL_ELIMIT;
     }
-    for (int m = 0; m < b->nmaterials; m++) a->materials[m] = b->materials[m];
-    if (b->nmaterials > a->nmaterials) a->nmaterials = b->nmaterials;
     return SYL_OK;
 }
 
@@ -195,7 +195,7 @@ static SylMesh *obstacle_mesh(const Obstacles *o, const size_t *first_tri, int n
     m->nidx = m->idx_cap = nv;
     m->groups[0] = (SylMeshGroup){.first = 0, .count = (uint32_t)nv, .material = OBSTACLE_MATERIAL};
     m->ngroups = 1;
-    m->materials[OBSTACLE_MATERIAL] = (SylMaterial){{0.72f, 0.70f, 0.66f}, SYL_MATERIAL_PLAIN};
+    m->materials[OBSTACLE_MATERIAL] = (SylMaterial){.rgb = {0.72f, 0.70f, 0.66f}, .kind = SYL_MATERIAL_PLAIN};
     m->nmaterials = OBSTACLE_MATERIAL + 1;
     snprintf(m->name, sizeof m->name, "obstacles");
     return m;
@@ -349,14 +349,21 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
     int32_t axis = 0; /* above every axis of sk: each plant's axes follow the last one's */
     SceneSurface surface = {0};
     for (int i = 0; i < S->nplants && !st; i++) {
-        size_t first = sk->nnodes, first_organ = sk->norgans;
+        size_t first = sk->nnodes;
         if (syl_skeleton_add_part(sk, syl_program_name(progs[i]->q), 0) < 0) st = SYL_ELIMIT;
-        if (placed[i].tree >= 0)
-            st = tree_to_skeleton(&f->trees[placed[i].tree], f->years, sk, axis, &opt->stats.organs);
-        else if (placed[i].lsys) st = append_skeleton(sk, placed[i].lsys, axis);
-        if (!st)
-            scene_surface_carry(&surface, sk, placed[i].tree >= 0 ? NULL : placed[i].lsys, first, first_organ,
-                                syl_program_name(progs[i]->q), p, plants[i].line, plants[i].col, diag);
+        SylSkeleton *grown = NULL; /* a grown tree's own skeleton, then appended as the others */
+        if (!st && placed[i].tree >= 0) {
+            if (!(grown = syl_skeleton_new(syl_program_name(progs[i]->q)))) st = SYL_ELIMIT;
+            else st = tree_to_skeleton(&f->trees[placed[i].tree], f->years, grown, 0, &opt->stats.organs);
+        }
+        const SylSkeleton *own = grown ? grown : placed[i].lsys;
+        if (!st && own) {
+            uint8_t map[256];
+            scene_surface_map(&surface, sk, own, map, syl_program_name(progs[i]->q), p, plants[i].line,
+                              plants[i].col, diag);
+            st = append_skeleton(sk, own, axis, map);
+        }
+        syl_skeleton_free(grown);
         for (size_t k = first; k < sk->nnodes; k++)
             if (sk->nodes[k].axis >= axis) axis = sk->nodes[k].axis + 1;
     }

@@ -1,27 +1,26 @@
-/* What a plant's own skeleton says about its surface (Weber–Penn's leaf outline and trunk
- * jitter: SylSkeleton.leaf_tris, leaf_width, leaf_outline, trunk_jitter), carried into the
- * scene's one skeleton so that a tree meshes in a scene as it does alone. */
+/* Each plant's surface in a scene: its materials (colour, leaf outline, trunk jitter) take
+ * slots of their own in the scene's one palette, so that a tree draws in a scene as it does
+ * alone, whatever the plants beside it. */
 #ifndef SCENE_SURFACE_H
 #define SCENE_SURFACE_H
 #include <stdbool.h>
-#include <stddef.h>
+#include <stdint.h>
 #include <stdio.h>
 
 #include "lang/program.h"
 #include "sylva/skeleton.h"
 
 typedef struct SceneSurface {
-    const char *leaves_by, *jitter_by; /* the plants that gave them (NULL: none yet) */
-    bool leaves_warned, jitter_warned;
+    bool taken[256]; /* slots of the scene's palette that a plant's material holds */
+    bool full_warned;
 } SceneSurface;
 
-/* The plant `name` (the scene's line `line`:`col` of p) just appended to sk, its nodes from
- * first_node and its organs from first_organ; own: its own skeleton, NULL for a grown tree
- * (Sylva's blade leaves, no jitter). The first plant with leaves gives the scene its leaf
- * surface, the first with a trunk jitter its jitter; a trunk without one is marked
- * SYL_NODE_NO_JITTER. One skeleton holds one leaf surface and one jitter: a plant that
- * differs from the one that gave them is warned about (once each) on diag. */
-void scene_surface_carry(SceneSurface *S, SylSkeleton *sk, const SylSkeleton *own, size_t first_node,
-                         size_t first_organ, const char *name, const SylProgram *p, int line, int col, FILE *diag);
+/* The slots of sk's palette for the materials of plant b (the scene's line `line`:`col` of p,
+ * named name): map[m] for each m below b->nmaterials. A material keeps its own number when that
+ * slot is free or holds the same material, else takes the slot of an equal one, else the first
+ * free one. When all 256 are taken by other materials, it shares its number's slot (warned once
+ * on diag). */
+void scene_surface_map(SceneSurface *S, SylSkeleton *sk, const SylSkeleton *b, uint8_t map[256], const char *name,
+                       const SylProgram *p, int line, int col, FILE *diag);
 
 #endif

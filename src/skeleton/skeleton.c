@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sylva/skeleton.h"
+#include "skeleton/store.h"
 #include "util/array.h"
 #include "util/budget.h"
 #include "util/json.h"
@@ -16,15 +17,23 @@ const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf",
 /* A default palette: what the renderer draws when a model sets no colours. Index 0 is bark,
  * 1 leaf, 2 flower, then plain colours for models that count with ' ; , */
 static const SylMaterial palette[] = {
-    {{0.40f, 0.28f, 0.18f}, SYL_MATERIAL_BARK},   {{0.22f, 0.50f, 0.14f}, SYL_MATERIAL_LEAF},
-    {{0.92f, 0.55f, 0.70f}, SYL_MATERIAL_FLOWER}, {{0.85f, 0.75f, 0.25f}, SYL_MATERIAL_PLAIN},
-    {{0.30f, 0.45f, 0.80f}, SYL_MATERIAL_PLAIN},  {{0.80f, 0.30f, 0.25f}, SYL_MATERIAL_PLAIN},
-    {{0.55f, 0.70f, 0.30f}, SYL_MATERIAL_LEAF},   {{0.95f, 0.95f, 0.90f}, SYL_MATERIAL_FLOWER},
+    {.rgb = {0.40f, 0.28f, 0.18f}, .kind = SYL_MATERIAL_BARK},   {.rgb = {0.22f, 0.50f, 0.14f}, .kind = SYL_MATERIAL_LEAF},
+    {.rgb = {0.92f, 0.55f, 0.70f}, .kind = SYL_MATERIAL_FLOWER}, {.rgb = {0.85f, 0.75f, 0.25f}, .kind = SYL_MATERIAL_PLAIN},
+    {.rgb = {0.30f, 0.45f, 0.80f}, .kind = SYL_MATERIAL_PLAIN},  {.rgb = {0.80f, 0.30f, 0.25f}, .kind = SYL_MATERIAL_PLAIN},
+    {.rgb = {0.55f, 0.70f, 0.30f}, .kind = SYL_MATERIAL_LEAF},   {.rgb = {0.95f, 0.95f, 0.90f}, .kind = SYL_MATERIAL_FLOWER},
 };
 
+/* The skeleton and its store, one allocation. */
+typedef struct Whole {
+    SylSkeleton s;
+    struct SylSkeletonStore store;
+} Whole;
+
 SylSkeleton *syl_skeleton_new(const char *name) {
-    SylSkeleton *s = calloc(1, sizeof *s);
-    if (!s) return NULL;
+    Whole *w = calloc(1, sizeof *w);
+    if (!w) return NULL;
+    SylSkeleton *s = &w->s;
+    s->store = &w->store;
     snprintf(s->name, sizeof s->name, "%s", name ? name : "plant");
     int np = (int)(sizeof palette / sizeof *palette);
     for (int i = 0; i < 256; i++) s->materials[i] = palette[i % np];
@@ -34,7 +43,7 @@ SylSkeleton *syl_skeleton_new(const char *name) {
 
 void syl_skeleton_free(SylSkeleton *s) {
     if (!s) return;
-    budget_release(s->budget, s->charged);
+    if (s->store) budget_release(s->store->budget, s->store->charged);
     free(s->nodes);
     free(s->organs);
     free(s->polys);
@@ -70,12 +79,30 @@ int syl_skeleton_add_part(SylSkeleton *s, const char *name, int obstacle) {
     return s->nparts++;
 }
 
+void skeleton_charge(SylSkeleton *s, SylBudget *b, uint64_t bytes) {
+    s->store->budget = b;
+    s->store->charged = bytes;
+}
+
+bool skeleton_reserve_nodes(SylSkeleton *s, size_t n) {
+    return array_reserve(&s->nodes, &s->store->node_cap, n, sizeof *s->nodes);
+}
+
+bool skeleton_reserve_organs(SylSkeleton *s, size_t n) {
+    return array_reserve(&s->organs, &s->store->organ_cap, n, sizeof *s->organs);
+}
+
+void skeleton_adopt_organs(SylSkeleton *s, SylOrgan *organs, size_t n, size_t cap) {
+    free(s->organs);
+    s->organs = organs, s->norgans = n, s->store->organ_cap = cap;
+}
+
 static void note_material(SylSkeleton *s, uint8_t m) {
     if (m >= s->nmaterials) s->nmaterials = m + 1;
 }
 
 int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
-    if (s->nnodes >= INT32_MAX || !array_reserve(&s->nodes, &s->node_cap, s->nnodes + 1, sizeof *n)) return -1;
+    if (s->nnodes >= INT32_MAX || !array_reserve(&s->nodes, &s->store->node_cap, s->nnodes + 1, sizeof *n)) return -1;
     s->nodes[s->nnodes] = *n;
     /* round: callers built their nodes before lobes sat in the padding, which they leave unset;
      * a model lobes its nodes after adding them (weber writes them itself) */
@@ -85,7 +112,7 @@ int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
 }
 
 int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o) {
-    if (s->norgans >= INT32_MAX || !array_reserve(&s->organs, &s->organ_cap, s->norgans + 1, sizeof *o))
+    if (s->norgans >= INT32_MAX || !array_reserve(&s->organs, &s->store->organ_cap, s->norgans + 1, sizeof *o))
         return -1;
     s->organs[s->norgans] = *o;
     note_material(s, o->material);
@@ -96,8 +123,8 @@ int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32
                                  uint8_t material, uint32_t module) {
     /* SylPolygon.first is 32-bit: every vertex index must fit */
     if (s->npolys >= INT32_MAX || s->nverts + n > UINT32_MAX ||
-        !array_reserve(&s->polys, &s->poly_cap, s->npolys + 1, sizeof *s->polys) ||
-        !array_reserve(&s->poly_verts, &s->vert_cap, s->nverts + n, sizeof *s->poly_verts))
+        !array_reserve(&s->polys, &s->store->poly_cap, s->npolys + 1, sizeof *s->polys) ||
+        !array_reserve(&s->poly_verts, &s->store->vert_cap, s->nverts + n, sizeof *s->poly_verts))
         return -1; /* all the room first: a failure leaves no orphan vertices */
     for (uint32_t i = 0; i < n; i++) memcpy(s->poly_verts[s->nverts++], verts[i], sizeof *verts);
     SylPolygon *p = &s->polys[s->npolys];

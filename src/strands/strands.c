@@ -2,6 +2,7 @@
  * it (docs/strands.md); syl_strands_validate: the block's check for `sylva check`. */
 #include <stdio.h>
 
+#include "skeleton/store.h"
 #include "strands/strands.h"
 #include "sylva/trees.h"
 #include "util/array.h"
@@ -46,12 +47,11 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
         budget_release(mem, bytes);
         return SYL_ELIMIT;
     }
-    if (mem != &own) sk->budget = mem, sk->charged = bytes;
+    if (mem != &own) skeleton_charge(sk, mem, bytes);
     else budget_release(mem, bytes);
     sk->nmaterials = c.organs ? 2 : 1;
     /* the counts are known (3.1): one allocation each, not a doubling series */
-    if (!array_reserve(&sk->nodes, &sk->node_cap, c.nodes, sizeof(SylNode)) ||
-        (c.organs && !array_reserve(&sk->organs, &sk->organ_cap, c.organs, sizeof(SylOrgan)))) {
+    if (!skeleton_reserve_nodes(sk, c.nodes) || (c.organs && !skeleton_reserve_organs(sk, c.organs))) {
         if (opt->diag) /* within the budget, but the system said no (ulimit -v, a cgroup) */
             fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton's %llu nodes and %llu leaves (%llu MB)\n",
                     syl_program_name(p), (unsigned long long)c.nodes, (unsigned long long)c.organs,

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "turtle/turtle_internal.h"
+#include "skeleton/store.h"
 #include "util/budget.h"
 
 static void warn_once(Turtle *t, int sym, const char *what) {
@@ -157,10 +158,7 @@ static uint64_t count_nodes(const Turtle *t, const SylString *s) {
 
 static void reserve_nodes(SylSkeleton *sk, uint64_t want) {
     if (want == 0 || want > INT32_MAX) return;
-    SylNode *nodes = realloc(sk->nodes, want * sizeof *nodes);
-    if (!nodes) return; /* grow as needed instead */
-    sk->nodes = nodes;
-    sk->node_cap = want;
+    (void)skeleton_reserve_nodes(sk, (size_t)want); /* when it fails: grow as needed instead */
 }
 
 /* Read the string and build the skeleton. */
@@ -294,7 +292,7 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
         syl_skeleton_free(sk);
         return SYL_ELIMIT;
     }
-    if (mem != &own) sk->budget = mem, sk->charged = bytes;
+    if (mem != &own) skeleton_charge(sk, mem, bytes);
     reserve_nodes(sk, want);
     int status = draw_string(t, s);
     if (status == SYL_OK && t->bad && diag)

@@ -2,6 +2,7 @@
 #include "util/number.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -13,4 +14,15 @@ bool number_read(const char *s, size_t n, double *out) {
     char *e;
     *out = strtod(buf, &e);
     return *e == 0 && isfinite(*out);
+}
+
+void number_write(char *buf, size_t n, double v) {
+    if (v == (double)(long long)v && v > -1e15 && v < 1e15) {
+        snprintf(buf, n, "%.0f", v == 0 ? 0.0 : v); /* -0 as 0 */
+        return;
+    }
+    for (int prec = 1; prec <= 17; prec++) {
+        snprintf(buf, n, "%.*g", prec, v);
+        if (strtod(buf, NULL) == v) return;
+    }
 }

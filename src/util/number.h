@@ -9,4 +9,8 @@
  * (no blank before it, none after; at most 63 bytes). NaN and infinities are refused. */
 bool number_read(const char *s, size_t n, double *out);
 
+/* v written so that strtod reads it back exactly, in as few digits as that takes (whole
+ * numbers below 1e15 without a point; -0 as 0). */
+void number_write(char *buf, size_t n, double v);
+
 #endif

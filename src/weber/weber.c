@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "skeleton/store.h"
 #include "sylva/trees.h"
 #include "util/budget.h"
 #include "util/pages.h"
@@ -160,9 +161,9 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     if (!st && g->failed) st = SYL_ELIMIT;
     if (!st) weber_write_leaves(g, sk);
     if (!st) {
-        uint64_t bytes = (uint64_t)sk->node_cap * sizeof *sk->nodes + (uint64_t)sk->organ_cap * sizeof *sk->organs;
+        uint64_t bytes = (uint64_t)sk->store->node_cap * sizeof *sk->nodes + (uint64_t)sk->store->organ_cap * sizeof *sk->organs;
         if (budget_charge(g->budget == &local ? NULL : g->budget, bytes)) {
-            if (g->budget != &local) sk->budget = g->budget, sk->charged = bytes;
+            if (g->budget != &local) skeleton_charge(sk, g->budget, bytes);
         } else {
             st = SYL_ELIMIT;
         }

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "skeleton/store.h"
 #include "util/leafoutline.h"
 #include "weber/internal.h"
 
@@ -70,7 +71,7 @@ static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], cons
     nd.material = SYL_MATERIAL_BARK;
     nd.module = (uint32_t)id;
     if (st->level == 0) nd.lobes = wr->lobes, nd.lobe_depth = wr->lobe_depth; /* Arbaro lobes the trunk only */
-    if (wr->sk->nnodes >= wr->sk->node_cap) return wr->failed = true, -1; /* (sized in advance) */
+    if (wr->sk->nnodes >= wr->sk->store->node_cap) return wr->failed = true, -1; /* (sized in advance) */
     int32_t k = (int32_t)wr->sk->nnodes;
     wr->sk->nodes[wr->sk->nnodes++] = nd;
     wr->dist[k] = dist;
@@ -108,7 +109,7 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
         !weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist))
         wr.failed = true;
     else
-        sk->node_cap = most;
+        sk->store->node_cap = most;
     wr.dist = g->node_dist;
     size_t a = 0;
     for (size_t i = 0; i < ns && !wr.failed; i++) {
@@ -144,7 +145,7 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
         st->node_count = (uint32_t)(sk->nnodes - st->node_first);
     }
     /* Arbaro's 0ScaleV: jitter of the trunk's surface (the paper's varies its radius, radius.c) */
-    if (g->w.convention == WEBER_ARBARO) sk->trunk_jitter = (float)g->w.Scale0V;
+    if (g->w.convention == WEBER_ARBARO) sk->materials[SYL_MATERIAL_BARK].trunk_jitter = (float)g->w.Scale0V;
     free(att);
     free(attach_node);
     return wr.failed ? SYL_ELIMIT : SYL_OK;
@@ -164,13 +165,14 @@ int32_t weber_leaf_node(const WeberGen *g, int id, float dist) {
 
 void weber_write_leaves(WeberGen *g, SylSkeleton *sk) {
     if (g->nlvs) { /* the leaves are the organs, in order already */
-        sk->organs = g->lvs, sk->norgans = g->nlvs, sk->organ_cap = g->lvs_cap;
+        skeleton_adopt_organs(sk, g->lvs, g->nlvs, g->lvs_cap);
         g->lvs = NULL;
         if (sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
         /* the leaves' surface: LeafShape's outline (util/leafoutline.h), LeafScaleX wide */
-        sk->leaf_tris = g->w.leaf_tris;
-        sk->leaf_width = (float)g->w.LeafScaleX;
-        sk->leaf_outline = g->w.leaf_kind == WEBER_LEAF_SQUARE ? LEAF_OUTLINE_SQUARE
+        SylMaterial *m = &sk->materials[SYL_MATERIAL_LEAF];
+        m->leaf_tris = (uint16_t)g->w.leaf_tris;
+        m->leaf_width = (float)g->w.LeafScaleX;
+        m->leaf_outline = g->w.leaf_kind == WEBER_LEAF_SQUARE ? LEAF_OUTLINE_SQUARE
                            : g->w.leaf_kind == WEBER_LEAF_PALM ? LEAF_OUTLINE_PALM
                                                                : LEAF_OUTLINE_OVAL;
     }

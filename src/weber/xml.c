@@ -5,8 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <libxml/xmlwriter.h>
 
+#include "util/number.h"
+#include "util/paramxml.h"
 #include "weber/xml.h"
 
 /* Arbaro's order (its writer's, as in its species files): the globals, then per level. */
@@ -33,16 +34,7 @@ static const double *slot(const WeberParams *w, const WeberParamInfo *pi) {
 
 /* The shortest %.Ng that strtod reads back as v; whole numbers without an exponent (60, not
  * 6e+01: %g turns to one only for them or for tiny values). */
-static void number(char *buf, size_t n, double v) {
-    if (v == (double)(long long)v && v > -1e15 && v < 1e15) {
-        snprintf(buf, n, "%.0f", v == 0 ? 0.0 : v); /* -0 as 0 */
-        return;
-    }
-    for (int prec = 1; prec <= 17; prec++) {
-        snprintf(buf, n, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v) return;
-    }
-}
+static void number(char *buf, size_t n, double v) { number_write(buf, n, v); }
 
 static const char *leaf_shape(const WeberParams *w, char *buf, size_t n) {
     switch (w->leaf_kind) {
@@ -65,77 +57,42 @@ static const char *global_text(const WeberParams *w, const WeberParamInfo *pi, c
 
 /* ---- XML ---- */
 
-typedef struct Xml {
-    xmlTextWriterPtr tw;
-    int rc; /* the first negative result of a writer call */
-} Xml;
-
-static void check(Xml *x, int rc) {
-    if (rc < 0 && x->rc >= 0) x->rc = rc;
-}
-
-static void param(Xml *x, const char *name, const char *value) {
-    check(x, xmlTextWriterStartElement(x->tw, BAD_CAST "param"));
-    check(x, xmlTextWriterWriteAttribute(x->tw, BAD_CAST "name", BAD_CAST name));
-    check(x, xmlTextWriterWriteAttribute(x->tw, BAD_CAST "value", BAD_CAST value));
-    check(x, xmlTextWriterEndElement(x->tw));
-}
-
 int weber_write_xml(const WeberParams *w, const char *species, FILE *out) {
-    xmlBufferPtr buf = xmlBufferCreate();
-    xmlTextWriterPtr tw = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;
-    if (!tw) {
-        xmlBufferFree(buf);
-        return SYL_ELIMIT;
-    }
-    Xml x = {tw, 0};
-    check(&x, xmlTextWriterSetIndent(tw, 1));
-    check(&x, xmlTextWriterSetIndentString(tw, BAD_CAST "  "));
-    check(&x, xmlTextWriterSetQuoteChar(tw, '\''));
-    check(&x, xmlTextWriterStartDocument(tw, "1.0", NULL, NULL));
-    check(&x, xmlTextWriterStartElement(tw, BAD_CAST "arbaro"));
-    check(&x, xmlTextWriterStartElement(tw, BAD_CAST "species"));
-    check(&x, xmlTextWriterWriteAttribute(tw, BAD_CAST "name", BAD_CAST species));
-    check(&x, xmlTextWriterWriteComment(tw, BAD_CAST " general params "));
+    ParamXml *x = paramxml_begin("arbaro", species);
+    if (!x) return SYL_ELIMIT;
+    paramxml_comment(x, " general params ");
     char v[64];
     for (size_t i = 0; i < sizeof arbaro_globals / sizeof *arbaro_globals; i++) {
         const WeberParamInfo *pi = info(arbaro_globals[i], false);
-        if (pi) param(&x, pi->name, global_text(w, pi, v, sizeof v));
+        if (pi) paramxml_param(x, pi->name, global_text(w, pi, v, sizeof v));
     }
     /* Sylva's own: an Arbaro file means convention arbaro, no seed, no envelope, no lod, ZScale 1 0 */
     const WeberParamInfo *zs = info("ZScale", false), *zv = info("ZScaleV", false);
-    if (zs && slot(w, zs)[0] != zs->def[0]) param(&x, "ZScale", global_text(w, zs, v, sizeof v));
-    if (zv && slot(w, zv)[0] != zv->def[0]) param(&x, "ZScaleV", global_text(w, zv, v, sizeof v));
-    if (w->convention == WEBER_PAPER) param(&x, "convention", "paper");
+    if (zs && slot(w, zs)[0] != zs->def[0]) paramxml_param(x, "ZScale", global_text(w, zs, v, sizeof v));
+    if (zv && slot(w, zv)[0] != zv->def[0]) paramxml_param(x, "ZScaleV", global_text(w, zv, v, sizeof v));
+    if (w->convention == WEBER_PAPER) paramxml_param(x, "convention", "paper");
     if (w->has_seed) {
         snprintf(v, sizeof v, "%llu", (unsigned long long)w->seed);
-        param(&x, "Seed", v);
+        paramxml_param(x, "Seed", v);
     }
-    if (w->envelope) param(&x, "envelope", w->envelope);
+    if (w->envelope) paramxml_param(x, "envelope", w->envelope);
     if (w->lod) {
         snprintf(v, sizeof v, "%d", w->lod);
-        param(&x, "lod", v);
+        paramxml_param(x, "lod", v);
     }
     for (int l = 0; l < 4; l++) {
         char comment[32], name[64];
         snprintf(comment, sizeof comment, " level %d ", l);
-        check(&x, xmlTextWriterWriteComment(tw, BAD_CAST comment));
+        paramxml_comment(x, comment);
         for (size_t i = 0; i < sizeof arbaro_levels / sizeof *arbaro_levels; i++) {
             const WeberParamInfo *pi = info(arbaro_levels[i], true);
             if (!pi) continue;
             snprintf(name, sizeof name, "%d%s", l, pi->name);
             number(v, sizeof v, slot(w, pi)[l]);
-            param(&x, name, v);
+            paramxml_param(x, name, v);
         }
     }
-    check(&x, xmlTextWriterEndDocument(tw));
-    xmlFreeTextWriter(tw); /* flushes into buf */
-    int status = SYL_OK;
-    if (x.rc < 0) status = SYL_ELIMIT;
-    else if (fwrite(xmlBufferContent(buf), 1, (size_t)xmlBufferLength(buf), out) != (size_t)xmlBufferLength(buf))
-        status = SYL_EIO;
-    xmlBufferFree(buf);
-    return status;
+    return paramxml_end(x, out);
 }
 
 /* ---- .syl ---- */

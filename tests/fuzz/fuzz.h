@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/arbaro.h"
 #include "sylva/grow.h"
 #include "sylva/sylva.h"
 
@@ -27,6 +28,21 @@ static char *fuzz_text(const uint8_t *data, size_t size) {
     memcpy(t, data, size);
     t[size] = 0;
     return t;
+}
+
+/* The input as a NUL-terminated XML text for the XML readers (lang/arbaro.c): behind head
+ * (a root element) when it does not read as XML already, so that every input reaches
+ * libxml2; its length in *n. */
+static char *fuzz_xml_text(const uint8_t *data, size_t size, const char *head, size_t *n) {
+    Source src = {.path = "fuzz.xml", .text = (const char *)data, .len = size};
+    size_t h = syl_arbaro_detect(&src) ? 0 : strlen(head);
+    char *text = malloc(size + h + 1);
+    if (!text) abort();
+    memcpy(text, head, h);
+    memcpy(text + h, data, size);
+    text[size + h] = 0;
+    *n = size + h;
+    return text;
 }
 
 /* The source harnesses' compile, as `sylva check` does it: `grow` and `scene` blocks

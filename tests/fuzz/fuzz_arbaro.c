@@ -9,14 +9,8 @@
 #include "weber/xml.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
-    static const char head[] = "<arbaro>";
-    Source src = {.path = "fuzz.xml", .text = (const char *)data, .len = size};
-    size_t skip = syl_arbaro_detect(&src) ? sizeof head - 1 : 0, n = size + sizeof head - 1 - skip;
-    char *text = malloc(n + 1);
-    if (!text) abort();
-    memcpy(text, head + skip, sizeof head - 1 - skip);
-    memcpy(text + (sizeof head - 1 - skip), data, size);
-    text[n] = 0;
+    size_t n;
+    char *text = fuzz_xml_text(data, size, "<arbaro>", &n);
     FILE *diag = fuzz_diag();
     SylProgram *p = fuzz_compile("fuzz.xml", text, n, 0);
     if (p) {

@@ -115,7 +115,7 @@ static void radius_profile(void **state) {
 
 /* 0Scale and 0ScaleV on the trunk's base radius: the paper's Ratio x length x (0Scale ± 0ScaleV),
  * one uniform draw per trunk; Arbaro's Ratio x length (0Scale comes in weber_radius, 0ScaleV
- * jitters the mesh: SylSkeleton.trunk_jitter). */
+ * jitters the mesh: the bark's SylMaterial.trunk_jitter). */
 static void trunk_scale(void **state) {
     (void)state;
     WeberGen g = {.seed = 13};
