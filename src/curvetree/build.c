@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "skeleton/store.h"
 #include "curvetree/curvetree.h"
 #include "util/array.h"
 #include "util/rng.h"
@@ -347,8 +348,8 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     Rng rng = rng_stream(seed, 0, 0, 0);
     uint64_t most_nodes, most_leaves; /* reserved at once (counted by the caller's budget): no doubling series */
     ct_bounds(P, trunk, &most_nodes, &most_leaves);
-    if (!array_reserve(&sk->nodes, &sk->node_cap, sk->nnodes + most_nodes, sizeof(SylNode)) ||
-        (most_leaves && !array_reserve(&sk->organs, &sk->organ_cap, sk->norgans + most_leaves, sizeof(SylOrgan))))
+    if (!skeleton_reserve_nodes(sk, sk->nnodes + most_nodes) ||
+        (most_leaves && !skeleton_reserve_organs(sk, sk->norgans + most_leaves)))
         return SYL_ELIMIT;
     /* the trunk: Eq. (3), width = length / 10 x trunkWidth at the base, linear to trunkEndWidth
      * of it at the top, each control point's width Gaussian about the linear one */

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "skeleton/store.h"
 #include "curvetree/curvetree.h"
 #include "env/obstacles.h"
 #include "sylva/trees.h"
@@ -133,7 +134,7 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
     SylSkeleton *sk = NULL;
     if (!st && !(sk = syl_skeleton_new(syl_program_name(p)))) st = SYL_ELIMIT, budget_release(mem, bytes);
     if (!st) {
-        if (mem != &own) sk->budget = mem, sk->charged = bytes;
+        if (mem != &own) skeleton_charge(sk, mem, bytes);
         else budget_release(mem, bytes);
         uint64_t seed = opt->use_seed ? opt->seed : (uint64_t)P.seed;
         seed += opt->seed_offset; /* a scene's n-th plant of a row: a tree of its own */
