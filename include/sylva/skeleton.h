@@ -111,6 +111,10 @@ typedef struct SylSkeleton {
      * uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex (not at nodes marked
      * SYL_NODE_NO_JITTER). 0: none. */
     float trunk_jitter;
+    /* Points of a ring around an axis of branch order 0, 1, 2, 3 and more, as the model asks
+     * (Pafčo's DETAIL, docs/pafco.md); the mesher uses them when its caller set no sides.
+     * 0: the mesher's own rule (sides falling with the radius). */
+    uint8_t ring_sides[4];
     SylBudget *budget; /* the memory budget its nodes count against until it is freed (NULL: none) */
     uint64_t charged;
     /* A scene's objects, each written as an object or node of its own (docs/mesh.md#scenes):

@@ -32,12 +32,15 @@ typedef struct SylTreeOptions {
  * of model, SYL_ELIMIT beyond the memory budget. */
 int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+/* Pafčo's generator (docs/pafco.md): opt->age in (0, 1] scales the tree's height. */
+int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 
 /* Check a block's parameters as `sylva check` does (syl_validate calls these): returns
  * the number of errors reported to diag, each with file:line:col, the line and a caret
  * (negative when every error was of --set, a bad command line). */
 int syl_weber_validate(const SylProgram *p, FILE *diag);
 int syl_strands_validate(const SylProgram *p, FILE *diag);
+int syl_pafco_validate(const SylProgram *p, FILE *diag);
 
 #ifdef __cplusplus
 }

@@ -1,26 +1,30 @@
 /* sylva convert: a weber block, or a species of an Arbaro XML file, written as Arbaro XML or
- * as a .syl weber block (docs/arbaro.md). */
+ * as a .syl weber block (docs/arbaro.md); a pafco block or Pafčo file written as a Pafčo file or
+ * a .syl pafco block (docs/pafco.md). */
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "cli/cli.h"
+#include "pafco/params.h"
 #include "weber/params.h"
 #include "weber/xml.h"
 
 const CliCommand cli_convert_command = {
     .name = "convert",
-    .what = "write a weber block as Arbaro XML, or an Arbaro species file as a .syl block",
+    .what = "write a weber block as Arbaro XML, a pafco block as a Pafčo file, and back",
     .run = cmd_convert,
-    .usage = "sylva convert FILE[:Model] -o OUT.xml|OUT.syl [--set NAME=VALUE]...",
+    .usage = "sylva convert FILE[:Model] -o OUT.xml|OUT.cfg|OUT.syl [--set NAME=VALUE]...",
     .about = "Read a weber model (a `weber` block of a .syl file, or a species of an Arbaro XML\n"
              "file) and write every one of its parameters: as an Arbaro species file for *.xml, in\n"
              "Arbaro's order and spelling, or as a `weber` block for *.syl, per-level parameters as\n"
-             "lists over levels 0 to 3. Values are written so that they read back exactly: converting\n"
+             "lists over levels 0 to 3. A pafco model (a `pafco` block, or a Pafčo file) is written as\n"
+             "a Pafčo file (PARAMETER=value) for *.cfg, as a `pafco` block for *.syl. Values are\n"
+             "written so that they read back exactly: converting\n"
              "the written file again gives the same bytes.\n",
     .options = (const CliUse[]){
-        {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a weber block\n"
-                                           "for *.syl"},
+        {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a Pafčo file\n"
+                                           "for *.cfg, a weber or pafco block for *.syl"},
         {.option = CLI_OPT_SET},
         {.option = CLI_OPT_ALLOW_PATH},
         {0},
@@ -46,24 +50,41 @@ static const char *species_name(const SylProgram *p) {
     return name;
 }
 
+/* A pafco model as a Pafčo file (*.cfg) or a .syl pafco block. */
+static int convert_pafco(const SylProgram *p, const char *output, bool cfg) {
+    PafcoParams P;
+    if (pafco_params_read(p, &P, stderr)) return SYL_EMODEL;
+    OutFile out;
+    if (!out_open(&out, output)) return SYL_EIO;
+    int status = cfg ? pafco_write_cfg(&P, out.f) : pafco_write_syl(&P, syl_program_name(p), out.f);
+    return out_close(&out, status);
+}
+
 int cmd_convert(int argc, char **argv) {
     ModelArgs m = {0};
     CliArgs a = {.m = &m};
     int done = cli_parse(&cli_convert_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
     const char *output = a.output;
-    bool xml = output && ends_with(output, ".xml"), syl = output && ends_with(output, ".syl");
-    if (!xml && !syl) {
-        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML) or *.syl (a weber block) "
-                        "with -o\n", output ? "cannot tell the format" : "no output");
+    bool xml = output && ends_with(output, ".xml"), syl = output && ends_with(output, ".syl"),
+         cfg = output && ends_with(output, ".cfg");
+    if (!xml && !syl && !cfg) {
+        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML), *.cfg (a Pafčo file) or *.syl "
+                        "(a weber or pafco block) with -o\n", output ? "cannot tell the format" : "no output");
         return SYL_EUSAGE;
     }
     cli_model_spec(&m, a.files[0]);
     int status;
     SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (!p) return status;
-    if (syl_program_kind(p) != SYL_MODEL_WEBER) {
-        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes weber blocks and Arbaro species\n",
+    if (syl_program_kind(p) == SYL_MODEL_PAFCO && !xml) {
+        status = convert_pafco(p, output, cfg);
+        syl_program_free(p);
+        return status;
+    }
+    if (syl_program_kind(p) != SYL_MODEL_WEBER || cfg) {
+        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes weber blocks and Arbaro species as *.xml "
+                        "or *.syl, pafco blocks as *.cfg or *.syl\n",
                 syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
         syl_program_free(p);
         return SYL_EUSAGE;

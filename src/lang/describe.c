@@ -255,6 +255,7 @@ static const char *keyword(SylModelKind k) {
     case SYL_MODEL_WEBER: return "weber";
     case SYL_MODEL_STRANDS: return "strands";
     case SYL_MODEL_ECOSYSTEM: return "ecosystem";
+    case SYL_MODEL_PAFCO: return "pafco";
     default: return "lsystem";
     }
 }
@@ -269,6 +270,7 @@ static void describe_model(const SylProgram *p, DModel *m) {
     case SYL_MODEL_WEBER: describe_block(p, &sch_weber, m); break;
     case SYL_MODEL_STRANDS: describe_block(p, &sch_strands, m); break;
     case SYL_MODEL_ECOSYSTEM: describe_block(p, &sch_ecosystem, m); break;
+    case SYL_MODEL_PAFCO: describe_block(p, &sch_pafco, m); break;
     case SYL_MODEL_GROW: describe_lines(p, m); break;
     default: break;
     }
@@ -463,7 +465,8 @@ static void md_table(FILE *out, const SchTable *t, const char *title, const char
 void lang_directives_reference(FILE *out) {
     fputs("# Directives: the reference tables\n\n"
           "Generated from the tables the readers check lines and `--set` against (src/lang/settings.def,\n"
-          "src/weber/params.def, src/strands/params.def, src/eco/params.def) by `tools/gen-directives`;\n"
+          "src/weber/params.def, src/strands/params.def, src/eco/params.def,\n"
+          "src/pafco/params.def) by `tools/gen-directives`;\n"
           "do not edit by hand (`build/tests/test_schema` fails when this file and the tables differ).\n"
           "`sylva describe FILE` prints the same rows with a model's values ([cli.md](cli.md#sylva-describe)).\n"
           "A range is written `[lo, hi]`, `(` `)` for an open end; `-` is no default.\n",
@@ -478,4 +481,7 @@ void lang_directives_reference(FILE *out) {
     md_table(out, &sch_ecosystem, "`ecosystem` directives",
              "[ecosystem.md](ecosystem.md) explains them; a species' lines follow its `species NAME` line "
              "(`--set NAME.maturity=30` for one species).");
+    md_table(out, &sch_pafco, "`pafco` parameters",
+             "[pafco.md](pafco.md#parameters) explains them, with their English aliases; a Pafčo file "
+             "(`NAME=value`) takes the same names.");
 }

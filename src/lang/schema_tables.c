@@ -50,8 +50,15 @@ static const SchRow ecosystem_rows[] = {
 #include "eco/params.def"
 };
 
+static const SchRow pafco_rows[] = {
+#define PF(f, nm, al, ty, l, h, d, dt, u, mean) \
+    {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean, .aliases = al},
+#include "pafco/params.def"
+};
+
 #define TABLE(var, k, nn, rows) const SchTable var = {k, nn, rows, (int)(sizeof rows / sizeof *rows)};
 TABLE(sch_lsystem, "lsystem", "setting", lsystem_rows)
 TABLE(sch_weber, "weber", "weber parameter", weber_rows)
 TABLE(sch_strands, "strands", "strands parameter", strands_rows)
 TABLE(sch_ecosystem, "ecosystem", "ecosystem directive", ecosystem_rows)
+TABLE(sch_pafco, "pafco", "Pafčo parameter", pafco_rows)
