@@ -79,6 +79,7 @@ enum { SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, SYL_MATERIAL_P
 typedef struct SylMaterial {
     float rgb[3];   /* base colour, 0..1 */
     uint8_t kind;   /* SYL_MATERIAL_*: chooses the procedural texture */
+    uint8_t translucency; /* light let through, 0..255 (glTF KHR_materials_transmission); 0: opaque */
 } SylMaterial;
 
 typedef struct SylSkeletonPart {

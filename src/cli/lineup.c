@@ -185,7 +185,7 @@ SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, const 
         for (int g = 0; g < meshes[i]->ngroups; g++)
             map[g0 + g] = find_material(m->materials, &nmat, &meshes[i]->materials[meshes[i]->groups[g].material]);
     int rmat = nmat;
-    m->materials[rmat] = (SylMaterial){{0.85f, 0.12f, 0.08f}, SYL_MATERIAL_PLAIN};
+    m->materials[rmat] = (SylMaterial){.rgb = {0.85f, 0.12f, 0.08f}, .kind = SYL_MATERIAL_PLAIN};
     m->nmaterials = rmat + 1;
     snprintf(m->name, sizeof m->name, "lineup");
 

@@ -220,6 +220,7 @@ static void materials(Gen *g) {
         mt->kind = fl ? SYL_MATERIAL_FLOWER : SYL_MATERIAL_LEAF;
         /* leaf textures of their own are not read yet: a shade of green (or blossom) a file */
         for (int c = 0; c < 3; c++) mt->rgb[c] = (fl ? blossom : green)[c] * (1.0f - 0.12f * (float)(i % 3));
+        if (P->bil_leaves) mt->translucency = (uint8_t)lround(255 * P->transluc); /* BIL_TRANSLUC */
     }
     sk->nmaterials = 1 + g->nleafmat;
     /* the leaves' surface: squares (§4.4.1), or LBIL_SIRKA x LBIL_DLZKA billboards */

@@ -72,7 +72,7 @@ static SylMesh *billboard_mesh(const SylMesh *m, int k, const float c[3], float 
         return NULL;
     }
     memcpy(b->materials, m->materials, sizeof b->materials);
-    b->materials[SYL_IMPOSTOR_MATERIAL] = (SylMaterial){{1, 1, 1}, SYL_MATERIAL_PLAIN};
+    b->materials[SYL_IMPOSTOR_MATERIAL] = (SylMaterial){.rgb = {1, 1, 1}, .kind = SYL_MATERIAL_PLAIN};
     b->nmaterials = 256;
     snprintf(b->name, sizeof b->name, "%s", m->name);
     for (int q = 0; q < 2 * k; q++) {

@@ -195,7 +195,7 @@ static SylMesh *obstacle_mesh(const Obstacles *o, const size_t *first_tri, int n
     m->nidx = m->idx_cap = nv;
     m->groups[0] = (SylMeshGroup){.first = 0, .count = (uint32_t)nv, .material = OBSTACLE_MATERIAL};
     m->ngroups = 1;
-    m->materials[OBSTACLE_MATERIAL] = (SylMaterial){{0.72f, 0.70f, 0.66f}, SYL_MATERIAL_PLAIN};
+    m->materials[OBSTACLE_MATERIAL] = (SylMaterial){.rgb = {0.72f, 0.70f, 0.66f}, .kind = SYL_MATERIAL_PLAIN};
     m->nmaterials = OBSTACLE_MATERIAL + 1;
     snprintf(m->name, sizeof m->name, "obstacles");
     return m;

@@ -16,10 +16,10 @@ const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf",
 /* A default palette: what the renderer draws when a model sets no colours. Index 0 is bark,
  * 1 leaf, 2 flower, then plain colours for models that count with ' ; , */
 static const SylMaterial palette[] = {
-    {{0.40f, 0.28f, 0.18f}, SYL_MATERIAL_BARK},   {{0.22f, 0.50f, 0.14f}, SYL_MATERIAL_LEAF},
-    {{0.92f, 0.55f, 0.70f}, SYL_MATERIAL_FLOWER}, {{0.85f, 0.75f, 0.25f}, SYL_MATERIAL_PLAIN},
-    {{0.30f, 0.45f, 0.80f}, SYL_MATERIAL_PLAIN},  {{0.80f, 0.30f, 0.25f}, SYL_MATERIAL_PLAIN},
-    {{0.55f, 0.70f, 0.30f}, SYL_MATERIAL_LEAF},   {{0.95f, 0.95f, 0.90f}, SYL_MATERIAL_FLOWER},
+    {.rgb = {0.40f, 0.28f, 0.18f}, .kind = SYL_MATERIAL_BARK},   {.rgb = {0.22f, 0.50f, 0.14f}, .kind = SYL_MATERIAL_LEAF},
+    {.rgb = {0.92f, 0.55f, 0.70f}, .kind = SYL_MATERIAL_FLOWER}, {.rgb = {0.85f, 0.75f, 0.25f}, .kind = SYL_MATERIAL_PLAIN},
+    {.rgb = {0.30f, 0.45f, 0.80f}, .kind = SYL_MATERIAL_PLAIN},  {.rgb = {0.80f, 0.30f, 0.25f}, .kind = SYL_MATERIAL_PLAIN},
+    {.rgb = {0.55f, 0.70f, 0.30f}, .kind = SYL_MATERIAL_LEAF},   {.rgb = {0.95f, 0.95f, 0.90f}, .kind = SYL_MATERIAL_FLOWER},
 };
 
 SylSkeleton *syl_skeleton_new(const char *name) {

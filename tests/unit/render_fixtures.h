@@ -15,10 +15,10 @@
 #include "util/rng.h"
 
 static const SylMaterial palette[4] = {
-    {{0.40f, 0.28f, 0.18f}, SYL_MATERIAL_BARK},
-    {{0.22f, 0.50f, 0.14f}, SYL_MATERIAL_LEAF},
-    {{0.92f, 0.55f, 0.70f}, SYL_MATERIAL_FLOWER},
-    {{0.85f, 0.10f, 0.10f}, SYL_MATERIAL_PLAIN},
+    {.rgb = {0.40f, 0.28f, 0.18f}, .kind = SYL_MATERIAL_BARK},
+    {.rgb = {0.22f, 0.50f, 0.14f}, .kind = SYL_MATERIAL_LEAF},
+    {.rgb = {0.92f, 0.55f, 0.70f}, .kind = SYL_MATERIAL_FLOWER},
+    {.rgb = {0.85f, 0.10f, 0.10f}, .kind = SYL_MATERIAL_PLAIN},
 };
 
 /* An empty mesh with materials 0 bark, 1 leaf, 2 flower, 3 plain red (repeating). */

@@ -222,7 +222,7 @@ static void alpha_tested_card_shows_its_shape(void **state) {
 static void tree_covers_a_plausible_share(void **state) {
     (void)state;
     SylMesh *m = synth_tree(6000);
-    for (int i = 0; i < 3; i++) m->materials[i] = (SylMaterial){{0.9f, 0.05f, 0.05f}, SYL_MATERIAL_PLAIN};
+    for (int i = 0; i < 3; i++) m->materials[i] = (SylMaterial){.rgb = {0.9f, 0.05f, 0.05f}, .kind = SYL_MATERIAL_PLAIN};
     uint8_t *rgb = render(m, (SylRenderOptions){0});
     double share = (double)red_pixels(rgb, W * H) / (W * H);
     if (share < 0.08 || share > 0.75) fail_msg("the tree covers %.3f of the frame", share);
