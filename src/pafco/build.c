@@ -200,12 +200,14 @@ static void branch(Gen *g, int gen, int32_t from, V3 p, double r_parent, V3 dir,
     free(pts), free(ids), free(hs);
 }
 
-static bool flowerish(const char *name) {
-    static const char *const words[] = {"flower", "blossom", "petal", "kvet"};
-    for (size_t i = 0; i < sizeof words / sizeof *words; i++)
+/* Whether a texture's file name has one of the words "a|b|c". */
+static bool named(const char *name, const char *const *words, size_t n) {
+    for (size_t i = 0; i < n; i++)
         if (strstr(name, words[i])) return true;
     return false;
 }
+static const char *const flower_words[] = {"flower", "blossom", "petal", "kvet"};
+static const char *const needle_words[] = {"needle", "ihlic", "ihla"};
 
 static void materials(Gen *g) {
     const PafcoParams *P = g->P;
@@ -213,13 +215,15 @@ static void materials(Gen *g) {
     int n = P->ntex;
     if (P->ltex_count > 0 && P->ltex_count < n) n = P->ltex_count;
     g->nleafmat = n > 0 ? n : 1;
-    static const float green[3] = {0.22f, 0.45f, 0.13f}, blossom[3] = {0.93f, 0.62f, 0.75f};
+    static const float green[3] = {0.22f, 0.45f, 0.13f}, blossom[3] = {0.93f, 0.62f, 0.75f},
+                       needle[3] = {0.10f, 0.26f, 0.10f};
     for (int i = 0; i < g->nleafmat; i++) {
-        bool fl = n > 0 && flowerish(P->tex_files[i]);
+        bool fl = n > 0 && named(P->tex_files[i], flower_words, 4), ne = n > 0 && named(P->tex_files[i], needle_words, 3);
         SylMaterial *mt = &sk->materials[1 + i];
         mt->kind = fl ? SYL_MATERIAL_FLOWER : SYL_MATERIAL_LEAF;
-        /* leaf textures of their own are not read yet: a shade of green (or blossom) a file */
-        for (int c = 0; c < 3; c++) mt->rgb[c] = (fl ? blossom : green)[c] * (1.0f - 0.12f * (float)(i % 3));
+        /* leaf textures of their own are not read yet: a colour a file, by what its name says */
+        const float *rgb = fl ? blossom : ne ? needle : green;
+        for (int c = 0; c < 3; c++) mt->rgb[c] = rgb[c] * (1.0f - 0.12f * (float)(i % 3));
         if (P->bil_leaves) mt->translucency = (uint8_t)lround(255 * P->transluc); /* BIL_TRANSLUC */
     }
     sk->nmaterials = 1 + g->nleafmat;
