@@ -39,6 +39,7 @@ typedef struct Gen {
     const PafcoParams *P;
     SylSkeleton *sk;
     Rng rng;
+    Rng leaf_rng;   /* leaves draw from their own stream: the same branches whatever the leaves */
     Budget *mem;
     uint64_t charged;
     int32_t axes;
@@ -76,18 +77,18 @@ static int32_t node(Gen *g, V3 p, V3 h, double r, int32_t parent, int32_t axis, 
 static void leaf(Gen *g, V3 p, V3 h, double size, int32_t at) {
     if (g->failed || !(size > 0) || !room(g)) return;
     V3 l = perp(h);
-    double roll = uniform(g, 0, 2 * M_PI); /* "the other angles are random" */
+    double roll = 2 * M_PI * rng_unit(&g->leaf_rng); /* "the other angles are random" */
     V3 l2 = norm(add(scale(l, cos(roll)), scale(cross(h, l), sin(roll)))), u = cross(h, l2);
-    int mat = 1 + (g->nleafmat > 1 ? (int)(rng_next(&g->rng) % (uint64_t)g->nleafmat) : 0);
+    int mat = 1 + (g->nleafmat > 1 ? (int)(rng_next(&g->leaf_rng) % (uint64_t)g->nleafmat) : 0);
     SylOrgan o = {.pos = {(float)p.x, (float)p.y, (float)p.z}, .h = {(float)h.x, (float)h.y, (float)h.z},
                   .l = {(float)l2.x, (float)l2.y, (float)l2.z}, .u = {(float)u.x, (float)u.y, (float)u.z},
                   .size = (float)size, .node = at, .kind = SYL_KIND_LEAF, .material = (uint8_t)mat};
     if (syl_skeleton_add_organ(g->sk, &o) < 0) g->failed = true;
 }
 
-/* A random unit vector (uniform on the sphere). */
+/* A random unit vector (uniform on the sphere), from the leaves' stream. */
 static V3 on_sphere(Gen *g) {
-    double z = uniform(g, -1, 1), a = uniform(g, 0, 2 * M_PI), s = sqrt(1 - z * z);
+    double z = 2 * rng_unit(&g->leaf_rng) - 1, a = 2 * M_PI * rng_unit(&g->leaf_rng), s = sqrt(1 - z * z);
     return v3(s * cos(a), z, s * sin(a));
 }
 
@@ -192,7 +193,7 @@ static void branch(Gen *g, int gen, int32_t from, V3 p, double r_parent, V3 dir,
     if (P->bil_leaves && gen == g->last_gen && !g->failed) /* §4.4.2: on the last generation's points */
         for (long k = 1; k <= m && !g->failed; k++) {
             V3 a = perp(hs[k]), b = cross(hs[k], a);
-            double roll = uniform(g, 0, 2 * M_PI);
+            double roll = 2 * M_PI * rng_unit(&g->leaf_rng);
             V3 side = add(scale(a, cos(roll)), scale(b, sin(roll)));
             V3 ld = P->bil_angle >= 180 ? scale(hs[k], -1) : turn_toward(hs[k], side, P->bil_angle * DEG);
             leaf(g, pts[k], ld, P->bil_length, ids[k]);
@@ -236,7 +237,8 @@ static void materials(Gen *g) {
 }
 
 int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log) {
-    Gen g = {.P = P, .sk = sk, .rng = rng_stream(seed, 0, 0x9afc02007ull, 0), .mem = mem, .log = log};
+    Gen g = {.P = P, .sk = sk, .rng = rng_stream(seed, 0, 0x9afc02007ull, 0),
+             .leaf_rng = rng_stream(seed, 1, 0x9afc02007ull, 0), .mem = mem, .log = log};
     g.last_gen = P->gen[1] ? (P->gen[2] ? 3 : 2) : 1;
     materials(&g);
     const double H = P->height;
