@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "lang/schema.h"
+#include "util/file.h"
 
 typedef struct Line {
     const char *b, *e, *start; /* the line without surrounding blanks; its first byte */
@@ -92,9 +93,8 @@ static void value(Arena *a, Stmt *s, const char *b, size_t n, SylLoc loc) {
 int lang_pafco_cfg_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
     memset(ast, 0, sizeof *ast);
     int before = diag->errors;
-    const char *base = strrchr(src->path ? src->path : "", '/');
-    base = base ? base + 1 : src->path ? src->path : "pafco";
-    size_t bn = strcspn(base, ".");
+    const char *base;
+    size_t bn = file_stem(src->path, &base);
     Model *m = VEC_PUSH(arena, ast->models, ast->nmodels, ast->cap);
     m->kind = SYL_MODEL_PAFCO;
     m->name = arena_strndup(arena, bn ? base : "pafco", bn ? bn : 5);

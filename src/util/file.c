@@ -88,3 +88,10 @@ const char *file_strerror(int err) {
     default: return strerror(err);
     }
 }
+
+size_t file_stem(const char *path, const char **stem) {
+    const char *base = path ? strrchr(path, '/') : NULL;
+    base = base ? base + 1 : path ? path : "";
+    *stem = base;
+    return strcspn(base, ".");
+}

@@ -24,5 +24,8 @@ char *file_read_named(const char *path, size_t *len, Budget *mem);
 void file_free_named(char *text, size_t len, Budget *mem);
 /* The reason for errno err of the functions above, for a message. */
 const char *file_strerror(int err);
+/* A file's name without its folder and extensions ("a/oak.tree.cfg": "oak"): *stem points into
+ * path; returns its length (0: none, or path NULL). A model read from a foreign file is named so. */
+size_t file_stem(const char *path, const char **stem);
 
 #endif
