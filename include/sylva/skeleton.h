@@ -92,6 +92,7 @@ typedef struct SylMaterial {
      * the mesher moves each vertex of an order-0 ring to (1 + u) times its distance from the
      * axis, u uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex. 0: none. */
     float trunk_jitter;
+    uint8_t translucency; /* light let through, 0..255 (glTF KHR_materials_transmission); 0: opaque */
 } SylMaterial;
 
 typedef struct SylSkeletonPart {
@@ -114,6 +115,10 @@ typedef struct SylSkeleton {
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
+    /* Points of a ring around an axis of branch order 0, 1, 2, 3 and more, as the model asks
+     * (Pafčo's DETAIL, docs/pafco.md); the mesher uses them when its caller set no sides.
+     * 0: the mesher's own rule (sides falling with the radius). */
+    uint8_t ring_sides[4];
     /* A scene's objects, each written as an object or node of its own (docs/mesh.md#scenes):
      * its plants, in order, each from its first node to the next one's, then its obstacles,
      * whose meshes (SylMesh.node) number them from 0. Unique names. */

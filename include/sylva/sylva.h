@@ -146,7 +146,7 @@ int syl_list_models(const char *path, const char *text, size_t len, const char *
  * src/lang/kinds.def (docs/architecture.md, "Adding a model kind"). */
 typedef enum { SYL_MODEL_LSYSTEM = 0, SYL_MODEL_GROW = 1, SYL_MODEL_SCENE = 2, SYL_MODEL_WEBER = 3,
                SYL_MODEL_STRANDS = 4, SYL_MODEL_ECOSYSTEM = 5,
-               SYL_MODEL_CURVETREE = 6 } SylModelKind;
+               SYL_MODEL_CURVETREE = 6, SYL_MODEL_PAFCO = 7 } SylModelKind;
 /* "lsystem", "grow block", "scene", "weber block", "strands block", "ecosystem block"
  * (an ecosystem on a terrain: sylva/ecosystem.h) */
 const char *syl_model_kind_name(SylModelKind k);

@@ -35,6 +35,8 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
 /* A `curvetree` block: the Blender plug-in's tree grown from a trunk curve inside a crown
  * envelope (docs/curvetree.md). */
 int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+/* Pafčo's generator (docs/pafco.md): opt->age in (0, 1] scales the tree's height. */
+int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 
 /* Check a block's parameters as `sylva check` does (syl_validate calls these): returns
  * the number of errors reported to diag, each with file:line:col, the line and a caret
@@ -42,6 +44,7 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
 int syl_weber_validate(const SylProgram *p, FILE *diag);
 int syl_strands_validate(const SylProgram *p, FILE *diag);
 int syl_curvetree_validate(const SylProgram *p, FILE *diag);
+int syl_pafco_validate(const SylProgram *p, FILE *diag);
 
 #ifdef __cplusplus
 }

@@ -1,20 +1,22 @@
 /* sylva convert: a weber block, or a species of an Arbaro XML file, written as Arbaro XML or
  * as a .syl weber block (docs/arbaro.md); a grow block, or a grow preset file, written as a
- * grow preset or a .syl grow block (docs/growth.md#presets). */
+ * grow preset or a .syl grow block (docs/growth.md#presets); a pafco block or Pafčo file
+ * written as a Pafčo file or a .syl pafco block (docs/pafco.md). */
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 
 #include "cli/cli.h"
 #include "sylva/grow.h"
+#include "pafco/params.h"
 #include "weber/params.h"
 #include "weber/xml.h"
 
 const CliCommand cli_convert_command = {
     .name = "convert",
-    .what = "write a weber or grow block as XML (Arbaro's, a grow preset), or such a file as a .syl block",
+    .what = "write a weber, grow or pafco block as its file (Arbaro XML, a grow preset, a Pafčo file), or such a file as a .syl block",
     .run = cmd_convert,
-    .usage = "sylva convert FILE[:Model] -o OUT.xml|OUT.syl [--set NAME=VALUE]...",
+    .usage = "sylva convert FILE[:Model] -o OUT.xml|OUT.cfg|OUT.syl [--set NAME=VALUE]...",
     .about = "Read a weber model (a `weber` block of a .syl file, or a species of an Arbaro XML\n"
              "file) and write every one of its parameters: as an Arbaro species file for *.xml, in\n"
              "Arbaro's order and spelling, or as a `weber` block for *.syl, per-level parameters as\n"
@@ -22,10 +24,12 @@ const CliCommand cli_convert_command = {
              "the written file again gives the same bytes.\n"
              "A grow model (a `grow` block, or a grow preset file) is written as a grow preset for\n"
              "*.xml (<grow-presets>) or a `grow` block for *.syl: each directive with its values\n"
-             "worked out (params and expressions), read back to the same bytes.\n",
+             "worked out (params and expressions), read back to the same bytes.\n"
+             "A pafco model (a `pafco` block, or a Pafčo file) is written as a Pafčo file\n"
+             "(PARAMETER=value) for *.cfg, as a `pafco` block for *.syl.\n",
     .options = (const CliUse[]){
-        {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a weber block\n"
-                                           "for *.syl"},
+        {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a Pafčo file\n"
+                                           "for *.cfg, a weber or pafco block for *.syl"},
         {.option = CLI_OPT_SET},
         {.option = CLI_OPT_ALLOW_PATH},
         {0},
@@ -63,29 +67,46 @@ static int convert_grow(const SylProgram *p, const char *path, const char *outpu
     return out_close(&out, status);
 }
 
+/* A pafco model as a Pafčo file (*.cfg) or a .syl pafco block. */
+static int convert_pafco(const SylProgram *p, const char *output, bool cfg) {
+    PafcoParams P;
+    if (pafco_params_read(p, &P, stderr)) return SYL_EMODEL;
+    OutFile out;
+    if (!out_open(&out, output)) return SYL_EIO;
+    int status = cfg ? pafco_write_cfg(&P, out.f) : pafco_write_syl(&P, syl_program_name(p), out.f);
+    return out_close(&out, status);
+}
+
 int cmd_convert(int argc, char **argv) {
     ModelArgs m = {0};
     CliArgs a = {.m = &m};
     int done = cli_parse(&cli_convert_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
     const char *output = a.output;
-    bool xml = output && ends_with(output, ".xml"), syl = output && ends_with(output, ".syl");
-    if (!xml && !syl) {
-        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML, a grow preset) or *.syl (a block) "
-                        "with -o\n", output ? "cannot tell the format" : "no output");
+    bool xml = output && ends_with(output, ".xml"), syl = output && ends_with(output, ".syl"),
+         cfg = output && ends_with(output, ".cfg");
+    if (!xml && !syl && !cfg) {
+        fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML, a grow preset), *.cfg (a Pafčo "
+                        "file) or *.syl (a block) with -o\n", output ? "cannot tell the format" : "no output");
         return SYL_EUSAGE;
     }
     cli_model_spec(&m, a.files[0]);
     int status;
     SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (!p) return status;
-    if (syl_program_kind(p) == SYL_MODEL_GROW) {
+    if (syl_program_kind(p) == SYL_MODEL_GROW && !cfg) {
         status = convert_grow(p, m.path, output, xml);
         syl_program_free(p);
         return status;
     }
-    if (syl_program_kind(p) != SYL_MODEL_WEBER) {
-        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes weber and grow blocks\n",
+    if (syl_program_kind(p) == SYL_MODEL_PAFCO && !xml) {
+        status = convert_pafco(p, output, cfg);
+        syl_program_free(p);
+        return status;
+    }
+    if (syl_program_kind(p) != SYL_MODEL_WEBER || cfg) {
+        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes weber blocks as *.xml or *.syl, grow "
+                        "blocks as *.xml or *.syl, pafco blocks as *.cfg or *.syl\n",
                 syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
         syl_program_free(p);
         return SYL_EUSAGE;

@@ -352,6 +352,9 @@ static void json_materials(IoBuf *js, const Layout *l) {
                       mat->kind == SYL_MATERIAL_BARK ? "0.95" : "0.7");
             if (slot == CARD || slot == CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
             else if (m->double_sided[i]) io_printf(js, ",\"doubleSided\":true"); /* one-sided leaves */
+            if (mat->translucency) /* the extension both the Khronos validator and Blender's importer read */
+                io_printf(js, ",\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":%.4f}}",
+                          mat->translucency / 255.0);
             io_put(js, "}", 1);
         }
     }
@@ -541,10 +544,18 @@ static void write_json(IoBuf *js, const Layout *l) {
     bool lod = sc->lods && sc->nparts > 1, quant = false, uvt = false;
     for (int p = 0; p < sc->nparts; p++) quant |= l->quant[p][3] > 0;
     for (int k = 0; k < l->nmeshes; k++) uvt |= l->mesh[k].uvq[2] > 0;
-    if (lod || l->nsets || quant)
-        io_printf(js, ",\"extensionsUsed\":[%s%s%s%s%s%s]", lod ? "\"MSFT_lod\"" : "", lod && l->nsets ? "," : "",
-                  l->nsets ? "\"EXT_mesh_gpu_instancing\"" : "", quant && (lod || l->nsets) ? "," : "",
-                  quant ? "\"KHR_mesh_quantization\"" : "", uvt ? ",\"KHR_texture_transform\"" : "");
+    bool translucent = false; /* leaves that let light through (Pafčo's BIL_TRANSLUC) */
+    for (int k = 0; k < l->nmeshes; k++)
+        for (int g = 0; g < l->mesh[k].m->ngroups; g++)
+            translucent |= l->mesh[k].m->materials[l->mesh[k].m->groups[g].material].translucency > 0;
+    const char *used[5];
+    int nused = 0;
+    if (lod) used[nused++] = "MSFT_lod";
+    if (l->nsets) used[nused++] = "EXT_mesh_gpu_instancing";
+    if (quant) used[nused++] = "KHR_mesh_quantization";
+    if (uvt && nused) used[nused++] = "KHR_texture_transform";
+    if (translucent) used[nused++] = "KHR_materials_transmission";
+    for (int i = 0; i < nused; i++) io_printf(js, "%s\"%s\"%s", i ? "," : ",\"extensionsUsed\":[", used[i], i == nused - 1 ? "]" : "");
     if (quant) io_printf(js, ",\"extensionsRequired\":[\"KHR_mesh_quantization\"%s]", uvt ? ",\"KHR_texture_transform\"" : "");
     io_printf(js, ",\"scene\":0,\"scenes\":[{\"name\":");
     io_json_string(js, sc->scene_name);

@@ -9,6 +9,7 @@
 
 #include "lang/arbaro.h"
 #include "lang/kinds.h"
+#include "lang/pafco_cfg.h"
 #include "lang/parse_state.h"
 #include "lang/program.h"
 #include "util/file.h"
@@ -76,7 +77,9 @@ static bool opens_block(const char *b, const char *e) {
 int syl_text_is_model(const char *text, size_t len) {
     Source src = {.path = "", .text = text, .len = len};
     Diag quiet = {0};
-    if (syl_arbaro_detect(&src) || syl_picek_detect(&src) || syl_foreign_file(&src, &quiet)) return 1;
+    if (syl_arbaro_detect(&src) || syl_picek_detect(&src) || syl_foreign_file(&src, &quiet) ||
+        lang_pafco_cfg_detect(text, len))
+        return 1;
     for (const char *p = text, *end = text + len; p < end;) {
         const char *nl = memchr(p, '\n', (size_t)(end - p)), *e = nl ? nl : end;
         if (opens_block(p, e)) return 1;

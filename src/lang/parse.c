@@ -4,6 +4,7 @@
 
 #include "lang/arbaro.h"
 #include "lang/kinds.h"
+#include "lang/pafco_cfg.h"
 #include "lang/parse_state.h"
 #include "lang/sapling.h"
 #include "parser.h"
@@ -53,6 +54,8 @@ int syl_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast) {
             rc = syl_picek_parse(src, arena, diag, ast);
         } else if (syl_sapling_detect(src)) {
             rc = syl_sapling_parse(src, arena, diag, ast);
+        } else if (lang_pafco_cfg_detect(src->text, src->len)) {
+            rc = lang_pafco_cfg_parse(src, arena, diag, ast);
         } else {
             YY_BUFFER_STATE buf = syl_yy_scan_bytes(src->text, (int)src->len, scanner);
             rc = syl_yyparse(scanner, &ps);

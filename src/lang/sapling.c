@@ -4,6 +4,7 @@
  * the whole mapping, and what it leaves out is said there. Only literals are read — strings,
  * numbers, True/False/None and tuples of them — so a preset never runs as code. */
 #include "lang/sapling.h"
+#include "util/file.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -248,9 +249,8 @@ int syl_sapling_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast)
     Lex l = {.src = src, .line = 1, .col = 1};
     Tok open = next(&l);
     /* the model's name: the preset's file name without folder and extension */
-    const char *base = strrchr(src->path ? src->path : "", '/');
-    base = base ? base + 1 : src->path ? src->path : "sapling";
-    size_t bn = strcspn(base, ".");
+    const char *base;
+    size_t bn = file_stem(src->path, &base);
     Model *m = VEC_PUSH(arena, ast->models, ast->nmodels, ast->cap);
     m->kind = SYL_MODEL_WEBER;
     m->name = arena_strndup(arena, bn ? base : "sapling", bn ? bn : 7);

@@ -1,6 +1,7 @@
 /* The directive schema: a block's directives described as data (name, type, range, default,
  * unit, meaning, aliases), one table per kind, each written once as an X-macro .def in its
- * generator's folder (sot/params.def, weber/params.def, strands/params.def, eco/params.def) or here
+ * generator's folder (sot/params.def, weber/params.def, strands/params.def, eco/params.def,
+ * curvetree/params.def, pafco/params.def) or here
  * (lang/settings.def). This file is the one reader of those tables: a name's row (with a
  * level digit, an alias), did-you-mean, a value as a number or `(expr)`, its range, an enum's
  * word, and `--set NAME=VALUE` checked against the row. `sylva describe` (describe.c) and the
@@ -57,7 +58,7 @@ typedef struct SchTable {
 } SchTable;
 
 /* The tables (schema_tables.c). */
-extern const SchTable sch_lsystem, sch_grow, sch_weber, sch_strands, sch_ecosystem, sch_curvetree;
+extern const SchTable sch_lsystem, sch_grow, sch_weber, sch_strands, sch_ecosystem, sch_curvetree, sch_pafco;
 
 /* The row of a directive name: the name, an alias, or a per-level name with its level digit
  * ("1DownAngle": *level 1); *level -1 when none. NULL: no such row. group NULL: any row. */

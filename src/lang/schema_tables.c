@@ -93,6 +93,12 @@ static const SchRow grow_rows[] = {
 #include "sot/params.def"
 };
 
+static const SchRow pafco_rows[] = {
+#define PF(f, nm, al, ty, l, h, d, dt, u, mean) \
+    {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean, .aliases = al},
+#include "pafco/params.def"
+};
+
 /* noun: what a row is ("setting"; docs/directives.md's title, "`weber` parameters"); intro:
  * the title's paragraph there */
 #define TABLE(var, k, nn, rows, shape, intro) \
@@ -116,3 +122,6 @@ TABLE(sch_ecosystem, "ecosystem", "directive", ecosystem_rows, SCH_GROUPS,
 TABLE(sch_curvetree, "curvetree", "parameter", curvetree_rows, SCH_LINES,
       "[curvetree.md](curvetree.md#parameters) explains them: the Blender plug-in's names, as its panel "
       "shows them.")
+TABLE(sch_pafco, "pafco", "parameter", pafco_rows, SCH_LINES,
+      "[pafco.md](pafco.md#parameters) explains them, with their English aliases; a Pafčo file "
+      "(`NAME=value`) takes the same names.")

@@ -358,6 +358,9 @@ static bool size_tubes(MeshPlan *pl) {
         int sides = (int)ceilf((float)pl->sides * sqrtf(tb->rmax / rmax) - 1e-4f);
         if (sides < pl->min_sides) sides = pl->min_sides;
         if (sides > pl->sides) sides = pl->sides;
+        int order = tb->node >= 0 ? pl->skel->nodes[tb->node].order : 0;
+        if (pl->model_sides && pl->skel->ring_sides[order < 3 ? order : 3] >= 3)
+            sides = pl->skel->ring_sides[order < 3 ? order : 3];
         int lobes = 0; /* a lobed ring needs four sides a lobe to show its lobes */
         for (uint32_t k = 0; k < tb->count; k++) lobes = p[k].lobes > lobes ? p[k].lobes : lobes;
         if (lobes && sides < 4 * lobes) sides = 4 * lobes < MESH_MAX_SIDES ? 4 * lobes : MESH_MAX_SIDES;
@@ -750,7 +753,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     int status = resolve_options(s, opt, &o);
     if (status) return status;
     MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1,
-                   .one_sided = o.one_sided != 0};
+                   .one_sided = o.one_sided != 0, .model_sides = !opt || opt->sides == 0};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
     pl.leaves = o.leaves;
     pl.leaf_shape = o.leaf_shape;

@@ -99,3 +99,10 @@ char *file_beside(const char *model_path, const char *name) {
     strcpy(path + dir, name);
     return path;
 }
+
+size_t file_stem(const char *path, const char **stem) {
+    const char *base = path ? strrchr(path, '/') : NULL;
+    base = base ? base + 1 : path ? path : "";
+    *stem = base;
+    return strcspn(base, ".");
+}

@@ -29,4 +29,8 @@ const char *file_strerror(int err);
  * when out of memory). Whether the model may read it is syl_program_file's (sylva.h). */
 char *file_beside(const char *model_path, const char *name);
 
+/* A file's name without its folder and extensions ("a/oak.tree.cfg": "oak"): *stem points into
+ * path; returns its length (0: none, or path NULL). A model read from a foreign file is named so. */
+size_t file_stem(const char *path, const char **stem);
+
 #endif

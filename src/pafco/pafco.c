@@ -1,0 +1,48 @@
+/* syl_pafco: Pafčo's tree from a `pafco` block or a Pafčo file (docs/pafco.md);
+ * syl_pafco_validate: the block's check for `sylva check`. */
+#include <stdio.h>
+
+#include "pafco/pafco.h"
+#include "sylva/trees.h"
+
+int syl_pafco_validate(const SylProgram *p, FILE *diag) {
+    return syl_program_kind(p) == SYL_MODEL_PAFCO ? pafco_params_check(p, diag) : 0;
+}
+
+int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+    static const SylTreeOptions none = {0};
+    if (!opt) opt = &none;
+    *out = NULL;
+    if (syl_program_kind(p) != SYL_MODEL_PAFCO) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' is a %s, not a pafco block\n", syl_program_name(p),
+                    syl_model_kind_name(syl_program_kind(p)));
+        return SYL_EUSAGE;
+    }
+    PafcoParams P;
+    if (pafco_params_read(p, &P, opt->diag)) return SYL_EMODEL;
+    if (opt->age > 0 && opt->age < 1) P.height *= opt->age; /* growth by height (sylva animate) */
+    uint64_t seed = (opt->use_seed ? opt->seed : 1) + opt->seed_offset;
+    Budget own, *mem = opt->budget ? opt->budget : &own;
+    budget_init(&own, opt->max_memory);
+    SylSkeleton *sk = syl_skeleton_new(syl_program_name(p));
+    if (!sk) {
+        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
+        return SYL_ELIMIT;
+    }
+    uint64_t before = syl_budget_used(mem);
+    int st = pafco_build(&P, seed, mem, sk, NULL);
+    uint64_t charged = syl_budget_used(mem) - before;
+    if (st) {
+        if (opt->diag)
+            fprintf(opt->diag, "sylva: error: '%s' needs more memory than --max-memory allows (%llu MB%s)\n",
+                    syl_program_name(p), (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
+        budget_release(mem, charged);
+        syl_skeleton_free(sk);
+        return st;
+    }
+    if (mem != &own) sk->budget = mem, sk->charged = charged;
+    else budget_release(mem, charged);
+    *out = sk;
+    return SYL_OK;
+}

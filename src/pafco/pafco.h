@@ -1,0 +1,37 @@
+/* Pafčo's generator (Pafčo 2007, §4.2–4.5; docs/pafco.md): the skeleton of a tree straight
+ * from its 42 parameters. */
+#ifndef PAFCO_PAFCO_H
+#define PAFCO_PAFCO_H
+#include <stdint.h>
+
+#include "pafco/params.h"
+#include "sylva/skeleton.h"
+#include "util/budget.h"
+
+/* What a build made, for the tests of its invariants: each branch's generation (0 trunk),
+ * its first and last node, its parent branch and the parent's control point it grows from,
+ * its length and its bound (first generation: the crown profile's; then V2G_MAX/V3G_MAX as
+ * they fall toward the parent's tip). */
+typedef struct PafcoBranch {
+    int gen;
+    int32_t first, last;
+    int parent;
+    int32_t attach;
+    float length, bound, height_frac;
+} PafcoBranch;
+
+typedef struct PafcoLog {
+    PafcoBranch *branches;
+    int n, cap;
+} PafcoLog;
+
+/* Build P's tree into sk (empty, from syl_skeleton_new) with seed; nodes and leaves are
+ * charged to mem as they are made. log (may be NULL) receives the branches (free
+ * log->branches). SYL_OK, or SYL_ELIMIT beyond the budget or out of memory. */
+int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log);
+
+/* The crown profile at relative height f in the crown (0 its base, 1 the top): the share of
+ * the longest first-generation branch a branch there may reach. */
+double pafco_crown_profile(bool round, double f);
+
+#endif
