@@ -229,10 +229,14 @@ static void materials(Gen *g) {
     }
     sk->nmaterials = 1 + g->nleafmat;
     /* the leaves' surface: squares (§4.4.1), or LBIL_SIRKA x LBIL_DLZKA billboards */
-    sk->leaf_outline = 1;
-    sk->leaf_tris = 2;
-    sk->leaf_width = P->bil_leaves && P->bil_length > 0 ? (float)(P->bil_width / P->bil_length) : 1.0f;
-    if (!(sk->leaf_width > 0)) sk->leaf_width = 1.0f;
+    float width = P->bil_leaves && P->bil_length > 0 ? (float)(P->bil_width / P->bil_length) : 1.0f;
+    if (!(width > 0)) width = 1.0f;
+    for (int i = 0; i < g->nleafmat; i++) {
+        SylMaterial *mt = &sk->materials[1 + i];
+        mt->leaf_outline = SYL_LEAF_OUTLINE_SQUARE;
+        mt->leaf_tris = 2;
+        mt->leaf_width = width;
+    }
     for (int o = 0; o < 4; o++) sk->ring_sides[o] = (uint8_t)pafco_ring_points(P->detail, o);
 }
 

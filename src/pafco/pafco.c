@@ -2,6 +2,7 @@
  * syl_pafco_validate: the block's check for `sylva check`. */
 #include <stdio.h>
 
+#include "skeleton/store.h"
 #include "pafco/pafco.h"
 #include "sylva/trees.h"
 
@@ -41,7 +42,7 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
         syl_skeleton_free(sk);
         return st;
     }
-    if (mem != &own) sk->budget = mem, sk->charged = charged;
+    if (mem != &own) skeleton_charge(sk, mem, charged);
     else budget_release(mem, charged);
     *out = sk;
     return SYL_OK;
