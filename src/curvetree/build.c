@@ -448,7 +448,7 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
         }
     }
     if (sk->norgans && sk->nmaterials < SYL_MATERIAL_LEAF + 1) sk->nmaterials = SYL_MATERIAL_LEAF + 1;
-    sk->leaf_width = (float)(1 / leaf_aspect);
+    sk->materials[SYL_MATERIAL_LEAF].leaf_width = (float)(1 / leaf_aspect); /* the leaves' surface */
     free(rc), free(tr), free(b1), free(b1_node), free(b2), free(b2_node);
     return ct.failed ? SYL_ELIMIT : SYL_OK;
 }

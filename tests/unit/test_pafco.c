@@ -335,7 +335,7 @@ static void leaves_where_the_thesis_puts_them(void **state) {
         double c = o->h[0] * n->h[0] + o->h[1] * n->h[1] + o->h[2] * n->h[2];
         assert_true(fabs(acos(fmin(1, c)) * 180 / M_PI - 30) < 0.01);
     }
-    assert_true(fabs(t.sk->leaf_width - 0.25f) < 1e-6); /* LBIL_SIRKA / LBIL_DLZKA */
+    assert_true(fabs(t.sk->materials[t.sk->organs[0].material].leaf_width - 0.25f) < 1e-6); /* LBIL_SIRKA / LBIL_DLZKA */
     tree_free(&t);
 }
 
