@@ -92,9 +92,11 @@ $(BUILD)/%.o: %.c $(BUILD)/.cflags | $(DEPS_OK) $(BUILD)/gen/parser.h
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -c -o $@ $<
 # The flags a tree was compiled with: when they change (say -fPIC added), its objects are remade.
+# Expanded here, once: a target's own additions (the CLI's libmicrohttpd flags) must not count.
+TREE_FLAGS := $(CC) $(CFLAGS)
 $(BUILD)/.cflags: FORCE
 	@mkdir -p $(@D)
-	@echo '$(CC) $(CFLAGS)' | cmp -s - $@ || echo '$(CC) $(CFLAGS)' > $@
+	@echo '$(TREE_FLAGS)' | cmp -s - $@ || echo '$(TREE_FLAGS)' > $@
 FORCE:
 
 # libsylva.a, the installed library, exports the public API only: every object is linked into
