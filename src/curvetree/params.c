@@ -47,7 +47,8 @@ static int read_file_line(const SylProgram *p, const SylDirective *d, FILE *diag
     return 0;
 }
 
-static int read_all(const SylProgram *p, CtParams *P, FILE *diag, int *set_errors) {
+static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_errors) {
+    CtParams *P = params;
     defaults(P);
     sch_count_read(p);
     int n = 0, errors = 0;
@@ -131,14 +132,10 @@ static int read_all(const SylProgram *p, CtParams *P, FILE *diag, int *set_error
 }
 
 int ct_params_read(const SylProgram *p, CtParams *P, FILE *diag) {
-    if (sch_kept(p, P, sizeof *P)) return 0;
-    int set_errors;
-    return read_all(p, P, diag, &set_errors);
+    return sch_read_once(p, P, sizeof *P, read_all, diag);
 }
 
 int ct_params_check(const SylProgram *p, FILE *diag) {
     CtParams P;
-    int set_errors, errors = read_all(p, &P, diag, &set_errors);
-    if (!errors) sch_keep(p, &P, sizeof P); /* the build takes it: read once */
-    return errors && errors == set_errors ? -errors : errors;
+    return sch_check_once(p, &P, sizeof P, read_all, diag);
 }

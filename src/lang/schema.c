@@ -185,3 +185,15 @@ bool sch_kept(const SylProgram *p, void *out, size_t size) {
     memcpy(out, c->value, size);
     return true;
 }
+
+int sch_read_once(const SylProgram *p, void *params, size_t size, SchRead read, FILE *diag) {
+    if (sch_kept(p, params, size)) return 0;
+    int set_errors;
+    return read(p, params, diag, &set_errors);
+}
+
+int sch_check_once(const SylProgram *p, void *params, size_t size, SchRead read, FILE *diag) {
+    int set_errors, errors = read(p, params, diag, &set_errors);
+    if (!errors) sch_keep(p, params, size); /* the build takes it: read once */
+    return errors && errors == set_errors ? -errors : errors;
+}

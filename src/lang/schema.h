@@ -111,5 +111,13 @@ void sch_count_into(const SylProgram *q, const SylProgram *p);
 void sch_keep(const SylProgram *p, const void *v, size_t size);
 /* The kept reading into out; false when there is none of that size. */
 bool sch_kept(const SylProgram *p, void *out, size_t size);
+/* A kind's block read once: read(p, params, diag, &set_errors) reads it in full into params
+ * (size bytes) and returns its errors, set_errors of them about --set values. */
+typedef int (*SchRead)(const SylProgram *p, void *params, FILE *diag, int *set_errors);
+/* The build's reading: the one the check kept, or read now. Returns the errors. */
+int sch_read_once(const SylProgram *p, void *params, size_t size, SchRead read, FILE *diag);
+/* The check's (the validate hook): read, and keep a clean reading for the build. Returns the
+ * errors, negative when every one was of a --set value. */
+int sch_check_once(const SylProgram *p, void *params, size_t size, SchRead read, FILE *diag);
 
 #endif

@@ -142,7 +142,8 @@ static void apply_set(Reader *r, PafcoParams *P, const char *typed, const char *
     r->set_errors += r->errors - before;
 }
 
-static int read_all(const SylProgram *p, PafcoParams *P, FILE *diag, int *set_errors) {
+static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_errors) {
+    PafcoParams *P = params;
     size_t len = 0;
     const char *text = syl_program_source(p, &len);
     Reader r = {.p = p, .diag = diag, .lenient = text && lang_pafco_cfg_detect(text, len)};
@@ -193,16 +194,12 @@ static int read_all(const SylProgram *p, PafcoParams *P, FILE *diag, int *set_er
 }
 
 int pafco_params_read(const SylProgram *p, PafcoParams *P, FILE *diag) {
-    if (sch_kept(p, P, sizeof *P)) return 0;
-    int set_errors;
-    return read_all(p, P, diag, &set_errors);
+    return sch_read_once(p, P, sizeof *P, read_all, diag);
 }
 
 int pafco_params_check(const SylProgram *p, FILE *diag) {
     PafcoParams P;
-    int set_errors, errors = read_all(p, &P, diag, &set_errors);
-    if (!errors) sch_keep(p, &P, sizeof P); /* the build takes it: read once */
-    return errors && errors == set_errors ? -errors : errors;
+    return sch_check_once(p, &P, sizeof P, read_all, diag);
 }
 
 int pafco_ring_points(int detail, int generation) {

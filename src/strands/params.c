@@ -222,7 +222,8 @@ static void defaults(StrandsParams *P) {
     P->leaf_type = LEAVES_SPIRAL;
 }
 
-static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_errors) {
+static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_errors) {
+    StrandsParams *P = params;
     Reader r = {.p = p, .diag = diag};
     defaults(P);
     sch_count_read(p);
@@ -269,16 +270,12 @@ static int read_all(const SylProgram *p, StrandsParams *P, FILE *diag, int *set_
 }
 
 int strands_params_read(const SylProgram *p, StrandsParams *P, FILE *diag) {
-    if (sch_kept(p, P, sizeof *P)) return 0;
-    int set_errors;
-    return read_all(p, P, diag, &set_errors);
+    return sch_read_once(p, P, sizeof *P, read_all, diag);
 }
 
 int strands_params_check(const SylProgram *p, FILE *diag) {
     StrandsParams P;
-    int set_errors, errors = read_all(p, &P, diag, &set_errors);
-    if (!errors) sch_keep(p, &P, sizeof P); /* the build takes it: read once */
-    return errors && errors == set_errors ? -errors : errors; /* only the command line's */
+    return sch_check_once(p, &P, sizeof P, read_all, diag);
 }
 
 /* The tables, for the docs' check that every parameter is documented. */
