@@ -11,15 +11,7 @@
 
 #include "terrain/terrain.h"
 
-static Terrain *grid(int nx, int nz, double cell) {
-    Terrain *t;
-    assert_int_equal(terrain_new(nx, nz, NULL, 0, "test", stderr, &t), SYL_OK);
-    t->cell = cell;
-    return t;
-}
-
-#define H(t, i, k) (t)->height[(size_t)(k) * (size_t)(t)->nx + (size_t)(i)]
-#define AT(g, t, i, k) (g)[(size_t)(k) * (size_t)(t)->nx + (size_t)(i)]
+#include "terrain_fixtures.h"
 
 static void compute(Terrain *t, int threads) {
     SylTerrainOptions o = {.measures = SYL_TERRAIN_ZAMUDA, .threads = threads, .diag = stderr};
