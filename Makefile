@@ -47,6 +47,7 @@ LIB_OBJ := $(LIB_SRC:%.c=$(BUILD)/%.o) $(GEN_SRC:.c=.o)
 CLI_OBJ := $(CLI_SRC:%.c=$(BUILD)/%.o)
 UNIT_SRC := $(wildcard tests/unit/test_*.c)
 UNIT_BIN := $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+REPLAY_BIN := $(patsubst tests/fuzz/fuzz_%.c,$(BUILD)/fuzz/replay_%,$(wildcard tests/fuzz/fuzz_*.c))
 DEPS_OK := $(BUILD)/.deps-ok
 
 .PHONY: all deps test test-fast test-asan fuzz fuzz-build bench demo gallery install clean help units python python-lib blender-addon
@@ -55,11 +56,12 @@ all: $(BUILD)/sylva $(BUILD)/libsylva.a
 help:
 	@echo "make            build build/sylva and build/libsylva.a"
 	@echo "make deps       install missing Debian packages (as root)"
-	@echo "make test       unit, case and golden tests, again under ASan+UBSan, and a fuzz run"
-	@echo "make test-fast  the same tests once, without sanitizers and fuzzing"
+	@echo "make test       every suite, again under ASan+UBSan, with the fuzzers' inputs replayed"
+	@echo "make test-fast  the same tests once, without sanitizers"
 	@echo "make test-quick the edit loop: unit, case and golden tests of the release build"
 	@echo "make test-times the 20 slowest tests, by CPU time"
 	@echo "make fuzz       a fuzz campaign: every harness FUZZ_SECONDS long (default 300)"
+	@echo "make test-fuzz  a short search: every harness FUZZ_TEST_SECONDS long (default 3; clang)"
 	@echo "make bench      speed figures against peer tools"
 	@echo "make demo       render every example into out/ (pictures, meshes, out/gallery.md), an ecosystem,"
 	@echo "                terrain maps, a LOD chain, a wind file and an animation"
@@ -144,10 +146,22 @@ $(BUILD)/tests/test_cli: tests/unit/test_cli.c tests/unit/unit.h $(filter-out $(
                          $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
 	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(filter %.o,$^) $(BUILD)/libsylva-internal.a $(LDLIBS) $(CLI_LIBS) -lcmocka
-units: $(UNIT_BIN)
+units: $(UNIT_BIN) $(REPLAY_BIN)
+# Each fuzz harness, linked with a plain main that feeds it the files it is given
+# (tests/fuzz/replay.c), built by the tree's own compiler: make test replays the seeds and the
+# kept inputs under ASan+UBSan (tests/fuzz/replay) without the clang tree, which only make fuzz needs.
+$(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz.h $(BUILD)/fuzz/libcli.a $(BUILD)/libsylva-internal.a
+	@mkdir -p $(@D)
+	$(CC) $(CFLAGS) $(shell pkg-config --cflags $(CLI_PKGS) 2>/dev/null) -Wno-unused-function -Wno-sign-compare \
+	    -Wno-unused-parameter -o $@ $< tests/fuzz/replay.c $(BUILD)/fuzz/libcli.a $(BUILD)/libsylva-internal.a $(LDLIBS) $(CLI_LIBS)
+# The CLI without its main, as an archive: a harness takes the members it calls (fuzz_cli: all).
+$(BUILD)/fuzz/libcli.a: $(filter-out $(BUILD)/src/cli/main.o,$(CLI_OBJ))
+	@mkdir -p $(@D)
+	@rm -f $@
+	ar rcs $@ $^
 
 # The test targets build with -j$(JOBS) whatever -j make itself was given (.ci/run gives none).
-# make test builds its three trees at once under one job server (the packages checked first,
+# make test builds its two trees at once under one job server (the packages checked first,
 # once), then tests/run-all runs the release and the ASan pass side by side (JOBS > 1), a line
 # per job as it ends (docs/testing.md).
 test-quick:
@@ -162,10 +176,13 @@ test-asan:
 	@JOBS=$(JOBS) tests/run-all build-asan
 test:
 	@$(MAKE) --no-print-directory $(DEPS_OK)
-	@t0=$$(date +%s); $(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan test-build-fuzz blender-addon && \
-	    echo "make test: built $(BUILD)/, build-asan/, build-fuzz/ and the Blender add-on in $$(( $$(date +%s) - t0 )) s"
-	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all $(BUILD) build-asan --fuzz build-fuzz
-.PHONY: test-build-release test-build-asan test-build-fuzz test-times test-quick
+	@t0=$$(date +%s); $(MAKE) --no-print-directory -j$(JOBS) test-build-release test-build-asan blender-addon && \
+	    echo "make test: built $(BUILD)/, build-asan/ and the Blender add-on in $$(( $$(date +%s) - t0 )) s"
+	@JOBS=$(JOBS) tests/run-all $(BUILD) build-asan
+# The libFuzzer harnesses searching FUZZ_TEST_SECONDS each (make test replays their inputs only).
+test-fuzz: fuzz-build
+	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all --only none --fuzz build-fuzz
+.PHONY: test-build-release test-build-asan test-build-fuzz test-times test-quick test-fuzz
 test-build-release:
 	@$(MAKE) --no-print-directory all units
 test-build-asan:
@@ -253,4 +270,4 @@ install: all $(BUILD)/installed/sylva
 clean:
 	rm -rf build build-asan build-fuzz build-pic out python/build python/sylva/*.so
 
--include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(BUILD)/src/cli/testfaults-none.d
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d) $(BUILD)/src/cli/testfaults-none.d $(REPLAY_BIN:=.d)

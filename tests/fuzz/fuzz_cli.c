@@ -38,18 +38,8 @@ static bool allowed(const char *arg) {
 
 static char dir[64];
 
-static void setup(void) {
-    strcpy(dir, "/tmp/sylva-fuzz-cli-XXXXXX");
-    if (!mkdtemp(dir) || chdir(dir)) abort();
-    FILE *f = fopen("model.syl", "w");
-    if (!f || fputs(model, f) < 0 || fclose(f)) abort();
-    int null = open("/dev/null", O_RDWR);
-    if (null < 0 || dup2(null, 0) < 0 || dup2(null, 1) < 0) abort();
-    close(null);
-}
-
 /* What a command wrote: every file but model.syl goes. */
-static void clean(void) {
+static void clean_dir(void) {
     DIR *d = opendir(".");
     if (!d) return;
     struct dirent *e;
@@ -62,6 +52,25 @@ static void clean(void) {
             }
         }
     closedir(d);
+}
+
+/* The work directory goes when the process ends (a replay, or a fuzzer's run): no litter in /tmp. */
+static void teardown(void) {
+    if (chdir(dir) != 0) return;
+    clean_dir();
+    unlink("model.syl");
+    if (chdir("/") == 0) rmdir(dir);
+}
+
+static void setup(void) {
+    strcpy(dir, "/tmp/sylva-fuzz-cli-XXXXXX");
+    if (!mkdtemp(dir) || chdir(dir)) abort();
+    atexit(teardown);
+    FILE *f = fopen("model.syl", "w");
+    if (!f || fputs(model, f) < 0 || fclose(f)) abort();
+    int null = open("/dev/null", O_RDWR);
+    if (null < 0 || dup2(null, 0) < 0 || dup2(null, 1) < 0) abort();
+    close(null);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -134,7 +143,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         dup2(saved_err, 2);
         close(saved_err);
     }
-    clean();
+    clean_dir();
     free(text);
     return 0;
 }
