@@ -115,8 +115,7 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
     Envelope env = {0};
     st = load_envelope(p, P.envelope_at, &env, diag);
     uint64_t nodes = 0, leaves = 0, bytes = 0;
-    Budget own, *mem = opt->budget ? opt->budget : &own;
-    budget_init(&own, opt->max_memory);
+    Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     if (!st) {
         ct_bounds(&P, &trunk, &nodes, &leaves);
         bytes = nodes * sizeof(SylNode) + leaves * sizeof(SylOrgan);

@@ -446,8 +446,7 @@ static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *
     e->max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
     if (e->max_modules > INT32_MAX) e->max_modules = INT32_MAX;
     e->max_work = opt->max_work ? opt->max_work : 100000000000ull;
-    budget_init(&e->own, opt->max_memory);
-    e->mem = opt->budget ? opt->budget : &e->own;
+    e->mem = budget_use(&e->own, opt->max_memory, opt->budget);
     e->active_step = -1;
     e->cut_sym = -1;
     for (int s = 0; s < p->nsyms; s++)

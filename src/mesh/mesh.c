@@ -768,9 +768,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     float *rad = NULL;
     if (!m) goto oom;
     /* the budget is the caller's, or one of max_memory for this mesh alone */
-    Budget own;
-    budget_init(&own, o.max_memory);
-    Budget *mem = o.budget ? o.budget : &own;
+    Budget own, *mem = budget_use(&own, o.max_memory, o.budget);
     /* planning holds a radius and a few words per node; the mesh itself is counted once
      * its size is known, before a byte of it is allocated */
     uint64_t plan_bytes = (uint64_t)s->nnodes * 64 + (uint64_t)s->norgans * 32 + (uint64_t)s->npolys * 32;

@@ -24,8 +24,7 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     if (pafco_params_read(p, &P, opt->diag)) return SYL_EMODEL;
     if (opt->age > 0 && opt->age < 1) P.height *= opt->age; /* growth by height (sylva animate) */
     uint64_t seed = (opt->use_seed ? opt->seed : 1) + opt->seed_offset;
-    Budget own, *mem = opt->budget ? opt->budget : &own;
-    budget_init(&own, opt->max_memory);
+    Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     SylSkeleton *sk = syl_skeleton_new(syl_program_name(p));
     if (!sk) {
         if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));

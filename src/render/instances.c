@@ -145,7 +145,6 @@ static void work_free(Work *w) {
 
 /* The prototypes' scenes and their materials. */
 static int build_protos(Work *w, const SylRenderProto *protos, int nprotos) {
-    Scene *s = w->s;
     w->npr = nprotos;
     w->pr = calloc((size_t)nprotos + 1, sizeof *w->pr);
     w->tri_mat = calloc(2 * (size_t)nprotos + 1, sizeof *w->tri_mat);
@@ -162,15 +161,22 @@ static int build_protos(Work *w, const SylRenderProto *protos, int nprotos) {
             const SylMesh *m = pr->mesh[k];
             if (!m) continue;
             w->level[2 * p + k] = m;
-            if (!(w->tri_mat[2 * p + k] = triangle_materials(m))) return SYL_ELIMIT;
             for (int i = 0; i < 256; i++) {
                 for (int c = 0; c < 3; c++) w->lin[2 * p + k][i][c] = srgb_to_linear(m->materials[i].rgb[c]);
                 w->kind[2 * p + k][i] = m->materials[i].kind;
             }
-            if (!(pr->scene[k] = mesh_scene(w, s->dev, m, w->tri_mat[2 * p + k], &w->alpha[2 * p + k]))) return SYL_ELIMIT;
         }
     }
     return SYL_OK;
+}
+
+/* Level k of prototype p as a scene, built when a plant in view first wants it: a forest's
+ * looks cover every species, age class and variant, and a view shows few of them. */
+static RTCScene proto_scene(Work *w, int p, int k) {
+    Proto *pr = &w->pr[p];
+    if (pr->scene[k]) return pr->scene[k];
+    if (!(w->tri_mat[2 * p + k] = triangle_materials(pr->mesh[k]))) return NULL;
+    return pr->scene[k] = mesh_scene(w, w->s->dev, pr->mesh[k], w->tri_mat[2 * p + k], &w->alpha[2 * p + k]);
 }
 
 /* The instances in view, each at its level, into the top scene after the ground (ID 0). */
@@ -183,7 +189,7 @@ static int place(Work *w, const SylRenderInstance *inst, size_t n, SylRenderCoun
     unsigned id = 1;
     for (size_t i = 0; i < n; i++) {
         const SylRenderInstance *a = &inst[i];
-        const Proto *pr = &w->pr[a->proto];
+        Proto *pr = &w->pr[a->proto];
         float c = cosf(a->yaw), sn = sinf(a->yaw), k = a->scale;
         float q[3] = {a->t[0] + k * (c * pr->c[0] + sn * pr->c[2]), a->t[1] + k * pr->c[1],
                       a->t[2] + k * (-sn * pr->c[0] + c * pr->c[2])};
@@ -194,12 +200,14 @@ static int place(Work *w, const SylRenderInstance *inst, size_t n, SylRenderCoun
         }
         float z = dot3((float[3]){q[0] - s->cam.eye[0], q[1] - s->cam.eye[1], q[2] - s->cam.eye[2]}, s->cam.fwd);
         float rows = z > 0 ? k * pr->height / (2 * z * s->cam.tany) * (float)s->full_h : INFINITY;
-        int level = pr->scene[1] && rows < SYL_RENDER_COARSE_PX ? 1 : 0;
+        int level = pr->mesh[1] && rows < SYL_RENDER_COARSE_PX ? 1 : 0;
+        RTCScene proto = proto_scene(w, (int)a->proto, level);
+        if (!proto) return SYL_ELIMIT;
         counts->coarse += (size_t)level;
         counts->drawn++;
         float xfm[12] = {k * c, 0, -k * sn, 0, k, 0, k * sn, 0, k * c, a->t[0], a->t[1], a->t[2]};
         RTCGeometry g = rtcNewGeometry(s->dev, RTC_GEOMETRY_TYPE_INSTANCE);
-        rtcSetGeometryInstancedScene(g, pr->scene[level]);
+        rtcSetGeometryInstancedScene(g, proto);
         rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
         rtcCommitGeometry(g);
         rtcAttachGeometryByID(s->scene, g, id);
@@ -290,9 +298,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
     uint64_t pixels;
     int status = check(ground, protos, nprotos, inst, n, opt, windows, nwindows, &pixels);
     if (status) return status;
-    Budget own;
-    budget_init(&own, opt->max_memory);
-    Budget *mem = opt->budget ? opt->budget : &own;
+    Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     uint64_t tris = ground ? ground->nidx / 3 : 0;
     for (int p = 0; p < nprotos; p++) tris += protos[p].mesh->nidx / 3 + (protos[p].coarse ? protos[p].coarse->nidx / 3 : 0);
     uint64_t need = tris * 150 + (uint64_t)n * 600 + pixels * 3 + (uint64_t)nprotos * (2u << 17) + (8u << 20);

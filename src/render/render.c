@@ -174,9 +174,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
-    Budget own;
-    budget_init(&own, opt->max_memory);
-    Budget *mem = opt->budget ? opt->budget : &own;
+    Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     uint64_t w = opt->width > 0 ? (uint64_t)opt->width : 1024, h = opt->height > 0 ? (uint64_t)opt->height : 1024;
     uint64_t tris = m ? m->nidx / 3 : 0, need = tris * 150 + (m ? m->nverts * 16 : 0) + w * h * 3 + (4u << 20);
     if (!budget_charge(mem, need)) {
@@ -344,9 +342,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
 
 int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb) {
     if (n < 1) return SYL_OK;
-    Budget own;
-    budget_init(&own, opt->max_memory);
-    Budget *mem = opt->budget ? opt->budget : &own;
+    Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     uint64_t w = opt->width > 0 ? (uint64_t)opt->width : 1024, h = opt->height > 0 ? (uint64_t)opt->height : 1024;
     uint64_t tris = m ? m->nidx / 3 : 0, need = tris * 150 + (m ? m->nverts * 16 : 0) + w * h * 8 * (uint64_t)n + (4u << 20);
     if (!budget_charge(mem, need)) {

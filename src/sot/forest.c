@@ -33,8 +33,7 @@ void forest_limits(Forest *f, const SylGrowOptions *opt) {
     if (opt->max_buds) f->max_buds = opt->max_buds;
     f->max_modules = opt->max_modules;
     f->max_work = opt->max_work;
-    budget_init(&f->own, opt->max_memory);
-    f->mem = opt->budget ? opt->budget : &f->own;
+    f->mem = budget_use(&f->own, opt->max_memory, opt->budget);
 }
 
 int forest_said(Forest *f, int st, int year) {

@@ -29,8 +29,7 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     StrandsCounts c = strands_counts(&P, opt->age);
     /* counted before anything is allocated; the caller's budget keeps them until freed */
     uint64_t bytes = c.nodes * sizeof(SylNode) + c.organs * sizeof(SylOrgan);
-    Budget own, *mem = opt->budget ? opt->budget : &own;
-    budget_init(&own, opt->max_memory);
+    Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     if (!budget_charge(mem, bytes)) {
         if (opt->diag)
             fprintf(opt->diag,

@@ -3,6 +3,7 @@
 /* Periodic so that textures tile; the octaves as in Picek 2015, equations (2.16)-(2.18). Gradients come from a hash of the
  * lattice point, so there is no table to initialise and every call is reproducible. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "texture/texture.h"
 
@@ -35,29 +36,70 @@ static inline float corner(uint32_t hx, uint32_t hy, float dx, float dy, uint32_
     return g[0] * dx + g[1] * dy;
 }
 
-float noise2(float x, float y, int px, int py, uint32_t seed) {
+static inline float dot_grad(int k, float dx, float dy) { return grad[k][0] * dx + grad[k][1] * dy; }
+
+/* g: the lattice's gradient indices (px * py, row by row), or NULL to hash each corner. */
+static float noise_at(float x, float y, int px, int py, uint32_t seed, const uint8_t *g) {
     float fx = floorf(x), fy = floorf(y);
     int ix = (int)fx, iy = (int)fy;
     float dx = x - fx, dy = y - fy;
     int x0 = wrap(ix, px), y0 = wrap(iy, py);
     int x1 = px > 0 && x0 + 1 == px ? 0 : x0 + 1, y1 = py > 0 && y0 + 1 == py ? 0 : y0 + 1;
-    float n00 = corner((uint32_t)x0, (uint32_t)y0, dx, dy, seed);
-    float n10 = corner((uint32_t)x1, (uint32_t)y0, dx - 1, dy, seed);
-    float n01 = corner((uint32_t)x0, (uint32_t)y1, dx, dy - 1, seed);
-    float n11 = corner((uint32_t)x1, (uint32_t)y1, dx - 1, dy - 1, seed);
+    float n00, n10, n01, n11;
+    if (g) {
+        n00 = dot_grad(g[y0 * px + x0], dx, dy), n10 = dot_grad(g[y0 * px + x1], dx - 1, dy);
+        n01 = dot_grad(g[y1 * px + x0], dx, dy - 1), n11 = dot_grad(g[y1 * px + x1], dx - 1, dy - 1);
+    } else {
+        n00 = corner((uint32_t)x0, (uint32_t)y0, dx, dy, seed);
+        n10 = corner((uint32_t)x1, (uint32_t)y0, dx - 1, dy, seed);
+        n01 = corner((uint32_t)x0, (uint32_t)y1, dx, dy - 1, seed);
+        n11 = corner((uint32_t)x1, (uint32_t)y1, dx - 1, dy - 1, seed);
+    }
     float u = fade(dx), v = fade(dy);
     float a = n00 + u * (n10 - n00), b = n01 + u * (n11 - n01);
     return 1.41421356f * (a + v * (b - a)); /* 2D gradient noise peaks at 1/sqrt(2) */
 }
 
+float noise2(float x, float y, int px, int py, uint32_t seed) { return noise_at(x, y, px, py, seed, NULL); }
+
 float fbm2(float x, float y, int fx, int fy, float p, int octaves, uint32_t seed) {
     float sum = 0, norm = 0, a = 1;
     for (int i = 0; i < octaves; i++) {
-        sum += a * noise2(x * (float)fx, y * (float)fy, fx, fy, seed + (uint32_t)i * 101u);
+        sum += a * noise_at(x * (float)fx, y * (float)fy, fx, fy, seed + (uint32_t)i * 101u, NULL);
         norm += a;
         a *= p;
         fx *= 2;
         fy *= 2;
     }
     return norm > 0 ? sum / norm : 0;
+}
+
+/* A texture asks one fbm at every pixel: its lattices' gradients hashed once, not four times a
+ * pixel and octave (the same indices, so the same values to the bit). */
+void fbm_init(Fbm *f, int fx, int fy, float p, int octaves, uint32_t seed) {
+    *f = (Fbm){.fx = fx, .fy = fy, .p = p, .octaves = octaves < FBM_OCTAVES ? octaves : FBM_OCTAVES, .seed = seed};
+    for (int i = 0; i < f->octaves; i++) {
+        int px = fx << i, py = fy << i;
+        if (px <= 0 || py <= 0 || (size_t)px * (size_t)py > (1u << 20)) continue; /* not periodic: hashed */
+        uint8_t *g = f->g[i] = malloc((size_t)px * (size_t)py);
+        for (int y = 0; g && y < py; y++)
+            for (int x = 0; x < px; x++) g[y * px + x] = hash3((uint32_t)x, (uint32_t)y, seed + (uint32_t)i * 101u) & 7;
+    }
+}
+
+float fbm_at(const Fbm *f, float x, float y) {
+    float sum = 0, norm = 0, a = 1;
+    int fx = f->fx, fy = f->fy;
+    for (int i = 0; i < f->octaves; i++) {
+        sum += a * noise_at(x * (float)fx, y * (float)fy, fx, fy, f->seed + (uint32_t)i * 101u, f->g[i]);
+        norm += a;
+        a *= f->p;
+        fx *= 2;
+        fy *= 2;
+    }
+    return norm > 0 ? sum / norm : 0;
+}
+
+void fbm_free(Fbm *f) {
+    for (int i = 0; i < FBM_OCTAVES; i++) free(f->g[i]);
 }

@@ -35,38 +35,56 @@ static inline float smoothstep(float a, float b, float x) {
     return t * t * (3 - 2 * t);
 }
 
-static void bark(float s, float t, float out[3]) {
-    /* Stripes: noise across the branch only (the thesis zeroes the y component). */
-    float stripes = fbm2(s, 0, 6, 0, 0.5f, 3, 11);
-    /* They distort a noise stretched along the branch; its zero lines are the cracks. */
-    float n = fbm2(s + 0.06f * stripes, t, 12, 2, 0.5f, 4, 23);
+/* Each pattern's noises, made once for all its pixels (texture_pattern). */
+static void noises(int kind, Fbm f[4]) {
+    switch (kind) {
+    case SYL_MATERIAL_BARK:
+        fbm_init(&f[0], 6, 0, 0.5f, 3, 11); /* stripes: across the branch only (the thesis zeroes y) */
+        fbm_init(&f[1], 12, 2, 0.5f, 4, 23);
+        fbm_init(&f[2], 32, 4, 0.5f, 3, 37);
+        fbm_init(&f[3], 3, 1, 0.5f, 2, 51);
+        break;
+    case SYL_MATERIAL_LEAF: fbm_init(&f[0], 8, 8, 0.5f, 3, 71); break;
+    case SYL_MATERIAL_FLOWER: fbm_init(&f[0], 6, 6, 0.5f, 3, 81); break;
+    case -1:
+        fbm_init(&f[0], 8, 8, 0.5f, 4, 91);
+        fbm_init(&f[1], 64, 64, 0.6f, 2, 93);
+        break;
+    default: break;
+    }
+}
+
+/* stripes: f[0] at (s, 0), the same for a whole column. */
+static void bark(const Fbm *f, float s, float t, float stripes, float out[3]) {
+    /* The stripes distort a noise stretched along the branch; its zero lines are the cracks. */
+    float n = fbm_at(&f[1], s + 0.06f * stripes, t);
     float crack = 1 - smoothstep(0.0f, 0.12f, fabsf(n));
-    float grain = fbm2(s, t, 32, 4, 0.5f, 3, 37);
-    float blotch = fbm2(s, t, 3, 1, 0.5f, 2, 51);
+    float grain = fbm_at(&f[2], s, t);
+    float blotch = fbm_at(&f[3], s, t);
     float l = (0.80f + 0.14f * grain + 0.10f * blotch + 0.06f * stripes) * (1 - 0.72f * crack);
     out[0] = clamp01(l);
     out[1] = clamp01(l * (1 - 0.04f * crack));
     out[2] = clamp01(l * (1 - 0.08f * crack));
 }
 
-static void leaf(float s, float t, float out[3]) {
+static void leaf(const Fbm *fb, float s, float t, float out[3]) {
     float d = fabsf(s - 0.5f) * 2;                 /* 0 on the main vein, 1 at the edge */
     float w = 0.025f + 0.03f * (1 - t);            /* the main vein thins toward the tip */
     float main_vein = expf(-(d / w) * (d / w));
     float f = sinf(6.2831853f * 7 * (t - 0.35f * d)); /* side veins slant toward the tip */
     float side = smoothstep(0.80f, 1.0f, f) * (1 - 0.7f * d) * smoothstep(w, 2 * w, d);
     float edge = smoothstep(0.5f, 1.0f, d);
-    float n = fbm2(s, t, 8, 8, 0.5f, 3, 71);
+    float n = fbm_at(&fb[0], s, t);
     float l = (0.70f + 0.06f * n) * (1 - 0.45f * edge * edge);
     out[0] = clamp01(l + 0.28f * main_vein + 0.16f * side);
     out[1] = clamp01(l + 0.28f * main_vein + 0.16f * side);
     out[2] = clamp01(l + 0.10f * main_vein + 0.06f * side);
 }
 
-static void flower(float s, float t, float out[3]) {
+static void flower(const Fbm *f, float s, float t, float out[3]) {
     float d = fabsf(s - 0.5f) * 2;
     float streak = powf(0.5f + 0.5f * sinf(6.2831853f * 9 * s), 6);
-    float n = fbm2(s, t, 6, 6, 0.5f, 3, 81);
+    float n = fbm_at(&f[0], s, t);
     float l = (0.82f + 0.12f * t + 0.04f * n - 0.10f * streak * (1 - t)) * (1 - 0.15f * smoothstep(0.7f, 1, d));
     float base = 0.5f * (1 - smoothstep(0.0f, 0.25f, t)); /* a yellowish heart */
     out[0] = clamp01(l);
@@ -74,11 +92,11 @@ static void flower(float s, float t, float out[3]) {
     out[2] = clamp01(l * (1 - 0.55f * base));
 }
 
-static void grass(float s, float t, float out[3]) {
+static void grass(const Fbm *f, float s, float t, float out[3]) {
     /* The same noise twice, the second shifted, so no lattice pattern shows. */
-    float n1 = fbm2(s, t, 8, 8, 0.5f, 4, 91);
-    float n2 = fbm2(s + 0.37f, t + 0.61f, 8, 8, 0.5f, 4, 91);
-    float blades = fbm2(s, t, 64, 64, 0.6f, 2, 93);
+    float n1 = fbm_at(&f[0], s, t);
+    float n2 = fbm_at(&f[0], s + 0.37f, t + 0.61f);
+    float blades = fbm_at(&f[1], s, t);
     float l = 0.72f + 0.16f * n1 + 0.16f * n2 + 0.16f * blades;
     float dry = smoothstep(0.05f, 0.45f, n2 - n1);
     out[0] = clamp01(l * (1 + 0.30f * dry) * 0.92f);
@@ -87,18 +105,24 @@ static void grass(float s, float t, float out[3]) {
 }
 
 void texture_pattern(int kind, int size, float *out) {
+    Fbm f[4] = {0};
+    noises(kind, f);
+    float *stripes = kind == SYL_MATERIAL_BARK ? malloc((size_t)size * sizeof *stripes) : NULL;
+    for (int x = 0; stripes && x < size; x++) stripes[x] = fbm_at(&f[0], ((float)x + 0.5f) / (float)size, 0);
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++) {
             float s = ((float)x + 0.5f) / (float)size, t = ((float)y + 0.5f) / (float)size;
             float *o = out + 3 * ((size_t)y * (size_t)size + (size_t)x);
             switch (kind) {
-            case SYL_MATERIAL_BARK: bark(s, t, o); break;
-            case SYL_MATERIAL_LEAF: leaf(s, t, o); break;
-            case SYL_MATERIAL_FLOWER: flower(s, t, o); break;
-            case -1: grass(s, t, o); break;
+            case SYL_MATERIAL_BARK: bark(f, s, t, stripes ? stripes[x] : fbm_at(&f[0], s, 0), o); break;
+            case SYL_MATERIAL_LEAF: leaf(f, s, t, o); break;
+            case SYL_MATERIAL_FLOWER: flower(f, s, t, o); break;
+            case -1: grass(f, s, t, o); break;
             default: o[0] = o[1] = o[2] = 1; break;
             }
         }
+    free(stripes);
+    for (int k = 0; k < 4; k++) fbm_free(&f[k]);
 }
 
 static const float grass_rgb[3] = {0.42f, 0.56f, 0.22f};

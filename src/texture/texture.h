@@ -15,6 +15,19 @@ float noise2(float x, float y, int px, int py, uint32_t seed);
  * amplitude p^i; x, y in 0..1 tile when f is a whole number. Divided by the sum of the
  * amplitudes, so also about -1..1. */
 float fbm2(float x, float y, int fx, int fy, float p, int octaves, uint32_t seed);
+/* fbm2's parameters with each periodic octave's gradients hashed once (for a texture's every
+ * pixel); fbm_at(f, x, y) == fbm2(x, y, fx, fy, p, octaves, seed) to the bit. Without memory
+ * for a table an octave is hashed as fbm2 does. At most FBM_OCTAVES octaves. */
+enum { FBM_OCTAVES = 8 };
+typedef struct Fbm {
+    int fx, fy, octaves;
+    float p;
+    uint32_t seed;
+    uint8_t *g[FBM_OCTAVES];
+} Fbm;
+void fbm_init(Fbm *f, int fx, int fy, float p, int octaves, uint32_t seed);
+float fbm_at(const Fbm *f, float x, float y);
+void fbm_free(Fbm *f);
 
 /* ---- patterns (texture.c) ---- */
 

@@ -279,8 +279,7 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     /* the nodes are counted before they are drawn: the caller's budget keeps them counted
      * until the skeleton is freed, one of max_memory checks them alone */
     uint64_t want = count_nodes(t, s), bytes = want * sizeof(SylNode);
-    Budget own, *mem = opt && opt->budget ? opt->budget : &own;
-    budget_init(&own, opt ? opt->max_memory : 0);
+    Budget own, *mem = budget_use(&own, opt ? opt->max_memory : 0, opt ? opt->budget : NULL);
     if (!budget_charge(mem, bytes)) {
         if (diag)
             fprintf(diag, "sylva: error: the skeleton would need %llu nodes (%llu MB), more than --max-memory "

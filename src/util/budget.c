@@ -97,6 +97,11 @@ void budget_init(Budget *b, uint64_t limit) {
     b->limit = limit ? limit : budget_default_limit();
 }
 
+Budget *budget_use(Budget *own, uint64_t limit, Budget *shared) {
+    budget_init(own, limit ? limit : shared ? shared->limit : 0);
+    return shared ? shared : own;
+}
+
 bool budget_charge(Budget *b, uint64_t bytes) {
     if (!b || !bytes) return true;
     if (bytes > b->limit) { /* and so never added, even for a moment, to what other threads see */

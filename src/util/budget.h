@@ -31,6 +31,10 @@ uint64_t budget_default_why(const char **why);
 uint64_t budget_cgroup_limit(const char *proc_cgroup, const char *sys_root, const char **which);
 /* A budget of limit bytes (0: the default), nothing charged. */
 void budget_init(Budget *b, uint64_t limit);
+/* The budget an engine charges: shared when the caller gives one (own is then set to its
+ * limit without asking the system again: a scene of 10,000 plants asked 30,000 times), else
+ * own, of limit bytes (0: the default). */
+Budget *budget_use(Budget *own, uint64_t limit, Budget *shared);
 /* Count bytes more; false (nothing counted, the refusal remembered) when the total would pass
  * the limit. b NULL: always true. */
 bool budget_charge(Budget *b, uint64_t bytes);

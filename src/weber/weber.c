@@ -106,8 +106,7 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     }
     const WeberParams *w = &g->w;
     Budget local;
-    if (opt && opt->budget) g->budget = opt->budget;
-    else budget_init(&local, opt ? opt->max_memory : 0), g->budget = &local;
+    g->budget = budget_use(&local, opt ? opt->max_memory : 0, opt ? opt->budget : NULL);
     g->levels = (int)w->Levels;
     g->leaves = (int)w->Leaves;
     if (opt && opt->levels > 0 && opt->levels < g->levels) g->levels = opt->levels, g->leaves = 0;
