@@ -49,6 +49,14 @@ FILE *syl_sink_open(const SylSink *sink);
  * line and a caret under the column. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
 
+/* A picture the library draws (a terrain's maps, an ecosystem's map): width x height RGB,
+ * rows top to bottom, rgb malloc'ed; syl_picture_free frees it (and zeroes the struct). */
+typedef struct SylPicture {
+    uint8_t *rgb;
+    int width, height;
+} SylPicture;
+void syl_picture_free(SylPicture *p);
+
 /* A memory budget that several engines share, so that one limit (--max-memory) holds for a
  * whole run: derivation, growth, scenes, the mesher and the renderer each count their large
  * arrays against it and stop with SYL_ELIMIT, before allocating, when it would be passed.

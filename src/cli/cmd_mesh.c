@@ -4,7 +4,6 @@
 #include <strings.h>
 
 #include "cli/cli.h"
-#include "cli/lodcheck.h"
 #include "sylva/impostor.h"
 #include "util/outgroup.h"
 #include "sylva/lod.h"
@@ -230,7 +229,12 @@ int cmd_mesh(int argc, char **argv) {
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */
         SylLodChain shown = lods;
         shown.n -= imp.billboards ? 1 : 0;
-        status = outgroup_add(&outs, a.image, stderr) ? lod_picture(&shown, a.image, 256, d.threads) : SYL_EIO;
+        SylPicture pic = {0};
+        status = outgroup_add(&outs, a.image, stderr)
+                     ? syl_lod_picture(&shown, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &pic)
+                     : SYL_EIO;
+        if (!status) status = syl_png_write(a.image, pic.rgb, pic.width, pic.height, stderr);
+        syl_picture_free(&pic);
     }
     if (status) outgroup_undo(&outs); /* the command's files are one: all written, or none changed */
     else outgroup_commit(&outs);
@@ -248,8 +252,8 @@ int cmd_mesh(int argc, char **argv) {
         if (imp.billboards) fprintf(stderr, "impostor time: %.6f s\nimpostor cpu time: %.6f s\n", t_imp, c_imp);
         if (a.wind > 0) fprintf(stderr, "wind joints: %d\nwind keys: %d\nwind time: %.6f s\n", wind.njoints, wind.nkeys, t_wind);
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
-            LodSilhouette sil;
-            if (lod_silhouette(&lods, k, d.threads, &sil)) break;
+            SylLodSilhouette sil;
+            if (syl_lod_silhouette(&lods, k, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &sil)) break;
             const SylLodLevel *lv = &lods.level[k];
             char leaves[64];
             if (lv->cluster_leaves > 0) snprintf(leaves, sizeof leaves, "leaves in clusters of %.1f", (double)lv->cluster_leaves);
