@@ -1,20 +1,18 @@
 /* The MPI transport reports through the caller's diag, not stderr: under mpirun -np 2 with
  * SYLVA_RANK_TIMEOUT=1, rank 1 stops itself (SIGSTOP) and rank 0, waiting on it in a sum, ends
- * the job (exit code SYL_EIO, 4) after saying why to its sink, which prints the record. */
+ * the job (exit code SYL_EIO, 4) after saying why on the stream it was given: the file LOG,
+ * which every rank opens to append to.
+ *   mpi_diag LOG */
 #include <signal.h>
 #include <stdio.h>
 
 #include <sylva/ecosystem.h>
 
-static void report(void *user, const SylDiagnostic *d) {
-    (void)user;
-    printf("record %d %s\n", (int)d->severity, d->message);
-    fflush(stdout);
-}
-
 int main(int argc, char **argv) {
-    SylSink sink = {report, NULL};
-    FILE *diag = syl_sink_open(&sink);
+    if (argc < 2) return 2;
+    FILE *diag = fopen(argv[1], "a");
+    if (!diag) return 2;
+    setvbuf(diag, NULL, _IONBF, 0);
     SylEcoMpi *mpi = syl_eco_mpi_start(&argc, &argv, diag);
     if (!mpi) {
         printf("not under mpirun, or no MPI\n");
@@ -24,5 +22,6 @@ int main(int argc, char **argv) {
     int64_t v = 1;
     syl_eco_mpi_sum(mpi, &v, 1); /* rank 0 waits here for ever, but for the watchdog */
     syl_eco_mpi_end(mpi);
+    fclose(diag);
     return 0;
 }
