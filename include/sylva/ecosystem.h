@@ -232,12 +232,6 @@ const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebal
  * with a tile that re-balancing gave it, barriers. */
 void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent,
                          uint64_t *halo_received, uint64_t *plants_moved, uint64_t *barriers);
-/* For work split over ranks outside the simulation (a snapshot's picture, split by rows):
- * sum adds v over the ranks, in place (one process: unchanged); gather puts every rank's
- * bytes, in rank order, into *all (malloc'ed) on rank 0, with each rank's length in
- * lens[rank] (lens: size entries, rank 0's); *all = NULL elsewhere. SYL_OK or SYL_ELIMIT. */
-void syl_eco_mpi_sum(SylEcoMpi *mpi, int64_t *v, size_t n);
-int syl_eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, size_t *lens);
 void syl_eco_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
 
 /* Pictures of a run (src/eco/pictures.c), in one palette of species' colours. map: a

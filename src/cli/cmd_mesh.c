@@ -219,11 +219,10 @@ int cmd_mesh(int argc, char **argv) {
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
     if (!status && !outgroup_add(&outs, output, stderr)) status = SYL_EIO;
-    if (!status) status = levels && a.wind > 0 ? syl_wind_write_glb_lods(&lods, sk, &wind, output, stderr)
-                          : levels    ? syl_lod_write_glb(&lods, output, stderr)
-                          : a.wind > 0 ? syl_wind_write_glb(mesh, sets, nsets, sk, &wind, output, stderr)
-                          : instanced ? syl_mesh_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                                      : syl_mesh_write_parts(mesh, pl.parts, pl.nparts, output, stderr);
+    SylMeshOutput mout = {.mesh = mesh, .parts = pl.parts, .nparts = pl.nparts, .instanced = instanced,
+                          .sets = sets, .nsets = nsets, .lods = levels ? &lods : NULL, .skeleton = sk,
+                          .wind = a.wind > 0 ? &wind : NULL};
+    if (!status) status = syl_mesh_write_output(&mout, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */

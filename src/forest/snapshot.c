@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "eco/eco.h"
 #include "util/clock.h"
 #include "util/outgroup.h"
 #include "sylva/forest.h"
@@ -36,7 +37,7 @@ static int agree(SylEcoMpi *mpi, int st, FILE *out, FILE *said, char *const *tex
     int64_t v[7] = {0}; /* a flag per status, rank 0 failed, ranks failed */
     if (st > 0 && st < 5) v[st] = 1;
     v[5] = st && rank == 0, v[6] = st != 0;
-    syl_eco_mpi_sum(mpi, v, 7);
+    eco_mpi_sum(mpi, v, 7);
     int worst = SYL_OK;
     for (int k = 4; k > 0; k--)
         if (v[k] && !worst) worst = k;
@@ -101,7 +102,7 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
     if (mpi && o->before_gather) o->before_gather(o->user, rank);
     if (!st && !(lens = calloc((size_t)nranks, sizeof *lens))) st = SYL_ELIMIT;
     st = agree(mpi, st, o->diag, kept, &said, &said_len);
-    if (!st) st = syl_eco_mpi_gather(mpi, mine, rows * row_bytes, &all, lens);
+    if (!st) st = eco_mpi_gather(mpi, mine, rows * row_bytes, &all, lens);
     if (!st && rank == 0) { /* each rank's bands, in its order, into their rows */
         if (!(rgb = malloc((size_t)h * row_bytes))) st = SYL_ELIMIT;
         size_t from = 0;

@@ -1,12 +1,13 @@
 /* The MPI transport reports through the caller's diag, not stderr: under mpirun -np 2 with
- * SYLVA_RANK_TIMEOUT=1, rank 1 stops itself (SIGSTOP) and rank 0, waiting on it in a sum, ends
- * the job (exit code SYL_EIO, 4) after saying why on the stream it was given: the file LOG,
- * which every rank opens to append to.
+ * SYLVA_RANK_TIMEOUT=1, rank 1 stops itself (SIGSTOP) and rank 0, waiting on it in the
+ * snapshot render's agreement on a status (every rank calls it, a failed compile too: p NULL),
+ * ends the job (exit code SYL_EIO, 4) after saying why on the stream it was given: the file
+ * LOG, which every rank opens to append to.
  *   mpi_diag LOG */
 #include <signal.h>
 #include <stdio.h>
 
-#include <sylva/ecosystem.h>
+#include <sylva/forest.h>
 
 int main(int argc, char **argv) {
     if (argc < 2) return 2;
@@ -19,8 +20,9 @@ int main(int argc, char **argv) {
         return 0;
     }
     if (syl_eco_mpi_rank(mpi) == 1) raise(SIGSTOP);
-    int64_t v = 1;
-    syl_eco_mpi_sum(mpi, &v, 1); /* rank 0 waits here for ever, but for the watchdog */
+    SylSnapshotStats stats;
+    /* rank 0 waits here for ever, but for the watchdog */
+    syl_ecosystem_render_snapshot(NULL, SYL_EMODEL, &(SylSnapshotOptions){.render = &(SylRenderOptions){0}, .mpi = mpi, .diag = diag}, &stats);
     syl_eco_mpi_end(mpi);
     fclose(diag);
     return 0;
