@@ -232,13 +232,21 @@ const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebal
  * with a tile that re-balancing gave it, barriers. */
 void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent,
                          uint64_t *halo_received, uint64_t *plants_moved, uint64_t *barriers);
-/* For work split over ranks outside the simulation (a snapshot's picture, split by rows):
- * sum adds v over the ranks, in place (one process: unchanged); gather puts every rank's
- * bytes, in rank order, into *all (malloc'ed) on rank 0, with each rank's length in
- * lens[rank] (lens: size entries, rank 0's); *all = NULL elsewhere. SYL_OK or SYL_ELIMIT. */
-void syl_eco_mpi_sum(SylEcoMpi *mpi, int64_t *v, size_t n);
-int syl_eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, size_t *lens);
 void syl_eco_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
+
+/* Pictures of a run (src/eco/pictures.c), in one palette of species' colours. map: a
+ * snapshot seen from above, north up, its plants as discs of their crowns (the dominated
+ * ones darker, the tallest on top) over the terrain's hillshade (syl_terrain_hillshade, of the
+ * same size), the species' names in a legend: `sylva ecosystem`'s map-YEAR.png. SYL_OK or
+ * SYL_ELIMIT. chart: an SVG of each species' cover (crown area / terrain area) over the years
+ * given (species.svg), into *svg (malloc'ed, NUL-ended, *len bytes). SYL_OK or SYL_ELIMIT. */
+int syl_ecosystem_map(const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *plants, size_t n,
+                      const SylMapOptions *o, SylPicture *out);
+typedef struct SylChartOptions {
+    double width, height; /* pixels (0: 640 x 360) */
+} SylChartOptions;
+int syl_ecosystem_chart(const SylEcoModel *m, const SylEcoYear *years, int nyears, const SylChartOptions *o,
+                        char **svg, size_t *len);
 
 /* A species' vigour at (x, z): its suitabilities combined as the block says. */
 double syl_ecosystem_vigour(const SylEcoModel *m, int species, const SylTerrain *t, double x, double z);

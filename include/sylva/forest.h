@@ -52,6 +52,37 @@ int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, c
 int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n, double cell, const char *path,
                          FILE *diag);
 
+/* A saved snapshot (its plant table, plants-YEAR.csv) of p's ecosystem block rendered as
+ * `sylva ecosystem` renders view-YEAR.png, and written to png (and glb, when given, as one
+ * transaction: both or neither) by rank 0 (src/forest/snapshot.c). Under MPI (mpi, from
+ * syl_eco_mpi_start) the picture's rows are cut into bands dealt round the ranks, each rank
+ * renders its own and rank 0 gathers them: the bytes do not depend on the number of ranks.
+ * Every rank calls it, with the status it has so far (p NULL when its compile failed: it
+ * still takes part, so the job stops together). Rank 0 reports on diag; another rank keeps
+ * its diagnostics and reports them there only when it alone failed. Every rank returns the
+ * worst status of all: SYL_OK, SYL_EMODEL, SYL_EUSAGE (not an ecosystem block), SYL_EIO,
+ * SYL_ELIMIT. */
+typedef struct SylSnapshotOptions {
+    const char *plants;              /* the plant table */
+    SylForestView view;
+    const SylRenderOptions *render;  /* width x height (0: 1280 x 720), samples, shadows, threads */
+    const char *png, *glb;           /* rank 0's outputs; glb NULL: none */
+    int threads;                     /* for the forest's meshes; <= 0: all cores */
+    SylEcoMpi *mpi;                  /* NULL: one process */
+    void (*before_gather)(void *user, int rank); /* under MPI, each rank before the gather */
+    void *user;
+    FILE *diag;
+} SylSnapshotOptions;
+typedef struct SylSnapshotStats {    /* this rank's */
+    SylRenderCamera camera;
+    int width, height;
+    size_t plants, rows, bytes;      /* rows rendered here, and their bytes sent to rank 0 */
+    int bands;
+    SylRenderCounts counts;
+    double wall, cpu;                /* the render's seconds */
+} SylSnapshotStats;
+int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnapshotOptions *o, SylSnapshotStats *stats);
+
 #ifdef __cplusplus
 }
 #endif

@@ -57,6 +57,26 @@ float syl_lod_coverage(int k, int levels);
  * on LOD0 (docs/mesh.md). */
 int syl_lod_write_glb(const SylLodChain *c, const char *path, FILE *diag);
 
+/* How far a level strays from LOD0 (src/plant/lodcheck.c, `sylva mesh --lod N --stats` and
+ * --image). silhouette: LOD0 and level k (1 .. n-1) rendered from one camera (from 35 degrees
+ * up, or the front for a flat plant) at the size the plant has on a 1080-line screen where
+ * level k switches on (32 to 1024 pixels), their silhouettes (coverage >= 1/2) compared pixel
+ * by pixel. SYL_OK, SYL_EUSAGE (no such level) or the renderer's status. picture: every level
+ * rendered size x size by LOD0's camera, side by side. */
+typedef struct SylLodCheckOptions {
+    int threads;   /* <= 0: all cores; nothing depends on it */
+    int size;      /* syl_lod_picture's side of a level (0: 256) */
+    FILE *diag;
+} SylLodCheckOptions;
+typedef struct SylLodSilhouette {
+    int pixels;             /* the square pictures' side */
+    size_t covered, differ; /* pixels inside LOD0's silhouette; pixels inside one only */
+    double percent;         /* differ / covered, in percent */
+    double soft;            /* the sum of coverage differences over LOD0's coverage, percent */
+} SylLodSilhouette;
+int syl_lod_silhouette(const SylLodChain *c, int k, const SylLodCheckOptions *o, SylLodSilhouette *out);
+int syl_lod_picture(const SylLodChain *c, const SylLodCheckOptions *o, SylPicture *out);
+
 #ifdef __cplusplus
 }
 #endif

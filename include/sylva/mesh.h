@@ -2,6 +2,7 @@
  * polygons — with smooth normals, UVs and one group of triangles per material. */
 #ifndef SYLVA_MESH_H
 #define SYLVA_MESH_H
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -151,6 +152,24 @@ int syl_mesh_write(const SylMesh *m, const char *path, FILE *diag); /* by the ex
 /* A scene (m: all of it) as its objects, parts[0..n): one `o NAME` each in an OBJ, one node each
  * in a .glb; a PLY has no objects, so it is m whole. */
 int syl_mesh_write_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
+/* A plant's mesh for one file and what goes with it, written in the format of the file's
+ * extension by the writer what it holds asks for (the one place that chooses): levels of
+ * detail (MSFT_lod; skinned too with wind), else a skinned mesh swaying in the wind, else the
+ * leaves as instance sets, else the mesh with a scene's parts (syl_mesh_write_parts). What
+ * the format cannot hold (SylMeshFormat.can) is refused, SYL_EUSAGE said on diag; else the
+ * writer's status. */
+typedef struct SylMeshOutput {
+    const SylMesh *mesh;                 /* the whole plant */
+    SylMesh *const *parts;               /* a scene's objects, parts[0 .. nparts) */
+    int nparts;
+    bool instanced;                      /* the leaves as instance sets[0 .. nsets) (maybe none) */
+    const SylInstances *sets;
+    int nsets;
+    const struct SylLodChain *lods;      /* levels of detail (sylva/lod.h); NULL: none */
+    const SylSkeleton *skeleton;         /* the plant the wind's joints are of */
+    const struct SylWind *wind;          /* sylva/wind.h; NULL: not skinned */
+} SylMeshOutput;
+int syl_mesh_write_output(const SylMeshOutput *o, const char *path, FILE *diag);
 
 enum { SYL_TEXTURE_SIZE = 512 };
 /* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if

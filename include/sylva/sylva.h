@@ -1,7 +1,8 @@
 /* libsylva: compile .syl models and derive their module strings.
  *
  * Every function reports problems through the FILE * it is given (diagnostics in the form
- * `file:line:col: error: message`) and returns one of the SYL_* status codes, which are also
+ * `file:line:col: error: message`), or as records to the sink its program was compiled with
+ * (SylSink, below), and returns one of the SYL_* status codes, which are also
  * the exit codes of the `sylva` command. */
 #ifndef SYLVA_H
 #define SYLVA_H
@@ -27,9 +28,12 @@ typedef struct SylProgram SylProgram;
 typedef struct SylString SylString;
 
 /* Diagnostics as records, for a program that embeds the library: the library never writes to
- * stderr by itself; it reports to the FILE * diag its caller gives. A caller that wants
- * records rather than text gives it syl_sink_open(sink): every diagnostic written there
- * reaches sink->report as one SylDiagnostic (docs/embedding.md, "Diagnostics"). */
+ * stderr by itself. A diagnostic about a place in a model's source (its file, line and
+ * column: the compile, the validation hook, and what the engines report later about its
+ * lines) is made as a SylDiagnostic and handed to a sink: the one given in
+ * SylCompileOptions.sink, else the text sink of the FILE * diag given, which writes it as
+ * syl_diagnostic_write does (what `sylva` prints). Messages without a place (a file that
+ * cannot be read, a limit) are text on the FILE * diag (docs/embedding.md, "Diagnostics"). */
 typedef enum { SYL_DIAG_ERROR, SYL_DIAG_WARNING, SYL_DIAG_NOTE } SylSeverity;
 typedef struct SylDiagnostic {
     SylSeverity severity;
@@ -37,17 +41,25 @@ typedef struct SylDiagnostic {
     int line, column;        /* from 1, columns in bytes; 0: no place */
     const char *message;     /* without "error: "; controls shown escaped (^X, <U+XXXX>) */
     const char *source_line; /* the line at `line` as shown, tabs kept; NULL: not shown */
+    int end_column;          /* the last byte column of the span on that line (>= column) */
+    const char *caret;       /* the line under source_line marking the span ("  ^~~"), tabs
+                                kept so that it lines up; NULL with source_line */
 } SylDiagnostic;
 typedef struct SylSink {
     void (*report)(void *user, const SylDiagnostic *d); /* the record lives during the call */
     void *user;
 } SylSink;
-/* A stream for any function's diag that hands each diagnostic to sink (copied) as a record;
- * the last one arrives at the latest at fclose. NULL when out of memory. */
-FILE *syl_sink_open(const SylSink *sink);
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
- * line and a caret under the column. */
+ * line and the caret line under it. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
+
+/* A picture the library draws (a terrain's maps, an ecosystem's map): width x height RGB,
+ * rows top to bottom, rgb malloc'ed; syl_picture_free frees it (and zeroes the struct). */
+typedef struct SylPicture {
+    uint8_t *rgb;
+    int width, height;
+} SylPicture;
+void syl_picture_free(SylPicture *p);
 
 /* A memory budget that several engines share, so that one limit (--max-memory) holds for a
  * whole run: derivation, growth, scenes, the mesher and the renderer each count their large
@@ -96,6 +108,12 @@ typedef struct SylCompileOptions {
      * a model names (syl_program_file) may be (--allow-path); "/" allows every file. */
     const char *const *allow_paths;
     int nallow_paths;
+    /* Where the program's diagnostics with a place go as records (above), instead of diag:
+     * the compile's, the validation hook's, and those the engines report later about this
+     * program's lines (syl_program_error, syl_directive_error), for as long as it lives; the
+     * sink is copied. NULL: diag's text. Other models of the file compiled for this one
+     * (syl_compile_model) report to their own diag. */
+    const SylSink *sink;
 } SylCompileOptions;
 
 /* The validation hook for syl_compile (SylCompileOptions.validate; user: NULL, or an int *

@@ -103,6 +103,19 @@ double syl_terrain_factor_at(const SylTerrain *t, SylTerrainFactor f, double x, 
  * holds the values of grey 0 and of white, PATH.asc an ESRI ASCII grid. */
 int syl_terrain_write_map(const SylTerrain *t, SylTerrainFactor f, const char *path, FILE *diag);
 const char *syl_terrain_factor_name(SylTerrainFactor f); /* "altitude", "slope", ... */
+
+/* Pictures of a terrain for people (src/terrain/pictures.c), north up: a cell is `size` /
+ * (the grid's longer side) pixels across, from 1 to 8 (size 0: 512). */
+typedef struct SylMapOptions {
+    int size;
+} SylMapOptions;
+/* Grey hillshade, lit from the north-west 45 degrees up (the ecosystem map's background).
+ * SYL_OK or SYL_ELIMIT. */
+int syl_terrain_hillshade(const SylTerrain *t, const SylMapOptions *o, SylPicture *out);
+/* A factor in colour over the hillshade gdaldem computes (the slope and aspect must have been
+ * computed), with a legend of its colours, range and unit below: `sylva terrain --maps`'
+ * NAME-colour.png. SYL_OK, SYL_EUSAGE (the factor or the slope not computed) or SYL_ELIMIT. */
+int syl_terrain_colour_map(const SylTerrain *t, SylTerrainFactor f, const SylMapOptions *o, SylPicture *out);
 void syl_terrain_free(SylTerrain *t);
 
 #ifdef __cplusplus

@@ -3,15 +3,12 @@
  * snapshot a top-down map, a rendered picture of the plants as instances of their species'
  * looks, and (--glb) the scene as a .glb. */
 #include <errno.h>
-#include <libxml/xmlwriter.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
 
 #include "cli/cli.h"
-#include "cli/font.h"
 #include "cli/testfaults.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
@@ -71,9 +68,6 @@ typedef struct Run {
     const SylTerrain *t;
     SylEcoYear *years;
     int nyears, cap;
-    uint8_t *shade;   /* the hillshade, one grey per pixel */
-    int w, h;
-    double scale;     /* pixels per metre */
     Progress bar;
     int status;
     int rank;
@@ -128,96 +122,15 @@ static int on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t
     return st;
 }
 
-static const uint8_t palette[][3] = {{46, 125, 50}, {230, 140, 30}, {30, 90, 160}, {170, 60, 150},
-                                     {200, 50, 40}, {120, 170, 40}, {90, 60, 30}, {20, 160, 160}};
-enum { NPAL = sizeof palette / sizeof palette[0] };
-
-/* Grey hillshade, lit from the north-west 45° up: the map's background. */
-static bool hillshade(Run *r) {
-    const SylTerrain *t = r->t;
-    double size = t->nx > t->nz ? t->nx : t->nz;
-    int px = size >= 512 ? 1 : (int)(512 / size); /* pixels per cell: a map of about 512 */
-    if (px > 8) px = 8;
-    r->w = t->nx * px;
-    r->h = t->nz * px;
-    r->scale = px / t->cell;
-    r->shade = malloc((size_t)r->w * r->h);
-    if (!r->shade) return false;
-    double lx = -0.5, ly = 0.7071, lz = -0.5; /* towards the light: north-west, up */
-    for (int k = 0; k < t->nz; k++)
-        for (int i = 0; i < t->nx; i++) {
-            int i0 = i > 0 ? i - 1 : i, i1 = i + 1 < t->nx ? i + 1 : i;
-            int k0 = k > 0 ? k - 1 : k, k1 = k + 1 < t->nz ? k + 1 : k;
-            double dx = (t->height[(size_t)k * t->nx + i1] - t->height[(size_t)k * t->nx + i0]) / ((i1 - i0) * t->cell + 1e-12);
-            double dz = (t->height[(size_t)k1 * t->nx + i] - t->height[(size_t)k0 * t->nx + i]) / ((k1 - k0) * t->cell + 1e-12);
-            double nx = -dx, ny = 1, nz = -dz, len = sqrt(nx * nx + ny * ny + nz * nz);
-            double c = (nx * lx + ny * ly + nz * lz) / len;
-            uint8_t g = (uint8_t)(60 + 170 * (c > 0 ? c : 0));
-            for (int b = 0; b < px; b++) memset(r->shade + (size_t)(k * px + b) * r->w + (size_t)i * px, g, (size_t)px);
-        }
-    return true;
-}
-
-/* The species' colours and names in the top left corner, on a dark box. */
-static void map_legend(const Run *r, uint8_t *rgb) {
-    static const uint8_t dark[3] = {24, 24, 24}, white[3] = {240, 240, 240};
-    int s = r->w >= 400 ? 2 : 1, line = 10 * s, wide = 0;
-    for (int i = 0; i < r->m->nspecies; i++) {
-        int tw = cli_text_width(r->m->species[i].name, s);
-        wide = tw > wide ? tw : wide;
-    }
-    cli_fill_rect(rgb, r->w, r->h, 0, 0, wide + 14 * s, r->m->nspecies * line + 4 * s, dark);
-    for (int i = 0; i < r->m->nspecies; i++) {
-        int y = 3 * s + i * line;
-        cli_fill_rect(rgb, r->w, r->h, 3 * s, y, 7 * s, 7 * s, palette[i % NPAL]);
-        cli_text_draw(rgb, r->w, r->h, 12 * s, y, r->m->species[i].name, s, white);
-    }
-}
-
-static int by_height(const void *a, const void *b, void *plants) {
-    const SylEcoPlant *p = (const SylEcoPlant *)plants + *(const uint32_t *)a,
-                      *q = (const SylEcoPlant *)plants + *(const uint32_t *)b;
-    if (p->height != q->height) return p->height < q->height ? -1 : 1;
-    return p->id < q->id ? -1 : p->id > q->id;
-}
-
+/* map-YEAR.png (syl_ecosystem_map) */
 static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
-    uint8_t *rgb = malloc((size_t)r->w * r->h * 3);
-    uint32_t *order = malloc((n ? n : 1) * sizeof *order); /* indices: no copy of the plants */
-    if (!rgb || !order) {
-        free(rgb), free(order);
-        return SYL_ELIMIT;
-    }
-    for (size_t i = 0; i < (size_t)r->w * r->h; i++) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = r->shade[i];
-    for (size_t j = 0; j < n; j++) order[j] = (uint32_t)j;
-    qsort_r(order, n, sizeof *order, by_height, (void *)plants); /* the tallest drawn last, on top */
-    for (size_t j = 0; j < n; j++) {
-        const SylEcoPlant *p = &plants[order[j]];
-        double rad = r->m->species[p->species].radius_ratio * p->height * r->scale;
-        if (rad < 0.75) rad = 0.75;
-        double cx = (p->x - r->t->x0) * r->scale, cz = (p->z - r->t->z0) * r->scale;
-        const uint8_t *c = palette[p->species % NPAL];
-        double dim = p->state == SYL_ECO_DOMINATED ? 0.6 : 1.0;
-        for (int z = (int)floor(cz - rad); z <= (int)ceil(cz + rad); z++) {
-            if (z < 0 || z >= r->h) continue;
-            for (int x = (int)floor(cx - rad); x <= (int)ceil(cx + rad); x++) {
-                if (x < 0 || x >= r->w) continue;
-                double dx = x + 0.5 - cx, dz = z + 0.5 - cz, d2 = dx * dx + dz * dz;
-                if (d2 > rad * rad) continue;
-                double lit = dim * (1.05 - 0.35 * d2 / (rad * rad)); /* a rounded crown */
-                uint8_t *o = rgb + 3 * ((size_t)z * r->w + x);
-                for (int ch = 0; ch < 3; ch++) {
-                    double v = c[ch] * lit;
-                    o[ch] = (uint8_t)(v > 255 ? 255 : v);
-                }
-            }
-        }
-    }
-    map_legend(r, rgb);
+    SylPicture pic = {0};
     char *path = path_in(r->dir, "map-%d.png", year);
-    int st = path ? syl_png_write(path, rgb, r->w, r->h, stderr) : SYL_ELIMIT;
+    int st = path ? syl_ecosystem_map(r->m, r->t, plants, n, NULL, &pic) : SYL_ELIMIT;
+    if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, stderr);
     if (!st) printf("%s\n", path);
-    free(path), free(rgb), free(order);
+    syl_picture_free(&pic);
+    free(path);
     return st;
 }
 
@@ -336,95 +249,19 @@ static int write_species_csv(Run *r) {
     return st;
 }
 
-/* The chart: each species' cover (crown area / terrain area) over the years. */
+/* species.svg (syl_ecosystem_chart) */
 static int write_chart(Run *r) {
-    xmlBufferPtr buf = xmlBufferCreate();
-    xmlTextWriterPtr w = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;
-    if (!w) {
-        if (buf) xmlBufferFree(buf);
-        return SYL_ELIMIT;
-    }
-    const double W = 640, H = 360, L = 60, R = 140, T = 20, B = 40;
-    double top = 0;
-    for (int y = 0; y < r->nyears; y++)
-        for (int s = 0; s < r->m->nspecies; s++)
-            if (r->years[y].cover[s] > top) top = r->years[y].cover[s];
-    top = top > 0 ? ceil(top * 10) / 10 : 1;
-    int last = r->nyears ? r->years[r->nyears - 1].year : 1;
-    char v[64];
-    xmlTextWriterSetIndent(w, 1);
-    xmlTextWriterStartDocument(w, NULL, "UTF-8", NULL);
-    xmlTextWriterStartElement(w, BAD_CAST "svg");
-    xmlTextWriterWriteAttribute(w, BAD_CAST "xmlns", BAD_CAST "http://www.w3.org/2000/svg");
-    snprintf(v, sizeof v, "%g", W);
-    xmlTextWriterWriteAttribute(w, BAD_CAST "width", BAD_CAST v);
-    snprintf(v, sizeof v, "%g", H);
-    xmlTextWriterWriteAttribute(w, BAD_CAST "height", BAD_CAST v);
-    xmlTextWriterWriteAttribute(w, BAD_CAST "font-family", BAD_CAST "sans-serif");
-    xmlTextWriterWriteAttribute(w, BAD_CAST "font-size", BAD_CAST "12");
-    xmlTextWriterStartElement(w, BAD_CAST "rect");
-    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", L);
-    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%g", T);
-    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "width", "%g", W - L - R);
-    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "height", "%g", H - T - B);
-    xmlTextWriterWriteAttribute(w, BAD_CAST "fill", BAD_CAST "none");
-    xmlTextWriterWriteAttribute(w, BAD_CAST "stroke", BAD_CAST "#444");
-    xmlTextWriterEndElement(w);
-    for (int i = 0; i <= 4; i++) { /* the axes' labels */
-        xmlTextWriterStartElement(w, BAD_CAST "text");
-        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", L - 6);
-        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%.1f", H - B - (H - T - B) * i / 4 + 4);
-        xmlTextWriterWriteAttribute(w, BAD_CAST "text-anchor", BAD_CAST "end");
-        xmlTextWriterWriteFormatString(w, "%g%%", round(top * 100 * i / 4));
-        xmlTextWriterEndElement(w);
-        xmlTextWriterStartElement(w, BAD_CAST "text");
-        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%.1f", L + (W - L - R) * i / 4);
-        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%g", H - B + 16);
-        xmlTextWriterWriteAttribute(w, BAD_CAST "text-anchor", BAD_CAST "middle");
-        xmlTextWriterWriteFormatString(w, "%d", (int)round((double)last * i / 4));
-        xmlTextWriterEndElement(w);
-    }
-    xmlTextWriterStartElement(w, BAD_CAST "text");
-    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", L + (W - L - R) / 2);
-    xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%g", H - 6);
-    xmlTextWriterWriteAttribute(w, BAD_CAST "text-anchor", BAD_CAST "middle");
-    xmlTextWriterWriteString(w, BAD_CAST "year (cover: crown area / terrain area)");
-    xmlTextWriterEndElement(w);
-    for (int s = 0; s < r->m->nspecies; s++) {
-        const uint8_t *c = palette[s % NPAL];
-        char colour[16];
-        snprintf(colour, sizeof colour, "#%02x%02x%02x", c[0], c[1], c[2]);
-        xmlTextWriterStartElement(w, BAD_CAST "polyline");
-        xmlTextWriterWriteAttribute(w, BAD_CAST "fill", BAD_CAST "none");
-        xmlTextWriterWriteAttribute(w, BAD_CAST "stroke", BAD_CAST colour);
-        xmlTextWriterWriteAttribute(w, BAD_CAST "stroke-width", BAD_CAST "2");
-        xmlTextWriterStartAttribute(w, BAD_CAST "points");
-        for (int y = 0; y < r->nyears; y++)
-            xmlTextWriterWriteFormatString(w, "%s%.1f,%.1f", y ? " " : "",
-                                           L + (W - L - R) * r->years[y].year / last,
-                                           H - B - (H - T - B) * r->years[y].cover[s] / top);
-        xmlTextWriterEndAttribute(w);
-        xmlTextWriterEndElement(w);
-        xmlTextWriterStartElement(w, BAD_CAST "text");
-        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "x", "%g", W - R + 10);
-        xmlTextWriterWriteFormatAttribute(w, BAD_CAST "y", "%d", (int)T + 14 + 18 * s);
-        xmlTextWriterWriteAttribute(w, BAD_CAST "fill", BAD_CAST colour);
-        xmlTextWriterWriteString(w, BAD_CAST r->m->species[s].name);
-        xmlTextWriterEndElement(w);
-    }
-    xmlTextWriterEndDocument(w);
-    xmlFreeTextWriter(w);
-    char *path = path_in(r->dir, "species.svg", 0);
+    char *svg = NULL, *path = path_in(r->dir, "species.svg", 0);
+    size_t len = 0;
     OutFile o;
-    int st = SYL_ELIMIT;
-    if (path && out_open(&o, path)) {
-        fwrite(buf->content, 1, (size_t)buf->use, o.f);
+    int st = path ? syl_ecosystem_chart(r->m, r->years, r->nyears, NULL, &svg, &len) : SYL_ELIMIT;
+    if (!st && out_open(&o, path)) {
+        fwrite(svg, 1, len, o.f);
         st = out_close(&o, SYL_OK);
-    } else if (path)
+    } else if (!st)
         st = SYL_EIO;
     if (!st) printf("%s\n", path);
-    free(path);
-    xmlBufferFree(buf);
+    free(path), free(svg);
     return st;
 }
 
@@ -541,7 +378,6 @@ int cmd_ecosystem(int argc, char **argv) {
         st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = d.threads, .diag = stderr}, &forest);
     r.forest = forest;
     if (!st && writer) st = make_dir(a.output);
-    if (!st && writer) st = hillshade(&r) ? SYL_OK : SYL_ELIMIT;
     if (!st && writer && !a.resume) st = write_maps(t, a.output);
     if (o.exchange) { /* every rank goes on, or none (a rank whose files differ stops them all) */
         int64_t e = st != SYL_OK;
@@ -578,7 +414,6 @@ int cmd_ecosystem(int argc, char **argv) {
     syl_ecosystem_checkpoint_free(&ck);
     free(ck_path);
     free(r.years);
-    free(r.shade);
     syl_forest_free(forest);
     syl_terrain_free(t);
     syl_budget_free(budget);

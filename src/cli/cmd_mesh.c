@@ -4,7 +4,6 @@
 #include <strings.h>
 
 #include "cli/cli.h"
-#include "cli/lodcheck.h"
 #include "sylva/impostor.h"
 #include "util/outgroup.h"
 #include "sylva/lod.h"
@@ -220,17 +219,21 @@ int cmd_mesh(int argc, char **argv) {
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
     if (!status && !outgroup_add(&outs, output, stderr)) status = SYL_EIO;
-    if (!status) status = levels && a.wind > 0 ? syl_wind_write_glb_lods(&lods, sk, &wind, output, stderr)
-                          : levels    ? syl_lod_write_glb(&lods, output, stderr)
-                          : a.wind > 0 ? syl_wind_write_glb(mesh, sets, nsets, sk, &wind, output, stderr)
-                          : instanced ? syl_mesh_write_glb_instanced(mesh, sets, nsets, output, stderr)
-                                      : syl_mesh_write_parts(mesh, pl.parts, pl.nparts, output, stderr);
+    SylMeshOutput mout = {.mesh = mesh, .parts = pl.parts, .nparts = pl.nparts, .instanced = instanced,
+                          .sets = sets, .nsets = nsets, .lods = levels ? &lods : NULL, .skeleton = sk,
+                          .wind = a.wind > 0 ? &wind : NULL};
+    if (!status) status = syl_mesh_write_output(&mout, output, stderr);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */
         SylLodChain shown = lods;
         shown.n -= imp.billboards ? 1 : 0;
-        status = outgroup_add(&outs, a.image, stderr) ? lod_picture(&shown, a.image, 256, d.threads) : SYL_EIO;
+        SylPicture pic = {0};
+        status = outgroup_add(&outs, a.image, stderr)
+                     ? syl_lod_picture(&shown, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &pic)
+                     : SYL_EIO;
+        if (!status) status = syl_png_write(a.image, pic.rgb, pic.width, pic.height, stderr);
+        syl_picture_free(&pic);
     }
     if (status) outgroup_undo(&outs); /* the command's files are one: all written, or none changed */
     else outgroup_commit(&outs);
@@ -248,8 +251,8 @@ int cmd_mesh(int argc, char **argv) {
         if (imp.billboards) fprintf(stderr, "impostor time: %.6f s\nimpostor cpu time: %.6f s\n", t_imp, c_imp);
         if (a.wind > 0) fprintf(stderr, "wind joints: %d\nwind keys: %d\nwind time: %.6f s\n", wind.njoints, wind.nkeys, t_wind);
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
-            LodSilhouette sil;
-            if (lod_silhouette(&lods, k, d.threads, &sil)) break;
+            SylLodSilhouette sil;
+            if (syl_lod_silhouette(&lods, k, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &sil)) break;
             const SylLodLevel *lv = &lods.level[k];
             char leaves[64];
             if (lv->cluster_leaves > 0) snprintf(leaves, sizeof leaves, "leaves in clusters of %.1f", (double)lv->cluster_leaves);

@@ -8,7 +8,7 @@
 #include <sys/stat.h>
 
 #include "cli/cli.h"
-#include "cli/terrain_colour.h"
+#include "sylva/texture.h"
 #include "sylva/terrain.h"
 
 const CliCommand cli_terrain_command = {
@@ -93,6 +93,24 @@ static int write_maps(const SylTerrain *t, const char *dir) {
     return SYL_OK;
 }
 
+/* DIR/NAME-colour.png, every factor computed in colour (syl_terrain_colour_map) */
+static int colour_maps(const SylTerrain *t, const char *dir) {
+    int st = SYL_OK;
+    for (int f = 0; f < SYL_TERRAIN_FACTORS && !st; f++) {
+        if (!t->factor[f]) continue; /* not among the measures asked for */
+        size_t len = strlen(dir) + 48;
+        char *path = malloc(len);
+        SylPicture pic = {0};
+        if (path) snprintf(path, len, "%s/%s-colour.png", dir, syl_terrain_factor_name((SylTerrainFactor)f));
+        st = path ? syl_terrain_colour_map(t, (SylTerrainFactor)f, NULL, &pic) : SYL_ELIMIT;
+        if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, stderr);
+        if (!st) printf("%s\n", path);
+        syl_picture_free(&pic);
+        free(path);
+    }
+    return st;
+}
+
 int cmd_terrain(int argc, char **argv) {
     SylDeriveOptions d = {0};
     CliArgs a = {.d = &d, .latitude = 46, .sun_days = 12, .sun_minutes = 60, .wind_from = 270, .wind_distance = 300};
@@ -123,7 +141,7 @@ int cmd_terrain(int argc, char **argv) {
     double t1 = cli_now();
     if (!st) {
         if (a.maps) st = write_maps(t, a.maps);
-        if (a.maps && !st) st = cli_terrain_colour_maps(t, a.maps);
+        if (a.maps && !st) st = colour_maps(t, a.maps);
         else summary(t);
     }
     if (!st && a.stats) {

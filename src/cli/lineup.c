@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli/font.h"
+#include "util/font.h"
 #include "cli/lineup.h"
 
 typedef struct Box {
@@ -62,9 +62,9 @@ static bool add_text(Boxes *bx, const char *text, float right, float y, float z,
 /* Text in the 5 x 7 font, a box a dot, h high, centred on x, its foot at y = 0, its face at
  * z (toward +z, the camera's side). */
 static bool add_words(Boxes *bx, const char *text, float x, float z, float h) {
-    float s = h / 7, left = x - (float)cli_text_width(text, 1) * s / 2;
+    float s = h / 7, left = x - (float)font_text_width(text, 1) * s / 2;
     for (int i = 0; text[i]; i++) {
-        const uint8_t *g = cli_glyph(text[i]);
+        const uint8_t *g = font_glyph(text[i]);
         for (int r = 0; r < 7; r++)
             for (int c = 0; c < 5; c++)
                 if (g[r] >> (4 - c) & 1) {
@@ -173,7 +173,7 @@ SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, const 
     /* each name as tall as a ruler's figure, at most a plant's width for its length */
     for (int i = 0; ok && names && i < n; i++) {
         float width = hi[i][0] - lo[i][0] + 0.6f * gap, h = (float)(0.035 * fmax(tallest, x - gap));
-        float len = (float)cli_text_width(names[i], 1) / 7;
+        float len = (float)font_text_width(names[i], 1) / 7;
         if (len * h > width) h = width / len;
         ok = add_words(&bx, names[i], shift[i][0] + (lo[i][0] + hi[i][0]) / 2, (hi[i][2] - lo[i][2]) / 2 + 0.1f * gap, h);
     }

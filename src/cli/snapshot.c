@@ -1,171 +1,55 @@
 /* sylva render FILE --plants plants-YEAR.csv: a saved ecosystem snapshot rendered as
- * `sylva ecosystem` renders view-YEAR.png. Under mpirun the picture's rows are cut into bands
- * dealt round the ranks (band b to rank b mod N, for balance: the sky is cheap, the forest
- * dear); every rank holds the whole instanced scene and renders its bands as windows of the
- * picture on it (syl_render_instances: bands starting at multiples of SYL_RENDER_BLOCK rows
- * have the whole picture's bytes), rank 0 gathers them and writes the PNG. */
-#include <errno.h>
+ * `sylva ecosystem` renders view-YEAR.png, split over the ranks under mpirun
+ * (syl_ecosystem_render_snapshot, src/forest/snapshot.c). */
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "cli/cli.h"
 #include "cli/testfaults.h"
-#include "util/outgroup.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
-#include "sylva/texture.h"
 
-/* Bands of rows: one in one process (the ecosystem's own render), else 4 per rank, each at
- * least a row of ray packets high. */
-static int bands_of(int height, int nranks) {
-    int b = nranks > 1 ? 4 * nranks : 1, most = height / SYL_RENDER_BLOCK;
-    return b < most ? b : most > 1 ? most : 1;
-}
-
-/* A band's first row: a multiple of SYL_RENDER_BLOCK, so that its ray packets are the whole
- * picture's and its pixels the same bytes. */
-static int band_row(int b, int nbands, int height) {
-    if (b >= nbands) return height;
-    return (int)((int64_t)b * height / nbands) / SYL_RENDER_BLOCK * SYL_RENDER_BLOCK;
-}
-
-/* Every rank's status to all (every rank makes the same calls): the worst, so that every
- * rank stops or none. A rank other than 0 that failed says why (its diagnostics, kept in
- * said) unless rank 0 failed too, which has said it once; rank 0 says how many ranks failed
- * when it did not. After a failure every rank's st is the worst: nothing is said twice. */
-static int agree(SylEcoMpi *mpi, int st, FILE *said, char *const *text, const size_t *len) {
-    int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
-    int64_t v[7] = {0}; /* a flag per status, rank 0 failed, ranks failed */
-    if (st > 0 && st < 5) v[st] = 1;
-    v[5] = st && rank == 0, v[6] = st != 0;
-    syl_eco_mpi_sum(mpi, v, 7);
-    int worst = SYL_OK;
-    for (int k = 4; k > 0; k--)
-        if (v[k] && !worst) worst = k;
-    if (worst && !v[5] && rank == 0)
-        fprintf(stderr, "sylva: error: %lld of the %d ranks could not do their part (the same files on every node?)\n",
-                (long long)v[6], nranks);
-    if (st && !v[5] && rank > 0 && said) {
-        fflush(said);
-        fprintf(stderr, "sylva: error: rank %d of %d could not do its part:\n%.*s", rank, nranks, (int)*len,
-                *text ? *text : "");
-    }
-    return worst;
+static void before_gather(void *user, int rank) {
+    (void)user;
+    cli_test_fault_gather(true, rank);
 }
 
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro) {
     SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, stderr); /* NULL: one process */
-    int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
-    /* every rank finds the same faults, which rank 0 says; another rank's are kept, to be said
-     * when it alone failed (agree) */
-    char *said = NULL;
-    size_t said_len = 0;
-    FILE *diag = rank == 0 ? stderr : open_memstream(&said, &said_len), *kept = rank == 0 ? NULL : diag;
-    static SylEcoModel model; /* 14 kB: off the stack */
+    int rank = syl_eco_mpi_rank(mpi);
     SylProgram *p = NULL;
-    SylTerrain *t = NULL;
-    SylForest *forest = NULL;
-    SylEcoPlant *plants = NULL;
-    uint8_t *mine = NULL, *all = NULL, *rgb = NULL;
-    size_t *lens = NULL, nplants = 0;
-    char *out = NULL;
     int st = SYL_OK;
-    if (ro->view != SYL_VIEW_AUTO) {
-        if (diag) fprintf(diag, "sylva: error: a snapshot's --view is bird or walker\n");
+    if (ro->view != SYL_VIEW_AUTO) { /* every rank finds it; rank 0 says it */
+        if (rank == 0) fprintf(stderr, "sylva: error: a snapshot's --view is bird or walker\n");
         st = SYL_EUSAGE;
     }
     cli_model_spec(m, a->files[0]);
     if (!st && !(p = cli_compile(m, rank == 0, &st)) && !st) st = SYL_EMODEL;
-    if (!st && syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) {
-        if (diag)
-            fprintf(diag, "sylva: error: --plants renders an ecosystem block's plants; '%s' is a %s (name one: FILE:Model)\n",
-                    syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
-        st = SYL_EUSAGE;
+    /* the picture's name, and the .glb's beside it (NAME.glb for NAME.png) */
+    char *out = a->output ? strdup(a->output) : cli_output_name(m, NULL, "png"), *glb = NULL;
+    if (out && a->glb && (glb = malloc(strlen(out) + 5))) {
+        size_t n = strlen(out);
+        memcpy(glb, out, n + 1);
+        if (n > 4 && !strcmp(glb + n - 4, ".png")) glb[n - 4] = 0;
+        strcat(glb, ".glb");
     }
-    SylEcoOptions eo = {.threads = d->threads, .diag = diag};
-    if (!st) st = syl_ecosystem_load(p, &eo, &model, &t);
-    if (!st) st = syl_ecosystem_table_read(a->plants, &model, t, &plants, &nplants, diag);
-    if (!st) st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = d->threads, .diag = diag}, &forest);
-    st = agree(mpi, st, kept, &said, &said_len); /* before rendering: no work for a failed job */
-    int w = ro->width ? ro->width : 1280, h = ro->height ? ro->height : 720;
-    ro->width = w, ro->height = h;
-    int nbands = bands_of(h, nranks);
-    size_t rows = 0; /* this rank's */
-    for (int b = rank; b < nbands; b += nranks) rows += (size_t)(band_row(b + 1, nbands, h) - band_row(b, nbands, h));
-    size_t row_bytes = (size_t)w * 3;
-    if (!st && !(mine = malloc(rows * row_bytes + 1))) st = SYL_ELIMIT;
-    int (*windows)[4] = NULL, nwin = 0; /* this rank's bands, rendered on one scene */
-    if (!st && !(windows = malloc((size_t)(nbands / nranks + 1) * sizeof *windows))) st = SYL_ELIMIT;
-    for (int b = rank; !st && b < nbands; b += nranks) {
-        int *win = windows[nwin++];
-        win[0] = 0, win[1] = band_row(b, nbands, h), win[2] = w, win[3] = band_row(b + 1, nbands, h);
-    }
-    SylRenderCamera cam;
-    SylRenderCounts counts = {0};
-    double c0 = cli_cpu_now(), t0 = cli_now();
-    if (!st) syl_forest_camera(forest, (SylForestView)a->eco_view, w, h, &cam);
-    if (!st && nwin) st = syl_forest_render(forest, plants, nplants, &cam, ro, (const int(*)[4])windows, nwin, mine, &counts);
-    double cpu = cli_cpu_now() - c0, wall = cli_now() - t0;
-    cli_test_fault_gather(mpi != NULL, rank);
-    if (!st && !(lens = calloc((size_t)nranks, sizeof *lens))) st = SYL_ELIMIT;
-    st = agree(mpi, st, kept, &said, &said_len);
-    if (!st) st = syl_eco_mpi_gather(mpi, mine, rows * row_bytes, &all, lens);
-    if (!st && rank == 0) { /* each rank's bands, in its order, into their rows */
-        if (!(rgb = malloc((size_t)h * row_bytes))) st = SYL_ELIMIT;
-        size_t from = 0;
-        for (int r = 0; !st && r < nranks; r++) {
-            size_t got = 0;
-            for (int b = r; b < nbands; b += nranks) {
-                int y0 = band_row(b, nbands, h), y1 = band_row(b + 1, nbands, h);
-                size_t len = (size_t)(y1 - y0) * row_bytes;
-                if (got + len > lens[r]) break;
-                memcpy(rgb + (size_t)y0 * row_bytes, all + from + got, len);
-                got += len;
-            }
-            if (got != lens[r]) {
-                fprintf(stderr, "sylva: error: rank %d sent %zu bytes of picture, not %zu\n", r, lens[r], got);
-                st = SYL_EIO;
-            }
-            from += lens[r];
-        }
-        out = a->output ? strdup(a->output) : cli_output_name(m, NULL, "png");
-        if (!st && !out) st = SYL_ELIMIT;
-        /* The .glb and the PNG are one transaction (util/outgroup.h): when the PNG cannot be
-         * written, the .glb is taken back, the file that was there before put back. */
-        char *glb = NULL;
-        OutGroup outs = {0};
-        if (!st && a->glb) {
-            size_t n = strlen(out);
-            glb = malloc(n + 5);
-            if (glb) {
-                memcpy(glb, out, n + 1);
-                if (n > 4 && !strcmp(glb + n - 4, ".png")) glb[n - 4] = 0;
-                strcat(glb, ".glb");
-            }
-            st = !glb ? SYL_ELIMIT : !outgroup_add(&outs, glb, stderr) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, glb, stderr);
-        }
-        if (!st) st = outgroup_add(&outs, out, stderr) ? syl_png_write(out, rgb, w, h, stderr) : SYL_EIO;
-        if (st) outgroup_undo(&outs);
-        else outgroup_commit(&outs);
-        free(glb);
-    }
-    st = agree(mpi, st, kept, &said, &said_len); /* rank 0's writes: every rank exits with their status */
-    if (kept) fclose(kept);
-    free(said);
+    if (!st && (!out || (a->glb && !glb))) st = SYL_ELIMIT;
+    SylSnapshotOptions so = {.plants = a->plants, .view = (SylForestView)a->eco_view, .render = ro, .png = out,
+                             .glb = glb, .threads = d->threads, .mpi = mpi, .before_gather = before_gather,
+                             .diag = stderr};
+    SylSnapshotStats s;
+    st = syl_ecosystem_render_snapshot(p, st, &so, &s);
     if (!st && a->stats) {
         if (rank == 0)
-            fprintf(stderr, "view: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n", cam.eye[0],
-                    cam.eye[1], cam.eye[2], cam.target[0], cam.target[1], cam.target[2], cam.fov, w, h);
+            fprintf(stderr, "view: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n", s.camera.eye[0],
+                    s.camera.eye[1], s.camera.eye[2], s.camera.target[0], s.camera.target[1], s.camera.target[2],
+                    s.camera.fov, s.width, s.height);
         fprintf(stderr, "rank %d: %zu plants, %zu rows in %d bands, %zu bytes gathered; %zu instances drawn (%zu coarse), "
                         "%zu culled; %.3f s wall, %.3f s cpu; %.3f s cpu in all\n",
-                rank, nplants, rows, nwin, rows * row_bytes, counts.drawn,
-                counts.coarse, counts.culled, wall, cpu, cli_cpu_now());
+                rank, s.plants, s.rows, s.bands, s.bytes, s.counts.drawn, s.counts.coarse, s.counts.culled, s.wall, s.cpu,
+                cli_cpu_now());
     }
-    free(out), free(rgb), free(all), free(lens), free(mine), free(plants), free(windows);
-    syl_forest_free(forest);
-    syl_terrain_free(t);
+    free(out), free(glb);
     syl_program_free(p);
     syl_eco_mpi_end(mpi);
     return st;

@@ -335,11 +335,11 @@ void syl_eco_mpi_traffic(const SylEcoMpi *m, uint64_t *plants_sent, uint64_t *by
     *barriers = m ? m->barriers : 0;
 }
 
-void syl_eco_mpi_sum(SylEcoMpi *m, int64_t *v, size_t n) {
+void eco_mpi_sum(SylEcoMpi *m, int64_t *v, size_t n) {
     if (m) mpi_sum(m, v, n);
 }
 
-int syl_eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, size_t *lens) {
+int eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, size_t *lens) {
     *all = NULL;
     if (!m) { /* one process: a copy */
         lens[0] = n;

@@ -2,7 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sylva/ecosystem.h"
+#include "eco/eco.h"
 
 SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag) {
     (void)argc, (void)argv, (void)diag;
@@ -19,8 +19,8 @@ void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *
     (void)mpi;
     *plants_sent = *bytes_sent = *halo_received = *plants_moved = *barriers = 0;
 }
-void syl_eco_mpi_sum(SylEcoMpi *mpi, int64_t *v, size_t n) { (void)mpi, (void)v, (void)n; }
-int syl_eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, size_t *lens) {
+void eco_mpi_sum(SylEcoMpi *mpi, int64_t *v, size_t n) { (void)mpi, (void)v, (void)n; }
+int eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, size_t *lens) {
     (void)mpi;
     lens[0] = n;
     if (!(*all = malloc(n ? n : 1))) return SYL_ELIMIT;

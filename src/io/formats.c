@@ -4,7 +4,9 @@
 #include <string.h>
 #include <strings.h>
 
+#include "sylva/lod.h"
 #include "sylva/mesh.h"
+#include "sylva/wind.h"
 
 /* a scene's parts in a .glb: one node each, under the mesh's name */
 static int glb_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
@@ -51,4 +53,24 @@ int syl_mesh_write_parts(const SylMesh *m, SylMesh *const *parts, int n, const c
     const Format *f = format_of(path, diag);
     if (!f) return SYL_EUSAGE;
     return n > 0 && f->write_parts ? f->write_parts(m, parts, n, path, diag) : f->write(m, path, diag);
+}
+
+int syl_mesh_write_output(const SylMeshOutput *o, const char *path, FILE *diag) {
+    const Format *f = format_of(path, diag);
+    if (!f) return SYL_EUSAGE;
+    int wants = (o->lods ? SYL_FORMAT_LEVELS : 0) | (o->wind ? SYL_FORMAT_WIND : 0) |
+                (o->instanced ? SYL_FORMAT_INSTANCES : 0);
+    if (wants & ~f->f.can) {
+        if (diag)
+            fprintf(diag, "sylva: error: a %s file cannot hold %s: '%s'\n", f->f.name,
+                    wants & ~f->f.can & SYL_FORMAT_LEVELS ? "levels of detail"
+                    : wants & ~f->f.can & SYL_FORMAT_WIND ? "a skinned mesh"
+                                                          : "instanced leaves",
+                    path);
+        return SYL_EUSAGE;
+    }
+    if (o->lods) return syl_wind_write_glb_lods(o->lods, o->wind ? o->skeleton : NULL, o->wind, path, diag);
+    if (o->wind) return syl_wind_write_glb(o->mesh, o->sets, o->instanced ? o->nsets : 0, o->skeleton, o->wind, path, diag);
+    if (o->instanced) return syl_mesh_write_glb_instanced(o->mesh, o->sets, o->nsets, path, diag);
+    return syl_mesh_write_parts(o->mesh, o->parts, o->nparts, path, diag);
 }

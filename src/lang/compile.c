@@ -310,8 +310,9 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         p->noverrides = opt->noverrides;
     }
     p->sibling = opt->sibling;
+    if (opt->sink) p->sink = *opt->sink, p->has_sink = true;
     Arena *tmp = &g->tmp;
-    Diag d = {.out = opt->diag, .src = &p->src};
+    Diag d = {.out = opt->diag, .sink = program_sink(p), .src = &p->src};
     /* a sibling's warnings were its file's, reported with the model it serves: once */
     int warn = opt->sibling ? 0 : opt->lint ? SYL_WARN_MISTAKES | SYL_WARN_DRAWS : opt->warn;
     Compiler c = {.p = p, .d = &d, .tmp = tmp, .opt = opt, .warn = warn};

@@ -44,7 +44,7 @@ const SylDirective *syl_program_scene(const SylProgram *p, int *n) {
 static void report_at(const SylProgram *p, FILE *out, int severity, int line, int col, const char *fmt, va_list ap) {
     char msg[1024];
     vsnprintf(msg, sizeof msg, fmt, ap);
-    Diag d = {.out = out, .src = &p->src};
+    Diag d = {.out = out, .sink = program_sink(p), .src = &p->src};
     diag_report(&d, severity, ((SylLoc){line, col, line, col}), "%s", msg);
 }
 
@@ -63,7 +63,7 @@ void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, 
         char msg[1024];
         vsnprintf(msg, sizeof msg, fmt, ap);
         Source src = {.path = d->file, .text = d->file_text, .len = d->file_len};
-        Diag dg = {.out = out, .src = &src};
+        Diag dg = {.out = out, .sink = program_sink(p), .src = &src};
         diag_report(&dg, DIAG_ERROR, ((SylLoc){line, col, line, col}), "%s", msg);
     } else {
         report_at(p, out, DIAG_ERROR, line, col, fmt, ap);

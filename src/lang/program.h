@@ -210,6 +210,8 @@ struct SylProgram {
                                not errors */
     Arena arena;
     Source src;
+    SylSink sink;           /* SylCompileOptions.sink, copied: its diagnostics' records go there */
+    bool has_sink;
     char *text; /* owned copy of the source */
     const char *name;
     SylLoc model_loc; /* where the model (or the file's scene) begins */
@@ -262,6 +264,8 @@ int lang_list_models(const char *path, const char *text, size_t len, const char 
 /* grow, weber, strands and ecosystem blocks are lines of directives read by their engines, not rules */
 static inline bool syl_kind_has_directives(SylModelKind k) { return lang_kind_is(k, KF_DIRECTIVES); }
 
+/* The sink of the program's diagnostics (SylCompileOptions.sink), NULL: its callers' FILE. */
+static inline const SylSink *program_sink(const SylProgram *p) { return p->has_sink ? &p->sink : NULL; }
 /* The `lod N` line of a grow, weber or strands block (lod.c): its check (the error count, 0
  * or 1, reported at the line), a --set lod= value's, and the levels the block asks for (its
  * last line, then the last --set lod=; 0: none). */

@@ -79,7 +79,7 @@ void cc_splice_from(Compiler *c, Model *m) {
                    diag_quote(shown, sizeof shown, src->path, strlen(src->path)));
         return;
     }
-    Diag sub = {.out = c->d->out, .src = src, .max_shown = c->d->max_shown};
+    Diag sub = {.out = c->d->out, .sink = c->d->sink, .src = src, .max_shown = c->d->max_shown};
     FileAst fa;
     int errors = syl_parse(src, c->tmp, &sub, &fa);
     c->d->errors += sub.errors;

@@ -86,7 +86,7 @@ static void report(Engine *e, const Work *w, int step, const char *what) {
     e->reported = true;
     if (!e->diag) return;
     const SylProgram *p = e->p;
-    Diag d = {.out = e->diag, .src = &p->src};
+    Diag d = {.out = e->diag, .sink = program_sink(p), .src = &p->src};
     if (w->fault.status == SYL_ELIMIT) {
         if (w->fault.limit == LIMIT_MODULES)
             fprintf(e->diag, "sylva: error: %s %d would exceed the limit of %llu modules; raise it with --max-modules\n",
@@ -143,7 +143,7 @@ static int direction_backward(Engine *e, int step, const char *what, bool *back)
     if (vm_run(p, (uint32_t)p->direction_when, locals, &rng, &v, &f)) {
         e->reported = true;
         if (e->diag) {
-            Diag d = {.out = e->diag, .src = &p->src};
+            Diag d = {.out = e->diag, .sink = program_sink(p), .src = &p->src};
             SylLoc loc = f.pc < (uint32_t)p->ncode ? p->code_loc[f.pc] : p->code_loc[p->direction_when];
             diag_error(&d, loc, "%s (the direction of %s %d)", syl_eval_error_text(f.status), what, step);
         }
@@ -165,7 +165,7 @@ static int select_table(Engine *e, int table, int step, const RuleTable **out) {
         if (lang_groups_active(p, step, e->seed, &e->active, &f, &g)) {
             e->reported = true;
             if (e->diag) {
-                Diag d = {.out = e->diag, .src = &p->src};
+                Diag d = {.out = e->diag, .sink = program_sink(p), .src = &p->src};
                 SylLoc loc = f.pc < (uint32_t)p->ncode ? p->code_loc[f.pc] : p->groups[g].loc;
                 diag_error(&d, loc, "%s (use of group '%s' at step %d)", syl_eval_error_text(f.status),
                            p->groups[g].name, step);

@@ -1,11 +1,34 @@
-/* Diagnostics: file:line:col messages with the source line and a caret. */
+/* Diagnostics: records made where the error is found (SylDiagnostic), handed to the caller's
+ * sink or written as text (file:line:col messages with the source line and a caret). */
 #include "util/diag.h"
 
 #include <stdarg.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char *const severity_name[] = {"error", "warning", "note"};
+
+/* A growing string, for a record's fields. */
+typedef struct Text {
+    char *s;
+    size_t n, cap;
+} Text;
+
+static void text_put(Text *t, const char *s, size_t n) {
+    if (t->n + n + 1 > t->cap) {
+        size_t cap = t->cap ? t->cap : 128;
+        while (cap < t->n + n + 1) cap *= 2;
+        char *b = realloc(t->s, cap);
+        if (!b) return; /* out of memory: the field is cut short */
+        t->s = b, t->cap = cap;
+    }
+    memcpy(t->s + t->n, s, n);
+    t->n += n;
+    t->s[t->n] = 0;
+}
+static void text_char(Text *t, char c) { text_put(t, &c, 1); }
+static const char *text_str(const Text *t) { return t->s ? t->s : ""; }
 
 /* Characters that print nothing visible or reorder what follows: soft hyphen, zero-width
  * and bidirectional marks, the byte order mark. */
@@ -61,12 +84,12 @@ static size_t show_char(const char *s, size_t n, bool keep_space, char out[12], 
     return len;
 }
 
-static void put_shown(FILE *out, const char *s, size_t n, bool keep_space) {
+static void put_shown(Text *out, const char *s, size_t n, bool keep_space) {
     char c[12];
     int cols;
     for (size_t i = 0; i < n;) {
         i += show_char(s + i, n - i, keep_space, c, &cols);
-        fputs(c, out);
+        text_put(out, c, strlen(c));
     }
 }
 
@@ -86,66 +109,89 @@ const char *diag_quote(char *buf, size_t cap, const char *s, size_t n) {
     return buf;
 }
 
-/* Print the source line of loc and a caret (with tildes for the rest of a one-line span).
- * Tabs are kept, in the line and under it, so that the caret stays under the right
- * character; control characters are shown escaped (show_char), the caret line padded as
- * wide as what they show. */
-static void show_line(FILE *out, const Source *src, SylLoc loc) {
-    if (!src || !src->text || loc.first_line <= 0) return;
+/* The source line of loc as shown and the caret line under it (with tildes for the rest of a
+ * one-line span), false when there is none to show. Tabs are kept, in the line and under it,
+ * so that the caret stays under the right character; control characters are shown escaped
+ * (show_char), the caret line padded as wide as what they show. *last: the span's last
+ * byte column on the line. */
+static bool show_line(const Source *src, SylLoc loc, Text *line, Text *caret, int *last) {
+    if (!src || !src->text || loc.first_line <= 0) return false;
     const char *p = src->text, *end = src->text + src->len;
     for (int l = 1; l < loc.first_line && p < end; p++)
         if (*p == '\n') l++;
-    if (p >= end && loc.first_line > 1) return;
+    if (p >= end && loc.first_line > 1) return false;
     const char *e = p;
     while (e < end && *e != '\n') e++;
     int width = (int)(e - p);
-    if (width > 400) return; /* a minified line helps no one */
-    fprintf(out, "%5d | ", loc.first_line);
-    put_shown(out, p, (size_t)width, true);
-    fputs("\n      | ", out);
+    if (width > 400) return false; /* a minified line helps no one */
+    put_shown(line, p, (size_t)width, true);
     /* columns count bytes from 1: pad to the byte col - 1, then mark bytes col .. last */
     int col = loc.first_column > 0 ? loc.first_column : 1;
-    int last = loc.last_line == loc.first_line ? loc.last_column : col;
+    *last = loc.last_line == loc.first_line && loc.last_column > col ? loc.last_column : col;
     char c[12];
     int cols;
     for (int i = 0; i < width && i < col - 1;) {
         if (p[i] == '\t') {
-            fputc('\t', out);
+            text_char(caret, '\t');
             i++;
             continue;
         }
         i += (int)show_char(p + i, (size_t)(width - i), true, c, &cols);
-        for (int k = 0; k < cols; k++) fputc(' ', out);
+        for (int k = 0; k < cols; k++) text_char(caret, ' ');
     }
-    fputc('^', out);
+    text_char(caret, '^');
     int at = col - 1;
     if (at < width) { /* the marked character may show wider than one column */
         at += (int)show_char(p + at, (size_t)(width - at), true, c, &cols);
-        for (int k = 1; k < cols; k++) fputc('~', out);
+        for (int k = 1; k < cols; k++) text_char(caret, '~');
     }
-    while (at < width && at < last) {
+    while (at < width && at < *last) {
         at += (int)show_char(p + at, (size_t)(width - at), true, c, &cols);
-        for (int k = 0; k < cols; k++) fputc('~', out);
+        for (int k = 0; k < cols; k++) text_char(caret, '~');
     }
-    fputc('\n', out);
+    return true;
 }
 
 void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...) {
     if (severity == DIAG_ERROR) d->errors++;
     if (severity == DIAG_WARNING) d->warnings++;
     int limit = d->max_shown ? d->max_shown : 20;
-    if (!d->out || (severity != DIAG_NOTE && d->errors + d->warnings > limit)) return;
-    const char *path = d->src && d->src->path ? d->src->path : "sylva";
-    put_shown(d->out, path, strlen(path), false); /* a path or a name may come from anywhere */
-    if (loc.first_line > 0) fprintf(d->out, ":%d:%d: %s: ", loc.first_line, loc.first_column, severity_name[severity]);
-    else fprintf(d->out, ": %s: ", severity_name[severity]);
+    if ((!d->out && !d->sink) || (severity != DIAG_NOTE && d->errors + d->warnings > limit)) return;
     char msg[2048];
     va_list ap;
     va_start(ap, fmt);
     int n = vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     if (n < 0) n = 0;
-    put_shown(d->out, msg, (size_t)n < sizeof msg ? (size_t)n : sizeof msg - 1, true);
-    fputc('\n', d->out);
-    show_line(d->out, d->src, loc);
+    Text path = {0}, message = {0}, line = {0}, caret = {0};
+    if (d->src && d->src->path) put_shown(&path, d->src->path, strlen(d->src->path), false); /* a path may come from anywhere */
+    put_shown(&message, msg, (size_t)n < sizeof msg ? (size_t)n : sizeof msg - 1, true);
+    int last = 0;
+    bool shown = show_line(d->src, loc, &line, &caret, &last);
+    SylDiagnostic r = {.severity = (SylSeverity)severity, .path = path.s, .message = text_str(&message)};
+    if (loc.first_line > 0) r.line = loc.first_line, r.column = loc.first_column, r.end_column = last;
+    if (shown) r.source_line = text_str(&line), r.caret = text_str(&caret);
+    if (d->sink) {
+        if (d->sink->report) d->sink->report(d->sink->user, &r);
+    } else {
+        syl_diagnostic_write(&r, d->out);
+    }
+    free(path.s), free(message.s), free(line.s), free(caret.s);
+}
+
+/* The text sink: the one place the text form is written. */
+void syl_diagnostic_write(const SylDiagnostic *d, FILE *out) {
+    const char *sev = severity_name[d->severity <= SYL_DIAG_NOTE ? d->severity : 0];
+    const char *path = d->path ? d->path : "sylva";
+    if (d->line > 0) fprintf(out, "%s:%d:%d: %s: %s\n", path, d->line, d->column, sev, d->message);
+    else fprintf(out, "%s: %s: %s\n", path, sev, d->message);
+    if (d->line <= 0 || !d->source_line) return;
+    fprintf(out, "%5d | %s\n      | ", d->line, d->source_line);
+    if (d->caret) {
+        fputs(d->caret, out);
+    } else { /* a record made elsewhere: a caret under the column */
+        for (int i = 0; i < d->column - 1 && d->source_line[i]; i++) fputc(d->source_line[i] == '\t' ? '\t' : ' ', out);
+        fputc('^', out);
+    }
+    fputc('\n', out);
 }

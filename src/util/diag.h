@@ -1,9 +1,13 @@
-/* Diagnostics: `file:line:col: error: message`, the source line and a caret. */
+/* Diagnostics: made as records (SylDiagnostic: severity, path, line, column, message, the
+ * source line and a caret under it) and handed to the caller's sink, or to the text sink of a
+ * FILE, which writes `file:line:col: error: message`, the source line and the caret. */
 #ifndef SYL_DIAG_H
 #define SYL_DIAG_H
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
+
+#include "sylva/sylva.h"
 
 /* Field names follow bison's YYLTYPE so the parser can use SylLoc directly. Columns count
  * bytes from 1. A zero line means "no location". */
@@ -20,14 +24,16 @@ typedef struct Source {
 enum { DIAG_ERROR, DIAG_WARNING, DIAG_NOTE };
 
 typedef struct Diag {
-    FILE *out;          /* NULL: count only, print nothing */
+    FILE *out;          /* the text sink's stream; NULL (and no sink): count only */
+    const SylSink *sink; /* the records go here instead of out */
     const Source *src;
     int errors, warnings;
     int max_shown;      /* stop printing after this many errors (0: 20) */
 } Diag;
 
-/* The message and the path are printed escaped as diag_quote does (tabs and newlines kept),
- * and so is the source line under them. */
+/* One diagnostic at loc of d->src, as a record to d->sink or as text to d->out. The message
+ * and the path are shown escaped as diag_quote does (tabs and newlines kept), and so is the
+ * source line under them. */
 void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 /* s[0..n) made safe to print (see diag.c: controls escaped, visible UTF-8 kept) into buf,

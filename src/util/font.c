@@ -5,7 +5,7 @@
 #include <ctype.h>
 #include <string.h>
 
-#include "cli/font.h"
+#include "util/font.h"
 
 static const struct {
     char c;
@@ -39,7 +39,7 @@ static const struct {
     {'>', {0x08, 0x04, 0x02, 0x01, 0x02, 0x04, 0x08}}, {'?', {0x0e, 0x11, 0x01, 0x02, 0x04, 0x00, 0x04}},
 };
 
-const uint8_t *cli_glyph(char c) {
+const uint8_t *font_glyph(char c) {
     static const uint8_t blank[7] = {0};
     char u = (char)toupper((unsigned char)c);
     for (size_t i = 0; i < sizeof glyphs / sizeof glyphs[0]; i++)
@@ -47,15 +47,15 @@ const uint8_t *cli_glyph(char c) {
     return blank; /* a space, or a letter the table lacks */
 }
 
-int cli_text_width(const char *text, int scale) {
+int font_text_width(const char *text, int scale) {
     int n = (int)strlen(text);
     return n ? (6 * n - 1) * scale : 0;
 }
 
-void cli_text_draw(uint8_t *rgb, int width, int height, int x, int y, const char *text, int scale,
+void font_text_draw(uint8_t *rgb, int width, int height, int x, int y, const char *text, int scale,
                    const uint8_t colour[3]) {
     for (int i = 0; text[i]; i++) {
-        const uint8_t *g = cli_glyph(text[i]);
+        const uint8_t *g = font_glyph(text[i]);
         for (int r = 0; r < 7; r++)
             for (int c = 0; c < 5; c++) {
                 if (!(g[r] >> (4 - c) & 1)) continue;
@@ -69,7 +69,7 @@ void cli_text_draw(uint8_t *rgb, int width, int height, int x, int y, const char
     }
 }
 
-void cli_fill_rect(uint8_t *rgb, int width, int height, int x0, int y0, int w, int h, const uint8_t colour[3]) {
+void font_fill_rect(uint8_t *rgb, int width, int height, int x0, int y0, int w, int h, const uint8_t colour[3]) {
     for (int y = y0 < 0 ? 0 : y0; y < y0 + h && y < height; y++)
         for (int x = x0 < 0 ? 0 : x0; x < x0 + w && x < width; x++) memcpy(rgb + 3 * ((size_t)y * width + x), colour, 3);
 }

@@ -1,14 +1,43 @@
-/* `sylva terrain --maps`' pictures for people: each factor in colour over the terrain's
- * hillshade, north up, with a legend of its colours, its range and its unit below the map
- * (DIR/NAME-colour.png beside the grey NAME.png that programs read). */
+/* Pictures of a terrain for people (sylva/terrain.h): the grey hillshade an ecosystem's map
+ * is drawn on, and each factor in colour over the terrain's hillshade, north up, with a legend
+ * of its colours, its range and its unit below the map (`sylva terrain --maps`'
+ * NAME-colour.png, beside the grey NAME.png that programs read). */
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli/cli.h"
-#include "cli/font.h"
-#include "cli/terrain_colour.h"
+#include "util/font.h"
+#include "sylva/terrain.h"
+
+/* Pixels per cell: a map of about o->size (512) pixels, 1 to 8 a cell. */
+static int cell_pixels(const SylTerrain *t, const SylMapOptions *o) {
+    double size = t->nx > t->nz ? t->nx : t->nz, want = o && o->size > 0 ? o->size : 512;
+    int px = size >= want ? 1 : (int)(want / size);
+    return px > 8 ? 8 : px;
+}
+
+int syl_terrain_hillshade(const SylTerrain *t, const SylMapOptions *o, SylPicture *out) {
+    *out = (SylPicture){0};
+    int px = cell_pixels(t, o), w = t->nx * px, h = t->nz * px;
+    uint8_t *rgb = malloc((size_t)w * h * 3 + 1);
+    if (!rgb) return SYL_ELIMIT;
+    double lx = -0.5, ly = 0.7071, lz = -0.5; /* towards the light: north-west, up */
+    for (int k = 0; k < t->nz; k++)
+        for (int i = 0; i < t->nx; i++) {
+            int i0 = i > 0 ? i - 1 : i, i1 = i + 1 < t->nx ? i + 1 : i;
+            int k0 = k > 0 ? k - 1 : k, k1 = k + 1 < t->nz ? k + 1 : k;
+            double dx = (t->height[(size_t)k * t->nx + i1] - t->height[(size_t)k * t->nx + i0]) / ((i1 - i0) * t->cell + 1e-12);
+            double dz = (t->height[(size_t)k1 * t->nx + i] - t->height[(size_t)k0 * t->nx + i]) / ((k1 - k0) * t->cell + 1e-12);
+            double nx = -dx, ny = 1, nz = -dz, len = sqrt(nx * nx + ny * ny + nz * nz);
+            double c = (nx * lx + ny * ly + nz * lz) / len;
+            uint8_t g = (uint8_t)(60 + 170 * (c > 0 ? c : 0));
+            for (int b = 0; b < px; b++) memset(rgb + 3 * ((size_t)(k * px + b) * w + (size_t)i * px), g, 3 * (size_t)px);
+        }
+    *out = (SylPicture){rgb, w, h};
+    return SYL_OK;
+}
 
 /* Dark blue to yellow, a ramp that stays readable in grey and to most colour-blind eyes. */
 static const double ramp_stops[][3] = {{0.13, 0.05, 0.33}, {0.15, 0.35, 0.55}, {0.13, 0.6, 0.5},
@@ -61,15 +90,12 @@ static void number(char *buf, size_t n, double v) {
     else snprintf(buf, n, fabs(v) >= 10 ? "%.1f" : "%.2f", v);
 }
 
-static int write_one(const SylTerrain *t, SylTerrainFactor f, const float *shade, const char *path) {
+static int draw(const SylTerrain *t, SylTerrainFactor f, const float *shade, int px, SylPicture *out) {
     const float *g = t->factor[f];
-    double size = t->nx > t->nz ? t->nx : t->nz;
-    int px = size >= 512 ? 1 : (int)(512 / size); /* pixels per cell: a map of about 512 */
-    if (px > 8) px = 8;
     int mw = t->nx * px, mh = t->nz * px, s = mw >= 400 ? 2 : 1, strip = 34 * s;
     char title[96], a[32], b[32];
     snprintf(title, sizeof title, "%s (%s)", syl_terrain_factor_name(f), units[f]);
-    int w = mw, h = mh + strip, need = cli_text_width(title, s) + 8 * s;
+    int w = mw, h = mh + strip, need = font_text_width(title, s) + 8 * s;
     if (w < need) w = need;
     if (w < 200 * s) w = 200 * s;
     uint8_t *rgb = calloc((size_t)w * h, 3);
@@ -93,9 +119,9 @@ static int write_one(const SylTerrain *t, SylTerrainFactor f, const float *shade
         }
     /* the legend: the name and unit, then the colours with the range's ends */
     static const uint8_t paper[3] = {250, 250, 250}, ink[3] = {20, 20, 20};
-    cli_fill_rect(rgb, w, h, 0, mh, w, strip, paper);
-    cli_fill_rect(rgb, w, h, mw, 0, w - mw, mh, paper);
-    cli_text_draw(rgb, w, h, 4 * s, mh + 3 * s, title, s, ink);
+    font_fill_rect(rgb, w, h, 0, mh, w, strip, paper);
+    font_fill_rect(rgb, w, h, mw, 0, w - mw, mh, paper);
+    font_text_draw(rgb, w, h, 4 * s, mh + 3 * s, title, s, ink);
     int y0 = mh + 13 * s, bar = 9 * s;
     if (f == SYL_TERRAIN_ASPECT) {
         static const char *const dirs[] = {"N", "E", "S", "W"};
@@ -104,30 +130,33 @@ static int write_one(const SylTerrain *t, SylTerrainFactor f, const float *shade
             wheel(90.0 * d, col);
             uint8_t c8[3];
             put(c8, col, 1);
-            cli_fill_rect(rgb, w, h, 4 * s + d * 24 * s, y0, 9 * s, bar, c8);
-            cli_text_draw(rgb, w, h, 15 * s + d * 24 * s, y0 + s, dirs[d], s, ink);
+            font_fill_rect(rgb, w, h, 4 * s + d * 24 * s, y0, 9 * s, bar, c8);
+            font_text_draw(rgb, w, h, 15 * s + d * 24 * s, y0 + s, dirs[d], s, ink);
         }
-        cli_text_draw(rgb, w, h, 4 * s + 4 * 24 * s, y0 + s, "GREY: FLAT", s, ink);
+        font_text_draw(rgb, w, h, 4 * s + 4 * 24 * s, y0 + s, "GREY: FLAT", s, ink);
     } else {
         number(a, sizeof a, f == SYL_TERRAIN_FLOW ? pow(10, lo) : lo);
         number(b, sizeof b, f == SYL_TERRAIN_FLOW ? pow(10, hi) : hi);
-        int left = 4 * s + cli_text_width(a, s) + 4 * s, right = w - 8 * s - cli_text_width(b, s);
-        cli_text_draw(rgb, w, h, 4 * s, y0 + s, a, s, ink);
+        int left = 4 * s + font_text_width(a, s) + 4 * s, right = w - 8 * s - font_text_width(b, s);
+        font_text_draw(rgb, w, h, 4 * s, y0 + s, a, s, ink);
         for (int x = left; x < right; x++) {
             double col[3];
             ramp((double)(x - left) / (right - left > 1 ? right - left - 1 : 1), col);
             uint8_t c8[3];
             put(c8, col, 1);
-            cli_fill_rect(rgb, w, h, x, y0, 1, bar, c8);
+            font_fill_rect(rgb, w, h, x, y0, 1, bar, c8);
         }
-        cli_text_draw(rgb, w, h, right + 4 * s, y0 + s, b, s, ink);
+        font_text_draw(rgb, w, h, right + 4 * s, y0 + s, b, s, ink);
     }
-    int st = syl_png_write(path, rgb, w, h, stderr);
-    free(rgb);
-    return st;
+    *out = (SylPicture){rgb, w, h};
+    return SYL_OK;
 }
 
-int cli_terrain_colour_maps(const SylTerrain *t, const char *dir) {
+int syl_terrain_colour_map(const SylTerrain *t, SylTerrainFactor f, const SylMapOptions *o, SylPicture *out) {
+    *out = (SylPicture){0};
+    if ((unsigned)f >= SYL_TERRAIN_FACTORS || !t->factor[f] || !t->factor[SYL_TERRAIN_SLOPE] ||
+        !t->factor[SYL_TERRAIN_ASPECT])
+        return SYL_EUSAGE;
     size_t n = (size_t)t->nx * t->nz;
     float *shade = malloc((n ? n : 1) * sizeof *shade);
     if (!shade) return SYL_ELIMIT;
@@ -138,20 +167,7 @@ int cli_terrain_colour_maps(const SylTerrain *t, const char *dir) {
         double v = as < 0 ? cos(zen) : cos(zen) * cos(sl) + sin(zen) * sin(sl) * cos(az - as * deg);
         shade[i] = (float)(v > 0 ? v : 0);
     }
-    int st = SYL_OK;
-    for (int f = 0; f < SYL_TERRAIN_FACTORS && !st; f++) {
-        if (!t->factor[f]) continue; /* not among the measures asked for */
-        size_t len = strlen(dir) + 48;
-        char *path = malloc(len);
-        if (!path) {
-            st = SYL_ELIMIT;
-            break;
-        }
-        snprintf(path, len, "%s/%s-colour.png", dir, syl_terrain_factor_name((SylTerrainFactor)f));
-        st = write_one(t, (SylTerrainFactor)f, shade, path);
-        if (!st) printf("%s\n", path);
-        free(path);
-    }
+    int st = draw(t, f, shade, cell_pixels(t, o), out);
     free(shade);
     return st;
 }

@@ -1,0 +1,29 @@
+/* The MPI transport reports through the caller's diag, not stderr: under mpirun -np 2 with
+ * SYLVA_RANK_TIMEOUT=1, rank 1 stops itself (SIGSTOP) and rank 0, waiting on it in the
+ * snapshot render's agreement on a status (every rank calls it, a failed compile too: p NULL),
+ * ends the job (exit code SYL_EIO, 4) after saying why on the stream it was given: the file
+ * LOG, which every rank opens to append to.
+ *   mpi_diag LOG */
+#include <signal.h>
+#include <stdio.h>
+
+#include <sylva/forest.h>
+
+int main(int argc, char **argv) {
+    if (argc < 2) return 2;
+    FILE *diag = fopen(argv[1], "a");
+    if (!diag) return 2;
+    setvbuf(diag, NULL, _IONBF, 0);
+    SylEcoMpi *mpi = syl_eco_mpi_start(&argc, &argv, diag);
+    if (!mpi) {
+        printf("not under mpirun, or no MPI\n");
+        return 0;
+    }
+    if (syl_eco_mpi_rank(mpi) == 1) raise(SIGSTOP);
+    SylSnapshotStats stats;
+    /* rank 0 waits here for ever, but for the watchdog */
+    syl_ecosystem_render_snapshot(NULL, SYL_EMODEL, &(SylSnapshotOptions){.render = &(SylRenderOptions){0}, .mpi = mpi, .diag = diag}, &stats);
+    syl_eco_mpi_end(mpi);
+    fclose(diag);
+    return 0;
+}
