@@ -74,6 +74,7 @@ typedef struct SylPlant {
     double derive_s, turtle_s, mesh_s; /* seconds per stage (derive_s: the growth, if grown) */
     double derive_cpu_s;   /* the processor time of derive_s (every thread's), which a loaded
                               machine does not inflate as it does the clock's */
+    double mesh_cpu_s;     /* the same for mesh_s */
 } SylPlant;
 
 /* Build p (kept by the caller; it may be freed as soon as this returns). SYL_OK, or a

@@ -61,6 +61,7 @@ typedef struct Plant {
     char name[64];  /* the model's name */
     double derive_s, turtle_s, mesh_s;
     double derive_cpu_s; /* SylPlant's: the derivation's, growth's or tree's processor time */
+    double mesh_cpu_s;   /* SylPlant's: the mesher's */
     bool grown;          /* a grow block or a scene: see grow */
     SylGrowStats grow;   /* its counts and times (derive_s is then the growth) */
     int lod;             /* the model's `lod` setting (0: none) */

@@ -245,6 +245,7 @@ int cmd_mesh(int argc, char **argv) {
         if (instanced) fprintf(stderr, "leaf instances: %zu\n", instances);
         fprintf(stderr, "derive time: %.6f s\nderive cpu time: %.6f s\nturtle time: %.6f s\nmesh time: %.6f s\n",
                 pl.derive_s, pl.derive_cpu_s, pl.turtle_s, pl.mesh_s);
+        fprintf(stderr, "mesh cpu time: %.6f s\n", pl.mesh_cpu_s);
         if (pl.mesh_s > 0) fprintf(stderr, "mesh rate: %.2f M triangles/s\n", (double)tris / pl.mesh_s / 1e6);
         fprintf(stderr, "%s time: %.6f s\n", levels ? "lod" : "optimize", t3 - t2 - t_imp - t_wind);
         if (levels) fprintf(stderr, "lod cpu time: %.6f s\n", c3 - c2 - c_imp);

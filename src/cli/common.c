@@ -188,6 +188,7 @@ int cli_plant(ModelArgs *m, SylDeriveOptions *d, const SylMeshOptions *mo, Plant
     out->derive_cpu_s = pl.derive_cpu_s;
     out->turtle_s = pl.turtle_s;
     out->mesh_s = pl.mesh_s;
+    out->mesh_cpu_s = pl.mesh_cpu_s;
     d->rewritten = pl.rewritten;
     return SYL_OK;
 }

@@ -22,10 +22,14 @@ typedef struct Envelope {
 } Envelope;
 
 /* The inside test of a closed mesh: a ray's crossings counted by parity (env/obstacles.c),
- * right for any closed mesh, convex or not. */
+ * right for any closed mesh, convex or not; a point outside its bounds is outside without a
+ * ray (a fifth of the tree's time). */
 static bool inside(void *user, const double p[3]) {
+    const Obstacles *o = &((Envelope *)user)->obs;
     float q[3] = {(float)p[0], (float)p[1], (float)p[2]};
-    return obstacles_inside(&((Envelope *)user)->obs, q);
+    for (int j = 0; j < 3; j++)
+        if (!(q[j] >= o->lo[j] && q[j] <= o->hi[j])) return false;
+    return obstacles_inside(o, q);
 }
 
 static int load_envelope(const SylProgram *p, const SylDirective *d, Envelope *e, FILE *diag) {

@@ -667,11 +667,12 @@ static bool fill_nodes(const MeshPlan *pl, SylMesh *m) {
     return true;
 }
 
-/* Large arrays on transparent huge pages where the system allows it: filling a mesh of a
- * million triangles otherwise spends a good part of its time in page faults. */
+/* Large arrays (from half a huge page up) on transparent huge pages where the system allows
+ * it: filling a mesh otherwise spends much of its time in page faults, a third of a 130 000
+ * triangle tree's on a virtual machine whose faults are slow (issue 29). */
 static void *big_alloc(size_t n) {
     const size_t huge = (size_t)2 << 20;
-    if (n < 2 * huge) return malloc(n);
+    if (n < huge / 2) return malloc(n);
     void *p = aligned_alloc(huge, (n + huge - 1) / huge * huge);
 #ifdef MADV_HUGEPAGE
     if (p) madvise(p, (n + huge - 1) / huge * huge, MADV_HUGEPAGE);

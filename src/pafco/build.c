@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "skeleton/store.h"
 #include "util/rng.h"
 
 #define DEG (M_PI / 180.0)
@@ -243,6 +244,13 @@ static void materials(Gen *g) {
 int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log) {
     Gen g = {.P = P, .sk = sk, .rng = rng_stream(seed, 0, 0x9afc02007ull, 0),
              .leaf_rng = rng_stream(seed, 1, 0x9afc02007ull, 0), .mem = mem, .log = log};
+    /* the most the tree can hold, charged and reserved at once: past the budget, nothing is made */
+    double nodes, leaves, bytes;
+    if (!pafco_fits(P, mem, &nodes, &leaves, &bytes, NULL) || !budget_charge(mem, (uint64_t)bytes)) return SYL_ELIMIT;
+    g.charged = (uint64_t)bytes;
+    if (!skeleton_reserve_nodes(sk, sk->nnodes + (size_t)nodes) ||
+        (leaves > 0 && !skeleton_reserve_organs(sk, sk->norgans + (size_t)leaves)))
+        return SYL_ELIMIT;
     g.last_gen = P->gen[1] ? (P->gen[2] ? 3 : 2) : 1;
     materials(&g);
     const double H = P->height;

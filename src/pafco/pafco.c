@@ -30,6 +30,21 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
         if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
         return SYL_ELIMIT;
     }
+    double nodes, leaves, bytes;
+    bool partial;
+    if (!pafco_fits(&P, mem, &nodes, &leaves, &bytes, &partial)) { /* refused before a node is made */
+        char size[96]; /* a count stopped at the budget gives only its nodes, and them as a least */
+        if (partial) snprintf(size, sizeof size, "more than %.0f nodes", nodes);
+        else snprintf(size, sizeof size, "up to %.0f nodes and %.0f leaves (%.0f MB)", nodes, leaves, bytes / (1 << 20));
+        if (opt->diag)
+            fprintf(opt->diag,
+                    "sylva: error: '%s': the tree may have %s, more than --max-memory allows (%llu MB%s); raise "
+                    "the limit with --max-memory, or lower VYSKA_STROMU, SEG_VET, V1G_POCET, V2G_MAX, V3G_MAX or "
+                    "LSPH_POCET\n",
+                    syl_program_name(p), size, (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
+        syl_skeleton_free(sk);
+        return SYL_ELIMIT;
+    }
     uint64_t before = syl_budget_used(mem);
     int st = pafco_build(&P, seed, mem, sk, NULL);
     uint64_t charged = syl_budget_used(mem) - before;

@@ -25,10 +25,18 @@ typedef struct PafcoLog {
     int n, cap;
 } PafcoLog;
 
-/* Build P's tree into sk (empty, from syl_skeleton_new) with seed; nodes and leaves are
- * charged to mem as they are made. log (may be NULL) receives the branches (free
- * log->branches). SYL_OK, or SYL_ELIMIT beyond the budget or out of memory. */
+/* Build P's tree into sk (empty, from syl_skeleton_new) with seed. The most nodes and leaves
+ * it can have (pafco_bounds) are charged to mem and reserved before a node is made. log (may be
+ * NULL) receives the branches (free log->branches). SYL_OK, or SYL_ELIMIT beyond the budget
+ * (pafco_fits false: nothing made) or out of memory. */
 int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log);
+
+/* The most nodes and leaves P's tree can have, whatever the seed (bound.c); once nodes pass
+ * cap, the count stops there (the tree is too large anyway). */
+void pafco_bounds(const PafcoParams *P, double cap, double *nodes, double *leaves);
+/* Whether that bound, *bytes of nodes and leaves, fits in what mem (NULL: no limit) has left;
+ * *partial (may be NULL): the count stopped past it, the numbers are then the least it is. */
+bool pafco_fits(const PafcoParams *P, const Budget *mem, double *nodes, double *leaves, double *bytes, bool *partial);
 
 /* The crown profile at relative height f in the crown (0 its base, 1 the top): the share of
  * the longest first-generation branch a branch there may reach. */

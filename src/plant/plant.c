@@ -40,10 +40,10 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
     double t0 = now(), c0 = cpu_now();
     int st = scene ? syl_grow_scene(p, &g, &out->skeleton, &obstacles) : syl_grow(p, &g, &out->skeleton);
     if (opt->progress) opt->progress(opt->user, 1);
-    double t1 = now();
+    double t1 = now(), c1 = cpu_now();
     out->grow = g.stats;
     out->derive_s = t1 - t0;
-    out->derive_cpu_s = cpu_now() - c0;
+    out->derive_cpu_s = c1 - c0;
     if (!st) out->modules = out->skeleton->nnodes;
     if (!st && opt->until == SYL_PLANT_MESH) {
         SylMeshOptions each = *mo; /* a scene's objects are told apart by their vertices' nodes */
@@ -59,6 +59,7 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
             fprintf(opt->diag, "sylva: error: out of memory adding the obstacles to the mesh\n");
     }
     out->mesh_s = now() - t1;
+    out->mesh_cpu_s = cpu_now() - c1;
     syl_mesh_free(obstacles);
     return st;
 }
@@ -72,12 +73,13 @@ static int build_tree(const KindOps *ops, const SylProgram *p, const SylPlantOpt
     double t0 = now(), c0 = cpu_now();
     int st = ops->build(p, &t, &out->skeleton);
     if (opt->progress) opt->progress(opt->user, 1);
-    double t1 = now();
+    double t1 = now(), c1 = cpu_now();
     out->derive_s = t1 - t0;
-    out->derive_cpu_s = cpu_now() - c0;
+    out->derive_cpu_s = c1 - c0;
     if (!st) out->modules = out->skeleton->nnodes;
     if (!st && opt->until == SYL_PLANT_MESH) st = syl_mesh_build(out->skeleton, mo, &out->mesh);
     out->mesh_s = now() - t1;
+    out->mesh_cpu_s = cpu_now() - c1;
     return st;
 }
 
@@ -107,10 +109,11 @@ static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const 
             out->string = NULL;
         }
     }
-    double t2 = now();
+    double t2 = now(), c2 = cpu_now();
     out->turtle_s = t2 - t1;
     if (!st && opt->until == SYL_PLANT_MESH) st = syl_mesh_build(out->skeleton, mo, &out->mesh);
     out->mesh_s = now() - t2;
+    out->mesh_cpu_s = cpu_now() - c2;
     return st;
 }
 
