@@ -136,7 +136,7 @@ static void work_free(Work *w) {
         for (int k = 0; k < 2; k++)
             if (w->pr[p].scene[k]) rtcReleaseScene(w->pr[p].scene[k]);
     for (int i = 0; i < w->ncopies; i++) free(w->pos_copy[i]);
-    for (int i = 0; i < 2 * w->npr; i++) free(w->alpha[i]);
+    for (int i = 0; i < 2 * w->npr; i++) render_alpha_free(w->alpha[i]);
     for (int i = 0; w->tri_mat && i < 2 * w->npr; i++) free(w->tri_mat[i]);
     free(w->tri_mat), free(w->lin), free(w->kind), free(w->level), free(w->pr);
     free(w->inst_proto), free(w->inst_cs), free(w->inst_scale);

@@ -132,7 +132,7 @@ static void mesh_surface(const Scene *s, const struct RTCRayHit16 *rh, int l, co
         float aw = sqrtf(dot3(cr, cr)) * scale * scale;
         float auv = fabsf((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
         float density = aw > 0 ? sqrtf(auv / aw) : 0;
-        const Texture *tx = &s->tex[kind];
+        const Texture *tx = !cs && s->mat_img[mat] >= 0 ? &s->img[s->mat_img[mat]] : &s->tex[kind];
         float tex[3];
         texture_sample(tx, tu, tv, lod_of(s, t, -dot3(ng, d), density, tx->size[0]), tex);
         for (int c = 0; c < 3; c++) sf->albedo[c] *= tex[c];
