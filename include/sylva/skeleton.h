@@ -192,6 +192,10 @@ typedef struct SylTurtleOptions {
      * the turtle stops with SYL_ELIMIT. */
     uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
     SylBudget *budget;    /* shared memory budget; the skeleton counts against it until freed */
+    /* The seed of the leaves' choice among several leaf_texture images: seed when use_seed
+     * is set (the derivation's --seed), else the model's. */
+    int use_seed;
+    uint64_t seed;
 } SylTurtleOptions;
 
 /* Interpret a derived string (after `interpret` rules, see syl_interpret) with the 3D

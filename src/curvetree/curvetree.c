@@ -63,7 +63,7 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
     if (ct_params_read(p, &P, diag)) return SYL_EMODEL;
     SylTextureSpec tex;
     int terr = lang_textures(p, &tex, diag);
-    if (terr) return terr < 0 ? SYL_ELIMIT : SYL_EMODEL;
+    if (terr) return terr;
     double aspect = P.leafAspect;
     if (tex.nleaf) { /* the first leaf image's height / width */
         const SylImage *g = &tex.images->img[tex.leaf[0] - 1];

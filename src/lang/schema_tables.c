@@ -13,7 +13,7 @@ static const SchRow lsystem_rows[] = {
      .def_text = w ? "forward" : NULL,},
 #include "lang/settings.def"
 #undef SETTING
-#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .def_text = "", .unit = "", .doc = mean},
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
 #include "lang/textures.def"
 };
 
@@ -28,7 +28,7 @@ static const SchRow weber_rows[] = {
 #define WP_X(nm, ty, l, h, d, dt, w, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
 #include "weber/params.def"
-#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .def_text = "", .unit = "", .doc = mean},
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
 #include "lang/textures.def"
 };
 
@@ -41,7 +41,7 @@ static const SchRow strands_rows[] = {
 #define ST_X(nm, ty, l, h, d, dt, w, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
 #include "strands/params.def"
-#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .def_text = "", .unit = "", .doc = mean},
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
 #include "lang/textures.def"
 };
 
@@ -50,7 +50,7 @@ static const SchRow curvetree_rows[] = {
 #define CT_X(nm, ty, l, h, d, dt, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean},
 #include "curvetree/params.def"
-#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .def_text = "", .unit = "", .doc = mean},
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
 #include "lang/textures.def"
 };
 
@@ -99,7 +99,7 @@ static const SchRow grow_rows[] = {
     {.name = dir "." nm, .type = GT_##ty, .lo = l, .hi = h, .def = {GD_##ty(d)}, .def_text = GW_##ty(d), \
      .words = w, .unit = u, .doc = mean, .group = GROUP_##base},
 #include "sot/params.def"
-#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .def_text = "", .unit = "", .doc = mean},
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
 #include "lang/textures.def"
 };
 
@@ -107,8 +107,7 @@ static const SchRow pafco_rows[] = {
 #define PF(f, nm, al, ty, l, h, d, dt, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean, .aliases = al},
 #include "pafco/params.def"
-#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .def_text = "", .unit = "", .doc = mean},
-#include "lang/textures.def"
+/* its K_SUBOR and TEX_SUBORY are the texture lines, bark and leaf_texture their aliases */
 };
 
 /* noun: what a row is ("setting"; docs/directives.md's title, "`weber` parameters"); intro:

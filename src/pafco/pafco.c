@@ -1,9 +1,7 @@
 /* syl_pafco: Pafčo's tree from a `pafco` block or a Pafčo file (docs/pafco.md);
  * syl_pafco_validate: the block's check for `sylva check`. */
 #include <stdio.h>
-#include <string.h>
 
-#include "lang/schema.h"
 #include "lang/textures.h"
 #include "skeleton/store.h"
 #include "pafco/pafco.h"
@@ -13,30 +11,20 @@ int syl_pafco_validate(const SylProgram *p, FILE *diag) {
     return syl_program_kind(p) == SYL_MODEL_PAFCO ? pafco_params_check(p, diag) : 0;
 }
 
-/* Pafčo's texture files as the texture lines of any kind (lang/textures.c): K_SUBOR the bark,
- * tiled H_TEX_MUL x V_TEX_MUL; TEX_SUBORY's first n files the leaf materials 1..n that
- * pafco_build made, one a file, each leaf already given one at random. A `bark` or
- * `leaf_texture` line takes the place of its Pafčo name. SYL_OK, or the error (reported). */
+/* The textures of the model's own (lang/textures.c: K_SUBOR is the bark line, tiled
+ * H_TEX_MUL x V_TEX_MUL unless the line says; TEX_SUBORY the leaf line): with TEX_SUBORY,
+ * the leaf materials 1..n pafco_build made, one a file, each leaf given one at random there.
+ * SYL_OK, or the error (reported). */
 static int textures(const SylProgram *p, const PafcoParams *P, SylSkeleton *sk, uint64_t seed, FILE *diag) {
     SylTextureSpec tex;
-    int errors = lang_textures(p, &tex, diag), n = 0, st = SYL_OK;
-    if (errors) return errors < 0 ? SYL_ELIMIT : SYL_EMODEL;
-    const SylDirective *ds = syl_program_directives(p, &n);
-    int leaves[PAFCO_MAX_TEX], nleaves = 0;
-    for (int i = 0; i < n && !st; i++) {
-        const SchRow *row = sch_find(&sch_pafco, ds[i].name, NULL);
-        bool bark = row && !strcmp(row->name, "K_SUBOR"), leaf = row && !strcmp(row->name, "TEX_SUBORY");
-        if (bark && !tex.bark && ds[i].nargs == 1) {
-            st = lang_texture_image(p, &ds[i], &ds[i].args[0], &tex, &tex.bark, diag);
-            tex.tile[0] = (float)P->h_tex, tex.tile[1] = (float)P->v_tex;
-        }
-        for (int k = 0; leaf && !tex.nleaf && k < ds[i].nargs && k < PAFCO_MAX_TEX && k + 1 < sk->nmaterials && !st; k++)
-            st = lang_texture_image(p, &ds[i], &ds[i].args[k], &tex, &leaves[nleaves++], diag);
+    int st = lang_textures(p, &tex, diag);
+    if (st) return st;
+    if (!(tex.tile[0] > 0)) tex.tile[0] = (float)P->h_tex, tex.tile[1] = (float)P->v_tex;
+    if (P->ntex) {
+        for (int k = 0; k < tex.nleaf && 1 + k < sk->nmaterials; k++) sk->materials[1 + k].image = tex.leaf[k];
+        tex.nleaf = 0;
     }
-    if (!st) {
-        for (int k = 0; k < nleaves && 1 + k < sk->nmaterials; k++) sk->materials[1 + k].image = (uint8_t)leaves[k];
-        st = syl_skeleton_textures(sk, &tex, seed);
-    }
+    st = syl_skeleton_textures(sk, &tex, seed);
     lang_textures_free(&tex);
     return st;
 }

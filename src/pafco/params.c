@@ -12,7 +12,6 @@
 #include "lang/pafco_cfg.h"
 #include "lang/program.h"
 #include "lang/schema.h"
-#include "lang/textures.h"
 
 /* Where each row's value lives in PafcoParams (params.def's order, the schema's). */
 static const size_t offsets[] = {
@@ -155,7 +154,6 @@ static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_erro
     const SylDirective *seen[PAFCO_NPARAMS] = {0};
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &dirs[i];
-        if (lang_texture_line(d->name)) continue; /* lang/textures.c reads it */
         const SchRow *row = sch_find(&sch_pafco, d->name, NULL);
         if (!row) {
             char hint[600];

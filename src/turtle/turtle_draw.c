@@ -296,7 +296,7 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     if (mem != &own) skeleton_charge(sk, mem, bytes);
     reserve_nodes(sk, want);
     int status = draw_string(t, s);
-    if (status == SYL_OK) status = lang_textures_apply(p, sk, p->seed, diag);
+    if (status == SYL_OK) status = lang_textures_apply(p, sk, opt && opt->use_seed ? opt->seed : p->seed, diag);
     if (status == SYL_OK && t->bad && diag)
         fprintf(diag, "sylva: warning: the turtle skipped %llu module%s with a parameter that is not a finite number\n",
                 (unsigned long long)t->bad, t->bad == 1 ? "" : "s");
