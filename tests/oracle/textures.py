@@ -5,11 +5,21 @@
                          of that name in the working folder; each material: its texture's
                          image, alpha mode, sampler wrap and base colour factor
   textures.py vt FILE    an OBJ's largest u, and its v range (OBJ writes 1 - v)
+  textures.py solid FILE R G B A   writes a 16 x 16 RGBA PNG of one colour (zlib, no filter)
+  textures.py tint PLAIN.png TEXTURED.png R G B
+                         of the pixels where the two renders differ (the tree), how many in
+                         TEXTURED are of the hue of (R, G, B): the component largest there at
+                         least twice each other one; and how many in PLAIN are
 """
 
 import json
+import os
 import struct
 import sys
+import zlib
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from inspect import png, pixel  # noqa: E402  (tests/oracle/inspect.py)
 
 
 def glb(path):
@@ -35,5 +45,35 @@ def vt(path):
     print("u up to %g, v over %g" % (max(u for u, v in uv), max(v for u, v in uv) - min(v for u, v in uv)))
 
 
+def solid(path, r, g, b, a):
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    rows = b"".join(b"\0" + bytes([int(r), int(g), int(b), int(a)]) * 16 for _ in range(16))
+    open(path, "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 16, 16, 8, 6, 0, 0, 0)) +
+                           chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+
+def tint(plain, textured, *rgb):
+    a, b = png(plain), png(textured)
+    k = max(range(3), key=lambda c: float(rgb[c]))
+
+    def of_hue(p):
+        return all(p[k] >= 2 * p[c] for c in range(3) if c != k) and p[k] > 20
+
+    tree = [(x, y) for y in range(a[1]) for x in range(a[0]) if pixel(a, x, y) != pixel(b, x, y)]
+    hue_b = sum(of_hue(pixel(b, x, y)) for x, y in tree)
+    hue_a = sum(of_hue(pixel(a, x, y)) for x, y in tree)
+    print("the tree covers %s pixels; of them the texture's hue: %s textured, %s plain" %
+          ("over 100" if len(tree) > 100 else len(tree),
+           "over 80%" if hue_b > 0.8 * len(tree) else "%d%%" % (100 * hue_b // max(1, len(tree))),
+           "none" if hue_a == 0 else hue_a))
+
+
 if __name__ == "__main__":
-    {"glb": glb, "vt": vt}[sys.argv[1]](sys.argv[2])
+    cmd = sys.argv[1]
+    if cmd == "solid":
+        solid(sys.argv[2], *sys.argv[3:7])
+    elif cmd == "tint":
+        tint(sys.argv[2], sys.argv[3], *sys.argv[4:7])
+    else:
+        {"glb": glb, "vt": vt}[cmd](sys.argv[2])
