@@ -300,19 +300,22 @@ static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
         }
     }
     for (int i = 0; i < 256 && !status && m; i++) /* the images, decoded once each */
-        if (s->mat_img[i] >= 0 && !s->img[s->mat_img[i]].levels) {
-            const SylImage *g = &m->images->img[s->mat_img[i]];
-            int w, h;
-            bool alpha;
-            uint8_t *rgba = NULL;
-            char why[160];
-            if (!pngin_decode(g->png, g->len, &w, &h, &alpha, &rgba, why, sizeof why) ||
-                !texture_from_rgba(&s->img[s->mat_img[i]], rgba, w, h, TEX_SIZE)) {
-                if (diag) fprintf(diag, "sylva: error: render: the texture \"%s\": %s\n", g->name, rgba ? "out of memory" : why);
-                status = SYL_ELIMIT;
-            }
-            free(rgba);
-        }
+        if (s->mat_img[i] >= 0 && !s->img[s->mat_img[i]].levels)
+            status = render_image_texture(&s->img[s->mat_img[i]], &m->images->img[s->mat_img[i]], diag);
+    return status;
+}
+
+int render_image_texture(Texture *t, const SylImage *g, FILE *diag) {
+    int w, h;
+    bool alpha;
+    uint8_t *rgba = NULL;
+    char why[160];
+    int status = SYL_OK;
+    if (!pngin_decode(g->png, g->len, &w, &h, &alpha, &rgba, why, sizeof why) || !texture_from_rgba(t, rgba, w, h, TEX_SIZE)) {
+        if (diag) fprintf(diag, "sylva: error: render: the texture \"%s\": %s\n", g->name, rgba ? "out of memory" : why);
+        status = SYL_ELIMIT;
+    }
+    free(rgba);
     return status;
 }
 

@@ -53,6 +53,7 @@ typedef struct Scene {
     uint8_t **proto_tri_mat;
     float (*proto_lin)[256][3];
     uint8_t (*proto_kind)[256];
+    int8_t (*proto_img)[256]; /* per material: its image in img[] (render_material_image), -1: none */
     const uint32_t *inst_proto;
     const float (*inst_cs)[2];
     const float *inst_scale;
@@ -78,6 +79,8 @@ int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, const uint32_t
 /* The image of the model's own material i of m is drawn with (SylMaterial.image; leaf clusters
  * draw their own cards): its index in m->images, -1 when none. */
 int render_material_image(const SylMesh *m, int i);
+/* t: image g decoded and mip-mapped for the shader. SYL_OK, or SYL_ELIMIT (reported). */
+int render_image_texture(Texture *t, const SylImage *g, FILE *diag);
 void render_alpha_free(AlphaTest *at);
 /* Release a scene: its Embree scene and device, textures and copies. */
 void render_scene_free(Scene *s);

@@ -6,10 +6,11 @@
                          image, alpha mode, sampler wrap and base colour factor
   textures.py vt FILE    an OBJ's largest u, and its v range (OBJ writes 1 - v)
   textures.py solid FILE R G B A   writes a 16 x 16 RGBA PNG of one colour (zlib, no filter)
-  textures.py tint PLAIN.png TEXTURED.png R G B
-                         of the pixels where the two renders differ (the tree), how many in
-                         TEXTURED are of the hue of (R, G, B): the component largest there at
-                         least twice each other one; and how many in PLAIN are
+  textures.py tint PLAIN.png TEXTURED.png R G B LEAST
+                         of the pixels where the two renders differ (the tree), whether at
+                         least the fraction LEAST in TEXTURED are of the hue of (R, G, B) (the
+                         component largest there at least twice each other one), and none
+                         in PLAIN; exit 1 with the counts when not
 """
 
 import json
@@ -53,20 +54,21 @@ def solid(path, r, g, b, a):
                            chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
 
 
-def tint(plain, textured, *rgb):
-    a, b = png(plain), png(textured)
-    k = max(range(3), key=lambda c: float(rgb[c]))
+def tint(plain, textured, r, g, b, least):
+    a, t = png(plain), png(textured)
+    rgb = (float(r), float(g), float(b))
+    k = max(range(3), key=lambda c: rgb[c])
 
     def of_hue(p):
         return all(p[k] >= 2 * p[c] for c in range(3) if c != k) and p[k] > 20
 
-    tree = [(x, y) for y in range(a[1]) for x in range(a[0]) if pixel(a, x, y) != pixel(b, x, y)]
-    hue_b = sum(of_hue(pixel(b, x, y)) for x, y in tree)
+    tree = [(x, y) for y in range(a[1]) for x in range(a[0]) if pixel(a, x, y) != pixel(t, x, y)]
+    hue_t = sum(of_hue(pixel(t, x, y)) for x, y in tree)
     hue_a = sum(of_hue(pixel(a, x, y)) for x, y in tree)
-    print("the tree covers %s pixels; of them the texture's hue: %s textured, %s plain" %
-          ("over 100" if len(tree) > 100 else len(tree),
-           "over 80%" if hue_b > 0.8 * len(tree) else "%d%%" % (100 * hue_b // max(1, len(tree))),
-           "none" if hue_a == 0 else hue_a))
+    if len(tree) < 20 or hue_t < float(least) * len(tree) or hue_a:
+        print("%d pixels differ; of the texture's hue %d textured, %d plain" % (len(tree), hue_t, hue_a))
+        sys.exit(1)
+    print("where the renders differ, at least %s of the textured pixels are of the texture's hue; none plain" % least)
 
 
 if __name__ == "__main__":
@@ -74,6 +76,6 @@ if __name__ == "__main__":
     if cmd == "solid":
         solid(sys.argv[2], *sys.argv[3:7])
     elif cmd == "tint":
-        tint(sys.argv[2], sys.argv[3], *sys.argv[4:7])
+        tint(sys.argv[2], sys.argv[3], *sys.argv[4:8])
     else:
         {"glb": glb, "vt": vt}[cmd](sys.argv[2])
