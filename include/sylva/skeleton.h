@@ -122,6 +122,10 @@ SylImages *syl_images_ref(SylImages *im);  /* im (NULL: NULL), one more referenc
 /* The image material m names in im; NULL when it names none (or im lacks it). */
 const SylImage *syl_material_image(const SylImages *im, const SylMaterial *m);
 void syl_images_release(SylImages *im);    /* one reference less; the last frees it */
+/* The index + 1 of image g in *into (a copy of it added, *into made when NULL, when none there
+ * has its name and bytes); 0 when it does not fit (SYL_IMAGES_MAX) or memory ran out. For
+ * one skeleton made of others' (a scene): *into must be only its own (one reference). */
+int syl_images_add(SylImages **into, const SylImage *g);
 /* What a model's texture lines ask (lang reads them; docs/language.md#textures): the images,
  * bark's (1 + its index, 0: none) with its tiles, and the leaves' (several: mixed at random). */
 typedef struct SylTextureSpec {

@@ -1,6 +1,7 @@
 /* A skeleton's texture images, shared with its meshes, and the textures a model's lines give
  * its materials (skeleton.h: syl_skeleton_textures). */
 #include <stdlib.h>
+#include <string.h>
 
 #include "sylva/skeleton.h"
 #include "util/rng.h"
@@ -18,6 +19,20 @@ void syl_images_release(SylImages *im) {
     if (!im || __atomic_sub_fetch(&im->refs, 1, __ATOMIC_ACQ_REL) > 0) return;
     for (int i = 0; i < im->n; i++) free(im->img[i].png);
     free(im);
+}
+
+int syl_images_add(SylImages **into, const SylImage *g) {
+    SylImages *im = *into;
+    for (int k = 0; im && k < im->n; k++)
+        if (im->img[k].len == g->len && !strcmp(im->img[k].name, g->name) && !memcmp(im->img[k].png, g->png, g->len))
+            return k + 1;
+    if (!im && (im = *into = calloc(1, sizeof *im))) im->refs = 1;
+    if (!im || im->n == SYL_IMAGES_MAX) return 0;
+    SylImage *c = &im->img[im->n];
+    *c = *g;
+    if (!(c->png = malloc(g->len ? g->len : 1))) return 0;
+    memcpy(c->png, g->png, g->len);
+    return ++im->n;
 }
 
 int syl_skeleton_textures(SylSkeleton *sk, SylTextureSpec *spec, uint64_t seed) {
