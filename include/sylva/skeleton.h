@@ -93,7 +93,7 @@ typedef struct SylMaterial {
      * axis, u uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex. 0: none. */
     float trunk_jitter;
     uint8_t translucency; /* light let through, 0..255 (glTF KHR_materials_transmission); 0: opaque */
-    /* An image of the model's own instead of the procedural texture (docs/language.md#textures):
+    /* An image of the model's own instead of the procedural texture (docs/language.md#21-textures-bark-and-leaf-images):
      * 0 none, k the skeleton's images->img[k - 1]. Bark repeats it tile[0] times around a
      * branch and tile[1] times as often along it (0: once); a leaf is a card of the image's
      * proportions, its alpha the outline. */
@@ -126,7 +126,7 @@ void syl_images_release(SylImages *im);    /* one reference less; the last frees
  * has its name and bytes); 0 when it does not fit (SYL_IMAGES_MAX) or memory ran out. For
  * one skeleton made of others' (a scene): *into must be only its own (one reference). */
 int syl_images_add(SylImages **into, const SylImage *g);
-/* What a model's texture lines ask (lang reads them; docs/language.md#textures): the images,
+/* What a model's texture lines ask (lang reads them; docs/language.md#21-textures-bark-and-leaf-images): the images,
  * bark's (1 + its index, 0: none) with its tiles, and the leaves' (several: mixed at random). */
 typedef struct SylTextureSpec {
     SylImages *images; /* NULL: no texture lines */

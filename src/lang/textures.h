@@ -1,4 +1,4 @@
-/* The texture lines of every kind of plant (lang/textures.def, docs/language.md#textures). */
+/* The texture lines of every kind of plant (lang/textures.def, docs/language.md#21-textures-bark-and-leaf-images). */
 #ifndef SYL_LANG_TEXTURES_H
 #define SYL_LANG_TEXTURES_H
 #include <stdbool.h>

@@ -6,7 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* The largest side of a texture image Sylva reads (docs/language.md#textures). */
+/* The largest side of a texture image Sylva reads (docs/language.md#21-textures-bark-and-leaf-images). */
 enum { PNGIN_MAX_SIDE = 8192 };
 
 /* Decode len bytes of a PNG into RGBA, rows top to bottom (malloc'd into *rgba when rgba is
