@@ -20,10 +20,7 @@ def seen(label):
     print(label, " ".join(sorted(imgs)))
 
 
-glb, obj = sys.argv[sys.argv.index("--") + 1:][:2]
-bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.import_scene.gltf(filepath=glb)
-seen("glb")
-bpy.ops.wm.read_factory_settings(use_empty=True)
-bpy.ops.import_scene.obj(filepath=obj)
-seen("obj")
+for label, path in zip(("glb", "obj"), sys.argv[sys.argv.index("--") + 1:]):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    (bpy.ops.import_scene.gltf if label == "glb" else bpy.ops.import_scene.obj)(filepath=path)
+    seen(label)
