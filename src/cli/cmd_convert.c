@@ -98,8 +98,9 @@ int cmd_convert(int argc, char **argv) {
     if (!p) return status;
     int nd = 0;
     const SylDirective *dirs = syl_program_directives(p, &nd);
-    for (int i = 0; i < nd && syl_program_kind(p) != SYL_MODEL_PAFCO; i++)
-        if (lang_texture_line(dirs[i].name)) /* a Pafčo file keeps them as K_SUBOR and TEX_SUBORY */
+    bool loses = syl_program_kind(p) == SYL_MODEL_WEBER || syl_program_kind(p) == SYL_MODEL_GROW; /* pafco keeps them */
+    for (int i = 0; i < nd && loses; i++)
+        if (lang_texture_line(dirs[i].name))
             program_warning(p, stderr, dirs[i].line, dirs[i].col,
                             "'%s' is not written: convert does not carry texture lines yet", dirs[i].name);
     if (syl_program_kind(p) == SYL_MODEL_GROW && !cfg) {
