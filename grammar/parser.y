@@ -255,6 +255,12 @@ stmt: NEWLINE
     | decl NEWLINE
     | SETTING exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $2; }
     | SETTING ':' exprs NEWLINE { Stmt *s = add_stmt(ps, ST_SETTING, @1); s->name = $1; s->args = $3; }
+    /* a texture line (lang/textures.def): a file name, then words and numbers, as in a block */
+    | SETTING STRING dargs NEWLINE {
+          Stmt *s = add_stmt(ps, ST_DIRECTIVE, @1); s->name = $1;
+          *VEC_PUSH(ps->arena, s->dargs.v, s->dargs.n, s->dargs.cap) = darg(DARG_STRING, $2, @2);
+          for (int k = 0; k < $3.n; k++) *VEC_PUSH(ps->arena, s->dargs.v, s->dargs.n, s->dargs.cap) = $3.v[k];
+      }
     | KW_IGNORE colon_opt items NEWLINE { add_stmt(ps, ST_IGNORE, @1)->items = $3; }
     | KW_CONSIDER colon_opt items NEWLINE { add_stmt(ps, ST_CONSIDER, @1)->items = $3; }
     | KW_AXIOM colon_opt items NEWLINE { add_stmt(ps, ST_AXIOM, @1)->items = $3; }

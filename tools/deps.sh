@@ -15,6 +15,7 @@ PKGS="$PKGS libmicrohttpd-dev"  # sylva view's web server (the CLI only)
 # (one from elsewhere, such as NodeSource's, brings its own npm).
 command -v node >/dev/null 2>&1 || PKGS="$PKGS nodejs npm"
 PKGS="$PKGS strace"  # tests/cases/trust.test: a model, and libxml2, open no file they should not (traced)
+PKGS="$PKGS python3-pil"  # tools/make-textures: the example bark and leaf images
 missing=""
 for p in $PKGS; do
     dpkg-query -W -f='${Status}\n' "$p" 2>/dev/null | grep -q "ok installed" || missing="$missing $p"

@@ -39,6 +39,7 @@ typedef struct SylMesh {
                                    shape drawn (clusters: SYL_CLUSTER_NEEDLES for needles) */
     SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
     uint64_t charged;
+    SylImages *images;     /* its materials' images (SylMaterial.image), one reference; NULL: none */
 } SylMesh;
 
 enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };

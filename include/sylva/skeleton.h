@@ -93,7 +93,48 @@ typedef struct SylMaterial {
      * axis, u uniform in [-trunk_jitter, trunk_jitter], drawn per ring and vertex. 0: none. */
     float trunk_jitter;
     uint8_t translucency; /* light let through, 0..255 (glTF KHR_materials_transmission); 0: opaque */
+    /* An image of the model's own instead of the procedural texture (docs/language.md#21-textures-bark-and-leaf-images):
+     * 0 none, k the skeleton's images->img[k - 1]. Bark repeats it tile[0] times around a
+     * branch and tile[1] times as often along it (0: once); a leaf is a card of the image's
+     * proportions, its alpha the outline. */
+    uint8_t image;
+    float tile[2];
 } SylMaterial;
+
+enum { SYL_IMAGES_MAX = 64 };
+/* An image file a model names as a texture: the PNG's bytes as read (a .glb embeds them, an
+ * OBJ gets a copy beside its MTL), its size in pixels, its name as written in the model. */
+typedef struct SylImage {
+    char name[160];
+    uint8_t *png;
+    size_t len;
+    int width, height;
+    int alpha; /* the PNG has an alpha channel (or a transparent colour) */
+} SylImage;
+/* A skeleton's images, shared by the meshes made from it: counted references
+ * (syl_images_ref, syl_images_release), never changed once attached. */
+typedef struct SylImages {
+    int refs;
+    int n;
+    SylImage img[SYL_IMAGES_MAX];
+} SylImages;
+SylImages *syl_images_ref(SylImages *im);  /* im (NULL: NULL), one more reference */
+/* The image material m names in im; NULL when it names none (or im lacks it). */
+const SylImage *syl_material_image(const SylImages *im, const SylMaterial *m);
+void syl_images_release(SylImages *im);    /* one reference less; the last frees it */
+/* The index + 1 of image g in *into (a copy of it added, *into made when NULL, when none there
+ * has its name and bytes); 0 when it does not fit (SYL_IMAGES_MAX) or memory ran out. For
+ * one skeleton made of others' (a scene): *into must be only its own (one reference). */
+int syl_images_add(SylImages **into, const SylImage *g);
+/* What a model's texture lines ask (lang reads them; docs/language.md#21-textures-bark-and-leaf-images): the images,
+ * bark's (1 + its index, 0: none) with its tiles, and the leaves' (several: mixed at random). */
+typedef struct SylTextureSpec {
+    SylImages *images; /* NULL: no texture lines */
+    int bark;
+    float tile[2];
+    uint8_t leaf[SYL_IMAGES_MAX];
+    int nleaf;
+} SylTextureSpec;
 
 typedef struct SylSkeletonPart {
     size_t first_node; /* a plant's first node */
@@ -125,6 +166,7 @@ typedef struct SylSkeleton {
     SylSkeletonPart *parts;
     int nparts;
     struct SylSkeletonStore *store;
+    SylImages *images; /* the images its materials name (SylMaterial.image); NULL: none */
 } SylSkeleton;
 
 SylSkeleton *syl_skeleton_new(const char *name); /* default palette: bark, leaf, flower, ... */
@@ -136,6 +178,12 @@ int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n);   /* returns it
 int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o);
 int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32_t n, int32_t node,
                                  uint8_t material, uint32_t module);
+/* Give sk the textures of spec (its images move to sk; spec->images becomes NULL): every bark
+ * material bark's image and tiles; every leaf material used by a leaf organ the first leaf
+ * image, copied into a material per further image, and each leaf organ one of those, chosen
+ * at random by seed and its index (the same for the same seed, whatever the threads).
+ * SYL_OK, or SYL_ELIMIT when the leaves' copies do not fit in 256 materials. */
+int syl_skeleton_textures(SylSkeleton *sk, SylTextureSpec *spec, uint64_t seed);
 /* Axis-aligned bounds of nodes, organs and polygons. */
 void syl_skeleton_bounds(const SylSkeleton *s, float lo[3], float hi[3]);
 /* id,parent,x,y,z,radius,order,kind — nodes, then organs (parent: their node). */
@@ -148,6 +196,10 @@ typedef struct SylTurtleOptions {
      * the turtle stops with SYL_ELIMIT. */
     uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
     SylBudget *budget;    /* shared memory budget; the skeleton counts against it until freed */
+    /* The seed of the leaves' choice among several leaf_texture images: seed when use_seed
+     * is set (the derivation's --seed), else the model's. */
+    int use_seed;
+    uint64_t seed;
 } SylTurtleOptions;
 
 /* Interpret a derived string (after `interpret` rules, see syl_interpret) with the 3D

@@ -7,6 +7,8 @@
 #include <strings.h>
 
 #include "cli/cli.h"
+#include "lang/program.h"
+#include "lang/textures.h"
 #include "sylva/grow.h"
 #include "pafco/params.h"
 #include "weber/params.h"
@@ -94,6 +96,13 @@ int cmd_convert(int argc, char **argv) {
     int status;
     SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (!p) return status;
+    int nd = 0;
+    const SylDirective *dirs = syl_program_directives(p, &nd);
+    bool loses = syl_program_kind(p) == SYL_MODEL_WEBER || syl_program_kind(p) == SYL_MODEL_GROW; /* pafco keeps them */
+    for (int i = 0; i < nd && loses; i++)
+        if (lang_texture_line(dirs[i].name))
+            program_warning(p, stderr, dirs[i].line, dirs[i].col,
+                            "'%s' is not written: convert does not carry texture lines yet", dirs[i].name);
     if (syl_program_kind(p) == SYL_MODEL_GROW && !cfg) {
         status = convert_grow(p, m.path, output, xml);
         syl_program_free(p);

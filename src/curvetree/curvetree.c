@@ -2,13 +2,13 @@
  * trunk curve and envelope read, the budget charged, the tree built; syl_curvetree_validate:
  * the block's check for `sylva check`. */
 #include <errno.h>
-#include <png.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "skeleton/store.h"
 #include "curvetree/curvetree.h"
 #include "env/obstacles.h"
+#include "lang/textures.h"
 #include "sylva/trees.h"
 #include "util/budget.h"
 
@@ -52,49 +52,6 @@ static int load_envelope(const SylProgram *p, const SylDirective *d, Envelope *e
     return st;
 }
 
-/* The leaf texture's height / width (its PNG header, through libpng). */
-static void png_failed(png_structp png, png_const_charp msg) {
-    (void)msg;
-    png_longjmp(png, 1);
-}
-static int leaf_aspect(const SylProgram *p, const SylDirective *d, double *aspect, FILE *diag) {
-    char *path = NULL;
-    const char *name = d->args[0].text;
-    int st = syl_program_file(p, name, &path);
-    if (st == SYL_ELIMIT) return st;
-    if (st) {
-        syl_directive_error(p, diag, d, &d->args[0], "cannot read '%s': %s", name, syl_file_refused);
-        return SYL_EIO;
-    }
-    FILE *f = fopen(path, "rb");
-    free(path);
-    if (!f) {
-        syl_directive_error(p, diag, d, &d->args[0], "cannot read the leaf texture '%s': %s", name, strerror(errno));
-        return SYL_EIO;
-    }
-    unsigned char sig[8];
-    png_uint_32 w = 0, h = 0;
-    png_structp png = NULL;
-    png_infop info = NULL;
-    bool ok = fread(sig, 1, 8, f) == 8 && !png_sig_cmp(sig, 0, 8) &&
-              (png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, png_failed, NULL)) != NULL &&
-              (info = png_create_info_struct(png)) != NULL;
-    if (ok && !setjmp(png_jmpbuf(png))) {
-        png_init_io(png, f);
-        png_set_sig_bytes(png, 8);
-        png_read_info(png, info);
-        w = png_get_image_width(png, info), h = png_get_image_height(png, info);
-    }
-    if (png) png_destroy_read_struct(&png, info ? &info : NULL, NULL);
-    fclose(f);
-    if (!(w > 0 && h > 0)) {
-        syl_directive_error(p, diag, d, &d->args[0], "the leaf texture '%s' is not a readable PNG image", name);
-        return SYL_EMODEL;
-    }
-    *aspect = (double)h / w;
-    return SYL_OK;
-}
-
 int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
     static const SylTreeOptions none = {0};
     if (!opt) opt = &none;
@@ -108,14 +65,20 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
     }
     CtParams P;
     if (ct_params_read(p, &P, diag)) return SYL_EMODEL;
+    SylTextureSpec tex;
+    int terr = lang_textures(p, &tex, diag);
+    if (terr) return terr;
     double aspect = P.leafAspect;
-    if (P.texture_at) {
-        int st = leaf_aspect(p, P.texture_at, &aspect, diag);
-        if (st) return st;
+    if (tex.nleaf) { /* the first leaf image's height / width */
+        const SylImage *g = &tex.images->img[tex.leaf[0] - 1];
+        aspect = (double)g->height / g->width;
     }
     CtCurve trunk;
     int st = ct_curve_of_directive(p, P.trunk_at, true, &trunk, diag);
-    if (st) return st;
+    if (st) {
+        lang_textures_free(&tex);
+        return st;
+    }
     Envelope env = {0};
     st = load_envelope(p, P.envelope_at, &env, diag);
     uint64_t nodes = 0, leaves = 0, bytes = 0;
@@ -142,8 +105,10 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
         uint64_t seed = opt->use_seed ? opt->seed : (uint64_t)P.seed;
         seed += opt->seed_offset; /* a scene's n-th plant of a row: a tree of its own */
         st = ct_build(&P, &trunk, inside, &env, aspect, seed, sk);
+        if (!st) st = syl_skeleton_textures(sk, &tex, seed);
         if (st && diag) fprintf(diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
     }
+    lang_textures_free(&tex);
     obstacles_free(&env.obs);
     if (env.dev) rtcReleaseDevice(env.dev);
     ct_curve_free(&trunk);

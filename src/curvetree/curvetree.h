@@ -16,7 +16,7 @@
 typedef struct CtParams {
 #define CT_N(f, nm, ty, l, h, d, u, mean) double f;
 #include "curvetree/params.def"
-    const SylDirective *trunk_at, *envelope_at, *texture_at;
+    const SylDirective *trunk_at, *envelope_at;
 } CtParams;
 
 /* Read and check the block; the error count (each reported at its line with a caret). */

@@ -7,6 +7,7 @@
 #include "curvetree/curvetree.h"
 #include "lang/program.h"
 #include "lang/schema.h"
+#include "lang/textures.h"
 
 typedef struct Num {
     const char *name;
@@ -35,7 +36,7 @@ static bool is_param(const SylProgram *p, const char *name) {
     return false;
 }
 
-/* A file name in quotes (envelope, leaf_texture). */
+/* A file name in quotes (envelope). */
 static int read_file_line(const SylProgram *p, const SylDirective *d, FILE *diag, const char *what,
                           const SylDirective **at) {
     if (d->nargs != 1 || d->args[0].kind != SYL_DARG_STRING) {
@@ -56,6 +57,7 @@ static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_erro
     const SylDirective *seen[64] = {0};
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &ds[i];
+        if (lang_texture_line(d->name)) continue; /* lang/textures.c reads it */
         const SchRow *row = sch_find(&sch_curvetree, d->name, NULL);
         if (!row) {
             char near[480];
@@ -75,8 +77,6 @@ static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_erro
         if (!strcmp(row->name, "lod")) errors += lang_lod_check(p, d, diag); /* sylva mesh reads it */
         else if (!strcmp(row->name, "envelope"))
             errors += read_file_line(p, d, diag, "a closed mesh in an .obj file", &P->envelope_at);
-        else if (!strcmp(row->name, "leaf_texture"))
-            errors += read_file_line(p, d, diag, "a PNG image", &P->texture_at);
         else if (!strcmp(row->name, "trunk")) {
             CtCurve c;
             int st = ct_curve_of_directive(p, d, false, &c, diag); /* the inline forms; a file at build */

@@ -151,6 +151,27 @@ char *io_float(char *p, float xf, int sig) {
     return p;
 }
 
+const SylImage *io_image(const SylMesh *m, int material) {
+    const SylMaterial *mt = &m->materials[material];
+    if (mt->kind == SYL_MATERIAL_LEAF && m->leaves == SYL_LEAVES_CLUSTERS) return NULL; /* clusters: their own card */
+    return mt->kind <= SYL_MATERIAL_FLOWER ? syl_material_image(m->images, mt) : NULL;
+}
+
+static const char *image_base(const SylImage *g) {
+    const char *slash = strrchr(g->name, '/');
+    return slash ? slash + 1 : g->name;
+}
+
+void io_image_file(const SylMesh *m, int k, const char *prefix, char *buf, size_t n) {
+    const char *base = image_base(&m->images->img[k]);
+    bool twice = false;
+    for (int i = 0; i < k && !twice; i++) twice = !strcmp(image_base(&m->images->img[i]), base);
+    char safe[sizeof m->images->img[0].name];
+    io_line_text(safe, sizeof safe, base, false);
+    if (twice) snprintf(buf, n, "%s_tex%d_%s", prefix, k, safe);
+    else snprintf(buf, n, "%s_tex_%s", prefix, safe);
+}
+
 const char *io_texture_kind(const SylMesh *m, int material) {
     return syl_texture_name(m->materials[material].kind);
 }

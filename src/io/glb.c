@@ -19,6 +19,8 @@
 #include "sylva/texture.h"
 
 enum { KINDS = GLB_SLOTS, CARD = GLB_CARD, ATLAS = GLB_ATLAS, CLUSTER = GLB_CLUSTER }; /* texture slots (glb.h) */
+/* then one slot per image of the model's own (SylMaterial.image), its PNG embedded as read */
+enum { IMAGE0 = KINDS, SLOTS = KINDS + SYL_IMAGES_MAX };
 
 /* A mesh written: the part it belongs to and which of its sets (-1: the part's own). */
 typedef struct MeshRef {
@@ -44,7 +46,9 @@ typedef struct Layout {
     int nmeshes;
     int *set_view, *set_accessor, *part_mesh, *part_node, *set_node; /* -1: none */
     int nsets, nnodes;
-    int tex_of_kind[KINDS], ntex, image_view[KINDS], image_kind[KINDS];
+    int tex_of_kind[SLOTS], ntex, image_view[SLOTS], image_kind[SLOTS];
+    const SylImages *images;      /* the first mesh's images (the others share them: levels, parts) */
+    bool image_leaf[SYL_IMAGES_MAX]; /* an image some leaf wears: clamped, not repeated */
     float (*quant)[4];            /* each part's dequantization: translation, scale (0: none) */
     const SylWind *wind;          /* the parts' one skin, when they are skinned */
     int anim_view, anim_accessor, joint_node; /* its first view, accessor and joint node */
@@ -118,6 +122,7 @@ int glb_slot(const SylMesh *m, int i) {
 static int slot_of(const Layout *l, const MeshRef *r, int i) {
     const GlbScene *sc = l->sc;
     if (sc->atlas && r->part == sc->nparts - 1 && r->set < 0 && i == sc->atlas_material) return ATLAS;
+    if (r->m->images == l->images && io_image(r->m, i)) return IMAGE0 + r->m->materials[i].image - 1;
     return glb_slot(r->m, i);
 }
 
@@ -262,19 +267,31 @@ static int set_accessors(const Layout *l, int i) { return l->mesh[l->set_mesh[i]
 
 /* One PNG texture per slot used, each in a view of its own. */
 static void layout_textures(Layout *l) {
-    bool used[KINDS] = {false};
+    bool used[SLOTS] = {false};
     int shape = 0, cluster_shape = 0;
+    for (int k = 0; k < l->nmeshes && !l->images; k++) l->images = l->mesh[k].m->images;
     for (int k = 0; k < l->nmeshes; k++)
         for (int g = 0; g < l->mesh[k].m->ngroups; g++) {
-            int t = slot_of(l, &l->mesh[k], l->mesh[k].m->groups[g].material);
+            int i = l->mesh[k].m->groups[g].material, t = slot_of(l, &l->mesh[k], i);
             if (t >= 0) used[t] = true;
+            if (t >= IMAGE0 && l->mesh[k].m->materials[i].kind != SYL_MATERIAL_BARK) l->image_leaf[t - IMAGE0] = true;
             if (t == CARD) shape = l->mesh[k].m->leaf_shape;
             if (t == CLUSTER) cluster_shape = l->mesh[k].m->leaf_shape;
         }
     uint8_t *img = NULL;
     const GlbScene *sc = l->sc;
-    for (int k = 0; k < KINDS; k++) {
+    for (int k = 0; k < SLOTS; k++) {
         if (!used[k]) continue;
+        if (k >= IMAGE0) { /* the file's bytes as they are */
+            const SylImage *g = &l->images->img[k - IMAGE0];
+            l->image_view[l->ntex] = l->nviews;
+            l->image_kind[l->ntex] = k;
+            l->views[l->nviews++] = (View){l->bin.len, g->len, 0, 0};
+            io_put(&l->bin, g->png, g->len);
+            glb_pad(&l->bin, 0);
+            l->tex_of_kind[k] = l->ntex++;
+            continue;
+        }
         if (!img && !(img = malloc((size_t)SYL_TEXTURE_SIZE * SYL_TEXTURE_SIZE * 4))) {
             l->bin.failed = true;
             break;
@@ -339,9 +356,10 @@ static void json_materials(IoBuf *js, const Layout *l) {
             const SylMaterial *mat = &m->materials[i];
             char mname[32];
             io_material_name(m, i, mname, sizeof mname);
+            /* an image of the model's own is the colour itself: a white factor */
+            const float white[3] = {1, 1, 1}, *rgb = slot >= IMAGE0 ? white : mat->rgb;
             io_printf(js, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.6f,%.6f,%.6f,1]",
-                      k || g ? "," : "", mname, glb_linear(mat->rgb[0]), glb_linear(mat->rgb[1]),
-                      glb_linear(mat->rgb[2]));
+                      k || g ? "," : "", mname, glb_linear(rgb[0]), glb_linear(rgb[1]), glb_linear(rgb[2]));
             const float *uq = l->mesh[k].uvq;
             if (t >= 0 && uq[2] > 0)
                 io_printf(js, ",\"baseColorTexture\":{\"index\":%d,\"extensions\":{\"KHR_texture_transform\":"
@@ -350,8 +368,10 @@ static void json_materials(IoBuf *js, const Layout *l) {
             else if (t >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", t);
             io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":%s}",
                       mat->kind == SYL_MATERIAL_BARK ? "0.95" : "0.7");
-            if (slot == CARD || slot == CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
-            else if (m->double_sided[i]) io_printf(js, ",\"doubleSided\":true"); /* one-sided leaves */
+            bool leaf_image = slot >= IMAGE0 && mat->kind != SYL_MATERIAL_BARK;
+            if (slot == CARD || slot == CLUSTER || (leaf_image && l->images->img[slot - IMAGE0].alpha))
+                io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5,\"doubleSided\":true");
+            else if (m->double_sided[i] || leaf_image) io_printf(js, ",\"doubleSided\":true"); /* one-sided leaves */
             if (mat->translucency) /* the extension both the Khronos validator and Blender's importer read */
                 io_printf(js, ",\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":%.4f}}",
                           mat->translucency / 255.0);
@@ -421,11 +441,17 @@ static void json_accessors(IoBuf *js, const Layout *l) {
     io_put(js, "]", 1);
 }
 
+/* Whether texture slot k is clamped: cards, the atlas, clusters and a leaf's own image. */
+static bool clamps(const Layout *l, int k) {
+    return k >= IMAGE0 ? l->image_leaf[k - IMAGE0] : k >= CARD;
+}
+
 /* Sampler, images and textures, when there are textures. Cards and the atlas clamp: a leaf
  * does not repeat, and wrapping would bleed the far edge's alpha into the base. */
 static void json_textures(IoBuf *js, const Layout *l) {
     if (!l->ntex) return;
-    int alpha = (l->tex_of_kind[CARD] >= 0) + (l->tex_of_kind[ATLAS] >= 0) + (l->tex_of_kind[CLUSTER] >= 0);
+    int alpha = 0;
+    for (int t = 0; t < l->ntex; t++) alpha += clamps(l, l->image_kind[t]);
     bool clamped = alpha > 0, tiled = l->ntex > alpha;
     io_printf(js, ",\"samplers\":[");
     if (tiled) io_printf(js, "{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}");
@@ -433,13 +459,13 @@ static void json_textures(IoBuf *js, const Layout *l) {
     io_printf(js, "],\"images\":[");
     for (int t = 0; t < l->ntex; t++) {
         int k = l->image_kind[t];
-        io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
-                  glb_slot_name(k),
-                  l->image_view[t]);
+        io_printf(js, "%s{\"name\":", t ? "," : "");
+        io_json_string(js, k >= IMAGE0 ? l->images->img[k - IMAGE0].name : glb_slot_name(k));
+        io_printf(js, ",\"bufferView\":%d,\"mimeType\":\"image/png\"}", l->image_view[t]);
     }
     io_printf(js, "],\"textures\":[");
     for (int t = 0; t < l->ntex; t++)
-        io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "", l->image_kind[t] >= CARD && tiled, t);
+        io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "", clamps(l, l->image_kind[t]) && tiled, t);
     io_put(js, "]", 1);
 }
 
@@ -634,7 +660,7 @@ static bool plan(Layout *l) {
     for (int p = 0; p < sc->nparts; p++) sets += sc->part[p].nsets;
     size_t n = (size_t)(sc->nparts + sets) + 1;
     l->mesh = calloc(n, sizeof *l->mesh);
-    l->views = malloc(sizeof *l->views * (9 * n + 3 * (size_t)sets + KINDS + 3));
+    l->views = malloc(sizeof *l->views * (9 * n + 3 * (size_t)sets + SLOTS + 3));
     int *ints = malloc(sizeof(int) * (4 * (size_t)sets + 3 * (size_t)sc->nparts + 1));
     if (!l->mesh || !l->views || !ints) {
         free(ints);
@@ -690,7 +716,8 @@ static bool plan(Layout *l) {
 
 /* The file of sc; set_joint (may be NULL): the joint each instance set follows. */
 static int write_scene(const GlbScene *sc, const int *set_joint, const char *path, FILE *diag) {
-    Layout l = {.sc = sc, .tex_of_kind = {-1, -1, -1, -1, -1, -1}, .set_joint = set_joint};
+    Layout l = {.sc = sc, .set_joint = set_joint};
+    for (int k = 0; k < SLOTS; k++) l.tex_of_kind[k] = -1;
     IoBuf js = {0};
     bool ok = plan(&l);
     if (!ok) l.bin.failed = true;

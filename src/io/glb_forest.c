@@ -11,7 +11,12 @@ typedef struct Forest {
     int set_mesh[4096];
     int first_view[257], first_acc[257], first_mat[257], set_view0, set_acc0;
     bool uv[257];                                     /* mesh k has UVs (an accessor after NORMAL) */
-    int tex_of[GLB_SLOTS], image_view[GLB_SLOTS], image_slot[GLB_SLOTS], ntex; /* as a tree's file */
+    int tex_of[GLB_SLOTS], image_view[GLB_SLOTS + SYL_IMAGES_MAX], image_slot[GLB_SLOTS + SYL_IMAGES_MAX], ntex; /* as a tree's file */
+    /* the images of the models' own the looks wear (io_image), each once however many looks
+     * read it (one file, the same bytes): then a texture each, after the slots' */
+    const SylImage *image[SYL_IMAGES_MAX];
+    bool image_leaf[SYL_IMAGES_MAX]; /* a leaf wears it: clamped, not repeated */
+    int nimages;
     View *views;
     int nviews;
     IoBuf bin;
@@ -33,13 +38,31 @@ static void view(Forest *f, const void *x, size_t words, int target) {
     f->views[f->nviews++] = (View){.offset = at, .length = words * 4, .target = target};
 }
 
-/* One picture per texture slot the meshes' materials use, each in a view of its own. */
+/* The index in f->image of the image mesh k's material i wears; -1 none (or no room). */
+static int image_of(Forest *f, int k, int i) {
+    const SylImage *g = f->uv[k] ? io_image(f->mesh[k], i) : NULL;
+    if (!g) return -1;
+    int j = 0;
+    while (j < f->nimages && !(f->image[j]->len == g->len && !strcmp(f->image[j]->name, g->name) &&
+                               !memcmp(f->image[j]->png, g->png, g->len)))
+        j++;
+    if (j == f->nimages) {
+        if (j == SYL_IMAGES_MAX) return -1;
+        f->image[f->nimages++] = g;
+    }
+    if (f->mesh[k]->materials[i].kind != SYL_MATERIAL_BARK) f->image_leaf[j] = true;
+    return j;
+}
+
+/* One picture per texture slot the meshes' materials use, and one per image of the models'
+ * own (its file's bytes), each in a view of its own. */
 static bool textures(Forest *f) {
     int shape[GLB_SLOTS] = {0};
     for (int k = 0; k < GLB_SLOTS; k++) f->tex_of[k] = -1;
     for (int k = 0; k < f->nmeshes; k++)
         for (int g = 0; f->uv[k] && g < f->mesh[k]->ngroups; g++) {
-            int slot = glb_slot(f->mesh[k], f->mesh[k]->groups[g].material);
+            int i = f->mesh[k]->groups[g].material, slot = glb_slot(f->mesh[k], i);
+            if (image_of(f, k, i) >= 0) continue;
             if (slot >= 0) f->tex_of[slot] = 0, shape[slot] = f->mesh[k]->leaf_shape;
         }
     uint8_t *img = NULL;
@@ -56,6 +79,12 @@ static bool textures(Forest *f) {
         f->views[f->nviews++] = (View){.offset = at, .length = f->bin.len - at};
     }
     free(img);
+    for (int j = 0; j < f->nimages; j++) { /* the file's bytes as they are */
+        glb_pad(&f->bin, 0);
+        f->image_view[f->ntex] = f->nviews, f->image_slot[f->ntex++] = GLB_SLOTS + j;
+        f->views[f->nviews++] = (View){.offset = f->bin.len, .length = f->image[j]->len};
+        io_put(&f->bin, f->image[j]->png, f->image[j]->len);
+    }
     return !f->bin.failed;
 }
 
@@ -95,16 +124,19 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
     for (int k = 0; k < f->nmeshes; k++)
         for (int g = 0; g < f->mesh[k]->ngroups; g++) { /* named and textured as a tree's own file */
             const SylMesh *m = f->mesh[k];
-            int i = m->groups[g].material, slot = f->uv[k] ? glb_slot(m, i) : -1;
-            const float *c = m->materials[i].rgb;
+            int i = m->groups[g].material, slot = f->uv[k] ? glb_slot(m, i) : -1, j = image_of(f, k, i);
+            static const float white[3] = {1, 1, 1}; /* an image of the model's own is the colour itself */
+            const float *c = j >= 0 ? white : m->materials[i].rgb;
             char name[32];
             if (k == f->ground) snprintf(name, sizeof name, g ? "terrain%d" : "terrain", g);
             else io_material_name(m, i, name, sizeof name);
             io_printf(js, "%s{\"name\":\"%s\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[%.4f,%.4f,%.4f,1]",
                       k || g ? "," : "", name, glb_linear(c[0]), glb_linear(c[1]), glb_linear(c[2]));
-            if (slot >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", f->tex_of[slot]);
+            if (j >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", f->ntex - f->nimages + j);
+            else if (slot >= 0) io_printf(js, ",\"baseColorTexture\":{\"index\":%d}", f->tex_of[slot]);
             io_printf(js, ",\"metallicFactor\":0,\"roughnessFactor\":0.9},\"doubleSided\":true");
-            if (slot == GLB_CARD || slot == GLB_CLUSTER) io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5");
+            if (j >= 0 ? f->image_leaf[j] && f->image[j]->alpha : slot == GLB_CARD || slot == GLB_CLUSTER)
+                io_printf(js, ",\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5");
             io_put(js, "}", 1);
         }
     io_printf(js, "],\"accessors\":[");
@@ -139,12 +171,18 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
     if (f->ntex) { /* as a tree's file: tiled bark and leaves, clamped cards */
         io_printf(js, ",\"samplers\":[{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497},"
                       "{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}],\"images\":[");
-        for (int t = 0; t < f->ntex; t++)
-            io_printf(js, "%s{\"name\":\"%s\",\"bufferView\":%d,\"mimeType\":\"image/png\"}", t ? "," : "",
-                      glb_slot_name(f->image_slot[t]), f->image_view[t]);
+        for (int t = 0; t < f->ntex; t++) {
+            int k = f->image_slot[t];
+            io_printf(js, "%s{\"name\":", t ? "," : "");
+            io_json_string(js, k >= GLB_SLOTS ? f->image[k - GLB_SLOTS]->name : glb_slot_name(k));
+            io_printf(js, ",\"bufferView\":%d,\"mimeType\":\"image/png\"}", f->image_view[t]);
+        }
         io_printf(js, "],\"textures\":[");
-        for (int t = 0; t < f->ntex; t++)
-            io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "", f->image_slot[t] >= GLB_CARD, t);
+        for (int t = 0; t < f->ntex; t++) {
+            int k = f->image_slot[t];
+            io_printf(js, "%s{\"sampler\":%d,\"source\":%d}", t ? "," : "",
+                      k >= GLB_SLOTS ? f->image_leaf[k - GLB_SLOTS] : k >= GLB_CARD, t);
+        }
         io_put(js, "]", 1);
     }
     glb_buffer_views(js, f->views, f->nviews, f->bin.len);
@@ -171,7 +209,7 @@ int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char
             return SYL_EUSAGE;
         }
     }
-    f->views = malloc(sizeof *f->views * (size_t)(4 * f->nmeshes + 3 * n + GLB_SLOTS + 1));
+    f->views = malloc(sizeof *f->views * (size_t)(4 * f->nmeshes + 3 * n + GLB_SLOTS + SYL_IMAGES_MAX + 1));
     int st = SYL_ELIMIT;
     if (f->views) {
         int acc = 0, mat = 0;

@@ -51,6 +51,12 @@ char *io_float(char *p, float x, int sig);
 
 /* A material's name in files: its kind and index ("bark0", "leaf1", "plain3"). */
 void io_material_name(const SylMesh *m, int material, char *buf, size_t n);
+/* The image of the model's own material i wears (SylMaterial.image), NULL: none (leaf clusters
+ * draw their own cards). */
+const SylImage *io_image(const SylMesh *m, int material);
+/* The file an OBJ's copy of m's image k (0-based) is written to, beside the MTL: PREFIX_tex_NAME, NAME the
+ * image file's own name (PREFIX_texK_NAME when an image before it has that name). */
+void io_image_file(const SylMesh *m, int k, const char *prefix, char *buf, size_t n);
 /* The texture kind name of a material ("bark", "leaf", "flower"), NULL for plain ones. */
 const char *io_texture_kind(const SylMesh *m, int material);
 

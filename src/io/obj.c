@@ -1,6 +1,7 @@
 /* The Wavefront OBJ writer, with its MTL library and textures. */
 
-/* PATH (NAME.obj), NAME.mtl and NAME_bark.png, NAME_leaf.png, NAME_flower.png for the kinds of material it uses. One
+/* PATH (NAME.obj), NAME.mtl and NAME_bark.png, NAME_leaf.png, NAME_flower.png for the kinds of material it uses
+ * (NAME_tex_FILE, a copy of each image file of the model's own it uses). One
  * `usemtl` per material group. OBJ's v runs up the picture, so v is written as 1 - v. */
 #include <stdlib.h>
 #include <string.h>
@@ -30,8 +31,17 @@ static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
         int k = m->groups[g].material;
         char name[32];
         io_material_name(m, k, name, sizeof name);
-        const float *c = m->materials[k].rgb;
+        const SylImage *img = io_image(m, k);
+        static const float white[3] = {1, 1, 1}; /* an image of the model's own is the colour itself */
+        const float *c = img ? white : m->materials[k].rgb;
         fprintf(f, "\nnewmtl %s\nKa 0 0 0\nKd %.4f %.4f %.4f\nKs 0 0 0\nNs 1\nd 1\nillum 1\n", name, c[0], c[1], c[2]);
+        if (img) { /* its copy beside the MTL (syl_mesh_write_textures) */
+            char file[sizeof img->name + 80];
+            io_image_file(m, m->materials[k].image - 1, stem, file, sizeof file);
+            fprintf(f, "map_Kd %s\n", file);
+            if (img->alpha && m->materials[k].kind != SYL_MATERIAL_BARK) fprintf(f, "map_d %s\n", file);
+            continue;
+        }
         const char *tex = io_texture_kind(m, k);
         bool card = m->materials[k].kind == SYL_MATERIAL_LEAF &&
                     (m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_CLUSTERS);

@@ -28,6 +28,32 @@ static int write_card(int shape, bool cluster, const char *prefix, char *path, s
     return status;
 }
 
+/* The images of the model's own m's groups use, each copied as it was read (io_image_file). */
+static int write_images(const SylMesh *m, const char *prefix, FILE *diag) {
+    bool used[SYL_IMAGES_MAX] = {false};
+    for (int g = 0; m && g < m->ngroups; g++)
+        if (io_image(m, m->groups[g].material)) used[m->materials[m->groups[g].material].image - 1] = true;
+    int status = SYL_OK;
+    for (int k = 0; k < SYL_IMAGES_MAX && !status; k++) {
+        if (!used[k]) continue;
+        size_t n = strlen(prefix) + sizeof m->images->img[k].name + 16;
+        char *path = malloc(n);
+        if (!path) {
+            if (diag) fprintf(diag, "sylva: error: out of memory writing textures\n");
+            return SYL_ELIMIT;
+        }
+        io_image_file(m, k, prefix, path, n);
+        OutFile fo;
+        if (!io_open(&fo, path, diag)) status = SYL_EIO;
+        else {
+            fwrite(m->images->img[k].png, 1, m->images->img[k].len, fo.f);
+            status = io_close(&fo, SYL_OK, diag);
+        }
+        free(path);
+    }
+    return status;
+}
+
 int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
     static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
     const int size = SYL_TEXTURE_SIZE;
@@ -43,7 +69,8 @@ int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
     int status = SYL_OK;
     for (size_t k = 0; k < sizeof kinds / sizeof *kinds && !status; k++) {
         bool used = !m;
-        for (int g = 0; m && g < m->ngroups && !used; g++) used = m->materials[m->groups[g].material].kind == kinds[k];
+        for (int g = 0; m && g < m->ngroups && !used; g++)
+            used = m->materials[m->groups[g].material].kind == kinds[k] && !io_image(m, m->groups[g].material);
         if (!used) continue;
         snprintf(path, n, "%s_%s.png", prefix, syl_texture_name(kinds[k]));
         if (syl_texture(kinds[k], NULL, size, img)) {
@@ -57,6 +84,7 @@ int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
     for (int g = 0; m && g < m->ngroups; g++) leaf |= m->materials[m->groups[g].material].kind == SYL_MATERIAL_LEAF;
     if (leaf && (m->leaves == SYL_LEAVES_CARDS || cluster) && !status)
         status = write_card(m->leaf_shape, cluster, prefix, path, n, diag);
+    if (!status && m) status = write_images(m, prefix, diag);
     free(img);
     free(path);
     return status;

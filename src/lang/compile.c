@@ -76,7 +76,7 @@ static void evaluate_all(Compiler *c, Stmt **all, int n) {
             continue;
         }
         if (s->kind == ST_SETTING) cc_setting(c, s, seen);
-        else cc_evaluate(c, s);
+        else if (s->kind != ST_DIRECTIVE) cc_evaluate(c, s); /* texture lines: lang/textures.c */
     }
 }
 
@@ -349,7 +349,8 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             p->model_loc = m->loc;
             cc_splice_from(&c, m);
             compile_model(&c, &ast.top, m);
-            if (lang_kind_is(m->kind, KF_DIRECTIVES)) directives(&c, m, &p->directives, &p->ndirectives);
+            /* a directive block's lines; an lsystem's texture lines (lang/textures.def) */
+            directives(&c, m, &p->directives, &p->ndirectives);
             if (scene) {
                 p->has_scene = true;
                 directives(&c, scene, &p->scene, &p->nscene);

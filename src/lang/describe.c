@@ -9,6 +9,7 @@
 #include "lang/kinds.h"
 #include "lang/program.h"
 #include "lang/schema.h"
+#include "lang/textures.h"
 
 /* A value: none, a number, a list of numbers, or text. */
 typedef struct Val {
@@ -275,6 +276,12 @@ static void describe_settings(const SylProgram *p, DModel *m) {
             for (int k = 0; k < 4; k++) e->val.x[k] = p->tropism[k];
         } else if (!strcmp(s, "maxdepth")) {
             num(&e->val, p->tables[TABLE_DECOMPOSE].maxdepth ? p->tables[TABLE_DECOMPOSE].maxdepth : r->def[0]);
+        } else if (lang_texture_line(s)) { /* kept as a directive line (lang/textures.c) */
+            int n = 0;
+            const SylDirective *d = syl_program_directives(p, &n);
+            e->val.kind = V_NULL;
+            for (int k = 0; k < n; k++)
+                if (!strcmp(d[k].name, s)) directive_value(&d[k], -1, e);
         } else
             e->val.kind = V_NULL; /* colour: one line per index */
     }

@@ -13,6 +13,8 @@ static const SchRow lsystem_rows[] = {
      .def_text = w ? "forward" : NULL,},
 #include "lang/settings.def"
 #undef SETTING
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
+#include "lang/textures.def"
 };
 
 #define LEAF_WORDS "0|disc|disc1|disc2|disc3|disc4|disc5|disc6|disc7|disc8|disc9|square|sphere|palm"
@@ -26,6 +28,8 @@ static const SchRow weber_rows[] = {
 #define WP_X(nm, ty, l, h, d, dt, w, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
 #include "weber/params.def"
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
+#include "lang/textures.def"
 };
 
 static const SchRow strands_rows[] = {
@@ -37,6 +41,8 @@ static const SchRow strands_rows[] = {
 #define ST_X(nm, ty, l, h, d, dt, w, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
 #include "strands/params.def"
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
+#include "lang/textures.def"
 };
 
 static const SchRow curvetree_rows[] = {
@@ -44,6 +50,8 @@ static const SchRow curvetree_rows[] = {
 #define CT_X(nm, ty, l, h, d, dt, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean},
 #include "curvetree/params.def"
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
+#include "lang/textures.def"
 };
 
 static const SchRow ecosystem_rows[] = {
@@ -91,12 +99,15 @@ static const SchRow grow_rows[] = {
     {.name = dir "." nm, .type = GT_##ty, .lo = l, .hi = h, .def = {GD_##ty(d)}, .def_text = GW_##ty(d), \
      .words = w, .unit = u, .doc = mean, .group = GROUP_##base},
 #include "sot/params.def"
+#define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
+#include "lang/textures.def"
 };
 
 static const SchRow pafco_rows[] = {
 #define PF(f, nm, al, ty, l, h, d, dt, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean, .aliases = al},
 #include "pafco/params.def"
+/* its K_SUBOR and TEX_SUBORY are the texture lines, bark and leaf_texture their aliases */
 };
 
 /* noun: what a row is ("setting"; docs/directives.md's title, "`weber` parameters"); intro:

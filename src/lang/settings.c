@@ -6,6 +6,7 @@
 #include "lang/compiler.h"
 #include "lang/parse_state.h"
 #include "lang/schema.h"
+#include "lang/textures.h"
 #include "sylva/lod.h"
 
 typedef struct SettingDef {
@@ -21,6 +22,8 @@ static const SettingDef settings[] = {
 #define SETTING(nm, ty, blk, na, rep, lo, hi, d, words, unit, doc) {nm, blk, lo, hi, ty == SCH_INTEGER, na, rep},
 #include "settings.def"
 #undef SETTING
+#define TEXTURE_LINE(nm, ty, doc) {nm, -1, 0, 0, false, 1, false},
+#include "lang/textures.def"
 };
 
 static bool in_range(Compiler *c, const SettingDef *def, double v, SylLoc loc, const char *typed);
@@ -71,6 +74,10 @@ void cc_setting(Compiler *c, Stmt *s, SylLoc *seen) {
             return;
         }
         seen[slot] = s->loc;
+    }
+    if (lang_texture_line(s->name)) { /* with its file in quotes it is a directive (grammar/parser.y) */
+        diag_error(c->d, s->loc, "'%s' takes a file name in quotes: %s \"F.png\"", s->name, s->name);
+        return;
     }
     if (!strcmp(s->name, "direction")) {
         direction(c, s);

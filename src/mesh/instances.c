@@ -27,6 +27,7 @@ static int prototype(const SylSkeleton *s, const SylMeshOptions *opt, int materi
     if (!one) return SYL_ELIMIT;
     memcpy(one->materials, s->materials, sizeof one->materials);
     one->nmaterials = s->nmaterials;
+    one->images = syl_images_ref(s->images);
     SylOrgan leaf = {.h = {1, 0, 0}, .l = {0, 1, 0}, .u = {0, 0, 1}, .size = 1, .node = -1,
                      .kind = SYL_KIND_LEAF, .material = (uint8_t)material};
     int status = syl_skeleton_add_organ(one, &leaf) < 0 ? SYL_ELIMIT : SYL_OK;

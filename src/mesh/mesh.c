@@ -97,6 +97,7 @@ void syl_mesh_free(SylMesh *m) {
     free(m->idx);
     free(m->groups);
     free(m->node);
+    syl_images_release(m->images);
     free(m);
 }
 
@@ -435,6 +436,10 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
     float lin = 0, lout, v = 0;
     const float tj = tb->node >= 0 ? pl->skel->materials[pl->skel->nodes[tb->node].material].trunk_jitter : 0;
     const float jitter = tb->node >= 0 && pl->skel->nodes[tb->node].order == 0 && isfinite(tj) ? tj : 0;
+    /* an image's tiles (SylMaterial.tile): tu times around, tv times as often along */
+    const SylMaterial *tm = tb->node >= 0 ? &pl->skel->materials[pl->skel->nodes[tb->node].material] : NULL;
+    const bool tiled = tm && syl_material_image(pl->skel->images, tm);
+    const float tu = tiled && tm->tile[0] > 0 ? tm->tile[0] : 1, tv = tiled && tm->tile[1] > 0 ? tm->tile[1] : 1;
     dir_len(P[0].p, P[1].p, dout, &lout);
     for (uint32_t k = 0; k < n; k++) {
         const bool inner = k > 0 && k + 1 < n;
@@ -495,15 +500,15 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
             const v4f p = C + cj * A + sj * B + wm * M, nv = NT + cj * NA + sj * NB;
             memcpy(vp + 3 * j, &p, sizeof p);
             memcpy(vn + 3 * j, &nv, sizeof nv);
-            vt[2 * j] = tr->u[j];
-            vt[2 * j + 1] = v;
+            vt[2 * j] = tu * tr->u[j];
+            vt[2 * j + 1] = tu * tv * v;
         }
         if (P[k].lobes) lobe_ring(P[k].lobes, P[k].lobe_depth * 1e-4f, S, tr, C, ninv, NT, ref, bb, vp, vn);
         if (jitter > 0) jitter_ring(jitter, tb->first + k, S, C, vp);
         memcpy(vp + 3 * S, vp, 3 * sizeof *vp); /* the seam */
         memcpy(vn + 3 * S, vn, 3 * sizeof *vn);
-        vt[2 * S] = 1.0f;
-        vt[2 * S + 1] = v;
+        vt[2 * S] = tu;
+        vt[2 * S + 1] = tu * tv * v;
         glm_vec3_copy(tk, tprev);
         glm_vec3_copy(dout, din);
         lin = lout;
@@ -519,8 +524,8 @@ static void emit_tube(const MeshPlan *pl, const MeshTube *tb, SylMesh *m) {
             const float *ax = e ? tk : t0, sg = e ? 1.f : -1.f;
             memcpy(pos + 3 * cv, P[e ? n - 1 : 0].p, 3 * sizeof *pos);
             for (int q = 0; q < 3; q++) nrm[3 * cv + q] = sg * ax[q];
-            uv[2 * cv] = 0.5f;
-            uv[2 * cv + 1] = e ? v : 0;
+            uv[2 * cv] = 0.5f * tu;
+            uv[2 * cv + 1] = e ? tu * tv * v : 0;
         }
     /* triangles, run by run */
     const MeshRun *run = pl->runs + tb->run;
@@ -816,6 +821,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     if (!m->pos || !m->nrm || !m->uv || !m->idx) goto oom;
     memcpy(m->materials, s->materials, sizeof m->materials);
     m->nmaterials = s->nmaterials;
+    m->images = syl_images_ref(s->images);
     mark_double_sided(&pl, m);
     snprintf(m->name, sizeof m->name, "%s", s->name);
     m->leaves = (uint8_t)o.leaves;

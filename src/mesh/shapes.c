@@ -65,6 +65,17 @@ bool mesh_own_leaf(const SylMaterial *m) {
 
 float mesh_leaf_width(const SylMaterial *m) { return mesh_own_leaf(m) ? 0.5f * m->leaf_width : LEAF_WIDTH; }
 
+/* A leaf or flower material with an image of its own (SylMaterial.image) is a card, its alpha
+ * the outline, as wide as the material's own leaf (Weber–Penn's LeafScaleX, Pafčo's
+ * billboards) or else of the image's proportions: the half width per unit of length; 0 when
+ * it has no image. */
+static float image_leaf(const MeshPlan *pl, int mat) {
+    const SylMaterial *m = &pl->skel->materials[mat];
+    bool leafy = m->kind == SYL_MATERIAL_LEAF || m->kind == SYL_MATERIAL_FLOWER;
+    const SylImage *g = leafy ? syl_material_image(pl->skel->images, m) : NULL;
+    return !g ? 0 : mesh_own_leaf(m) ? 0.5f * m->leaf_width : 0.5f * (float)g->width / (float)g->height;
+}
+
 /* Vertices and triangles of a material's own leaf, both faces. */
 static void own_leaf_counts(const MeshPlan *pl, int mat, uint32_t *verts, uint32_t *tris) {
     *verts = *tris = 0;
@@ -82,12 +93,21 @@ static void organ_counts(const MeshPlan *pl, const SylOrgan *o, uint32_t *verts,
         if (pl->leaves == SYL_LEAVES_INSTANCED || pl->leaves == SYL_LEAVES_INSTANCED_CARDS ||
             pl->leaves == SYL_LEAVES_CLUSTERS)
             break; /* placed apart */
+        if (image_leaf(pl, o->material) > 0) { /* a card, both faces unless one_sided */
+            *verts = pl->one_sided ? 4 : 8, *tris = pl->one_sided ? 2 : 4;
+            break;
+        }
         if (pl->leaves == SYL_LEAVES_CARDS) *verts = 4, *tris = 2;
         else if (pl->npanels[o->material]) own_leaf_counts(pl, o->material, verts, tris);
         else *verts = BLADE_V, *tris = BLADE_T;
         if (pl->one_sided && pl->leaves != SYL_LEAVES_CARDS) *verts /= 2, *tris /= 2;
         break;
-    case SYL_KIND_FLOWER: *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T;
+    case SYL_KIND_FLOWER:
+        if (image_leaf(pl, o->material) > 0) { /* one card of the flower's image */
+            *verts = pl->one_sided ? 4 : 8, *tris = pl->one_sided ? 2 : 4;
+            break;
+        }
+        *verts = PETALS * BLADE_V, *tris = PETALS * BLADE_T;
         if (pl->one_sided) *verts /= 2, *tris /= 2;
         break;
     case SYL_KIND_NEEDLE:
@@ -328,19 +348,25 @@ static void panel(Out *o, const LeafPanel *pn, const float *origin, const vec3 x
 }
 
 /* A card over the leaf's rectangle, one face: its material is double-sided (two faces would
- * fight for the same depth), and the texture's alpha draws the leaf. */
-static void card(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w) {
-    vec3 nf;
+ * fight for the same depth), and the texture's alpha draws the leaf. upright: a leaf of its
+ * own image, drawn as people draw leaves, tip up (row 0 at the tip); back: its other face
+ * too, for formats without double-sided materials. */
+static void card(Out *o, const float *origin, const vec3 x, const vec3 y, float len, float w, bool upright, bool back) {
+    vec3 nf, nb;
     glm_vec3_cross((float *)x, (float *)y, nf);
     glm_vec3_normalize(nf);
+    glm_vec3_negate_to(nf, nb);
     static const float corner[4][2] = {{0, -1}, {1, -1}, {1, 1}, {0, 1}}; /* along, across */
-    uint32_t f[4];
+    uint32_t f[4], b[4];
     for (int i = 0; i < 4; i++) {
         float p[3];
         for (int q = 0; q < 3; q++) p[q] = origin[q] + corner[i][0] * len * x[q] + corner[i][1] * w * y[q];
-        f[i] = put(o, p, nf, 0.5f + 0.5f * corner[i][1], corner[i][0]);
+        float v = upright ? 1 - corner[i][0] : corner[i][0];
+        f[i] = put(o, p, nf, 0.5f + 0.5f * corner[i][1], v);
+        if (back) b[i] = put(o, p, nb, 0.5f + 0.5f * corner[i][1], v);
     }
     tri(o, f[0], f[1], f[2]), tri(o, f[0], f[2], f[3]);
+    if (back) tri(o, b[0], b[2], b[1]), tri(o, b[0], b[3], b[2]);
 }
 
 static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
@@ -349,7 +375,8 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
     const float *c = og->pos, size = og->size;
     switch (og->kind) {
     case SYL_KIND_LEAF:
-        if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(&pl->skel->materials[og->material]) * size);
+        if (image_leaf(pl, og->material) > 0) card(o, c, h, l, size, image_leaf(pl, og->material) * size, true, !pl->one_sided);
+        else if (pl->leaves == SYL_LEAVES_CARDS) card(o, c, h, l, size, mesh_leaf_width(&pl->skel->materials[og->material]) * size, false, false);
         else if (pl->npanels[og->material])
             for (int k = 0; k < pl->npanels[og->material]; k++)
                 panel(o, &pl->panels[og->material][k], c, h, l, u, size, pl->skel->materials[og->material].leaf_width * size,
@@ -357,6 +384,10 @@ static void emit_organ(const MeshPlan *pl, const SylOrgan *og, Out *o) {
         else blade(o, c, h, l, size, LEAF_WIDTH * size, pl->one_sided);
         break;
     case SYL_KIND_FLOWER:
+        if (image_leaf(pl, og->material) > 0) {
+            card(o, c, h, l, size, image_leaf(pl, og->material) * size, true, !pl->one_sided);
+            break;
+        }
         for (int k = 0; k < PETALS; k++) {
             float a = 6.28318530718f * (float)k / PETALS, ca = cosf(a), sa = sinf(a);
             vec3 radial, across, x;
@@ -470,6 +501,7 @@ float mesh_organ_side_area(const MeshPlan *pl, const SylOrgan *o) {
         return 0.5f * (sides + cap);
     }
     const SylMaterial *m = &pl->skel->materials[o->material];
+    if (image_leaf(pl, o->material) > 0) return 2 * image_leaf(pl, o->material) * size * size;
     if (pl->npanels[o->material]) return (float)leaf_outline_area(m->leaf_outline, m->leaf_tris) * size * m->leaf_width * size;
     float a = 0;
     for (int t = 0; t < 8; t++) {

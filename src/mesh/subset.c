@@ -50,6 +50,7 @@ static SylMesh *subset(const SylMesh *m, const int *part, int k, const char *nam
     memset(s->pos + 3 * s->nverts, 0, 4 * sizeof *s->pos); /* Embree reads 16 bytes */
     s->vert_cap = s->nverts + 1, s->idx_cap = s->nidx;
     memcpy(s->materials, m->materials, sizeof s->materials);
+    s->images = syl_images_ref(m->images);
     memcpy(s->double_sided, m->double_sided, sizeof s->double_sided);
     s->nmaterials = m->nmaterials, s->leaves = m->leaves, s->leaf_shape = m->leaf_shape;
     snprintf(s->name, sizeof s->name, "%s", name);

@@ -2,12 +2,31 @@
  * syl_pafco_validate: the block's check for `sylva check`. */
 #include <stdio.h>
 
+#include "lang/textures.h"
 #include "skeleton/store.h"
 #include "pafco/pafco.h"
 #include "sylva/trees.h"
 
 int syl_pafco_validate(const SylProgram *p, FILE *diag) {
     return syl_program_kind(p) == SYL_MODEL_PAFCO ? pafco_params_check(p, diag) : 0;
+}
+
+/* The textures of the model's own (lang/textures.c: K_SUBOR is the bark line, tiled
+ * H_TEX_MUL x V_TEX_MUL unless the line says; TEX_SUBORY the leaf line): with TEX_SUBORY,
+ * the leaf materials 1..n pafco_build made, one a file, each leaf given one at random there.
+ * SYL_OK, or the error (reported). */
+static int textures(const SylProgram *p, const PafcoParams *P, SylSkeleton *sk, uint64_t seed, FILE *diag) {
+    SylTextureSpec tex;
+    int st = lang_textures(p, &tex, diag);
+    if (st) return st;
+    if (!(tex.tile[0] > 0)) tex.tile[0] = (float)P->h_tex, tex.tile[1] = (float)P->v_tex;
+    if (P->ntex) {
+        for (int k = 0; k < tex.nleaf && 1 + k < sk->nmaterials; k++) sk->materials[1 + k].image = tex.leaf[k];
+        tex.nleaf = 0;
+    }
+    st = syl_skeleton_textures(sk, &tex, seed);
+    lang_textures_free(&tex);
+    return st;
 }
 
 int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
@@ -58,6 +77,10 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     }
     if (mem != &own) skeleton_charge(sk, mem, charged);
     else budget_release(mem, charged);
+    if ((st = textures(p, &P, sk, seed, opt->diag)) != SYL_OK) {
+        syl_skeleton_free(sk);
+        return st;
+    }
     *out = sk;
     return SYL_OK;
 }

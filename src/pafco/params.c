@@ -74,6 +74,11 @@ static const char *fallback(const Reader *r) { return r->lenient ? "; its defaul
 static void read_value(Reader *r, const SylDirective *d, const SchRow *row, PafcoParams *P) {
     char *at = (char *)P + offsets[row_index(row)];
     if (row->type == SCH_FILE) {
+        if (d->nargs > 1 && d->args[1].kind == SYL_DARG_WORD && !strcmp(d->args[1].text, "tile")) {
+            BAD(r, d, &d->args[1], "%s's tiles are H_TEX_MUL and V_TEX_MUL in a pafco block, not `tile U V`%s",
+                d->name, fallback(r));
+            return;
+        }
         if (d->nargs != 1 || !is_word(&d->args[0]) || strlen(d->args[0].text) >= PAFCO_PATH) {
             BAD(r, d, d->nargs ? &d->args[0] : NULL, "%s takes one file name (shorter than %d characters)%s",
                 row->name, PAFCO_PATH, fallback(r));

@@ -72,6 +72,7 @@ static SylMesh *billboard_mesh(const SylMesh *m, int k, const float c[3], float 
         return NULL;
     }
     memcpy(b->materials, m->materials, sizeof b->materials);
+    b->images = syl_images_ref(m->images);
     b->materials[SYL_IMPOSTOR_MATERIAL] = (SylMaterial){.rgb = {1, 1, 1}, .kind = SYL_MATERIAL_PLAIN};
     b->nmaterials = 256;
     snprintf(b->name, sizeof b->name, "%s", m->name);

@@ -103,7 +103,8 @@ static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const 
     out->rewritten = d.rewritten;
     if (!st) out->modules = syl_string_length(out->string);
     if (!st && opt->until != SYL_PLANT_STRING) {
-        st = syl_turtle(p, out->string, &(SylTurtleOptions){.diag = opt->diag, .max_memory = opt->max_memory, .budget = budget}, &out->skeleton);
+        st = syl_turtle(p, out->string, &(SylTurtleOptions){.diag = opt->diag, .max_memory = opt->max_memory, .budget = budget,
+                                                                .use_seed = opt->use_seed, .seed = opt->seed}, &out->skeleton);
         if (opt->drop_string) {
             syl_string_free(out->string);
             out->string = NULL;

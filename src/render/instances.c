@@ -29,6 +29,9 @@ typedef struct Work {
     uint8_t **tri_mat;        /* per level mesh: 2 * npr */
     float (*lin)[256][3];
     uint8_t (*kind)[256];
+    int8_t (*img)[256];       /* per level mesh and material: its image in s->img, -1 none */
+    const SylImage *image[SYL_IMAGES_MAX]; /* s->img[k]'s file: the looks' images, each once */
+    int nimages;
     const SylMesh **level;    /* 2 * npr: the mesh of proto p at level k is level[2p + k] */
     uint32_t *inst_proto;
     float (*inst_cs)[2];
@@ -136,11 +139,28 @@ static void work_free(Work *w) {
         for (int k = 0; k < 2; k++)
             if (w->pr[p].scene[k]) rtcReleaseScene(w->pr[p].scene[k]);
     for (int i = 0; i < w->ncopies; i++) free(w->pos_copy[i]);
-    for (int i = 0; i < 2 * w->npr; i++) free(w->alpha[i]);
+    for (int i = 0; i < 2 * w->npr; i++) render_alpha_free(w->alpha[i]);
     for (int i = 0; w->tri_mat && i < 2 * w->npr; i++) free(w->tri_mat[i]);
-    free(w->tri_mat), free(w->lin), free(w->kind), free(w->level), free(w->pr);
+    free(w->tri_mat), free(w->lin), free(w->kind), free(w->img), free(w->level), free(w->pr);
     free(w->inst_proto), free(w->inst_cs), free(w->inst_scale);
     if (s) render_scene_free(s);
+}
+
+/* The index in s->img of the image material i of m wears, decoded the first time (the looks
+ * of one model read the same file each: the same bytes are one texture); -1: none, or no
+ * room (its procedural texture then). SYL_ELIMIT in *st when it cannot be decoded. */
+static int proto_image(Work *w, const SylMesh *m, int i, int *st) {
+    int j = render_material_image(m, i);
+    if (j < 0) return -1;
+    const SylImage *g = &m->images->img[j];
+    int k = 0;
+    while (k < w->nimages && !(w->image[k]->len == g->len && !memcmp(w->image[k]->png, g->png, g->len))) k++;
+    if (k == w->nimages) {
+        if (k == SYL_IMAGES_MAX) return -1;
+        if ((*st = render_image_texture(&w->s->img[k], g, NULL))) return -1;
+        w->image[w->nimages++] = g;
+    }
+    return k;
 }
 
 /* The prototypes' scenes and their materials. */
@@ -150,8 +170,9 @@ static int build_protos(Work *w, const SylRenderProto *protos, int nprotos) {
     w->tri_mat = calloc(2 * (size_t)nprotos + 1, sizeof *w->tri_mat);
     w->lin = calloc(2 * (size_t)nprotos + 1, sizeof *w->lin);
     w->kind = calloc(2 * (size_t)nprotos + 1, sizeof *w->kind);
+    w->img = calloc(2 * (size_t)nprotos + 1, sizeof *w->img);
     w->level = calloc(2 * (size_t)nprotos + 1, sizeof *w->level);
-    if (!w->pr || !w->tri_mat || !w->lin || !w->kind || !w->level) return SYL_ELIMIT;
+    if (!w->pr || !w->tri_mat || !w->lin || !w->kind || !w->img || !w->level) return SYL_ELIMIT;
     for (int p = 0; p < nprotos; p++) {
         Proto *pr = &w->pr[p];
         pr->mesh[0] = protos[p].mesh;
@@ -162,7 +183,11 @@ static int build_protos(Work *w, const SylRenderProto *protos, int nprotos) {
             if (!m) continue;
             w->level[2 * p + k] = m;
             for (int i = 0; i < 256; i++) {
-                for (int c = 0; c < 3; c++) w->lin[2 * p + k][i][c] = srgb_to_linear(m->materials[i].rgb[c]);
+                int st = SYL_OK, j = proto_image(w, m, i, &st);
+                if (st) return st;
+                w->img[2 * p + k][i] = (int8_t)j;
+                /* an image of the model's own is the colour itself (white times the image) */
+                for (int c = 0; c < 3; c++) w->lin[2 * p + k][i][c] = j >= 0 ? 1 : srgb_to_linear(m->materials[i].rgb[c]);
                 w->kind[2 * p + k][i] = m->materials[i].kind;
             }
         }
@@ -221,6 +246,7 @@ static int place(Work *w, const SylRenderInstance *inst, size_t n, SylRenderCoun
     s->proto_tri_mat = w->tri_mat;
     s->proto_lin = w->lin;
     s->proto_kind = w->kind;
+    s->proto_img = w->img;
     s->inst_proto = w->inst_proto;
     s->inst_cs = (const float(*)[2])w->inst_cs;
     s->inst_scale = w->inst_scale;

@@ -15,6 +15,7 @@
 #define HAVE_MXCSR 1
 #endif
 
+#include "util/pngin.h"
 #include "render/scene.h"
 #include "util/budget.h"
 #include "util/parallel.h"
@@ -75,10 +76,11 @@ void render_scene_free(Scene *s) {
     if (s->scene) rtcReleaseScene(s->scene);
     if (s->dev) rtcReleaseDevice(s->dev);
     for (int i = 0; i < 4; i++) texture_free(&s->tex[i]);
+    for (int i = 0; i < SYL_IMAGES_MAX; i++) texture_free(&s->img[i]);
     free(s->tri_mat);
     free(s->quad_index);
     free(s->quad_halves);
-    free(s->alphatest);
+    render_alpha_free(s->alphatest);
     free(s->pos_copy);
     free(s);
 }
@@ -229,10 +231,18 @@ static void set_sampling(Scene *s, const SylRenderOptions *opt) {
 }
 
 /* Materials, scale, light, sub-pixel positions, and the table from linear light to sRGB. */
+int render_material_image(const SylMesh *m, int i) {
+    const SylMaterial *mt = &m->materials[i];
+    if (mt->kind > SYL_MATERIAL_FLOWER || (mt->kind == SYL_MATERIAL_LEAF && m->leaves == SYL_LEAVES_CLUSTERS)) return -1;
+    return syl_material_image(m->images, mt) ? mt->image - 1 : -1;
+}
+
 void render_set_lighting(Scene *s) {
     const SylMesh *m = s->m;
     for (int i = 0; i < 256; i++) {
-        for (int c = 0; c < 3; c++) s->mat_lin[i][c] = srgb_to_linear(m ? m->materials[i].rgb[c] : 0.5f);
+        s->mat_img[i] = (int8_t)(m ? render_material_image(m, i) : -1);
+        /* an image of the model's own is the colour itself (white times the image) */
+        for (int c = 0; c < 3; c++) s->mat_lin[i][c] = s->mat_img[i] >= 0 ? 1 : srgb_to_linear(m ? m->materials[i].rgb[c] : 0.5f);
         s->mat_kind[i] = m ? m->materials[i].kind : SYL_MATERIAL_PLAIN;
     }
     for (int c = 0; c < 3; c++) s->grass_lin[c] = srgb_to_linear(texture_grass_rgb()[c]);
@@ -287,6 +297,23 @@ static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
             status = SYL_ELIMIT;
         }
     }
+    for (int i = 0; i < 256 && !status && m; i++) /* the images, decoded once each */
+        if (s->mat_img[i] >= 0 && !s->img[s->mat_img[i]].levels)
+            status = render_image_texture(&s->img[s->mat_img[i]], &m->images->img[s->mat_img[i]], diag);
+    return status;
+}
+
+int render_image_texture(Texture *t, const SylImage *g, FILE *diag) {
+    int w, h;
+    bool alpha;
+    uint8_t *rgba = NULL;
+    char why[160];
+    int status = SYL_OK;
+    if (!pngin_decode(g->png, g->len, &w, &h, &alpha, &rgba, why, sizeof why) || !texture_from_rgba(t, rgba, w, h, TEX_SIZE)) {
+        if (diag) fprintf(diag, "sylva: error: render: the texture \"%s\": %s\n", g->name, rgba ? "out of memory" : why);
+        status = SYL_ELIMIT;
+    }
+    free(rgba);
     return status;
 }
 

@@ -25,6 +25,8 @@ typedef struct Scene {
     uint32_t (*quad_halves)[2]; /* ... and the triangles each quad is made of */
     AlphaTest *alphatest;       /* leaf cards' and clusters' alpha (NULL: none) */
     Texture tex[4];             /* bark, leaf, flower, grass */
+    Texture img[SYL_IMAGES_MAX]; /* the mesh's images of the model's own, those in use */
+    int8_t mat_img[256];        /* per material: the image it wears (render_material_image), -1: none */
     float mat_lin[256][3];      /* material colours in linear light */
     uint8_t mat_kind[256];
     float grass_lin[3];
@@ -51,6 +53,7 @@ typedef struct Scene {
     uint8_t **proto_tri_mat;
     float (*proto_lin)[256][3];
     uint8_t (*proto_kind)[256];
+    int8_t (*proto_img)[256]; /* per material: its image in img[] (render_material_image), -1: none */
     const uint32_t *inst_proto;
     const float (*inst_cs)[2];
     const float *inst_scale;
@@ -73,6 +76,12 @@ int render_alpha_test(Scene *s, RTCGeometry g);
  * the test to free() after the render (NULL: m has no leaf cards or clusters). */
 int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, const uint32_t (*halves)[2], RTCGeometry g,
                         AlphaTest **out);
+/* The image of the model's own material i of m is drawn with (SylMaterial.image; leaf clusters
+ * draw their own cards): its index in m->images, -1 when none. */
+int render_material_image(const SylMesh *m, int i);
+/* t: image g decoded and mip-mapped for the shader. SYL_OK, or SYL_ELIMIT (reported). */
+int render_image_texture(Texture *t, const SylImage *g, FILE *diag);
+void render_alpha_free(AlphaTest *at);
 /* Release a scene: its Embree scene and device, textures and copies. */
 void render_scene_free(Scene *s);
 int render_cpu_count(void);

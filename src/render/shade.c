@@ -87,12 +87,14 @@ static void mesh_surface(const Scene *s, const struct RTCRayHit16 *rh, int l, co
     const uint8_t *tri_mat = s->tri_mat;
     const float(*mat_lin)[3] = s->mat_lin;
     const uint8_t *mat_kind = s->mat_kind;
+    const int8_t *mat_img = s->mat_img;
     const float *cs = NULL;
     float scale = 1;
     unsigned inst = rh->hit.instID[0][l];
     if (inst != RTC_INVALID_GEOMETRY_ID && s->proto) { /* an instance: its prototype, turned */
         uint32_t k = s->inst_proto[inst];
         m = s->proto[k], tri_mat = s->proto_tri_mat[k], mat_lin = s->proto_lin[k], mat_kind = s->proto_kind[k];
+        mat_img = s->proto_img[k];
         cs = s->inst_cs[inst], scale = s->inst_scale[inst];
     }
     float t = rh->ray.tfar[l], u = rh->hit.u[l], v = rh->hit.v[l], w = 1 - u - v;
@@ -132,7 +134,7 @@ static void mesh_surface(const Scene *s, const struct RTCRayHit16 *rh, int l, co
         float aw = sqrtf(dot3(cr, cr)) * scale * scale;
         float auv = fabsf((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
         float density = aw > 0 ? sqrtf(auv / aw) : 0;
-        const Texture *tx = &s->tex[kind];
+        const Texture *tx = mat_img[mat] >= 0 ? &s->img[mat_img[mat]] : &s->tex[kind];
         float tex[3];
         texture_sample(tx, tu, tv, lod_of(s, t, -dot3(ng, d), density, tx->size[0]), tex);
         for (int c = 0; c < 3; c++) sf->albedo[c] *= tex[c];

@@ -3,6 +3,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "lang/textures.h"
 #include "sot/forest.h"
 #include "sot/forest_internal.h"
 #include "sot/output.h"
@@ -43,6 +44,7 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     if (!st) {
         sk = syl_skeleton_new(syl_program_name(p));
         st = sk ? tree_to_skeleton(&f.trees[0], f.years, sk, 0, &opt->stats.organs) : SYL_ELIMIT;
+        if (!st) st = lang_textures_apply(p, sk, P.seed, opt->diag);
     }
     st = forest_said(&f, st, 0);
     forest_free(&f);

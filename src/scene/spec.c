@@ -15,6 +15,7 @@
 #include "kinds/kinds.h"
 #include "util/file.h"
 #include "env/objread.h"
+#include "lang/textures.h"
 #include "lang/program.h"
 #include "scene/spec.h"
 #include "sot/params.h"
@@ -385,8 +386,8 @@ int scene_spec_check(const SylProgram *p, FILE *diag, bool files) {
     return errors && errors == set_errors ? -errors : errors;
 }
 
-/* `sylva check`: an ecosystem's terrain, a weber or curvetree block's envelope and a
- * curvetree's trunk file that cannot be read are errors at their line (the runs fail on them). */
+/* `sylva check`: an ecosystem's terrain, a weber or curvetree block's envelope, a
+ * curvetree's trunk file and any texture image that cannot be read are errors at their line (the runs fail on them). */
 static int check_inputs(const SylProgram *p, FILE *diag) {
     static const char *const named[] = {"terrain", "envelope", "trunk"};
     int n = 0, errors = 0;
@@ -396,7 +397,7 @@ static int check_inputs(const SylProgram *p, FILE *diag) {
             if (!d[i].file && !strcmp(d[i].name, named[k]) && d[i].nargs && d[i].args[0].kind == SYL_DARG_STRING)
                 errors += lang_check_file(p, diag, named[k], d[i].args[0].text, d[i].args[0].line,
                                          d[i].args[0].col);
-    return errors;
+    return errors + lang_textures_check(p, diag); /* any kind's texture images */
 }
 
 /* syl_compile's hook (sylva.h): the block's own check, from its kind's row (kinds/kinds.c),

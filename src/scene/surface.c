@@ -4,7 +4,8 @@
 static bool same_material(const SylMaterial *a, const SylMaterial *b) {
     return a->rgb[0] == b->rgb[0] && a->rgb[1] == b->rgb[1] && a->rgb[2] == b->rgb[2] && a->kind == b->kind &&
            a->leaf_outline == b->leaf_outline && a->leaf_tris == b->leaf_tris && a->leaf_width == b->leaf_width &&
-           a->trunk_jitter == b->trunk_jitter;
+           a->trunk_jitter == b->trunk_jitter && a->image == b->image && a->tile[0] == b->tile[0] &&
+           a->tile[1] == b->tile[1];
 }
 
 static void take(SceneSurface *S, SylSkeleton *sk, int slot, const SylMaterial *m) {
@@ -17,7 +18,11 @@ void scene_surface_map(SceneSurface *S, SylSkeleton *sk, const SylSkeleton *b, u
                        const SylProgram *p, int line, int col, FILE *diag) {
     for (int m = 0; m < 256; m++) map[m] = (uint8_t)m;
     for (int m = 0; m < b->nmaterials; m++) {
-        const SylMaterial *own = &b->materials[m];
+        SylMaterial mine = b->materials[m], *own = &mine;
+        /* its image among the scene's (the plants' images, each file once); none when they
+         * do not fit: its procedural texture then */
+        const SylImage *g = syl_material_image(b->images, own);
+        if (g) own->image = (uint8_t)syl_images_add(&sk->images, g);
         if (!S->taken[m]) {
             take(S, sk, m, own);
             continue;

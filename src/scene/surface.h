@@ -15,7 +15,7 @@ typedef struct SceneSurface {
     bool full_warned;
 } SceneSurface;
 
-/* The slots of sk's palette for the materials of plant b (the scene's line `line`:`col` of p,
+/* The slots of sk's palette for the materials of plant b (their images added to sk's) (the scene's line `line`:`col` of p,
  * named name): map[m] for each m below b->nmaterials. A material keeps its own number when that
  * slot is free or holds the same material, else takes the slot of an equal one, else the first
  * free one. When all 256 are taken by other materials, it shares its number's slot (warned once

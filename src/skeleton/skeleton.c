@@ -49,6 +49,7 @@ void syl_skeleton_free(SylSkeleton *s) {
     free(s->polys);
     free(s->poly_verts);
     free(s->parts);
+    syl_images_release(s->images);
     free(s);
 }
 

@@ -18,6 +18,7 @@
 
 #include "lang/program.h"
 #include "lang/schema.h"
+#include "lang/textures.h"
 #include "util/closest.h"
 #include "sylva/grow.h"
 #include "sylva/lod.h"
@@ -561,6 +562,7 @@ static int read_all(const SylProgram *p, GrowParams *g, FILE *diag, int *set_err
     for (int k = 0; k < NDIRECTIVES; k++) first[k] = -1;
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &dirs[i];
+        if (lang_texture_line(d->name)) continue; /* lang/textures.c reads it */
         int k = 0;
         while (k < NDIRECTIVES && strcmp(directives[k].name, d->name)) k++;
         if (k == NDIRECTIVES) {

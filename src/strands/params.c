@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "lang/schema.h"
+#include "lang/textures.h"
 #include "util/closest.h"
 
 typedef struct Reader {
@@ -232,6 +233,7 @@ static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_erro
     const SylDirective *seen[NGLOBALS + SP_ORDER_COUNT + 2] = {0};
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &dirs[i];
+        if (lang_texture_line(d->name)) continue; /* lang/textures.c reads it */
         int slot = -1;
         for (int k = 0; k < NGLOBALS && slot < 0; k++)
             if (!strcmp(d->name, globals[k].name)) slot = k;

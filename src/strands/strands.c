@@ -2,6 +2,7 @@
  * it (docs/strands.md); syl_strands_validate: the block's check for `sylva check`. */
 #include <stdio.h>
 
+#include "lang/textures.h"
 #include "skeleton/store.h"
 #include "strands/strands.h"
 #include "sylva/trees.h"
@@ -59,6 +60,10 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
         return SYL_ELIMIT;
     }
     int st = strands_build(&P, opt->age, sk, NULL);
+    if (!st && (st = lang_textures_apply(p, sk, P.seed, opt->diag)) != SYL_OK) {
+        syl_skeleton_free(sk);
+        return st;
+    }
     if (st) {
         if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
         syl_skeleton_free(sk);

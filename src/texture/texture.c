@@ -160,6 +160,8 @@ const char *syl_texture_name(int kind) {
 
 /* ---- mip-mapped patterns for the renderer ---- */
 
+static void mip_chain(Texture *t);
+
 bool texture_build(Texture *t, int kind, int size) {
     memset(t, 0, sizeof *t);
     if (size < 1 || (size & (size - 1))) return false; /* a power of two */
@@ -168,6 +170,38 @@ bool texture_build(Texture *t, int kind, int size) {
     texture_pattern(kind, size, t->level[0]);
     t->size[0] = size;
     t->levels = 1;
+    mip_chain(t);
+    return true;
+}
+
+bool texture_from_rgba(Texture *t, const uint8_t *rgba, int w, int h, int size) {
+    memset(t, 0, sizeof *t);
+    if (size < 1 || (size & (size - 1)) || w < 1 || h < 1) return false;
+    float *px = t->level[0] = malloc((size_t)size * size * 3 * sizeof(float));
+    if (!px) return false;
+    float lin[256];
+    for (int i = 0; i < 256; i++) lin[i] = srgb_to_linear((float)i / 255);
+    /* bilinear, wrapping (bark tiles), from the image's pixel centres to the square's */
+    for (int y = 0; y < size; y++)
+        for (int x = 0; x < size; x++) {
+            float sx = ((float)x + 0.5f) * (float)w / (float)size - 0.5f, sy = ((float)y + 0.5f) * (float)h / (float)size - 0.5f;
+            float fx = floorf(sx), fy = floorf(sy), ax = sx - fx, ay = sy - fy;
+            int x0 = (((int)fx % w) + w) % w, y0 = (((int)fy % h) + h) % h, x1 = (x0 + 1) % w, y1 = (y0 + 1) % h;
+            for (int c = 0; c < 3; c++) {
+                float p00 = lin[rgba[4 * ((size_t)y0 * w + x0) + c]], p10 = lin[rgba[4 * ((size_t)y0 * w + x1) + c]];
+                float p01 = lin[rgba[4 * ((size_t)y1 * w + x0) + c]], p11 = lin[rgba[4 * ((size_t)y1 * w + x1) + c]];
+                float a = p00 + ax * (p10 - p00), b = p01 + ax * (p11 - p01);
+                px[3 * ((size_t)y * size + x) + c] = a + ay * (b - a);
+            }
+        }
+    t->size[0] = size;
+    t->levels = 1;
+    mip_chain(t);
+    return true;
+}
+
+/* Each level the mean of the one before's 2 x 2 texels, down to one texel. */
+static void mip_chain(Texture *t) {
     while (t->size[t->levels - 1] > 1 && t->levels < 16) {
         int ps = t->size[t->levels - 1], s = ps / 2;
         const float *src = t->level[t->levels - 1];
@@ -182,7 +216,6 @@ bool texture_build(Texture *t, int kind, int size) {
         t->level[t->levels] = dst;
         t->size[t->levels++] = s;
     }
-    return true;
 }
 
 void texture_free(Texture *t) {

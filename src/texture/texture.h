@@ -42,6 +42,9 @@ typedef struct Texture {
     float *level[16]; /* size * size RGB, linear */
 } Texture;
 bool texture_build(Texture *t, int kind, int size); /* size: a power of two */
+/* An image of w x h RGBA (sRGB, rows top to bottom; alpha not kept) resampled to size x size
+ * (a power of two) in linear light, with its mip chain. False when out of memory. */
+bool texture_from_rgba(Texture *t, const uint8_t *rgba, int w, int h, int size);
 void texture_free(Texture *t);
 /* Trilinear lookup with wrapping; lod is log2 of texels per sample footprint. */
 void texture_sample(const Texture *t, float u, float v, float lod, float out[3]);

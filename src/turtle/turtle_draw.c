@@ -7,6 +7,7 @@
  * used after a turn (turtle_frame.c). */
 #include <stdlib.h>
 
+#include "lang/textures.h"
 #include "turtle/turtle_internal.h"
 #include "skeleton/store.h"
 #include "util/budget.h"
@@ -294,11 +295,12 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     if (mem != &own) skeleton_charge(sk, mem, bytes);
     reserve_nodes(sk, want);
     int status = draw_string(t, s);
+    if (status == SYL_OK) status = lang_textures_apply(p, sk, opt && opt->use_seed ? opt->seed : p->seed, diag);
     if (status == SYL_OK && t->bad && diag)
         fprintf(diag, "sylva: warning: the turtle skipped %llu module%s with a parameter that is not a finite number\n",
                 (unsigned long long)t->bad, t->bad == 1 ? "" : "s");
     if (status != SYL_OK) {
-        if (diag) fprintf(diag, "sylva: error: out of memory in the turtle\n");
+        if (diag && status == SYL_ELIMIT) fprintf(diag, "sylva: error: out of memory in the turtle\n");
         syl_skeleton_free(sk);
         sk = NULL;
     }

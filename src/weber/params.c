@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "lang/program.h"
+#include "lang/textures.h"
 #include "util/closest.h"
 
 #define WP_G(f, nm, ty, lo, hi, lop, hop, d, unit, mean) \
@@ -196,6 +197,7 @@ static int read_all(const SylProgram *p, WeberParams *w, FILE *diag) {
     const SylDirective *splits_at[4] = {0}, *levels_at = NULL;
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &ds[i];
+        if (lang_texture_line(d->name)) continue; /* lang/textures.c reads it */
         const WeberParamInfo *pi = find(d->name, false);
         const SchRow *row = pi ? NULL : sch_find(&sch_weber, d->name, NULL);
         if (row && !row->levels) { errors += read_extra(p, diag, d, w); continue; } /* convention, Seed, ... */

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/textures.h"
 #include "skeleton/store.h"
 #include "sylva/trees.h"
 #include "util/budget.h"
@@ -170,6 +171,7 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     if (st == SYL_ELIMIT && diag)
         fprintf(diag, "sylva: error: '%s': the tree needs more memory than --max-memory allows (%llu MB)\n",
                 syl_program_name(p), (unsigned long long)budget_limit_mb(g->budget));
+    if (!st) st = lang_textures_apply(p, sk, g->seed, diag);
     free_gen(g);
     free(g);
     obstacles_free(&env.obs);
