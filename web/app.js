@@ -26,7 +26,7 @@ const state = {
   impostor: false,    // the impostor's billboards as the far level
   kind: '',           // the last build's kind (lsystem, grow, scene, ecosystem, …)
   forest: null,       // an ecosystem's forest: its batches and what the last frame drew of them
-  far: 0.5,           // the forest's far level beyond this share of the terrain's diagonal
+  far: 1.5,           // the forest's far level beyond this many terrain diagonals from the camera
 };
 window.sylvaView = state;
 
@@ -691,7 +691,7 @@ function wire() {
   $('lod').addEventListener('change', () => { state.lod = $('lod').value; load(); });
   $('forcelod').addEventListener('change', () => { state.forceLod = $('forcelod').value; applyLook(); });
   $('impostor').addEventListener('change', () => { state.impostor = $('impostor').checked; load(); });
-  $('far').addEventListener('input', () => { state.far = +$('far').value; $('farval').textContent = `${Math.round(state.far * 100)}% of the diagonal`; });
+  $('far').addEventListener('input', () => { state.far = +$('far').value; $('farval').textContent = `${state.far} diagonals`; });
   $('mapname').addEventListener('change', () => { $('map').src = `/api/map?factor=${encodeURIComponent($('mapname').value)}&gen=${state.gen}`; });
   $('chart').addEventListener('click', (e) => { // a click on the chart shows that year
     const r = $('chart').getBoundingClientRect(), s = state.stats;

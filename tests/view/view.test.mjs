@@ -59,7 +59,7 @@ ecosystem Patch {
     radius_ratio 0.3
     seeds 2
     dispersal 2
-    arrivals 6
+    arrivals 60
     shade_tolerance 0.5
   species herb
     model Stick
@@ -70,7 +70,7 @@ ecosystem Patch {
     radius_ratio 0.5
     seeds 3
     dispersal 1
-    arrivals 10
+    arrivals 150
     shade_tolerance 0.9
 }
 lsystem Stick {
@@ -388,7 +388,10 @@ try {
       chartLines: document.querySelectorAll('#chart polyline').length, map: document.querySelector('#map').naturalWidth }));
   };
   const y3 = await ecoAt(3);
-  if (shots) await p2.screenshot({ path: join(shots, "view-eco.png") });
+  if (shots) { // the page with its chart and map in sight
+    await p2.evaluate(() => { document.querySelector('#ecopanel').scrollIntoView(); });
+    await p2.screenshot({ path: join(shots, 'view-eco.png') });
+  }
   const y8 = await ecoAt(8);
   const same = (a, b) => Object.keys(b).every((k) => (a[k] || 0) === b[k]) && Object.keys(a).every((k) => k in b);
   check(cli.status === 0 && y3.forest && same(y3.forest.bySpecies, countsOf(3)) && same(y8.forest.bySpecies, countsOf(8)),
@@ -398,11 +401,12 @@ try {
     'the chart (a line per species) and its legend follow the year', JSON.stringify({ l3: y3.legend, l8: y8.legend }));
   check(y8.map > 0, 'a factor map is shown beside the 3D view (a PNG of syl_terrain_write_map)');
   // far level and culling: forcing the far level draws every visible batch as cones
+  // (the figures are the last frame's: wait for a frame drawn with the forced level)
   await p2.select('#forcelod', '1');
-  await new Promise((r) => setTimeout(r, 200));
+  await p2.waitForFunction(() => window.sylvaView.forest.full === 0, { timeout: 10000 }).catch(() => {});
   const far = await p2.evaluate(() => window.sylvaView.forest);
   await p2.select('#forcelod', '0');
-  await new Promise((r) => setTimeout(r, 200));
+  await p2.waitForFunction(() => window.sylvaView.forest.coarse === 0, { timeout: 10000 }).catch(() => {});
   const near = await p2.evaluate(() => window.sylvaView.forest);
   check(far.full === 0 && far.coarse + far.culled === far.batches && near.coarse === 0 && near.full + near.culled === near.batches,
     'the forest\'s far level can be forced; every batch is near, far or culled', JSON.stringify({ far, near }));
