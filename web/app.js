@@ -36,6 +36,7 @@ const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDraw
 renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
 renderer.shadowMap.enabled = true;
 renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+renderer.shadowMap.autoUpdate = false; // the shadows change with the scene, not with the camera
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xdce6ef);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 5000);
@@ -46,7 +47,7 @@ const hemi = new THREE.HemisphereLight(0xeef4ff, 0x8a8070, 1.2);
 scene.add(hemi);
 const sun = new THREE.DirectionalLight(0xffffff, 2.2);
 sun.castShadow = true;
-sun.shadow.mapSize.set(2048, 2048);
+sun.shadow.mapSize.set(1024, 1024);
 scene.add(sun, sun.target);
 const ground = new THREE.Mesh(new THREE.CircleGeometry(1, 64), new THREE.MeshStandardMaterial({ color: 0xa3a39a, roughness: 1 }));
 ground.rotation.x = -Math.PI / 2;
@@ -86,15 +87,30 @@ function resize() {
     renderer.setSize(w, h, false);
     camera.aspect = w / Math.max(h, 1);
     camera.updateProjectionMatrix();
+    redraw();
   }
 }
 
+// A frame is drawn when something changed (the camera, a control, a build) or while wind
+// plays, not sixty times a second: an idle page costs nothing (laptops, software WebGL).
+let dirty = true;
+function redraw() { dirty = true; renderer.shadowMap.needsUpdate = true; }
+controls.addEventListener('change', () => { dirty = true; if (forest) renderer.shadowMap.needsUpdate = true; });
+for (const ev of ['input', 'change', 'click', 'keydown']) document.addEventListener(ev, redraw, true);
+window.addEventListener('resize', redraw);
+
 function animate() {
   resize();
-  if (mixer) mixer.update(clock.getDelta());
+  const dt = clock.getDelta();
+  if (mixer) { mixer.update(dt); redraw(); }
   controls.update();
-  if (forest) updateForest();
-  renderer.render(scene, camera);
+  if (dirty) {
+    dirty = false;
+    if (forest) updateForest();
+    renderer.render(scene, camera);
+    state.frames = (state.frames || 0) + 1;
+    if (state.drawnAt && !state.shownAt) state.shownAt = performance.now(); // the first frame of the last build
+  }
   requestAnimationFrame(animate);
 }
 
@@ -134,6 +150,7 @@ function frame() {
   camera.near = dist / 200; camera.far = dist * 50;
   camera.updateProjectionMatrix();
   controls.update();
+  redraw();
 }
 
 function placeGroundAndSun() {
@@ -226,6 +243,7 @@ function applyLook() {
     lodObject.autoUpdate = state.forceLod === 'auto';
     if (state.forceLod !== 'auto') lodObject.levels.forEach((l, k) => { l.object.visible = k === +state.forceLod; });
   }
+  redraw();
 }
 
 function setMode(mode) {
@@ -466,7 +484,9 @@ async function load(frameIt = false) {
     applyLook();
     state.loads++;
     state.gen = b.gen;
-    state.drawnAt = performance.now(); // the frame after this shows it
+    state.drawnAt = performance.now(); // the frame after this shows it (state.shownAt)
+    state.shownAt = 0;
+    redraw();
     $('status').textContent = eco ? `year ${b.stats.year} · ${b.stats.plants} plants · ${(performance.now() - t0).toFixed(0)} ms`
       : `${b.stats.triangles} triangles · ${b.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms` +
       (warnings.length ? ` · ${warnings.length} warning${warnings.length > 1 ? 's' : ''}` : '');
