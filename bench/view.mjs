@@ -6,21 +6,19 @@
 //       atomic rename, as editors save) to the first frame drawn with the new build, in the page's
 //       clock; SERVER_MS the last build's compile to .glb written in the server, WRITE_MS the .glb writer's
 //   slider NAME MODULES UPDATES SECONDS            builds drawn while a slider is dragged
-import { spawn } from 'node:child_process';
 import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
-import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
-const require = createRequire(new URL('../tests/view/package.json', import.meta.url));
-const puppeteer = require('puppeteer-core');
+import { launch, serve as start, stop } from '../tests/view/browser.mjs';
+
 const sylva = process.argv[2];
 const runs = +(process.argv[3] || 3);
 const dir = mkdtempSync(join(tmpdir(), 'sylva-bench-view-'));
 
 // The cases: a copy of the model (the copy is edited, never the repository's file)
-const a11 = readFileSync('bench/models/a.syl', 'utf8').replace(/derive 12/, 'derive 11'); // 1,058,884 modules
-const a9 = readFileSync('bench/models/a.syl', 'utf8').replace(/derive 12/, 'derive 9');   // 117,650 modules
+const a11 = readFileSync('bench/models/a.syl', 'utf8').replace(/derive 12/, 'derive 11'); // 1,058,783 modules
+const a9 = readFileSync('bench/models/a.syl', 'utf8').replace(/derive 12/, 'derive 9');     // 117,071 modules
 cpSync('examples/weberpenn', join(dir, 'weberpenn'), { recursive: true });
 cpSync('examples/abop', join(dir, 'abop'), { recursive: true });
 writeFileSync(join(dir, 'a11.syl'), a11);
@@ -32,30 +30,8 @@ const saves = [
   ['weeping willow', join(dir, 'weberpenn/weeping_willow.syl')],
 ];
 
-function serve(path) {
-  const server = spawn(sylva, ['view', path, '--port', '0', '-j', '1'], { stdio: ['ignore', 'pipe', 'pipe'] });
-  let err = '';
-  server.stderr.on('data', (d) => { err += d; });
-  return new Promise((resolve, reject) => {
-    let out = '';
-    server.stdout.on('data', (d) => { out += d; const m = out.match(/^(http:\/\/\S+)\n/); if (m) resolve({ server, url: m[1] }); });
-    server.on('exit', (c) => reject(new Error('sylva view exited ' + c + ': ' + err)));
-  });
-}
-async function stop(server) {
-  const done = new Promise((r) => server.on('exit', r));
-  server.kill('SIGTERM');
-  await done;
-}
-
-const browser = await puppeteer.launch({
-  executablePath: process.env.CHROMIUM || '/usr/bin/chromium',
-  headless: true,
-  userDataDir: join(dir, 'profile'),
-  args: ['--headless=new', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
-    '--window-size=900,700'],
-});
+const serve = (path) => start(sylva, path);
+const browser = await launch(dir);
 const median = (xs) => { const s = [...xs].sort((p, q) => p - q); return s[Math.floor(s.length / 2)]; };
 try {
   for (const [name, path] of saves) {

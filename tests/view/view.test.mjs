@@ -6,11 +6,10 @@ import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync, copyFileS
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import http from 'node:http';
-import puppeteer from 'puppeteer-core';
+import { launch, serve as start, stop } from './browser.mjs';
 
 const sylva = process.argv[2];
 const shots = process.argv[3] || '';
-const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
 let failures = 0, count = 0;
 function check(ok, what, detail = '') {
   count++;
@@ -86,16 +85,9 @@ writeFileSync(join(dir, 'flat.asc'), spawnSync('python3', ['tests/oracle/ecosyst
 
 const servers = [];
 async function serve(path) {
-  const server = spawn(sylva, ['view', path, '--port', '0', '-j', '1'], { stdio: ['ignore', 'pipe', 'pipe'] });
-  server.err = '';
-  server.stderr.on('data', (d) => { server.err += d; });
+  const { server, url } = await start(sylva, path);
   servers.push(server);
-  return new Promise((resolve, reject) => {
-    let out = '';
-    server.stdout.on('data', (d) => { out += d; const m = out.match(/^(http:\/\/\S+)\n/); if (m) resolve(m[1]); });
-    server.on('exit', (c) => reject(new Error('sylva view exited ' + c + ': ' + server.err)));
-    setTimeout(() => reject(new Error('no address printed')), 20000);
-  });
+  return url;
 }
 const url = await serve(file);
 const url2 = await serve(scenePath);
@@ -114,14 +106,7 @@ function raw(path, headers = {}) {
   });
 }
 
-const browser = await puppeteer.launch({
-  executablePath: chromium,
-  headless: true,
-  userDataDir: join(dir, 'profile'),
-  args: ['--headless=new', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
-    '--window-size=900,700'],
-});
+const browser = await launch(dir);
 
 try {
   // ---- refusals ----
@@ -417,8 +402,7 @@ try {
 } finally {
   await browser.close();
   for (const server of servers) {
-    server.kill('SIGTERM');
-    const code = await new Promise((r) => server.on('exit', (c, s) => r(c === null ? s : c)));
+    const code = await stop(server);
     check(code === 0, 'SIGTERM stops the server cleanly (exit 0)', String(code) + ' ' + server.err);
   }
   rmSync(dir, { recursive: true, force: true });
