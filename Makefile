@@ -259,6 +259,11 @@ demo: all
 gallery: all
 	@tools/gallery --sylva $(BUILD)/sylva --size 384 --small --md docs/gallery.md docs/gallery
 
+# The page of `sylva view` and the files of three.js it imports (docs/view.md), installed in
+# PREFIX/share/sylva/web, where the installed sylva looks beside its bin/ (cmd_view.c).
+VIEW_WEB   := web/index.html web/app.js web/style.css
+VIEW_THREE := LICENSE package.json build/three.module.js examples/jsm/loaders/GLTFLoader.js \
+              examples/jsm/controls/OrbitControls.js examples/jsm/utils/BufferGeometryUtils.js
 install: all $(BUILD)/installed/sylva
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig $(DESTDIR)$(PREFIX)/include/sylva
 	install -m 755 $(BUILD)/installed/sylva $(DESTDIR)$(PREFIX)/bin/sylva
@@ -266,6 +271,9 @@ install: all $(BUILD)/installed/sylva
 	install -m 644 include/sylva/*.h $(DESTDIR)$(PREFIX)/include/sylva/
 	sed -e 's|@PREFIX@|$(PREFIX)|' -e 's|@VERSION@|$(VERSION)|' -e 's|@MPI_LIBS@|$(MPI_LIBS)|' tools/sylva.pc.in \
 	    > $(DESTDIR)$(PREFIX)/lib/pkgconfig/sylva.pc
+	install -d $(DESTDIR)$(PREFIX)/share/sylva/web
+	install -m 644 $(VIEW_WEB) $(DESTDIR)$(PREFIX)/share/sylva/web/
+	for f in $(VIEW_THREE); do install -D -m 644 web/node_modules/three/$$f $(DESTDIR)$(PREFIX)/share/sylva/web/node_modules/three/$$f || exit 1; done
 
 clean:
 	rm -rf build build-asan build-fuzz build-pic out python/build python/sylva/*.so

@@ -22,7 +22,11 @@ const state = {
   loads: 0,           // models drawn, for the tests
   error: '',          // the overlay's text ('' : none)
   gen: 0,
-  placed: [],         // plants placed by clicks: {model, x, y, z}; the file is not rewritten
+  placed: [],         // plants placed by clicks: {model, x, y, z, on}; the file is not rewritten
+  impostor: false,    // the impostor's billboards as the far level
+  kind: '',           // the last build's kind (lsystem, grow, scene, ecosystem, …)
+  forest: null,       // an ecosystem's forest: its batches and what the last frame drew of them
+  far: 1.5,           // the forest's far level beyond this many terrain diagonals from the camera
 };
 window.sylvaView = state;
 
@@ -32,6 +36,7 @@ const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDraw
 renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
 renderer.shadowMap.enabled = true;
 renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+renderer.shadowMap.autoUpdate = false; // the shadows change with the scene, not with the camera
 const scene = new THREE.Scene();
 scene.background = new THREE.Color(0xdce6ef);
 const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 5000);
@@ -42,7 +47,7 @@ const hemi = new THREE.HemisphereLight(0xeef4ff, 0x8a8070, 1.2);
 scene.add(hemi);
 const sun = new THREE.DirectionalLight(0xffffff, 2.2);
 sun.castShadow = true;
-sun.shadow.mapSize.set(2048, 2048);
+sun.shadow.mapSize.set(1024, 1024);
 scene.add(sun, sun.target);
 const ground = new THREE.Mesh(new THREE.CircleGeometry(1, 64), new THREE.MeshStandardMaterial({ color: 0xa3a39a, roughness: 1 }));
 ground.rotation.x = -Math.PI / 2;
@@ -53,6 +58,8 @@ let root = null;        // the drawn model (a group)
 let lodObject = null;   // THREE.LOD when the file has levels
 let skeletonLines = null, boxHelper = null;
 let mixer = null;
+let pickables = [];     // a scene's obstacles, for placing plants on them (not drawn: the .glb has them)
+let forest = null;      // {batches: [{full: [InstancedMesh], coarse, centre, species, count}], diagonal}
 const clock = new THREE.Clock();
 const originals = new Map(); // mesh -> its own material (lighting and texture toggles swap them)
 
@@ -60,20 +67,52 @@ const originals = new Map(); // mesh -> its own material (lighting and texture t
 window.sylvaCamera = () => ({ position: camera.position.toArray().map((x) => +x.toFixed(4)),
   target: controls.target.toArray().map((x) => +x.toFixed(4)) });
 
+// the triangles of level k of the levels of detail (the tests compare them with the build's)
+window.sylvaLevelTriangles = (k) => {
+  let n = 0;
+  if (lodObject && lodObject.levels[k]) lodObject.levels[k].object.traverse((o) => {
+    if (o.isMesh) n += (o.geometry.index ? o.geometry.index.count : o.geometry.attributes.position.count) / 3;
+  });
+  return n;
+};
+// where a point of the world is on the canvas, in CSS pixels (for the tests' clicks)
+window.sylvaProject = (x, y, z) => {
+  const p = new THREE.Vector3(x, y, z).project(camera), r = canvas.getBoundingClientRect();
+  return { x: r.left + (p.x + 1) / 2 * r.width, y: r.top + (1 - p.y) / 2 * r.height };
+};
+
 function resize() {
   const w = canvas.clientWidth, h = canvas.clientHeight;
   if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
     renderer.setSize(w, h, false);
     camera.aspect = w / Math.max(h, 1);
     camera.updateProjectionMatrix();
+    redraw();
   }
 }
 
+// A frame is drawn when something changed (the camera, a control, a build) or while wind
+// plays, not sixty times a second: an idle page costs nothing (laptops, software WebGL).
+let dirty = true;
+function redraw() { dirty = true; renderer.shadowMap.needsUpdate = true; }
+controls.addEventListener('change', () => { dirty = true; if (forest) renderer.shadowMap.needsUpdate = true; });
+for (const ev of ['input', 'change', 'click', 'keydown']) document.addEventListener(ev, redraw, true);
+window.addEventListener('resize', redraw);
+
 function animate() {
   resize();
-  if (mixer) mixer.update(clock.getDelta());
+  const dt = clock.getDelta();
+  if (mixer) { mixer.update(dt); redraw(); }
   controls.update();
-  renderer.render(scene, camera);
+  if (dirty) {
+    dirty = false;
+    if (forest) updateForest();
+    renderer.render(scene, camera);
+    state.frames = (state.frames || 0) + 1;
+    if (state.drawnAt && !state.shownAt) { // the first frame of the last build (make bench: save to frame)
+      state.shownAt = performance.now(); state.shownWall = Date.now();
+    }
+  }
   requestAnimationFrame(animate);
 }
 
@@ -86,6 +125,7 @@ function query(extra = {}) {
   if (state.leaves) q.set('leaves', state.leaves);
   if (state.lod !== '') q.set('lod', state.lod);
   if (state.wind) q.set('wind', '8');
+  if (state.impostor) q.set('impostor', '1');
   for (const [k, v] of Object.entries(state.sets)) q.append('set', `${k}=${v}`);
   for (const [k, v] of Object.entries(extra)) q.set(k, v);
   return q.toString();
@@ -112,6 +152,7 @@ function frame() {
   camera.near = dist / 200; camera.far = dist * 50;
   camera.updateProjectionMatrix();
   controls.update();
+  redraw();
 }
 
 function placeGroundAndSun() {
@@ -179,6 +220,7 @@ function meshes(fn) {
 function applyLook() {
   const lit = $('lighting').checked, tex = $('textures').checked, mode = state.mode;
   meshes((m) => {
+    if (m.userData.pick) return; // an obstacle's target for clicks, never drawn
     if (!originals.has(m)) originals.set(m, m.material);
     const own = originals.get(m);
     const list = Array.isArray(own) ? own : [own];
@@ -203,6 +245,7 @@ function applyLook() {
     lodObject.autoUpdate = state.forceLod === 'auto';
     if (state.forceLod !== 'auto') lodObject.levels.forEach((l, k) => { l.object.visible = k === +state.forceLod; });
   }
+  redraw();
 }
 
 function setMode(mode) {
@@ -219,7 +262,10 @@ function showError(text) {
 }
 
 function showStats(s) {
-  const rows = s ? [
+  const rows = s && s.kind === 'ecosystem' ? [
+    ['kind', s.kind], ['year', s.year], ['plants', s.plants], ...s.species.map((sp) => [sp.name, sp.plants]),
+    ['simulate', (s.simulate_time * 1000).toFixed(1) + ' ms'],
+  ] : s ? [
     ['kind', s.kind], ['modules', s.modules], ['nodes', s.nodes], ['organs', s.organs], ['polygons', s.polygons],
     ['vertices', s.vertices], ['triangles', s.triangles], ['leaf instances', s.leaf_instances],
     ['levels of detail', s.lod_levels ? s.lod_triangles.join(' / ') + ' triangles' : 'none'],
@@ -234,6 +280,132 @@ function showStats(s) {
     tr.children[1].id = 'stat-' + k.replace(/ /g, '-');
     return tr;
   }));
+}
+
+// ---- an ecosystem: the forest, its chart and maps ----
+// The forest .glb (syl_forest_write_glb) holds one node per species, age class, look and cell,
+// its plants instanced with EXT_mesh_gpu_instancing (three.js draws them as InstancedMesh).
+// Each batch is culled by three.js against the view frustum (its bounding sphere covers its
+// instances); beyond `far` of the terrain's diagonal a batch is drawn by its far level: one cone
+// of the look's size and colour per plant, sharing the batch's instance matrices.
+const palette = ['#2e7d32', '#e68c1e', '#1e5aa0', '#aa3c96', '#c0392b', '#16a085', '#7f8c8d', '#8e6e1e'];
+const coneGeometry = new THREE.ConeGeometry(0.5, 1, 6).translate(0, 0.5, 0);
+
+function setupForest(sceneRoot, stats) {
+  const byNode = new Map();
+  sceneRoot.updateMatrixWorld(true);
+  sceneRoot.traverse((o) => {
+    if (!o.isInstancedMesh) return;
+    let n = o;
+    while (n && !(n.userData && n.userData.species)) n = n.parent;
+    if (!n) return;
+    if (!byNode.has(n)) byNode.set(n, []);
+    byNode.get(n).push(o);
+  });
+  const batches = [];
+  for (const [node, full] of byNode) {
+    const box = new THREE.Box3();
+    for (const m of full) { m.geometry.computeBoundingBox(); box.union(m.geometry.boundingBox); m.computeBoundingSphere(); }
+    const size = box.getSize(new THREE.Vector3());
+    const mat = full[full.length - 1].material; // the leaves' colour when the look has leaves
+    const colour = (Array.isArray(mat) ? mat[0] : mat).color || new THREE.Color(0x2e7d32);
+    const geo = coneGeometry.clone().scale(Math.max(size.x, size.z), size.y, Math.max(size.x, size.z))
+      .translate((box.min.x + box.max.x) / 2, box.min.y, (box.min.z + box.max.z) / 2);
+    const coarse = new THREE.InstancedMesh(geo, new THREE.MeshLambertMaterial({ color: colour }), full[0].count);
+    coarse.instanceMatrix = full[0].instanceMatrix;
+    coarse.matrixAutoUpdate = false;
+    coarse.matrix.copy(full[0].matrixWorld);
+    coarse.computeBoundingSphere();
+    coarse.visible = false;
+    coarse.castShadow = false;
+    sceneRoot.add(coarse);
+    const b = node.userData.bounds; // [x0, z0, x1, z1] of its cell
+    const centre = new THREE.Vector3((b[0] + b[2]) / 2, full[0].boundingSphere.center.y, (b[1] + b[3]) / 2);
+    batches.push({ full, coarse, centre, species: node.userData.species, count: full[0].count });
+  }
+  const t = stats.terrain;
+  forest = { batches, diagonal: Math.hypot(t.width, t.depth) };
+  const bySpecies = {};
+  for (const b of batches) bySpecies[b.species] = (bySpecies[b.species] || 0) + b.count;
+  state.forest = { batches: batches.length, instances: batches.reduce((a, b) => a + b.count, 0), bySpecies,
+    full: 0, coarse: 0, culled: 0 };
+}
+
+const frustum = new THREE.Frustum(), projScreen = new THREE.Matrix4(), sphere = new THREE.Sphere();
+function updateForest() {
+  camera.updateMatrixWorld();
+  projScreen.multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse);
+  frustum.setFromProjectionMatrix(projScreen);
+  const far = state.far * forest.diagonal;
+  let full = 0, coarse = 0, culled = 0;
+  const force = state.forceLod;
+  for (const b of forest.batches) {
+    const level = force === 'auto' ? (camera.position.distanceTo(b.centre) > far ? 1 : 0) : +force;
+    for (const m of b.full) m.visible = level === 0 && state.mode !== 'skeleton' && state.mode !== 'box';
+    b.coarse.visible = level === 1 && state.mode !== 'skeleton' && state.mode !== 'box';
+    sphere.copy(b.full[0].boundingSphere).applyMatrix4(b.full[0].matrixWorld);
+    if (!frustum.intersectsSphere(sphere)) culled++; // three.js skips it too (frustumCulled)
+    else if (level === 0) full++;
+    else coarse++;
+  }
+  if (state.forest) Object.assign(state.forest, { full, coarse, culled });
+  $('forest').textContent = `${state.forest.instances} plants in ${forest.batches.length} batches: ` +
+    `${full} near, ${coarse} far, ${culled} culled`;
+}
+
+// The chart: each species' plants over the years (species.csv's count), the year shown marked.
+function showChart(s) {
+  const svg = $('chart'), W = 280, H = 150, L = 34, B = 16;
+  const years = s.chart_years, maxYear = years[years.length - 1] || 1;
+  const top = Math.max(1, ...s.species.map((sp) => Math.max(...sp.count)));
+  const X = (y) => L + (W - L - 4) * y / maxYear, Y = (c) => H - B - (H - B - 6) * c / top;
+  const ns = 'http://www.w3.org/2000/svg';
+  const el = (name, attrs, text) => {
+    const e = document.createElementNS(ns, name);
+    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, v);
+    if (text !== undefined) e.textContent = text;
+    return e;
+  };
+  const kids = [el('line', { x1: L, y1: H - B, x2: W - 4, y2: H - B, stroke: '#888' }),
+    el('line', { x1: L, y1: 6, x2: L, y2: H - B, stroke: '#888' }),
+    el('text', { x: L - 3, y: 12, 'text-anchor': 'end', 'font-size': 9 }, String(top)),
+    el('text', { x: L - 3, y: H - B, 'text-anchor': 'end', 'font-size': 9 }, '0'),
+    el('text', { x: W - 4, y: H - 3, 'text-anchor': 'end', 'font-size': 9 }, `year ${maxYear}`)];
+  s.species.forEach((sp, k) => {
+    const pts = sp.count.map((c, i) => `${X(years[i]).toFixed(1)},${Y(c).toFixed(1)}`).join(' ');
+    kids.push(el('polyline', { points: pts, fill: 'none', stroke: palette[k % palette.length], 'stroke-width': 1.5,
+      'data-species': sp.name }));
+  });
+  kids.push(el('line', { id: 'chartyear', x1: X(s.year), x2: X(s.year), y1: 6, y2: H - B, stroke: '#000', 'stroke-dasharray': '3 2' }));
+  svg.replaceChildren(...kids);
+  const at = years.indexOf(s.year);
+  $('legend').replaceChildren(...s.species.map((sp, k) => {
+    const span = document.createElement('span');
+    span.innerHTML = '<i></i><b></b> <em></em>';
+    span.querySelector('i').style.background = palette[k % palette.length];
+    span.querySelector('b').textContent = sp.name;
+    span.querySelector('em').textContent = at >= 0 ? sp.count[at] : '';
+    span.dataset.species = sp.name;
+    return span;
+  }));
+  $('ecoyear').textContent = `year ${s.year} of ${s.years}: ${s.plants} plants` +
+    (s.stride > 1 ? ` (every ${s.stride}th year kept)` : '');
+}
+
+function showMaps(s) {
+  const sel = $('mapname'), keep = sel.value;
+  sel.replaceChildren(...s.maps.map((m) => new Option(m, m)));
+  sel.value = s.maps.includes(keep) ? keep : s.maps[0] || '';
+  $('map').src = sel.value ? `/api/map?factor=${encodeURIComponent(sel.value)}&gen=${state.gen}` : '';
+}
+
+function showEco(s) {
+  $('ecopanel').hidden = false;
+  $('steplabel').textContent = 'Year';
+  $('step').min = 1; $('step').max = s.years; $('step').value = s.year;
+  $('stepval').textContent = s.year;
+  showChart(s);
+  showMaps(s);
 }
 
 const loader = new GLTFLoader();
@@ -265,11 +437,18 @@ async function load(frameIt = false) {
       fetch('/api/skeleton?id=' + b.id).then((r) => r.text()),
     ]);
     const gltf = await loader.parseAsync(glb, '');
-    const lod = await gatherLods(gltf);
+    const eco = b.stats.kind === 'ecosystem';
+    const lod = eco ? null : await gatherLods(gltf);
     const group = new THREE.Group();
     group.add(lod || gltf.scene);
     skeletonLines = skeletonFrom(csv);
     group.add(skeletonLines);
+    pickables = [];
+    if (b.obstacles) { // the obstacles' own meshes: what a click may place a plant on
+      const ob = await loader.parseAsync(await fetch('/api/obstacles?id=' + b.id).then((r) => r.arrayBuffer()), '');
+      ob.scene.traverse((o) => { if (o.isMesh) { o.material = new THREE.MeshBasicMaterial({ visible: false }); o.userData.pick = true; pickables.push(o); } });
+      group.add(ob.scene);
+    }
     if (root) scene.remove(root);
     originals.clear();
     root = group;
@@ -284,21 +463,34 @@ async function load(frameIt = false) {
       mixer = new THREE.AnimationMixer(gltf.scene);
       gltf.animations.forEach((a) => mixer.clipAction(a).play());
     }
-    const levels = lod ? lod.levels.length : 1;
+    const levels = eco ? 2 : lod ? lod.levels.length : 1;
     const sel = $('forcelod');
     const keep = state.forceLod;
-    sel.replaceChildren(new Option('by distance', 'auto'), ...Array.from({ length: levels }, (_, k) => new Option('LOD' + k, String(k))));
+    const name = (k) => eco ? ['near (the looks)', 'far (cones)'][k]
+      : state.impostor && k === levels - 1 ? `LOD${k} (impostor)` : 'LOD' + k;
+    sel.replaceChildren(new Option('by distance', 'auto'), ...Array.from({ length: levels }, (_, k) => new Option(name(k), String(k))));
     state.forceLod = keep !== 'auto' && +keep < levels ? keep : 'auto';
     sel.value = state.forceLod;
+    forest = null; state.forest = null;
+    if (eco) setupForest(gltf.scene, b.stats);
+    $('ecopanel').hidden = !eco;
+    if (!eco) $('steplabel').textContent = 'Step';
+    ground.visible = !eco; // the terrain is in the forest's .glb
     placeGroundAndSun();
-    if (frameIt || state.loads === 0) frame();
+    if (frameIt || state.loads === 0 || (eco !== (state.kind === 'ecosystem'))) frame();
+    state.kind = b.stats.kind;
+    if (eco) showEco(b.stats);
     state.stats = b.stats;
     showStats(b.stats);
     showError('');
     applyLook();
     state.loads++;
     state.gen = b.gen;
-    $('status').textContent = `${b.stats.triangles} triangles · ${b.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms` +
+    state.drawnAt = performance.now(); // the frame after this shows it (state.shownAt)
+    state.shownAt = 0;
+    redraw();
+    $('status').textContent = eco ? `year ${b.stats.year} · ${b.stats.plants} plants · ${(performance.now() - t0).toFixed(0)} ms`
+      : `${b.stats.triangles} triangles · ${b.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms` +
       (warnings.length ? ` · ${warnings.length} warning${warnings.length > 1 ? 's' : ''}` : '');
     updateExports();
   })();
@@ -319,12 +511,10 @@ function paramRange(p) {
   return [lo, hi];
 }
 
-let paramTimer = null;
 function paramChanged(name, value, def) {
   if (value === def) delete state.sets[name]; else state.sets[name] = value;
   $('setline').value = setLine();
-  clearTimeout(paramTimer);
-  paramTimer = setTimeout(() => load(), 120); // debounced: a drag re-derives at most every 120 ms
+  load(); // at once; while a build runs, the latest value is built next (load coalesces)
 }
 
 function buildParams() {
@@ -442,12 +632,14 @@ canvas.addEventListener('pointerup', (e) => {
   const ndc = new THREE.Vector2((e.clientX - r.left) / r.width * 2 - 1, -((e.clientY - r.top) / r.height) * 2 + 1);
   const ray = new THREE.Raycaster();
   ray.setFromCamera(ndc, camera);
-  const hit = ray.intersectObject(ground)[0];
+  // the nearest of the ground and the obstacles' surfaces under the pointer
+  const hit = ray.intersectObjects([ground, ...pickables], false)[0];
   if (!hit) return;
   const round = (x) => +x.toFixed(2);
   const model = $('placemodel').value;
-  state.placed.push({ model, origin: state.model || $('placemodel').options[0]?.value || model,
-    x: round(hit.point.x), y: 0, z: round(hit.point.z) });
+  const on = hit.object === ground ? 'ground' : hit.object.name || 'obstacle';
+  state.placed.push({ model, origin: state.model || $('placemodel').options[0]?.value || model, on,
+    x: round(hit.point.x), y: on === 'ground' ? 0 : round(hit.point.y), z: round(hit.point.z) });
   showPlaced();
   state.model = ''; $('model').value = ''; // the scene
   load();
@@ -518,6 +710,16 @@ function wire() {
   $('leaves').addEventListener('change', () => { state.leaves = $('leaves').value; load(); });
   $('lod').addEventListener('change', () => { state.lod = $('lod').value; load(); });
   $('forcelod').addEventListener('change', () => { state.forceLod = $('forcelod').value; applyLook(); });
+  $('impostor').addEventListener('change', () => { state.impostor = $('impostor').checked; load(); });
+  $('far').addEventListener('input', () => { state.far = +$('far').value; $('farval').textContent = `${state.far} diagonals`; });
+  $('mapname').addEventListener('change', () => { $('map').src = `/api/map?factor=${encodeURIComponent($('mapname').value)}&gen=${state.gen}`; });
+  $('chart').addEventListener('click', (e) => { // a click on the chart shows that year
+    const r = $('chart').getBoundingClientRect(), s = state.stats;
+    if (!s || s.kind !== 'ecosystem') return;
+    const maxYear = s.chart_years[s.chart_years.length - 1] || 1;
+    const year = Math.round((e.clientX - r.left - 34) / (r.width - 38) * maxYear);
+    state.step = String(Math.min(Math.max(year, 1), maxYear)); load();
+  });
   $('frame').addEventListener('click', frame);
   $('reset').addEventListener('click', () => { camera.fov = 40; frame(); });
   $('model').addEventListener('change', async () => {
@@ -530,7 +732,7 @@ function wire() {
   });
   $('step').addEventListener('input', () => {
     state.step = $('step').value; $('stepval').textContent = state.step;
-    clearTimeout(paramTimer); paramTimer = setTimeout(() => load(), 120);
+    load();
   });
   $('stepreset').addEventListener('click', () => { state.step = ''; $('stepval').textContent = 'the file\'s'; load(); });
   $('play').addEventListener('click', play);

@@ -3,6 +3,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "cli/billboard.h"
 #include "cli/cli.h"
 #include "sylva/impostor.h"
 #include "util/outgroup.h"
@@ -59,35 +60,15 @@ static void beside(const char *output, const char *suffix, char *buf, size_t n) 
     snprintf(buf, n, "%.*s%s", (int)stem, output, suffix);
 }
 
-/* Bake the impostor from LOD0 as it is drawn, write the octahedral atlas beside the file and
- * make the crossed billboards the chain's last level (which imp then owns). LOD0's mesh leaves
- * instanced leaves out (they are instances of the file): the picture is baked from the plant
- * meshed again with those leaves in it, copied blades or cards as the instances are. */
+/* Bake the impostor, make its crossed billboards the chain's last level (cli/billboard.c) and
+ * write the octahedral atlas beside the file. */
 static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk, const SylMeshOptions *mo,
                         int threads, SylBudget *budget, const char *output, SylImpostor *imp, char *extras,
                         size_t n, OutGroup *outs) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
                              .threads = threads, .diag = stderr, .budget = budget};
-    if (!c->level[0].mesh->nidx) {
-        fprintf(stderr, "sylva: error: the model draws nothing: there is no impostor to bake\n");
-        return SYL_EMODEL;
-    }
-    const SylMesh *drawn = c->level[0].mesh;
-    SylMesh *leafy = NULL;
-    int status = SYL_OK;
-    if (mo->leaves == SYL_LEAVES_INSTANCED || mo->leaves == SYL_LEAVES_INSTANCED_CARDS) {
-        SylMeshOptions with = *mo;
-        with.leaves = mo->leaves == SYL_LEAVES_INSTANCED_CARDS ? SYL_LEAVES_CARDS : SYL_LEAVES_MESH;
-        with.vertex_nodes = 0;
-        status = syl_mesh_build(sk, &with, &leafy);
-        if (!status) drawn = leafy;
-    }
-    if (!status) status = syl_impostor_bake(drawn, &io, imp);
-    syl_mesh_free(leafy);
-    if (status) { /* the mesher and the bake said why they ran out of memory */
-        if (status != SYL_ELIMIT) fprintf(stderr, "sylva: error: cannot bake the impostor (bad request)\n");
-        return status;
-    }
+    int status = billboard_level(c, sk, mo, &io, imp, stderr);
+    if (status) return status;
     char color[4096], normal[4096];
     beside(output, "_impostor.png", color, sizeof color);
     beside(output, "_impostor_normal.png", normal, sizeof normal);
@@ -107,16 +88,7 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
                         "\"size\":%d,\"color\":\"%s\",\"normal_depth\":\"%s\"}",
                         imp->grid, imp->view, imp->size, cs, ns);
     if (len > 0 && (size_t)len + 2 < n) strcat(extras, "}");
-    int k = c->n;
-    c->level[k] = (SylLodLevel){.mesh = imp->bb_mesh, .coverage = syl_lod_coverage(k, k)};
-    if (k > 0) c->level[k - 1].coverage = syl_lod_coverage(k - 1, k);
-    c->n = k + 1;
-    c->atlas = imp->bb_color;
-    c->atlas_w = imp->bb_width;
-    c->atlas_h = imp->view;
-    c->atlas_material = SYL_IMPOSTOR_MATERIAL;
     c->extras = extras;
-    imp->bb_mesh = NULL; /* the chain's now */
     return SYL_OK;
 }
 

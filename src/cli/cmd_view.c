@@ -39,7 +39,8 @@ const CliCommand cli_view_command = {
         {.option = CLI_OPT_MAX_MODULES},
         {0},
     },
-    .epilogue = "\nSYLVA_WEB=DIR serves the page from DIR instead of " SYL_WEB_DIR ".\n" CLI_EXIT_CODES,
+    .epilogue = "\nThe page's files: SYLVA_WEB=DIR, else PREFIX/share/sylva/web beside an installed PREFIX/bin/sylva,\n"
+                "else " SYL_WEB_DIR ".\n" CLI_EXIT_CODES,
     .args_error = "expects one model file",
 };
 
@@ -64,6 +65,22 @@ static void open_browser(const char *url) {
     posix_spawn_file_actions_destroy(&fa);
 }
 
+/* PREFIX/share/sylva/web when this program is PREFIX/bin/sylva and make install put the page
+ * there (found from /proc/self/exe, so a DESTDIR or a moved prefix works too); false else. */
+static bool installed_web(char *out, size_t n) {
+    char exe[PATH_MAX];
+    ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len <= 0) return false;
+    exe[len] = 0;
+    char *slash = strrchr(exe, '/');
+    if (!slash) return false;
+    *slash = 0; /* PREFIX/bin */
+    char probe[PATH_MAX + 64];
+    snprintf(probe, sizeof probe, "%s/../share/sylva/web/node_modules/three/build/three.module.js", exe);
+    if (access(probe, R_OK) || (size_t)snprintf(out, n, "%s/../share/sylva/web", exe) >= n) return false;
+    return true;
+}
+
 int cmd_view(int argc, char **argv) {
     SylDeriveOptions d = {.steps = -1};
     CliArgs a = {.d = &d, .port = 8470, .host = "127.0.0.1"};
@@ -84,7 +101,8 @@ int cmd_view(int argc, char **argv) {
     snprintf(v.dir, sizeof v.dir, "%.*s", slash ? (int)(slash - v.path) : 1, slash ? v.path : ".");
     if (!v.dir[0]) snprintf(v.dir, sizeof v.dir, "/");
     const char *web = getenv("SYLVA_WEB");
-    snprintf(v.web, sizeof v.web, "%s", web && *web ? web : SYL_WEB_DIR);
+    if (web && *web) snprintf(v.web, sizeof v.web, "%s", web);
+    else if (!installed_web(v.web, sizeof v.web)) snprintf(v.web, sizeof v.web, "%s", SYL_WEB_DIR);
     char probe[sizeof v.web + 64];
     snprintf(probe, sizeof probe, "%s/node_modules/three/build/three.module.js", v.web);
     if (access(probe, R_OK)) {

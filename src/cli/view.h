@@ -26,6 +26,7 @@ typedef struct ViewRequest {
     int lod;               /* < 0: the model's `lod` setting */
     int leaves;            /* < 0: the mesher's default; else SYL_LEAVES_* */
     float wind;            /* > 0: skinned, swaying (sylva mesh --wind) */
+    bool impostor;         /* the last level: an impostor's crossed billboards (--billboards 3) */
     int width, height;     /* of a picture (export png) */
     const char *text;      /* NULL: the file as it is on disk; else the page's edited text of it
                               (plants placed by clicks), built as if it were the file's */
@@ -43,9 +44,13 @@ typedef struct ViewBuild {
     size_t glb_len;
     char *csv;             /* the skeleton (sylva skeleton's CSV) */
     size_t csv_len;
+    char *obstacles;       /* a scene's obstacles as a .glb, one node each (NULL: none) */
+    size_t obstacles_len;
     char *stats;           /* a JSON object */
     double used;           /* when last asked for, for the cache's order */
 } ViewBuild;
+
+typedef struct ViewEco ViewEco; /* an ecosystem's run, its years kept (view_eco.c) */
 
 typedef struct View {
     char path[4096];       /* the model file, as given */
@@ -58,6 +63,7 @@ typedef struct View {
     pthread_mutex_t lock;
     ViewBuild cache[VIEW_CACHE];
     unsigned next_id;
+    ViewEco *eco;          /* the last ecosystem run (NULL: none) */
     /* Changes: gen counts them; waiters (the pages' event streams) are woken at each. */
     pthread_mutex_t gen_lock;
     pthread_cond_t changed;
@@ -67,7 +73,7 @@ typedef struct View {
 
 /* view_build.c */
 void view_request_init(ViewRequest *rq);
-/* One argument of the page's query (model, seed, n, lod, leaves, wind, size, set=NAME=VALUE);
+/* One argument of the page's query (model, seed, n, lod, impostor, leaves, wind, size, set=NAME=VALUE);
  * false with the reason in err. Other names are not the model's and are passed over. */
 bool view_request_arg(ViewRequest *rq, const char *key, const char *value, char *err, size_t n);
 /* Build (or find in the cache) what rq asks for; returns the entry (v->lock held by the
@@ -81,6 +87,18 @@ char *view_models_json(View *v);
 /* The parameters of the file's models (syl_describe_json), malloc'ed; NULL with *diag set. */
 char *view_describe_json(View *v, const ViewRequest *rq, char **diag);
 void view_cache_free(View *v);
+/* A library writer that takes a path, into out: written in a private temporary directory as
+ * NAME, read back, the directory removed (with what the writer put beside the file). */
+typedef int (*ViewPathWriter)(void *ctx, const char *path, FILE *diag);
+int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE *out, FILE *diag);
+
+/* view_eco.c: an ecosystem block (p, taken over) into slot: the forest .glb of the year
+ * rq->steps (< 0: the last; else the nearest kept), the figures as JSON in slot->stats. The
+ * run is kept in v->eco for the other years. */
+int view_eco_build(View *v, const ViewRequest *rq, SylProgram *p, unsigned gen, FILE *diag, ViewBuild *slot);
+/* The PNG of a factor's map (syl_terrain_write_map) of the last ecosystem run. */
+int view_eco_map(View *v, const char *name, char **png, size_t *len);
+void view_eco_free(ViewEco *e);
 
 /* view_watch.c: follow the file and every file it names; bump v->gen at each change. */
 bool view_watch_start(View *v, pthread_t *thread, int *stop_fd);

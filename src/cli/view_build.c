@@ -9,6 +9,7 @@
 #include <strings.h>
 #include <unistd.h>
 
+#include "cli/billboard.h"
 #include "cli/view.h"
 #include "sylva/describe.h"
 #include "sylva/lod.h"
@@ -42,6 +43,9 @@ bool view_request_arg(ViewRequest *rq, const char *key, const char *value, char 
         while (k < SYL_LEAVES_MODES && strcmp(syl_leaves_names[k], value)) k++;
         if (k == SYL_LEAVES_MODES) return snprintf(err, n, "leaves: unknown mode '%s'", value), false;
         rq->leaves = k;
+    } else if (!strcmp(key, "impostor")) {
+        if (strcmp(value, "") && strcmp(value, "0") && strcmp(value, "1")) return snprintf(err, n, "impostor: 0 or 1"), false;
+        rq->impostor = !strcmp(value, "1");
     } else if (!strcmp(key, "wind")) {
         if (!*value) return true;
         double w = strtod(value, &end);
@@ -79,6 +83,7 @@ typedef struct Made {
     SylPlant pl;
     SylMeshOptions mo;
     SylLodChain lods;
+    SylImpostor imp;    /* its billboards: the chain's last level (sylva mesh --billboards 3) */
     SylWind wind;
     SylInstances *sets;
     int nsets;
@@ -86,11 +91,13 @@ typedef struct Made {
     int lod;
     double compile_s, lod_s, write_s;
     SylBudget *budget;
+    SylProgram *eco;    /* an ecosystem block: view_eco.c builds it */
 } Made;
 
 static void made_free(Made *m) {
     syl_instances_free(m->sets, m->nsets);
     syl_lod_free(&m->lods);
+    syl_impostor_free(&m->imp);
     syl_wind_free(&m->wind);
     syl_plant_free(&m->pl);
     syl_budget_free(m->budget);
@@ -109,9 +116,11 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
     m->compile_s = cli_now() - t0;
     if (!p) return status;
+    if (syl_program_kind(p) == SYL_MODEL_ECOSYSTEM) return m->eco = p, SYL_OK;
     double lod = syl_program_setting(p, "lod");
     m->lod = rq->lod >= 0 ? rq->lod : lod > 0 && lod <= SYL_LOD_MAX ? (int)lod : 0;
     if (rq->wind > 0) m->lod = rq->lod > 0 ? rq->lod : 0; /* as sylva mesh: the setting, without wind */
+    if (rq->impostor && !m->lod) m->lod = 1; /* LOD0 and the billboards, as sylva mesh --billboards */
     m->budget = syl_budget_new(v->max_memory);
     m->mo = (SylMeshOptions){.diag = diag, .threads = v->threads, .budget = m->budget, .one_sided = 1,
                              .vertex_nodes = rq->wind > 0};
@@ -124,9 +133,11 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     syl_program_free(p);
     if (status) return status;
     double t1 = cli_now();
-    if (m->lod > 0) {
-        status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod, &m->lods);
+    if (m->lod > 0) { /* with the impostor, its billboards are the last of the levels */
+        status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod - rq->impostor, &m->lods);
         if (status) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
+        SylImpostorOptions io = {.grid = -1, .billboards = 3, .threads = v->threads, .diag = diag, .budget = m->budget};
+        if (!status && rq->impostor) status = billboard_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
     } else {
         status = syl_mesh_optimize(m->pl.mesh);
     }
@@ -187,8 +198,35 @@ static char *stats_json(const Made *m) {
     return s;
 }
 
+/* A scene's obstacles (the OBJ meshes a grow scene names), one node each: the page's targets
+ * for placing a plant on them. */
+typedef struct Obstacles {
+    SylMesh *part[64];
+    int n;
+} Obstacles;
+
+static int write_obstacles_file(void *ctx, const char *path, FILE *diag) {
+    const Obstacles *o = ctx;
+    return syl_mesh_write_glb_parts(o->part, o->n, "obstacles", path, diag);
+}
+
+static int write_obstacles(const Made *m, ViewBuild *slot, FILE *diag) {
+    const SylSkeleton *sk = m->pl.skeleton;
+    Obstacles o = {.n = 0};
+    for (int j = 0; j < m->pl.nparts; j++)
+        for (int i = 0; i < sk->nparts && o.n < 64; i++)
+            if (sk->parts[i].obstacle > 0 && !strcmp(sk->parts[i].name, m->pl.parts[j]->name)) o.part[o.n++] = m->pl.parts[j];
+    if (!o.n) return SYL_OK;
+    FILE *out = open_memstream(&slot->obstacles, &slot->obstacles_len);
+    if (!out) return SYL_ELIMIT;
+    int st = view_write_via_file(write_obstacles_file, &o, "obstacles.glb", out, diag);
+    fclose(out);
+    return st;
+}
+
 static void entry_free(ViewBuild *b) {
     free(b->diag);
+    free(b->obstacles);
     free(b->glb);
     free(b->csv);
     free(b->stats);
@@ -197,12 +235,19 @@ static void entry_free(ViewBuild *b) {
 
 void view_cache_free(View *v) {
     for (int i = 0; i < VIEW_CACHE; i++) entry_free(&v->cache[i]);
+    view_eco_free(v->eco);
+    v->eco = NULL;
 }
 
-ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
+static unsigned current_gen(View *v) {
     pthread_mutex_lock(&v->gen_lock);
     unsigned gen = v->gen;
     pthread_mutex_unlock(&v->gen_lock);
+    return gen;
+}
+
+ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
+    unsigned gen = current_gen(v);
     ViewBuild *slot = &v->cache[0];
     for (int i = 0; i < VIEW_CACHE; i++) {
         ViewBuild *b = &v->cache[i];
@@ -225,7 +270,10 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
     }
     Made m;
     int status = make(v, rq, diag, &m);
-    if (!status) {
+    if (!status && m.eco) {
+        status = view_eco_build(v, rq, m.eco, gen, diag, slot);
+        m.eco = NULL;
+    } else if (!status) {
         double t = cli_now();
         FILE *out = open_memstream(&slot->glb, &slot->glb_len);
         status = out ? write_glb(&m, out, diag) : SYL_ELIMIT;
@@ -234,6 +282,7 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         out = open_memstream(&slot->csv, &slot->csv_len);
         if (!status && out) status = syl_skeleton_write_csv(m.pl.skeleton, out);
         if (out) fclose(out);
+        if (!status) status = write_obstacles(&m, slot, diag);
         if (!status) slot->stats = stats_json(&m);
     }
     made_free(&m);
@@ -242,6 +291,7 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
     if (status) { /* keep the messages only */
         free(slot->glb), slot->glb = NULL, slot->glb_len = 0;
         free(slot->csv), slot->csv = NULL, slot->csv_len = 0;
+        free(slot->obstacles), slot->obstacles = NULL, slot->obstacles_len = 0;
     }
     return slot;
 }
@@ -258,35 +308,35 @@ static int write_png(Made *m, const ViewRequest *rq, FILE *out, FILE *diag, int 
     return status;
 }
 
-/* An .obj (with its .mtl and textures) needs a directory: written into a private one by
- * syl_mesh_write_obj, the .obj read back. */
-static int write_obj(Made *m, FILE *out, FILE *diag) {
+int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE *out, FILE *diag) {
     char dir[] = "/tmp/sylva-view-XXXXXX";
     if (!mkdtemp(dir)) {
         fprintf(diag, "sylva: error: cannot make a temporary directory: %s\n", strerror(errno));
         return SYL_EIO;
     }
-    char path[64];
-    snprintf(path, sizeof path, "%s/plant.obj", dir);
-    int status = syl_mesh_write_obj(m->pl.mesh, path, diag);
+    char path[sizeof dir + 256];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    int status = write(ctx, path, diag);
     size_t len = 0;
     char *text = status ? NULL : syl_read_file(path, &len);
     if (!status && !text) status = SYL_EIO;
     if (text) fwrite(text, 1, len, out);
     free(text);
-    /* the .obj, its .mtl and the texture PNGs beside them */
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "%s", dir);
+    /* the file and what its writer put beside it (an .obj's .mtl and texture PNGs) */
     DIR *d = opendir(dir);
     for (struct dirent *e; d && (e = readdir(d));) {
         if (e->d_name[0] == '.') continue;
-        char p[512];
+        char p[sizeof dir + 512];
         snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
         unlink(p);
     }
     if (d) closedir(d);
-    rmdir(cmd);
+    rmdir(dir);
     return status;
+}
+
+static int write_obj_file(void *ctx, const char *path, FILE *diag) {
+    return syl_mesh_write_obj(((Made *)ctx)->pl.mesh, path, diag);
 }
 
 int view_export(View *v, const ViewRequest *rq, const char *format, char **out, size_t *len, char **diag) {
@@ -301,11 +351,19 @@ int view_export(View *v, const ViewRequest *rq, const char *format, char **out, 
     }
     Made m;
     int status = make(v, rq, df, &m);
-    if (!status) {
+    if (!status && m.eco) { /* an ecosystem: its forest's .glb */
+        ViewBuild b = {0};
+        if (!strcmp(format, "glb")) status = view_eco_build(v, rq, m.eco, current_gen(v), df, &b);
+        else syl_program_free(m.eco), status = SYL_EUSAGE;
+        if (status == SYL_EUSAGE) fprintf(df, "sylva: error: an ecosystem exports its forest as .glb only\n");
+        if (!status) fwrite(b.glb, 1, b.glb_len, of);
+        entry_free(&b);
+        m.eco = NULL;
+    } else if (!status) {
         if (!strcmp(format, "glb")) status = write_glb(&m, of, df);
         else if (!strcmp(format, "csv")) status = syl_skeleton_write_csv(m.pl.skeleton, of);
         else if (!strcmp(format, "png")) status = write_png(&m, rq, of, df, v->threads);
-        else if (!strcmp(format, "obj")) status = write_obj(&m, of, df);
+        else if (!strcmp(format, "obj")) status = view_write_via_file(write_obj_file, &m, "plant.obj", of, df);
         else status = SYL_EUSAGE;
     }
     made_free(&m);

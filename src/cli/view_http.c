@@ -205,7 +205,7 @@ static enum MHD_Result send_events(struct MHD_Connection *c, View *v) {
 
 /* ---- the API ---- */
 
-/* {"id":N,"status":S,"ok":bool,"diag":"...","stats":{...}} */
+/* {"id":N,"status":S,"ok":bool,"diag":"...","obstacles":bool,"stats":{...}} */
 static enum MHD_Result api_build(struct MHD_Connection *c, View *v, Query *q) {
     pthread_mutex_lock(&v->lock);
     ViewBuild *b = view_build(v, &q->rq, q->key);
@@ -216,7 +216,8 @@ static enum MHD_Result api_build(struct MHD_Connection *c, View *v, Query *q) {
         fprintf(f, "{\"id\":%u,\"gen\":%u,\"status\":%d,\"ok\":%s,\"diag\":", b->id, b->gen, b->status,
                 b->status ? "false" : "true");
         json_string_file(f, b->diag ? b->diag : "");
-        fprintf(f, ",\"stats\":%s,\"model\":", b->stats ? b->stats : "null");
+        fprintf(f, ",\"obstacles\":%s,\"stats\":%s,\"model\":", b->obstacles ? "true" : "false",
+                b->stats ? b->stats : "null");
         json_string_file(f, q->rq.model);
         fputs("}", f);
         fclose(f);
@@ -226,15 +227,20 @@ static enum MHD_Result api_build(struct MHD_Connection *c, View *v, Query *q) {
     return send_bytes(c, MHD_HTTP_OK, "application/json", s, n, MHD_RESPMEM_MUST_FREE);
 }
 
-/* The .glb or the skeleton CSV of build id (from the cache: the page asks right after). */
-static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, bool glb) {
+/* A part of build id (from the cache: the page asks right after): its .glb, its skeleton's
+ * CSV or its obstacles' .glb. */
+typedef enum { PART_GLB, PART_SKELETON, PART_OBSTACLES } Part;
+
+static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, Part part) {
     pthread_mutex_lock(&v->lock);
     ViewBuild *b = NULL;
     for (int i = 0; i < VIEW_CACHE; i++)
         if (id && v->cache[i].id == id) b = &v->cache[i];
     enum MHD_Result r;
-    if (!b || b->status) r = send_text(c, MHD_HTTP_NOT_FOUND, "no such build\n");
-    else if (glb) r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->glb, b->glb_len, MHD_RESPMEM_MUST_COPY);
+    if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles)) r = send_text(c, MHD_HTTP_NOT_FOUND, "no such build\n");
+    else if (part == PART_GLB) r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->glb, b->glb_len, MHD_RESPMEM_MUST_COPY);
+    else if (part == PART_OBSTACLES)
+        r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->obstacles, b->obstacles_len, MHD_RESPMEM_MUST_COPY);
     else r = send_bytes(c, MHD_HTTP_OK, "text/csv", b->csv, b->csv_len, MHD_RESPMEM_MUST_COPY);
     pthread_mutex_unlock(&v->lock);
     return r;
@@ -285,6 +291,17 @@ static enum MHD_Result api_describe(struct MHD_Connection *c, View *v, Query *q)
                           : send_error_json(c, MHD_HTTP_UNPROCESSABLE_CONTENT, "the model does not compile", diag);
     free(diag);
     return r;
+}
+
+/* A factor map of the ecosystem on show (the PNG of syl_terrain_write_map). */
+static enum MHD_Result api_map(struct MHD_Connection *c, View *v, const char *factor) {
+    char *png;
+    size_t len;
+    pthread_mutex_lock(&v->lock);
+    int st = view_eco_map(v, factor, &png, &len);
+    pthread_mutex_unlock(&v->lock);
+    if (st) return send_text(c, MHD_HTTP_NOT_FOUND, "no such map\n");
+    return send_bytes(c, MHD_HTTP_OK, "image/png", png, len, MHD_RESPMEM_MUST_FREE);
 }
 
 /* "Save as…": a new file beside the model (a plain name, no directory); an existing one only
@@ -387,10 +404,12 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     }
     if (!strncmp(url, "/api/", 5) && !ok) return send_error_json(c, MHD_HTTP_BAD_REQUEST, q.err, NULL);
     if (!strcmp(url, "/api/build")) return api_build(c, v, &q);
-    if (!strcmp(url, "/api/glb")) return api_part(c, v, q.id, true);
-    if (!strcmp(url, "/api/skeleton")) return api_part(c, v, q.id, false);
+    if (!strcmp(url, "/api/glb")) return api_part(c, v, q.id, PART_GLB);
+    if (!strcmp(url, "/api/skeleton")) return api_part(c, v, q.id, PART_SKELETON);
+    if (!strcmp(url, "/api/obstacles")) return api_part(c, v, q.id, PART_OBSTACLES);
     if (!strcmp(url, "/api/export")) return api_export(c, v, &q);
     if (!strcmp(url, "/api/describe")) return api_describe(c, v, &q);
+    if (!strcmp(url, "/api/map")) return api_map(c, v, MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "factor"));
     if (!strcmp(url, "/api/save") && post) return api_save(c, v, &q, conn);
     if (post) return send_text(c, MHD_HTTP_METHOD_NOT_ALLOWED, "method not allowed\n");
     return send_text(c, MHD_HTTP_NOT_FOUND, "not found\n");

@@ -30,6 +30,8 @@ int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n
         for (size_t i = 0; i < n; i++) { /* the cell of a plant on the edge is the last one */
             bucket[i] = -1;
             if (!(inst[i].scale > 0)) continue;
+            const SylMesh *look = f->looks[inst[i].proto].mesh;
+            if (!look || !look->nidx) continue; /* a look of nothing (a seedling's bare axiom) draws nothing */
             int i0 = (int)floor((inst[i].t[0] - t->x0) / cell), k0 = (int)floor((inst[i].t[2] - t->z0) / cell);
             i0 = i0 < 0 ? 0 : i0 >= cx ? cx - 1 : i0, k0 = k0 < 0 ? 0 : k0 >= cz ? cz - 1 : k0;
             bucket[i] = ((int)inst[i].proto * cz + k0) * cx + i0;

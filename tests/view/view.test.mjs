@@ -1,16 +1,15 @@
 // Browser tests of `sylva view` (docs/view.md): Debian's chromium, headless, drawing WebGL in
 // software (SwiftShader), driven by puppeteer-core. Usage: node view.test.mjs SYLVA [SHOTS_DIR]
 // Prints "ok - ..." / "not ok - ..." lines (TAP) and exits 1 on a failure.
-import { spawn } from 'node:child_process';
-import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync } from 'node:fs';
+import { spawn, spawnSync } from 'node:child_process';
+import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync, copyFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import http from 'node:http';
-import puppeteer from 'puppeteer-core';
+import { launch, serve as start, stop } from './browser.mjs';
 
 const sylva = process.argv[2];
 const shots = process.argv[3] || '';
-const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
 let failures = 0, count = 0;
 function check(ok, what, detail = '') {
   count++;
@@ -42,15 +41,56 @@ writeFileSync(file, MODEL(25, 4));
 // atomic edits (write a new file, rename over), as editors save
 function edit(text) { writeFileSync(file + '.new', text); renameSync(file + '.new', file); }
 
-const server = spawn(sylva, ['view', file, '--port', '0', '-j', '1'], { stdio: ['ignore', 'pipe', 'pipe'] });
-let stderr = '';
-server.stderr.on('data', (d) => { stderr += d; });
-const url = await new Promise((resolve, reject) => {
-  let out = '';
-  server.stdout.on('data', (d) => { out += d; const m = out.match(/^(http:\/\/\S+)\n/); if (m) resolve(m[1]); });
-  server.on('exit', (c) => reject(new Error('sylva view exited ' + c + ': ' + stderr)));
-  setTimeout(() => reject(new Error('no address printed')), 20000);
-});
+// The second file: a scene with an obstacle (examples/scenes/house_wall.syl, 4 years: the wall
+// with a window of wall_window.obj) and an ecosystem on a flat terrain of tests/oracle.
+const wallDir = join(process.cwd(), 'examples/scenes');
+const SCENE = readFileSync(join(wallDir, 'house_wall.syl'), 'utf8').replace(/years 22/, 'years 4') + `
+ecosystem Patch {
+  terrain "flat.asc"
+  years 8
+  seed 7
+  species stick
+    model Stick
+    maturity 2
+    height_max 6
+    growth_rate 0.6
+    start_height 0.5
+    radius_ratio 0.3
+    seeds 2
+    dispersal 2
+    arrivals 60
+    shade_tolerance 0.5
+  species herb
+    model Stick
+    maturity 1
+    height_max 1
+    growth_rate 0.5
+    start_height 0.2
+    radius_ratio 0.5
+    seeds 3
+    dispersal 1
+    arrivals 150
+    shade_tolerance 0.9
+}
+lsystem Stick {
+  derive 2
+  axiom F
+  F -> F[+F]F[-F]F
+}
+`;
+const scenePath = join(dir, 'wall.syl');
+writeFileSync(scenePath, SCENE);
+copyFileSync(join(wallDir, 'wall_window.obj'), join(dir, 'wall_window.obj'));
+writeFileSync(join(dir, 'flat.asc'), spawnSync('python3', ['tests/oracle/ecosystem.py', 'flat', '30', '1']).stdout);
+
+const servers = [];
+async function serve(path) {
+  const { server, url } = await start(sylva, path);
+  servers.push(server);
+  return url;
+}
+const url = await serve(file);
+const url2 = await serve(scenePath);
 const base = url.replace(/\/\?token=.*/, '');
 const token = url.replace(/.*token=/, '');
 
@@ -66,14 +106,7 @@ function raw(path, headers = {}) {
   });
 }
 
-const browser = await puppeteer.launch({
-  executablePath: chromium,
-  headless: true,
-  userDataDir: join(dir, 'profile'),
-  args: ['--headless=new', '--no-sandbox', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-    '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
-    '--window-size=900,700'],
-});
+const browser = await launch(dir);
 
 try {
   // ---- refusals ----
@@ -265,14 +298,113 @@ try {
   await page2.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 30000 });
   await page2.close();
   check((await raw('/api/models', t)).status === 200, 'a second tab loads; closing it leaves the server running');
+
+  // ---- the impostor at the far end of the levels ----
+  let loads5 = (await stat()).loads;
+  await page.click('#impostor');
+  await page.waitForFunction((n) => window.sylvaView.loads > n, { timeout: 30000 }, loads5);
+  const imp = await page.evaluate(() => ({ levels: window.sylvaView.levels, tris: window.sylvaView.stats.lod_triangles,
+    label: [...document.querySelectorAll('#forcelod option')].pop().textContent }));
+  await page.select('#forcelod', String(imp.levels - 1));
+  const impPic = await picture('view-impostor');
+  const impDrawn = await page.evaluate((k) => window.sylvaLevelTriangles(k), imp.levels - 1);
+  // sylva mesh --billboards 3: three crossed quads, each face (front and back, each with the
+  // side view it faces) two triangles
+  check(imp.levels === 2 && /impostor/.test(imp.label) && impDrawn === imp.tris[1] && impDrawn === 3 * 2 * 2,
+    'the impostor is the last level; forcing it draws its 3 crossed quads (12 triangles, the build\'s count)',
+    JSON.stringify({ ...imp, impDrawn }));
+  check(impPic.plant > 0 && differ(lod0, impPic) > 0.005, 'the forced impostor shows the plant\'s picture on its cards');
+  await page.select('#forcelod', 'auto');
+  await page.click('#impostor');
+  await page.waitForFunction(() => window.sylvaView.levels === 1, { timeout: 30000 });
   check(errors.length === 0, 'no error in the page', errors.join('; '));
+
+  // ---- a scene with an obstacle: a click on the wall places a plant on its surface ----
+  const p2 = await browser.newPage();
+  await p2.setViewport({ width: 900, height: 700 });
+  p2.on('pageerror', (e) => errors.push(String(e)));
+  await p2.goto(url2);
+  await p2.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 60000 });
+  const st2 = await p2.evaluate(() => ({ kind: window.sylvaView.stats.kind, obstacles: window.sylvaView.build.obstacles }));
+  check(st2.kind === 'scene' && st2.obstacles, 'a scene with an obstacle: its obstacles come as their own .glb', JSON.stringify(st2));
+  await p2.click('#placing');
+  // a point of the wall's face toward the camera, left of the window
+  const camZ = await p2.evaluate(() => window.sylvaCamera().position[2]);
+  const face = camZ < 0 ? -0.15 : 0.15;
+  const at = await p2.evaluate((z) => window.sylvaProject(-3, 1.5, z), face);
+  const loads6 = await p2.evaluate(() => window.sylvaView.loads);
+  await p2.mouse.click(at.x, at.y);
+  await p2.waitForFunction((n) => window.sylvaView.loads > n, { timeout: 60000 }, loads6).catch(() => {});
+  const placedOn = await p2.evaluate(() => ({ placed: window.sylvaView.placed, text: document.querySelector('#placed').textContent,
+    kind: window.sylvaView.stats.kind, ok: window.sylvaView.build.ok }));
+  // on the OBJ's surface: the nearest of its faces (axis-aligned boxes) within 1 cm
+  const obj = readFileSync(join(dir, 'wall_window.obj'), 'utf8');
+  const verts = [...obj.matchAll(/^v\s+(\S+)\s+(\S+)\s+(\S+)/gm)].map((m) => [+m[1], +m[2], +m[3]]);
+  const faces = [...obj.matchAll(/^f\s+(.*)$/gm)].map((m) => m[1].trim().split(/\s+/).map((i) => verts[+i.split('/')[0] - 1]));
+  const onFace = (p, f) => { // an axis-aligned rectangle: one coordinate constant, the others inside
+    const lo = [0, 1, 2].map((k) => Math.min(...f.map((v) => v[k]))), hi = [0, 1, 2].map((k) => Math.max(...f.map((v) => v[k])));
+    const flat = [0, 1, 2].find((k) => hi[k] - lo[k] < 1e-9);
+    return flat !== undefined && Math.abs(p[flat] - lo[flat]) < 0.01 &&
+      [0, 1, 2].every((k) => k === flat || (p[k] >= lo[k] - 0.01 && p[k] <= hi[k] + 0.01));
+  };
+  const pl = placedOn.placed[0] || {};
+  const point = [pl.x, pl.y, pl.z];
+  check(pl.on !== 'ground' && faces.some((f) => onFace(point, f)) && pl.y > 0.5,
+    'a click on the wall places a plant at a point of the OBJ\'s surface', JSON.stringify(placedOn));
+  check(new RegExp(`^plant Linden at \\(${pl.x}, ${pl.y}, ${pl.z}\\)$`).test(placedOn.text) && placedOn.kind === 'scene' && placedOn.ok,
+    'the plant line is shown and the scene is built with it', placedOn.text);
+  if (shots) await p2.screenshot({ path: join(shots, 'view-obstacle.png') });
+  await p2.click('#unplace');
+  await p2.click('#placing');
+
+  // ---- an ecosystem: years scrubbed, the forest's instances and the chart are species.csv's ----
+  const cli = spawnSync(sylva, ['ecosystem', scenePath + ':Patch', '-o', join(dir, 'eco'), '--size', '16x16', '--samples', '1', '-j', '1']);
+  const csvRows = readFileSync(join(dir, 'eco', 'species.csv'), 'utf8').trim().split('\n').slice(1).map((l) => l.split(','));
+  const countsOf = (year) => Object.fromEntries(csvRows.filter((r) => +r[0] === year).map((r) => [r[1], +r[2]]));
+  const loads7 = await p2.evaluate(() => window.sylvaView.loads);
+  await p2.select('#model', 'Patch');
+  await p2.waitForFunction((n) => window.sylvaView.loads > n && window.sylvaView.stats.kind === 'ecosystem', { timeout: 60000 }, loads7);
+  const ecoAt = async (year) => {
+    const n = await p2.evaluate(() => window.sylvaView.loads);
+    await p2.$eval('#step', (el, y) => { el.value = y; el.dispatchEvent(new Event('input', { bubbles: true })); }, year);
+    await p2.waitForFunction((k, y) => window.sylvaView.loads > k && window.sylvaView.stats.year === y, { timeout: 30000 }, n, year);
+    return p2.evaluate(() => ({ year: window.sylvaView.stats.year, forest: window.sylvaView.forest,
+      legend: Object.fromEntries([...document.querySelectorAll('#legend span')].map((e) => [e.dataset.species, +e.querySelector('em').textContent])),
+      chartLines: document.querySelectorAll('#chart polyline').length, map: document.querySelector('#map').naturalWidth }));
+  };
+  const y3 = await ecoAt(3);
+  if (shots) { // the page with its chart and map in sight
+    await p2.evaluate(() => { document.querySelector('#ecopanel').scrollIntoView(); });
+    await p2.screenshot({ path: join(shots, 'view-eco.png') });
+  }
+  const y8 = await ecoAt(8);
+  const same = (a, b) => Object.keys(b).every((k) => (a[k] || 0) === b[k]) && Object.keys(a).every((k) => k in b);
+  check(cli.status === 0 && y3.forest && same(y3.forest.bySpecies, countsOf(3)) && same(y8.forest.bySpecies, countsOf(8)),
+    'scrubbing an ecosystem\'s years: the forest\'s instances per species are sylva ecosystem\'s species.csv counts of that year',
+    JSON.stringify({ y3: y3.forest && y3.forest.bySpecies, csv3: countsOf(3), y8: y8.forest && y8.forest.bySpecies, csv8: countsOf(8), err: String(cli.stderr) }));
+  check(y3.forest.instances !== y8.forest.instances && same(y3.legend, countsOf(3)) && same(y8.legend, countsOf(8)) && y8.chartLines === 2,
+    'the chart (a line per species) and its legend follow the year', JSON.stringify({ l3: y3.legend, l8: y8.legend }));
+  check(y8.map > 0, 'a factor map is shown beside the 3D view (a PNG of syl_terrain_write_map)');
+  // far level and culling: forcing the far level draws every visible batch as cones
+  // (the figures are the last frame's: wait for a frame drawn with the forced level)
+  await p2.select('#forcelod', '1');
+  await p2.waitForFunction(() => window.sylvaView.forest.full === 0, { timeout: 10000 }).catch(() => {});
+  const far = await p2.evaluate(() => window.sylvaView.forest);
+  await p2.select('#forcelod', '0');
+  await p2.waitForFunction(() => window.sylvaView.forest.coarse === 0, { timeout: 10000 }).catch(() => {});
+  const near = await p2.evaluate(() => window.sylvaView.forest);
+  check(far.full === 0 && far.coarse + far.culled === far.batches && near.coarse === 0 && near.full + near.culled === near.batches,
+    'the forest\'s far level can be forced; every batch is near, far or culled', JSON.stringify({ far, near }));
+  await p2.close();
+  check(errors.length === 0, 'no error in the pages', errors.join('; '));
 } catch (e) {
   check(false, 'the tests ran to the end', String(e && e.stack || e));
 } finally {
   await browser.close();
-  server.kill('SIGTERM');
-  const code = await new Promise((r) => server.on('exit', (c, s) => r(c === null ? s : c)));
-  check(code === 0, 'SIGTERM stops the server cleanly (exit 0)', String(code) + ' ' + stderr);
+  for (const server of servers) {
+    const code = await stop(server);
+    check(code === 0, 'SIGTERM stops the server cleanly (exit 0)', String(code) + ' ' + server.err);
+  }
   rmSync(dir, { recursive: true, force: true });
 }
 console.log(`1..${count}`);

@@ -1,0 +1,89 @@
+// make bench's view section (bench/run section_view): `sylva view` in Debian's chromium
+// (headless, WebGL in software by SwiftShader), driven by puppeteer-core (tests/view's).
+//   node bench/view.mjs SYLVA RUNS
+// Prints one line per case:
+//   save NAME MODULES TRIANGLES BEST_MS MEDIAN_MS SERVER_MS WRITE_MS   from the file's save (an
+//       atomic rename, as editors save) to the first frame drawn with the new build, in the page's
+//       clock; SERVER_MS the last build's compile to .glb written in the server, WRITE_MS the .glb writer's
+//   slider NAME MODULES UPDATES SECONDS            builds drawn while a slider is dragged
+import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+
+import { launch, serve as start, stop } from '../tests/view/browser.mjs';
+
+const sylva = process.argv[2];
+const runs = +(process.argv[3] || 3);
+const dir = mkdtempSync(join(tmpdir(), 'sylva-bench-view-'));
+
+// The cases: a copy of the model (the copy is edited, never the repository's file)
+const a11 = readFileSync('bench/models/a.syl', 'utf8').replace(/derive 12/, 'derive 11'); // 1,058,783 modules
+const a9 = readFileSync('bench/models/a.syl', 'utf8').replace(/derive 12/, 'derive 9');     // 117,071 modules
+cpSync('examples/weberpenn', join(dir, 'weberpenn'), { recursive: true });
+cpSync('examples/abop', join(dir, 'abop'), { recursive: true });
+writeFileSync(join(dir, 'a11.syl'), a11);
+writeFileSync(join(dir, 'a9.syl'), a9);
+const saves = [
+  ['fig2.6 n=10', join(dir, 'abop/fig2_06_monopodial.syl')],
+  ['aspen', join(dir, 'weberpenn/quaking_aspen.syl')],
+  ['1M modules', join(dir, 'a11.syl')],
+  ['weeping willow', join(dir, 'weberpenn/weeping_willow.syl')],
+];
+
+const serve = (path) => start(sylva, path);
+const browser = await launch(dir);
+const median = (xs) => { const s = [...xs].sort((p, q) => p - q); return s[Math.floor(s.length / 2)]; };
+try {
+  for (const [name, path] of saves) {
+    const { server, url } = await serve(path);
+    const page = await browser.newPage();
+    await page.setViewport({ width: 900, height: 700 });
+    await page.goto(url);
+    await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
+    const text = readFileSync(path, 'utf8');
+    const times = [];
+    for (let r = 0; r < runs; r++) {
+      const n = await page.evaluate(() => window.sylvaView.loads);
+      await new Promise((res) => setTimeout(res, 300)); // an idle page
+      writeFileSync(path + '.new', text + `# saved ${r + 1}\n`);
+      const t0 = Date.now();
+      renameSync(path + '.new', path);
+      await page.waitForFunction((k) => window.sylvaView.loads > k && window.sylvaView.shownAt > 0,
+        { timeout: 300000, polling: 20 }, n);
+      times.push(await page.evaluate(() => window.sylvaView.shownWall) - t0);
+    }
+    const s = await page.evaluate(() => window.sylvaView.stats);
+    const built = ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (s[k + '_time'] || 0), 0) * 1000;
+    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}`);
+    await page.close();
+    await stop(server);
+  }
+  // A slider dragged for 3 s (a new angle every 20 ms): builds drawn per second
+  {
+    const { server, url } = await serve(join(dir, 'a9.syl'));
+    const page = await browser.newPage();
+    await page.setViewport({ width: 900, height: 700 });
+    await page.goto(url);
+    await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
+    const r = await page.evaluate(async () => {
+      const el = document.querySelector('input[type=range][data-param=angle]');
+      if (!el) return null;
+      const v = window.sylvaView, n0 = v.loads, t0 = performance.now();
+      let angle = 20;
+      while (performance.now() - t0 < 3000) {
+        angle = angle >= 40 ? 20 : angle + 0.1;
+        el.value = angle.toFixed(1); el.dispatchEvent(new Event('input', { bubbles: true }));
+        await new Promise((res) => setTimeout(res, 20));
+      }
+      const t1 = performance.now(), n1 = v.loads;
+      return { updates: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules };
+    });
+    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}`);
+    else console.log('slider\tno angle slider');
+    await page.close();
+    await stop(server);
+  }
+} finally {
+  await browser.close();
+  rmSync(dir, { recursive: true, force: true });
+}
