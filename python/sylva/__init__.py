@@ -22,7 +22,8 @@ import numpy as np
 from . import _core
 from .errors import CompileError, LimitError, SylvaError
 
-__all__ = ["load", "compile", "compare", "File", "Model", "String", "Module", "Plant", "Skeleton", "Mesh", "Queries",
+__all__ = ["load", "compile", "compare", "File", "Model", "Extern", "String", "Module", "Plant", "Skeleton", "Mesh",
+           "Queries",
            "Picture", "Param", "Ecosystem", "CompileError", "LimitError", "SylvaError", "__version__"]
 __version__ = _core.VERSION
 
@@ -34,7 +35,7 @@ LEAVES = {"copied": 0, "cards": 1, "instanced": 2, "instanced-cards": 3, "cluste
 _UNTIL = {"mesh": 0, "skeleton": 1, "string": 2}
 # Keyword arguments of the building calls; every other keyword is a model parameter (--set).
 _OPTIONS = {"seed", "threads", "max_modules", "max_memory", "scene", "leaves", "sides", "age", "one_sided",
-            "optimize"}
+            "optimize", "functions"}
 
 
 def load(path: str | os.PathLike, **overrides) -> "File":
@@ -102,6 +103,14 @@ class File:
 
 
 @dataclass(frozen=True)
+class Extern:
+    """A function the model declares `extern name(a, b)`: Python binds it (functions=)."""
+    name: str
+    nparams: int
+    has_default: bool
+
+
+@dataclass(frozen=True)
 class Param:
     """One parameter of a model, as `sylva describe` lists it."""
     name: str
@@ -129,9 +138,35 @@ class Model:
         self.symbols = info["symbols"]
         self.steps = info["steps"]
         self.seed = info["seed"]
+        self.externs = {n: Extern(n, k, d) for n, k, d in self._program.externs()}
 
-    def _prog(self, overrides: Mapping[str, object]):
-        return self._program if not overrides else self.file._compile(self.name, overrides)
+    def _prog(self, overrides: Mapping[str, object], functions=None):
+        """The program for one call; with functions, a fresh one whose externs they answer
+        (bindings belong to the call, not to a program other threads may derive)."""
+        if functions is None:
+            missing = [e for e in self.externs.values() if not e.has_default]
+            if missing:
+                raise ValueError(f"model {self.name} calls extern {_sig(missing[0])}, which has no default: "
+                                 f"bind it with functions={{{missing[0].name!r}: ...}}")
+            return self._program if not overrides else self.file._compile(self.name, overrides)
+        if not isinstance(functions, Mapping):
+            raise TypeError(f"functions is a dict of name: function, not {type(functions).__name__}")
+        for name, fn in functions.items():
+            if not isinstance(name, str):
+                raise TypeError(f"functions' names are str, not {type(name).__name__}")
+            if name not in self.externs:
+                have = ", ".join(_sig(e) for e in self.externs.values()) or "none"
+                raise ValueError(f"model {self.name} declares no extern {name!r} (its externs: {have})")
+            if not callable(fn):
+                raise TypeError(f"functions[{name!r}] is not callable ({type(fn).__name__})")
+        missing = [e for e in self.externs.values() if not e.has_default and e.name not in functions]
+        if missing:
+            raise ValueError(f"model {self.name} calls extern {_sig(missing[0])}, which has no default: "
+                             f"bind it too")
+        prog = self.file._compile(self.name, overrides)
+        for name, fn in functions.items():
+            prog.bind(name, fn)
+        return prog
 
     @property
     def params(self) -> dict[str, Param]:
@@ -151,16 +186,21 @@ class Model:
         return self._program.setting(name)
 
     def derive(self, steps: int | None = None, *, seed: int | None = None, threads: int = 0,
-               max_modules: int = 0, max_memory: int = 0, environment=None, **overrides) -> "String":
+               max_modules: int = 0, max_memory: int = 0, environment=None, functions=None,
+               **overrides) -> "String":
         """Derive the module string (`sylva derive`); steps None: the model's `derive`.
         environment: a function(step, queries) that answers the ?E modules after every step
         (see Queries); None: the stand-alone environment of `sylva derive`.
+        functions: {name: function} for the model's `extern` declarations, called with floats
+        for every evaluation (one thread unless threads says more).
         Ctrl-C stops it between steps with KeyboardInterrupt."""
         if self.kind != "lsystem":
             raise ValueError(f"{self.name} is a {self.kind} model: it has no string; use build()")
         if environment is not None and not callable(environment):
             raise TypeError("environment is a function(step, queries)")
-        prog = self._prog(overrides)
+        prog = self._prog(overrides, functions)
+        if functions and not threads:
+            threads = 1  # the calls take the GIL in turn: more threads only wait for it
         env = None if environment is None else _environment(environment)
         s = prog.derive(-1 if steps is None else _count("steps", steps), seed, threads, max_modules, max_memory,
                         env)
@@ -175,7 +215,10 @@ class Model:
         leaves = opts.pop("leaves", "copied")
         if leaves not in LEAVES:
             raise ValueError(f"leaves is one of {', '.join(LEAVES)}, not {leaves!r}")
-        prog = self._prog(kw)
+        functions = opts.pop("functions", None)
+        prog = self._prog(kw, functions)
+        if functions and not opts.get("threads"):
+            opts["threads"] = 1
         core = prog.build(until=_UNTIL[until], steps=-1 if steps is None else _count("steps", steps),
                           seed=opts.get("seed"), threads=opts.get("threads", 0),
                           max_modules=opts.get("max_modules", 0), max_memory=opts.get("max_memory", 0),
@@ -247,6 +290,10 @@ def _environment(fn):
         q.tips, q.ends = np.asarray(tip).astype(bool), np.asarray(ends)
         fn(step, q)
     return call
+
+
+def _sig(e: Extern) -> str:
+    return f"{e.name}/{e.nparams}"
 
 
 def _count(what: str, v) -> int:
