@@ -19,12 +19,12 @@ from typing import Iterable, Iterator, Mapping
 
 import numpy as np
 
-from . import _core
+from . import _core, _view
 from .errors import CompileError, LimitError, SylvaError
 
 __all__ = ["load", "compile", "compare", "File", "Model", "Extern", "String", "Module", "Plant", "Skeleton", "Mesh",
            "Queries",
-           "Picture", "Param", "Ecosystem", "CompileError", "LimitError", "SylvaError", "__version__"]
+           "Picture", "Param", "Ecosystem", "Snapshot", "CompileError", "LimitError", "SylvaError", "__version__"]
 __version__ = _core.VERSION
 
 _core._set_errors(CompileError, LimitError)
@@ -263,6 +263,60 @@ class Model:
     def _repr_png_(self):
         return self.render(384, 384)._repr_png_()
 
+    def interact(self, steps: int | None = None, *, view: str = "picture", size: int = 384, **kw):
+        """A slider for each numeric parameter of the model (ipywidgets, Debian's
+        python3-ipywidgets); moving one rebuilds the plant with it as an override and shows it:
+        view="picture" its picture (fast), "3d" the 3D view. Keyword arguments are the builds'
+        (seed=, overrides that stay). Returns the panel, with .sliders by name, .plant (the
+        last build) and .overrides (the sliders' values)."""
+        try:
+            import ipywidgets as widgets
+            from IPython.display import clear_output, display
+        except ImportError as e:
+            raise ImportError("interact() needs ipywidgets (Debian: python3-ipywidgets)") from e
+        if view not in ("picture", "3d"):
+            raise ValueError(f"view is 'picture' or '3d', not {view!r}")
+        if self.kind == "ecosystem":
+            raise ValueError(f"{self.name} is an ecosystem block: it has no plant to rebuild")
+        size = _count("size", size)
+        sliders = {}
+        for p in self.params.values():
+            v = p.value
+            if p.type not in ("number", "integer") or p.name in ("seed", "maxdepth") or p.name in kw \
+                    or (steps is not None and p.name in ("derive", "years")) \
+                    or isinstance(v, bool) or not isinstance(v, (int, float)):
+                continue
+            lo, hi = _slider_range(p)
+            if p.type == "integer":
+                s = widgets.IntSlider(value=int(v), min=int(lo), max=int(hi), step=1)
+            else:
+                s = widgets.FloatSlider(value=float(v), min=lo, max=hi, step=(hi - lo) / 100 or 0.01)
+            s.description, s.continuous_update = p.name, False
+            sliders[p.name] = s
+        out = widgets.Output()
+        panel = widgets.VBox(list(sliders.values()) + [out])
+        panel.sliders, panel.plant, panel.overrides = sliders, None, {}
+
+        def update(_=None):
+            panel.overrides = {n: s.value for n, s in sliders.items()}
+            panel.plant = self.build(steps, **{**kw, **panel.overrides})
+            with out:
+                clear_output(wait=True)
+                display(panel.plant.render(size, size) if view == "picture" else panel.plant)
+
+        for s in sliders.values():
+            s.observe(update, names="value")
+        update()
+        return panel
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        """In a notebook: the built plant in the 3D view of `sylva view` (an ecosystem block:
+        its last snapshot), with a picture for frontends without HTML."""
+        if self.kind == "ecosystem":
+            run = self.run()
+            return run.snapshot(max(run._snaps))._repr_mimebundle_() if run._snaps else None
+        return self.build()._repr_mimebundle_()
+
     def __repr__(self) -> str:
         return f"<sylva.Model {self.name} ({self.kind}) of {self.file.path!r}>"
 
@@ -290,6 +344,21 @@ def _environment(fn):
         q.tips, q.ends = np.asarray(tip).astype(bool), np.asarray(ends)
         fn(step, q)
     return call
+
+
+def _slider_range(p: "Param") -> tuple[float, float]:
+    """Around the parameter's value, within its range: [0, 2v] for a positive value; a step
+    count (derive, years) only two more, which is already a lot of growth."""
+    v = float(p.value)
+    span = abs(v) if v else 1.0
+    lo, hi = v - span, v + span
+    if p.name in ("derive", "years"):
+        lo, hi = 0.0, v + 2
+    if p.min is not None:
+        lo = max(lo, float(p.min))
+    if p.max is not None:
+        hi = min(hi, float(p.max))
+    return lo, max(hi, lo)
 
 
 def _sig(e: Extern) -> str:
@@ -411,6 +480,21 @@ class Skeleton:
         """As `sylva skeleton` writes it."""
         return self._plant._core.skeleton_csv()
 
+    def _segments(self):
+        n = self.nodes
+        child = np.flatnonzero(n["parent"] >= 0)
+        return n["pos"][n["parent"][child]], n["pos"][child], n["order"][child]
+
+    def picture(self, size: int = 384) -> "Picture":
+        """The skeleton's segments seen from the front, coloured by branching order."""
+        return _view.lines_png(*self._segments(), size=_count("size", size)).view(Picture)
+
+    def _repr_png_(self) -> bytes:
+        return self.picture()._repr_png_()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        return _view.bundle({"csv": self.csv()}, self._repr_png_(), f"{self._plant.name}: {len(self)} nodes")
+
     def __repr__(self) -> str:
         return f"<sylva.Skeleton: {len(self.nodes)} nodes, {len(self.organs)} organs>"
 
@@ -431,6 +515,9 @@ class Mesh:
     def save(self, path: str | os.PathLike) -> None:
         """Write .glb, .obj or .ply (by the extension) through the writers of `sylva mesh`."""
         self._plant._core.write(os.fspath(path))
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        return self._plant._repr_mimebundle_()
 
     def __repr__(self) -> str:
         return f"<sylva.Mesh: {len(self.vertices)} vertices, {len(self.triangles)} triangles>"
@@ -482,6 +569,14 @@ class Plant:
 
     def _repr_png_(self):
         return self.render(384, 384)._repr_png_()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        """The 3D view of `sylva view` with the plant's .glb inlined, and its picture."""
+        if not self.info["triangles"]:
+            return self.skeleton._repr_mimebundle_()
+        i = self.info
+        return _view.bundle(_view.glb_data(self._core), self._repr_png_(),
+                            f"{self.name}: {i['nodes']} nodes, {i['triangles']} triangles")
 
     def __repr__(self) -> str:
         i = self.info
@@ -548,12 +643,66 @@ class Ecosystem:
         """A snapshot's plants as a structured array (a view of the run's own records)."""
         return self._snaps[year]
 
+    def snapshot(self, year: int) -> "Snapshot":
+        """A snapshot's plants on the terrain; a notebook draws it in 3D."""
+        if year not in self._snaps:
+            raise KeyError(f"no snapshot of year {year!r} (there are {sorted(self._snaps)})")
+        return Snapshot(self, year)
+
     @property
     def terrain(self) -> dict:
         return {k: np.asarray(v) for k, v in self._core.terrain().items()}
 
     def __repr__(self) -> str:
         return f"<sylva.Ecosystem {self.name}: {len(self)} years, snapshots {sorted(self._snaps)}>"
+
+
+class Snapshot:
+    """One year's plants of an ecosystem run on its terrain: .plants (a table), .year; shown in
+    a notebook as a 3D view (every plant a cone as tall as it is, coloured by species)."""
+
+    MAX_SIDE = 160  # terrain cells a side in the view (a larger DEM is sampled)
+
+    def __init__(self, run: Ecosystem, year: int):
+        self.run, self.year = run, year
+        self.plants = run.snapshots[year]
+
+    def _cells(self):
+        info, p = self.run.info, self.run._snaps[self.year]
+        cx = (p["x"] - info["x0"]) / info["cell"]
+        cz = (p["z"] - info["z0"]) / info["cell"]
+        return cx, cz, p
+
+    def picture(self, size: int = 384) -> "Picture":
+        """The snapshot from above: altitude in greys, the plants as dots of their species' colour."""
+        alt = self.run.terrain["altitude"]
+        cx, cz, p = self._cells()
+        return _view.map_png(alt, np.stack([cx, cz], 1), p["species"].astype(np.int64),
+                             size=_count("size", size)).view(Picture)
+
+    def _repr_png_(self) -> bytes:
+        return self.picture()._repr_png_()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        info = self.run.info
+        alt = self.run.terrain["altitude"]
+        nz, nx = alt.shape
+        k = max(1, -(-max(nx, nz) // self.MAX_SIDE))
+        sub = alt[::k, ::k]
+        cx, cz, p = self._cells()
+        iz = np.clip(np.rint(cz).astype(np.int64), 0, nz - 1)
+        ix = np.clip(np.rint(cx).astype(np.int64), 0, nx - 1)
+        y = alt[iz, ix]
+        data = {"terrain": {"nx": int(sub.shape[1]), "nz": int(sub.shape[0]), "cell": float(info["cell"] * k),
+                            "x0": float(info["x0"]), "z0": float(info["z0"]),
+                            "heights": np.round(sub.astype(np.float64), 3).ravel().tolist()},
+                "plants": np.round(np.stack([p["x"], y, p["z"], p["height"], p["species"]], 1).astype(np.float64),
+                                   3).tolist(),
+                "colours": list(_view.SPECIES_COLOURS)}
+        return _view.bundle(data, self._repr_png_(), f"{self.run.name}, year {self.year}: {len(p)} plants")
+
+    def __repr__(self) -> str:
+        return f"<sylva.Snapshot {self.run.name} year {self.year}: {len(self.run._snaps[self.year])} plants>"
 
 
 def compare(*models: Model, seeds: Iterable[int] = (1,), steps: int | None = None, **overrides):
