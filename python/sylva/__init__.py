@@ -74,6 +74,8 @@ class File:
         self._cache: dict[str, Model] = {}
 
     def __getitem__(self, name: str) -> "Model":
+        if not isinstance(name, str):
+            raise TypeError(f"models are named by str, not {type(name).__name__}")
         if name not in self.models:
             close = [m for m in self.models if m.lower() == name.lower()]
             hint = f"; did you mean {close[0]}?" if close else ""
@@ -269,16 +271,16 @@ class Model:
         view="picture" its picture (fast), "3d" the 3D view. Keyword arguments are the builds'
         (seed=, overrides that stay). Returns the panel, with .sliders by name, .plant (the
         last build) and .overrides (the sliders' values)."""
+        size = _count("size", size)
+        if view not in ("picture", "3d"):
+            raise ValueError(f"view is 'picture' or '3d', not {view!r}")
+        if self.kind == "ecosystem":
+            raise ValueError(f"{self.name} is an ecosystem block: it has no plant to rebuild")
         try:
             import ipywidgets as widgets
             from IPython.display import clear_output, display
         except ImportError as e:
             raise ImportError("interact() needs ipywidgets (Debian: python3-ipywidgets)") from e
-        if view not in ("picture", "3d"):
-            raise ValueError(f"view is 'picture' or '3d', not {view!r}")
-        if self.kind == "ecosystem":
-            raise ValueError(f"{self.name} is an ecosystem block: it has no plant to rebuild")
-        size = _count("size", size)
         sliders = {}
         for p in self.params.values():
             v = p.value
