@@ -31,6 +31,10 @@ def copy_web():
     sources = runpy.run_path(os.path.join(HERE, "sylva", "_view.py"))["SOURCES"]
     three = "node_modules/three/"
     files = list(sources.values()) + [three + "package.json", three + "LICENSE"]
+    missing = [rel for rel in files if not os.path.exists(os.path.join(ROOT, "web", rel))]
+    if missing:  # the package still works; notebooks then show pictures, not the 3D view
+        print(f"sylva: no {missing[0]} in web/ (make deps installs three.js): the notebook view is left out")
+        return []
     for rel in files:
         dst = os.path.join(HERE, "sylva", "_web", rel)
         os.makedirs(os.path.dirname(dst), exist_ok=True)
