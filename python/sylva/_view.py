@@ -14,8 +14,9 @@ import uuid
 import numpy as np
 
 _HERE = os.path.dirname(os.path.abspath(__file__))
-# the package's copy (python/setup.py puts it there), else the checkout's web/
-_WEB_DIRS = (os.path.join(_HERE, "_web"), os.path.join(os.path.dirname(os.path.dirname(_HERE)), "web"))
+# the checkout's web/ when the package runs in place (its latest edits), else the package's
+# copy (python/setup.py puts it there)
+_WEB_DIRS = (os.path.join(os.path.dirname(os.path.dirname(_HERE)), "web"), os.path.join(_HERE, "_web"))
 _THREE = "node_modules/three/"
 SOURCES = {  # module name in the loader: path under a web folder
     "three": _THREE + "build/three.module.min.js",
