@@ -91,4 +91,19 @@ queries = q["n"] // RUNS
 per = max(with_env - plain, 0) / max(queries, 1) * 1e6
 print(f"  Python environment: {queries} ?E queries a derivation; {per:.3f} us a query answered in numpy "
       f"(beyond the call per step)  {verdict('<= 1 us', per <= 1)}")
+
+# A Python function called from a rule (`extern`): the derivation with it bound, against the same
+# derivation running the extern's default body (the same arithmetic in the VM), per call.
+calls = sylva.compile("""lsystem Calls {
+  extern f(x) = 2 * x + 1
+  derive 16
+  axiom A(0)
+  A(x) -> A(f(x)) A(x)
+}
+""").model
+vm = min(calls.derive(threads=1).cpu_seconds for _ in range(RUNS))
+bound = min(calls.derive(threads=1, functions={"f": lambda x: 2 * x + 1}).cpu_seconds for _ in range(RUNS))
+ncalls = 2 ** 16 - 1  # one a module A, 2^k of them at step k
+print(f"  Python extern function: {ncalls} calls a derivation; {max(bound - vm, 0) / ncalls * 1e6:.3f} us a call "
+      f"(lambda x: 2 * x + 1, against the default body in the VM)")
 print(f"python targets: {passes} PASS, {misses} MISS")

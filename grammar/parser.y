@@ -176,7 +176,7 @@ static Item item(const char *text, ItemKind kind, SylLoc loc) {
 %token ARROW "->" NEWLINE "end of line" ANDAND "&&" OROR "||" EQ "==" NE "!=" LE "<=" GE ">="
 /* The lexer gives SETTING and the KW_ tokens only as the first word of a statement that is
  * not a rule (grammar/lexer.l, lex_word); anywhere else the same words are WORD, a name. */
-%token KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn"
+%token KW_MODULE "module" KW_CONST "const" KW_PARAM "param" KW_FN "fn" KW_EXTERN "extern"
 %token KW_CURVE "curve" KW_AXIOM "axiom" KW_IGNORE "ignore" KW_CONSIDER "consider"
 %token KW_DECOMPOSE "decompose" KW_INTERPRET "interpret" KW_GROUP "group" KW_USE "use"
 /* A model's keyword (lang/kinds.def), by what its body holds: rules, the scene's lines, or a
@@ -292,6 +292,15 @@ decl: KW_CONST { ps->decl = ST_CONST; } defs
     | KW_FN WORD '(' names_opt ')' '=' expr {
           Stmt *s = add_stmt(ps, ST_FN, @2);
           s->name = $2; s->params = $4; s->has_params = true; s->value = $7;
+      }
+    /* a function the program's user binds (Python, C): its arity, and an optional default body */
+    | KW_EXTERN WORD '(' names_opt ')' {
+          Stmt *s = add_stmt(ps, ST_FN, @2);
+          s->name = $2; s->params = $4; s->has_params = true; s->external = true;
+      }
+    | KW_EXTERN WORD '(' names_opt ')' '=' expr {
+          Stmt *s = add_stmt(ps, ST_FN, @2);
+          s->name = $2; s->params = $4; s->has_params = true; s->value = $7; s->external = true;
       }
     | KW_CURVE WORD '=' points {
           Stmt *s = add_stmt(ps, ST_CURVE, @2);

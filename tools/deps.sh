@@ -11,6 +11,8 @@ PKGS="$PKGS python3-dev python3-venv python3-numpy python3-pytest python3-nbclie
 # fresh CI machine's apt time).
 PKGS="$PKGS blender"
 PKGS="$PKGS libmicrohttpd-dev"  # sylva view's web server (the CLI only)
+PKGS="$PKGS python3-ipywidgets"  # model.interact(): the parameters as sliders in a notebook (docs/python.md)
+PKGS="$PKGS python3-pandas"  # the Python package's tables as DataFrames, against its record arrays (python/tests/test_tables.py)
 # node and npm for the glTF validator, from Debian unless a node is installed already
 # (one from elsewhere, such as NodeSource's, brings its own npm).
 command -v node >/dev/null 2>&1 || PKGS="$PKGS nodejs npm"

@@ -3,7 +3,7 @@
 // parameter a slider. The server is the only source: no request leaves this machine.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { createScene, skeletonFrom } from './scene.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -30,29 +30,10 @@ const state = {
 };
 window.sylvaView = state;
 
-// ---- three.js ----
+// ---- three.js (scene.js, shared with the Python package's notebook view) ----
 const canvas = $('canvas');
-const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
-renderer.shadowMap.enabled = true;
-renderer.shadowMap.type = THREE.PCFSoftShadowMap;
-renderer.shadowMap.autoUpdate = false; // the shadows change with the scene, not with the camera
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0xdce6ef);
-const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 5000);
-camera.position.set(6, 4, 8);
-const controls = new OrbitControls(camera, canvas);
-controls.enableDamping = false;
-const hemi = new THREE.HemisphereLight(0xeef4ff, 0x8a8070, 1.2);
-scene.add(hemi);
-const sun = new THREE.DirectionalLight(0xffffff, 2.2);
-sun.castShadow = true;
-sun.shadow.mapSize.set(1024, 1024);
-scene.add(sun, sun.target);
-const ground = new THREE.Mesh(new THREE.CircleGeometry(1, 64), new THREE.MeshStandardMaterial({ color: 0xa3a39a, roughness: 1 }));
-ground.rotation.x = -Math.PI / 2;
-ground.receiveShadow = true;
-scene.add(ground);
+const view = createScene(canvas, { shadowsOnDemand: true });
+const { renderer, scene, camera, controls, sun, ground } = view;
 
 let root = null;        // the drawn model (a group)
 let lodObject = null;   // THREE.LOD when the file has levels
@@ -81,15 +62,7 @@ window.sylvaProject = (x, y, z) => {
   return { x: r.left + (p.x + 1) / 2 * r.width, y: r.top + (1 - p.y) / 2 * r.height };
 };
 
-function resize() {
-  const w = canvas.clientWidth, h = canvas.clientHeight;
-  if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
-    renderer.setSize(w, h, false);
-    camera.aspect = w / Math.max(h, 1);
-    camera.updateProjectionMatrix();
-    redraw();
-  }
-}
+function resize() { if (view.resize()) redraw(); }
 
 // A frame is drawn when something changed (the camera, a control, a build) or while wind
 // plays, not sixty times a second: an idle page costs nothing (laptops, software WebGL).
@@ -137,36 +110,16 @@ async function getJSON(url) {
 }
 
 // ---- drawing a build ----
-function bounds(obj) {
-  return new THREE.Box3().setFromObject(obj);
-}
+const bounds = view.bounds;
 
 function frame() {
   if (!root) return;
-  const box = bounds(root);
-  const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
-  const r = Math.max(size.length() / 2, 1e-3);
-  const dist = r / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
-  controls.target.copy(centre);
-  camera.position.copy(centre).add(new THREE.Vector3(0.55, 0.35, 0.76).normalize().multiplyScalar(dist));
-  camera.near = dist / 200; camera.far = dist * 50;
-  camera.updateProjectionMatrix();
-  controls.update();
+  view.frame(root);
   redraw();
 }
 
 function placeGroundAndSun() {
-  const box = bounds(root);
-  const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
-  const r = Math.max(size.length() / 2, 1e-3);
-  ground.position.set(centre.x, box.min.y - r * 0.002, centre.z);
-  ground.scale.setScalar(r * 4);
-  sun.position.set(centre.x + r * 1.5, centre.y + r * 3, centre.z + r * 1.0);
-  sun.target.position.copy(centre);
-  const cam = sun.shadow.camera;
-  cam.left = cam.bottom = -r * 1.5; cam.right = cam.top = r * 1.5;
-  cam.near = r * 0.1; cam.far = r * 8;
-  cam.updateProjectionMatrix();
+  view.placeGroundAndSun(root);
 }
 
 // MSFT_lod (what `sylva mesh --lod` writes): three.js's GLTFLoader draws the first level only;
@@ -193,25 +146,6 @@ async function gatherLods(gltf) {
   return lod;
 }
 
-function skeletonFrom(csv) {
-  // id,parent,x,y,z,radius,order,kind (sylva skeleton's CSV): a segment from each node's parent
-  const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
-  const pos = new Map();
-  for (const r of rows) if (r[7] === 'internode' || r[7] === 'root') pos.set(r[0], [+r[2], +r[3], +r[4]]);
-  const p = [], c = [];
-  const colours = [0x5a3a1a, 0xc0392b, 0xe67e22, 0x27ae60, 0x2980b9, 0x8e44ad, 0x16a085, 0x7f8c8d];
-  const col = new THREE.Color();
-  for (const r of rows) {
-    if (r[7] !== 'internode' || !pos.has(r[1])) continue;
-    const a = pos.get(r[1]), b = [+r[2], +r[3], +r[4]];
-    col.setHex(colours[Math.min(+r[6], colours.length - 1)]);
-    p.push(...a, ...b); c.push(col.r, col.g, col.b, col.r, col.g, col.b);
-  }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
-  g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
-  return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
-}
 
 function meshes(fn) {
   if (root) root.traverse((o) => { if (o.isMesh) fn(o); });

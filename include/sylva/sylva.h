@@ -216,6 +216,21 @@ int syl_program_symbol_count(const SylProgram *p);
 const char *syl_program_symbol_name(const SylProgram *p, int sym);
 int syl_program_symbol_find(const SylProgram *p, const char *name); /* -1 if absent */
 double syl_program_setting(const SylProgram *p, const char *name);  /* angle, step, width, derive, widthfactor, lod */
+
+/* Functions a model declares `extern name(a, b)` (docs/language.md §6.5), which its caller
+ * binds: fn(user, args, nargs, out) writes the value to *out and returns 0, or returns
+ * nonzero for a failure (the derivation stops with SYL_EMODEL, the call's place reported).
+ * The derivation's threads may call it at once. An extern left unbound runs its default body
+ * (`extern f(x) = x`); a call to one without a default is an error. Bind before a
+ * derivation of p starts, never while one runs. */
+typedef int (*SylExternFn)(void *user, const double *args, int nargs, double *out);
+int syl_program_extern_count(const SylProgram *p);
+/* Extern i's name, its parameter count in *nparams and whether it has a default body (either
+ * may be NULL); NULL when i is out of range. */
+const char *syl_program_extern(const SylProgram *p, int i, int *nparams, int *has_default);
+/* Bind fn (NULL: unbind) and user to the extern called name: SYL_OK, or SYL_EUSAGE when p
+ * declares no extern of that name. */
+int syl_program_bind_extern(SylProgram *p, const char *name, SylExternFn fn, void *user);
 /* Print modules, constants, parameters, rules and their bytecode. */
 void syl_program_dump(const SylProgram *p, FILE *out);
 

@@ -19,11 +19,12 @@ from typing import Iterable, Iterator, Mapping
 
 import numpy as np
 
-from . import _core
+from . import _core, _view
 from .errors import CompileError, LimitError, SylvaError
 
-__all__ = ["load", "compile", "compare", "File", "Model", "String", "Module", "Plant", "Skeleton", "Mesh", "Queries",
-           "Picture", "Param", "Ecosystem", "CompileError", "LimitError", "SylvaError", "__version__"]
+__all__ = ["load", "compile", "compare", "File", "Model", "Extern", "String", "Module", "Plant", "Skeleton", "Mesh",
+           "Queries",
+           "Picture", "Param", "Ecosystem", "Snapshot", "CompileError", "LimitError", "SylvaError", "__version__"]
 __version__ = _core.VERSION
 
 _core._set_errors(CompileError, LimitError)
@@ -34,7 +35,7 @@ LEAVES = {"copied": 0, "cards": 1, "instanced": 2, "instanced-cards": 3, "cluste
 _UNTIL = {"mesh": 0, "skeleton": 1, "string": 2}
 # Keyword arguments of the building calls; every other keyword is a model parameter (--set).
 _OPTIONS = {"seed", "threads", "max_modules", "max_memory", "scene", "leaves", "sides", "age", "one_sided",
-            "optimize"}
+            "optimize", "functions"}
 
 
 def load(path: str | os.PathLike, **overrides) -> "File":
@@ -73,6 +74,8 @@ class File:
         self._cache: dict[str, Model] = {}
 
     def __getitem__(self, name: str) -> "Model":
+        if not isinstance(name, str):
+            raise TypeError(f"models are named by str, not {type(name).__name__}")
         if name not in self.models:
             close = [m for m in self.models if m.lower() == name.lower()]
             hint = f"; did you mean {close[0]}?" if close else ""
@@ -99,6 +102,14 @@ class File:
 
     def __repr__(self) -> str:
         return f"<sylva.File {self.path!r}: {', '.join(self.models)}>"
+
+
+@dataclass(frozen=True)
+class Extern:
+    """A function the model declares `extern name(a, b)`: Python binds it (functions=)."""
+    name: str
+    nparams: int
+    has_default: bool
 
 
 @dataclass(frozen=True)
@@ -129,9 +140,35 @@ class Model:
         self.symbols = info["symbols"]
         self.steps = info["steps"]
         self.seed = info["seed"]
+        self.externs = {n: Extern(n, k, d) for n, k, d in self._program.externs()}
 
-    def _prog(self, overrides: Mapping[str, object]):
-        return self._program if not overrides else self.file._compile(self.name, overrides)
+    def _prog(self, overrides: Mapping[str, object], functions=None):
+        """The program for one call; with functions, a fresh one whose externs they answer
+        (bindings belong to the call, not to a program other threads may derive)."""
+        if functions is None:
+            missing = [e for e in self.externs.values() if not e.has_default]
+            if missing:
+                raise ValueError(f"model {self.name} calls extern {_sig(missing[0])}, which has no default: "
+                                 f"bind it with functions={{{missing[0].name!r}: ...}}")
+            return self._program if not overrides else self.file._compile(self.name, overrides)
+        if not isinstance(functions, Mapping):
+            raise TypeError(f"functions is a dict of name: function, not {type(functions).__name__}")
+        for name, fn in functions.items():
+            if not isinstance(name, str):
+                raise TypeError(f"functions' names are str, not {type(name).__name__}")
+            if name not in self.externs:
+                have = ", ".join(_sig(e) for e in self.externs.values()) or "none"
+                raise ValueError(f"model {self.name} declares no extern {name!r} (its externs: {have})")
+            if not callable(fn):
+                raise TypeError(f"functions[{name!r}] is not callable ({type(fn).__name__})")
+        missing = [e for e in self.externs.values() if not e.has_default and e.name not in functions]
+        if missing:
+            raise ValueError(f"model {self.name} calls extern {_sig(missing[0])}, which has no default: "
+                             f"bind it too")
+        prog = self.file._compile(self.name, overrides)
+        for name, fn in functions.items():
+            prog.bind(name, fn)
+        return prog
 
     @property
     def params(self) -> dict[str, Param]:
@@ -151,16 +188,21 @@ class Model:
         return self._program.setting(name)
 
     def derive(self, steps: int | None = None, *, seed: int | None = None, threads: int = 0,
-               max_modules: int = 0, max_memory: int = 0, environment=None, **overrides) -> "String":
+               max_modules: int = 0, max_memory: int = 0, environment=None, functions=None,
+               **overrides) -> "String":
         """Derive the module string (`sylva derive`); steps None: the model's `derive`.
         environment: a function(step, queries) that answers the ?E modules after every step
         (see Queries); None: the stand-alone environment of `sylva derive`.
+        functions: {name: function} for the model's `extern` declarations, called with floats
+        for every evaluation (one thread unless threads says more).
         Ctrl-C stops it between steps with KeyboardInterrupt."""
         if self.kind != "lsystem":
             raise ValueError(f"{self.name} is a {self.kind} model: it has no string; use build()")
         if environment is not None and not callable(environment):
             raise TypeError("environment is a function(step, queries)")
-        prog = self._prog(overrides)
+        prog = self._prog(overrides, functions)
+        if functions and not threads:
+            threads = 1  # the calls take the GIL in turn: more threads only wait for it
         env = None if environment is None else _environment(environment)
         s = prog.derive(-1 if steps is None else _count("steps", steps), seed, threads, max_modules, max_memory,
                         env)
@@ -175,7 +217,10 @@ class Model:
         leaves = opts.pop("leaves", "copied")
         if leaves not in LEAVES:
             raise ValueError(f"leaves is one of {', '.join(LEAVES)}, not {leaves!r}")
-        prog = self._prog(kw)
+        functions = opts.pop("functions", None)
+        prog = self._prog(kw, functions)
+        if functions and not opts.get("threads"):
+            opts["threads"] = 1
         core = prog.build(until=_UNTIL[until], steps=-1 if steps is None else _count("steps", steps),
                           seed=opts.get("seed"), threads=opts.get("threads", 0),
                           max_modules=opts.get("max_modules", 0), max_memory=opts.get("max_memory", 0),
@@ -220,6 +265,60 @@ class Model:
     def _repr_png_(self):
         return self.render(384, 384)._repr_png_()
 
+    def interact(self, steps: int | None = None, *, view: str = "picture", size: int = 384, **kw):
+        """A slider for each numeric parameter of the model (ipywidgets, Debian's
+        python3-ipywidgets); moving one rebuilds the plant with it as an override and shows it:
+        view="picture" its picture (fast), "3d" the 3D view. Keyword arguments are the builds'
+        (seed=, overrides that stay). Returns the panel, with .sliders by name, .plant (the
+        last build) and .overrides (the sliders' values)."""
+        size = _count("size", size)
+        if view not in ("picture", "3d"):
+            raise ValueError(f"view is 'picture' or '3d', not {view!r}")
+        if self.kind == "ecosystem":
+            raise ValueError(f"{self.name} is an ecosystem block: it has no plant to rebuild")
+        try:
+            import ipywidgets as widgets
+            from IPython.display import clear_output, display
+        except ImportError as e:
+            raise ImportError("interact() needs ipywidgets (Debian: python3-ipywidgets)") from e
+        sliders = {}
+        for p in self.params.values():
+            v = p.value
+            if p.type not in ("number", "integer") or p.name in ("seed", "maxdepth") or p.name in kw \
+                    or (steps is not None and p.name in ("derive", "years")) \
+                    or isinstance(v, bool) or not isinstance(v, (int, float)):
+                continue
+            lo, hi = _slider_range(p)
+            if p.type == "integer":
+                s = widgets.IntSlider(value=int(v), min=int(lo), max=int(hi), step=1)
+            else:
+                s = widgets.FloatSlider(value=float(v), min=lo, max=hi, step=(hi - lo) / 100 or 0.01)
+            s.description, s.continuous_update = p.name, False
+            sliders[p.name] = s
+        out = widgets.Output()
+        panel = widgets.VBox(list(sliders.values()) + [out])
+        panel.sliders, panel.plant, panel.overrides = sliders, None, {}
+
+        def update(_=None):
+            panel.overrides = {n: s.value for n, s in sliders.items()}
+            panel.plant = self.build(steps, **{**kw, **panel.overrides})
+            with out:
+                clear_output(wait=True)
+                display(panel.plant.render(size, size) if view == "picture" else panel.plant)
+
+        for s in sliders.values():
+            s.observe(update, names="value")
+        update()
+        return panel
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        """In a notebook: the built plant in the 3D view of `sylva view` (an ecosystem block:
+        its last snapshot), with a picture for frontends without HTML."""
+        if self.kind == "ecosystem":
+            run = self.run()
+            return run.snapshot(max(run._snaps))._repr_mimebundle_() if run._snaps else None
+        return self.build()._repr_mimebundle_()
+
     def __repr__(self) -> str:
         return f"<sylva.Model {self.name} ({self.kind}) of {self.file.path!r}>"
 
@@ -247,6 +346,25 @@ def _environment(fn):
         q.tips, q.ends = np.asarray(tip).astype(bool), np.asarray(ends)
         fn(step, q)
     return call
+
+
+def _slider_range(p: "Param") -> tuple[float, float]:
+    """Around the parameter's value, within its range: [0, 2v] for a positive value; a step
+    count (derive, years) only two more, which is already a lot of growth."""
+    v = float(p.value)
+    span = abs(v) if v else 1.0
+    lo, hi = v - span, v + span
+    if p.name in ("derive", "years"):
+        lo, hi = 0.0, v + 2
+    if p.min is not None:
+        lo = max(lo, float(p.min))
+    if p.max is not None:
+        hi = min(hi, float(p.max))
+    return lo, max(hi, lo)
+
+
+def _sig(e: Extern) -> str:
+    return f"{e.name}/{e.nparams}"
 
 
 def _count(what: str, v) -> int:
@@ -364,6 +482,21 @@ class Skeleton:
         """As `sylva skeleton` writes it."""
         return self._plant._core.skeleton_csv()
 
+    def _segments(self):
+        n = self.nodes
+        child = np.flatnonzero(n["parent"] >= 0)
+        return n["pos"][n["parent"][child]], n["pos"][child], n["order"][child]
+
+    def picture(self, size: int = 384) -> "Picture":
+        """The skeleton's segments seen from the front, coloured by branching order."""
+        return _view.lines_png(*self._segments(), size=_count("size", size)).view(Picture)
+
+    def _repr_png_(self) -> bytes:
+        return self.picture()._repr_png_()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        return _view.bundle({"csv": self.csv()}, self._repr_png_(), f"{self._plant.name}: {len(self)} nodes")
+
     def __repr__(self) -> str:
         return f"<sylva.Skeleton: {len(self.nodes)} nodes, {len(self.organs)} organs>"
 
@@ -384,6 +517,9 @@ class Mesh:
     def save(self, path: str | os.PathLike) -> None:
         """Write .glb, .obj or .ply (by the extension) through the writers of `sylva mesh`."""
         self._plant._core.write(os.fspath(path))
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        return self._plant._repr_mimebundle_()
 
     def __repr__(self) -> str:
         return f"<sylva.Mesh: {len(self.vertices)} vertices, {len(self.triangles)} triangles>"
@@ -435,6 +571,14 @@ class Plant:
 
     def _repr_png_(self):
         return self.render(384, 384)._repr_png_()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        """The 3D view of `sylva view` with the plant's .glb inlined, and its picture."""
+        if not self.info["triangles"]:
+            return self.skeleton._repr_mimebundle_()
+        i = self.info
+        return _view.bundle(_view.glb_data(self._core), self._repr_png_(),
+                            f"{self.name}: {i['nodes']} nodes, {i['triangles']} triangles")
 
     def __repr__(self) -> str:
         i = self.info
@@ -501,12 +645,66 @@ class Ecosystem:
         """A snapshot's plants as a structured array (a view of the run's own records)."""
         return self._snaps[year]
 
+    def snapshot(self, year: int) -> "Snapshot":
+        """A snapshot's plants on the terrain; a notebook draws it in 3D."""
+        if year not in self._snaps:
+            raise KeyError(f"no snapshot of year {year!r} (there are {sorted(self._snaps)})")
+        return Snapshot(self, year)
+
     @property
     def terrain(self) -> dict:
         return {k: np.asarray(v) for k, v in self._core.terrain().items()}
 
     def __repr__(self) -> str:
         return f"<sylva.Ecosystem {self.name}: {len(self)} years, snapshots {sorted(self._snaps)}>"
+
+
+class Snapshot:
+    """One year's plants of an ecosystem run on its terrain: .plants (a table), .year; shown in
+    a notebook as a 3D view (every plant a cone as tall as it is, coloured by species)."""
+
+    MAX_SIDE = 160  # terrain cells a side in the view (a larger DEM is sampled)
+
+    def __init__(self, run: Ecosystem, year: int):
+        self.run, self.year = run, year
+        self.plants = run.snapshots[year]
+
+    def _cells(self):
+        info, p = self.run.info, self.run._snaps[self.year]
+        cx = (p["x"] - info["x0"]) / info["cell"]
+        cz = (p["z"] - info["z0"]) / info["cell"]
+        return cx, cz, p
+
+    def picture(self, size: int = 384) -> "Picture":
+        """The snapshot from above: altitude in greys, the plants as dots of their species' colour."""
+        alt = self.run.terrain["altitude"]
+        cx, cz, p = self._cells()
+        return _view.map_png(alt, np.stack([cx, cz], 1), p["species"].astype(np.int64),
+                             size=_count("size", size)).view(Picture)
+
+    def _repr_png_(self) -> bytes:
+        return self.picture()._repr_png_()
+
+    def _repr_mimebundle_(self, include=None, exclude=None):
+        info = self.run.info
+        alt = self.run.terrain["altitude"]
+        nz, nx = alt.shape
+        k = max(1, -(-max(nx, nz) // self.MAX_SIDE))
+        sub = alt[::k, ::k]
+        cx, cz, p = self._cells()
+        iz = np.clip(np.rint(cz).astype(np.int64), 0, nz - 1)
+        ix = np.clip(np.rint(cx).astype(np.int64), 0, nx - 1)
+        y = alt[iz, ix]
+        data = {"terrain": {"nx": int(sub.shape[1]), "nz": int(sub.shape[0]), "cell": float(info["cell"] * k),
+                            "x0": float(info["x0"]), "z0": float(info["z0"]),
+                            "heights": np.round(sub.astype(np.float64), 3).ravel().tolist()},
+                "plants": np.round(np.stack([p["x"], y, p["z"], p["height"], p["species"]], 1).astype(np.float64),
+                                   3).tolist(),
+                "colours": list(_view.SPECIES_COLOURS)}
+        return _view.bundle(data, self._repr_png_(), f"{self.run.name}, year {self.year}: {len(p)} plants")
+
+    def __repr__(self) -> str:
+        return f"<sylva.Snapshot {self.run.name} year {self.year}: {len(self.run._snaps[self.year])} plants>"
 
 
 def compare(*models: Model, seeds: Iterable[int] = (1,), steps: int | None = None, **overrides):

@@ -156,14 +156,69 @@ static PyObject *buffer_new(PyObject *owner, void *data, const char *fmt, Py_ssi
 
 /* ---- Program: one compiled model ---- */
 
-typedef struct {
+/* A Python function bound to an `extern` of the model (syl_program_bind_extern). */
+typedef struct PyExtern {
+    PyObject *fn;
+    struct ProgramObject *owner;
+    const char *name; /* the program's */
+} PyExtern;
+
+typedef struct ProgramObject {
     PyObject_HEAD
     SylProgram *p;
+    PyExtern *externs; /* one per extern of p, fn NULL where nothing is bound */
+    int nexterns;
+    PyObject *et, *ev, *etb; /* the first exception a bound function raised, until the call returns */
 } ProgramObject;
 
 static void program_dealloc(ProgramObject *o) {
     syl_program_free(o->p);
+    for (int i = 0; i < o->nexterns; i++) Py_XDECREF(o->externs[i].fn);
+    free(o->externs);
+    Py_XDECREF(o->et), Py_XDECREF(o->ev), Py_XDECREF(o->etb);
     Py_TYPE(o)->tp_free((PyObject *)o);
+}
+
+/* The call of an extern: the GIL taken, the arguments as floats, the result through float().
+ * After a first exception the later calls fail at once (the derivation is stopping). */
+static int pyextern_call(void *user, const double *args, int nargs, double *out) {
+    PyExtern *x = user;
+    ProgramObject *o = x->owner;
+    PyGILState_STATE g = PyGILState_Ensure();
+    int rc = -1;
+    if (!o->et) {
+        enum { FEW = 8 };
+        PyObject *few[FEW], **argv = nargs <= FEW ? few : PyMem_Malloc(sizeof *argv * (size_t)nargs);
+        int made = 0;
+        if (argv)
+            for (; made < nargs; made++)
+                if (!(argv[made] = PyFloat_FromDouble(args[made]))) break;
+        PyObject *r = argv && made == nargs ? PyObject_Vectorcall(x->fn, argv, (size_t)nargs, NULL) : NULL;
+        for (int i = 0; i < made; i++) Py_DECREF(argv[i]);
+        if (argv != few) PyMem_Free(argv);
+        if (!argv) PyErr_NoMemory();
+        if (r) {
+            double v = PyFloat_AsDouble(r);
+            if (!(v == -1.0 && PyErr_Occurred())) *out = v, rc = 0;
+            else if (PyErr_ExceptionMatches(PyExc_TypeError)) {
+                PyErr_Clear();
+                PyErr_Format(PyExc_TypeError, "the function bound to extern '%s' returned %s, not a number", x->name,
+                             Py_TYPE(r)->tp_name);
+            }
+            Py_DECREF(r);
+        }
+        if (rc) PyErr_Fetch(&o->et, &o->ev, &o->etb);
+    }
+    PyGILState_Release(g);
+    return rc;
+}
+
+/* Raise the exception a bound function raised during the call just made (true), if any. */
+static int extern_raised(ProgramObject *o) {
+    if (!o->et) return 0;
+    PyErr_Restore(o->et, o->ev, o->etb);
+    o->et = o->ev = o->etb = NULL;
+    return 1;
 }
 
 static PyTypeObject ProgramType;
@@ -233,6 +288,7 @@ static PyObject *core_compile(PyObject *self, PyObject *args, PyObject *kw) {
         return NULL;
     }
     po->p = p;
+    po->externs = NULL, po->nexterns = 0, po->et = po->ev = po->etb = NULL;
     PyObject *warn = diag_text(&d);
     if (!warn) {
         Py_DECREF(po);
@@ -314,6 +370,45 @@ static PyObject *program_info(ProgramObject *o, PyObject *unused) {
                          (int)syl_program_kind(p), "kind_name", syl_model_kind_name(syl_program_kind(p)),
                          "steps", syl_program_steps(p), "seed", (unsigned long long)syl_program_seed(p),
                          "symbols", syms, "path", syl_program_path(p));
+}
+
+/* [(name, nparams, has_default)] of the model's extern declarations */
+static PyObject *program_externs(ProgramObject *o, PyObject *unused) {
+    int n = syl_program_extern_count(o->p);
+    PyObject *l = PyList_New(n);
+    for (int i = 0; l && i < n; i++) {
+        int np, def;
+        const char *name = syl_program_extern(o->p, i, &np, &def);
+        PyObject *t = Py_BuildValue("(siO)", name, np, def ? Py_True : Py_False);
+        if (!t) Py_CLEAR(l);
+        else PyList_SET_ITEM(l, i, t);
+    }
+    return l;
+}
+
+/* bind(name, fn): fn (None: nothing) answers the model's `extern name(...)` from now on. */
+static PyObject *program_bind(ProgramObject *o, PyObject *args) {
+    const char *name;
+    PyObject *fn;
+    if (!PyArg_ParseTuple(args, "sO", &name, &fn)) return NULL;
+    if (fn != Py_None && !PyCallable_Check(fn))
+        return PyErr_Format(PyExc_TypeError, "the function bound to '%s' is not callable", name);
+    int n = syl_program_extern_count(o->p);
+    if (!o->externs && n) {
+        o->externs = calloc((size_t)n, sizeof *o->externs);
+        if (!o->externs) return PyErr_NoMemory();
+        o->nexterns = n;
+    }
+    for (int i = 0; i < n; i++) {
+        if (strcmp(syl_program_extern(o->p, i, NULL, NULL), name)) continue;
+        PyExtern *x = &o->externs[i];
+        x->owner = o; /* borrowed: the program outlives its bindings */
+        x->name = syl_program_extern(o->p, i, NULL, NULL);
+        Py_XSETREF(x->fn, fn == Py_None ? NULL : Py_NewRef(fn));
+        syl_program_bind_extern(o->p, name, x->fn ? pyextern_call : NULL, x);
+        Py_RETURN_NONE;
+    }
+    return PyErr_Format(PyExc_ValueError, "model '%s' declares no extern function '%s'", syl_program_name(o->p), name);
 }
 
 static PyObject *program_setting(ProgramObject *o, PyObject *args) {
@@ -548,6 +643,9 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
         return NULL;
     if (envfn != Py_None && !PyCallable_Check(envfn)) return PyErr_Format(PyExc_TypeError, "environment is a function");
     PyEnv env = {.fn = envfn};
+    Py_CLEAR(o->et);
+    Py_CLEAR(o->ev);
+    Py_CLEAR(o->etb); /* a stale one, of a call that failed otherwise */
     Diag d;
     if (diag_open(&d)) return NULL;
     SylDeriveOptions *opt = calloc(1, sizeof *opt); /* the deriver keeps it */
@@ -583,7 +681,7 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
     st = syl_derive_begin(o->p, opt, NULL, &dv);
     Py_END_ALLOW_THREADS
     while (!st && syl_deriver_steps(dv) < target) {
-        if (env.et) break;
+        if (env.et || o->et) break;
         if (PyErr_CheckSignals()) { /* KeyboardInterrupt: free all, let it propagate */
             syl_derive_end(dv, NULL);
             free(opt);
@@ -599,11 +697,12 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
     if (!st) st = st2;
     clock_gettime(CLOCK_MONOTONIC, &t1);
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
-    if (env.et) { /* the environment's own exception, as it raised it */
+    if (env.et || o->et) { /* the environment's or a bound function's own exception, as raised */
         syl_string_free(s);
         free(opt);
         diag_drop(&d);
-        PyErr_Restore(env.et, env.ev, env.etb);
+        if (extern_raised(o) && env.et) PyErr_Clear(); /* both: the environment's is the first */
+        if (env.et) PyErr_Restore(env.et, env.ev, env.etb);
         return NULL;
     }
     uint64_t rewritten = opt->rewritten;
@@ -678,6 +777,9 @@ static PyObject *program_build(ProgramObject *o, PyObject *args, PyObject *kw) {
         diag_drop(&d);
         return NULL;
     }
+    Py_CLEAR(o->et);
+    Py_CLEAR(o->ev);
+    Py_CLEAR(o->etb);
     memset(&pl->pl, 0, sizeof pl->pl);
     int st;
     Py_BEGIN_ALLOW_THREADS
@@ -687,6 +789,10 @@ static PyObject *program_build(ProgramObject *o, PyObject *args, PyObject *kw) {
     Py_END_ALLOW_THREADS
     if (st) {
         Py_DECREF(pl);
+        if (extern_raised(o)) {
+            diag_drop(&d);
+            return NULL;
+        }
         return raise_status(st, &d);
     }
     diag_drop(&d);
@@ -1072,6 +1178,8 @@ static PyTypeObject EcoType = {
 static PyMethodDef program_methods[] = {
     {"info", (PyCFunction)program_info, METH_NOARGS, "name, kind, steps, seed, symbols, path"},
     {"setting", (PyCFunction)program_setting, METH_VARARGS, "setting(name) -> float"},
+    {"externs", (PyCFunction)program_externs, METH_NOARGS, "[(name, nparams, has_default)] of its externs"},
+    {"bind", (PyCFunction)program_bind, METH_VARARGS, "bind(name, fn or None) to an extern"},
     {"describe", (PyCFunction)program_describe, METH_NOARGS, "every model's parameters as JSON (or None)"},
     {"derive", (PyCFunction)(void (*)(void))program_derive, METH_VARARGS | METH_KEYWORDS, "derive the string"},
     {"build", (PyCFunction)(void (*)(void))program_build, METH_VARARGS | METH_KEYWORDS, "build skeleton and mesh"},

@@ -88,7 +88,7 @@ typedef enum {
     ST_DIRECTIVE, /* name args: a line of a grow or scene block */
     ST_CONST,     /* name = value */
     ST_PARAM,     /* name = value, overridable */
-    ST_FN,        /* name(params) = value */
+    ST_FN,        /* name(params) = value; external: `extern`, value NULL without a default */
     ST_CURVE,     /* name = points (args: x0, y0, x1, y1, ...) */
     ST_MODULE,    /* name(params) declaration; nparams < 0 when written without () */
     ST_SETTING,   /* name args */
@@ -112,6 +112,7 @@ typedef struct Stmt {
     ExprList args;
     NameList params;
     bool has_params;
+    bool external; /* ST_FN written `extern` */
     Items items;
     Production rule;
     DirArgs dargs;

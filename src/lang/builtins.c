@@ -57,6 +57,9 @@ const char *syl_eval_error_text(int status) {
     case EVAL_NONFINITE: return "the result is not a finite number";
     case EVAL_DEPTH: return "functions call each other too deeply";
     case EVAL_NEG_WEIGHT: return "a rule's weight is negative";
+    case EVAL_EXTERN: return "the function bound to this extern failed";
+    case EVAL_UNBOUND: return "this extern function has no default and nothing is bound to it (bind one from "
+                              "Python, derive(functions=...), or give it one: extern f(x) = ...)";
     default: return "ok";
     }
 }

@@ -23,6 +23,8 @@ enum {
     EVAL_NONFINITE,
     EVAL_DEPTH,
     EVAL_NEG_WEIGHT,
+    EVAL_EXTERN,  /* the function bound to an extern failed */
+    EVAL_UNBOUND, /* an extern without a default body, and nothing bound to it */
 };
 const char *syl_eval_error_text(int status);
 

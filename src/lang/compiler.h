@@ -58,6 +58,7 @@ typedef struct Compiler {
     bool *sym_used;  /* per symbol: appears in an axiom or a rule */
     int depth;       /* of cc_fold's recursion, through nested function compiles too */
     bool too_deep;   /* that was reported */
+    const char *extern_called; /* an extern function the expression cc_const folds calls */
     int warn;        /* SYL_WARN_*: which warnings to report (all with lint) */
     const FileAst *ast; /* the whole file: its models' names qualify --set names */
 } Compiler;

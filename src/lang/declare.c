@@ -58,6 +58,8 @@ void cc_declare(Compiler *c, Stmt *s, bool top) {
         f->name = arena_strndup(&p->arena, s->name, strlen(s->name));
         f->nparams = s->params.n;
         f->loc = s->loc;
+        f->external = s->external;
+        f->has_default = s->value != NULL;
         f->names = arena_alloc(&p->arena, sizeof *f->names * (size_t)(f->nparams + 1));
         for (int i = 0; i < f->nparams; i++)
             f->names[i] = arena_strndup(&p->arena, s->params.v[i], strlen(s->params.v[i]));

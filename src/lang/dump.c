@@ -190,8 +190,10 @@ void syl_program_dump(const SylProgram *p, FILE *out) {
         for (int i = 0; i < tb->nrules; i++) rule(out, p, &tb->rules[i], i);
     }
     for (int i = 0; i < p->nfns; i++) {
-        fprintf(out, "fn %s/%d:\n", p->fns[i].name, p->fns[i].nparams);
-        expression(out, p, p->fns[i].pc, p->fns[i].names, "    ");
+        const Function *f = &p->fns[i];
+        fprintf(out, "%s %s/%d:%s\n", f->external ? "extern" : "fn", f->name, f->nparams,
+                f->external && !f->has_default ? " (no default)" : "");
+        if (!f->external || f->has_default) expression(out, p, f->pc, f->names, "    ");
     }
     for (int i = 0; i < p->ncurves; i++) {
         fprintf(out, "curve %s:", p->curves[i].name);

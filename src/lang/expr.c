@@ -58,6 +58,7 @@ static Expr *fold_call(Compiler *c, Expr *e, Scope *s, bool *random) { /* throug
         }
         cc_function(c, id);
         if (c->fn_random[id]) *random = true;
+        if (f->external && !c->extern_called) c->extern_called = f->name;
         /* The body's error was reported where it is; there is no code to run for this call. */
         if (f->state == 3) return number(c, e, 0);
         if (all_const && f->state == 2 && !c->fn_random[id]) {
@@ -201,8 +202,13 @@ Expr *cc_fold(Compiler *c, Expr *e, Scope *s, bool *random) {
 bool cc_const(Compiler *c, Expr *e, double *out) {
     bool random = false;
     int before = c->d->errors;
+    c->extern_called = NULL;
     e = cc_fold(c, e, NULL, &random);
     if (c->d->errors != before) return false;
+    if (c->extern_called) {
+        diag_error(c->d, e->loc, "a value known at compile time cannot call extern function '%s'", c->extern_called);
+        return false;
+    }
     if (random) {
         diag_error(c->d, e->loc, "a value known at compile time cannot be random");
         return false;
@@ -337,8 +343,8 @@ void cc_function(Compiler *c, int id) {
     Stmt *st = c->fn_stmts[id];
     Scope s = {.names = st->params.v, .n = st->params.n};
     bool random = false;
-    int32_t pc = cc_expr(c, st->value, &s, &random);
+    int32_t pc = st->value ? cc_expr(c, st->value, &s, &random) : 0; /* an extern without a default: no code */
     f->pc = pc < 0 ? 0 : (uint32_t)pc;
-    c->fn_random[id] = random;
+    c->fn_random[id] = random || f->external; /* what an extern gives is known only when it runs */
     f->state = pc < 0 ? 3 : 2;
 }

@@ -16,7 +16,7 @@
  * lang_kind_token). */
 const SylKeyword syl_keywords[] = {
     {"module", KW_MODULE}, {"const", KW_CONST}, {"param", KW_PARAM},
-    {"fn", KW_FN}, {"curve", KW_CURVE}, {"axiom", KW_AXIOM}, {"ignore", KW_IGNORE},
+    {"fn", KW_FN}, {"extern", KW_EXTERN}, {"curve", KW_CURVE}, {"axiom", KW_AXIOM}, {"ignore", KW_IGNORE},
     {"consider", KW_CONSIDER}, {"decompose", KW_DECOMPOSE}, {"interpret", KW_INTERPRET},
     {"group", KW_GROUP}, {"use", KW_USE}, {NULL, 0},
 };

@@ -1,5 +1,6 @@
-/* Program: everything the compiler produces for one model. Immutable once built; the
- * derivation engine, the disassembler and (later) the turtle read it. */
+/* Program: everything the compiler produces for one model. Immutable once built (but for the
+ * functions its user binds to its `extern` declarations before deriving); the derivation
+ * engine, the disassembler and the turtle read it. */
 #ifndef SYL_PROGRAM_H
 #define SYL_PROGRAM_H
 #include <stdbool.h>
@@ -149,6 +150,11 @@ typedef struct Function {
     uint32_t pc;
     SylLoc loc;
     int state; /* 0 not compiled, 1 compiling, 2 compiled, 3 its body has an error (no code) */
+    /* `extern`: what the program's user binds (syl_program_bind_extern), else the default body
+     * when it has one; never folded at compile time */
+    bool external, has_default;
+    SylExternFn bound;
+    void *bound_user;
 } Function;
 
 typedef struct Curve {

@@ -74,6 +74,14 @@ static int run(const SylProgram *p, uint32_t pc, const double *locals, Rng *rng,
             const Function *f = &p->fns[a];
             if (depth >= MAX_CALL_DEPTH) { status = EVAL_DEPTH; goto fail; }
             sp -= f->nparams - 1;
+            if (f->external && (f->bound || !f->has_default)) {
+                if (!f->bound) { status = EVAL_UNBOUND; goto fail; }
+                double r;
+                if (f->bound(f->bound_user, &st[sp], f->nparams, &r)) { status = EVAL_EXTERN; goto fail; }
+                if (!isfinite(r)) { status = EVAL_NONFINITE; goto fail; }
+                st[sp] = r;
+                break;
+            }
             double r;
             status = run(p, f->pc, &st[sp], rng, &r, fault, depth + 1);
             if (status) return status; /* fault already points into the callee */

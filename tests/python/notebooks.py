@@ -40,7 +40,27 @@ def check(path):
         return f"only {pngs} pictures shown (plots and plants draw PNGs)"
     errors = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
               if o.get("output_type") == "error"]
-    return f"{len(errors)} errors in outputs" if errors else None
+    if errors:
+        return f"{len(errors)} errors in outputs"
+    if os.environ.get("SYLVA_NB_OUT"):  # kept for the browser test of the exported HTML
+        nbformat.write(nb, os.path.join(os.environ["SYLVA_NB_OUT"], os.path.basename(path)))
+    return views(nb)
+
+
+def views(nb):
+    """The 3D views a notebook promises in its metadata (sylva_expect): each an HTML output
+    with three.js inlined (its licence header) beside the picture, the plants' .glb inlined
+    (base64 of its 'glTF' magic), and ipywidgets panels."""
+    want = nb.metadata.get("sylva_expect")
+    if not want:
+        return None
+    datas = [o.get("data", {}) for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])]
+    html = [d for d in datas if 'class="sylva-view"' in d.get("text/html", "")]
+    got = {"views": sum("Three.js Authors" in d["text/html"] and "image/png" in d for d in html),
+           "glb": sum('"glb":"Z2xURg' in d["text/html"] for d in html),
+           "widgets": sum("application/vnd.jupyter.widget-view+json" in d for d in datas)}
+    short = [f"{k} {got[k]} of {n}" for k, n in want.items() if got.get(k, 0) < n]
+    return "missing: " + ", ".join(short) if short else None
 
 
 def main(folder):

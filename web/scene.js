@@ -1,0 +1,93 @@
+// The three.js scene of `sylva view` (app.js) and of the Python package's notebook view
+// (python/sylva/_view.py): renderer, camera and orbit controls, sky light, sun with shadows and a
+// ground disc; framing, the ground and sun fitted to what is drawn, and the skeleton as lines.
+import * as THREE from 'three';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+// opts.shadowsOnDemand: the shadow map is drawn when the caller sets
+// renderer.shadowMap.needsUpdate (sylva view draws frames only when something changed).
+export function createScene(canvas, opts = {}) {
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
+  renderer.shadowMap.enabled = true;
+  renderer.shadowMap.type = THREE.PCFSoftShadowMap;
+  if (opts.shadowsOnDemand) renderer.shadowMap.autoUpdate = false;
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xdce6ef);
+  const camera = new THREE.PerspectiveCamera(40, 1, 0.01, 5000);
+  camera.position.set(6, 4, 8);
+  const controls = new OrbitControls(camera, canvas);
+  controls.enableDamping = false;
+  const hemi = new THREE.HemisphereLight(0xeef4ff, 0x8a8070, 1.2);
+  scene.add(hemi);
+  const sun = new THREE.DirectionalLight(0xffffff, 2.2);
+  sun.castShadow = true;
+  sun.shadow.mapSize.set(1024, 1024);
+  scene.add(sun, sun.target);
+  const ground = new THREE.Mesh(new THREE.CircleGeometry(1, 64), new THREE.MeshStandardMaterial({ color: 0xa3a39a, roughness: 1 }));
+  ground.rotation.x = -Math.PI / 2;
+  ground.receiveShadow = true;
+  scene.add(ground);
+
+  const bounds = (obj) => new THREE.Box3().setFromObject(obj);
+
+  // the camera looks at all of obj from the side and above
+  function frame(obj) {
+    const box = bounds(obj);
+    const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
+    const r = Math.max(size.length() / 2, 1e-3);
+    const dist = r / Math.sin(THREE.MathUtils.degToRad(camera.fov / 2)) * 1.05;
+    controls.target.copy(centre);
+    camera.position.copy(centre).add(new THREE.Vector3(0.55, 0.35, 0.76).normalize().multiplyScalar(dist));
+    camera.near = dist / 200; camera.far = dist * 50;
+    camera.updateProjectionMatrix();
+    controls.update();
+  }
+
+  function placeGroundAndSun(obj) {
+    const box = bounds(obj);
+    const size = box.getSize(new THREE.Vector3()), centre = box.getCenter(new THREE.Vector3());
+    const r = Math.max(size.length() / 2, 1e-3);
+    ground.position.set(centre.x, box.min.y - r * 0.002, centre.z);
+    ground.scale.setScalar(r * 4);
+    sun.position.set(centre.x + r * 1.5, centre.y + r * 3, centre.z + r * 1.0);
+    sun.target.position.copy(centre);
+    const cam = sun.shadow.camera;
+    cam.left = cam.bottom = -r * 1.5; cam.right = cam.top = r * 1.5;
+    cam.near = r * 0.1; cam.far = r * 8;
+    cam.updateProjectionMatrix();
+  }
+
+  function resize() {
+    const w = canvas.clientWidth, h = canvas.clientHeight;
+    if (canvas.width !== Math.floor(w * renderer.getPixelRatio()) || canvas.height !== Math.floor(h * renderer.getPixelRatio())) {
+      renderer.setSize(w, h, false);
+      camera.aspect = w / Math.max(h, 1);
+      camera.updateProjectionMatrix();
+      return true;
+    }
+    return false;
+  }
+
+  return { renderer, scene, camera, controls, hemi, sun, ground, bounds, frame, placeGroundAndSun, resize };
+}
+
+export function skeletonFrom(csv) {
+  // id,parent,x,y,z,radius,order,kind (sylva skeleton's CSV): a segment from each node's parent
+  const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
+  const pos = new Map();
+  for (const r of rows) if (r[7] === 'internode' || r[7] === 'root') pos.set(r[0], [+r[2], +r[3], +r[4]]);
+  const p = [], c = [];
+  const colours = [0x5a3a1a, 0xc0392b, 0xe67e22, 0x27ae60, 0x2980b9, 0x8e44ad, 0x16a085, 0x7f8c8d];
+  const col = new THREE.Color();
+  for (const r of rows) {
+    if (r[7] !== 'internode' || !pos.has(r[1])) continue;
+    const a = pos.get(r[1]), b = [+r[2], +r[3], +r[4]];
+    col.setHex(colours[Math.min(+r[6], colours.length - 1)]);
+    p.push(...a, ...b); c.push(col.r, col.g, col.b, col.r, col.g, col.b);
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
+  g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
+  return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+}
