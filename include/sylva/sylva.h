@@ -45,6 +45,11 @@ typedef struct SylSink {
 /* A stream for any function's diag that hands each diagnostic to sink (copied) as a record;
  * the last one arrives at the latest at fclose. NULL when out of memory. */
 FILE *syl_sink_open(const SylSink *sink);
+/* The heavy libraries (Embree, libxml2, meshoptimizer, OpenMPI) are loaded when first used,
+ * not at start-up. When one cannot be loaded, the library calls this function if the program
+ * defines it (`sylva` reports it and exits with code 5), then aborts: there is no way back
+ * from the middle of a call. soname: the library's file; what: what needs it; why: dlerror. */
+extern void syl_missing_library(const char *soname, const char *what, const char *why) __attribute__((weak));
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
  * line and a caret under the column. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
