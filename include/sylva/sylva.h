@@ -46,10 +46,12 @@ typedef struct SylSink {
  * the last one arrives at the latest at fclose. NULL when out of memory. */
 FILE *syl_sink_open(const SylSink *sink);
 /* The heavy libraries (Embree, libxml2, meshoptimizer, OpenMPI) are loaded when first used,
- * not at start-up. When one cannot be loaded, the library calls this function if the program
- * defines it (`sylva` reports it and exits with code 5), then aborts: there is no way back
- * from the middle of a call. soname: the library's file; what: what needs it; why: dlerror. */
-extern void syl_missing_library(const char *soname, const char *what, const char *why) __attribute__((weak));
+ * not at start-up. When one cannot be loaded, the library calls the handler given here, if
+ * any (`sylva` reports it and exits with code 5), then aborts: there is no way back from the
+ * middle of a call. soname: the library's file; what: what needs it; why: dlerror's reason.
+ * One handler for the process; NULL removes it. */
+typedef void SylMissingLibrary(const char *soname, const char *what, const char *why);
+void syl_set_missing_library(SylMissingLibrary *handler);
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
  * line and a caret under the column. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);

@@ -60,7 +60,7 @@ static void on_signal(int sig) {
 /* A library bound on first use (util/lazylib.h) that cannot be loaded: said once, the
  * temporary files removed, exit code 5 (docs/cli.md). There is no way back from the middle
  * of the call that needed it, and other threads may be running: _exit. */
-void syl_missing_library(const char *soname, const char *what, const char *why) {
+static void missing_library(const char *soname, const char *what, const char *why) {
     fprintf(stderr, "sylva: error: cannot load %s, which %s needs: %s\n", soname, what, why);
     fflush(stderr);
     remove_temps();
@@ -93,6 +93,7 @@ static void help(FILE *out) {
 
 int main(int argc, char **argv) {
     install_signals();
+    syl_set_missing_library(missing_library);
     if (argc < 2) {
         help(stderr);
         return SYL_EUSAGE;

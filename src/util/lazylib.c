@@ -2,13 +2,20 @@
 #include "util/lazylib.h"
 
 #include <dlfcn.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "sylva/sylva.h"
 
+/* The program's handler: process-wide, as the libraries it is about are. */
+static _Atomic(SylMissingLibrary *) on_missing;
+
+void syl_set_missing_library(SylMissingLibrary *handler) { atomic_store(&on_missing, handler); }
+
 static _Noreturn void missing(const LazyLib *lib, const char *why) {
-    if (syl_missing_library) syl_missing_library(lib->soname, lib->what, why ? why : "unknown error");
+    SylMissingLibrary *f = atomic_load(&on_missing);
+    if (f) f(lib->soname, lib->what, why ? why : "unknown error");
     abort();
 }
 

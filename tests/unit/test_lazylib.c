@@ -1,5 +1,5 @@
 /* util/lazylib: a library bound on first use. Its functions come from the library (the same
- * addresses dlsym gives), and one that cannot be loaded reaches syl_missing_library with its
+ * addresses dlsym gives), and one that cannot be loaded reaches the program's handler with its
  * name and the loader's reason: the load never returns with a half-filled table. */
 #include <dlfcn.h>
 #include <setjmp.h>
@@ -12,7 +12,7 @@ static jmp_buf back;
 static char seen_soname[256], seen_what[256];
 static int seen;
 
-void syl_missing_library(const char *soname, const char *what, const char *why) {
+static void missing_library(const char *soname, const char *what, const char *why) {
     snprintf(seen_soname, sizeof seen_soname, "%s", soname);
     snprintf(seen_what, sizeof seen_what, "%s", what);
     seen++;
@@ -64,6 +64,7 @@ static void test_missing_function(void **state) {
 }
 
 int main(void) {
+    syl_set_missing_library(missing_library);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_loads_functions),
         cmocka_unit_test(test_missing_library),
