@@ -125,7 +125,7 @@ $(BUILD)/libsylva-nompi.a: $(sort $(NOMPI_LIB_OBJ)) $(wildcard include/sylva/*.h
 # The command links only what every command needs (libc, libm, libpng): Embree, libxml2,
 # meshoptimizer, OpenMPI and libmicrohttpd are bound on first use (util/lazylib.h), so a
 # command that needs none of them starts without loading them (docs/architecture.md, Start-up).
-BIN_LDLIBS = $(shell pkg-config --libs cglm libpng 2>/dev/null) -lm -pthread
+BIN_LDLIBS = $(shell pkg-config --libs libpng 2>/dev/null) -lm -pthread
 $(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva-internal.a
 	$(CC) $(CFLAGS) -o $@ $^ $(BIN_LDLIBS)
 # The test-only fault switches (src/cli/testfaults.h) are compiled into $(BUILD)/sylva, which
