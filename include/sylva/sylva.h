@@ -49,6 +49,13 @@ typedef struct SylSink {
     void (*report)(void *user, const SylDiagnostic *d); /* the record lives during the call */
     void *user;
 } SylSink;
+/* The heavy libraries (Embree, libxml2, meshoptimizer, OpenMPI) are loaded when first used,
+ * not at start-up. When one cannot be loaded, the library calls the handler given here, if
+ * any (`sylva` reports it and exits with code 5), then aborts: there is no way back from the
+ * middle of a call. soname: the library's file; what: what needs it; why: dlerror's reason.
+ * One handler for the process; NULL removes it. */
+typedef void SylMissingLibrary(const char *soname, const char *what, const char *why);
+void syl_set_missing_library(SylMissingLibrary *handler);
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
  * line and the caret line under it. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);

@@ -2,7 +2,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
-#include <microhttpd.h>
+#include "cli/mhd_lazy.h"
 #include <signal.h>
 #include <spawn.h>
 #include <stdlib.h>

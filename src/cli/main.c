@@ -40,6 +40,11 @@ static void temp_gone(void *ctx, const char *tmp) {
 
 const OutHooks cli_temp_hooks = {temp_created, temp_gone, NULL};
 
+static void remove_temps(void) {
+    for (int i = 0; i < MAX_TEMPS; i++)
+        if (atomic_exchange(&temp_live[i], 0)) unlink(temp_path[i]);
+}
+
 static void on_signal(int sig) {
     /* ffmpeg, which writes into a temporary file, is stopped and waited for before the
      * temporary files go, or it would write its file after they went */
@@ -48,9 +53,18 @@ static void on_signal(int sig) {
         while (waitpid(child, NULL, 0) < 0 && errno == EINTR) {
         }
     errno = saved;
-    for (int i = 0; i < MAX_TEMPS; i++)
-        if (atomic_exchange(&temp_live[i], 0)) unlink(temp_path[i]);
+    remove_temps();
     raise(sig); /* SA_RESETHAND: the default action, once this handler returns */
+}
+
+/* A library bound on first use (util/lazylib.h) that cannot be loaded: said once, the
+ * temporary files removed, exit code 5 (docs/cli.md). There is no way back from the middle
+ * of the call that needed it, and other threads may be running: _exit. */
+static void missing_library(const char *soname, const char *what, const char *why) {
+    fprintf(stderr, "sylva: error: cannot load %s, which %s needs: %s\n", soname, what, why);
+    fflush(stderr);
+    remove_temps();
+    _exit(5);
 }
 
 static void install_signals(void) {
@@ -79,6 +93,7 @@ static void help(FILE *out) {
 
 int main(int argc, char **argv) {
     install_signals();
+    syl_set_missing_library(missing_library);
     if (argc < 2) {
         help(stderr);
         return SYL_EUSAGE;

@@ -7,7 +7,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
-#include <microhttpd.h>
+#include "cli/mhd_lazy.h"
 #include <netinet/in.h>
 #include <arpa/inet.h>
 #include <stdlib.h>

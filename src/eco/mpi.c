@@ -6,7 +6,6 @@
  * points the receiver's mailboxes into what arrived. Counts, gathers and checkpoints go
  * through collectives, so every rank sees the same totals in the same order. */
 #include <limits.h>
-#include <mpi.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -16,6 +15,13 @@
 #include <unistd.h>
 
 #include "eco/eco.h"
+#include "eco/mpi_lazy.h"
+
+LAZY_LIB_GETTER(MpiApi, mpi_api, "libmpi.so.40", "an ecosystem over MPI ranks", true, MPI_FUNCS)
+void *mpi_global(const char *name) {
+    mpi_api();
+    return lazy_lib_sym(&mpi_api_lib, name);
+}
 
 typedef struct Box {
     const SylEcoPlant *p;

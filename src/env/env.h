@@ -20,7 +20,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include <embree3/rtcore.h>
+#include "util/lazy_embree.h"
 
 #include "env/markers.h"
 #include "env/obstacles.h"

@@ -8,7 +8,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-#include <embree3/rtcore.h>
+#include "util/lazy_embree.h"
 
 typedef struct Obstacles {
     RTCScene scene;  /* NULL until committed with triangles */

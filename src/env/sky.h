@@ -8,7 +8,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
-#include <embree3/rtcore.h>
+#include "util/lazy_embree.h"
 
 #include "env/obstacles.h"
 #include "util/rng.h"

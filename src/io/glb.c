@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <meshoptimizer.h>
+#include "util/lazy_meshopt.h"
 
 #include "io/glb.h"
 #include "sylva/lod.h"

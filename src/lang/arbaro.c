@@ -11,8 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include <libxml/parser.h>
-#include <libxml/tree.h>
+#include "util/lazy_xml.h"
 
 #include "lang/arbaro.h"
 

@@ -1,7 +1,7 @@
 /* meshoptimizer over a SylMesh: reorder triangles for the GPU's vertex cache and vertices
  * for fetch locality, and simplify toward a triangle budget. Groups are processed one at a
  * time, so a triangle never changes material. */
-#include <meshoptimizer.h>
+#include "util/lazy_meshopt.h"
 #include <stdbool.h>
 #include <stdint.h>
 #include <stdlib.h>

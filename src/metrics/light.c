@@ -13,7 +13,7 @@
  * inside a branch) is let out instead of counting as stopped. Embree answers the queries;
  * every ray is the same whatever the number of threads, and the hits are counted per point,
  * so the share is too. */
-#include <embree3/rtcore.h>
+#include "util/lazy_embree.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* What one render shares between its set-up (render.c) and its shading (shade.c). */
 #ifndef SYL_RENDER_SCENE_H
 #define SYL_RENDER_SCENE_H
-#include <embree3/rtcore.h>
+#include "util/lazy_embree.h"
 #include <math.h>
 #include <pthread.h>
 #include <stdatomic.h>

@@ -8,7 +8,7 @@
  * divided by what open flat ground gets (the sum of the sun's heights sin α), so 1 is "as
  * sunny as a flat field", a south slope in the north gets more, a shaded hollow less. Direct
  * light only: no atmosphere, no diffuse sky. */
-#include <embree3/rtcore.h>
+#include "util/lazy_embree.h"
 #include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>

@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-#include <libxml/xmlwriter.h>
+#include "util/lazy_xml.h"
 
 #include "sylva/sylva.h"
 
