@@ -3,7 +3,6 @@
  * snapshot a top-down map, a rendered picture of the plants as instances of their species'
  * looks, and (--glb) the scene as a .glb. */
 #include <errno.h>
-#include "util/lazy_xml.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -1,7 +1,7 @@
 /* An ecosystem's pictures (sylva/ecosystem.h): a snapshot's top-down map, its plants as
  * discs in their species' colours over the terrain's hillshade, the tallest on top, with a
  * legend; and the SVG chart of each species' cover over the years. One palette for both. */
-#include <libxml/xmlwriter.h>
+#include "util/lazy_xml.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
