@@ -119,7 +119,8 @@ static void writes_as_its_writer(void **state) {
         unlink(path);
     }
     rmdir(d.path);
-    syl_lod_free(&chain);
+    syl_lod_free(&chain); /* its level 0 is m, the caller's */
+    syl_mesh_free(m);
     syl_skeleton_free(s);
 }
 
