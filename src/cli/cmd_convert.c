@@ -96,13 +96,15 @@ int cmd_convert(int argc, char **argv) {
     int status;
     SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (!p) return status;
-    int nd = 0;
-    const SylDirective *dirs = syl_program_directives(p, &nd);
-    bool loses = syl_program_kind(p) == SYL_MODEL_WEBER || syl_program_kind(p) == SYL_MODEL_GROW; /* pafco keeps them */
-    for (int i = 0; i < nd && loses; i++)
-        if (lang_texture_line(dirs[i].name))
-            program_warning(p, stderr, dirs[i].line, dirs[i].col,
-                            "'%s' is not written: convert does not carry texture lines yet", dirs[i].name);
+    if (syl_program_kind(p) == SYL_MODEL_WEBER || syl_program_kind(p) == SYL_MODEL_GROW) {
+        SylTextureSpec t; /* the texture lines are written as they stand: checked first, as sylva check does */
+        status = lang_textures(p, &t, stderr);
+        lang_textures_free(&t);
+        if (status) {
+            syl_program_free(p);
+            return status;
+        }
+    }
     if (syl_program_kind(p) == SYL_MODEL_GROW && !cfg) {
         status = convert_grow(p, m.path, output, xml);
         syl_program_free(p);
@@ -129,8 +131,8 @@ int cmd_convert(int argc, char **argv) {
             const char *src = strrchr(m.path, '/');
             char note[4200];
             snprintf(note, sizeof note, "%s, converted by `sylva convert`", src ? src + 1 : m.path);
-            status = xml ? weber_write_xml(&w, species_name(p), out.f)
-                         : weber_write_syl(&w, species_name(p), note, out.f);
+            status = xml ? weber_write_xml(&w, species_name(p), p, out.f)
+                         : weber_write_syl(&w, species_name(p), p, note, out.f);
             if (status == SYL_ELIMIT) fprintf(stderr, "sylva convert: error: out of memory\n");
             status = out_close(&out, status);
         }

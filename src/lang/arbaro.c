@@ -14,6 +14,7 @@
 #include "util/lazy_xml.h"
 
 #include "lang/arbaro.h"
+#include "lang/textures.h"
 
 static bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 
@@ -242,6 +243,29 @@ static void stray_text(Reader *r, xmlNodePtr n, const char *where) {
         }
 }
 
+/* <bark file='F' tile='U V'/> or <leaf_texture file='F'/> (lang_textures_xml writes them;
+ * Arbaro's reader skips elements other than <param>): a texture line, the images of
+ * <leaf_texture> elements in a row one line. */
+static void texture_element(Reader *r, Model *m, xmlNodePtr n, SylLoc loc) {
+    const char *el = (const char *)n->name, *file = attr(r, n, "file"), *tile = attr(r, n, "tile");
+    bool bark = !strcmp(el, "bark");
+    if (!file || !*file || (tile && !bark)) {
+        diag_error(r->diag, loc, bark ? "a <bark> needs a file attribute (and may have tile='U V')"
+                                      : "a <%s> needs a file attribute, and no other", el);
+        return;
+    }
+    Stmt *last = m->n ? &m->v[m->n - 1] : NULL, *s = last;
+    if (bark || !last || strcmp(last->name, el) || !last->dargs.n || last->dargs.v[0].kind != DARG_STRING)
+        s = add(r, m, el, loc.first_line, loc.first_column + 1);
+    DirArg *a = VEC_PUSH(r->arena, s->dargs.v, s->dargs.n, s->dargs.cap);
+    *a = (DirArg){.kind = DARG_STRING, .text = file, .loc = loc};
+    if (tile) {
+        a = VEC_PUSH(r->arena, s->dargs.v, s->dargs.n, s->dargs.cap);
+        *a = (DirArg){.kind = DARG_WORD, .text = "tile", .loc = loc};
+        arguments(r, s, tile, loc.first_line, NULL);
+    }
+}
+
 /* <species name='…'> holding <param name='…' value='…'/>: Arbaro's conventions, which grow
  * presets follow (a directive's name and its words). */
 static void species(Reader *r, xmlNodePtr sp, SylModelKind kind) {
@@ -260,6 +284,10 @@ static void species(Reader *r, xmlNodePtr sp, SylModelKind kind) {
         stray_text(r, n, "a <species>");
         if (n->type != XML_ELEMENT_NODE) continue;
         SylLoc loc = element_loc(r, n);
+        if (lang_texture_line((const char *)n->name)) {
+            texture_element(r, m, n, loc);
+            continue;
+        }
         if (!named(n, "param")) {
             char shown[64];
             diag_error(r->diag, loc, "a <species> holds <param name=… value=…/> elements, not <%s>",

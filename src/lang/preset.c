@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "lang/arbaro.h"
+#include "lang/textures.h"
 #include "sylva/grow.h"
 #include "util/number.h"
 #include "util/paramxml.h"
@@ -72,6 +73,7 @@ static int writable(const SylProgram *p, FILE *diag) {
     }
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &ds[i];
+        if (lang_texture_line(d->name)) continue; /* written by lang_textures_xml / _syl */
         for (int j = 0; j < d->nargs; j++)
             if (!strcmp(d->name, "shoot") && d->args[j].kind == SYL_DARG_WORD && !strcmp(d->args[j].text, "rule")) {
                 syl_directive_error(p, diag, d, &d->args[j],
@@ -93,12 +95,14 @@ int syl_grow_write_preset(const SylProgram *p, FILE *out, FILE *diag) {
     int n;
     const SylDirective *ds = syl_program_directives(p, &n);
     for (int i = 0; i < n && !st; i++) {
+        if (lang_texture_line(ds[i].name)) continue;
         const SylDirArg *bad = NULL;
         char *value = line_text(&ds[i], &bad);
         if (!value) st = SYL_ELIMIT;
         else paramxml_param(x, ds[i].name, value);
         free(value);
     }
+    lang_textures_xml(p, x);
     int written = paramxml_end(x, st ? NULL : out);
     return st ? st : written;
 }
@@ -111,12 +115,14 @@ int syl_grow_write_syl(const SylProgram *p, const char *note, FILE *out, FILE *d
     int n;
     const SylDirective *ds = syl_program_directives(p, &n);
     for (int i = 0; i < n; i++) {
+        if (lang_texture_line(ds[i].name)) continue;
         const SylDirArg *bad = NULL;
         char *value = line_text(&ds[i], &bad);
         if (!value) return SYL_ELIMIT;
         fprintf(out, "  %s%s%s\n", ds[i].name, *value ? " " : "", value);
         free(value);
     }
+    lang_textures_syl(p, out);
     fprintf(out, "}\n");
     return ferror(out) ? SYL_EIO : SYL_OK;
 }

@@ -11,6 +11,7 @@
 #include "lang/schema.h"
 #include "lang/textures.h"
 #include "util/file.h"
+#include "util/number.h"
 #include "util/pngin.h"
 
 bool lang_texture_line(const char *name) {
@@ -174,4 +175,49 @@ int lang_textures_check(const SylProgram *p, FILE *diag) {
     int st = lang_textures(p, &spec, diag);
     lang_textures_free(&spec);
     return st != SYL_OK;
+}
+
+static const char *file_text(const SylDirArg *a) { return a->text ? a->text : ""; }
+
+/* A tile count as written: the fewest digits that read back exactly. */
+static void tile_text(const SylDirArg *a, char *buf, size_t n) {
+    number_write(buf, n, a->kind == SYL_DARG_TUPLE && a->nvalues == 1 ? a->values[0] : a->num);
+}
+
+void lang_textures_xml(const SylProgram *p, ParamXml *x) {
+    int n = 0;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    for (int i = 0; i < n; i++) {
+        const SylDirective *d = &ds[i];
+        int role = line_role(p, d->name);
+        if (!role) continue;
+        if (role == 1) {
+            char u[40], v[40], tile[84];
+            if (d->nargs == 4) {
+                tile_text(&d->args[2], u, sizeof u), tile_text(&d->args[3], v, sizeof v);
+                snprintf(tile, sizeof tile, "%s %s", u, v);
+            }
+            const char *attrs[] = {"file", d->nargs ? file_text(&d->args[0]) : "", "tile", d->nargs == 4 ? tile : NULL};
+            paramxml_element(x, "bark", attrs, 2);
+        } else
+            for (int k = 0; k < d->nargs; k++) paramxml_element(x, "leaf_texture", (const char *[]){"file", file_text(&d->args[k])}, 1);
+    }
+}
+
+void lang_textures_syl(const SylProgram *p, FILE *out) {
+    int n = 0;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    for (int i = 0; i < n; i++) {
+        const SylDirective *d = &ds[i];
+        int role = line_role(p, d->name);
+        if (!role) continue;
+        fputs(role == 1 ? "  bark" : "  leaf_texture", out);
+        for (int k = 0; k < (role == 1 && d->nargs ? 1 : d->nargs); k++) fprintf(out, " \"%s\"", file_text(&d->args[k]));
+        if (role == 1 && d->nargs == 4) {
+            char u[40], v[40];
+            tile_text(&d->args[2], u, sizeof u), tile_text(&d->args[3], v, sizeof v);
+            fprintf(out, " tile %s %s", u, v);
+        }
+        fputc('\n', out);
+    }
 }

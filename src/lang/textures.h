@@ -5,6 +5,7 @@
 #include <stdio.h>
 
 #include "sylva/skeleton.h"
+#include "util/paramxml.h"
 
 /* Whether a directive's name is a texture line (which the kinds' own readers leave alone). */
 bool lang_texture_line(const char *name);
@@ -22,6 +23,13 @@ void lang_textures_free(SylTextureSpec *spec);
 /* The check of sylva check (syl_validate): the lines read and their files checked; 1 when
  * there were errors (reported), else 0. */
 int lang_textures_check(const SylProgram *p, FILE *diag);
+
+/* sylva convert's writers (docs/language.md#21-textures-bark-and-leaf-images): p's texture
+ * lines as a species file holds them, <bark file='F' tile='U V'/> and one
+ * <leaf_texture file='F'/> per image (elements Arbaro's reader skips, lang/arbaro.c reads
+ * back), or as .syl lines `  bark "F" tile U V`. The file names go as written. */
+void lang_textures_xml(const SylProgram *p, ParamXml *x);
+void lang_textures_syl(const SylProgram *p, FILE *out);
 
 /* A generator's last step: give its skeleton sk the model's textures (lang_textures, then
  * syl_skeleton_textures with the tree's seed). SYL_OK, or lang_textures' status, or

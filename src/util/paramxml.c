@@ -44,6 +44,13 @@ void paramxml_param(ParamXml *x, const char *name, const char *value) {
     check(x, xmlTextWriterEndElement(x->tw));
 }
 
+void paramxml_element(ParamXml *x, const char *name, const char *const *attrs, int n) {
+    check(x, xmlTextWriterStartElement(x->tw, BAD_CAST name));
+    for (int i = 0; i < n; i++)
+        if (attrs[2 * i + 1]) check(x, xmlTextWriterWriteAttribute(x->tw, BAD_CAST attrs[2 * i], BAD_CAST attrs[2 * i + 1]));
+    check(x, xmlTextWriterEndElement(x->tw));
+}
+
 void paramxml_comment(ParamXml *x, const char *text) { check(x, xmlTextWriterWriteComment(x->tw, BAD_CAST text)); }
 
 int paramxml_end(ParamXml *x, FILE *out) {

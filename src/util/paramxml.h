@@ -11,6 +11,8 @@ typedef struct ParamXml ParamXml;
 ParamXml *paramxml_begin(const char *root, const char *species);
 void paramxml_param(ParamXml *x, const char *name, const char *value);
 void paramxml_comment(ParamXml *x, const char *text);
+/* An empty element <name a='v' …/>: attrs holds n name, value pairs (a NULL value: left out). */
+void paramxml_element(ParamXml *x, const char *name, const char *const *attrs, int n);
 /* Close the document, write it to out (NULL: nowhere, a caller's error) and free x: SYL_OK,
  * SYL_ELIMIT (out of memory in the writer, nothing written) or SYL_EIO. */
 int paramxml_end(ParamXml *x, FILE *out);

@@ -8,6 +8,7 @@
 
 #include "util/number.h"
 #include "util/paramxml.h"
+#include "lang/textures.h"
 #include "weber/xml.h"
 
 /* Arbaro's order (its writer's, as in its species files): the globals, then per level. */
@@ -57,7 +58,7 @@ static const char *global_text(const WeberParams *w, const WeberParamInfo *pi, c
 
 /* ---- XML ---- */
 
-int weber_write_xml(const WeberParams *w, const char *species, FILE *out) {
+int weber_write_xml(const WeberParams *w, const char *species, const SylProgram *tex, FILE *out) {
     ParamXml *x = paramxml_begin("arbaro", species);
     if (!x) return SYL_ELIMIT;
     paramxml_comment(x, " general params ");
@@ -92,6 +93,7 @@ int weber_write_xml(const WeberParams *w, const char *species, FILE *out) {
             paramxml_param(x, name, v);
         }
     }
+    if (tex) lang_textures_xml(tex, x);
     return paramxml_end(x, out);
 }
 
@@ -104,7 +106,7 @@ static bool is_name(const char *s) {
     return true;
 }
 
-int weber_write_syl(const WeberParams *w, const char *species, const char *note, FILE *out) {
+int weber_write_syl(const WeberParams *w, const char *species, const SylProgram *tex, const char *note, FILE *out) {
     char name[256], v[64];
     size_t n = 0;
     for (const char *s = species; *s && n + 2 < sizeof name; s++)
@@ -140,6 +142,7 @@ int weber_write_syl(const WeberParams *w, const char *species, const char *note,
         }
         fputc('\n', out);
     }
+    if (tex) lang_textures_syl(tex, out);
     fputs("}\n", out);
     return ferror(out) ? SYL_EIO : SYL_OK;
 }

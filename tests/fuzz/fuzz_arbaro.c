@@ -17,8 +17,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         syl_program_dump(p, diag);
         WeberParams w;
         if (syl_program_kind(p) == SYL_MODEL_WEBER && weber_params_read(p, &w, diag) == 0) {
-            weber_write_xml(&w, syl_program_name(p), diag);
-            weber_write_syl(&w, syl_program_name(p), "fuzz", diag);
+            weber_write_xml(&w, syl_program_name(p), p, diag);
+            weber_write_syl(&w, syl_program_name(p), p, "fuzz", diag);
         }
         syl_program_free(p);
     }
