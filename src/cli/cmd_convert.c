@@ -28,7 +28,9 @@ const CliCommand cli_convert_command = {
              "*.xml (<grow-presets>) or a `grow` block for *.syl: each directive with its values\n"
              "worked out (params and expressions), read back to the same bytes.\n"
              "A pafco model (a `pafco` block, or a Pafčo file) is written as a Pafčo file\n"
-             "(PARAMETER=value) for *.cfg, as a `pafco` block for *.syl.\n",
+             "(PARAMETER=value) for *.cfg, as a `pafco` block for *.syl.\n"
+             "The texture lines (bark, leaf_texture) are written too, their images read first; in\n"
+             "XML as <bark file=… tile=…/> and <leaf_texture file=…/>, which Arbaro skips.\n",
     .options = (const CliUse[]){
         {.option = CLI_OPT_OUTPUT, .help = "write to FILE (required): Arbaro XML for *.xml, a Pafčo file\n"
                                            "for *.cfg, a weber or pafco block for *.syl"},
