@@ -184,40 +184,33 @@ static void tile_text(const SylDirArg *a, char *buf, size_t n) {
     number_write(buf, n, a->kind == SYL_DARG_TUPLE && a->nvalues == 1 ? a->values[0] : a->num);
 }
 
-void lang_textures_xml(const SylProgram *p, ParamXml *x) {
+/* p's texture lines into x (XML) or else out (.syl). */
+static void write_lines(const SylProgram *p, ParamXml *x, FILE *out) {
     int n = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
     for (int i = 0; i < n; i++) {
         const SylDirective *d = &ds[i];
         int role = line_role(p, d->name);
         if (!role) continue;
-        if (role == 1) {
-            char u[40], v[40], tile[84];
-            if (d->nargs == 4) {
-                tile_text(&d->args[2], u, sizeof u), tile_text(&d->args[3], v, sizeof v);
-                snprintf(tile, sizeof tile, "%s %s", u, v);
-            }
-            const char *attrs[] = {"file", d->nargs ? file_text(&d->args[0]) : "", "tile", d->nargs == 4 ? tile : NULL};
+        char u[40], v[40], tile[84] = "";
+        if (role == 1 && d->nargs == 4) {
+            tile_text(&d->args[2], u, sizeof u), tile_text(&d->args[3], v, sizeof v);
+            snprintf(tile, sizeof tile, "%s %s", u, v);
+        }
+        int files = role == 1 && d->nargs ? 1 : d->nargs;
+        if (x && role == 1) {
+            const char *attrs[] = {"file", files ? file_text(&d->args[0]) : "", "tile", *tile ? tile : NULL};
             paramxml_element(x, "bark", attrs, 2);
-        } else
-            for (int k = 0; k < d->nargs; k++) paramxml_element(x, "leaf_texture", (const char *[]){"file", file_text(&d->args[k])}, 1);
+        } else if (x)
+            for (int k = 0; k < files; k++) paramxml_element(x, "leaf_texture", (const char *[]){"file", file_text(&d->args[k])}, 1);
+        else {
+            fputs(role == 1 ? "  bark" : "  leaf_texture", out);
+            for (int k = 0; k < files; k++) fprintf(out, " \"%s\"", file_text(&d->args[k]));
+            fprintf(out, "%s%s\n", *tile ? " tile " : "", tile);
+        }
     }
 }
 
-void lang_textures_syl(const SylProgram *p, FILE *out) {
-    int n = 0;
-    const SylDirective *ds = syl_program_directives(p, &n);
-    for (int i = 0; i < n; i++) {
-        const SylDirective *d = &ds[i];
-        int role = line_role(p, d->name);
-        if (!role) continue;
-        fputs(role == 1 ? "  bark" : "  leaf_texture", out);
-        for (int k = 0; k < (role == 1 && d->nargs ? 1 : d->nargs); k++) fprintf(out, " \"%s\"", file_text(&d->args[k]));
-        if (role == 1 && d->nargs == 4) {
-            char u[40], v[40];
-            tile_text(&d->args[2], u, sizeof u), tile_text(&d->args[3], v, sizeof v);
-            fprintf(out, " tile %s %s", u, v);
-        }
-        fputc('\n', out);
-    }
-}
+void lang_textures_xml(const SylProgram *p, ParamXml *x) { write_lines(p, x, NULL); }
+
+void lang_textures_syl(const SylProgram *p, FILE *out) { write_lines(p, NULL, out); }
