@@ -62,20 +62,8 @@ static float noise_at(float x, float y, int px, int py, uint32_t seed, const uin
 
 float noise2(float x, float y, int px, int py, uint32_t seed) { return noise_at(x, y, px, py, seed, NULL); }
 
-float fbm2(float x, float y, int fx, int fy, float p, int octaves, uint32_t seed) {
-    float sum = 0, norm = 0, a = 1;
-    for (int i = 0; i < octaves; i++) {
-        sum += a * noise_at(x * (float)fx, y * (float)fy, fx, fy, seed + (uint32_t)i * 101u, NULL);
-        norm += a;
-        a *= p;
-        fx *= 2;
-        fy *= 2;
-    }
-    return norm > 0 ? sum / norm : 0;
-}
-
-/* A texture asks one fbm at every pixel: its lattices' gradients hashed once, not four times a
- * pixel and octave (the same indices, so the same values to the bit). */
+/* A texture asks one fbm at every pixel: its lattices' gradients are hashed once, not four
+ * times a pixel and octave (the same indices, so the same values to the bit). */
 void fbm_init(Fbm *f, int fx, int fy, float p, int octaves, uint32_t seed) {
     *f = (Fbm){.fx = fx, .fy = fy, .p = p, .octaves = octaves < FBM_OCTAVES ? octaves : FBM_OCTAVES, .seed = seed};
     for (int i = 0; i < f->octaves; i++) {

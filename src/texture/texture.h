@@ -13,11 +13,9 @@
 float noise2(float x, float y, int px, int py, uint32_t seed);
 /* Sum of octaves after Picek (2.16)-(2.18): octave i samples at frequency f * 2^i with
  * amplitude p^i; x, y in 0..1 tile when f is a whole number. Divided by the sum of the
- * amplitudes, so also about -1..1. */
-float fbm2(float x, float y, int fx, int fy, float p, int octaves, uint32_t seed);
-/* fbm2's parameters with each periodic octave's gradients hashed once (for a texture's every
- * pixel); fbm_at(f, x, y) == fbm2(x, y, fx, fy, p, octaves, seed) to the bit. Without memory
- * for a table an octave is hashed as fbm2 does. At most FBM_OCTAVES octaves. */
+ * amplitudes, so also about -1..1. fbm_init hashes each periodic octave's gradients once (a
+ * texture asks at every pixel); without memory for a table an octave is hashed at each call,
+ * to the same values. At most FBM_OCTAVES octaves. */
 enum { FBM_OCTAVES = 8 };
 typedef struct Fbm {
     int fx, fy, octaves;
