@@ -10,7 +10,7 @@
 #include "sylva/skeleton.h"
 
 struct SylSkeletonStore {
-    size_t node_cap, organ_cap, poly_cap, vert_cap;
+    size_t node_cap, organ_cap, poly_cap, vert_cap, part_cap;
     SylBudget *budget; /* counted against until the skeleton is freed (NULL: none) */
     uint64_t charged;
 };
