@@ -118,7 +118,41 @@ void io_free(IoBuf *b) {
     *b = (IoBuf){0};
 }
 
-char *io_float(char *p, float x, int sig) { return numtext_short(p, x, sig); }
+static const double pow10[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+
+char *io_float(char *p, float xf, int sig) {
+    double x = isfinite(xf) ? xf : 0;
+    if (x == 0) {
+        *p++ = '0';
+        return p;
+    }
+    if (x < 0) *p++ = '-', x = -x;
+    if (x >= 1e9 || x < 1e-4) return numtext_g(p, x, sig);
+    int e = 0; /* digits before the point, minus one */
+    while (e < 9 && x >= pow10[e + 1]) e++;
+    while (e > -4 && x < (e >= 0 ? pow10[e] : 1.0 / pow10[-e])) e--;
+    int dec = sig - 1 - e;
+    if (dec < 0) dec = 0;
+    if (dec > 9) dec = 9;
+    double y = x * pow10[dec]; /* exact: a float's 24 bits times 5^dec < 2^21 (docs/mesh.md#number-text) */
+    uint64_t v = (uint64_t)y, scale = (uint64_t)pow10[dec];
+    if (y - (double)v >= 0.5) v++; /* llround's half away from zero, without the call */
+    uint64_t ip = v / scale, fp = v % scale;
+    char tmp[24];
+    int n = 0;
+    do tmp[n++] = (char)('0' + ip % 10), ip /= 10;
+    while (ip);
+    while (n) *p++ = tmp[--n];
+    if (fp) {
+        *p++ = '.';
+        for (int i = dec - 1; i >= 0; i--) tmp[i] = (char)('0' + fp % 10), fp /= 10;
+        int last = dec;
+        while (last > 0 && tmp[last - 1] == '0') last--;
+        memcpy(p, tmp, (size_t)last);
+        p += last;
+    }
+    return p;
+}
 
 const SylImage *io_image(const SylMesh *m, int material) {
     const SylMaterial *mt = &m->materials[material];

@@ -20,25 +20,15 @@ static const char pairs[] = "000102030405060708091011121314151617181920212223242
                             "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
                             "8081828384858687888990919293949596979899";
 
-/* v's digits, written backwards so they end at end; returns how many. */
-static int digits_before(char *end, uint64_t v) {
-    char *q = end;
-    while (v >= 1u << 31) {
-        unsigned r = (unsigned)(v % 100);
+/* Exactly n digits of v (zero-padded on the left) so that they end at end. Written where
+ * they stay: copying digits once more costs a stalled load (store forwarding). */
+static void put_digits(char *end, uint32_t v, int n) {
+    for (; n >= 2; n -= 2) {
+        end -= 2;
+        memcpy(end, pairs + 2 * (v % 100), 2);
         v /= 100;
-        q -= 2;
-        memcpy(q, pairs + 2 * r, 2);
     }
-    uint32_t w = (uint32_t)v; /* 32-bit division: cheaper */
-    while (w >= 100) {
-        unsigned r = w % 100;
-        w /= 100;
-        q -= 2;
-        memcpy(q, pairs + 2 * r, 2);
-    }
-    if (w >= 10) q -= 2, memcpy(q, pairs + 2 * w, 2);
-    else *--q = (char)('0' + w);
-    return (int)(end - q);
+    if (n) end[-1] = (char)('0' + v % 10);
 }
 
 /* floor(log10(x)) or one less, from x's binary exponent (x a positive normal double). */
@@ -105,17 +95,14 @@ char *numtext_g(char *p, double x, int prec) {
     uint64_t n;
     int X;
     if (!round_sig(x, prec, &n, &X)) return p + sprintf(p, "%.*g", prec, x);
-    char d[24];
-    digits_before(d + prec, n); /* exactly prec digits */
+    uint32_t q = (uint32_t)n;
     int nd = prec;
-    while (nd > 1 && d[nd - 1] == '0') nd--; /* %g drops trailing zeros */
-    if (X < -4 || X >= prec) {               /* d.ddde+XX */
-        *p++ = d[0];
-        if (nd > 1) {
-            *p++ = '.';
-            memcpy(p, d + 1, (size_t)nd - 1);
-            p += nd - 1;
-        }
+    while (nd > 1 && q % 10 == 0) q /= 10, nd--; /* %g drops trailing zeros */
+    if (X < -4 || X >= prec) {                   /* d.ddde+XX */
+        put_digits(p + 1 + nd, q, nd);           /* then the first digit moved before the point */
+        p[0] = p[1];
+        if (nd > 1) p[1] = '.', p += nd + 1;
+        else p += 1;
         *p++ = 'e';
         *p++ = X < 0 ? '-' : '+';
         unsigned a = (unsigned)(X < 0 ? -X : X);
@@ -126,60 +113,17 @@ char *numtext_g(char *p, double x, int prec) {
     if (X < 0) { /* 0.000ddd */
         *p++ = '0', *p++ = '.';
         for (int i = -1; i > X; i--) *p++ = '0';
-        memcpy(p, d, (size_t)nd);
+        put_digits(p + nd, q, nd);
         return p + nd;
     }
     int whole = X + 1; /* <= prec */
-    memcpy(p, d, (size_t)whole);
-    p += whole;
-    if (nd > whole) {
-        *p++ = '.';
-        memcpy(p, d + whole, (size_t)(nd - whole));
-        p += nd - whole;
+    if (nd <= whole) { /* a whole number: the zeros dropped come back */
+        put_digits(p + nd, q, nd);
+        for (int i = nd; i < whole; i++) p[i] = '0';
+        return p + whole;
     }
-    return p;
-}
-
-/* thresholds[e + 4]: the doubles nearest 10^e, e = -4..9 (what the short form compares with) */
-static const double thresholds[] = {1e-4, 1e-3, 1e-2, 1e-1, 1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
-
-char *numtext_short(char *p, float xf, int sig) {
-    double x = xf;
-    if (!(x != 0 && isfinite(x))) {
-        *p++ = '0';
-        return p;
-    }
-    if (x < 0) *p++ = '-', x = -x;
-    if (x >= 1e9 || x < 1e-4) return numtext_g(p, x, sig);
-    /* e: digits before the point minus one, the largest e in [-4, 8] with x >= 10^e */
-    int e = decimal_exponent_guess(x);
-    if (e < -4) e = -4;
-    if (e > 8) e = 8;
-    while (e < 8 && x >= thresholds[e + 5]) e++;
-    while (e > -4 && x < thresholds[e + 4]) e--;
-    int dec = sig - 1 - e;
-    if (dec < 0) dec = 0;
-    if (dec > 9) dec = 9;
-    double y = x * pow10d[dec]; /* exact (see the top): below 1e10 */
-    uint64_t v = (uint64_t)(int64_t)y;
-    if (y - (double)v >= 0.5) v++; /* half away from zero */
-    /* digits right-aligned at d + 24, zero-padded to dec + 1; fixed-size copies out (the
-     * caller's NUMTEXT_ROOM), then the end moved back over what is not part of the text */
-    char d[48];
-    char *end = d + 24;
-    int n = digits_before(end, v);
-    memset(end - 12, '0', 12 - (n < 12 ? n : 12)); /* padding for values below 1 */
-    if (n < dec + 1) n = dec + 1;
-    const char *s = end - n;
-    int whole = n - dec;
-    memcpy(p, s, 16); /* whole <= 10 */
-    p += whole;
-    int frac = dec;
-    while (frac > 0 && s[whole + frac - 1] == '0') frac--;
-    if (frac) {
-        *p = '.';
-        memcpy(p + 1, s + whole, 16); /* frac <= 9 */
-        p += frac + 1;
-    }
-    return p;
+    put_digits(p + nd, q, nd); /* then the fraction moved one place for the point */
+    for (int i = nd; i > whole; i--) p[i] = p[i - 1];
+    p[whole] = '.';
+    return p + nd + 1;
 }

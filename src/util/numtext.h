@@ -1,4 +1,4 @@
-/* Numbers written as text at the speed of the disk: the writers' two formats, exact and
+/* Numbers written as text at the speed of the disk: printf's %.Ng of a float, exact and
  * without printf (docs/mesh.md#number-text). */
 #ifndef SYL_UTIL_NUMTEXT_H
 #define SYL_UTIL_NUMTEXT_H
@@ -11,11 +11,5 @@
  * is a float's value and 1 <= prec <= 9, the writers' case; otherwise printf itself.
  * Writes no terminating zero; returns the end. p needs NUMTEXT_ROOM bytes. */
 char *numtext_g(char *p, double x, int prec);
-
-/* The OBJ writer's short form: x with sig (1..9) significant digits and no exponent
- * ("0.25", "-3", "1234567"), the last digit rounded half away from zero; "%.*g" past
- * [1e-4, 1e9); 0 for -0 and non-finite values. Returns the end. p needs NUMTEXT_ROOM bytes:
- * the digits go out in fixed-size copies, and the bytes after the end are scratch. */
-char *numtext_short(char *p, float x, int sig);
 
 #endif

@@ -1,9 +1,11 @@
-/* Number text (util/numtext): byte for byte what printf writes, and every number reads back
- * to the value it should (strtod/strtof), over edge values and millions of random floats. */
+/* Number text (util/numtext, and the OBJ writer's io_float): byte for byte what printf writes,
+ * and every number reads back to the value it should (strtod/strtof), over edge values and
+ * random floats. */
 #include <float.h>
 #include <math.h>
 
 #include "unit.h"
+#include "io/io_internal.h"
 #include "util/numtext.h"
 #include "util/rng.h"
 
@@ -87,13 +89,13 @@ static void g9_reads_back_every_float(void **state) {
     }
 }
 
-/* The short form, checked against the definition rather than the code: the text reads back
+/* The OBJ writer's short form (io_float), checked against the definition rather than the code: the text reads back
  * within half a unit of its last place (10^(e - sig + 1), e = floor(log10 |x|), whole numbers
  * at least 1), never further, a tie going away from zero; no exponent in [1e-4, 1e9); zero
  * for -0, NaN and the infinities. */
 static void check_short(float x, int sig) {
     char s[64];
-    *numtext_short(s, x, sig) = 0;
+    *io_float(s, x, sig) = 0;
     if (!isfinite(x) || x == 0) {
         assert_string_equal(s, "0");
         return;
