@@ -127,3 +127,13 @@ char *numtext_g(char *p, double x, int prec) {
     p[whole] = '.';
     return p + nd + 1;
 }
+
+char *numtext_int(char *p, long long v) {
+    unsigned long long u = (unsigned long long)v;
+    if (v < 0) *p++ = '-', u = 0 - u;
+    char d[24], *end = d + sizeof d, *q = end;
+    do *--q = (char)('0' + u % 10), u /= 10;
+    while (u);
+    memcpy(p, q, (size_t)(end - q));
+    return p + (end - q);
+}

@@ -12,4 +12,7 @@
  * Writes no terminating zero; returns the end. p needs NUMTEXT_ROOM bytes. */
 char *numtext_g(char *p, double x, int prec);
 
+/* v in decimal, as "%lld" writes it; returns the end (at most 20 bytes, no terminating zero). */
+char *numtext_int(char *p, long long v);
+
 #endif
