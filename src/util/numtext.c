@@ -16,20 +16,9 @@
 
 static const double pow10d[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12};
 static const uint64_t pow10u[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
-static const char pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
-                            "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
-                            "8081828384858687888990919293949596979899";
-
-/* Exactly n digits of v (zero-padded on the left) so that they end at end. Written where
- * they stay: copying digits once more costs a stalled load (store forwarding). */
-static void put_digits(char *end, uint32_t v, int n) {
-    for (; n >= 2; n -= 2) {
-        end -= 2;
-        memcpy(end, pairs + 2 * (v % 100), 2);
-        v /= 100;
-    }
-    if (n) end[-1] = (char)('0' + v % 10);
-}
+const char numtext_pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                             "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                             "8081828384858687888990919293949596979899";
 
 /* floor(log10(x)) or one less, from x's binary exponent (x a positive normal double). */
 static int decimal_exponent_guess(double x) {
@@ -99,7 +88,7 @@ char *numtext_g(char *p, double x, int prec) {
     int nd = prec;
     while (nd > 1 && q % 10 == 0) q /= 10, nd--; /* %g drops trailing zeros */
     if (X < -4 || X >= prec) {                   /* d.ddde+XX */
-        put_digits(p + 1 + nd, q, nd);           /* then the first digit moved before the point */
+        numtext_digits(p + 1 + nd, q, nd);           /* then the first digit moved before the point */
         p[0] = p[1];
         if (nd > 1) p[1] = '.', p += nd + 1;
         else p += 1;
@@ -107,22 +96,22 @@ char *numtext_g(char *p, double x, int prec) {
         *p++ = X < 0 ? '-' : '+';
         unsigned a = (unsigned)(X < 0 ? -X : X);
         if (a >= 100) *p++ = (char)('0' + a / 100), a %= 100;
-        memcpy(p, pairs + 2 * a, 2);
+        memcpy(p, numtext_pairs + 2 * a, 2);
         return p + 2;
     }
     if (X < 0) { /* 0.000ddd */
         *p++ = '0', *p++ = '.';
         for (int i = -1; i > X; i--) *p++ = '0';
-        put_digits(p + nd, q, nd);
+        numtext_digits(p + nd, q, nd);
         return p + nd;
     }
     int whole = X + 1; /* <= prec */
     if (nd <= whole) { /* a whole number: the zeros dropped come back */
-        put_digits(p + nd, q, nd);
+        numtext_digits(p + nd, q, nd);
         for (int i = nd; i < whole; i++) p[i] = '0';
         return p + whole;
     }
-    put_digits(p + nd, q, nd); /* then the fraction moved one place for the point */
+    numtext_digits(p + nd, q, nd); /* then the fraction moved one place for the point */
     for (int i = nd; i > whole; i--) p[i] = p[i - 1];
     p[whole] = '.';
     return p + nd + 1;

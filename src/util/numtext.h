@@ -6,6 +6,22 @@
 /* The room a number's text may use at p (the text itself is at most 32 bytes) */
 #define NUMTEXT_ROOM 48
 
+#include <stdint.h>
+#include <string.h>
+
+extern const char numtext_pairs[200]; /* "00" "01" ... "99" */
+
+/* Exactly n digits of v (zero-padded on the left) so that they end at end, two at a time.
+ * Written where they stay: copying digits once more costs a stalled load (store forwarding). */
+static inline void numtext_digits(char *end, uint32_t v, int n) {
+    for (; n >= 2; n -= 2) {
+        end -= 2;
+        memcpy(end, numtext_pairs + 2 * (v % 100), 2);
+        v /= 100;
+    }
+    if (n) end[-1] = (char)('0' + v % 10);
+}
+
 /* Exactly what sprintf(p, "%.*g", prec, x) writes (glibc: the exact value rounded to prec
  * significant digits, ties to even; "-0", "nan", "inf" as printf spells them). Fast when x
  * is a float's value and 1 <= prec <= 9, the writers' case; otherwise printf itself.
