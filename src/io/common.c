@@ -143,8 +143,7 @@ char *io_float(char *p, float xf, int sig) {
     if (y - (double)v >= 0.5) v++; /* half away from zero, as llround */
     uint32_t ip = (uint32_t)x, fp = v - ip * scale;
     if (fp >= scale) ip++, fp -= scale; /* 1.9999999 -> 2 */
-    int n = 1;
-    while (n < 10 && ip >= (uint32_t)pow10[n]) n++;
+    int n = numtext_ndigits(ip);
     numtext_digits(p + n, ip, n);
     p += n;
     if (fp) {

@@ -3,9 +3,6 @@
 #ifndef SYL_UTIL_NUMTEXT_H
 #define SYL_UTIL_NUMTEXT_H
 
-/* The room a number's text may use at p (the text itself is at most 32 bytes) */
-#define NUMTEXT_ROOM 48
-
 #include <stdint.h>
 #include <string.h>
 
@@ -22,10 +19,17 @@ static inline void numtext_digits(char *end, uint32_t v, int n) {
     if (n) end[-1] = (char)('0' + v % 10);
 }
 
+/* How many digits v has (1 to 10). */
+static inline int numtext_ndigits(uint32_t v) {
+    int n = 1;
+    for (uint32_t t = 10; n < 10 && v >= t; t *= 10) n++;
+    return n;
+}
+
 /* Exactly what sprintf(p, "%.*g", prec, x) writes (glibc: the exact value rounded to prec
  * significant digits, ties to even; "-0", "nan", "inf" as printf spells them). Fast when x
  * is a float's value and 1 <= prec <= 9, the writers' case; otherwise printf itself.
- * Writes no terminating zero; returns the end. p needs NUMTEXT_ROOM bytes. */
+ * Writes no terminating zero; returns the end (at most 32 bytes). */
 char *numtext_g(char *p, double x, int prec);
 
 /* v in decimal, as "%lld" writes it; returns the end (at most 20 bytes, no terminating zero). */
