@@ -4,6 +4,7 @@
 
 #include "cli/cli.h"
 #include "sylva/skeleton.h"
+#include "util/clock.h"
 
 const CliCommand cli_skeleton_command = {
     .name = "skeleton",
@@ -39,7 +40,8 @@ static int format_of(const char *path) {
     return cli_format_named(ext);
 }
 
-static void print_stats(const SylSkeleton *sk, size_t modules, double derive_s, double turtle_s) {
+static void print_stats(const SylSkeleton *sk, size_t modules, double derive_s, double turtle_s, double write_s,
+                        double write_cpu) {
     float lo[3], hi[3];
     syl_skeleton_bounds(sk, lo, hi);
     size_t roots = 0;
@@ -51,8 +53,8 @@ static void print_stats(const SylSkeleton *sk, size_t modules, double derive_s, 
     fprintf(stderr, "modules: %zu\nnodes: %zu (%zu roots)\norgans: %zu\npolygons: %zu\nmax order: %u\n", modules,
             sk->nnodes, roots, sk->norgans, sk->npolys, max_order);
     fprintf(stderr, "bounds: %g %g %g .. %g %g %g\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
-    fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\npeak memory: %.2f MB\n", derive_s, turtle_s,
-            cli_peak_mb());
+    fprintf(stderr, "derive time: %.6f s\nturtle time: %.6f s\nwrite time: %.6f s (cpu %.6f s)\npeak memory: %.2f MB\n",
+            derive_s, turtle_s, write_s, write_cpu, cli_peak_mb());
 }
 
 int cmd_skeleton(int argc, char **argv) {
@@ -82,9 +84,10 @@ int cmd_skeleton(int argc, char **argv) {
         if (!out_open(&out, output)) status = SYL_EIO;
         else {
             SylSkeleton *sk = pl.sk;
+            double w0 = clock_wall(), c0 = clock_cpu();
             status = format == CLI_FORMAT_JSON ? syl_skeleton_write_json(sk, out.f) : syl_skeleton_write_csv(sk, out.f);
             status = out_close(&out, status);
-            if (!status && stats) print_stats(sk, pl.modules, pl.derive_s, pl.turtle_s);
+            if (!status && stats) print_stats(sk, pl.modules, pl.derive_s, pl.turtle_s, clock_wall() - w0, clock_cpu() - c0);
         }
     }
     cli_plant_free(&pl);

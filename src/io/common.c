@@ -11,6 +11,7 @@
 #include "io/io_internal.h"
 #include "sylva/texture.h"
 #include "util/json.h"
+#include "util/numtext.h"
 #include "util/pngout.h"
 
 bool io_open(OutFile *o, const char *path, FILE *diag) { return outfile_open(o, path, NULL, diag); }
@@ -118,7 +119,11 @@ void io_free(IoBuf *b) {
 }
 
 static const double pow10[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9};
+static const double tenths[] = {1, 1e-1, 1e-2, 1e-3, 1e-4}; /* 1.0 / pow10[k]: the same doubles */
 
+/* Exact, and without a division (docs/mesh.md#number-text): x * 10^dec is exact in a double
+ * (a float's 24 bits times 5^dec < 2^21), so v is the correctly rounded value; it stays below
+ * 2^32 (under 10^sig, or x itself under 1e9), and its whole part is x's own. */
 char *io_float(char *p, float xf, int sig) {
     double x = isfinite(xf) ? xf : 0;
     if (x == 0) {
@@ -126,27 +131,27 @@ char *io_float(char *p, float xf, int sig) {
         return p;
     }
     if (x < 0) *p++ = '-', x = -x;
-    if (x >= 1e9 || x < 1e-4) return p + sprintf(p, "%.*g", sig, x);
+    if (x >= 1e9 || x < 1e-4) return numtext_g(p, x, sig);
     int e = 0; /* digits before the point, minus one */
     while (e < 9 && x >= pow10[e + 1]) e++;
-    while (e > -4 && x < (e >= 0 ? pow10[e] : 1.0 / pow10[-e])) e--;
+    while (e > -4 && x < (e >= 0 ? pow10[e] : tenths[-e])) e--;
     int dec = sig - 1 - e;
     if (dec < 0) dec = 0;
     if (dec > 9) dec = 9;
-    uint64_t v = (uint64_t)llround(x * pow10[dec]), scale = (uint64_t)pow10[dec];
-    uint64_t ip = v / scale, fp = v % scale;
-    char tmp[24];
-    int n = 0;
-    do tmp[n++] = (char)('0' + ip % 10), ip /= 10;
-    while (ip);
-    while (n) *p++ = tmp[--n];
+    double y = x * pow10[dec];
+    uint32_t v = (uint32_t)y, scale = (uint32_t)pow10[dec];
+    if (y - (double)v >= 0.5) v++; /* half away from zero, as llround */
+    uint32_t ip = (uint32_t)x, fp = v - ip * scale;
+    if (fp >= scale) ip++, fp -= scale; /* 1.9999999 -> 2 */
+    int n = numtext_ndigits(ip);
+    numtext_digits(p + n, ip, n);
+    p += n;
     if (fp) {
-        *p++ = '.';
-        for (int i = dec - 1; i >= 0; i--) tmp[i] = (char)('0' + fp % 10), fp /= 10;
+        *p = '.';
+        numtext_digits(p + 1 + dec, fp, dec);
         int last = dec;
-        while (last > 0 && tmp[last - 1] == '0') last--;
-        memcpy(p, tmp, (size_t)last);
-        p += last;
+        while (p[last] == '0') last--; /* fp > 0: stops at a digit */
+        p += 1 + last;
     }
     return p;
 }

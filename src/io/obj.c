@@ -8,6 +8,7 @@
 
 #include "io/io_internal.h"
 #include "sylva/texture.h"
+#include "util/numtext.h"
 
 /* "dir/NAME.obj" -> "dir/NAME" (the caller frees). */
 static char *strip_extension(const char *path) {
@@ -106,12 +107,18 @@ static bool write_obj_body(const SylMesh *all, SylMesh *const *parts, int nparts
         for (uint32_t t = 0; t < m->groups[g].count; t += 3) {
             *p++ = 'f';
             for (int k = 0; k < 3; k++) {
+                size_t x = base + ix[t + (uint32_t)k] + 1;
+                *p++ = ' ';
+                if (x <= UINT32_MAX) { /* the digits in place, without a 64-bit division */
+                    int n = numtext_ndigits((uint32_t)x);
+                    for (int r = 0; r < 3; r++, p += n + 1) numtext_digits(p + n, (uint32_t)x, n), p[n] = '/';
+                    p--; /* the last '/' */
+                    continue;
+                }
                 char num[24];
                 int n = 0;
-                size_t x = base + ix[t + (uint32_t)k] + 1;
                 do num[n++] = (char)('0' + x % 10), x /= 10;
                 while (x);
-                *p++ = ' ';
                 for (int r = 0; r < 3; r++) {
                     for (int d = n - 1; d >= 0; d--) *p++ = num[d];
                     if (r < 2) *p++ = '/';

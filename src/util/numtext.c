@@ -1,0 +1,128 @@
+/* Decimal text of a float, exact with integer arithmetic.
+ *
+ * Why it is exact: a float is m * 2^q with m < 2^24, and 10^k = 5^k * 2^k with 5^k < 2^29
+ * for k <= 12, so x * 10^k (k <= 12) has a significand below 2^53: the double product is
+ * the exact value, its integer part and fraction are exact, and the rounding decided on
+ * them is the one the exact decimal expansion gives. Large values are split into their
+ * whole part (an integer below 2^63) and fraction, both exact. Outside these ranges, and for
+ * doubles that are not floats, printf writes the number. */
+#include "util/numtext.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+static const double pow10d[] = {1, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12};
+static const uint64_t pow10u[] = {1, 10, 100, 1000, 10000, 100000, 1000000, 10000000, 100000000, 1000000000};
+const char numtext_pairs[] = "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+                             "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+                             "8081828384858687888990919293949596979899";
+
+/* floor(log10(x)) or one less, from x's binary exponent (x a positive normal double). */
+static int decimal_exponent_guess(double x) {
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    int e2 = (int)((bits >> 52) & 0x7ff) - 1023; /* 2^e2 <= x < 2^(e2+1) */
+    return (e2 * 78913) >> 18;                   /* floor(e2 * log10(2)), exact for |e2| < 2^11 */
+}
+
+/* x (positive, a float's value) rounded to prec significant digits, ties to even: *n has
+ * exactly prec digits and x ~ n * 10^(*exp - prec + 1). False when x is out of the exact range. */
+static bool round_sig(double x, int prec, uint64_t *n, int *exp) {
+    int E = decimal_exponent_guess(x);
+    for (int tries = 0; tries < 3; tries++) {
+        int k = prec - 1 - E;
+        uint64_t q;
+        if (k > 12) return false;
+        if (k >= 0) {
+            double y = x * pow10d[k]; /* exact (see the top) */
+            if (y < pow10d[prec - 1]) {
+                E--;
+                continue;
+            }
+            if (y >= pow10d[prec]) {
+                E++;
+                continue;
+            }
+            q = (uint64_t)y;
+            double fr = y - (double)q;
+            if (fr > 0.5 || (fr == 0.5 && (q & 1))) q++;
+        } else {
+            if (-k > 9 || x >= 0x1p63) return false;
+            double whole = floor(x);
+            uint64_t w = (uint64_t)whole, d = pow10u[-k];
+            q = w / d;
+            if (q < pow10u[prec - 1]) {
+                E--;
+                continue;
+            }
+            if (q >= pow10u[prec]) {
+                E++;
+                continue;
+            }
+            double rest = (double)(w % d) + (x - whole); /* below 2^30 plus a fraction: exact */
+            double half = 0.5 * (double)d;
+            if (rest > half || (rest == half && (q & 1))) q++;
+        }
+        if (q == pow10u[prec]) q = pow10u[prec - 1], E++; /* 9.999995 -> 10.0000 */
+        *n = q, *exp = E;
+        return true;
+    }
+    return false;
+}
+
+char *numtext_g(char *p, double x, int prec) {
+    if (prec == 0) prec = 1; /* as printf */
+    if (!isfinite(x) || prec < 0 || prec > 9 || (double)(float)x != x) return p + sprintf(p, "%.*g", prec, x);
+    if (signbit(x)) *p++ = '-', x = -x;
+    if (x == 0) {
+        *p++ = '0';
+        return p;
+    }
+    uint64_t n;
+    int X;
+    if (!round_sig(x, prec, &n, &X)) return p + sprintf(p, "%.*g", prec, x);
+    uint32_t q = (uint32_t)n;
+    int nd = prec;
+    while (nd > 1 && q % 10 == 0) q /= 10, nd--; /* %g drops trailing zeros */
+    if (X < -4 || X >= prec) {                   /* d.ddde+XX */
+        numtext_digits(p + 1 + nd, q, nd);           /* then the first digit moved before the point */
+        p[0] = p[1];
+        if (nd > 1) p[1] = '.', p += nd + 1;
+        else p += 1;
+        *p++ = 'e';
+        *p++ = X < 0 ? '-' : '+';
+        unsigned a = (unsigned)(X < 0 ? -X : X);
+        if (a >= 100) *p++ = (char)('0' + a / 100), a %= 100;
+        memcpy(p, numtext_pairs + 2 * a, 2);
+        return p + 2;
+    }
+    if (X < 0) { /* 0.000ddd */
+        *p++ = '0', *p++ = '.';
+        for (int i = -1; i > X; i--) *p++ = '0';
+        numtext_digits(p + nd, q, nd);
+        return p + nd;
+    }
+    int whole = X + 1; /* <= prec */
+    if (nd <= whole) { /* a whole number: the zeros dropped come back */
+        numtext_digits(p + nd, q, nd);
+        for (int i = nd; i < whole; i++) p[i] = '0';
+        return p + whole;
+    }
+    numtext_digits(p + nd, q, nd); /* then the fraction moved one place for the point */
+    for (int i = nd; i > whole; i--) p[i] = p[i - 1];
+    p[whole] = '.';
+    return p + nd + 1;
+}
+
+char *numtext_int(char *p, long long v) {
+    unsigned long long u = (unsigned long long)v;
+    if (v < 0) *p++ = '-', u = 0 - u;
+    char d[24], *end = d + sizeof d, *q = end;
+    do *--q = (char)('0' + u % 10), u /= 10;
+    while (u);
+    memcpy(p, q, (size_t)(end - q));
+    return p + (end - q);
+}
