@@ -131,7 +131,7 @@ typedef struct RuleTable {
     bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
     bool all_fast;       /* every predecessor's rules are plain or FastRules */
     uint8_t *stay;       /* per code: 1 + its arity when no rule rewrites it, else 0 (runs of
-                            such modules are copied in one go) */
+                            such modules are copied in one go); NULL unless all_plain */
     uint8_t *ctx_class;  /* per code: 1.. for the codes fast rules' contexts name, 0 others */
     int nclass;          /* classes including 0; 0 when the codes are too many for pick */
     bool *newleft_code;  /* CODE_COUNT entries: the codes some `<<` context names (only their
