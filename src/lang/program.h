@@ -104,14 +104,28 @@ typedef struct FastRule {
     const struct Rule *rule;
 } FastRule;
 
+/* A stochastic choice known before the string is read: the rules of one code, all without
+ * contexts or conditions and weighted by constants (finite, >= 0), with the sum of their
+ * weights in file order (finite). The draw among them is the general path's, operation for operation. */
+typedef struct Choice {
+    int n;
+    bool zero; /* some weight is 0 */
+    double total;
+    const struct Rule *const *rule;
+    const double *weight;
+} Choice;
+
 /* Per module code: which rules to try. A plain entry is one unconditional context-free
  * unweighted rule, emitted without any matching; fast entries are all FastRules. */
 typedef struct Dispatch {
     const struct Rule *plain; /* or NULL */
     const FastRule *fast;     /* count entries, or NULL */
-    /* with fast: the rule for each pair of neighbour classes (RuleTable.ctx_class), left
-     * class * RuleTable.nclass + right class; NULL when there are too many classes */
-    const struct Rule *const *pick;
+    union {
+        /* with fast: the rule for each pair of neighbour classes (RuleTable.ctx_class), left
+         * class * RuleTable.nclass + right class; NULL when there are too many classes */
+        const struct Rule *const *pick;
+        const Choice *choice; /* without fast: the choice, when the rules make one; or NULL */
+    };
     uint32_t first;           /* index into RuleTable.order */
     uint32_t count;
 } Dispatch;

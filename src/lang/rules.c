@@ -285,6 +285,32 @@ static bool build_pick(RuleTable *t, const uint16_t *codes, int ncodes, Arena *a
     return true;
 }
 
+/* d's Choice, when its rules make one (program.h). False when out of memory. */
+static bool build_choice(const RuleTable *t, Dispatch *d, Arena *a) {
+    if (d->count < 2) return true;
+    double total = 0;
+    for (uint32_t k = 0; k < d->count; k++) {
+        const Rule *r = &t->rules[t->order[d->first + k]];
+        if (r->nleft || r->nright || r->nnewleft || r->nnewright || r->cond >= 0 || !r->weighted || r->weight >= 0 ||
+            !isfinite(r->const_weight) || r->const_weight < 0)
+            return true;
+        total += r->const_weight; /* as the general path sums them (rewrite.c, weigh) */
+    }
+    if (!isfinite(total)) return true;
+    Choice *c = arena_alloc(a, sizeof *c);
+    const Rule **rule = arena_alloc(a, sizeof *rule * d->count);
+    double *weight = arena_alloc(a, sizeof *weight * d->count);
+    if (!c || !rule || !weight) return false;
+    for (uint32_t k = 0; k < d->count; k++) {
+        rule[k] = &t->rules[t->order[d->first + k]];
+        weight[k] = rule[k]->const_weight;
+    }
+    *c = (Choice){(int)d->count, false, total, rule, weight};
+    for (uint32_t k = 0; k < d->count; k++) c->zero |= weight[k] == 0;
+    d->choice = c;
+    return true;
+}
+
 static int by_code(const void *a, const void *b) { return (int)*(const uint16_t *)a - (int)*(const uint16_t *)b; }
 
 /* Dispatch and fast paths over the rules pick[0..npick) of t->rules, tried in that order.
@@ -352,6 +378,8 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
             memset(t->stay + CODE(0, ar), 1 + ar, MAX_SYMBOLS);
         for (int i = 0; i < ncodes; i++) t->stay[codes[i]] = 0;
     }
+    for (int i = 0; i < ncodes; i++)
+        if (!build_choice(t, &t->dispatch[codes[i]], a)) return false;
     t->all_fast = true;
     for (int i = 0; i < ncodes; i++) {
         Dispatch *d = &t->dispatch[codes[i]];
