@@ -144,6 +144,8 @@ typedef struct RuleTable {
     bool all_plain;      /* every rule is plain: no matching, no choice */
     bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
     bool all_fast;       /* every predecessor's rules are plain or FastRules */
+    bool light;          /* every code's rule is plain, fast or a Choice, and needs no VM to
+                            emit: a pass costs a few ns a module and is bound by memory */
     uint8_t *stay;       /* per code: 1 + its arity when no rule rewrites it, else 0 (runs of
                             such modules are copied in one go); NULL unless all_plain */
     uint8_t *ctx_class;  /* per code: 1.. for the codes fast rules' contexts name, 0 others */

@@ -380,6 +380,13 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
     }
     for (int i = 0; i < ncodes; i++)
         if (!build_choice(t, &t->dispatch[codes[i]], a)) return false;
+    t->light = true;
+    for (int i = 0; i < npick; i++) {
+        const Rule *r = &t->rules[pick[i]];
+        const Dispatch *d = &t->dispatch[r->pred];
+        bool fast = r->nleft <= 1 && r->nright <= 1 && !r->nnewleft && !r->nnewright && r->cond < 0 && !r->weighted;
+        if (!r->vm_free || !(d->plain || d->choice || fast)) t->light = false;
+    }
     t->all_fast = true;
     for (int i = 0; i < ncodes; i++) {
         Dispatch *d = &t->dispatch[codes[i]];

@@ -270,8 +270,17 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         report(e, &w, step, what);
         return SYL_ELIMIT;
     }
+    /* Chunks of PARALLEL_MIN modules at least. A pass of a light table (no VM, no matching
+     * beyond one neighbour) stays on one thread: split, it cost 1.4-3.3x the processor time
+     * on the bench models (docs/bench.md, "Threads"): it is bound by memory, and one thread
+     * rewrites in place or by classes, which chunks cannot. */
     int nt = e->threads;
-    if (in->n < PARALLEL_MIN) nt = 1;
+    if ((size_t)nt > in->n / PARALLEL_MIN) nt = (int)(in->n / PARALLEL_MIN);
+    if (nt < 1) nt = 1;
+    bool codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast);
+    bool by_classes = codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
+                      !t->ctx_branches && !t->has_newctx;
+    if (nt > 1 && (t->light || by_classes || in_place(e, t, table, in, 1))) nt = 1;
     Work place = {0};
     size_t n_in = in->n, np_in = in->np;
     if (in_place(e, t, table, in, nt)) {
@@ -287,11 +296,9 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         v.code = in->code + place.at;
         v.par = in->par ? in->par + place.pat : NULL;
     }
-    bool codes_only = !np_in && !t->emits_params && (t->all_plain || t->all_fast);
     /* one thread, contexts of one module without parameters on both sides, pick tables:
      * run_chunk_classes follows the left neighbours itself and reads the right ones' classes */
-    bool classes = nt == 1 && codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
-                   !t->ctx_branches && !t->has_newctx;
+    bool classes = nt == 1 && by_classes;
     if (classes) {
         bool known = e->plan_for == t && rclass_of == in && e->rclass_n == n_in; /* cap_rclass >= n_in */
         if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in + 1, 1) ||
