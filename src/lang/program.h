@@ -104,14 +104,28 @@ typedef struct FastRule {
     const struct Rule *rule;
 } FastRule;
 
+/* A stochastic choice known before the string is read: the rules of one code, all without
+ * contexts or conditions and weighted by constants (finite, >= 0), with the sum of their
+ * weights in file order (finite). The draw among them is the general path's, operation for operation. */
+typedef struct Choice {
+    int n;
+    bool zero; /* some weight is 0 */
+    double total;
+    const struct Rule *const *rule;
+    const double *weight;
+} Choice;
+
 /* Per module code: which rules to try. A plain entry is one unconditional context-free
  * unweighted rule, emitted without any matching; fast entries are all FastRules. */
 typedef struct Dispatch {
     const struct Rule *plain; /* or NULL */
     const FastRule *fast;     /* count entries, or NULL */
-    /* with fast: the rule for each pair of neighbour classes (RuleTable.ctx_class), left
-     * class * RuleTable.nclass + right class; NULL when there are too many classes */
-    const struct Rule *const *pick;
+    union {
+        /* with fast: the rule for each pair of neighbour classes (RuleTable.ctx_class), left
+         * class * RuleTable.nclass + right class; NULL when there are too many classes */
+        const struct Rule *const *pick;
+        const Choice *choice; /* without fast: the choice, when the rules make one; or NULL */
+    };
     uint32_t first;           /* index into RuleTable.order */
     uint32_t count;
 } Dispatch;
@@ -130,8 +144,10 @@ typedef struct RuleTable {
     bool all_plain;      /* every rule is plain: no matching, no choice */
     bool has_newctx;     /* some rule has a new context: its passes run in one thread (newctx.c) */
     bool all_fast;       /* every predecessor's rules are plain or FastRules */
+    bool light;          /* every code's rule is plain, fast or a Choice, and needs no VM to
+                            emit: a pass costs a few ns a module and is bound by memory */
     uint8_t *stay;       /* per code: 1 + its arity when no rule rewrites it, else 0 (runs of
-                            such modules are copied in one go) */
+                            such modules are copied in one go); NULL unless all_plain */
     uint8_t *ctx_class;  /* per code: 1.. for the codes fast rules' contexts name, 0 others */
     int nclass;          /* classes including 0; 0 when the codes are too many for pick */
     bool *newleft_code;  /* CODE_COUNT entries: the codes some `<<` context names (only their

@@ -1,5 +1,6 @@
 /* Rules: a rule's patterns and successor compiled, and the dispatch tables built over them. */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "lang/compiler.h"
@@ -250,12 +251,12 @@ void cc_rule(Compiler *c, const Stmt *s, Rule *out) {
  * 1..K (0: every other code, and no neighbour), and each fast predecessor a table of the
  * first of its rules that matches each pair of neighbour classes. */
 enum { MAX_CLASSES = 16 };
-static bool build_pick(RuleTable *t, Arena *a) {
+static bool build_pick(RuleTable *t, const uint16_t *codes, int ncodes, Arena *a) {
     int n = 1;
-    t->ctx_class = arena_alloc(a, CODE_COUNT);
+    t->ctx_class = arena_alloc_sparse(a, CODE_COUNT);
     if (!t->ctx_class) return false;
-    for (int code = 0; code < CODE_COUNT; code++) {
-        const Dispatch *d = &t->dispatch[code];
+    for (int i = 0; i < ncodes; i++) {
+        const Dispatch *d = &t->dispatch[codes[i]];
         for (uint32_t j = 0; d->fast && j < d->count; j++) {
             uint16_t side[2] = {d->fast[j].left, d->fast[j].right};
             for (int k = 0; k < 2; k++)
@@ -266,8 +267,8 @@ static bool build_pick(RuleTable *t, Arena *a) {
         }
     }
     t->nclass = n;
-    for (int code = 0; code < CODE_COUNT; code++) {
-        Dispatch *d = &t->dispatch[code];
+    for (int i = 0; i < ncodes; i++) {
+        Dispatch *d = &t->dispatch[codes[i]];
         if (!d->fast) continue;
         const Rule **pick = arena_alloc(a, sizeof *pick * (size_t)(n * n));
         if (!pick) return false;
@@ -284,17 +285,53 @@ static bool build_pick(RuleTable *t, Arena *a) {
     return true;
 }
 
-/* Dispatch and fast paths over the rules pick[0..npick) of t->rules, tried in that order. */
+/* d's Choice, when its rules make one (program.h). False when out of memory. */
+static bool build_choice(const RuleTable *t, Dispatch *d, Arena *a) {
+    if (d->count < 2) return true;
+    double total = 0;
+    for (uint32_t k = 0; k < d->count; k++) {
+        const Rule *r = &t->rules[t->order[d->first + k]];
+        if (r->nleft || r->nright || r->nnewleft || r->nnewright || r->cond >= 0 || !r->weighted || r->weight >= 0 ||
+            !isfinite(r->const_weight) || r->const_weight < 0)
+            return true;
+        total += r->const_weight; /* as the general path sums them (rewrite.c, weigh) */
+    }
+    if (!isfinite(total)) return true;
+    Choice *c = arena_alloc(a, sizeof *c);
+    const Rule **rule = arena_alloc(a, sizeof *rule * d->count);
+    double *weight = arena_alloc(a, sizeof *weight * d->count);
+    if (!c || !rule || !weight) return false;
+    for (uint32_t k = 0; k < d->count; k++) {
+        rule[k] = &t->rules[t->order[d->first + k]];
+        weight[k] = rule[k]->const_weight;
+    }
+    *c = (Choice){(int)d->count, false, total, rule, weight};
+    for (uint32_t k = 0; k < d->count; k++) c->zero |= weight[k] == 0;
+    d->choice = c;
+    return true;
+}
+
+static int by_code(const void *a, const void *b) { return (int)*(const uint16_t *)a - (int)*(const uint16_t *)b; }
+
+/* Dispatch and fast paths over the rules pick[0..npick) of t->rules, tried in that order.
+ * Only the entries of the codes the rules rewrite are written: the rest of the dispatch
+ * stays in pages never touched (arena_alloc_sparse), and start-up costs what the model
+ * uses, not 65,536 entries per table. */
 static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
-    t->dispatch = arena_alloc(a, sizeof *t->dispatch * CODE_COUNT);
+    t->dispatch = arena_alloc_sparse(a, sizeof *t->dispatch * CODE_COUNT);
     t->order = arena_alloc(a, sizeof *t->order * (size_t)(npick ? npick : 1));
-    if (!t->dispatch || !t->order) return false;
-    for (int i = 0; i < npick; i++) t->dispatch[t->rules[pick[i]].pred].count++;
+    uint16_t *codes = arena_alloc(a, sizeof *codes * (size_t)(npick ? npick : 1)); /* distinct, ascending */
+    if (!t->dispatch || !t->order || !codes) return false;
+    int ncodes = 0;
+    for (int i = 0; i < npick; i++)
+        if (!t->dispatch[t->rules[pick[i]].pred].count++) codes[ncodes++] = t->rules[pick[i]].pred;
+    qsort(codes, (size_t)ncodes, sizeof *codes, by_code);
     uint32_t at = 0;
-    for (int code = 0; code < CODE_COUNT; code++) {
-        t->dispatch[code].first = at;
-        at += t->dispatch[code].count;
-        t->dispatch[code].count = 0;
+    for (int i = 0; i < ncodes; i++) { /* in code order, as the whole table was laid out */
+        Dispatch *d = &t->dispatch[codes[i]];
+        d->first = at;
+        at += d->count;
+        d->count = 0;
     }
     for (int i = 0; i < npick; i++) {
         const Rule *r = &t->rules[pick[i]];
@@ -318,29 +355,41 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
     }
     for (int i = 0; i < npick; i++) { /* the codes new contexts name: only their links are kept */
         const Rule *r = &t->rules[pick[i]];
-        if (r->nnewleft && !t->newleft_code && !(t->newleft_code = arena_alloc(a, CODE_COUNT * sizeof(bool))))
+        if (r->nnewleft && !t->newleft_code && !(t->newleft_code = arena_alloc_sparse(a, CODE_COUNT * sizeof(bool))))
             return false;
         for (int k = 0; k < r->nnewleft; k++) t->newleft_code[r->newleft[k].code] = true;
         if (r->newright_branches) t->newright_branches = true;
-        if (r->nnewright && !t->newright_code && !(t->newright_code = arena_alloc(a, CODE_COUNT * sizeof(bool))))
+        if (r->nnewright && !t->newright_code && !(t->newright_code = arena_alloc_sparse(a, CODE_COUNT * sizeof(bool))))
             return false;
         for (int k = 0; k < r->nnewright; k++) t->newright_code[r->newright[k].code] = true;
     }
-    if (!(t->stay = arena_alloc(a, CODE_COUNT))) return false;
-    for (int code = 0; code < CODE_COUNT; code++)
-        t->stay[code] = t->dispatch[code].count ? 0 : (uint8_t)(1 + CODE_ARITY(code));
     t->all_plain = true;
-    for (int code = 0; code < CODE_COUNT; code++) {
-        Dispatch *d = &t->dispatch[code];
+    for (int i = 0; i < ncodes; i++) {
+        Dispatch *d = &t->dispatch[codes[i]];
         if (d->count > 1) t->all_plain = false;
         if (d->count != 1) continue;
         const Rule *r = &t->rules[t->order[d->first]];
         if (!r->nleft && !r->nright && !r->nnewleft && !r->nnewright && r->cond < 0 && !r->weighted) d->plain = r;
         else t->all_plain = false;
     }
+    if (t->all_plain) { /* run_chunk_plain's runs: only it reads stay */
+        if (!(t->stay = arena_alloc(a, CODE_COUNT))) return false;
+        for (int ar = 0; ar <= CODE_ARITY(CODE_COUNT - 1); ar++) /* codes of one arity are consecutive */
+            memset(t->stay + CODE(0, ar), 1 + ar, MAX_SYMBOLS);
+        for (int i = 0; i < ncodes; i++) t->stay[codes[i]] = 0;
+    }
+    for (int i = 0; i < ncodes; i++)
+        if (!build_choice(t, &t->dispatch[codes[i]], a)) return false;
+    t->light = true;
+    for (int i = 0; i < npick; i++) {
+        const Rule *r = &t->rules[pick[i]];
+        const Dispatch *d = &t->dispatch[r->pred];
+        bool fast = r->nleft <= 1 && r->nright <= 1 && !r->nnewleft && !r->nnewright && r->cond < 0 && !r->weighted;
+        if (!r->vm_free || !(d->plain || d->choice || fast)) t->light = false;
+    }
     t->all_fast = true;
-    for (int code = 0; code < CODE_COUNT; code++) {
-        Dispatch *d = &t->dispatch[code];
+    for (int i = 0; i < ncodes; i++) {
+        Dispatch *d = &t->dispatch[codes[i]];
         if (!d->count || d->plain) continue;
         bool fast = true;
         for (uint32_t k = 0; k < d->count && fast; k++) {
@@ -363,7 +412,7 @@ static bool build(RuleTable *t, const uint16_t *pick, int npick, Arena *a) {
         }
         d->fast = f;
     }
-    return build_pick(t, a);
+    return build_pick(t, codes, ncodes, a);
 }
 
 /* Every rule in file order: what a model without groups derives with, and what the

@@ -13,6 +13,7 @@
 #include "util/budget.h"
 #include "util/parallel.h"
 #include "util/pages.h"
+#include "util/pool.h"
 #include "lsys/derive.h"
 #include "lsys/classes.h"
 #include "lsys/rewrite.h"
@@ -24,7 +25,7 @@
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256, TABLE_CACHE = 8 };
 
-/* The chunks of a pass (par_run): chunk k of works; a pass with new contexts is one chunk,
+/* The chunks of a pass (pool_run): chunk k of works; a pass with new contexts is one chunk,
  * on the calling thread. */
 typedef struct Chunks {
     Work *works;
@@ -36,6 +37,22 @@ static void run_chunk(void *arg, int k) {
     Chunks *c = arg;
     if (c->newctx) newctx_chunk(&c->works[k], c->back, c->scratch);
     else rewrite_chunk(&c->works[k]);
+}
+
+/* The second half of a pass of several chunks: chunk k (> 0), written to a buffer of its
+ * own, is copied into the output at the offsets the chunks before it sum to, by its own
+ * thread, so that the copies run side by side and each thread first-touches its part. */
+typedef struct Joins {
+    SylString *out, *parts;
+    size_t *at, *pat;
+} Joins;
+
+static void join_chunk(void *arg, int k) {
+    Joins *j = arg;
+    const SylString *part = &j->parts[k];
+    if (!k) return;
+    if (part->n) memcpy(j->out->code + j->at[k], part->code, part->n * sizeof *part->code);
+    if (part->np) memcpy(j->out->par + j->pat[k], part->par, part->np * sizeof *part->par);
 }
 
 /* ---- one pass over a string ---- */
@@ -61,6 +78,8 @@ typedef struct Engine {
     const SylString *rclass_of;
     size_t rclass_n;
     struct NewctxScratch *newctx; /* the arrays of passes with new contexts */
+    Pool *pool;         /* the threads of passes of several chunks, made on the first */
+    SylString *parts;   /* their buffers (chunks 1..threads-1), kept from pass to pass */
     size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack, cap_rnext, cap_pend;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
@@ -130,6 +149,9 @@ static void engine_free(Engine *e) {
     free(e->pend);
     class_plan_free(&e->plan);
     newctx_release(&e->newctx);
+    pool_free(e->pool);
+    for (int k = 0; e->parts && k < e->threads; k++) ms_release(&e->parts[k]);
+    free(e->parts);
 }
 
 /* Whether step is derived backward (`direction`): asked only by tables with new contexts. */
@@ -248,8 +270,17 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         report(e, &w, step, what);
         return SYL_ELIMIT;
     }
+    /* Chunks of PARALLEL_MIN modules at least. A pass of a light table (no VM, no matching
+     * beyond one neighbour) stays on one thread: split, it cost 1.4-3.3x the processor time
+     * on the bench models (docs/bench.md, "Threads"): it is bound by memory, and one thread
+     * rewrites in place or by classes, which chunks cannot. */
     int nt = e->threads;
-    if (in->n < PARALLEL_MIN) nt = 1;
+    if ((size_t)nt > in->n / PARALLEL_MIN) nt = (int)(in->n / PARALLEL_MIN);
+    if (nt < 1) nt = 1;
+    bool codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast);
+    bool by_classes = codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
+                      !t->ctx_branches && !t->has_newctx;
+    if (nt > 1 && (t->light || by_classes || in_place(e, t, table, in, 1))) nt = 1;
     Work place = {0};
     size_t n_in = in->n, np_in = in->np;
     if (in_place(e, t, table, in, nt)) {
@@ -265,11 +296,9 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         v.code = in->code + place.at;
         v.par = in->par ? in->par + place.pat : NULL;
     }
-    bool codes_only = !np_in && !t->emits_params && (t->all_plain || t->all_fast);
     /* one thread, contexts of one module without parameters on both sides, pick tables:
      * run_chunk_classes follows the left neighbours itself and reads the right ones' classes */
-    bool classes = nt == 1 && codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
-                   !t->ctx_branches && !t->has_newctx;
+    bool classes = nt == 1 && by_classes;
     if (classes) {
         bool known = e->plan_for == t && rclass_of == in && e->rclass_n == n_in; /* cap_rclass >= n_in */
         if (!ms_scratch_reserve(&e->rclass, &e->cap_rclass, n_in + 1, 1) ||
@@ -331,9 +360,11 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         if (want > e->max_modules) want = (size_t)e->max_modules;
         ms_reserve(out, want, pwant); /* a refusal here is met again, and reported, below */
     }
+    if (nt > 1 && ((!e->pool && !(e->pool = pool_new(e->threads))) ||
+                   (!e->parts && !(e->parts = calloc((size_t)e->threads, sizeof *e->parts)))))
+        nt = 1; /* no pool: one thread does it all */
     Work works[MAX_THREADS];
-    SylString parts[MAX_THREADS];
-    memset(parts, 0, (size_t)nt * sizeof *parts); /* only those used: small strings pass often */
+    SylString *parts = e->parts;
     /* where each chunk's parameters start */
     uint32_t plo = 0;
     size_t lo = 0;
@@ -345,13 +376,18 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
                           .rnext = &e->rnext, .cap_rnext = &e->cap_rnext, .pend = e->pend,
                           .inplace = place.inplace, .at = place.at, .pat = place.pat, .n_in = place.n_in,
                           .np_in = place.np_in, .np_all = nt == 1 ? np_in : 0};
-        parts[k].mem = e->mem;
-        parts[k].max_modules = e->max_modules;
+        if (k) { /* the buffer of the last pass, emptied */
+            parts[k].n = parts[k].np = 0;
+            ms_changed(&parts[k]);
+            parts[k].mem = e->mem;
+            parts[k].max_modules = e->max_modules;
+        }
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(v.code[i]);
         lo = hi;
     }
     Chunks chunks = {works, t->has_newctx, back, &e->newctx}; /* has_newctx: nt is 1 */
-    par_run(nt, run_chunk, &chunks);
+    if (nt > 1) pool_run(e->pool, nt, run_chunk, &chunks);
+    else run_chunk(&chunks, 0);
     for (int k = 0; k < nt; k++) {
         free(works[k].cand);
         free(works[k].weight);
@@ -366,14 +402,18 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             reported = true;
         }
     }
-    for (int k = 1; k < nt; k++) { /* append the other chunks in order */
-        if (!status && !(status = ms_reserve(out, parts[k].n, parts[k].np))) {
-            if (parts[k].n) memcpy(out->code + out->n, parts[k].code, parts[k].n * sizeof *out->code);
-            if (parts[k].np) memcpy(out->par + out->np, parts[k].par, parts[k].np * sizeof *out->par);
-            out->n += parts[k].n;
-            out->np += parts[k].np;
+    if (nt > 1 && !status) { /* the other chunks after chunk 0, in order, copied side by side */
+        size_t at[MAX_THREADS], pat[MAX_THREADS], n = out->n, np = out->np;
+        for (int k = 1; k < nt; k++) {
+            at[k] = n, pat[k] = np;
+            n += parts[k].n, np += parts[k].np;
         }
-        ms_release(&parts[k]);
+        if (!(status = ms_reserve(out, n - out->n, np - out->np))) {
+            Joins joins = {out, parts, at, pat};
+            pool_run(e->pool, nt, join_chunk, &joins);
+            out->n = n;
+            out->np = np;
+        }
     }
     if (!status && out->n > e->max_modules) {
         Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MODULES}};

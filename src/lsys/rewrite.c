@@ -423,6 +423,7 @@ static void run_chunk(Work *w) {
     SylString *o = w->out;
     size_t pi = w->plo;
     double locals[MAX_LOCALS + MAX_ARITY];
+    const uint64_t pass = rng_pass(w->seed, w->key); /* the modules' streams: rng_at(pass, ...) */
     w->fault.status = SYL_OK;
     for (size_t lo = w->lo; lo < w->hi; lo += BATCH) {
         size_t hi = w->hi - lo < BATCH ? w->hi : lo + BATCH;
@@ -446,7 +447,37 @@ static void run_chunk(Work *w) {
             const double *x = args;
             if (!r) {
                 if (d->fast) r = fast_pick(t, d, lcode_at(in, i), rcode_at(in, i));
-                else if (d->count) { /* conditions, weights or longer contexts */
+                else if (d->choice) { /* constant weights: pick's draw without the weighing */
+                    const Choice *ch = d->choice;
+                    Rng rng = rng_at(pass, (uint64_t)w->table, i);
+                    if (ch->total > 0) {
+                        /* pick's loop without its branches: u only falls (weights >= 0), so
+                         * the rules it steps over are the partial differences still >= 0 */
+                        double u = rng_unit(&rng) * ch->total;
+                        int k = 0;
+                        for (int j = 0; j < ch->n - 1; j++) {
+                            u -= ch->weight[j];
+                            k += u >= 0;
+                        }
+                        if (ch->zero)
+                            while (ch->weight[k] == 0) k--; /* u landed exactly on a boundary before a zero */
+                        r = ch->rule[k];
+                    }
+                    if (r && !(r->vm_free && put_slots(op, r, args))) {
+                        SYNC(); /* the VM goes on with the module's stream, as after pick */
+                        bool rng_ready = true;
+                        if (emit(w, r, args, i, &rng, &rng_ready)) return;
+                        RELOAD();
+                        continue;
+                    }
+                    if (r) {
+                        put_codes(oc, r);
+                        oc += r->nsucc;
+                        op += r->nslots;
+                        w->applied = true;
+                        continue;
+                    }
+                } else if (d->count) { /* conditions, weights or longer contexts */
                     memcpy(locals, args, sizeof(double) * (size_t)ar);
                     int status;
                     SYNC();

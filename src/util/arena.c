@@ -15,7 +15,8 @@
 struct ArenaBlock {
     ArenaBlock *next;
     size_t size, off;
-    unsigned char *data; /* inline, or pages of their own when size >= PAGES_BIG */
+    bool sparse;         /* data from pages_alloc_sparse */
+    unsigned char *data; /* inline, or pages of their own when size >= PAGES_BIG (or sparse) */
     _Alignas(16) unsigned char inline_data[];
 };
 
@@ -26,31 +27,58 @@ void *arena_fail(Arena *a) {
     return NULL;
 }
 
+/* A new block for `size` bytes at least; big ones in pages of their own, which come zeroed
+ * (sparse: pages_alloc_sparse's, from SPARSE_MIN bytes on). */
+static ArenaBlock *new_block(Arena *a, size_t size, bool sparse) {
+    size_t bs = size > BLOCK_MIN ? size : BLOCK_MIN;
+    bool big = sparse || bs >= PAGES_BIG;
+    ArenaBlock *b = malloc(sizeof *b + (big ? 0 : bs));
+    unsigned char *data = !b ? NULL : !big ? b->inline_data : sparse ? pages_alloc_sparse(bs) : pages_alloc(bs);
+    if (!data) {
+        free(b);
+        return arena_fail(a);
+    }
+    b->data = data;
+    b->size = bs;
+    b->off = 0;
+    b->sparse = sparse;
+    b->next = a->head;
+    a->head = b;
+    return b;
+}
+
 void *arena_alloc(Arena *a, size_t size) {
     /* size + 15 and sizeof *b + bs must not wrap; no object exceeds PTRDIFF_MAX anyway */
     if (size > PTRDIFF_MAX - 16 - sizeof(ArenaBlock)) return arena_fail(a);
     size = (size + 15) & ~(size_t)15;
     ArenaBlock *b = a->head;
+    bool fresh = false; /* a big block's pages, never written yet */
     if (!b || b->size - b->off < size) {
-        size_t bs = size > BLOCK_MIN ? size : BLOCK_MIN;
-        bool big = bs >= PAGES_BIG;
-        b = malloc(sizeof *b + (big ? 0 : bs));
-        unsigned char *data = !b ? NULL : big ? pages_alloc(bs) : b->inline_data;
-        if (!data) {
-            free(b);
-            return arena_fail(a);
-        }
-        b->data = data;
-        b->size = bs;
-        b->off = 0;
-        b->next = a->head;
-        a->head = b;
+        if (!(b = new_block(a, size, false))) return NULL;
+        fresh = b->size >= PAGES_BIG;
     }
     void *p = b->data + b->off;
     b->off += size;
     a->used += size;
-    memset(p, 0, size);
+    if (!fresh) memset(p, 0, size);
     return p;
+}
+
+void *arena_alloc_sparse(Arena *a, size_t size) {
+    if (size < SPARSE_MIN) return arena_alloc(a, size);
+    if (size > PTRDIFF_MAX - 16 - sizeof(ArenaBlock)) return arena_fail(a);
+    size = (size + 15) & ~(size_t)15;
+    /* a block of its own, put second so that the head block keeps serving small ones */
+    ArenaBlock *head = a->head, *b = new_block(a, size, true);
+    if (!b) return NULL;
+    if (head) {
+        a->head = head;
+        b->next = head->next;
+        head->next = b;
+    }
+    b->off = size;
+    a->used += size;
+    return b->data;
 }
 
 void *arena_grow(Arena *a, void *old, size_t old_size, size_t new_size) {
@@ -87,7 +115,8 @@ void arena_free(Arena *a) {
     ArenaBlock *b = a->head;
     while (b) {
         ArenaBlock *n = b->next;
-        if (b->data != b->inline_data) pages_free(b->data, b->size);
+        if (b->sparse) pages_free_sparse(b->data, b->size);
+        else if (b->data != b->inline_data) pages_free(b->data, b->size);
         free(b);
         b = n;
     }

@@ -18,6 +18,9 @@ typedef struct Arena {
 } Arena;
 
 void *arena_alloc(Arena *a, size_t size);            /* zeroed, 16-byte aligned */
+/* Zeroed too; from SPARSE_MIN bytes on, in small pages that exist only once written (a big
+ * table of which a few entries are used costs those pages, not its size). */
+void *arena_alloc_sparse(Arena *a, size_t size);
 void *arena_grow(Arena *a, void *old, size_t old_size, size_t new_size);
 char *arena_strndup(Arena *a, const char *s, size_t n);
 char *arena_printf(Arena *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));

@@ -67,3 +67,20 @@ void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, s
 }
 
 void *pages_alloc(size_t bytes) { return mapped_bytes(bytes) ? map_big(bytes) : calloc(1, bytes ? bytes : 1); }
+
+static size_t sparse_bytes(size_t bytes) { return bytes < SPARSE_MIN ? 0 : (bytes + 4095) & ~(size_t)4095; }
+
+void *pages_alloc_sparse(size_t bytes) {
+    size_t len = sparse_bytes(bytes);
+    if (!len) return calloc(1, bytes ? bytes : 1);
+    void *p = mmap(NULL, len, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED) return NULL;
+    madvise(p, len, MADV_NOHUGEPAGE); /* a page written costs 4 KB, not 2 MB zeroed */
+    return p;
+}
+
+void pages_free_sparse(void *p, size_t bytes) {
+    if (!p) return;
+    if (sparse_bytes(bytes)) munmap(p, sparse_bytes(bytes));
+    else free(p);
+}

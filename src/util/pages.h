@@ -9,6 +9,12 @@
 enum { PAGES_BIG = 1 << 20 };
 
 void *pages_alloc(size_t bytes);  /* zeroed when mapped; NULL when refused */
+/* Zeroed, and for SPARSE_MIN bytes and more mapped in small pages, never huge ones: a page
+ * exists only once written, and one only read is the shared zero page. For tables indexed by
+ * module code of which a program uses a few entries (a rule table's dispatch). */
+enum { SPARSE_MIN = 1 << 16 };
+void *pages_alloc_sparse(size_t bytes);
+void pages_free_sparse(void *p, size_t bytes);
 void pages_free(void *p, size_t bytes);
 /* Grow an array of old_bytes (its first `used` bytes in use) to bytes; NULL if refused,
  * the old array then unchanged. */

@@ -16,11 +16,17 @@ static inline uint64_t rng_mix(uint64_t z) { /* splitmix64 finaliser */
     return z ^ (z >> 31);
 }
 
-static inline Rng rng_stream(uint64_t seed, uint64_t step, uint64_t table, uint64_t pos) {
+/* rng_stream in two halves: the part of a pass (seed, step), then each position's */
+static inline uint64_t rng_pass(uint64_t seed, uint64_t step) { return rng_mix(rng_mix(seed) ^ step); }
+static inline Rng rng_at(uint64_t pass, uint64_t table, uint64_t pos) {
     Rng r;
-    r.key = rng_mix(rng_mix(rng_mix(seed) ^ step) ^ (table << 56 ^ pos));
+    r.key = rng_mix(pass ^ (table << 56 ^ pos));
     r.counter = 0;
     return r;
+}
+
+static inline Rng rng_stream(uint64_t seed, uint64_t step, uint64_t table, uint64_t pos) {
+    return rng_at(rng_pass(seed, step), table, pos);
 }
 
 static inline uint64_t rng_next(Rng *r) { return rng_mix(r->key + 0x632be59bd9b4e019ull * ++r->counter); }
