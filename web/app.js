@@ -207,6 +207,12 @@ function showStats(s) {
     ['turtle', (s.turtle_time * 1000).toFixed(1) + ' ms'], ['mesh', (s.mesh_time * 1000).toFixed(1) + ' ms'],
     ['write .glb', (s.write_time * 1000).toFixed(1) + ' ms'], ['memory', s.memory_mb + ' MB'],
   ] : [];
+  const m = s && s.kind !== 'ecosystem' && state.metrics;
+  if (m) { // what `sylva compare` measures (syl_metrics), once the server has them
+    m.stems_by_order.forEach((n, k) => rows.push([`stems of order ${k}`, n]));
+    rows.push(['leaves', m.leaves]);
+    for (const r of m.metrics) rows.push([r.label, r.value === null ? '-' : +r.value.toPrecision(6) + (r.unit ? ' ' + r.unit : '')]);
+  }
   $('stats').replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');
     tr.innerHTML = '<td></td><td></td>';
@@ -214,6 +220,16 @@ function showStats(s) {
     tr.children[1].id = 'stat-' + k.replace(/ /g, '-');
     return tr;
   }));
+}
+
+// The metrics of `sylva compare` for build id, asked for after its frame: their ray casting
+// (light interception) never delays the picture. A newer build's answer wins.
+async function metricsOf(id) {
+  const r = await fetch('/api/metrics?id=' + id).catch(() => null);
+  if (!r || !r.ok || !state.build || state.build.id !== id) return;
+  state.metrics = await r.json();
+  state.metricsId = id;
+  showStats(state.stats);
 }
 
 // ---- an ecosystem: the forest, its chart and maps ----
@@ -415,7 +431,9 @@ async function load(frameIt = false) {
     state.kind = b.stats.kind;
     if (eco) showEco(b.stats);
     state.stats = b.stats;
+    state.metrics = null;
     showStats(b.stats);
+    if (!eco) metricsOf(b.id);
     showError('');
     applyLook();
     state.loads++;

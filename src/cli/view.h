@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "cli/cli.h"
+#include "sylva/stream.h"
 
 enum { VIEW_CACHE = 8, VIEW_TOKEN = 32 };
 
@@ -47,6 +48,7 @@ typedef struct ViewBuild {
     char *obstacles;       /* a scene's obstacles as a .glb, one node each (NULL: none) */
     size_t obstacles_len;
     char *stats;           /* a JSON object */
+    char *metrics;         /* what `sylva compare` measures, as JSON (made when first asked for) */
     double used;           /* when last asked for, for the cache's order */
 } ViewBuild;
 
@@ -64,6 +66,10 @@ typedef struct View {
     ViewBuild cache[VIEW_CACHE];
     unsigned next_id;
     ViewEco *eco;          /* the last ecosystem run (NULL: none) */
+    SylPlant *kept;        /* the last build's plant (skeleton and mesh), for its metrics */
+    SylTextureCache *textures; /* the .glb's procedural textures, encoded once (under lock) */
+    SylBudget *kept_budget; /* what its arrays are counted against */
+    unsigned kept_id;      /* its build's id */
     /* Changes: gen counts them; waiters (the pages' event streams) are woken at each. */
     pthread_mutex_t gen_lock;
     pthread_cond_t changed;
@@ -99,6 +105,15 @@ int view_eco_build(View *v, const ViewRequest *rq, SylProgram *p, unsigned gen, 
 /* The PNG of a factor's map (syl_terrain_write_map) of the last ecosystem run. */
 int view_eco_map(View *v, const char *name, char **png, size_t *len);
 void view_eco_free(ViewEco *e);
+
+/* view_metrics.c: keep pl and the budget its arrays are counted against (both taken over,
+ * zeroed) as build id's plant, the previous one freed */
+void view_keep(View *v, unsigned id, SylPlant *pl, SylBudget **budget);
+void view_keep_free(View *v);
+/* The JSON of the metrics of `sylva compare` (syl_metrics) of build b (cached in b->metrics,
+ * which owns it); NULL when b's plant is no longer kept or the metrics failed (*diag says why,
+ * malloc'ed). */
+char *view_metrics(View *v, ViewBuild *b, char **diag);
 
 /* view_watch.c: follow the file and every file it names; bump v->gen at each change. */
 bool view_watch_start(View *v, pthread_t *thread, int *stop_fd);

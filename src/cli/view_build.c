@@ -164,12 +164,12 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     return status;
 }
 
-/* The .glb as `sylva mesh` writes it, into out. */
-static int write_glb(Made *m, FILE *out, FILE *diag) {
+/* The .glb as `sylva mesh` writes it, into out (its textures from tc, the same bytes). */
+static int write_glb(Made *m, SylTextureCache *tc, FILE *out, FILE *diag) {
     bool wind = m->wind.njoints > 0;
-    return m->lod > 0 ? syl_wind_write_glb_lods_stream(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, out, diag)
-           : wind     ? syl_wind_write_glb_stream(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, out, diag)
-                      : syl_mesh_write_glb_instanced_stream(m->pl.mesh, m->sets, m->nsets, out, diag);
+    return m->lod > 0 ? syl_wind_write_glb_lods_cached(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, tc, out, diag)
+           : wind     ? syl_wind_write_glb_cached(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, tc, out, diag)
+                      : syl_mesh_write_glb_instanced_cached(m->pl.mesh, m->sets, m->nsets, tc, out, diag);
 }
 
 /* What `sylva mesh --stats` prints, as JSON. */
@@ -230,6 +230,7 @@ static void entry_free(ViewBuild *b) {
     free(b->glb);
     free(b->csv);
     free(b->stats);
+    free(b->metrics);
     memset(b, 0, sizeof *b);
 }
 
@@ -237,6 +238,9 @@ void view_cache_free(View *v) {
     for (int i = 0; i < VIEW_CACHE; i++) entry_free(&v->cache[i]);
     view_eco_free(v->eco);
     v->eco = NULL;
+    view_keep_free(v);
+    syl_texture_cache_free(v->textures);
+    v->textures = NULL;
 }
 
 static unsigned current_gen(View *v) {
@@ -276,7 +280,8 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
     } else if (!status) {
         double t = cli_now();
         FILE *out = open_memstream(&slot->glb, &slot->glb_len);
-        status = out ? write_glb(&m, out, diag) : SYL_ELIMIT;
+        if (!v->textures) v->textures = syl_texture_cache_new(); /* NULL: made at each write */
+        status = out ? write_glb(&m, v->textures, out, diag) : SYL_ELIMIT;
         if (out) fclose(out);
         m.write_s = cli_now() - t;
         out = open_memstream(&slot->csv, &slot->csv_len);
@@ -284,6 +289,7 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         if (out) fclose(out);
         if (!status) status = write_obstacles(&m, slot, diag);
         if (!status) slot->stats = stats_json(&m);
+        if (!status) view_keep(v, slot->id, &m.pl, &m.budget); /* its metrics, when the page asks */
     }
     made_free(&m);
     fclose(diag);
@@ -360,7 +366,7 @@ int view_export(View *v, const ViewRequest *rq, const char *format, char **out, 
         entry_free(&b);
         m.eco = NULL;
     } else if (!status) {
-        if (!strcmp(format, "glb")) status = write_glb(&m, of, df);
+        if (!strcmp(format, "glb")) status = write_glb(&m, NULL, of, df); /* the export: sylva mesh's own path */
         else if (!strcmp(format, "csv")) status = syl_skeleton_write_csv(m.pl.skeleton, of);
         else if (!strcmp(format, "png")) status = write_png(&m, rq, of, df, v->threads);
         else if (!strcmp(format, "obj")) status = view_write_via_file(write_obj_file, &m, "plant.obj", of, df);

@@ -246,6 +246,22 @@ static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, 
     return r;
 }
 
+/* The metrics of build id (`sylva compare`'s), made at the first asking: 404 when a newer
+ * build has replaced its plant. */
+static enum MHD_Result api_metrics(struct MHD_Connection *c, View *v, unsigned id) {
+    pthread_mutex_lock(&v->lock);
+    ViewBuild *b = NULL;
+    for (int i = 0; i < VIEW_CACHE; i++)
+        if (id && v->cache[i].id == id && !v->cache[i].status) b = &v->cache[i];
+    char *diag = NULL;
+    const char *m = b ? view_metrics(v, b, &diag) : NULL;
+    enum MHD_Result r = m ? send_bytes(c, MHD_HTTP_OK, "application/json", m, strlen(m), MHD_RESPMEM_MUST_COPY)
+                          : send_error_json(c, MHD_HTTP_NOT_FOUND, "no metrics of that build", diag);
+    pthread_mutex_unlock(&v->lock);
+    free(diag);
+    return r;
+}
+
 static enum MHD_Result api_export(struct MHD_Connection *c, View *v, Query *q) {
     static const char *const formats[][3] = {{"glb", "model/gltf-binary", "glb"}, {"obj", "text/plain", "obj"},
                                              {"png", "image/png", "png"}, {"csv", "text/csv", "csv"}};
@@ -407,6 +423,7 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     if (!strcmp(url, "/api/glb")) return api_part(c, v, q.id, PART_GLB);
     if (!strcmp(url, "/api/skeleton")) return api_part(c, v, q.id, PART_SKELETON);
     if (!strcmp(url, "/api/obstacles")) return api_part(c, v, q.id, PART_OBSTACLES);
+    if (!strcmp(url, "/api/metrics")) return api_metrics(c, v, q.id);
     if (!strcmp(url, "/api/export")) return api_export(c, v, &q);
     if (!strcmp(url, "/api/describe")) return api_describe(c, v, &q);
     if (!strcmp(url, "/api/map")) return api_map(c, v, MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "factor"));

@@ -1,0 +1,88 @@
+/* sylva view: the Numbers panel's form figures — what `sylva compare` measures (syl_metrics:
+ * height, crown, Strahler orders, stems by branch order, leaves, light interception, …) — of
+ * the last build's plant. They are asked for after the frame is drawn (/api/metrics), so the
+ * ray casting of light interception never delays the save → frame path. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cli/view.h"
+#include "sylva/metrics.h"
+#include "util/json.h"
+
+static void number(FILE *f, double v, bool integer) {
+    if (isnan(v) || isinf(v)) fputs("null", f);
+    else if (integer && v == floor(v) && fabs(v) < 1e15) fprintf(f, "%.0f", v);
+    else fprintf(f, "%.9g", v);
+}
+
+/* {"metrics":[{"key","label","unit","value"}…],"stems_by_order":[…],"leaves":N}: the rows of
+ * `sylva compare --json` for one run (a per-order metric from order 1 to Strahler - 1). */
+static char *metrics_json(const SylMetrics *m) {
+    char *s = NULL;
+    size_t n = 0;
+    FILE *f = open_memstream(&s, &n);
+    if (!f) return NULL;
+    fputs("{\"metrics\":[", f);
+    int first = 1;
+    for (int k = 0; k < syl_metric_count; k++) {
+        const SylMetricInfo *mi = &syl_metric_info[k];
+        int from = mi->per_order ? 1 : 0, to = mi->per_order ? (int)m->strahler : 1;
+        for (int o = from; o < to; o++) {
+            char key[80], label[80];
+            snprintf(key, sizeof key, mi->per_order ? "%s_%d" : "%s", mi->key, o);
+            if (mi->per_order) snprintf(label, sizeof label, "%s %d:%d", mi->label, o, o + 1);
+            else snprintf(label, sizeof label, "%s", mi->label);
+            fputs(first ? "{\"key\":" : ",{\"key\":", f);
+            first = 0;
+            json_string_file(f, key);
+            fputs(",\"label\":", f);
+            json_string_file(f, label);
+            fputs(",\"unit\":", f);
+            json_string_file(f, mi->unit);
+            fputs(",\"value\":", f);
+            number(f, syl_metric_value(m, k, o), mi->integer);
+            fputc('}', f);
+        }
+    }
+    fputs("],\"stems_by_order\":[", f);
+    for (int k = 0; k < m->stem_orders; k++) {
+        fputs(k ? "," : "", f);
+        number(f, m->stems_by_order[k], true);
+    }
+    fputs("],\"leaves\":", f);
+    number(f, m->leaves, true);
+    fputs("}", f);
+    fclose(f);
+    return s;
+}
+
+void view_keep_free(View *v) {
+    if (v->kept) syl_plant_free(v->kept);
+    free(v->kept);
+    syl_budget_free(v->kept_budget); /* after the arrays counted against it */
+    v->kept = NULL, v->kept_budget = NULL;
+    v->kept_id = 0;
+}
+
+void view_keep(View *v, unsigned id, SylPlant *pl, SylBudget **budget) {
+    view_keep_free(v);
+    if (!(v->kept = malloc(sizeof *v->kept))) return; /* *pl stays the caller's to free */
+    *v->kept = *pl, v->kept_budget = *budget, v->kept_id = id;
+    memset(pl, 0, sizeof *pl);
+    *budget = NULL;
+}
+
+char *view_metrics(View *v, ViewBuild *b, char **diag) {
+    *diag = NULL;
+    if (b->metrics) return b->metrics;
+    if (!v->kept || v->kept_id != b->id || !v->kept->skeleton) return NULL;
+    size_t dl = 0;
+    FILE *df = open_memstream(diag, &dl);
+    if (!df) return NULL;
+    SylMetrics m;
+    SylMetricsOptions o = {.mesh = v->kept->mesh, .threads = v->threads, .diag = df};
+    if (!syl_metrics(v->kept->skeleton, &o, &m)) b->metrics = metrics_json(&m);
+    fclose(df);
+    return b->metrics;
+}
