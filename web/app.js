@@ -364,6 +364,7 @@ let loading = null, again = false;
 // Build what the controls say and draw it; the camera stays unless frameIt.
 async function load(frameIt = false) {
   if (loading) { again = true; return loading; }
+  state.idle = false;
   loading = (async () => {
     const t0 = performance.now();
     $('status').textContent = 'building…';
@@ -437,6 +438,7 @@ async function load(frameIt = false) {
     showError('');
     applyLook();
     state.loads++;
+    state.drawnQuery = q; // what it was built from (the tests: a drag's last value is drawn)
     state.gen = b.gen;
     state.drawnAt = performance.now(); // the frame after this shows it (state.shownAt)
     state.shownAt = 0;
@@ -448,7 +450,7 @@ async function load(frameIt = false) {
   })();
   try { await loading; } finally {
     loading = null;
-    if (again) { again = false; load(); }
+    if (again) { again = false; load(); } else state.idle = true;
   }
 }
 
