@@ -93,6 +93,9 @@ char *view_models_json(View *v);
 /* The parameters of the file's models (syl_describe_json), malloc'ed; NULL with *diag set. */
 char *view_describe_json(View *v, const ViewRequest *rq, char **diag);
 void view_cache_free(View *v);
+/* As open_memstream, for the big outputs (a .glb of many MB): the buffer grows by realloc
+ * (no copy of what is there, no zero-filling), *buf and *len are set at fclose. */
+FILE *view_bytes_open(char **buf, size_t *len);
 /* A library writer that takes a path, into out: written in a private temporary directory as
  * NAME, read back, the directory removed (with what the writer put beside the file). */
 typedef int (*ViewPathWriter)(void *ctx, const char *path, FILE *diag);

@@ -279,12 +279,12 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         m.eco = NULL;
     } else if (!status) {
         double t = cli_now();
-        FILE *out = open_memstream(&slot->glb, &slot->glb_len);
+        FILE *out = view_bytes_open(&slot->glb, &slot->glb_len);
         if (!v->textures) v->textures = syl_texture_cache_new(); /* NULL: made at each write */
         status = out ? write_glb(&m, v->textures, out, diag) : SYL_ELIMIT;
         if (out) fclose(out);
         m.write_s = cli_now() - t;
-        out = open_memstream(&slot->csv, &slot->csv_len);
+        out = view_bytes_open(&slot->csv, &slot->csv_len);
         if (!status && out) status = syl_skeleton_write_csv(m.pl.skeleton, out);
         if (out) fclose(out);
         if (!status) status = write_obstacles(&m, slot, diag);
@@ -312,6 +312,44 @@ static int write_png(Made *m, const ViewRequest *rq, FILE *out, FILE *diag, int 
     if (!status) status = syl_png_write_stream(out, rgb, w, h, diag);
     free(rgb);
     return status;
+}
+
+typedef struct Bytes {
+    char **buf, *data;
+    size_t *len, n, cap;
+} Bytes;
+
+static ssize_t bytes_write(void *c, const char *p, size_t n) {
+    Bytes *b = c;
+    if (b->n + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 1 << 16;
+        while (cap < b->n + n + 1) cap *= 2;
+        char *d = realloc(b->data, cap);
+        if (!d) return -1;
+        b->data = d, b->cap = cap;
+    }
+    memcpy(b->data + b->n, p, n);
+    b->n += n;
+    return (ssize_t)n;
+}
+
+static int bytes_close(void *c) {
+    Bytes *b = c;
+    if (!b->data) b->data = malloc(1);
+    if (b->data) b->data[b->n] = 0;
+    *b->buf = b->data, *b->len = b->data ? b->n : 0;
+    free(b);
+    return 0;
+}
+
+FILE *view_bytes_open(char **buf, size_t *len) {
+    Bytes *b = calloc(1, sizeof *b);
+    if (!b) return NULL;
+    b->buf = buf, b->len = len;
+    FILE *f = fopencookie(b, "w", (cookie_io_functions_t){.write = bytes_write, .close = bytes_close});
+    if (!f) free(b);
+    else setvbuf(f, NULL, _IOFBF, 1 << 16);
+    return f;
 }
 
 int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE *out, FILE *diag) {

@@ -211,7 +211,7 @@ int view_eco_build(View *v, const ViewRequest *rq, SylProgram *p, unsigned gen, 
         fprintf(diag, "sylva: error: the ecosystem has no years to show\n");
         return SYL_EMODEL;
     }
-    FILE *out = open_memstream(&slot->glb, &slot->glb_len);
+    FILE *out = view_bytes_open(&slot->glb, &slot->glb_len);
     if (!out) return SYL_ELIMIT;
     int st = view_write_via_file(write_forest, &(ForestAt){e, y}, "forest.glb", out, diag);
     fclose(out);
