@@ -182,7 +182,18 @@ function applyLook() {
   redraw();
 }
 
-function setMode(mode) {
+// The skeleton's lines of the build on show (sylva skeleton's CSV), asked for when first shown.
+async function loadSkeleton() {
+  const b = state.build, group = root;
+  if (skeletonLines || !b || !b.ok || !group) return;
+  const r = await fetch('/api/skeleton?id=' + b.id);
+  if (!r.ok || root !== group || skeletonLines) return; // a newer build is on show
+  skeletonLines = skeletonFrom(await r.text());
+  group.add(skeletonLines);
+}
+
+async function setMode(mode) {
+  if (mode === 'skeleton') await loadSkeleton();
   state.mode = mode;
   document.querySelectorAll('#modes button').forEach((b) => b.classList.toggle('on', b.dataset.mode === mode));
   applyLook();
@@ -383,17 +394,13 @@ async function load(frameIt = false) {
       $('status').textContent = 'error (the last good model is shown)';
       return;
     }
-    const [glb, csv] = await Promise.all([
-      fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer()),
-      fetch('/api/skeleton?id=' + b.id).then((r) => r.text()),
-    ]);
+    const glb = await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
     const gltf = await loader.parseAsync(glb, '');
     const eco = b.stats.kind === 'ecosystem';
     const lod = eco ? null : await gatherLods(gltf);
     const group = new THREE.Group();
     group.add(lod || gltf.scene);
-    skeletonLines = skeletonFrom(csv);
-    group.add(skeletonLines);
+    skeletonLines = null; // made when the skeleton mode shows it (loadSkeleton): not on every save
     pickables = [];
     if (b.obstacles) { // the obstacles' own meshes: what a click may place a plant on
       const ob = await loader.parseAsync(await fetch('/api/obstacles?id=' + b.id).then((r) => r.arrayBuffer()), '');
@@ -436,6 +443,7 @@ async function load(frameIt = false) {
     showStats(b.stats);
     if (!eco) metricsOf(b.id);
     showError('');
+    if (state.mode === 'skeleton') await loadSkeleton();
     applyLook();
     state.loads++;
     state.drawnQuery = q; // what it was built from (the tests: a drag's last value is drawn)

@@ -284,9 +284,6 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         status = out ? write_glb(&m, v->textures, out, diag) : SYL_ELIMIT;
         if (out) fclose(out);
         m.write_s = cli_now() - t;
-        out = view_bytes_open(&slot->csv, &slot->csv_len);
-        if (!status && out) status = syl_skeleton_write_csv(m.pl.skeleton, out);
-        if (out) fclose(out);
         if (!status) status = write_obstacles(&m, slot, diag);
         if (!status) slot->stats = stats_json(&m);
         if (!status) view_keep(v, slot->id, &m.pl, &m.budget); /* its metrics, when the page asks */

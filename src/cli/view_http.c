@@ -237,7 +237,13 @@ static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, 
     for (int i = 0; i < VIEW_CACHE; i++)
         if (id && v->cache[i].id == id) b = &v->cache[i];
     enum MHD_Result r;
-    if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles)) r = send_text(c, MHD_HTTP_NOT_FOUND, "no such build\n");
+    if (b && !b->status && part == PART_SKELETON && !b->csv && v->kept && v->kept_id == b->id) { /* made when first asked for */
+        FILE *out = view_bytes_open(&b->csv, &b->csv_len);
+        if (out && syl_skeleton_write_csv(v->kept->skeleton, out)) fclose(out), free(b->csv), b->csv = NULL;
+        else if (out) fclose(out);
+    }
+    if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles) || (part == PART_SKELETON && !b->csv))
+        r = send_text(c, MHD_HTTP_NOT_FOUND, "no such build\n");
     else if (part == PART_GLB) r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->glb, b->glb_len, MHD_RESPMEM_MUST_COPY);
     else if (part == PART_OBSTACLES)
         r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->obstacles, b->obstacles_len, MHD_RESPMEM_MUST_COPY);
