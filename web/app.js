@@ -56,6 +56,10 @@ window.sylvaLevelTriangles = (k) => {
   });
   return n;
 };
+// the forest's far level, batch by batch (the tests): its triangles, whether it is textured, its look
+window.sylvaForestFar = () => (forest ? forest.batches : []).map((b) => ({
+  triangles: (b.coarse.geometry.index ? b.coarse.geometry.index.count : b.coarse.geometry.attributes.position.count) / 3,
+  textured: !!(b.coarse.material && b.coarse.material.map), look: b.coarse.userData.impostor, count: b.coarse.count }));
 // where a point of the world is on the canvas, in CSS pixels (for the tests' clicks)
 window.sylvaProject = (x, y, z) => {
   const p = new THREE.Vector3(x, y, z).project(camera), r = canvas.getBoundingClientRect();
@@ -247,12 +251,28 @@ async function metricsOf(id) {
 // The forest .glb (syl_forest_write_glb) holds one node per species, age class, look and cell,
 // its plants instanced with EXT_mesh_gpu_instancing (three.js draws them as InstancedMesh).
 // Each batch is culled by three.js against the view frustum (its bounding sphere covers its
-// instances); beyond `far` of the terrain's diagonal a batch is drawn by its far level: one cone
-// of the look's size and colour per plant, sharing the batch's instance matrices.
+// instances); beyond `far` of the terrain's diagonal a batch is drawn by its far level: the
+// look's impostor — three crossed billboards showing the look's pictures, baked by the library
+// (syl_impostor_bake, as `sylva mesh --billboards 3`) and served as a .glb per look — one per
+// plant, sharing the batch's instance matrices.
 const palette = ['#2e7d32', '#e68c1e', '#1e5aa0', '#aa3c96', '#c0392b', '#16a085', '#7f8c8d', '#8e6e1e'];
-const coneGeometry = new THREE.ConeGeometry(0.5, 1, 6).translate(0, 0.5, 0);
+const impostors = new Map(); // run (the query without the year) + look -> {geometry, material}
 
-function setupForest(sceneRoot, stats) {
+async function impostorOf(look) {
+  const key = query({ n: '' }) + '#' + look;
+  if (!impostors.has(key)) impostors.set(key, (async () => {
+    const r = await fetch('/api/impostor?look=' + look);
+    if (!r.ok) return null;
+    const g = await loader.parseAsync(await r.arrayBuffer(), '');
+    g.scene.updateMatrixWorld(true);
+    let found = null;
+    g.scene.traverse((o) => { if (o.isMesh && !found) found = o; });
+    return found && { geometry: found.geometry.clone().applyMatrix4(found.matrixWorld), material: found.material };
+  })());
+  return impostors.get(key);
+}
+
+async function setupForest(sceneRoot, stats) {
   const byNode = new Map();
   sceneRoot.updateMatrixWorld(true);
   sceneRoot.traverse((o) => {
@@ -264,15 +284,15 @@ function setupForest(sceneRoot, stats) {
     byNode.get(n).push(o);
   });
   const batches = [];
+  const looks = stats.looks || [];
   for (const [node, full] of byNode) {
-    const box = new THREE.Box3();
-    for (const m of full) { m.geometry.computeBoundingBox(); box.union(m.geometry.boundingBox); m.computeBoundingSphere(); }
-    const size = box.getSize(new THREE.Vector3());
-    const mat = full[full.length - 1].material; // the leaves' colour when the look has leaves
-    const colour = (Array.isArray(mat) ? mat[0] : mat).color || new THREE.Color(0x2e7d32);
-    const geo = coneGeometry.clone().scale(Math.max(size.x, size.z), size.y, Math.max(size.x, size.z))
-      .translate((box.min.x + box.max.x) / 2, box.min.y, (box.min.z + box.max.z) / 2);
-    const coarse = new THREE.InstancedMesh(geo, new THREE.MeshLambertMaterial({ color: colour }), full[0].count);
+    for (const m of full) m.computeBoundingSphere();
+    const u = node.userData;
+    const look = looks.findIndex((l) => l.species === u.species && l.class === u.class && l.variant === u.variant);
+    const imp = look >= 0 ? await impostorOf(look) : null;
+    // no picture of it (the bake failed): its far level is its looks
+    const coarse = imp ? new THREE.InstancedMesh(imp.geometry, imp.material, full[0].count) : full[0].clone();
+    coarse.userData.impostor = imp ? look : -1;
     coarse.instanceMatrix = full[0].instanceMatrix;
     coarse.matrixAutoUpdate = false;
     coarse.matrix.copy(full[0].matrixWorld);
@@ -282,7 +302,7 @@ function setupForest(sceneRoot, stats) {
     sceneRoot.add(coarse);
     const b = node.userData.bounds; // [x0, z0, x1, z1] of its cell
     const centre = new THREE.Vector3((b[0] + b[2]) / 2, full[0].boundingSphere.center.y, (b[1] + b[3]) / 2);
-    batches.push({ full, coarse, centre, species: node.userData.species, count: full[0].count });
+    batches.push({ full, coarse, centre, species: node.userData.species, count: full[0].count, look });
   }
   const t = stats.terrain;
   forest = { batches, diagonal: Math.hypot(t.width, t.depth) };
@@ -424,13 +444,13 @@ async function load(frameIt = false) {
     const levels = eco ? 2 : lod ? lod.levels.length : 1;
     const sel = $('forcelod');
     const keep = state.forceLod;
-    const name = (k) => eco ? ['near (the looks)', 'far (cones)'][k]
+    const name = (k) => eco ? ['near (the looks)', 'far (impostors)'][k]
       : state.impostor && k === levels - 1 ? `LOD${k} (impostor)` : 'LOD' + k;
     sel.replaceChildren(new Option('by distance', 'auto'), ...Array.from({ length: levels }, (_, k) => new Option(name(k), String(k))));
     state.forceLod = keep !== 'auto' && +keep < levels ? keep : 'auto';
     sel.value = state.forceLod;
     forest = null; state.forest = null;
-    if (eco) setupForest(gltf.scene, b.stats);
+    if (eco) await setupForest(gltf.scene, b.stats);
     $('ecopanel').hidden = !eco;
     if (!eco) $('steplabel').textContent = 'Step';
     ground.visible = !eco; // the terrain is in the forest's .glb

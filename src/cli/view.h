@@ -108,6 +108,9 @@ int view_eco_build(View *v, const ViewRequest *rq, SylProgram *p, unsigned gen, 
 /* The PNG of a factor's map (syl_terrain_write_map) of the last ecosystem run. */
 int view_eco_map(View *v, const char *name, char **png, size_t *len);
 void view_eco_free(ViewEco *e);
+/* The .glb of look k's impostor (its crossed billboards) of the last ecosystem run, owned by
+ * the run (*glb valid under v->lock until the next run). */
+int view_eco_impostor(View *v, int look, const char **glb, size_t *len);
 
 /* view_metrics.c: keep pl and the budget its arrays are counted against (both taken over,
  * zeroed) as build id's plant, the previous one freed */

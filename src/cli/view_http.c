@@ -326,6 +326,18 @@ static enum MHD_Result api_map(struct MHD_Connection *c, View *v, const char *fa
     return send_bytes(c, MHD_HTTP_OK, "image/png", png, len, MHD_RESPMEM_MUST_FREE);
 }
 
+/* The impostor of look K of the ecosystem on show: the forest's far level. */
+static enum MHD_Result api_impostor(struct MHD_Connection *c, View *v, const char *look) {
+    const char *glb;
+    size_t len;
+    pthread_mutex_lock(&v->lock);
+    int st = look && *look ? view_eco_impostor(v, atoi(look), &glb, &len) : SYL_EUSAGE;
+    enum MHD_Result r = st ? send_text(c, MHD_HTTP_NOT_FOUND, "no such look\n")
+                           : send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", glb, len, MHD_RESPMEM_MUST_COPY);
+    pthread_mutex_unlock(&v->lock);
+    return r;
+}
+
 /* "Save as…": a new file beside the model (a plain name, no directory); an existing one only
  * with overwrite=yes, which the page sends after the user confirmed. Through util/outfile:
  * nothing half-written. */
@@ -429,6 +441,8 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     if (!strcmp(url, "/api/glb")) return api_part(c, v, q.id, PART_GLB);
     if (!strcmp(url, "/api/skeleton")) return api_part(c, v, q.id, PART_SKELETON);
     if (!strcmp(url, "/api/obstacles")) return api_part(c, v, q.id, PART_OBSTACLES);
+    if (!strcmp(url, "/api/impostor"))
+        return api_impostor(c, v, MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "look"));
     if (!strcmp(url, "/api/metrics")) return api_metrics(c, v, q.id);
     if (!strcmp(url, "/api/export")) return api_export(c, v, &q);
     if (!strcmp(url, "/api/describe")) return api_describe(c, v, &q);

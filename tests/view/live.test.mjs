@@ -29,13 +29,39 @@ const BUSH = (depth) => `lsystem Bush {
   F -> F ~L
 }
 `;
+const ECO = `ecosystem Patch {
+  terrain "flat.asc"
+  years 4
+  seed 7
+  species stick
+    model Stick
+    maturity 2
+    height_max 6
+    growth_rate 0.6
+    start_height 0.5
+    radius_ratio 0.3
+    seeds 2
+    dispersal 2
+    arrivals 60
+    shade_tolerance 0.5
+}
+lsystem Stick {
+  derive 2
+  axiom F
+  F -> F[+F]F[-F]F
+}
+`;
+const eco = join(dir, 'eco.syl');
+writeFileSync(eco, ECO);
+writeFileSync(join(dir, 'flat.asc'), spawnSync('python3', ['tests/oracle/ecosystem.py', 'flat', '30', '1']).stdout);
 const bush = join(dir, 'bush.syl');
 writeFileSync(bush, BUSH(4));
 function edit(path, text) { writeFileSync(path + '.new', text); renameSync(path + '.new', path); }
 
 const { server, url } = await serve(sylva, file);
 const s2 = await serve(sylva, bush);
-const servers = [server, s2.server];
+const s3 = await serve(sylva, eco);
+const servers = [server, s2.server, s3.server];
 const base = url.replace(/\/\?token=.*/, ''), token = url.replace(/.*token=/, '');
 function get(path) {
   return new Promise((resolve) => {
@@ -101,6 +127,23 @@ try {
   const after = await p2.evaluate(() => ({ loads: window.sylvaView.loads, depth: window.sylvaView.sets.depth, key: window.sylvaView.drawnQuery }));
   check(/set=depth%3D6(&|$)/.test(after.key) && after.loads - drag.n0 < drag.moves,
     'a fast drag draws its last value, stale values dropped (fewer builds than moves)', JSON.stringify({ ...after, ...drag }));
+
+  // ---- an ecosystem's far level: each batch's look's impostor (crossed billboards) ----
+  const p3 = await browser.newPage();
+  p3.on('pageerror', (e) => errors.push(String(e)));
+  await p3.setViewport({ width: 900, height: 700 });
+  await p3.goto(s3.url);
+  await p3.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1 && window.sylvaView.forest, { timeout: 120000 });
+  await p3.select('#forcelod', '1');
+  await p3.waitForFunction(() => window.sylvaView.forest.full === 0, { timeout: 10000 }).catch(() => {});
+  const far = await p3.evaluate(() => ({ batches: window.sylvaForestFar(), forest: window.sylvaView.forest,
+    label: document.querySelector('#forcelod option[value="1"]').textContent }));
+  // sylva mesh --billboards 3: three crossed quads, each face two triangles, front and back
+  check(far.batches.length > 0 && far.batches.every((b) => b.triangles === 12 && b.textured && b.look >= 0) &&
+    far.forest.coarse > 0 && /impostor/.test(far.label),
+  'an ecosystem\'s far level is each look\'s impostor: 3 crossed textured quads (12 triangles) per plant, not cones',
+  JSON.stringify(far).slice(0, 400));
+  check(far.batches.reduce((a, b) => a + b.count, 0) === far.forest.instances, 'the impostors are drawn once per plant of the batch');
   check(errors.length === 0, 'no error in the pages', errors.join('; '));
 } catch (e) {
   check(false, 'the tests ran to the end', String(e && e.stack || e));
