@@ -88,6 +88,7 @@ function animate() {
     state.frames = (state.frames || 0) + 1;
     if (state.drawnAt && !state.shownAt) { // the first frame of the last build (make bench: save to frame)
       state.shownAt = performance.now(); state.shownWall = Date.now();
+      if (state.timing) state.timing.frame = state.shownAt - state.drawnAt;
     }
   }
   requestAnimationFrame(animate);
@@ -392,6 +393,66 @@ function showEco(s) {
 const loader = new GLTFLoader();
 let loading = null, again = false;
 
+// The textures of the last builds by their PNG bytes: a save writes the same bark, leaf and
+// card pictures again, and a texture already on the GPU (uploaded, mipmapped) is used again
+// instead of the new copy. The .glb is not changed: only which THREE.Texture draws it.
+const textures = new Map(); // key -> THREE.Texture
+// the pictures kept, and those the drawn materials use (the tests)
+window.sylvaTextures = () => {
+  const drawn = new Set();
+  if (root) root.traverse((o) => { if (o.isMesh) for (const m of [].concat(o.material)) if (m && m.map) drawn.add(m.map.source.uuid); });
+  return { kept: [...textures.values()].map((t) => t.source.uuid), drawn: [...drawn] };
+};
+function pngKey(json, bin, i) {
+  const img = json.images && json.images[i];
+  const view = img && img.bufferView !== undefined ? json.bufferViews[img.bufferView] : null;
+  if (!view) return null;
+  const bytes = new Uint8Array(bin, (view.byteOffset || 0), view.byteLength);
+  let h = 2166136261;
+  for (let k = 0; k < bytes.length; k++) h = Math.imul(h ^ bytes[k], 16777619);
+  return `${view.byteLength}:${h >>> 0}`;
+}
+async function reuseTextures(gltf) {
+  const parser = gltf.parser, json = parser.json;
+  if (!json.textures || !json.textures.length) return;
+  const bin = await parser.getDependency('buffer', 0);
+  const keep = new Map(), used = new Set();
+  for (let t = 0; t < json.textures.length; t++) {
+    const src = json.textures[t].source, key = src !== undefined ? pngKey(json, bin, src) + ':' + (json.textures[t].sampler ?? '') : null;
+    if (key === null) continue;
+    keep.set(await parser.getDependency('texture', t), key);
+  }
+  gltf.scene.traverse((o) => {
+    if (!o.isMesh) return;
+    for (const m of Array.isArray(o.material) ? o.material : [o.material]) {
+      if (!m || !m.map || !keep.has(m.map)) continue;
+      const key = keep.get(m.map), old = textures.get(key);
+      if (old && old !== m.map) { // same bytes: the texture already uploaded, with this use's transform
+        const mine = m.map;
+        m.map = old.clone();
+        m.map.offset.copy(mine.offset); m.map.repeat.copy(mine.repeat); m.map.rotation = mine.rotation;
+        m.map.channel = mine.channel;
+        m.map.version = Math.max(old.version, 1); // bound from the uploaded source, not uploaded again
+        mine.dispose();
+      } else if (!old) textures.set(key, m.map);
+      used.add(key);
+    }
+  });
+  for (const [key, tex] of textures) if (!used.has(key)) { tex.dispose(); textures.delete(key); }
+}
+
+// What the previous build put on the GPU (its geometries; textures not kept above)
+function disposeBuild(group) {
+  const kept = new Set([...textures.values()].map((t) => t.source));
+  group.traverse((o) => {
+    if (o.geometry) o.geometry.dispose();
+    for (const m of Array.isArray(o.material) ? o.material : o.material ? [o.material] : []) {
+      if (m.map && !kept.has(m.map.source)) m.map.dispose();
+      m.dispose();
+    }
+  });
+}
+
 // Build what the controls say and draw it; the camera stays unless frameIt.
 async function load(frameIt = false) {
   if (loading) { again = true; return loading; }
@@ -406,6 +467,7 @@ async function load(frameIt = false) {
       b = text === null ? await getJSON('/api/build?' + q)
         : await (await fetch('/api/build?' + q, { method: 'POST', body: text })).json();
     } catch (e) { b = { ok: false, diag: String(e) }; }
+    const tBuilt = performance.now();
     state.build = b;
     const warnings = (b.diag || '').split('\n').filter((l) => / warning: /.test(l));
     $('warnings').textContent = b.ok ? (b.diag || '') : '';
@@ -415,7 +477,10 @@ async function load(frameIt = false) {
       return;
     }
     const glb = await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
+    const tFetched = performance.now();
     const gltf = await loader.parseAsync(glb, '');
+    await reuseTextures(gltf);
+    const tParsed = performance.now();
     const eco = b.stats.kind === 'ecosystem';
     const lod = eco ? null : await gatherLods(gltf);
     const group = new THREE.Group();
@@ -427,7 +492,7 @@ async function load(frameIt = false) {
       ob.scene.traverse((o) => { if (o.isMesh) { o.material = new THREE.MeshBasicMaterial({ visible: false }); o.userData.pick = true; pickables.push(o); } });
       group.add(ob.scene);
     }
-    if (root) scene.remove(root);
+    if (root) { scene.remove(root); disposeBuild(root); }
     originals.clear();
     root = group;
     lodObject = lod;
@@ -469,6 +534,10 @@ async function load(frameIt = false) {
     state.drawnQuery = q; // what it was built from (the tests: a drag's last value is drawn)
     state.gen = b.gen;
     state.drawnAt = performance.now(); // the frame after this shows it (state.shownAt)
+    // the page's side of save -> frame (make bench prints them): ms of the build request, the
+    // .glb's fetch, its parse (GLTFLoader, textures decoded), the scene's setup; the first
+    // frame's draw (upload, shaders, shadows) is shownAt - drawnAt
+    state.timing = { build: tBuilt - t0, fetch: tFetched - tBuilt, parse: tParsed - tFetched, setup: state.drawnAt - tParsed };
     state.shownAt = 0;
     redraw();
     $('status').textContent = eco ? `year ${b.stats.year} · ${b.stats.plants} plants · ${(performance.now() - t0).toFixed(0)} ms`

@@ -98,6 +98,7 @@ try {
 
   // ---- saves: every build's .glb (textures kept by the server) is sylva mesh's ----
   const text = readFileSync(file, 'utf8');
+  const tex0 = await page.evaluate(() => window.sylvaTextures());
   let same = true, detail = '';
   for (let k = 1; k <= 2; k++) {
     const n = await page.evaluate(() => window.sylvaView.loads);
@@ -109,6 +110,9 @@ try {
     spawnSync(sylva, ['mesh', file, '-o', out, '-j', '1']);
     if (!served.equals(readFileSync(out))) { same = false; detail += `save ${k}: ${served.length} vs ${readFileSync(out).length} bytes; `; }
   }
+  const tex2 = await page.evaluate(() => window.sylvaTextures());
+  check(tex0.kept.length === 1 && JSON.stringify(tex2.drawn) === JSON.stringify(tex0.kept) && JSON.stringify(tex2.kept) === JSON.stringify(tex0.kept),
+    'after saves, the bark texture drawn is the one already on the GPU (same PNG bytes: not decoded into a new texture)', JSON.stringify({ tex0, tex2 }));
   check(same, 'after saves, the .glb drawn (bark texture from the server\'s cache) is byte for byte sylva mesh\'s', detail);
   check((await get('/api/metrics?id=0')).status === 404, 'metrics of no build: 404');
 
