@@ -89,6 +89,7 @@ function animate() {
     if (state.drawnAt && !state.shownAt) { // the first frame of the last build (make bench: save to frame)
       state.shownAt = performance.now(); state.shownWall = Date.now();
       if (state.timing) state.timing.frame = state.shownAt - state.drawnAt;
+      if (state.metricsPending) { const id = state.metricsPending; state.metricsPending = 0; setTimeout(() => metricsOf(id), 100); }
     }
   }
   requestAnimationFrame(animate);
@@ -526,7 +527,7 @@ async function load(frameIt = false) {
     state.stats = b.stats;
     state.metrics = null;
     showStats(b.stats);
-    if (!eco) metricsOf(b.id);
+    state.metricsPending = eco ? 0 : b.id; // asked for once this build's frame is drawn
     showError('');
     if (state.mode === 'skeleton') await loadSkeleton();
     applyLook();

@@ -124,6 +124,7 @@ int cmd_view(int argc, char **argv) {
     mallopt(M_TRIM_THRESHOLD, INT_MAX);
     pthread_mutex_init(&v.lock, NULL);
     pthread_mutex_init(&v.gen_lock, NULL);
+    pthread_mutex_init(&v.keep_lock, NULL);
     pthread_condattr_t ca;
     pthread_condattr_init(&ca);
     pthread_cond_init(&v.changed, &ca);

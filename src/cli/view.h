@@ -66,7 +66,10 @@ typedef struct View {
     ViewBuild cache[VIEW_CACHE];
     unsigned next_id;
     ViewEco *eco;          /* the last ecosystem run (NULL: none) */
-    SylPlant *kept;        /* the last build's plant (skeleton and mesh), for its metrics */
+    /* The last build's plant (skeleton and mesh), for its metrics: changed under lock and
+     * keep_lock, read under either (the metrics under keep_lock only, beside a build). */
+    pthread_mutex_t keep_lock;
+    SylPlant *kept;
     SylTextureCache *textures; /* the .glb's procedural textures, encoded once (under lock) */
     SylBudget *kept_budget; /* what its arrays are counted against */
     unsigned kept_id;      /* its build's id */
@@ -116,10 +119,10 @@ int view_eco_impostor(View *v, int look, const char **glb, size_t *len);
  * zeroed) as build id's plant, the previous one freed */
 void view_keep(View *v, unsigned id, SylPlant *pl, SylBudget **budget);
 void view_keep_free(View *v);
-/* The JSON of the metrics of `sylva compare` (syl_metrics) of build b (cached in b->metrics,
- * which owns it); NULL when b's plant is no longer kept or the metrics failed (*diag says why,
- * malloc'ed). */
-char *view_metrics(View *v, ViewBuild *b, char **diag);
+/* The JSON of the metrics of `sylva compare` (syl_metrics) of build id, malloc'ed (kept in
+ * its cache entry too); NULL when its plant is no longer kept or the metrics failed (*diag
+ * says why, malloc'ed). Called without v->lock: a build may run beside it. */
+char *view_metrics(View *v, unsigned id, char **diag);
 
 /* view_watch.c: follow the file and every file it names; bump v->gen at each change. */
 bool view_watch_start(View *v, pthread_t *thread, int *stop_fd);

@@ -255,15 +255,10 @@ static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, 
 /* The metrics of build id (`sylva compare`'s), made at the first asking: 404 when a newer
  * build has replaced its plant. */
 static enum MHD_Result api_metrics(struct MHD_Connection *c, View *v, unsigned id) {
-    pthread_mutex_lock(&v->lock);
-    ViewBuild *b = NULL;
-    for (int i = 0; i < VIEW_CACHE; i++)
-        if (id && v->cache[i].id == id && !v->cache[i].status) b = &v->cache[i];
     char *diag = NULL;
-    const char *m = b ? view_metrics(v, b, &diag) : NULL;
-    enum MHD_Result r = m ? send_bytes(c, MHD_HTTP_OK, "application/json", m, strlen(m), MHD_RESPMEM_MUST_COPY)
+    char *m = view_metrics(v, id, &diag); /* beside a build: it takes the locks it needs */
+    enum MHD_Result r = m ? send_bytes(c, MHD_HTTP_OK, "application/json", m, strlen(m), MHD_RESPMEM_MUST_FREE)
                           : send_error_json(c, MHD_HTTP_NOT_FOUND, "no metrics of that build", diag);
-    pthread_mutex_unlock(&v->lock);
     free(diag);
     return r;
 }

@@ -66,23 +66,40 @@ void view_keep_free(View *v) {
 }
 
 void view_keep(View *v, unsigned id, SylPlant *pl, SylBudget **budget) {
+    pthread_mutex_lock(&v->keep_lock); /* not while its metrics are measured */
     view_keep_free(v);
-    if (!(v->kept = malloc(sizeof *v->kept))) return; /* *pl stays the caller's to free */
+    if (!(v->kept = malloc(sizeof *v->kept))) return (void)pthread_mutex_unlock(&v->keep_lock); /* *pl stays the caller's */
     *v->kept = *pl, v->kept_budget = *budget, v->kept_id = id;
     memset(pl, 0, sizeof *pl);
     *budget = NULL;
+    pthread_mutex_unlock(&v->keep_lock);
 }
 
-char *view_metrics(View *v, ViewBuild *b, char **diag) {
+static ViewBuild *entry(View *v, unsigned id) {
+    for (int i = 0; i < VIEW_CACHE; i++)
+        if (id && v->cache[i].id == id && !v->cache[i].status) return &v->cache[i];
+    return NULL;
+}
+
+char *view_metrics(View *v, unsigned id, char **diag) {
     *diag = NULL;
-    if (b->metrics) return b->metrics;
-    if (!v->kept || v->kept_id != b->id || !v->kept->skeleton) return NULL;
-    size_t dl = 0;
-    FILE *df = open_memstream(diag, &dl);
-    if (!df) return NULL;
-    SylMetrics m;
-    SylMetricsOptions o = {.mesh = v->kept->mesh, .threads = v->threads, .diag = df};
-    if (!syl_metrics(v->kept->skeleton, &o, &m)) b->metrics = metrics_json(&m);
-    fclose(df);
-    return b->metrics;
+    pthread_mutex_lock(&v->lock);
+    ViewBuild *b = entry(v, id);
+    char *s = b && b->metrics ? strdup(b->metrics) : NULL;
+    pthread_mutex_unlock(&v->lock);
+    if (s || !b) return s;
+    pthread_mutex_lock(&v->keep_lock);
+    if (v->kept && v->kept_id == id && v->kept->skeleton) {
+        size_t dl = 0;
+        FILE *df = open_memstream(diag, &dl);
+        SylMetrics m;
+        SylMetricsOptions o = {.mesh = v->kept->mesh, .threads = v->threads, .diag = df};
+        if (df && !syl_metrics(v->kept->skeleton, &o, &m)) s = metrics_json(&m);
+        if (df) fclose(df);
+    }
+    pthread_mutex_unlock(&v->keep_lock);
+    pthread_mutex_lock(&v->lock);
+    if (s && (b = entry(v, id)) && !b->metrics) b->metrics = strdup(s);
+    pthread_mutex_unlock(&v->lock);
+    return s;
 }
