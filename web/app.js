@@ -413,33 +413,29 @@ function pngKey(json, bin, i) {
   for (let k = 0; k < bytes.length; k++) h = Math.imul(h ^ bytes[k], 16777619);
   return `${view.byteLength}:${h >>> 0}`;
 }
-async function reuseTextures(gltf) {
-  const parser = gltf.parser, json = parser.json;
-  if (!json.textures || !json.textures.length) return;
-  const bin = await parser.getDependency('buffer', 0);
-  const keep = new Map(), used = new Set();
-  for (let t = 0; t < json.textures.length; t++) {
-    const src = json.textures[t].source, key = src !== undefined ? pngKey(json, bin, src) + ':' + (json.textures[t].sampler ?? '') : null;
-    if (key === null) continue;
-    keep.set(await parser.getDependency('texture', t), key);
-  }
-  gltf.scene.traverse((o) => {
-    if (!o.isMesh) return;
-    for (const m of Array.isArray(o.material) ? o.material : [o.material]) {
-      if (!m || !m.map || !keep.has(m.map)) continue;
-      const key = keep.get(m.map), old = textures.get(key);
-      if (old && old !== m.map) { // same bytes: the texture already uploaded, with this use's transform
-        const mine = m.map;
-        m.map = old.clone();
-        m.map.offset.copy(mine.offset); m.map.repeat.copy(mine.repeat); m.map.rotation = mine.rotation;
-        m.map.channel = mine.channel;
-        m.map.version = Math.max(old.version, 1); // bound from the uploaded source, not uploaded again
-        mine.dispose();
-      } else if (!old) textures.set(key, m.map);
-      used.add(key);
-    }
-  });
-  for (const [key, tex] of textures) if (!used.has(key)) { tex.dispose(); textures.delete(key); }
+// A GLTFLoader plugin for the builds' .glb: a texture whose PNG bytes (and sampler) are a kept
+// one's is that texture — not decoded, not uploaded again; a new one is decoded and kept.
+// used: the keys the last parse took (the others are let go after it).
+let texturesUsed = new Set();
+const reuse = (parser) => ({
+  name: 'sylva_texture_reuse',
+  loadTexture(t) {
+    const json = parser.json, def = json.textures[t];
+    if (def.source === undefined || (def.extensions && Object.keys(def.extensions).length)) return null;
+    return parser.getDependency('buffer', 0).then((bin) => {
+      const png = pngKey(json, bin, def.source);
+      if (png === null) return parser.loadTextureImage(t, def.source, parser.textureLoader);
+      const key = png + ':' + (def.sampler ?? '');
+      texturesUsed.add(key);
+      if (textures.has(key)) return textures.get(key);
+      return parser.loadTextureImage(t, def.source, parser.textureLoader).then((tex) => { textures.set(key, tex); return tex; });
+    });
+  },
+});
+const buildLoader = new GLTFLoader().register(reuse);
+function forgetTextures() { // the kept ones the last build did not use
+  for (const [key, tex] of textures) if (!texturesUsed.has(key)) { tex.dispose(); textures.delete(key); }
+  texturesUsed = new Set();
 }
 
 // What the previous build put on the GPU (its geometries; textures not kept above)
@@ -479,8 +475,8 @@ async function load(frameIt = false) {
     }
     const glb = await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
     const tFetched = performance.now();
-    const gltf = await loader.parseAsync(glb, '');
-    await reuseTextures(gltf);
+    texturesUsed = new Set();
+    const gltf = await buildLoader.parseAsync(glb, '');
     const tParsed = performance.now();
     const eco = b.stats.kind === 'ecosystem';
     const lod = eco ? null : await gatherLods(gltf);
@@ -494,6 +490,7 @@ async function load(frameIt = false) {
       group.add(ob.scene);
     }
     if (root) { scene.remove(root); disposeBuild(root); }
+    forgetTextures();
     originals.clear();
     root = group;
     lodObject = lod;

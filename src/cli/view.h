@@ -54,6 +54,15 @@ typedef struct ViewBuild {
 
 typedef struct ViewEco ViewEco; /* an ecosystem's run, its years kept (view_eco.c) */
 
+/* A build's plant kept after it (view_metrics.c) */
+typedef struct ViewKept {
+    SylPlant pl;
+    SylBudget *budget; /* what its arrays are counted against */
+    unsigned id;       /* its build's */
+    int refs;          /* metrics measuring it */
+    bool dropped;      /* replaced: freed by the last reference */
+} ViewKept;
+
 typedef struct View {
     char path[4096];       /* the model file, as given */
     char dir[4096];        /* its directory */
@@ -66,13 +75,12 @@ typedef struct View {
     ViewBuild cache[VIEW_CACHE];
     unsigned next_id;
     ViewEco *eco;          /* the last ecosystem run (NULL: none) */
-    /* The last build's plant (skeleton and mesh), for its metrics: changed under lock and
-     * keep_lock, read under either (the metrics under keep_lock only, beside a build). */
+    /* The last build's plant, for its metrics and skeleton: replaced under lock and
+     * keep_lock; the metrics hold a reference (under keep_lock) while they measure it beside
+     * the next build, which does not wait for them. */
     pthread_mutex_t keep_lock;
-    SylPlant *kept;
+    ViewKept *kept;
     SylTextureCache *textures; /* the .glb's procedural textures, encoded once (under lock) */
-    SylBudget *kept_budget; /* what its arrays are counted against */
-    unsigned kept_id;      /* its build's id */
     /* Changes: gen counts them; waiters (the pages' event streams) are woken at each. */
     pthread_mutex_t gen_lock;
     pthread_cond_t changed;

@@ -237,9 +237,9 @@ static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, 
     for (int i = 0; i < VIEW_CACHE; i++)
         if (id && v->cache[i].id == id) b = &v->cache[i];
     enum MHD_Result r;
-    if (b && !b->status && part == PART_SKELETON && !b->csv && v->kept && v->kept_id == b->id) { /* made when first asked for */
+    if (b && !b->status && part == PART_SKELETON && !b->csv && v->kept && v->kept->id == b->id) { /* made when first asked for */
         FILE *out = view_bytes_open(&b->csv, &b->csv_len);
-        if (out && syl_skeleton_write_csv(v->kept->skeleton, out)) fclose(out), free(b->csv), b->csv = NULL;
+        if (out && syl_skeleton_write_csv(v->kept->pl.skeleton, out)) fclose(out), free(b->csv), b->csv = NULL;
         else if (out) fclose(out);
     }
     if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles) || (part == PART_SKELETON && !b->csv))

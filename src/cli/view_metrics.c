@@ -57,21 +57,37 @@ static char *metrics_json(const SylMetrics *m) {
     return s;
 }
 
+static void kept_free(ViewKept *k) {
+    if (!k) return;
+    syl_plant_free(&k->pl);
+    syl_budget_free(k->budget); /* after the arrays counted against it */
+    free(k);
+}
+
+/* Let the kept plant go: now, or when the metrics measuring it are done. */
+static void drop(View *v) {
+    ViewKept *k = v->kept;
+    v->kept = NULL;
+    if (k && k->refs) k->dropped = true;
+    else kept_free(k);
+}
+
 void view_keep_free(View *v) {
-    if (v->kept) syl_plant_free(v->kept);
-    free(v->kept);
-    syl_budget_free(v->kept_budget); /* after the arrays counted against it */
-    v->kept = NULL, v->kept_budget = NULL;
-    v->kept_id = 0;
+    pthread_mutex_lock(&v->keep_lock);
+    drop(v);
+    pthread_mutex_unlock(&v->keep_lock);
 }
 
 void view_keep(View *v, unsigned id, SylPlant *pl, SylBudget **budget) {
-    pthread_mutex_lock(&v->keep_lock); /* not while its metrics are measured */
-    view_keep_free(v);
-    if (!(v->kept = malloc(sizeof *v->kept))) return (void)pthread_mutex_unlock(&v->keep_lock); /* *pl stays the caller's */
-    *v->kept = *pl, v->kept_budget = *budget, v->kept_id = id;
-    memset(pl, 0, sizeof *pl);
-    *budget = NULL;
+    ViewKept *k = malloc(sizeof *k);
+    pthread_mutex_lock(&v->keep_lock);
+    drop(v);
+    if (k) {
+        *k = (ViewKept){.pl = *pl, .budget = *budget, .id = id};
+        memset(pl, 0, sizeof *pl);
+        *budget = NULL;
+        v->kept = k;
+    } /* else *pl stays the caller's to free */
     pthread_mutex_unlock(&v->keep_lock);
 }
 
@@ -89,14 +105,18 @@ char *view_metrics(View *v, unsigned id, char **diag) {
     pthread_mutex_unlock(&v->lock);
     if (s || !b) return s;
     pthread_mutex_lock(&v->keep_lock);
-    if (v->kept && v->kept_id == id && v->kept->skeleton) {
-        size_t dl = 0;
-        FILE *df = open_memstream(diag, &dl);
-        SylMetrics m;
-        SylMetricsOptions o = {.mesh = v->kept->mesh, .threads = v->threads, .diag = df};
-        if (df && !syl_metrics(v->kept->skeleton, &o, &m)) s = metrics_json(&m);
-        if (df) fclose(df);
-    }
+    ViewKept *k = v->kept && v->kept->id == id && v->kept->pl.skeleton ? v->kept : NULL;
+    if (k) k->refs++;
+    pthread_mutex_unlock(&v->keep_lock);
+    if (!k) return NULL;
+    size_t dl = 0;
+    FILE *df = open_memstream(diag, &dl);
+    SylMetrics m;
+    SylMetricsOptions o = {.mesh = k->pl.mesh, .threads = v->threads, .diag = df};
+    if (df && !syl_metrics(k->pl.skeleton, &o, &m)) s = metrics_json(&m);
+    if (df) fclose(df);
+    pthread_mutex_lock(&v->keep_lock);
+    if (!--k->refs && k->dropped) kept_free(k);
     pthread_mutex_unlock(&v->keep_lock);
     pthread_mutex_lock(&v->lock);
     if (s && (b = entry(v, id)) && !b->metrics) b->metrics = strdup(s);
