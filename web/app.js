@@ -89,7 +89,9 @@ function animate() {
     if (state.drawnAt && !state.shownAt) { // the first frame of the last build (make bench: save to frame)
       state.shownAt = performance.now(); state.shownWall = Date.now();
       if (state.timing) state.timing.frame = state.shownAt - state.drawnAt;
-      if (state.metricsPending) { const id = state.metricsPending; state.metricsPending = 0; setTimeout(() => metricsOf(id), 100); }
+      // the metrics once the page rests a second on this build (a save or a drag going on
+      // asks for none: their light interception would share the processor with the builds)
+      if (state.metricsPending) { const id = state.metricsPending; state.metricsPending = 0; setTimeout(() => { if (!loading) metricsOf(id); }, 1000); }
     }
   }
   requestAnimationFrame(animate);
@@ -242,6 +244,7 @@ function showStats(s) {
 // The metrics of `sylva compare` for build id, asked for after its frame: their ray casting
 // (light interception) never delays the picture. A newer build's answer wins.
 async function metricsOf(id) {
+  if (!state.build || state.build.id !== id) return; // a newer build is on show
   const r = await fetch('/api/metrics?id=' + id).catch(() => null);
   if (!r || !r.ok || !state.build || state.build.id !== id) return;
   state.metrics = await r.json();
