@@ -4,7 +4,8 @@
 // Prints one line per case:
 //   save NAME MODULES TRIANGLES BEST_MS MEDIAN_MS SERVER_MS WRITE_MS   from the file's save (an
 //       atomic rename, as editors save) to the first frame drawn with the new build, in the page's
-//       clock; SERVER_MS the last build's compile to .glb written in the server, WRITE_MS the .glb writer's
+//       clock; SERVER_MS the last build's compile to .glb written in the server, WRITE_MS the .glb writer's;
+//       PAGE the best save's page side: build request / .glb fetch / parse / setup / first frame, ms
 //   slider NAME MODULES UPDATES SECONDS            builds drawn while a slider is dragged
 import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -41,7 +42,7 @@ try {
     await page.goto(url);
     await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
     const text = readFileSync(path, 'utf8');
-    const times = [];
+    const times = [], phases = [];
     for (let r = 0; r < runs; r++) {
       const n = await page.evaluate(() => window.sylvaView.loads);
       await new Promise((res) => setTimeout(res, 300)); // an idle page
@@ -51,10 +52,13 @@ try {
       await page.waitForFunction((k) => window.sylvaView.loads > k && window.sylvaView.shownAt > 0,
         { timeout: 300000, polling: 20 }, n);
       times.push(await page.evaluate(() => window.sylvaView.shownWall) - t0);
+      phases.push(await page.evaluate(() => window.sylvaView.timing || null));
     }
     const s = await page.evaluate(() => window.sylvaView.stats);
     const built = ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (s[k + '_time'] || 0), 0) * 1000;
-    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}`);
+    const ph = phases[times.indexOf(Math.min(...times))];
+    const page_ = ph ? ['build', 'fetch', 'parse', 'setup', 'frame'].map((k) => (ph[k] || 0).toFixed(0)).join('/') : '';
+    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}`);
     await page.close();
     await stop(server);
   }

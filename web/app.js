@@ -56,6 +56,10 @@ window.sylvaLevelTriangles = (k) => {
   });
   return n;
 };
+// the forest's far level, batch by batch (the tests): its triangles, whether it is textured, its look
+window.sylvaForestFar = () => (forest ? forest.batches : []).map((b) => ({
+  triangles: (b.coarse.geometry.index ? b.coarse.geometry.index.count : b.coarse.geometry.attributes.position.count) / 3,
+  textured: !!(b.coarse.material && b.coarse.material.map), look: b.coarse.userData.impostor, count: b.coarse.count }));
 // where a point of the world is on the canvas, in CSS pixels (for the tests' clicks)
 window.sylvaProject = (x, y, z) => {
   const p = new THREE.Vector3(x, y, z).project(camera), r = canvas.getBoundingClientRect();
@@ -84,6 +88,10 @@ function animate() {
     state.frames = (state.frames || 0) + 1;
     if (state.drawnAt && !state.shownAt) { // the first frame of the last build (make bench: save to frame)
       state.shownAt = performance.now(); state.shownWall = Date.now();
+      if (state.timing) state.timing.frame = state.shownAt - state.drawnAt;
+      // the metrics once the page rests a second on this build (a save or a drag going on
+      // asks for none: their light interception would share the processor with the builds)
+      if (state.metricsPending) { const id = state.metricsPending; state.metricsPending = 0; setTimeout(() => { if (!loading) metricsOf(id); }, 1000); }
     }
   }
   requestAnimationFrame(animate);
@@ -182,7 +190,18 @@ function applyLook() {
   redraw();
 }
 
-function setMode(mode) {
+// The skeleton's lines of the build on show (sylva skeleton's CSV), asked for when first shown.
+async function loadSkeleton() {
+  const b = state.build, group = root;
+  if (skeletonLines || !b || !b.ok || !group) return;
+  const r = await fetch('/api/skeleton?id=' + b.id);
+  if (!r.ok || root !== group || skeletonLines) return; // a newer build is on show
+  skeletonLines = skeletonFrom(await r.text());
+  group.add(skeletonLines);
+}
+
+async function setMode(mode) {
+  if (mode === 'skeleton') await loadSkeleton();
   state.mode = mode;
   document.querySelectorAll('#modes button').forEach((b) => b.classList.toggle('on', b.dataset.mode === mode));
   applyLook();
@@ -207,6 +226,12 @@ function showStats(s) {
     ['turtle', (s.turtle_time * 1000).toFixed(1) + ' ms'], ['mesh', (s.mesh_time * 1000).toFixed(1) + ' ms'],
     ['write .glb', (s.write_time * 1000).toFixed(1) + ' ms'], ['memory', s.memory_mb + ' MB'],
   ] : [];
+  const m = s && s.kind !== 'ecosystem' && state.metrics;
+  if (m) { // what `sylva compare` measures (syl_metrics), once the server has them
+    m.stems_by_order.forEach((n, k) => rows.push([`stems of order ${k}`, n]));
+    rows.push(['leaves', m.leaves]);
+    for (const r of m.metrics) rows.push([r.label, r.value === null ? '-' : +r.value.toPrecision(6) + (r.unit ? ' ' + r.unit : '')]);
+  }
   $('stats').replaceChildren(...rows.map(([k, v]) => {
     const tr = document.createElement('tr');
     tr.innerHTML = '<td></td><td></td>';
@@ -216,16 +241,43 @@ function showStats(s) {
   }));
 }
 
+// The metrics of `sylva compare` for build id, asked for after its frame: their ray casting
+// (light interception) never delays the picture. A newer build's answer wins.
+async function metricsOf(id) {
+  if (!state.build || state.build.id !== id) return; // a newer build is on show
+  const r = await fetch('/api/metrics?id=' + id).catch(() => null);
+  if (!r || !r.ok || !state.build || state.build.id !== id) return;
+  state.metrics = await r.json();
+  state.metricsId = id;
+  showStats(state.stats);
+}
+
 // ---- an ecosystem: the forest, its chart and maps ----
 // The forest .glb (syl_forest_write_glb) holds one node per species, age class, look and cell,
 // its plants instanced with EXT_mesh_gpu_instancing (three.js draws them as InstancedMesh).
 // Each batch is culled by three.js against the view frustum (its bounding sphere covers its
-// instances); beyond `far` of the terrain's diagonal a batch is drawn by its far level: one cone
-// of the look's size and colour per plant, sharing the batch's instance matrices.
+// instances); beyond `far` of the terrain's diagonal a batch is drawn by its far level: the
+// look's impostor — three crossed billboards showing the look's pictures, baked by the library
+// (syl_impostor_bake, as `sylva mesh --billboards 3`) and served as a .glb per look — one per
+// plant, sharing the batch's instance matrices.
 const palette = ['#2e7d32', '#e68c1e', '#1e5aa0', '#aa3c96', '#c0392b', '#16a085', '#7f8c8d', '#8e6e1e'];
-const coneGeometry = new THREE.ConeGeometry(0.5, 1, 6).translate(0, 0.5, 0);
+const impostors = new Map(); // run (the query without the year) + look -> {geometry, material}
 
-function setupForest(sceneRoot, stats) {
+async function impostorOf(look) {
+  const key = query({ n: '' }) + '#' + look;
+  if (!impostors.has(key)) impostors.set(key, (async () => {
+    const r = await fetch('/api/impostor?look=' + look);
+    if (!r.ok) return null;
+    const g = await loader.parseAsync(await r.arrayBuffer(), '');
+    g.scene.updateMatrixWorld(true);
+    let found = null;
+    g.scene.traverse((o) => { if (o.isMesh && !found) found = o; });
+    return found && { geometry: found.geometry.clone().applyMatrix4(found.matrixWorld), material: found.material };
+  })());
+  return impostors.get(key);
+}
+
+async function setupForest(sceneRoot, stats) {
   const byNode = new Map();
   sceneRoot.updateMatrixWorld(true);
   sceneRoot.traverse((o) => {
@@ -237,15 +289,15 @@ function setupForest(sceneRoot, stats) {
     byNode.get(n).push(o);
   });
   const batches = [];
+  const looks = stats.looks || [];
   for (const [node, full] of byNode) {
-    const box = new THREE.Box3();
-    for (const m of full) { m.geometry.computeBoundingBox(); box.union(m.geometry.boundingBox); m.computeBoundingSphere(); }
-    const size = box.getSize(new THREE.Vector3());
-    const mat = full[full.length - 1].material; // the leaves' colour when the look has leaves
-    const colour = (Array.isArray(mat) ? mat[0] : mat).color || new THREE.Color(0x2e7d32);
-    const geo = coneGeometry.clone().scale(Math.max(size.x, size.z), size.y, Math.max(size.x, size.z))
-      .translate((box.min.x + box.max.x) / 2, box.min.y, (box.min.z + box.max.z) / 2);
-    const coarse = new THREE.InstancedMesh(geo, new THREE.MeshLambertMaterial({ color: colour }), full[0].count);
+    for (const m of full) m.computeBoundingSphere();
+    const u = node.userData;
+    const look = looks.findIndex((l) => l.species === u.species && l.class === u.class && l.variant === u.variant);
+    const imp = look >= 0 ? await impostorOf(look) : null;
+    // no picture of it (the bake failed): its far level is its looks
+    const coarse = imp ? new THREE.InstancedMesh(imp.geometry, imp.material, full[0].count) : full[0].clone();
+    coarse.userData.impostor = imp ? look : -1;
     coarse.instanceMatrix = full[0].instanceMatrix;
     coarse.matrixAutoUpdate = false;
     coarse.matrix.copy(full[0].matrixWorld);
@@ -255,7 +307,7 @@ function setupForest(sceneRoot, stats) {
     sceneRoot.add(coarse);
     const b = node.userData.bounds; // [x0, z0, x1, z1] of its cell
     const centre = new THREE.Vector3((b[0] + b[2]) / 2, full[0].boundingSphere.center.y, (b[1] + b[3]) / 2);
-    batches.push({ full, coarse, centre, species: node.userData.species, count: full[0].count });
+    batches.push({ full, coarse, centre, species: node.userData.species, count: full[0].count, look });
   }
   const t = stats.terrain;
   forest = { batches, diagonal: Math.hypot(t.width, t.depth) };
@@ -345,9 +397,66 @@ function showEco(s) {
 const loader = new GLTFLoader();
 let loading = null, again = false;
 
+// The textures of the last builds by their PNG bytes: a save writes the same bark, leaf and
+// card pictures again, and a texture already on the GPU (uploaded, mipmapped) is used again
+// instead of the new copy. The .glb is not changed: only which THREE.Texture draws it.
+const textures = new Map(); // key -> THREE.Texture
+// the pictures kept, and those the drawn materials use (the tests)
+window.sylvaTextures = () => {
+  const drawn = new Set();
+  if (root) root.traverse((o) => { if (o.isMesh) for (const m of [].concat(o.material)) if (m && m.map) drawn.add(m.map.source.uuid); });
+  return { kept: [...textures.values()].map((t) => t.source.uuid), drawn: [...drawn] };
+};
+function pngKey(json, bin, i) {
+  const img = json.images && json.images[i];
+  const view = img && img.bufferView !== undefined ? json.bufferViews[img.bufferView] : null;
+  if (!view) return null;
+  const bytes = new Uint8Array(bin, (view.byteOffset || 0), view.byteLength);
+  let h = 2166136261;
+  for (let k = 0; k < bytes.length; k++) h = Math.imul(h ^ bytes[k], 16777619);
+  return `${view.byteLength}:${h >>> 0}`;
+}
+// A GLTFLoader plugin for the builds' .glb: a texture whose PNG bytes (and sampler) are a kept
+// one's is that texture — not decoded, not uploaded again; a new one is decoded and kept.
+// used: the keys the last parse took (the others are let go after it).
+let texturesUsed = new Set();
+const reuse = (parser) => ({
+  name: 'sylva_texture_reuse',
+  loadTexture(t) {
+    const json = parser.json, def = json.textures[t];
+    if (def.source === undefined || (def.extensions && Object.keys(def.extensions).length)) return null;
+    return parser.getDependency('buffer', 0).then((bin) => {
+      const png = pngKey(json, bin, def.source);
+      if (png === null) return parser.loadTextureImage(t, def.source, parser.textureLoader);
+      const key = png + ':' + (def.sampler ?? '');
+      texturesUsed.add(key);
+      if (textures.has(key)) return textures.get(key);
+      return parser.loadTextureImage(t, def.source, parser.textureLoader).then((tex) => { textures.set(key, tex); return tex; });
+    });
+  },
+});
+const buildLoader = new GLTFLoader().register(reuse);
+function forgetTextures() { // the kept ones the last build did not use
+  for (const [key, tex] of textures) if (!texturesUsed.has(key)) { tex.dispose(); textures.delete(key); }
+  texturesUsed = new Set();
+}
+
+// What the previous build put on the GPU (its geometries; textures not kept above)
+function disposeBuild(group) {
+  const kept = new Set([...textures.values()].map((t) => t.source));
+  group.traverse((o) => {
+    if (o.geometry) o.geometry.dispose();
+    for (const m of Array.isArray(o.material) ? o.material : o.material ? [o.material] : []) {
+      if (m.map && !kept.has(m.map.source)) m.map.dispose();
+      m.dispose();
+    }
+  });
+}
+
 // Build what the controls say and draw it; the camera stays unless frameIt.
 async function load(frameIt = false) {
   if (loading) { again = true; return loading; }
+  state.idle = false;
   loading = (async () => {
     const t0 = performance.now();
     $('status').textContent = 'building…';
@@ -358,6 +467,7 @@ async function load(frameIt = false) {
       b = text === null ? await getJSON('/api/build?' + q)
         : await (await fetch('/api/build?' + q, { method: 'POST', body: text })).json();
     } catch (e) { b = { ok: false, diag: String(e) }; }
+    const tBuilt = performance.now();
     state.build = b;
     const warnings = (b.diag || '').split('\n').filter((l) => / warning: /.test(l));
     $('warnings').textContent = b.ok ? (b.diag || '') : '';
@@ -366,24 +476,24 @@ async function load(frameIt = false) {
       $('status').textContent = 'error (the last good model is shown)';
       return;
     }
-    const [glb, csv] = await Promise.all([
-      fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer()),
-      fetch('/api/skeleton?id=' + b.id).then((r) => r.text()),
-    ]);
-    const gltf = await loader.parseAsync(glb, '');
+    const glb = await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
+    const tFetched = performance.now();
+    texturesUsed = new Set();
+    const gltf = await buildLoader.parseAsync(glb, '');
+    const tParsed = performance.now();
     const eco = b.stats.kind === 'ecosystem';
     const lod = eco ? null : await gatherLods(gltf);
     const group = new THREE.Group();
     group.add(lod || gltf.scene);
-    skeletonLines = skeletonFrom(csv);
-    group.add(skeletonLines);
+    skeletonLines = null; // made when the skeleton mode shows it (loadSkeleton): not on every save
     pickables = [];
     if (b.obstacles) { // the obstacles' own meshes: what a click may place a plant on
       const ob = await loader.parseAsync(await fetch('/api/obstacles?id=' + b.id).then((r) => r.arrayBuffer()), '');
       ob.scene.traverse((o) => { if (o.isMesh) { o.material = new THREE.MeshBasicMaterial({ visible: false }); o.userData.pick = true; pickables.push(o); } });
       group.add(ob.scene);
     }
-    if (root) scene.remove(root);
+    if (root) { scene.remove(root); disposeBuild(root); }
+    forgetTextures();
     originals.clear();
     root = group;
     lodObject = lod;
@@ -400,13 +510,13 @@ async function load(frameIt = false) {
     const levels = eco ? 2 : lod ? lod.levels.length : 1;
     const sel = $('forcelod');
     const keep = state.forceLod;
-    const name = (k) => eco ? ['near (the looks)', 'far (cones)'][k]
+    const name = (k) => eco ? ['near (the looks)', 'far (impostors)'][k]
       : state.impostor && k === levels - 1 ? `LOD${k} (impostor)` : 'LOD' + k;
     sel.replaceChildren(new Option('by distance', 'auto'), ...Array.from({ length: levels }, (_, k) => new Option(name(k), String(k))));
     state.forceLod = keep !== 'auto' && +keep < levels ? keep : 'auto';
     sel.value = state.forceLod;
     forest = null; state.forest = null;
-    if (eco) setupForest(gltf.scene, b.stats);
+    if (eco) await setupForest(gltf.scene, b.stats);
     $('ecopanel').hidden = !eco;
     if (!eco) $('steplabel').textContent = 'Step';
     ground.visible = !eco; // the terrain is in the forest's .glb
@@ -415,12 +525,20 @@ async function load(frameIt = false) {
     state.kind = b.stats.kind;
     if (eco) showEco(b.stats);
     state.stats = b.stats;
+    state.metrics = null;
     showStats(b.stats);
+    state.metricsPending = eco ? 0 : b.id; // asked for once this build's frame is drawn
     showError('');
+    if (state.mode === 'skeleton') await loadSkeleton();
     applyLook();
     state.loads++;
+    state.drawnQuery = q; // what it was built from (the tests: a drag's last value is drawn)
     state.gen = b.gen;
     state.drawnAt = performance.now(); // the frame after this shows it (state.shownAt)
+    // the page's side of save -> frame (make bench prints them): ms of the build request, the
+    // .glb's fetch, its parse (GLTFLoader, textures decoded), the scene's setup; the first
+    // frame's draw (upload, shaders, shadows) is shownAt - drawnAt
+    state.timing = { build: tBuilt - t0, fetch: tFetched - tBuilt, parse: tParsed - tFetched, setup: state.drawnAt - tParsed };
     state.shownAt = 0;
     redraw();
     $('status').textContent = eco ? `year ${b.stats.year} · ${b.stats.plants} plants · ${(performance.now() - t0).toFixed(0)} ms`
@@ -430,7 +548,7 @@ async function load(frameIt = false) {
   })();
   try { await loading; } finally {
     loading = null;
-    if (again) { again = false; load(); }
+    if (again) { again = false; load(); } else state.idle = true;
   }
 }
 

@@ -46,6 +46,11 @@ void syl_forest_instances(const SylForest *f, const SylEcoPlant *plants, size_t 
 int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, const SylRenderCamera *cam,
                       const SylRenderOptions *ro, const int (*windows)[4], int nwindows, uint8_t *rgb,
                       SylRenderCounts *counts);
+/* The looks the plants wear (one per species, age class and variant: the meshes the .glb
+ * instances, named by these three in its nodes' extras). Look k's mesh (NULL: k out of range;
+ * a mesh of no triangles draws nothing), with its species, class and variant when asked. */
+int syl_forest_looks(const SylForest *f);
+const SylMesh *syl_forest_look(const SylForest *f, int k, int *species, int *age_class, int *variant);
 /* The .glb: the terrain mesh and, per species and class, one mesh instanced with
  * EXT_mesh_gpu_instancing in one node per spatial cell (cells of about cell metres; 0: 250),
  * each node's extras giving its cell's bounds. */

@@ -24,6 +24,19 @@ int syl_wind_write_glb_lods_stream(const SylLodChain *c, const SylSkeleton *s, c
 /* syl_wind_write_glb (wind.h): a skinned mesh swaying in a looping animation. */
 int syl_wind_write_glb_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
                               const SylWind *w, FILE *out, FILE *diag);
+/* The procedural textures' PNG bytes (bark, leaf, flower, leaf cards and clusters), kept by
+ * their owner across .glb writes (sylva view's server keeps one: every save writes the same
+ * textures). The _cached writers below take them from it, made and kept there the first
+ * time; their bytes are the writers' above. Not shared between threads at once. */
+typedef struct SylTextureCache SylTextureCache;
+SylTextureCache *syl_texture_cache_new(void);
+void syl_texture_cache_free(SylTextureCache *c);
+int syl_mesh_write_glb_instanced_cached(const SylMesh *m, const SylInstances *sets, int n, SylTextureCache *tc,
+                                        FILE *out, FILE *diag);
+int syl_wind_write_glb_lods_cached(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, SylTextureCache *tc,
+                                   FILE *out, FILE *diag);
+int syl_wind_write_glb_cached(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
+                              const SylWind *w, SylTextureCache *tc, FILE *out, FILE *diag);
 /* syl_png_write (texture.h): width x height RGB as a PNG. */
 int syl_png_write_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag);
 /* syl_png_write_rgba (texture.h): width x height RGBA as a PNG. */

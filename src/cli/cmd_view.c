@@ -2,6 +2,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <malloc.h>
 #include "cli/mhd_lazy.h"
 #include <signal.h>
 #include <spawn.h>
@@ -115,8 +116,15 @@ int cmd_view(int argc, char **argv) {
         return SYL_EIO;
     }
     v.threads = d.threads, v.max_memory = d.max_memory, v.max_modules = d.max_modules;
+    /* Every build allocates what the last one freed (strings, meshes, the .glb): keep freed
+     * memory in one heap for the next instead of giving it back to the system and taking it
+     * again page fault by page fault (a third of a build's time on a virtual machine). */
+    mallopt(M_ARENA_MAX, 1);
+    mallopt(M_MMAP_MAX, 0);
+    mallopt(M_TRIM_THRESHOLD, INT_MAX);
     pthread_mutex_init(&v.lock, NULL);
     pthread_mutex_init(&v.gen_lock, NULL);
+    pthread_mutex_init(&v.keep_lock, NULL);
     pthread_condattr_t ca;
     pthread_condattr_init(&ca);
     pthread_cond_init(&v.changed, &ca);

@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "cli/cli.h"
+#include "sylva/stream.h"
 
 enum { VIEW_CACHE = 8, VIEW_TOKEN = 32 };
 
@@ -47,10 +48,20 @@ typedef struct ViewBuild {
     char *obstacles;       /* a scene's obstacles as a .glb, one node each (NULL: none) */
     size_t obstacles_len;
     char *stats;           /* a JSON object */
+    char *metrics;         /* what `sylva compare` measures, as JSON (made when first asked for) */
     double used;           /* when last asked for, for the cache's order */
 } ViewBuild;
 
 typedef struct ViewEco ViewEco; /* an ecosystem's run, its years kept (view_eco.c) */
+
+/* A build's plant kept after it (view_metrics.c) */
+typedef struct ViewKept {
+    SylPlant pl;
+    SylBudget *budget; /* what its arrays are counted against */
+    unsigned id;       /* its build's */
+    int refs;          /* metrics measuring it */
+    bool dropped;      /* replaced: freed by the last reference */
+} ViewKept;
 
 typedef struct View {
     char path[4096];       /* the model file, as given */
@@ -64,6 +75,12 @@ typedef struct View {
     ViewBuild cache[VIEW_CACHE];
     unsigned next_id;
     ViewEco *eco;          /* the last ecosystem run (NULL: none) */
+    /* The last build's plant, for its metrics and skeleton: replaced under lock and
+     * keep_lock; the metrics hold a reference (under keep_lock) while they measure it beside
+     * the next build, which does not wait for them. */
+    pthread_mutex_t keep_lock;
+    ViewKept *kept;
+    SylTextureCache *textures; /* the .glb's procedural textures, encoded once (under lock) */
     /* Changes: gen counts them; waiters (the pages' event streams) are woken at each. */
     pthread_mutex_t gen_lock;
     pthread_cond_t changed;
@@ -87,6 +104,9 @@ char *view_models_json(View *v);
 /* The parameters of the file's models (syl_describe_json), malloc'ed; NULL with *diag set. */
 char *view_describe_json(View *v, const ViewRequest *rq, char **diag);
 void view_cache_free(View *v);
+/* As open_memstream, for the big outputs (a .glb of many MB): the buffer grows by realloc
+ * (no copy of what is there, no zero-filling), *buf and *len are set at fclose. */
+FILE *view_bytes_open(char **buf, size_t *len);
 /* A library writer that takes a path, into out: written in a private temporary directory as
  * NAME, read back, the directory removed (with what the writer put beside the file). */
 typedef int (*ViewPathWriter)(void *ctx, const char *path, FILE *diag);
@@ -99,6 +119,18 @@ int view_eco_build(View *v, const ViewRequest *rq, SylProgram *p, unsigned gen, 
 /* The PNG of a factor's map (syl_terrain_write_map) of the last ecosystem run. */
 int view_eco_map(View *v, const char *name, char **png, size_t *len);
 void view_eco_free(ViewEco *e);
+/* The .glb of look k's impostor (its crossed billboards) of the last ecosystem run, owned by
+ * the run (*glb valid under v->lock until the next run). */
+int view_eco_impostor(View *v, int look, const char **glb, size_t *len);
+
+/* view_metrics.c: keep pl and the budget its arrays are counted against (both taken over,
+ * zeroed) as build id's plant, the previous one freed */
+void view_keep(View *v, unsigned id, SylPlant *pl, SylBudget **budget);
+void view_keep_free(View *v);
+/* The JSON of the metrics of `sylva compare` (syl_metrics) of build id, malloc'ed (kept in
+ * its cache entry too); NULL when its plant is no longer kept or the metrics failed (*diag
+ * says why, malloc'ed). Called without v->lock: a build may run beside it. */
+char *view_metrics(View *v, unsigned id, char **diag);
 
 /* view_watch.c: follow the file and every file it names; bump v->gen at each change. */
 bool view_watch_start(View *v, pthread_t *thread, int *stop_fd);

@@ -164,12 +164,12 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     return status;
 }
 
-/* The .glb as `sylva mesh` writes it, into out. */
-static int write_glb(Made *m, FILE *out, FILE *diag) {
+/* The .glb as `sylva mesh` writes it, into out (its textures from tc, the same bytes). */
+static int write_glb(Made *m, SylTextureCache *tc, FILE *out, FILE *diag) {
     bool wind = m->wind.njoints > 0;
-    return m->lod > 0 ? syl_wind_write_glb_lods_stream(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, out, diag)
-           : wind     ? syl_wind_write_glb_stream(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, out, diag)
-                      : syl_mesh_write_glb_instanced_stream(m->pl.mesh, m->sets, m->nsets, out, diag);
+    return m->lod > 0 ? syl_wind_write_glb_lods_cached(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, tc, out, diag)
+           : wind     ? syl_wind_write_glb_cached(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, tc, out, diag)
+                      : syl_mesh_write_glb_instanced_cached(m->pl.mesh, m->sets, m->nsets, tc, out, diag);
 }
 
 /* What `sylva mesh --stats` prints, as JSON. */
@@ -230,6 +230,7 @@ static void entry_free(ViewBuild *b) {
     free(b->glb);
     free(b->csv);
     free(b->stats);
+    free(b->metrics);
     memset(b, 0, sizeof *b);
 }
 
@@ -237,6 +238,9 @@ void view_cache_free(View *v) {
     for (int i = 0; i < VIEW_CACHE; i++) entry_free(&v->cache[i]);
     view_eco_free(v->eco);
     v->eco = NULL;
+    view_keep_free(v);
+    syl_texture_cache_free(v->textures);
+    v->textures = NULL;
 }
 
 static unsigned current_gen(View *v) {
@@ -275,15 +279,14 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         m.eco = NULL;
     } else if (!status) {
         double t = cli_now();
-        FILE *out = open_memstream(&slot->glb, &slot->glb_len);
-        status = out ? write_glb(&m, out, diag) : SYL_ELIMIT;
+        FILE *out = view_bytes_open(&slot->glb, &slot->glb_len);
+        if (!v->textures) v->textures = syl_texture_cache_new(); /* NULL: made at each write */
+        status = out ? write_glb(&m, v->textures, out, diag) : SYL_ELIMIT;
         if (out) fclose(out);
         m.write_s = cli_now() - t;
-        out = open_memstream(&slot->csv, &slot->csv_len);
-        if (!status && out) status = syl_skeleton_write_csv(m.pl.skeleton, out);
-        if (out) fclose(out);
         if (!status) status = write_obstacles(&m, slot, diag);
         if (!status) slot->stats = stats_json(&m);
+        if (!status) view_keep(v, slot->id, &m.pl, &m.budget); /* its metrics, when the page asks */
     }
     made_free(&m);
     fclose(diag);
@@ -306,6 +309,44 @@ static int write_png(Made *m, const ViewRequest *rq, FILE *out, FILE *diag, int 
     if (!status) status = syl_png_write_stream(out, rgb, w, h, diag);
     free(rgb);
     return status;
+}
+
+typedef struct Bytes {
+    char **buf, *data;
+    size_t *len, n, cap;
+} Bytes;
+
+static ssize_t bytes_write(void *c, const char *p, size_t n) {
+    Bytes *b = c;
+    if (b->n + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 1 << 16;
+        while (cap < b->n + n + 1) cap *= 2;
+        char *d = realloc(b->data, cap);
+        if (!d) return -1;
+        b->data = d, b->cap = cap;
+    }
+    memcpy(b->data + b->n, p, n);
+    b->n += n;
+    return (ssize_t)n;
+}
+
+static int bytes_close(void *c) {
+    Bytes *b = c;
+    if (!b->data) b->data = malloc(1);
+    if (b->data) b->data[b->n] = 0;
+    *b->buf = b->data, *b->len = b->data ? b->n : 0;
+    free(b);
+    return 0;
+}
+
+FILE *view_bytes_open(char **buf, size_t *len) {
+    Bytes *b = calloc(1, sizeof *b);
+    if (!b) return NULL;
+    b->buf = buf, b->len = len;
+    FILE *f = fopencookie(b, "w", (cookie_io_functions_t){.write = bytes_write, .close = bytes_close});
+    if (!f) free(b);
+    else setvbuf(f, NULL, _IOFBF, 1 << 16);
+    return f;
 }
 
 int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE *out, FILE *diag) {
@@ -360,7 +401,7 @@ int view_export(View *v, const ViewRequest *rq, const char *format, char **out, 
         entry_free(&b);
         m.eco = NULL;
     } else if (!status) {
-        if (!strcmp(format, "glb")) status = write_glb(&m, of, df);
+        if (!strcmp(format, "glb")) status = write_glb(&m, NULL, of, df); /* the export: sylva mesh's own path */
         else if (!strcmp(format, "csv")) status = syl_skeleton_write_csv(m.pl.skeleton, of);
         else if (!strcmp(format, "png")) status = write_png(&m, rq, of, df, v->threads);
         else if (!strcmp(format, "obj")) status = view_write_via_file(write_obj_file, &m, "plant.obj", of, df);

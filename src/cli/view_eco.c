@@ -9,6 +9,8 @@
 #include "cli/view.h"
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
+#include "sylva/impostor.h"
+#include "sylva/stream.h"
 #include "sylva/terrain.h"
 #include "util/json.h"
 
@@ -35,10 +37,15 @@ struct ViewEco {
     int nkept, stride;
     size_t plants;              /* in kept */
     int last;                   /* the run's last year */
+    char **imp;                 /* each look's impostor .glb (its billboards), made when asked */
+    size_t *imp_len;
 };
 
 void view_eco_free(ViewEco *e) {
     if (!e) return;
+    for (int k = 0; e->imp && k < syl_forest_looks(e->forest); k++) free(e->imp[k]);
+    free(e->imp);
+    free(e->imp_len);
     for (int i = 0; i < e->nkept; i++) free(e->kept[i].plants);
     free(e->kept);
     free(e->years);
@@ -171,6 +178,14 @@ static char *eco_json(const ViewEco *e, const EcoYear *y, double seconds) {
         for (int k = 0; k < e->nyears; k++) fprintf(f, "%s%.6f", k ? "," : "", e->years[k].cover[s]);
         fputs("]}", f);
     }
+    fputs("],\"looks\":[", f); /* the forest's looks, in the order of /api/impostor?look=K */
+    for (int k = 0; k < syl_forest_looks(e->forest); k++) {
+        int sp, cl, va;
+        syl_forest_look(e->forest, k, &sp, &cl, &va);
+        fprintf(f, "%s{\"species\":", k ? "," : "");
+        json_string_file(f, m->species[sp].name);
+        fprintf(f, ",\"class\":%d,\"variant\":%d}", cl, va);
+    }
     fputs("],\"chart_years\":[", f);
     for (int k = 0; k < e->nyears; k++) fprintf(f, "%s%d", k ? "," : "", e->years[k].year);
     fputs("],\"kept\":[", f);
@@ -211,7 +226,7 @@ int view_eco_build(View *v, const ViewRequest *rq, SylProgram *p, unsigned gen, 
         fprintf(diag, "sylva: error: the ecosystem has no years to show\n");
         return SYL_EMODEL;
     }
-    FILE *out = open_memstream(&slot->glb, &slot->glb_len);
+    FILE *out = view_bytes_open(&slot->glb, &slot->glb_len);
     if (!out) return SYL_ELIMIT;
     int st = view_write_via_file(write_forest, &(ForestAt){e, y}, "forest.glb", out, diag);
     fclose(out);
@@ -244,4 +259,40 @@ int view_eco_map(View *v, const char *name, char **png, size_t *len) {
     fclose(out);
     if (st) free(*png), *png = NULL, *len = 0;
     return st;
+}
+
+/* Look k's impostor: its crossed billboards (three quads, sylva mesh --billboards 3) baked by
+ * the library from the look's mesh, as the .glb of a one-level chain; made once a run. */
+int view_eco_impostor(View *v, int look, const char **glb, size_t *len) {
+    ViewEco *e = v->eco;
+    *glb = NULL, *len = 0;
+    int n = e ? syl_forest_looks(e->forest) : 0;
+    if (look < 0 || look >= n) return SYL_EUSAGE;
+    if (!e->imp) {
+        e->imp = calloc((size_t)n, sizeof *e->imp);
+        e->imp_len = calloc((size_t)n, sizeof *e->imp_len);
+        if (!e->imp || !e->imp_len) return free(e->imp), free(e->imp_len), e->imp = NULL, e->imp_len = NULL, SYL_ELIMIT;
+    }
+    if (!e->imp[look]) {
+        const SylMesh *m = syl_forest_look(e->forest, look, NULL, NULL, NULL);
+        if (!m || !m->nidx) return SYL_EMODEL;
+        FILE *diag = fopen("/dev/null", "w");
+        SylImpostor imp = {0};
+        SylImpostorOptions io = {.grid = -1, .view = 128, .billboards = 3, .threads = v->threads, .diag = diag};
+        int st = syl_impostor_bake(m, &io, &imp);
+        if (!st) {
+            SylLodChain c = {.n = 1, .atlas = imp.bb_color, .atlas_w = imp.bb_width, .atlas_h = imp.view,
+                             .atlas_material = SYL_IMPOSTOR_MATERIAL};
+            c.level[0] = (SylLodLevel){.mesh = imp.bb_mesh, .coverage = 1};
+            FILE *out = view_bytes_open(&e->imp[look], &e->imp_len[look]);
+            st = out ? syl_wind_write_glb_lods_stream(&c, NULL, NULL, out, diag) : SYL_ELIMIT;
+            if (out) fclose(out);
+            if (st) free(e->imp[look]), e->imp[look] = NULL;
+        }
+        syl_impostor_free(&imp);
+        if (diag) fclose(diag);
+        if (st) return st;
+    }
+    *glb = e->imp[look], *len = e->imp_len[look];
+    return SYL_OK;
 }

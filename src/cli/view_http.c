@@ -237,12 +237,29 @@ static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, 
     for (int i = 0; i < VIEW_CACHE; i++)
         if (id && v->cache[i].id == id) b = &v->cache[i];
     enum MHD_Result r;
-    if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles)) r = send_text(c, MHD_HTTP_NOT_FOUND, "no such build\n");
+    if (b && !b->status && part == PART_SKELETON && !b->csv && v->kept && v->kept->id == b->id) { /* made when first asked for */
+        FILE *out = view_bytes_open(&b->csv, &b->csv_len);
+        if (out && syl_skeleton_write_csv(v->kept->pl.skeleton, out)) fclose(out), free(b->csv), b->csv = NULL;
+        else if (out) fclose(out);
+    }
+    if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles) || (part == PART_SKELETON && !b->csv))
+        r = send_text(c, MHD_HTTP_NOT_FOUND, "no such build\n");
     else if (part == PART_GLB) r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->glb, b->glb_len, MHD_RESPMEM_MUST_COPY);
     else if (part == PART_OBSTACLES)
         r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->obstacles, b->obstacles_len, MHD_RESPMEM_MUST_COPY);
     else r = send_bytes(c, MHD_HTTP_OK, "text/csv", b->csv, b->csv_len, MHD_RESPMEM_MUST_COPY);
     pthread_mutex_unlock(&v->lock);
+    return r;
+}
+
+/* The metrics of build id (`sylva compare`'s), made at the first asking: 404 when a newer
+ * build has replaced its plant. */
+static enum MHD_Result api_metrics(struct MHD_Connection *c, View *v, unsigned id) {
+    char *diag = NULL;
+    char *m = view_metrics(v, id, &diag); /* beside a build: it takes the locks it needs */
+    enum MHD_Result r = m ? send_bytes(c, MHD_HTTP_OK, "application/json", m, strlen(m), MHD_RESPMEM_MUST_FREE)
+                          : send_error_json(c, MHD_HTTP_NOT_FOUND, "no metrics of that build", diag);
+    free(diag);
     return r;
 }
 
@@ -302,6 +319,18 @@ static enum MHD_Result api_map(struct MHD_Connection *c, View *v, const char *fa
     pthread_mutex_unlock(&v->lock);
     if (st) return send_text(c, MHD_HTTP_NOT_FOUND, "no such map\n");
     return send_bytes(c, MHD_HTTP_OK, "image/png", png, len, MHD_RESPMEM_MUST_FREE);
+}
+
+/* The impostor of look K of the ecosystem on show: the forest's far level. */
+static enum MHD_Result api_impostor(struct MHD_Connection *c, View *v, const char *look) {
+    const char *glb;
+    size_t len;
+    pthread_mutex_lock(&v->lock);
+    int st = look && *look ? view_eco_impostor(v, atoi(look), &glb, &len) : SYL_EUSAGE;
+    enum MHD_Result r = st ? send_text(c, MHD_HTTP_NOT_FOUND, "no such look\n")
+                           : send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", glb, len, MHD_RESPMEM_MUST_COPY);
+    pthread_mutex_unlock(&v->lock);
+    return r;
 }
 
 /* "Save as…": a new file beside the model (a plain name, no directory); an existing one only
@@ -407,6 +436,9 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     if (!strcmp(url, "/api/glb")) return api_part(c, v, q.id, PART_GLB);
     if (!strcmp(url, "/api/skeleton")) return api_part(c, v, q.id, PART_SKELETON);
     if (!strcmp(url, "/api/obstacles")) return api_part(c, v, q.id, PART_OBSTACLES);
+    if (!strcmp(url, "/api/impostor"))
+        return api_impostor(c, v, MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "look"));
+    if (!strcmp(url, "/api/metrics")) return api_metrics(c, v, q.id);
     if (!strcmp(url, "/api/export")) return api_export(c, v, &q);
     if (!strcmp(url, "/api/describe")) return api_describe(c, v, &q);
     if (!strcmp(url, "/api/map")) return api_map(c, v, MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "factor"));

@@ -218,3 +218,13 @@ int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, c
     free(inst);
     return st;
 }
+
+int syl_forest_looks(const SylForest *f) { return f ? f->nprotos : 0; }
+
+const SylMesh *syl_forest_look(const SylForest *f, int k, int *species, int *age_class, int *variant) {
+    if (!f || k < 0 || k >= f->nprotos) return NULL;
+    if (species) *species = f->proto_species[k];
+    if (age_class) *age_class = f->proto_class[k];
+    if (variant) *variant = f->proto_variant[k];
+    return f->looks[k].mesh;
+}

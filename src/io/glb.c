@@ -298,7 +298,7 @@ static void layout_textures(Layout *l) {
         }
         size_t at = l->bin.len;
         bool ok = k == ATLAS ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
-                             : glb_slot_png(&l->bin, k, k == CLUSTER ? cluster_shape : shape, img);
+                             : glb_slot_png_cached(sc->textures, &l->bin, k, k == CLUSTER ? cluster_shape : shape, img);
         if (!ok) {
             l->bin.failed = true;
             break;
@@ -811,20 +811,25 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
 }
 
 static int write_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *stream,
-                           FILE *diag) {
+                           SylTextureCache *tc, FILE *diag) {
     const char *name = m->name[0] ? m->name : "plant";
     GlbPart part = {.mesh = m, .sets = sets, .nsets = n > 0 ? n : 0, .name = name};
     GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .quantize = n > 0, /* instanced: small */
-                   .stream = stream};
+                   .stream = stream, .textures = tc};
     return glb_write(&sc, path, diag);
 }
 
 int syl_mesh_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
-    return write_instanced(m, sets, n, path, NULL, diag);
+    return write_instanced(m, sets, n, path, NULL, NULL, diag);
 }
 
 int syl_mesh_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag) {
-    return write_instanced(m, sets, n, "(stream)", out, diag);
+    return write_instanced(m, sets, n, "(stream)", out, NULL, diag);
+}
+
+int syl_mesh_write_glb_instanced_cached(const SylMesh *m, const SylInstances *sets, int n, SylTextureCache *tc,
+                                        FILE *out, FILE *diag) {
+    return write_instanced(m, sets, n, "(stream)", out, tc, diag);
 }
 
 int syl_mesh_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_mesh_write_glb_instanced(m, NULL, 0, path, diag); }

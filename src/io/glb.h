@@ -34,6 +34,7 @@ int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geom
 int glb_container_to(const char *path, FILE *stream, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
 
 #include "sylva/mesh.h"
+#include "sylva/stream.h"
 #include "sylva/wind.h"
 
 /* A top-level node: its mesh (may be NULL or empty) and its instance sets (child nodes). */
@@ -66,6 +67,7 @@ typedef struct GlbScene {
      * skinned part (a skinned node's transform is not used). */
     bool quantize;
     FILE *stream; /* set: the file is written here (path only names it in messages) */
+    SylTextureCache *textures; /* set: the procedural textures' PNGs from it (glb_texcache.c) */
 } GlbScene;
 
 int glb_write(const GlbScene *sc, const char *path, FILE *diag);
@@ -83,6 +85,8 @@ int glb_slot(const SylMesh *m, int material); /* never GLB_ATLAS */
 /* Slot k's picture (not the atlas) as PNG bytes into b; img: SYL_TEXTURE_SIZE² RGBA of scratch.
  * shape: the leaf shape of cards and clusters. False when it failed. */
 bool glb_slot_png(IoBuf *b, int k, int shape, uint8_t *img);
+/* The same bytes, from c when it has them (made and kept there when not); c NULL: none. */
+bool glb_slot_png_cached(SylTextureCache *c, IoBuf *b, int k, int shape, uint8_t *img);
 const char *glb_slot_name(int k); /* the image's name: "bark", "leafcard", ... */
 
 /* A primitive (glb_prims.c): count indices of the mesh from first, of group group, using

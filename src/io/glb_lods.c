@@ -12,7 +12,7 @@ int syl_lod_write_glb(const SylLodChain *c, const char *path, FILE *diag) { retu
 /* With wind, every level meshed with vertex nodes (of s) is skinned to w's joints; a level
  * without them (the billboards) is not. */
 static int write_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *stream,
-                      FILE *diag) {
+                      SylTextureCache *tc, FILE *diag) {
     GlbPart part[SYL_LOD_MAX + 1];
     char names[SYL_LOD_MAX + 1][80];
     float coverage[SYL_LOD_MAX + 1];
@@ -27,14 +27,20 @@ static int write_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind 
     for (int k = 0; k < c->n; k++) instanced |= c->level[k].nsets > 0;
     GlbScene sc = {.quantize = instanced,.part = part, .nparts = c->n, .scene_name = name, .lods = true, .coverage = coverage,
                    .atlas = c->atlas, .atlas_w = c->atlas_w, .atlas_h = c->atlas_h,
-                   .atlas_material = c->atlas_material, .extras = c->extras, .stream = stream};
+                   .atlas_material = c->atlas_material, .extras = c->extras, .stream = stream,
+                   .textures = tc};
     return glb_write(&sc, path, diag);
 }
 
 int syl_wind_write_glb_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
-    return write_lods(c, s, w, path, NULL, diag);
+    return write_lods(c, s, w, path, NULL, NULL, diag);
 }
 
 int syl_wind_write_glb_lods_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out, FILE *diag) {
-    return write_lods(c, s, w, "(stream)", out, diag);
+    return write_lods(c, s, w, "(stream)", out, NULL, diag);
+}
+
+int syl_wind_write_glb_lods_cached(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, SylTextureCache *tc,
+                                   FILE *out, FILE *diag) {
+    return write_lods(c, s, w, "(stream)", out, tc, diag);
 }

@@ -1,0 +1,160 @@
+// Browser tests of what issue 30's speed work added to `sylva view` (docs/view.md): the
+// Numbers panel's form figures are `sylva compare`'s; a .glb built with the server's kept
+// textures is byte for byte `sylva mesh`'s; a slider dragged faster than builds finish draws
+// its last value (stale values dropped). Usage: node live.test.mjs SYLVA. TAP lines.
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync, copyFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import http from 'node:http';
+import { launch, serve, stop } from './browser.mjs';
+
+const sylva = process.argv[2];
+let failures = 0, count = 0;
+function check(ok, what, detail = '') {
+  count++;
+  if (!ok) failures++;
+  console.log(`${ok ? 'ok' : 'not ok'} ${count} - ${what}${!ok && detail ? ' (' + detail + ')' : ''}`);
+}
+
+const dir = mkdtempSync(join(tmpdir(), 'sylva-view-live-'));
+const file = join(dir, 'mono.syl');
+copyFileSync('examples/abop/fig2_06_monopodial.syl', file); // bark: a procedural texture in the .glb
+const BUSH = (depth) => `lsystem Bush {
+  param depth = ${depth}
+  derive 8
+  angle 25
+  axiom A(0)
+  A(i) : i < depth -> F[+A(i+1)][-A(i+1)]/(90)FA(i+1)
+  F -> F ~L
+}
+`;
+const ECO = `ecosystem Patch {
+  terrain "flat.asc"
+  years 4
+  seed 7
+  species stick
+    model Stick
+    maturity 2
+    height_max 6
+    growth_rate 0.6
+    start_height 0.5
+    radius_ratio 0.3
+    seeds 2
+    dispersal 2
+    arrivals 60
+    shade_tolerance 0.5
+}
+lsystem Stick {
+  derive 2
+  axiom F
+  F -> F[+F]F[-F]F
+}
+`;
+const eco = join(dir, 'eco.syl');
+writeFileSync(eco, ECO);
+writeFileSync(join(dir, 'flat.asc'), spawnSync('python3', ['tests/oracle/ecosystem.py', 'flat', '30', '1']).stdout);
+const bush = join(dir, 'bush.syl');
+writeFileSync(bush, BUSH(4));
+function edit(path, text) { writeFileSync(path + '.new', text); renameSync(path + '.new', path); }
+
+const { server, url } = await serve(sylva, file);
+const s2 = await serve(sylva, bush);
+const s3 = await serve(sylva, eco);
+const servers = [server, s2.server, s3.server];
+const base = url.replace(/\/\?token=.*/, ''), token = url.replace(/.*token=/, '');
+function get(path) {
+  return new Promise((resolve) => {
+    const u = new URL(base);
+    http.get({ host: u.hostname, port: u.port, path, headers: { 'X-Sylva-Token': token } }, (res) => {
+      const parts = []; res.on('data', (d) => parts.push(d)); res.on('end', () => resolve({ status: res.statusCode, body: Buffer.concat(parts) }));
+    }).on('error', (e) => resolve({ status: 0, body: Buffer.from(String(e)) }));
+  });
+}
+const browser = await launch(dir);
+const errors = [];
+try {
+  const page = await browser.newPage();
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.setViewport({ width: 900, height: 700 });
+  await page.goto(url);
+  await page.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1 && window.sylvaView.metrics, { timeout: 60000 });
+
+  // ---- the Numbers panel: sylva compare's metrics of the model ----
+  const cmp = JSON.parse(spawnSync(sylva, ['compare', file, '--json', '-j', '1']).stdout.toString());
+  const want = cmp.models[0];
+  const got = await page.evaluate(() => window.sylvaView.metrics);
+  const near = (a, b) => (a === null && b === undefined) || (a === null && b === null) ||
+    Math.abs(a - b) <= 1e-5 * Math.max(1, Math.abs(b));
+  const keys = got.metrics.map((m) => m.key);
+  const bad = got.metrics.filter((m) => !near(m.value, want.values[m.key])).map((m) => `${m.key}: ${m.value} vs ${want.values[m.key]}`);
+  check(JSON.stringify(keys) === JSON.stringify(Object.keys(want.values)) && bad.length === 0,
+    'the numbers panel\'s metrics are sylva compare --json\'s, key by key', bad.join('; ') || JSON.stringify(keys));
+  check(JSON.stringify(got.stems_by_order) === JSON.stringify(want.stems_by_order) && got.leaves === want.leaves,
+    'stems by branch order and leaves are compare\'s counts', JSON.stringify({ got: got.stems_by_order, want: want.stems_by_order }));
+  const shown = await page.evaluate(() => [...document.querySelectorAll('#stats tr')].map((r) => r.textContent));
+  check(shown.some((t) => t === `stems of order 0${want.stems_by_order[0]}`) && shown.some((t) => t.startsWith('Strahler order')),
+    'the panel shows them (stems of each order, Strahler order, …)', shown.slice(-6).join(' | '));
+
+  // ---- saves: every build's .glb (textures kept by the server) is sylva mesh's ----
+  const text = readFileSync(file, 'utf8');
+  const tex0 = await page.evaluate(() => window.sylvaTextures());
+  let same = true, detail = '';
+  for (let k = 1; k <= 2; k++) {
+    const n = await page.evaluate(() => window.sylvaView.loads);
+    edit(file, text.replace(/const a0 = 45/, `const a0 = ${45 + k}`));
+    await page.waitForFunction((c) => window.sylvaView.loads > c, { timeout: 60000 }, n);
+    const id = await page.evaluate(() => window.sylvaView.build.id);
+    const served = (await get('/api/glb?id=' + id)).body;
+    const out = join(dir, `cli${k}.glb`);
+    spawnSync(sylva, ['mesh', file, '-o', out, '-j', '1']);
+    if (!served.equals(readFileSync(out))) { same = false; detail += `save ${k}: ${served.length} vs ${readFileSync(out).length} bytes; `; }
+  }
+  const tex2 = await page.evaluate(() => window.sylvaTextures());
+  check(tex0.kept.length === 1 && JSON.stringify(tex2.drawn) === JSON.stringify(tex0.kept) && JSON.stringify(tex2.kept) === JSON.stringify(tex0.kept),
+    'after saves, the bark texture drawn is the one already on the GPU (same PNG bytes: not decoded into a new texture)', JSON.stringify({ tex0, tex2 }));
+  check(same, 'after saves, the .glb drawn (bark texture from the server\'s cache) is byte for byte sylva mesh\'s', detail);
+  check((await get('/api/metrics?id=0')).status === 404, 'metrics of no build: 404');
+
+  // ---- a slider dragged faster than builds finish: the last value is drawn ----
+  const p2 = await browser.newPage();
+  p2.on('pageerror', (e) => errors.push(String(e)));
+  await p2.goto(s2.url);
+  await p2.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 60000 });
+  const drag = await p2.evaluate(async () => {
+    const el = document.querySelector('input[type=range][data-param=depth]');
+    const v = window.sylvaView, n0 = v.loads, values = [5, 6, 7, 6, 5, 4, 5, 6, 7, 8, 7, 6];
+    for (const x of values) { el.value = x; el.dispatchEvent(new Event('input', { bubbles: true })); await new Promise((r) => setTimeout(r, 5)); }
+    return { n0, moves: values.length };
+  });
+  await p2.waitForFunction(() => window.sylvaView.sets.depth === 6 && window.sylvaView.idle, { timeout: 60000 }).catch(() => {});
+  const after = await p2.evaluate(() => ({ loads: window.sylvaView.loads, depth: window.sylvaView.sets.depth, key: window.sylvaView.drawnQuery }));
+  check(/set=depth%3D6(&|$)/.test(after.key) && after.loads - drag.n0 < drag.moves,
+    'a fast drag draws its last value, stale values dropped (fewer builds than moves)', JSON.stringify({ ...after, ...drag }));
+
+  // ---- an ecosystem's far level: each batch's look's impostor (crossed billboards) ----
+  const p3 = await browser.newPage();
+  p3.on('pageerror', (e) => errors.push(String(e)));
+  await p3.setViewport({ width: 900, height: 700 });
+  await p3.goto(s3.url);
+  await p3.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1 && window.sylvaView.forest, { timeout: 120000 });
+  await p3.select('#forcelod', '1');
+  await p3.waitForFunction(() => window.sylvaView.forest.full === 0, { timeout: 10000 }).catch(() => {});
+  const far = await p3.evaluate(() => ({ batches: window.sylvaForestFar(), forest: window.sylvaView.forest,
+    label: document.querySelector('#forcelod option[value="1"]').textContent }));
+  // sylva mesh --billboards 3: three crossed quads, each face two triangles, front and back
+  check(far.batches.length > 0 && far.batches.every((b) => b.triangles === 12 && b.textured && b.look >= 0) &&
+    far.forest.coarse > 0 && /impostor/.test(far.label),
+  'an ecosystem\'s far level is each look\'s impostor: 3 crossed textured quads (12 triangles) per plant, not cones',
+  JSON.stringify(far).slice(0, 400));
+  check(far.batches.reduce((a, b) => a + b.count, 0) === far.forest.instances, 'the impostors are drawn once per plant of the batch');
+  check(errors.length === 0, 'no error in the pages', errors.join('; '));
+} catch (e) {
+  check(false, 'the tests ran to the end', String(e && e.stack || e));
+} finally {
+  await browser.close();
+  for (const s of servers) check(await stop(s) === 0, 'SIGTERM stops the server cleanly (exit 0)');
+  rmSync(dir, { recursive: true, force: true });
+}
+console.log(`1..${count}`);
+process.exit(failures ? 1 : 0);
