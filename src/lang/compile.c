@@ -383,7 +383,7 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         arena_free(&g->tmp);
         syl_program_free(g->p);
         free(g);
-        if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory while compiling '%s'\n", path);
+        if (opt) diag_say(opt->diag, opt->sink, DIAG_ERROR, NULL, "out of memory while compiling '%s'", path);
         *status = SYL_ELIMIT;
         return NULL;
     }

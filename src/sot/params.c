@@ -163,6 +163,10 @@ static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylD
             return 0;
         }
         char why[160];
+        if (k == &k_lod && !sch_value_ok(key_row(d->name, k), v, why, sizeof why)) {
+            r->errors += lang_lod_check(r->p, d, r->diag); /* one message for every kind's `lod` */
+            return 0;
+        }
         if (!sch_value_ok(key_row(d->name, k), v, why, sizeof why)) {
             ERR(r, a->line, a->col, "%s %s", k->name, why);
             return 0;
@@ -401,6 +405,11 @@ static void store_number(Reader *r, const char *typed, const char *dir, const Ke
         return;
     }
     char why[160];
+    if (k == &k_lod) {
+        int e = lang_lod_set_check(r->p, v, typed, r->diag); /* as every kind's */
+        r->errors += e;
+        if (e) return;
+    }
     if (!sch_value_ok(key_row(dir, k), v, why, sizeof why)) { /* as sch_set_check says it */
         ERR(r, 0, 0, "--set %s: '%s' %s", typed, k->name, why);
         return;
