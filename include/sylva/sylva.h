@@ -33,7 +33,10 @@ typedef struct SylString SylString;
  * lines) is made as a SylDiagnostic and handed to a sink: the one given in
  * SylCompileOptions.sink, else the text sink of the FILE * diag given, which writes it as
  * syl_diagnostic_write does (what `sylva` prints). Messages without a place (a file that
- * cannot be read, a limit) are text on the FILE * diag (docs/embedding.md, "Diagnostics"). */
+ * cannot be read, a limit) are records with no line and no path to the sink of the program
+ * the call works on, else text on its FILE * diag; a function that works on no program (the
+ * mesh writers, the renderer, the terrain) writes them on its diag (docs/embedding.md,
+ * "Diagnostics"). */
 typedef enum { SYL_DIAG_ERROR, SYL_DIAG_WARNING, SYL_DIAG_NOTE } SylSeverity;
 typedef struct SylDiagnostic {
     SylSeverity severity;

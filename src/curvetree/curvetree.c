@@ -11,6 +11,7 @@
 #include "lang/textures.h"
 #include "sylva/trees.h"
 #include "util/budget.h"
+#include "lang/program.h"
 
 int syl_curvetree_validate(const SylProgram *p, FILE *diag) {
     return syl_program_kind(p) == SYL_MODEL_CURVETREE ? ct_params_check(p, diag) : 0;
@@ -37,7 +38,7 @@ static int load_envelope(const SylProgram *p, const SylDirective *d, Envelope *e
     const char *name = d->args[0].text;
     int st = syl_program_file(p, name, &path); /* beside the program's file unless absolute */
     if (st == SYL_ELIMIT) return st;
-    if (st && diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", name, syl_file_refused);
+    if (st) program_say(p, diag, DIAG_ERROR, NULL, "cannot read '%s': %s", name, syl_file_refused);
     static const float zero[3] = {0, 0, 0};
     if (!st) st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
     free(path);
@@ -58,8 +59,7 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
     FILE *diag = opt->diag;
     *out = NULL;
     if (syl_program_kind(p) != SYL_MODEL_CURVETREE) {
-        if (diag)
-            fprintf(diag, "sylva: error: '%s' is a %s, not a curvetree block\n", syl_program_name(p),
+        program_say(p, diag, DIAG_ERROR, NULL, "'%s' is a %s, not a curvetree block", syl_program_name(p),
                     syl_model_kind_name(syl_program_kind(p)));
         return SYL_EUSAGE;
     }
@@ -87,10 +87,8 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
         ct_bounds(&P, &trunk, &nodes, &leaves);
         bytes = nodes * sizeof(SylNode) + leaves * sizeof(SylOrgan);
         if (!budget_charge(mem, bytes)) {
-            if (diag)
-                fprintf(diag,
-                        "sylva: error: '%s' may need %llu nodes and %llu leaves (%llu MB), more than --max-memory "
-                        "allows (%llu MB%s); lower branch1Density, branch2Density or leavesDensity\n",
+            program_say(p, diag, DIAG_ERROR, NULL, "'%s' may need %llu nodes and %llu leaves (%llu MB), more than --max-memory "
+                        "allows (%llu MB%s); lower branch1Density, branch2Density or leavesDensity",
                         syl_program_name(p), (unsigned long long)nodes, (unsigned long long)leaves,
                         (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem),
                         mem == &own ? "" : " in all");
@@ -106,7 +104,7 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
         seed += opt->seed_offset; /* a scene's n-th plant of a row: a tree of its own */
         st = ct_build(&P, &trunk, inside, &env, aspect, seed, sk);
         if (!st) st = syl_skeleton_textures(sk, &tex, seed);
-        if (st && diag) fprintf(diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
+        if (st) program_say(p, diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton", syl_program_name(p));
     }
     lang_textures_free(&tex);
     obstacles_free(&env.obs);

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "eco/eco.h"
+#include "lang/program.h"
 
 static void cannot_use(const SylProgram *p, FILE *diag, const char *file) {
     int n = 0;
@@ -23,7 +24,7 @@ static int read_terrain(const SylProgram *p, const SylEcoModel *m, int threads, 
                         FILE *diag, SylTerrain **terrain) {
     char *path = NULL; /* beside the program's file unless absolute */
     int refused = syl_program_file(p, m->terrain, &path);
-    if (refused == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read the terrain '%s': %s\n", m->terrain, syl_file_refused);
+    if (refused == SYL_EIO) program_say(p, diag, DIAG_ERROR, NULL, "cannot read the terrain '%s': %s", m->terrain, syl_file_refused);
     if (refused) return refused;
     SylTerrain *t = NULL;
     SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
@@ -44,7 +45,7 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
     FILE *diag = o->diag;
     *terrain = NULL;
     if (syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) {
-        if (diag) fprintf(diag, "sylva: error: '%s' is a %s, not an ecosystem block\n", syl_program_name(p),
+        program_say(p, diag, DIAG_ERROR, NULL, "'%s' is a %s, not an ecosystem block", syl_program_name(p),
                           syl_model_kind_name(syl_program_kind(p)));
         return SYL_EUSAGE;
     }
@@ -60,7 +61,7 @@ int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag) {
     char *path = NULL;
     if (!st && !syl_program_file(p, m->terrain, &path) && access(path, R_OK)) {
         /* a warning, as a scene's unreadable files: the DEM may yet be made */
-        if (diag) fprintf(diag, "%s: warning: the terrain \"%s\" cannot be read: %s\n", syl_program_path(p), m->terrain, strerror(errno));
+        program_say(p, diag, DIAG_WARNING, syl_program_path(p), "the terrain \"%s\" cannot be read: %s", m->terrain, strerror(errno));
     } else if (!st) {
         st = read_terrain(p, m, 1, NULL, false, diag, &t);
     }

@@ -280,7 +280,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
         p->text = opt->sibling ? file_read_named(path, &len, NULL) : file_read(path, &len);
         if (!p->text) {
             int e = errno; /* before the message, which may change it */
-            if (opt->diag) fprintf(opt->diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(e));
+            diag_say(opt->diag, opt->sink, DIAG_ERROR, NULL, "cannot read '%s': %s", path, file_strerror(e));
             arena_free(&p->arena); /* the read cache's room */
             free(p);
             *status = SYL_EIO;
@@ -383,7 +383,7 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
         arena_free(&g->tmp);
         syl_program_free(g->p);
         free(g);
-        if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory while compiling '%s'\n", path);
+        if (opt) diag_say(opt->diag, opt->sink, DIAG_ERROR, NULL, "out of memory while compiling '%s'", path);
         *status = SYL_ELIMIT;
         return NULL;
     }

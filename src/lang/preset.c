@@ -11,6 +11,7 @@
 #include "sylva/grow.h"
 #include "util/number.h"
 #include "util/paramxml.h"
+#include "lang/program.h"
 
 /* One argument as the XML reader takes it back: a number in the fewest digits that read back
  * exactly (an expression's value too), a word, a tuple (x,y,z) or a symbol ~leaf(0.06), without blanks. false: a string,
@@ -67,7 +68,7 @@ static int writable(const SylProgram *p, FILE *diag) {
     int n;
     const SylDirective *ds = syl_program_directives(p, &n);
     if (syl_program_kind(p) != SYL_MODEL_GROW) {
-        if (diag) fprintf(diag, "sylva: error: '%s' is a %s block: a preset holds a grow block\n", syl_program_name(p),
+        program_say(p, diag, DIAG_ERROR, NULL, "'%s' is a %s block: a preset holds a grow block", syl_program_name(p),
                           syl_model_kind_name(syl_program_kind(p)));
         return SYL_EUSAGE;
     }

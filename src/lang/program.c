@@ -76,6 +76,12 @@ void program_warning(const SylProgram *p, FILE *out, int line, int col, const ch
     report_at(p, out, DIAG_WARNING, line, col, fmt, ap);
     va_end(ap);
 }
+void program_say(const SylProgram *p, FILE *out, int severity, const char *path, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    diag_vsay(out, p ? program_sink(p) : NULL, severity, path, fmt, ap);
+    va_end(ap);
+}
 int syl_program_steps(const SylProgram *p) { return p->derive; }
 uint64_t syl_program_seed(const SylProgram *p) { return p->seed; }
 int syl_program_symbol_count(const SylProgram *p) { return p->nsyms; }

@@ -279,6 +279,15 @@ struct SylProgram {
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 
+/* A message of p's engines without a place in its source (a limit, a file that cannot be
+ * read): to p's sink as a record with no line, else as text to out (diag_say). path NULL:
+ * shown "sylva". */
+void program_say(const SylProgram *p, FILE *out, int severity, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+#define program_say_error(p, out, ...) program_say((p), (out), DIAG_ERROR, NULL, __VA_ARGS__)
+/* whether a message for p goes anywhere (its sink or out) */
+static inline bool program_heard(const SylProgram *p, FILE *out);
+
 /* syl_list_models, with each model's kind in kinds[i] (NULL: not wanted). */
 int lang_list_models(const char *path, const char *text, size_t len, const char **names, SylModelKind *kinds,
                      int max, char *buf, size_t bufsize);
@@ -288,6 +297,7 @@ static inline bool syl_kind_has_directives(SylModelKind k) { return lang_kind_is
 
 /* The sink of the program's diagnostics (SylCompileOptions.sink), NULL: its callers' FILE. */
 static inline const SylSink *program_sink(const SylProgram *p) { return p->has_sink ? &p->sink : NULL; }
+static inline bool program_heard(const SylProgram *p, FILE *out) { return out || (p && p->has_sink); }
 /* The `lod N` line of a grow, weber or strands block (lod.c): its check (the error count, 0
  * or 1, reported at the line), a --set lod= value's, and the levels the block asks for (its
  * last line, then the last --set lod=; 0: none). */

@@ -165,7 +165,7 @@ int lang_textures(const SylProgram *p, SylTextureSpec *spec, FILE *diag) {
             else spec->leaf[spec->nleaf++] = (uint8_t)idx;
         }
     }
-    if (st == SYL_ELIMIT && diag) fprintf(diag, "sylva: error: out of memory reading textures\n");
+    if (st == SYL_ELIMIT) program_say(p, diag, DIAG_ERROR, NULL, "out of memory reading textures");
     if (worst) lang_textures_free(spec);
     return worst;
 }

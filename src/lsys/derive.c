@@ -103,24 +103,22 @@ typedef struct Engine {
 
 static void report(Engine *e, const Work *w, int step, const char *what) {
     e->reported = true;
-    if (!e->diag) return;
+    if (!program_heard(e->p, e->diag)) return;
     const SylProgram *p = e->p;
     Diag d = {.out = e->diag, .sink = program_sink(p), .src = &p->src};
     if (w->fault.status == SYL_ELIMIT) {
         if (w->fault.limit == LIMIT_MODULES)
-            fprintf(e->diag, "sylva: error: %s %d would exceed the limit of %llu modules; raise it with --max-modules\n",
+            program_say(e->p, e->diag, DIAG_ERROR, NULL, "%s %d would exceed the limit of %llu modules; raise it with --max-modules",
                     what, step, (unsigned long long)e->max_modules);
         else if (w->fault.limit == LIMIT_WORK)
-            fprintf(e->diag,
-                    "sylva: error: %s %d would take the derivation past %llu modules rewritten by all its steps "
-                    "together; raise the limit with --max-work\n",
+            program_say(e->p, e->diag, DIAG_ERROR, NULL, "%s %d would take the derivation past %llu modules rewritten by all its steps "
+                    "together; raise the limit with --max-work",
                     what, step, (unsigned long long)e->max_work);
         else if (atomic_load(&e->mem->refused))
-            fprintf(e->diag,
-                    "sylva: error: %s %d would need more than %llu MB of memory; raise the limit with "
-                    "--max-memory\n",
+            program_say(e->p, e->diag, DIAG_ERROR, NULL, "%s %d would need more than %llu MB of memory; raise the limit with "
+                    "--max-memory",
                     what, step, (unsigned long long)budget_limit_mb(e->mem));
-        else fprintf(e->diag, "sylva: error: %s %d: out of memory\n", what, step);
+        else program_say(e->p, e->diag, DIAG_ERROR, NULL, "%s %d: out of memory", what, step);
         return;
     }
     SylLoc loc = w->fault.rule ? w->fault.rule->loc : (SylLoc){0};
@@ -164,7 +162,7 @@ static int direction_backward(Engine *e, int step, const char *what, bool *back)
     VmFault f = {0};
     if (vm_run(p, (uint32_t)p->direction_when, locals, &rng, &v, &f)) {
         e->reported = true;
-        if (e->diag) {
+        if (program_heard(p, e->diag)) {
             Diag d = {.out = e->diag, .sink = program_sink(p), .src = &p->src};
             SylLoc loc = f.pc < (uint32_t)p->ncode ? p->code_loc[f.pc] : p->code_loc[p->direction_when];
             diag_error(&d, loc, "%s (the direction of %s %d)", syl_eval_error_text(f.status), what, step);
@@ -186,7 +184,7 @@ static int select_table(Engine *e, int table, int step, const RuleTable **out) {
         int g = 0;
         if (lang_groups_active(p, step, e->seed, &e->active, &f, &g)) {
             e->reported = true;
-            if (e->diag) {
+            if (program_heard(p, e->diag)) {
                 Diag d = {.out = e->diag, .sink = program_sink(p), .src = &p->src};
                 SylLoc loc = f.pc < (uint32_t)p->ncode ? p->code_loc[f.pc] : p->groups[g].loc;
                 diag_error(&d, loc, "%s (use of group '%s' at step %d)", syl_eval_error_text(f.status),
@@ -465,10 +463,10 @@ static int rewrite_until_stable(Engine *e, int table, int step, SylString **cur,
                           table == TABLE_DECOMPOSE ? "decomposition after step" : "interpretation of step");
         if (st) return st;
         if (!applied) break;
-        if (d == t->maxdepth - 1 && !e->warned_depth && e->diag && any_predecessor(t, *cur)) {
+        if (d == t->maxdepth - 1 && !e->warned_depth && program_heard(e->p, e->diag) && any_predecessor(t, *cur)) {
             e->warned_depth = true;
-            fprintf(e->diag, "sylva: warning: %s rules may still apply after maxdepth %d passes (step %d); "
-                             "raise `maxdepth` in the block if more are meant\n",
+            program_say(e->p, e->diag, DIAG_WARNING, NULL, "%s rules may still apply after maxdepth %d passes (step %d); "
+                             "raise `maxdepth` in the block if more are meant",
                     table == TABLE_DECOMPOSE ? "decomposition" : "interpretation", t->maxdepth, step);
         }
     }
@@ -649,7 +647,7 @@ int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylStrin
     }
     SylDeriver *d = calloc(1, sizeof *d);
     if (!d) {
-        if (opt && opt->diag) fprintf(opt->diag, "sylva: error: out of memory\n");
+        if (opt) program_say(p, opt->diag, DIAG_ERROR, NULL, "out of memory");
         if (q && q->release) q->release(q->user);
         return SYL_ELIMIT;
     }

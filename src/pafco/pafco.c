@@ -6,6 +6,7 @@
 #include "skeleton/store.h"
 #include "pafco/pafco.h"
 #include "sylva/trees.h"
+#include "lang/program.h"
 
 int syl_pafco_validate(const SylProgram *p, FILE *diag) {
     return syl_program_kind(p) == SYL_MODEL_PAFCO ? pafco_params_check(p, diag) : 0;
@@ -34,8 +35,7 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     if (!opt) opt = &none;
     *out = NULL;
     if (syl_program_kind(p) != SYL_MODEL_PAFCO) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is a %s, not a pafco block\n", syl_program_name(p),
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' is a %s, not a pafco block", syl_program_name(p),
                     syl_model_kind_name(syl_program_kind(p)));
         return SYL_EUSAGE;
     }
@@ -46,7 +46,7 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     SylSkeleton *sk = syl_skeleton_new(syl_program_name(p));
     if (!sk) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton", syl_program_name(p));
         return SYL_ELIMIT;
     }
     double nodes, leaves, bytes;
@@ -55,11 +55,9 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
         char size[96]; /* a count stopped at the budget gives only its nodes, and them as a least */
         if (partial) snprintf(size, sizeof size, "more than %.0f nodes", nodes);
         else snprintf(size, sizeof size, "up to %.0f nodes and %.0f leaves (%.0f MB)", nodes, leaves, bytes / (1 << 20));
-        if (opt->diag)
-            fprintf(opt->diag,
-                    "sylva: error: '%s': the tree may have %s, more than --max-memory allows (%llu MB%s); raise "
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s': the tree may have %s, more than --max-memory allows (%llu MB%s); raise "
                     "the limit with --max-memory, or lower VYSKA_STROMU, SEG_VET, V1G_POCET, V2G_MAX, V3G_MAX or "
-                    "LSPH_POCET\n",
+                    "LSPH_POCET",
                     syl_program_name(p), size, (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
         syl_skeleton_free(sk);
         return SYL_ELIMIT;
@@ -68,8 +66,7 @@ int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     int st = pafco_build(&P, seed, mem, sk, NULL);
     uint64_t charged = syl_budget_used(mem) - before;
     if (st) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' needs more memory than --max-memory allows (%llu MB%s)\n",
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' needs more memory than --max-memory allows (%llu MB%s)",
                     syl_program_name(p), (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
         budget_release(mem, charged);
         syl_skeleton_free(sk);

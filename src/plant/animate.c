@@ -2,6 +2,7 @@
  * grown plant's years and a strands tree's ages, each frame built as syl_plant_build would. */
 #include "sylva/plant.h"
 #include "lang/kinds.h"
+#include "lang/program.h"
 
 #include <stdbool.h>
 #include <stdlib.h>
@@ -31,7 +32,7 @@ static int derive_steps(SylGrowth *g) {
     if (n < 0) n = 0;
     g->strings = calloc((size_t)n + 1, sizeof *g->strings);
     if (!g->strings) {
-        if (o->diag) fprintf(o->diag, "sylva: error: out of memory\n");
+        program_say(g->p, o->diag, DIAG_ERROR, NULL, "out of memory");
         return SYL_ELIMIT;
     }
     SylDeriver *dv = NULL;
@@ -68,7 +69,7 @@ int syl_growth_new(const SylProgram *p, const SylPlantOptions *opt, SylGrowth **
     *out = NULL;
     SylGrowth *g = calloc(1, sizeof *g);
     if (!g) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: out of memory\n");
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "out of memory");
         return SYL_ELIMIT;
     }
     g->p = p;
@@ -86,15 +87,14 @@ int syl_growth_new(const SylProgram *p, const SylPlantOptions *opt, SylGrowth **
         g->have_last = !st;
         if (!st) g->count = g->last.grow.years;
         if (!st && g->count < 1) {
-            if (opt->diag) fprintf(opt->diag, "sylva: error: '%s' grows for no year: nothing to animate\n",
+            program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' grows for no year: nothing to animate",
                                    syl_program_name(p));
             st = SYL_EUSAGE;
         }
     } else if (lang_kind_is(g->kind, KF_AGES)) {
         g->count = opt->use_steps ? opt->steps : STRANDS_AGES;
         if (g->count < 1) {
-            if (opt->diag)
-                fprintf(opt->diag, "sylva: error: %s %s tree needs at least one age to animate\n",
+            program_say(p, opt->diag, DIAG_ERROR, NULL, "%s %s tree needs at least one age to animate",
                         lang_kind_article(g->kind), lang_kind_keyword(g->kind));
             st = SYL_EUSAGE;
         }
@@ -104,8 +104,7 @@ int syl_growth_new(const SylProgram *p, const SylPlantOptions *opt, SylGrowth **
         lang_kind_refuse(opt->diag, syl_program_name(p), g->kind, true);
         st = SYL_EUSAGE;
     } else {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is %s %s: it is built full grown and has no growth to animate\n",
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' is %s %s: it is built full grown and has no growth to animate",
                     syl_program_name(p), lang_kind_article(g->kind), syl_model_kind_name(g->kind));
         st = SYL_EUSAGE;
     }

@@ -5,6 +5,7 @@
 #include "sylva/trees.h"
 #include "kinds/kinds.h"
 #include "lang/kinds.h"
+#include "lang/program.h"
 
 #include <stdbool.h>
 #include <stdlib.h>
@@ -56,7 +57,7 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
         }
         /* the walls the trees grew around belong in the picture */
         if (!st && obstacles && (st = syl_mesh_append(out->mesh, obstacles)) && opt->diag)
-            fprintf(opt->diag, "sylva: error: out of memory adding the obstacles to the mesh\n");
+            program_say(p, opt->diag, DIAG_ERROR, NULL, "out of memory adding the obstacles to the mesh");
     }
     out->mesh_s = now() - t1;
     out->mesh_cpu_s = cpu_now() - c1;
@@ -138,8 +139,7 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
     }
     out->kind = scene ? SYL_MODEL_SCENE : kind;
     if (opt->until == SYL_PLANT_STRING && !lang_kind_is(out->kind, KF_STRING)) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is %s %s, not an lsystem: it has no string\n",
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' is %s %s, not an lsystem: it has no string",
                     syl_program_name(p), lang_kind_article(out->kind), syl_model_kind_name(out->kind));
         return SYL_EUSAGE;
     }

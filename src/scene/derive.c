@@ -26,7 +26,7 @@ int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString
                           .user = syl_env_standalone_new(p, opt ? opt->diag : NULL)};
         if (!q.user) {
             *out = NULL;
-            if (opt && opt->diag) fprintf(opt->diag, "sylva: error: step 0: out of memory\n");
+            if (opt) program_say(p, opt->diag, DIAG_ERROR, NULL, "step 0: out of memory");
             return SYL_ELIMIT;
         }
     } else if (p->uses_queries) q.ops = &turtle_ops;

@@ -8,6 +8,7 @@
 #include "sot/forest_internal.h"
 #include "sot/output.h"
 #include "sylva/grow.h"
+#include "lang/program.h"
 
 int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     static const SylGrowOptions defaults = {.years = -1};
@@ -20,7 +21,7 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     memset(&opt->stats, 0, sizeof opt->stats);
     double t0 = forest_now();
     if (syl_program_kind(p) != SYL_MODEL_GROW) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s' is not a grow block\n", syl_program_name(p));
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' is not a grow block", syl_program_name(p));
         return SYL_EUSAGE;
     }
     GrowParams P;
@@ -29,10 +30,11 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     if (opt->use_seed) P.seed = opt->seed;
     Forest f;
     if (opt->years > SYL_GROW_MAX_YEARS) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: at most %d years, not %d\n", SYL_GROW_MAX_YEARS, opt->years);
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "at most %d years, not %d", SYL_GROW_MAX_YEARS, opt->years);
         return SYL_EUSAGE;
     }
     int st = forest_init(&f, opt->threads, opt->diag, &opt->stats);
+    f.sink = program_sink(p);
     forest_limits(&f, opt);
     f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
     const float base[3] = {0, 0, 0};

@@ -26,7 +26,7 @@ void open_env_free(OpenEnv *e) {
 }
 
 static int too_big(OpenEnv *e) {
-    if (e->P.diag) fprintf(e->P.diag, "sylva: error: the environment of ?E needs too large a shadow grid\n");
+    diag_say(e->P.diag, NULL, DIAG_ERROR, NULL, "the environment of ?E needs too large a shadow grid");
     return SYL_ELIMIT;
 }
 

@@ -207,7 +207,7 @@ static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, si
         first_tri[i] = f->env.obstacles.nt;
         char *path = NULL;
         int st = scene_spec_path(p, o->file, NULL, &path);
-        if (st == SYL_EIO && diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", o->file, syl_file_refused);
+        if (st == SYL_EIO) program_say(p, diag, DIAG_ERROR, NULL, "cannot read '%s': %s", o->file, syl_file_refused);
         if (!st) st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
         free(path);
         if (st) {
@@ -269,7 +269,7 @@ static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, Sc
         progs[i] = plant_model(p, pl, m, diag, &st);
         if (!progs[i]) {
             if (diag && st != SYL_ELIMIT) syl_program_error(p, diag, pl->line, pl->col, "cannot use this plant");
-            else if (diag) fprintf(diag, "sylva: error: out of memory\n");
+            else program_say(p, diag, DIAG_ERROR, NULL, "out of memory");
             return st ? st : SYL_EMODEL;
         }
         SylModelKind kind = syl_program_kind(progs[i]->q);
@@ -393,14 +393,14 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     if (obstacles) *obstacles = NULL;
     memset(&opt->stats, 0, sizeof opt->stats);
     if (opt->years > SYL_GROW_MAX_YEARS) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: at most %d years, not %d\n", SYL_GROW_MAX_YEARS, opt->years);
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "at most %d years, not %d", SYL_GROW_MAX_YEARS, opt->years);
         return SYL_EUSAGE;
     }
     double t0 = forest_now();
     SceneSpec S;
     int errors = scene_spec_read(p, &S, opt->diag);
     if (errors || !S.nplants) {
-        if (!errors && opt->diag) fprintf(opt->diag, "sylva: error: the file has no scene\n");
+        if (!errors) program_say(p, opt->diag, DIAG_ERROR, NULL, "the file has no scene");
         scene_spec_free(&S);
         return errors ? SYL_EMODEL : SYL_EUSAGE;
     }
@@ -414,6 +414,7 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     SceneLsys *lsys = NULL;
     int st = placed && plants && progs && first_tri ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
     if (!st) {
+        f.sink = program_sink(p);
         forest_limits(&f, opt);
         f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
         st = grow_scene(p, opt, &S, &f, placed, plants, progs, &models, &lsys, first_tri, out, obstacles);

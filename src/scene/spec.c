@@ -202,7 +202,7 @@ int scene_spec_read(const SylProgram *p, SceneSpec *s, FILE *diag) {
     const SylDirective *dirs = syl_program_scene(p, &n);
     Names *names = malloc(sizeof *names);
     if (!names) {
-        if (diag) fprintf(diag, "sylva: error: out of memory\n");
+        program_say(p, diag, DIAG_ERROR, NULL, "out of memory");
         return 1;
     }
     names->n = -1;
@@ -330,7 +330,7 @@ SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, in
     char *text = file_read_named(path, &len, NULL); /* a regular file, of a bounded size */
     SylProgram *q = NULL;
     if (!text) {
-        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(errno));
+        program_say(p, diag, DIAG_ERROR, NULL, "cannot read '%s': %s", path, file_strerror(errno));
         *status = errno == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     } else if (!syl_text_is_model(text, len)) { /* its lines are not shown: it may be anything */
         if (diag)

@@ -9,6 +9,7 @@
 #include "sot/allocate.h"
 #include "sot/forest_internal.h"
 #include "sot/shed.h"
+#include "lang/program.h"
 
 double forest_now(void) {
     struct timespec ts;
@@ -43,9 +44,9 @@ int forest_said(Forest *f, int st, int year) {
     char when[32] = "";
     if (year > 0) snprintf(when, sizeof when, " in year %d", year);
     if (atomic_load(&f->mem->refused))
-        fprintf(f->diag, "sylva: error: growing would need more than %llu MB of memory%s; raise the limit with "
-                         "--max-memory\n", (unsigned long long)budget_limit_mb(f->mem), when);
-    else fprintf(f->diag, "sylva: error: out of memory%s\n", when);
+        diag_say(f->diag, f->sink, DIAG_ERROR, NULL, "growing would need more than %llu MB of memory%s; raise the limit with "
+                         "--max-memory", (unsigned long long)budget_limit_mb(f->mem), when);
+    else diag_say(f->diag, f->sink, DIAG_ERROR, NULL, "out of memory%s", when);
     return st;
 }
 
@@ -169,11 +170,10 @@ bool forest_too_many(Forest *f, int year) {
     for (int i = 0; i < f->ntrees; i++) n += f->trees[i].n - 1, buds += f->trees[i].nb;
     if (n <= f->max_metamers && buds <= f->max_buds) return false;
     f->reported = true;
-    if (f->diag && n > f->max_metamers)
-        fprintf(f->diag, "sylva: error: more than %llu metamers in year %d (the --max-metamers limit)\n",
+    if (n > f->max_metamers)
+        diag_say(f->diag, f->sink, DIAG_ERROR, NULL, "more than %llu metamers in year %d (the --max-metamers limit)",
                 (unsigned long long)f->max_metamers, year);
-    else if (f->diag)
-        fprintf(f->diag, "sylva: error: more than %llu buds in year %d (the --max-buds limit)\n",
+    else diag_say(f->diag, f->sink, DIAG_ERROR, NULL, "more than %llu buds in year %d (the --max-buds limit)",
                 (unsigned long long)f->max_buds, year);
     return true;
 }

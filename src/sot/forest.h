@@ -50,6 +50,7 @@ typedef struct Forest {
     int nrules, rules_cap;
     int trees_cap;
     FILE *diag;
+    const SylSink *sink;   /* the grown program's sink (set after forest_init); NULL: diag's text */
     SylGrowStats *stats;
     int space_variant;     /* SPACE_PER_BUD or SPACE_GLOBAL, from the first tree that uses space */
     bool space_any;

@@ -12,6 +12,7 @@
 #include "util/array.h"
 #include "util/parallel.h"
 #include "util/rng.h"
+#include "lang/program.h"
 
 bool forest_space_scratch(Forest *f, size_t n) {
     if (n <= f->sbcap) return true;
@@ -236,8 +237,7 @@ static int make_plans(Forest *f, int year) {
             Bud *b = &t->buds[cd->bud];
             double args[4];
             shoot_args(t, b, year, args);
-            if (f->diag)
-                fprintf(f->diag, "sylva: error: the shoot rule failed on shoot(%g, %g, %g, %g) in year %d%s:\n", args[0],
+            diag_say(f->diag, f->sink, DIAG_ERROR, NULL, "the shoot rule failed on shoot(%g, %g, %g, %g) in year %d%s:", args[0],
                         args[1], args[2], args[3], year,
                         status[c] == SYL_ELIMIT ? " (a shoot's string may hold a million modules)" : "");
             shoot_rule_plan(t->rule, args, shoot_seed(b, year), &t->plans[b->plan], f->diag);

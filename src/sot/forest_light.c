@@ -6,6 +6,7 @@
 #include "sot/allocate.h"
 #include "sot/forest_internal.h"
 #include "util/parallel.h"
+#include "lang/program.h"
 
 enum { NODE_STRIDE = sizeof(Node) / sizeof(float) };
 
@@ -124,12 +125,11 @@ static bool gather(Forest *f, size_t n) {
 
 int forest_shadow_too_big(Forest *f) {
     f->reported = true;
-    if (f->diag && f->env.shadow.refused)
-        fprintf(f->diag, "sylva: error: the shadow grid would need more than the %llu MB that --max-memory allows; "
-                         "raise the limit with --max-memory\n", (unsigned long long)budget_limit_mb(f->mem));
-    else if (f->diag)
-        fprintf(f->diag, "sylva: error: the shadow grid would need more than %zu voxels: the scene is too large "
-                         "for its voxel size\n", f->env.shadow.max_voxels);
+    if (f->env.shadow.refused)
+        diag_say(f->diag, f->sink, DIAG_ERROR, NULL, "the shadow grid would need more than the %llu MB that --max-memory allows; "
+                         "raise the limit with --max-memory", (unsigned long long)budget_limit_mb(f->mem));
+    else diag_say(f->diag, f->sink, DIAG_ERROR, NULL, "the shadow grid would need more than %zu voxels: the scene is too large "
+                         "for its voxel size", f->env.shadow.max_voxels);
     return SYL_ELIMIT;
 }
 

@@ -29,8 +29,7 @@ typedef enum { V_NUM, V_INT, V_SEED, V_BOOL, V_VEC3, V_WORD, V_NAME } VType;
 
 typedef struct Key {
     const char *name;
-    VType type;
-    double lo, hi;      /* inclusive range (V_NUM, V_INT) */
+    VType type;         /* its range is the schema's row (key_row) */
     size_t off;         /* into GrowParams, or OrganSpec for `organ` */
     const char *words;  /* V_WORD: the words "a|b", the index of the one written stored */
 } Key;
@@ -60,9 +59,9 @@ typedef struct Directive {
 enum { NO_MODE = (size_t)-1 };
 
 /* the lists of params.def, as the reader's structures */
-#define GROW_VALUE(var, nm, ty, l, h, f, d, u, mean) static const Key var = {nm, V_##ty, l, h, G(f), NULL};
+#define GROW_VALUE(var, nm, ty, l, h, f, d, u, mean) static const Key var = {nm, V_##ty, G(f), NULL};
 #define GROW_KEYS(list) static const Key list##_keys[] = {
-#define GROW_KEY(base, f, dir, nm, ty, l, h, d, w, u, mean) {nm, V_##ty, l, h, base(f), w},
+#define GROW_KEY(base, f, dir, nm, ty, l, h, d, w, u, mean) {nm, V_##ty, base(f), w},
 #define GROW_KEYS_END END};
 #define GROW_MODES(list, dir, dw, w, grp, mean) static const Mode list##_modes[] = {
 #define GROW_MODE(word, value, count, keys) {word, value, count, keys},
@@ -135,6 +134,16 @@ static void list_words(char *buf, size_t size, const char *const *names, size_t 
     }
 }
 
+/* The schema's row of key k of directive dir (lang/schema_tables.c makes it of the same line
+ * of params.def): a key's is DIRECTIVE.KEY (buds.angle), a bare value's its name (years). Its
+ * range is the one the schema checks, for a line's value and for --set alike. */
+static const SchRow *key_row(const char *dir, const Key *k) {
+    char name[96];
+    snprintf(name, sizeof name, "%s.%s", dir, k->name);
+    const SchRow *row = sch_find(&sch_grow, name, NULL);
+    return row ? row : sch_find(&sch_grow, k->name, NULL);
+}
+
 /* Store the value of key k from args[i] (and on); returns how many args it took, 0 on error. */
 static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylDirArg *args, int i, void *base) {
     if (i >= d->nargs) {
@@ -153,10 +162,13 @@ static int take_value(Reader *r, const SylDirective *d, const Key *k, const SylD
             ERR(r, a->line, a->col, "'%s' expects a number, not %s", k->name, kind_name(a->kind));
             return 0;
         }
-        if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
-            if (k->type != V_NUM)
-                ERR(r, a->line, a->col, "'%s' expects a whole number from %g to %g, not %g", k->name, k->lo, k->hi, v);
-            else ERR(r, a->line, a->col, "'%s' expects a number from %g to %g, not %g", k->name, k->lo, k->hi, v);
+        char why[160];
+        if (k == &k_lod && !sch_value_ok(key_row(d->name, k), v, why, sizeof why)) {
+            r->errors += lang_lod_check(r->p, d, r->diag); /* one message for every kind's `lod` */
+            return 0;
+        }
+        if (!sch_value_ok(key_row(d->name, k), v, why, sizeof why)) {
+            ERR(r, a->line, a->col, "%s %s", k->name, why);
             return 0;
         }
         if (k->type == V_NUM) *(float *)field = (float)v;
@@ -382,7 +394,7 @@ static bool is_param(const SylProgram *p, const char *name) {
 }
 
 /* A number v of key k into base (GrowParams or OrganSpec), within the key's range. */
-static void store_number(Reader *r, const char *typed, const Key *k, void *base, double v) {
+static void store_number(Reader *r, const char *typed, const char *dir, const Key *k, void *base, double v) {
     char *field = (char *)base + k->off;
     if (k->type == V_BOOL) {
         if (v != 0 && v != 1) {
@@ -392,9 +404,14 @@ static void store_number(Reader *r, const char *typed, const Key *k, void *base,
         *(bool *)field = v == 1;
         return;
     }
-    if (!isfinite(v) || v < k->lo || v > k->hi || (k->type != V_NUM && v != floor(v))) {
-        ERR(r, 0, 0, "--set %s: '%s' expects %s from %g to %g, not %g", typed, k->name,
-            k->type != V_NUM ? "a whole number" : "a number", k->lo, k->hi, v);
+    char why[160];
+    if (k == &k_lod) {
+        int e = lang_lod_set_check(r->p, v, typed, r->diag); /* as every kind's */
+        r->errors += e;
+        if (e) return;
+    }
+    if (!sch_value_ok(key_row(dir, k), v, why, sizeof why)) { /* as sch_set_check says it */
+        ERR(r, 0, 0, "--set %s: '%s' %s", typed, k->name, why);
         return;
     }
     if (k->type == V_NUM) *(float *)field = (float)v;
@@ -436,10 +453,10 @@ static void set_one(Reader *r, GrowParams *g, const char *typed, const char *nam
         }
         char near[256];
         int found = closest_list(name, names, k, near, sizeof near);
-        if (hit)
+        if (hit || sch_find(&sch_grow, name, NULL)) /* a word, a direction, a mode (buds) */
             ERR(r, 0, 0, "--set %s: '%s' is not a number (write it in the block)", typed, name);
         else
-            ERR(r, 0, 0, "--set %s: grow block '%s' has no parameter or directive '%s'%s%s%s", typed,
+            ERR(r, 0, 0, "--set %s: grow block '%s' has no parameter '%s'%s%s%s", typed, /* sch_set_check's words */
                 syl_program_name(r->p), name, found ? " (did you mean " : "", found ? near : "", found ? "?)" : "");
         return;
     }
@@ -458,7 +475,7 @@ static void set_one(Reader *r, GrowParams *g, const char *typed, const char *nam
             hit->dir->name, hit->mode->word, hit->dir->name, now);
         return;
     }
-    store_number(r, typed, k, g, v);
+    store_number(r, typed, hit->dir->name, k, g, v);
 }
 
 /* organ.N.KEY: the N-th organ line's size, count, angle, age or chance. */
@@ -480,7 +497,7 @@ static void set_organ(Reader *r, GrowParams *g, const char *typed, const char *n
         ERR(r, 0, 0, "--set %s: an organ line has no number '%s' (size, count, angle, age, chance)", typed, end + 1);
         return;
     }
-    store_number(r, typed, k, &g->organs[n - 1], v);
+    store_number(r, typed, "organ", k, &g->organs[n - 1], v);
 }
 
 /* In the order given, so that the last one wins; a param takes its own (lang/overrides.c). */

@@ -8,6 +8,7 @@
 #include "sylva/trees.h"
 #include "util/array.h"
 #include "util/budget.h"
+#include "lang/program.h"
 
 int syl_strands_validate(const SylProgram *p, FILE *diag) {
     return syl_program_kind(p) == SYL_MODEL_STRANDS ? strands_params_check(p, diag) : 0;
@@ -18,8 +19,7 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     if (!opt) opt = &none;
     *out = NULL;
     if (syl_program_kind(p) != SYL_MODEL_STRANDS) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: '%s' is a %s, not a strands block\n", syl_program_name(p),
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' is a %s, not a strands block", syl_program_name(p),
                     syl_model_kind_name(syl_program_kind(p)));
         return SYL_EUSAGE;
     }
@@ -32,10 +32,8 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     uint64_t bytes = c.nodes * sizeof(SylNode) + c.organs * sizeof(SylOrgan);
     Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     if (!budget_charge(mem, bytes)) {
-        if (opt->diag)
-            fprintf(opt->diag,
-                    "sylva: error: '%s' would need %llu nodes and %llu leaves (%llu MB), more than --max-memory "
-                    "allows (%llu MB%s)\n",
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' would need %llu nodes and %llu leaves (%llu MB), more than --max-memory "
+                    "allows (%llu MB%s)",
                     syl_program_name(p), (unsigned long long)c.nodes, (unsigned long long)c.organs,
                     (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem),
                     mem == &own ? "" : " in all");
@@ -43,7 +41,7 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     }
     SylSkeleton *sk = syl_skeleton_new(syl_program_name(p));
     if (!sk) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton", syl_program_name(p));
         budget_release(mem, bytes);
         return SYL_ELIMIT;
     }
@@ -53,7 +51,7 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
     /* the counts are known (3.1): one allocation each, not a doubling series */
     if (!skeleton_reserve_nodes(sk, c.nodes) || (c.organs && !skeleton_reserve_organs(sk, c.organs))) {
         if (opt->diag) /* within the budget, but the system said no (ulimit -v, a cgroup) */
-            fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton's %llu nodes and %llu leaves (%llu MB)\n",
+            program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton's %llu nodes and %llu leaves (%llu MB)",
                     syl_program_name(p), (unsigned long long)c.nodes, (unsigned long long)c.organs,
                     (unsigned long long)(bytes >> 20));
         syl_skeleton_free(sk);
@@ -65,7 +63,7 @@ int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **ou
         return st;
     }
     if (st) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: '%s': out of memory for the skeleton\n", syl_program_name(p));
+        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton", syl_program_name(p));
         syl_skeleton_free(sk);
         return st;
     }

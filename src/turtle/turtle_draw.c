@@ -11,11 +11,12 @@
 #include "turtle/turtle_internal.h"
 #include "skeleton/store.h"
 #include "util/budget.h"
+#include "lang/program.h"
 
 static void warn_once(Turtle *t, int sym, const char *what) {
-    if (t->warned[sym] || !t->diag) return;
+    if (t->warned[sym] || !program_heard(t->p, t->diag)) return;
     t->warned[sym] = true;
-    fprintf(t->diag, "sylva: warning: %s '%s': ignored\n", what, t->p->syms[sym].name);
+    program_say(t->p, t->diag, DIAG_WARNING, NULL, "%s '%s': ignored", what, t->p->syms[sym].name);
 }
 
 /* ---- emitting ---- */
@@ -265,7 +266,7 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     if (!sk || !t) {
         free(t);
         syl_skeleton_free(sk);
-        if (diag) fprintf(diag, "sylva: error: out of memory in the turtle\n");
+        program_say(p, diag, DIAG_ERROR, NULL, "out of memory in the turtle");
         return SYL_ELIMIT;
     }
     for (int i = 0; i < 256; i++)
@@ -282,9 +283,8 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     uint64_t want = count_nodes(t, s), bytes = want * sizeof(SylNode);
     Budget own, *mem = budget_use(&own, opt ? opt->max_memory : 0, opt ? opt->budget : NULL);
     if (!budget_charge(mem, bytes)) {
-        if (diag)
-            fprintf(diag, "sylva: error: the skeleton would need %llu nodes (%llu MB), more than --max-memory "
-                          "allows (%llu MB%s); raise the limit with --max-memory\n",
+        program_say(p, diag, DIAG_ERROR, NULL, "the skeleton would need %llu nodes (%llu MB), more than --max-memory "
+                          "allows (%llu MB%s); raise the limit with --max-memory",
                     (unsigned long long)want, (unsigned long long)(bytes >> 20),
                     (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
         turtle_release(t);
@@ -296,11 +296,11 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     reserve_nodes(sk, want);
     int status = draw_string(t, s);
     if (status == SYL_OK) status = lang_textures_apply(p, sk, opt && opt->use_seed ? opt->seed : p->seed, diag);
-    if (status == SYL_OK && t->bad && diag)
-        fprintf(diag, "sylva: warning: the turtle skipped %llu module%s with a parameter that is not a finite number\n",
+    if (status == SYL_OK && t->bad)
+        program_say(p, diag, DIAG_WARNING, NULL, "the turtle skipped %llu module%s with a parameter that is not a finite number",
                 (unsigned long long)t->bad, t->bad == 1 ? "" : "s");
     if (status != SYL_OK) {
-        if (diag && status == SYL_ELIMIT) fprintf(diag, "sylva: error: out of memory in the turtle\n");
+        if (status == SYL_ELIMIT) program_say(p, diag, DIAG_ERROR, NULL, "out of memory in the turtle");
         syl_skeleton_free(sk);
         sk = NULL;
     }

@@ -179,6 +179,22 @@ void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...) {
     free(path.s), free(message.s), free(line.s), free(caret.s);
 }
 
+void diag_vsay(FILE *out, const SylSink *sink, int severity, const char *path, const char *fmt, va_list ap) {
+    if (!out && !(sink && sink->report)) return;
+    char msg[2048];
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    SylDiagnostic r = {.severity = (SylSeverity)severity, .path = path, .message = msg};
+    if (sink && sink->report) sink->report(sink->user, &r);
+    else syl_diagnostic_write(&r, out);
+}
+
+void diag_say(FILE *out, const SylSink *sink, int severity, const char *path, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    diag_vsay(out, sink, severity, path, fmt, ap);
+    va_end(ap);
+}
+
 /* The text sink: the one place the text form is written. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out) {
     const char *sev = severity_name[d->severity <= SYL_DIAG_NOTE ? d->severity : 0];

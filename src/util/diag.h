@@ -5,6 +5,7 @@
 #define SYL_DIAG_H
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdarg.h>
 #include <stdio.h>
 
 #include "sylva/sylva.h"
@@ -36,6 +37,13 @@ typedef struct Diag {
  * source line under them. */
 void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
+/* A message without a place in a model (a file that cannot be read, a limit, MPI): a record
+ * with no line, about path (NULL: the library's own, shown "sylva"), to sink when given, else
+ * as text to out (`sylva: error: message`); neither: dropped. The message is not escaped, so
+ * the text is what fprintf would have written. */
+void diag_say(FILE *out, const SylSink *sink, int severity, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+void diag_vsay(FILE *out, const SylSink *sink, int severity, const char *path, const char *fmt, va_list ap);
 /* s[0..n) made safe to print (see diag.c: controls escaped, visible UTF-8 kept) into buf,
  * cut to fit cap; returns buf. For text from the user that a message quotes. */
 const char *diag_quote(char *buf, size_t cap, const char *s, size_t n);

@@ -11,6 +11,7 @@
 #include "util/budget.h"
 #include "util/pages.h"
 #include "weber/internal.h"
+#include "lang/program.h"
 
 int syl_weber_validate(const SylProgram *p, FILE *diag) { return weber_params_check(p, diag); }
 
@@ -80,7 +81,7 @@ static int load_envelope(const SylProgram *p, const WeberParams *w, WeberEnvelop
     char *path = NULL;
     int st = syl_program_file(p, w->envelope, &path); /* beside the program's file unless absolute */
     if (st == SYL_ELIMIT) return st;
-    if (st && diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", w->envelope, syl_file_refused);
+    if (st) program_say(p, diag, DIAG_ERROR, NULL, "cannot read '%s': %s", w->envelope, syl_file_refused);
     static const float zero[3] = {0, 0, 0};
     if (!st) st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
     free(path);
@@ -129,11 +130,9 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     double bytes, stems = estimate_stems(g, &bytes);
     uint64_t used = atomic_load(&g->budget->used);
     if (!(bytes < (double)(g->budget->limit - (used < g->budget->limit ? used : g->budget->limit)))) {
-        if (diag)
-            fprintf(diag,
-                    "sylva: error: '%s': the tree would have about %.3g stems (%.0f MB), more than --max-memory "
+        program_say(p, diag, DIAG_ERROR, NULL, "'%s': the tree would have about %.3g stems (%.0f MB), more than --max-memory "
                     "allows (%llu MB in all); raise the limit with --max-memory, or lower SegSplits, 0BaseSplits "
-                    "or Branches\n",
+                    "or Branches",
                     syl_program_name(p), stems, bytes / (1 << 20), (unsigned long long)budget_limit_mb(g->budget));
         obstacles_free(&env.obs);
         if (env.dev) rtcReleaseDevice(env.dev);
@@ -168,8 +167,8 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
             st = SYL_ELIMIT;
         }
     }
-    if (st == SYL_ELIMIT && diag)
-        fprintf(diag, "sylva: error: '%s': the tree needs more memory than --max-memory allows (%llu MB)\n",
+    if (st == SYL_ELIMIT)
+        program_say(p, diag, DIAG_ERROR, NULL, "'%s': the tree needs more memory than --max-memory allows (%llu MB)",
                 syl_program_name(p), (unsigned long long)budget_limit_mb(g->budget));
     if (!st) st = lang_textures_apply(p, sk, g->seed, diag);
     free_gen(g);
