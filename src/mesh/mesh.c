@@ -31,6 +31,7 @@
 
 #include "mesh/mesh_internal.h"
 #include "util/budget.h"
+#include "util/pages.h"
 #include "util/parallel.h"
 #include "util/rng.h"
 
@@ -47,6 +48,7 @@ bool mesh_reserve(void **arr, size_t *cap, size_t n, size_t more, size_t elem) {
     while (c < n + more) c *= 2;
     void *p = realloc(*arr, c * elem);
     if (!p) return false;
+    pages_prefault(p, *cap * elem, c * elem);
     *arr = p;
     *cap = c;
     return true;
@@ -353,6 +355,7 @@ static bool size_tubes(MeshPlan *pl) {
     float rmax = 0;
     for (size_t t = 0; t < pl->ntubes; t++) rmax = MAXF(rmax, pl->tubes[t].rmax);
     pl->uv_rmin = rmax / 100; /* 5 texels of the thickest tube's bark around: the head of this file */
+    if (!mesh_reserve((void **)&pl->runs, &pl->runs_cap, pl->nruns, pl->ntubes, sizeof *pl->runs)) return false;
     for (size_t t = 0; t < pl->ntubes; t++) {
         MeshTube *tb = &pl->tubes[t];
         const MeshPt *p = pl->pts + tb->first;
@@ -677,11 +680,16 @@ static bool fill_nodes(const MeshPlan *pl, SylMesh *m) {
  * triangle tree's on a virtual machine whose faults are slow (issue 29). */
 static void *big_alloc(size_t n) {
     const size_t huge = (size_t)2 << 20;
-    if (n < huge / 2) return malloc(n);
+    if (n < huge / 2) {
+        void *p = malloc(n);
+        pages_prefault(p, 0, n); /* every byte is written: fault its pages in one call */
+        return p;
+    }
     void *p = aligned_alloc(huge, (n + huge - 1) / huge * huge);
 #ifdef MADV_HUGEPAGE
     if (p) madvise(p, (n + huge - 1) / huge * huge, MADV_HUGEPAGE);
 #endif
+    pages_prefault(p, 0, n);
     return p;
 }
 
