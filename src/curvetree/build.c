@@ -11,7 +11,6 @@
 #include "skeleton/store.h"
 #include "curvetree/curvetree.h"
 #include "util/array.h"
-#include "util/pages.h"
 #include "util/rng.h"
 
 #define PI 3.14159265358979323846
@@ -352,10 +351,6 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     if (!skeleton_reserve_nodes(sk, sk->nnodes + most_nodes) ||
         (most_leaves && !skeleton_reserve_organs(sk, sk->norgans + most_leaves)))
         return SYL_ELIMIT;
-    /* their pages at once, not a fault each as the tree fills them (util/pages.h) */
-    pages_prefault(sk->nodes, sk->nnodes * sizeof *sk->nodes, (sk->nnodes + most_nodes) * sizeof *sk->nodes);
-    if (most_leaves)
-        pages_prefault(sk->organs, sk->norgans * sizeof *sk->organs, (sk->norgans + most_leaves) * sizeof *sk->organs);
     /* the trunk: Eq. (3), width = length / 10 x trunkWidth at the base, linear to trunkEndWidth
      * of it at the top, each control point's width Gaussian about the linear one */
     double r0 = trunk->length / 10 * P->trunkWidth / 2, r1 = r0 * P->trunkEndWidth;

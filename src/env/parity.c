@@ -81,7 +81,7 @@ static bool before(const double a[2], const double b[2]) { return a[0] < b[0] ||
 
 /* Which side of the edge a -> b is q on (twice the signed area), and whether a -> b runs in
  * the fixed order. */
-static double side_of(const double a[2], const double b[2], const double q[2], bool *forward) {
+static inline double side_of(const double a[2], const double b[2], const double q[2], bool *forward) {
     *forward = before(a, b);
     const double *s = *forward ? a : b, *e = *forward ? b : a;
     double x = (e[0] - s[0]) * (q[1] - s[1]) - (e[1] - s[1]) * (q[0] - s[0]);
@@ -91,7 +91,7 @@ static double side_of(const double a[2], const double b[2], const double q[2], b
 /* Does the ray from p (projected: q) cross triangle t beyond its start? The shadow test is
  * watertight: a point on an edge two triangles share belongs to one of them when the ray
  * passes through the surface there, to both (or neither) when it grazes it. */
-static bool crosses(const ParityGrid *pg, size_t t, const double q[2], const float p[3]) {
+static inline bool crosses(const ParityGrid *pg, size_t t, const double q[2], const float p[3]) {
     const uint32_t *k = pg->tri + 3 * t;
     const double *a = pg->p[k[0]], *b = pg->p[k[1]], *c = pg->p[k[2]];
     bool f0, f1, f2, fa;

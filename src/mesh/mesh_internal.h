@@ -97,7 +97,7 @@ typedef struct MeshPlan {
     uint8_t npanels[256];
 } MeshPlan;
 
-/* Grow *arr to hold n + more elements (the new room faulted in); false when out of memory. */
+/* Grow *arr to hold n + more elements; false when out of memory. */
 bool mesh_reserve(void **arr, size_t *cap, size_t n, size_t more, size_t elem);
 /* Add a run of tris triangles of material mat. */
 bool mesh_add_run(MeshPlan *pl, uint8_t mat, uint32_t tris);

@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
-#include <unistd.h>
 
 #define HUGE_PAGE ((size_t)2 << 20)
 
@@ -68,14 +67,3 @@ void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, s
 }
 
 void *pages_alloc(size_t bytes) { return mapped_bytes(bytes) ? map_big(bytes) : calloc(1, bytes ? bytes : 1); }
-
-void pages_prefault(void *p, size_t from, size_t to) {
-#ifdef MADV_POPULATE_WRITE /* Linux 5.14 */
-    size_t page = (size_t)sysconf(_SC_PAGESIZE);
-    if (!p || to < from + ((size_t)64 << 10) || !page) return;
-    uintptr_t a = ((uintptr_t)p + from + page - 1) / page * page, b = ((uintptr_t)p + to) / page * page;
-    if (b > a) madvise((void *)a, b - a, MADV_POPULATE_WRITE); /* refused by an older kernel: faults as before */
-#else
-    (void)p, (void)from, (void)to;
-#endif
-}

@@ -20,9 +20,5 @@ void *pages_grow(void *old, size_t old_bytes, size_t used, size_t bytes);
 void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes);
 /* The shift that moves whole pages for an array of `bytes` (1: any shift copies). */
 size_t pages_shift_unit(size_t bytes);
-/* Fault in the pages of p[from, to) in one call, for an array about to be written: a fault a
- * page costs microseconds on a virtual machine, most of a small tree's or mesh's time when
- * its arrays are fresh. Nothing below 64 KB (not worth the call) or where the system cannot. */
-void pages_prefault(void *p, size_t from, size_t to);
 
 #endif
