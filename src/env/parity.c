@@ -27,6 +27,35 @@ static int cell_of(const ParityGrid *pg, double x, int axis) {
     return !(c > 0) ? 0 : c >= pg->g ? pg->g - 1 : (int)c; /* NaN: an empty grid's one cell */
 }
 
+/* a before b in one fixed order of the plane's points: an edge's sign is computed from its
+ * first end whichever triangle asks, so the two triangles of an edge see the same number */
+static bool before(const double a[2], const double b[2]) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
+
+/* Which side of the edge a -> b is q on (twice the signed area), and whether a -> b runs in
+ * the fixed order. */
+static inline double side_of(const double a[2], const double b[2], const double q[2], bool *forward) {
+    *forward = before(a, b);
+    const double *s = *forward ? a : b, *e = *forward ? b : a;
+    double x = (e[0] - s[0]) * (q[1] - s[1]) - (e[1] - s[1]) * (q[0] - s[0]);
+    return *forward ? x : -x;
+}
+
+/* A triangle's normal, its dot with the ray, and which way its shadow turns. */
+static struct ParityTri tri_of(const ParityGrid *pg, size_t t) {
+    const uint32_t *k = pg->tri + 3 * t;
+    struct ParityTri r = {{0}, 0, 0};
+    bool fa;
+    double area = side_of(pg->p[k[0]], pg->p[k[1]], pg->p[k[2]], &fa);
+    if (area == 0) return r; /* seen edge-on: the ray runs along its plane */
+    r.turn = area < 0 ? -1 : 1;
+    const double *v0 = pg->v[k[0]], *v1 = pg->v[k[1]], *v2 = pg->v[k[2]];
+    double e[3], g[3];
+    for (int j = 0; j < 3; j++) e[j] = v1[j] - v0[j], g[j] = v2[j] - v0[j];
+    r.n[0] = e[1] * g[2] - e[2] * g[1], r.n[1] = e[2] * g[0] - e[0] * g[2], r.n[2] = e[0] * g[1] - e[1] * g[0];
+    r.den = r.n[0] * dir[0] + r.n[1] * dir[1] + r.n[2] * dir[2];
+    return r;
+}
+
 bool parity_build(ParityGrid *pg, const float *v, size_t nv, const uint32_t *tri, size_t nt) {
     memset(pg, 0, sizeof *pg);
     pg->tri = tri;
@@ -48,7 +77,9 @@ bool parity_build(ParityGrid *pg, const float *v, size_t nv, const uint32_t *tri
     pg->inv = side > 0 ? pg->g / side : 0;
     size_t cells = (size_t)pg->g * pg->g;
     pg->start = calloc(cells + 1, sizeof *pg->start);
-    if (!pg->start) return parity_free(pg), false;
+    pg->t = malloc((nt ? nt : 1) * sizeof *pg->t);
+    if (!pg->start || !pg->t) return parity_free(pg), false;
+    for (size_t t = 0; t < nt; t++) pg->t[t] = tri_of(pg, t);
     /* two passes: count each cell's triangles, then place them (cells by prefix sums) */
     size_t total = 0;
     for (int pass = 0; pass < 2; pass++) {
@@ -75,43 +106,25 @@ bool parity_build(ParityGrid *pg, const float *v, size_t nv, const uint32_t *tri
     return true;
 }
 
-/* a before b in one fixed order of the plane's points: an edge's sign is computed from its
- * first end whichever triangle asks, so the two triangles of an edge see the same number */
-static bool before(const double a[2], const double b[2]) { return a[0] < b[0] || (a[0] == b[0] && a[1] < b[1]); }
-
-/* Which side of the edge a -> b is q on (twice the signed area), and whether a -> b runs in
- * the fixed order. */
-static inline double side_of(const double a[2], const double b[2], const double q[2], bool *forward) {
-    *forward = before(a, b);
-    const double *s = *forward ? a : b, *e = *forward ? b : a;
-    double x = (e[0] - s[0]) * (q[1] - s[1]) - (e[1] - s[1]) * (q[0] - s[0]);
-    return *forward ? x : -x;
-}
-
 /* Does the ray from p (projected: q) cross triangle t beyond its start? The shadow test is
  * watertight: a point on an edge two triangles share belongs to one of them when the ray
  * passes through the surface there, to both (or neither) when it grazes it. */
 static inline bool crosses(const ParityGrid *pg, size_t t, const double q[2], const float p[3]) {
+    const struct ParityTri *tr = &pg->t[t];
+    if (!tr->turn || tr->den == 0) return false;
     const uint32_t *k = pg->tri + 3 * t;
     const double *a = pg->p[k[0]], *b = pg->p[k[1]], *c = pg->p[k[2]];
-    bool f0, f1, f2, fa;
-    double area = side_of(a, b, c, &fa);
-    if (area == 0) return false; /* seen edge-on: the ray runs along its plane */
+    bool f0, f1, f2, neg = tr->turn < 0;
     double e0 = side_of(a, b, q, &f0), e1 = side_of(b, c, q, &f1), e2 = side_of(c, a, q, &f2);
-    bool neg = area < 0;
     if (neg) e0 = -e0, e1 = -e1, e2 = -e2;
     /* an edge owns its points when it runs in the fixed order on a triangle turned one way,
      * against it on one turned the other way */
     if (!(e0 > 0 || (e0 == 0 && f0 != neg)) || !(e1 > 0 || (e1 == 0 && f1 != neg)) ||
         !(e2 > 0 || (e2 == 0 && f2 != neg)))
         return false;
-    const double *v0 = pg->v[k[0]], *v1 = pg->v[k[1]], *v2 = pg->v[k[2]];
-    double e[3], g[3], n[3], o[3];
-    for (int j = 0; j < 3; j++) e[j] = v1[j] - v0[j], g[j] = v2[j] - v0[j], o[j] = v0[j] - p[j];
-    n[0] = e[1] * g[2] - e[2] * g[1], n[1] = e[2] * g[0] - e[0] * g[2], n[2] = e[0] * g[1] - e[1] * g[0];
-    double den = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2];
-    double num = n[0] * o[0] + n[1] * o[1] + n[2] * o[2];
-    return den != 0 && num / den >= 0;
+    const double *v0 = pg->v[k[0]], *n = tr->n;
+    double num = n[0] * (v0[0] - p[0]) + n[1] * (v0[1] - p[1]) + n[2] * (v0[2] - p[2]);
+    return num / tr->den >= 0;
 }
 
 bool parity_inside(const ParityGrid *pg, const float p[3]) {
@@ -129,5 +142,6 @@ void parity_free(ParityGrid *pg) {
     free(pg->v);
     free(pg->start);
     free(pg->idx);
+    free(pg->t);
     memset(pg, 0, sizeof *pg);
 }

@@ -14,6 +14,10 @@ typedef struct ParityGrid {
     double (*p)[2];     /* each vertex projected on the plane across the ray */
     double (*v)[3];     /* each vertex */
     const uint32_t *tri;/* the caller's, 3 per triangle */
+    struct ParityTri {  /* per triangle, computed once: its normal, n . dir, and its shadow's turn */
+        double n[3], den;
+        int8_t turn;    /* 1 or -1; 0: seen edge-on, never crossed */
+    } *t;
     uint32_t *start;    /* cell c's triangles: idx[start[c] .. start[c + 1]) */
     uint32_t *idx;
     int g;              /* cells per side */
