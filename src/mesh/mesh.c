@@ -353,6 +353,7 @@ static bool size_tubes(MeshPlan *pl) {
     float rmax = 0;
     for (size_t t = 0; t < pl->ntubes; t++) rmax = MAXF(rmax, pl->tubes[t].rmax);
     pl->uv_rmin = rmax / 100; /* 5 texels of the thickest tube's bark around: the head of this file */
+    if (!mesh_reserve((void **)&pl->runs, &pl->runs_cap, pl->nruns, pl->ntubes, sizeof *pl->runs)) return false;
     for (size_t t = 0; t < pl->ntubes; t++) {
         MeshTube *tb = &pl->tubes[t];
         const MeshPt *p = pl->pts + tb->first;
@@ -672,12 +673,14 @@ static bool fill_nodes(const MeshPlan *pl, SylMesh *m) {
     return true;
 }
 
-/* Large arrays (from half a huge page up) on transparent huge pages where the system allows
- * it: filling a mesh otherwise spends much of its time in page faults, a third of a 130 000
- * triangle tree's on a virtual machine whose faults are slow (issue 29). */
+/* Large arrays (from a quarter of a huge page up) on transparent huge pages where the system
+ * allows it: filling a mesh otherwise spends much of its time in page faults, a third of a
+ * 130 000 triangle tree's on a virtual machine whose faults are slow (issue 29). There one
+ * 2 MB page costs less than the 128 faults of a 512 KB array (measured: prefaulting the 4 KB
+ * pages with MADV_POPULATE_WRITE costs as much as faulting them one by one). */
 static void *big_alloc(size_t n) {
     const size_t huge = (size_t)2 << 20;
-    if (n < huge / 2) return malloc(n);
+    if (n < huge / 4) return malloc(n);
     void *p = aligned_alloc(huge, (n + huge - 1) / huge * huge);
 #ifdef MADV_HUGEPAGE
     if (p) madvise(p, (n + huge - 1) / huge * huge, MADV_HUGEPAGE);

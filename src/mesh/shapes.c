@@ -262,6 +262,10 @@ bool mesh_plan_shapes(MeshPlan *pl) {
             if (!(pl->panels[m] = malloc(LEAF_OUTLINE_MAX_PANELS * sizeof *pl->panels[m]))) return false;
             pl->npanels[m] = (uint8_t)leaf_outline_panels(s->materials[m].leaf_outline, s->materials[m].leaf_tris, pl->panels[m]);
         }
+    /* room for every organ at once: no doubling series through fresh pages */
+    if (!mesh_reserve((void **)&pl->items, &pl->items_cap, pl->nitems, s->norgans, sizeof *pl->items) ||
+        !mesh_reserve((void **)&pl->runs, &pl->runs_cap, pl->nruns, s->norgans, sizeof *pl->runs))
+        return false;
     for (size_t i = 0; i < s->norgans; i++) {
         uint32_t nv, nt;
         organ_counts(pl, &s->organs[i], &nv, &nt);
