@@ -1,4 +1,4 @@
-"""Sylva in Blender: grow any Sylva model (.syl, Arbaro .xml) into the scene, as a mesh with
+"""Sylva in Blender: grow any Sylva model (.syl, Arbaro .xml, Pafčo .cfg, a library species) into the scene, as a mesh with
 bark and leaf materials or as Bézier curves you can still reshape (docs/blender.md).
 
 Add → Mesh → Sylva Tree adds one with a redo panel; the sidebar's Sylva tab picks the file,
@@ -10,7 +10,7 @@ import os
 import sys
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
+from bpy.props import CollectionProperty, EnumProperty, IntProperty, StringProperty
 
 bl_info = {
     "name": "Sylva",
@@ -27,6 +27,8 @@ if _HERE not in sys.path:  # the bundled `sylva` package
     sys.path.insert(0, _HERE)
 
 import sylva  # noqa: E402
+
+from . import library, params as schema  # noqa: E402
 
 LEAVES = [("copied", "Copied", "every leaf its own geometry"),
           ("cards", "Cards", "one alpha-tested card a leaf")]
@@ -122,11 +124,16 @@ def curve_object(plant, name: str) -> bpy.types.Object:
     return bpy.data.objects.new(name, cu)
 
 
-def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
-             leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0)):
-    """Build the model and put it in the scene under an empty named after it; returns the empty."""
+def load_model(path: str, model: str = ""):
     f = sylva.load(bpy.path.abspath(path))
-    m = f[model] if model else f.model
+    return f[model] if model else f.model
+
+
+def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
+             leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0), m=None):
+    """Build the model and put it in the scene under an empty named after it; returns the empty.
+    m: the model already loaded from path (or compiled from the scene's inputs)."""
+    m = m or load_model(path, model)
     kw = dict(overrides or {})
     if seed >= 0:
         kw["seed"] = seed
@@ -157,11 +164,13 @@ def _models(self, context):
 
 
 class SYLVA_OT_add_tree(bpy.types.Operator):
-    """Add a plant grown by Sylva from a model file"""
+    """Add a plant grown by Sylva from a model file or the species library"""
     bl_idname = "mesh.sylva_tree_add"
     bl_label = "Sylva Tree"
     bl_options = {"REGISTER", "UNDO"}
 
+    species: EnumProperty(name="Species", items=library.enum_items,
+                          description="a species of the library shipped with Sylva (instead of File)")
     filepath: StringProperty(name="File", subtype="FILE_PATH", description="a .syl model or an Arbaro .xml species")
     model: StringProperty(name="Model", description="the model's name in the file (empty: its first)")
     seed: IntProperty(name="Seed", default=-1, min=-1, description="the random seed (-1: the model's)")
@@ -169,15 +178,35 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                        description="derivation steps or years of growth (-1: the model's)")
     output: EnumProperty(name="Output", items=OUTPUTS, default="MESH")
     leaves: EnumProperty(name="Leaves", items=LEAVES, default="copied")
-    overrides: StringProperty(name="Parameters", description="--set values: NAME=VALUE NAME=VALUE …")
+    params: CollectionProperty(type=schema.SylvaParam, name="Parameters")
+    params_for: StringProperty(options={"HIDDEN"}, description="the file and model the parameters are of")
+    overrides: StringProperty(name="More parameters", description="--set values: NAME=VALUE NAME=VALUE …")
+
+    def source(self) -> str:
+        return library.path(self.species) if self.species != library.NONE else self.filepath
+
+    def draw(self, context):
+        col = self.layout.column()
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves"):
+            col.prop(self, prop)
+        schema.draw(col, self.params)
+        col.prop(self, "overrides")
 
     def execute(self, context):
-        if not self.filepath:
-            self.report({"ERROR"}, "Sylva: choose a model file")
-            return {"CANCELLED"}
         try:
-            add_tree(context, self.filepath, self.model, self.seed, self.steps, self.output, self.leaves,
-                     _overrides(self.overrides), tuple(context.scene.cursor.location))
+            path = self.source()
+            if not path:
+                self.report({"ERROR"}, "Sylva: choose a model file or a species")
+                return {"CANCELLED"}
+            m = load_model(path, self.model)
+            key = f"{path}|{m.name}"
+            if self.params_for != key:  # a new model: its parameters at its values
+                schema.fill(self.params, m, keep=not self.params_for)
+                self.params_for = key
+            kw = schema.overrides(self.params)
+            kw.update(_overrides(self.overrides))
+            add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves, kw,
+                     tuple(context.scene.cursor.location), m=m)
         except (sylva.SylvaError, ValueError, OSError, KeyError, TypeError) as e:
             self.report({"ERROR"}, f"Sylva: {e}")
             return {"CANCELLED"}
@@ -185,6 +214,7 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
 
 
 class SylvaSettings(bpy.types.PropertyGroup):
+    species: EnumProperty(name="Species", items=library.enum_items)
     filepath: StringProperty(name="File", subtype="FILE_PATH")
     model: EnumProperty(name="Model", items=_models)
     seed: IntProperty(name="Seed", default=-1, min=-1)
@@ -203,10 +233,13 @@ class SYLVA_PT_panel(bpy.types.Panel):
     def draw(self, context):
         s = context.scene.sylva
         col = self.layout.column()
+        col.label(text="Library")
+        col.template_icon_view(s, "species", show_labels=True, scale=5.0)
+        col.prop(s, "species", text="")
         for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
             col.prop(s, prop)
         op = col.operator(SYLVA_OT_add_tree.bl_idname, text="Add tree", icon="OUTLINER_OB_MESH")
-        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
             setattr(op, prop, getattr(s, prop))
 
 
@@ -214,7 +247,7 @@ def _menu(self, context):
     self.layout.operator(SYLVA_OT_add_tree.bl_idname, text="Sylva Tree", icon="OUTLINER_OB_MESH")
 
 
-CLASSES = (SylvaSettings, SYLVA_OT_add_tree, SYLVA_PT_panel)
+CLASSES = (*schema.CLASSES, SylvaSettings, SYLVA_OT_add_tree, SYLVA_PT_panel)
 
 
 def register():
@@ -229,3 +262,4 @@ def unregister():
     del bpy.types.Scene.sylva
     for c in reversed(CLASSES):
         bpy.utils.unregister_class(c)
+    library.free()
