@@ -10,7 +10,7 @@ import os
 import sys
 
 import bpy
-from bpy.props import CollectionProperty, EnumProperty, IntProperty, StringProperty
+from bpy.props import BoolProperty, CollectionProperty, EnumProperty, IntProperty, StringProperty
 
 bl_info = {
     "name": "Sylva",
@@ -28,7 +28,7 @@ if _HERE not in sys.path:  # the bundled `sylva` package
 
 import sylva  # noqa: E402
 
-from . import library, params as schema  # noqa: E402
+from . import library, params as schema, scene  # noqa: E402
 
 LEAVES = [("copied", "Copied", "every leaf its own geometry"),
           ("cards", "Cards", "one alpha-tested card a leaf")]
@@ -61,15 +61,31 @@ def _material(name: str, rgb, leaf: bool) -> bpy.types.Material:
     return mat
 
 
-def mesh_object(plant, name: str) -> bpy.types.Object:
+# a scene's obstacles come appended to its plants' mesh in a group of this material (scene.c's
+# OBSTACLE_MATERIAL): the add-on leaves them out, the scene has them already
+OBSTACLE_MATERIAL = 250
+
+
+def mesh_object(plant, name: str, drop_obstacles: bool = False) -> bpy.types.Object:
     """The plant's mesh as one object, filled from Sylva's arrays with foreach_set (no Python
     loop per vertex): Sylva's y-up metres turned to Blender's z-up, one material per group."""
     import numpy as np
     m = plant.mesh
     v = m.vertices
+    tris = m.triangles
+    groups = m.groups
+    uvs_all = m.uvs
+    if drop_obstacles and any(g["material"] == OBSTACLE_MATERIAL for g in groups):
+        groups = [dict(g) for g in groups if g["material"] != OBSTACLE_MATERIAL]
+        keep = np.concatenate([np.arange(g["first"], g["first"] + g["count"]) for g in groups])
+        used, tris = np.unique(tris[keep], return_inverse=True)
+        tris = tris.reshape(-1, 3)
+        v, uvs_all = v[used], uvs_all[used]
+        at = 0
+        for g in groups:  # the kept groups, renumbered from 0
+            g["first"], at = at, at + g["count"]
     co = np.empty_like(v)
     co[:, 0], co[:, 1], co[:, 2] = v[:, 0], -v[:, 2], v[:, 1]
-    tris = m.triangles
     nt = len(tris)
     me = bpy.data.meshes.new(name)
     me.vertices.add(len(v))
@@ -81,13 +97,13 @@ def mesh_object(plant, name: str) -> bpy.types.Object:
     me.polygons.foreach_set("loop_total", np.full(nt, 3, dtype=np.int32))
     kinds = {0: "Bark", 1: "Leaf", 2: "Flower", 3: "Plain"}
     index = np.zeros(nt, dtype=np.int32)
-    for k, g in enumerate(m.groups):
+    for k, g in enumerate(groups):
         leaf = g["kind"] in (1, 2)
         me.materials.append(_material(f"{name} {kinds.get(g['kind'], 'Plain')} {g['material']}", g["rgb"], leaf))
         index[g["first"]:g["first"] + g["count"]] = k
     me.polygons.foreach_set("material_index", index)
     uv = me.uv_layers.new(name="UVMap")
-    uvs = m.uvs[tris.ravel()].astype(np.float32)
+    uvs = uvs_all[tris.ravel()].astype(np.float32)
     uvs[:, 1] = 1.0 - uvs[:, 1]  # glTF's v runs down a texture, Blender's up
     uv.data.foreach_set("uv", uvs.ravel())
     me.update()
@@ -130,7 +146,8 @@ def load_model(path: str, model: str = ""):
 
 
 def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
-             leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0), m=None):
+             leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0), m=None,
+             scene_block: bool = False):
     """Build the model and put it in the scene under an empty named after it; returns the empty.
     m: the model already loaded from path (or compiled from the scene's inputs)."""
     m = m or load_model(path, model)
@@ -139,7 +156,7 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
         kw["seed"] = seed
     # the mesh `sylva mesh -o tree.obj` writes: two-sided leaves, triangles without area dropped
     plant = m.build(None if steps < 0 else steps, until="skeleton" if output == "CURVES" else "mesh",
-                    leaves=leaves, optimize=output != "CURVES", **kw)
+                    leaves=leaves, optimize=output != "CURVES", scene=scene_block, **kw)
     coll = context.collection
     root = bpy.data.objects.new(m.name, None)
     root.empty_display_type = "PLAIN_AXES"
@@ -147,7 +164,7 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
     root["sylva_file"] = path
     root["sylva_model"] = m.name
     coll.objects.link(root)
-    obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh")
+    obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh", scene_block)
     obj["sylva_nodes"] = plant.info["nodes"]
     coll.objects.link(obj)
     obj.parent = root
@@ -181,13 +198,16 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
     params: CollectionProperty(type=schema.SylvaParam, name="Parameters")
     params_for: StringProperty(options={"HIDDEN"}, description="the file and model the parameters are of")
     overrides: StringProperty(name="More parameters", description="--set values: NAME=VALUE NAME=VALUE …")
+    use_scene: BoolProperty(name="From the scene", default=False,
+                            description="a curvetree's trunk is the active curve and its envelope the selected "
+                                        "mesh; a grow block's obstacles are the selected meshes")
 
     def source(self) -> str:
         return library.path(self.species) if self.species != library.NONE else self.filepath
 
     def draw(self, context):
         col = self.layout.column()
-        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves"):
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "use_scene"):
             col.prop(self, prop)
         schema.draw(col, self.params)
         col.prop(self, "overrides")
@@ -205,8 +225,16 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                 self.params_for = key
             kw = schema.overrides(self.params)
             kw.update(_overrides(self.overrides))
-            add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves, kw,
-                     tuple(context.scene.cursor.location), m=m)
+            where = tuple(context.scene.cursor.location)
+            with scene.Inputs(path) as io:
+                text, said = scene.rewrite(context, path, m, io) if self.use_scene else (None, "")
+                if text is not None:  # the scene's objects are in world coordinates: the tree too
+                    m, where = sylva.compile(text, path)[m.name], (0.0, 0.0, 0.0)
+                root = add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves, kw,
+                                where, m=m, scene_block=m.kind == "grow" and text is not None)
+            if said:
+                root["sylva_scene"] = said
+                self.report({"INFO"}, f"Sylva: {said}")
         except (sylva.SylvaError, ValueError, OSError, KeyError, TypeError) as e:
             self.report({"ERROR"}, f"Sylva: {e}")
             return {"CANCELLED"}
@@ -222,6 +250,7 @@ class SylvaSettings(bpy.types.PropertyGroup):
     output: EnumProperty(name="Output", items=OUTPUTS, default="MESH")
     leaves: EnumProperty(name="Leaves", items=LEAVES, default="copied")
     overrides: StringProperty(name="Parameters")
+    use_scene: BoolProperty(name="From the scene", default=False)
 
 
 class SYLVA_PT_panel(bpy.types.Panel):
@@ -236,10 +265,10 @@ class SYLVA_PT_panel(bpy.types.Panel):
         col.label(text="Library")
         col.template_icon_view(s, "species", show_labels=True, scale=5.0)
         col.prop(s, "species", text="")
-        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
+        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene"):
             col.prop(s, prop)
         op = col.operator(SYLVA_OT_add_tree.bl_idname, text="Add tree", icon="OUTLINER_OB_MESH")
-        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene"):
             setattr(op, prop, getattr(s, prop))
 
 

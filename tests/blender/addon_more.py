@@ -2,6 +2,7 @@
 Blender: install the zip, add trees through the operator, and print one line per case for
 tests/run-blender to compare with the command's figures.
     blender -b --factory-startup --python addon_more.py -- ZIP BUSH.syl"""
+import os
 import sys
 
 import bpy
@@ -72,3 +73,84 @@ pic = library.picture("curvetree/bezier_oak")
 pv = library._previews.get("curvetree/bezier_oak") if library._previews else None
 print(f"species curvetree/bezier_oak result={r} {counts(obj)} picture={'yes' if pic and pv else 'no'} "
       f"species={len(items) - 1}")
+
+# 3. the scene drives the model: a Bézier curve (moved and turned: world coordinates count) is
+# the trunk of the curve-driven oak, a scaled ico sphere its envelope. Every trunk point of the
+# curve output lies on the curve (within 1 % of its length), every branch point in the sphere.
+from mathutils import Matrix, Vector  # noqa: E402
+from mathutils.geometry import intersect_point_line  # noqa: E402
+
+from sylva_blender import scene  # noqa: E402
+
+bpy.ops.object.select_all(action="DESELECT")
+cu = bpy.data.curves.new("Trunk", "CURVE")
+cu.dimensions = "3D"
+sp = cu.splines.new("BEZIER")
+sp.bezier_points.add(3)
+for bp, co in zip(sp.bezier_points, [(0, 0, 0), (0.6, 0, 3), (0, 0.5, 6), (0.4, 0.3, 9)]):
+    bp.co = co
+    bp.handle_left_type = bp.handle_right_type = "AUTO"
+trunk = bpy.data.objects.new("Trunk", cu)
+trunk.matrix_world = Matrix.Translation((2, 1, 0)) @ Matrix.Rotation(0.5, 4, "Z")
+bpy.context.collection.objects.link(trunk)
+bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=3, radius=1, location=(2.2, 1.2, 6.5))
+sphere = bpy.context.active_object
+sphere.scale = (3.5, 3.5, 3.5)  # the object's transform, not its mesh
+sphere.select_set(True)
+trunk.select_set(True)
+bpy.context.view_layer.objects.active = trunk
+bpy.context.view_layer.update()
+r, obj = added(species="curvetree/bezier_oak", output="CURVES", use_scene=True)
+if obj is None:
+    print(f"curvetree result={r} nothing")
+else:
+    poly = scene.curve_points(trunk)
+    length = sum((b - a).length for a, b in zip(poly, poly[1:]))
+
+    def off_curve(p):
+        best = 1e30
+        for a, b in zip(poly, poly[1:]):
+            q, t = intersect_point_line(p, a, b)
+            q = a if t < 0 else b if t > 1 else q
+            best = min(best, (p - q).length)
+        return best
+
+    mw = obj.matrix_world
+    splines = [[mw @ bp.co for bp in s.bezier_points] for s in obj.data.splines]
+    worst_trunk = max(off_curve(p) for p in splines[0]) / length
+    centre, radius = sphere.matrix_world.translation, 3.5
+    outside = sum((p - centre).length > radius * (1 + 1e-4) for s in splines[1:] for p in s)
+    print(f"curvetree result={r} splines={len(splines)} trunk_points={len(splines[0])} "
+          f"trunk_on_curve={'yes' if worst_trunk <= 0.01 else 'no:%.4f' % worst_trunk} "
+          f"branch_points={sum(len(s) for s in splines[1:])} outside={outside}")
+print(f"inputs_left={'yes' if os.path.exists(os.path.join(os.path.dirname(library.path('curvetree/bezier_oak')), '.sylva-blender')) else 'no'}")
+
+# A grow block with a selected cube (moved: world coordinates count) as an obstacle: no node of
+# the grown shrub lies in the cube, where without the cube some do; the cube's triangles are
+# not in the tree's mesh.
+bpy.ops.object.select_all(action="DESELECT")
+bpy.ops.mesh.primitive_cube_add(size=1, location=(0.9, 0.0, 1.0))
+cube = bpy.context.active_object
+cube.scale = (0.6, 1.2, 1.2)
+bpy.context.view_layer.update()  # matrix_world from location and scale
+inv = cube.matrix_world.inverted()
+
+
+def in_cube(p):
+    q = inv @ p
+    return max(abs(q.x), abs(q.y), abs(q.z)) < 0.5
+
+
+found = {}
+for use in (False, True):
+    cube.select_set(True)
+    r, obj = added(species="sot/shrub", output="CURVES", use_scene=use)
+    if obj is None:
+        found[use] = f"result={r}"
+        continue
+    mw = obj.matrix_world
+    found[use] = sum(in_cube(mw @ bp.co) for s in obj.data.splines for bp in s.bezier_points)
+r, obj = added(species="sot/shrub", use_scene=True)
+cube_in_mesh = obj is not None and any(m.name.endswith(f" {sylva_blender.OBSTACLE_MATERIAL}") for m in obj.data.materials)
+print(f"obstacle result={r} nodes_in_cube_without={found[False]} with={found[True]} "
+      f"cube_in_mesh={'yes' if cube_in_mesh else 'no'}")
