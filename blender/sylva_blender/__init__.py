@@ -28,7 +28,7 @@ if _HERE not in sys.path:  # the bundled `sylva` package
 
 import sylva  # noqa: E402
 
-from . import library, params as schema, scene  # noqa: E402
+from . import forest, library, params as schema, scene  # noqa: E402
 
 LEAVES = [("copied", "Copied", "every leaf its own geometry"),
           ("cards", "Cards", "one alpha-tested card a leaf")]
@@ -171,6 +171,20 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
     return root
 
 
+def add_ecosystem(context, path: str, m, seed: int, years: int, overrides: dict, location, terrain):
+    """Run an ecosystem block and put its last snapshot in the scene as collection instances
+    under an empty named after it (forest.py); returns the empty."""
+    run = m.run(None if years < 0 else years, seed=None if seed < 0 else seed, **overrides)
+    root = bpy.data.objects.new(m.name, None)
+    root.empty_display_type = "PLAIN_AXES"
+    root.location = location
+    root["sylva_file"] = path
+    root["sylva_model"] = m.name
+    context.collection.objects.link(root)
+    root["sylva_plants"] = forest.add_forest(context, m.file, m, run, terrain, root, mesh_object)
+    return root
+
+
 def _models(self, context):
     path = bpy.path.abspath(getattr(self, "filepath", "") or "")
     try:
@@ -200,7 +214,8 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
     overrides: StringProperty(name="More parameters", description="--set values: NAME=VALUE NAME=VALUE …")
     use_scene: BoolProperty(name="From the scene", default=False,
                             description="a curvetree's trunk is the active curve and its envelope the selected "
-                                        "mesh; a grow block's obstacles are the selected meshes")
+                                        "mesh; a grow block's obstacles are the selected meshes; an ecosystem's "
+                                        "terrain is the selected mesh")
 
     def source(self) -> str:
         return library.path(self.species) if self.species != library.NONE else self.filepath
@@ -230,8 +245,12 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                 text, said = scene.rewrite(context, path, m, io) if self.use_scene else (None, "")
                 if text is not None:  # the scene's objects are in world coordinates: the tree too
                     m, where = sylva.compile(text, path)[m.name], (0.0, 0.0, 0.0)
-                root = add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves, kw,
-                                where, m=m, scene_block=m.kind == "grow" and text is not None)
+                if m.kind == "ecosystem":
+                    root = add_ecosystem(context, path, m, self.seed, self.steps, kw, where,
+                                         scene.inputs(context)[1][0] if text is not None else None)
+                else:
+                    root = add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves,
+                                    kw, where, m=m, scene_block=m.kind == "grow" and text is not None)
             if said:
                 root["sylva_scene"] = said
                 self.report({"INFO"}, f"Sylva: {said}")

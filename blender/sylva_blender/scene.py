@@ -1,5 +1,6 @@
 """The scene drives the model: for a `curvetree` block the active curve is the trunk and a
-selected mesh the crown envelope; for a `grow` block the selected meshes are obstacles. Each
+selected mesh the crown envelope; for a `grow` block the selected meshes are obstacles; for an
+`ecosystem` block the selected mesh is the terrain (forest.py makes the plants). Each
 is given to Sylva in world coordinates (Blender's z-up turned to Sylva's y-up) by rewriting
 the block's `trunk`/`envelope` lines, or by planting the grown tree in a `scene` block with
 `obstacle` lines, and compiling the changed text under the model file's own name.
@@ -132,6 +133,13 @@ def rewrite(context, path: str, m, io: Inputs) -> tuple[str | None, str]:
             _set_line(lines, first, last, "envelope", f'  envelope "{os.path.relpath(env, io.model_dir)}"')
             said.append(f"envelope from {meshes[0].name}")
         return "\n".join(lines), ", ".join(said)
+    if m.kind == "ecosystem" and meshes:
+        lines = open(path, encoding="utf-8").read().split("\n")
+        first, last = _block(lines, "ecosystem", m.name)
+        ter = io.file("terrain.obj")
+        write_obj(meshes[0], ter)
+        _set_line(lines, first, last, "terrain", f'  terrain "{os.path.relpath(ter, io.model_dir)}"')
+        return "\n".join(lines), f"terrain from {meshes[0].name}"
     if m.kind == "grow" and meshes:
         text = open(path, encoding="utf-8").read()
         obst = []

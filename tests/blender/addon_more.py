@@ -154,3 +154,27 @@ r, obj = added(species="sot/shrub", use_scene=True)
 cube_in_mesh = obj is not None and any(m.name.endswith(f" {sylva_blender.OBSTACLE_MATERIAL}") for m in obj.data.materials)
 print(f"obstacle result={r} nodes_in_cube_without={found[False]} with={found[True]} "
       f"cube_in_mesh={'yes' if cube_in_mesh else 'no'}")
+
+# An ecosystem block with a selected mesh as its terrain (a tilted, moved plane): its last
+# snapshot becomes one collection instance per plant, of a collection per species and age
+# class. The script also writes the same terrain and block beside each other in OUT, for
+# `sylva ecosystem` to count the snapshot's plants.
+out_dir = args[2]
+bpy.ops.object.select_all(action="DESELECT")
+bpy.ops.mesh.primitive_grid_add(x_subdivisions=12, y_subdivisions=12, size=1, location=(3, -2, 1))
+plane = bpy.context.active_object
+plane.scale = (9, 7, 1)
+plane.rotation_euler = (0.15, 0.05, 0.3)
+bpy.context.view_layer.update()
+r, _ = added(species="ecosystem/meadow", steps=3, use_scene=True)
+root = next((o for o in bpy.data.objects if o.type == "EMPTY" and o.get("sylva_plants") is not None), None)
+if root is None:
+    print(f"ecosystem result={r} nothing")
+else:
+    inst = [o for o in root.children if o.instance_type == "COLLECTION" and o.instance_collection]
+    colls = {o.instance_collection.name for o in inst}
+    print(f"ecosystem result={r} instances={len(inst)} collections={len(colls)}")
+    scene.write_obj(plane, os.path.join(out_dir, "terrain.obj"))
+    src = open(library.path("ecosystem/meadow"), encoding="utf-8").read()
+    with open(os.path.join(out_dir, "meadow.syl"), "w", encoding="utf-8") as f:
+        f.write(src.replace('terrain "meadow.asc"', 'terrain "terrain.obj"'))
