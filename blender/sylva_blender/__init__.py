@@ -28,10 +28,11 @@ if _HERE not in sys.path:  # the bundled `sylva` package
 
 import sylva  # noqa: E402
 
-from . import forest, library, params as schema, scene  # noqa: E402
+from . import forest, leaves as leaf_instances, library, params as schema, scene  # noqa: E402
 
 LEAVES = [("copied", "Copied", "every leaf its own geometry"),
-          ("cards", "Cards", "one alpha-tested card a leaf")]
+          ("cards", "Cards", "one alpha-tested card a leaf"),
+          ("instanced", "Instanced", "one leaf object instanced on the faces of an emitter, a face per leaf")]
 OUTPUTS = [("MESH", "Mesh", "branches as tubes, leaves as faces"),
            ("CURVES", "Curves", "a Bézier curve a stem, with the radius per point (editable)")]
 
@@ -168,6 +169,10 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
     obj["sylva_nodes"] = plant.info["nodes"]
     coll.objects.link(obj)
     obj.parent = root
+    if leaves == "instanced":
+        root["sylva_leaf_instances"] = leaf_instances.add(
+            plant, list(sylva.ORGAN_KINDS), m.name,
+            lambda k: _material(f"{m.name} Leaf {k}", (0.25, 0.45, 0.15), True), root, coll)
     return root
 
 

@@ -178,3 +178,27 @@ else:
     src = open(library.path("ecosystem/meadow"), encoding="utf-8").read()
     with open(os.path.join(out_dir, "meadow.syl"), "w", encoding="utf-8") as f:
         f.write(src.replace('terrain "meadow.asc"', 'terrain "terrain.obj"'))
+
+# 4. Leaves as instances: the oak's leaves are one leaf object instanced on an emitter's faces;
+# Blender's evaluated instances are as many as `sylva mesh --leaves instanced` counts, each at
+# its leaf's position with its +x along the leaf's heading; the branches are the mesh the .glb has.
+bpy.ops.object.select_all(action="DESELECT")
+r, _ = added(species="curvetree/bezier_oak", leaves="instanced")
+root = next((o for o in bpy.data.objects if o.type == "EMPTY" and o.get("sylva_leaf_instances") is not None), None)
+obj = next((o for o in root.children if o.type == "MESH" and o.instance_type != "FACES"), None) if root else None
+dg = bpy.context.evaluated_depsgraph_get()
+inst = [i.matrix_world.copy() for i in dg.object_instances
+        if i.is_instance and i.parent and i.parent.original.parent == root]
+import numpy as np  # noqa: E402
+plant = sylva_blender.load_model(library.path("curvetree/bezier_oak")).build(leaves="instanced", until="skeleton")
+org = plant.skeleton.organs
+key = lambda v: tuple(round(float(c), 4) for c in v)  # noqa: E731
+heading = {key((p[0], -p[2], p[1])): Vector((float(h[0]), float(-h[2]), float(h[1]))).normalized()
+           for p, h in zip(org["pos"], org["h"])}
+at = along = 0
+for mw in inst:
+    h = heading.get(key(mw.translation))
+    at += h is not None
+    along += h is not None and mw.col[0].xyz.normalized().dot(h) > 0.999
+print(f"leaves result={r} instances={len(inst)} at_leaf={at} along_heading={along} "
+      f"stored={root.get('sylva_leaf_instances') if root else None} {counts(obj)}")
