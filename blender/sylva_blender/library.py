@@ -1,6 +1,7 @@
 """The species shipped with Sylva: the examples' model files (`make blender-addon` copies
 examples/ and their gallery pictures into the add-on as library/), each by its name
-("weberpenn/quaking_aspen") with its picture from docs/gallery as the enum's preview icon."""
+("weberpenn/quaking_aspen") with its picture from docs/gallery as the enum's preview icon;
+and the presets of Blender's own Sapling add-on, as sapling/NAME."""
 from __future__ import annotations
 
 import os
@@ -21,8 +22,23 @@ def _roots() -> tuple[str, str]:
     return os.path.join(repo, "examples"), os.path.join(repo, "docs", "gallery")
 
 
+def sapling_presets() -> str | None:
+    """The folder of the Sapling add-on's presets in the running Blender (Python dictionaries
+    Sylva reads as Weber–Penn trees, docs/arbaro.md#saplings-presets), if it has one."""
+    try:
+        import addon_utils
+    except ImportError:  # outside Blender
+        return None
+    for root in addon_utils.paths():
+        d = os.path.join(root, "add_curve_sapling", "presets")
+        if os.path.isdir(d):
+            return d
+    return None
+
+
 def species() -> list[tuple[str, str]]:
-    """(name, path) of every model file of the library, folder by folder, names sorted."""
+    """(name, path) of every model file of the library, folder by folder, names sorted, then
+    Sapling's presets as sapling/NAME."""
     models, _ = _roots()
     out = []
     for folder in FOLDERS:
@@ -33,6 +49,9 @@ def species() -> list[tuple[str, str]]:
             stem, ext = os.path.splitext(f)
             if ext in EXTS:
                 out.append((f"{folder}/{stem}", os.path.join(d, f)))
+    sap = sapling_presets()
+    if sap:
+        out += [(f"sapling/{f[:-3]}", os.path.join(sap, f)) for f in sorted(os.listdir(sap)) if f.endswith(".py")]
     return out
 
 

@@ -202,3 +202,8 @@ for mw in inst:
     along += h is not None and mw.col[0].xyz.normalized().dot(h) > 0.999
 print(f"leaves result={r} instances={len(inst)} at_leaf={at} along_heading={along} "
       f"stored={root.get('sylva_leaf_instances') if root else None} {counts(obj)}")
+
+# 5. Sapling's presets from the running Blender's own add-on are species too: the aspen by name
+# gives the mesh `sylva mesh PRESET.py` gives.
+r, obj = added(species="sapling/quaking_aspen")
+print(f"sapling result={r} {counts(obj)} presets={sum(n.startswith('sapling/') for n in items)}")
