@@ -207,7 +207,8 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
 
     species: EnumProperty(name="Species", items=library.enum_items,
                           description="a species of the library shipped with Sylva (instead of File)")
-    filepath: StringProperty(name="File", subtype="FILE_PATH", description="a .syl model or an Arbaro .xml species")
+    filepath: StringProperty(name="File", subtype="FILE_PATH",
+                             description="a .syl model, an Arbaro .xml species, a Pafčo .cfg or a Sapling preset .py")
     model: StringProperty(name="Model", description="the model's name in the file (empty: its first)")
     seed: IntProperty(name="Seed", default=-1, min=-1, description="the random seed (-1: the model's)")
     steps: IntProperty(name="Steps", default=-1, min=-1, max=10000,
