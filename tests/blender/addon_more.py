@@ -189,17 +189,21 @@ obj = next((o for o in root.children if o.type == "MESH" and o.instance_type != 
 dg = bpy.context.evaluated_depsgraph_get()
 inst = [i.matrix_world.copy() for i in dg.object_instances
         if i.is_instance and i.parent and i.parent.original.parent == root]
-import numpy as np  # noqa: E402
 plant = sylva_blender.load_model(library.path("curvetree/bezier_oak")).build(leaves="instanced", until="skeleton")
 org = plant.skeleton.organs
-key = lambda v: tuple(round(float(c), 4) for c in v)  # noqa: E731
-heading = {key((p[0], -p[2], p[1])): Vector((float(h[0]), float(-h[2]), float(h[1]))).normalized()
-           for p, h in zip(org["pos"], org["h"])}
+from mathutils.kdtree import KDTree  # noqa: E402
+
+tree = KDTree(len(org))
+heads = []
+for i, (p, h) in enumerate(zip(org["pos"], org["h"])):
+    tree.insert((float(p[0]), float(-p[2]), float(p[1])), i)
+    heads.append(Vector((float(h[0]), float(-h[2]), float(h[1]))).normalized())
+tree.balance()
 at = along = 0
-for mw in inst:
-    h = heading.get(key(mw.translation))
-    at += h is not None
-    along += h is not None and mw.col[0].xyz.normalized().dot(h) > 0.999
+for mw in inst:  # the nearest leaf within a micrometre, and the instance's +x along its heading
+    _, i, d = tree.find(mw.translation)
+    at += d < 1e-6
+    along += d < 1e-6 and mw.col[0].xyz.normalized().dot(heads[i]) > 0.999
 print(f"leaves result={r} instances={len(inst)} at_leaf={at} along_heading={along} "
       f"stored={root.get('sylva_leaf_instances') if root else None} {counts(obj)}")
 
