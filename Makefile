@@ -253,10 +253,15 @@ python: python-lib
 
 # The Blender add-on (docs/blender.md): blender/ with the sylva package built for Blender's
 # Python (Debian's Blender 3.4 runs the system's Python 3.11), zipped for Preferences → Install.
+BLENDER_LIBRARY = weberpenn sot pafco strands curvetree hybrid picek seeds abop scenes ecosystem
 blender-addon: python
 	@rm -rf $(BUILD)/blender && mkdir -p $(BUILD)/blender/sylva_blender/sylva
 	cp blender/sylva_blender/*.py blender/blender_manifest.toml $(BUILD)/blender/sylva_blender/
 	cp python/sylva/*.py python/sylva/py.typed python/sylva/_core*.so $(BUILD)/blender/sylva_blender/sylva/
+	@# the species library: the examples' model files and what they read, each with its gallery picture
+	mkdir -p $(BUILD)/blender/sylva_blender/library/gallery
+	cp -r $(addprefix examples/,$(BLENDER_LIBRARY)) $(BUILD)/blender/sylva_blender/library/
+	cp docs/gallery/*.png $(BUILD)/blender/sylva_blender/library/gallery/
 	@rm -f $(BUILD)/sylva-blender.zip
 	cd $(BUILD)/blender && $(PYTHON) -m zipfile -c ../sylva-blender.zip sylva_blender
 	@echo "$(BUILD)/sylva-blender.zip: Blender → Preferences → Add-ons → Install…"

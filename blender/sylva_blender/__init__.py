@@ -1,4 +1,4 @@
-"""Sylva in Blender: grow any Sylva model (.syl, Arbaro .xml) into the scene, as a mesh with
+"""Sylva in Blender: grow any Sylva model (.syl, Arbaro .xml, Pafčo .cfg, a library species) into the scene, as a mesh with
 bark and leaf materials or as Bézier curves you can still reshape (docs/blender.md).
 
 Add → Mesh → Sylva Tree adds one with a redo panel; the sidebar's Sylva tab picks the file,
@@ -10,7 +10,7 @@ import os
 import sys
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
+from bpy.props import BoolProperty, CollectionProperty, EnumProperty, IntProperty, StringProperty
 
 bl_info = {
     "name": "Sylva",
@@ -28,8 +28,11 @@ if _HERE not in sys.path:  # the bundled `sylva` package
 
 import sylva  # noqa: E402
 
+from . import forest, leaves as leaf_instances, library, params as schema, scene  # noqa: E402
+
 LEAVES = [("copied", "Copied", "every leaf its own geometry"),
-          ("cards", "Cards", "one alpha-tested card a leaf")]
+          ("cards", "Cards", "one alpha-tested card a leaf"),
+          ("instanced", "Instanced", "one leaf object instanced on the faces of an emitter, a face per leaf")]
 OUTPUTS = [("MESH", "Mesh", "branches as tubes, leaves as faces"),
            ("CURVES", "Curves", "a Bézier curve a stem, with the radius per point (editable)")]
 
@@ -59,15 +62,31 @@ def _material(name: str, rgb, leaf: bool) -> bpy.types.Material:
     return mat
 
 
-def mesh_object(plant, name: str) -> bpy.types.Object:
+# a scene's obstacles come appended to its plants' mesh in a group of this material (scene.c's
+# OBSTACLE_MATERIAL): the add-on leaves them out, the scene has them already
+OBSTACLE_MATERIAL = 250
+
+
+def mesh_object(plant, name: str, drop_obstacles: bool = False) -> bpy.types.Object:
     """The plant's mesh as one object, filled from Sylva's arrays with foreach_set (no Python
     loop per vertex): Sylva's y-up metres turned to Blender's z-up, one material per group."""
     import numpy as np
     m = plant.mesh
     v = m.vertices
+    tris = m.triangles
+    groups = m.groups
+    uvs_all = m.uvs
+    if drop_obstacles and any(g["material"] == OBSTACLE_MATERIAL for g in groups):
+        groups = [dict(g) for g in groups if g["material"] != OBSTACLE_MATERIAL]
+        keep = np.concatenate([np.arange(g["first"], g["first"] + g["count"]) for g in groups])
+        used, tris = np.unique(tris[keep], return_inverse=True)
+        tris = tris.reshape(-1, 3)
+        v, uvs_all = v[used], uvs_all[used]
+        at = 0
+        for g in groups:  # the kept groups, renumbered from 0
+            g["first"], at = at, at + g["count"]
     co = np.empty_like(v)
     co[:, 0], co[:, 1], co[:, 2] = v[:, 0], -v[:, 2], v[:, 1]
-    tris = m.triangles
     nt = len(tris)
     me = bpy.data.meshes.new(name)
     me.vertices.add(len(v))
@@ -79,13 +98,13 @@ def mesh_object(plant, name: str) -> bpy.types.Object:
     me.polygons.foreach_set("loop_total", np.full(nt, 3, dtype=np.int32))
     kinds = {0: "Bark", 1: "Leaf", 2: "Flower", 3: "Plain"}
     index = np.zeros(nt, dtype=np.int32)
-    for k, g in enumerate(m.groups):
+    for k, g in enumerate(groups):
         leaf = g["kind"] in (1, 2)
         me.materials.append(_material(f"{name} {kinds.get(g['kind'], 'Plain')} {g['material']}", g["rgb"], leaf))
         index[g["first"]:g["first"] + g["count"]] = k
     me.polygons.foreach_set("material_index", index)
     uv = me.uv_layers.new(name="UVMap")
-    uvs = m.uvs[tris.ravel()].astype(np.float32)
+    uvs = uvs_all[tris.ravel()].astype(np.float32)
     uvs[:, 1] = 1.0 - uvs[:, 1]  # glTF's v runs down a texture, Blender's up
     uv.data.foreach_set("uv", uvs.ravel())
     me.update()
@@ -122,17 +141,23 @@ def curve_object(plant, name: str) -> bpy.types.Object:
     return bpy.data.objects.new(name, cu)
 
 
-def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
-             leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0)):
-    """Build the model and put it in the scene under an empty named after it; returns the empty."""
+def load_model(path: str, model: str = ""):
     f = sylva.load(bpy.path.abspath(path))
-    m = f[model] if model else f.model
+    return f[model] if model else f.model
+
+
+def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
+             leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0), m=None,
+             scene_block: bool = False):
+    """Build the model and put it in the scene under an empty named after it; returns the empty.
+    m: the model already loaded from path (or compiled from the scene's inputs)."""
+    m = m or load_model(path, model)
     kw = dict(overrides or {})
     if seed >= 0:
         kw["seed"] = seed
     # the mesh `sylva mesh -o tree.obj` writes: two-sided leaves, triangles without area dropped
     plant = m.build(None if steps < 0 else steps, until="skeleton" if output == "CURVES" else "mesh",
-                    leaves=leaves, optimize=output != "CURVES", **kw)
+                    leaves=leaves, optimize=output != "CURVES", scene=scene_block, **kw)
     coll = context.collection
     root = bpy.data.objects.new(m.name, None)
     root.empty_display_type = "PLAIN_AXES"
@@ -140,10 +165,28 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
     root["sylva_file"] = path
     root["sylva_model"] = m.name
     coll.objects.link(root)
-    obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh")
+    obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh", scene_block)
     obj["sylva_nodes"] = plant.info["nodes"]
     coll.objects.link(obj)
     obj.parent = root
+    if leaves == "instanced":
+        root["sylva_leaf_instances"] = leaf_instances.add(
+            plant, list(sylva.ORGAN_KINDS), m.name,
+            lambda k: _material(f"{m.name} Leaf {k}", (0.25, 0.45, 0.15), True), root, coll)
+    return root
+
+
+def add_ecosystem(context, path: str, m, seed: int, years: int, overrides: dict, location, terrain):
+    """Run an ecosystem block and put its last snapshot in the scene as collection instances
+    under an empty named after it (forest.py); returns the empty."""
+    run = m.run(None if years < 0 else years, seed=None if seed < 0 else seed, **overrides)
+    root = bpy.data.objects.new(m.name, None)
+    root.empty_display_type = "PLAIN_AXES"
+    root.location = location
+    root["sylva_file"] = path
+    root["sylva_model"] = m.name
+    context.collection.objects.link(root)
+    root["sylva_plants"] = forest.add_forest(context, m.file, m, run, terrain, root, mesh_object)
     return root
 
 
@@ -157,27 +200,66 @@ def _models(self, context):
 
 
 class SYLVA_OT_add_tree(bpy.types.Operator):
-    """Add a plant grown by Sylva from a model file"""
+    """Add a plant grown by Sylva from a model file or the species library"""
     bl_idname = "mesh.sylva_tree_add"
     bl_label = "Sylva Tree"
     bl_options = {"REGISTER", "UNDO"}
 
-    filepath: StringProperty(name="File", subtype="FILE_PATH", description="a .syl model or an Arbaro .xml species")
+    species: EnumProperty(name="Species", items=library.enum_items,
+                          description="a species of the library shipped with Sylva (instead of File)")
+    filepath: StringProperty(name="File", subtype="FILE_PATH",
+                             description="a .syl model, an Arbaro .xml species, a Pafčo .cfg or a Sapling preset .py")
     model: StringProperty(name="Model", description="the model's name in the file (empty: its first)")
     seed: IntProperty(name="Seed", default=-1, min=-1, description="the random seed (-1: the model's)")
     steps: IntProperty(name="Steps", default=-1, min=-1, max=10000,
                        description="derivation steps or years of growth (-1: the model's)")
     output: EnumProperty(name="Output", items=OUTPUTS, default="MESH")
     leaves: EnumProperty(name="Leaves", items=LEAVES, default="copied")
-    overrides: StringProperty(name="Parameters", description="--set values: NAME=VALUE NAME=VALUE …")
+    params: CollectionProperty(type=schema.SylvaParam, name="Parameters")
+    params_for: StringProperty(options={"HIDDEN"}, description="the file and model the parameters are of")
+    overrides: StringProperty(name="More parameters", description="--set values: NAME=VALUE NAME=VALUE …")
+    use_scene: BoolProperty(name="From the scene", default=False,
+                            description="a curvetree's trunk is the active curve and its envelope the selected "
+                                        "mesh; a grow block's obstacles are the selected meshes; an ecosystem's "
+                                        "terrain is the selected mesh")
+
+    def source(self) -> str:
+        return library.path(self.species) if self.species != library.NONE else self.filepath
+
+    def draw(self, context):
+        col = self.layout.column()
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "use_scene"):
+            col.prop(self, prop)
+        schema.draw(col, self.params)
+        col.prop(self, "overrides")
 
     def execute(self, context):
-        if not self.filepath:
-            self.report({"ERROR"}, "Sylva: choose a model file")
-            return {"CANCELLED"}
         try:
-            add_tree(context, self.filepath, self.model, self.seed, self.steps, self.output, self.leaves,
-                     _overrides(self.overrides), tuple(context.scene.cursor.location))
+            path = self.source()
+            if not path:
+                self.report({"ERROR"}, "Sylva: choose a model file or a species")
+                return {"CANCELLED"}
+            m = load_model(path, self.model)
+            key = f"{path}|{m.name}"
+            if self.params_for != key:  # a new model: its parameters at its values
+                schema.fill(self.params, m, keep=not self.params_for)
+                self.params_for = key
+            kw = schema.overrides(self.params)
+            kw.update(_overrides(self.overrides))
+            where = tuple(context.scene.cursor.location)
+            with scene.Inputs(path) as io:
+                text, said = scene.rewrite(context, path, m, io) if self.use_scene else (None, "")
+                if text is not None:  # the scene's objects are in world coordinates: the tree too
+                    m, where = sylva.compile(text, path)[m.name], (0.0, 0.0, 0.0)
+                if m.kind == "ecosystem":
+                    root = add_ecosystem(context, path, m, self.seed, self.steps, kw, where,
+                                         scene.inputs(context)[1][0] if text is not None else None)
+                else:
+                    root = add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves,
+                                    kw, where, m=m, scene_block=m.kind == "grow" and text is not None)
+            if said:
+                root["sylva_scene"] = said
+                self.report({"INFO"}, f"Sylva: {said}")
         except (sylva.SylvaError, ValueError, OSError, KeyError, TypeError) as e:
             self.report({"ERROR"}, f"Sylva: {e}")
             return {"CANCELLED"}
@@ -185,6 +267,7 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
 
 
 class SylvaSettings(bpy.types.PropertyGroup):
+    species: EnumProperty(name="Species", items=library.enum_items)
     filepath: StringProperty(name="File", subtype="FILE_PATH")
     model: EnumProperty(name="Model", items=_models)
     seed: IntProperty(name="Seed", default=-1, min=-1)
@@ -192,6 +275,7 @@ class SylvaSettings(bpy.types.PropertyGroup):
     output: EnumProperty(name="Output", items=OUTPUTS, default="MESH")
     leaves: EnumProperty(name="Leaves", items=LEAVES, default="copied")
     overrides: StringProperty(name="Parameters")
+    use_scene: BoolProperty(name="From the scene", default=False)
 
 
 class SYLVA_PT_panel(bpy.types.Panel):
@@ -203,10 +287,13 @@ class SYLVA_PT_panel(bpy.types.Panel):
     def draw(self, context):
         s = context.scene.sylva
         col = self.layout.column()
-        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
+        col.label(text="Library")
+        col.template_icon_view(s, "species", show_labels=True, scale=5.0)
+        col.prop(s, "species", text="")
+        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene"):
             col.prop(s, prop)
         op = col.operator(SYLVA_OT_add_tree.bl_idname, text="Add tree", icon="OUTLINER_OB_MESH")
-        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides"):
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene"):
             setattr(op, prop, getattr(s, prop))
 
 
@@ -214,7 +301,7 @@ def _menu(self, context):
     self.layout.operator(SYLVA_OT_add_tree.bl_idname, text="Sylva Tree", icon="OUTLINER_OB_MESH")
 
 
-CLASSES = (SylvaSettings, SYLVA_OT_add_tree, SYLVA_PT_panel)
+CLASSES = (*schema.CLASSES, SylvaSettings, SYLVA_OT_add_tree, SYLVA_PT_panel)
 
 
 def register():
@@ -229,3 +316,4 @@ def unregister():
     del bpy.types.Scene.sylva
     for c in reversed(CLASSES):
         bpy.utils.unregister_class(c)
+    library.free()
