@@ -19,7 +19,7 @@
 static bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 
 bool syl_arbaro_detect(const Source *src) {
-    static const char *const heads[] = {"<?xml", "<!--", "<arbaro", "<helios", "<" SYL_GROW_PRESET_ROOT};
+    static const char *const heads[] = {"<?xml", "<!--", "<arbaro", "<helios", ("<" SYL_GROW_PRESET_ROOT)};
     size_t i = 0;
     while (i < src->len && blank(src->text[i])) i++;
     for (size_t k = 0; k < sizeof heads / sizeof *heads; k++) {
