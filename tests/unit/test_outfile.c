@@ -17,7 +17,14 @@
 #include "util/outfile.h"
 
 /* ---- failing allocations: glibc lets a program replace malloc (not under ASan) ---- */
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) /* gcc's word for ASan; clang's is __has_feature */
+#define UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define UNDER_ASAN 1
+#endif
+#endif
+#if defined(UNDER_ASAN)
 #define FAULTS 0
 #else
 #define FAULTS 1
