@@ -35,3 +35,38 @@ export function stop(server) {
   server.kill('SIGTERM');
   return done;
 }
+
+// TAP lines: check(ok, what, detail) prints "ok N - what" (the detail when it failed); done()
+// prints the plan and exits 1 when a check failed.
+export function tap() {
+  let failures = 0, count = 0;
+  return {
+    check(ok, what, detail = '') {
+      count++;
+      if (!ok) failures++;
+      console.log(`${ok ? 'ok' : 'not ok'} ${count} - ${what}${!ok && detail ? ' (' + detail + ')' : ''}`);
+    },
+    done() { console.log(`1..${count}`); process.exit(failures ? 1 : 0); },
+  };
+}
+
+// The ecosystem tests' tree: a stick that matures in two years (on tests/oracle's flat terrain),
+// its species lines and its model.
+export const STICK_SPECIES = `  species stick
+    model Stick
+    maturity 2
+    height_max 6
+    growth_rate 0.6
+    start_height 0.5
+    radius_ratio 0.3
+    seeds 2
+    dispersal 2
+    arrivals 60
+    shade_tolerance 0.5
+`;
+export const STICK_MODEL = `lsystem Stick {
+  derive 2
+  axiom F
+  F -> F[+F]F[-F]F
+}
+`;

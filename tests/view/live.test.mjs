@@ -7,15 +7,10 @@ import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync, copyFileS
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import http from 'node:http';
-import { launch, serve, stop } from './browser.mjs';
+import { launch, serve, stop, tap, STICK_SPECIES, STICK_MODEL } from './browser.mjs';
 
 const sylva = process.argv[2];
-let failures = 0, count = 0;
-function check(ok, what, detail = '') {
-  count++;
-  if (!ok) failures++;
-  console.log(`${ok ? 'ok' : 'not ok'} ${count} - ${what}${!ok && detail ? ' (' + detail + ')' : ''}`);
-}
+const { check, done } = tap();
 
 const dir = mkdtempSync(join(tmpdir(), 'sylva-view-live-'));
 const file = join(dir, 'mono.syl');
@@ -33,24 +28,8 @@ const ECO = `ecosystem Patch {
   terrain "flat.asc"
   years 4
   seed 7
-  species stick
-    model Stick
-    maturity 2
-    height_max 6
-    growth_rate 0.6
-    start_height 0.5
-    radius_ratio 0.3
-    seeds 2
-    dispersal 2
-    arrivals 60
-    shade_tolerance 0.5
-}
-lsystem Stick {
-  derive 2
-  axiom F
-  F -> F[+F]F[-F]F
-}
-`;
+${STICK_SPECIES}}
+${STICK_MODEL}`;
 const eco = join(dir, 'eco.syl');
 writeFileSync(eco, ECO);
 writeFileSync(join(dir, 'flat.asc'), spawnSync('python3', ['tests/oracle/ecosystem.py', 'flat', '30', '1']).stdout);
@@ -156,5 +135,4 @@ try {
   for (const s of servers) check(await stop(s) === 0, 'SIGTERM stops the server cleanly (exit 0)');
   rmSync(dir, { recursive: true, force: true });
 }
-console.log(`1..${count}`);
-process.exit(failures ? 1 : 0);
+done();
