@@ -1,6 +1,8 @@
 /* Parallel for over contiguous chunks, one per thread. */
 #include "util/parallel.h"
 
+#include "util/pool.h"
+
 #include <pthread.h>
 #include <stdbool.h>
 #include <unistd.h>
@@ -24,31 +26,17 @@ int par_threads(int threads) {
     return n < 1 ? 1 : n > 256 ? 256 : (int)n;
 }
 
-typedef struct Job {
-    void (*fn)(void *ctx, int k);
-    void *ctx;
-    int k;
-} Job;
-
-static void *run_job(void *arg) {
-    Job *j = arg;
-    j->fn(j->ctx, j->k);
-    return NULL;
-}
-
+/* A pool for the one run: its threads start, run and are joined as pool_run's are, so the
+ * two ways of running k = 0..n-1 side by side stay one mechanism. */
 void par_run(int n, void (*fn)(void *ctx, int k), void *ctx) {
-    enum { MAX = 256 };
-    if (n > MAX) n = MAX;
-    Job job[MAX];
-    pthread_t th[MAX];
-    bool started[MAX] = {false};
-    for (int k = 0; k < n; k++) job[k] = (Job){fn, ctx, k};
-    for (int k = 1; k < n; k++) started[k] = pthread_create(&th[k], NULL, run_job, &job[k]) == 0;
-    if (n > 0) fn(ctx, 0);
-    for (int k = 1; k < n; k++) {
-        if (started[k]) pthread_join(th[k], NULL);
-        else fn(ctx, k);
+    if (n > 256) n = 256;
+    Pool *p = n > 1 ? pool_new(n) : NULL;
+    if (!p) { /* one job, or no memory for the pool: each on the caller */
+        for (int k = 0; k < n; k++) fn(ctx, k);
+        return;
     }
+    pool_run(p, n, fn, ctx);
+    pool_free(p);
 }
 
 void par_for(int threads, size_t n, size_t min_per_thread, ParFn fn, void *ctx) {
