@@ -24,13 +24,13 @@
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <unistd.h>
 
 #include <cglm/cglm.h>
 
 #include "mesh/mesh_internal.h"
 #include "util/budget.h"
+#include "util/pages.h"
 #include "util/parallel.h"
 #include "util/rng.h"
 
@@ -673,20 +673,6 @@ static bool fill_nodes(const MeshPlan *pl, SylMesh *m) {
     return true;
 }
 
-/* Large arrays (from a quarter of a huge page up) on transparent huge pages where the system
- * allows it: filling a mesh otherwise spends much of its time in page faults, a third of a
- * 130 000 triangle tree's on a virtual machine whose faults are slow (issue 29). There one
- * 2 MB page costs less than the 128 faults of a 512 KB array (measured: prefaulting the 4 KB
- * pages with MADV_POPULATE_WRITE costs as much as faulting them one by one). */
-static void *big_alloc(size_t n) {
-    const size_t huge = (size_t)2 << 20;
-    if (n < huge / 4) return malloc(n);
-    void *p = aligned_alloc(huge, (n + huge - 1) / huge * huge);
-#ifdef MADV_HUGEPAGE
-    if (p) madvise(p, (n + huge - 1) / huge * huge, MADV_HUGEPAGE);
-#endif
-    return p;
-}
 
 /* The materials of the leaves and petals made with one face (cards are one face anyway). */
 static void mark_double_sided(const MeshPlan *pl, SylMesh *m) {
@@ -817,10 +803,10 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     m->nverts = m->vert_cap = pl.nverts;
     m->idx_cap = m->nidx;
     size_t nv = pl.nverts ? pl.nverts : 1;
-    m->pos = big_alloc(nv * 3 * sizeof *m->pos);
-    m->nrm = big_alloc(nv * 3 * sizeof *m->nrm);
-    m->uv = big_alloc(nv * 2 * sizeof *m->uv);
-    m->idx = big_alloc((m->nidx ? m->nidx : 1) * sizeof *m->idx);
+    m->pos = pages_owned(nv * 3 * sizeof *m->pos);
+    m->nrm = pages_owned(nv * 3 * sizeof *m->nrm);
+    m->uv = pages_owned(nv * 2 * sizeof *m->uv);
+    m->idx = pages_owned((m->nidx ? m->nidx : 1) * sizeof *m->idx);
     if (!m->pos || !m->nrm || !m->uv || !m->idx) goto oom;
     memcpy(m->materials, s->materials, sizeof m->materials);
     m->nmaterials = s->nmaterials;

@@ -11,6 +11,7 @@
 #include "util/budget.h"
 #include "util/json.h"
 #include "util/numtext.h"
+#include "util/pages.h"
 
 const char *const syl_kind_names[SYL_KIND_COUNT] = {"root", "internode", "leaf", "flower",
                                                    "needle", "sphere", "bud", "disc"};
@@ -86,12 +87,26 @@ void skeleton_charge(SylSkeleton *s, SylBudget *b, uint64_t bytes) {
     s->store->charged = bytes;
 }
 
+/* Room reserved at once (a generator that knows its counts): on huge pages when large
+ * (util/pages.h), so that filling it costs a fault per 2 MB, not per 4 KB. */
+static bool reserve(void *arrp, size_t *cap, size_t used, size_t n, size_t elem) {
+    void **arr = arrp;
+    if (n <= *cap) return true;
+    if (n > PTRDIFF_MAX / elem || n * elem < PAGES_OWNED_HUGE) return array_reserve(arrp, cap, n, elem);
+    void *p = pages_owned(n * elem);
+    if (!p) return false;
+    if (used) memcpy(p, *arr, used * elem);
+    free(*arr);
+    *arr = p, *cap = n;
+    return true;
+}
+
 bool skeleton_reserve_nodes(SylSkeleton *s, size_t n) {
-    return array_reserve(&s->nodes, &s->store->node_cap, n, sizeof *s->nodes);
+    return reserve(&s->nodes, &s->store->node_cap, s->nnodes, n, sizeof *s->nodes);
 }
 
 bool skeleton_reserve_organs(SylSkeleton *s, size_t n) {
-    return array_reserve(&s->organs, &s->store->organ_cap, n, sizeof *s->organs);
+    return reserve(&s->organs, &s->store->organ_cap, s->norgans, n, sizeof *s->organs);
 }
 
 void skeleton_adopt_organs(SylSkeleton *s, SylOrgan *organs, size_t n, size_t cap) {

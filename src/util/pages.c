@@ -66,6 +66,14 @@ void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, s
     return p;
 }
 
+void *pages_owned(size_t bytes) {
+    if (bytes < PAGES_OWNED_HUGE) return malloc(bytes ? bytes : 1);
+    size_t round = (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
+    void *p = aligned_alloc(HUGE_PAGE, round);
+    if (p) madvise(p, round, MADV_HUGEPAGE);
+    return p;
+}
+
 void *pages_alloc(size_t bytes) { return mapped_bytes(bytes) ? map_big(bytes) : calloc(1, bytes ? bytes : 1); }
 
 static size_t sparse_bytes(size_t bytes) { return bytes < SPARSE_MIN ? 0 : (bytes + 4095) & ~(size_t)4095; }

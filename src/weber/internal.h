@@ -143,8 +143,6 @@ bool weber_make_stem(WeberGen *g, WStem st);
 int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs);
 /* grow one of the generator's arrays (util/pages.h: free with pages_free, cap * size bytes) */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
-/* an array the skeleton will own and free(): big ones aligned and marked for huge pages */
-void *weber_alloc_owned(size_t bytes);
 
 /* splits.c */
 int weber_split_count(WeberGen *g, const WStem *st, int seg);

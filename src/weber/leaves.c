@@ -1,6 +1,7 @@
 /* Leaves of the last stem level: their count (Leaves by LeafDistrib and LeafQuality, error
  * diffused), place and direction (the next level's down and rotation angles), LeafBend, and
  * the fans of palms (Leaves < 0). */
+#include "util/pages.h"
 #include "weber/internal.h"
 #include "weber/lanes.h"
 
@@ -217,7 +218,7 @@ void weber_place_leaves(WeberGen *g) {
         if (b.n && !g->failed) flush(g, &b);
         if (pass == 0 && count) { /* the organs' array, the skeleton's to free */
             if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
-                !(g->lvs = weber_alloc_owned(count * sizeof *g->lvs))) {
+                !(g->lvs = pages_owned(count * sizeof *g->lvs))) {
                 g->failed = true;
                 return;
             }

@@ -2,7 +2,6 @@
  * of its axis, then its clones, children and leaves, depth first. */
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 
 #include "util/pages.h"
 #include "weber/internal.h"
@@ -23,17 +22,6 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) 
     *arr = p;
     *cap = nc;
     return true;
-}
-
-void *weber_alloc_owned(size_t bytes) {
-    const size_t huge = (size_t)2 << 20;
-    if (bytes < 2 * huge) return malloc(bytes ? bytes : 1);
-    size_t round = (bytes + huge - 1) / huge * huge;
-    void *p = aligned_alloc(huge, round);
-#ifdef MADV_HUGEPAGE
-    if (p) madvise(p, round, MADV_HUGEPAGE);
-#endif
-    return p;
 }
 
 /* The turn at the start of segment seg (none at the first: the down and rotation angles
