@@ -6,7 +6,7 @@
 /* Arrays of PAGES_BIG bytes and more are mapped directly, aligned to 2 MB and marked for
  * transparent huge pages; smaller ones live in malloc. Whether an array is mapped follows
  * from its size alone, so the caller only keeps the size it asked for. */
-enum { PAGES_BIG = 1 << 20 };
+enum { PAGES_BIG = 1 << 20, PAGES_HUGE = 2 << 20 /* the huge page PAGES_BIG arrays are mapped in */ };
 
 void *pages_alloc(size_t bytes);  /* zeroed when mapped; NULL when refused */
 /* Zeroed, and for SPARSE_MIN bytes and more mapped in small pages, never huge ones: a page

@@ -6,12 +6,15 @@
 #include "util/pages.h"
 #include "weber/internal.h"
 
-/* The generator's own arrays: big ones mapped in 2 MB pages (util/pages.h), which grow by
+/* The generator's own arrays: from 64 KB mapped in 2 MB pages (util/pages.h), which grow by
  * moving their pages, not copying them (page faults were a fifth of the time). */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) {
     if (need <= *cap) return true;
     size_t nc = *cap ? *cap : need > 256 ? need : 256; /* a first size asked for exactly: kept */
     while (nc < need) nc *= 2;
+    /* past the size where huge pages pay (util/pages.h), a whole 2 MB page at once: one fault
+     * instead of one per 4 KB, and later growth moves pages instead of copying them */
+    if (nc * size >= PAGES_OWNED_HUGE && nc * size < PAGES_HUGE) nc = PAGES_HUGE / size;
     if (!budget_resize(g->budget, (uint64_t)*cap * size, (uint64_t)nc * size)) return g->failed = true, false;
     void *p = pages_grow(*arr, *cap * size, *cap * size, nc * size);
     if (!p) {
