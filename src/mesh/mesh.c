@@ -45,8 +45,16 @@ bool mesh_reserve(void **arr, size_t *cap, size_t n, size_t more, size_t elem) {
     if (n + more <= *cap) return true;
     size_t c = *cap ? *cap : 64;
     while (c < n + more) c *= 2;
-    void *p = realloc(*arr, c * elem);
-    if (!p) return false;
+    void *p;
+    if (c * elem >= PAGES_OWNED_HUGE && *cap * elem < PAGES_OWNED_HUGE) {
+        /* past the size where huge pages pay (util/pages.h): a whole one at once */
+        if (c * elem < PAGES_HUGE) c = PAGES_HUGE / elem;
+        if (!(p = pages_owned(c * elem))) return false;
+        if (*cap) memcpy(p, *arr, *cap * elem);
+        free(*arr);
+    } else if (!(p = realloc(*arr, c * elem))) {
+        return false;
+    }
     *arr = p;
     *cap = c;
     return true;
@@ -332,7 +340,7 @@ static bool plan_tubes(MeshPlan *pl, const float *rad) {
         tail[t] = count[t] = (uint32_t)total;
         total += c;
     }
-    if (ok) ok = (raw = malloc((total ? total : 1) * sizeof *raw)) != NULL;
+    if (ok) ok = (raw = pages_owned((total ? total : 1) * sizeof *raw)) != NULL;
     for (size_t t = 0; t < nt && ok; t++)
         if (base[t] >= 0) raw_point(&raw[count[t]++], &s->nodes[base[t]], base[t], rad);
     for (size_t i = 0; i < n && ok; i++) raw_point(&raw[count[tube_of[i]]++], &s->nodes[i], (int32_t)i, rad);
