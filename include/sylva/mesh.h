@@ -40,6 +40,8 @@ typedef struct SylMesh {
     SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
     uint64_t charged;
     SylImages *images;     /* its materials' images (SylMaterial.image), one reference; NULL: none */
+    void *block;           /* non-NULL: pos, nrm, uv and idx live in this one allocation
+                              (syl_mesh_build's), freed once by syl_mesh_free */
 } SylMesh;
 
 enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };

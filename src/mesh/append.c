@@ -42,7 +42,10 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src) {
         if (at > start) groups[ng++] = (SylMeshGroup){(uint32_t)start, (uint32_t)(at - start), (uint8_t)m};
     }
     if (!dst->images) dst->images = syl_images_ref(src->images); /* dst's images, else src's (obstacles have none) */
-    free(dst->pos), free(dst->nrm), free(dst->uv), free(dst->idx), free(dst->groups);
+    if (dst->block) free(dst->block);
+    else free(dst->pos), free(dst->nrm), free(dst->uv), free(dst->idx);
+    dst->block = NULL;
+    free(dst->groups);
     free(dst->node); /* src's vertices have no nodes of dst's skeleton */
     dst->node = NULL;
     dst->pos = pos, dst->nrm = nrm, dst->uv = uv, dst->idx = idx, dst->groups = groups;
