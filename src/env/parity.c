@@ -1,6 +1,7 @@
 /* The inside test of a closed mesh without a BVH: see parity.h. */
 #include "env/parity.h"
 #include "util/coord.h"
+#include "util/pages.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -59,9 +60,16 @@ static struct ParityTri tri_of(const ParityGrid *pg, size_t t) {
 bool parity_build(ParityGrid *pg, const float *v, size_t nv, const uint32_t *tri, size_t nt) {
     memset(pg, 0, sizeof *pg);
     pg->tri = tri;
-    pg->p = malloc((nv ? nv : 1) * sizeof *pg->p);
-    pg->v = malloc((nv ? nv : 1) * sizeof *pg->v);
-    if (!pg->p || !pg->v) return parity_free(pg), false;
+    /* about two cells a triangle's shadow on each side: a handful of triangles per cell */
+    double g = ceil(1.5 * sqrt((double)nt));
+    int gmax = g > 1024 ? 1024 : g < 1 ? 1 : (int)g;
+    /* the vertices, triangles and cell starts in one block (util/pages.h: one fault where it
+     * pays, not one per 4 KB); each part a multiple of 8 bytes */
+    size_t n1 = nv ? nv : 1, bp = n1 * sizeof *pg->p, bv = n1 * sizeof *pg->v, bt = (nt ? nt : 1) * sizeof *pg->t;
+    char *block = pages_owned(bp + bv + bt + ((size_t)gmax * gmax + 2) * sizeof *pg->start);
+    if (!block) return false;
+    pg->p = (double(*)[2])block, pg->v = (double(*)[3])(block + bp), pg->t = (struct ParityTri *)(block + bp + bv);
+    pg->start = (uint32_t *)(block + bp + bv + bt);
     double hi[2] = {-INFINITY, -INFINITY};
     basis(pg->u, pg->w);
     pg->lo[0] = pg->lo[1] = INFINITY;
@@ -71,14 +79,10 @@ bool parity_build(ParityGrid *pg, const float *v, size_t nv, const uint32_t *tri
         for (int k = 0; k < 2; k++) pg->lo[k] = fmin(pg->lo[k], pg->p[i][k]), hi[k] = fmax(hi[k], pg->p[i][k]);
     }
     double side = fmax(hi[0] - pg->lo[0], hi[1] - pg->lo[1]);
-    /* about two cells a triangle's shadow on each side: a handful of triangles per cell */
-    double g = ceil(1.5 * sqrt((double)nt));
-    pg->g = nv == 0 || !(side > 0) ? 1 : g > 1024 ? 1024 : g < 1 ? 1 : (int)g;
+    pg->g = nv == 0 || !(side > 0) ? 1 : gmax;
     pg->inv = side > 0 ? pg->g / side : 0;
     size_t cells = (size_t)pg->g * pg->g;
-    pg->start = calloc(cells + 1, sizeof *pg->start);
-    pg->t = malloc((nt ? nt : 1) * sizeof *pg->t);
-    if (!pg->start || !pg->t) return parity_free(pg), false;
+    memset(pg->start, 0, (cells + 1) * sizeof *pg->start);
     for (size_t t = 0; t < nt; t++) pg->t[t] = tri_of(pg, t);
     /* two passes: count each cell's triangles, then place them (cells by prefix sums) */
     size_t total = 0;
@@ -138,10 +142,7 @@ bool parity_inside(const ParityGrid *pg, const float p[3]) {
 }
 
 void parity_free(ParityGrid *pg) {
-    free(pg->p);
-    free(pg->v);
-    free(pg->start);
+    free(pg->p); /* the block of p, v, t and start */
     free(pg->idx);
-    free(pg->t);
     memset(pg, 0, sizeof *pg);
 }
