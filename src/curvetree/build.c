@@ -357,7 +357,7 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     double r0 = trunk->length / 10 * P->trunkWidth / 2, r1 = r0 * P->trunkEndWidth;
     double *rc = malloc((size_t)trunk->nctrl * sizeof *rc);
     int n1 = round_count(10 * P->branch1Density * P->branch1Density);
-    Branch *b1 = pages_owned((size_t)(n1 ? n1 : 1) * sizeof *b1); /* 1.3 KB a branch, each written */
+    Branch *b1 = pages_owned((size_t)(n1 ? n1 : 1) * sizeof *b1, PAGES_OWNED_SCRATCH); /* 1.3 KB a branch, each written */
     int32_t *b1_node = malloc((size_t)(n1 ? n1 : 1) * sizeof *b1_node);
     int n2max = round_count(10 * P->branch2Density * P->branch2Density);
     Branch *b2 = malloc((size_t)(n2max ? n2max : 1) * sizeof *b2);

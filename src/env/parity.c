@@ -66,7 +66,7 @@ bool parity_build(ParityGrid *pg, const float *v, size_t nv, const uint32_t *tri
     /* the vertices, triangles and cell starts in one block (util/pages.h: one fault where it
      * pays, not one per 4 KB); each part a multiple of 8 bytes */
     size_t n1 = nv ? nv : 1, bp = n1 * sizeof *pg->p, bv = n1 * sizeof *pg->v, bt = (nt ? nt : 1) * sizeof *pg->t;
-    char *block = pages_owned(bp + bv + bt + ((size_t)gmax * gmax + 2) * sizeof *pg->start);
+    char *block = pages_owned(bp + bv + bt + ((size_t)gmax * gmax + 2) * sizeof *pg->start, PAGES_OWNED_SCRATCH);
     if (!block) return false;
     pg->p = (double(*)[2])block, pg->v = (double(*)[3])(block + bp), pg->t = (struct ParityTri *)(block + bp + bv);
     pg->start = (uint32_t *)(block + bp + bv + bt);

@@ -46,10 +46,10 @@ bool mesh_reserve(void **arr, size_t *cap, size_t n, size_t more, size_t elem) {
     size_t c = *cap ? *cap : 64;
     while (c < n + more) c *= 2;
     void *p;
-    if (c * elem >= PAGES_OWNED_HUGE && *cap * elem < PAGES_OWNED_HUGE) {
+    if (c * elem >= PAGES_OWNED_SCRATCH && *cap * elem < PAGES_OWNED_SCRATCH) {
         /* past the size where huge pages pay (util/pages.h): a whole one at once */
         if (c * elem < PAGES_HUGE) c = PAGES_HUGE / elem;
-        if (!(p = pages_owned(c * elem))) return false;
+        if (!(p = pages_owned(c * elem, PAGES_OWNED_SCRATCH))) return false;
         if (*cap) memcpy(p, *arr, *cap * elem);
         free(*arr);
     } else if (!(p = realloc(*arr, c * elem))) {
@@ -344,7 +344,7 @@ static bool plan_tubes(MeshPlan *pl, const float *rad) {
         tail[t] = count[t] = (uint32_t)total;
         total += c;
     }
-    if (ok) ok = (raw = pages_owned((total ? total : 1) * sizeof *raw)) != NULL;
+    if (ok) ok = (raw = pages_owned((total ? total : 1) * sizeof *raw, PAGES_OWNED_SCRATCH)) != NULL;
     for (size_t t = 0; t < nt && ok; t++)
         if (base[t] >= 0) raw_point(&raw[count[t]++], &s->nodes[base[t]], base[t], rad);
     for (size_t i = 0; i < n && ok; i++) raw_point(&raw[count[tube_of[i]]++], &s->nodes[i], (int32_t)i, rad);
@@ -818,7 +818,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     /* the four arrays in one block (each on a 64-byte line): on huge pages, 2 MB zeroed per
      * 2 MB used instead of a page of its own for each (util/pages.h) */
     size_t at3 = (nv * 3 * sizeof(float) + 63) & ~(size_t)63, at2 = (nv * 2 * sizeof(float) + 63) & ~(size_t)63;
-    char *block = pages_owned(2 * at3 + at2 + (m->nidx ? m->nidx : 1) * sizeof *m->idx);
+    char *block = pages_owned(2 * at3 + at2 + (m->nidx ? m->nidx : 1) * sizeof *m->idx, PAGES_OWNED_KEPT);
     if (!block) goto oom;
     m->block = block;
     m->pos = (float *)block, m->nrm = (float *)(block + at3), m->uv = (float *)(block + 2 * at3);

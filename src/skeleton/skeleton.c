@@ -92,8 +92,8 @@ void skeleton_charge(SylSkeleton *s, SylBudget *b, uint64_t bytes) {
 static bool reserve(void *arrp, size_t *cap, size_t used, size_t n, size_t elem) {
     void **arr = arrp;
     if (n <= *cap) return true;
-    if (n > PTRDIFF_MAX / elem || n * elem < PAGES_OWNED_HUGE) return array_reserve(arrp, cap, n, elem);
-    void *p = pages_owned(n * elem);
+    if (n > PTRDIFF_MAX / elem || n * elem < PAGES_OWNED_KEPT) return array_reserve(arrp, cap, n, elem);
+    void *p = pages_owned(n * elem, PAGES_OWNED_KEPT);
     if (!p) return false;
     if (used) memcpy(p, *arr, used * elem);
     free(*arr);

@@ -66,8 +66,8 @@ void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, s
     return p;
 }
 
-void *pages_owned(size_t bytes) {
-    if (bytes < PAGES_OWNED_HUGE) return malloc(bytes ? bytes : 1);
+void *pages_owned(size_t bytes, size_t huge_from) {
+    if (bytes < huge_from) return malloc(bytes ? bytes : 1);
     size_t round = (bytes + HUGE_PAGE - 1) & ~(HUGE_PAGE - 1);
     void *p = aligned_alloc(HUGE_PAGE, round);
     if (p) madvise(p, round, MADV_HUGEPAGE);

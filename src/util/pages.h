@@ -25,12 +25,14 @@ void *pages_grow(void *old, size_t old_bytes, size_t used, size_t bytes);
  * copied. The bytes before shift are undefined. */
 void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes);
 /* Memory that free() releases (and realloc grows), for an array that will mostly be written:
- * from PAGES_OWNED_HUGE bytes on, whole 2 MB pages, aligned and marked for transparent huge
- * pages. On a virtual machine a 4 KB page's first write costs about 18 us and a 2 MB page's
- * 0.2 ms (zeroing included), so from about 48 KB written one huge page is cheaper
- * (docs/architecture.md#memory). NULL when refused; not zeroed. */
-enum { PAGES_OWNED_HUGE = 1 << 16 };
-void *pages_owned(size_t bytes);
+ * from huge_from bytes on, whole 2 MB pages, aligned and marked for transparent huge pages.
+ * On a virtual machine a 4 KB page's first write costs about 18 us and a 2 MB page's 0.2 ms
+ * (zeroing included), so from about 48 KB written one huge page is cheaper (docs/architecture.md,
+ * "Memory"). But a huge page is resident whole: arrays that live on (a skeleton's, a mesh's:
+ * a forest keeps many small ones) take it from PAGES_OWNED_KEPT, a generator's scratch arrays
+ * from PAGES_OWNED_SCRATCH. NULL when refused; not zeroed. */
+enum { PAGES_OWNED_SCRATCH = 1 << 16, PAGES_OWNED_KEPT = 1 << 19 };
+void *pages_owned(size_t bytes, size_t huge_from);
 /* The shift that moves whole pages for an array of `bytes` (1: any shift copies). */
 size_t pages_shift_unit(size_t bytes);
 

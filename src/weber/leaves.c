@@ -218,7 +218,7 @@ void weber_place_leaves(WeberGen *g) {
         if (b.n && !g->failed) flush(g, &b);
         if (pass == 0 && count) { /* the organs' array, the skeleton's to free */
             if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
-                !(g->lvs = pages_owned(count * sizeof *g->lvs))) {
+                !(g->lvs = pages_owned(count * sizeof *g->lvs, PAGES_OWNED_KEPT))) {
                 g->failed = true;
                 return;
             }

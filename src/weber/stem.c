@@ -14,7 +14,7 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) 
     while (nc < need) nc *= 2;
     /* past the size where huge pages pay (util/pages.h), a whole 2 MB page at once: one fault
      * instead of one per 4 KB, and later growth moves pages instead of copying them */
-    if (nc * size >= PAGES_OWNED_HUGE && nc * size < PAGES_HUGE) nc = PAGES_HUGE / size;
+    if (nc * size >= PAGES_OWNED_SCRATCH && nc * size < PAGES_HUGE) nc = PAGES_HUGE / size;
     if (!budget_resize(g->budget, (uint64_t)*cap * size, (uint64_t)nc * size)) return g->failed = true, false;
     void *p = pages_grow(*arr, *cap * size, *cap * size, nc * size);
     if (!p) {

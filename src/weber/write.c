@@ -106,7 +106,7 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
     }
     /* every node at once: at most a root per trunk, the points, and one per attachment */
     size_t most = g->npts + na + ns;
-    if (!(sk->nodes = pages_owned(most * sizeof *sk->nodes)) ||
+    if (!(sk->nodes = pages_owned(most * sizeof *sk->nodes, PAGES_OWNED_KEPT)) ||
         !weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist))
         wr.failed = true;
     else
