@@ -29,7 +29,7 @@ static inline int numtext_ndigits(uint32_t v) {
 /* Exactly what sprintf(p, "%.*g", prec, x) writes (glibc: the exact value rounded to prec
  * significant digits, ties to even; "-0", "nan", "inf" as printf spells them). Fast when x
  * is a float's value and 1 <= prec <= 9, the writers' case; otherwise printf itself.
- * Writes no terminating zero; returns the end (at most 32 bytes). */
+ * Writes no terminating zero; returns the end (it may write scratch up to 32 bytes from p). */
 char *numtext_g(char *p, double x, int prec);
 
 /* v in decimal, as "%lld" writes it; returns the end (at most 20 bytes, no terminating zero). */
