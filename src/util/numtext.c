@@ -32,6 +32,18 @@ static int decimal_exponent_guess(double x) {
  * exactly prec digits and x ~ n * 10^(*exp - prec + 1). False when x is out of the exact range. */
 static bool round_sig(double x, int prec, uint64_t *n, int *exp) {
     int E = decimal_exponent_guess(x);
+    int k = prec - 1 - E;
+    if (k >= 1 && k <= 12) { /* the writers' case, without a branch on the digits: */
+        int up = x * pow10d[k] >= pow10d[prec]; /* floor(log10 x) is E or E + 1 */
+        double y = x * pow10d[k - up];          /* exact (see the top) */
+        uint64_t q = (uint64_t)y;
+        double fr = y - (double)q;
+        q += (uint64_t)((fr > 0.5) | ((fr == 0.5) & (int)(q & 1)));
+        E += up;
+        if (q == pow10u[prec]) q = pow10u[prec - 1], E++; /* 9.999995 -> 10.0000 */
+        *n = q, *exp = E;
+        return true;
+    }
     for (int tries = 0; tries < 3; tries++) {
         int k = prec - 1 - E;
         uint64_t q;
