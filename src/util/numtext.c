@@ -85,31 +85,11 @@ static bool round_sig(double x, int prec, uint64_t *n, int *exp) {
     return false;
 }
 
-#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__ && defined(__GNUC__)
-/* The eight decimal digits of v < 10^8 (zero-padded) as ASCII in one word, the first digit in
- * its lowest byte: memory order once stored. Halves, then hundreds, then tens, each split in
- * every lane at once by a multiply and a shift (exact for these ranges). Text is built in a
- * register and stored once: reading back digits just stored stalls store forwarding. */
-static inline uint64_t swar8(uint32_t v) {
-    uint64_t x = (uint64_t)(v / 10000) | ((uint64_t)(v % 10000) << 32);
-    uint64_t h = ((x * 10486) >> 20) & 0x0000007F0000007Full; /* / 100, lanes < 10^4 */
-    x = h | ((x - h * 100) << 16);
-    h = ((x * 103) >> 10) & 0x000F000F000F000Full; /* / 10, lanes < 100 */
-    x = h | ((x - h * 10) << 8);
-    return x + 0x3030303030303030ull;
-}
-
-/* How many of the n digits in d (first in the low byte) are left without the trailing zeros
- * (the first digit is not zero). */
-static inline int significant(uint64_t d, int n) {
-    uint64_t z = (d ^ 0x3030303030303030ull) & (n >= 8 ? ~0ull : (1ull << (8 * n)) - 1);
-    return (63 - __builtin_clzll(z)) / 8 + 1;
-}
-
+#ifdef NUMTEXT_WORDS
 /* q has exactly prec <= 8 digits, x = q * 10^(X - prec + 1). */
 static char *g_text(char *p, uint32_t q, int prec, int X) {
-    uint64_t d = swar8(q) >> (8 * (8 - prec)); /* the prec digits */
-    int nd = significant(d, prec);              /* %g drops trailing zeros */
+    uint64_t d = numtext_word8(q) >> (8 * (8 - prec)); /* the prec digits */
+    int nd = numtext_significant(d, prec);              /* %g drops trailing zeros */
     if (X < -4 || X >= prec) {                   /* d.ddde+XX */
         uint64_t first = (d & 0xff) | ((uint64_t)'.' << 8), rest = d >> 8;
         memcpy(p, &first, 8), memcpy(p + 2, &rest, 8);
@@ -135,7 +115,6 @@ static char *g_text(char *p, uint32_t q, int prec, int X) {
     memcpy(p, &head, 8), memcpy(p + whole + 1, &tail, 8);
     return p + (nd > whole ? nd + 1 : whole);
 }
-#define G_TEXT_FAST 1
 #endif
 
 /* end follows digits with a point among them: the fraction's trailing zeros and then a
@@ -157,7 +136,7 @@ char *numtext_g(char *p, double x, int prec) {
     int X;
     if (!round_sig(x, prec, &n, &X)) return p + sprintf(p, "%.*g", prec, x);
     uint32_t q = (uint32_t)n;
-#ifdef G_TEXT_FAST
+#ifdef NUMTEXT_WORDS
     if (prec <= 8) return g_text(p, q, prec, X);
 #endif
     /* prec 9 (or a big-endian machine): all prec digits written, then %g's trailing zeros
@@ -197,9 +176,9 @@ char *numtext_int(char *p, long long v) {
         *p = (char)('0' + u);
         return p + 1;
     }
-#ifdef G_TEXT_FAST
+#ifdef NUMTEXT_WORDS
     if (u < 100000000) { /* one word, stored once; its leading zeros skipped */
-        uint64_t d = swar8((uint32_t)u);
+        uint64_t d = numtext_word8((uint32_t)u);
         int lead = __builtin_ctzll(d ^ 0x3030303030303030ull) / 8;
         d >>= 8 * lead;
         memcpy(p, &d, 8);

@@ -135,6 +135,9 @@ static void check_short(float x, int sig) {
         return;
     }
     assert_null(strpbrk(s, "eE"));
+    size_t len = strlen(s); /* the shortest text: no trailing zeros after a point, no bare point, one leading 0 at most */
+    if (strchr(s, '.') && (s[len - 1] == '0' || s[len - 1] == '.')) fail_msg("short(%a, %d) = '%s': not trimmed", (double)x, sig, s);
+    if (s[s[0] == '-'] == '0' && s[(s[0] == '-') + 1] != '.' && s[(s[0] == '-') + 1]) fail_msg("short(%a, %d) = '%s': leading zero", (double)x, sig, s);
     int dec = sig - 1 - e;
     if (dec < 0) dec = 0;
     if (dec > 9) dec = 9;
