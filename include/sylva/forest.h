@@ -12,6 +12,8 @@
 #include "mesh.h"
 #include "render.h"
 
+typedef struct SylTextureCache SylTextureCache; /* sylva/stream.h */
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -24,6 +26,10 @@ typedef struct SylForestOptions {
     int coarse;           /* 0: a coarser level for far plants (src/lod); -1: none */
     SylBudget *budget;    /* NULL: each mesh its own default limit */
     FILE *diag;
+    /* NULL: none. The caller's (one a run, sylva/stream.h): the .glb files written of the
+     * forest make their procedural textures once and copy them from here. Borrowed: it must
+     * outlive the forest. The files' bytes do not change. */
+    SylTextureCache *textures;
 } SylForestOptions;
 
 typedef struct SylForest SylForest;

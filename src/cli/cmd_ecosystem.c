@@ -14,6 +14,7 @@
 #include "sylva/ecosystem.h"
 #include "sylva/forest.h"
 #include "sylva/render.h"
+#include "sylva/stream.h"
 #include "sylva/texture.h"
 
 const CliCommand cli_ecosystem_command = {
@@ -375,8 +376,11 @@ int cmd_ecosystem(int argc, char **argv) {
         o.exchange = syl_eco_mpi_exchange(mpi, st ? nranks : ntiles, a.rebalance);
     }
     SylForest *forest = NULL; /* the pictures are the writer's */
+    /* the run's: every year's .glb copies the same procedural textures (NULL: made each time) */
+    SylTextureCache *textures = writer && a.glb ? syl_texture_cache_new() : NULL;
     if (!st && writer)
-        st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = d.threads, .diag = stderr}, &forest);
+        st = syl_forest_new(p, &model, t,
+                            &(SylForestOptions){.threads = d.threads, .diag = stderr, .textures = textures}, &forest);
     r.forest = forest;
     if (!st && writer) st = make_dir(a.output);
     if (!st && writer && !a.resume) st = write_maps(t, a.output);
@@ -416,6 +420,7 @@ int cmd_ecosystem(int argc, char **argv) {
     free(ck_path);
     free(r.years);
     syl_forest_free(forest);
+    syl_texture_cache_free(textures);
     syl_terrain_free(t);
     syl_budget_free(budget);
     syl_program_free(p);

@@ -157,7 +157,7 @@ int syl_forest_new(const SylProgram *p, const SylEcoModel *m, const SylTerrain *
     *out = NULL;
     SylForest *f = calloc(1, sizeof *f);
     if (!f) return SYL_ELIMIT;
-    f->m = m, f->t = t;
+    f->m = m, f->t = t, f->textures = o->textures;
     int st = (f->ground = terrain_mesh(t)) ? SYL_OK : SYL_ELIMIT;
     SylProgram *programs[SYL_ECO_MAX_SPECIES] = {0};
     for (int s = 0; s < m->nspecies && !st; s++) st = species_looks(f, p, s, programs, o);

@@ -24,6 +24,7 @@ struct SylForest {
     SylRenderProto protos[FOREST_LOOKS];
     int nprotos;
     int proto_species[FOREST_LOOKS], proto_class[FOREST_LOOKS], proto_variant[FOREST_LOOKS];
+    SylTextureCache *textures; /* the caller's (SylForestOptions), may be NULL */
 };
 
 /* A plant's age class for its species: floor(C h / height_max), clamped. */

@@ -143,6 +143,22 @@ char *io_float(char *p, float xf, int sig) {
     if (y - (double)v >= 0.5) v++; /* half away from zero, as llround */
     uint32_t ip = (uint32_t)x, fp = v - ip * scale;
     if (fp >= scale) ip++, fp -= scale; /* 1.9999999 -> 2 */
+#ifdef NUMTEXT_WORDS
+    if (ip < 100000000 && dec <= 8) { /* each part built in a register, stored once (8 bytes) */
+        uint64_t w = numtext_word8(ip);
+        int lead = ip ? __builtin_ctzll(w ^ 0x3030303030303030ull) / 8 : 7;
+        w >>= 8 * lead;
+        memcpy(p, &w, 8);
+        p += 8 - lead;
+        if (fp) {
+            uint64_t f = numtext_word8(fp) >> (8 * (8 - dec)); /* dec digits, zeros after the point kept */
+            *p = '.';
+            memcpy(p + 1, &f, 8);
+            p += 1 + numtext_significant(f, dec);
+        }
+        return p;
+    }
+#endif
     int n = numtext_ndigits(ip);
     numtext_digits(p + n, ip, n);
     p += n;

@@ -78,6 +78,10 @@ int glb_write(const GlbScene *sc, const char *path, FILE *diag);
 int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
                      const char *path, FILE *diag);
 
+/* The same, the procedural textures' PNGs from tc (may be NULL: made here). */
+int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
+                            SylTextureCache *tc, const char *path, FILE *diag);
+
 /* Texture slots of a material (glb.c): its kind's tiled picture (bark, leaf, flower), a leaf
  * card (RGBA), an impostor's atlas, a leaf cluster (RGBA); -1: none. */
 enum { GLB_BARK, GLB_LEAF, GLB_FLOWER, GLB_CARD, GLB_ATLAS, GLB_CLUSTER, GLB_SLOTS };

@@ -20,6 +20,7 @@ typedef struct Forest {
     View *views;
     int nviews;
     IoBuf bin;
+    SylTextureCache *tc; /* may be NULL */
 } Forest;
 
 static bool drawable(const SylMesh *m) { return m && m->nverts && m->nidx && m->ngroups; }
@@ -71,7 +72,7 @@ static bool textures(Forest *f) {
         if (!img && !(img = malloc((size_t)SYL_TEXTURE_SIZE * SYL_TEXTURE_SIZE * 4))) return false;
         glb_pad(&f->bin, 0);
         size_t at = f->bin.len;
-        if (!glb_slot_png(&f->bin, k, shape[k], img)) {
+        if (!glb_slot_png_cached(f->tc, &f->bin, k, shape[k], img)) {
             free(img);
             return false;
         }
@@ -192,9 +193,14 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
 
 int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
                      const char *path, FILE *diag) {
+    return glb_write_forest_cached(ground, sets, extras, n, NULL, path, diag);
+}
+
+int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
+                            SylTextureCache *tc, const char *path, FILE *diag) {
     Forest *f = calloc(1, sizeof *f);
     if (!f) return SYL_ELIMIT;
-    f->ground = -1;
+    f->ground = -1, f->tc = tc;
     if (n < 0 || n > 4096) {
         if (diag) fprintf(diag, "sylva: error: glb: %d sets of instances (at most 4096)\n", n);
         free(f);

@@ -88,6 +88,37 @@ float fbm_at(const Fbm *f, float x, float y) {
     return norm > 0 ? sum / norm : 0;
 }
 
+bool fbm_axis(const Fbm *f, int axis, const float *at, int n, FbmCell *cells) {
+    int freq = axis ? f->fy : f->fx;
+    for (int i = 0; i < f->octaves; i++, freq *= 2) {
+        if (!f->g[i]) return false;
+        for (int k = 0; k < n; k++) { /* noise_at's steps for this axis, in its order */
+            float x = at[k] * (float)freq, fx = floorf(x), d = x - fx;
+            int i0 = wrap((int)fx, freq);
+            cells[i * n + k] = (FbmCell){i0, freq > 0 && i0 + 1 == freq ? 0 : i0 + 1, d, fade(d)};
+        }
+    }
+    return true;
+}
+
+float fbm_grid_at(const Fbm *f, const FbmCell *cx, int nx, int kx, const FbmCell *cy, int ny, int ky) {
+    float sum = 0, norm = 0, a = 1;
+    int px = f->fx;
+    for (int i = 0; i < f->octaves; i++, px *= 2) {
+        const FbmCell *x = &cx[i * nx + kx], *y = &cy[i * ny + ky];
+        const uint8_t *g = f->g[i];
+        float dx = x->d, dy = y->d;
+        float n00 = dot_grad(g[y->i0 * px + x->i0], dx, dy), n10 = dot_grad(g[y->i0 * px + x->i1], dx - 1, dy);
+        float n01 = dot_grad(g[y->i1 * px + x->i0], dx, dy - 1), n11 = dot_grad(g[y->i1 * px + x->i1], dx - 1, dy - 1);
+        float u = x->w, v = y->w;
+        float lo = n00 + u * (n10 - n00), hi = n01 + u * (n11 - n01);
+        sum += a * (1.41421356f * (lo + v * (hi - lo)));
+        norm += a;
+        a *= f->p;
+    }
+    return norm > 0 ? sum / norm : 0;
+}
+
 void fbm_free(Fbm *f) {
     for (int i = 0; i < FBM_OCTAVES; i++) free(f->g[i]);
 }

@@ -54,37 +54,41 @@ static void noises(int kind, Fbm f[4]) {
     }
 }
 
-/* stripes: f[0] at (s, 0), the same for a whole column. */
-static void bark(const Fbm *f, float s, float t, float stripes, float out[3]) {
+/* The noises a pixel of each pattern reads: nz[k] is noise k of the pattern at the pixel
+ * (texture_pattern says which fbm at which place). */
+
+/* stripes: f[0] at (s, 0), the same for a whole column; nz: f[1] at (s + 0.06 stripes, t),
+ * f[2] and f[3] at (s, t). */
+static void bark(const float *nz, float stripes, float out[3]) {
     /* The stripes distort a noise stretched along the branch; its zero lines are the cracks. */
-    float n = fbm_at(&f[1], s + 0.06f * stripes, t);
+    float n = nz[0];
     float crack = 1 - smoothstep(0.0f, 0.12f, fabsf(n));
-    float grain = fbm_at(&f[2], s, t);
-    float blotch = fbm_at(&f[3], s, t);
+    float grain = nz[1];
+    float blotch = nz[2];
     float l = (0.80f + 0.14f * grain + 0.10f * blotch + 0.06f * stripes) * (1 - 0.72f * crack);
     out[0] = clamp01(l);
     out[1] = clamp01(l * (1 - 0.04f * crack));
     out[2] = clamp01(l * (1 - 0.08f * crack));
 }
 
-static void leaf(const Fbm *fb, float s, float t, float out[3]) {
+static void leaf(const float *nz, float s, float t, float out[3]) {
     float d = fabsf(s - 0.5f) * 2;                 /* 0 on the main vein, 1 at the edge */
     float w = 0.025f + 0.03f * (1 - t);            /* the main vein thins toward the tip */
     float main_vein = expf(-(d / w) * (d / w));
     float f = sinf(6.2831853f * 7 * (t - 0.35f * d)); /* side veins slant toward the tip */
     float side = smoothstep(0.80f, 1.0f, f) * (1 - 0.7f * d) * smoothstep(w, 2 * w, d);
     float edge = smoothstep(0.5f, 1.0f, d);
-    float n = fbm_at(&fb[0], s, t);
+    float n = nz[0];
     float l = (0.70f + 0.06f * n) * (1 - 0.45f * edge * edge);
     out[0] = clamp01(l + 0.28f * main_vein + 0.16f * side);
     out[1] = clamp01(l + 0.28f * main_vein + 0.16f * side);
     out[2] = clamp01(l + 0.10f * main_vein + 0.06f * side);
 }
 
-static void flower(const Fbm *f, float s, float t, float out[3]) {
+static void flower(const float *nz, float s, float t, float out[3]) {
     float d = fabsf(s - 0.5f) * 2;
     float streak = powf(0.5f + 0.5f * sinf(6.2831853f * 9 * s), 6);
-    float n = fbm_at(&f[0], s, t);
+    float n = nz[0];
     float l = (0.82f + 0.12f * t + 0.04f * n - 0.10f * streak * (1 - t)) * (1 - 0.15f * smoothstep(0.7f, 1, d));
     float base = 0.5f * (1 - smoothstep(0.0f, 0.25f, t)); /* a yellowish heart */
     out[0] = clamp01(l);
@@ -92,11 +96,12 @@ static void flower(const Fbm *f, float s, float t, float out[3]) {
     out[2] = clamp01(l * (1 - 0.55f * base));
 }
 
-static void grass(const Fbm *f, float s, float t, float out[3]) {
+/* nz: f[0] at (s, t) and at (s + 0.37, t + 0.61), f[1] at (s, t). */
+static void grass(const float *nz, float out[3]) {
     /* The same noise twice, the second shifted, so no lattice pattern shows. */
-    float n1 = fbm_at(&f[0], s, t);
-    float n2 = fbm_at(&f[0], s + 0.37f, t + 0.61f);
-    float blades = fbm_at(&f[1], s, t);
+    float n1 = nz[0];
+    float n2 = nz[1];
+    float blades = nz[2];
     float l = 0.72f + 0.16f * n1 + 0.16f * n2 + 0.16f * blades;
     float dry = smoothstep(0.05f, 0.45f, n2 - n1);
     out[0] = clamp01(l * (1 + 0.30f * dry) * 0.92f);
@@ -104,23 +109,93 @@ static void grass(const Fbm *f, float s, float t, float out[3]) {
     out[2] = clamp01(l * (1 - 0.35f * dry) * 0.90f);
 }
 
+/* Where each noise of a pattern is read: fbm fi at (column coordinate + dx, row + dy); for
+ * the bark's first, the column coordinate moved by the stripes. */
+typedef struct Probe {
+    int fi;
+    float dx, dy;
+    bool striped;
+} Probe;
+
+static int probes(int kind, Probe p[4]) {
+    switch (kind) {
+    case SYL_MATERIAL_BARK:
+        p[0] = (Probe){1, 0, 0, true}, p[1] = (Probe){2, 0, 0, false}, p[2] = (Probe){3, 0, 0, false};
+        return 3;
+    case SYL_MATERIAL_LEAF:
+    case SYL_MATERIAL_FLOWER: p[0] = (Probe){0, 0, 0, false}; return 1;
+    case -1:
+        p[0] = (Probe){0, 0, 0, false}, p[1] = (Probe){0, 0.37f, 0.61f, false}, p[2] = (Probe){1, 0, 0, false};
+        return 3;
+    default: return 0;
+    }
+}
+
+/* Each probe's column and row cells (fbm_axis): the lattice work of a pixel done once per
+ * column and once per row. False when out of memory or an fbm has no tables. */
+typedef struct Grid {
+    FbmCell *cx[4], *cy[4];
+} Grid;
+
+static void grid_free(Grid *g) {
+    for (int k = 0; k < 4; k++) free(g->cx[k]), free(g->cy[k]);
+}
+
+static bool grid_make(const Fbm *f, const Probe *p, int np, const float *stripes, int size, Grid *g) {
+    memset(g, 0, sizeof *g);
+    float *at = malloc((size_t)size * sizeof *at);
+    bool ok = at != NULL;
+    for (int k = 0; ok && k < np; k++) {
+        size_t cells = (size_t)f[p[k].fi].octaves * (size_t)size;
+        g->cx[k] = malloc((cells ? cells : 1) * sizeof(FbmCell));
+        g->cy[k] = malloc((cells ? cells : 1) * sizeof(FbmCell));
+        if (!g->cx[k] || !g->cy[k]) {
+            ok = false;
+            break;
+        }
+        for (int x = 0; x < size; x++) { /* as the pixel loop computes s, and the probe moves it */
+            float s = ((float)x + 0.5f) / (float)size;
+            at[x] = p[k].striped ? s + 0.06f * stripes[x] : p[k].dx != 0 ? s + p[k].dx : s;
+        }
+        ok = fbm_axis(&f[p[k].fi], 0, at, size, g->cx[k]);
+        for (int y = 0; ok && y < size; y++) {
+            float t = ((float)y + 0.5f) / (float)size;
+            at[y] = p[k].dy != 0 ? t + p[k].dy : t;
+        }
+        ok = ok && fbm_axis(&f[p[k].fi], 1, at, size, g->cy[k]);
+    }
+    free(at);
+    if (!ok) grid_free(g);
+    return ok;
+}
+
 void texture_pattern(int kind, int size, float *out) {
     Fbm f[4] = {0};
     noises(kind, f);
     float *stripes = kind == SYL_MATERIAL_BARK ? malloc((size_t)size * sizeof *stripes) : NULL;
     for (int x = 0; stripes && x < size; x++) stripes[x] = fbm_at(&f[0], ((float)x + 0.5f) / (float)size, 0);
+    Probe p[4];
+    int np = probes(kind, p);
+    Grid g;
+    bool gridded = (kind != SYL_MATERIAL_BARK || stripes) && grid_make(f, p, np, stripes, size, &g);
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++) {
             float s = ((float)x + 0.5f) / (float)size, t = ((float)y + 0.5f) / (float)size;
             float *o = out + 3 * ((size_t)y * (size_t)size + (size_t)x);
+            float stripe = kind != SYL_MATERIAL_BARK ? 0 : stripes ? stripes[x] : fbm_at(&f[0], s, 0), nz[4];
+            for (int k = 0; k < np; k++) /* the same values either way, to the bit */
+                nz[k] = gridded ? fbm_grid_at(&f[p[k].fi], g.cx[k], size, x, g.cy[k], size, y)
+                                : fbm_at(&f[p[k].fi], p[k].striped ? s + 0.06f * stripe : p[k].dx != 0 ? s + p[k].dx : s,
+                                         p[k].dy != 0 ? t + p[k].dy : t);
             switch (kind) {
-            case SYL_MATERIAL_BARK: bark(f, s, t, stripes ? stripes[x] : fbm_at(&f[0], s, 0), o); break;
-            case SYL_MATERIAL_LEAF: leaf(f, s, t, o); break;
-            case SYL_MATERIAL_FLOWER: flower(f, s, t, o); break;
-            case -1: grass(f, s, t, o); break;
+            case SYL_MATERIAL_BARK: bark(nz, stripe, o); break;
+            case SYL_MATERIAL_LEAF: leaf(nz, s, t, o); break;
+            case SYL_MATERIAL_FLOWER: flower(nz, s, t, o); break;
+            case -1: grass(nz, o); break;
             default: o[0] = o[1] = o[2] = 1; break;
             }
         }
+    if (gridded) grid_free(&g);
     free(stripes);
     for (int k = 0; k < 4; k++) fbm_free(&f[k]);
 }

@@ -26,6 +26,18 @@ typedef struct Fbm {
 void fbm_init(Fbm *f, int fx, int fy, float p, int octaves, uint32_t seed);
 float fbm_at(const Fbm *f, float x, float y);
 void fbm_free(Fbm *f);
+/* One axis of a grid of fbm samples: for each octave and coordinate, its lattice cell, its
+ * place in the cell and the fade (cells[o * n + k] for coordinate k of octave o). A pixel of
+ * the grid then asks only its four corners per octave (fbm_grid_at): a texture's columns and
+ * rows share these. False when an octave has no gradient table (then use fbm_at). */
+typedef struct FbmCell {
+    int i0, i1;    /* the cell's two lattice lines, wrapped */
+    float d, w;    /* the place in the cell (0..1) and its fade */
+} FbmCell;
+bool fbm_axis(const Fbm *f, int axis, const float *at, int n, FbmCell *cells);
+/* fbm_at(f, xs[kx], ys[ky]) to the bit, cx and cy from fbm_axis of xs (axis 0, nx of them)
+ * and ys (axis 1, ny). */
+float fbm_grid_at(const Fbm *f, const FbmCell *cx, int nx, int kx, const FbmCell *cy, int ny, int ky);
 
 /* ---- patterns (texture.c) ---- */
 

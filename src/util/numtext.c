@@ -32,6 +32,18 @@ static int decimal_exponent_guess(double x) {
  * exactly prec digits and x ~ n * 10^(*exp - prec + 1). False when x is out of the exact range. */
 static bool round_sig(double x, int prec, uint64_t *n, int *exp) {
     int E = decimal_exponent_guess(x);
+    int k = prec - 1 - E;
+    if (k >= 1 && k <= 12) { /* the writers' case, without a branch on the digits: */
+        int up = x * pow10d[k] >= pow10d[prec]; /* floor(log10 x) is E or E + 1 */
+        double y = x * pow10d[k - up];          /* exact (see the top) */
+        uint64_t q = (uint64_t)y;
+        double fr = y - (double)q;
+        q += (uint64_t)((fr > 0.5) | ((fr == 0.5) & (int)(q & 1)));
+        E += up;
+        if (q == pow10u[prec]) q = pow10u[prec - 1], E++; /* 9.999995 -> 10.0000 */
+        *n = q, *exp = E;
+        return true;
+    }
     for (int tries = 0; tries < 3; tries++) {
         int k = prec - 1 - E;
         uint64_t q;
@@ -73,6 +85,45 @@ static bool round_sig(double x, int prec, uint64_t *n, int *exp) {
     return false;
 }
 
+#ifdef NUMTEXT_WORDS
+/* q has exactly prec <= 8 digits, x = q * 10^(X - prec + 1). */
+static char *g_text(char *p, uint32_t q, int prec, int X) {
+    uint64_t d = numtext_word8(q) >> (8 * (8 - prec)); /* the prec digits */
+    int nd = numtext_significant(d, prec);              /* %g drops trailing zeros */
+    if (X < -4 || X >= prec) {                   /* d.ddde+XX */
+        uint64_t first = (d & 0xff) | ((uint64_t)'.' << 8), rest = d >> 8;
+        memcpy(p, &first, 8), memcpy(p + 2, &rest, 8);
+        p += nd > 1 ? nd + 1 : 1;
+        *p++ = 'e';
+        *p++ = X < 0 ? '-' : '+';
+        unsigned a = (unsigned)(X < 0 ? -X : X);
+        if (a >= 100) *p++ = (char)('0' + a / 100), a %= 100;
+        memcpy(p, numtext_pairs + 2 * a, 2);
+        return p + 2;
+    }
+    if (X < 0) { /* 0.000ddd */
+        memcpy(p, "0.000000", 8);
+        memcpy(p + 1 - X, &d, 8);
+        return p + 1 - X + nd;
+    }
+    int whole = X + 1; /* <= prec <= 8 */
+    if (whole == prec) { /* a whole number: no point, and its zeros stay */
+        memcpy(p, &d, 8);
+        return p + prec;
+    }
+    uint64_t head = (d & ((1ull << (8 * whole)) - 1)) | ((uint64_t)'.' << (8 * whole)), tail = d >> (8 * whole);
+    memcpy(p, &head, 8), memcpy(p + whole + 1, &tail, 8);
+    return p + (nd > whole ? nd + 1 : whole);
+}
+#endif
+
+/* end follows digits with a point among them: the fraction's trailing zeros and then a
+ * bare point dropped, as %g does. */
+static inline char *trim_zeros(char *end) {
+    while (end[-1] == '0') end--;
+    return end[-1] == '.' ? end - 1 : end;
+}
+
 char *numtext_g(char *p, double x, int prec) {
     if (prec == 0) prec = 1; /* as printf */
     if (!isfinite(x) || prec < 0 || prec > 9 || (double)(float)x != x) return p + sprintf(p, "%.*g", prec, x);
@@ -85,13 +136,15 @@ char *numtext_g(char *p, double x, int prec) {
     int X;
     if (!round_sig(x, prec, &n, &X)) return p + sprintf(p, "%.*g", prec, x);
     uint32_t q = (uint32_t)n;
-    int nd = prec;
-    while (nd > 1 && q % 10 == 0) q /= 10, nd--; /* %g drops trailing zeros */
-    if (X < -4 || X >= prec) {                   /* d.ddde+XX */
-        numtext_digits(p + 1 + nd, q, nd);           /* then the first digit moved before the point */
-        p[0] = p[1];
-        if (nd > 1) p[1] = '.', p += nd + 1;
-        else p += 1;
+#ifdef NUMTEXT_WORDS
+    if (prec <= 8) return g_text(p, q, prec, X);
+#endif
+    /* prec 9 (or a big-endian machine): all prec digits written, then %g's trailing zeros
+     * (and a bare point) dropped as characters */
+    if (X < -4 || X >= prec) { /* d.ddde+XX */
+        numtext_digits(p + 1 + prec, q, prec); /* then the first digit moved before the point */
+        p[0] = p[1], p[1] = '.';
+        p = trim_zeros(p + 1 + prec);
         *p++ = 'e';
         *p++ = X < 0 ? '-' : '+';
         unsigned a = (unsigned)(X < 0 ? -X : X);
@@ -100,26 +153,43 @@ char *numtext_g(char *p, double x, int prec) {
         return p + 2;
     }
     if (X < 0) { /* 0.000ddd */
-        *p++ = '0', *p++ = '.';
-        for (int i = -1; i > X; i--) *p++ = '0';
-        numtext_digits(p + nd, q, nd);
-        return p + nd;
+        memcpy(p, "0.000", 5); /* "0." and the zeros before the digits (X >= -4: at most 3) */
+        p += 1 - X;
+        numtext_digits(p + prec, q, prec);
+        return trim_zeros(p + prec);
     }
     int whole = X + 1; /* <= prec */
-    if (nd <= whole) { /* a whole number: the zeros dropped come back */
-        numtext_digits(p + nd, q, nd);
-        for (int i = nd; i < whole; i++) p[i] = '0';
-        return p + whole;
+    if (whole == prec) { /* a whole number: no point, and its zeros stay */
+        numtext_digits(p + prec, q, prec);
+        return p + prec;
     }
-    numtext_digits(p + nd, q, nd); /* then the fraction moved one place for the point */
-    for (int i = nd; i > whole; i--) p[i] = p[i - 1];
+    numtext_digits(p + 1 + prec, q, prec); /* then the whole part moved down before the point */
+    for (int i = 0; i < whole; i++) p[i] = p[i + 1];
     p[whole] = '.';
-    return p + nd + 1;
+    return trim_zeros(p + 1 + prec);
 }
 
 char *numtext_int(char *p, long long v) {
     unsigned long long u = (unsigned long long)v;
     if (v < 0) *p++ = '-', u = 0 - u;
+    if (u < 10) {
+        *p = (char)('0' + u);
+        return p + 1;
+    }
+#ifdef NUMTEXT_WORDS
+    if (u < 100000000) { /* one word, stored once; its leading zeros skipped */
+        uint64_t d = numtext_word8((uint32_t)u);
+        int lead = __builtin_ctzll(d ^ 0x3030303030303030ull) / 8;
+        d >>= 8 * lead;
+        memcpy(p, &d, 8);
+        return p + 8 - lead;
+    }
+#endif
+    if (u <= UINT32_MAX) { /* in place, two digits at a time */
+        int n = numtext_ndigits((uint32_t)u);
+        numtext_digits(p + n, (uint32_t)u, n);
+        return p + n;
+    }
     char d[24], *end = d + sizeof d, *q = end;
     do *--q = (char)('0' + u % 10), u /= 10;
     while (u);

@@ -1,6 +1,7 @@
 /* Number text (util/numtext, and the OBJ writer's io_float): byte for byte what printf writes,
  * and every number reads back to the value it should (strtod/strtof), over edge values and
  * random floats. */
+#include <limits.h>
 #include <float.h>
 #include <math.h>
 
@@ -93,6 +94,29 @@ static void g9_reads_back_every_float(void **state) {
  * within half a unit of its last place (10^(e - sig + 1), e = floor(log10 |x|), whole numbers
  * at least 1), never further, a tie going away from zero; no exponent in [1e-4, 1e9); zero
  * for -0, NaN and the infinities. */
+/* numtext_int is "%lld" byte for byte: every power of ten and its neighbours, the ends of
+ * the 32- and 64-bit ranges, and random values of every length. */
+static void int_is_printf_byte_for_byte(void **state) {
+    (void)state;
+    long long v[200];
+    int n = 0;
+    long long t = 1;
+    for (int e = 0; e < 19; e++, t *= e < 19 ? 10 : 1)
+        for (int d = -1; d <= 1; d++) v[n++] = t + d, v[n++] = -(t + d);
+    long long ends[] = {0, INT32_MAX, INT32_MIN, UINT32_MAX, (long long)UINT32_MAX + 1, -(long long)UINT32_MAX,
+                        LLONG_MAX, LLONG_MIN, LLONG_MIN + 1};
+    for (size_t i = 0; i < sizeof ends / sizeof *ends; i++) v[n++] = ends[i];
+    uint64_t r = 88172645463325252ull;
+    for (int i = 0; i < 200000; i++) {
+        r ^= r << 13, r ^= r >> 7, r ^= r << 17;
+        long long x = (long long)(r >> (r % 64));
+        char want[32], got[32];
+        snprintf(want, sizeof want, "%lld", i < n ? v[i] : x);
+        *numtext_int(got, i < n ? v[i] : x) = 0;
+        if (strcmp(want, got)) fail_msg("%%lld of %s: numtext '%s'", want, got);
+    }
+}
+
 static void check_short(float x, int sig) {
     char s[64];
     *io_float(s, x, sig) = 0;
@@ -111,6 +135,9 @@ static void check_short(float x, int sig) {
         return;
     }
     assert_null(strpbrk(s, "eE"));
+    size_t len = strlen(s); /* the shortest text: no trailing zeros after a point, no bare point, one leading 0 at most */
+    if (strchr(s, '.') && (s[len - 1] == '0' || s[len - 1] == '.')) fail_msg("short(%a, %d) = '%s': not trimmed", (double)x, sig, s);
+    if (s[s[0] == '-'] == '0' && s[(s[0] == '-') + 1] != '.' && s[(s[0] == '-') + 1]) fail_msg("short(%a, %d) = '%s': leading zero", (double)x, sig, s);
     int dec = sig - 1 - e;
     if (dec < 0) dec = 0;
     if (dec > 9) dec = 9;
@@ -143,6 +170,7 @@ int main(void) {
         cmocka_unit_test(g_is_printf_byte_for_byte),
         cmocka_unit_test(g9_reads_back_every_float),
         cmocka_unit_test(short_reads_back_to_the_rounded_value),
+        cmocka_unit_test(int_is_printf_byte_for_byte),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
