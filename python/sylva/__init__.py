@@ -578,6 +578,13 @@ class Level:
     coverage: float
     error: float
     billboards: bool
+    _plant: "Plant" = None
+
+    def skin(self) -> "tuple[np.ndarray, np.ndarray] | None":
+        """With wind: each vertex's two joints and weights (bytes summing to 255) of this
+        level's mesh, as the .glb skins it to the one set of joints; None for the billboards."""
+        s = self._plant._core.skin(self.level)
+        return None if s is None else tuple(np.asarray(a) for a in s)
 
     @property
     def triangles(self) -> int:
@@ -623,14 +630,14 @@ class Wind:
     (.skin_joints, .skin_weights bytes summing to 255) as the .glb skins the mesh. Y is up.
     .heads: each joint's pivot, its stem's base."""
 
-    def __init__(self, d: dict):
+    def __init__(self, d: dict, skin):
         self.stems = np.frombuffer(d["stems"], dtype=WIND_STEM_DTYPE)
         self.joints = np.frombuffer(d["joints"], dtype=WIND_JOINT_DTYPE)
         self.seconds, self.nkeys = d["seconds"], d["nkeys"]
         self.rotations = np.asarray(d["rot"]).reshape(len(self.joints), self.nkeys, 4)
         k = np.arange(self.nkeys)
         self.times = np.where(k == self.nkeys - 1, self.seconds, self.seconds * k / max(self.nkeys - 1, 1))
-        self.skin_joints, self.skin_weights = np.asarray(d["skin_joints"]), np.asarray(d["skin_weights"])
+        self.skin_joints, self.skin_weights = (np.asarray(a) for a in skin)
 
     @property
     def heads(self) -> np.ndarray:
@@ -677,7 +684,7 @@ class Plant:
     def levels(self) -> list[Level]:
         """The levels of detail of lod= (or impostor=, billboards=), LOD0 first; [] without."""
         return [Level(d["level"], Mesh(self, d["mesh"]), d["max_order"], d["min_radius"], d["leaf_keep"],
-                      d["leaf_scale"], d["cluster_leaves"], d["coverage"], d["error"], d["billboards"])
+                      d["leaf_scale"], d["cluster_leaves"], d["coverage"], d["error"], d["billboards"], self)
                 for d in self._core.levels()]
 
     @property
@@ -688,7 +695,7 @@ class Plant:
     @property
     def wind(self) -> "Wind | None":
         d = self._core.wind()
-        return None if d is None else Wind(d)
+        return None if d is None else Wind(d, self._core.skin(0))
 
     def render(self, width: int = 512, height: int = 512, *, view: str = "auto", samples: int = 0,
                transparent: bool = False, threads: int = 0) -> Picture:

@@ -972,20 +972,29 @@ static PyObject *plant_impostor(PlantObject *o, PyObject *unused) {
 static PyObject *plant_wind(PlantObject *o, PyObject *unused) {
     const SylWind *w = &o->wind;
     if (!w->njoints) Py_RETURN_NONE;
-    const SylMesh *m = o->pl.mesh;
+    return Py_BuildValue("{s:d,s:i,s:N,s:N,s:N}", "seconds", (double)w->seconds, "nkeys", w->nkeys, "stems",
+                         buffer_new((PyObject *)o, w->stems, "B", 1, w->nstems, (Py_ssize_t)sizeof *w->stems),
+                         "joints", buffer_new((PyObject *)o, w->joints, "B", 1, w->njoints,
+                                              (Py_ssize_t)sizeof *w->joints),
+                         "rot", buffer_new((PyObject *)o, w->rot, "f", 4, (Py_ssize_t)w->njoints * w->nkeys, 4));
+}
+
+/* skin(k): (joints, weights), each vertex's two of level k's mesh (0: the plant's) as the .glb
+ * skins it; None without wind or for a level without vertex nodes (the billboards). */
+static PyObject *plant_skin(PlantObject *o, PyObject *args) {
+    int k = 0;
+    if (!PyArg_ParseTuple(args, "|i", &k)) return NULL;
+    if (k < 0 || (k > 0 && k >= o->lods.n)) return PyErr_Format(PyExc_IndexError, "no level %d", k);
+    const SylMesh *m = k ? o->lods.level[k].mesh : o->pl.mesh;
+    if (!o->wind.njoints || !m->node) Py_RETURN_NONE;
     int32_t *joints = malloc(2 * sizeof *joints * (m->nverts + 1));
     uint8_t *weights = malloc(2 * (m->nverts + 1));
     if (!joints || !weights) {
         free(joints), free(weights);
         return PyErr_NoMemory();
     }
-    syl_wind_skin(m, o->pl.skeleton, w, joints, weights);
-    return Py_BuildValue("{s:d,s:i,s:N,s:N,s:N,s:N,s:N}", "seconds", (double)w->seconds, "nkeys", w->nkeys, "stems",
-                         buffer_new((PyObject *)o, w->stems, "B", 1, w->nstems, (Py_ssize_t)sizeof *w->stems),
-                         "joints", buffer_new((PyObject *)o, w->joints, "B", 1, w->njoints,
-                                              (Py_ssize_t)sizeof *w->joints),
-                         "rot", buffer_new((PyObject *)o, w->rot, "f", 4, (Py_ssize_t)w->njoints * w->nkeys, 4),
-                         "skin_joints", buffer_new(NULL, joints, "i", 4, (Py_ssize_t)m->nverts, 2), "skin_weights",
+    syl_wind_skin(m, o->pl.skeleton, &o->wind, joints, weights);
+    return Py_BuildValue("(NN)", buffer_new(NULL, joints, "i", 4, (Py_ssize_t)m->nverts, 2),
                          buffer_new(NULL, weights, "B", 1, (Py_ssize_t)m->nverts, 2));
 }
 
@@ -1106,7 +1115,8 @@ static PyMethodDef plant_methods[] = {
     {"mesh_arrays", (PyCFunction)plant_mesh_arrays, METH_NOARGS, "positions, normals, uvs, triangles, groups"},
     {"levels", (PyCFunction)plant_levels, METH_NOARGS, "the levels of detail (lod=), LOD0 first"},
     {"impostor", (PyCFunction)plant_impostor, METH_NOARGS, "the impostor's atlases (impostor=), or None"},
-    {"wind", (PyCFunction)plant_wind, METH_NOARGS, "the wind's joints, keys and skin (wind=), or None"},
+    {"wind", (PyCFunction)plant_wind, METH_NOARGS, "the wind's joints and keys (wind=), or None"},
+    {"skin", (PyCFunction)plant_skin, METH_VARARGS, "skin(level=0): each vertex's joints and weights, or None"},
     {"write", (PyCFunction)plant_write, METH_VARARGS, "write(path): .glb, .obj or .ply by the extension"},
     {"skeleton_csv", (PyCFunction)plant_skeleton_csv, METH_NOARGS, "the skeleton as `sylva skeleton` writes it"},
     {"render", (PyCFunction)(void (*)(void))plant_render, METH_VARARGS | METH_KEYWORDS, "an RGBA picture"},

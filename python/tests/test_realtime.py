@@ -100,6 +100,21 @@ def test_wind_is_the_commands_skin_and_animation(model, tmp_path):
     np.testing.assert_array_equal(w.rotations[:, 0], w.rotations[:, -1])  # it loops
 
 
+def test_every_level_is_skinned_but_the_billboards(model, tmp_path):
+    stats("--lod", "3", "--billboards", "2", "--wind", "6", out=tmp_path / "wl.glb")
+    js, acc = glb(tmp_path / "wl.glb")
+    levels = model.build(lod=3, billboards=2, wind=6).levels
+    nodes = {n["name"]: n for n in js["nodes"] if "mesh" in n}
+    for lv in levels:
+        skin = lv.skin()
+        node = nodes[f"{model.name}_LOD{lv.level}"]
+        assert (skin is None) == lv.billboards == ("skin" not in node)
+        if skin is not None:
+            prim = js["meshes"][node["mesh"]]["primitives"][0]
+            np.testing.assert_array_equal(acc(prim["attributes"]["JOINTS_0"])[:, :2], skin[0])
+            np.testing.assert_array_equal(acc(prim["attributes"]["WEIGHTS_0"])[:, :2], skin[1])
+
+
 def test_save_writes_the_commands_file(model, tmp_path):
     # levels skinned to one set of joints: the same bytes as the command's
     subprocess.run([CLI, "mesh", MODEL, "--lod", "2", "--wind", "6", "--wind-dir", "0,1", "-o",
