@@ -211,3 +211,11 @@ print(f"leaves result={r} instances={len(inst)} at_leaf={at} along_heading={alon
 # gives the mesh `sylva mesh PRESET.py` gives.
 r, obj = added(species="sapling/quaking_aspen")
 print(f"sapling result={r} {counts(obj)} presets={sum(n.startswith('sapling/') for n in items)}")
+
+# 6. Levels of detail, the impostor card and the wind armature (addon_realtime.py), in this Blender
+import runpy  # noqa: E402
+
+rt_model = args[3] if len(args) > 3 else None
+if rt_model:
+    runpy.run_path(os.path.join(os.path.dirname(os.path.abspath(__file__)), "addon_realtime.py"),
+                   init_globals={"added": added, "out_dir": out_dir, "rt_model": rt_model})
