@@ -69,10 +69,11 @@ def _material(name: str, rgb, leaf: bool) -> bpy.types.Material:
 OBSTACLE_MATERIAL = 250
 
 
-def mesh_object(plant, name: str, drop_obstacles: bool = False) -> bpy.types.Object:
-    """The plant's mesh (or a sylva.Mesh, a level's) as one object, filled from Sylva's arrays
-    with foreach_set (no Python loop per vertex): Sylva's y-up metres turned to Blender's z-up,
-    one material per group."""
+def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = True) -> bpy.types.Object:
+    """The plant's mesh (or a sylva.Mesh: a level's, a leaf prototype's) as one object, filled
+    from Sylva's arrays with foreach_set (no Python loop per vertex): Sylva's y-up metres turned
+    to Blender's z-up (z_up False: as they are, for a prototype in its own frame), one material
+    per group."""
     import numpy as np
     m = plant if isinstance(plant, sylva.Mesh) else plant.mesh
     v = m.vertices
@@ -89,7 +90,7 @@ def mesh_object(plant, name: str, drop_obstacles: bool = False) -> bpy.types.Obj
         for g in groups:  # the kept groups, renumbered from 0
             g["first"], at = at, at + g["count"]
     co = np.empty_like(v)
-    co[:, 0], co[:, 1], co[:, 2] = v[:, 0], -v[:, 2], v[:, 1]
+    co[:, 0], co[:, 1], co[:, 2] = (v[:, 0], -v[:, 2], v[:, 1]) if z_up else (v[:, 0], v[:, 1], v[:, 2])
     nt = len(tris)
     me = bpy.data.meshes.new(name)
     me.vertices.add(len(v))
@@ -190,9 +191,7 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
                           plant.wind.skin_weights)
     obj["sylva_nodes"] = plant.info["nodes"]
     if leaves == "instanced":
-        root["sylva_leaf_instances"] = leaf_instances.add(
-            plant, list(sylva.ORGAN_KINDS), m.name,
-            lambda k: _material(f"{m.name} Leaf {k}", (0.25, 0.45, 0.15), True), root, coll)
+        root["sylva_leaf_instances"] = leaf_instances.add(plant, m.name, mesh_object, root, coll)
     return root
 
 

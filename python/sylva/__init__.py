@@ -23,7 +23,7 @@ from . import _core, _view
 from .errors import CompileError, LimitError, SylvaError
 
 __all__ = ["load", "compile", "compare", "File", "Model", "Extern", "String", "Module", "Plant", "Skeleton", "Mesh",
-           "Level", "Wind", "Impostor", "Queries",
+           "Level", "Wind", "Impostor", "LeafSet", "Queries",
            "Picture", "Param", "Ecosystem", "Snapshot", "CompileError", "LimitError", "SylvaError", "__version__"]
 __version__ = _core.VERSION
 
@@ -650,6 +650,26 @@ class Wind:
         return f"<sylva.Wind: {len(self)} joints, {self.nkeys} keys over {self.seconds:g} s>"
 
 
+class LeafSet:
+    """The leaves of one material as instances of one prototype leaf (`sylva mesh --leaves
+    instanced`, EXT_mesh_gpu_instancing): .proto the leaf of size 1 the mesher makes (the
+    model's own outline; at the origin along +x, across +y, facing +z; one-sided), and per
+    leaf .translations (n, 3), .rotations (n, 4) unit quaternions x, y, z, w, .scales (n, 3)
+    and .nodes (its skeleton node): a vertex p of the prototype is at T + R (S p). Y is up."""
+
+    def __init__(self, plant: "Plant", d: dict):
+        self.name = d["name"]
+        self.proto = Mesh(plant, d["proto"])
+        self.translations, self.rotations = np.asarray(d["t"]), np.asarray(d["r"])
+        self.scales, self.nodes = np.asarray(d["s"]), np.asarray(d["node"])
+
+    def __len__(self) -> int:
+        return len(self.translations)
+
+    def __repr__(self) -> str:
+        return f"<sylva.LeafSet {self.name}: {len(self)} leaves of {len(self.proto.triangles)} triangles>"
+
+
 class Picture(np.ndarray):
     """An (H, W, 4) uint8 RGBA picture; notebooks show it (_repr_png_)."""
 
@@ -686,6 +706,11 @@ class Plant:
         return [Level(d["level"], Mesh(self, d["mesh"]), d["max_order"], d["min_radius"], d["leaf_keep"],
                       d["leaf_scale"], d["cluster_leaves"], d["coverage"], d["error"], d["billboards"], self)
                 for d in self._core.levels()]
+
+    def leaf_sets(self, cards: bool = False) -> list[LeafSet]:
+        """The leaves as instances, one set a leaf material, as `sylva mesh --leaves instanced`
+        (cards: instanced-cards) places them; the plant's mesh is unchanged."""
+        return [LeafSet(self, d) for d in self._core.leaf_sets(cards=bool(cards))]
 
     @property
     def impostor(self) -> "Impostor | None":

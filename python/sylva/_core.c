@@ -738,6 +738,7 @@ typedef struct {
     SylLodChain lods; /* lods.n 0: none; level 0 is pl.mesh */
     SylImpostor imp;  /* billboards 0: none */
     SylWind wind;     /* njoints 0: none */
+    SylMeshOptions mo; /* what the mesh was made with (diag NULL) */
 } PlantObject;
 
 static void plant_dealloc(PlantObject *o) {
@@ -842,6 +843,8 @@ static PyObject *program_build(ProgramObject *o, PyObject *args, PyObject *kw) {
     memset(&pl->lods, 0, sizeof pl->lods);
     memset(&pl->imp, 0, sizeof pl->imp);
     memset(&pl->wind, 0, sizeof pl->wind);
+    pl->mo = mo;
+    pl->mo.diag = NULL;
     int st;
     Py_BEGIN_ALLOW_THREADS
     st = syl_plant_build(o->p, &po, &pl->pl);
@@ -904,8 +907,8 @@ static PyObject *plant_organs(PlantObject *o, PyObject *unused) {
     return buffer_new((PyObject *)o, s->organs, "B", 1, (Py_ssize_t)s->norgans, (Py_ssize_t)sizeof(SylOrgan));
 }
 
-/* A mesh's arrays as views kept alive by the plant o that owns m (its mesh or a level's). */
-static PyObject *mesh_dict(PlantObject *o, const SylMesh *m) {
+/* A mesh's arrays as views kept alive by owner, which owns m (a plant: its mesh or a level's). */
+static PyObject *mesh_dict(PyObject *owner, const SylMesh *m) {
     Py_ssize_t nv = (Py_ssize_t)m->nverts, nt = (Py_ssize_t)(m->nidx / 3);
     PyObject *groups = PyList_New(m->ngroups);
     for (int g = 0; groups && g < m->ngroups; g++) {
@@ -921,15 +924,15 @@ static PyObject *mesh_dict(PlantObject *o, const SylMesh *m) {
         PyList_SET_ITEM(groups, g, t);
     }
     if (!groups) return NULL;
-    return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N}", "positions", buffer_new((PyObject *)o, m->pos, "f", 4, nv, 3),
-                         "normals", buffer_new((PyObject *)o, m->nrm, "f", 4, nv, 3), "uvs",
-                         buffer_new((PyObject *)o, m->uv, "f", 4, nv, 2), "triangles",
-                         buffer_new((PyObject *)o, m->idx, "I", 4, nt, 3), "groups", groups);
+    return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N}", "positions", buffer_new(owner, m->pos, "f", 4, nv, 3),
+                         "normals", buffer_new(owner, m->nrm, "f", 4, nv, 3), "uvs",
+                         buffer_new(owner, m->uv, "f", 4, nv, 2), "triangles",
+                         buffer_new(owner, m->idx, "I", 4, nt, 3), "groups", groups);
 }
 
 static PyObject *plant_mesh_arrays(PlantObject *o, PyObject *unused) {
     if (need_mesh(o)) return NULL;
-    return mesh_dict(o, o->pl.mesh);
+    return mesh_dict((PyObject *)o, o->pl.mesh);
 }
 
 /* [{level, max_order, ..., mesh: mesh_dict}] of the levels of detail, LOD0 first ([]: none). */
@@ -938,7 +941,7 @@ static PyObject *plant_levels(PlantObject *o, PyObject *unused) {
     for (int k = 0; l && k < o->lods.n; k++) {
         const SylLodLevel *lv = &o->lods.level[k];
         int bb = o->imp.billboards && k == o->lods.n - 1;
-        PyObject *mesh = mesh_dict(o, lv->mesh);
+        PyObject *mesh = mesh_dict((PyObject *)o, lv->mesh);
         PyObject *t = mesh ? Py_BuildValue("{s:i,s:i,s:d,s:d,s:d,s:d,s:d,s:d,s:O,s:N}", "level", k, "max_order",
                                            lv->max_order, "min_radius", (double)lv->min_radius, "leaf_keep",
                                            (double)lv->leaf_keep, "leaf_scale", (double)lv->leaf_scale,
@@ -996,6 +999,58 @@ static PyObject *plant_skin(PlantObject *o, PyObject *args) {
     syl_wind_skin(m, o->pl.skeleton, &o->wind, joints, weights);
     return Py_BuildValue("(NN)", buffer_new(NULL, joints, "i", 4, (Py_ssize_t)m->nverts, 2),
                          buffer_new(NULL, weights, "B", 1, (Py_ssize_t)m->nverts, 2));
+}
+
+static void sets_free(PyObject *capsule) {
+    int *n = PyCapsule_GetContext(capsule);
+    syl_instances_free(PyCapsule_GetPointer(capsule, "sylva.instances"), n ? *n : 0);
+    free(n);
+}
+
+/* leaf_sets(cards=False): the leaves as instances of one prototype a leaf material, as `sylva
+ * mesh --leaves instanced` (or instanced-cards) writes them into a .glb: [{name, proto:
+ * mesh_dict, t, r, s, node}] (translations, rotations x y z w, scales, each leaf's node). */
+static PyObject *plant_leaf_sets(PlantObject *o, PyObject *args, PyObject *kw) {
+    static char *kwl[] = {"cards", NULL};
+    int cards = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "|p", kwl, &cards)) return NULL;
+    if (need_skeleton(o)) return NULL;
+    Diag d;
+    if (diag_open(&d)) return NULL;
+    SylMeshOptions mo = o->mo;
+    mo.leaves = cards ? SYL_LEAVES_INSTANCED_CARDS : SYL_LEAVES_INSTANCED;
+    mo.one_sided = 1; /* a .glb's leaves: one face, drawn from both sides */
+    mo.vertex_nodes = 1;
+    mo.diag = d.f;
+    SylInstances *sets = NULL;
+    int n = 0, st;
+    Py_BEGIN_ALLOW_THREADS
+    st = syl_leaf_instances(o->pl.skeleton, &mo, &sets, &n);
+    Py_END_ALLOW_THREADS
+    if (st) return raise_status(st, &d);
+    diag_drop(&d);
+    int *count = malloc(sizeof *count);
+    PyObject *cap = count ? PyCapsule_New(sets, "sylva.instances", sets_free) : NULL;
+    if (!cap) {
+        free(count);
+        syl_instances_free(sets, n);
+        return PyErr_Occurred() ? NULL : PyErr_NoMemory();
+    }
+    *count = n;
+    PyCapsule_SetContext(cap, count);
+    PyObject *l = PyList_New(0);
+    for (int i = 0; l && i < n; i++) {
+        const SylInstances *x = &sets[i];
+        Py_ssize_t c = (Py_ssize_t)x->count;
+        PyObject *t = Py_BuildValue("{s:s,s:N,s:N,s:N,s:N,s:N}", "name", x->name, "proto", mesh_dict(cap, x->proto),
+                                    "t", buffer_new(cap, x->t, "f", 4, c, 3), "r", buffer_new(cap, x->r, "f", 4, c, 4),
+                                    "s", buffer_new(cap, x->s, "f", 4, c, 3), "node",
+                                    buffer_new(cap, x->node, "i", 4, c, -1));
+        if (!t || PyList_Append(l, t)) Py_CLEAR(l);
+        Py_XDECREF(t);
+    }
+    Py_DECREF(cap);
+    return l;
 }
 
 static PyObject *plant_write(PlantObject *o, PyObject *args) {
@@ -1116,6 +1171,8 @@ static PyMethodDef plant_methods[] = {
     {"levels", (PyCFunction)plant_levels, METH_NOARGS, "the levels of detail (lod=), LOD0 first"},
     {"impostor", (PyCFunction)plant_impostor, METH_NOARGS, "the impostor's atlases (impostor=), or None"},
     {"wind", (PyCFunction)plant_wind, METH_NOARGS, "the wind's joints and keys (wind=), or None"},
+    {"leaf_sets", (PyCFunction)(void (*)(void))plant_leaf_sets, METH_VARARGS | METH_KEYWORDS,
+     "leaf_sets(cards=False): the leaves as instance sets, each with its prototype"},
     {"skin", (PyCFunction)plant_skin, METH_VARARGS, "skin(level=0): each vertex's joints and weights, or None"},
     {"write", (PyCFunction)plant_write, METH_VARARGS, "write(path): .glb, .obj or .ply by the extension"},
     {"skeleton_csv", (PyCFunction)plant_skeleton_csv, METH_NOARGS, "the skeleton as `sylva skeleton` writes it"},

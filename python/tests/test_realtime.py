@@ -134,3 +134,26 @@ def test_bad_realtime_options_are_refused(model, kw, err):
 def test_without_options_there_is_nothing_realtime(model):
     plant = model.build()
     assert plant.levels == [] and plant.wind is None and plant.impostor is None
+
+
+def test_leaf_sets_are_the_commands_instances(tmp_path):
+    # as many instances as the command places, and each prototype the copied leaf: the leaves'
+    # triangles of the copied mesh are the prototypes' times their instances
+    oak = os.path.join(ROOT, "examples", "curvetree", "bezier_oak.syl")
+
+    def st(leaves):
+        r = subprocess.run([CLI, "mesh", oak, "--leaves", leaves, "--stats", "-o", str(tmp_path / f"{leaves}.glb")],
+                           capture_output=True, text=True, check=True)
+        return {k.strip(): v.strip() for k, _, v in (line.partition(":") for line in r.stderr.splitlines())}
+    inst, copied = st("instanced"), st("mesh")
+    plant = sylva.load(oak).model.build(leaves="instanced")
+    sets = plant.leaf_sets()
+    assert sum(len(s) for s in sets) == int(inst["leaf instances"])
+    assert sum(len(s) * len(s.proto.triangles) for s in sets) == int(copied["triangles"]) - int(inst["triangles"])
+    for s in sets:
+        np.testing.assert_allclose(np.linalg.norm(s.rotations, axis=1), 1, atol=1e-5)
+        assert s.proto.vertices[:, 2].ptp() == 0 and s.proto.vertices[:, 0].min() >= 0  # flat, from its base
+    org = plant.skeleton.organs  # each leaf's size is its instance's scale, in every axis
+    sizes = np.sort(org["size"][org["kind"] == sylva.ORGAN_KINDS.index("leaf")])
+    scales = np.sort(np.concatenate([s.scales for s in sets]), axis=0)
+    np.testing.assert_array_equal(scales, np.repeat(sizes[:, None], 3, 1))

@@ -206,6 +206,16 @@ for mw in inst:  # the nearest leaf within a micrometre, and the instance's +x a
     along += d < 1e-6 and mw.col[0].xyz.normalized().dot(heads[i]) > 0.999
 print(f"leaves result={r} instances={len(inst)} at_leaf={at} along_heading={along} "
       f"stored={root.get('sylva_leaf_instances') if root else None} {counts(obj)}")
+# the leaf object is the leaf the mesher makes (the model's outline), not a stand-in: its
+# triangles on every face are the leaf triangles of the copied mesh (`--leaves mesh` less
+# `--leaves instanced`), and it is flat, from its base along +x
+emitters = [o for o in root.children if o.instance_type == "FACES"] if root else []
+protos = [c for e in emitters for c in e.children if c.type == "MESH"]
+leaf_tris = sum(len(e.data.polygons) * sum(len(p.vertices) - 2 for p in c.data.polygons)
+                for e in emitters for c in e.children if c.type == "MESH")
+flat = all(max(abs(v.co.z) for v in c.data.vertices) == 0 and min(v.co.x for v in c.data.vertices) >= 0
+           for c in protos)
+print(f"leafshape protos={len(protos)} leaf_triangles={leaf_tris} flat={'yes' if protos and flat else 'no'}")
 
 # 5. Sapling's presets from the running Blender's own add-on are species too: the aspen by name
 # gives the mesh `sylva mesh PRESET.py` gives.
