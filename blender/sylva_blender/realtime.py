@@ -114,7 +114,7 @@ def atlas_image(name: str, rgba) -> bpy.types.Image:
 
 
 def card_material(name: str, img) -> bpy.types.Material:
-    """Alpha-tested, unlit-looking card material textured with img (the billboards' atlas)."""
+    """An alpha-tested card material textured with img (the billboards' atlas), one-sided."""
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     nt = mat.node_tree
@@ -123,9 +123,17 @@ def card_material(name: str, img) -> bpy.types.Material:
     tex.image = img
     nt.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
     nt.links.new(tex.outputs["Alpha"], bsdf.inputs["Alpha"])
+    # each quad's two faces carry the two views (the one it faces): a face seen from behind is
+    # not drawn, in Cycles too (which ignores backface culling)
+    geo = nt.nodes.new("ShaderNodeNewGeometry")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    nt.links.new(geo.outputs["Backfacing"], mix.inputs["Fac"])
+    nt.links.new(bsdf.outputs["BSDF"], mix.inputs[1])
+    nt.links.new(nt.nodes.new("ShaderNodeBsdfTransparent").outputs["BSDF"], mix.inputs[2])
+    nt.links.new(mix.outputs["Shader"], nt.nodes["Material Output"].inputs["Surface"])
     mat.blend_method = "CLIP"
     mat.shadow_method = "CLIP"
-    mat.use_backface_culling = False
+    mat.use_backface_culling = True
     return mat
 
 
@@ -146,7 +154,14 @@ def add_levels(context, plant, name: str, root, mesh_object) -> list[bpy.types.O
         coll.objects.link(obj)
         obj.parent = root
         if lv.billboards:
+            # a quad's two faces lie in one plane, which a ray tracer cannot order: each is
+            # moved a thousandth of the impostor's radius along its normal, toward its viewer
             imp = plant.impostor
+            co = np.empty(3 * len(obj.data.vertices), np.float32)
+            obj.data.vertices.foreach_get("co", co)
+            co += (1e-3 * imp.radius * _z_up(lv.mesh.normals)).astype(np.float32).ravel()
+            obj.data.vertices.foreach_set("co", co)
+            obj.data.update()
             img = atlas_image(f"{name}_billboards", imp.billboard_atlas)
             obj.data.materials.clear()
             obj.data.materials.append(card_material(f"{name} Impostor", img))
