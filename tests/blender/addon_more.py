@@ -229,3 +229,26 @@ rt_model = args[3] if len(args) > 3 else None
 if rt_model:
     runpy.run_path(os.path.join(os.path.dirname(os.path.abspath(__file__)), "addon_realtime.py"),
                    init_globals={"added": added, "out_dir": out_dir, "rt_model": rt_model})
+
+# 7. Sapling's own trees in this Blender: the splines of its curve object for four presets, for
+# tests/run-blender to compare with `sylva compare`'s stems of the same files (within 15 %)
+import ast  # noqa: E402
+
+import addon_utils  # noqa: E402
+
+addon_utils.enable("add_curve_sapling", default_set=True)
+sap = library.sapling_presets()
+props = {p.identifier: p for p in bpy.ops.curve.tree_add.get_rna_type().properties}
+for name in ("callistemon", "quaking_aspen", "small_maple", "white_birch"):
+    with open(os.path.join(sap, name + ".py")) as fh:
+        preset = ast.literal_eval(fh.read().split("\n", 1)[1])  # after the licence line
+    kw = {}
+    for k, v in preset.items():  # older presets give one number for a per-level property
+        if k in props:
+            n = getattr(props[k], "array_length", 0)
+            kw[k] = tuple([v] * n) if n and not isinstance(v, (tuple, list)) else v
+    before = set(bpy.data.objects)
+    kw.update(showLeaves=False, do_update=True)  # stems only: the leaves are a mesh of their own
+    bpy.ops.curve.tree_add(**kw)
+    splines = sum(len(o.data.splines) for o in bpy.data.objects if o not in before and o.type == "CURVE")
+    print(f"sapling_stems {name} splines={splines}")
