@@ -10,7 +10,7 @@ import os
 import sys
 
 import bpy
-from bpy.props import BoolProperty, CollectionProperty, EnumProperty, IntProperty, StringProperty
+from bpy.props import BoolProperty, CollectionProperty, EnumProperty, FloatProperty, IntProperty, StringProperty
 
 bl_info = {
     "name": "Sylva",
@@ -28,11 +28,13 @@ if _HERE not in sys.path:  # the bundled `sylva` package
 
 import sylva  # noqa: E402
 
-from . import forest, leaves as leaf_instances, library, params as schema, scene  # noqa: E402
+from . import forest, leaves as leaf_instances, library, params as schema, realtime, scene  # noqa: E402
 
 LEAVES = [("copied", "Copied", "every leaf its own geometry"),
           ("cards", "Cards", "one alpha-tested card a leaf"),
           ("instanced", "Instanced", "one leaf object instanced on the faces of an emitter, a face per leaf")]
+# the operator's and panel's options of `sylva mesh --lod --impostor --wind` (realtime.py)
+REALTIME = ("lod", "impostor", "impostor_view", "wind", "wind_seconds")
 OUTPUTS = [("MESH", "Mesh", "branches as tubes, leaves as faces"),
            ("CURVES", "Curves", "a Bézier curve a stem, with the radius per point (editable)")]
 
@@ -67,11 +69,13 @@ def _material(name: str, rgb, leaf: bool) -> bpy.types.Material:
 OBSTACLE_MATERIAL = 250
 
 
-def mesh_object(plant, name: str, drop_obstacles: bool = False) -> bpy.types.Object:
-    """The plant's mesh as one object, filled from Sylva's arrays with foreach_set (no Python
-    loop per vertex): Sylva's y-up metres turned to Blender's z-up, one material per group."""
+def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = True) -> bpy.types.Object:
+    """The plant's mesh (or a sylva.Mesh: a level's, a leaf prototype's) as one object, filled
+    from Sylva's arrays with foreach_set (no Python loop per vertex): Sylva's y-up metres turned
+    to Blender's z-up (z_up False: as they are, for a prototype in its own frame), one material
+    per group."""
     import numpy as np
-    m = plant.mesh
+    m = plant if isinstance(plant, sylva.Mesh) else plant.mesh
     v = m.vertices
     tris = m.triangles
     groups = m.groups
@@ -86,7 +90,7 @@ def mesh_object(plant, name: str, drop_obstacles: bool = False) -> bpy.types.Obj
         for g in groups:  # the kept groups, renumbered from 0
             g["first"], at = at, at + g["count"]
     co = np.empty_like(v)
-    co[:, 0], co[:, 1], co[:, 2] = v[:, 0], -v[:, 2], v[:, 1]
+    co[:, 0], co[:, 1], co[:, 2] = (v[:, 0], -v[:, 2], v[:, 1]) if z_up else (v[:, 0], v[:, 1], v[:, 2])
     nt = len(tris)
     me = bpy.data.meshes.new(name)
     me.vertices.add(len(v))
@@ -148,16 +152,26 @@ def load_model(path: str, model: str = ""):
 
 def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
              leaves: str = "copied", overrides: dict | None = None, location=(0.0, 0.0, 0.0), m=None,
-             scene_block: bool = False):
+             scene_block: bool = False, lod: int = 0, impostor: bool = False, impostor_view: int = 0,
+             wind: float = 0.0, wind_seconds: float = 0.0):
     """Build the model and put it in the scene under an empty named after it; returns the empty.
-    m: the model already loaded from path (or compiled from the scene's inputs)."""
+    m: the model already loaded from path (or compiled from the scene's inputs). lod, impostor
+    and wind: as `sylva mesh --lod --impostor --wind` (realtime.py)."""
     m = m or load_model(path, model)
     kw = dict(overrides or {})
     if seed >= 0:
         kw["seed"] = seed
+    rt = {k: v for k, v in (("lod", lod), ("impostor", impostor), ("wind", wind)) if v}
+    if rt and output == "CURVES":
+        raise ValueError("levels of detail, the impostor and wind are made of the mesh: choose Output: Mesh")
+    if impostor and impostor_view:
+        rt["impostor_view"] = impostor_view
+    if wind and wind_seconds:
+        rt["wind_seconds"] = wind_seconds
     # the mesh `sylva mesh -o tree.obj` writes: two-sided leaves, triangles without area dropped
+    # (with levels or wind, the .glb's: one-sided leaves, drawn from both sides)
     plant = m.build(None if steps < 0 else steps, until="skeleton" if output == "CURVES" else "mesh",
-                    leaves=leaves, optimize=output != "CURVES", scene=scene_block, **kw)
+                    leaves=leaves, optimize=output != "CURVES", scene=scene_block, **rt, **kw)
     coll = context.collection
     root = bpy.data.objects.new(m.name, None)
     root.empty_display_type = "PLAIN_AXES"
@@ -165,14 +179,19 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
     root["sylva_file"] = path
     root["sylva_model"] = m.name
     coll.objects.link(root)
-    obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh", scene_block)
+    if plant.levels:  # NAME_LOD0 is the tree's mesh
+        obj = realtime.add_levels(context, plant, m.name, root, mesh_object)[0]
+    else:
+        obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh", scene_block)
+        coll.objects.link(obj)
+        obj.parent = root
+        if plant.wind is not None:
+            arm = realtime.armature(context, plant.wind, m.name, root, coll)
+            realtime.skin(obj, arm, realtime.bone_names(m.name, plant.wind), plant.wind.skin_joints,
+                          plant.wind.skin_weights)
     obj["sylva_nodes"] = plant.info["nodes"]
-    coll.objects.link(obj)
-    obj.parent = root
     if leaves == "instanced":
-        root["sylva_leaf_instances"] = leaf_instances.add(
-            plant, list(sylva.ORGAN_KINDS), m.name,
-            lambda k: _material(f"{m.name} Leaf {k}", (0.25, 0.45, 0.15), True), root, coll)
+        root["sylva_leaf_instances"] = leaf_instances.add(plant, m.name, mesh_object, root, coll)
     return root
 
 
@@ -222,13 +241,25 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                             description="a curvetree's trunk is the active curve and its envelope the selected "
                                         "mesh; a grow block's obstacles are the selected meshes; an ecosystem's "
                                         "terrain is the selected mesh")
+    lod: IntProperty(name="LOD levels", default=0, min=0, max=8,
+                     description="levels of detail NAME_LOD0 .. NAME_LODn in a collection (sylva mesh --lod)")
+    impostor: BoolProperty(name="Impostor", default=False,
+                           description="the last level is a card of crossed billboards with the plant's baked "
+                                       "picture (sylva mesh --impostor)")
+    impostor_view: IntProperty(name="Impostor pixels", default=256, min=16, max=1024,
+                               description="pixels a side of each baked view (--impostor-view)")
+    wind: FloatProperty(name="Wind", default=0.0, min=0.0, max=60.0, unit="VELOCITY",
+                        description="wind speed in m/s (0: none): an armature with the sway's action, the mesh "
+                                    "skinned to it (sylva mesh --wind)")
+    wind_seconds: FloatProperty(name="Wind loop", default=4.0, min=0.5, max=60.0, unit="TIME_ABSOLUTE",
+                                description="the length of the looping sway, seconds (--wind-seconds)")
 
     def source(self) -> str:
         return library.path(self.species) if self.species != library.NONE else self.filepath
 
     def draw(self, context):
         col = self.layout.column()
-        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "use_scene"):
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "use_scene", *REALTIME):
             col.prop(self, prop)
         schema.draw(col, self.params)
         col.prop(self, "overrides")
@@ -256,7 +287,8 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                                          scene.inputs(context)[1][0] if text is not None else None)
                 else:
                     root = add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves,
-                                    kw, where, m=m, scene_block=m.kind == "grow" and text is not None)
+                                    kw, where, m=m, scene_block=m.kind == "grow" and text is not None,
+                                    **{p: getattr(self, p) for p in REALTIME})
             if said:
                 root["sylva_scene"] = said
                 self.report({"INFO"}, f"Sylva: {said}")
@@ -276,6 +308,11 @@ class SylvaSettings(bpy.types.PropertyGroup):
     leaves: EnumProperty(name="Leaves", items=LEAVES, default="copied")
     overrides: StringProperty(name="Parameters")
     use_scene: BoolProperty(name="From the scene", default=False)
+    lod: IntProperty(name="LOD levels", default=0, min=0, max=8)
+    impostor: BoolProperty(name="Impostor", default=False)
+    impostor_view: IntProperty(name="Impostor pixels", default=256, min=16, max=1024)
+    wind: FloatProperty(name="Wind", default=0.0, min=0.0, max=60.0, unit="VELOCITY")
+    wind_seconds: FloatProperty(name="Wind loop", default=4.0, min=0.5, max=60.0, unit="TIME_ABSOLUTE")
 
 
 class SYLVA_PT_panel(bpy.types.Panel):
@@ -290,10 +327,11 @@ class SYLVA_PT_panel(bpy.types.Panel):
         col.label(text="Library")
         col.template_icon_view(s, "species", show_labels=True, scale=5.0)
         col.prop(s, "species", text="")
-        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene"):
+        for prop in ("filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene", *REALTIME):
             col.prop(s, prop)
         op = col.operator(SYLVA_OT_add_tree.bl_idname, text="Add tree", icon="OUTLINER_OB_MESH")
-        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene"):
+        for prop in ("species", "filepath", "model", "seed", "steps", "output", "leaves", "overrides", "use_scene",
+                     *REALTIME):
             setattr(op, prop, getattr(s, prop))
 
 

@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "lod.h"
 #include "mesh.h"
 
 #ifdef __cplusplus
@@ -45,6 +46,13 @@ void syl_impostor_direction(int grid, int col, int row, float d[3]);
 
 int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor *out);
 void syl_impostor_free(SylImpostor *imp);
+
+/* Bake the impostor of c's LOD0 as it is drawn (instanced leaves meshed into it, as blades or
+ * cards; sk and mo are what LOD0 was meshed from) with io, and make its crossed billboards
+ * the chain's last level (which imp then owns; the chain's atlas is imp's). SYL_OK,
+ * SYL_EMODEL (nothing drawn), SYL_ELIMIT, SYL_EUSAGE; reported on diag. */
+int syl_impostor_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
+                       SylImpostor *imp, FILE *diag);
 
 #ifdef __cplusplus
 }

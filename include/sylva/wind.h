@@ -79,6 +79,12 @@ static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, i
 int syl_wind_write_glb(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
                        const char *path, FILE *diag);
 
+/* Each vertex of m's two joints and weights, as the .glb's JOINTS_0 and WEIGHTS_0 hold them
+ * (joints[2 v], joints[2 v + 1]; weights bytes summing to 255, the larger first; a second
+ * weight of 0 leaves its joint unused): for exporters that skin the mesh themselves (the
+ * Blender add-on's armature). m is meshed from s with SylMeshOptions.vertex_nodes. */
+void syl_wind_skin(const SylMesh *m, const SylSkeleton *s, const SylWind *w, int32_t *joints, uint8_t *weights);
+
 /* A chain of levels of detail (lod.h) with wind: every level that has vertex nodes (of s)
  * skinned to w's one set of joints and driven by the one animation; the others (crossed
  * billboards) still. */

@@ -23,7 +23,7 @@ from . import _core, _view
 from .errors import CompileError, LimitError, SylvaError
 
 __all__ = ["load", "compile", "compare", "File", "Model", "Extern", "String", "Module", "Plant", "Skeleton", "Mesh",
-           "Queries",
+           "Level", "Wind", "Impostor", "LeafSet", "Queries",
            "Picture", "Param", "Ecosystem", "Snapshot", "CompileError", "LimitError", "SylvaError", "__version__"]
 __version__ = _core.VERSION
 
@@ -35,7 +35,8 @@ LEAVES = {"copied": 0, "cards": 1, "instanced": 2, "instanced-cards": 3, "cluste
 _UNTIL = {"mesh": 0, "skeleton": 1, "string": 2}
 # Keyword arguments of the building calls; every other keyword is a model parameter (--set).
 _OPTIONS = {"seed", "threads", "max_modules", "max_memory", "scene", "leaves", "sides", "age", "one_sided",
-            "optimize", "functions"}
+            "optimize", "functions", *(_REALTIME := ("lod", "impostor", "billboards", "impostor_grid", "impostor_view",
+                                                     "wind", "wind_dir", "wind_seconds", "wind_levels"))}
 
 
 def load(path: str | os.PathLike, **overrides) -> "File":
@@ -210,8 +211,18 @@ class Model:
 
     def build(self, steps: int | None = None, *, until: str = "mesh", **kw) -> "Plant":
         """Build the plant as `sylva mesh` does: skeleton and mesh (until="skeleton" stops
-        earlier). steps: derivation steps, or years of a grown tree."""
+        earlier). steps: derivation steps, or years of a grown tree.
+        The real-time options of `sylva mesh` (docs/cli.md) give .levels, .impostor and .wind:
+        lod=N levels of detail LOD0..LODN, impostor=True the octahedral atlas and crossed
+        billboards as the last level (billboards=K: 2 to 4 quads, impostor_grid, impostor_view),
+        wind=SPEED (m/s) the sway's joints and keys (wind_dir=(x, z), wind_seconds,
+        wind_levels). With any of them the mesh is made as `sylva mesh` makes it for a .glb
+        (one_sided=True, optimize=True) unless those say otherwise."""
         opts = {k: kw.pop(k) for k in list(kw) if k in _OPTIONS}
+        rt = _realtime({k: opts.pop(k) for k in _REALTIME if k in opts})
+        if rt:
+            opts.setdefault("one_sided", True)
+            opts.setdefault("optimize", True)
         if until not in _UNTIL:
             raise ValueError(f"until is one of {', '.join(_UNTIL)}, not {until!r}")
         leaves = opts.pop("leaves", "copied")
@@ -226,7 +237,7 @@ class Model:
                           max_modules=opts.get("max_modules", 0), max_memory=opts.get("max_memory", 0),
                           scene=bool(opts.get("scene", False)), leaves=LEAVES[leaves], sides=opts.get("sides", 0),
                           age=float(opts.get("age", 0.0)), one_sided=bool(opts.get("one_sided", False)),
-                          optimize=bool(opts.get("optimize", False)))
+                          optimize=bool(opts.get("optimize", False)), **rt)
         return Plant(core, self.name)
 
     def save(self, path: str | os.PathLike, steps: int | None = None, **kw) -> "Plant":
@@ -346,6 +357,27 @@ def _environment(fn):
         q.tips, q.ends = np.asarray(tip).astype(bool), np.asarray(ends)
         fn(step, q)
     return call
+
+
+def _realtime(o: dict) -> dict:
+    """The real-time keyword arguments of build() as _core.Program.build takes them."""
+    out = {}
+    for k in ("lod", "billboards", "impostor_grid", "impostor_view", "wind_levels"):
+        if k in o:
+            out[k] = _count(k, o[k])
+    if o.get("impostor"):
+        out["impostor"] = True
+    for k in ("wind", "wind_seconds"):
+        if k in o and o[k] is not None:
+            if isinstance(o[k], bool) or not isinstance(o[k], (int, float, np.integer, np.floating)):
+                raise TypeError(f"{k} is a number, not {type(o[k]).__name__}")
+            if not o[k] >= 0:
+                raise ValueError(f"{k} is not negative ({o[k]})")
+            out[k] = float(o[k])
+    if o.get("wind_dir") is not None:
+        x, z = (float(c) for c in o["wind_dir"])
+        out["wind_dx"], out["wind_dz"] = x, z
+    return {k: v for k, v in out.items() if v}
 
 
 def _slider_range(p: "Param") -> tuple[float, float]:
@@ -505,9 +537,9 @@ class Mesh:
     """A mesh as numpy views (no copy): vertices (n, 3), normals (n, 3), uvs (n, 2) float32 and
     triangles (m, 3) uint32; groups say which triangles have which material."""
 
-    def __init__(self, plant: "Plant"):
+    def __init__(self, plant: "Plant", arrays: dict | None = None):
         self._plant = plant
-        a = plant._core.mesh_arrays()
+        a = arrays or plant._core.mesh_arrays()
         self.vertices = np.asarray(a["positions"])
         self.normals = np.asarray(a["normals"])
         self.uvs = np.asarray(a["uvs"])
@@ -515,14 +547,127 @@ class Mesh:
         self.groups = a["groups"]
 
     def save(self, path: str | os.PathLike) -> None:
-        """Write .glb, .obj or .ply (by the extension) through the writers of `sylva mesh`."""
+        """Write .glb, .obj or .ply (by the extension) through the writers of `sylva mesh`;
+        a plant built with lod= or wind= writes its levels and sway into a .glb."""
         self._plant._core.write(os.fspath(path))
+
+    levels = property(lambda self: self._plant.levels, doc="the plant's levels of detail (Plant.levels)")
+    wind = property(lambda self: self._plant.wind, doc="the plant's wind animation (Plant.wind)")
+    impostor = property(lambda self: self._plant.impostor, doc="the plant's impostor (Plant.impostor)")
 
     def _repr_mimebundle_(self, include=None, exclude=None):
         return self._plant._repr_mimebundle_()
 
     def __repr__(self) -> str:
         return f"<sylva.Mesh: {len(self.vertices)} vertices, {len(self.triangles)} triangles>"
+
+
+@dataclass(frozen=True)
+class Level:
+    """One level of detail (`sylva mesh --lod`): LODk's mesh and how it was made (docs/mesh.md):
+    stems of order <= max_order and at least min_radius thick, leaf_keep of the leaves
+    enlarged by leaf_scale; shown above coverage of the screen's height; billboards: the
+    impostor's crossed quads (textured with Impostor.billboard_atlas)."""
+    level: int
+    mesh: "Mesh"
+    max_order: int
+    min_radius: float
+    leaf_keep: float
+    leaf_scale: float
+    cluster_leaves: float
+    coverage: float
+    error: float
+    billboards: bool
+    _plant: "Plant" = None
+
+    def skin(self) -> "tuple[np.ndarray, np.ndarray] | None":
+        """With wind: each vertex's two joints and weights (bytes summing to 255) of this
+        level's mesh, as the .glb skins it to the one set of joints; None for the billboards."""
+        s = self._plant._core.skin(self.level)
+        return None if s is None else tuple(np.asarray(a) for a in s)
+
+    @property
+    def triangles(self) -> int:
+        return len(self.mesh.triangles)
+
+
+class Impostor:
+    """The plant baked into atlases (`sylva mesh --impostor`): .color and .normal the
+    grid x grid octahedral atlas (size x size RGBA; None with billboards= alone),
+    .billboard_atlas the crossed billboards' texture (view x 2·billboards·view RGBA), the
+    bounding sphere (centre, radius) every view frames."""
+
+    def __init__(self, d: dict):
+        def rgba(b, w=None):
+            if b is None:
+                return None
+            a = np.asarray(b)
+            return a.reshape(a.shape[0], -1, 4).view(Picture)
+        self.grid, self.view, self.size = d["grid"], d["view"], d["size"]
+        self.color, self.normal = rgba(d["color"]), rgba(d["normal"])
+        self.billboard_atlas = rgba(d["bb_color"])
+        self.centre, self.radius, self.billboards = d["centre"], d["radius"], d["billboards"]
+
+    def __repr__(self) -> str:
+        return f"<sylva.Impostor {self.grid}x{self.grid} views of {self.view} px, {self.billboards} billboards>"
+
+
+WIND_STEM_DTYPE = _dtype(_core.LAYOUT["wind_stem"], {"joint": "<i4", "parent": "<i4", "base": ("<f4", 3),
+                                                     "dir": ("<f4", 3), "length": "<f4", "radius": "<f4",
+                                                     "parent_radius": "<f4", "phase": "<f4", "stiffness": "<f4",
+                                                     "order": "<u2"})
+WIND_JOINT_DTYPE = _dtype(_core.LAYOUT["wind_joint"], {"stem": "<i4", "parent": "<i4", "amplitude": "<f4",
+                                                       "frequency": "<f4", "blend_start": "<f4",
+                                                       "blend_length": "<f4"})
+
+
+class Wind:
+    """The sway of `sylva mesh --wind` (docs/mesh.md#wind): a joint per stem of the first
+    levels, parents first (.joints: stem, parent, amplitude, frequency, blend; .stems: base,
+    dir, length, radius, phase, ...), each joint's rotation at every key as unit quaternions
+    x, y, z, w in its parent's frame, which has no rest rotation (.rotations (joints, keys, 4)),
+    at .times (the last key is the first: the loop), and each vertex's two joints and weights
+    (.skin_joints, .skin_weights bytes summing to 255) as the .glb skins the mesh. Y is up.
+    .heads: each joint's pivot, its stem's base."""
+
+    def __init__(self, d: dict, skin):
+        self.stems = np.frombuffer(d["stems"], dtype=WIND_STEM_DTYPE)
+        self.joints = np.frombuffer(d["joints"], dtype=WIND_JOINT_DTYPE)
+        self.seconds, self.nkeys = d["seconds"], d["nkeys"]
+        self.rotations = np.asarray(d["rot"]).reshape(len(self.joints), self.nkeys, 4)
+        k = np.arange(self.nkeys)
+        self.times = np.where(k == self.nkeys - 1, self.seconds, self.seconds * k / max(self.nkeys - 1, 1))
+        self.skin_joints, self.skin_weights = (np.asarray(a) for a in skin)
+
+    @property
+    def heads(self) -> np.ndarray:
+        return self.stems["base"][self.joints["stem"]]
+
+    def __len__(self) -> int:
+        return len(self.joints)
+
+    def __repr__(self) -> str:
+        return f"<sylva.Wind: {len(self)} joints, {self.nkeys} keys over {self.seconds:g} s>"
+
+
+class LeafSet:
+    """The leaves of one material as instances of one prototype leaf (`sylva mesh --leaves
+    instanced`, EXT_mesh_gpu_instancing): .proto the leaf of size 1 the mesher makes (the
+    model's own outline; at the origin along +x, across +y, facing +z; one-sided), and per
+    leaf .translations (n, 3), .rotations (n, 4) unit quaternions x, y, z, w, .scales (n, 3)
+    and .nodes (its skeleton node): a vertex p of the prototype is at T + R (S p). Y is up."""
+
+    def __init__(self, plant: "Plant", d: dict):
+        self.name = d["name"]
+        self.proto = Mesh(plant, d["proto"])
+        self.translations, self.rotations = np.asarray(d["t"]), np.asarray(d["r"])
+        self.scales, self.nodes = np.asarray(d["s"]), np.asarray(d["node"])
+
+    def __len__(self) -> int:
+        return len(self.translations)
+
+    def __repr__(self) -> str:
+        return f"<sylva.LeafSet {self.name}: {len(self)} leaves of {len(self.proto.triangles)} triangles>"
 
 
 class Picture(np.ndarray):
@@ -554,6 +699,28 @@ class Plant:
     @property
     def mesh(self) -> Mesh:
         return Mesh(self)
+
+    @property
+    def levels(self) -> list[Level]:
+        """The levels of detail of lod= (or impostor=, billboards=), LOD0 first; [] without."""
+        return [Level(d["level"], Mesh(self, d["mesh"]), d["max_order"], d["min_radius"], d["leaf_keep"],
+                      d["leaf_scale"], d["cluster_leaves"], d["coverage"], d["error"], d["billboards"], self)
+                for d in self._core.levels()]
+
+    def leaf_sets(self, cards: bool = False) -> list[LeafSet]:
+        """The leaves as instances, one set a leaf material, as `sylva mesh --leaves instanced`
+        (cards: instanced-cards) places them; the plant's mesh is unchanged."""
+        return [LeafSet(self, d) for d in self._core.leaf_sets(cards=bool(cards))]
+
+    @property
+    def impostor(self) -> "Impostor | None":
+        d = self._core.impostor()
+        return None if d is None else Impostor(d)
+
+    @property
+    def wind(self) -> "Wind | None":
+        d = self._core.wind()
+        return None if d is None else Wind(d, self._core.skin(0))
 
     def render(self, width: int = 512, height: int = 512, *, view: str = "auto", samples: int = 0,
                transparent: bool = False, threads: int = 0) -> Picture:

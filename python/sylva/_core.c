@@ -12,6 +12,8 @@
 
 #include <sylva/ecosystem.h>
 #include <sylva/grow.h>
+#include <sylva/impostor.h>
+#include <sylva/lod.h>
 #include <sylva/metrics.h>
 #include <sylva/plant.h>
 #include <sylva/render.h>
@@ -19,6 +21,7 @@
 #include <sylva/stream.h>
 #include <sylva/sylva.h>
 #include <sylva/terrain.h>
+#include <sylva/wind.h>
 #if __has_include(<sylva/describe.h>)
 #include <sylva/describe.h>
 #define HAVE_DESCRIBE 1
@@ -731,33 +734,89 @@ static PyObject *program_derive(ProgramObject *o, PyObject *args, PyObject *kw) 
 typedef struct {
     PyObject_HEAD
     SylPlant pl;
+    /* what `sylva mesh --lod --impostor --billboards --wind` adds (build's realtime options) */
+    SylLodChain lods; /* lods.n 0: none; level 0 is pl.mesh */
+    SylImpostor imp;  /* billboards 0: none */
+    SylWind wind;     /* njoints 0: none */
+    SylMeshOptions mo; /* what the mesh was made with (diag NULL) */
 } PlantObject;
 
 static void plant_dealloc(PlantObject *o) {
+    syl_lod_free(&o->lods);
+    syl_impostor_free(&o->imp);
+    syl_wind_free(&o->wind);
     syl_plant_free(&o->pl);
     Py_TYPE(o)->tp_free((PyObject *)o);
 }
 
 static PyTypeObject PlantType;
 
+/* The levels of detail and the impostor's billboards of a built plant, as cmd_mesh.c makes
+ * them: LOD0 is the plant's mesh (optimised in place), then lod - 1 geometric levels and the
+ * billboards (with impostor or billboards), or lod geometric levels. */
+static int realtime_levels(PlantObject *pl, const SylMeshOptions *mo, int lod, int impostor, int billboards,
+                           int grid, int view, int threads, FILE *diag) {
+    if (!pl->pl.mesh || !pl->pl.skeleton) return SYL_EUSAGE;
+    int last_billboard = impostor || billboards;
+    int geometric = (lod ? lod : 1) - (last_billboard ? 1 : 0);
+    int st = syl_lod_build(pl->pl.skeleton, mo, pl->pl.mesh, geometric, &pl->lods);
+    if (st) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
+    if (!st && last_billboard) {
+        SylImpostorOptions io = {.grid = impostor ? grid : -1, .view = view, .billboards = billboards ? billboards : 3,
+                                 .threads = threads, .diag = diag};
+        st = syl_impostor_level(&pl->lods, pl->pl.skeleton, mo, &io, &pl->imp, diag);
+    }
+    return st;
+}
+
+/* The wind's joints and animation of a plant meshed with vertex nodes (`sylva mesh --wind`). */
+static int realtime_wind(PlantObject *pl, const SylMeshOptions *mo, const SylWindOptions *wo, FILE *diag) {
+    const SylSkeleton *sk = pl->pl.skeleton;
+    if (!pl->pl.mesh || !sk) return SYL_EUSAGE;
+    if (!pl->pl.mesh->node) {
+        fprintf(diag, "sylva: error: wind cannot skin this mesh: part of it is not the plant's (a scene's "
+                      "obstacles)\n");
+        return SYL_EUSAGE;
+    }
+    float *radius = malloc((sk->nnodes + 1) * sizeof *radius);
+    int st = radius ? syl_mesh_radii(sk, mo, radius) : SYL_ELIMIT;
+    if (!st) st = syl_wind_build(sk, radius, wo, &pl->wind);
+    free(radius);
+    if (st && st != SYL_ELIMIT) fprintf(diag, "sylva: error: cannot build the wind's joints (bad model)\n");
+    return st;
+}
+
 static PyObject *program_build(ProgramObject *o, PyObject *args, PyObject *kw) {
     static char *kwl[] = {"until", "steps", "seed", "threads", "max_modules", "max_memory", "scene", "leaves",
-                          "sides", "age", "one_sided", "optimize", NULL};
+                          "sides", "age", "one_sided", "optimize", "lod", "impostor", "billboards", "impostor_grid",
+                          "impostor_view", "wind", "wind_dx", "wind_dz", "wind_seconds", "wind_levels", NULL};
     int until = SYL_PLANT_MESH, steps = -1, threads = 0, scene = 0, leaves = 0, sides = 0, one_sided = 0,
-        optimize = 0;
-    double age = 0;
+        optimize = 0, lod = 0, impostor = 0, billboards = 0, grid = 0, view = 0, wind_levels = 0;
+    double age = 0, wind = 0, wdx = 0, wdz = 0, wsec = 0;
     PyObject *seedo = Py_None;
     unsigned long long max_modules = 0, max_memory = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "|iiOiKKpiidpp", kwl, &until, &steps, &seedo, &threads,
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "|iiOiKKpiidppipiiiddddi", kwl, &until, &steps, &seedo, &threads,
                                      &max_modules, &max_memory, &scene, &leaves, &sides, &age, &one_sided,
-                                     &optimize))
+                                     &optimize, &lod, &impostor, &billboards, &grid, &view, &wind, &wdx, &wdz, &wsec,
+                                     &wind_levels))
         return NULL;
     if (until < SYL_PLANT_MESH || until > SYL_PLANT_STRING)
         return PyErr_Format(PyExc_ValueError, "until is 0 (mesh), 1 (skeleton) or 2 (string), not %d", until);
     if (age < 0 || age > 1) return PyErr_Format(PyExc_ValueError, "age is in [0, 1], not %g", age);
+    /* the checks of `sylva mesh`'s options (cli/options.c), said as Python says them */
+    if (lod < 0 || lod > SYL_LOD_MAX) return PyErr_Format(PyExc_ValueError, "lod is 0 to %d, not %d", SYL_LOD_MAX, lod);
+    if (billboards && (billboards < 2 || billboards > 4))
+        return PyErr_Format(PyExc_ValueError, "billboards is 2, 3 or 4, not %d", billboards);
+    if (grid < 0 || view < 0 || wind < 0 || wsec < 0 || wind_levels < 0)
+        return PyErr_Format(PyExc_ValueError, "impostor_grid, impostor_view, wind, wind_seconds and wind_levels are "
+                                              "not negative");
+    int levels = lod || impostor || billboards;
+    if ((levels || wind > 0) && until != SYL_PLANT_MESH)
+        return PyErr_Format(PyExc_ValueError, "lod, impostor, billboards and wind need the mesh (until='mesh')");
     Diag d;
     if (diag_open(&d)) return NULL;
-    SylMeshOptions mo = {.leaves = leaves, .sides = sides, .threads = threads, .one_sided = one_sided, .diag = d.f};
+    SylMeshOptions mo = {.leaves = leaves, .sides = sides, .threads = threads, .one_sided = one_sided, .diag = d.f,
+                         .vertex_nodes = wind > 0};
     SylPlantOptions po = {.threads = threads, .max_modules = max_modules, .max_memory = max_memory,
                           .until = (SylPlantStage)until, .scene = scene, .age = age, .mesh = &mo, .diag = d.f};
     if (steps >= 0) {
@@ -781,11 +840,22 @@ static PyObject *program_build(ProgramObject *o, PyObject *args, PyObject *kw) {
     Py_CLEAR(o->ev);
     Py_CLEAR(o->etb);
     memset(&pl->pl, 0, sizeof pl->pl);
+    memset(&pl->lods, 0, sizeof pl->lods);
+    memset(&pl->imp, 0, sizeof pl->imp);
+    memset(&pl->wind, 0, sizeof pl->wind);
+    pl->mo = mo;
+    pl->mo.diag = NULL;
     int st;
     Py_BEGIN_ALLOW_THREADS
     st = syl_plant_build(o->p, &po, &pl->pl);
     /* as `sylva mesh` does before it writes a file (no view of the arrays exists yet) */
-    if (!st && optimize && pl->pl.mesh) st = syl_mesh_optimize(pl->pl.mesh);
+    if (!st && levels) st = realtime_levels(pl, &mo, lod, impostor, billboards, grid, view, threads, d.f);
+    else if (!st && optimize && pl->pl.mesh) st = syl_mesh_optimize(pl->pl.mesh);
+    if (!st && wind > 0) {
+        SylWindOptions wo = {.speed = (float)wind, .dir = {(float)wdx, (float)wdz}, .seconds = (float)wsec,
+                             .levels = wind_levels, .diag = d.f};
+        st = realtime_wind(pl, &mo, &wo, d.f);
+    }
     Py_END_ALLOW_THREADS
     if (st) {
         Py_DECREF(pl);
@@ -837,9 +907,8 @@ static PyObject *plant_organs(PlantObject *o, PyObject *unused) {
     return buffer_new((PyObject *)o, s->organs, "B", 1, (Py_ssize_t)s->norgans, (Py_ssize_t)sizeof(SylOrgan));
 }
 
-static PyObject *plant_mesh_arrays(PlantObject *o, PyObject *unused) {
-    if (need_mesh(o)) return NULL;
-    SylMesh *m = o->pl.mesh;
+/* A mesh's arrays as views kept alive by owner, which owns m (a plant: its mesh or a level's). */
+static PyObject *mesh_dict(PyObject *owner, const SylMesh *m) {
     Py_ssize_t nv = (Py_ssize_t)m->nverts, nt = (Py_ssize_t)(m->nidx / 3);
     PyObject *groups = PyList_New(m->ngroups);
     for (int g = 0; groups && g < m->ngroups; g++) {
@@ -855,10 +924,133 @@ static PyObject *plant_mesh_arrays(PlantObject *o, PyObject *unused) {
         PyList_SET_ITEM(groups, g, t);
     }
     if (!groups) return NULL;
-    return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N}", "positions", buffer_new((PyObject *)o, m->pos, "f", 4, nv, 3),
-                         "normals", buffer_new((PyObject *)o, m->nrm, "f", 4, nv, 3), "uvs",
-                         buffer_new((PyObject *)o, m->uv, "f", 4, nv, 2), "triangles",
-                         buffer_new((PyObject *)o, m->idx, "I", 4, nt, 3), "groups", groups);
+    return Py_BuildValue("{s:N,s:N,s:N,s:N,s:N}", "positions", buffer_new(owner, m->pos, "f", 4, nv, 3),
+                         "normals", buffer_new(owner, m->nrm, "f", 4, nv, 3), "uvs",
+                         buffer_new(owner, m->uv, "f", 4, nv, 2), "triangles",
+                         buffer_new(owner, m->idx, "I", 4, nt, 3), "groups", groups);
+}
+
+static PyObject *plant_mesh_arrays(PlantObject *o, PyObject *unused) {
+    if (need_mesh(o)) return NULL;
+    return mesh_dict((PyObject *)o, o->pl.mesh);
+}
+
+/* [{level, max_order, ..., mesh: mesh_dict}] of the levels of detail, LOD0 first ([]: none). */
+static PyObject *plant_levels(PlantObject *o, PyObject *unused) {
+    PyObject *l = PyList_New(0);
+    for (int k = 0; l && k < o->lods.n; k++) {
+        const SylLodLevel *lv = &o->lods.level[k];
+        int bb = o->imp.billboards && k == o->lods.n - 1;
+        PyObject *mesh = mesh_dict((PyObject *)o, lv->mesh);
+        PyObject *t = mesh ? Py_BuildValue("{s:i,s:i,s:d,s:d,s:d,s:d,s:d,s:d,s:O,s:N}", "level", k, "max_order",
+                                           lv->max_order, "min_radius", (double)lv->min_radius, "leaf_keep",
+                                           (double)lv->leaf_keep, "leaf_scale", (double)lv->leaf_scale,
+                                           "cluster_leaves", (double)lv->cluster_leaves, "coverage",
+                                           (double)lv->coverage, "error", (double)lv->error, "billboards",
+                                           bb ? Py_True : Py_False, "mesh", mesh)
+                           : NULL;
+        if (!t || PyList_Append(l, t)) Py_CLEAR(l);
+        Py_XDECREF(t);
+    }
+    return l;
+}
+
+/* The impostor's atlases and sphere (None: no impostor was baked). */
+static PyObject *plant_impostor(PlantObject *o, PyObject *unused) {
+    const SylImpostor *im = &o->imp;
+    if (!im->billboards) Py_RETURN_NONE;
+    PyObject *color = im->color ? buffer_new((PyObject *)o, im->color, "B", 1, im->size, (Py_ssize_t)im->size * 4)
+                                : Py_NewRef(Py_None);
+    PyObject *normal = im->normal ? buffer_new((PyObject *)o, im->normal, "B", 1, im->size, (Py_ssize_t)im->size * 4)
+                                  : Py_NewRef(Py_None);
+    PyObject *bb = buffer_new((PyObject *)o, im->bb_color, "B", 1, im->view, (Py_ssize_t)im->bb_width * 4);
+    return Py_BuildValue("{s:i,s:i,s:i,s:N,s:N,s:(ddd),s:d,s:i,s:i,s:N}", "grid", im->color ? im->grid : 0, "view",
+                         im->view, "size", im->color ? im->size : 0, "color", color, "normal", normal, "centre",
+                         (double)im->centre[0], (double)im->centre[1], (double)im->centre[2], "radius",
+                         (double)im->radius, "billboards", im->billboards, "bb_width", im->bb_width, "bb_color", bb);
+}
+
+/* The wind's stems and joints (raw records), key rotations and each vertex's two joints and
+ * weights as the .glb skins them (None: no wind). */
+static PyObject *plant_wind(PlantObject *o, PyObject *unused) {
+    const SylWind *w = &o->wind;
+    if (!w->njoints) Py_RETURN_NONE;
+    return Py_BuildValue("{s:d,s:i,s:N,s:N,s:N}", "seconds", (double)w->seconds, "nkeys", w->nkeys, "stems",
+                         buffer_new((PyObject *)o, w->stems, "B", 1, w->nstems, (Py_ssize_t)sizeof *w->stems),
+                         "joints", buffer_new((PyObject *)o, w->joints, "B", 1, w->njoints,
+                                              (Py_ssize_t)sizeof *w->joints),
+                         "rot", buffer_new((PyObject *)o, w->rot, "f", 4, (Py_ssize_t)w->njoints * w->nkeys, 4));
+}
+
+/* skin(k): (joints, weights), each vertex's two of level k's mesh (0: the plant's) as the .glb
+ * skins it; None without wind or for a level without vertex nodes (the billboards). */
+static PyObject *plant_skin(PlantObject *o, PyObject *args) {
+    int k = 0;
+    if (!PyArg_ParseTuple(args, "|i", &k)) return NULL;
+    if (k < 0 || (k > 0 && k >= o->lods.n)) return PyErr_Format(PyExc_IndexError, "no level %d", k);
+    const SylMesh *m = k ? o->lods.level[k].mesh : o->pl.mesh;
+    if (!o->wind.njoints || !m->node) Py_RETURN_NONE;
+    int32_t *joints = malloc(2 * sizeof *joints * (m->nverts + 1));
+    uint8_t *weights = malloc(2 * (m->nverts + 1));
+    if (!joints || !weights) {
+        free(joints), free(weights);
+        return PyErr_NoMemory();
+    }
+    syl_wind_skin(m, o->pl.skeleton, &o->wind, joints, weights);
+    return Py_BuildValue("(NN)", buffer_new(NULL, joints, "i", 4, (Py_ssize_t)m->nverts, 2),
+                         buffer_new(NULL, weights, "B", 1, (Py_ssize_t)m->nverts, 2));
+}
+
+static void sets_free(PyObject *capsule) {
+    int *n = PyCapsule_GetContext(capsule);
+    syl_instances_free(PyCapsule_GetPointer(capsule, "sylva.instances"), n ? *n : 0);
+    free(n);
+}
+
+/* leaf_sets(cards=False): the leaves as instances of one prototype a leaf material, as `sylva
+ * mesh --leaves instanced` (or instanced-cards) writes them into a .glb: [{name, proto:
+ * mesh_dict, t, r, s, node}] (translations, rotations x y z w, scales, each leaf's node). */
+static PyObject *plant_leaf_sets(PlantObject *o, PyObject *args, PyObject *kw) {
+    static char *kwl[] = {"cards", NULL};
+    int cards = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "|p", kwl, &cards)) return NULL;
+    if (need_skeleton(o)) return NULL;
+    Diag d;
+    if (diag_open(&d)) return NULL;
+    SylMeshOptions mo = o->mo;
+    mo.leaves = cards ? SYL_LEAVES_INSTANCED_CARDS : SYL_LEAVES_INSTANCED;
+    mo.one_sided = 1; /* a .glb's leaves: one face, drawn from both sides */
+    mo.vertex_nodes = 1;
+    mo.diag = d.f;
+    SylInstances *sets = NULL;
+    int n = 0, st;
+    Py_BEGIN_ALLOW_THREADS
+    st = syl_leaf_instances(o->pl.skeleton, &mo, &sets, &n);
+    Py_END_ALLOW_THREADS
+    if (st) return raise_status(st, &d);
+    diag_drop(&d);
+    int *count = malloc(sizeof *count);
+    PyObject *cap = count ? PyCapsule_New(sets, "sylva.instances", sets_free) : NULL;
+    if (!cap) {
+        free(count);
+        syl_instances_free(sets, n);
+        return PyErr_Occurred() ? NULL : PyErr_NoMemory();
+    }
+    *count = n;
+    PyCapsule_SetContext(cap, count);
+    PyObject *l = PyList_New(0);
+    for (int i = 0; l && i < n; i++) {
+        const SylInstances *x = &sets[i];
+        Py_ssize_t c = (Py_ssize_t)x->count;
+        PyObject *t = Py_BuildValue("{s:s,s:N,s:N,s:N,s:N,s:N}", "name", x->name, "proto", mesh_dict(cap, x->proto),
+                                    "t", buffer_new(cap, x->t, "f", 4, c, 3), "r", buffer_new(cap, x->r, "f", 4, c, 4),
+                                    "s", buffer_new(cap, x->s, "f", 4, c, 3), "node",
+                                    buffer_new(cap, x->node, "i", 4, c, -1));
+        if (!t || PyList_Append(l, t)) Py_CLEAR(l);
+        Py_XDECREF(t);
+    }
+    Py_DECREF(cap);
+    return l;
 }
 
 static PyObject *plant_write(PlantObject *o, PyObject *args) {
@@ -869,7 +1061,9 @@ static PyObject *plant_write(PlantObject *o, PyObject *args) {
     if (diag_open(&d)) return NULL;
     int st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_mesh_write(o->pl.mesh, path, d.f);
+    SylMeshOutput out = {.mesh = o->pl.mesh, .lods = o->lods.n ? &o->lods : NULL, .skeleton = o->pl.skeleton,
+                         .wind = o->wind.njoints ? &o->wind : NULL};
+    st = out.lods || out.wind ? syl_mesh_write_output(&out, path, d.f) : syl_mesh_write(o->pl.mesh, path, d.f);
     Py_END_ALLOW_THREADS
     if (st) return raise_status(st, &d);
     diag_drop(&d);
@@ -974,6 +1168,12 @@ static PyMethodDef plant_methods[] = {
     {"nodes", (PyCFunction)plant_nodes, METH_NOARGS, "the skeleton's nodes, raw records"},
     {"organs", (PyCFunction)plant_organs, METH_NOARGS, "the skeleton's organs, raw records"},
     {"mesh_arrays", (PyCFunction)plant_mesh_arrays, METH_NOARGS, "positions, normals, uvs, triangles, groups"},
+    {"levels", (PyCFunction)plant_levels, METH_NOARGS, "the levels of detail (lod=), LOD0 first"},
+    {"impostor", (PyCFunction)plant_impostor, METH_NOARGS, "the impostor's atlases (impostor=), or None"},
+    {"wind", (PyCFunction)plant_wind, METH_NOARGS, "the wind's joints and keys (wind=), or None"},
+    {"leaf_sets", (PyCFunction)(void (*)(void))plant_leaf_sets, METH_VARARGS | METH_KEYWORDS,
+     "leaf_sets(cards=False): the leaves as instance sets, each with its prototype"},
+    {"skin", (PyCFunction)plant_skin, METH_VARARGS, "skin(level=0): each vertex's joints and weights, or None"},
     {"write", (PyCFunction)plant_write, METH_VARARGS, "write(path): .glb, .obj or .ply by the extension"},
     {"skeleton_csv", (PyCFunction)plant_skeleton_csv, METH_NOARGS, "the skeleton as `sylva skeleton` writes it"},
     {"render", (PyCFunction)(void (*)(void))plant_render, METH_VARARGS | METH_KEYWORDS, "an RGBA picture"},
@@ -1205,6 +1405,19 @@ static PyObject *core_set_errors(PyObject *self, PyObject *args) {
 }
 
 /* Byte offsets of the record fields, for numpy's structured dtypes (sylva/_layout.py). */
+static PyObject *wind_layouts(void) {
+#define F(T, f) #f, (Py_ssize_t)offsetof(T, f)
+    return Py_BuildValue("{s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n},s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n}}",
+                         "wind_stem", F(SylWindStem, joint), F(SylWindStem, parent), F(SylWindStem, base),
+                         F(SylWindStem, dir), F(SylWindStem, length), F(SylWindStem, radius),
+                         F(SylWindStem, parent_radius), F(SylWindStem, phase), F(SylWindStem, stiffness),
+                         F(SylWindStem, order), "itemsize", (Py_ssize_t)sizeof(SylWindStem), "wind_joint",
+                         F(SylWindJoint, stem), F(SylWindJoint, parent), F(SylWindJoint, amplitude),
+                         F(SylWindJoint, frequency), F(SylWindJoint, blend_start), F(SylWindJoint, blend_length),
+                         "itemsize", (Py_ssize_t)sizeof(SylWindJoint));
+#undef F
+}
+
 static PyObject *layouts(void) {
 #define F(T, f) #f, (Py_ssize_t)offsetof(T, f)
     return Py_BuildValue("{s:{s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n,s:n},"
@@ -1242,7 +1455,9 @@ PyMODINIT_FUNC PyInit__core(void) {
         if (PyType_Ready(types[i])) return NULL;
     PyObject *m = PyModule_Create(&core_module);
     if (!m) return NULL;
-    PyObject *lay = layouts();
+    PyObject *lay = layouts(), *wl = lay ? wind_layouts() : NULL;
+    if (wl && PyDict_Update(lay, wl)) Py_CLEAR(lay);
+    Py_XDECREF(wl);
     if (!lay || PyModule_AddObject(m, "LAYOUT", lay) || PyModule_AddStringConstant(m, "VERSION", SYLVA_VERSION) ||
         PyModule_AddIntConstant(m, "HAVE_DESCRIBE",
 #ifdef HAVE_DESCRIBE

@@ -3,7 +3,6 @@
 #include <string.h>
 #include <strings.h>
 
-#include "cli/billboard.h"
 #include "cli/cli.h"
 #include "sylva/impostor.h"
 #include "util/outgroup.h"
@@ -60,14 +59,14 @@ static void beside(const char *output, const char *suffix, char *buf, size_t n) 
     snprintf(buf, n, "%.*s%s", (int)stem, output, suffix);
 }
 
-/* Bake the impostor, make its crossed billboards the chain's last level (cli/billboard.c) and
+/* Bake the impostor, make its crossed billboards the chain's last level (plant/billboard.c) and
  * write the octahedral atlas beside the file. */
 static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk, const SylMeshOptions *mo,
                         int threads, SylBudget *budget, const char *output, SylImpostor *imp, char *extras,
                         size_t n, OutGroup *outs) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
                              .threads = threads, .diag = stderr, .budget = budget};
-    int status = billboard_level(c, sk, mo, &io, imp, stderr);
+    int status = syl_impostor_level(c, sk, mo, &io, imp, stderr);
     if (status) return status;
     char color[4096], normal[4096];
     beside(output, "_impostor.png", color, sizeof color);

@@ -9,9 +9,9 @@
 #include <strings.h>
 #include <unistd.h>
 
-#include "cli/billboard.h"
 #include "cli/view.h"
 #include "sylva/describe.h"
+#include "sylva/impostor.h"
 #include "sylva/lod.h"
 #include "sylva/stream.h"
 #include "sylva/wind.h"
@@ -137,7 +137,7 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
         status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod - rq->impostor, &m->lods);
         if (status) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
         SylImpostorOptions io = {.grid = -1, .billboards = 3, .threads = v->threads, .diag = diag, .budget = m->budget};
-        if (!status && rq->impostor) status = billboard_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
+        if (!status && rq->impostor) status = syl_impostor_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
     } else {
         status = syl_mesh_optimize(m->pl.mesh);
     }

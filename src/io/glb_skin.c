@@ -61,6 +61,14 @@ static int joint_of_instance(const GlbPart *p, const SylInstances *set, size_t i
     return j[0];
 }
 
+void syl_wind_skin(const SylMesh *m, const SylSkeleton *s, const SylWind *w, int32_t *joints, uint8_t *weights) {
+    for (size_t v = 0; v < m->nverts; v++) {
+        int j[2];
+        blend_weights(w, joint_of_node(s, w, m->node ? m->node[v] : -1), m->pos + 3 * v, j, weights + 2 * v);
+        joints[2 * v] = j[0], joints[2 * v + 1] = j[1];
+    }
+}
+
 bool glb_skin_split(const GlbPart *p, SylInstances **out, int **joint, int *n) {
     const SylWind *w = p->wind;
     *out = NULL, *joint = NULL, *n = 0;

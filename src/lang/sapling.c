@@ -203,9 +203,26 @@ static bool num_of(const Tok *t, double *v) {
     return false;
 }
 
-/* One key and value into the model: the mapping's directive, or nothing. prune: the value of
- * Sapling's `prune` switch, which turns pruneRatio on or off. */
-static void put(Arena *a, Diag *diag, Model *m, const Tok *key, const Value *v, bool prune) {
+/* What a key's value means depends on other keys, read first wherever they stand. */
+typedef struct Context {
+    bool prune;               /* Sapling's `prune` switch, which turns pruneRatio on or off */
+    double base, base_s;      /* baseSize and baseSize_s */
+} Context;
+
+/* The number of top-level key `name` (a scalar), from a copy of the lexer; false: none. */
+static bool scan_number(Lex scan, const char *name, double *x) {
+    size_t n = strlen(name);
+    for (Tok t = next(&scan); t.kind != T_END && t.kind != T_BAD; t = next(&scan))
+        if (t.kind == T_STR && t.len == n && !memcmp(t.text, name, n)) {
+            Tok colon = next(&scan), val = next(&scan);
+            return colon.kind == T_PUNCT && colon.punct == ':' && num_of(&val, x);
+        }
+    return false;
+}
+
+/* One key and value into the model: the mapping's directive, or nothing. */
+static void put(Arena *a, Diag *diag, Model *m, const Tok *key, const Value *v, const Context *cx) {
+    bool prune = cx->prune;
     int k = -1;
     for (size_t i = 0; i < sizeof mapping / sizeof *mapping; i++)
         if (strlen(mapping[i].sapling) == key->len && !memcmp(mapping[i].sapling, key->text, key->len)) k = (int)i;
@@ -239,6 +256,12 @@ static void put(Arena *a, Diag *diag, Model *m, const Tok *key, const Value *v, 
         if (how == PRUNE && !prune) x = 0; /* pruning off: no envelope */
         /* Sapling's trunk count: 0 there means one trunk, Weber & Penn's 0Branches is 1 */
         if (how == PER_LEVEL && i == 0 && !strcmp(mapping[k].sylva, "Branches") && x < 1) x = 1;
+        /* Sapling spreads a stem's `branches` over all of it and then drops the share of them
+         * below its base size (the trunk's baseSize, each next level's baseSize_s times the
+         * last), where Weber & Penn place all of Branches above the base: Sylva's count is
+         * Sapling's less that share */
+        if (how == PER_LEVEL && i >= 1 && !strcmp(mapping[k].sylva, "Branches"))
+            x -= floor(fmin(fmax(cx->base * pow(cx->base_s, i - 1), 0), 1) * (x + 1)); /* its int(b (N + 1)) */
         number(a, s, x, v->items[i].loc);
     }
 }
@@ -256,15 +279,12 @@ int syl_sapling_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast)
     m->name = arena_strndup(arena, bn ? base : "sapling", bn ? bn : 7);
     m->loc = open.loc;
     word(arena, directive(arena, m, "convention", open.loc), "arbaro", open.loc);
-    /* Sapling's `prune` switch is read first, wherever it stands, for pruneRatio */
-    bool prune = true;
-    Lex scan = l;
-    for (Tok t = next(&scan); t.kind != T_END && t.kind != T_BAD; t = next(&scan))
-        if (t.kind == T_STR && t.len == 5 && !memcmp(t.text, "prune", 5)) {
-            Tok colon = next(&scan), val = next(&scan);
-            double x;
-            if (colon.kind == T_PUNCT && colon.punct == ':' && num_of(&val, &x)) prune = x != 0;
-        }
+    /* read first, wherever they stand: `prune` for pruneRatio, the base sizes for branches */
+    Context cx = {.prune = true, .base = 0, .base_s = 1};
+    double x;
+    if (scan_number(l, "prune", &x)) cx.prune = x != 0;
+    if (scan_number(l, "baseSize", &x)) cx.base = x;
+    if (scan_number(l, "baseSize_s", &x)) cx.base_s = x;
     for (;;) {
         Tok key = next(&l);
         if (key.kind == T_PUNCT && key.punct == '}') break;
@@ -280,7 +300,7 @@ int syl_sapling_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast)
         }
         Value v;
         if (!value(&l, diag, &v)) break;
-        put(arena, diag, m, &key, &v, prune);
+        put(arena, diag, m, &key, &v, &cx);
         Tok sep = next(&l);
         if (sep.kind == T_PUNCT && sep.punct == '}') break;
         if (sep.kind != T_PUNCT || sep.punct != ',') {

@@ -206,8 +206,49 @@ for mw in inst:  # the nearest leaf within a micrometre, and the instance's +x a
     along += d < 1e-6 and mw.col[0].xyz.normalized().dot(heads[i]) > 0.999
 print(f"leaves result={r} instances={len(inst)} at_leaf={at} along_heading={along} "
       f"stored={root.get('sylva_leaf_instances') if root else None} {counts(obj)}")
+# the leaf object is the leaf the mesher makes (the model's outline), not a stand-in: its
+# triangles on every face are the leaf triangles of the copied mesh (`--leaves mesh` less
+# `--leaves instanced`), and it is flat, from its base along +x
+emitters = [o for o in root.children if o.instance_type == "FACES"] if root else []
+protos = [c for e in emitters for c in e.children if c.type == "MESH"]
+leaf_tris = sum(len(e.data.polygons) * sum(len(p.vertices) - 2 for p in c.data.polygons)
+                for e in emitters for c in e.children if c.type == "MESH")
+flat = all(max(abs(v.co.z) for v in c.data.vertices) == 0 and min(v.co.x for v in c.data.vertices) >= 0
+           for c in protos)
+print(f"leafshape protos={len(protos)} leaf_triangles={leaf_tris} flat={'yes' if protos and flat else 'no'}")
 
 # 5. Sapling's presets from the running Blender's own add-on are species too: the aspen by name
 # gives the mesh `sylva mesh PRESET.py` gives.
 r, obj = added(species="sapling/quaking_aspen")
 print(f"sapling result={r} {counts(obj)} presets={sum(n.startswith('sapling/') for n in items)}")
+
+# 6. Levels of detail, the impostor card and the wind armature (addon_realtime.py), in this Blender
+import runpy  # noqa: E402
+
+rt_model = args[3] if len(args) > 3 else None
+if rt_model:
+    runpy.run_path(os.path.join(os.path.dirname(os.path.abspath(__file__)), "addon_realtime.py"),
+                   init_globals={"added": added, "out_dir": out_dir, "rt_model": rt_model})
+
+# 7. Sapling's own trees in this Blender: the splines of its curve object for four presets, for
+# tests/run-blender to compare with `sylva compare`'s stems of the same files (within 15 %)
+import ast  # noqa: E402
+
+import addon_utils  # noqa: E402
+
+addon_utils.enable("add_curve_sapling", default_set=True)
+sap = library.sapling_presets()
+props = {p.identifier: p for p in bpy.ops.curve.tree_add.get_rna_type().properties}
+for name in ("callistemon", "quaking_aspen", "small_maple", "white_birch"):
+    with open(os.path.join(sap, name + ".py")) as fh:
+        preset = ast.literal_eval(fh.read().split("\n", 1)[1])  # after the licence line
+    kw = {}
+    for k, v in preset.items():  # older presets give one number for a per-level property
+        if k in props:
+            n = getattr(props[k], "array_length", 0)
+            kw[k] = tuple([v] * n) if n and not isinstance(v, (tuple, list)) else v
+    before = set(bpy.data.objects)
+    kw.update(showLeaves=False, do_update=True)  # stems only: the leaves are a mesh of their own
+    bpy.ops.curve.tree_add(**kw)
+    splines = sum(len(o.data.splines) for o in bpy.data.objects if o not in before and o.type == "CURVE")
+    print(f"sapling_stems {name} splines={splines}")

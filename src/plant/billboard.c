@@ -1,7 +1,8 @@
-/* The crossed billboards of an impostor as a chain's last level (cli/billboard.h). */
-#include "cli/billboard.h"
+/* The crossed billboards of an impostor as a chain's last level (sylva/impostor.h): `sylva mesh
+ * --impostor/--billboards`, sylva view's far level and the Python package's lod= share it. */
+#include "sylva/impostor.h"
 
-int billboard_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
+int syl_impostor_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
                     SylImpostor *imp, FILE *diag) {
     if (!c->level[0].mesh->nidx) {
         fprintf(diag, "sylva: error: the model draws nothing: there is no impostor to bake\n");
