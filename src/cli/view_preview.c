@@ -1,0 +1,38 @@
+/* sylva view's preview: while a slider is dragged and right after a save, the page first
+ * draws a lighter picture of the new build, then the .glb of `sylva mesh` once it is there
+ * (docs/view.md, "Speed"). The preview is three-sided tubes with every leaf one instanced
+ * card — or, for a skeleton too big to mesh quickly, just its segments coloured by order. */
+#include "cli/view.h"
+
+/* Beyond this many skeleton nodes a preview is the segments (a lines draw), not a mesh:
+ * meshing, writing, parsing and drawing ~100 k tubes takes seconds in software WebGL. */
+enum { PREVIEW_MESH_NODES = 50000 };
+
+void view_preview_mesh_options(SylMeshOptions *mo) {
+    mo->sides = 3, mo->min_sides = 3;
+    /* blades and cards as one card placed per leaf: a few triangles, however many leaves */
+    if (mo->leaves != SYL_LEAVES_INSTANCED && mo->leaves != SYL_LEAVES_INSTANCED_CARDS)
+        mo->leaves = SYL_LEAVES_INSTANCED_CARDS;
+    mo->vertex_nodes = 0;
+}
+
+bool view_preview_as_lines(const SylSkeleton *sk) { return sk->nnodes > PREVIEW_MESH_NODES; }
+
+int view_preview_lines(const SylSkeleton *sk, FILE *out) {
+    for (size_t i = 0; i < sk->nnodes; i++) {
+        const SylNode *d = &sk->nodes[i];
+        if (d->kind == SYL_KIND_INTERNODE && d->parent >= 0) {
+            float seg[6] = {sk->nodes[d->parent].pos[0], sk->nodes[d->parent].pos[1], sk->nodes[d->parent].pos[2],
+                            d->pos[0], d->pos[1], d->pos[2]};
+            if (fwrite(seg, sizeof seg, 1, out) != 1) return SYL_EIO;
+        }
+    }
+    for (size_t i = 0; i < sk->nnodes; i++) {
+        const SylNode *d = &sk->nodes[i];
+        if (d->kind == SYL_KIND_INTERNODE && d->parent >= 0) {
+            uint8_t order = d->order > 255 ? 255 : (uint8_t)d->order;
+            if (fputc(order, out) == EOF) return SYL_EIO;
+        }
+    }
+    return SYL_OK;
+}
