@@ -76,7 +76,12 @@ controls.addEventListener('change', () => { dirty = true; if (forest) renderer.s
 for (const ev of ['input', 'change', 'click', 'keydown']) document.addEventListener(ev, redraw, true);
 window.addEventListener('resize', redraw);
 
+// A preview is drawn at half the resolution: software WebGL (and a slow GPU) spends a frame's
+// time on its pixels, the ground's shadow lookups and multisampling above all.
+const fullRatio = renderer.getPixelRatio();
 function animate() {
+  const ratio = state.preview ? fullRatio / 2 : fullRatio;
+  if (renderer.getPixelRatio() !== ratio) { renderer.setPixelRatio(ratio); redraw(); }
   resize();
   const dt = clock.getDelta();
   if (mixer) { mixer.update(dt); redraw(); }
@@ -179,7 +184,7 @@ function applyLook() {
       return mat;
     });
     m.material = Array.isArray(own) ? made : made[0];
-    m.castShadow = $('shadows').checked;
+    m.castShadow = $('shadows').checked && !state.preview; // a preview's frame skips the shadow pass
     m.visible = mode === 'mesh' || mode === 'wireframe';
   });
   sun.visible = $('shadows').checked || lit;
@@ -446,15 +451,16 @@ function forgetTextures() { // the kept ones neither the last build nor the last
   texturesUsed = new Set();
 }
 
-// What the previous build put on the GPU (its geometries; textures not kept above)
+// What the previous build put on the GPU (its geometries; textures not kept above). Its
+// materials are not disposed: three.js would then release their compiled shader programs, and
+// the next build — the same kinds of material — would compile them again (in software WebGL a
+// good part of a second). Programs are cached by what they do, so they stay a handful.
 function disposeBuild(group) {
   const kept = new Set([...textures.values()].map((t) => t.source));
   group.traverse((o) => {
     if (o.geometry) o.geometry.dispose();
-    for (const m of Array.isArray(o.material) ? o.material : o.material ? [o.material] : []) {
+    for (const m of Array.isArray(o.material) ? o.material : o.material ? [o.material] : [])
       if (m.map && !kept.has(m.map.source)) m.map.dispose();
-      m.dispose();
-    }
   });
 }
 
@@ -463,11 +469,16 @@ function disposeBuild(group) {
 // makes quickly (three-sided tubes and instanced leaf cards, or only the segments of a big
 // plant), then the .glb of `sylva mesh` — the one exported, and the one left on screen. While a
 // slider moves only previews are built; the full build waits until it rests, and a full build
-// running when it moves again is stopped (supersede=1). The old model stays on screen until the
+// running when it moves again is stopped (the server sees the tab's newer request). The old model stays on screen until the
 // new one is drawn.
 let lastInput = -1e9; // when a slider last moved (performance.now())
 const REST_MS = 250;  // a slider still this long has come to rest
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+// This tab and its loads' numbers: the server stops a full build of an older load of this tab
+// (a slider moved on) and builds what the newer one asks for.
+const tab = 1 + Math.floor(Math.random() * 2 ** 52);
+let seq = 0;
 
 async function requestBuild(q, text) {
   try {
@@ -484,20 +495,23 @@ async function load(frameIt = false) {
     $('status').textContent = 'building…';
     const q = query();
     const text = await editedText();
+    const mine = `&tab=${tab}&seq=${++seq}`;
+    let full = null; // the full build's answer, asked for while the preview is drawn
+    const resting = () => performance.now() - lastInput >= REST_MS;
     if ($('preview').checked && state.kind !== 'ecosystem') {
-      const p = await requestBuild(q + '&preview=1&supersede=1', text);
-      if (p.ok && p.stats && p.stats.kind !== 'ecosystem') await showPreview(p, q, frameIt, t0);
+      const p = await requestBuild(q + '&preview=1' + mine, text);
+      const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem'
+        ? await fetch((p.lines ? '/api/lines?id=' : '/api/glb?id=') + p.id).then((r) => r.ok ? r.arrayBuffer() : null) : null;
+      // the server builds the full mesh while the page draws the preview (not while a slider moves)
+      if (!again && resting()) full = requestBuild(q + mine, text);
+      if (buf) await showPreview(p, buf, q, frameIt, t0);
       frameIt = false;
       // while the slider moves, only previews; a newer value is built next (load coalesces)
-      while (!again && performance.now() - lastInput < REST_MS) await sleep(40);
-      if (again) return;
+      while (!full && !again && !resting()) await sleep(40);
+      if (!full && again) return;
     }
-    let b;
-    for (;;) { // a full build stopped by another tab's preview is asked for again
-      b = await requestBuild(q, text);
-      if (!b.superseded || again) break;
-    }
-    if (b.superseded) { state.superseded = (state.superseded || 0) + 1; return; } // a newer value comes next
+    const b = await (full || requestBuild(q + mine, text));
+    if (b.superseded || (again && full)) { state.superseded = (state.superseded || 0) + 1; return; } // a newer value comes next
     await showBuild(b, q, frameIt, t0);
   })();
   try { await loading; } finally {
@@ -533,10 +547,9 @@ function replaceRoot(group, kind) {
   scene.add(root);
 }
 
-async function showPreview(p, q, frameIt, t0) {
-  const tBuilt = performance.now();
-  const buf = await fetch((p.lines ? '/api/lines?id=' : '/api/glb?id=') + p.id).then((r) => r.ok ? r.arrayBuffer() : null);
-  if (!buf) return;
+// The preview p (its bytes in buf) drawn in place of the model on screen; resolves once its
+// first frame is drawn (before the full .glb's fetch and parse take the page's thread).
+async function showPreview(p, buf, q, frameIt, t0) {
   const tFetched = performance.now();
   const group = new THREE.Group();
   if (p.lines) group.add(linesFrom(buf));
@@ -550,17 +563,18 @@ async function showPreview(p, q, frameIt, t0) {
   group.add(boxHelper);
   placeGroundAndSun();
   if (frameIt || !state.framed) { frame(); state.framed = true; }
+  state.preview = { kind: p.stats.preview, query: q, triangles: p.stats.triangles, leaf_instances: p.stats.leaf_instances,
+    segments: p.lines ? buf.byteLength / 25 : 0 };
   applyLook();
   state.previews = (state.previews || 0) + 1;
   state.lastPreviewKind = p.stats.preview;
-  state.preview = { kind: p.stats.preview, query: q, triangles: p.stats.triangles, leaf_instances: p.stats.leaf_instances,
-    segments: p.lines ? buf.byteLength / 25 : 0 };
   state.previewAt = performance.now(); state.previewShownAt = 0; // the frame after this shows it
   // as state.timing: ms of the build request, the fetch, the parse and setup (frame: previewMs)
-  state.previewTiming = { build: tBuilt - t0, fetch: tFetched - tBuilt, parse: state.previewAt - tFetched,
+  state.previewTiming = { fetched: tFetched - t0, parse: state.previewAt - tFetched,
     server: ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (p.stats[k + '_time'] || 0), 0) * 1000 };
   redraw();
   $('status').textContent = `preview (${p.stats.preview}) · ${p.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms · building the mesh…`;
+  await new Promise((r) => { const drawn = () => (state.previewShownAt ? r() : requestAnimationFrame(drawn)); requestAnimationFrame(drawn); });
 }
 
 async function showBuild(b, q, frameIt, t0) {

@@ -109,10 +109,8 @@ static void made_free(Made *m) {
     memset(m, 0, sizeof *m);
 }
 
-/* A full build whose page has moved on (a preview of a newer value asked for) stops. */
-static bool superseded(View *v, const ViewRequest *rq) {
-    return !rq->preview && __atomic_load_n(&v->supersede, __ATOMIC_RELAXED);
-}
+/* A full build whose page has moved on (it asked for a newer value) stops. */
+static bool superseded(View *v, const ViewRequest *rq) { return !rq->preview && view_tab_moved_on(v, rq); }
 
 /* Compile (with every warning of `sylva check`) and build as `sylva mesh` does. */
 static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
@@ -315,7 +313,6 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         return slot;
     }
     Made m;
-    __atomic_store_n(&v->supersede, 0, __ATOMIC_RELAXED); /* what moved on before this build began */
     int status = make(v, rq, diag, &m);
     if (!status && m.eco) {
         status = view_eco_build(v, rq, m.eco, gen, diag, slot);

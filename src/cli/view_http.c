@@ -130,7 +130,6 @@ typedef struct Query {
     bool bad;
     const char *format, *name;
     bool overwrite;
-    bool supersede; /* this page moved on: a full build running stops (View.supersede) */
     unsigned id;
 } Query;
 
@@ -138,7 +137,8 @@ static enum MHD_Result query_arg(void *cls, enum MHD_ValueKind kind, const char 
     (void)kind;
     Query *q = cls;
     if (!strcmp(key, "token") || !strcmp(key, "t")) return MHD_YES;
-    if (!strcmp(key, "supersede")) return q->supersede = value && !strcmp(value, "1"), MHD_YES; /* not the build's */
+    if (!strcmp(key, "tab")) return q->rq.tab = value ? strtoull(value, NULL, 10) : 0, MHD_YES; /* not the build's */
+    if (!strcmp(key, "seq")) return q->rq.seq = value ? (unsigned)strtoul(value, NULL, 10) : 0, MHD_YES;
     if (!strcmp(key, "format")) q->format = value;
     else if (!strcmp(key, "name")) q->name = value;
     else if (!strcmp(key, "overwrite")) q->overwrite = value && !strcmp(value, "yes");
@@ -209,7 +209,7 @@ static enum MHD_Result send_events(struct MHD_Connection *c, View *v) {
 
 /* {"id":N,"status":S,"ok":bool,"diag":"...","obstacles":bool,"stats":{...}} */
 static enum MHD_Result api_build(struct MHD_Connection *c, View *v, Query *q) {
-    if (q->supersede) __atomic_store_n(&v->supersede, 1, __ATOMIC_RELAXED); /* before waiting for it */
+    view_tab_saw(v, &q->rq); /* before waiting for the build lock: a build running sees it */
     pthread_mutex_lock(&v->lock);
     ViewBuild *b = view_build(v, &q->rq, q->key);
     char *s = NULL;

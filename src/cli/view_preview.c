@@ -36,3 +36,30 @@ int view_preview_lines(const SylSkeleton *sk, FILE *out) {
     }
     return SYL_OK;
 }
+
+void view_tab_saw(View *v, const ViewRequest *rq) {
+    if (!rq->tab) return;
+    pthread_mutex_lock(&v->gen_lock);
+    int k = 0; /* its slot, else the one seen longest ago */
+    for (int i = 0; i < VIEW_TABS; i++) {
+        if (v->tabs[i].tab == rq->tab) {
+            k = i;
+            break;
+        }
+        if (v->tabs[i].seen < v->tabs[k].seen) k = i;
+    }
+    if (v->tabs[k].tab != rq->tab) v->tabs[k].tab = rq->tab, v->tabs[k].seq = rq->seq;
+    if (rq->seq > v->tabs[k].seq) v->tabs[k].seq = rq->seq;
+    v->tabs[k].seen = cli_now();
+    pthread_mutex_unlock(&v->gen_lock);
+}
+
+bool view_tab_moved_on(View *v, const ViewRequest *rq) {
+    bool moved = false;
+    if (!rq->tab) return false;
+    pthread_mutex_lock(&v->gen_lock);
+    for (int i = 0; i < VIEW_TABS; i++)
+        if (v->tabs[i].tab == rq->tab) moved = v->tabs[i].seq > rq->seq;
+    pthread_mutex_unlock(&v->gen_lock);
+    return moved;
+}
