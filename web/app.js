@@ -496,15 +496,16 @@ async function load(frameIt = false) {
     const q = query();
     const text = await editedText();
     const mine = `&tab=${tab}&seq=${++seq}`;
-    let full = null; // the full build's answer, asked for while the preview is drawn
+    let full = null; // the full build's answer
     const resting = () => performance.now() - lastInput >= REST_MS;
     if ($('preview').checked && state.kind !== 'ecosystem') {
       const p = await requestBuild(q + '&preview=1' + mine, text);
       const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem'
         ? await fetch((p.lines ? '/api/lines?id=' : '/api/glb?id=') + p.id).then((r) => r.ok ? r.arrayBuffer() : null) : null;
-      // the server builds the full mesh while the page draws the preview (not while a slider moves)
-      if (!again && resting()) full = requestBuild(q + mine, text);
       if (buf) await showPreview(p, buf, q, frameIt, t0);
+      // the full build once the preview is on screen (not while a slider moves): asked for at
+      // once, it would share the processor with the preview's frame on a machine of few cores
+      if (!again && resting()) full = requestBuild(q + mine, text);
       frameIt = false;
       // while the slider moves, only previews; a newer value is built next (load coalesces)
       while (!full && !again && !resting()) await sleep(40);
