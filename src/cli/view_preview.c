@@ -5,8 +5,9 @@
 #include "cli/view.h"
 
 /* Beyond this many skeleton nodes a preview is the segments (a lines draw), not a mesh:
- * meshing, writing, parsing and drawing ~100 k tubes takes seconds in software WebGL. */
-enum { PREVIEW_MESH_NODES = 50000 };
+ * meshing, writing, parsing and drawing tens of thousands of tubes takes seconds in software
+ * WebGL, while a line each is drawn in a fraction of it. */
+enum { PREVIEW_MESH_NODES = 20000 };
 
 void view_preview_mesh_options(SylMeshOptions *mo) {
     mo->sides = 3, mo->min_sides = 3;

@@ -16,7 +16,7 @@ const { check, done } = tap();
 const dir = mkdtempSync(join(tmpdir(), 'sylva-view-preview-'));
 const file = join(dir, 'plants.syl');
 // Bush first (the page's model: blades of leaves, so its preview has instanced cards); Line:
-// 2^16 segments in a row, beyond the preview's mesh limit (50,000 nodes)
+// 2^16 segments in a row, beyond the preview's mesh limit (20,000 nodes)
 const TEXT = (depth) => `lsystem Bush {
   param depth = ${depth}
   derive 8
