@@ -5,8 +5,11 @@
 //   save NAME MODULES TRIANGLES BEST_MS MEDIAN_MS SERVER_MS WRITE_MS   from the file's save (an
 //       atomic rename, as editors save) to the first frame drawn with the new build, in the page's
 //       clock; SERVER_MS the last build's compile to .glb written in the server, WRITE_MS the .glb writer's;
-//       PAGE the best save's page side: build request / .glb fetch / parse / setup / first frame, ms
-//   slider NAME MODULES UPDATES SECONDS            builds drawn while a slider is dragged
+//       PAGE the best save's page side: build request / .glb fetch / parse / setup / first frame, ms;
+//       PREVIEW_MS the best save's time to the preview's first frame (the page's "preview first":
+//       a lighter picture drawn before the .glb), PREVIEW its kind (mesh, lines; '-': none drawn)
+//   slider NAME MODULES UPDATES SECONDS FULL       pictures of new values drawn while a slider is
+//       dragged (previews and full builds), FULL of them full builds
 import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -42,7 +45,8 @@ try {
     await page.goto(url);
     await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
     const text = readFileSync(path, 'utf8');
-    const times = [], phases = [];
+    const times = [], phases = [], previews = [];
+    let kind = '-';
     for (let r = 0; r < runs; r++) {
       const n = await page.evaluate(() => window.sylvaView.loads);
       await new Promise((res) => setTimeout(res, 300)); // an idle page
@@ -52,13 +56,15 @@ try {
       await page.waitForFunction((k) => window.sylvaView.loads > k && window.sylvaView.shownAt > 0,
         { timeout: 300000, polling: 20 }, n);
       times.push(await page.evaluate(() => window.sylvaView.shownWall) - t0);
+      const pv = await page.evaluate(() => ({ at: window.sylvaView.previewShownWall || 0, kind: window.sylvaView.lastPreviewKind }));
+      if (pv.at > t0) previews.push(pv.at - t0), kind = pv.kind || kind;
       phases.push(await page.evaluate(() => window.sylvaView.timing || null));
     }
     const s = await page.evaluate(() => window.sylvaView.stats);
     const built = ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (s[k + '_time'] || 0), 0) * 1000;
     const ph = phases[times.indexOf(Math.min(...times))];
     const page_ = ph ? ['build', 'fetch', 'parse', 'setup', 'frame'].map((k) => (ph[k] || 0).toFixed(0)).join('/') : '';
-    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}`);
+    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}`);
     await page.close();
     await stop(server);
   }
@@ -72,17 +78,17 @@ try {
     const r = await page.evaluate(async () => {
       const el = document.querySelector('input[type=range][data-param=angle]');
       if (!el) return null;
-      const v = window.sylvaView, n0 = v.loads, t0 = performance.now();
+      const v = window.sylvaView, n0 = v.loads, p0 = v.previews || 0, t0 = performance.now();
       let angle = 20;
       while (performance.now() - t0 < 3000) {
         angle = angle >= 40 ? 20 : angle + 0.1;
         el.value = angle.toFixed(1); el.dispatchEvent(new Event('input', { bubbles: true }));
         await new Promise((res) => setTimeout(res, 20));
       }
-      const t1 = performance.now(), n1 = v.loads;
-      return { updates: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules };
+      const t1 = performance.now(), n1 = v.loads, p1 = v.previews || 0;
+      return { updates: n1 - n0 + p1 - p0, full: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules };
     });
-    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}`);
+    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}\t${r.full}`);
     else console.log('slider\tno angle slider');
     await page.close();
     await stop(server);

@@ -3,7 +3,7 @@
 // parameter a slider. The server is the only source: no request leaves this machine.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { createScene, skeletonFrom } from './scene.js';
+import { createScene, skeletonFrom, ORDER_COLOURS } from './scene.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -76,7 +76,12 @@ controls.addEventListener('change', () => { dirty = true; if (forest) renderer.s
 for (const ev of ['input', 'change', 'click', 'keydown']) document.addEventListener(ev, redraw, true);
 window.addEventListener('resize', redraw);
 
+// A preview is drawn at half the resolution: software WebGL (and a slow GPU) spends a frame's
+// time on its pixels, the ground's shadow lookups and multisampling above all.
+const fullRatio = renderer.getPixelRatio();
 function animate() {
+  const ratio = state.preview ? fullRatio / 2 : fullRatio;
+  if (renderer.getPixelRatio() !== ratio) { renderer.setPixelRatio(ratio); redraw(); }
   resize();
   const dt = clock.getDelta();
   if (mixer) { mixer.update(dt); redraw(); }
@@ -86,6 +91,10 @@ function animate() {
     if (forest) updateForest();
     renderer.render(scene, camera);
     state.frames = (state.frames || 0) + 1;
+    if (state.previewAt && !state.previewShownAt) { // a preview's first frame (make bench: save to preview)
+      state.previewShownAt = performance.now(); state.previewShownWall = Date.now();
+      state.previewMs = state.previewShownAt - state.previewAt; // its first frame's draw
+    }
     if (state.drawnAt && !state.shownAt) { // the first frame of the last build (make bench: save to frame)
       state.shownAt = performance.now(); state.shownWall = Date.now();
       if (state.timing) state.timing.frame = state.shownAt - state.drawnAt;
@@ -175,7 +184,7 @@ function applyLook() {
       return mat;
     });
     m.material = Array.isArray(own) ? made : made[0];
-    m.castShadow = $('shadows').checked;
+    m.castShadow = $('shadows').checked && !state.preview; // a preview's frame skips the shadow pass
     m.visible = mode === 'mesh' || mode === 'wireframe';
   });
   sun.visible = $('shadows').checked || lit;
@@ -420,6 +429,7 @@ function pngKey(json, bin, i) {
 // one's is that texture — not decoded, not uploaded again; a new one is decoded and kept.
 // used: the keys the last parse took (the others are let go after it).
 let texturesUsed = new Set();
+const usedBy = { full: new Set(), preview: new Set() }; // what the last full build's and preview's parses took
 const reuse = (parser) => ({
   name: 'sylva_texture_reuse',
   loadTexture(t) {
@@ -436,24 +446,47 @@ const reuse = (parser) => ({
   },
 });
 const buildLoader = new GLTFLoader().register(reuse);
-function forgetTextures() { // the kept ones the last build did not use
-  for (const [key, tex] of textures) if (!texturesUsed.has(key)) { tex.dispose(); textures.delete(key); }
+function forgetTextures() { // the kept ones neither the last build nor the last preview used
+  for (const [key, tex] of textures) if (!usedBy.full.has(key) && !usedBy.preview.has(key)) { tex.dispose(); textures.delete(key); }
   texturesUsed = new Set();
 }
 
-// What the previous build put on the GPU (its geometries; textures not kept above)
+// What the previous build put on the GPU (its geometries; textures not kept above). Its
+// materials are not disposed: three.js would then release their compiled shader programs, and
+// the next build — the same kinds of material — would compile them again (in software WebGL a
+// good part of a second). Programs are cached by what they do, so they stay a handful.
 function disposeBuild(group) {
   const kept = new Set([...textures.values()].map((t) => t.source));
   group.traverse((o) => {
     if (o.geometry) o.geometry.dispose();
-    for (const m of Array.isArray(o.material) ? o.material : o.material ? [o.material] : []) {
+    for (const m of Array.isArray(o.material) ? o.material : o.material ? [o.material] : [])
       if (m.map && !kept.has(m.map.source)) m.map.dispose();
-      m.dispose();
-    }
   });
 }
 
-// Build what the controls say and draw it; the camera stays unless frameIt.
+// Build what the controls say and draw it; the camera stays unless frameIt. A model (not an
+// ecosystem) is drawn twice when the "preview first" box is ticked: first a preview the server
+// makes quickly (three-sided tubes and instanced leaf cards, or only the segments of a big
+// plant), then the .glb of `sylva mesh` — the one exported, and the one left on screen. While a
+// slider moves only previews are built; the full build waits until it rests, and a full build
+// running when it moves again is stopped (the server sees the tab's newer request). The old model stays on screen until the
+// new one is drawn.
+let lastInput = -1e9; // when a slider last moved (performance.now())
+const REST_MS = 250;  // a slider still this long has come to rest
+const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
+
+// This tab and its loads' numbers: the server stops a full build of an older load of this tab
+// (a slider moved on) and builds what the newer one asks for.
+const tab = 1 + Math.floor(Math.random() * 2 ** 52);
+let seq = 0;
+
+async function requestBuild(q, text) {
+  try {
+    return text === null ? await getJSON('/api/build?' + q)
+      : await (await fetch('/api/build?' + q, { method: 'POST', body: text })).json();
+  } catch (e) { return { ok: false, diag: String(e) }; }
+}
+
 async function load(frameIt = false) {
   if (loading) { again = true; return loading; }
   state.idle = false;
@@ -461,95 +494,166 @@ async function load(frameIt = false) {
     const t0 = performance.now();
     $('status').textContent = 'building…';
     const q = query();
-    let b;
     const text = await editedText();
-    try {
-      b = text === null ? await getJSON('/api/build?' + q)
-        : await (await fetch('/api/build?' + q, { method: 'POST', body: text })).json();
-    } catch (e) { b = { ok: false, diag: String(e) }; }
-    const tBuilt = performance.now();
-    state.build = b;
-    const warnings = (b.diag || '').split('\n').filter((l) => / warning: /.test(l));
-    $('warnings').textContent = b.ok ? (b.diag || '') : '';
-    if (!b.ok) { // the last good model stays
-      showError(b.diag || 'the build failed');
-      $('status').textContent = 'error (the last good model is shown)';
-      return;
+    const mine = `&tab=${tab}&seq=${++seq}`;
+    let full = null; // the full build's answer
+    const resting = () => performance.now() - lastInput >= REST_MS;
+    if ($('preview').checked && state.kind !== 'ecosystem') {
+      const p = await requestBuild(q + '&preview=1' + mine, text);
+      const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem'
+        ? await fetch((p.lines ? '/api/lines?id=' : '/api/glb?id=') + p.id).then((r) => r.ok ? r.arrayBuffer() : null) : null;
+      if (buf) await showPreview(p, buf, q, frameIt, t0);
+      // the full build once the preview is on screen (not while a slider moves): asked for at
+      // once, it would share the processor with the preview's frame on a machine of few cores
+      if (!again && resting()) full = requestBuild(q + mine, text);
+      frameIt = false;
+      // while the slider moves, only previews; a newer value is built next (load coalesces)
+      while (!full && !again && !resting()) await sleep(40);
+      if (!full && again) return;
     }
-    const glb = await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
-    const tFetched = performance.now();
-    texturesUsed = new Set();
-    const gltf = await buildLoader.parseAsync(glb, '');
-    const tParsed = performance.now();
-    const eco = b.stats.kind === 'ecosystem';
-    const lod = eco ? null : await gatherLods(gltf);
-    const group = new THREE.Group();
-    group.add(lod || gltf.scene);
-    skeletonLines = null; // made when the skeleton mode shows it (loadSkeleton): not on every save
-    pickables = [];
-    if (b.obstacles) { // the obstacles' own meshes: what a click may place a plant on
-      const ob = await loader.parseAsync(await fetch('/api/obstacles?id=' + b.id).then((r) => r.arrayBuffer()), '');
-      ob.scene.traverse((o) => { if (o.isMesh) { o.material = new THREE.MeshBasicMaterial({ visible: false }); o.userData.pick = true; pickables.push(o); } });
-      group.add(ob.scene);
-    }
-    if (root) { scene.remove(root); disposeBuild(root); }
-    forgetTextures();
-    originals.clear();
-    root = group;
-    lodObject = lod;
-    scene.add(root);
-    boxHelper = new THREE.Box3Helper(bounds(lod || gltf.scene), 0x1a4fa0);
-    root.add(boxHelper);
-    mixer = null;
-    state.animations = gltf.animations.length;
-    state.levels = lod ? lod.levels.length : 1;
-    if (gltf.animations.length) {
-      mixer = new THREE.AnimationMixer(gltf.scene);
-      gltf.animations.forEach((a) => mixer.clipAction(a).play());
-    }
-    const levels = eco ? 2 : lod ? lod.levels.length : 1;
-    const sel = $('forcelod');
-    const keep = state.forceLod;
-    const name = (k) => eco ? ['near (the looks)', 'far (impostors)'][k]
-      : state.impostor && k === levels - 1 ? `LOD${k} (impostor)` : 'LOD' + k;
-    sel.replaceChildren(new Option('by distance', 'auto'), ...Array.from({ length: levels }, (_, k) => new Option(name(k), String(k))));
-    state.forceLod = keep !== 'auto' && +keep < levels ? keep : 'auto';
-    sel.value = state.forceLod;
-    forest = null; state.forest = null;
-    if (eco) await setupForest(gltf.scene, b.stats);
-    $('ecopanel').hidden = !eco;
-    if (!eco) $('steplabel').textContent = 'Step';
-    ground.visible = !eco; // the terrain is in the forest's .glb
-    placeGroundAndSun();
-    if (frameIt || state.loads === 0 || (eco !== (state.kind === 'ecosystem'))) frame();
-    state.kind = b.stats.kind;
-    if (eco) showEco(b.stats);
-    state.stats = b.stats;
-    state.metrics = null;
-    showStats(b.stats);
-    state.metricsPending = eco ? 0 : b.id; // asked for once this build's frame is drawn
-    showError('');
-    if (state.mode === 'skeleton') await loadSkeleton();
-    applyLook();
-    state.loads++;
-    state.drawnQuery = q; // what it was built from (the tests: a drag's last value is drawn)
-    state.gen = b.gen;
-    state.drawnAt = performance.now(); // the frame after this shows it (state.shownAt)
-    // the page's side of save -> frame (make bench prints them): ms of the build request, the
-    // .glb's fetch, its parse (GLTFLoader, textures decoded), the scene's setup; the first
-    // frame's draw (upload, shaders, shadows) is shownAt - drawnAt
-    state.timing = { build: tBuilt - t0, fetch: tFetched - tBuilt, parse: tParsed - tFetched, setup: state.drawnAt - tParsed };
-    state.shownAt = 0;
-    redraw();
-    $('status').textContent = eco ? `year ${b.stats.year} · ${b.stats.plants} plants · ${(performance.now() - t0).toFixed(0)} ms`
-      : `${b.stats.triangles} triangles · ${b.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms` +
-      (warnings.length ? ` · ${warnings.length} warning${warnings.length > 1 ? 's' : ''}` : '');
-    updateExports();
+    const b = await (full || requestBuild(q + mine, text));
+    if (b.superseded || (again && full)) { state.superseded = (state.superseded || 0) + 1; return; } // a newer value comes next
+    await showBuild(b, q, frameIt, t0);
   })();
   try { await loading; } finally {
     loading = null;
     if (again) { again = false; load(); } else state.idle = true;
   }
+}
+
+// The segments of a preview of a big plant (view_preview.c: 6 floats each, then a byte of
+// branch order each) as lines coloured as the skeleton mode colours them.
+function linesFrom(buf) {
+  const n = buf.byteLength / 25;
+  const pos = new Float32Array(buf, 0, n * 6), order = new Uint8Array(buf, n * 24, n);
+  const col = new Float32Array(n * 6), c = new THREE.Color();
+  for (let i = 0; i < n; i++) {
+    c.setHex(ORDER_COLOURS[Math.min(order[i], ORDER_COLOURS.length - 1)]);
+    col.set([c.r, c.g, c.b, c.r, c.g, c.b], i * 6);
+  }
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  g.setAttribute('color', new THREE.BufferAttribute(col, 3));
+  return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+}
+
+// Put group on screen in place of what is there (freed), with the textures of kind ('full' or
+// 'preview') as its parse used them.
+function replaceRoot(group, kind) {
+  if (root) { scene.remove(root); disposeBuild(root); }
+  usedBy[kind] = texturesUsed;
+  forgetTextures();
+  originals.clear();
+  root = group;
+  scene.add(root);
+}
+
+// The preview p (its bytes in buf) drawn in place of the model on screen; resolves once its
+// first frame is drawn (before the full .glb's fetch and parse take the page's thread).
+async function showPreview(p, buf, q, frameIt, t0) {
+  const tFetched = performance.now();
+  const group = new THREE.Group();
+  if (p.lines) group.add(linesFrom(buf));
+  else {
+    texturesUsed = new Set();
+    group.add((await buildLoader.parseAsync(buf, '')).scene);
+  }
+  replaceRoot(group, 'preview');
+  lodObject = null; skeletonLines = null; mixer = null;
+  boxHelper = new THREE.Box3Helper(bounds(group), 0x1a4fa0);
+  group.add(boxHelper);
+  placeGroundAndSun();
+  if (frameIt || !state.framed) { frame(); state.framed = true; }
+  state.preview = { kind: p.stats.preview, query: q, triangles: p.stats.triangles, leaf_instances: p.stats.leaf_instances,
+    segments: p.lines ? buf.byteLength / 25 : 0 };
+  applyLook();
+  state.previews = (state.previews || 0) + 1;
+  state.lastPreviewKind = p.stats.preview;
+  state.previewAt = performance.now(); state.previewShownAt = 0; // the frame after this shows it
+  // as state.timing: ms of the build request, the fetch, the parse and setup (frame: previewMs)
+  state.previewTiming = { fetched: tFetched - t0, parse: state.previewAt - tFetched,
+    server: ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (p.stats[k + '_time'] || 0), 0) * 1000 };
+  redraw();
+  $('status').textContent = `preview (${p.stats.preview}) · ${p.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms · building the mesh…`;
+  await new Promise((r) => { const drawn = () => (state.previewShownAt ? r() : requestAnimationFrame(drawn)); requestAnimationFrame(drawn); });
+}
+
+async function showBuild(b, q, frameIt, t0) {
+  const tBuilt = performance.now();
+  state.build = b;
+  const warnings = (b.diag || '').split('\n').filter((l) => / warning: /.test(l));
+  $('warnings').textContent = b.ok ? (b.diag || '') : '';
+  if (!b.ok) { // the last good model stays
+    showError(b.diag || 'the build failed');
+    $('status').textContent = 'error (the last good model is shown)';
+    return;
+  }
+  const glb = await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
+  const tFetched = performance.now();
+  texturesUsed = new Set();
+  const gltf = await buildLoader.parseAsync(glb, '');
+  const tParsed = performance.now();
+  const eco = b.stats.kind === 'ecosystem';
+  const lod = eco ? null : await gatherLods(gltf);
+  const group = new THREE.Group();
+  group.add(lod || gltf.scene);
+  skeletonLines = null; // made when the skeleton mode shows it (loadSkeleton): not on every save
+  pickables = [];
+  if (b.obstacles) { // the obstacles' own meshes: what a click may place a plant on
+    const ob = await loader.parseAsync(await fetch('/api/obstacles?id=' + b.id).then((r) => r.arrayBuffer()), '');
+    ob.scene.traverse((o) => { if (o.isMesh) { o.material = new THREE.MeshBasicMaterial({ visible: false }); o.userData.pick = true; pickables.push(o); } });
+    group.add(ob.scene);
+  }
+  replaceRoot(group, 'full');
+  state.preview = null;
+  lodObject = lod;
+  boxHelper = new THREE.Box3Helper(bounds(lod || gltf.scene), 0x1a4fa0);
+  root.add(boxHelper);
+  mixer = null;
+  state.animations = gltf.animations.length;
+  state.levels = lod ? lod.levels.length : 1;
+  if (gltf.animations.length) {
+    mixer = new THREE.AnimationMixer(gltf.scene);
+    gltf.animations.forEach((a) => mixer.clipAction(a).play());
+  }
+  const levels = eco ? 2 : lod ? lod.levels.length : 1;
+  const sel = $('forcelod');
+  const keep = state.forceLod;
+  const name = (k) => eco ? ['near (the looks)', 'far (impostors)'][k]
+    : state.impostor && k === levels - 1 ? `LOD${k} (impostor)` : 'LOD' + k;
+  sel.replaceChildren(new Option('by distance', 'auto'), ...Array.from({ length: levels }, (_, k) => new Option(name(k), String(k))));
+  state.forceLod = keep !== 'auto' && +keep < levels ? keep : 'auto';
+  sel.value = state.forceLod;
+  forest = null; state.forest = null;
+  if (eco) await setupForest(gltf.scene, b.stats);
+  $('ecopanel').hidden = !eco;
+  if (!eco) $('steplabel').textContent = 'Step';
+  ground.visible = !eco; // the terrain is in the forest's .glb
+  placeGroundAndSun();
+  if (frameIt || !state.framed || (eco !== (state.kind === 'ecosystem'))) { frame(); state.framed = true; }
+  state.kind = b.stats.kind;
+  if (eco) showEco(b.stats);
+  state.stats = b.stats;
+  state.metrics = null;
+  showStats(b.stats);
+  state.metricsPending = eco ? 0 : b.id; // asked for once this build's frame is drawn
+  showError('');
+  if (state.mode === 'skeleton') await loadSkeleton();
+  applyLook();
+  state.loads++;
+  state.drawnQuery = q; // what it was built from (the tests: a drag's last value is drawn)
+  state.gen = b.gen;
+  state.drawnAt = performance.now(); // the frame after this shows it (state.shownAt)
+  // the page's side of save -> frame (make bench prints them): ms of the build request, the
+  // .glb's fetch, its parse (GLTFLoader, textures decoded), the scene's setup; the first
+  // frame's draw (upload, shaders, shadows) is shownAt - drawnAt
+  state.timing = { build: tBuilt - t0, fetch: tFetched - tBuilt, parse: tParsed - tFetched, setup: state.drawnAt - tParsed };
+  state.shownAt = 0;
+  redraw();
+  $('status').textContent = eco ? `year ${b.stats.year} · ${b.stats.plants} plants · ${(performance.now() - t0).toFixed(0)} ms`
+    : `${b.stats.triangles} triangles · ${b.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms` +
+    (warnings.length ? ` · ${warnings.length} warning${warnings.length > 1 ? 's' : ''}` : '');
+  updateExports();
 }
 
 // ---- parameters (syl_describe_json) ----
@@ -608,7 +712,7 @@ function buildParams() {
       el.min = lo; el.max = hi; el.step = step; el.value = value;
       el.dataset.param = p.name;
     }
-    range.addEventListener('input', () => { num.value = range.value; paramChanged(p.name, +range.value, p.default); });
+    range.addEventListener('input', () => { lastInput = performance.now(); num.value = range.value; paramChanged(p.name, +range.value, p.default); });
     num.addEventListener('change', () => { range.value = num.value; paramChanged(p.name, +num.value, p.default); });
     box.appendChild(div);
   }
@@ -783,6 +887,7 @@ function wire() {
     state.seed = String(Math.floor(Math.random() * 1e9)); $('seed').value = state.seed; load();
   });
   $('step').addEventListener('input', () => {
+    lastInput = performance.now();
     state.step = $('step').value; $('stepval').textContent = state.step;
     load();
   });

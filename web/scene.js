@@ -72,18 +72,20 @@ export function createScene(canvas, opts = {}) {
   return { renderer, scene, camera, controls, hemi, sun, ground, bounds, frame, placeGroundAndSun, resize };
 }
 
+// the skeleton's colours by branch order: trunk brown, then red, orange, green, blue, …
+export const ORDER_COLOURS = [0x5a3a1a, 0xc0392b, 0xe67e22, 0x27ae60, 0x2980b9, 0x8e44ad, 0x16a085, 0x7f8c8d];
+
 export function skeletonFrom(csv) {
   // id,parent,x,y,z,radius,order,kind (sylva skeleton's CSV): a segment from each node's parent
   const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
   const pos = new Map();
   for (const r of rows) if (r[7] === 'internode' || r[7] === 'root') pos.set(r[0], [+r[2], +r[3], +r[4]]);
   const p = [], c = [];
-  const colours = [0x5a3a1a, 0xc0392b, 0xe67e22, 0x27ae60, 0x2980b9, 0x8e44ad, 0x16a085, 0x7f8c8d];
   const col = new THREE.Color();
   for (const r of rows) {
     if (r[7] !== 'internode' || !pos.has(r[1])) continue;
     const a = pos.get(r[1]), b = [+r[2], +r[3], +r[4]];
-    col.setHex(colours[Math.min(+r[6], colours.length - 1)]);
+    col.setHex(ORDER_COLOURS[Math.min(+r[6], ORDER_COLOURS.length - 1)]);
     p.push(...a, ...b); c.push(col.r, col.g, col.b, col.r, col.g, col.b);
   }
   const g = new THREE.BufferGeometry();

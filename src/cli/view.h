@@ -12,7 +12,7 @@
 #include "cli/cli.h"
 #include "sylva/stream.h"
 
-enum { VIEW_CACHE = 8, VIEW_TOKEN = 32 };
+enum { VIEW_CACHE = 8, VIEW_TOKEN = 32, VIEW_TABS = 16 };
 
 /* What the page asks for: a model of the file, with --set values, a seed, a derivation
  * length (the time slider) and the mesh options of `sylva mesh`. */
@@ -28,6 +28,9 @@ typedef struct ViewRequest {
     int leaves;            /* < 0: the mesher's default; else SYL_LEAVES_* */
     float wind;            /* > 0: skinned, swaying (sylva mesh --wind) */
     bool impostor;         /* the last level: an impostor's crossed billboards (--billboards 3) */
+    bool preview;          /* a lighter picture first (view_preview.c): not what is exported */
+    uint64_t tab;          /* the page that asks (0: none) and its request's number: not part */
+    unsigned seq;          /* of what is built, only of whether it is still wanted */
     int width, height;     /* of a picture (export png) */
     const char *text;      /* NULL: the file as it is on disk; else the page's edited text of it
                               (plants placed by clicks), built as if it were the file's */
@@ -45,6 +48,8 @@ typedef struct ViewBuild {
     size_t glb_len;
     char *csv;             /* the skeleton (sylva skeleton's CSV) */
     size_t csv_len;
+    char *lines;           /* a preview of a big plant: its segments (view_preview.c), no .glb */
+    size_t lines_len;
     char *obstacles;       /* a scene's obstacles as a .glb, one node each (NULL: none) */
     size_t obstacles_len;
     char *stats;           /* a JSON object */
@@ -81,6 +86,9 @@ typedef struct View {
     pthread_mutex_t keep_lock;
     ViewKept *kept;
     SylTextureCache *textures; /* the .glb's procedural textures, encoded once (under lock) */
+    /* Each tab's newest request (under gen_lock, on arrival, before the build lock): a full
+     * build of an older one stops at its next stage and is not kept — the page moved on. */
+    struct { uint64_t tab; unsigned seq; double seen; } tabs[VIEW_TABS];
     /* Changes: gen counts them; waiters (the pages' event streams) are woken at each. */
     pthread_mutex_t gen_lock;
     pthread_cond_t changed;
@@ -111,6 +119,18 @@ FILE *view_bytes_open(char **buf, size_t *len);
  * NAME, read back, the directory removed (with what the writer put beside the file). */
 typedef int (*ViewPathWriter)(void *ctx, const char *path, FILE *diag);
 int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE *out, FILE *diag);
+
+/* view_preview.c: what a preview build changes in the mesh options (fewer sides, leaves as
+ * instanced cards); whether a skeleton of that many nodes is sent as its segments instead of a
+ * mesh; those segments (6 floats each, then a byte of branch order each) into out. */
+void view_preview_mesh_options(SylMeshOptions *mo);
+bool view_preview_as_lines(const SylSkeleton *sk);
+int view_preview_lines(const SylSkeleton *sk, FILE *out);
+/* The status of a build stopped because its page moved on (View.tabs): not a SYL_* code */
+enum { VIEW_SUPERSEDED = 100 };
+/* rq's page asks: its newest request number kept; whether rq is older than its page's newest */
+void view_tab_saw(View *v, const ViewRequest *rq);
+bool view_tab_moved_on(View *v, const ViewRequest *rq);
 
 /* view_eco.c: an ecosystem block (p, taken over) into slot: the forest .glb of the year
  * rq->steps (< 0: the last; else the nearest kept), the figures as JSON in slot->stats. The

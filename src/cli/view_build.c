@@ -43,6 +43,9 @@ bool view_request_arg(ViewRequest *rq, const char *key, const char *value, char 
         while (k < SYL_LEAVES_MODES && strcmp(syl_leaves_names[k], value)) k++;
         if (k == SYL_LEAVES_MODES) return snprintf(err, n, "leaves: unknown mode '%s'", value), false;
         rq->leaves = k;
+    } else if (!strcmp(key, "preview")) {
+        if (strcmp(value, "") && strcmp(value, "0") && strcmp(value, "1")) return snprintf(err, n, "preview: 0 or 1"), false;
+        rq->preview = !strcmp(value, "1");
     } else if (!strcmp(key, "impostor")) {
         if (strcmp(value, "") && strcmp(value, "0") && strcmp(value, "1")) return snprintf(err, n, "impostor: 0 or 1"), false;
         rq->impostor = !strcmp(value, "1");
@@ -92,6 +95,8 @@ typedef struct Made {
     double compile_s, lod_s, write_s;
     SylBudget *budget;
     SylProgram *eco;    /* an ecosystem block: view_eco.c builds it */
+    bool preview;       /* a lighter picture first (view_preview.c) */
+    bool lines;         /* a preview of its segments only: no mesh */
 } Made;
 
 static void made_free(Made *m) {
@@ -103,6 +108,9 @@ static void made_free(Made *m) {
     syl_budget_free(m->budget);
     memset(m, 0, sizeof *m);
 }
+
+/* A full build whose page has moved on (it asked for a newer value) stops. */
+static bool superseded(View *v, const ViewRequest *rq) { return !rq->preview && view_tab_moved_on(v, rq); }
 
 /* Compile (with every warning of `sylva check`) and build as `sylva mesh` does. */
 static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
@@ -116,6 +124,11 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
     m->compile_s = cli_now() - t0;
     if (!p) return status;
+    if (syl_program_kind(p) == SYL_MODEL_ECOSYSTEM && rq->preview) { /* its years are run once, for the full build */
+        fprintf(diag, "sylva: note: an ecosystem has no preview\n");
+        syl_program_free(p);
+        return SYL_EUSAGE;
+    }
     if (syl_program_kind(p) == SYL_MODEL_ECOSYSTEM) return m->eco = p, SYL_OK;
     double lod = syl_program_setting(p, "lod");
     m->lod = rq->lod >= 0 ? rq->lod : lod > 0 && lod <= SYL_LOD_MAX ? (int)lod : 0;
@@ -125,14 +138,38 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     m->mo = (SylMeshOptions){.diag = diag, .threads = v->threads, .budget = m->budget, .one_sided = 1,
                              .vertex_nodes = rq->wind > 0};
     if (rq->leaves >= 0) m->mo.leaves = rq->leaves;
+    if (rq->preview) view_preview_mesh_options(&m->mo), m->lod = 0, m->preview = true;
+    int nscene = 0;
+    bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!rq->model[0] && syl_program_scene(p, &nscene));
     SylPlantOptions po = {.use_steps = rq->steps >= 0, .steps = rq->steps, .use_seed = rq->use_seed,
                           .seed = rq->seed, .threads = v->threads, .max_modules = v->max_modules,
                           .max_memory = v->max_memory, .budget = m->budget, .until = SYL_PLANT_MESH,
                           .drop_string = 1, .scene = !rq->model[0], .mesh = &m->mo, .diag = diag};
+    /* A plant (not a scene, whose objects the build takes apart) stops after its skeleton, so
+     * that a superseded build stops before the mesh and a big preview is only its segments;
+     * syl_plant_build meshes the same skeleton with the same options. */
+    if (!scene) po.until = SYL_PLANT_SKELETON;
     status = syl_plant_build(p, &po, &m->pl);
     syl_program_free(p);
     if (status) return status;
+    if (!scene && superseded(v, rq)) return VIEW_SUPERSEDED;
+    if (!scene && rq->preview && view_preview_as_lines(m->pl.skeleton)) return m->lines = true, SYL_OK;
+    if (!scene) {
+        double tm = cli_now();
+        status = syl_mesh_build(m->pl.skeleton, &m->mo, &m->pl.mesh);
+        m->pl.mesh_s = cli_now() - tm;
+        if (status) return status;
+        if (superseded(v, rq)) return VIEW_SUPERSEDED;
+    }
     double t1 = cli_now();
+    if (rq->preview) { /* no levels, no wind, no reordering for the vertex cache */
+        if (m->mo.leaves == SYL_LEAVES_INSTANCED || m->mo.leaves == SYL_LEAVES_INSTANCED_CARDS) {
+            status = syl_leaf_instances(m->pl.skeleton, &m->mo, &m->sets, &m->nsets);
+            for (int i = 0; i < m->nsets; i++) m->instances += m->sets[i].count;
+        }
+        m->lod_s = cli_now() - t1;
+        return status;
+    }
     if (m->lod > 0) { /* with the impostor, its billboards are the last of the levels */
         status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod - rq->impostor, &m->lods);
         if (status) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
@@ -179,13 +216,15 @@ static char *stats_json(const Made *m) {
     FILE *f = open_memstream(&s, &n);
     if (!f) return NULL;
     const SylSkeleton *sk = m->pl.skeleton;
-    const SylMesh *me = m->pl.mesh;
+    static const SylMesh none = {0};
+    const SylMesh *me = m->pl.mesh ? m->pl.mesh : &none; /* a preview's segments: no mesh */
     float lo[3], hi[3];
     syl_skeleton_bounds(sk, lo, hi);
     fprintf(f, "{\"kind\":\"%s\",\"modules\":%zu,\"nodes\":%zu,\"organs\":%zu,\"polygons\":%zu,"
                "\"vertices\":%zu,\"triangles\":%zu,\"material_groups\":%d,\"leaf_instances\":%zu,",
             syl_model_kind_name(m->pl.kind), m->pl.modules, sk->nnodes, sk->norgans, sk->npolys, me->nverts,
             me->nidx / 3, me->ngroups, m->instances);
+    fprintf(f, "\"preview\":\"%s\",", m->lines ? "lines" : m->preview ? "mesh" : "");
     fprintf(f, "\"lod_levels\":%d,\"lod_triangles\":[", m->lods.n);
     for (int k = 0; k < m->lods.n; k++) fprintf(f, "%s%zu", k ? "," : "", m->lods.level[k].mesh->nidx / 3);
     fprintf(f, "],\"bounds\":[%g,%g,%g,%g,%g,%g],", (double)lo[0], (double)lo[1], (double)lo[2], (double)hi[0],
@@ -229,6 +268,7 @@ static void entry_free(ViewBuild *b) {
     free(b->obstacles);
     free(b->glb);
     free(b->csv);
+    free(b->lines);
     free(b->stats);
     free(b->metrics);
     memset(b, 0, sizeof *b);
@@ -277,6 +317,15 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
     if (!status && m.eco) {
         status = view_eco_build(v, rq, m.eco, gen, diag, slot);
         m.eco = NULL;
+    } else if (!status && m.lines) { /* a preview of a big plant: its segments */
+        double t = cli_now();
+        FILE *out = view_bytes_open(&slot->lines, &slot->lines_len);
+        status = out ? view_preview_lines(m.pl.skeleton, out) : SYL_ELIMIT;
+        if (out) fclose(out);
+        m.write_s = cli_now() - t;
+        if (!status) slot->stats = stats_json(&m);
+    } else if (!status && superseded(v, rq)) {
+        status = VIEW_SUPERSEDED;
     } else if (!status) {
         double t = cli_now();
         FILE *out = view_bytes_open(&slot->glb, &slot->glb_len);
@@ -286,14 +335,17 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         m.write_s = cli_now() - t;
         if (!status) status = write_obstacles(&m, slot, diag);
         if (!status) slot->stats = stats_json(&m);
-        if (!status) view_keep(v, slot->id, &m.pl, &m.budget); /* its metrics, when the page asks */
+        /* its metrics, when the page asks (of what is exported: not of a preview) */
+        if (!status && !rq->preview) view_keep(v, slot->id, &m.pl, &m.budget);
     }
     made_free(&m);
     fclose(diag);
     slot->status = status;
+    if (status == VIEW_SUPERSEDED) slot->key[0] = 0; /* never found again: built anew when asked */
     if (status) { /* keep the messages only */
         free(slot->glb), slot->glb = NULL, slot->glb_len = 0;
         free(slot->csv), slot->csv = NULL, slot->csv_len = 0;
+        free(slot->lines), slot->lines = NULL, slot->lines_len = 0;
         free(slot->obstacles), slot->obstacles = NULL, slot->obstacles_len = 0;
     }
     return slot;

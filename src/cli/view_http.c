@@ -137,6 +137,8 @@ static enum MHD_Result query_arg(void *cls, enum MHD_ValueKind kind, const char 
     (void)kind;
     Query *q = cls;
     if (!strcmp(key, "token") || !strcmp(key, "t")) return MHD_YES;
+    if (!strcmp(key, "tab")) return q->rq.tab = value ? strtoull(value, NULL, 10) : 0, MHD_YES; /* not the build's */
+    if (!strcmp(key, "seq")) return q->rq.seq = value ? (unsigned)strtoul(value, NULL, 10) : 0, MHD_YES;
     if (!strcmp(key, "format")) q->format = value;
     else if (!strcmp(key, "name")) q->name = value;
     else if (!strcmp(key, "overwrite")) q->overwrite = value && !strcmp(value, "yes");
@@ -207,14 +209,16 @@ static enum MHD_Result send_events(struct MHD_Connection *c, View *v) {
 
 /* {"id":N,"status":S,"ok":bool,"diag":"...","obstacles":bool,"stats":{...}} */
 static enum MHD_Result api_build(struct MHD_Connection *c, View *v, Query *q) {
+    view_tab_saw(v, &q->rq); /* before waiting for the build lock: a build running sees it */
     pthread_mutex_lock(&v->lock);
     ViewBuild *b = view_build(v, &q->rq, q->key);
     char *s = NULL;
     size_t n = 0;
     FILE *f = open_memstream(&s, &n);
     if (f) {
-        fprintf(f, "{\"id\":%u,\"gen\":%u,\"status\":%d,\"ok\":%s,\"diag\":", b->id, b->gen, b->status,
-                b->status ? "false" : "true");
+        fprintf(f, "{\"id\":%u,\"gen\":%u,\"status\":%d,\"ok\":%s,\"superseded\":%s,\"lines\":%s,\"diag\":", b->id,
+                b->gen, b->status, b->status ? "false" : "true", b->status == VIEW_SUPERSEDED ? "true" : "false",
+                b->lines ? "true" : "false");
         json_string_file(f, b->diag ? b->diag : "");
         fprintf(f, ",\"obstacles\":%s,\"stats\":%s,\"model\":", b->obstacles ? "true" : "false",
                 b->stats ? b->stats : "null");
@@ -229,7 +233,7 @@ static enum MHD_Result api_build(struct MHD_Connection *c, View *v, Query *q) {
 
 /* A part of build id (from the cache: the page asks right after): its .glb, its skeleton's
  * CSV or its obstacles' .glb. */
-typedef enum { PART_GLB, PART_SKELETON, PART_OBSTACLES } Part;
+typedef enum { PART_GLB, PART_SKELETON, PART_OBSTACLES, PART_LINES } Part;
 
 static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, Part part) {
     pthread_mutex_lock(&v->lock);
@@ -242,9 +246,12 @@ static enum MHD_Result api_part(struct MHD_Connection *c, View *v, unsigned id, 
         if (out && syl_skeleton_write_csv(v->kept->pl.skeleton, out)) fclose(out), free(b->csv), b->csv = NULL;
         else if (out) fclose(out);
     }
-    if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles) || (part == PART_SKELETON && !b->csv))
+    if (!b || b->status || (part == PART_OBSTACLES && !b->obstacles) || (part == PART_SKELETON && !b->csv) ||
+        (part == PART_LINES && !b->lines) || (part == PART_GLB && !b->glb))
         r = send_text(c, MHD_HTTP_NOT_FOUND, "no such build\n");
     else if (part == PART_GLB) r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->glb, b->glb_len, MHD_RESPMEM_MUST_COPY);
+    else if (part == PART_LINES)
+        r = send_bytes(c, MHD_HTTP_OK, "application/octet-stream", b->lines, b->lines_len, MHD_RESPMEM_MUST_COPY);
     else if (part == PART_OBSTACLES)
         r = send_bytes(c, MHD_HTTP_OK, "model/gltf-binary", b->obstacles, b->obstacles_len, MHD_RESPMEM_MUST_COPY);
     else r = send_bytes(c, MHD_HTTP_OK, "text/csv", b->csv, b->csv_len, MHD_RESPMEM_MUST_COPY);
@@ -435,6 +442,7 @@ static enum MHD_Result answer(void *cls, struct MHD_Connection *c, const char *u
     if (!strcmp(url, "/api/build")) return api_build(c, v, &q);
     if (!strcmp(url, "/api/glb")) return api_part(c, v, q.id, PART_GLB);
     if (!strcmp(url, "/api/skeleton")) return api_part(c, v, q.id, PART_SKELETON);
+    if (!strcmp(url, "/api/lines")) return api_part(c, v, q.id, PART_LINES);
     if (!strcmp(url, "/api/obstacles")) return api_part(c, v, q.id, PART_OBSTACLES);
     if (!strcmp(url, "/api/impostor"))
         return api_impostor(c, v, MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "look"));

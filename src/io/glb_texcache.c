@@ -8,7 +8,7 @@
 #include "io/glb.h"
 #include "sylva/stream.h"
 
-enum { SHAPES = 64 };
+enum { SHAPES = 256 }; /* SylMesh.leaf_shape is a byte: the leaf outlines' cards are 128 and up */
 
 struct SylTextureCache {
     uint8_t *png[GLB_SLOTS][SHAPES]; /* by slot and shape (the shape: cards and clusters) */

@@ -1,0 +1,129 @@
+// Browser tests of `sylva view`'s preview (docs/view.md, "Speed"): after a save the page first
+// draws a lighter preview, then the .glb of `sylva mesh` (byte for byte); a plant too big to
+// mesh quickly is previewed by its segments, those of `sylva skeleton`; a full build a tab's
+// newer request has replaced is not built (and another tab's is); a slider dragged draws
+// previews and ends on the full mesh of its last value. Usage: node preview.test.mjs SYLVA.
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import http from 'node:http';
+import { launch, serve, stop, tap } from './browser.mjs';
+
+const sylva = process.argv[2];
+const { check, done } = tap();
+
+const dir = mkdtempSync(join(tmpdir(), 'sylva-view-preview-'));
+const file = join(dir, 'plants.syl');
+// Bush first (the page's model: blades of leaves, so its preview has instanced cards); Line:
+// 2^16 segments in a row, beyond the preview's mesh limit (20,000 nodes)
+const TEXT = (depth) => `lsystem Bush {
+  param depth = ${depth}
+  derive 8
+  angle 25
+  axiom A(0)
+  A(i) : i < depth -> F[+A(i+1)][-A(i+1)]/(90)FA(i+1)
+  F -> F ~L
+}
+lsystem Line {
+  derive 16
+  axiom F
+  F -> FF
+}
+`;
+writeFileSync(file, TEXT(4));
+function edit(path, text) { writeFileSync(path + '.new', text); renameSync(path + '.new', path); }
+
+const { server, url } = await serve(sylva, file);
+const base = url.replace(/\/\?token=.*/, ''), token = url.replace(/.*token=/, '');
+function get(path) {
+  return new Promise((resolve) => {
+    const u = new URL(base);
+    http.get({ host: u.hostname, port: u.port, path, headers: { 'X-Sylva-Token': token } }, (res) => {
+      const parts = []; res.on('data', (d) => parts.push(d)); res.on('end', () => resolve({ status: res.statusCode, body: Buffer.concat(parts) }));
+    }).on('error', (e) => resolve({ status: 0, body: Buffer.from(String(e)) }));
+  });
+}
+const json = async (path) => JSON.parse((await get(path)).body.toString());
+const browser = await launch(dir);
+const errors = [];
+try {
+  const page = await browser.newPage();
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.setViewport({ width: 900, height: 700 });
+  await page.goto(url);
+  await page.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 60000 });
+
+  // ---- a save: the preview's frame, then the full .glb's (sylva mesh's bytes) ----
+  const before = await page.evaluate(() => ({ loads: window.sylvaView.loads, previews: window.sylvaView.previews || 0 }));
+  edit(file, TEXT(5));
+  await page.waitForFunction((c) => window.sylvaView.loads > c && window.sylvaView.shownAt > 0, { timeout: 60000 }, before.loads);
+  const after = await page.evaluate(() => { const v = window.sylvaView; return { previews: v.previews, kind: v.lastPreviewKind,
+    previewAt: v.previewShownAt, fullAt: v.shownAt, stats: v.stats, preview: v.preview, id: v.build.id }; });
+  check(after.previews === before.previews + 1 && after.kind === 'mesh', 'a save draws one preview (a mesh) first',
+    JSON.stringify({ before, previews: after.previews, kind: after.kind }));
+  check(after.previewAt > 0 && after.previewAt < after.fullAt, 'the preview\'s frame comes before the full mesh\'s',
+    `${after.previewAt} vs ${after.fullAt}`);
+  check(after.preview === null && after.stats.preview === '' && after.stats.triangles > 0, 'then the full mesh is on screen (no preview left)');
+  const served = (await get('/api/glb?id=' + after.id)).body;
+  const out = join(dir, 'cli.glb');
+  spawnSync(sylva, ['mesh', file + ':Bush', '-o', out, '-j', '1']);
+  check(served.equals(readFileSync(out)), 'the .glb drawn last is byte for byte sylva mesh\'s', `${served.length} vs ${readFileSync(out).length} bytes`);
+
+  // the preview's build, as the server answers it: instanced leaf cards, fewer triangles
+  const pv = await json('/api/build?model=Bush&preview=1');
+  const full = await json('/api/build?model=Bush');
+  check(pv.ok && pv.stats.preview === 'mesh' && pv.stats.leaf_instances === full.stats.organs && pv.stats.triangles < full.stats.triangles,
+    'a preview: every leaf one instanced card, fewer triangles than the mesh',
+    JSON.stringify({ pv: [pv.stats.leaf_instances, pv.stats.triangles], full: [full.stats.organs, full.stats.triangles] }));
+
+  // ---- a big plant's preview: its segments, those of sylva skeleton ----
+  const lines = await json('/api/build?model=Line&preview=1');
+  const seg = (await get('/api/lines?id=' + lines.id)).body;
+  const csv = spawnSync(sylva, ['skeleton', file + ':Line', '-o', '-'], { maxBuffer: 1 << 28 }).stdout.toString().trim().split('\n').slice(1);
+  const internodes = csv.filter((l) => l.split(',')[7] === 'internode');
+  const top = Math.max(...internodes.map((l) => +l.split(',')[3]));
+  const f = new Float32Array(seg.buffer, seg.byteOffset, (seg.length / 25) * 6);
+  let ymax = -Infinity;
+  for (let i = 4; i < f.length; i += 6) ymax = Math.max(ymax, f[i]);
+  check(lines.ok && lines.lines && seg.length % 25 === 0 && seg.length / 25 === internodes.length && internodes.length === 65536,
+    'a plant beyond the mesh limit is previewed by its segments: as many as sylva skeleton\'s internodes',
+    `${seg.length / 25} segments, ${internodes.length} internodes`);
+  check(Math.abs(ymax - top) <= 1e-4 * Math.abs(top), 'and they reach as high', `${ymax} vs ${top}`);
+  check((await get('/api/glb?id=' + lines.id)).status === 404, 'a segments preview has no .glb');
+
+  // ---- a full build that a newer request of its tab replaced is not built ----
+  await json('/api/build?model=Line&preview=1&tab=7&seq=2');
+  const stale = await json('/api/build?model=Line&n=15&tab=7&seq=1');
+  check(stale.superseded === true && stale.ok === false && !stale.stats, 'an older full build of a tab is stopped (superseded)', JSON.stringify(stale).slice(0, 200));
+  const other = await json('/api/build?model=Bush&n=3&tab=8&seq=1');
+  check(other.ok && !other.superseded, 'another tab\'s full build is not stopped by it');
+  const newer = await json('/api/build?model=Bush&n=3&tab=7&seq=3');
+  check(newer.ok && !newer.superseded && newer.id === other.id, 'the tab\'s newest request is built (the same build: from the cache)');
+  const again = await json('/api/build?model=Line&n=15&tab=7&seq=3');
+  check(again.ok && again.id !== stale.id, 'a stopped build is not kept in the cache');
+
+  // ---- a slider dragged: previews while it moves, the full mesh of the last value at rest ----
+  const drag = await page.evaluate(async () => {
+    const el = document.querySelector('input[type=range][data-param=depth]');
+    const v = window.sylvaView, p0 = v.previews, n0 = v.loads;
+    for (const d of [5, 4, 5, 6, 5, 4, 3, 4, 5, 4, 3, 2]) {
+      el.value = d; el.dispatchEvent(new Event('input', { bubbles: true }));
+      await new Promise((r) => setTimeout(r, 30));
+    }
+    return { p0, n0, last: 'set=depth%3D' + el.value }; // the slider's own step rounds the values
+  });
+  await page.waitForFunction((last) => window.sylvaView.idle && window.sylvaView.shownAt > 0 &&
+    (window.sylvaView.drawnQuery + '&').includes(last + '&'), { timeout: 60000 }, drag.last).catch(() => {});
+  const end = await page.evaluate(() => ({ previews: window.sylvaView.previews, loads: window.sylvaView.loads,
+    key: window.sylvaView.drawnQuery, preview: window.sylvaView.preview, stats: window.sylvaView.stats }));
+  check(end.previews > drag.p0, 'a drag draws previews', JSON.stringify({ drag, previews: end.previews }));
+  check((end.key + '&').includes(drag.last + '&') && end.preview === null && end.stats.preview === '',
+    'it ends on the full mesh of the last value', JSON.stringify({ key: end.key, last: drag.last, preview: end.preview }));
+  check(errors.length === 0, 'no page errors', errors.join('; '));
+} finally {
+  await browser.close();
+  await stop(server);
+  rmSync(dir, { recursive: true, force: true });
+}
+done();
