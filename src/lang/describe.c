@@ -73,7 +73,8 @@ static Entry *add_row(DModel *m, const SchRow *r, const char *prefix) {
     if (!e) return NULL;
     snprintf(e->name, sizeof e->name, "%s%s", prefix ? prefix : "", r->name);
     e->type = r->levels ? SCH_LIST : r->type;
-    if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->type == SCH_LIST) && !(r->lo == 0 && r->hi == 0)) {
+    if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->type == SCH_LIST || r->type == SCH_VECTOR) &&
+        !(r->lo == 0 && r->hi == 0)) {
         e->lo = isinf(r->lo) ? NAN : r->lo;
         e->hi = isinf(r->hi) ? NAN : r->hi;
     }
@@ -484,8 +485,8 @@ static void md_table(FILE *out, const SchTable *t) {
         const SchRow *r = &t->rows[i];
         char range[96] = "", def[96] = "";
         if (r->type == SCH_ENUM && r->words) snprintf(range, sizeof range, "%s", r->words);
-        else if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->levels || r->type == SCH_LIST) &&
-                 !(r->lo == 0 && r->hi == 0))
+        else if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->levels || r->type == SCH_LIST ||
+                  r->type == SCH_VECTOR) && !(r->lo == 0 && r->hi == 0))
             sch_range_text(r, range, sizeof range);
         Val v;
         row_default(r, &v);

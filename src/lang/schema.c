@@ -118,7 +118,9 @@ bool sch_value_ok(const SchRow *r, double x, char *why, size_t size) {
         return false;
     }
     if (r->type == SCH_INTEGER && x != floor(x)) {
-        snprintf(why, size, "takes a whole number, not %g", x);
+        char range[80];
+        sch_range_text(r, range, sizeof range);
+        snprintf(why, size, "takes a whole number in %s, not %g", range, x);
         return false;
     }
     return true;
