@@ -38,6 +38,8 @@ typedef struct Reader {
 #define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
 
 static const SchTable *table(const Reader *r) { return r->k->t; }
+/* "n" before a noun that begins with a vowel ("an organ line"). */
+static const char *an(const char *noun) { return noun && strchr("aeiou", noun[0]) ? "n" : ""; }
 static bool is_mode_row(const SchRow *row) { return row && row->type == SCH_ENUM && !strchr(row->name, '.'); }
 
 /* The directive's part of a row name: "buds" of "buds.angle" and of "buds". */
@@ -266,8 +268,8 @@ static bool take_symbol(Reader *r, const Dir *dir, const SylDirArg *a, void *bas
         size_t nm = split_words(head->words, modes, 16, mtmp, sizeof mtmp);
         for (size_t i = 0; i < nm; i++) snprintf(tilde[i], sizeof tilde[i], "~%s", modes[i]), modes[i] = tilde[i];
         list_words(list, sizeof list, modes, nm);
-        ERR(r, a->line, a->col, "'%s' is not a symbol of a%s %s: use %s", a->text,
-            strchr("aeiou", head->group[0]) ? "n" : "", head->group, list);
+        const char *what = head->group ? head->group : head->name;
+        ERR(r, a->line, a->col, "'%s' is not a symbol of a%s %s: use %s", a->text, an(what), what, list);
         return false;
     }
     store(slot_of(r, head), base, word_value(slot_of(r, head), word));
@@ -282,53 +284,86 @@ static bool take_symbol(Reader *r, const Dir *dir, const SylDirArg *a, void *bas
     return true;
 }
 
+/* The mode a line begins with (or implies): its index among head's words, -1 none, -2 an
+ * error (reported); *i is past it and its count. */
+static int read_mode(Reader *r, const SchRow *head, const SylDirective *d, void *base, int *i) {
+    const SylDirArg *args = d->args;
+    int mode = d->nargs > 0 && args[0].kind == SYL_DARG_WORD ? sch_word_index(head->words, args[0].text) : -1;
+    if (mode >= 0) *i = 1;
+    else if (head->implied && d->nargs > 0) mode = sch_word_index(head->words, head->implied); /* keys only */
+    if (mode < 0 && head->required) {
+        const char *words[32];
+        char tmp[256], list[256];
+        list_words(list, sizeof list, words, split_words(head->words, words, 32, tmp, sizeof tmp));
+        if (d->nargs > 0 && args[0].kind == SYL_DARG_WORD)
+            ERR(r, args[0].line, args[0].col, "'%s' expects %s first, not '%s'", d->name, list, args[0].text);
+        else if (d->nargs > 0)
+            ERR(r, args[0].line, args[0].col, "'%s' expects %s first, not %s", d->name, list, kind_name(args[0].kind));
+        else ERR(r, d->line, d->col, "'%s' expects %s after it", d->name, list);
+        return -2;
+    }
+    if (mode < 0) return -1;
+    int count = 0;
+    if (head->counted && mode == sch_word_index(head->words, head->counted)) { /* whorled 3 */
+        double v;
+        if (*i >= d->nargs || !sch_number(&args[*i], &v) || v != floor(v) || v < head->count_lo || v > head->count_hi) {
+            const SylDirArg *at = *i < d->nargs ? &args[*i] : &args[*i - 1];
+            ERR(r, at->line, at->col, "'%s' expects a whole number of %s from %d to %d after it", head->counted,
+                head->count_of ? head->count_of : "things", head->count_lo, head->count_hi);
+            return -2;
+        }
+        count = (int)v;
+        (*i)++;
+    }
+    store(slot_of(r, head), base, word_value(slot_of(r, head), mode));
+    if (r->k->mode_read) r->k->mode_read(base, head, mode, count);
+    return mode;
+}
+
+/* A word that is no key of dir in mode (mword; NULL: none written), at argument i: the keys
+ * that would have been right, or a near one. */
+static void unknown_key(Reader *r, const Dir *dir, const SylDirective *d, const SylDirArg *a, const char *mword,
+                        bool mode_place) {
+    const char *names[64];
+    size_t n = key_names(r, dir->name, mword, names, 64);
+    char list[512], mtmp[256];
+    list_words(list, sizeof list, names, n);
+    /* did you mean: a key, or a mode word where the mode goes (`buds alternat`) */
+    size_t nn = n;
+    if (mode_place && is_mode_row(dir->head)) nn += split_words(dir->head->words, names + n, 64 - n, mtmp, sizeof mtmp);
+    char near[160];
+    if (closest_list(a->text, names, (int)nn, near, sizeof near)) {
+        ERR(r, a->line, a->col, "unknown key '%s' of '%s' (did you mean %s?)", a->text, d->name, near);
+        return;
+    }
+    bool other_mode = false;
+    size_t len = strlen(dir->name);
+    for (int j = 0; j < table(r)->n; j++) {
+        const SchRow *row = &table(r)->rows[j];
+        if (row->when && !strncmp(row->name, dir->name, len) && row->name[len] == '.' &&
+            !strcmp(row->name + len + 1, a->text))
+            other_mode = true;
+    }
+    if (other_mode && mword)
+        ERR(r, a->line, a->col, "'%s' is not a key of '%s %s' (keys: %s)", a->text, d->name, mword, n ? list : "none");
+    else if (n) ERR(r, a->line, a->col, "unknown key '%s' of '%s' (keys: %s)", a->text, d->name, list);
+    else ERR(r, a->line, a->col, "'%s%s%s' takes no keys", d->name, mword ? " " : "", mword ? mword : "");
+}
+
 static void read_line(Reader *r, const Dir *dir, const SylDirective *d, void *base) {
     const SchRow *head = dir->head;
-    bool modes = is_mode_row(head);
     const SylDirArg *args = d->args;
     int i = 0, mode = -1; /* mode: the word's index among head's words */
-    char mtmp[256];
-    const char *mwords[32];
-    size_t nm = modes ? split_words(head->words, mwords, 32, mtmp, sizeof mtmp) : 0;
-    if (modes) {
-        if (d->nargs > 0 && args[0].kind == SYL_DARG_WORD) mode = sch_word_index(head->words, args[0].text);
-        char list[256];
-        list_words(list, sizeof list, mwords, nm);
-        if (mode < 0 && head->implied && d->nargs > 0) { /* keys only: the implied mode */
-            mode = sch_word_index(head->words, head->implied);
-            i--; /* nothing was read */
-        }
-        if (mode < 0 && head->required) {
-            if (d->nargs > 0 && args[0].kind == SYL_DARG_WORD)
-                ERR(r, args[0].line, args[0].col, "'%s' expects %s first, not '%s'", d->name, list, args[0].text);
-            else if (d->nargs > 0)
-                ERR(r, args[0].line, args[0].col, "'%s' expects %s first, not %s", d->name, list, kind_name(args[0].kind));
-            else ERR(r, d->line, d->col, "'%s' expects %s after it", d->name, list);
-            return;
-        }
-        if (mode >= 0) {
-            i++;
-            int count = 0;
-            if (head->counted && !strcmp(mwords[mode], head->counted)) {
-                double v;
-                if (i >= d->nargs || !sch_number(&args[i], &v) || v != floor(v) || v < head->count_lo ||
-                    v > head->count_hi) {
-                    const SylDirArg *at = i < d->nargs ? &args[i] : &args[i - 1];
-                    ERR(r, at->line, at->col, "'%s' expects a whole number of %s from %d to %d after it", mwords[mode],
-                        head->count_of ? head->count_of : "things", head->count_lo, head->count_hi);
-                    return;
-                }
-                count = (int)v;
-                i++;
-            }
-            store(slot_of(r, head), base, word_value(slot_of(r, head), mode));
-            if (r->k->mode_read) r->k->mode_read(base, head, mode, count);
-        }
+    if (is_mode_row(head)) {
+        if ((mode = read_mode(r, head, d, base, &i)) == -2) return;
     } else if (head) { /* a bare value */
         if (!take_value(r, d, head, args, i < d->nargs ? i : d->nargs, base)) return;
         i++;
     }
-    const char *mword = mode >= 0 ? mwords[mode] : NULL;
+    const char *mwords[32];
+    char mtmp[256];
+    const char *mword = NULL;
+    if (mode >= 0 && (size_t)mode < split_words(head->words, mwords, 32, mtmp, sizeof mtmp)) mword = mwords[mode];
     for (; i < d->nargs; i++) {
         const SylDirArg *a = &args[i];
         if (head && head->symbols && a->kind == SYL_DARG_SYMBOL) {
@@ -341,32 +376,7 @@ static void read_line(Reader *r, const Dir *dir, const SylDirective *d, void *ba
         }
         const SchRow *key = find_key(r, dir->name, mword, a->text);
         if (!key) {
-            /* name the keys that would have been right */
-            const char *names[64];
-            size_t n = key_names(r, dir->name, mword, names, 64);
-            char list[512];
-            list_words(list, sizeof list, names, n);
-            /* did you mean: a key, or a mode word where the mode goes (`buds alternat`) */
-            size_t nn = n;
-            for (size_t m = 0; mode < 0 && i == 0 && m < nm && nn < 64; m++) names[nn++] = mwords[m];
-            char near[160];
-            if (closest_list(a->text, names, (int)nn, near, sizeof near)) {
-                ERR(r, a->line, a->col, "unknown key '%s' of '%s' (did you mean %s?)", a->text, d->name, near);
-                return;
-            }
-            bool other_mode = false;
-            for (int j = 0; j < table(r)->n; j++) {
-                const SchRow *row = &table(r)->rows[j];
-                size_t len = strlen(dir->name);
-                if (row->when && !strncmp(row->name, dir->name, len) && row->name[len] == '.' &&
-                    !strcmp(row->name + len + 1, a->text))
-                    other_mode = true;
-            }
-            if (other_mode && mword)
-                ERR(r, a->line, a->col, "'%s' is not a key of '%s %s' (keys: %s)", a->text, d->name, mword,
-                    n ? list : "none");
-            else if (n) ERR(r, a->line, a->col, "unknown key '%s' of '%s' (keys: %s)", a->text, d->name, list);
-            else ERR(r, a->line, a->col, "'%s%s%s' takes no keys", d->name, mword ? " " : "", mword ? mword : "");
+            unknown_key(r, dir, d, a, mword, mode < 0 && i == 0);
             return;
         }
         int took = take_value(r, d, key, args, i + 1, base);
@@ -421,7 +431,8 @@ static void read_lines(Reader *r, void *base) {
         if (repeats) { /* each line its own element of the group */
             int *count = (int *)((char *)base + r->k->group_count_off);
             if (*count == dir->head->repeat) {
-                ERR(r, d->line, d->col, "at most %d %ss", dir->head->repeat, dir->head->group);
+                ERR(r, d->line, d->col, "at most %d %ss", dir->head->repeat,
+                    dir->head->group ? dir->head->group : dir->name);
                 continue;
             }
             at = (char *)base + r->k->group_off + (size_t)(*count)++ * r->k->group_size;
@@ -470,6 +481,7 @@ static void set_number(Reader *r, const char *typed, const SchRow *row, void *ba
 /* DIRECTIVE.N.KEY: the N-th repeated line's number (organ.2.size). */
 static void set_group(Reader *r, const Dir *dir, void *base, const char *typed, const char *name, double v) {
     const SchRow *head = dir->head;
+    const char *group = head->group ? head->group : head->name;
     const SchTable *t = table(r);
     const char *first = NULL, *names[32];
     size_t nn = 0;
@@ -482,14 +494,14 @@ static void set_group(Reader *r, const Dir *dir, void *base, const char *typed, 
     char *end = NULL;
     long n = strtol(name + len, &end, 10);
     if (end == name + len || *end != '.') {
-        ERR(r, 0, 0, "--set %s: write %s.N.KEY, N the %s from 1 (%s.1.%s)", typed, dir->name, head->group, dir->name,
+        ERR(r, 0, 0, "--set %s: write %s.N.KEY, N the %s from 1 (%s.1.%s)", typed, dir->name, group, dir->name,
             first ? first : "KEY");
         return;
     }
     int count = *(const int *)((const char *)base + r->k->group_count_off);
     if (n < 1 || n > count) {
         if (r->p->sibling) return;
-        ERR(r, 0, 0, "--set %s: %s block '%s' has %d %s%s", typed, t->kind, syl_program_name(r->p), count, head->group,
+        ERR(r, 0, 0, "--set %s: %s block '%s' has %d %s%s", typed, t->kind, syl_program_name(r->p), count, group,
             count == 1 ? "" : "s");
         return;
     }
@@ -499,8 +511,7 @@ static void set_group(Reader *r, const Dir *dir, void *base, const char *typed, 
         size_t used = 0;
         for (size_t i = 0; i < nn && used < sizeof list; i++)
             used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", i ? ", " : "", names[i]);
-        ERR(r, 0, 0, "--set %s: a%s %s has no number '%s' (%s)", typed, strchr("aeiou", head->group[0]) ? "n" : "",
-            head->group, end + 1, list);
+        ERR(r, 0, 0, "--set %s: a%s %s has no number '%s' (%s)", typed, an(group), group, end + 1, list);
         return;
     }
     set_number(r, typed, key, (char *)base + r->k->group_off + (size_t)(n - 1) * r->k->group_size, v);
