@@ -73,7 +73,8 @@ static Entry *add_row(DModel *m, const SchRow *r, const char *prefix) {
     if (!e) return NULL;
     snprintf(e->name, sizeof e->name, "%s%s", prefix ? prefix : "", r->name);
     e->type = r->levels ? SCH_LIST : r->type;
-    if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->type == SCH_LIST) && !(r->lo == 0 && r->hi == 0)) {
+    if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->type == SCH_LIST || r->type == SCH_VECTOR) &&
+        !(r->lo == 0 && r->hi == 0)) {
         e->lo = isinf(r->lo) ? NAN : r->lo;
         e->hi = isinf(r->hi) ? NAN : r->hi;
     }
@@ -200,7 +201,26 @@ static void describe_block(const SylProgram *p, const SchTable *t, DModel *m) {
 /* A grow block (SCH_KEYED): a directive's mode or bare value under its name, its keys as
  * DIRECTIVE.KEY; a repeated line's (organ) as organ.N and organ.N.KEY, N from 1, as --set
  * names them. */
-static void keyed_line(const SylDirective *d, const char *head, DModel *m) {
+/* ~leaf(0.06) on a line whose row h has symbols: the mode it names and its symbol_key's value. */
+static void keyed_symbol(const SchRow *h, const SylDirArg *a, const char *head, DModel *m) {
+    const char *s = a->text && a->text[0] == '~' ? a->text + 1 : a->text ? a->text : "";
+    size_t len = strlen(s);
+    for (const char *w = h->symbols; w && *w;) { /* "leaf=leaf|petal=flower" */
+        const char *eq = strchr(w, '='), *end = strchr(w, '|');
+        if (eq && (!end || eq < end) && (size_t)(eq - w) == len && !strncmp(w, s, len)) {
+            char word[64], name[160];
+            snprintf(word, sizeof word, "%.*s", (int)(end ? end - eq - 1 : (long)strlen(eq + 1)), eq + 1);
+            Entry *e = find_entry(m, head);
+            if (e) text(&e->val, word);
+            snprintf(name, sizeof name, "%s.%s", head, h->symbol_key);
+            if (a->nvalues >= 1 && (e = find_entry(m, name))) num(&e->val, a->values[0]);
+            return;
+        }
+        w = end ? end + 1 : NULL;
+    }
+}
+
+static void keyed_line(const SylDirective *d, const SchRow *h, const char *head, DModel *m) {
     int i = 0;
     Entry *e = find_entry(m, head);
     if (e && d->nargs > 0) { /* buds whorled 3, years 18 */
@@ -211,8 +231,13 @@ static void keyed_line(const SylDirective *d, const char *head, DModel *m) {
         else if (e->type != SCH_ENUM && sch_number(a, &x))
             num(&e->val, x), i = 1;
     }
-    for (; i + 1 < d->nargs; i++) { /* KEY VALUE; a count (whorled 3) or ~leaf(s) is passed over */
+    for (; i < d->nargs; i++) { /* KEY VALUE, ~leaf(s); a count (whorled 3) is passed over */
         const SylDirArg *a = &d->args[i];
+        if (a->kind == SYL_DARG_SYMBOL && h && h->symbols && h->symbol_key) {
+            keyed_symbol(h, a, head, m);
+            continue;
+        }
+        if (i + 1 >= d->nargs) break;
         char name[160];
         snprintf(name, sizeof name, "%s.%s", head, a->kind == SYL_DARG_WORD ? a->text : "");
         if (a->kind != SYL_DARG_WORD || !(e = find_entry(m, name))) continue;
@@ -242,7 +267,7 @@ static void describe_keyed(const SylProgram *p, const SchTable *t, DModel *m) {
                 if (e) snprintf(e->name, sizeof e->name, "%s%s", head, r->name + len);
             }
         }
-        keyed_line(&ds[k], head, m);
+        keyed_line(&ds[k], h, head, m);
     }
     for (int i = 0; i < p->noverrides; i++) { /* years=3, buds.angle=35, lambda=0.48, organ.1.size=0.2 */
         const char *name = p->set_local ? p->set_local[i] : NULL;
@@ -484,8 +509,8 @@ static void md_table(FILE *out, const SchTable *t) {
         const SchRow *r = &t->rows[i];
         char range[96] = "", def[96] = "";
         if (r->type == SCH_ENUM && r->words) snprintf(range, sizeof range, "%s", r->words);
-        else if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->levels || r->type == SCH_LIST) &&
-                 !(r->lo == 0 && r->hi == 0))
+        else if ((r->type == SCH_NUMBER || r->type == SCH_INTEGER || r->levels || r->type == SCH_LIST ||
+                  r->type == SCH_VECTOR) && !(r->lo == 0 && r->hi == 0))
             sch_range_text(r, range, sizeof range);
         Val v;
         row_default(r, &v);

@@ -102,10 +102,17 @@ bool sch_number(const SylDirArg *a, double *x) {
     return false;
 }
 
+/* A bound: an integer row's whole (9007199254740991, not 9.0072e+15), else %g. */
+static void bound_text(const SchRow *r, double x, char *buf, size_t size) {
+    if (isinf(x)) snprintf(buf, size, "%sinf", x < 0 ? "-" : "");
+    else if (r->type == SCH_INTEGER && x == floor(x) && fabs(x) < 1e17) snprintf(buf, size, "%.0f", x);
+    else snprintf(buf, size, "%g", x);
+}
+
 void sch_range_text(const SchRow *r, char *buf, size_t size) {
     char lo[32], hi[32];
-    if (isinf(r->lo)) snprintf(lo, sizeof lo, "-inf"); else snprintf(lo, sizeof lo, "%g", r->lo);
-    if (isinf(r->hi)) snprintf(hi, sizeof hi, "inf"); else snprintf(hi, sizeof hi, "%g", r->hi);
+    bound_text(r, r->lo, lo, sizeof lo);
+    bound_text(r, r->hi, hi, sizeof hi);
     snprintf(buf, size, "%s%s, %s%s", r->lo_open || isinf(r->lo) ? "(" : "[", lo, hi,
              r->hi_open || isinf(r->hi) ? ")" : "]");
 }
@@ -118,7 +125,9 @@ bool sch_value_ok(const SchRow *r, double x, char *why, size_t size) {
         return false;
     }
     if (r->type == SCH_INTEGER && x != floor(x)) {
-        snprintf(why, size, "takes a whole number, not %g", x);
+        char range[80];
+        sch_range_text(r, range, sizeof range);
+        snprintf(why, size, "takes a whole number in %s, not %g", range, x);
         return false;
     }
     return true;

@@ -17,7 +17,7 @@
 
 /* The types, as `sylva describe --json` names them. */
 #define SCH_TYPES(X) X(NUMBER, "number") X(INTEGER, "integer") X(BOOLEAN, "boolean") X(ENUM, "enum") \
-    X(LIST, "list") X(CURVE, "curve") X(FILE, "file") X(STRING, "string")
+    X(LIST, "list") X(CURVE, "curve") X(FILE, "file") X(STRING, "string") X(VECTOR, "vector")
 typedef enum {
 #define X(t, s) SCH_##t,
     SCH_TYPES(X)
@@ -38,6 +38,17 @@ typedef struct SchRow {
     const char *doc;        /* one line */
     const char *aliases;    /* other names, "a|b"; NULL: none */
     const char *group;      /* the rows it belongs with (an ecosystem species': "species"); NULL: the block */
+    /* The shape of a keyed line (SCH_KEYED, below): what a row DIRECTIVE of type enum (its
+     * modes) or DIRECTIVE.KEY says of the line beyond its value. */
+    const char *when;       /* a key: read only in this mode of its directive ("shadow"); NULL: every mode */
+    const char *implied;    /* a mode: the one a line of keys only is in (`light voxel 0.3`: "shadow") */
+    bool required;          /* a mode (or implied) must be written: `light` alone is wrong */
+    const char *counted;    /* a mode word a whole number follows (`whorled 3`), */
+    int count_lo, count_hi; /* within these, */
+    const char *count_of;   /* counting these ("buds") */
+    int repeat;             /* the directive may be given this many times, each line its own group */
+    const char *symbols;    /* symbols ~S(x) a repeated line may carry, "S=MODE|...": the mode, */
+    const char *symbol_key; /* and x (above 0) this key's value */
 } SchRow;
 
 /* How a block's lines give the rows their values (what `sylva describe` reads them by). */
@@ -45,7 +56,8 @@ typedef enum {
     SCH_SETTINGS, /* an lsystem's settings, kept in the program */
     SCH_LINES,    /* NAME VALUE... (weber, strands) */
     SCH_GROUPS,   /* NAME VALUE..., a group's rows after its opening line (ecosystem: species NAME) */
-    SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow) */
+    SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow),
+                   * read by sch_read_keyed */
 } SchShape;
 
 typedef struct SchTable {
@@ -75,7 +87,7 @@ bool sch_number(const SylDirArg *a, double *x);
 /* "[0, 1]", "(0, inf)", … */
 void sch_range_text(const SchRow *r, char *buf, size_t size);
 /* Whether x is allowed in r (range, whole for integers); when not, why ("must be in [0, 9],
- * not 12" / "takes a whole number, not 2.5") into why. */
+ * not 12" / "takes a whole number in [0, 9], not 2.5") into why. */
 bool sch_value_ok(const SchRow *r, double x, char *why, size_t size);
 
 /* --set NAME=VALUE for a block of kind t: checks that name (within the model) is a row that
@@ -83,6 +95,46 @@ bool sch_value_ok(const SchRow *r, double x, char *why, size_t size);
  * returns 1, or returns 0 and sets *row, *level. */
 int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char *typed, const char *name,
                   double value, const SchRow **row, int *level);
+
+/* ---- Reading a keyed table's block (schema_keyed.c) ----
+ * A row's value goes to a slot of the kind's parameter struct (or of the repeated line's
+ * element, for the rows of a group): how it is stored, and where. */
+typedef enum {
+    SCH_AT_NONE,  /* not stored (a mode with no field) */
+    SCH_AT_F32,
+    SCH_AT_INT,
+    SCH_AT_U64,   /* a whole number up to 2^53 (a seed) */
+    SCH_AT_BOOL,
+    SCH_AT_U8,    /* an enum's value in a byte */
+    SCH_AT_F32X3, /* a vector */
+    SCH_AT_TEXT,  /* a name, into char[size] */
+} SchStore;
+
+typedef struct SchSlot {
+    SchStore store;
+    size_t off, size;  /* size: SCH_AT_TEXT's buffer */
+    const int *values; /* an enum: the value stored for each word (NULL: its index) */
+} SchSlot;
+
+typedef struct SchKeyed {
+    const SchTable *t;
+    const SchSlot *slots; /* slots[i] is t->rows[i]'s; rows past nslots are not stored (texture lines) */
+    int nslots;
+    /* the repeated line (a row with repeat): its elements' array, size and count (an int) */
+    size_t group_off, group_size, group_count_off;
+    /* a mode word was read (index word of row's words, count the whole number after it):
+     * what else it sets (whorled 3: three buds a node). NULL: nothing */
+    void (*mode_read)(void *base, const SchRow *row, int word, int count);
+} SchKeyed;
+
+/* Every row's default into base (the non-group rows; sch_keyed_group_defaults for an element). */
+void sch_keyed_defaults(const SchKeyed *k, void *base);
+void sch_keyed_group_defaults(const SchKeyed *k, void *elem);
+/* Read p's block over base (defaults already there): every line against its rows, with
+ * file:line:col errors, then p's --set NAME=VALUE (DIRECTIVE.KEY, a key by its name alone, a
+ * bare value by its directive's name, GROUP.N.KEY). Returns the errors, *set_errors of them
+ * about --set values. */
+int sch_read_keyed(const SylProgram *p, const SchKeyed *k, void *base, FILE *diag, int *set_errors);
 
 /* The markdown of docs/directives.md: every table (describe.c). */
 void lang_directives_reference(FILE *out);

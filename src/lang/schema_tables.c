@@ -71,7 +71,7 @@ static const SchRow ecosystem_rows[] = {
 #define GT_INT SCH_INTEGER
 #define GT_SEED SCH_INTEGER
 #define GT_BOOL SCH_BOOLEAN
-#define GT_VEC3 SCH_LIST
+#define GT_VEC3 SCH_VECTOR
 #define GT_WORD SCH_ENUM
 #define GT_NAME SCH_STRING
 #define GROUP_G NULL
@@ -91,13 +91,14 @@ static const SchRow ecosystem_rows[] = {
 #define GW_VEC3(d) NULL
 #define GW_NAME(d) NULL
 static const SchRow grow_rows[] = {
-#define GROW_VALUE(var, nm, ty, l, h, f, d, u, mean) \
+#define GROW_VALUE(nm, ty, l, h, f, d, u, mean) \
     {.name = nm, .type = GT_##ty, .lo = l, .hi = h, .def = {d}, .unit = u, .doc = mean},
-#define GROW_MODES(list, dir, dw, w, grp, mean) \
-    {.name = dir, .type = SCH_ENUM, .def = {NAN}, .def_text = dw, .words = w, .unit = "", .doc = mean, .group = grp},
-#define GROW_KEY(base, f, dir, nm, ty, l, h, d, w, u, mean) \
+#define GROW_MODES(base, f, dir, dw, w, values, grp, mean, ...) \
+    {.name = dir, .type = SCH_ENUM, .def = {NAN}, .def_text = dw, .words = w, .unit = "", .doc = mean, .group = grp, \
+     __VA_ARGS__},
+#define GROW_KEY(base, f, dir, wh, nm, ty, l, h, d, w, u, mean) \
     {.name = dir "." nm, .type = GT_##ty, .lo = l, .hi = h, .def = {GD_##ty(d)}, .def_text = GW_##ty(d), \
-     .words = w, .unit = u, .doc = mean, .group = GROUP_##base},
+     .words = w, .unit = u, .doc = mean, .group = GROUP_##base, .when = wh},
 #include "sot/params.def"
 #define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
 #include "lang/textures.def"

@@ -1,4 +1,5 @@
-/* Reading directive lines of grow and scene blocks: errors go through the program's
+/* Reading directive lines of scene blocks (and grow's checks across directives, after the
+ * schema's keyed reader, lang/schema_keyed.c, has read its lines): errors go through the program's
  * diagnostics, and are counted so that a whole block is checked before failing. */
 #ifndef SOT_READER_H
 #define SOT_READER_H

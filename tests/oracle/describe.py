@@ -10,7 +10,7 @@ import json
 import sys
 
 KEYS = ["name", "type", "min", "max", "default", "value", "unit", "doc", "values", "aliases"]
-TYPES = {"number", "integer", "boolean", "enum", "list", "curve", "file", "string"}
+TYPES = {"number", "integer", "boolean", "enum", "list", "curve", "file", "string", "vector"}
 
 
 def main(argv):

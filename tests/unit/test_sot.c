@@ -520,7 +520,7 @@ static void directive_errors(void **state) {
         {"  allocate bh lambda 1.5\n", "test.syl:2:22: error: lambda must be in [0, 1], not 1.5"},
         {"  light sky voxel 2\n", "test.syl:2:13: error: 'voxel' is not a key of 'light sky'"},
         {"  buds whorled\n", "test.syl:2:8: error: 'whorled' expects a whole number of buds from 1 to 32 after it"},
-        {"  years 2.5\n", "test.syl:2:9: error: years takes a whole number, not 2.5"},
+        {"  years 2.5\n", "test.syl:2:9: error: years takes a whole number in [0, 10000], not 2.5"},
         {"  direction trunk_tropism maybe\n", "test.syl:2:27: error: 'trunk_tropism' expects on or off"},
         {"  organ petal\n", "test.syl:2:9: error: 'organ' expects leaf, flower or needle first, not 'petal'"},
         {"  space occupancy 3 perception 2\n", "test.syl:2:3: error: 'space': perception (2) must reach beyond occupancy (3)"},
