@@ -23,13 +23,23 @@ endif
 CFLAGS   = -std=c11 $(OPT) $(WARN) -D_GNU_SOURCE -pthread -MMD -MP \
            -Iinclude -Isrc -I$(BUILD)/gen $(PKG_CFLAGS) $(MPI_CFLAGS)
 PKGS    := cglm libpng libxml-2.0
+# Asked once (:=) when the packages are there, not at each recipe: a recursive $(shell) ran
+# pkg-config for every object (about 5 s of CPU a tree). Before `make deps` has installed
+# them, at each use, so that the objects this same make builds after it get the flags.
 PKG_CFLAGS = $(shell pkg-config --cflags $(PKGS) 2>/dev/null)
 PKG_LIBS   = $(shell pkg-config --libs $(PKGS) 2>/dev/null)
 LDLIBS   = $(PKG_LIBS) -lembree3 -lmeshoptimizer -lm -pthread $(MPI_LIBS)
 # The CLI's own: libmicrohttpd serves `sylva view` (docs/view.md); libsylva does not use it.
 CLI_PKGS := libmicrohttpd
-CLI_LIBS  = $(shell pkg-config --libs $(CLI_PKGS) 2>/dev/null)
-$(BUILD)/src/cli/%.o build-fuzz/obj/src/cli/%.o: PKG_CFLAGS += $(shell pkg-config --cflags $(CLI_PKGS) 2>/dev/null)
+CLI_LIBS   = $(shell pkg-config --libs $(CLI_PKGS) 2>/dev/null)
+CLI_CFLAGS = $(shell pkg-config --cflags $(CLI_PKGS) 2>/dev/null)
+ifeq ($(shell pkg-config --exists $(PKGS) $(CLI_PKGS) 2>/dev/null && echo yes),yes)
+PKG_CFLAGS := $(PKG_CFLAGS)
+PKG_LIBS   := $(PKG_LIBS)
+CLI_LIBS   := $(CLI_LIBS)
+CLI_CFLAGS := $(CLI_CFLAGS)
+endif
+$(BUILD)/src/cli/%.o build-fuzz/obj/src/cli/%.o: PKG_CFLAGS += $(CLI_CFLAGS)
 # Where `sylva view` finds its page (web/, with three.js from npm ci --prefix web); SYLVA_WEB overrides.
 $(BUILD)/src/cli/cmd_view.o: CFLAGS += -DSYL_WEB_DIR='"$(CURDIR)/web"'
 
@@ -169,7 +179,7 @@ units: $(UNIT_BIN) $(REPLAY_BIN)
 # kept inputs under ASan+UBSan (tests/fuzz/replay) without the clang tree, which only make fuzz needs.
 $(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz.h $(BUILD)/fuzz/libcli.a $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $(shell pkg-config --cflags $(CLI_PKGS) 2>/dev/null) -Wno-unused-function -Wno-sign-compare \
+	$(CC) $(CFLAGS) $(CLI_CFLAGS) -Wno-unused-function -Wno-sign-compare \
 	    -Wno-unused-parameter -o $@ $< tests/fuzz/replay.c $(BUILD)/fuzz/libcli.a $(BUILD)/libsylva-internal.a $(LDLIBS) $(CLI_LIBS)
 # The CLI without its main, as an archive: a harness takes the members it calls (fuzz_cli: all).
 $(BUILD)/fuzz/libcli.a: $(filter-out $(BUILD)/src/cli/main.o,$(CLI_OBJ))
