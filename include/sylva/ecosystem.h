@@ -189,18 +189,18 @@ typedef struct SylEcoCheckpoint {
 } SylEcoCheckpoint;
 /* What a run depends on besides its options: the block's values, the terrain, the seed. */
 uint64_t syl_ecosystem_hash(const SylEcoModel *m, const SylTerrain *t, uint64_t seed);
-/* Write c to path atomically (util/outfile.h): SYL_OK or SYL_EIO (reported on diag). */
-int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, FILE *diag);
+/* Write c to path atomically (util/outfile.h): SYL_OK or SYL_EIO (reported to sink). */
+int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, const SylSink *sink);
 /* Read a checkpoint from bytes / a file: SYL_OK, or SYL_EMODEL for a corrupt, truncated or
- * foreign one (SYL_EIO: unreadable), reported on diag as "sylva: error: checkpoint 'NAME': ..." */
-int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, FILE *diag);
-int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag);
+ * foreign one (SYL_EIO: unreadable), reported to sink as "sylva: error: checkpoint 'NAME': ..." */
+int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, const SylSink *sink);
+int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, const SylSink *sink);
 /* Whether c's plants are a state the simulation of m on t could have made (the checksum
  * only says the file is whole): each of a species of m, standing on a cell of t with data,
  * its cell that one, no taller than its species' height_max, no older than its max_age or
  * the checkpoint's year. SYL_OK, or SYL_EMODEL reported with the first plant that is not. */
 int syl_ecosystem_checkpoint_check(const SylEcoCheckpoint *c, const SylEcoModel *m, const SylTerrain *t, const char *name,
-                                   FILE *diag);
+                                   const SylSink *sink);
 void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
 
 /* plants-YEAR.csv (src/eco/table.c), a snapshot's plants one row each under the header

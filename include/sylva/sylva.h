@@ -62,6 +62,9 @@ void syl_set_missing_library(SylMissingLibrary *handler);
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
  * line and the caret line under it. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
+/* The report of a text sink: writes d as syl_diagnostic_write does to the FILE * user, so
+ * that `SylSink text = {syl_diagnostic_print, stderr}` prints what `sylva` prints. */
+void syl_diagnostic_print(void *file, const SylDiagnostic *d);
 
 /* A picture the library draws (a terrain's maps, an ecosystem's map): width x height RGB,
  * rows top to bottom, rgb malloc'ed; syl_picture_free frees it (and zeroes the struct). */

@@ -77,14 +77,14 @@ static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, i
  * leaves (may be 0; made with vertex_nodes too) hang from the joints they follow, as child
  * nodes. SYL_OK, SYL_EUSAGE (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
 int syl_wind_write_glb(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
-                       const char *path, FILE *diag);
+                       const char *path, const SylSink *sink);
 
 /* A chain of levels of detail (lod.h) with wind: every level that has vertex nodes (of s)
  * skinned to w's one set of joints and driven by the one animation; the others (crossed
  * billboards) still. */
 struct SylLodChain;
 int syl_wind_write_glb_lods(const struct SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path,
-                            FILE *diag);
+                            const SylSink *sink);
 
 #ifdef __cplusplus
 }

@@ -343,7 +343,7 @@ static PyObject *core_png_rgba(PyObject *self, PyObject *args) {
     }
     int st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_png_write_rgba_stream(out, px.buf, width, height, d.f);
+    st = syl_png_write_rgba_stream(out, px.buf, width, height, &(SylSink){syl_diagnostic_print, d.f});
     Py_END_ALLOW_THREADS
     fclose(out);
     PyBuffer_Release(&px);
@@ -869,7 +869,7 @@ static PyObject *plant_write(PlantObject *o, PyObject *args) {
     if (diag_open(&d)) return NULL;
     int st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_mesh_write(o->pl.mesh, path, d.f);
+    st = syl_mesh_write(o->pl.mesh, path, &(SylSink){syl_diagnostic_print, d.f});
     Py_END_ALLOW_THREADS
     if (st) return raise_status(st, &d);
     diag_drop(&d);

@@ -10,6 +10,7 @@
 
 #include "eco/eco.h"
 #include "util/clock.h"
+#include "util/diag.h"
 #include "util/outgroup.h"
 #include "sylva/forest.h"
 #include "sylva/texture.h"
@@ -124,9 +125,11 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
         /* The .glb and the PNG are one transaction (util/outgroup.h): when the PNG cannot be
          * written, the .glb is taken back, the file that was there before put back. */
         OutGroup outs = {0};
+        SylSink text;
+        const SylSink *sink = diag_sink(&text, diag, NULL);
         if (!st && o->glb)
-            st = !outgroup_add(&outs, o->glb, diag) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, o->glb, diag);
-        if (!st) st = outgroup_add(&outs, o->png, diag) ? syl_png_write(o->png, rgb, w, h, diag) : SYL_EIO;
+            st = !outgroup_add(&outs, o->glb, sink) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, o->glb, sink);
+        if (!st) st = outgroup_add(&outs, o->png, sink) ? syl_png_write(o->png, rgb, w, h, sink) : SYL_EIO;
         if (st) outgroup_undo(&outs);
         else outgroup_commit(&outs);
     }

@@ -20,6 +20,7 @@
 #include "util/budget.h"
 #include "util/parallel.h"
 #include "util/coord.h"
+#include "util/diag.h"
 
 void render_embree_error(void *user, enum RTCError code, const char *msg) {
     FILE *diag = user;
@@ -394,7 +395,8 @@ int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *pa
         return SYL_ELIMIT;
     }
     int status = syl_render(m, opt, rgb);
-    if (!status) status = syl_png_write(path, rgb, w, h, opt->diag);
+    SylSink text;
+    if (!status) status = syl_png_write(path, rgb, w, h, diag_sink(&text, opt->diag, NULL));
     free(rgb);
     return status;
 }

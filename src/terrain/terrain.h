@@ -117,7 +117,7 @@ void terrain_lee(const Terrain *t, double from, int samples, double theta0_deg, 
 int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, float *out, int threads, FILE *diag);
 
 /* ---- maps (write.c) ---- */
-int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, FILE *diag);
-int terrain_write_asc(const Terrain *t, const float *grid, const char *path, FILE *diag);
+int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, const SylSink *sink);
+int terrain_write_asc(const Terrain *t, const float *grid, const char *path, const SylSink *sink);
 
 #endif
