@@ -71,6 +71,7 @@ typedef struct SylTerrainOptions {
     SylBudget *budget;      /* NULL: a budget of max_memory (or the default) */
     uint64_t max_memory;
     FILE *diag;
+    const SylSink *sink;   /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylTerrainOptions;
 
 typedef struct SylTerrain {

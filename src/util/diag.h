@@ -49,6 +49,9 @@ void diag_vsay(FILE *out, const SylSink *sink, int severity, const char *path, c
 /* The sink a call reports to: sink when given, else the text sink of out in *store (NULL
  * when out is NULL too), for the options that still carry a FILE * diag beside their sink. */
 const SylSink *diag_sink(SylSink *store, FILE *out, const SylSink *sink);
+/* diag_sink of an options struct's diag and sink, for a call's argument (it lives in the
+ * enclosing block). */
+#define opt_sink(opt) diag_sink(&(SylSink){0}, (opt)->diag, (opt)->sink)
 /* s[0..n) made safe to print (see diag.c: controls escaped, visible UTF-8 kept) into buf,
  * cut to fit cap; returns buf. For text from the user that a message quotes. */
 const char *diag_quote(char *buf, size_t cap, const char *s, size_t n);
