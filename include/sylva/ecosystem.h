@@ -150,6 +150,7 @@ typedef struct SylEcoOptions {
     void (*progress)(void *user, double fraction);
     void *user;
     FILE *diag;
+    const SylSink *sink;   /* or as records to this sink instead (sylva.h); NULL: diag */
     /* a resumed run (sylva ecosystem --resume): start after start_year with these plants,
      * sorted by id (the state at that year's end) */
     int start_year;
@@ -214,9 +215,9 @@ void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t,
  * line end (a species' name in the plant table and species.csv). */
 void syl_ecosystem_csv_text(FILE *f, const char *s);
 int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, const SylEcoModel *m,
-                              const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, FILE *diag);
+                              const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, const SylSink *sink);
 int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTerrain *t, SylEcoPlant **plants,
-                             size_t *nplants, FILE *diag);
+                             size_t *nplants, const SylSink *sink);
 
 /* Ranks of an MPI job (src/eco/mpi.c; built with MPI=1). start: NULL when the build has no
  * MPI or the program was not launched by mpirun (one process); else MPI is initialised, and
@@ -224,7 +225,7 @@ int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTe
  * ends the job with exit code SYL_EIO and a message to diag (NULL: none). exchange: the transport over tiles_x × tiles_z tiles,
  * spread over the ranks, re-balanced every `rebalance` years (0: never). */
 typedef struct SylEcoMpi SylEcoMpi;
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag);
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink);
 int syl_eco_mpi_rank(const SylEcoMpi *mpi);
 int syl_eco_mpi_size(const SylEcoMpi *mpi);
 const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance);

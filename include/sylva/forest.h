@@ -77,6 +77,7 @@ typedef struct SylSnapshotOptions {
     void (*before_gather)(void *user, int rank); /* under MPI, each rank before the gather */
     void *user;
     FILE *diag;
+    const SylSink *sink;             /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylSnapshotOptions;
 typedef struct SylSnapshotStats {    /* this rank's */
     SylRenderCamera camera;

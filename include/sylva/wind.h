@@ -24,6 +24,7 @@ typedef struct SylWindOptions {
     SylBudget *budget; /* the stems, joints and keys (twice: the file's copy) count against it
                           (NULL: none); beyond it SYL_ELIMIT, said on diag, before the keys are made */
     FILE *diag;
+    const SylSink *sink; /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylWindOptions;
 
 /* A stem (axis) of the skeleton. */

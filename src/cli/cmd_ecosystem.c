@@ -308,7 +308,7 @@ int cmd_ecosystem(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     static SylEcoModel model; /* 14 kB: off the stack */
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, stderr); /* NULL: one process */
+    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, &cli_sink); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
     bool writer = rank == 0;
     ro.threads = d.threads;

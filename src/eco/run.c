@@ -29,10 +29,10 @@ static int read_terrain(const SylProgram *p, const SylEcoModel *m, int threads, 
     SylTerrain *t = NULL;
     SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
                             .latitude = m->latitude, .sun_set = m->latitude_set, .threads = threads, .diag = diag,
-                            .budget = budget, .wind_from = m->wind_from, .wind_set = m->wind_set,
+                            .sink = program_sink(p), .budget = budget, .wind_from = m->wind_from, .wind_set = m->wind_set,
                             .measures = m->measures == SYL_ECO_ZAMUDA ? SYL_TERRAIN_ZAMUDA : SYL_TERRAIN_GIS};
     int st = syl_terrain_read(path, &to, &t);
-    if (st == SYL_EIO && diag) /* the reader named the file: say which line of the model names it */
+    if (st == SYL_EIO && (diag || program_sink(p))) /* the reader named the file: say which line of the model names it */
         cannot_use(p, diag, m->terrain);
     if (!st && compute) st = syl_terrain_compute(t, &to);
     free(path);

@@ -19,7 +19,7 @@ int main(int argc, char **argv) {
     size_t n = 0;
     SylPicture map = {0}, slope = {0};
     if (p) st = syl_ecosystem_load(p, &(SylEcoOptions){.diag = stdout}, &m, &t);
-    if (!st) st = syl_ecosystem_table_read(argv[2], &m, t, &plants, &n, stdout);
+    if (!st) st = syl_ecosystem_table_read(argv[2], &m, t, &plants, &n, &(SylSink){syl_diagnostic_print, stdout});
     if (!st) st = syl_ecosystem_map(&m, t, plants, n, &(SylMapOptions){0}, &map);
     if (!st) st = syl_png_write(argv[3], map.rgb, map.width, map.height, &(SylSink){syl_diagnostic_print, stdout});
     if (!st) st = syl_terrain_colour_map(t, SYL_TERRAIN_SLOPE, NULL, &slope);
