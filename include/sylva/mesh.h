@@ -67,6 +67,7 @@ typedef struct SylMeshOptions {
                            * in SylMesh.double_sided: for glTF, whose viewers then draw both sides
                            * (half the leaves' vertices); 0: two faces, for formats that cannot */
     FILE *diag;           /* where problems are reported; NULL: nowhere */
+    const SylSink *sink;  /* or as records to this sink instead (sylva.h); NULL: diag */
     /* The mesh's size is estimated before anything is allocated: beyond the memory budget
      * it stops with SYL_ELIMIT and says so. */
     uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */

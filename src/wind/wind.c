@@ -133,7 +133,10 @@ static void sway(const SylWindOptions *o, const double dir[2], float r0, SylWind
 
 int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptions *o, SylWind *out) {
     memset(out, 0, sizeof *out);
-    if (!(o->speed > 0) || !isfinite(o->speed) || o->seconds < 0 || o->levels < 0 || o->fps < 0) return SYL_EUSAGE;
+    if (!(o->speed > 0) || !isfinite(o->speed) || o->seconds < 0 || o->levels < 0 || o->fps < 0) {
+        sink_error(opt_sink(o), "wind: a speed above 0, and seconds, levels and keys per second of at least 0");
+        return SYL_EUSAGE;
+    }
     out->seconds = o->seconds > 0 ? o->seconds : 4;
     int fps = o->fps > 0 ? o->fps : 15, levels = o->levels > 0 ? o->levels : 2;
     out->nkeys = (int)lround(out->seconds * fps) + 1;
