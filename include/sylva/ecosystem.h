@@ -150,6 +150,7 @@ typedef struct SylEcoOptions {
     void (*progress)(void *user, double fraction);
     void *user;
     FILE *diag;
+    const SylSink *sink;   /* or as records to this sink instead (sylva.h); NULL: diag */
     /* a resumed run (sylva ecosystem --resume): start after start_year with these plants,
      * sorted by id (the state at that year's end) */
     int start_year;
@@ -189,18 +190,18 @@ typedef struct SylEcoCheckpoint {
 } SylEcoCheckpoint;
 /* What a run depends on besides its options: the block's values, the terrain, the seed. */
 uint64_t syl_ecosystem_hash(const SylEcoModel *m, const SylTerrain *t, uint64_t seed);
-/* Write c to path atomically (util/outfile.h): SYL_OK or SYL_EIO (reported on diag). */
-int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, FILE *diag);
+/* Write c to path atomically (util/outfile.h): SYL_OK or SYL_EIO (reported to sink). */
+int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, const SylSink *sink);
 /* Read a checkpoint from bytes / a file: SYL_OK, or SYL_EMODEL for a corrupt, truncated or
- * foreign one (SYL_EIO: unreadable), reported on diag as "sylva: error: checkpoint 'NAME': ..." */
-int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, FILE *diag);
-int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag);
+ * foreign one (SYL_EIO: unreadable), reported to sink as "sylva: error: checkpoint 'NAME': ..." */
+int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, const SylSink *sink);
+int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, const SylSink *sink);
 /* Whether c's plants are a state the simulation of m on t could have made (the checksum
  * only says the file is whole): each of a species of m, standing on a cell of t with data,
  * its cell that one, no taller than its species' height_max, no older than its max_age or
  * the checkpoint's year. SYL_OK, or SYL_EMODEL reported with the first plant that is not. */
 int syl_ecosystem_checkpoint_check(const SylEcoCheckpoint *c, const SylEcoModel *m, const SylTerrain *t, const char *name,
-                                   FILE *diag);
+                                   const SylSink *sink);
 void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
 
 /* plants-YEAR.csv (src/eco/table.c), a snapshot's plants one row each under the header
@@ -214,9 +215,9 @@ void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t,
  * line end (a species' name in the plant table and species.csv). */
 void syl_ecosystem_csv_text(FILE *f, const char *s);
 int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, const SylEcoModel *m,
-                              const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, FILE *diag);
+                              const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, const SylSink *sink);
 int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTerrain *t, SylEcoPlant **plants,
-                             size_t *nplants, FILE *diag);
+                             size_t *nplants, const SylSink *sink);
 
 /* Ranks of an MPI job (src/eco/mpi.c; built with MPI=1). start: NULL when the build has no
  * MPI or the program was not launched by mpirun (one process); else MPI is initialised, and
@@ -224,7 +225,7 @@ int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTe
  * ends the job with exit code SYL_EIO and a message to diag (NULL: none). exchange: the transport over tiles_x × tiles_z tiles,
  * spread over the ranks, re-balanced every `rebalance` years (0: never). */
 typedef struct SylEcoMpi SylEcoMpi;
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag);
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink);
 int syl_eco_mpi_rank(const SylEcoMpi *mpi);
 int syl_eco_mpi_size(const SylEcoMpi *mpi);
 const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance);

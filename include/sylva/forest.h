@@ -61,7 +61,7 @@ const SylMesh *syl_forest_look(const SylForest *f, int k, int *species, int *age
  * EXT_mesh_gpu_instancing in one node per spatial cell (cells of about cell metres; 0: 250),
  * each node's extras giving its cell's bounds. */
 int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n, double cell, const char *path,
-                         FILE *diag);
+                         const SylSink *sink);
 
 /* A saved snapshot (its plant table, plants-YEAR.csv) of p's ecosystem block rendered as
  * `sylva ecosystem` renders view-YEAR.png, and written to png (and glb, when given, as one
@@ -83,6 +83,7 @@ typedef struct SylSnapshotOptions {
     void (*before_gather)(void *user, int rank); /* under MPI, each rank before the gather */
     void *user;
     FILE *diag;
+    const SylSink *sink;             /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylSnapshotOptions;
 typedef struct SylSnapshotStats {    /* this rank's */
     SylRenderCamera camera;

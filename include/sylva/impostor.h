@@ -20,6 +20,7 @@ typedef struct SylImpostorOptions {
     int billboards;  /* quads of the crossed billboard, 2 to 4; 0: none */
     int threads;
     FILE *diag;
+    const SylSink *sink; /* or as records to this sink instead (sylva.h); NULL: diag */
     SylBudget *budget; /* the bake's pictures and atlases are counted against it (NULL: none);
                           beyond it the bake stops with SYL_ELIMIT before it allocates */
 } SylImpostorOptions;

@@ -55,7 +55,7 @@ float syl_lod_coverage(int k, int levels);
 
 /* The .glb of a chain: nodes NAME_LOD0 .. NAME_LODn (each with its instance sets), MSFT_lod
  * on LOD0 (docs/mesh.md). */
-int syl_lod_write_glb(const SylLodChain *c, const char *path, FILE *diag);
+int syl_lod_write_glb(const SylLodChain *c, const char *path, const SylSink *sink);
 
 /* How far a level strays from LOD0 (src/plant/lodcheck.c, `sylva mesh --lod N --stats` and
  * --image). silhouette: LOD0 and level k (1 .. n-1) rendered from one camera (from 35 degrees

@@ -69,6 +69,7 @@ typedef struct SylMeshOptions {
                            * in SylMesh.double_sided: for glTF, whose viewers then draw both sides
                            * (half the leaves' vertices); 0: two faces, for formats that cannot */
     FILE *diag;           /* where problems are reported; NULL: nowhere */
+    const SylSink *sink;  /* or as records to this sink instead (sylva.h); NULL: diag */
     /* The mesh's size is estimated before anything is allocated: beyond the memory budget
      * it stops with SYL_ELIMIT and says so. */
     uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
@@ -124,16 +125,16 @@ void syl_instances_free(SylInstances *sets, int n);
 /* Files (docs/mesh.md). Each writes to a temporary file and renames it, so a failure leaves
  * nothing; a symlink is followed, a FIFO or device written through (docs/cli.md#output-files).
  * OBJ writes its textures (PNG) beside the file; GLB embeds them. */
-int syl_mesh_write_obj(const SylMesh *m, const char *path, FILE *diag); /* and NAME.mtl */
+int syl_mesh_write_obj(const SylMesh *m, const char *path, const SylSink *sink); /* and NAME.mtl */
 /* m (its materials and textures) written as the objects parts[0..n), `o NAME` each */
-int syl_mesh_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
+int syl_mesh_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, const SylSink *sink);
 /* parts[0..n) as one node each, named after them, in the scene */
-int syl_mesh_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag);
-int syl_mesh_write_ply(const SylMesh *m, const char *path, FILE *diag); /* binary little endian */
-int syl_mesh_write_glb(const SylMesh *m, const char *path, FILE *diag); /* glTF 2.0 binary */
+int syl_mesh_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, const SylSink *sink);
+int syl_mesh_write_ply(const SylMesh *m, const char *path, const SylSink *sink); /* binary little endian */
+int syl_mesh_write_glb(const SylMesh *m, const char *path, const SylSink *sink); /* glTF 2.0 binary */
 /* m and n sets of instances in one .glb: each set a node with EXT_mesh_gpu_instancing (in
  * extensionsUsed only: a viewer without it shows the prototype once, at the origin). */
-int syl_mesh_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag);
+int syl_mesh_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, const SylSink *sink);
 /* The mesh formats, one table by extension (src/io/formats.def: .glb, .obj, .ply, any case),
  * with what each can hold. */
 enum {
@@ -150,11 +151,11 @@ typedef struct SylMeshFormat {
 } SylMeshFormat;
 /* The format of a file by its name's extension; NULL when it names none, said to diag (NULL:
  * silently) as "cannot tell the format of PATH: name it *.glb, *.obj or *.ply". */
-const SylMeshFormat *syl_mesh_format(const char *path, FILE *diag);
-int syl_mesh_write(const SylMesh *m, const char *path, FILE *diag); /* by the extension */
+const SylMeshFormat *syl_mesh_format(const char *path, const SylSink *sink);
+int syl_mesh_write(const SylMesh *m, const char *path, const SylSink *sink); /* by the extension */
 /* A scene (m: all of it) as its objects, parts[0..n): one `o NAME` each in an OBJ, one node each
  * in a .glb; a PLY has no objects, so it is m whole. */
-int syl_mesh_write_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag);
+int syl_mesh_write_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, const SylSink *sink);
 /* A plant's mesh for one file and what goes with it, written in the format of the file's
  * extension by the writer what it holds asks for (the one place that chooses): levels of
  * detail (MSFT_lod; skinned too with wind), else a skinned mesh swaying in the wind, else the
@@ -172,7 +173,7 @@ typedef struct SylMeshOutput {
     const SylSkeleton *skeleton;         /* the plant the wind's joints are of */
     const struct SylWind *wind;          /* sylva/wind.h; NULL: not skinned */
 } SylMeshOutput;
-int syl_mesh_write_output(const SylMeshOutput *o, const char *path, FILE *diag);
+int syl_mesh_write_output(const SylMeshOutput *o, const char *path, const SylSink *sink);
 
 enum { SYL_TEXTURE_SIZE = 512 };
 /* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if
@@ -181,7 +182,7 @@ enum { SYL_TEXTURE_SIZE = 512 };
  * material's colour goes in the material (glTF baseColorFactor, MTL Kd), which multiplies
  * them — as the renderer does. Each file is written through a temporary file. Returns
  * SYL_OK, SYL_EIO or SYL_ELIMIT. */
-int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag);
+int syl_mesh_write_textures(const SylMesh *m, const char *prefix, const SylSink *sink);
 
 #ifdef __cplusplus
 }

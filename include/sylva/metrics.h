@@ -50,10 +50,11 @@ typedef struct SylMetricsOptions {
     int grid;            /* ray origins: grid x grid under the crown; 0: 16 */
     int threads;         /* <= 0: all cores; the figures never depend on it */
     FILE *diag;          /* where problems are reported; NULL: nowhere */
+    const SylSink *sink; /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylMetricsOptions;
 
 /* All the metrics of a skeleton. SYL_EMODEL when a parent does not precede its child,
- * SYL_ELIMIT when out of memory (reported to opt->diag). */
+ * SYL_ELIMIT when out of memory (reported to opt->sink or opt->diag). */
 int syl_metrics(const SylSkeleton *s, const SylMetricsOptions *opt, SylMetrics *out);
 
 /* The metrics in the order tools print them, each listed once here for every output. */

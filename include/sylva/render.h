@@ -24,7 +24,8 @@ typedef struct SylRenderOptions {
     int ao_samples;      /* ambient occlusion rays per pixel, shared by its samples; 0: 8; -1: none */
     int shadows;         /* 0: on; -1: off */
     int threads;         /* 0: all cores */
-    FILE *diag;
+    FILE *diag;          /* where problems are said as text; NULL: nowhere */
+    const SylSink *sink; /* or as records to this sink instead (sylva.h); NULL: diag */
     /* May be NULL. Called once per finished tile with the fraction done, increasing and
      * ending with exactly 1.0; the calls are serial but may come from any render thread. */
     void (*progress)(void *user, double fraction);

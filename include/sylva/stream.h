@@ -17,13 +17,13 @@ extern "C" {
 #endif
 
 /* syl_mesh_write_glb_instanced (mesh.h): a .glb of m and its instance sets (n may be 0). */
-int syl_mesh_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag);
+int syl_mesh_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, const SylSink *sink);
 /* syl_wind_write_glb_lods (wind.h): a chain of levels (MSFT_lod), skinned when w is not NULL. */
 int syl_wind_write_glb_lods_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out,
-                                   FILE *diag);
+                                   const SylSink *sink);
 /* syl_wind_write_glb (wind.h): a skinned mesh swaying in a looping animation. */
 int syl_wind_write_glb_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
-                              const SylWind *w, FILE *out, FILE *diag);
+                              const SylWind *w, FILE *out, const SylSink *sink);
 /* The procedural textures' PNG bytes (bark, leaf, flower, leaf cards and clusters), kept by
  * their owner across .glb writes (sylva view's server keeps one: every save writes the same
  * textures). The _cached writers below take them from it, made and kept there the first
@@ -32,15 +32,15 @@ typedef struct SylTextureCache SylTextureCache;
 SylTextureCache *syl_texture_cache_new(void);
 void syl_texture_cache_free(SylTextureCache *c);
 int syl_mesh_write_glb_instanced_cached(const SylMesh *m, const SylInstances *sets, int n, SylTextureCache *tc,
-                                        FILE *out, FILE *diag);
+                                        FILE *out, const SylSink *sink);
 int syl_wind_write_glb_lods_cached(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, SylTextureCache *tc,
-                                   FILE *out, FILE *diag);
+                                   FILE *out, const SylSink *sink);
 int syl_wind_write_glb_cached(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
-                              const SylWind *w, SylTextureCache *tc, FILE *out, FILE *diag);
+                              const SylWind *w, SylTextureCache *tc, FILE *out, const SylSink *sink);
 /* syl_png_write (texture.h): width x height RGB as a PNG. */
-int syl_png_write_stream(FILE *out, const uint8_t *rgb, int width, int height, FILE *diag);
+int syl_png_write_stream(FILE *out, const uint8_t *rgb, int width, int height, const SylSink *sink);
 /* syl_png_write_rgba (texture.h): width x height RGBA as a PNG. */
-int syl_png_write_rgba_stream(FILE *out, const uint8_t *rgba, int width, int height, FILE *diag);
+int syl_png_write_rgba_stream(FILE *out, const uint8_t *rgba, int width, int height, const SylSink *sink);
 
 #ifdef __cplusplus
 }

@@ -1,9 +1,9 @@
 /* libsylva: compile .syl models and derive their module strings.
  *
- * Every function reports problems through the FILE * it is given (diagnostics in the form
- * `file:line:col: error: message`), or as records to the sink its program was compiled with
- * (SylSink, below), and returns one of the SYL_* status codes, which are also
- * the exit codes of the `sylva` command. */
+ * Every function reports problems as records to a sink (SylSink, below): the one its program
+ * was compiled with, or the one it is given; or as text on the FILE * it is given
+ * (diagnostics in the form `file:line:col: error: message`), and returns one of the SYL_*
+ * status codes, which are also the exit codes of the `sylva` command. */
 #ifndef SYLVA_H
 #define SYLVA_H
 #include <stddef.h>
@@ -35,7 +35,8 @@ typedef struct SylString SylString;
  * syl_diagnostic_write does (what `sylva` prints). Messages without a place (a file that
  * cannot be read, a limit) are records with no line and no path to the sink of the program
  * the call works on, else text on its FILE * diag; a function that works on no program (the
- * mesh writers, the renderer, the terrain) writes them on its diag (docs/embedding.md,
+ * writers, the renderer, the terrain, the metrics, an ecosystem's run, checkpoint and MPI)
+ * takes a sink itself, as an argument or beside the diag of its options (docs/embedding.md,
  * "Diagnostics"). */
 typedef enum { SYL_DIAG_ERROR, SYL_DIAG_WARNING, SYL_DIAG_NOTE } SylSeverity;
 typedef struct SylDiagnostic {
@@ -62,6 +63,9 @@ void syl_set_missing_library(SylMissingLibrary *handler);
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
  * line and the caret line under it. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
+/* The report of a text sink: writes d as syl_diagnostic_write does to the FILE * user, so
+ * that `SylSink text = {syl_diagnostic_print, stderr}` prints what `sylva` prints. */
+void syl_diagnostic_print(void *file, const SylDiagnostic *d);
 
 /* A picture the library draws (a terrain's maps, an ecosystem's map): width x height RGB,
  * rows top to bottom, rgb malloc'ed; syl_picture_free frees it (and zeroes the struct). */

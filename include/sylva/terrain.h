@@ -71,6 +71,7 @@ typedef struct SylTerrainOptions {
     SylBudget *budget;      /* NULL: a budget of max_memory (or the default) */
     uint64_t max_memory;
     FILE *diag;
+    const SylSink *sink;   /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylTerrainOptions;
 
 typedef struct SylTerrain {
@@ -101,7 +102,7 @@ int syl_terrain_compute(SylTerrain *t, const SylTerrainOptions *o);
 double syl_terrain_factor_at(const SylTerrain *t, SylTerrainFactor f, double x, double z);
 /* Write one factor's map: PATH.png is a 16-bit greyscale PNG whose text chunk "sylva:range"
  * holds the values of grey 0 and of white, PATH.asc an ESRI ASCII grid. */
-int syl_terrain_write_map(const SylTerrain *t, SylTerrainFactor f, const char *path, FILE *diag);
+int syl_terrain_write_map(const SylTerrain *t, SylTerrainFactor f, const char *path, const SylSink *sink);
 const char *syl_terrain_factor_name(SylTerrainFactor f); /* "altitude", "slope", ... */
 
 /* Pictures of a terrain for people (src/terrain/pictures.c), north up: a cell is `size` /

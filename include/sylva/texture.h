@@ -46,9 +46,9 @@ float syl_leaf_cluster_fill(int shape);
 
 /* Write width x height RGB (rows top to bottom) as a PNG. path "-": standard output;
  * otherwise as the mesh writers (mesh.h). */
-int syl_png_write(const char *path, const uint8_t *rgb, int width, int height, FILE *diag);
+int syl_png_write(const char *path, const uint8_t *rgb, int width, int height, const SylSink *sink);
 /* The same with an alpha channel: 4 bytes a pixel. */
-int syl_png_write_rgba(const char *path, const uint8_t *rgba, int width, int height, FILE *diag);
+int syl_png_write_rgba(const char *path, const uint8_t *rgba, int width, int height, const SylSink *sink);
 
 #ifdef __cplusplus
 }

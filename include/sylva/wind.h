@@ -24,6 +24,7 @@ typedef struct SylWindOptions {
     SylBudget *budget; /* the stems, joints and keys (twice: the file's copy) count against it
                           (NULL: none); beyond it SYL_ELIMIT, said on diag, before the keys are made */
     FILE *diag;
+    const SylSink *sink; /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylWindOptions;
 
 /* A stem (axis) of the skeleton. */
@@ -77,7 +78,7 @@ static inline int32_t syl_wind_stem_of(const SylSkeleton *s, const SylWind *w, i
  * leaves (may be 0; made with vertex_nodes too) hang from the joints they follow, as child
  * nodes. SYL_OK, SYL_EUSAGE (m has no vertex nodes), SYL_ELIMIT or SYL_EIO. */
 int syl_wind_write_glb(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
-                       const char *path, FILE *diag);
+                       const char *path, const SylSink *sink);
 
 /* Each vertex of m's two joints and weights, as the .glb's JOINTS_0 and WEIGHTS_0 hold them
  * (joints[2 v], joints[2 v + 1]; weights bytes summing to 255, the larger first; a second
@@ -90,7 +91,7 @@ void syl_wind_skin(const SylMesh *m, const SylSkeleton *s, const SylWind *w, int
  * billboards) still. */
 struct SylLodChain;
 int syl_wind_write_glb_lods(const struct SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path,
-                            FILE *diag);
+                            const SylSink *sink);
 
 #ifdef __cplusplus
 }

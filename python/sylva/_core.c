@@ -346,7 +346,7 @@ static PyObject *core_png_rgba(PyObject *self, PyObject *args) {
     }
     int st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_png_write_rgba_stream(out, px.buf, width, height, d.f);
+    st = syl_png_write_rgba_stream(out, px.buf, width, height, &(SylSink){syl_diagnostic_print, d.f});
     Py_END_ALLOW_THREADS
     fclose(out);
     PyBuffer_Release(&px);
@@ -1063,7 +1063,8 @@ static PyObject *plant_write(PlantObject *o, PyObject *args) {
     Py_BEGIN_ALLOW_THREADS
     SylMeshOutput out = {.mesh = o->pl.mesh, .lods = o->lods.n ? &o->lods : NULL, .skeleton = o->pl.skeleton,
                          .wind = o->wind.njoints ? &o->wind : NULL};
-    st = out.lods || out.wind ? syl_mesh_write_output(&out, path, d.f) : syl_mesh_write(o->pl.mesh, path, d.f);
+    SylSink sink = {syl_diagnostic_print, d.f};
+    st = out.lods || out.wind ? syl_mesh_write_output(&out, path, &sink) : syl_mesh_write(o->pl.mesh, path, &sink);
     Py_END_ALLOW_THREADS
     if (st) return raise_status(st, &d);
     diag_drop(&d);

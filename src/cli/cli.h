@@ -11,6 +11,7 @@
 #include "sylva/render.h"
 #include "sylva/skeleton.h"
 #include "sylva/sylva.h"
+#include "util/diag.h"
 #include "util/outfile.h"
 
 enum { MAX_SETS = 64, MAX_ALLOW_PATHS = 64 };
@@ -29,6 +30,12 @@ typedef struct ModelArgs {
     const char *allow[MAX_ALLOW_PATHS]; /* --allow-path: more folders the files it names may be in */
     int nallow;
 } ModelArgs;
+
+/* The sink the commands give the library: its records printed on stderr as text. */
+extern const SylSink cli_sink;
+/* The text sink of a stream (NULL: none), for a call that reports to a sink; it lives in the
+ * block where it is named. */
+#define cli_text_sink(f) diag_sink(&(SylSink){0}, (f), NULL)
 
 /* Split FILE:Model. */
 void cli_model_spec(ModelArgs *m, const char *spec);

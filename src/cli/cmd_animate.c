@@ -155,7 +155,7 @@ static int sink_frame(Sink *s, const uint8_t *rgb, int width, int height) {
     char *path = malloc(strlen(s->dir) + 32);
     if (!path) return SYL_ELIMIT;
     sprintf(path, "%s/frame_%04d.png", s->dir, s->written);
-    int st = outgroup_add(&s->frames, path, stderr) ? syl_png_write(path, rgb, width, height, stderr) : SYL_EIO;
+    int st = outgroup_add(&s->frames, path, &cli_sink) ? syl_png_write(path, rgb, width, height, &cli_sink) : SYL_EIO;
     free(path);
     if (!st) s->written++;
     return st;

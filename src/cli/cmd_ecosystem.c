@@ -119,7 +119,7 @@ static int on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t
     if (r->nyears != year) return SYL_ELIMIT; /* the counts of every year so far go with it */
     SylEcoCheckpoint c = {.model_hash = r->hash, .year = year, .years = r->years,
                           .plants = (SylEcoPlant *)plants, .nplants = n};
-    int st = syl_ecosystem_checkpoint_write(r->checkpoint, &c, stderr);
+    int st = syl_ecosystem_checkpoint_write(r->checkpoint, &c, &cli_sink);
     if (!st) printf("%s\n", r->checkpoint);
     return st;
 }
@@ -129,7 +129,7 @@ static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     SylPicture pic = {0};
     char *path = path_in(r->dir, "map-%d.png", year);
     int st = path ? syl_ecosystem_map(r->m, r->t, plants, n, NULL, &pic) : SYL_ELIMIT;
-    if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, stderr);
+    if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, &cli_sink);
     if (!st) printf("%s\n", path);
     syl_picture_free(&pic);
     free(path);
@@ -195,7 +195,7 @@ static int write_view(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     double t0 = cli_now(), c0 = cpu_now();
     int st = rgb && path ? syl_forest_render(r->forest, plants, n, &cam, &ro, NULL, 0, rgb, &counts) : SYL_ELIMIT;
     double wall = cli_now() - t0, cpu = cpu_now() - c0;
-    if (!st) st = syl_png_write(path, rgb, ro.width, ro.height, stderr);
+    if (!st) st = syl_png_write(path, rgb, ro.width, ro.height, &cli_sink);
     if (!st) printf("%s\n", path);
     if (!st && r->stats)
         fprintf(stderr, "view %d: camera %.3f %.3f %.3f target %.3f %.3f %.3f fov %.3f size %d %d\n"
@@ -208,7 +208,7 @@ static int write_view(Run *r, int year, const SylEcoPlant *plants, size_t n) {
 
 static int write_glb(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     char *path = path_in(r->dir, "forest-%d.glb", year);
-    int st = path ? syl_forest_write_glb(r->forest, plants, n, 0, path, stderr) : SYL_ELIMIT;
+    int st = path ? syl_forest_write_glb(r->forest, plants, n, 0, path, &cli_sink) : SYL_ELIMIT;
     if (!st) printf("%s\n", path);
     free(path);
     return st;
@@ -279,7 +279,7 @@ static int write_maps(const SylTerrain *t, const char *dir) {
                 break;
             }
             snprintf(path, len, "%s/%s.%s", maps, syl_terrain_factor_name((SylTerrainFactor)f), e ? "asc" : "png");
-            st = syl_terrain_write_map(t, (SylTerrainFactor)f, path, stderr);
+            st = syl_terrain_write_map(t, (SylTerrainFactor)f, path, &cli_sink);
             if (!st) printf("%s\n", path);
             free(path);
         }
@@ -309,7 +309,7 @@ int cmd_ecosystem(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     static SylEcoModel model; /* 14 kB: off the stack */
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, stderr); /* NULL: one process */
+    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, &cli_sink); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
     bool writer = rank == 0;
     ro.threads = d.threads;
@@ -336,7 +336,7 @@ int cmd_ecosystem(int argc, char **argv) {
                 snaps[i], years);
     if (!st && a.resume) {
         char *path = path_in(a.resume, "ecosystem.ckpt", 0);
-        st = path ? syl_ecosystem_checkpoint_read(path, &ck, writer ? stderr : NULL) : SYL_ELIMIT;
+        st = path ? syl_ecosystem_checkpoint_read(path, &ck, writer ? &cli_sink : NULL) : SYL_ELIMIT;
         if (!st && ck.model_hash != r.hash) {
             if (writer) fprintf(stderr, "sylva: error: the checkpoint '%s' was made from another model, terrain or seed\n", path);
             st = SYL_EUSAGE;
@@ -344,7 +344,7 @@ int cmd_ecosystem(int argc, char **argv) {
             if (writer) fprintf(stderr, "sylva: error: the checkpoint '%s' is at year %d, the run ends at %d\n", path, ck.year, years);
             st = SYL_EUSAGE;
         }
-        if (!st) st = syl_ecosystem_checkpoint_check(&ck, &model, t, path, writer ? stderr : NULL); /* as the run makes them */
+        if (!st) st = syl_ecosystem_checkpoint_check(&ck, &model, t, path, writer ? &cli_sink : NULL); /* as the run makes them */
         free(path);
         if (!st) {
             r.years = ck.years, r.nyears = r.cap = ck.year; /* the counts so far */

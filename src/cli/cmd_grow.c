@@ -124,7 +124,7 @@ int cmd_grow(int argc, char **argv) {
     }
     double t0 = cli_now();
     if (what == W_PNG) status = render(&pl, &ro, output);
-    else if (what == W_MESH) status = syl_mesh_write(pl.mesh, output, stderr);
+    else if (what == W_MESH) status = syl_mesh_write(pl.mesh, output, &cli_sink);
     else if (what == W_CSV || what == W_JSON) status = write_skeleton(pl.sk, output, what == W_JSON);
     else {
         char *png = cli_output_name(&m, dir, "png"), *glb = cli_output_name(&m, dir, "glb");
@@ -132,7 +132,7 @@ int cmd_grow(int argc, char **argv) {
             fprintf(stderr, "sylva: error: out of memory\n");
             status = SYL_ELIMIT;
         }
-        if (!status) status = syl_mesh_write_glb(pl.mesh, glb, stderr);
+        if (!status) status = syl_mesh_write_glb(pl.mesh, glb, &cli_sink);
         if (!status) status = render(&pl, &ro, png);
         if (!status) printf("%s\n%s\n", png, glb);
         free(png);

@@ -72,8 +72,8 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
     beside(output, "_impostor.png", color, sizeof color);
     beside(output, "_impostor_normal.png", normal, sizeof normal);
     if (a->impostor) {
-        status = outgroup_add(outs, color, stderr) ? syl_png_write_rgba(color, imp->color, imp->size, imp->size, stderr) : SYL_EIO;
-        if (!status) status = outgroup_add(outs, normal, stderr) ? syl_png_write_rgba(normal, imp->normal, imp->size, imp->size, stderr) : SYL_EIO;
+        status = outgroup_add(outs, color, &cli_sink) ? syl_png_write_rgba(color, imp->color, imp->size, imp->size, &cli_sink) : SYL_EIO;
+        if (!status) status = outgroup_add(outs, normal, &cli_sink) ? syl_png_write_rgba(normal, imp->normal, imp->size, imp->size, &cli_sink) : SYL_EIO;
         if (status) return status;
     }
     const char *cs = strrchr(color, '/'), *ns = strrchr(normal, '/');
@@ -104,7 +104,7 @@ int cmd_mesh(int argc, char **argv) {
         fprintf(stderr, "sylva mesh: -o OUT.glb, OUT.obj or OUT.ply is required\n");
         return SYL_EUSAGE;
     }
-    const SylMeshFormat *format = syl_mesh_format(output, stderr);
+    const SylMeshFormat *format = syl_mesh_format(output, &cli_sink);
     if (!format) return SYL_EUSAGE;
     bool instanced = mo.leaves == SYL_LEAVES_INSTANCED || mo.leaves == SYL_LEAVES_INSTANCED_CARDS;
     if (instanced && !(format->can & SYL_FORMAT_INSTANCES)) {
@@ -189,21 +189,21 @@ int cmd_mesh(int argc, char **argv) {
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
     }
-    if (!status && !outgroup_add(&outs, output, stderr)) status = SYL_EIO;
+    if (!status && !outgroup_add(&outs, output, &cli_sink)) status = SYL_EIO;
     SylMeshOutput mout = {.mesh = mesh, .parts = pl.parts, .nparts = pl.nparts, .instanced = instanced,
                           .sets = sets, .nsets = nsets, .lods = levels ? &lods : NULL, .skeleton = sk,
                           .wind = a.wind > 0 ? &wind : NULL};
-    if (!status) status = syl_mesh_write_output(&mout, output, stderr);
+    if (!status) status = syl_mesh_write_output(&mout, output, &cli_sink);
     syl_instances_free(sets, nsets);
     double t4 = cli_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */
         SylLodChain shown = lods;
         shown.n -= imp.billboards ? 1 : 0;
         SylPicture pic = {0};
-        status = outgroup_add(&outs, a.image, stderr)
+        status = outgroup_add(&outs, a.image, &cli_sink)
                      ? syl_lod_picture(&shown, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &pic)
                      : SYL_EIO;
-        if (!status) status = syl_png_write(a.image, pic.rgb, pic.width, pic.height, stderr);
+        if (!status) status = syl_png_write(a.image, pic.rgb, pic.width, pic.height, &cli_sink);
         syl_picture_free(&pic);
     }
     if (status) outgroup_undo(&outs); /* the command's files are one: all written, or none changed */

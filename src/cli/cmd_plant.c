@@ -56,7 +56,7 @@ int cmd_plant(int argc, char **argv) {
         fprintf(stderr, "sylva: error: out of memory\n");
         status = SYL_ELIMIT;
     }
-    if (!status) status = syl_mesh_write_glb(pl.mesh, glb, stderr);
+    if (!status) status = syl_mesh_write_glb(pl.mesh, glb, &cli_sink);
     if (!status) {
         Progress prog;
         cli_progress_start(&prog, "rendering");

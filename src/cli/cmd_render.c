@@ -105,7 +105,7 @@ int cmd_render(int argc, char **argv) {
             t4 = cli_now();
             status = syl_render(mesh, &ro, rgb);
             t5 = cli_now();
-            if (!status) status = syl_png_write(out_path, rgb, w, h, stderr);
+            if (!status) status = syl_png_write(out_path, rgb, w, h, &cli_sink);
             free(rgb);
         }
     }

@@ -85,7 +85,7 @@ static int write_maps(const SylTerrain *t, const char *dir) {
                 return SYL_ELIMIT;
             }
             snprintf(path, len, "%s/%s.%s", dir, syl_terrain_factor_name((SylTerrainFactor)f), ext[e]);
-            int st = syl_terrain_write_map(t, (SylTerrainFactor)f, path, stderr);
+            int st = syl_terrain_write_map(t, (SylTerrainFactor)f, path, &cli_sink);
             if (!st) printf("%s\n", path);
             free(path);
             if (st) return st;
@@ -103,7 +103,7 @@ static int colour_maps(const SylTerrain *t, const char *dir) {
         SylPicture pic = {0};
         if (path) snprintf(path, len, "%s/%s-colour.png", dir, syl_terrain_factor_name((SylTerrainFactor)f));
         st = path ? syl_terrain_colour_map(t, (SylTerrainFactor)f, NULL, &pic) : SYL_ELIMIT;
-        if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, stderr);
+        if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, &cli_sink);
         if (!st) printf("%s\n", path);
         syl_picture_free(&pic);
         free(path);

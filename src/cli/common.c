@@ -12,6 +12,12 @@
 #include "lang/kinds.h"
 #include "sylva/lod.h"
 
+static void print_record(void *user, const SylDiagnostic *d) {
+    (void)user;
+    syl_diagnostic_write(d, stderr);
+}
+const SylSink cli_sink = {print_record, NULL};
+
 void cli_model_spec(ModelArgs *m, const char *spec) {
     struct stat st;
     m->spec = spec;
@@ -204,11 +210,11 @@ void cli_plant_free(Plant *pl) {
 }
 
 bool out_open(OutFile *o, const char *path) {
-    return outfile_open(o, path ? path : "-", &cli_temp_hooks, stderr);
+    return outfile_open(o, path ? path : "-", &cli_temp_hooks, &cli_sink);
 }
 
 int out_close(OutFile *o, int status) {
-    if (!outfile_close(o, status == SYL_OK, stderr) && !status) status = SYL_EIO;
+    if (!outfile_close(o, status == SYL_OK, &cli_sink) && !status) status = SYL_EIO;
     return status;
 }
 

@@ -15,7 +15,7 @@ static void before_gather(void *user, int rank) {
 }
 
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro) {
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, stderr); /* NULL: one process */
+    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, &cli_sink); /* NULL: one process */
     int rank = syl_eco_mpi_rank(mpi);
     SylProgram *p = NULL;
     int st = SYL_OK;

@@ -204,9 +204,9 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
 /* The .glb as `sylva mesh` writes it, into out (its textures from tc, the same bytes). */
 static int write_glb(Made *m, SylTextureCache *tc, FILE *out, FILE *diag) {
     bool wind = m->wind.njoints > 0;
-    return m->lod > 0 ? syl_wind_write_glb_lods_cached(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, tc, out, diag)
-           : wind     ? syl_wind_write_glb_cached(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, tc, out, diag)
-                      : syl_mesh_write_glb_instanced_cached(m->pl.mesh, m->sets, m->nsets, tc, out, diag);
+    return m->lod > 0 ? syl_wind_write_glb_lods_cached(&m->lods, m->pl.skeleton, wind ? &m->wind : NULL, tc, out, cli_text_sink(diag))
+           : wind     ? syl_wind_write_glb_cached(m->pl.mesh, m->sets, m->nsets, m->pl.skeleton, &m->wind, tc, out, cli_text_sink(diag))
+                      : syl_mesh_write_glb_instanced_cached(m->pl.mesh, m->sets, m->nsets, tc, out, cli_text_sink(diag));
 }
 
 /* What `sylva mesh --stats` prints, as JSON. */
@@ -246,7 +246,7 @@ typedef struct Obstacles {
 
 static int write_obstacles_file(void *ctx, const char *path, FILE *diag) {
     const Obstacles *o = ctx;
-    return syl_mesh_write_glb_parts(o->part, o->n, "obstacles", path, diag);
+    return syl_mesh_write_glb_parts(o->part, o->n, "obstacles", path, cli_text_sink(diag));
 }
 
 static int write_obstacles(const Made *m, ViewBuild *slot, FILE *diag) {
@@ -358,7 +358,7 @@ static int write_png(Made *m, const ViewRequest *rq, FILE *out, FILE *diag, int 
     if (!rgb) return SYL_ELIMIT;
     SylRenderOptions ro = {.width = w, .height = h, .threads = threads, .diag = diag, .budget = m->budget};
     int status = syl_render(m->pl.mesh, &ro, rgb);
-    if (!status) status = syl_png_write_stream(out, rgb, w, h, diag);
+    if (!status) status = syl_png_write_stream(out, rgb, w, h, cli_text_sink(diag));
     free(rgb);
     return status;
 }
@@ -429,7 +429,7 @@ int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE 
 }
 
 static int write_obj_file(void *ctx, const char *path, FILE *diag) {
-    return syl_mesh_write_obj(((Made *)ctx)->pl.mesh, path, diag);
+    return syl_mesh_write_obj(((Made *)ctx)->pl.mesh, path, cli_text_sink(diag));
 }
 
 int view_export(View *v, const ViewRequest *rq, const char *format, char **out, size_t *len, char **diag) {

@@ -149,7 +149,7 @@ typedef struct ForestAt {
 
 static int write_forest(void *ctx, const char *path, FILE *diag) {
     const ForestAt *f = ctx;
-    return syl_forest_write_glb(f->e->forest, f->y->plants, f->y->n, 0, path, diag);
+    return syl_forest_write_glb(f->e->forest, f->y->plants, f->y->n, 0, path, cli_text_sink(diag));
 }
 
 /* The page's figures: the chart's counts, the year shown, the maps, the terrain's extent. */
@@ -242,7 +242,7 @@ typedef struct MapOf {
 
 static int write_map(void *ctx, const char *path, FILE *diag) {
     const MapOf *m = ctx;
-    return syl_terrain_write_map(m->t, (SylTerrainFactor)m->factor, path, diag);
+    return syl_terrain_write_map(m->t, (SylTerrainFactor)m->factor, path, cli_text_sink(diag));
 }
 
 int view_eco_map(View *v, const char *name, char **png, size_t *len) {
@@ -285,7 +285,7 @@ int view_eco_impostor(View *v, int look, const char **glb, size_t *len) {
                              .atlas_material = SYL_IMPOSTOR_MATERIAL};
             c.level[0] = (SylLodLevel){.mesh = imp.bb_mesh, .coverage = 1};
             FILE *out = view_bytes_open(&e->imp[look], &e->imp_len[look]);
-            st = out ? syl_wind_write_glb_lods_stream(&c, NULL, NULL, out, diag) : SYL_ELIMIT;
+            st = out ? syl_wind_write_glb_lods_stream(&c, NULL, NULL, out, cli_text_sink(diag)) : SYL_ELIMIT;
             if (out) fclose(out);
             if (st) free(e->imp[look]), e->imp[look] = NULL;
         }

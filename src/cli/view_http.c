@@ -357,10 +357,10 @@ static enum MHD_Result api_save(struct MHD_Connection *c, View *v, Query *q, Con
     size_t dl = 0;
     FILE *df = open_memstream(&diag, &dl);
     OutFile o;
-    bool ok = df && outfile_open(&o, path, NULL, df);
+    bool ok = df && outfile_open(&o, path, NULL, cli_text_sink(df));
     if (ok) {
         fwrite(body->body ? body->body : "", 1, body->len, o.f);
-        ok = outfile_close(&o, true, df);
+        ok = outfile_close(&o, true, cli_text_sink(df));
     }
     if (df) fclose(df);
     enum MHD_Result r = ok ? send_text(c, MHD_HTTP_OK, "saved\n")

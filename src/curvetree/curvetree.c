@@ -43,7 +43,7 @@ static int load_envelope(const SylProgram *p, const SylDirective *d, Envelope *e
     if (st == SYL_ELIMIT) return st;
     if (st) program_say(p, diag, DIAG_ERROR, NULL, "cannot read '%s': %s", name, syl_file_refused);
     static const float zero[3] = {0, 0, 0};
-    if (!st) st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
+    if (!st) st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag_sink(&(SylSink){0}, diag, program_sink(p)));
     free(path);
     if (!st && e->obs.nt == 0) st = SYL_EMODEL;
     if (!st && !parity_build(&e->grid, e->obs.v, e->obs.nv, e->obs.tri, e->obs.nt)) st = SYL_ELIMIT;

@@ -14,6 +14,7 @@
 
 #include "eco/eco.h"
 #include "util/file.h"
+#include "util/diag.h"
 #include "util/outfile.h"
 #include "util/rng.h"
 
@@ -113,9 +114,9 @@ static void emit(FILE *f, Hash *h, const void *p, size_t n) {
     fwrite(p, 1, n, f);
 }
 
-int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, FILE *diag) {
+int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, const SylSink *sink) {
     OutFile o;
-    if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
+    if (!outfile_open(&o, path, NULL, sink)) return SYL_EIO;
     uint8_t head[CK_HEADER] = {0}, yb[CK_YEAR];
     memcpy(head, ck_magic, 8);
     put32(head + 8, CK_VERSION);
@@ -133,34 +134,34 @@ int syl_ecosystem_checkpoint_write(const char *path, const SylEcoCheckpoint *c, 
     uint8_t tail[8];
     put64(tail, hash_end(&h));
     fwrite(tail, 1, 8, o.f);
-    return outfile_close(&o, true, diag) ? SYL_OK : SYL_EIO;
+    return outfile_close(&o, true, sink) ? SYL_OK : SYL_EIO;
 }
 
-static int bad(FILE *diag, const char *name, const char *what) {
-    if (diag) fprintf(diag, "sylva: error: checkpoint '%s': %s\n", name, what);
+static int bad(const SylSink *sink, const char *name, const char *what) {
+    sink_error(sink, "checkpoint '%s': %s", name, what);
     return SYL_EMODEL;
 }
 
-int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, FILE *diag) {
+int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name, SylEcoCheckpoint *c, const SylSink *sink) {
     const uint8_t *b = buf;
     memset(c, 0, sizeof *c);
     char what[160];
-    if (len < 8 || memcmp(b, ck_magic, 8)) return bad(diag, name, "not a Sylva ecosystem checkpoint");
-    if (len < CK_HEADER + 8) return bad(diag, name, "truncated");
-    if (get32(b + 8) != CK_VERSION) return bad(diag, name, "written by another version of Sylva");
+    if (len < 8 || memcmp(b, ck_magic, 8)) return bad(sink, name, "not a Sylva ecosystem checkpoint");
+    if (len < CK_HEADER + 8) return bad(sink, name, "truncated");
+    if (get32(b + 8) != CK_VERSION) return bad(sink, name, "written by another version of Sylva");
     if (get32(b + 12) != sizeof(SylEcoPlant)) {
         snprintf(what, sizeof what, "plants of %u bytes, not this build's %zu", get32(b + 12), sizeof(SylEcoPlant));
-        return bad(diag, name, what);
+        return bad(sink, name, what);
     }
     uint32_t year = get32(b + 24);
     uint64_t n = get64(b + 32);
-    if (year < 1 || year > 60000) return bad(diag, name, "a year out of 1 .. 60000");
+    if (year < 1 || year > 60000) return bad(sink, name, "a year out of 1 .. 60000");
     uint64_t body = len - CK_HEADER - 8 - (uint64_t)year * CK_YEAR;
     if ((uint64_t)year * CK_YEAR > len - CK_HEADER - 8 || n > body / sizeof(SylEcoPlant) ||
         body != n * sizeof(SylEcoPlant)) {
         snprintf(what, sizeof what, "%zu bytes, not the %llu its header says (truncated?)", len,
                  (unsigned long long)(CK_HEADER + 8 + (uint64_t)year * CK_YEAR + n * sizeof(SylEcoPlant)));
-        return bad(diag, name, what);
+        return bad(sink, name, what);
     }
     c->model_hash = get64(b + 16);
     c->year = (int)year;
@@ -184,7 +185,7 @@ int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name
         }
         if (Y->year != (int)y + 1 || st) {
             snprintf(what, sizeof what, "the counts of year %u are damaged", y + 1);
-            st = bad(diag, name, what);
+            st = bad(sink, name, what);
         }
     }
     if (!st && n) memcpy(c->plants, p, n * sizeof *c->plants);
@@ -194,20 +195,20 @@ int syl_ecosystem_checkpoint_parse(const void *buf, size_t len, const char *name
             !isfinite(q->x) || !isfinite(q->z) || !(q->height > 0 && q->height <= 1000) ||
             !(q->vigour >= 0 && q->vigour <= 1)) {
             snprintf(what, sizeof what, "plant %zu of %llu is damaged", j + 1, (unsigned long long)n);
-            st = bad(diag, name, what);
+            st = bad(sink, name, what);
         }
     }
     if (!st) {
         Hash h = {0};
         hash_bytes(&h, b, len - 8);
-        if (hash_end(&h) != get64(b + len - 8)) st = bad(diag, name, "its checksum does not match: the file is damaged");
+        if (hash_end(&h) != get64(b + len - 8)) st = bad(sink, name, "its checksum does not match: the file is damaged");
     }
     if (st) syl_ecosystem_checkpoint_free(c);
     return st;
 }
 
 int syl_ecosystem_checkpoint_check(const SylEcoCheckpoint *c, const SylEcoModel *m, const SylTerrain *t, const char *name,
-                                   FILE *diag) {
+                                   const SylSink *sink) {
     char what[256];
     for (size_t j = 0; j < c->nplants; j++) {
         const SylEcoPlant *q = &c->plants[j];
@@ -223,12 +224,12 @@ int syl_ecosystem_checkpoint_check(const SylEcoCheckpoint *c, const SylEcoModel 
         if (!why) continue;
         snprintf(what, sizeof what, "plant %zu of %zu (id %016llx) is %s: not a state the simulation makes", j + 1,
                  c->nplants, (unsigned long long)q->id, why);
-        return bad(diag, name, what);
+        return bad(sink, name, what);
     }
     return SYL_OK;
 }
 
-int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *diag) {
+int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, const SylSink *sink) {
     memset(c, 0, sizeof *c);
     /* a regular file only (O_NONBLOCK: a FIFO without a writer would wait for one), mapped,
      * not copied (10 M plants: 320 MB read once) */
@@ -245,10 +246,10 @@ int syl_ecosystem_checkpoint_read(const char *path, SylEcoCheckpoint *c, FILE *d
         err = errno;
     if (fd >= 0) close(fd);
     if (err) {
-        if (diag) fprintf(diag, "sylva: error: cannot read the checkpoint '%s': %s\n", path, file_strerror(err));
+        sink_error(sink, "cannot read the checkpoint '%s': %s", path, file_strerror(err));
         return err == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     }
-    int st = syl_ecosystem_checkpoint_parse(map ? map : (const void *)"", size, path, c, diag);
+    int st = syl_ecosystem_checkpoint_parse(map ? map : (const void *)"", size, path, c, sink);
     if (map) munmap(map, size);
     return st;
 }

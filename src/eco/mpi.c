@@ -16,6 +16,7 @@
 
 #include "eco/eco.h"
 #include "eco/mpi_lazy.h"
+#include "util/diag.h"
 
 LAZY_LIB_GETTER(MpiApi, mpi_api, "libmpi.so.40", "an ecosystem over MPI ranks", true, MPI_FUNCS)
 void *mpi_global(const char *name) {
@@ -40,7 +41,7 @@ struct SylEcoMpi {
     int rank, size;
     MPI_Comm comm;
     MPI_Datatype plant;
-    FILE *diag;             /* where a failure that ends the job is said (NULL: nowhere) */
+    SylSink sink;           /* where a failure that ends the job is said (copied; report NULL: nowhere) */
     SylEcoExchange ops;
     int ntiles, every, pending;
     int *owner, *next;
@@ -63,16 +64,13 @@ static Box *box_of(SylEcoMpi *m, int channel, int to, int from) {
 }
 
 static void fail(SylEcoMpi *m, const char *what) {
-    if (m->diag) {
-        fprintf(m->diag, "sylva: error: rank %d of %d: %s; aborting the job\n", m->rank, m->size, what);
-        fflush(m->diag);
-    }
+    sink_error(&m->sink, "rank %d of %d: %s; aborting the job", m->rank, m->size, what);
     MPI_Abort(m->comm, SYL_EIO);
 }
 
 /* Any MPI error (a rank gone, a message lost) ends the whole job with a message, not a hang:
  * the communicator returns errors (MPI_ERRORS_RETURN) and every call is checked here, so that
- * the message goes to the caller's diag. */
+ * the message goes to the caller's sink. */
 static void check(SylEcoMpi *m, int code) {
     if (code == MPI_SUCCESS) return;
     char text[MPI_MAX_ERROR_STRING], what[MPI_MAX_ERROR_STRING + 8];
@@ -123,13 +121,11 @@ static void *watchdog(void *arg) {
         if (!since || now_ms() - since < (int64_t)(m->timeout * 1000)) continue;
         char who[1024];
         stopped_ranks(m, who, sizeof who);
-        if (m->diag) {
-            fprintf(m->diag,
-                    "sylva: error: rank %d of %d: no answer from the other ranks for %g s%s; ending the job "
-                    "(SYLVA_RANK_TIMEOUT sets the time)\n",
-                    m->rank, m->size, m->timeout, who);
-            fflush(m->diag);
-        }
+        /* from the watchdog's thread */
+        sink_error(&m->sink,
+                   "rank %d of %d: no answer from the other ranks for %g s%s; ending the job "
+                   "(SYLVA_RANK_TIMEOUT sets the time)",
+                   m->rank, m->size, m->timeout, who);
         _exit(SYL_EIO);
     }
     return NULL;
@@ -276,7 +272,7 @@ static int mpi_rebalance(void *ctx, int year, const int64_t *plants, int ntiles)
     return m->pending;
 }
 
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag) {
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink) {
     /* only under a launcher: a plain run stays one plain process */
     if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK") && !getenv("PMI_RANK")) return NULL;
     SylEcoMpi *m = calloc(1, sizeof *m);
@@ -284,7 +280,7 @@ SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag) {
     int provided;
     MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided); /* MPI from the main thread only */
     m->comm = MPI_COMM_WORLD;
-    m->diag = diag;
+    if (sink) m->sink = *sink;
     check(m, MPI_Comm_rank(m->comm, &m->rank));
     check(m, MPI_Comm_size(m->comm, &m->size));
     MPI_Comm_set_errhandler(m->comm, MPI_ERRORS_RETURN);

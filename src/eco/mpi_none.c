@@ -4,8 +4,8 @@
 
 #include "eco/eco.h"
 
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, FILE *diag) {
-    (void)argc, (void)argv, (void)diag;
+SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink) {
+    (void)argc, (void)argv, (void)sink;
     return NULL;
 }
 int syl_eco_mpi_rank(const SylEcoMpi *mpi) { return (void)mpi, 0; }

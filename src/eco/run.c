@@ -19,9 +19,9 @@ static void cannot_use(const SylProgram *p, FILE *diag, const char *file) {
 }
 
 /* The block's DEM, read as the run reads it (and its factors computed when compute is set),
- * counted against budget (NULL: its own). */
+ * counted against budget (NULL: its own); its errors to sink, else the program's, else diag. */
 static int read_terrain(const SylProgram *p, const SylEcoModel *m, int threads, SylBudget *budget, bool compute,
-                        FILE *diag, SylTerrain **terrain) {
+                        FILE *diag, const SylSink *sink, SylTerrain **terrain) {
     char *path = NULL; /* beside the program's file unless absolute */
     int refused = syl_program_file(p, m->terrain, &path);
     if (refused == SYL_EIO) program_say(p, diag, DIAG_ERROR, NULL, "cannot read the terrain '%s': %s", m->terrain, syl_file_refused);
@@ -29,10 +29,10 @@ static int read_terrain(const SylProgram *p, const SylEcoModel *m, int threads, 
     SylTerrain *t = NULL;
     SylTerrainOptions to = {.cell = m->cell, .height_lo = m->height_lo, .height_hi = m->height_hi,
                             .latitude = m->latitude, .sun_set = m->latitude_set, .threads = threads, .diag = diag,
-                            .budget = budget, .wind_from = m->wind_from, .wind_set = m->wind_set,
+                            .sink = sink ? sink : program_sink(p), .budget = budget, .wind_from = m->wind_from, .wind_set = m->wind_set,
                             .measures = m->measures == SYL_ECO_ZAMUDA ? SYL_TERRAIN_ZAMUDA : SYL_TERRAIN_GIS};
     int st = syl_terrain_read(path, &to, &t);
-    if (st == SYL_EIO && diag) /* the reader named the file: say which line of the model names it */
+    if (st == SYL_EIO && (diag || program_sink(p))) /* the reader named the file: say which line of the model names it */
         cannot_use(p, diag, m->terrain);
     if (!st && compute) st = syl_terrain_compute(t, &to);
     free(path);
@@ -50,7 +50,7 @@ int syl_ecosystem_load(const SylProgram *p, const SylEcoOptions *o, SylEcoModel 
         return SYL_EUSAGE;
     }
     if (syl_ecosystem_read(p, m, diag)) return SYL_EMODEL;
-    return read_terrain(p, m, o->threads, o->budget, true, diag, terrain);
+    return read_terrain(p, m, o->threads, o->budget, true, diag, o->sink, terrain);
 }
 
 int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag) {
@@ -63,7 +63,7 @@ int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag) {
         /* a warning, as a scene's unreadable files: the DEM may yet be made */
         program_say(p, diag, DIAG_WARNING, syl_program_path(p), "the terrain \"%s\" cannot be read: %s", m->terrain, strerror(errno));
     } else if (!st) {
-        st = read_terrain(p, m, 1, NULL, false, diag, &t);
+        st = read_terrain(p, m, 1, NULL, false, diag, NULL, &t);
     }
     free(path);
     syl_terrain_free(t);

@@ -18,6 +18,7 @@
 
 #include "eco/eco.h"
 #include "util/budget.h"
+#include "util/diag.h"
 #include "util/parallel.h"
 #include "util/rng.h"
 
@@ -563,8 +564,7 @@ static int place_start(Sim *s, const SylEcoOptions *o) {
         const SylEcoPlant *p = &o->start[j];
         int ti = tile_at(s, p->x, p->z);
         if (ti < 0 || p->species >= s->m->nspecies) {
-            if (o->diag) fprintf(o->diag, "sylva: error: the saved plant %016llx is not on the terrain or of no species\n",
-                                 (unsigned long long)p->id);
+            sink_error(opt_sink(o), "the saved plant %016llx is not on the terrain or of no species", (unsigned long long)p->id);
             return SYL_EMODEL;
         }
         if (s->x->owns && !s->x->owns(s->x->ctx, ti)) continue;
@@ -619,9 +619,7 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
     s.tx = o->tiles_x > 0 ? o->tiles_x : 1;
     s.tz = o->tiles_z > 0 ? o->tiles_z : 1;
     if (s.tx > t->nx || s.tz > t->nz) {
-        if (o->diag)
-            fprintf(o->diag, "sylva: error: %d x %d tiles on a terrain of %d x %d cells: at most one tile per cell\n",
-                    s.tx, s.tz, t->nx, t->nz);
+        sink_error(opt_sink(o), "%d x %d tiles on a terrain of %d x %d cells: at most one tile per cell", s.tx, s.tz, t->nx, t->nz);
         return SYL_EUSAGE;
     }
     s.ntiles = s.tx * s.tz;
@@ -710,11 +708,11 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
         }
         if (s.x->sum) s.x->sum(s.x->ctx, v, nv);
         if (v[V_FAILED]) {
-            if (o->diag && !o->budget) fprintf(o->diag, "sylva: error: year %d: out of memory\n", y);
-            else if (o->diag) /* the buffers ran past the budget (or malloc failed) */
-                fprintf(o->diag,
-                        "sylva: error: year %d: the plants need more memory than --max-memory allows (%llu MB in "
-                        "all); raise the limit with --max-memory\n",
+            if (!o->budget) sink_error(opt_sink(o), "year %d: out of memory", y);
+            else /* the buffers ran past the budget (or malloc failed) */
+                sink_error(opt_sink(o),
+                        "year %d: the plants need more memory than --max-memory allows (%llu MB in "
+                        "all); raise the limit with --max-memory",
                         y, (unsigned long long)budget_limit_mb(o->budget));
             st = SYL_ELIMIT;
         }
@@ -727,8 +725,7 @@ int syl_ecosystem_simulate(const SylEcoModel *m, const SylTerrain *t, const SylE
                 yr.deaths[sp][c] = (uint32_t)v[V_DEATHS + sp * SYL_ECO_DEATH_CAUSES + c];
         }
         if (!st && o->max_plants && alive > o->max_plants) {
-            if (o->diag)
-                fprintf(o->diag, "sylva: error: year %d: %zu plants, more than the limit of %llu; raise it with --max-plants\n", y, alive,
+            sink_error(opt_sink(o), "year %d: %zu plants, more than the limit of %llu; raise it with --max-plants", y, alive,
                         (unsigned long long)o->max_plants);
             st = SYL_ELIMIT;
         }

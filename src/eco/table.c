@@ -209,11 +209,11 @@ static bool row(Reader *r, const char *line, size_t len, uint64_t last_id, bool 
 }
 
 int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, const SylEcoModel *m,
-                              const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, FILE *diag) {
+                              const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, const SylSink *sink) {
     *plants = NULL;
     *nplants = 0;
     Source src = {name, text, len};
-    Reader r = {.m = m, .t = t, .d = {.out = diag, .src = &src, .max_shown = 1}, .line = 1};
+    Reader r = {.m = m, .t = t, .d = {.sink = sink, .src = &src, .max_shown = 1}, .line = 1};
     SylEcoPlant *v = NULL;
     size_t n = 0, cap = 0;
     uint64_t last = 0;
@@ -239,7 +239,7 @@ int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, co
                 size_t nc = cap ? 2 * cap : 1024;
                 SylEcoPlant *g = realloc(v, nc * sizeof *g);
                 if (!g) {
-                    if (diag) fprintf(diag, "sylva: error: out of memory reading '%s'\n", name);
+                    sink_error(sink, "out of memory reading '%s'", name);
                     free(v);
                     return SYL_ELIMIT;
                 }
@@ -265,17 +265,17 @@ bad:
 }
 
 int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTerrain *t, SylEcoPlant **plants,
-                             size_t *nplants, FILE *diag) {
+                             size_t *nplants, const SylSink *sink) {
     *plants = NULL;
     *nplants = 0;
     size_t len;
     char *text = file_read(path, &len);
     if (!text) {
         int e = errno; /* before the message, which may change it */
-        if (diag) fprintf(diag, "sylva: error: cannot read the plant table '%s': %s\n", path, strerror(e));
+        sink_error(sink, "cannot read the plant table '%s': %s", path, strerror(e));
         return e == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     }
-    int st = syl_ecosystem_table_parse(text, len, path, m, t, plants, nplants, diag);
+    int st = syl_ecosystem_table_parse(text, len, path, m, t, plants, nplants, sink);
     free(text);
     return st;
 }

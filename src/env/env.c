@@ -5,31 +5,32 @@
 #include <string.h>
 
 #include "sylva/sylva.h"
+#include "util/diag.h"
 
 static void embree_error(void *user, enum RTCError code, const char *msg) {
-    FILE *diag = user;
-    if (diag && code != RTC_ERROR_NONE) fprintf(diag, "sylva: error: Embree: %s\n", msg ? msg : "unknown error");
+    const SylSink *sink = user;
+    if (sink && code != RTC_ERROR_NONE) sink_error(sink, "Embree: %s", msg ? msg : "unknown error");
 }
 
-int env_init(Env *e, int threads, FILE *diag) {
+int env_init(Env *e, int threads, const SylSink *sink) {
     memset(e, 0, sizeof *e);
-    e->diag = diag;
+    if (sink) e->sink = *sink; /* copied: the device reports to it later */
     e->threads = threads;
     e->sun[1] = 1;
     char config[64];
     snprintf(config, sizeof config, "threads=%d,verbose=0", threads > 0 ? threads : 0);
     e->dev = rtcNewDevice(config);
     if (!e->dev) {
-        if (diag) fprintf(diag, "sylva: error: cannot start Embree (error %d)\n", (int)rtcGetDeviceError(NULL));
+        sink_error(sink, "cannot start Embree (error %d)", (int)rtcGetDeviceError(NULL));
         return SYL_ELIMIT;
     }
-    rtcSetDeviceErrorFunction(e->dev, embree_error, diag);
+    rtcSetDeviceErrorFunction(e->dev, embree_error, &e->sink);
     return SYL_OK;
 }
 
-void env_init_probes(Env *e, const ShadowParams *shadow, float ground, FILE *diag) {
+void env_init_probes(Env *e, const ShadowParams *shadow, float ground, const SylSink *sink) {
     memset(e, 0, sizeof *e);
-    e->diag = diag;
+    if (sink) e->sink = *sink; /* copied: the device reports to it later */
     e->ground = ground;
     memcpy(e->sun, shadow->sun, sizeof e->sun);
     shadow_init(&e->shadow, shadow, ground);

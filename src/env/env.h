@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "sylva/sylva.h"
 #include "util/lazy_embree.h"
 
 #include "env/markers.h"
@@ -40,7 +41,7 @@ typedef struct EnvProbes {
 
 typedef struct Env {
     RTCDevice dev;
-    FILE *diag;
+    SylSink sink;          /* where it reports (copied; report NULL: nowhere) */
     int threads;
     float ground;          /* the ground plane's height */
     float sun[3];          /* unit, towards the sun */
@@ -59,10 +60,10 @@ typedef struct Env {
 } Env;
 
 /* SYL_OK, or SYL_ELIMIT when Embree cannot start. */
-int env_init(Env *e, int threads, FILE *diag);
+int env_init(Env *e, int threads, const SylSink *sink);
 /* An environment whose Embree device starts when first asked for (env_device): a plant's world
  * for ?E, with a shadow grid of probe_shadow_params. */
-void env_init_probes(Env *e, const ShadowParams *shadow, float ground, FILE *diag);
+void env_init_probes(Env *e, const ShadowParams *shadow, float ground, const SylSink *sink);
 void env_free(Env *e);
 /* The Embree device, started now if not yet (NULL when it cannot start). */
 RTCDevice env_device(Env *e);

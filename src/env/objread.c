@@ -2,6 +2,7 @@
 #include "env/objread.h"
 #include "util/array.h"
 #include "util/coord.h"
+#include "util/diag.h"
 #include "util/file.h"
 
 #include <ctype.h>
@@ -18,7 +19,7 @@ typedef struct Reader {
     const char *path;
     int line;
     const char *bol; /* where the line starts: columns count bytes from it */
-    FILE *diag;
+    const SylSink *sink;
     ObjMesh *m;
     size_t vcap, tcap;
 } Reader;
@@ -26,15 +27,16 @@ typedef struct Reader {
 /* at: where on the line the error is (NULL: the whole line). */
 static int fail(Reader *r, const char *at, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 static int fail(Reader *r, const char *at, const char *fmt, ...) {
-    if (r->diag) {
+    if (r->sink && r->sink->report) {
+        char msg[512];
         va_list ap;
         va_start(ap, fmt);
-        if (r->line > 0 && at) fprintf(r->diag, "%s:%d:%d: error: ", r->path, r->line, (int)(at - r->bol) + 1);
-        else if (r->line > 0) fprintf(r->diag, "%s:%d: error: ", r->path, r->line);
-        else fprintf(r->diag, "%s: error: ", r->path);
-        vfprintf(r->diag, fmt, ap);
-        fputc('\n', r->diag);
+        vsnprintf(msg, sizeof msg, fmt, ap);
         va_end(ap);
+        /* a record about the OBJ's line; a whole line's column is 1 */
+        SylDiagnostic d = {.severity = SYL_DIAG_ERROR, .path = r->path, .line = r->line, .message = msg};
+        if (r->line > 0) d.column = d.end_column = at ? (int)(at - r->bol) + 1 : 1;
+        r->sink->report(r->sink->user, &d);
     }
     return SYL_EMODEL;
 }
@@ -121,9 +123,9 @@ static int face(Reader *r, const char *s, const char *end) {
     return SYL_OK;
 }
 
-int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, FILE *diag) {
+int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, const SylSink *sink) {
     memset(out, 0, sizeof *out);
-    Reader r = {.path = path, .diag = diag, .m = out};
+    Reader r = {.path = path, .sink = sink, .m = out};
     const char *s = text, *end = text + len;
     if (len >= 3 && !memcmp(s, "\xef\xbb\xbf", 3)) s += 3; /* a UTF-8 byte order mark */
     int st = SYL_OK;
@@ -144,21 +146,21 @@ int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, FILE
         r.line = 0;
         st = fail(&r, NULL, "no faces: an obstacle needs triangles ('f a b c')");
     }
-    if (st == SYL_ELIMIT && diag) fprintf(diag, "%s: error: out of memory\n", path);
+    if (st == SYL_ELIMIT) diag_say(NULL, sink, DIAG_ERROR, path, "out of memory");
     if (st) obj_free(out);
     return st;
 }
 
-int obj_read(const char *path, ObjMesh *out, FILE *diag) {
+int obj_read(const char *path, ObjMesh *out, const SylSink *sink) {
     memset(out, 0, sizeof *out);
     size_t len = 0;
     char *text = file_read_named(path, &len, NULL);
     if (!text) {
         int e = errno; /* before the message, which may change it */
-        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(e));
+        sink_error(sink, "cannot read '%s': %s", path, file_strerror(e));
         return e == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     }
-    int st = obj_parse(path, text, len, out, diag);
+    int st = obj_parse(path, text, len, out, sink);
     free(text);
     return st;
 }

@@ -8,6 +8,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "sylva/sylva.h"
+
 typedef struct ObjMesh {
     float *v;       /* 3 per vertex */
     size_t nv;
@@ -16,9 +18,9 @@ typedef struct ObjMesh {
 } ObjMesh;
 
 /* SYL_OK, SYL_EIO (cannot read) or SYL_EMODEL (malformed, or no faces). */
-int obj_read(const char *path, ObjMesh *out, FILE *diag);
+int obj_read(const char *path, ObjMesh *out, const SylSink *sink);
 /* The same on text in memory (path names it in messages). */
-int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, FILE *diag);
+int obj_parse(const char *path, const char *text, size_t len, ObjMesh *out, const SylSink *sink);
 void obj_free(ObjMesh *m);
 
 #endif

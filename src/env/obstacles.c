@@ -2,6 +2,7 @@
 #include "env/obstacles.h"
 #include "util/array.h"
 #include "util/coord.h"
+#include "util/diag.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -28,27 +29,27 @@ bool obstacles_add(Obstacles *o, const float *v, size_t nv, const uint32_t *tri,
     return true;
 }
 
-int obstacles_add_obj(Obstacles *o, const char *path, const float offset[3], float scale, FILE *diag) {
+int obstacles_add_obj(Obstacles *o, const char *path, const float offset[3], float scale, const SylSink *sink) {
     ObjMesh m;
-    int st = obj_read(path, &m, diag);
+    int st = obj_read(path, &m, sink);
     if (st) return st;
     for (size_t i = 0; i < 3 * m.nv; i++) m.v[i] = m.v[i] * scale + offset[i % 3];
     char what[512];
     snprintf(what, sizeof what, "the obstacle '%s', moved and scaled,", path);
-    if (!coord_check(m.v, m.nv, 3, what, diag)) st = SYL_EMODEL;
+    if (!coord_check(m.v, m.nv, 3, what, sink)) st = SYL_EMODEL;
     else if (!obstacles_add(o, m.v, m.nv, m.tri, m.nt)) {
-        if (diag) fprintf(diag, "sylva: error: out of memory reading '%s'\n", path);
+        sink_error(sink, "out of memory reading '%s'", path);
         st = SYL_ELIMIT;
     }
     obj_free(&m);
     return st;
 }
 
-int obstacles_commit(Obstacles *o, RTCDevice dev, FILE *diag) {
+int obstacles_commit(Obstacles *o, RTCDevice dev, const SylSink *sink) {
     if (o->scene) rtcReleaseScene(o->scene);
     o->scene = NULL;
     if (!o->nt) return SYL_OK;
-    if (!coord_check(o->v, o->nv, 3, "an obstacle", diag)) return SYL_EMODEL;
+    if (!coord_check(o->v, o->nv, 3, "an obstacle", sink)) return SYL_EMODEL;
     o->scene = rtcNewScene(dev);
     rtcSetSceneFlags(o->scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -59,7 +60,7 @@ int obstacles_commit(Obstacles *o, RTCDevice dev, FILE *diag) {
     rtcReleaseGeometry(g);
     rtcCommitScene(o->scene);
     if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) {
-        if (diag) fprintf(diag, "sylva: error: cannot build the obstacles' ray-tracing scene\n");
+        sink_error(sink, "cannot build the obstacles' ray-tracing scene");
         return SYL_ELIMIT;
     }
     return SYL_OK;

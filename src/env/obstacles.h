@@ -8,6 +8,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "sylva/sylva.h"
+
 #include "util/lazy_embree.h"
 
 typedef struct Obstacles {
@@ -21,10 +23,10 @@ typedef struct Obstacles {
 
 /* Read an OBJ file and add its triangles scaled by scale and moved by offset.
  * SYL_OK, SYL_EIO or SYL_EMODEL (reported as file:line: error). */
-int obstacles_add_obj(Obstacles *o, const char *path, const float offset[3], float scale, FILE *diag);
+int obstacles_add_obj(Obstacles *o, const char *path, const float offset[3], float scale, const SylSink *sink);
 bool obstacles_add(Obstacles *o, const float *v, size_t nv, const uint32_t *tri, size_t nt);
 /* Build the Embree scene (after the last add). */
-int obstacles_commit(Obstacles *o, RTCDevice dev, FILE *diag);
+int obstacles_commit(Obstacles *o, RTCDevice dev, const SylSink *sink);
 void obstacles_free(Obstacles *o);
 
 static inline bool obstacles_any(const Obstacles *o) { return o->scene != NULL; }

@@ -115,7 +115,7 @@ static int species_looks(SylForest *f, const SylProgram *p, int s, SylProgram **
     SylProgram *q = programs[s] = look_program(f, p, s, programs, o, &st);
     if (!q) return st ? st : SYL_EMODEL;
     if (!lang_kind_is(syl_program_kind(q), KF_LOOK)) {
-        lang_kind_refuse(o->diag, syl_program_name(q), syl_program_kind(q), true);
+        lang_kind_refuse(q, o->diag, syl_program_name(q), syl_program_kind(q), true);
         return SYL_EUSAGE;
     }
     SylGrowth *g = NULL;

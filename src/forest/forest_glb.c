@@ -10,7 +10,7 @@
 enum { MAX_SETS = 4096 };
 
 int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n, double cell, const char *path,
-                         FILE *diag) {
+                         const SylSink *sink) {
     const SylTerrain *t = f->t;
     double w = t->nx * t->cell, d = t->nz * t->cell;
     if (!(cell > 0)) cell = 250;
@@ -80,7 +80,7 @@ int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n
             k++;
         }
     }
-    if (!st) st = glb_write_forest_cached(f->ground, sets, (const char *const *)extras, nsets, f->textures, path, diag);
+    if (!st) st = glb_write_forest_cached(f->ground, sets, (const char *const *)extras, nsets, f->textures, path, sink);
     for (int i = 0; extras && i < nsets; i++) free(extras[i]);
     free(extras), free(sets), free(t3), free(r4), free(s3), free(inst), free(count), free(start), free(bucket);
     return st;

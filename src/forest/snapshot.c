@@ -10,6 +10,7 @@
 
 #include "eco/eco.h"
 #include "util/clock.h"
+#include "util/diag.h"
 #include "util/outgroup.h"
 #include "sylva/forest.h"
 #include "sylva/texture.h"
@@ -31,8 +32,8 @@ static int band_row(int b, int nbands, int height) {
 /* Every rank's status to all (every rank makes the same calls): the worst, so that every
  * rank stops or none. A rank other than 0 that failed says why (its diagnostics, kept in
  * said) unless rank 0 failed too, which has said it once; rank 0 says how many ranks failed
- * when it did not (on out, the caller's diag). After a failure every rank's st is the worst: nothing is said twice. */
-static int agree(SylEcoMpi *mpi, int st, FILE *out, FILE *said, char *const *text, const size_t *len) {
+ * when it did not (to out, the caller's sink). After a failure every rank's st is the worst: nothing is said twice. */
+static int agree(SylEcoMpi *mpi, int st, const SylSink *out, FILE *said, char *const *text, const size_t *len) {
     int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
     int64_t v[7] = {0}; /* a flag per status, rank 0 failed, ranks failed */
     if (st > 0 && st < 5) v[st] = 1;
@@ -41,13 +42,13 @@ static int agree(SylEcoMpi *mpi, int st, FILE *out, FILE *said, char *const *tex
     int worst = SYL_OK;
     for (int k = 4; k > 0; k--)
         if (v[k] && !worst) worst = k;
-    if (worst && !v[5] && rank == 0 && out)
-        fprintf(out, "sylva: error: %lld of the %d ranks could not do their part (the same files on every node?)\n",
-                (long long)v[6], nranks);
+    if (worst && !v[5] && rank == 0)
+        sink_error(out, "%lld of the %d ranks could not do their part (the same files on every node?)", (long long)v[6],
+                   nranks);
     if (st && !v[5] && rank > 0 && said) {
         fflush(said);
-        if (out) fprintf(out, "sylva: error: rank %d of %d could not do its part:\n%.*s", rank, nranks, (int)*len,
-                *text ? *text : "");
+        int n = (int)*len - (*len && (*text)[*len - 1] == '\n'); /* the record's text ends without it */
+        sink_error(out, "rank %d of %d could not do its part:\n%.*s", rank, nranks, n, *text ? *text : "");
     }
     return worst;
 }
@@ -59,7 +60,13 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
      * when it alone failed (agree) */
     char *said = NULL;
     size_t said_len = 0;
+    SylSink text;
+    const SylSink *out = diag_sink(&text, o->diag, o->sink); /* the caller's */
+    /* rank 0 reports to out; another rank keeps its text in said */
     FILE *diag = rank == 0 ? o->diag : open_memstream(&said, &said_len), *kept = rank == 0 ? NULL : diag;
+    SylSink kept_text;
+    const SylSink *sink = rank == 0 ? out : diag_sink(&kept_text, diag, NULL);
+    const SylSink *sub_sink = rank == 0 ? o->sink : NULL; /* for the options that take diag too */
     static SylEcoModel model; /* 14 kB: off the stack */
     SylTerrain *t = NULL;
     SylForest *forest = NULL;
@@ -69,16 +76,15 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
     int st = status;
     if (!st && !p) st = SYL_EUSAGE;
     if (!st && syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) {
-        if (diag)
-            fprintf(diag, "sylva: error: --plants renders an ecosystem block's plants; '%s' is a %s (name one: FILE:Model)\n",
-                    syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
+        sink_error(sink, "--plants renders an ecosystem block's plants; '%s' is a %s (name one: FILE:Model)",
+                   syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
         st = SYL_EUSAGE;
     }
-    SylEcoOptions eo = {.threads = o->threads, .diag = diag};
+    SylEcoOptions eo = {.threads = o->threads, .diag = diag, .sink = sub_sink};
     if (!st) st = syl_ecosystem_load(p, &eo, &model, &t);
-    if (!st) st = syl_ecosystem_table_read(o->plants, &model, t, &plants, &nplants, diag);
+    if (!st) st = syl_ecosystem_table_read(o->plants, &model, t, &plants, &nplants, sink);
     if (!st) st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = o->threads, .diag = diag}, &forest);
-    st = agree(mpi, st, o->diag, kept, &said, &said_len); /* before rendering: no work for a failed job */
+    st = agree(mpi, st, out, kept, &said, &said_len); /* before rendering: no work for a failed job */
     SylRenderOptions ro = *o->render;
     int w = ro.width ? ro.width : 1280, h = ro.height ? ro.height : 720;
     ro.width = w, ro.height = h;
@@ -101,7 +107,7 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
     double cpu = clock_cpu() - c0, wall = clock_wall() - t0;
     if (mpi && o->before_gather) o->before_gather(o->user, rank);
     if (!st && !(lens = calloc((size_t)nranks, sizeof *lens))) st = SYL_ELIMIT;
-    st = agree(mpi, st, o->diag, kept, &said, &said_len);
+    st = agree(mpi, st, out, kept, &said, &said_len);
     if (!st) st = eco_mpi_gather(mpi, mine, rows * row_bytes, &all, lens);
     if (!st && rank == 0) { /* each rank's bands, in its order, into their rows */
         if (!(rgb = malloc((size_t)h * row_bytes))) st = SYL_ELIMIT;
@@ -116,7 +122,7 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
                 got += len;
             }
             if (got != lens[r]) {
-                if (diag) fprintf(diag, "sylva: error: rank %d sent %zu bytes of picture, not %zu\n", r, lens[r], got);
+                sink_error(sink, "rank %d sent %zu bytes of picture, not %zu", r, lens[r], got);
                 st = SYL_EIO;
             }
             from += lens[r];
@@ -125,12 +131,12 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
          * written, the .glb is taken back, the file that was there before put back. */
         OutGroup outs = {0};
         if (!st && o->glb)
-            st = !outgroup_add(&outs, o->glb, diag) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, o->glb, diag);
-        if (!st) st = outgroup_add(&outs, o->png, diag) ? syl_png_write(o->png, rgb, w, h, diag) : SYL_EIO;
+            st = !outgroup_add(&outs, o->glb, sink) ? SYL_EIO : syl_forest_write_glb(forest, plants, nplants, 0, o->glb, sink);
+        if (!st) st = outgroup_add(&outs, o->png, sink) ? syl_png_write(o->png, rgb, w, h, sink) : SYL_EIO;
         if (st) outgroup_undo(&outs);
         else outgroup_commit(&outs);
     }
-    st = agree(mpi, st, o->diag, kept, &said, &said_len); /* rank 0's writes: every rank exits with their status */
+    st = agree(mpi, st, out, kept, &said, &said_len); /* rank 0's writes: every rank exits with their status */
     if (kept) fclose(kept);
     free(said);
     if (stats)

@@ -14,11 +14,11 @@
 #include "util/numtext.h"
 #include "util/pngout.h"
 
-bool io_open(OutFile *o, const char *path, FILE *diag) { return outfile_open(o, path, NULL, diag); }
+bool io_open(OutFile *o, const char *path, const SylSink *sink) { return outfile_open(o, path, NULL, sink); }
 
-int io_close(OutFile *o, int status, FILE *diag) {
+int io_close(OutFile *o, int status, const SylSink *sink) {
     /* A write error is reported by outfile_close; other failures by whoever set status. */
-    if (!outfile_close(o, status == SYL_OK, diag) && !status) status = SYL_EIO;
+    if (!outfile_close(o, status == SYL_OK, sink) && !status) status = SYL_EIO;
     return status;
 }
 

@@ -715,7 +715,7 @@ static bool plan(Layout *l) {
 }
 
 /* The file of sc; set_joint (may be NULL): the joint each instance set follows. */
-static int write_scene(const GlbScene *sc, const int *set_joint, const char *path, FILE *diag) {
+static int write_scene(const GlbScene *sc, const int *set_joint, const char *path, const SylSink *sink) {
     Layout l = {.sc = sc, .set_joint = set_joint};
     for (int k = 0; k < SLOTS; k++) l.tex_of_kind[k] = -1;
     IoBuf js = {0};
@@ -742,7 +742,7 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     if (ok) layout_textures(&l);
     glb_pad(&l.bin, 0);
     if (ok) write_json(&js, &l);
-    int status = glb_container_to(path, sc->stream, &js, &l.bin, l.nmeshes > 0, diag);
+    int status = glb_container_to(path, sc->stream, &js, &l.bin, l.nmeshes > 0, sink);
     io_free(&js);
     io_free(&l.bin);
     free(l.views);
@@ -758,7 +758,7 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
 
 /* A skinned scene's instance sets split by the joint each instance follows (glb_skin_split),
  * into parts (a copy of sc's); set_joint numbers them over all parts (-1: not split). */
-static int write_split(const GlbScene *sc, GlbPart *parts, const char *path, FILE *diag) {
+static int write_split(const GlbScene *sc, GlbPart *parts, const char *path, const SylSink *sink) {
     int total = 0, status = SYL_OK;
     int *set_joint = NULL;
     for (int p = 0; p < sc->nparts; p++) parts[p] = sc->part[p], parts[p].sets = NULL, parts[p].nsets = 0;
@@ -788,58 +788,58 @@ static int write_split(const GlbScene *sc, GlbPart *parts, const char *path, FIL
     }
     GlbScene split = *sc;
     split.part = parts;
-    if (!status) status = write_scene(&split, set_joint, path, diag);
-    else if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+    if (!status) status = write_scene(&split, set_joint, path, sink);
+    else sink_error(sink, "out of memory writing '%s'", path);
     for (int p = 0; p < sc->nparts; p++)
         if (parts[p].sets != sc->part[p].sets) glb_skin_split_free((SylInstances *)parts[p].sets, parts[p].nsets);
     free(set_joint);
     return status;
 }
 
-int glb_write(const GlbScene *sc, const char *path, FILE *diag) {
+int glb_write(const GlbScene *sc, const char *path, const SylSink *sink) {
     bool split = false;
     for (int p = 0; p < sc->nparts; p++) split |= sc->part[p].wind && sc->part[p].nsets > 0;
-    if (!split) return write_scene(sc, NULL, path, diag);
+    if (!split) return write_scene(sc, NULL, path, sink);
     GlbPart *parts = calloc((size_t)sc->nparts + 1, sizeof *parts);
     if (!parts) {
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        sink_error(sink, "out of memory writing '%s'", path);
         return SYL_ELIMIT;
     }
-    int status = write_split(sc, parts, path, diag);
+    int status = write_split(sc, parts, path, sink);
     free(parts);
     return status;
 }
 
 static int write_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *stream,
-                           SylTextureCache *tc, FILE *diag) {
+                           SylTextureCache *tc, const SylSink *sink) {
     const char *name = m->name[0] ? m->name : "plant";
     GlbPart part = {.mesh = m, .sets = sets, .nsets = n > 0 ? n : 0, .name = name};
     GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .quantize = n > 0, /* instanced: small */
                    .stream = stream, .textures = tc};
-    return glb_write(&sc, path, diag);
+    return glb_write(&sc, path, sink);
 }
 
-int syl_mesh_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, FILE *diag) {
-    return write_instanced(m, sets, n, path, NULL, NULL, diag);
+int syl_mesh_write_glb_instanced(const SylMesh *m, const SylInstances *sets, int n, const char *path, const SylSink *sink) {
+    return write_instanced(m, sets, n, path, NULL, NULL, sink);
 }
 
-int syl_mesh_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, FILE *diag) {
-    return write_instanced(m, sets, n, "(stream)", out, NULL, diag);
+int syl_mesh_write_glb_instanced_stream(const SylMesh *m, const SylInstances *sets, int n, FILE *out, const SylSink *sink) {
+    return write_instanced(m, sets, n, "(stream)", out, NULL, sink);
 }
 
 int syl_mesh_write_glb_instanced_cached(const SylMesh *m, const SylInstances *sets, int n, SylTextureCache *tc,
-                                        FILE *out, FILE *diag) {
-    return write_instanced(m, sets, n, "(stream)", out, tc, diag);
+                                        FILE *out, const SylSink *sink) {
+    return write_instanced(m, sets, n, "(stream)", out, tc, sink);
 }
 
-int syl_mesh_write_glb(const SylMesh *m, const char *path, FILE *diag) { return syl_mesh_write_glb_instanced(m, NULL, 0, path, diag); }
+int syl_mesh_write_glb(const SylMesh *m, const char *path, const SylSink *sink) { return syl_mesh_write_glb_instanced(m, NULL, 0, path, sink); }
 
-int syl_mesh_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, FILE *diag) {
+int syl_mesh_write_glb_parts(SylMesh *const *parts, int n, const char *name, const char *path, const SylSink *sink) {
     GlbPart *part = calloc((size_t)(n > 0 ? n : 1), sizeof *part);
     if (!part) return SYL_ELIMIT;
     for (int i = 0; i < n; i++) part[i] = (GlbPart){.mesh = parts[i], .name = parts[i]->name};
     GlbScene sc = {.part = part, .nparts = n, .scene_name = name};
-    int st = glb_write(&sc, path, diag);
+    int st = glb_write(&sc, path, sink);
     free(part);
     return st;
 }

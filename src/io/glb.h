@@ -29,9 +29,9 @@ void glb_min_max(IoBuf *j, const float *x, size_t n, int k); /* ,"min":[..],"max
 void glb_buffer_views(IoBuf *js, const View *views, int n, size_t bin_len);
 /* The GLB container: header, JSON chunk and (with geometry) BIN chunk, through a temporary
  * file. SYL_OK, SYL_ELIMIT or SYL_EIO, reported. */
-int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
+int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, const SylSink *sink);
 /* The same into stream when it is not NULL (SYL_EIO when a write to it failed). */
-int glb_container_to(const char *path, FILE *stream, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag);
+int glb_container_to(const char *path, FILE *stream, const IoBuf *js, const IoBuf *bin, bool geometry, const SylSink *sink);
 
 #include "sylva/mesh.h"
 #include "sylva/stream.h"
@@ -70,17 +70,17 @@ typedef struct GlbScene {
     SylTextureCache *textures; /* set: the procedural textures' PNGs from it (glb_texcache.c) */
 } GlbScene;
 
-int glb_write(const GlbScene *sc, const char *path, FILE *diag);
+int glb_write(const GlbScene *sc, const char *path, const SylSink *sink);
 /* A ground mesh (may be NULL) and n sets of instances (each a node with
  * EXT_mesh_gpu_instancing, extras[i] — JSON object text, or NULL — in its node's extras);
  * sets with the same proto pointer share one mesh: a forest split into cells, for
  * syl_forest_write_glb (sylva/forest.h), the one public name of the operation. */
 int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                     const char *path, FILE *diag);
+                     const char *path, const SylSink *sink);
 
 /* The same, the procedural textures' PNGs from tc (may be NULL: made here). */
 int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                            SylTextureCache *tc, const char *path, FILE *diag);
+                            SylTextureCache *tc, const char *path, const SylSink *sink);
 
 /* Texture slots of a material (glb.c): its kind's tiled picture (bark, leaf, flower), a leaf
  * card (RGBA), an impostor's atlas, a leaf cluster (RGBA); -1: none. */

@@ -192,17 +192,17 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
 }
 
 int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                     const char *path, FILE *diag) {
-    return glb_write_forest_cached(ground, sets, extras, n, NULL, path, diag);
+                     const char *path, const SylSink *sink) {
+    return glb_write_forest_cached(ground, sets, extras, n, NULL, path, sink);
 }
 
 int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                            SylTextureCache *tc, const char *path, FILE *diag) {
+                            SylTextureCache *tc, const char *path, const SylSink *sink) {
     Forest *f = calloc(1, sizeof *f);
     if (!f) return SYL_ELIMIT;
     f->ground = -1, f->tc = tc;
     if (n < 0 || n > 4096) {
-        if (diag) fprintf(diag, "sylva: error: glb: %d sets of instances (at most 4096)\n", n);
+        sink_error(sink, "glb: %d sets of instances (at most 4096)", n);
         free(f);
         return SYL_EUSAGE;
     }
@@ -210,7 +210,7 @@ int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, con
     for (int i = 0; i < n; i++) {
         f->set_mesh[i] = drawable(sets[i].proto) && sets[i].count ? mesh_index(f, sets[i].proto) : -1;
         if (f->set_mesh[i] < 0) {
-            if (diag) fprintf(diag, "sylva: error: glb: set '%s' has no mesh or no instances\n", sets[i].name);
+            sink_error(sink, "glb: set '%s' has no mesh or no instances", sets[i].name);
             free(f);
             return SYL_EUSAGE;
         }
@@ -244,7 +244,7 @@ int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, con
         glb_pad(&f->bin, 0);
         IoBuf js = {0};
         json(&js, f, sets, extras, n);
-        if (!st) st = glb_container(path, &js, &f->bin, f->nmeshes > 0, diag);
+        if (!st) st = glb_container(path, &js, &f->bin, f->nmeshes > 0, sink);
         io_free(&js);
     }
     io_free(&f->bin);

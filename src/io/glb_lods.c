@@ -7,12 +7,12 @@
 #include "sylva/stream.h"
 #include "sylva/wind.h"
 
-int syl_lod_write_glb(const SylLodChain *c, const char *path, FILE *diag) { return syl_wind_write_glb_lods(c, NULL, NULL, path, diag); }
+int syl_lod_write_glb(const SylLodChain *c, const char *path, const SylSink *sink) { return syl_wind_write_glb_lods(c, NULL, NULL, path, sink); }
 
 /* With wind, every level meshed with vertex nodes (of s) is skinned to w's joints; a level
  * without them (the billboards) is not. */
 static int write_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *stream,
-                      SylTextureCache *tc, FILE *diag) {
+                      SylTextureCache *tc, const SylSink *sink) {
     GlbPart part[SYL_LOD_MAX + 1];
     char names[SYL_LOD_MAX + 1][80];
     float coverage[SYL_LOD_MAX + 1];
@@ -29,18 +29,18 @@ static int write_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind 
                    .atlas = c->atlas, .atlas_w = c->atlas_w, .atlas_h = c->atlas_h,
                    .atlas_material = c->atlas_material, .extras = c->extras, .stream = stream,
                    .textures = tc};
-    return glb_write(&sc, path, diag);
+    return glb_write(&sc, path, sink);
 }
 
-int syl_wind_write_glb_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, FILE *diag) {
-    return write_lods(c, s, w, path, NULL, NULL, diag);
+int syl_wind_write_glb_lods(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, const char *path, const SylSink *sink) {
+    return write_lods(c, s, w, path, NULL, NULL, sink);
 }
 
-int syl_wind_write_glb_lods_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out, FILE *diag) {
-    return write_lods(c, s, w, "(stream)", out, NULL, diag);
+int syl_wind_write_glb_lods_stream(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, FILE *out, const SylSink *sink) {
+    return write_lods(c, s, w, "(stream)", out, NULL, sink);
 }
 
 int syl_wind_write_glb_lods_cached(const SylLodChain *c, const SylSkeleton *s, const SylWind *w, SylTextureCache *tc,
-                                   FILE *out, FILE *diag) {
-    return write_lods(c, s, w, "(stream)", out, tc, diag);
+                                   FILE *out, const SylSink *sink) {
+    return write_lods(c, s, w, "(stream)", out, tc, sink);
 }

@@ -48,21 +48,21 @@ void glb_min_max(IoBuf *j, const float *x, size_t n, int k) {
 
 /* The GLB container: header, JSON chunk and (with geometry) BIN chunk, through a temporary
  * file. SYL_OK, SYL_ELIMIT or SYL_EIO, reported. */
-int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag) {
-    return glb_container_to(path, NULL, js, bin, geometry, diag);
+int glb_container(const char *path, const IoBuf *js, const IoBuf *bin, bool geometry, const SylSink *sink) {
+    return glb_container_to(path, NULL, js, bin, geometry, sink);
 }
 
-int glb_container_to(const char *path, FILE *stream, const IoBuf *js, const IoBuf *bin, bool geometry, FILE *diag) {
+int glb_container_to(const char *path, FILE *stream, const IoBuf *js, const IoBuf *bin, bool geometry, const SylSink *sink) {
     int status = SYL_OK;
     if (js->failed || bin->failed) {
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        sink_error(sink, "out of memory writing '%s'", path);
         status = SYL_ELIMIT;
     } else if (12 + 8 + js->len + (geometry ? 8 + bin->len : 0) > UINT32_MAX) {
-        if (diag) fprintf(diag, "sylva: error: '%s' would be larger than 4 GiB, the limit of .glb\n", path);
+        sink_error(sink, "'%s' would be larger than 4 GiB, the limit of .glb", path);
         status = SYL_ELIMIT;
     }
     OutFile fo = {.f = stream};
-    if (!status && !stream && !io_open(&fo, path, diag)) status = SYL_EIO;
+    if (!status && !stream && !io_open(&fo, path, sink)) status = SYL_EIO;
     if (!status) {
         IoBuf head = {0};
         size_t total = 12 + 8 + js->len + (geometry ? 8 + bin->len : 0);
@@ -80,12 +80,12 @@ int glb_container_to(const char *path, FILE *stream, const IoBuf *js, const IoBu
             fwrite(head.data, 1, head.len, fo.f);
             io_write(bin, fo.f);
         }
-        if (head.failed && diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        if (head.failed && sink) sink_error(sink, "out of memory writing '%s'", path);
         if (head.failed) status = SYL_ELIMIT;
         io_free(&head);
-        if (!stream) status = io_close(&fo, status, diag); /* also catches the fwrite failures above */
+        if (!stream) status = io_close(&fo, status, sink); /* also catches the fwrite failures above */
         else if (!status && (fflush(stream) || ferror(stream))) {
-            if (diag) fprintf(diag, "sylva: error: cannot write '%s'\n", path);
+            sink_error(sink, "cannot write '%s'", path);
             status = SYL_EIO;
         }
     }

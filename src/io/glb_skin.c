@@ -280,28 +280,28 @@ void glb_skin_json(IoBuf *js, const SylWind *w, int first_node, int anim_acc, co
 }
 
 static int write_wind(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
-                      const char *path, FILE *stream, SylTextureCache *tc, FILE *diag) {
+                      const char *path, FILE *stream, SylTextureCache *tc, const SylSink *sink) {
     if (!m->node) {
-        if (diag) fprintf(diag, "sylva: error: the mesh has no vertex nodes to skin (SylMeshOptions.vertex_nodes)\n");
+        sink_error(sink, "the mesh has no vertex nodes to skin (SylMeshOptions.vertex_nodes)");
         return SYL_EUSAGE;
     }
     const char *name = m->name[0] ? m->name : "plant";
     GlbPart part = {.mesh = m, .sets = sets, .nsets = n > 0 ? n : 0, .name = name, .wind = w, .skel = s};
     GlbScene sc = {.part = &part, .nparts = 1, .scene_name = name, .stream = stream, .textures = tc};
-    return glb_write(&sc, path, diag);
+    return glb_write(&sc, path, sink);
 }
 
 int syl_wind_write_glb(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s, const SylWind *w,
-                       const char *path, FILE *diag) {
-    return write_wind(m, sets, n, s, w, path, NULL, NULL, diag);
+                       const char *path, const SylSink *sink) {
+    return write_wind(m, sets, n, s, w, path, NULL, NULL, sink);
 }
 
 int syl_wind_write_glb_stream(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
-                              const SylWind *w, FILE *out, FILE *diag) {
-    return write_wind(m, sets, n, s, w, "(stream)", out, NULL, diag);
+                              const SylWind *w, FILE *out, const SylSink *sink) {
+    return write_wind(m, sets, n, s, w, "(stream)", out, NULL, sink);
 }
 
 int syl_wind_write_glb_cached(const SylMesh *m, const SylInstances *sets, int n, const SylSkeleton *s,
-                              const SylWind *w, SylTextureCache *tc, FILE *out, FILE *diag) {
-    return write_wind(m, sets, n, s, w, "(stream)", out, tc, diag);
+                              const SylWind *w, SylTextureCache *tc, FILE *out, const SylSink *sink) {
+    return write_wind(m, sets, n, s, w, "(stream)", out, tc, sink);
 }

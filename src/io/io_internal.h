@@ -7,13 +7,14 @@
 #include <stdio.h>
 
 #include "sylva/mesh.h"
+#include "util/diag.h"
 #include "util/outfile.h"
 
 /* Files are written through util/outfile (no hooks: an anonymous temporary file). */
-bool io_open(OutFile *o, const char *path, FILE *diag);
+bool io_open(OutFile *o, const char *path, const SylSink *sink);
 /* Close o; put it in place when status is SYL_OK, otherwise leave the path as it was.
  * Returns status, or SYL_EIO when writing failed (reported). */
-int io_close(OutFile *o, int status, FILE *diag);
+int io_close(OutFile *o, int status, const SylSink *sink);
 
 /* A byte span of the caller's memory, written in place of copying it (io_ref). */
 typedef struct IoRef {

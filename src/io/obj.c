@@ -136,9 +136,9 @@ static bool write_obj_body(const SylMesh *all, SylMesh *const *parts, int nparts
     return true;
 }
 
-static int write_obj(const SylMesh *m, SylMesh *const *parts, int nparts, const char *path, FILE *diag) {
+static int write_obj(const SylMesh *m, SylMesh *const *parts, int nparts, const char *path, const SylSink *sink) {
     if (!strcmp(path, "-")) {
-        if (diag) fprintf(diag, "sylva: error: an OBJ cannot go to standard output: its .mtl is written beside it\n");
+        sink_error(sink, "an OBJ cannot go to standard output: its .mtl is written beside it");
         return SYL_EUSAGE;
     }
     char *prefix = strip_extension(path);
@@ -146,7 +146,7 @@ static int write_obj(const SylMesh *m, SylMesh *const *parts, int nparts, const 
     char *mtl = prefix ? malloc(n) : NULL;
     if (!prefix || !mtl) {
         free(prefix);
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        sink_error(sink, "out of memory writing '%s'", path);
         return SYL_ELIMIT;
     }
     snprintf(mtl, n, "%s.mtl", prefix);
@@ -154,32 +154,32 @@ static int write_obj(const SylMesh *m, SylMesh *const *parts, int nparts, const 
     /* Both files stay uncommitted until the textures are written: a failure leaves none. */
     OutFile fo, fm;
     int status = SYL_EIO;
-    if (io_open(&fo, path, diag)) {
+    if (io_open(&fo, path, sink)) {
         status = SYL_OK;
         if (!write_obj_body(m, parts, nparts, fo.f, stem)) {
-            if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+            sink_error(sink, "out of memory writing '%s'", path);
             status = SYL_ELIMIT;
         }
         fflush(fo.f); /* a write error is kept in fo.err and reported by io_close */
         if (!status && !fo.err) {
-            if (io_open(&fm, mtl, diag)) {
+            if (io_open(&fm, mtl, sink)) {
                 write_mtl(m, fm.f, stem);
                 fflush(fm.f);
-                if (!fm.err) status = syl_mesh_write_textures(m, prefix, diag);
-                status = io_close(&fm, status, diag);
+                if (!fm.err) status = syl_mesh_write_textures(m, prefix, sink);
+                status = io_close(&fm, status, sink);
             } else {
                 status = SYL_EIO;
             }
         }
-        status = io_close(&fo, status, diag);
+        status = io_close(&fo, status, sink);
     }
     free(prefix);
     free(mtl);
     return status;
 }
 
-int syl_mesh_write_obj(const SylMesh *m, const char *path, FILE *diag) { return write_obj(m, NULL, 0, path, diag); }
+int syl_mesh_write_obj(const SylMesh *m, const char *path, const SylSink *sink) { return write_obj(m, NULL, 0, path, sink); }
 
-int syl_mesh_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, FILE *diag) {
-    return write_obj(m, parts, n, path, diag);
+int syl_mesh_write_obj_parts(const SylMesh *m, SylMesh *const *parts, int n, const char *path, const SylSink *sink) {
+    return write_obj(m, parts, n, path, sink);
 }

@@ -18,9 +18,9 @@ static void put_u32(uint8_t *p, uint32_t u) {
     p[0] = (uint8_t)u, p[1] = (uint8_t)(u >> 8), p[2] = (uint8_t)(u >> 16), p[3] = (uint8_t)(u >> 24);
 }
 
-int syl_mesh_write_ply(const SylMesh *m, const char *path, FILE *diag) {
+int syl_mesh_write_ply(const SylMesh *m, const char *path, const SylSink *sink) {
     OutFile fo;
-    if (!io_open(&fo, path, diag)) return SYL_EIO;
+    if (!io_open(&fo, path, sink)) return SYL_EIO;
     FILE *f = fo.f;
     char name[sizeof m->name];
     io_line_text(name, sizeof name, m->name, false);
@@ -45,8 +45,8 @@ int syl_mesh_write_ply(const SylMesh *m, const char *path, FILE *diag) {
     enum { VSIZE = 32, FSIZE = 14, CHUNK = 4096 };
     uint8_t *buf = malloc(CHUNK * VSIZE);
     if (!buf) {
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
-        return io_close(&fo, SYL_ELIMIT, diag);
+        sink_error(sink, "out of memory writing '%s'", path);
+        return io_close(&fo, SYL_ELIMIT, sink);
     }
     for (size_t i = 0; i < m->nverts;) {
         size_t n = m->nverts - i < CHUNK ? m->nverts - i : CHUNK;
@@ -74,5 +74,5 @@ int syl_mesh_write_ply(const SylMesh *m, const char *path, FILE *diag) {
         }
     }
     free(buf);
-    return io_close(&fo, SYL_OK, diag); /* fwrite's failures are caught there */
+    return io_close(&fo, SYL_OK, sink); /* fwrite's failures are caught there */
 }

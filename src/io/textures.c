@@ -6,7 +6,7 @@
 #include "sylva/texture.h"
 
 /* PREFIX_leafcard.png or PREFIX_leafcluster.png: the card or cluster texture, RGBA. */
-static int write_card(int shape, bool cluster, const char *prefix, char *path, size_t n, FILE *diag) {
+static int write_card(int shape, bool cluster, const char *prefix, char *path, size_t n, const SylSink *sink) {
     const int size = SYL_TEXTURE_SIZE;
     uint8_t *rgba = malloc((size_t)size * size * 4);
     IoBuf b = {0};
@@ -14,14 +14,14 @@ static int write_card(int shape, bool cluster, const char *prefix, char *path, s
     int status = SYL_OK;
     if (!rgba || !(cluster ? syl_leaf_cluster(shape, size, rgba) : syl_leaf_card(shape, size, rgba)) ||
         !io_png_rgba(&b, rgba, size, size)) {
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+        sink_error(sink, "out of memory writing '%s'", path);
         status = SYL_ELIMIT;
     }
     OutFile fo;
-    if (!status && !io_open(&fo, path, diag)) status = SYL_EIO;
+    if (!status && !io_open(&fo, path, sink)) status = SYL_EIO;
     if (!status) {
         fwrite(b.data, 1, b.len, fo.f);
-        status = io_close(&fo, status, diag);
+        status = io_close(&fo, status, sink);
     }
     io_free(&b);
     free(rgba);
@@ -29,7 +29,7 @@ static int write_card(int shape, bool cluster, const char *prefix, char *path, s
 }
 
 /* The images of the model's own m's groups use, each copied as it was read (io_image_file). */
-static int write_images(const SylMesh *m, const char *prefix, FILE *diag) {
+static int write_images(const SylMesh *m, const char *prefix, const SylSink *sink) {
     bool used[SYL_IMAGES_MAX] = {false};
     for (int g = 0; m && g < m->ngroups; g++)
         if (io_image(m, m->groups[g].material)) used[m->materials[m->groups[g].material].image - 1] = true;
@@ -39,22 +39,22 @@ static int write_images(const SylMesh *m, const char *prefix, FILE *diag) {
         size_t n = strlen(prefix) + sizeof m->images->img[k].name + 16;
         char *path = malloc(n);
         if (!path) {
-            if (diag) fprintf(diag, "sylva: error: out of memory writing textures\n");
+            sink_error(sink, "out of memory writing textures");
             return SYL_ELIMIT;
         }
         io_image_file(m, k, prefix, path, n);
         OutFile fo;
-        if (!io_open(&fo, path, diag)) status = SYL_EIO;
+        if (!io_open(&fo, path, sink)) status = SYL_EIO;
         else {
             fwrite(m->images->img[k].png, 1, m->images->img[k].len, fo.f);
-            status = io_close(&fo, SYL_OK, diag);
+            status = io_close(&fo, SYL_OK, sink);
         }
         free(path);
     }
     return status;
 }
 
-int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
+int syl_mesh_write_textures(const SylMesh *m, const char *prefix, const SylSink *sink) {
     static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
     const int size = SYL_TEXTURE_SIZE;
     uint8_t *img = malloc((size_t)size * size * 3);
@@ -63,7 +63,7 @@ int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
     if (!img || !path) {
         free(img);
         free(path);
-        if (diag) fprintf(diag, "sylva: error: out of memory writing textures\n");
+        sink_error(sink, "out of memory writing textures");
         return SYL_ELIMIT;
     }
     int status = SYL_OK;
@@ -74,17 +74,17 @@ int syl_mesh_write_textures(const SylMesh *m, const char *prefix, FILE *diag) {
         if (!used) continue;
         snprintf(path, n, "%s_%s.png", prefix, syl_texture_name(kinds[k]));
         if (syl_texture(kinds[k], NULL, size, img)) {
-            status = syl_png_write(path, img, size, size, diag);
+            status = syl_png_write(path, img, size, size, sink);
         } else {
-            if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", path);
+            sink_error(sink, "out of memory writing '%s'", path);
             status = SYL_ELIMIT;
         }
     }
     bool leaf = false, cluster = m && m->leaves == SYL_LEAVES_CLUSTERS;
     for (int g = 0; m && g < m->ngroups; g++) leaf |= m->materials[m->groups[g].material].kind == SYL_MATERIAL_LEAF;
     if (leaf && (m->leaves == SYL_LEAVES_CARDS || cluster) && !status)
-        status = write_card(m->leaf_shape, cluster, prefix, path, n, diag);
-    if (!status && m) status = write_images(m, prefix, diag);
+        status = write_card(m->leaf_shape, cluster, prefix, path, n, sink);
+    if (!status && m) status = write_images(m, prefix, sink);
     free(img);
     free(path);
     return status;

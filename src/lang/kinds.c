@@ -3,6 +3,7 @@
 
 #include <string.h>
 
+#include "lang/program.h"
 #include "lang/schema.h"
 
 /* kinds.def lists the kinds in the order of the public enum, whose values are explicit */
@@ -44,9 +45,8 @@ int lang_kind_of_keyword(const char *word, size_t len) {
 
 const char *lang_kind_article(SylModelKind k) { return strchr("aeiou", syl_model_kind_name(k)[0]) ? "an" : "a"; }
 
-void lang_kind_refuse(FILE *diag, const char *name, SylModelKind k, bool as_plant) {
-    if (!diag) return;
+void lang_kind_refuse(const SylProgram *p, FILE *diag, const char *name, SylModelKind k, bool as_plant) {
     as_plant |= lang_kind_is(k, KF_NOT_A_PLANT);
-    fprintf(diag, "sylva: error: '%s' is %s %s, not %s: %s\n", name, lang_kind_article(k), syl_model_kind_name(k),
-            as_plant ? "a plant" : "an lsystem", row(k) ? row(k)->instead : "");
+    diag_say(diag, p ? program_sink(p) : NULL, DIAG_ERROR, NULL, "'%s' is %s %s, not %s: %s", name, lang_kind_article(k), syl_model_kind_name(k),
+             as_plant ? "a plant" : "an lsystem", row(k) ? row(k)->instead : "");
 }

@@ -37,10 +37,11 @@ const char *lang_kind_keyword(SylModelKind k);
 const struct SchTable *lang_kind_schema(SylModelKind k);
 int lang_kind_of_keyword(const char *word, size_t len);
 
-/* Why a model of kind k cannot be what it was asked to be, to diag: "'T' is a strands block,
- * not an lsystem: it has no string; mesh or render it" (as_plant: "..., not a plant: ...", what
- * a KF_NOT_A_PLANT kind says whatever it was asked). */
-void lang_kind_refuse(FILE *diag, const char *name, SylModelKind k, bool as_plant);
+/* Why a model of kind k cannot be what it was asked to be, to p's sink (p may be NULL), else
+ * as text on diag: "'T' is a strands block, not an lsystem: it has no string; mesh or render
+ * it" (as_plant: "..., not a plant: ...", what a KF_NOT_A_PLANT kind says whatever it was
+ * asked). */
+void lang_kind_refuse(const SylProgram *p, FILE *diag, const char *name, SylModelKind k, bool as_plant);
 /* "a" or "an", before the kind's noun */
 const char *lang_kind_article(SylModelKind k);
 

@@ -4,6 +4,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "lang/program.h"
 #include "sylva/skeleton.h"
 #include "util/paramxml.h"
 
@@ -39,8 +40,7 @@ static inline int lang_textures_apply(const SylProgram *p, SylSkeleton *sk, uint
     int st = lang_textures(p, &t, diag);
     if (st) return st;
     st = syl_skeleton_textures(sk, &t, seed);
-    if (st && diag)
-        fprintf(diag, "sylva: error: '%s': its leaf textures need more than 256 materials\n", syl_program_name(p));
+    if (st) program_say_error(p, diag, "'%s': its leaf textures need more than 256 materials", syl_program_name(p));
     lang_textures_free(&t);
     return st;
 }

@@ -641,7 +641,7 @@ int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylStrin
                       SylDeriver **out) {
     *out = NULL;
     if (!lang_kind_is(p->kind, KF_RULES)) {
-        if (opt) lang_kind_refuse(opt->diag, p->name, p->kind, false);
+        if (opt) lang_kind_refuse(p, opt->diag, p->name, p->kind, false);
         if (q && q->release) q->release(q->user);
         return SYL_EUSAGE;
     }

@@ -31,6 +31,7 @@
 #include "mesh/mesh_internal.h"
 #include "util/budget.h"
 #include "util/pages.h"
+#include "util/diag.h"
 #include "util/parallel.h"
 #include "util/rng.h"
 
@@ -114,7 +115,7 @@ void syl_mesh_free(SylMesh *m) {
 }
 
 static void diag(const SylMeshOptions *o, const char *msg) {
-    if (o && o->diag) fprintf(o->diag, "sylva: error: mesh: %s\n", msg);
+    if (o) sink_error(opt_sink(o), "mesh: %s", msg);
 }
 
 static bool finite3(const float p[3]) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
@@ -724,9 +725,8 @@ static int resolve_options(const SylSkeleton *s, const SylMeshOptions *opt, SylM
     }
     for (size_t i = 0; i < s->nnodes; i++)
         if (s->nodes[i].parent < -1 || s->nodes[i].parent >= (int32_t)i) {
-            if (o->diag)
-                fprintf(o->diag, "sylva: error: mesh: node %zu has parent %d: parents must come before their children\n",
-                        i, s->nodes[i].parent);
+            sink_error(opt_sink(o), "mesh: node %zu has parent %d: parents must come before their children", i,
+                       s->nodes[i].parent);
             return SYL_EMODEL;
         }
     return SYL_OK;
@@ -780,9 +780,8 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
      * its size is known, before a byte of it is allocated */
     uint64_t plan_bytes = (uint64_t)s->nnodes * 64 + (uint64_t)s->norgans * 32 + (uint64_t)s->npolys * 32;
     if (!budget_charge(mem, plan_bytes)) {
-        if (o.diag)
-            fprintf(o.diag, "sylva: error: meshing %zu nodes would need more than the %llu MB that --max-memory "
-                            "allows; raise the limit with --max-memory\n",
+        sink_error(opt_sink(&o), "meshing %zu nodes would need more than the %llu MB that --max-memory "
+                            "allows; raise the limit with --max-memory",
                     s->nnodes, (unsigned long long)budget_limit_mb(mem));
         status = SYL_ELIMIT;
         goto done;
@@ -802,9 +801,8 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     for (size_t r = 0; r < pl.nruns; r++) ntris += (size_t)pl.runs[r].tris;
     uint64_t bytes = (uint64_t)pl.nverts * 8 * sizeof(float) + (uint64_t)ntris * 3 * sizeof(uint32_t);
     if (!budget_charge(mem, bytes)) { /* "in all": a budget other engines share */
-        if (o.diag)
-            fprintf(o.diag, "sylva: error: the mesh would need %zu triangles (%llu MB), more than --max-memory "
-                            "allows (%llu MB%s); raise the limit with --max-memory, or use fewer --sides\n",
+        sink_error(opt_sink(&o), "the mesh would need %zu triangles (%llu MB), more than --max-memory "
+                            "allows (%llu MB%s); raise the limit with --max-memory, or use fewer --sides",
                     ntris, (unsigned long long)(bytes >> 20), (unsigned long long)budget_limit_mb(mem),
                     o.budget ? " in all" : "");
         status = SYL_ELIMIT;

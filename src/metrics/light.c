@@ -20,6 +20,7 @@
 
 #include "metrics/metrics_internal.h"
 #include "util/coord.h"
+#include "util/diag.h"
 #include "util/parallel.h"
 
 typedef struct Light {
@@ -76,21 +77,22 @@ static void front_only(const struct RTCFilterFunctionNArguments *a) {
 }
 
 static void embree_error(void *user, enum RTCError code, const char *msg) {
-    FILE *diag = user;
-    if (diag) fprintf(diag, "sylva: error: metrics: embree: %s (code %d)\n", msg ? msg : "error", (int)code);
+    sink_error((const SylSink *)user, "metrics: embree: %s (code %d)", msg ? msg : "error", (int)code);
 }
 
 int metrics_light(const SylMesh *m, double base, const SylMetricsOptions *opt, double *fraction) {
     *fraction = 0;
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     size_t ntri = m ? m->nidx / 3 : 0;
     if (!ntri || !m->nverts) return SYL_OK;
     if (ntri > 0xffffffffu) return SYL_ELIMIT;
     for (size_t i = 0; i < ntri * 3; i++)
         if (m->idx[i] >= m->nverts) {
-            if (opt->diag) fprintf(opt->diag, "sylva: error: metrics: mesh index %u out of range\n", m->idx[i]);
+            sink_error(sink, "metrics: mesh index %u out of range", m->idx[i]);
             return SYL_EUSAGE;
         }
-    if (!coord_check(m->pos, m->nverts, 3, "the model", opt->diag)) return SYL_EMODEL; /* Embree's range */
+    if (!coord_check(m->pos, m->nverts, 3, "the model", sink)) return SYL_EMODEL; /* Embree's range */
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int all = 0; all < 2 && lo[0] == INFINITY; all++) /* the crown's vertices, else all */
         for (size_t v = 0; v < m->nverts; v++)
@@ -113,7 +115,7 @@ int metrics_light(const SylMesh *m, double base, const SylMetricsOptions *opt, d
     snprintf(config, sizeof config, "threads=%d,verbose=0", par_threads(opt->threads));
     RTCDevice dev = l.hits ? rtcNewDevice(config) : NULL;
     if (!dev) goto done;
-    rtcSetDeviceErrorFunction(dev, embree_error, opt->diag);
+    rtcSetDeviceErrorFunction(dev, embree_error, (void *)sink);
     l.scene = rtcNewScene(dev);
     /* A plant's mesh can be large: a compact hierarchy. */
     rtcSetSceneFlags(l.scene, RTC_SCENE_FLAG_COMPACT);
@@ -144,7 +146,7 @@ int metrics_light(const SylMesh *m, double base, const SylMetricsOptions *opt, d
     *fraction = (double)hits / ((double)npts * (double)l.ndirs);
     status = SYL_OK;
 done:
-    if (status && opt->diag) fprintf(opt->diag, "sylva: error: metrics: cannot trace the light rays\n");
+    if (status) sink_error(sink, "metrics: cannot trace the light rays");
     if (l.scene) rtcReleaseScene(l.scene);
     if (dev) rtcReleaseDevice(dev);
     free(pos_copy);

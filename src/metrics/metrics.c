@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "metrics/metrics_internal.h"
+#include "util/diag.h"
 
 #define FIELD(name) offsetof(SylMetrics, name)
 
@@ -49,7 +50,7 @@ double syl_metric_value(const SylMetrics *m, int metric, int order) {
 }
 
 static void report(const SylMetricsOptions *o, const char *msg) {
-    if (o->diag) fprintf(o->diag, "sylva: error: metrics: %s\n", msg);
+    sink_error(opt_sink(o), "metrics: %s", msg);
 }
 
 /* Children lists, after checking that parents precede their children. */
@@ -64,9 +65,7 @@ static int build_tree(const SylSkeleton *s, const SylMetricsOptions *o, MetricsT
     for (size_t i = 0; i < s->nnodes; i++) {
         int32_t p = s->nodes[i].parent;
         if (p < -1 || p >= (int32_t)i) {
-            if (o->diag)
-                fprintf(o->diag, "sylva: error: metrics: node %zu has parent %d: parents must come before their children\n",
-                        i, p);
+            sink_error(opt_sink(o), "metrics: node %zu has parent %d: parents must come before their children", i, p);
             return SYL_EMODEL;
         }
         if (p >= 0) t->first[p + 2]++;

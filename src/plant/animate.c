@@ -101,7 +101,7 @@ int syl_growth_new(const SylProgram *p, const SylPlantOptions *opt, SylGrowth **
     } else if (lang_kind_is(g->kind, KF_RULES)) {
         st = derive_steps(g);
     } else if (lang_kind_is(g->kind, KF_NOT_A_PLANT)) {
-        lang_kind_refuse(opt->diag, syl_program_name(p), g->kind, true);
+        lang_kind_refuse(p, opt->diag, syl_program_name(p), g->kind, true);
         st = SYL_EUSAGE;
     } else {
         program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' is %s %s: it is built full grown and has no growth to animate",

@@ -7,6 +7,7 @@
 #include "sylva/impostor.h"
 #include "sylva/render.h"
 #include "util/budget.h"
+#include "util/diag.h"
 
 void syl_impostor_direction(int grid, int col, int row, float d[3]) {
     float ex = 2 * ((float)col + 0.5f) / (float)grid - 1, ey = 2 * ((float)row + 0.5f) / (float)grid - 1;
@@ -27,7 +28,7 @@ static int bake_views(const SylMesh *m, const SylImpostorOptions *o, int n, cons
     /* Albedo, for the engine to light with the normals; 4 samples for smooth alpha edges. */
     SylRenderOptions ro = {.width = size, .height = size, .samples = 4, .ao_samples = -1, .shadows = -1, .unlit = true,
                            .ground = -1,
-                           .threads = o->threads, .diag = o->diag, .alpha = alpha, .normal = *nd, .adaptive = true};
+                           .threads = o->threads, .diag = o->diag, .sink = o->sink, .alpha = alpha, .normal = *nd, .adaptive = true};
     if (!status) status = syl_render_views(m, &ro, n, dirs, rgb);
     for (size_t i = 0; !status && i < px; i++) {
         bool seen = alpha[i] > 0; /* outside the plant: black, so filtering bleeds no sky */
@@ -120,11 +121,10 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
     uint64_t views = 12ull * (uint64_t)v * (uint64_t)v * (uint64_t)nviews,
              atlases = 8ull * side * side + 8ull * (uint64_t)k * (uint64_t)v * (uint64_t)v;
     if (!budget_charge(o->budget, views + atlases)) {
-        if (o->diag)
-            fprintf(o->diag,
-                    "sylva: error: the impostor would need %llu MB (%d views of %dx%d pixels and a %zux%zu atlas), "
-                    "more than --max-memory allows (%llu MB in all); raise the limit with --max-memory, or use a "
-                    "smaller --impostor-grid or --impostor-view\n",
+        sink_error(opt_sink(o),
+                   "the impostor would need %llu MB (%d views of %dx%d pixels and a %zux%zu atlas), "
+                   "more than --max-memory allows (%llu MB in all); raise the limit with --max-memory, or use a "
+                   "smaller --impostor-grid or --impostor-view",
                     (unsigned long long)((views + atlases) >> 20), nviews, v, v, side, side,
                     (unsigned long long)budget_limit_mb(o->budget));
         free(dirs);
@@ -149,7 +149,7 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
         }
     for (int q = 0; !status && q < 2 * k; q++) place(out->bb_color, out->bb_width, rgba, g * g + q, v, q, 0);
     free(rgba), free(nd), free(dirs);
-    if (status && o->diag) fprintf(o->diag, "sylva: error: out of memory baking the impostor\n");
+    if (status) sink_error(opt_sink(o), "out of memory baking the impostor");
     if (status) syl_impostor_free(out);
     else budget_release(out->budget, views), out->charged = atlases; /* the views are freed */
     return status;

@@ -128,13 +128,14 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
      * limit of max_memory (a budget made here could not outlive the mesh it counts). */
     SylBudget *budget = opt->budget ? opt->budget : mo.budget;
     if (!mo.budget) mo.budget = budget;
+    if (!mo.sink) mo.sink = program_sink(p); /* the mesher's records: the program's sink */
     if (!mo.max_memory) mo.max_memory = opt->max_memory;
     SylModelKind kind = syl_program_kind(p);
     const KindOps *ops = kinds_ops(kind);
     int nscene = 0;
     bool scene = lang_kind_is(kind, KF_UNNAMED) || (opt->scene && syl_program_scene(p, &nscene));
     if (!scene && lang_kind_is(kind, KF_NOT_A_PLANT)) {
-        lang_kind_refuse(opt->diag, syl_program_name(p), kind, true);
+        lang_kind_refuse(p, opt->diag, syl_program_name(p), kind, true);
         return SYL_EUSAGE;
     }
     out->kind = scene ? SYL_MODEL_SCENE : kind;

@@ -12,6 +12,7 @@
 #include "render/scene.h"
 #include "util/budget.h"
 #include "util/coord.h"
+#include "util/diag.h"
 
 typedef struct Proto {
     RTCScene scene[2];   /* full, coarse (NULL: none) */
@@ -103,14 +104,14 @@ static uint8_t *triangle_materials(const SylMesh *m) {
     return t;
 }
 
-static bool mesh_ok(const SylMesh *m, FILE *diag) {
+static bool mesh_ok(const SylMesh *m, const SylSink *sink) {
     if (!m) return true;
     for (size_t i = 0; i < m->nidx; i++)
         if (m->idx[i] >= m->nverts) {
-            if (diag) fprintf(diag, "sylva: error: render: mesh index %u out of range\n", m->idx[i]);
+            sink_error(sink, "render: mesh index %u out of range", m->idx[i]);
             return false;
         }
-    return m->nidx / 3 <= 0xffffffffu && coord_check(m->pos, m->nverts, 3, "the model", diag);
+    return m->nidx / 3 <= 0xffffffffu && coord_check(m->pos, m->nverts, 3, "the model", sink);
 }
 
 /* Is the sphere (centre q, radius r) in the camera's view? */
@@ -255,41 +256,42 @@ static int place(Work *w, const SylRenderInstance *inst, size_t n, SylRenderCoun
 
 static int check(const SylMesh *ground, const SylRenderProto *protos, int nprotos, const SylRenderInstance *inst,
                  size_t n, const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint64_t *pixels) {
-    FILE *diag = opt->diag;
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     int W = opt->width > 0 ? opt->width : 1024, H = opt->height > 0 ? opt->height : 1024;
     if (opt->width < 0 || opt->height < 0 || W > 65536 || H > 65536 || (size_t)W * (size_t)H > (size_t)1 << 28) {
-        if (diag) fprintf(diag, "sylva: error: render: picture size %d x %d out of range\n", W, H);
+        sink_error(sink, "render: picture size %d x %d out of range", W, H);
         return SYL_EUSAGE;
     }
     if (nwindows < 0 || (nwindows && !windows)) {
-        if (diag) fprintf(diag, "sylva: error: render: %d windows\n", nwindows);
+        sink_error(sink, "render: %d windows", nwindows);
         return SYL_EUSAGE;
     }
     *pixels = nwindows ? 0 : (uint64_t)W * (uint64_t)H;
     for (int k = 0; k < nwindows; k++) {
         const int *win = windows[k];
         if (win[0] < 0 || win[1] < 0 || win[2] > W || win[3] > H || win[0] >= win[2] || win[1] >= win[3]) {
-            if (diag)
-                fprintf(diag, "sylva: error: render: window %d,%d..%d,%d is not inside the %d x %d picture\n", win[0],
+            if (sink)
+                sink_error(sink, "render: window %d,%d..%d,%d is not inside the %d x %d picture", win[0],
                         win[1], win[2], win[3], W, H);
             return SYL_EUSAGE;
         }
         *pixels += (uint64_t)(win[2] - win[0]) * (uint64_t)(win[3] - win[1]);
     }
     if (nprotos < 0 || nprotos > 256) {
-        if (diag) fprintf(diag, "sylva: error: render: %d prototypes (at most 256)\n", nprotos);
+        sink_error(sink, "render: %d prototypes (at most 256)", nprotos);
         return SYL_EUSAGE;
     }
-    if (!mesh_ok(ground, diag)) return SYL_EMODEL;
+    if (!mesh_ok(ground, sink)) return SYL_EMODEL;
     for (int p = 0; p < nprotos; p++)
-        if (!protos[p].mesh || !mesh_ok(protos[p].mesh, diag) || !mesh_ok(protos[p].coarse, diag)) {
-            if (diag && !protos[p].mesh) fprintf(diag, "sylva: error: render: prototype %d has no mesh\n", p);
+        if (!protos[p].mesh || !mesh_ok(protos[p].mesh, sink) || !mesh_ok(protos[p].coarse, sink)) {
+            if (sink && !protos[p].mesh) sink_error(sink, "render: prototype %d has no mesh", p);
             return SYL_EMODEL;
         }
     for (size_t i = 0; i < n; i++)
         if (inst[i].proto >= (uint32_t)nprotos || !isfinite(inst[i].t[0]) || !isfinite(inst[i].t[1]) ||
             !isfinite(inst[i].t[2]) || !isfinite(inst[i].yaw) || !isfinite(inst[i].scale)) {
-            if (diag) fprintf(diag, "sylva: error: render: instance %zu is malformed\n", i);
+            sink_error(sink, "render: instance %zu is malformed", i);
             return SYL_EUSAGE;
         }
     return SYL_OK;
@@ -321,6 +323,8 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
     SylRenderCounts own_counts;
     if (!counts) counts = &own_counts;
     memset(counts, 0, sizeof *counts);
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     uint64_t pixels;
     int status = check(ground, protos, nprotos, inst, n, opt, windows, nwindows, &pixels);
     if (status) return status;
@@ -329,8 +333,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
     for (int p = 0; p < nprotos; p++) tris += protos[p].mesh->nidx / 3 + (protos[p].coarse ? protos[p].coarse->nidx / 3 : 0);
     uint64_t need = tris * 150 + (uint64_t)n * 600 + pixels * 3 + (uint64_t)nprotos * (2u << 17) + (8u << 20);
     if (!budget_charge(mem, need)) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: rendering %zu instances would need about %llu MB, more than --max-memory "
+        sink_error(sink, "rendering %zu instances would need about %llu MB, more than --max-memory "
                                "allows (%llu MB in all); raise the limit with --max-memory\n",
                     n, (unsigned long long)(need >> 20), (unsigned long long)budget_limit_mb(mem));
         return SYL_ELIMIT;
@@ -357,7 +360,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
         if (!s->dev) status = SYL_ELIMIT;
     }
     if (!status) {
-        rtcSetDeviceErrorFunction(s->dev, render_embree_error, opt->diag);
+        rtcSetDeviceErrorFunction(s->dev, render_embree_error, (void *)sink);
         for (int k = 0; k < 4 && !status; k++)
             if (!texture_build(&s->tex[k], k == 3 ? -1 : k, TEX_SIZE)) status = SYL_ELIMIT;
     }
@@ -380,7 +383,7 @@ int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, in
         rtcCommitScene(s->scene);
         if (rtcGetDeviceError(s->dev) != RTC_ERROR_NONE) status = SYL_ELIMIT;
     }
-    if (status == SYL_ELIMIT && opt->diag) fprintf(opt->diag, "sylva: error: render: out of memory\n");
+    if (status == SYL_ELIMIT) sink_error(sink, "render: out of memory");
     const int whole[1][4] = {{0, 0, s ? s->full_w : 0, s ? s->full_h : 0}};
     if (!nwindows) windows = whole, nwindows = 1;
     for (int k = 0; !status && k < nwindows; k++) { /* each window on the one scene */

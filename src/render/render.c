@@ -20,10 +20,11 @@
 #include "util/budget.h"
 #include "util/parallel.h"
 #include "util/coord.h"
+#include "util/diag.h"
 
 void render_embree_error(void *user, enum RTCError code, const char *msg) {
-    FILE *diag = user;
-    if (diag) fprintf(diag, "sylva: error: embree: %s (code %d)\n", msg ? msg : "error", (int)code);
+    const SylSink *sink = user;
+    sink_error(sink, "embree: %s (code %d)", msg ? msg : "error", (int)code);
 }
 
 /* Embree wants denormals flushed to zero (much faster); each worker sets it for itself and
@@ -96,35 +97,35 @@ typedef struct TexJob {
 
 static void tex_job(TexJob *j) { j->ok = texture_build(j->tex, j->kind, TEX_SIZE); }
 
-static int build_scene(Scene *s, int threads, FILE *diag);
+static int build_scene(Scene *s, int threads, const SylSink *sink);
 
 /* The scene's hierarchy on the calling thread (k = 0) and each texture on one of its own. */
 typedef struct Prepare {
     Scene *s;
     int threads, status;
-    FILE *diag;
+    const SylSink *sink;
     TexJob *jobs;
 } Prepare;
 
 static void prepare_part(void *arg, int k) {
     Prepare *p = arg;
-    if (k == 0) p->status = build_scene(p->s, p->threads, p->diag);
+    if (k == 0) p->status = build_scene(p->s, p->threads, p->sink);
     else tex_job(&p->jobs[k - 1]);
 }
 
 /* Embree: the mesh as one triangle geometry on the mesh's own arrays. */
-static int build_scene(Scene *s, int threads, FILE *diag) {
+static int build_scene(Scene *s, int threads, const SylSink *sink) {
     const SylMesh *m = s->m;
     size_t ntri = m ? m->nidx / 3 : 0;
-    if (m && !coord_check(m->pos, m->nverts, 3, "the model", diag)) return SYL_EMODEL;
+    if (m && !coord_check(m->pos, m->nverts, 3, "the model", sink)) return SYL_EMODEL;
     char config[64];
     snprintf(config, sizeof config, "threads=%d,verbose=0", threads);
     s->dev = rtcNewDevice(config);
     if (!s->dev) {
-        if (diag) fprintf(diag, "sylva: error: render: cannot start Embree (error %d)\n", (int)rtcGetDeviceError(NULL));
+        sink_error(sink, "render: cannot start Embree (error %d)", (int)rtcGetDeviceError(NULL));
         return SYL_ELIMIT;
     }
-    rtcSetDeviceErrorFunction(s->dev, render_embree_error, diag);
+    rtcSetDeviceErrorFunction(s->dev, render_embree_error, (void *)sink);
     s->scene = rtcNewScene(s->dev);
     if (ntri) {
         s->tri_mat = calloc(ntri, 1);
@@ -176,12 +177,13 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
 int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     uint64_t w = opt->width > 0 ? (uint64_t)opt->width : 1024, h = opt->height > 0 ? (uint64_t)opt->height : 1024;
     uint64_t tris = m ? m->nidx / 3 : 0, need = tris * 150 + (m ? m->nverts * 16 : 0) + w * h * 3 + (4u << 20);
     if (!budget_charge(mem, need)) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: rendering %llu triangles would need about %llu MB, more than "
+        sink_error(sink, "rendering %llu triangles would need about %llu MB, more than "
                                "--max-memory allows (%llu MB in all); raise the limit with --max-memory\n",
                     (unsigned long long)tris, (unsigned long long)(need >> 20),
                     (unsigned long long)budget_limit_mb(mem));
@@ -195,21 +197,22 @@ int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
 /* The picture's size from the options, and a mesh Embree can take: SYL_OK, or SYL_EUSAGE /
  * SYL_ELIMIT, reported. */
 static int check_request(const SylMesh *m, const SylRenderOptions *opt, int *width, int *height) {
-    FILE *diag = opt->diag;
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     *width = opt->width > 0 ? opt->width : 1024, *height = opt->height > 0 ? opt->height : 1024;
     if (opt->width < 0 || opt->height < 0 || *width > 65536 || *height > 65536 ||
         (size_t)*width * (size_t)*height > (size_t)1 << 28) {
-        if (diag) fprintf(diag, "sylva: error: render: picture size %d x %d out of range\n", *width, *height);
+        sink_error(sink, "render: picture size %d x %d out of range", *width, *height);
         return SYL_EUSAGE;
     }
     size_t ntri = m ? m->nidx / 3 : 0;
     if (ntri > 0xffffffffu) {
-        if (diag) fprintf(diag, "sylva: error: render: too many triangles\n");
+        sink_error(sink, "render: too many triangles");
         return SYL_ELIMIT;
     }
     for (size_t i = 0; i < ntri * 3; i++)
         if (m->idx[i] >= m->nverts) {
-            if (diag) fprintf(diag, "sylva: error: render: mesh index %u out of range\n", m->idx[i]);
+            sink_error(sink, "render: mesh index %u out of range", m->idx[i]);
             return SYL_EUSAGE;
         }
     return SYL_OK;
@@ -275,7 +278,7 @@ void render_set_lighting(Scene *s) {
 /* The textures of the kinds in use, and grass when the ground is drawn (not in an impostor's
  * bake), on threads of their own while Embree builds its hierarchy: SYL_OK, or the first
  * failure, reported. */
-static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
+static int build_textures_and_scene(Scene *s, int threads, const SylSink *sink) {
     const SylMesh *m = s->m;
     TexJob jobs[4];
     int njobs = 0;
@@ -286,31 +289,31 @@ static int build_textures_and_scene(Scene *s, int threads, FILE *diag) {
     }
     for (int k = 0; k < 4; k++)
         if (used[k]) jobs[njobs++] = (TexJob){.tex = &s->tex[k], .kind = k == 3 ? -1 : k};
-    Prepare prep = {s, threads, SYL_OK, diag, jobs};
+    Prepare prep = {s, threads, SYL_OK, sink, jobs};
     par_run(threads > 1 ? njobs + 1 : 1, prepare_part, &prep); /* one thread: the textures below */
     int status = prep.status;
-    if (status == SYL_ELIMIT && diag) fprintf(diag, "sylva: error: render: cannot build the scene\n");
+    if (status == SYL_ELIMIT && sink) sink_error(sink, "render: cannot build the scene");
     for (int j = 0; j < njobs; j++) {
         if (threads <= 1) tex_job(&jobs[j]);
         if (!jobs[j].ok && !status) {
-            if (diag) fprintf(diag, "sylva: error: render: out of memory\n");
+            sink_error(sink, "render: out of memory");
             status = SYL_ELIMIT;
         }
     }
     for (int i = 0; i < 256 && !status && m; i++) /* the images, decoded once each */
         if (s->mat_img[i] >= 0 && !s->img[s->mat_img[i]].levels)
-            status = render_image_texture(&s->img[s->mat_img[i]], &m->images->img[s->mat_img[i]], diag);
+            status = render_image_texture(&s->img[s->mat_img[i]], &m->images->img[s->mat_img[i]], sink);
     return status;
 }
 
-int render_image_texture(Texture *t, const SylImage *g, FILE *diag) {
+int render_image_texture(Texture *t, const SylImage *g, const SylSink *sink) {
     int w, h;
     bool alpha;
     uint8_t *rgba = NULL;
     char why[160];
     int status = SYL_OK;
     if (!pngin_decode(g->png, g->len, &w, &h, &alpha, &rgba, why, sizeof why) || !texture_from_rgba(t, rgba, w, h, TEX_SIZE)) {
-        if (diag) fprintf(diag, "sylva: error: render: the texture \"%s\": %s\n", g->name, rgba ? "out of memory" : why);
+        sink_error(sink, "render: the texture \"%s\": %s", g->name, rgba ? "out of memory" : why);
         status = SYL_ELIMIT;
     }
     free(rgba);
@@ -333,12 +336,14 @@ void render_all_tiles(Scene *s, int threads, const SylRenderOptions *opt) {
  * another into rgb, and alpha and normal when the options ask for them. */
 static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3],
                           uint8_t *rgb) {
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     int width, height;
     int status = check_request(m, opt, &width, &height);
     if (status) return status;
     Scene *s = calloc(1, sizeof *s);
     if (!s) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: render: out of memory\n");
+        sink_error(sink, "render: out of memory");
         return SYL_ELIMIT;
     }
     s->m = m;
@@ -360,7 +365,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
         atomic_store(&s->tiles_done, 0);
         set_sampling(s, &o);
         render_set_lighting(s);
-        if (v == 0) status = build_textures_and_scene(s, threads, opt->diag);
+        if (v == 0) status = build_textures_and_scene(s, threads, sink);
         if (!status) render_all_tiles(s, threads, &o);
     }
     render_scene_free(s);
@@ -369,12 +374,13 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
 
 int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb) {
     if (n < 1) return SYL_OK;
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     Budget own, *mem = budget_use(&own, opt->max_memory, opt->budget);
     uint64_t w = opt->width > 0 ? (uint64_t)opt->width : 1024, h = opt->height > 0 ? (uint64_t)opt->height : 1024;
     uint64_t tris = m ? m->nidx / 3 : 0, need = tris * 150 + (m ? m->nverts * 16 : 0) + w * h * 8 * (uint64_t)n + (4u << 20);
     if (!budget_charge(mem, need)) {
-        if (opt->diag)
-            fprintf(opt->diag, "sylva: error: rendering %d views of %llu triangles would need about %llu MB, more than "
+        sink_error(sink, "rendering %d views of %llu triangles would need about %llu MB, more than "
                                "--max-memory allows (%llu MB in all); raise the limit with --max-memory\n",
                     n, (unsigned long long)tris, (unsigned long long)(need >> 20), (unsigned long long)budget_limit_mb(mem));
         return SYL_ELIMIT;
@@ -387,14 +393,16 @@ int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const
 int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
+    SylSink text;
+    const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
     int w = opt->width > 0 ? opt->width : 1024, h = opt->height > 0 ? opt->height : 1024;
     uint8_t *rgb = malloc((size_t)w * (size_t)h * 3);
     if (!rgb) {
-        if (opt->diag) fprintf(opt->diag, "sylva: error: render: out of memory\n");
+        sink_error(sink, "render: out of memory");
         return SYL_ELIMIT;
     }
     int status = syl_render(m, opt, rgb);
-    if (!status) status = syl_png_write(path, rgb, w, h, opt->diag);
+    if (!status) status = syl_png_write(path, rgb, w, h, sink);
     free(rgb);
     return status;
 }

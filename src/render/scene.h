@@ -80,7 +80,7 @@ int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, const uint32_t
  * draw their own cards): its index in m->images, -1 when none. */
 int render_material_image(const SylMesh *m, int i);
 /* t: image g decoded and mip-mapped for the shader. SYL_OK, or SYL_ELIMIT (reported). */
-int render_image_texture(Texture *t, const SylImage *g, FILE *diag);
+int render_image_texture(Texture *t, const SylImage *g, const SylSink *sink);
 void render_alpha_free(AlphaTest *at);
 /* Release a scene: its Embree scene and device, textures and copies. */
 void render_scene_free(Scene *s);

@@ -35,6 +35,7 @@ int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     }
     int st = forest_init(&f, opt->threads, opt->diag, &opt->stats);
     f.sink = program_sink(p);
+    if (f.sink) f.env.sink = *f.sink; /* Embree's errors too */
     forest_limits(&f, opt);
     f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
     const float base[3] = {0, 0, 0};

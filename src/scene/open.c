@@ -13,7 +13,7 @@ void open_env_init(OpenEnv *e, const OpenEnvParams *p) {
     e->P = *p;
     if (!(e->P.voxel > 0) || !isfinite(e->P.voxel)) e->P.voxel = 1;
     ShadowParams sp = probe_shadow_params(e->P.voxel, e->P.sun);
-    env_init_probes(&e->world, &sp, e->P.ground, e->P.diag);
+    env_init_probes(&e->world, &sp, e->P.ground, diag_sink(&(SylSink){0}, e->P.diag, NULL));
 }
 
 void open_env_free(OpenEnv *e) {

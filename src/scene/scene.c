@@ -208,14 +208,14 @@ static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, si
         char *path = NULL;
         int st = scene_spec_path(p, o->file, NULL, &path);
         if (st == SYL_EIO) program_say(p, diag, DIAG_ERROR, NULL, "cannot read '%s': %s", o->file, syl_file_refused);
-        if (!st) st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag);
+        if (!st) st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag_sink(&(SylSink){0}, diag, program_sink(p)));
         free(path);
         if (st) {
             if (diag) syl_program_error(p, diag, o->line, o->col, "cannot use the obstacle \"%s\"", o->file);
             return st;
         }
     }
-    return obstacles_commit(&f->env.obstacles, f->env.dev, diag);
+    return obstacles_commit(&f->env.obstacles, f->env.dev, diag_sink(&(SylSink){0}, diag, program_sink(p)));
 }
 
 static bool has_terrain(const SceneSpec *S) {
@@ -415,6 +415,7 @@ int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, 
     int st = placed && plants && progs && first_tri ? forest_init(&f, opt->threads, opt->diag, &opt->stats) : SYL_ELIMIT;
     if (!st) {
         f.sink = program_sink(p);
+        if (f.sink) f.env.sink = *f.sink; /* Embree's errors too */
         forest_limits(&f, opt);
         f.shoot_derive = syl_derive_begin; /* shoots' query modules: the stand-alone environment */
         st = grow_scene(p, opt, &S, &f, placed, plants, progs, &models, &lsys, first_tri, out, obstacles);

@@ -364,7 +364,7 @@ static int check_file(const SylProgram *p, FILE *diag, const char *what, const c
         syl_program_free(q);
     } else {
         ObjMesh m;
-        bad = obj_read(path, &m, diag) != SYL_OK;
+        bad = obj_read(path, &m, diag_sink(&(SylSink){0}, diag, program_sink(p))) != SYL_OK;
         obj_free(&m);
         if (bad) syl_program_error(p, diag, line, col, "cannot use the %s \"%s\"", what, file);
     }

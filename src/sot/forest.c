@@ -26,7 +26,7 @@ int forest_init(Forest *f, int threads, FILE *diag, SylGrowStats *stats) {
     f->max_buds = 100000000;
     budget_init(&f->own, 0);
     f->mem = &f->own;
-    return env_init(&f->env, threads, diag);
+    return env_init(&f->env, threads, diag_sink(&(SylSink){0}, diag, NULL));
 }
 
 void forest_limits(Forest *f, const SylGrowOptions *opt) {

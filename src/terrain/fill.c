@@ -47,12 +47,12 @@ static Item pop(Item *heap, size_t *n) {
     return top;
 }
 
-int terrain_fill(Terrain *t, float *filled, uint8_t *parent, FILE *diag) {
+int terrain_fill(Terrain *t, float *filled, uint8_t *parent, const SylSink *sink) {
     size_t nx = (size_t)t->nx, nz = (size_t)t->nz, n = nx * nz;
     /* Each cell enters the heap or the queue once: n items and n cells at most. */
     uint64_t bytes = (uint64_t)n * (sizeof(Item) + sizeof(uint32_t) + 1);
     if (!budget_charge(t->budget, bytes)) {
-        if (diag) fprintf(diag, "sylva: error: filling the terrain's depressions needs more than the memory limit "
+        sink_error(sink, "filling the terrain's depressions needs more than the memory limit "
                                 "(--max-memory)\n");
         return SYL_ELIMIT;
     }
@@ -62,7 +62,7 @@ int terrain_fill(Terrain *t, float *filled, uint8_t *parent, FILE *diag) {
     if (!heap || !queue || !done) {
         free(heap), free(queue), free(done);
         budget_release(t->budget, bytes);
-        if (diag) fprintf(diag, "sylva: error: out of memory filling the terrain's depressions\n");
+        sink_error(sink, "out of memory filling the terrain's depressions");
         return SYL_ELIMIT;
     }
     memcpy(filled, t->height, n * sizeof(float));

@@ -48,11 +48,11 @@ static size_t down(const Terrain *t, size_t c, uint8_t d) {
     return (size_t)((long)(c / nx) + terrain_d8_dk[d]) * nx + (size_t)((long)(c % nx) + terrain_d8_di[d]);
 }
 
-int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, FILE *diag) {
+int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, const SylSink *sink) {
     size_t n = (size_t)t->nx * (size_t)t->nz;
     uint64_t bytes = (uint64_t)n * (sizeof(uint32_t) + 1);
     if (!budget_charge(t->budget, bytes)) {
-        if (diag) fprintf(diag, "sylva: error: the flow accumulation needs more than the memory limit (--max-memory)\n");
+        sink_error(sink, "the flow accumulation needs more than the memory limit (--max-memory)");
         return SYL_ELIMIT;
     }
     uint8_t *in = calloc(n, 1); /* at most 8 neighbours drain into a cell */
@@ -60,7 +60,7 @@ int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, FILE *diag) {
     if (!in || !queue) {
         free(in), free(queue);
         budget_release(t->budget, bytes);
-        if (diag) fprintf(diag, "sylva: error: out of memory for the flow accumulation\n");
+        sink_error(sink, "out of memory for the flow accumulation");
         return SYL_ELIMIT;
     }
     for (size_t c = 0; c < n; c++) {

@@ -123,12 +123,12 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
     j->rays += rays;
 }
 
-int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *out, int threads, FILE *diag) {
+int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *out, int threads, const SylSink *sink) {
     size_t nx = (size_t)t->nx, nz = (size_t)t->nz, n = nx * nz;
     size_t ntri = nx > 1 && nz > 1 ? 2 * (nx - 1) * (nz - 1) : 0;
     uint64_t bytes = (uint64_t)(3 * n + 4) * sizeof(float) + (uint64_t)ntri * 3 * sizeof(uint32_t);
     if (!budget_charge(t->budget, bytes)) {
-        if (diag) fprintf(diag, "sylva: error: the terrain's triangles for its shadows need more than the memory "
+        sink_error(sink, "the terrain's triangles for its shadows need more than the memory "
                                 "limit (--max-memory)\n");
         return SYL_ELIMIT;
     }
@@ -138,7 +138,7 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
     RTCScene scene = NULL;
     int st = SYL_OK;
     if (!v || !tri) {
-        if (diag) fprintf(diag, "sylva: error: out of memory for the terrain's shadows\n");
+        sink_error(sink, "out of memory for the terrain's shadows");
         st = SYL_ELIMIT;
         goto done;
     }
@@ -164,7 +164,7 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
         snprintf(config, sizeof config, "threads=%d,verbose=0", par_threads(threads));
         dev = rtcNewDevice(config);
         if (!dev) {
-            if (diag) fprintf(diag, "sylva: error: cannot start Embree\n");
+            sink_error(sink, "cannot start Embree");
             st = SYL_ELIMIT;
             goto done;
         }
@@ -178,14 +178,14 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
         rtcReleaseGeometry(g);
         rtcCommitScene(scene);
         if (rtcGetDeviceError(dev) != RTC_ERROR_NONE) {
-            if (diag) fprintf(diag, "sylva: error: cannot build the terrain's ray-tracing scene\n");
+            sink_error(sink, "cannot build the terrain's ray-tracing scene");
             st = SYL_ELIMIT;
             goto done;
         }
     }
     double ref = 0;
     for (size_t s = 0; s < nsuns; s++) ref += suns[s].dir[1] * suns[s].weight;
-    float *bound = terrain_grid(t, 4 * sizeof(float), diag), *scratch = bound ? terrain_grid(t, 2 * sizeof(float), diag) : NULL;
+    float *bound = terrain_grid(t, 4 * sizeof(float), sink), *scratch = bound ? terrain_grid(t, 2 * sizeof(float), sink) : NULL;
     float *tan_sun = malloc(nsuns * sizeof *tan_sun + 1);
     if (!scratch || !tan_sun) {
         terrain_grid_free(t, bound, 4 * sizeof(float));

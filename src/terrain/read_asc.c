@@ -46,7 +46,7 @@ enum { K_NCOLS, K_NROWS, K_XLL, K_YLL, K_CELL, K_NODATA, K_N };
 int terrain_read_asc(const char *path, const char *text, size_t len, const SylTerrainOptions *o, Terrain **out) {
     *out = NULL;
     Source src = {path, text, len};
-    Scan sc = {text, text + len, 1, 1, {.out = o->diag, .src = &src, .max_shown = 1}};
+    Scan sc = {text, text + len, 1, 1, {.out = o->diag, .sink = o->sink, .src = &src, .max_shown = 1}};
     double v[K_N] = {0};
     bool have[K_N] = {0}, xcenter = false, ycenter = false;
     static const char *const key_name[K_N] = {"ncols", "nrows", "xllcorner", "yllcorner", "cellsize", "NODATA_value"};
@@ -113,7 +113,7 @@ int terrain_read_asc(const char *path, const char *text, size_t len, const SylTe
     }
     int nx = (int)v[K_NCOLS], nz = (int)v[K_NROWS];
     Terrain *t;
-    int st = terrain_new(nx, nz, o->budget, o->max_memory, path, o->diag, &t);
+    int st = terrain_new(nx, nz, o->budget, o->max_memory, path, opt_sink(o), &t);
     if (st) return st;
     double cell = v[K_CELL];
     t->cell = cell;

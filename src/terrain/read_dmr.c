@@ -30,7 +30,7 @@ static int distinct(const double *v, size_t n, double *u, double *step) {
 int terrain_read_dmr(const char *path, const char *text, size_t len, const SylTerrainOptions *o, Terrain **out) {
     *out = NULL;
     Source src = {path, text, len};
-    Diag d = {.out = o->diag, .src = &src, .max_shown = 1};
+    Diag d = {.out = o->diag, .sink = o->sink, .src = &src, .max_shown = 1};
     size_t n = 0, cap = 0;
     double *v = NULL;
     int line = 0;
@@ -57,7 +57,7 @@ int terrain_read_dmr(const char *path, const char *text, size_t len, const SylTe
             double *g = realloc(v, cap * sizeof *v);
             if (!g) {
                 free(v);
-                if (o->diag) fprintf(o->diag, "%s: error: out of memory\n", path);
+                diag_say(o->diag, o->sink, DIAG_ERROR, path, "out of memory");
                 return SYL_ELIMIT;
             }
             v = g;
@@ -79,14 +79,14 @@ int terrain_read_dmr(const char *path, const char *text, size_t len, const SylTe
     double cell = nx > 1 ? sx : sz;
     Terrain *t = NULL;
     if (st) {
-        if (o->diag) fprintf(o->diag, "%s: error: out of memory\n", path);
+        diag_say(o->diag, o->sink, DIAG_ERROR, path, "out of memory");
     } else if (nx < 1 || nz < 1 || (nx > 1 && nz > 1 && fabs(sx - sz) > 1e-6 * sx) || (size_t)nx * (size_t)nz != nv ||
                !(cell >= TERRAIN_MIN_CELL && cell <= TERRAIN_MAX_CELL)) {
         diag_error(&d, (SylLoc){0},
                    "the %zu vertices are not a square grid, each (x, z) once at one spacing (Zamuda's: 25 m)", nv);
         st = SYL_EMODEL;
     } else {
-        st = terrain_new(nx, nz, o->budget, o->max_memory, path, o->diag, &t);
+        st = terrain_new(nx, nz, o->budget, o->max_memory, path, opt_sink(o), &t);
     }
     if (!st) {
         t->cell = cell;

@@ -9,14 +9,14 @@
 
 int terrain_read_obj(const char *path, const SylTerrainOptions *o, Terrain **out) {
     *out = NULL;
-    FILE *diag = o->diag;
+    const SylSink *sink = opt_sink(o);
     Obstacles ob = {0};
     static const float zero[3] = {0, 0, 0};
-    int st = obstacles_add_obj(&ob, path, zero, 1, diag);
+    int st = obstacles_add_obj(&ob, path, zero, 1, sink);
     if (st) return st;
     double wx = (double)ob.hi[0] - ob.lo[0], wz = (double)ob.hi[2] - ob.lo[2];
     if (!(wx > 0) || !(wz > 0)) {
-        if (diag) fprintf(diag, "%s: error: the mesh has no extent in x or z: a terrain lies in the x-z plane\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "the mesh has no extent in x or z: a terrain lies in the x-z plane");
         obstacles_free(&ob);
         return SYL_EMODEL;
     }
@@ -27,14 +27,13 @@ int terrain_read_obj(const char *path, const SylTerrainOptions *o, Terrain **out
     if (nxd < 1) nxd = 1;
     if (nzd < 1) nzd = 1;
     if (nxd > TERRAIN_MAX_SIDE || nzd > TERRAIN_MAX_SIDE) {
-        if (diag)
-            fprintf(diag, "%s: error: cells of %g make a %.0f x %.0f grid: Sylva reads 1 to %d cells a side "
-                          "(--cell)\n", path, cell, nxd, nzd, TERRAIN_MAX_SIDE);
+        diag_say(NULL, sink, DIAG_ERROR, path, "cells of %g make a %.0f x %.0f grid: Sylva reads 1 to %d cells a side "
+                          "(--cell)", cell, nxd, nzd, TERRAIN_MAX_SIDE);
         obstacles_free(&ob);
         return SYL_ELIMIT;
     }
     Terrain *t;
-    st = terrain_new((int)nxd, (int)nzd, o->budget, o->max_memory, path, diag, &t);
+    st = terrain_new((int)nxd, (int)nzd, o->budget, o->max_memory, path, sink, &t);
     if (st) {
         obstacles_free(&ob);
         return st;
@@ -43,7 +42,7 @@ int terrain_read_obj(const char *path, const SylTerrainOptions *o, Terrain **out
     t->x0 = ob.lo[0];
     t->z0 = ob.lo[2];
     RTCDevice dev = rtcNewDevice("threads=1,verbose=0");
-    st = dev ? obstacles_commit(&ob, dev, diag) : SYL_ELIMIT;
+    st = dev ? obstacles_commit(&ob, dev, sink) : SYL_ELIMIT;
     if (!st) {
         float top = ob.hi[1] + 1 + fabsf(ob.hi[1]) * 1e-3f;
         for (int k = 0; k < t->nz; k++)
@@ -56,10 +55,10 @@ int terrain_read_obj(const char *path, const SylTerrainOptions *o, Terrain **out
                 else t->valid[c] = 0;
             }
         if (!terrain_fill_unknown(t)) {
-            if (diag) fprintf(diag, "%s: error: no surface under any cell's centre\n", path);
+            diag_say(NULL, sink, DIAG_ERROR, path, "no surface under any cell's centre");
             st = SYL_EMODEL;
         }
-    } else if (diag && !dev) fprintf(diag, "sylva: error: cannot start Embree\n");
+    } else if (sink && !dev) sink_error(sink, "cannot start Embree");
     obstacles_free(&ob);
     if (dev) rtcReleaseDevice(dev);
     if (st) syl_terrain_free(t);

@@ -12,7 +12,7 @@ typedef struct Mem {
     const uint8_t *p;
     size_t len, at;
     const char *path;
-    FILE *diag;
+    const SylSink *sink;
     bool reported;
 } Mem;
 
@@ -25,7 +25,7 @@ static void mem_read(png_structp png, png_bytep out, png_size_t n) {
 
 static void on_error(png_structp png, png_const_charp msg) {
     Mem *m = png_get_error_ptr(png);
-    if (m->diag && !m->reported) fprintf(m->diag, "%s: error: a malformed PNG: %s\n", m->path, msg);
+    if (!m->reported) diag_say(NULL, m->sink, DIAG_ERROR, m->path, "a malformed PNG: %s", msg);
     m->reported = true;
     png_longjmp(png, 1);
 }
@@ -50,23 +50,23 @@ static bool chunks_fit(const uint8_t *d, size_t len) {
 int terrain_read_png(const char *path, const uint8_t *data, size_t len, const SylTerrainOptions *o,
                      Terrain **out) {
     *out = NULL;
-    FILE *diag = o->diag;
+    const SylSink *sink = opt_sink(o);
     const double lo = o->height_lo, hi = lo == 0 && o->height_hi == 0 ? 1 : o->height_hi;
     const double cell = o->cell > 0 ? o->cell : 1;
     if (len < 8 || png_sig_cmp(data, 0, 8)) {
-        if (diag) fprintf(diag, "%s: error: not a PNG file (its first bytes are not PNG's signature)\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "not a PNG file (its first bytes are not PNG's signature)");
         return SYL_EMODEL;
     }
     if (!chunks_fit(data, len)) {
-        if (diag) fprintf(diag, "%s: error: a malformed PNG: the file ends early (truncated)\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "a malformed PNG: the file ends early (truncated)");
         return SYL_EMODEL;
     }
-    Mem m = {data, len, 0, path, diag, false};
+    Mem m = {data, len, 0, path, sink, false};
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &m, on_error, on_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     if (!info) {
         png_destroy_read_struct(&png, NULL, NULL);
-        if (diag) fprintf(diag, "%s: error: out of memory\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "out of memory");
         return SYL_ELIMIT;
     }
     Terrain *volatile t = NULL;
@@ -80,20 +80,19 @@ int terrain_read_png(const char *path, const uint8_t *data, size_t len, const Sy
     png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
     int depth = png_get_bit_depth(png, info), type = png_get_color_type(png, info);
     if (type != PNG_COLOR_TYPE_GRAY && type != PNG_COLOR_TYPE_GRAY_ALPHA) {
-        if (diag)
-            fprintf(diag, "%s: error: a %s PNG: a DEM is a greyscale PNG (8 or 16 bits), one height a pixel\n", path,
+        diag_say(NULL, sink, DIAG_ERROR, path, "a %s PNG: a DEM is a greyscale PNG (8 or 16 bits), one height a pixel",
                     type == PNG_COLOR_TYPE_PALETTE ? "palette" : "colour");
         goto done;
     }
     if (depth < 8) png_set_expand_gray_1_2_4_to_8(png);
     if (depth == 16) png_set_swap(png); /* little-endian machine: rows as uint16_t */
     if (png_get_interlace_type(png, info) != PNG_INTERLACE_NONE) {
-        if (diag) fprintf(diag, "%s: error: an interlaced PNG: write the DEM without interlacing\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "an interlaced PNG: write the DEM without interlacing");
         goto done;
     }
     png_read_update_info(png, info);
     Terrain *tt;
-    st = terrain_new((int)w, (int)h, o->budget, o->max_memory, path, diag, &tt);
+    st = terrain_new((int)w, (int)h, o->budget, o->max_memory, path, sink, &tt);
     if (st) {
         m.reported = true;
         goto done;
@@ -104,7 +103,7 @@ int terrain_read_png(const char *path, const uint8_t *data, size_t len, const Sy
     size_t rowbytes = png_get_rowbytes(png, info);
     row = malloc(rowbytes);
     if (!row) {
-        if (diag) fprintf(diag, "%s: error: out of memory\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "out of memory");
         st = SYL_ELIMIT;
         goto done;
     }
@@ -128,7 +127,7 @@ int terrain_read_png(const char *path, const uint8_t *data, size_t len, const Sy
         }
     }
     if (!terrain_fill_unknown(t)) {
-        if (diag) fprintf(diag, "%s: error: every pixel is transparent: no height is known\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "every pixel is transparent: no height is known");
         goto done;
     }
     st = SYL_OK;

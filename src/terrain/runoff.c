@@ -26,12 +26,12 @@ static int higher_first(const void *a, const void *b) {
     return (x->i > y->i) - (x->i < y->i);
 }
 
-int terrain_runoff(Terrain *t, const float *slope, double k_m, double water_level, float *out, FILE *diag) {
+int terrain_runoff(Terrain *t, const float *slope, double k_m, double water_level, float *out, const SylSink *sink) {
     int nx = t->nx, nz = t->nz;
     size_t n = (size_t)nx * (size_t)nz;
-    double *m = (double *)terrain_grid(t, sizeof(double), diag);
-    double *tmp = m ? (double *)terrain_grid(t, sizeof(double), diag) : NULL;
-    Order *o = tmp ? (Order *)terrain_grid(t, sizeof(Order), diag) : NULL;
+    double *m = (double *)terrain_grid(t, sizeof(double), sink);
+    double *tmp = m ? (double *)terrain_grid(t, sizeof(double), sink) : NULL;
+    Order *o = tmp ? (Order *)terrain_grid(t, sizeof(Order), sink) : NULL;
     if (!o) {
         terrain_grid_free(t, m, sizeof(double));
         terrain_grid_free(t, tmp, sizeof(double));

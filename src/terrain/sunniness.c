@@ -70,9 +70,9 @@ static void rows(void *ctx, size_t lo, size_t hi, int thread) {
         }
 }
 
-int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, float *out, int threads, FILE *diag) {
+int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, float *out, int threads, const SylSink *sink) {
     if (samples < 3 || samples > MAX_SUNS || samples % 2 == 0) {
-        if (diag) fprintf(diag, "sylva: error: Zamuda's sunniness takes an odd number of sun samples from 3 to %d, not %d\n",
+        sink_error(sink, "Zamuda's sunniness takes an odd number of sun samples from 3 to %d, not %d",
                           MAX_SUNS, samples);
         return SYL_EUSAGE;
     }
@@ -92,8 +92,8 @@ int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, 
         S->weight = s <= half ? 1 + u : 3 - u; /* (4.16) */
         S->quad = (S->flat_dx > 0 ? 1 : 0) | (S->flat_dz > 0 ? 2 : 0);
     }
-    float *bound = (float *)terrain_grid(t, 4 * sizeof(float), diag);
-    float *scratch = bound ? (float *)terrain_grid(t, 2 * sizeof(float), diag) : NULL;
+    float *bound = (float *)terrain_grid(t, 4 * sizeof(float), sink);
+    float *scratch = bound ? (float *)terrain_grid(t, 2 * sizeof(float), sink) : NULL;
     if (!scratch) {
         terrain_grid_free(t, bound, 4 * sizeof(float));
         return SYL_ELIMIT;

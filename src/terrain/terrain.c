@@ -18,11 +18,11 @@ const char *syl_terrain_factor_name(SylTerrainFactor f) {
     return (unsigned)f < SYL_TERRAIN_FACTORS ? names[f] : "?";
 }
 
-int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const char *path, FILE *diag,
+int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const char *path, const SylSink *sink,
                 Terrain **out) {
     *out = NULL;
     if (nx < 1 || nz < 1 || nx > TERRAIN_MAX_SIDE || nz > TERRAIN_MAX_SIDE) {
-        if (diag) fprintf(diag, "%s: error: a %d x %d grid: Sylva reads 1 to %d cells a side\n", path, nx, nz,
+        diag_say(NULL, sink, DIAG_ERROR, path, "a %d x %d grid: Sylva reads 1 to %d cells a side", nx, nz,
                           TERRAIN_MAX_SIDE);
         return SYL_ELIMIT;
     }
@@ -38,9 +38,8 @@ int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const ch
     size_t n = (size_t)nx * (size_t)nz;
     uint64_t bytes = (uint64_t)n * (sizeof(float) + 1);
     if (!budget_charge(t->budget, bytes)) {
-        if (diag)
-            fprintf(diag, "%s: error: a %d x %d grid needs %llu MB, beyond the memory limit of %llu MB "
-                          "(--max-memory)\n", path, nx, nz, (unsigned long long)(bytes >> 20),
+        diag_say(NULL, sink, DIAG_ERROR, path, "a %d x %d grid needs %llu MB, beyond the memory limit of %llu MB "
+                          "(--max-memory)", nx, nz, (unsigned long long)(bytes >> 20),
                     (unsigned long long)budget_limit_mb(t->budget));
         syl_terrain_free(t);
         return SYL_ELIMIT;
@@ -53,24 +52,24 @@ int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const ch
     *out = t;
     return SYL_OK;
 nomem:
-    if (diag) fprintf(diag, "%s: error: out of memory for a %d x %d grid\n", path, nx, nz);
+    diag_say(NULL, sink, DIAG_ERROR, path, "out of memory for a %d x %d grid", nx, nz);
     syl_terrain_free(t);
     return SYL_ELIMIT;
 }
 
-float *terrain_grid(Terrain *t, size_t elem, FILE *diag) {
+float *terrain_grid(Terrain *t, size_t elem, const SylSink *sink) {
     size_t n = (size_t)t->nx * (size_t)t->nz;
     uint64_t bytes = (uint64_t)n * elem;
     if (!budget_charge(t->budget, bytes)) {
-        if (diag)
-            fprintf(diag, "sylva: error: the terrain's maps need more than the memory limit of %llu MB "
+        if (sink)
+            sink_error(sink, "the terrain's maps need more than the memory limit of %llu MB "
                           "(--max-memory)\n", (unsigned long long)budget_limit_mb(t->budget));
         return NULL;
     }
     void *g = calloc(n, elem);
     if (!g) {
         budget_release(t->budget, bytes);
-        if (diag) fprintf(diag, "sylva: error: out of memory for the terrain's maps\n");
+        sink_error(sink, "out of memory for the terrain's maps");
         return NULL;
     }
     return g;
@@ -171,20 +170,20 @@ static bool ends_with(const char *s, const char *ext) {
 
 int syl_terrain_read(const char *path, const SylTerrainOptions *o, SylTerrain **out) {
     *out = NULL;
-    FILE *diag = o->diag;
+    const SylSink *sink = opt_sink(o);
     bool png = ends_with(path, ".png"), asc = ends_with(path, ".asc"), obj = ends_with(path, ".obj"),
          dmr = ends_with(path, ".dmr");
     if (!png && !asc && !obj && !dmr) {
-        if (diag) fprintf(diag, "%s: error: cannot tell the DEM's format: name it *.png, *.asc, *.obj or *.dmr\n", path);
+        diag_say(NULL, sink, DIAG_ERROR, path, "cannot tell the DEM's format: name it *.png, *.asc, *.obj or *.dmr");
         return SYL_EUSAGE;
     }
     if (o->cell != 0 && !(o->cell >= TERRAIN_MIN_CELL && o->cell <= TERRAIN_MAX_CELL)) {
-        if (diag) fprintf(diag, "sylva: error: a cell size of %g: Sylva takes %g to %g\n", o->cell, TERRAIN_MIN_CELL,
+        sink_error(sink, "a cell size of %g: Sylva takes %g to %g", o->cell, TERRAIN_MIN_CELL,
                           TERRAIN_MAX_CELL);
         return SYL_EUSAGE;
     }
     if (!(fabs(o->height_lo) <= 1e9 && fabs(o->height_hi) <= 1e9)) {
-        if (diag) fprintf(diag, "sylva: error: heights of %g and %g: Sylva takes heights up to 1e9 in size\n",
+        sink_error(sink, "heights of %g and %g: Sylva takes heights up to 1e9 in size",
                           o->height_lo, o->height_hi);
         return SYL_EUSAGE;
     }
@@ -193,7 +192,7 @@ int syl_terrain_read(const char *path, const SylTerrainOptions *o, SylTerrain **
     char *data = file_read_named(path, &len, o->budget);
     if (!data) {
         int e = errno; /* before the message, which may change it */
-        if (diag) fprintf(diag, "sylva: error: cannot read '%s': %s\n", path, file_strerror(e));
+        sink_error(sink, "cannot read '%s': %s", path, file_strerror(e));
         return e == ENOMEM || e == FILE_EBUDGET ? SYL_ELIMIT : SYL_EIO;
     }
     int st = png   ? terrain_read_png(path, (const uint8_t *)data, len, o, out)

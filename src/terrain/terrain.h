@@ -9,6 +9,7 @@
 #include <stdio.h>
 
 #include "sylva/terrain.h"
+#include "util/diag.h"
 
 typedef SylTerrain Terrain;
 typedef SylTerrainFactor TerrainFactor;
@@ -24,12 +25,12 @@ enum { TERRAIN_MAX_SIDE = 65536 };
 /* ---- the grid (terrain.c) ---- */
 
 /* A terrain of nx × nz cells, heights 0 and all valid, charged to budget (NULL: its own of
- * max_memory). SYL_OK or SYL_ELIMIT, reported on diag as about path. */
-int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const char *path, FILE *diag,
+ * max_memory). SYL_OK or SYL_ELIMIT, reported on sink as about path. */
+int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const char *path, const SylSink *sink,
                 Terrain **out);
 /* A zeroed grid of nx * nz floats for a factor (or scratch), charged to t's budget; NULL
  * (reported) when refused. Free with terrain_grid_free. */
-float *terrain_grid(Terrain *t, size_t elem, FILE *diag);
+float *terrain_grid(Terrain *t, size_t elem, const SylSink *sink);
 void terrain_grid_free(Terrain *t, void *grid, size_t elem);
 /* The height at cell (i, k), indices clamped to the grid (edges repeat: how every 3×3 window
  * is read at the border). */
@@ -72,7 +73,7 @@ void terrain_slope_aspect(const Terrain *t, float *slope, float *aspect, int thr
  * raised to its spill height; parent[] the direction (D8 code below) of the cell each cell
  * was reached from, TERRAIN_OUT for the edge cells the flood starts from. SYL_OK or
  * SYL_ELIMIT (its queues refused by the budget). */
-int terrain_fill(Terrain *t, float *filled, uint8_t *parent, FILE *diag);
+int terrain_fill(Terrain *t, float *filled, uint8_t *parent, const SylSink *sink);
 
 /* D8 codes: the neighbour a cell drains to. */
 enum { TERRAIN_E, TERRAIN_SE, TERRAIN_S, TERRAIN_SW, TERRAIN_W, TERRAIN_NW, TERRAIN_N, TERRAIN_NE, TERRAIN_OUT = 255 };
@@ -81,7 +82,7 @@ extern const int terrain_d8_di[8], terrain_d8_dk[8];
  * where there is none, on a flat, the flood's parent), then the accumulation: the cells
  * that drain through each cell, itself included. SYL_OK or SYL_ELIMIT. */
 void terrain_d8(const Terrain *t, const float *filled, const uint8_t *parent, uint8_t *dir, int threads);
-int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, FILE *diag);
+int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, const SylSink *sink);
 
 /* wetness.c: ln(a / tan β), a = acc · cell, tan β at least TERRAIN_MIN_TAN. */
 #define TERRAIN_MIN_TAN 0.001
@@ -103,7 +104,7 @@ TerrainSun *terrain_suns(double latitude, int days, double minutes, size_t *n);
  * (horizon.c): bound[q * cells + cell] for directions of x sign (q & 1 ? + : −) and z sign
  * (q & 2 ? + : −); a sun higher than it needs no ray. scratch holds 2 grids. */
 void terrain_horizon_bound(const Terrain *t, float *bound, float *scratch);
-int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *out, int threads, FILE *diag);
+int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *out, int threads, const SylSink *sink);
 
 /* wind.c: Winstral et al. (2002) Sx, degrees, for wind from the azimuth from (degrees
  * clockwise from north) within distance dmax. */
@@ -112,12 +113,12 @@ void terrain_wind(const Terrain *t, double from, double dmax, float *out, int th
 /* Zamuda's (2006) measures, one file each (docs/terrain.md): runoff.c his Algorithm 3 (SYL_OK
  * or SYL_ELIMIT), lee.c his Algorithm 4 (wind from the azimuth from, degrees), sunniness.c
  * his Algorithm 5 (SYL_OK, SYL_ELIMIT, or SYL_EUSAGE for an even or out-of-range count). */
-int terrain_runoff(Terrain *t, const float *slope, double k_m, double water_level, float *out, FILE *diag);
+int terrain_runoff(Terrain *t, const float *slope, double k_m, double water_level, float *out, const SylSink *sink);
 void terrain_lee(const Terrain *t, double from, int samples, double theta0_deg, float *out, int threads);
-int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, float *out, int threads, FILE *diag);
+int terrain_sunniness(Terrain *t, double latitude, int samples, double ambient, float *out, int threads, const SylSink *sink);
 
 /* ---- maps (write.c) ---- */
-int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, FILE *diag);
-int terrain_write_asc(const Terrain *t, const float *grid, const char *path, FILE *diag);
+int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, const SylSink *sink);
+int terrain_write_asc(const Terrain *t, const float *grid, const char *path, const SylSink *sink);
 
 #endif

@@ -9,6 +9,7 @@
 #include <strings.h>
 
 #include "terrain/terrain.h"
+#include "util/diag.h"
 #include "util/outfile.h"
 #include "util/pngout.h"
 
@@ -41,7 +42,7 @@ static const void *grey_row(void *ctx, int k, void *scratch) {
     return row;
 }
 
-static int encode(const Terrain *t, const float *g, const char *name, const OutFile *o, FILE *diag, double lo,
+static int encode(const Terrain *t, const float *g, const char *name, const OutFile *o, const SylSink *sink, double lo,
                   double hi) {
     char range[64], cell[32];
     snprintf(range, sizeof range, "%.9g %.9g", lo, hi);
@@ -50,22 +51,22 @@ static int encode(const Terrain *t, const float *g, const char *name, const OutF
     Grey16 src = {t, g, lo, hi > lo ? 65535 / (hi - lo) : 0};
     PngOutImage img = {.width = t->nx, .height = t->nz, .channels = 1, .depth = 16, .level = 6,
                        .text = text, .ntext = 3, .row = grey_row, .ctx = &src};
-    return pngout_encode(o, &img, diag);
+    return pngout_encode(o, &img, sink);
 }
 
-int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, FILE *diag) {
+int terrain_write_png(const Terrain *t, const float *grid, const char *name, const char *path, const SylSink *sink) {
     OutFile o;
-    if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
+    if (!outfile_open(&o, path, NULL, sink)) return SYL_EIO;
     double lo, hi;
     grid_range(t, grid, &lo, &hi);
-    int st = encode(t, grid, name, &o, diag, lo, hi);
-    if (!outfile_close(&o, st == SYL_OK, diag) && !st) st = SYL_EIO;
+    int st = encode(t, grid, name, &o, sink, lo, hi);
+    if (!outfile_close(&o, st == SYL_OK, sink) && !st) st = SYL_EIO;
     return st;
 }
 
-int terrain_write_asc(const Terrain *t, const float *grid, const char *path, FILE *diag) {
+int terrain_write_asc(const Terrain *t, const float *grid, const char *path, const SylSink *sink) {
     OutFile o;
-    if (!outfile_open(&o, path, NULL, diag)) return SYL_EIO;
+    if (!outfile_open(&o, path, NULL, sink)) return SYL_EIO;
     double lo, hi, nodata = -9999;
     grid_range(t, grid, &lo, &hi);
     while (nodata >= lo && nodata > -1e300) nodata = nodata * 10 - 9; /* below every value */
@@ -82,18 +83,18 @@ int terrain_write_asc(const Terrain *t, const float *grid, const char *path, FIL
         }
         fputc('\n', o.f);
     }
-    return outfile_close(&o, true, diag) ? SYL_OK : SYL_EIO;
+    return outfile_close(&o, true, sink) ? SYL_OK : SYL_EIO;
 }
 
-int syl_terrain_write_map(const SylTerrain *t, SylTerrainFactor f, const char *path, FILE *diag) {
+int syl_terrain_write_map(const SylTerrain *t, SylTerrainFactor f, const char *path, const SylSink *sink) {
     const float *g = (unsigned)f < SYL_TERRAIN_FACTORS ? (f == SYL_TERRAIN_ALTITUDE ? t->height : t->factor[f]) : NULL;
     if (!g) {
-        if (diag) fprintf(diag, "sylva: error: cannot write '%s': the factor has not been computed\n", path);
+        sink_error(sink, "cannot write '%s': the factor has not been computed", path);
         return SYL_EUSAGE;
     }
     size_t n = strlen(path);
-    if (n >= 4 && !strcasecmp(path + n - 4, ".png")) return terrain_write_png(t, g, syl_terrain_factor_name(f), path, diag);
-    if (n >= 4 && !strcasecmp(path + n - 4, ".asc")) return terrain_write_asc(t, g, path, diag);
-    if (diag) fprintf(diag, "sylva: error: cannot tell the map's format of '%s': name it *.png or *.asc\n", path);
+    if (n >= 4 && !strcasecmp(path + n - 4, ".png")) return terrain_write_png(t, g, syl_terrain_factor_name(f), path, sink);
+    if (n >= 4 && !strcasecmp(path + n - 4, ".asc")) return terrain_write_asc(t, g, path, sink);
+    sink_error(sink, "cannot tell the map's format of '%s': name it *.png or *.asc", path);
     return SYL_EUSAGE;
 }

@@ -11,6 +11,8 @@
 #include <stddef.h>
 #include <stdio.h>
 
+#include "sylva/sylva.h"
+
 #define COORD_MAX 1e12
 
 static inline bool coord_ok(double x) { return fabs(x) <= COORD_MAX; } /* false for NaN too */
@@ -18,7 +20,7 @@ static inline bool coord_ok3(const float p[3]) { return coord_ok(p[0]) && coord_
 
 /* n points, stride floats apart: true when all lie within COORD_MAX. Otherwise false, and
  * "sylva: error: WHAT reaches 1e+18 units from the origin; Sylva traces at most 1e+12 units"
- * (or "... is not a finite number ...") on diag when it is not NULL. */
-bool coord_check(const float *v, size_t n, size_t stride, const char *what, FILE *diag);
+ * (or "... is not a finite number ...") on sink when it is not NULL. */
+bool coord_check(const float *v, size_t n, size_t stride, const char *what, const SylSink *sink);
 
 #endif

@@ -195,6 +195,15 @@ void diag_say(FILE *out, const SylSink *sink, int severity, const char *path, co
     va_end(ap);
 }
 
+const SylSink *diag_sink(SylSink *store, FILE *out, const SylSink *sink) {
+    if (sink) return sink;
+    if (!out) return NULL;
+    *store = (SylSink){syl_diagnostic_print, out};
+    return store;
+}
+
+void syl_diagnostic_print(void *file, const SylDiagnostic *d) { syl_diagnostic_write(d, file); }
+
 /* The text sink: the one place the text form is written. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out) {
     const char *sev = severity_name[d->severity <= SYL_DIAG_NOTE ? d->severity : 0];

@@ -44,6 +44,14 @@ void diag_report(Diag *d, int severity, SylLoc loc, const char *fmt, ...)
 void diag_say(FILE *out, const SylSink *sink, int severity, const char *path, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 void diag_vsay(FILE *out, const SylSink *sink, int severity, const char *path, const char *fmt, va_list ap);
+/* An error without a place, to sink (NULL: dropped): `sylva: error: message` in text. */
+#define sink_error(sink, ...) diag_say(NULL, (sink), DIAG_ERROR, NULL, __VA_ARGS__)
+/* The sink a call reports to: sink when given, else the text sink of out in *store (NULL
+ * when out is NULL too), for the options that still carry a FILE * diag beside their sink. */
+const SylSink *diag_sink(SylSink *store, FILE *out, const SylSink *sink);
+/* diag_sink of an options struct's diag and sink, for a call's argument (it lives in the
+ * enclosing block). */
+#define opt_sink(opt) diag_sink(&(SylSink){0}, (opt)->diag, (opt)->sink)
 /* s[0..n) made safe to print (see diag.c: controls escaped, visible UTF-8 kept) into buf,
  * cut to fit cap; returns buf. For text from the user that a message quotes. */
 const char *diag_quote(char *buf, size_t cap, const char *s, size_t n);

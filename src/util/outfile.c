@@ -1,5 +1,6 @@
 /* Output files: see outfile.h for what happens to each kind of path. */
 #include "util/outfile.h"
+#include "util/diag.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -11,10 +12,10 @@
 
 enum { MAX_LINKS = 40, MAX_TRIES = 100 };
 
-static void report(FILE *diag, const char *path, int err) {
-    if (!diag) return;
-    if (!strcmp(path, "-")) fprintf(diag, "sylva: error: cannot write standard output: %s\n", strerror(err));
-    else fprintf(diag, "sylva: error: cannot write '%s': %s\n", path, strerror(err));
+static void report(const SylSink *sink, const char *path, int err) {
+    if (!sink) return;
+    if (!strcmp(path, "-")) sink_error(sink, "cannot write standard output: %s", strerror(err));
+    else sink_error(sink, "cannot write '%s': %s", path, strerror(err));
 }
 
 /* The stream writes through here so that the first failure keeps its reason. */
@@ -143,7 +144,7 @@ static void free_names(OutFile *o) {
     o->path = o->target = NULL;
 }
 
-bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, FILE *diag) {
+bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, const SylSink *sink) {
     memset(o, 0, sizeof *o);
     o->fd = -1;
     o->hooks = hooks;
@@ -197,7 +198,7 @@ bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, FILE *dia
     setvbuf(o->f, NULL, _IOFBF, 1 << 16);
     return true;
 fail:
-    report(diag, path, e);
+    report(sink, path, e);
     free_names(o);
     return false;
 }
@@ -254,7 +255,7 @@ static bool commit(OutFile *o) {
     return true;
 }
 
-bool outfile_close(OutFile *o, bool commit_it, FILE *diag) {
+bool outfile_close(OutFile *o, bool commit_it, const SylSink *sink) {
     if (o->f && fclose(o->f) && !o->err) o->err = EIO; /* fclose flushes through cookie_write */
     o->f = NULL;
     bool ok = !o->err;
@@ -270,7 +271,7 @@ bool outfile_close(OutFile *o, bool commit_it, FILE *diag) {
         ok = false;
     }
     o->fd = -1;
-    if (!ok && o->path) report(diag, o->path, o->err);
+    if (!ok && o->path) report(sink, o->path, o->err);
     free_names(o);
     return ok;
 }

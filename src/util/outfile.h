@@ -16,6 +16,8 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "sylva/sylva.h"
+
 /* Called before a named temporary file is created and after it is gone (renamed into place
  * or removed). Both may run with the path not existing. */
 typedef struct OutHooks {
@@ -39,13 +41,13 @@ typedef struct OutFile {
 
 enum { OUTFILE_STDOUT = 1, OUTFILE_STREAM, OUTFILE_TEMP };
 
-/* Open path for writing; false (reported on diag as "sylva: error: cannot write 'PATH':
+/* Open path for writing; false (reported on sink as "sylva: error: cannot write 'PATH':
  * REASON") when it cannot be. hooks may be NULL. o must stay where it is until closed. */
-bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, FILE *diag);
+bool outfile_open(OutFile *o, const char *path, const OutHooks *hooks, const SylSink *sink);
 /* Close. When commit is set, put the file in place; otherwise remove the temporary file and
  * leave what was at the path as it was. False (reported) when a write or the commit failed;
  * a write error is reported whether or not commit is set. */
-bool outfile_close(OutFile *o, bool commit, FILE *diag);
+bool outfile_close(OutFile *o, bool commit, const SylSink *sink);
 
 /* path with its symlinks followed (also a dangling one's): the file outfile_open writes;
  * malloc'd, NULL with errno on failure. */

@@ -1,5 +1,6 @@
 /* The outputs of one command as one transaction (util/outgroup.h). */
 #include "util/outgroup.h"
+#include "util/diag.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -33,12 +34,12 @@ static int keep_copy(const char *target, char *keep, size_t cap, const struct st
     return e;
 }
 
-bool outgroup_add(OutGroup *g, const char *path, FILE *diag) {
+bool outgroup_add(OutGroup *g, const char *path, const SylSink *sink) {
     if (g->n == g->cap) {
         int cap = g->cap ? 2 * g->cap : 16;
         OutGroupItem *v = realloc(g->v, (size_t)cap * sizeof *v);
         if (!v) {
-            if (diag) fprintf(diag, "sylva: error: out of memory\n");
+            sink_error(sink, "out of memory");
             return false;
         }
         g->v = v, g->cap = cap;
@@ -53,7 +54,7 @@ bool outgroup_add(OutGroup *g, const char *path, FILE *diag) {
         it.keep = malloc(n);
         int e = it.keep ? keep_copy(it.target, it.keep, n, &st) : ENOMEM;
         if (e) {
-            if (diag) fprintf(diag, "sylva: error: cannot keep '%s' while it is replaced: %s\n", path, strerror(e));
+            sink_error(sink, "cannot keep '%s' while it is replaced: %s", path, strerror(e));
             free(it.keep), free(it.target);
             return false;
         }

@@ -12,6 +12,8 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#include "sylva/sylva.h"
+
 typedef struct OutGroupItem {
     char *target; /* the file written: the path with its symlinks followed */
     char *keep;   /* its old contents' second name, or NULL */
@@ -23,8 +25,8 @@ typedef struct OutGroup {
     int n, cap;
 } OutGroup;
 
-/* Before path is written. false (reported on diag) when its old contents cannot be kept. */
-bool outgroup_add(OutGroup *g, const char *path, FILE *diag);
+/* Before path is written. false (reported on sink) when its old contents cannot be kept. */
+bool outgroup_add(OutGroup *g, const char *path, const SylSink *sink);
 /* Every output was written: drop the kept names. */
 void outgroup_commit(OutGroup *g);
 /* One failed: every path as it was before the command. */

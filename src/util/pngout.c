@@ -1,5 +1,6 @@
 /* PNG encoding through libpng (util/pngout.h). */
 #include "util/pngout.h"
+#include "util/diag.h"
 
 #include <png.h>
 #include <stdbool.h>
@@ -8,7 +9,7 @@
 #include "sylva/sylva.h"
 
 typedef struct PngErr {
-    FILE *diag;
+    const SylSink *sink;
     const OutFile *o; /* NULL: written through write */
     const char *name;
     void (*write)(void *ctx, const void *data, size_t n);
@@ -18,7 +19,7 @@ typedef struct PngErr {
 static void on_error(png_structp png, png_const_charp msg) {
     PngErr *e = png_get_error_ptr(png);
     /* A failed write ("Write Error") is reported with its reason by outfile_close. */
-    if (e->diag && !(e->o && e->o->err)) fprintf(e->diag, "sylva: error: cannot write '%s': %s\n", e->name, msg);
+    if (e->sink && !(e->o && e->o->err)) sink_error(e->sink, "cannot write '%s': %s", e->name, msg);
     png_longjmp(png, 1);
 }
 
@@ -34,14 +35,14 @@ static void on_warning(png_structp png, png_const_charp msg) {
 }
 
 static int encode(PngErr *e, const PngOutImage *img) {
-    FILE *diag = e->diag;
+    const SylSink *sink = e->sink;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, e, on_error, on_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
     void *scratch = malloc((size_t)img->width * (size_t)img->channels * (size_t)(img->depth / 8));
     if (!info || !scratch) {
         png_destroy_write_struct(&png, &info);
         free(scratch);
-        if (diag) fprintf(diag, "sylva: error: out of memory writing '%s'\n", e->name);
+        sink_error(sink, "out of memory writing '%s'", e->name);
         return SYL_ELIMIT;
     }
     volatile bool ok = false;
@@ -75,13 +76,13 @@ static int encode(PngErr *e, const PngOutImage *img) {
     return ok ? SYL_OK : SYL_EIO;
 }
 
-int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag) {
-    PngErr e = {.diag = diag, .o = o, .name = o->path};
+int pngout_encode(const OutFile *o, const PngOutImage *img, const SylSink *sink) {
+    PngErr e = {.sink = sink, .o = o, .name = o->path};
     return encode(&e, img);
 }
 
 int pngout_encode_to(void (*write)(void *ctx, const void *data, size_t n), void *ctx, const char *name,
-                     const PngOutImage *img, FILE *diag) {
-    PngErr e = {.diag = diag, .name = name, .write = write, .ctx = ctx};
+                     const PngOutImage *img, const SylSink *sink) {
+    PngErr e = {.sink = sink, .name = name, .write = write, .ctx = ctx};
     return encode(&e, img);
 }

@@ -28,11 +28,11 @@ typedef struct PngOutImage {
     void *ctx;
 } PngOutImage;
 
-/* Encode img into o: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported to diag. */
-int pngout_encode(const OutFile *o, const PngOutImage *img, FILE *diag);
+/* Encode img into o: SYL_OK, SYL_ELIMIT (out of memory) or SYL_EIO, reported to sink. */
+int pngout_encode(const OutFile *o, const PngOutImage *img, const SylSink *sink);
 /* Encode img through write(ctx, bytes, n) (into memory): the same bytes as into a file;
- * SYL_OK, SYL_ELIMIT or SYL_EIO, reported to diag (NULL: silently) as about `name`. */
+ * SYL_OK, SYL_ELIMIT or SYL_EIO, reported to sink (NULL: silently) as about `name`. */
 int pngout_encode_to(void (*write)(void *ctx, const void *data, size_t n), void *ctx, const char *name,
-                     const PngOutImage *img, FILE *diag);
+                     const PngOutImage *img, const SylSink *sink);
 
 #endif

@@ -83,12 +83,12 @@ static int load_envelope(const SylProgram *p, const WeberParams *w, WeberEnvelop
     if (st == SYL_ELIMIT) return st;
     if (st) program_say(p, diag, DIAG_ERROR, NULL, "cannot read '%s': %s", w->envelope, syl_file_refused);
     static const float zero[3] = {0, 0, 0};
-    if (!st) st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag);
+    if (!st) st = obstacles_add_obj(&e->obs, path, zero, 1.0f, diag_sink(&(SylSink){0}, diag, program_sink(p)));
     free(path);
     if (!st && e->obs.nt == 0) st = SYL_EMODEL;
     if (!st) {
         e->dev = rtcNewDevice(NULL);
-        st = e->dev ? obstacles_commit(&e->obs, e->dev, diag) : SYL_ELIMIT;
+        st = e->dev ? obstacles_commit(&e->obs, e->dev, diag_sink(&(SylSink){0}, diag, program_sink(p))) : SYL_ELIMIT;
     }
     if (st && diag)
         syl_directive_error(p, diag, w->envelope_at, &w->envelope_at->args[0],

@@ -6,6 +6,7 @@
 
 #include "sylva/wind.h"
 #include "util/budget.h"
+#include "util/diag.h"
 #include "util/rng.h"
 
 #define TWO_PI 6.28318530717958647692
@@ -132,7 +133,10 @@ static void sway(const SylWindOptions *o, const double dir[2], float r0, SylWind
 
 int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptions *o, SylWind *out) {
     memset(out, 0, sizeof *out);
-    if (!(o->speed > 0) || !isfinite(o->speed) || o->seconds < 0 || o->levels < 0 || o->fps < 0) return SYL_EUSAGE;
+    if (!(o->speed > 0) || !isfinite(o->speed) || o->seconds < 0 || o->levels < 0 || o->fps < 0) {
+        sink_error(opt_sink(o), "wind: a speed above 0, and seconds, levels and keys per second of at least 0");
+        return SYL_EUSAGE;
+    }
     out->seconds = o->seconds > 0 ? o->seconds : 4;
     int fps = o->fps > 0 ? o->fps : 15, levels = o->levels > 0 ? o->levels : 2;
     out->nkeys = (int)lround(out->seconds * fps) + 1;
@@ -145,11 +149,10 @@ int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptio
     uint64_t bytes = (uint64_t)out->nstems * (sizeof *out->stems + sizeof *out->joints) +
                      2 * 4 * sizeof *out->rot * (uint64_t)out->njoints * (uint64_t)out->nkeys;
     if (!status && !budget_charge(o->budget, bytes)) {
-        if (o->diag)
-            fprintf(o->diag,
-                    "sylva: error: the wind's %d joints and %d keys would need %llu MB, more than --max-memory "
-                    "allows (%llu MB in all); raise the limit with --max-memory, or use fewer --wind-levels or "
-                    "--wind-seconds\n",
+        sink_error(opt_sink(o),
+                   "the wind's %d joints and %d keys would need %llu MB, more than --max-memory "
+                   "allows (%llu MB in all); raise the limit with --max-memory, or use fewer --wind-levels or "
+                   "--wind-seconds",
                     out->njoints, out->nkeys, (unsigned long long)(bytes >> 20),
                     (unsigned long long)budget_limit_mb(o->budget));
         syl_wind_free(out);
@@ -163,7 +166,7 @@ int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptio
     for (int32_t a = 0; a < out->nstems && !status; a++)
         if (out->stems[a].parent < 0 && out->stems[a].radius > r0) r0 = out->stems[a].radius;
     for (int j = 0; j < out->njoints && !status; j++) sway(o, dir, r0, out, j);
-    if (status == SYL_ELIMIT && o->diag) fprintf(o->diag, "sylva: error: out of memory building the wind's joints\n");
+    if (status == SYL_ELIMIT) sink_error(opt_sink(o), "out of memory building the wind's joints");
     if (status) syl_wind_free(out);
     return status;
 }

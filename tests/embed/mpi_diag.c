@@ -1,8 +1,8 @@
-/* The MPI transport reports through the caller's diag, not stderr: under mpirun -np 2 with
+/* The MPI transport reports to the caller's sink, not stderr: under mpirun -np 2 with
  * SYLVA_RANK_TIMEOUT=1, rank 1 stops itself (SIGSTOP) and rank 0, waiting on it in the
  * snapshot render's agreement on a status (every rank calls it, a failed compile too: p NULL),
- * ends the job (exit code SYL_EIO, 4) after saying why on the stream it was given: the file
- * LOG, which every rank opens to append to.
+ * ends the job (exit code SYL_EIO, 4) after saying why to the sink it was given: the text sink
+ * of the file LOG, which every rank opens to append to.
  *   mpi_diag LOG */
 #include <signal.h>
 #include <stdio.h>
@@ -14,7 +14,8 @@ int main(int argc, char **argv) {
     FILE *diag = fopen(argv[1], "a");
     if (!diag) return 2;
     setvbuf(diag, NULL, _IONBF, 0);
-    SylEcoMpi *mpi = syl_eco_mpi_start(&argc, &argv, diag);
+    SylSink sink = {syl_diagnostic_print, diag};
+    SylEcoMpi *mpi = syl_eco_mpi_start(&argc, &argv, &sink);
     if (!mpi) {
         printf("not under mpirun, or no MPI\n");
         return 0;

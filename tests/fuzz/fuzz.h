@@ -21,6 +21,13 @@ static FILE *fuzz_diag(void) {
     return f;
 }
 
+/* fuzz_diag() as a sink, for the functions that report to one. */
+static const SylSink *fuzz_sink(void) {
+    static SylSink s;
+    s = (SylSink){syl_diagnostic_print, fuzz_diag()};
+    return &s;
+}
+
 /* A NUL-terminated copy of the input (readers that want C strings). */
 static char *fuzz_text(const uint8_t *data, size_t size) {
     char *t = malloc(size + 1);

@@ -8,7 +8,7 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     SylEcoCheckpoint c;
-    if (syl_ecosystem_checkpoint_parse(data, size, "fuzz.ckpt", &c, fuzz_diag()) != SYL_OK) {
+    if (syl_ecosystem_checkpoint_parse(data, size, "fuzz.ckpt", &c, fuzz_sink()) != SYL_OK) {
         if (c.plants || c.years) abort(); /* a failed read leaves nothing */
         return 0;
     }
@@ -28,7 +28,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         m.species[1].height_max = 1, m.species[1].max_age = 5;
         for (int k = 0; k < 30; k++) valid[k] = k != 7;
     }
-    if (syl_ecosystem_checkpoint_check(&c, &m, &t, "fuzz.ckpt", fuzz_diag()) == SYL_OK)
+    if (syl_ecosystem_checkpoint_check(&c, &m, &t, "fuzz.ckpt", fuzz_sink()) == SYL_OK)
         for (size_t j = 0; j < c.nplants; j++) {
             const SylEcoPlant *q = &c.plants[j];
             if (q->species >= m.nspecies || q->cell >= 30 || !valid[q->cell] ||

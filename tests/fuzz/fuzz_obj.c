@@ -9,6 +9,7 @@
 
 #include "env/objread.h"
 #include "env/obstacles.h"
+#include "util/diag.h"
 #include "fuzz.h"
 #include "sylva/sylva.h"
 #include "terrain/terrain.h"
@@ -47,14 +48,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (!dev && !(dev = rtcNewDevice("threads=1,verbose=0"))) abort();
     FILE *diag = fuzz_diag();
     ObjMesh m;
-    if (obj_parse("fuzz.obj", (const char *)data, size, &m, diag) != SYL_OK) return 0;
+    if (obj_parse("fuzz.obj", (const char *)data, size, &m, diag_sink(&(SylSink){0}, diag, NULL)) != SYL_OK) return 0;
     for (size_t i = 0; i < 3 * m.nv; i++)
         if (!(fabsf(m.v[i]) <= FAR)) {
             obj_free(&m);
             return 0;
         }
     Obstacles o = {0};
-    if (obstacles_add(&o, m.v, m.nv, m.tri, m.nt) && obstacles_commit(&o, dev, diag) == SYL_OK &&
+    if (obstacles_add(&o, m.v, m.nv, m.tri, m.nt) && obstacles_commit(&o, dev, diag_sink(&(SylSink){0}, diag, NULL)) == SYL_OK &&
         obstacles_any(&o)) {
         for (int i = 0; i <= 4; i++)
             for (int j = 0; j <= 4; j++) {

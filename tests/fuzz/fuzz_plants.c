@@ -32,10 +32,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         for (int c = 0; c < N * N; c++) h[c] = (float)(c % N) * 0.5f + (float)(c / N), valid[c] = 1;
     }
     t.factor[SYL_TERRAIN_ALTITUDE] = h;
-    FILE *diag = fuzz_diag();
     SylEcoPlant *p = NULL, *q = NULL;
     size_t n = 0, nq = 0;
-    if (syl_ecosystem_table_parse((const char *)data, size, "fuzz.csv", &m, &t, &p, &n, diag) != SYL_OK) {
+    if (syl_ecosystem_table_parse((const char *)data, size, "fuzz.csv", &m, &t, &p, &n, fuzz_sink()) != SYL_OK) {
         if (p || n) abort(); /* a failed read leaves nothing */
         return 0;
     }
@@ -46,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             abort();
     size_t len1, len2;
     char *one = write_table(&m, &t, p, n, &len1);
-    if (syl_ecosystem_table_parse(one, len1, "again.csv", &m, &t, &q, &nq, diag) != SYL_OK || nq != n) abort();
+    if (syl_ecosystem_table_parse(one, len1, "again.csv", &m, &t, &q, &nq, fuzz_sink()) != SYL_OK || nq != n) abort();
     for (size_t j = 0; j < n; j++)
         if (q[j].id != p[j].id || q[j].species != p[j].species || q[j].x != p[j].x || q[j].z != p[j].z ||
             q[j].height != p[j].height || q[j].age != p[j].age || q[j].state != p[j].state || q[j].cell != p[j].cell)

@@ -6,7 +6,7 @@
 
 static Terrain *grid(int nx, int nz, double cell) {
     Terrain *t;
-    assert_int_equal(terrain_new(nx, nz, NULL, 0, "test", stderr, &t), SYL_OK);
+    assert_int_equal(terrain_new(nx, nz, NULL, 0, "test", diag_sink(&(SylSink){0}, stderr, NULL), &t), SYL_OK);
     t->cell = cell;
     return t;
 }

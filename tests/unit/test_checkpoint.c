@@ -29,7 +29,7 @@ static uint8_t *write_sample(size_t *len) {
     assert_true(fd >= 0);
     close(fd);
     SylEcoCheckpoint c = sample();
-    assert_int_equal(syl_ecosystem_checkpoint_write(path, &c, stderr), SYL_OK);
+    assert_int_equal(syl_ecosystem_checkpoint_write(path, &c, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     FILE *f = fopen(path, "rb");
     assert_non_null(f);
     static uint8_t buf[8192];

@@ -6,6 +6,7 @@
 #include "unit.h"
 
 #include "env/env.h"
+#include "util/diag.h"
 #include "env/objread.h"
 #include "env/space.h"
 #include "util/rng.h"
@@ -132,7 +133,7 @@ static char *parse_error(const char *text, int *status) {
     size_t len = 0;
     FILE *mem = open_memstream(&msg, &len);
     ObjMesh m;
-    *status = obj_parse("wall.obj", text, strlen(text), &m, mem);
+    *status = obj_parse("wall.obj", text, strlen(text), &m, diag_sink(&(SylSink){0}, mem, NULL));
     fclose(mem);
     obj_free(&m);
     return msg;
@@ -264,7 +265,7 @@ static void far_points_are_not_traced(void **state) {
     char *msg = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&msg, &len);
-    assert_int_equal(obstacles_commit(&e.obstacles, e.dev, mem), SYL_EMODEL);
+    assert_int_equal(obstacles_commit(&e.obstacles, e.dev, diag_sink(&(SylSink){0}, mem, NULL)), SYL_EMODEL);
     fclose(mem);
     assert_string_equal(msg, "sylva: error: an obstacle reaches 1e+13 units from the origin; Sylva traces at most 1e+12 units\n");
     free(msg);

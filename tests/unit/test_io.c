@@ -86,7 +86,7 @@ static void obj_reads_back(void **state) {
     char path[256], mtl[256];
     snprintf(path, sizeof path, "%s/plant.obj", d.path);
     snprintf(mtl, sizeof mtl, "%s/plant.mtl", d.path);
-    assert_int_equal(syl_mesh_write(m, path, stderr), SYL_OK);
+    assert_int_equal(syl_mesh_write(m, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     size_t len;
     char *text = slurp(path, &len);
     size_t nv = 0, nvt = 0, nvn = 0, nf = 0;
@@ -175,7 +175,7 @@ static void ply_header_and_sizes(void **state) {
     Dir d = make_dir();
     char path[256];
     snprintf(path, sizeof path, "%s/plant.ply", d.path);
-    assert_int_equal(syl_mesh_write(m, path, stderr), SYL_OK);
+    assert_int_equal(syl_mesh_write(m, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     size_t len;
     char *data = slurp(path, &len);
     char *end = strstr(data, "end_header\n");
@@ -327,7 +327,7 @@ static void glb_structure(void **state) {
     Dir d = make_dir();
     char path[256], want[128];
     snprintf(path, sizeof path, "%s/plant.glb", d.path);
-    assert_int_equal(syl_mesh_write(m, path, stderr), SYL_OK);
+    assert_int_equal(syl_mesh_write(m, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     Glb g = read_glb(path);
     assert_non_null(g.bin);
     assert_contains(g.json, "\"asset\":{\"version\":\"2.0\",\"generator\":\"Sylva\"}");
@@ -352,7 +352,7 @@ static void glb_structure(void **state) {
     SylSkeleton *s = syl_skeleton_new("empty");
     SylMesh *e = NULL;
     assert_int_equal(syl_mesh_build(s, NULL, &e), SYL_OK);
-    assert_int_equal(syl_mesh_write_glb(e, path, stderr), SYL_OK);
+    assert_int_equal(syl_mesh_write_glb(e, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     g = read_glb(path);
     assert_null(g.bin);
     assert_not_contains(g.json, "\"meshes\"");
@@ -419,10 +419,10 @@ static void failures_leave_nothing(void **state) {
     static const char *const names[] = {"no/such/dir/plant.glb", "no/such/dir/plant.obj", "no/such/dir/plant.ply"};
     for (int k = 0; k < 3; k++) {
         snprintf(path, sizeof path, "%s/%s", d.path, names[k]);
-        assert_int_equal(syl_mesh_write(m, path, f), SYL_EIO);
+        assert_int_equal(syl_mesh_write(m, path, &(SylSink){syl_diagnostic_print, f}), SYL_EIO);
     }
     snprintf(path, sizeof path, "%s/plant.stl", d.path);
-    assert_int_equal(syl_mesh_write(m, path, f), SYL_EUSAGE);
+    assert_int_equal(syl_mesh_write(m, path, &(SylSink){syl_diagnostic_print, f}), SYL_EUSAGE);
     fclose(f);
     assert_contains(diag, "cannot write");
     assert_contains(diag, "cannot tell the format");

@@ -97,9 +97,9 @@ static void refusals_are_worded_from_the_row(void **state) {
     char *buf = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&buf, &len);
-    lang_kind_refuse(mem, "E", SYL_MODEL_ECOSYSTEM, false);
-    lang_kind_refuse(mem, "T", SYL_MODEL_STRANDS, false);
-    lang_kind_refuse(NULL, "T", SYL_MODEL_STRANDS, false); /* no sink: nothing */
+    lang_kind_refuse(NULL, mem, "E", SYL_MODEL_ECOSYSTEM, false);
+    lang_kind_refuse(NULL, mem, "T", SYL_MODEL_STRANDS, false);
+    lang_kind_refuse(NULL, NULL, "T", SYL_MODEL_STRANDS, false); /* no sink: nothing */
     fclose(mem);
     assert_string_equal(buf, "sylva: error: 'E' is an ecosystem block, not a plant: run `sylva ecosystem`\n"
                              "sylva: error: 'T' is a strands block, not an lsystem: it has no string; mesh or "

@@ -65,7 +65,7 @@ static void refuses_what_the_format_cannot_hold(void **state) {
             size_t len = 0;
             snprintf(path, sizeof path, "%s/plant.%s", d.path, ext[e]);
             FILE *diag = open_memstream(&msg, &len);
-            assert_int_equal(syl_mesh_write_output(&outs[i], path, diag), SYL_EUSAGE);
+            assert_int_equal(syl_mesh_write_output(&outs[i], path, &(SylSink){syl_diagnostic_print, diag}), SYL_EUSAGE);
             fclose(diag);
             assert_non_null(strstr(msg, what[i]));
             assert_false(exists(path));
@@ -93,24 +93,24 @@ static void writes_as_its_writer(void **state) {
     const char *ext[] = {"glb", "obj", "ply"};
     for (int e = 0; e < 3; e++) {
         snprintf(path, sizeof path, "%s/plant.%s", d.path, ext[e]);
-        assert_int_equal(syl_mesh_write_output(&(SylMeshOutput){.mesh = m}, path, stderr), SYL_OK);
+        assert_int_equal(syl_mesh_write_output(&(SylMeshOutput){.mesh = m}, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
         char *a = take(path, &na), *b;
-        assert_int_equal(syl_mesh_write(m, path, stderr), SYL_OK);
+        assert_int_equal(syl_mesh_write(m, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
         b = take(path, &nb);
         assert_same(a, na, b, nb);
     }
     snprintf(path, sizeof path, "%s/plant.glb", d.path);
-    assert_int_equal(syl_mesh_write_output(&(SylMeshOutput){.mesh = m, .instanced = true}, path, stderr), SYL_OK);
+    assert_int_equal(syl_mesh_write_output(&(SylMeshOutput){.mesh = m, .instanced = true}, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     char *a = take(path, &na), *b;
-    assert_int_equal(syl_mesh_write_glb_instanced(m, NULL, 0, path, stderr), SYL_OK);
+    assert_int_equal(syl_mesh_write_glb_instanced(m, NULL, 0, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     b = take(path, &nb);
     assert_same(a, na, b, nb);
     SylLodChain chain = {0};
     assert_int_equal(syl_lod_build(s, &(SylMeshOptions){0}, m, 2, &chain), SYL_OK);
     assert_int_equal(chain.n, 3);
-    assert_int_equal(syl_mesh_write_output(&(SylMeshOutput){.mesh = m, .lods = &chain}, path, stderr), SYL_OK);
+    assert_int_equal(syl_mesh_write_output(&(SylMeshOutput){.mesh = m, .lods = &chain}, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     a = take(path, &na);
-    assert_int_equal(syl_lod_write_glb(&chain, path, stderr), SYL_OK);
+    assert_int_equal(syl_lod_write_glb(&chain, path, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     b = take(path, &nb);
     assert_same(a, na, b, nb);
     const char *textures[] = {"bark", "leaf", "flower"}; /* the OBJ's */

@@ -116,9 +116,9 @@ static void assert_file(const char *path, const char *want) {
 
 static bool write_text(const char *path, const char *text, bool commit, const OutHooks *hooks, FILE *diag) {
     OutFile o;
-    if (!outfile_open(&o, path, hooks, diag)) return false;
+    if (!outfile_open(&o, path, hooks, &(SylSink){syl_diagnostic_print, diag})) return false;
     fputs(text, o.f);
-    return outfile_close(&o, commit, diag);
+    return outfile_close(&o, commit, &(SylSink){syl_diagnostic_print, diag});
 }
 
 /* ---- outfile ---- */
@@ -277,11 +277,11 @@ static void hooks_see_the_named_temporary_file(void **state) {
     Seen seen = {0};
     OutHooks hooks = {seen_created, seen_gone, &seen};
     OutFile o;
-    assert_true(outfile_open(&o, at(&d, "a"), &hooks, stderr));
+    assert_true(outfile_open(&o, at(&d, "a"), &hooks, &(SylSink){syl_diagnostic_print, stderr}));
     assert_true(seen.created[0] && !seen.existed_at_create); /* told before it exists */
     assert_int_equal(access(seen.created, F_OK), 0);
     fputs("x\n", o.f);
-    assert_true(outfile_close(&o, false, stderr));
+    assert_true(outfile_close(&o, false, &(SylSink){syl_diagnostic_print, stderr}));
     assert_string_equal(seen.gone, seen.created);
     char names[256];
     listing(&d, names, sizeof names);
@@ -364,12 +364,12 @@ static SylMesh *leafy_mesh(bool leaf) {
 /* Write m as name through write with the k-th allocation failing, for k = 0, 1, ... until
  * none fails: each run fails with a message, status 3 or 4 and neither name nor mtl (when
  * given) nor a temporary file on disk, or writes the same files as a run with memory. */
-static void under_failing_allocations(int (*write)(const SylMesh *, const char *, FILE *), const char *name,
+static void under_failing_allocations(int (*write)(const SylMesh *, const char *, const SylSink *), const char *name,
                                       const char *mtl) {
 #if FAULTS
     SylMesh *m = leafy_mesh(mtl != NULL); /* two textures for OBJ; one is enough for GLB */
     Dir ref = make_dir(), d = make_dir();
-    assert_int_equal(write(m, at(&ref, name), stderr), SYL_OK);
+    assert_int_equal(write(m, at(&ref, name), &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     char ref_names[512];
     listing(&ref, ref_names, sizeof ref_names);
     int failed = 0;
@@ -380,7 +380,7 @@ static void under_failing_allocations(int (*write)(const SylMesh *, const char *
         fflush(diag);
         allocations = 0;
         fault_at = k;
-        int st = write(m, at(&d, name), diag);
+        int st = write(m, at(&d, name), &(SylSink){syl_diagnostic_print, diag});
         fault_at = -1;
         bool hit = allocations > k;
         fclose(diag);

@@ -122,7 +122,7 @@ static void bad_sizes_are_refused(void **state) {
     FILE *null = fopen("/dev/null", "w");
     SylRenderOptions o = {.width = -1, .height = 10, .diag = null};
     assert_int_equal(syl_render(NULL, &o, px), SYL_EUSAGE);
-    assert_int_equal(syl_png_write("/nonexistent-dir/x.png", px, 1, 1, null), SYL_EIO);
+    assert_int_equal(syl_png_write("/nonexistent-dir/x.png", px, 1, 1, &(SylSink){syl_diagnostic_print, null}), SYL_EIO);
     fclose(null);
 }
 

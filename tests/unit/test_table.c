@@ -65,7 +65,7 @@ static void floats_round_trip(void **state) {
     char *text = write_table(m, &t, in, COUNT, &len);
     SylEcoPlant *out = NULL;
     size_t n = 0;
-    assert_int_equal(syl_ecosystem_table_parse(text, len, "t.csv", m, &t, &out, &n, stderr), SYL_OK);
+    assert_int_equal(syl_ecosystem_table_parse(text, len, "t.csv", m, &t, &out, &n, &(SylSink){syl_diagnostic_print, stderr}), SYL_OK);
     assert_int_equal(n, COUNT);
     for (size_t j = 0; j < COUNT; j++) {
         assert_true(out[j].id == in[j].id);

@@ -21,7 +21,7 @@ static double angle_diff(double a, double b) {
 static void planes_of_every_slope_and_aspect(void **state) {
     (void)state;
     Terrain *t = grid(9, 7, 2.5);
-    float *slope = terrain_grid(t, sizeof(float), stderr), *aspect = terrain_grid(t, sizeof(float), stderr);
+    float *slope = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL)), *aspect = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
     for (int s = 5; s <= 60; s += 11)
         for (int a = 0; a < 360; a += 15) {
             double ts = tan(s * M_PI / 180), ar = a * M_PI / 180;
@@ -50,11 +50,11 @@ static void planes_of_every_slope_and_aspect(void **state) {
 }
 
 static int flow_of(Terrain *t, float *acc, uint8_t *dir, float *filled) {
-    uint8_t *parent = (uint8_t *)terrain_grid(t, 1, stderr);
-    int st = terrain_fill(t, filled, parent, stderr);
+    uint8_t *parent = (uint8_t *)terrain_grid(t, 1, diag_sink(&(SylSink){0}, stderr, NULL));
+    int st = terrain_fill(t, filled, parent, diag_sink(&(SylSink){0}, stderr, NULL));
     if (!st) {
         terrain_d8(t, filled, parent, dir, 2);
-        st = terrain_accumulate(t, dir, acc, stderr);
+        st = terrain_accumulate(t, dir, acc, diag_sink(&(SylSink){0}, stderr, NULL));
     }
     terrain_grid_free(t, parent, 1);
     return st;
@@ -92,8 +92,8 @@ static void cone_flow_is_counted(void **state) {
     Terrain *t = grid(n, n, 1);
     for (int k = 0; k < n; k++)
         for (int i = 0; i < n; i++) H(t, i, k) = (float)(30 - hypot(i + 0.5 - n / 2.0, k + 0.5 - n / 2.0));
-    float *acc = terrain_grid(t, sizeof(float), stderr), *filled = terrain_grid(t, sizeof(float), stderr);
-    uint8_t *dir = (uint8_t *)terrain_grid(t, 1, stderr);
+    float *acc = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL)), *filled = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
+    uint8_t *dir = (uint8_t *)terrain_grid(t, 1, diag_sink(&(SylSink){0}, stderr, NULL));
     assert_int_equal(flow_of(t, acc, dir, filled), SYL_OK);
     for (int k = 0; k < n; k++)
         for (int i = 0; i < n; i++) assert_true(AT(filled, t, i, k) == H(t, i, k)); /* no pit: nothing filled */
@@ -119,8 +119,8 @@ static void valley_flow_gathers_whole_rows(void **state) {
     Terrain *t = grid(nx, nz, 1);
     for (int k = 0; k < nz; k++)
         for (int i = 0; i < nx; i++) H(t, i, k) = (float)(5 * abs(i - c) + 0.1 * (nz - k));
-    float *acc = terrain_grid(t, sizeof(float), stderr), *filled = terrain_grid(t, sizeof(float), stderr);
-    uint8_t *dir = (uint8_t *)terrain_grid(t, 1, stderr);
+    float *acc = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL)), *filled = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
+    uint8_t *dir = (uint8_t *)terrain_grid(t, 1, diag_sink(&(SylSink){0}, stderr, NULL));
     assert_int_equal(flow_of(t, acc, dir, filled), SYL_OK);
     for (int k = 0; k < nz; k++) {
         assert_int_equal((int)AT(acc, t, c, k), (k + 1) * nx);
@@ -145,8 +145,8 @@ static void priority_flood_fills_to_the_spill_height(void **state) {
         for (int i = 0; i < n; i++) H(t, i, k) = (float)(10 - 0.1 * i);
     for (int k = 15; k <= 17; k++)
         for (int i = 15; i <= 17; i++) H(t, i, k) = (float)(0.5 * (i - 15) + 0.25 * k - 4);
-    float *acc = terrain_grid(t, sizeof(float), stderr), *filled = terrain_grid(t, sizeof(float), stderr);
-    uint8_t *dir = (uint8_t *)terrain_grid(t, 1, stderr);
+    float *acc = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL)), *filled = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
+    uint8_t *dir = (uint8_t *)terrain_grid(t, 1, diag_sink(&(SylSink){0}, stderr, NULL));
     assert_int_equal(flow_of(t, acc, dir, filled), SYL_OK);
     for (int k = 0; k < n; k++)
         for (int i = 0; i < n; i++) {
@@ -179,8 +179,8 @@ static void priority_flood_fills_to_the_spill_height(void **state) {
 }
 
 static float *insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, int threads) {
-    float *out = terrain_grid(t, sizeof(float), stderr);
-    assert_int_equal(terrain_insolation(t, suns, nsuns, out, threads, stderr), SYL_OK);
+    float *out = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
+    assert_int_equal(terrain_insolation(t, suns, nsuns, out, threads, diag_sink(&(SylSink){0}, stderr, NULL)), SYL_OK);
     return out;
 }
 
@@ -254,7 +254,7 @@ static void the_horizon_bound_holds(void **state) {
     Terrain *t = grid(n, n, 2);
     for (int k = 0; k < n; k++)
         for (int i = 0; i < n; i++) H(t, i, k) = (float)(20 * sin(i * 0.7) * cos(k * 0.45) + 0.3 * ((i * 7 + k * 13) % 11));
-    float *bound = terrain_grid(t, 4 * sizeof(float), stderr), *scratch = terrain_grid(t, 2 * sizeof(float), stderr);
+    float *bound = terrain_grid(t, 4 * sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL)), *scratch = terrain_grid(t, 2 * sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
     terrain_horizon_bound(t, bound, scratch);
     size_t cells = (size_t)n * n;
     for (int q = 0; q < 4; q++) {
@@ -287,7 +287,7 @@ static void winstral_sx_behind_a_ridge(void **state) {
     Terrain *t = grid(n, m, 1);
     for (int k = 0; k < m; k++)
         for (int i = 0; i < n; i++) H(t, i, k) = (float)fmax(0, 10 - abs(i - r));
-    float *sx = terrain_grid(t, sizeof(float), stderr);
+    float *sx = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
     terrain_wind(t, 270, 300, sx, 2);
     const double deg = 180 / M_PI;
     for (int k = 0; k < m; k++)
@@ -308,7 +308,7 @@ static void winstral_sx_behind_a_ridge(void **state) {
     t = grid(m, n, 1);
     for (int k = 0; k < n; k++)
         for (int i = 0; i < m; i++) H(t, i, k) = (float)fmax(0, 10 - abs(k - r));
-    sx = terrain_grid(t, sizeof(float), stderr);
+    sx = terrain_grid(t, sizeof(float), diag_sink(&(SylSink){0}, stderr, NULL));
     terrain_wind(t, 0, 300, sx, 1);
     for (int k = r + 11; k < n; k++) assert_true(fabs(AT(sx, t, 4, k) - atan(10.0 / (k - r)) * deg) < 1e-4);
     assert_true(AT(sx, t, 4, r - 20) == 0); /* windward flat ground */
