@@ -80,7 +80,7 @@ int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n
             k++;
         }
     }
-    if (!st) st = glb_write_forest_cached(f->ground, sets, (const char *const *)extras, nsets, f->textures, path, sink);
+    if (!st) st = glb_write_forest(f->ground, sets, (const char *const *)extras, nsets, f->textures, path, sink);
     for (int i = 0; extras && i < nsets; i++) free(extras[i]);
     free(extras), free(sets), free(t3), free(r4), free(s3), free(inst), free(count), free(start), free(bucket);
     return st;

@@ -74,13 +74,10 @@ int glb_write(const GlbScene *sc, const char *path, const SylSink *sink);
 /* A ground mesh (may be NULL) and n sets of instances (each a node with
  * EXT_mesh_gpu_instancing, extras[i] — JSON object text, or NULL — in its node's extras);
  * sets with the same proto pointer share one mesh: a forest split into cells, for
- * syl_forest_write_glb (sylva/forest.h), the one public name of the operation. */
+ * syl_forest_write_glb (sylva/forest.h), the one public name of the operation. The procedural
+ * textures' PNGs come from tc, a run's cache (may be NULL: made here). */
 int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                     const char *path, const SylSink *sink);
-
-/* The same, the procedural textures' PNGs from tc (may be NULL: made here). */
-int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                            SylTextureCache *tc, const char *path, const SylSink *sink);
+                     SylTextureCache *tc, const char *path, const SylSink *sink);
 
 /* Texture slots of a material (glb.c): its kind's tiled picture (bark, leaf, flower), a leaf
  * card (RGBA), an impostor's atlas, a leaf cluster (RGBA); -1: none. */

@@ -192,12 +192,7 @@ static void json(IoBuf *js, Forest *f, const SylInstances *sets, const char *con
 }
 
 int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                     const char *path, const SylSink *sink) {
-    return glb_write_forest_cached(ground, sets, extras, n, NULL, path, sink);
-}
-
-int glb_write_forest_cached(const SylMesh *ground, const SylInstances *sets, const char *const *extras, int n,
-                            SylTextureCache *tc, const char *path, const SylSink *sink) {
+                     SylTextureCache *tc, const char *path, const SylSink *sink) {
     Forest *f = calloc(1, sizeof *f);
     if (!f) return SYL_ELIMIT;
     f->ground = -1, f->tc = tc;

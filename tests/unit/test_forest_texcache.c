@@ -1,4 +1,4 @@
-/* A forest's .glb with the run's texture cache (glb_write_forest_cached, which `sylva ecosystem
+/* A forest's .glb with the run's texture cache (glb_write_forest, which `sylva ecosystem
  * --glb` uses for every year's file): the same bytes as without it, the first time (the
  * textures made and kept) and the next ones (copied from the cache), whatever the leaves. */
 #include "unit.h"
@@ -26,8 +26,7 @@ static SylPlant build(int leaves) {
 static char *write_forest(const SylMesh *proto, SylTextureCache *tc, const char *path, size_t *len) {
     float t[6] = {0, 0, 0, 3, 0, 1}, r[8] = {0, 0, 0, 1, 0, 0, 0, 1}, s[6] = {1, 1, 1, 2, 2, 2};
     SylInstances set = {.proto = (SylMesh *)proto, .count = 2, .t = t, .r = r, .s = s, .name = "plant"};
-    int st = tc ? glb_write_forest_cached(NULL, &set, NULL, 1, tc, path, NULL)
-                : glb_write_forest(NULL, &set, NULL, 1, path, NULL);
+    int st = glb_write_forest(NULL, &set, NULL, 1, tc, path, NULL);
     assert_int_equal(st, SYL_OK);
     char *bytes = syl_read_file(path, len);
     assert_non_null(bytes);

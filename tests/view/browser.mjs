@@ -1,8 +1,10 @@
-// What the browser tests (view.test.mjs) and make bench (bench/view.mjs) share: Debian's
+// What the browser tests (view, live and preview .test.mjs) and make bench (bench/view.mjs) share: Debian's
 // chromium started as issue 30 runs it (headless, WebGL drawn in software by SwiftShader), and
 // `sylva view FILE` on a free port of 127.0.0.1 with its printed address.
 import { spawn } from 'node:child_process';
+import { writeFileSync, renameSync } from 'node:fs';
 import { join } from 'node:path';
+import http from 'node:http';
 import puppeteer from 'puppeteer-core';
 
 export function launch(dir) {
@@ -28,6 +30,31 @@ export function serve(sylva, path) {
     setTimeout(() => reject(new Error('no address printed')), 20000);
   });
 }
+
+// A GET of a server's path with the token of its printed address: {status, body (a Buffer)},
+// status 0 when the request failed.
+export function getter(url) {
+  const u = new URL(url.replace(/\/\?token=.*/, '')), token = url.replace(/.*token=/, '');
+  return (path) => new Promise((resolve) => {
+    http.get({ host: u.hostname, port: u.port, path, headers: { 'X-Sylva-Token': token } }, (res) => {
+      const parts = []; res.on('data', (d) => parts.push(d)); res.on('end', () => resolve({ status: res.statusCode, body: Buffer.concat(parts) }));
+    }).on('error', (e) => resolve({ status: 0, body: Buffer.from(String(e)) }));
+  });
+}
+
+// A save as an editor makes it: the new text written beside, then renamed over the file.
+export function edit(path, text) { writeFileSync(path + '.new', text); renameSync(path + '.new', path); }
+
+// A bush of blades (leaves the preview draws as instanced cards), depth a slider's parameter.
+export const BUSH = (depth) => `lsystem Bush {
+  param depth = ${depth}
+  derive 8
+  angle 25
+  axiom A(0)
+  A(i) : i < depth -> F[+A(i+1)][-A(i+1)]/(90)FA(i+1)
+  F -> F ~L
+}
+`;
 
 // SIGTERM, then its exit code (or the signal's name when it died of one)
 export function stop(server) {

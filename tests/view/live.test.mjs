@@ -3,11 +3,10 @@
 // textures is byte for byte `sylva mesh`'s; a slider dragged faster than builds finish draws
 // its last value (stale values dropped). Usage: node live.test.mjs SYLVA. TAP lines.
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync, copyFileSync } from 'node:fs';
+import { mkdtempSync, writeFileSync, readFileSync, rmSync, copyFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import http from 'node:http';
-import { launch, serve, stop, tap, STICK_SPECIES, STICK_MODEL } from './browser.mjs';
+import { launch, serve, stop, tap, getter, edit, BUSH, STICK_SPECIES, STICK_MODEL } from './browser.mjs';
 
 const sylva = process.argv[2];
 const { check, done } = tap();
@@ -15,15 +14,6 @@ const { check, done } = tap();
 const dir = mkdtempSync(join(tmpdir(), 'sylva-view-live-'));
 const file = join(dir, 'mono.syl');
 copyFileSync('examples/abop/fig2_06_monopodial.syl', file); // bark: a procedural texture in the .glb
-const BUSH = (depth) => `lsystem Bush {
-  param depth = ${depth}
-  derive 8
-  angle 25
-  axiom A(0)
-  A(i) : i < depth -> F[+A(i+1)][-A(i+1)]/(90)FA(i+1)
-  F -> F ~L
-}
-`;
 const ECO = `ecosystem Patch {
   terrain "flat.asc"
   years 4
@@ -35,21 +25,12 @@ writeFileSync(eco, ECO);
 writeFileSync(join(dir, 'flat.asc'), spawnSync('python3', ['tests/oracle/ecosystem.py', 'flat', '30', '1']).stdout);
 const bush = join(dir, 'bush.syl');
 writeFileSync(bush, BUSH(4));
-function edit(path, text) { writeFileSync(path + '.new', text); renameSync(path + '.new', path); }
 
 const { server, url } = await serve(sylva, file);
 const s2 = await serve(sylva, bush);
 const s3 = await serve(sylva, eco);
 const servers = [server, s2.server, s3.server];
-const base = url.replace(/\/\?token=.*/, ''), token = url.replace(/.*token=/, '');
-function get(path) {
-  return new Promise((resolve) => {
-    const u = new URL(base);
-    http.get({ host: u.hostname, port: u.port, path, headers: { 'X-Sylva-Token': token } }, (res) => {
-      const parts = []; res.on('data', (d) => parts.push(d)); res.on('end', () => resolve({ status: res.statusCode, body: Buffer.concat(parts) }));
-    }).on('error', (e) => resolve({ status: 0, body: Buffer.from(String(e)) }));
-  });
-}
+const get = getter(url);
 const browser = await launch(dir);
 const errors = [];
 try {

@@ -4,11 +4,10 @@
 // newer request has replaced is not built (and another tab's is); a slider dragged draws
 // previews and ends on the full mesh of its last value. Usage: node preview.test.mjs SYLVA.
 import { spawnSync } from 'node:child_process';
-import { mkdtempSync, writeFileSync, readFileSync, rmSync, renameSync } from 'node:fs';
+import { mkdtempSync, writeFileSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import http from 'node:http';
-import { launch, serve, stop, tap } from './browser.mjs';
+import { launch, serve, stop, tap, getter, edit, BUSH } from './browser.mjs';
 
 const sylva = process.argv[2];
 const { check, done } = tap();
@@ -17,33 +16,16 @@ const dir = mkdtempSync(join(tmpdir(), 'sylva-view-preview-'));
 const file = join(dir, 'plants.syl');
 // Bush first (the page's model: blades of leaves, so its preview has instanced cards); Line:
 // 2^16 segments in a row, beyond the preview's mesh limit (20,000 nodes)
-const TEXT = (depth) => `lsystem Bush {
-  param depth = ${depth}
-  derive 8
-  angle 25
-  axiom A(0)
-  A(i) : i < depth -> F[+A(i+1)][-A(i+1)]/(90)FA(i+1)
-  F -> F ~L
-}
-lsystem Line {
+const TEXT = (depth) => `${BUSH(depth)}lsystem Line {
   derive 16
   axiom F
   F -> FF
 }
 `;
 writeFileSync(file, TEXT(4));
-function edit(path, text) { writeFileSync(path + '.new', text); renameSync(path + '.new', path); }
 
 const { server, url } = await serve(sylva, file);
-const base = url.replace(/\/\?token=.*/, ''), token = url.replace(/.*token=/, '');
-function get(path) {
-  return new Promise((resolve) => {
-    const u = new URL(base);
-    http.get({ host: u.hostname, port: u.port, path, headers: { 'X-Sylva-Token': token } }, (res) => {
-      const parts = []; res.on('data', (d) => parts.push(d)); res.on('end', () => resolve({ status: res.statusCode, body: Buffer.concat(parts) }));
-    }).on('error', (e) => resolve({ status: 0, body: Buffer.from(String(e)) }));
-  });
-}
+const get = getter(url);
 const json = async (path) => JSON.parse((await get(path)).body.toString());
 const browser = await launch(dir);
 const errors = [];
