@@ -56,6 +56,15 @@ export const BUSH = (depth) => `lsystem Bush {
 }
 `;
 
+// A new tab of the viewer at url, 900x700 as the tests draw it; its page errors go to errors.
+export async function openPage(browser, url, errors) {
+  const page = await browser.newPage();
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.setViewport({ width: 900, height: 700 });
+  await page.goto(url);
+  return page;
+}
+
 // SIGTERM, then its exit code (or the signal's name when it died of one)
 export function stop(server) {
   const done = new Promise((r) => server.on('exit', (c, s) => r(c === null ? s : c)));

@@ -6,7 +6,7 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, writeFileSync, readFileSync, rmSync, copyFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { launch, serve, stop, tap, getter, edit, BUSH, STICK_SPECIES, STICK_MODEL } from './browser.mjs';
+import { launch, serve, stop, tap, getter, edit, openPage, BUSH, STICK_SPECIES, STICK_MODEL } from './browser.mjs';
 
 const sylva = process.argv[2];
 const { check, done } = tap();
@@ -34,10 +34,7 @@ const get = getter(url);
 const browser = await launch(dir);
 const errors = [];
 try {
-  const page = await browser.newPage();
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.setViewport({ width: 900, height: 700 });
-  await page.goto(url);
+  const page = await openPage(browser, url, errors);
   await page.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1 && window.sylvaView.metrics, { timeout: 60000 });
 
   // ---- the Numbers panel: sylva compare's metrics of the model ----

@@ -7,7 +7,7 @@ import { spawnSync } from 'node:child_process';
 import { mkdtempSync, writeFileSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { launch, serve, stop, tap, getter, edit, BUSH } from './browser.mjs';
+import { launch, serve, stop, tap, getter, edit, openPage, BUSH } from './browser.mjs';
 
 const sylva = process.argv[2];
 const { check, done } = tap();
@@ -30,10 +30,7 @@ const json = async (path) => JSON.parse((await get(path)).body.toString());
 const browser = await launch(dir);
 const errors = [];
 try {
-  const page = await browser.newPage();
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.setViewport({ width: 900, height: 700 });
-  await page.goto(url);
+  const page = await openPage(browser, url, errors);
   await page.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 60000 });
 
   // ---- a save: the preview's frame, then the full .glb's (sylva mesh's bytes) ----
