@@ -474,7 +474,7 @@ function disposeBuild(group) {
 // A preview is asked for only when the last full build kept the page waiting longer than
 // previewAbove ms (its build, fetch, parse and setup; state.fullWork): a small plant's full mesh
 // comes as soon as its preview would, and a preview first would only add a build and a frame.
-state.previewAbove = 60;
+state.previewAbove = 150;
 let lastInput = -1e9; // when a slider last moved (performance.now())
 const REST_MS = 250;  // a slider still this long has come to rest
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
@@ -484,10 +484,18 @@ const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
 const tab = 1 + Math.floor(Math.random() * 2 ** 52);
 let seq = 0;
 
+// The build's answer with its .glb (or a preview's segments) as .part, in one request (with=part:
+// the JSON's length, the JSON, the bytes) — a round trip less than asking for them after.
 async function requestBuild(q, text) {
   try {
-    return text === null ? await getJSON('/api/build?' + q)
-      : await (await fetch('/api/build?' + q, { method: 'POST', body: text })).json();
+    const url = '/api/build?' + q + '&with=part';
+    const r = await (text === null ? fetch(url, { credentials: 'same-origin' }) : fetch(url, { method: 'POST', body: text }));
+    const all = await r.arrayBuffer();
+    if (!r.ok || all.byteLength < 4) return { ok: false, diag: new TextDecoder().decode(all) || 'the build failed' };
+    const n = new DataView(all).getUint32(0, true);
+    const b = JSON.parse(new TextDecoder().decode(new Uint8Array(all, 4, n)));
+    b.part = all.byteLength > 4 + n ? all.slice(4 + n) : null;
+    return b;
   } catch (e) { return { ok: false, diag: String(e) }; }
 }
 
@@ -505,8 +513,7 @@ async function load(frameIt = false) {
     let tFull = t0; // when the full build was asked for
     if ($('preview').checked && state.kind !== 'ecosystem' && !(state.fullWork < state.previewAbove)) {
       const p = await requestBuild(q + '&preview=1' + mine, text);
-      const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem'
-        ? await fetch((p.lines ? '/api/lines?id=' : '/api/glb?id=') + p.id).then((r) => r.ok ? r.arrayBuffer() : null) : null;
+      const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem' ? p.part : null;
       if (buf) await showPreview(p, buf, q, frameIt, t0);
       // the full build once the preview is on screen (not while a slider moves): asked for at
       // once, it would share the processor with the preview's frame on a machine of few cores
@@ -595,7 +602,8 @@ async function showBuild(b, q, frameIt, t0) {
     $('status').textContent = 'error (the last good model is shown)';
     return;
   }
-  const glb = await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
+  const glb = b.part || await fetch('/api/glb?id=' + b.id).then((r) => r.arrayBuffer());
+  b.part = null; // state.build keeps the answer, not its bytes
   const tFetched = performance.now();
   texturesUsed = new Set();
   const gltf = await buildLoader.parseAsync(glb, '');

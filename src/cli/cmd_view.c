@@ -140,10 +140,17 @@ int cmd_view(int argc, char **argv) {
     int watch_stop = -1;
     if (!view_watch_start(&v, &watcher, &watch_stop))
         fprintf(stderr, "sylva view: warning: cannot follow the files (inotify): reload the page by hand\n");
+    pthread_t prebuilder;
+    bool prebuilding = view_prebuild_start(&v, &prebuilder); /* without it, a save is built when asked */
     int port = 0;
     struct MHD_Daemon *daemon = view_http_start(&v, a.host, a.port, &port);
     if (!daemon) {
         if (watch_stop >= 0) view_watch_stop(watcher, watch_stop);
+        pthread_mutex_lock(&v.gen_lock);
+        v.stopping = true;
+        pthread_cond_broadcast(&v.changed);
+        pthread_mutex_unlock(&v.gen_lock);
+        if (prebuilding) pthread_join(prebuilder, NULL);
         return SYL_EIO;
     }
     char url[256];
@@ -165,6 +172,7 @@ int cmd_view(int argc, char **argv) {
     pthread_mutex_unlock(&v.gen_lock);
     MHD_stop_daemon(daemon);
     if (watch_stop >= 0) view_watch_stop(watcher, watch_stop);
+    if (prebuilding) pthread_join(prebuilder, NULL);
     view_cache_free(&v);
     return SYL_OK;
 }

@@ -94,6 +94,9 @@ typedef struct View {
     pthread_cond_t changed;
     unsigned gen;
     bool stopping;
+    /* The first build asked for since the files' last change (under gen_lock): built again at
+     * the next change before a page asks (view_prebuild.c). */
+    struct { ViewRequest rq; char key[2048]; unsigned gen; bool have; } first;
 } View;
 
 /* view_build.c */
@@ -151,6 +154,12 @@ void view_keep_free(View *v);
  * its cache entry too); NULL when its plant is no longer kept or the metrics failed (*diag
  * says why, malloc'ed). Called without v->lock: a build may run beside it. */
 char *view_metrics(View *v, unsigned id, char **diag);
+
+/* view_prebuild.c: rq (its key) is a page's build request: kept when it is the first since the
+ * last change; a thread that builds the kept one at each change (stops when v->stopping is set
+ * and v->changed broadcast) */
+void view_first_request(View *v, const ViewRequest *rq, const char *key);
+bool view_prebuild_start(View *v, pthread_t *thread);
 
 /* view_watch.c: follow the file and every file it names; bump v->gen at each change. */
 bool view_watch_start(View *v, pthread_t *thread, int *stop_fd);
