@@ -1,4 +1,5 @@
-// Browser tests of `sylva view`'s preview (docs/view.md, "Speed"): after a save the page first
+// Browser tests of `sylva view`'s preview (docs/view.md, "Speed"): a plant quick to build is drawn
+// without one; a build's answer carries its .glb (with=part); after a save the page first
 // draws a lighter preview, then the .glb of `sylva mesh` (byte for byte); a plant too big to
 // mesh quickly is previewed by its segments, those of `sylva skeleton`; a full build a tab's
 // newer request has replaced is not built (and another tab's is); a slider dragged draws
@@ -33,7 +34,21 @@ try {
   const page = await openPage(browser, url, errors);
   await page.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 60000 });
 
+  // ---- a plant whose last full build came quicker than previewAbove ms: no preview first ----
+  const quick = await page.evaluate(() => { const v = window.sylvaView; v.previewAbove = 1e9; return { loads: v.loads, previews: v.previews || 0 }; });
+  edit(file, TEXT(3));
+  await page.waitForFunction((c) => window.sylvaView.loads > c && window.sylvaView.shownAt > 0, { timeout: 60000 }, quick.loads);
+  const quickAfter = await page.evaluate(() => ({ previews: window.sylvaView.previews || 0, preview: window.sylvaView.preview }));
+  check(quickAfter.previews === quick.previews && quickAfter.preview === null, 'a plant quick to build: its save draws the full mesh, no preview',
+    JSON.stringify({ quick, quickAfter }));
+  // the build's answer with its .glb in one request (with=part): the same bytes as /api/glb's
+  const both = (await get('/api/build?model=Bush&with=part')).body;
+  const jlen = both.readUInt32LE(0), head = JSON.parse(both.subarray(4, 4 + jlen).toString());
+  check(head.ok && both.subarray(4 + jlen).equals((await get('/api/glb?id=' + head.id)).body),
+    'a build asked for with its part: the JSON, then the .glb of /api/glb', `${both.length - 4 - jlen} bytes`);
+
   // ---- a save: the preview's frame, then the full .glb's (sylva mesh's bytes) ----
+  await page.evaluate(() => { window.sylvaView.previewAbove = 0; }); // a preview before every full build
   const before = await page.evaluate(() => ({ loads: window.sylvaView.loads, previews: window.sylvaView.previews || 0 }));
   edit(file, TEXT(5));
   await page.waitForFunction((c) => window.sylvaView.loads > c && window.sylvaView.shownAt > 0, { timeout: 60000 }, before.loads);
