@@ -96,7 +96,7 @@ typedef struct View {
     bool stopping;
     /* The first build asked for since the files' last change (under gen_lock): built again at
      * the next change before a page asks (view_prebuild.c). */
-    struct { ViewRequest rq; char key[2048]; unsigned gen; bool have; } first;
+    struct { ViewRequest rq; char key[2048]; unsigned gen; bool any, have; } first;
 } View;
 
 /* view_build.c */

@@ -13,14 +13,17 @@ static void copy_request(ViewRequest *to, const ViewRequest *from) {
 }
 
 void view_first_request(View *v, const ViewRequest *rq, const char *key) {
-    if (rq->text || strlen(key) >= sizeof v->first.key) return; /* an edited text is the page's alone */
     pthread_mutex_lock(&v->gen_lock);
-    if (!v->first.have || v->first.gen != v->gen) {
-        copy_request(&v->first.rq, rq);
-        v->first.rq.tab = 0; /* built for whichever page asks: never stopped as replaced */
-        snprintf(v->first.key, sizeof v->first.key, "%s", key);
+    if (!v->first.any || v->first.gen != v->gen) {
+        v->first.any = true;
         v->first.gen = v->gen;
-        v->first.have = true;
+        /* an edited text (plants placed by clicks) is the page's alone: nothing is built ahead */
+        v->first.have = !rq->text && strlen(key) < sizeof v->first.key;
+        if (v->first.have) {
+            copy_request(&v->first.rq, rq);
+            v->first.rq.tab = 0; /* built for whichever page asks: never stopped as replaced */
+            snprintf(v->first.key, sizeof v->first.key, "%s", key);
+        }
     }
     pthread_mutex_unlock(&v->gen_lock);
 }
