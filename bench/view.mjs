@@ -5,7 +5,8 @@
 //   save NAME MODULES TRIANGLES BEST_MS MEDIAN_MS SERVER_MS WRITE_MS   from the file's save (an
 //       atomic rename, as editors save) to the first frame drawn with the new build, in the page's
 //       clock; SERVER_MS the last build's compile to .glb written in the server, WRITE_MS the .glb writer's;
-//       PAGE the best save's page side: build request / .glb fetch / parse / setup / first frame, ms;
+//       PAGE the best save's page side: build request / .glb fetch / parse / setup / first frame, ms
+//       (the .glb comes in the build's answer since stop 40: its fetch is then 0);
 //       PREVIEW_MS the best save's time to the preview's first frame (the page's "preview first":
 //       a lighter picture drawn before the .glb), PREVIEW its kind (mesh, lines; '-': none drawn)
 //   slider NAME MODULES UPDATES SECONDS FULL       pictures of new values drawn while a slider is
