@@ -28,12 +28,15 @@ cpSync('examples/weberpenn', join(dir, 'weberpenn'), { recursive: true });
 cpSync('examples/abop', join(dir, 'abop'), { recursive: true });
 writeFileSync(join(dir, 'a11.syl'), a11);
 writeFileSync(join(dir, 'a9.syl'), a9);
+// VIEW_CASES=fig2.6,aspen,slider (names' beginnings): only those (default: all)
+const only = (process.env.VIEW_CASES || '').split(',').filter(Boolean);
+const wanted = (name) => !only.length || only.some((o) => name.startsWith(o));
 const saves = [
   ['fig2.6 n=10', join(dir, 'abop/fig2_06_monopodial.syl')],
   ['aspen', join(dir, 'weberpenn/quaking_aspen.syl')],
   ['1M modules', join(dir, 'a11.syl')],
   ['weeping willow', join(dir, 'weberpenn/weeping_willow.syl')],
-];
+].filter(([name]) => wanted(name));
 
 const serve = (path) => start(sylva, path);
 const browser = await launch(dir);
@@ -70,7 +73,7 @@ try {
     await stop(server);
   }
   // A slider dragged for 3 s (a new angle every 20 ms): builds drawn per second
-  {
+  if (wanted('slider')) {
     const { server, url } = await serve(join(dir, 'a9.syl'));
     const page = await browser.newPage();
     await page.setViewport({ width: 900, height: 700 });

@@ -471,10 +471,11 @@ function disposeBuild(group) {
 // slider moves only previews are built; the full build waits until it rests, and a full build
 // running when it moves again is stopped (the server sees the tab's newer request). The old model stays on screen until the
 // new one is drawn.
-// A preview is asked for only when the last full build kept the page waiting longer than
-// previewAbove ms (its build, fetch, parse and setup; state.fullWork): a small plant's full mesh
-// comes as soon as its preview would, and a preview first would only add a build and a frame.
-state.previewAbove = 150;
+// A preview is asked for only when the last full build had more than previewAbove triangles: a
+// small plant's full mesh comes as soon as its preview would, and a preview first would only add
+// a build and a frame (whose drawing the full mesh's frame then waits for). Triangles, not the
+// milliseconds it took: those vary with the machine's load, and the choice would too.
+state.previewAbove = 50000;
 let lastInput = -1e9; // when a slider last moved (performance.now())
 const REST_MS = 250;  // a slider still this long has come to rest
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
@@ -510,24 +511,22 @@ async function load(frameIt = false) {
     const mine = `&tab=${tab}&seq=${++seq}`;
     let full = null; // the full build's answer
     const resting = () => performance.now() - lastInput >= REST_MS;
-    let tFull = t0; // when the full build was asked for
-    if ($('preview').checked && state.kind !== 'ecosystem' && !(state.fullWork < state.previewAbove)) {
+    const small = state.stats && state.stats.kind !== 'ecosystem' && state.stats.triangles <= state.previewAbove;
+    if ($('preview').checked && state.kind !== 'ecosystem' && !small) {
       const p = await requestBuild(q + '&preview=1' + mine, text);
       const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem' ? p.part : null;
       if (buf) await showPreview(p, buf, q, frameIt, t0);
       // the full build once the preview is on screen (not while a slider moves): asked for at
       // once, it would share the processor with the preview's frame on a machine of few cores
-      if (!again && resting()) full = requestBuild(q + mine, text), tFull = performance.now();
+      if (!again && resting()) full = requestBuild(q + mine, text);
       frameIt = false;
       // while the slider moves, only previews; a newer value is built next (load coalesces)
       while (!full && !again && !resting()) await sleep(40);
       if (!full && again) return;
     }
-    if (!full) tFull = performance.now();
     const b = await (full || requestBuild(q + mine, text));
     if (b.superseded || (again && full)) { state.superseded = (state.superseded || 0) + 1; return; } // a newer value comes next
     await showBuild(b, q, frameIt, t0);
-    if (b.ok) state.fullWork = state.drawnAt - tFull;
   })();
   try { await loading; } finally {
     loading = null;

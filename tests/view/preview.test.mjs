@@ -34,7 +34,7 @@ try {
   const page = await openPage(browser, url, errors);
   await page.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 60000 });
 
-  // ---- a plant whose last full build came quicker than previewAbove ms: no preview first ----
+  // ---- a plant whose last full mesh had at most previewAbove triangles: no preview first ----
   const quick = await page.evaluate(() => { const v = window.sylvaView; v.previewAbove = 1e9; return { loads: v.loads, previews: v.previews || 0 }; });
   edit(file, TEXT(3));
   await page.waitForFunction((c) => window.sylvaView.loads > c && window.sylvaView.shownAt > 0, { timeout: 60000 }, quick.loads);
