@@ -86,13 +86,15 @@ static void free_pending(WeberGen *g, Pending *p) {
 
 static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs, Pending *pend) {
     Rng r = weber_rng(g, st->key, WRNG_SHAPE); /* the same stream for a test and the real stem */
+    if (s0 == 0) st->split_last = false;
     for (int s = s0; s < st->nseg; s++) {
         new_direction(g, st, &trf, s, &r);
         if (segs) segs[s].f = trf, segs[s].sps = st->sps;
         frame_move(&trf, st->seglen);
         if (test && !weber_inside(g, trf.t)) return s;
         if (s >= st->nseg - 1) continue;
-        int n = weber_split_count(g, st, s);
+        int n = g->w.SaplingLaw ? weber_sapling_splits(g, st, s, &r) : weber_split_count(g, st, s);
+        st->split_last = n > 0;
         if (n < 1) continue;
         double s_angle = 360.0 / (n + 1);
         for (int i = 0; i < n; i++) {
@@ -204,6 +206,7 @@ static void run_stem(WeberGen *g, int id, Traced *t) {
     if (st->level < g->levels - 1) {
         Rng kids = weber_rng(g, st->key, WRNG_KIDS);
         for (int s = st->first_seg; s < st->nseg && !g->failed; s++) weber_children(g, id, st, s, t->segs, &kids);
+        if (g->w.SaplingLaw && !g->failed) weber_tip_child(g, id, st, t->segs, &kids);
     } else if (g->leaves != 0) {
         weber_defer_leaves(g, id, st, t->segs);
     }
@@ -215,7 +218,11 @@ static void prepare_children(WeberGen *g, WStem *st, Rng *self) {
     int cl = weber_lv(st->level + 1);
     st->lcm = w->Length[cl] + (st->u_lcm >= 0 ? w->LengthV[cl] * (2 * st->u_lcm - 1) : weber_var(self, w->LengthV[cl]));
     double most = w->Branches[cl], n;
-    if (st->level == 0) {
+    if (w->SaplingLaw) { /* Sapling: by the stem's length against its level's longest, less its bare base's share */
+        n = st->level == 0 ? most : round(most * (0.1 + 0.9 * st->length / weber_sapling_most(g, st)));
+        n -= floor(fmin(1, w->BaseSize * pow(w->SaplingBaseSizeS, st->level)) * (n + 1));
+        st->sps = (n > 0 ? n : 0) / st->nseg / (st->level == 0 ? 1 - w->BaseSize : 1);
+    } else if (st->level == 0) {
         st->sps = most / st->nseg / (1 - w->BaseSize);
     } else {
         const WStem *p = &g->stems[st->parent];
