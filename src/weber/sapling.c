@@ -66,3 +66,26 @@ double weber_sapling_length(const WeberGen *g, const WStem *p, const WStem *s) {
     r = r < 0 ? 0 : r > 1 ? 1 : r;
     return p->length * p->lcm * weber_sapling_shape(w, s->level == 1 ? (int)w->Shape : (int)w->SaplingShapeS, r);
 }
+
+/* A branch's children by Sapling: sap_main even places along it, t = 1/main … 1; the lowest
+ * int(b (main + 1)) dropped (b its level's bare base), and the last, t = 1, left to its tip's
+ * stem; each of its clones takes the places at or above where it split off. */
+void weber_sapling_children(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids) {
+    int m = st->sap_main;
+    if (m <= 0) return;
+    double b = fmin(0.999, g->w.BaseSize * pow(g->w.SaplingBaseSizeS, st->level));
+    for (int a = (int)(b * (m + 1)); a < m - 1 && !g->failed; a++) {
+        double at = (a + 1.0) / m * st->nseg;
+        int seg = (int)at;
+        if (seg < st->first_seg || seg >= st->nseg) continue;
+        double where = at - seg;
+        WStem c = {0};
+        c.level = st->level + 1;
+        c.parent = id;
+        c.offset = at * st->seglen;
+        c.key = weber_key(st->key, 1, (uint64_t)seg << 20 | (uint64_t)a);
+        c.start = weber_child_direction(g, st, segs[seg].f, c.offset, c.level, kids);
+        for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * st->seglen;
+        weber_make_stem(g, c);
+    }
+}
