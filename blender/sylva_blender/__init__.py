@@ -76,7 +76,20 @@ def _edges(me, tris, nv: int) -> None:
     import numpy as np
     a = tris.astype(np.int64).ravel()
     b = tris[:, [1, 2, 0]].astype(np.int64).ravel()  # loop i runs from a[i] to b[i]
-    keys, edge_of_loop = np.unique(np.minimum(a, b) * nv + np.maximum(a, b), return_inverse=True)
+    pair = np.minimum(a, b) * nv + np.maximum(a, b)
+    n, shift = len(pair), max(1, (len(pair) - 1).bit_length())
+    if (nv * nv).bit_length() + shift <= 63:  # one sort of (pair, loop) packed in an int64: no argsort
+        packed = (pair << shift) | np.arange(n, dtype=np.int64)
+        packed.sort()
+        pair = packed >> shift
+        first = np.empty(n, dtype=bool)
+        first[:1] = True
+        np.not_equal(pair[1:], pair[:-1], out=first[1:])
+        edge_of_loop = np.empty(n, dtype=np.int32)
+        edge_of_loop[packed & ((1 << shift) - 1)] = np.cumsum(first, dtype=np.int32) - 1
+        keys = pair[first]
+    else:
+        keys, edge_of_loop = np.unique(pair, return_inverse=True)
     me.edges.add(len(keys))
     me.edges.foreach_set("vertices", np.stack([keys // nv, keys % nv], axis=1).astype(np.int32).ravel())
     me.loops.foreach_set("edge_index", edge_of_loop.astype(np.int32))
