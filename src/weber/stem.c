@@ -269,7 +269,7 @@ bool weber_make_stem(WeberGen *g, WStem st) {
     trace_in(g, &t.st, 0, t.st.start, false, t.segs, &t.pend);
     if (w->SaplingLaw && t.st.level > 0 && !g->failed) {
         int segs = t.st.nseg + pending_segments(&t.pend);
-        t.st.sap_main = (int)round(t.st.sap_n * t.st.nseg / segs);
+        t.st.sap_main = (int)fmin(round(t.st.sap_n * t.st.nseg / segs), 1e9); /* Branches may be huge: the budget stops it */
         set_main(&t.pend, t.st.sap_main);
     }
     if (!g->failed && add_stem(g, &t.st, &id)) run_stem(g, id, &t);
