@@ -69,6 +69,32 @@ def _material(name: str, rgb, leaf: bool) -> bpy.types.Material:
 OBSTACLE_MATERIAL = 250
 
 
+def _edges(me, tris, nv: int) -> None:
+    """The triangles' edges, each once, and every loop's edge, from numpy: Mesh.update() finds
+    them itself when a mesh has none, by a hash of every edge, which took half the add-on's
+    time on a large tree (docs/blender.md, "Speed beside Sapling")."""
+    import numpy as np
+    a = tris.astype(np.int64).ravel()
+    b = tris[:, [1, 2, 0]].astype(np.int64).ravel()  # loop i runs from a[i] to b[i]
+    pair = np.minimum(a, b) * nv + np.maximum(a, b)
+    n, shift = len(pair), max(1, (len(pair) - 1).bit_length())
+    if (nv * nv).bit_length() + shift <= 63:  # one sort of (pair, loop) packed in an int64: no argsort
+        packed = (pair << shift) | np.arange(n, dtype=np.int64)
+        packed.sort()
+        pair = packed >> shift
+        first = np.empty(n, dtype=bool)
+        first[:1] = True
+        np.not_equal(pair[1:], pair[:-1], out=first[1:])
+        edge_of_loop = np.empty(n, dtype=np.int32)
+        edge_of_loop[packed & ((1 << shift) - 1)] = np.cumsum(first, dtype=np.int32) - 1
+        keys = pair[first]
+    else:
+        keys, edge_of_loop = np.unique(pair, return_inverse=True)
+    me.edges.add(len(keys))
+    me.edges.foreach_set("vertices", np.stack([keys // nv, keys % nv], axis=1).astype(np.int32).ravel())
+    me.loops.foreach_set("edge_index", edge_of_loop.astype(np.int32))
+
+
 def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = True) -> bpy.types.Object:
     """The plant's mesh (or a sylva.Mesh: a level's, a leaf prototype's) as one object, filled
     from Sylva's arrays with foreach_set (no Python loop per vertex): Sylva's y-up metres turned
@@ -96,7 +122,8 @@ def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = Tru
     me.vertices.add(len(v))
     me.vertices.foreach_set("co", co.ravel())
     me.loops.add(3 * nt)
-    me.loops.foreach_set("vertex_index", tris.astype(np.int32).ravel())
+    me.loops.foreach_set("vertex_index", tris.astype(np.int32, copy=False).ravel())
+    _edges(me, tris, len(v))
     me.polygons.add(nt)
     me.polygons.foreach_set("loop_start", np.arange(0, 3 * nt, 3, dtype=np.int32))
     me.polygons.foreach_set("loop_total", np.full(nt, 3, dtype=np.int32))
@@ -108,7 +135,7 @@ def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = Tru
         index[g["first"]:g["first"] + g["count"]] = k
     me.polygons.foreach_set("material_index", index)
     uv = me.uv_layers.new(name="UVMap")
-    uvs = uvs_all[tris.ravel()].astype(np.float32)
+    uvs = np.take(uvs_all.astype(np.float32, copy=False), tris.ravel(), axis=0)
     uvs[:, 1] = 1.0 - uvs[:, 1]  # glTF's v runs down a texture, Blender's up
     uv.data.foreach_set("uv", uvs.ravel())
     me.update()

@@ -138,7 +138,7 @@ static bool value(Lex *l, Diag *diag, Value *v) {
  * resolution and bevel, armature and wind animation, leaf animation, its second shape and
  * taper of the crown, root flare by another law, its one branchDist that spreads branches by
  * another law than Weber & Penn's per-level BranchDist), read and left out. */
-enum { ONE, PER_LEVEL, SHAPE, LEAFSHAPE, ATTRACT, PRUNE, SKIP };
+enum { ONE, PER_LEVEL, SHAPE, LEAFSHAPE, ATTRACT, PRUNE, CUSTOM, SKIP };
 static const struct {
     const char *sapling, *sylva;
     int how;
@@ -161,6 +161,9 @@ static const struct {
     {"pruneRatio", "PruneRatio", PRUNE}, {"pruneWidth", "PruneWidth", ONE},
     {"pruneWidthPeak", "PruneWidthPeak", ONE}, {"prunePowerLow", "PrunePowerLow", ONE},
     {"prunePowerHigh", "PrunePowerHigh", ONE}, {"seed", "Seed", ONE},
+    {"splitHeight", "SaplingSplitHeight", ONE}, {"baseSize_s", "SaplingBaseSizeS", ONE},
+    {"splitByLen", "SaplingSplitByLen", ONE},
+    {"shapeS", "SaplingShapeS", SHAPE},  {"customShape", "SaplingCustom", CUSTOM},
 };
 
 static Stmt *directive(Arena *a, Model *m, const char *name, SylLoc loc) {
@@ -206,7 +209,7 @@ static bool num_of(const Tok *t, double *v) {
 /* What a key's value means depends on other keys, read first wherever they stand. */
 typedef struct Context {
     bool prune;               /* Sapling's `prune` switch, which turns pruneRatio on or off */
-    double base, base_s;      /* baseSize and baseSize_s */
+    double length[4];         /* `length` per level, which lengthV is a share of */
 } Context;
 
 /* The number of top-level key `name` (a scalar), from a copy of the lexer; false: none. */
@@ -220,6 +223,23 @@ static bool scan_number(Lex scan, const char *name, double *x) {
     return false;
 }
 
+/* The numbers of top-level tuple `name` into out[0..3] (left as they are when absent). */
+static void scan_tuple(Lex scan, const char *name, double out[4]) {
+    size_t n = strlen(name);
+    for (Tok t = next(&scan); t.kind != T_END && t.kind != T_BAD; t = next(&scan))
+        if (t.kind == T_STR && t.len == n && !memcmp(t.text, name, n)) {
+            Tok colon = next(&scan), open = next(&scan);
+            if (colon.kind != T_PUNCT || colon.punct != ':' || open.kind != T_PUNCT || open.punct != '(') return;
+            for (int i = 0; i < 4; i++) {
+                Tok v = next(&scan);
+                if (!num_of(&v, &out[i])) return;
+                Tok sep = next(&scan);
+                if (sep.kind != T_PUNCT || sep.punct != ',') return;
+            }
+            return;
+        }
+}
+
 /* One key and value into the model: the mapping's directive, or nothing. */
 static void put(Arena *a, Diag *diag, Model *m, const Tok *key, const Value *v, const Context *cx) {
     bool prune = cx->prune;
@@ -228,6 +248,13 @@ static void put(Arena *a, Diag *diag, Model *m, const Tok *key, const Value *v, 
         if (strlen(mapping[i].sapling) == key->len && !memcmp(mapping[i].sapling, key->text, key->len)) k = (int)i;
     if (k < 0) return; /* Sapling's own: its curves, armature, wind and animation */
     int how = mapping[k].how;
+    if (how == CUSTOM) { /* its custom shape's four values: base, middle, where the middle is, tip */
+        static const char *const part[] = {"SaplingCustomBase", "SaplingCustomMid", "SaplingCustomPeak", "SaplingCustomTip"};
+        double c;
+        for (int i = 0; i < v->n && i < 4; i++)
+            if (num_of(&v->items[i], &c)) number(a, directive(a, m, part[i], key->loc), c, v->items[i].loc);
+        return;
+    }
     if ((how == PER_LEVEL) != v->tuple && how != ATTRACT) { /* attractUp: a tuple since Sapling 0.3, one value before */
         diag_error(diag, v->loc, "Sapling's '%s' is %s", mapping[k].sapling,
                    v->tuple ? "one value, not a tuple" : "a tuple of one value per level");
@@ -254,14 +281,10 @@ static void put(Arena *a, Diag *diag, Model *m, const Tok *key, const Value *v, 
             return;
         }
         if (how == PRUNE && !prune) x = 0; /* pruning off: no envelope */
+        /* Sapling's lengthV is a share of the level's length, Weber & Penn's LengthV a length */
+        if (how == PER_LEVEL && !strcmp(mapping[k].sylva, "LengthV")) x *= cx->length[i < 4 ? i : 3];
         /* Sapling's trunk count: 0 there means one trunk, Weber & Penn's 0Branches is 1 */
         if (how == PER_LEVEL && i == 0 && !strcmp(mapping[k].sylva, "Branches") && x < 1) x = 1;
-        /* Sapling spreads a stem's `branches` over all of it and then drops the share of them
-         * below its base size (the trunk's baseSize, each next level's baseSize_s times the
-         * last), where Weber & Penn place all of Branches above the base: Sylva's count is
-         * Sapling's less that share */
-        if (how == PER_LEVEL && i >= 1 && !strcmp(mapping[k].sylva, "Branches"))
-            x -= floor(fmin(fmax(cx->base * pow(cx->base_s, i - 1), 0), 1) * (x + 1)); /* its int(b (N + 1)) */
         number(a, s, x, v->items[i].loc);
     }
 }
@@ -279,12 +302,13 @@ int syl_sapling_parse(const Source *src, Arena *arena, Diag *diag, FileAst *ast)
     m->name = arena_strndup(arena, bn ? base : "sapling", bn ? bn : 7);
     m->loc = open.loc;
     word(arena, directive(arena, m, "convention", open.loc), "arbaro", open.loc);
-    /* read first, wherever they stand: `prune` for pruneRatio, the base sizes for branches */
-    Context cx = {.prune = true, .base = 0, .base_s = 1};
+    /* Sapling's own laws of how many children, splits and tip stems (weber/sapling.c) */
+    number(arena, directive(arena, m, "SaplingLaw", open.loc), 1, open.loc);
+    /* read first, wherever it stands: `prune` for pruneRatio */
+    Context cx = {.prune = true, .length = {1, 1, 1, 1}};
     double x;
     if (scan_number(l, "prune", &x)) cx.prune = x != 0;
-    if (scan_number(l, "baseSize", &x)) cx.base = x;
-    if (scan_number(l, "baseSize_s", &x)) cx.base_s = x;
+    scan_tuple(l, "length", cx.length);
     for (;;) {
         Tok key = next(&l);
         if (key.kind == T_PUNCT && key.punct == '}') break;

@@ -38,3 +38,18 @@ void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, R
         weber_make_stem(g, c);
     }
 }
+
+/* SaplingLaw: the stem every stem (and clone) sprouts at its tip, along it, as Sapling's does. */
+void weber_tip_child(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids) {
+    WStem c = {0};
+    c.level = st->level + 1;
+    c.parent = id;
+    c.offset = st->length - 0.5 * st->seglen; /* its length and radius from just below the tip, where the radius is not 0 */
+    c.key = weber_key(st->key, 1, (uint64_t)1 << 40);
+    c.start = segs[st->nseg - 1].f;
+    frame_move(&c.start, st->seglen);
+    double down, rot;
+    weber_child_angles(g, st, c.offset, c.level, kids, &down, &rot);
+    frame_rotxz(&c.start, 0, rot);
+    weber_make_stem(g, c);
+}

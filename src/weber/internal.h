@@ -35,6 +35,9 @@ typedef struct WStem {
     double split_corr; /* turn per segment that straightens a split out again */
     double sps, lps;   /* children and leaves per segment */
     double rot;        /* the last child's rotation angle */
+    bool split_last;   /* SaplingLaw: its last segment split (Sapling's odds depend on it) */
+    double sap_n;      /* SaplingLaw: its children before the bare base's share */
+    int sap_main;      /* SaplingLaw: the even places along it (and its clones) children take */
     uint32_t pt_first, pt_count;
     uint32_t node_first, node_count; /* its own nodes in the skeleton (write.c) */
     double u_length, u_lcm; /* the first trunk's draws for its length and its children's, when
@@ -146,6 +149,12 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
 
 /* splits.c */
 int weber_split_count(WeberGen *g, const WStem *st, int seg);
+int weber_sapling_splits(WeberGen *g, const WStem *st, int seg, Rng *r);
+double weber_sapling_most(const WeberGen *g, const WStem *st);
+double weber_sapling_shape(const WeberParams *w, int shape, double r);
+double weber_sapling_length(const WeberGen *g, const WStem *p, const WStem *s);
+void weber_tip_child(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids);
+void weber_sapling_children(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids);
 Frame weber_split(WeberGen *g, WStem *st, Rng *r, Frame trf, double s_angle, int seg, int nsplits, bool test);
 
 /* children.c */

@@ -10,6 +10,7 @@ double weber_stem_length(WeberGen *g, const WStem *s, Rng *self) {
         return (w->Length[0] + v) * g->scale_tree;
     }
     const WStem *p = &g->stems[s->parent];
+    if (w->SaplingLaw) return weber_sapling_length(g, p, s);
     if (s->level == 1) {
         double base = w->BaseSize * g->scale_tree;
         double ratio = (p->length - s->offset) / (p->length - base);

@@ -86,13 +86,15 @@ static void free_pending(WeberGen *g, Pending *p) {
 
 static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs, Pending *pend) {
     Rng r = weber_rng(g, st->key, WRNG_SHAPE); /* the same stream for a test and the real stem */
+    if (s0 == 0) st->split_last = false;
     for (int s = s0; s < st->nseg; s++) {
         new_direction(g, st, &trf, s, &r);
         if (segs) segs[s].f = trf, segs[s].sps = st->sps;
         frame_move(&trf, st->seglen);
         if (test && !weber_inside(g, trf.t)) return s;
         if (s >= st->nseg - 1) continue;
-        int n = weber_split_count(g, st, s);
+        int n = g->w.SaplingLaw ? weber_sapling_splits(g, st, s, &r) : weber_split_count(g, st, s);
+        st->split_last = n > 0;
         if (n < 1) continue;
         double s_angle = 360.0 / (n + 1);
         for (int i = 0; i < n; i++) {
@@ -203,7 +205,10 @@ static void run_stem(WeberGen *g, int id, Traced *t) {
     }
     if (st->level < g->levels - 1) {
         Rng kids = weber_rng(g, st->key, WRNG_KIDS);
-        for (int s = st->first_seg; s < st->nseg && !g->failed; s++) weber_children(g, id, st, s, t->segs, &kids);
+        if (g->w.SaplingLaw && st->level > 0) weber_sapling_children(g, id, st, t->segs, &kids);
+        else
+            for (int s = st->first_seg; s < st->nseg && !g->failed; s++) weber_children(g, id, st, s, t->segs, &kids);
+        if (g->w.SaplingLaw && !g->failed) weber_tip_child(g, id, st, t->segs, &kids);
     } else if (g->leaves != 0) {
         weber_defer_leaves(g, id, st, t->segs);
     }
@@ -215,7 +220,13 @@ static void prepare_children(WeberGen *g, WStem *st, Rng *self) {
     int cl = weber_lv(st->level + 1);
     st->lcm = w->Length[cl] + (st->u_lcm >= 0 ? w->LengthV[cl] * (2 * st->u_lcm - 1) : weber_var(self, w->LengthV[cl]));
     double most = w->Branches[cl], n;
-    if (st->level == 0) {
+    if (w->SaplingLaw && st->level > 0) { /* by its length against its level's longest; placed by weber_sapling_children */
+        st->sap_n = most * (0.1 + 0.9 * st->length / weber_sapling_most(g, st));
+        st->sps = 0;
+    } else if (w->SaplingLaw) { /* the trunk: less its bare base's share, and the last, which falls on its tip */
+        n = most - floor(fmin(1, w->BaseSize) * (most + 1)) - 1;
+        st->sps = (n > 0 ? n : 0) / st->nseg / (1 - w->BaseSize);
+    } else if (st->level == 0) {
         st->sps = most / st->nseg / (1 - w->BaseSize);
     } else {
         const WStem *p = &g->stems[st->parent];
@@ -225,6 +236,17 @@ static void prepare_children(WeberGen *g, WStem *st, Rng *self) {
     }
     st->rot = 0;
     st->lps = st->level == g->levels - 1 ? weber_leaves_per_stem(g, st) / st->nseg : 0;
+}
+
+/* SaplingLaw: the segments of a stem and its clones, and the even places its children take
+ * along each of them: Sapling shares a stem's children among all those segments. */
+static int pending_segments(const Pending *p) {
+    int n = 0;
+    for (size_t i = 0; i < p->n; i++) n += p->c[i].st.nseg - p->c[i].st.first_seg + pending_segments(&p->c[i].pend);
+    return n;
+}
+static void set_main(Pending *p, int main) {
+    for (size_t i = 0; i < p->n; i++) p->c[i].st.sap_main = main, set_main(&p->c[i].pend, main);
 }
 
 bool weber_make_stem(WeberGen *g, WStem st) {
@@ -245,6 +267,11 @@ bool weber_make_stem(WeberGen *g, WStem st) {
     int id;
     if (!t.segs) return g->failed = true, false;
     trace_in(g, &t.st, 0, t.st.start, false, t.segs, &t.pend);
+    if (w->SaplingLaw && t.st.level > 0 && !g->failed) {
+        int segs = t.st.nseg + pending_segments(&t.pend);
+        t.st.sap_main = (int)fmin(round(t.st.sap_n * t.st.nseg / segs), 1e9); /* Branches may be huge: the budget stops it */
+        set_main(&t.pend, t.st.sap_main);
+    }
     if (!g->failed && add_stem(g, &t.st, &id)) run_stem(g, id, &t);
     free(t.segs);
     free_pending(g, &t.pend);

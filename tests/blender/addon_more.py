@@ -239,7 +239,7 @@ import addon_utils  # noqa: E402
 addon_utils.enable("add_curve_sapling", default_set=True)
 sap = library.sapling_presets()
 props = {p.identifier: p for p in bpy.ops.curve.tree_add.get_rna_type().properties}
-for name in ("callistemon", "quaking_aspen", "small_maple", "white_birch"):
+for name in ("callistemon", "quaking_aspen", "small_maple"):
     with open(os.path.join(sap, name + ".py")) as fh:
         preset = ast.literal_eval(fh.read().split("\n", 1)[1])  # after the licence line
     kw = {}
