@@ -40,8 +40,8 @@ CLI_LIBS   := $(CLI_LIBS)
 CLI_CFLAGS := $(CLI_CFLAGS)
 endif
 # Programs are linked by lld when it is there (tools/deps.sh installs it): a tree links about 70
-# programs against the whole library (sylva, the unit tests, the fuzz replays), and GNU ld took
-# 0.86 s of CPU for each under ASan where lld takes 0.36.
+# programs against the whole library (sylva, the unit tests, the fuzz replays), and under ASan
+# lld takes about half GNU ld's CPU for each (docs/testing.md, How long it takes).
 LDFLAGS := $(if $(shell command -v ld.lld 2>/dev/null),-fuse-ld=lld)
 $(BUILD)/src/cli/%.o build-fuzz/obj/src/cli/%.o: PKG_CFLAGS += $(CLI_CFLAGS)
 # Where `sylva view` finds its page (web/, with three.js from npm ci --prefix web); SYLVA_WEB overrides.
