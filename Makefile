@@ -39,6 +39,10 @@ PKG_LIBS   := $(PKG_LIBS)
 CLI_LIBS   := $(CLI_LIBS)
 CLI_CFLAGS := $(CLI_CFLAGS)
 endif
+# Programs are linked by lld when it is there (tools/deps.sh installs it): a tree links about 70
+# programs against the whole library (sylva, the unit tests, the fuzz replays), and under ASan
+# lld takes about half GNU ld's CPU for each (docs/testing.md, How long it takes).
+LDFLAGS := $(if $(shell command -v ld.lld 2>/dev/null),-fuse-ld=lld)
 $(BUILD)/src/cli/%.o build-fuzz/obj/src/cli/%.o: PKG_CFLAGS += $(CLI_CFLAGS)
 # Where `sylva view` finds its page (web/, with three.js from npm ci --prefix web); SYLVA_WEB overrides.
 $(BUILD)/src/cli/cmd_view.o: CFLAGS += -DSYL_WEB_DIR='"$(CURDIR)/web"'
@@ -152,7 +156,7 @@ ifeq ($(SAN),1)
 BIN_LDLIBS += -Wl,--push-state,--no-as-needed -lembree3 -Wl,--pop-state -no-pie
 endif
 $(BUILD)/sylva: $(CLI_OBJ) $(BUILD)/libsylva-internal.a
-	$(CC) $(CFLAGS) -o $@ $^ $(BIN_LDLIBS)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(BIN_LDLIBS)
 # The test-only fault switches (src/cli/testfaults.h) are compiled into $(BUILD)/sylva, which
 # the tests run, and left out of the binary make install installs, $(BUILD)/installed/sylva.
 $(BUILD)/src/cli/testfaults.o: CFLAGS += -DSYL_TEST_FAULTS
@@ -162,24 +166,24 @@ $(BUILD)/src/cli/testfaults-none.o: src/cli/testfaults.c | $(DEPS_OK) $(BUILD)/g
 $(BUILD)/installed/sylva: $(filter-out $(BUILD)/src/cli/testfaults.o,$(CLI_OBJ)) $(BUILD)/src/cli/testfaults-none.o \
                           $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -o $@ $^ $(BIN_LDLIBS)
+	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(BIN_LDLIBS)
 
 # ---- tests ----
 $(BUILD)/tests/%: tests/unit/%.c tests/unit/unit.h $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(BUILD)/libsylva-internal.a $(LDLIBS) -lcmocka
+	$(CC) $(CFLAGS) $(LDFLAGS) -Wno-unused-parameter -o $@ $< $(BUILD)/libsylva-internal.a $(LDLIBS) -lcmocka
 # test_cli reads the command line's tables: it links the CLI's objects too (not its main).
 $(BUILD)/tests/test_cli: tests/unit/test_cli.c tests/unit/unit.h $(filter-out $(BUILD)/src/cli/main.o,$(CLI_OBJ)) \
                          $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) -Wno-unused-parameter -o $@ $< $(filter %.o,$^) $(BUILD)/libsylva-internal.a $(LDLIBS) $(CLI_LIBS) -lcmocka
+	$(CC) $(CFLAGS) $(LDFLAGS) -Wno-unused-parameter -o $@ $< $(filter %.o,$^) $(BUILD)/libsylva-internal.a $(LDLIBS) $(CLI_LIBS) -lcmocka
 units: $(UNIT_BIN) $(REPLAY_BIN)
 # Each fuzz harness, linked with a plain main that feeds it the files it is given
 # (tests/fuzz/replay.c), built by the tree's own compiler: make test replays the seeds and the
 # kept inputs under ASan+UBSan (tests/fuzz/replay) without the clang tree, which only make fuzz needs.
 $(BUILD)/fuzz/replay_%: tests/fuzz/fuzz_%.c tests/fuzz/replay.c tests/fuzz/fuzz.h $(BUILD)/fuzz/libcli.a $(BUILD)/libsylva-internal.a
 	@mkdir -p $(@D)
-	$(CC) $(CFLAGS) $(CLI_CFLAGS) -Wno-unused-function -Wno-sign-compare \
+	$(CC) $(CFLAGS) $(LDFLAGS) $(CLI_CFLAGS) -Wno-unused-function -Wno-sign-compare \
 	    -Wno-unused-parameter -o $@ $< tests/fuzz/replay.c $(BUILD)/fuzz/libcli.a $(BUILD)/libsylva-internal.a $(LDLIBS) $(CLI_LIBS)
 # The CLI without its main, as an archive: a harness takes the members it calls (fuzz_cli: all).
 $(BUILD)/fuzz/libcli.a: $(filter-out $(BUILD)/src/cli/main.o,$(CLI_OBJ))
