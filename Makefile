@@ -17,6 +17,11 @@ WARN    := -Wall -Wextra -Werror
 ifeq ($(SAN),1)
 CC      := clang
 OPT     := -O1 -g1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+else ifeq ($(SAN),thread)
+# ThreadSanitizer (make BUILD=build-tsan SAN=thread sylva units; tests/run-tsan): the threads'
+# shared writes checked. Not part of make test: a third tree to build.
+CC      := clang
+OPT     := -O1 -g1 -fsanitize=thread -fno-omit-frame-pointer
 else
 OPT     := -O2 -g -fPIC -fno-semantic-interposition
 endif

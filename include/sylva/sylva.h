@@ -311,6 +311,11 @@ typedef struct SylDeriveOptions {
      * modules (each pass counts as at least 100): a derivation that would run for hours.
      * 0: the default (100 billion). */
     uint64_t max_work;
+    /* out: what the passes split among threads cost, in processor time of their threads (ns):
+     * the chunks' sum and, per pass, the longest chunk's, summed; the same for the copies that
+     * join them. On as many free cores as chunks, a pass takes its longest chunk: the schedule
+     * `sylva derive --stats` and `make bench` model the speed-up of -j N with. */
+    uint64_t split_passes, chunk_ns, chunk_max_ns, join_ns, join_max_ns;
 } SylDeriveOptions;
 
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);

@@ -4,6 +4,7 @@
  * rewrite independently (rewrite.c); every random draw comes from a stream keyed by (seed,
  * step, table, module position), so the result is the same for any number of threads. */
 #include <math.h>
+#include <time.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -31,12 +32,23 @@ typedef struct Chunks {
     Work *works;
     bool newctx, back;
     struct NewctxScratch **scratch;
+    uint64_t *ns;       /* each chunk's processor time (its thread's), when split */
 } Chunks;
+
+/* The processor time of the calling thread, in ns: each chunk's own cost, whatever else the
+ * machine runs (the schedule model of docs/architecture.md, "Threads"). */
+static uint64_t thread_ns(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
 
 static void run_chunk(void *arg, int k) {
     Chunks *c = arg;
+    uint64_t t0 = c->ns ? thread_ns() : 0;
     if (c->newctx) newctx_chunk(&c->works[k], c->back, c->scratch);
     else rewrite_chunk(&c->works[k]);
+    if (c->ns) c->ns[k] = thread_ns() - t0;
 }
 
 /* The second half of a pass of several chunks: chunk k (> 0), written to a buffer of its
@@ -45,14 +57,28 @@ static void run_chunk(void *arg, int k) {
 typedef struct Joins {
     SylString *out, *parts;
     size_t *at, *pat;
+    uint64_t *ns;
 } Joins;
 
 static void join_chunk(void *arg, int k) {
     Joins *j = arg;
     const SylString *part = &j->parts[k];
+    j->ns[k] = 0;
     if (!k) return;
+    uint64_t t0 = thread_ns();
     if (part->n) memcpy(j->out->code + j->at[k], part->code, part->n * sizeof *part->code);
     if (part->np) memcpy(j->out->par + j->pat[k], part->par, part->np * sizeof *part->par);
+    j->ns[k] = thread_ns() - t0;
+}
+
+/* The sum and the largest of n costs, added to *sum and *max. */
+static void add_costs(const uint64_t *ns, int n, uint64_t *sum, uint64_t *max) {
+    uint64_t m = 0;
+    for (int k = 0; k < n; k++) {
+        *sum += ns[k];
+        if (ns[k] > m) m = ns[k];
+    }
+    *max += m;
 }
 
 /* ---- one pass over a string ---- */
@@ -83,6 +109,7 @@ typedef struct Engine {
     size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack, cap_rnext, cap_pend;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     uint64_t rewritten;
+    uint64_t split_passes, chunk_ns, chunk_max_ns, join_ns, join_max_ns; /* SylDeriveOptions' */
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
     bool warned_depth;
     bool reported;      /* an error was reported: one message per failure */
@@ -383,9 +410,13 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(v.code[i]);
         lo = hi;
     }
-    Chunks chunks = {works, t->has_newctx, back, &e->newctx}; /* has_newctx: nt is 1 */
-    if (nt > 1) pool_run(e->pool, nt, run_chunk, &chunks);
-    else run_chunk(&chunks, 0);
+    uint64_t ns[MAX_THREADS];
+    Chunks chunks = {works, t->has_newctx, back, &e->newctx, nt > 1 ? ns : NULL}; /* has_newctx: nt is 1 */
+    if (nt > 1) {
+        pool_run(e->pool, nt, run_chunk, &chunks);
+        e->split_passes++;
+        add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
+    } else run_chunk(&chunks, 0);
     for (int k = 0; k < nt; k++) {
         free(works[k].cand);
         free(works[k].weight);
@@ -407,8 +438,9 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             n += parts[k].n, np += parts[k].np;
         }
         if (!(status = ms_reserve(out, n - out->n, np - out->np))) {
-            Joins joins = {out, parts, at, pat};
+            Joins joins = {out, parts, at, pat, ns};
             pool_run(e->pool, nt, join_chunk, &joins);
+            add_costs(ns, nt, &e->join_ns, &e->join_max_ns);
             out->n = n;
             out->np = np;
         }
@@ -597,6 +629,14 @@ static int fill_queries(Engine *e, SylString *s, int step) {
     return st;
 }
 
+/* The counters the caller reads from its options. */
+static void costs_out(const Engine *e, SylDeriveOptions *o) {
+    o->rewritten = e->rewritten;
+    o->split_passes = e->split_passes;
+    o->chunk_ns = e->chunk_ns, o->chunk_max_ns = e->chunk_max_ns;
+    o->join_ns = e->join_ns, o->join_max_ns = e->join_max_ns;
+}
+
 struct SylDeriver {
     Engine e;
     SylDeriveOptions *opt;
@@ -681,7 +721,7 @@ int syl_derive_step(SylDeriver *d) {
     }
     if (!st) st = fill_queries(e, d->cur, step);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, step, d->cur);
-    d->opt->rewritten = e->rewritten;
+    costs_out(e, d->opt);
     return d->status = said(e, st, step, "step");
 }
 
@@ -694,7 +734,7 @@ int syl_derive_end(SylDeriver *d, SylString **out) {
     if (out) *out = NULL;
     if (!d) return SYL_ELIMIT;
     int st = d->status;
-    d->opt->rewritten = d->e.rewritten;
+    costs_out(&d->e, d->opt);
     if (!st && out) *out = detach(&d->e, d->cur);
     else syl_string_free(d->cur);
     syl_string_free(d->spare);
