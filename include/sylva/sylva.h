@@ -316,6 +316,11 @@ typedef struct SylDeriveOptions {
      * join them. On as many free cores as chunks, a pass takes its longest chunk: the schedule
      * `sylva derive --stats` and `make bench` model the speed-up of -j N with. */
     uint64_t split_passes, chunk_ns, chunk_max_ns, join_ns, join_max_ns;
+    /* A pass is split among threads only when the last pass of its table cost at least this
+     * many ns of processor time per module it read, times its growth (0: the default, 70;
+     * docs/architecture.md, "Threads"): below it, the fresh memory and the join cost more
+     * than the threads save. */
+    uint64_t split_ns;
 } SylDeriveOptions;
 
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/testfaults.h"
 #include "cli/cli.h"
 
 const CliCommand cli_derive_command = {
@@ -76,6 +77,7 @@ int cmd_derive(int argc, char **argv) {
     CliArgs a = {.m = &m, .d = &d};
     int done = cli_parse(&cli_derive_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
+    d.split_ns = cli_test_split_ns();
     const char *output = a.output;
     bool all_steps = a.steps, interpret = a.interpret, stats = a.stats, quiet = a.quiet;
     if (all_steps && interpret) {

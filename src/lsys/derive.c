@@ -25,6 +25,12 @@
 #include "lang/vm.h"
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256, TABLE_CACHE = 8 };
+/* The processor time a pass must cost per module read, times its growth, before it is split
+ * (SylDeriveOptions.split_ns): a split pass writes fresh memory and joins its chunks, about
+ * 7 ns per module written more than one thread in place (bench/models/threads.syl on this
+ * machine, derive --stats), so from 70 ns a split costs at most a tenth more processor time on
+ * a machine without free cores, and saves nearly half the time on two free ones. */
+enum { SPLIT_NS = 70 };
 
 /* The chunks of a pass (pool_run): chunk k of works; a pass with new contexts is one chunk,
  * on the calling thread. */
@@ -108,6 +114,8 @@ typedef struct Engine {
     SylString *parts;   /* their buffers (chunks 1..threads-1), kept from pass to pass */
     size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack, cap_rnext, cap_pend;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
+    double cost[TABLE_COUNT];   /* last pass: its chunks' processor time per module read (ns) */
+    double split_ns;            /* the cost from which a pass is split */
     uint64_t rewritten;
     uint64_t split_passes, chunk_ns, chunk_max_ns, join_ns, join_max_ns; /* SylDeriveOptions' */
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
@@ -306,6 +314,10 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     bool by_classes = codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
                       !t->ctx_branches && !t->has_newctx;
     if (nt > 1 && (t->light || by_classes || in_place(e, t, table, in, 1))) nt = 1;
+    /* a pass that costs too little per module stays whole (an unmeasured one too: the first
+     * passes of a table are short) */
+    double g = e->growth[table] > 1 ? e->growth[table] : 1;
+    if (nt > 1 && e->cost[table] < e->split_ns * g) nt = 1;
     Work place = {0};
     size_t n_in = in->n, np_in = in->np;
     if (in_place(e, t, table, in, nt)) {
@@ -410,13 +422,15 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(v.code[i]);
         lo = hi;
     }
-    uint64_t ns[MAX_THREADS];
-    Chunks chunks = {works, t->has_newctx, back, &e->newctx, nt > 1 ? ns : NULL}; /* has_newctx: nt is 1 */
+    uint64_t ns[MAX_THREADS], sum = 0, longest = 0;
+    Chunks chunks = {works, t->has_newctx, back, &e->newctx, ns}; /* has_newctx: nt is 1 */
     if (nt > 1) {
         pool_run(e->pool, nt, run_chunk, &chunks);
         e->split_passes++;
         add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
     } else run_chunk(&chunks, 0);
+    add_costs(ns, nt, &sum, &longest);
+    if (n_in >= 4096) e->cost[table] = (double)sum / (double)n_in; /* small passes: too noisy */
     for (int k = 0; k < nt; k++) {
         free(works[k].cand);
         free(works[k].weight);
@@ -511,6 +525,7 @@ static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *
     e->diag = opt->diag;
     e->seed = opt->use_seed ? opt->seed : p->seed;
     e->threads = opt->threads;
+    e->split_ns = opt->split_ns ? (double)opt->split_ns : SPLIT_NS;
     if (e->threads <= 0) e->threads = par_threads(0);
     if (e->threads > MAX_THREADS) e->threads = MAX_THREADS;
     e->max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
