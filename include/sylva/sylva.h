@@ -319,7 +319,9 @@ typedef struct SylDeriveOptions {
     /* A pass is split among threads only when the last pass of its table cost at least this
      * many ns of processor time per module it read, times its growth (0: the default, 70;
      * docs/architecture.md, "Threads"): below it, the fresh memory and the join cost more
-     * than the threads save. */
+     * than the threads save. Once a split pass's chunks are seen to take as long side by side as
+     * in turn (no free core), the rest of the derivation stays on one thread, unless split_ns
+     * is given (nonzero: splits measured whatever the machine). */
     uint64_t split_ns;
 } SylDeriveOptions;
 

@@ -26,10 +26,10 @@
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256, TABLE_CACHE = 8 };
 /* The processor time a pass must cost per module read, times its growth, before it is split
- * (SylDeriveOptions.split_ns): a split pass writes fresh memory and joins its chunks, about
- * 7 ns per module written more than one thread in place (bench/models/threads.syl on this
- * machine, derive --stats), so from 70 ns a split costs at most a tenth more processor time on
- * a machine without free cores, and saves nearly half the time on two free ones. */
+ * (SylDeriveOptions.split_ns): a split pass writes fresh memory and joins its chunks, 5-14 ns
+ * per module written more than one thread in place (bench/models/threads.syl on this machine,
+ * derive --stats), so from 70 ns a split gains on two free cores (docs/architecture.md,
+ * "Threads"). A machine without free cores is seen at the first split pass (no_free_cores). */
 enum { SPLIT_NS = 70 };
 
 /* The chunks of a pass (pool_run): chunk k of works; a pass with new contexts is one chunk,
@@ -116,6 +116,8 @@ typedef struct Engine {
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
     double cost[TABLE_COUNT];   /* last pass: its chunks' processor time per module read (ns) */
     double split_ns;            /* the cost from which a pass is split */
+    bool no_free_cores;         /* a split pass's chunks did not run at once: no more splits, */
+    bool measure;               /* unless split_ns was given (to measure the splits) */
     uint64_t rewritten;
     uint64_t split_passes, chunk_ns, chunk_max_ns, join_ns, join_max_ns; /* SylDeriveOptions' */
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
@@ -317,7 +319,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     /* a pass that costs too little per module stays whole (an unmeasured one too: the first
      * passes of a table are short) */
     double g = e->growth[table] > 1 ? e->growth[table] : 1;
-    if (nt > 1 && e->cost[table] < e->split_ns * g) nt = 1;
+    if (nt > 1 && (e->cost[table] < e->split_ns * g || (e->no_free_cores && !e->measure))) nt = 1;
     Work place = {0};
     size_t n_in = in->n, np_in = in->np;
     if (in_place(e, t, table, in, nt)) {
@@ -425,11 +427,21 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     uint64_t ns[MAX_THREADS], sum = 0, longest = 0;
     Chunks chunks = {works, t->has_newctx, back, &e->newctx, ns}; /* has_newctx: nt is 1 */
     if (nt > 1) {
+        struct timespec w0, w1;
+        clock_gettime(CLOCK_MONOTONIC, &w0);
         pool_run(e->pool, nt, run_chunk, &chunks);
+        clock_gettime(CLOCK_MONOTONIC, &w1);
         e->split_passes++;
         add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
-    } else run_chunk(&chunks, 0);
-    add_costs(ns, nt, &sum, &longest);
+        add_costs(ns, nt, &sum, &longest);
+        /* the chunks took as long side by side as one after the other would: the machine has
+         * no core to spare (as this one, shared), and the next passes are not split */
+        double wall = (double)(w1.tv_sec - w0.tv_sec) * 1e9 + (double)(w1.tv_nsec - w0.tv_nsec);
+        if (wall * 1.25 > (double)sum) e->no_free_cores = true;
+    } else {
+        run_chunk(&chunks, 0);
+        add_costs(ns, nt, &sum, &longest);
+    }
     if (n_in >= 4096) e->cost[table] = (double)sum / (double)n_in; /* small passes: too noisy */
     for (int k = 0; k < nt; k++) {
         free(works[k].cand);
@@ -526,6 +538,7 @@ static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *
     e->seed = opt->use_seed ? opt->seed : p->seed;
     e->threads = opt->threads;
     e->split_ns = opt->split_ns ? (double)opt->split_ns : SPLIT_NS;
+    e->measure = opt->split_ns != 0;
     if (e->threads <= 0) e->threads = par_threads(0);
     if (e->threads > MAX_THREADS) e->threads = MAX_THREADS;
     e->max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
