@@ -17,6 +17,11 @@ WARN    := -Wall -Wextra -Werror
 ifeq ($(SAN),1)
 CC      := clang
 OPT     := -O1 -g1 -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+else ifeq ($(SAN),thread)
+# ThreadSanitizer (make BUILD=build-tsan SAN=thread sylva units; tests/run-tsan): the threads'
+# shared writes checked. Not part of make test: a third tree to build.
+CC      := clang
+OPT     := -O1 -g1 -fsanitize=thread -fno-omit-frame-pointer
 else
 OPT     := -O2 -g -fPIC -fno-semantic-interposition
 endif
@@ -202,6 +207,11 @@ test-fast:
 	@$(MAKE) --no-print-directory -j$(JOBS) all units
 	@$(MAKE) --no-print-directory -j$(JOBS) blender-addon
 	@JOBS=$(JOBS) tests/run-all $(BUILD)
+# ThreadSanitizer over the threaded derivation (not in make test: a third tree to build).
+test-tsan:
+	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-tsan SAN=thread build-tsan/sylva build-tsan/tests/test_stochastic
+	@build-tsan/tests/test_stochastic && for c in threads threads_split inplace; do \
+	    TSAN_OPTIONS=halt_on_error=1 tests/run-cases build-tsan/sylva tests/cases/$$c.test || exit 1; done
 test-asan:
 	@$(MAKE) --no-print-directory -j$(JOBS) BUILD=build-asan SAN=1 all units
 	@JOBS=$(JOBS) tests/run-all build-asan
@@ -213,7 +223,7 @@ test:
 # The libFuzzer harnesses searching FUZZ_TEST_SECONDS each (make test replays their inputs only).
 test-fuzz: fuzz-build
 	@JOBS=$(JOBS) FUZZ_SECONDS=$(FUZZ_TEST_SECONDS) tests/run-all --only none --fuzz build-fuzz
-.PHONY: test-build-release test-build-asan test-build-fuzz test-times test-quick test-fuzz
+.PHONY: test-tsan test-build-release test-build-asan test-build-fuzz test-times test-quick test-fuzz
 test-build-release:
 	@$(MAKE) --no-print-directory all units
 test-build-asan:

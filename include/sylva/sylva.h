@@ -311,6 +311,18 @@ typedef struct SylDeriveOptions {
      * modules (each pass counts as at least 100): a derivation that would run for hours.
      * 0: the default (100 billion). */
     uint64_t max_work;
+    /* out: what the passes split among threads cost, in processor time of their threads (ns):
+     * the chunks' sum and, per pass, the longest chunk's, summed; the same for the copies that
+     * join them. On as many free cores as chunks, a pass takes its longest chunk: the schedule
+     * `sylva derive --stats` and `make bench` model the speed-up of -j N with. */
+    uint64_t split_passes, chunk_ns, chunk_max_ns, join_ns, join_max_ns;
+    /* A pass is split among threads only when the last pass of its table cost at least this
+     * many ns of processor time per module it read, times its growth (0: the default, 70;
+     * docs/architecture.md, "Threads"): below it, the fresh memory and the join cost more
+     * than the threads save. Once a split pass's chunks are seen to take as long side by side as
+     * in turn (no free core), the rest of the derivation stays on one thread, unless split_ns
+     * is given (nonzero: splits measured whatever the machine). */
+    uint64_t split_ns;
 } SylDeriveOptions;
 
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);

@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli/testfaults.h"
 #include "cli/cli.h"
 
 const CliCommand cli_derive_command = {
@@ -37,6 +38,19 @@ static void print_step(void *user, int step, const SylString *s) {
     if (!sp->status && fputc('\n', sp->out) == EOF) sp->status = SYL_EIO;
 }
 
+/* The passes split among threads (docs/architecture.md, "Threads"): what their chunks and joins
+ * cost, and the schedule on as many free cores as chunks, where each pass takes its longest
+ * chunk and its longest copy, and the rest of the run (on the calling thread) stays as it is. */
+static void print_split(const SylDeriveOptions *d, double cpu) {
+    if (!d->split_passes) return;
+    double ms = 1e-6, chunks = (double)d->chunk_ns * ms, cmax = (double)d->chunk_max_ns * ms;
+    double joins = (double)d->join_ns * ms, jmax = (double)d->join_max_ns * ms;
+    double sched = cpu * 1e3 - (chunks - cmax) - (joins - jmax);
+    fprintf(stderr, "split passes: %llu, chunks %.3f ms (longest of each pass: %.3f), joins %.3f ms (%.3f)\n",
+            (unsigned long long)d->split_passes, chunks, cmax, joins, jmax);
+    fprintf(stderr, "schedule on free cores: %.3f ms\n", sched);
+}
+
 static void print_stats(const SylProgram *p, const SylString *s, int steps, double seconds, double cpu,
                         uint64_t rewritten) {
     int ns = syl_program_symbol_count(p);
@@ -63,6 +77,7 @@ int cmd_derive(int argc, char **argv) {
     CliArgs a = {.m = &m, .d = &d};
     int done = cli_parse(&cli_derive_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
+    d.split_ns = cli_test_split_ns();
     const char *output = a.output;
     bool all_steps = a.steps, interpret = a.interpret, stats = a.stats, quiet = a.quiet;
     if (all_steps && interpret) {
@@ -107,7 +122,10 @@ int cmd_derive(int argc, char **argv) {
         if (!status && fputc('\n', out.f) == EOF) status = SYL_EIO;
     }
     status = out_close(&out, status);
-    if (!status && stats) print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, c1 - c0, d.rewritten);
+    if (!status && stats) {
+        print_stats(p, s, d.steps >= 0 ? d.steps : syl_program_steps(p), t1 - t0, c1 - c0, d.rewritten);
+        print_split(&d, c1 - c0);
+    }
     syl_string_free(s);
     syl_program_free(p);
     syl_budget_free(budget);

@@ -34,7 +34,13 @@ void cli_test_fault_gather(bool mpi, int rank) {
         raise(SIGKILL);
     }
 }
+
+unsigned long long cli_test_split_ns(void) {
+    const char *v = getenv("SYLVA_TEST_SPLIT_NS");
+    return v ? strtoull(v, NULL, 10) : 0;
+}
 #else
+unsigned long long cli_test_split_ns(void) { return 0; }
 void cli_test_fault_year(int rank, int year) { (void)rank, (void)year; }
 void cli_test_fault_gather(bool mpi, int rank) { (void)mpi, (void)rank; }
 #endif

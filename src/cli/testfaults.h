@@ -10,5 +10,8 @@
 void cli_test_fault_year(int rank, int year);
 /* Before a distributed picture's gather: SYLVA_TEST_FAIL_RANK without _YEAR kills the rank. */
 void cli_test_fault_gather(bool mpi, int rank);
+/* SylDeriveOptions.split_ns from SYLVA_TEST_SPLIT_NS (0 without it): tests/cases/threads.test
+ * splits passes far cheaper than the default would, to check the chunks' bytes. */
+unsigned long long cli_test_split_ns(void);
 
 #endif

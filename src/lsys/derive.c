@@ -4,6 +4,7 @@
  * rewrite independently (rewrite.c); every random draw comes from a stream keyed by (seed,
  * step, table, module position), so the result is the same for any number of threads. */
 #include <math.h>
+#include <time.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -24,6 +25,12 @@
 #include "lang/vm.h"
 
 enum { PARALLEL_MIN = 1 << 16, MAX_THREADS = 256, TABLE_CACHE = 8 };
+/* The processor time a pass must cost per module read, times its growth, before it is split
+ * (SylDeriveOptions.split_ns): a split pass writes fresh memory and joins its chunks, 5-14 ns
+ * per module written more than one thread in place (bench/models/threads.syl on this machine,
+ * derive --stats), so from 70 ns a split gains on two free cores (docs/architecture.md,
+ * "Threads"). A machine without free cores is seen at the first split pass (no_free_cores). */
+enum { SPLIT_NS = 70 };
 
 /* The chunks of a pass (pool_run): chunk k of works; a pass with new contexts is one chunk,
  * on the calling thread. */
@@ -31,12 +38,23 @@ typedef struct Chunks {
     Work *works;
     bool newctx, back;
     struct NewctxScratch **scratch;
+    uint64_t *ns;       /* each chunk's processor time (its thread's), when split */
 } Chunks;
+
+/* The processor time of the calling thread, in ns: each chunk's own cost, whatever else the
+ * machine runs (the schedule model of docs/architecture.md, "Threads"). */
+static uint64_t thread_ns(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
+}
 
 static void run_chunk(void *arg, int k) {
     Chunks *c = arg;
+    uint64_t t0 = c->ns ? thread_ns() : 0;
     if (c->newctx) newctx_chunk(&c->works[k], c->back, c->scratch);
     else rewrite_chunk(&c->works[k]);
+    if (c->ns) c->ns[k] = thread_ns() - t0;
 }
 
 /* The second half of a pass of several chunks: chunk k (> 0), written to a buffer of its
@@ -45,14 +63,28 @@ static void run_chunk(void *arg, int k) {
 typedef struct Joins {
     SylString *out, *parts;
     size_t *at, *pat;
+    uint64_t *ns;
 } Joins;
 
 static void join_chunk(void *arg, int k) {
     Joins *j = arg;
     const SylString *part = &j->parts[k];
+    j->ns[k] = 0;
     if (!k) return;
+    uint64_t t0 = thread_ns();
     if (part->n) memcpy(j->out->code + j->at[k], part->code, part->n * sizeof *part->code);
     if (part->np) memcpy(j->out->par + j->pat[k], part->par, part->np * sizeof *part->par);
+    j->ns[k] = thread_ns() - t0;
+}
+
+/* The sum and the largest of n costs, added to *sum and *max. */
+static void add_costs(const uint64_t *ns, int n, uint64_t *sum, uint64_t *max) {
+    uint64_t m = 0;
+    for (int k = 0; k < n; k++) {
+        *sum += ns[k];
+        if (ns[k] > m) m = ns[k];
+    }
+    *max += m;
 }
 
 /* ---- one pass over a string ---- */
@@ -82,7 +114,12 @@ typedef struct Engine {
     SylString *parts;   /* their buffers (chunks 1..threads-1), kept from pass to pass */
     size_t cap_left, cap_right, cap_pair, cap_stack, cap_lcode, cap_rcode, cap_rclass, cap_cstack, cap_rnext, cap_pend;
     double growth[TABLE_COUNT], density[TABLE_COUNT]; /* last pass: out/in modules, params/module */
+    double cost[TABLE_COUNT];   /* last pass: its chunks' processor time per module read (ns) */
+    double split_ns;            /* the cost from which a pass is split */
+    bool no_free_cores;         /* a split pass's chunks did not run at once: no more splits, */
+    bool measure;               /* unless split_ns was given (to measure the splits) */
     uint64_t rewritten;
+    uint64_t split_passes, chunk_ns, chunk_max_ns, join_ns, join_max_ns; /* SylDeriveOptions' */
     uint64_t work;      /* modules read by all passes, each at least 100 (max_work) */
     bool warned_depth;
     bool reported;      /* an error was reported: one message per failure */
@@ -279,6 +316,10 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     bool by_classes = codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
                       !t->ctx_branches && !t->has_newctx;
     if (nt > 1 && (t->light || by_classes || in_place(e, t, table, in, 1))) nt = 1;
+    /* a pass that costs too little per module stays whole (an unmeasured one too: the first
+     * passes of a table are short) */
+    double g = e->growth[table] > 1 ? e->growth[table] : 1;
+    if (nt > 1 && (e->cost[table] < e->split_ns * g || (e->no_free_cores && !e->measure))) nt = 1;
     Work place = {0};
     size_t n_in = in->n, np_in = in->np;
     if (in_place(e, t, table, in, nt)) {
@@ -383,9 +424,25 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         for (size_t i = lo; i < hi && k < nt - 1; i++) plo += CODE_ARITY(v.code[i]);
         lo = hi;
     }
-    Chunks chunks = {works, t->has_newctx, back, &e->newctx}; /* has_newctx: nt is 1 */
-    if (nt > 1) pool_run(e->pool, nt, run_chunk, &chunks);
-    else run_chunk(&chunks, 0);
+    uint64_t ns[MAX_THREADS], sum = 0, longest = 0;
+    Chunks chunks = {works, t->has_newctx, back, &e->newctx, ns}; /* has_newctx: nt is 1 */
+    if (nt > 1) {
+        struct timespec w0, w1;
+        clock_gettime(CLOCK_MONOTONIC, &w0);
+        pool_run(e->pool, nt, run_chunk, &chunks);
+        clock_gettime(CLOCK_MONOTONIC, &w1);
+        e->split_passes++;
+        add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
+        add_costs(ns, nt, &sum, &longest);
+        /* the chunks took as long side by side as one after the other would: the machine has
+         * no core to spare (as this one, shared), and the next passes are not split */
+        double wall = (double)(w1.tv_sec - w0.tv_sec) * 1e9 + (double)(w1.tv_nsec - w0.tv_nsec);
+        if (wall * 1.25 > (double)sum) e->no_free_cores = true;
+    } else {
+        run_chunk(&chunks, 0);
+        add_costs(ns, nt, &sum, &longest);
+    }
+    if (n_in >= 4096) e->cost[table] = (double)sum / (double)n_in; /* small passes: too noisy */
     for (int k = 0; k < nt; k++) {
         free(works[k].cand);
         free(works[k].weight);
@@ -407,8 +464,9 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             n += parts[k].n, np += parts[k].np;
         }
         if (!(status = ms_reserve(out, n - out->n, np - out->np))) {
-            Joins joins = {out, parts, at, pat};
+            Joins joins = {out, parts, at, pat, ns};
             pool_run(e->pool, nt, join_chunk, &joins);
+            add_costs(ns, nt, &e->join_ns, &e->join_max_ns);
             out->n = n;
             out->np = np;
         }
@@ -479,6 +537,8 @@ static void engine_init(Engine *e, const SylProgram *p, const SylDeriveOptions *
     e->diag = opt->diag;
     e->seed = opt->use_seed ? opt->seed : p->seed;
     e->threads = opt->threads;
+    e->split_ns = opt->split_ns ? (double)opt->split_ns : SPLIT_NS;
+    e->measure = opt->split_ns != 0;
     if (e->threads <= 0) e->threads = par_threads(0);
     if (e->threads > MAX_THREADS) e->threads = MAX_THREADS;
     e->max_modules = opt->max_modules ? opt->max_modules : 200000000ull;
@@ -597,6 +657,14 @@ static int fill_queries(Engine *e, SylString *s, int step) {
     return st;
 }
 
+/* The counters the caller reads from its options. */
+static void costs_out(const Engine *e, SylDeriveOptions *o) {
+    o->rewritten = e->rewritten;
+    o->split_passes = e->split_passes;
+    o->chunk_ns = e->chunk_ns, o->chunk_max_ns = e->chunk_max_ns;
+    o->join_ns = e->join_ns, o->join_max_ns = e->join_max_ns;
+}
+
 struct SylDeriver {
     Engine e;
     SylDeriveOptions *opt;
@@ -681,7 +749,7 @@ int syl_derive_step(SylDeriver *d) {
     }
     if (!st) st = fill_queries(e, d->cur, step);
     if (!st && d->opt->on_step) d->opt->on_step(d->opt->user, step, d->cur);
-    d->opt->rewritten = e->rewritten;
+    costs_out(e, d->opt);
     return d->status = said(e, st, step, "step");
 }
 
@@ -694,7 +762,7 @@ int syl_derive_end(SylDeriver *d, SylString **out) {
     if (out) *out = NULL;
     if (!d) return SYL_ELIMIT;
     int st = d->status;
-    d->opt->rewritten = d->e.rewritten;
+    costs_out(&d->e, d->opt);
     if (!st && out) *out = detach(&d->e, d->cur);
     else syl_string_free(d->cur);
     syl_string_free(d->spare);
