@@ -17,12 +17,13 @@ int syl_weber_validate(const SylProgram *p, FILE *diag) { return weber_params_ch
 
 static void free_gen(WeberGen *g) {
     budget_release(g->budget, g->charged);
-    pages_free(g->stems, g->stems_cap * sizeof *g->stems);
-    pages_free(g->pts, g->pts_cap * sizeof *g->pts);
+    weber_free(g, g->stems, g->stems_cap * sizeof *g->stems);
+    weber_free(g, g->pts, g->pts_cap * sizeof *g->pts);
     free(g->lvs);
-    pages_free(g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
-    pages_free(g->leafy, g->leafy_cap * sizeof *g->leafy);
-    pages_free(g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
+    weber_free(g, g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
+    weber_free(g, g->leafy, g->leafy_cap * sizeof *g->leafy);
+    weber_free(g, g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
+    pages_free(g->arena, WEBER_ARENA);
 }
 
 /* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
