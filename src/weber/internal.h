@@ -149,6 +149,10 @@ int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs
 /* grow one of the generator's arrays (util/pages.h: free with pages_free, cap * size bytes) */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
 void weber_free(WeberGen *g, void *arr, size_t bytes); /* one of them */
+/* scratch for a while: from the arena while it has room, else malloc; weber_drop gives it
+ * back (to the arena whole when it was the last taken) */
+void *weber_take(WeberGen *g, size_t bytes);
+void weber_drop(WeberGen *g, void *p, size_t bytes);
 enum { WEBER_ARENA = 4 << 20 };
 
 /* splits.c */

@@ -35,6 +35,20 @@ void weber_free(WeberGen *g, void *arr, size_t bytes) {
     if (!in_arena(g, arr)) pages_free(arr, bytes);
 }
 
+void *weber_take(WeberGen *g, size_t bytes) {
+    void *p = bytes <= WEBER_ARENA ? arena_grow(g, NULL, 0, bytes) : NULL;
+    return p ? p : malloc(bytes ? bytes : 1);
+}
+
+void weber_drop(WeberGen *g, void *p, size_t bytes) {
+    if (!in_arena(g, p)) {
+        free(p);
+    } else if ((char *)p + ((bytes + 63) & ~(size_t)63) == g->arena + g->arena_used) {
+        g->arena_used = (size_t)((char *)p - g->arena);
+        g->arena_last = NULL;
+    }
+}
+
 /* The generator's own arrays: first packed in the arena, then, past it, from 64 KB mapped in
  * 2 MB pages (util/pages.h), which grow by moving their pages, not copying them (page faults
  * were a fifth of the time). */
