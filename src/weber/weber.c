@@ -17,12 +17,13 @@ int syl_weber_validate(const SylProgram *p, FILE *diag) { return weber_params_ch
 
 static void free_gen(WeberGen *g) {
     budget_release(g->budget, g->charged);
-    pages_free(g->stems, g->stems_cap * sizeof *g->stems);
-    pages_free(g->pts, g->pts_cap * sizeof *g->pts);
+    weber_free(g, g->stems, g->stems_cap * sizeof *g->stems);
+    weber_free(g, g->pts, g->pts_cap * sizeof *g->pts);
     free(g->lvs);
-    pages_free(g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
-    pages_free(g->leafy, g->leafy_cap * sizeof *g->leafy);
-    pages_free(g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
+    weber_free(g, g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
+    weber_free(g, g->leafy, g->leafy_cap * sizeof *g->leafy);
+    weber_free(g, g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
+    pages_free(g->arena, WEBER_ARENA);
 }
 
 /* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
@@ -60,21 +61,39 @@ static void make_trunks(WeberGen *g, JRand *j0, JRand *j1) {
 /* The stems the parameters make (clones too), as many as Branches allows at each level, each
  * split doubling or more what follows it: SegSplits 2 on 40 segments is 3^39 clones, 0BaseSplits
  * a number of trunks. Their bytes (the stem, each segment's frame while it is traced, its axis
- * points and skeleton nodes) are compared with the budget before any stem is made. */
-static double estimate_stems(const WeberGen *g, double *bytes) {
+ * points and skeleton nodes) are compared with the budget before any stem is made. Also their
+ * segments, and the last level's (whose frames are kept for the leaves). */
+typedef struct Estimate {
+    double stems, bytes, segs, last_segs;
+} Estimate;
+
+static Estimate estimate_stems(const WeberGen *g) {
     const WeberParams *w = &g->w;
-    double parents = 1, stems = 0;
-    *bytes = 0;
+    double parents = 1;
+    Estimate e = {0};
     for (int lv = 0; lv < g->levels; lv++) {
         int l = weber_lv(lv);
         double res = w->CurveRes[l];
         parents *= w->Branches[l];
         double pieces = parents * pow(1 + w->SegSplits[l], res - 1);
         if (lv == 0 && w->BaseSplits > 0) pieces *= (1 + w->BaseSplits) / (1 + w->SegSplits[l]);
-        stems += pieces;
-        *bytes += pieces * (sizeof(WStem) + res * (sizeof(WSeg) + sizeof(WPoint) + sizeof(SylNode)));
+        e.stems += pieces;
+        e.segs += pieces * res;
+        e.last_segs = pieces * res;
+        e.bytes += pieces * (sizeof(WStem) + res * (sizeof(WSeg) + sizeof(WPoint) + sizeof(SylNode)));
     }
-    return stems;
+    return e;
+}
+
+/* A tree whose arrays fit the arena has them sized from the estimate at once: grown by
+ * doubling there, each left a copy behind (the aspen's took two 2 MB pages for 1.2 MB). */
+static void presize(WeberGen *g, const Estimate *e) {
+    double leafy = g->leaves != 0 ? e->last_segs : 0;
+    double pts = e->segs + e->stems; /* a point per segment and one more per stem, about */
+    if (e->stems * sizeof(WStem) + pts * sizeof(WPoint) + leafy * sizeof(Frame) > WEBER_ARENA / 2) return;
+    if (e->stems >= 1) weber_grow(g, (void **)&g->stems, &g->stems_cap, (size_t)e->stems, sizeof *g->stems);
+    if (pts >= 1) weber_grow(g, (void **)&g->pts, &g->pts_cap, (size_t)pts, sizeof *g->pts);
+    if (leafy >= 1) weber_grow(g, (void **)&g->leafy_f, &g->leafy_f_cap, (size_t)leafy, sizeof *g->leafy_f);
 }
 
 static int load_envelope(const SylProgram *p, const WeberParams *w, WeberEnvelope *e, FILE *diag) {
@@ -127,7 +146,8 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
         }
         g->envelope = &env;
     }
-    double bytes, stems = estimate_stems(g, &bytes);
+    Estimate est = estimate_stems(g);
+    double bytes = est.bytes, stems = est.stems;
     uint64_t used = atomic_load(&g->budget->used);
     if (!(bytes < (double)(g->budget->limit - (used < g->budget->limit ? used : g->budget->limit)))) {
         program_say(p, diag, DIAG_ERROR, NULL, "'%s': the tree would have about %.3g stems (%.0f MB), more than --max-memory "
@@ -139,6 +159,7 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
         free(g);
         return SYL_ELIMIT;
     }
+    presize(g, &est);
     JRand j0, j1;
     bool java = w->convention == WEBER_ARBARO;
     double u;

@@ -19,14 +19,15 @@ typedef struct Attach {
  * they come in stem order), then each host's few by distance, nearly in order already (a
  * stem's children come along it), by insertion. qsort's merge sort took more time and
  * memory. */
-static bool sort_by_host(Attach *att, size_t na, size_t ns) {
-    uint32_t *start = calloc(ns + 1, sizeof *start);
-    Attach *out = malloc((na ? na : 1) * sizeof *out);
+static bool sort_by_host(WeberGen *g, Attach *att, size_t na, size_t ns) {
+    Attach *out = weber_take(g, (na ? na : 1) * sizeof *out);
+    uint32_t *start = weber_take(g, (ns + 1) * sizeof *start);
     if (!start || !out) {
-        free(start);
-        free(out);
+        weber_drop(g, start, (ns + 1) * sizeof *start);
+        weber_drop(g, out, (na ? na : 1) * sizeof *out);
         return false;
     }
+    memset(start, 0, (ns + 1) * sizeof *start);
     for (size_t i = 0; i < na; i++) start[att[i].host + 1]++;
     for (size_t h = 0; h < ns; h++) start[h + 1] += start[h];
     for (size_t i = 0; i < na; i++) out[start[att[i].host]++] = att[i]; /* start[h]: now host h's end */
@@ -38,8 +39,8 @@ static bool sort_by_host(Attach *att, size_t na, size_t ns) {
             out[k] = a;
         }
     memcpy(att, out, na * sizeof *att);
-    free(start);
-    free(out);
+    weber_drop(g, start, (ns + 1) * sizeof *start);
+    weber_drop(g, out, (na ? na : 1) * sizeof *out);
     return true;
 }
 
@@ -81,16 +82,16 @@ static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], cons
 
 int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
     size_t ns = g->nstems, na = 0;
-    Attach *att = malloc((ns ? ns : 1) * sizeof *att);
-    int32_t *attach_node = malloc((ns ? ns : 1) * sizeof *attach_node);
+    Attach *att = weber_take(g, (ns ? ns : 1) * sizeof *att);
+    int32_t *attach_node = weber_take(g, (ns ? ns : 1) * sizeof *attach_node);
     Writer wr = {.sk = sk};
     if (g->w.Lobes > 0 && g->w.LobeDepth > 0) {
         wr.lobes = (uint8_t)(g->w.Lobes < 255 ? g->w.Lobes : 255);
         wr.lobe_depth = (uint16_t)(g->w.LobeDepth < 6.5535 ? g->w.LobeDepth * 1e4 + 0.5 : 65535);
     }
     if (!att || !attach_node) {
-        free(att);
-        free(attach_node);
+        weber_drop(g, attach_node, (ns ? ns : 1) * sizeof *attach_node);
+        weber_drop(g, att, (ns ? ns : 1) * sizeof *att);
         return SYL_ELIMIT;
     }
     for (size_t j = 0; j < ns; j++) {
@@ -99,14 +100,17 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
         if (s->from < 0) continue;
         att[na++] = (Attach){s->from, (int)j, s->clone ? s->first_seg * s->seglen : s->offset};
     }
-    if (!sort_by_host(att, na, ns)) {
-        free(att);
-        free(attach_node);
+    if (!sort_by_host(g, att, na, ns)) {
+        weber_drop(g, attach_node, (ns ? ns : 1) * sizeof *attach_node);
+        weber_drop(g, att, (ns ? ns : 1) * sizeof *att);
         return SYL_ELIMIT;
     }
-    /* every node at once: at most a root per trunk, the points, and one per attachment */
+    /* every node at once: at most a root per trunk, the points, and one per attachment; in a
+     * huge page from the scratch threshold, not the kept one (util/pages.h): a tree's skeleton
+     * is short-lived (meshed, or appended to a scene's and freed), and the poplar's 0.3 MB of
+     * nodes cost 1.4 ms of 4 KB page faults */
     size_t most = g->npts + na + ns;
-    if (!(sk->nodes = pages_owned(most * sizeof *sk->nodes, PAGES_OWNED_KEPT)) ||
+    if (!(sk->nodes = pages_owned(most * sizeof *sk->nodes, PAGES_OWNED_SCRATCH)) ||
         !weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist))
         wr.failed = true;
     else
@@ -147,8 +151,8 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
     }
     /* Arbaro's 0ScaleV: jitter of the trunk's surface (the paper's varies its radius, radius.c) */
     if (g->w.convention == WEBER_ARBARO) sk->materials[SYL_MATERIAL_BARK].trunk_jitter = (float)g->w.Scale0V;
-    free(att);
-    free(attach_node);
+    weber_drop(g, attach_node, (ns ? ns : 1) * sizeof *attach_node);
+    weber_drop(g, att, (ns ? ns : 1) * sizeof *att);
     return wr.failed ? SYL_ELIMIT : SYL_OK;
 }
 
