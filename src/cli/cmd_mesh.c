@@ -195,7 +195,7 @@ int cmd_mesh(int argc, char **argv) {
                           .wind = a.wind > 0 ? &wind : NULL};
     if (!status) status = syl_mesh_write_output(&mout, output, &cli_sink);
     syl_instances_free(sets, nsets);
-    double t4 = cli_now();
+    double t4 = cli_now(), c4 = cli_cpu_now();
     if (!status && a.image && lods.n) { /* the billboards' quads are not pictures the renderer can draw */
         SylLodChain shown = lods;
         shown.n -= imp.billboards ? 1 : 0;
@@ -233,7 +233,7 @@ int cmd_mesh(int argc, char **argv) {
                     k, lv->mesh->nidx / 3, 100.0 * (double)lv->mesh->nidx / (double)(mesh->nidx ? mesh->nidx : 1),
                     lv->max_order, leaves, sil.percent, sil.soft, sil.pixels);
         }
-        fprintf(stderr, "write time: %.6f s\npeak memory: %.2f MB\n", t4 - t3, cli_peak_mb());
+        fprintf(stderr, "write time: %.6f s (cpu %.6f s)\npeak memory: %.2f MB\n", t4 - t3, c4 - c3, cli_peak_mb());
     }
     if (!status && stats && imp.billboards)
         fprintf(stderr, "LOD%d: %zu triangles, %d crossed billboards\n", lods.n - 1,

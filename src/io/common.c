@@ -22,26 +22,46 @@ int io_close(OutFile *o, int status, const SylSink *sink) {
     return status;
 }
 
-void io_put(IoBuf *b, const void *p, size_t n) {
-    if (b->failed) return;
+/* Room for n more own bytes (cap doubled until it holds own + n); false when out of memory
+ * (b failed). */
+static bool room(IoBuf *b, size_t n) {
+    if (b->failed) return false;
     size_t own = b->len - b->ref_bytes;
-    if (own + n > b->cap) {
-        if (n > SIZE_MAX / 4 - b->len) { /* doubling would overflow */
-            b->failed = true;
-            return;
-        }
-        size_t c = b->cap ? b->cap : 4096;
-        while (c < own + n) c *= 2;
-        uint8_t *d = realloc(b->data, c);
-        if (!d) {
-            b->failed = true;
-            return;
-        }
-        b->data = d;
-        b->cap = c;
+    if (own + n <= b->cap) return true;
+    if (n > SIZE_MAX / 4 - b->len) { /* doubling would overflow */
+        b->failed = true;
+        return false;
     }
-    memcpy(b->data + own, p, n);
+    size_t c = b->cap ? b->cap : 4096;
+    while (c < own + n) c *= 2;
+    uint8_t *d = realloc(b->data, c);
+    if (!d) {
+        b->failed = true;
+        return false;
+    }
+    b->data = d;
+    b->cap = c;
+    return true;
+}
+
+void io_put(IoBuf *b, const void *p, size_t n) {
+    if (!room(b, n)) return;
+    memcpy(b->data + (b->len - b->ref_bytes), p, n);
     b->len += n;
+}
+
+uint8_t *io_room(IoBuf *b, size_t n) {
+    if (!room(b, n)) return NULL;
+    uint8_t *p = b->data + (b->len - b->ref_bytes);
+    b->len += n;
+    return p;
+}
+
+void io_reserve(IoBuf *b, size_t n) {
+    size_t own = b->len - b->ref_bytes;
+    if (b->failed || own + n <= b->cap || n > SIZE_MAX / 4 - b->len) return;
+    uint8_t *d = realloc(b->data, own + n);
+    if (d) b->data = d, b->cap = own + n; /* else it grows as it goes, or fails then */
 }
 
 void io_ref(IoBuf *b, const void *p, size_t n) {

@@ -76,18 +76,20 @@ static int16_t q16(float x, float t, float k) {
     return (int16_t)lrintf(v * 32767);
 }
 static int8_t q8(float x) { return (int8_t)lrintf((x < -1 ? -1 : x > 1 ? 1 : x) * 127); }
-static void put_u16(IoBuf *b, uint16_t v) { /* little-endian, as glTF's buffers */
-    uint8_t p[2] = {(uint8_t)(v & 0xff), (uint8_t)(v >> 8)};
-    io_put(b, p, 2);
+static inline void le16(uint8_t *p, uint16_t v) { /* little-endian, as glTF's buffers */
+    p[0] = (uint8_t)(v & 0xff), p[1] = (uint8_t)(v >> 8);
 }
-static void put16(IoBuf *b, int16_t v) { put_u16(b, (uint16_t)v); }
+/* n 16-bit values appended, written in place (no call per value); NULL when out of memory */
+static uint8_t *room16(IoBuf *b, size_t n) { return io_room(b, 2 * n); }
 
 /* n vectors of k floats as normalized shorts (t, s: the box), with pad: each padded to 4
  * bytes (a vertex attribute's elements must be aligned so; instance attributes need not). */
 static void put_q16(IoBuf *b, const float *x, size_t n, int k, const float *t, float s, bool pad) {
-    for (size_t i = 0; i < n; i++) {
-        for (int c = 0; c < k; c++) put16(b, q16(x[(size_t)k * i + (size_t)c], t ? t[c] : 0, s));
-        if (k == 3 && pad) put16(b, 0);
+    size_t per = (size_t)k + (k == 3 && pad);
+    uint8_t *o = room16(b, per * n);
+    for (size_t i = 0; o && i < n; i++) {
+        for (int c = 0; c < k; c++, o += 2) le16(o, (uint16_t)q16(x[(size_t)k * i + (size_t)c], t ? t[c] : 0, s));
+        if (per > (size_t)k) le16(o, 0), o += 2;
     }
     glb_pad(b, 0);
 }
@@ -152,10 +154,11 @@ static void plan_uvs(const SylMesh *m, float uvq[4]) {
     for (int c = 0; c < 2; c++) uvq[c] = lo[c], uvq[2 + c] = hi[c] > lo[c] ? hi[c] - lo[c] : 1;
 }
 static void put_uv16(IoBuf *b, const float *uv, size_t n, const float uvq[4]) {
-    for (size_t i = 0; i < n; i++)
-        for (int c = 0; c < 2; c++) {
+    uint8_t *o = room16(b, 2 * n);
+    for (size_t i = 0; o && i < n; i++)
+        for (int c = 0; c < 2; c++, o += 2) {
             float x = (uv[2 * i + c] - uvq[c]) / uvq[2 + c];
-            put_u16(b, (uint16_t)lrintf((x < 0 ? 0 : x > 1 ? 1 : x) * 65535));
+            le16(o, (uint16_t)lrintf((x < 0 ? 0 : x > 1 ? 1 : x) * 65535));
         }
 }
 
@@ -177,11 +180,20 @@ static void layout_strips(Layout *l, MeshRef *r) {
         GlbPrim *pr = &r->pr.prim[k];
         for (uint32_t i = 0; i < pr->count; i++) src[i] = m->idx[pr->first + i] - (uint32_t)pr->lo;
         size_t n = meshopt_stripify(dst, src, pr->count, pr->nv, 0);
-        for (size_t i = 0; i < n; i++) put_u16(&l->bin, (uint16_t)dst[i]);
+        uint8_t *o = room16(&l->bin, n);
+        for (size_t i = 0; o && i < n; i++) le16(o + 2 * i, (uint16_t)dst[i]);
         pr->first = (uint32_t)at, pr->count = (uint32_t)n;
         at += n;
     }
     free(src), free(dst);
+}
+
+/* At least the bytes layout_attributes copies into the buffer for r (floats: arrays too small
+ * to go by reference; strips: at most 5/3 of the indices; skin: joints and weights): reserved
+ * at once, so that the buffer is not grown by doubling and copying. */
+static size_t attribute_bytes(const MeshRef *r) {
+    size_t nv = r->m->nverts, ni = r->m->nidx;
+    return 32 * nv + 4 * ni + (r->skinned ? 12 * nv : 0) + 16 * r->pr.n + 64;
 }
 
 /* POSITION, NORMAL and TEXCOORD_0, then the indices, the smallest type that holds them. */
@@ -195,10 +207,9 @@ static void layout_attributes(Layout *l, MeshRef *r) {
         l->views[l->nviews++] = (View){l->bin.len, 8 * nv, ARRAY_BUFFER, 8};
         put_q16(&l->bin, m->pos, nv, 3, q, q[3], true);
         l->views[l->nviews++] = (View){l->bin.len, 4 * nv, ARRAY_BUFFER, 4};
-        for (size_t i = 0; i < nv; i++) {
-            uint8_t b[4] = {(uint8_t)q8(m->nrm[3 * i]), (uint8_t)q8(m->nrm[3 * i + 1]), (uint8_t)q8(m->nrm[3 * i + 2]), 0};
-            io_put(&l->bin, b, 4);
-        }
+        uint8_t *o = io_room(&l->bin, 4 * nv);
+        for (size_t i = 0; o && i < nv; i++, o += 4)
+            o[0] = (uint8_t)q8(m->nrm[3 * i]), o[1] = (uint8_t)q8(m->nrm[3 * i + 1]), o[2] = (uint8_t)q8(m->nrm[3 * i + 2]), o[3] = 0;
     } else {
         l->views[l->nviews++] = (View){l->bin.len, 12 * nv, ARRAY_BUFFER, split ? 12 : 0};
         glb_words(&l->bin, m->pos, 3 * nv);
@@ -230,8 +241,8 @@ static void layout_attributes(Layout *l, MeshRef *r) {
     } else {
         for (size_t k = 0; k < r->pr.n; k++) {
             const GlbPrim *pr = &r->pr.prim[k];
-            for (size_t i = pr->first; i < (size_t)pr->first + pr->count; i++)
-                put_u16(&l->bin, (uint16_t)(m->idx[i] - (uint32_t)pr->lo));
+            uint8_t *o = room16(&l->bin, pr->count);
+            for (size_t i = 0; o && i < pr->count; i++) le16(o + 2 * i, (uint16_t)(m->idx[pr->first + i] - (uint32_t)pr->lo));
         }
         glb_pad(&l->bin, 0);
     }
@@ -723,6 +734,9 @@ static int write_scene(const GlbScene *sc, const int *set_joint, const char *pat
     if (!ok) l.bin.failed = true;
     for (int k = 0; k < l.nmeshes && ok; k++) ok = glb_primitives(l.mesh[k].m, &l.mesh[k].pr);
     if (!ok) l.bin.failed = true;
+    size_t own = 0;
+    for (int k = 0; k < l.nmeshes && ok; k++) own += attribute_bytes(&l.mesh[k]);
+    io_reserve(&l.bin, own);
     for (int k = 0; k < l.nmeshes && ok; k++) layout_attributes(&l, &l.mesh[k]);
     int i = 0;
     for (int p = 0; p < sc->nparts && ok; p++)

@@ -34,6 +34,12 @@ typedef struct IoBuf {
 } IoBuf;
 
 void io_put(IoBuf *b, const void *p, size_t n);
+/* n more own bytes appended for the caller to fill (a mesh's array converted in place, not a
+ * call per element); NULL when out of memory. */
+uint8_t *io_room(IoBuf *b, size_t n);
+/* Room for n more own bytes at once, so that a known size grows the buffer once, not by
+ * doubling and copying; a hint (what does not fit still grows). */
+void io_reserve(IoBuf *b, size_t n);
 /* Append n bytes of p by reference: p must stay as it is until b is written or freed. A big
  * array (a mesh's vertices) goes to the file without a copy in memory. */
 void io_ref(IoBuf *b, const void *p, size_t n);

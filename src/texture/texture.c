@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "sylva/skeleton.h"
+#include "texture/srgbbytes.h"
 #include "texture/texture.h"
 
 float srgb_to_linear(float c) {
@@ -217,8 +218,12 @@ bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
         return false;
     }
     texture_pattern(kind, size, p);
+    /* the same bytes as the formula (srgbbytes.h); its table costs some 24,000 of them */
+    SrgbBytes *t = (size_t)size * (size_t)size * 3 >= 1u << 16 ? malloc(sizeof *t) : NULL;
+    if (t) srgb_bytes_init(t);
     for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
-        out[i] = (uint8_t)lrintf(255 * linear_to_srgb(p[i] * lin[i % 3]));
+        out[i] = t ? srgb_byte(t, p[i] * lin[i % 3]) : srgb_byte_exact(p[i] * lin[i % 3]);
+    free(t);
     free(p);
     return true;
 }
