@@ -95,6 +95,9 @@ bool sch_value_ok(const SchRow *r, double x, char *why, size_t size);
  * returns 1, or returns 0 and sets *row, *level. */
 int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char *typed, const char *name,
                   double value, const SchRow **row, int *level);
+/* The same, to p's sink, else sink. */
+int sch_set_check_to(const SylProgram *p, const SylSink *sink, const SchTable *t, const char *typed, const char *name,
+                     double value, const SchRow **row, int *level);
 
 /* ---- Reading a keyed table's block (schema_keyed.c) ----
  * A row's value goes to a slot of the kind's parameter struct (or of the repeated line's
