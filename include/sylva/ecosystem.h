@@ -90,15 +90,16 @@ typedef struct SylEcoModel {
     int wind_set;
 } SylEcoModel;
 
-/* Read (and check) an ecosystem block: returns the number of errors reported to diag, each
- * as file:line:col with the line and a caret. syl_ecosystem_validate is the same check for
- * syl_compile's hook (`sylva check`). */
-int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, FILE *diag);
-int syl_ecosystem_validate(const SylProgram *p, FILE *diag);
+/* Read (and check) an ecosystem block: returns the number of errors, each a record with
+ * file, line and column (the source line and a caret) to p's sink, else to sink (NULL:
+ * nowhere; {syl_diagnostic_print, stderr} prints them as `sylva` does). syl_ecosystem_validate
+ * is the same check for syl_compile's hook (`sylva check`). */
+int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, const SylSink *sink);
+int syl_ecosystem_validate(const SylProgram *p, const SylSink *sink);
 /* Read an ecosystem block's DEM as the run will (not its factors), for `sylva check`: 0, or 1
- * when it lies outside the folders the model may read or is malformed (reported to diag); one
- * that cannot be read is a warning (it may yet be made). */
-int syl_ecosystem_check_terrain(const SylProgram *p, FILE *diag);
+ * when it lies outside the folders the model may read or is malformed (reported to p's sink,
+ * else sink); one that cannot be read is a warning (it may yet be made). */
+int syl_ecosystem_check_terrain(const SylProgram *p, const SylSink *sink);
 
 /* How tiles talk: a tile posts plants to another tile (its border plants, for the other's
  * halo, or the seedlings that sprouted there, germinated by the sender) and, after a

@@ -26,6 +26,8 @@ typedef struct SylForestOptions {
     int coarse;           /* 0: a coarser level for far plants (src/lod); -1: none */
     SylBudget *budget;    /* NULL: each mesh its own default limit */
     FILE *diag;
+    const SylSink *sink;  /* or as records to this sink instead (sylva.h); NULL: diag. The looks'
+                             models are compiled with it: their builds report there too */
     /* NULL: none. The caller's (one a run, sylva/stream.h): the .glb files written of the
      * forest make their procedural textures once and copy them from here. Borrowed: it must
      * outlive the forest. The files' bytes do not change. */

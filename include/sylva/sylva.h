@@ -283,10 +283,11 @@ typedef struct SylQueryOps {
 /* The stand-alone environment, `sylva derive`'s: the plant alone on the ground plane y = 0
  * under a sun overhead, shading and crowding itself (docs/language.md, "Open L-systems").
  * Install it with opt.queries = syl_env_standalone_ops(), opt.queries_user = the result of
- * syl_env_standalone_new(p, diag), for one derivation of p at a time; free it after the
- * derivation. NULL when out of memory. */
+ * syl_env_standalone_new(p, sink), for one derivation of p at a time; free it after the
+ * derivation. Its errors (a shadow grid too large) go to sink (copied; NULL: nowhere). NULL
+ * when out of memory. */
 typedef struct SylEnvStandalone SylEnvStandalone;
-SylEnvStandalone *syl_env_standalone_new(const SylProgram *p, FILE *diag);
+SylEnvStandalone *syl_env_standalone_new(const SylProgram *p, const SylSink *sink);
 void syl_env_standalone_free(SylEnvStandalone *e);
 const SylQueryOps *syl_env_standalone_ops(void);
 

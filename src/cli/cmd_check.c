@@ -66,7 +66,7 @@ int cmd_check(int argc, char **argv) {
             int status;
             SylProgram *p = syl_compile(m.path, text, len, &opt, &status);
             /* an ecosystem's DEM is parsed as the run parses it (0 for other kinds): malformed is an error */
-            if (p && syl_ecosystem_check_terrain(p, mem ? mem : stderr)) {
+            if (p && syl_ecosystem_check_terrain(p, &(SylSink){syl_diagnostic_print, mem ? mem : stderr})) {
                 syl_program_free(p);
                 p = NULL;
                 status = SYL_EMODEL;

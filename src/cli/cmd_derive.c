@@ -103,7 +103,7 @@ int cmd_derive(int argc, char **argv) {
     }
     SylString *s = NULL;
     double t0 = cli_now(), c0 = cli_cpu_now();
-    SylEnvStandalone *alone = syl_env_standalone_new(p, d.diag); /* the plant alone, for ?E */
+    SylEnvStandalone *alone = syl_env_standalone_new(p, d.diag ? &(SylSink){syl_diagnostic_print, d.diag} : NULL); /* the plant alone, for ?E */
     d.queries = syl_env_standalone_ops();
     d.queries_user = alone;
     status = alone ? syl_derive(p, &d, &s) : SYL_ELIMIT;

@@ -9,6 +9,7 @@
 #include "forest/forest_internal.h"
 #include "kinds/kinds.h"
 #include "lang/kinds.h"
+#include "lang/program.h"
 #include "lang/schema.h"
 #include "util/rng.h"
 
@@ -67,7 +68,7 @@ static void normalise(SylMesh *m, float y0, float k) {
 
 static int build_look(SylGrowth *g, const SylProgram *q, int frame, int variant, const SylForestOptions *o,
                       Look *look) {
-    SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .budget = o->budget};
+    SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .sink = o->sink, .budget = o->budget};
     SylPlantOptions po = {.threads = o->threads, .diag = o->diag, .budget = o->budget, .mesh = &mo, .drop_string = 1,
                           .use_seed = variant > 0, .seed = 7919 * (uint64_t)variant}; /* variant 0: the model's own */
     SylPlant pl = {0};
@@ -98,7 +99,7 @@ static SylProgram *look_program(const SylForest *f, const SylProgram *p, int s, 
                                 const SylForestOptions *o, int *st) {
     for (int k = 0; k < s; k++)
         if (programs[k] && !strcmp(f->m->species[k].model, f->m->species[s].model)) return programs[k];
-    SylProgram *q = syl_compile_model(p, f->m->species[s].model, o->diag, st);
+    SylProgram *q = lang_compile_sibling(p, f->m->species[s].model, o->diag, o->sink, st);
     if (!q) return NULL;
     sch_count_into(q, p);
     const KindOps *ops = kinds_ops(syl_program_kind(q));
@@ -119,7 +120,7 @@ static int species_looks(SylForest *f, const SylProgram *p, int s, SylProgram **
         return SYL_EUSAGE;
     }
     SylGrowth *g = NULL;
-    SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .budget = o->budget};
+    SylMeshOptions mo = {.threads = o->threads, .diag = o->diag, .sink = o->sink, .budget = o->budget};
     SylPlantOptions po = {.threads = o->threads, .diag = o->diag, .budget = o->budget, .mesh = &mo};
     if (lang_kind_is(syl_program_kind(q), KF_RULES | KF_GROWS | KF_AGES) && syl_growth_new(q, &po, &g)) g = NULL;
     int frames = g ? syl_growth_count(g) : 1;

@@ -83,7 +83,7 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
     SylEcoOptions eo = {.threads = o->threads, .diag = diag, .sink = sub_sink};
     if (!st) st = syl_ecosystem_load(p, &eo, &model, &t);
     if (!st) st = syl_ecosystem_table_read(o->plants, &model, t, &plants, &nplants, sink);
-    if (!st) st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = o->threads, .diag = diag}, &forest);
+    if (!st) st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = o->threads, .diag = diag, .sink = sub_sink}, &forest);
     st = agree(mpi, st, out, kept, &said, &said_len); /* before rendering: no work for a failed job */
     SylRenderOptions ro = *o->render;
     int w = ro.width ? ro.width : 1280, h = ro.height ? ro.height : 720;

@@ -9,6 +9,12 @@
 #include "sot/params.h"
 #include "sylva/ecosystem.h"
 #include "sylva/trees.h"
+#include "util/diag.h"
+
+/* The ecosystem's check reports to a sink: the hook's stream as one. */
+static int ecosystem_validate(const SylProgram *p, FILE *diag) {
+    return syl_ecosystem_validate(p, diag_sink(&(SylSink){0}, diag, NULL));
+}
 
 const KindOps *kinds_ops(SylModelKind k) {
     static const KindOps none = {0};

@@ -403,8 +403,13 @@ SylProgram *syl_compile(const char *path, const char *text, size_t len, const Sy
 }
 
 SylProgram *syl_compile_model(const SylProgram *p, const char *model, FILE *diag, int *status) {
+    return lang_compile_sibling(p, model, diag, NULL, status);
+}
+
+SylProgram *lang_compile_sibling(const SylProgram *p, const char *model, FILE *diag, const SylSink *sink,
+                                 int *status) {
     SylCompileOptions opt = {.model = model, .overrides = p->overrides, .noverrides = p->noverrides, .diag = diag,
-                             .sibling = 1, .allow_paths = p->roots, .nallow_paths = p->nroots};
+                             .sink = sink, .sibling = 1, .allow_paths = p->roots, .nallow_paths = p->nroots};
     return syl_compile(p->src.path, p->src.text, p->src.len, &opt, status);
 }
 

@@ -198,88 +198,53 @@ static void describe_block(const SylProgram *p, const SchTable *t, DModel *m) {
     apply_sets(p, t, m);
 }
 
-/* A grow block (SCH_KEYED): a directive's mode or bare value under its name, its keys as
- * DIRECTIVE.KEY; a repeated line's (organ) as organ.N and organ.N.KEY, N from 1, as --set
- * names them. */
-/* ~leaf(0.06) on a line whose row h has symbols: the mode it names and its symbol_key's value. */
-static void keyed_symbol(const SchRow *h, const SylDirArg *a, const char *head, DModel *m) {
-    const char *s = a->text && a->text[0] == '~' ? a->text + 1 : a->text ? a->text : "";
-    size_t len = strlen(s);
-    for (const char *w = h->symbols; w && *w;) { /* "leaf=leaf|petal=flower" */
-        const char *eq = strchr(w, '='), *end = strchr(w, '|');
-        if (eq && (!end || eq < end) && (size_t)(eq - w) == len && !strncmp(w, s, len)) {
-            char word[64], name[160];
-            snprintf(word, sizeof word, "%.*s", (int)(end ? end - eq - 1 : (long)strlen(eq + 1)), eq + 1);
-            Entry *e = find_entry(m, head);
-            if (e) text(&e->val, word);
-            snprintf(name, sizeof name, "%s.%s", head, h->symbol_key);
-            if (a->nvalues >= 1 && (e = find_entry(m, name))) num(&e->val, a->values[0]);
-            return;
-        }
-        w = end ? end + 1 : NULL;
+/* A keyed block (grow): read by the schema's one keyed reader (schema_keyed.c), which tells
+ * each value as it takes it, lines then --set. A directive's mode or bare value goes under its
+ * name, its keys as DIRECTIVE.KEY; a repeated line's (organ) as organ.N and organ.N.KEY, N from
+ * 1, as --set names them. */
+typedef struct Keyed {
+    const SchTable *t;
+    DModel *m;
+} Keyed;
+
+/* row's name in element elem of its repeated line ("organ.size" of the 2nd: "organ.2.size"). */
+static void elem_name(const SchRow *row, int elem, char *buf, size_t size) {
+    const char *dot = strchr(row->name, '.');
+    size_t len = dot ? (size_t)(dot - row->name) : strlen(row->name);
+    if (elem < 0) snprintf(buf, size, "%s", row->name);
+    else snprintf(buf, size, "%.*s.%d%s", (int)len, row->name, elem + 1, row->name + len);
+}
+
+static void keyed_element(void *ctx, const SchRow *head, int elem) {
+    const Keyed *k = ctx;
+    size_t len = strlen(head->name);
+    for (int i = 0; i < k->t->n; i++) {
+        const SchRow *r = &k->t->rows[i];
+        if (!r->group || strncmp(r->name, head->name, len) || (r->name[len] && r->name[len] != '.')) continue;
+        Entry *e = add_row(k->m, r, NULL);
+        if (e) elem_name(r, elem, e->name, sizeof e->name);
     }
 }
 
-static void keyed_line(const SylDirective *d, const SchRow *h, const char *head, DModel *m) {
-    int i = 0;
-    Entry *e = find_entry(m, head);
-    if (e && d->nargs > 0) { /* buds whorled 3, years 18 */
-        const SylDirArg *a = &d->args[0];
-        double x;
-        if (e->type == SCH_ENUM && a->kind == SYL_DARG_WORD && sch_word_index(e->words, a->text) >= 0)
-            text(&e->val, a->text), i = 1;
-        else if (e->type != SCH_ENUM && sch_number(a, &x))
-            num(&e->val, x), i = 1;
-    }
-    for (; i < d->nargs; i++) { /* KEY VALUE, ~leaf(s); a count (whorled 3) is passed over */
-        const SylDirArg *a = &d->args[i];
-        if (a->kind == SYL_DARG_SYMBOL && h && h->symbols && h->symbol_key) {
-            keyed_symbol(h, a, head, m);
-            continue;
-        }
-        if (i + 1 >= d->nargs) break;
-        char name[160];
-        snprintf(name, sizeof name, "%s.%s", head, a->kind == SYL_DARG_WORD ? a->text : "");
-        if (a->kind != SYL_DARG_WORD || !(e = find_entry(m, name))) continue;
-        const SylDirArg *v = &d->args[++i];
-        if (e->type == SCH_BOOLEAN && v->kind == SYL_DARG_WORD)
-            num(&e->val, !strcmp(v->text, "on") || !strcmp(v->text, "yes"));
-        else
-            directive_value(&(SylDirective){.nargs = 1, .args = v}, -1, e);
-    }
+static void keyed_value(void *ctx, const SchRow *row, int elem, const double *x, int n, const char *word) {
+    const Keyed *k = ctx;
+    char name[160];
+    elem_name(row, elem, name, sizeof name);
+    Entry *e = find_entry(k->m, name);
+    if (!e) return;
+    if (word) text(&e->val, word);
+    else if (n == 3) { /* a direction, as written */
+        e->val.kind = V_TEXT;
+        snprintf(e->val.text, sizeof e->val.text, "(%.15g, %.15g, %.15g)", x[0], x[1], x[2]);
+    } else if (n == 1)
+        num(&e->val, x[0]);
 }
 
 static void describe_keyed(const SylProgram *p, const SchTable *t, DModel *m) {
-    int n = 0, repeats = 0;
-    const SylDirective *ds = syl_program_directives(p, &n);
     for (int i = 0; i < t->n; i++)
         if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
-    for (int k = 0; k < n; k++) {
-        const SchRow *h = sch_find(t, ds[k].name, NULL);
-        char head[64];
-        snprintf(head, sizeof head, "%s", ds[k].name);
-        if (h && h->group) { /* organ: this line's rows, numbered */
-            snprintf(head, sizeof head, "%s.%d", ds[k].name, ++repeats);
-            size_t len = strlen(ds[k].name);
-            for (int i = 0; i < t->n; i++) {
-                const SchRow *r = &t->rows[i];
-                Entry *e = r->group ? add_row(m, r, NULL) : NULL;
-                if (e) snprintf(e->name, sizeof e->name, "%s%s", head, r->name + len);
-            }
-        }
-        keyed_line(&ds[k], h, head, m);
-    }
-    for (int i = 0; i < p->noverrides; i++) { /* years=3, buds.angle=35, lambda=0.48, organ.1.size=0.2 */
-        const char *name = p->set_local ? p->set_local[i] : NULL;
-        if (!name || is_param(p, name)) continue;
-        Entry *e = find_entry(m, name);
-        for (int j = 0; !e && j < m->n; j++) { /* a key by its name alone: DIRECTIVE.KEY */
-            const char *dot = strchr(m->e[j].name, '.');
-            if (dot && !strchr(dot + 1, '.') && !strcmp(dot + 1, name)) e = &m->e[j];
-        }
-        if (e && (e->type == SCH_NUMBER || e->type == SCH_INTEGER || e->type == SCH_BOOLEAN))
-            num(&e->val, p->overrides[i].value);
-    }
+    Keyed k = {t, m};
+    sch_see_keyed(p, t, &(SchSeen){.element = keyed_element, .value = keyed_value, .ctx = &k});
 }
 
 static void describe_settings(const SylProgram *p, DModel *m) {

@@ -41,45 +41,69 @@ const SylDirective *syl_program_scene(const SylProgram *p, int *n) {
 }
 
 /* A message at (line, col) of the program's source, with the line and a caret. */
-static void report_at(const SylProgram *p, FILE *out, int severity, int line, int col, const char *fmt, va_list ap) {
+static void report_at(const SylProgram *p, FILE *out, const SylSink *sink, int severity, int line, int col,
+                      const char *fmt, va_list ap) {
     char msg[1024];
     vsnprintf(msg, sizeof msg, fmt, ap);
-    Diag d = {.out = out, .sink = program_sink(p), .src = &p->src};
+    Diag d = {.out = out, .sink = program_sink(p) ? program_sink(p) : sink, .src = &p->src};
     diag_report(&d, severity, ((SylLoc){line, col, line, col}), "%s", msg);
 }
 
 void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    report_at(p, out, DIAG_ERROR, line, col, fmt, ap);
+    report_at(p, out, NULL, DIAG_ERROR, line, col, fmt, ap);
     va_end(ap);
 }
-void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
-                         const char *fmt, ...) {
+void program_error_to(const SylProgram *p, const SylSink *sink, int line, int col, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
+    report_at(p, NULL, sink, DIAG_ERROR, line, col, fmt, ap);
+    va_end(ap);
+}
+static void directive_verror(const SylProgram *p, FILE *out, const SylSink *sink, const SylDirective *d,
+                             const SylDirArg *a, const char *fmt, va_list ap) {
     int line = a ? a->line : d->line, col = a ? a->col : d->col;
     if (d->file) { /* spliced from another file: its path and its line */
         char msg[1024];
         vsnprintf(msg, sizeof msg, fmt, ap);
         Source src = {.path = d->file, .text = d->file_text, .len = d->file_len};
-        Diag dg = {.out = out, .sink = program_sink(p), .src = &src};
+        Diag dg = {.out = out, .sink = program_sink(p) ? program_sink(p) : sink, .src = &src};
         diag_report(&dg, DIAG_ERROR, ((SylLoc){line, col, line, col}), "%s", msg);
     } else {
-        report_at(p, out, DIAG_ERROR, line, col, fmt, ap);
+        report_at(p, out, sink, DIAG_ERROR, line, col, fmt, ap);
     }
+}
+void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
+                         const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    directive_verror(p, out, NULL, d, a, fmt, ap);
+    va_end(ap);
+}
+void directive_error_to(const SylProgram *p, const SylSink *sink, const SylDirective *d, const SylDirArg *a,
+                        const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    directive_verror(p, NULL, sink, d, a, fmt, ap);
     va_end(ap);
 }
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
-    report_at(p, out, DIAG_WARNING, line, col, fmt, ap);
+    report_at(p, out, NULL, DIAG_WARNING, line, col, fmt, ap);
     va_end(ap);
 }
 void program_say(const SylProgram *p, FILE *out, int severity, const char *path, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     diag_vsay(out, p ? program_sink(p) : NULL, severity, path, fmt, ap);
+    va_end(ap);
+}
+void program_say_to(const SylProgram *p, const SylSink *sink, int severity, const char *path, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    diag_vsay(NULL, p && program_sink(p) ? program_sink(p) : sink, severity, path, fmt, ap);
     va_end(ap);
 }
 int syl_program_steps(const SylProgram *p) { return p->derive; }

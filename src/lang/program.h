@@ -285,6 +285,14 @@ void program_warning(const SylProgram *p, FILE *out, int line, int col, const ch
 void program_say(const SylProgram *p, FILE *out, int severity, const char *path, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 #define program_say_error(p, out, ...) program_say((p), (out), DIAG_ERROR, NULL, __VA_ARGS__)
+/* The same three to a sink instead of a stream: p's sink when it has one, else sink (NULL:
+ * nowhere), for the calls that take a sink (an ecosystem's read, check and terrain). */
+void program_error_to(const SylProgram *p, const SylSink *sink, int line, int col, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+void directive_error_to(const SylProgram *p, const SylSink *sink, const SylDirective *d, const SylDirArg *a,
+                        const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+void program_say_to(const SylProgram *p, const SylSink *sink, int severity, const char *path, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
 /* whether a message for p goes anywhere (its sink or out) */
 static inline bool program_heard(const SylProgram *p, FILE *out);
 
@@ -301,6 +309,9 @@ static inline bool program_heard(const SylProgram *p, FILE *out) { return out ||
 /* The `lod N` line of a grow, weber or strands block (lod.c): its check (the error count, 0
  * or 1, reported at the line), a --set lod= value's, and the levels the block asks for (its
  * last line, then the last --set lod=; 0: none). */
+/* syl_compile_model with a sink for the model's records (NULL: diag), for as long as it lives. */
+SylProgram *lang_compile_sibling(const SylProgram *p, const char *model, FILE *diag, const SylSink *sink,
+                                 int *status);
 int lang_lod_check(const SylProgram *p, const SylDirective *d, FILE *diag);
 int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *diag);
 double lang_directive_lod(const SylProgram *p);

@@ -1,6 +1,7 @@
 /* The one reader of the directive tables (schema.h): names, did-you-mean, values, ranges and
  * --set, the same for every kind of block. */
 #include "lang/schema.h"
+#include "util/diag.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -133,37 +134,42 @@ bool sch_value_ok(const SchRow *r, double x, char *why, size_t size) {
     return true;
 }
 
-int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char *typed, const char *name,
+int sch_set_check_to(const SylProgram *p, const SylSink *sink, const SchTable *t, const char *typed, const char *name,
                   double value, const SchRow **row, int *level) {
     const SchRow *r = sch_find(t, name, level);
     if (!r) {
         char hint[480];
         sch_suggest(t, name, hint, sizeof hint);
-        syl_program_error(p, diag, 0, 0, "--set %s: %s block '%s' has no parameter '%s'%s", typed, t->kind,
+        program_error_to(p, sink, 0, 0, "--set %s: %s block '%s' has no parameter '%s'%s", typed, t->kind,
                           syl_program_name(p), name, hint);
         return 1;
     }
     if (r->levels && *level < 0) {
-        syl_program_error(p, diag, 0, 0, "--set %s: '%s' is per level: write 0%s to 3%s", typed, name, r->name,
+        program_error_to(p, sink, 0, 0, "--set %s: '%s' is per level: write 0%s to 3%s", typed, name, r->name,
                           r->name);
         return 1;
     }
     if (r->levels && *level > 3) {
-        syl_program_error(p, diag, 0, 0, "--set %s: levels above 3 reuse level 3's parameters: write 3%s", typed,
+        program_error_to(p, sink, 0, 0, "--set %s: levels above 3 reuse level 3's parameters: write 3%s", typed,
                           r->name);
         return 1;
     }
     if (r->type != SCH_NUMBER && r->type != SCH_INTEGER) {
-        syl_program_error(p, diag, 0, 0, "--set %s: '%s' is not a number (write it in the block)", typed, name);
+        program_error_to(p, sink, 0, 0, "--set %s: '%s' is not a number (write it in the block)", typed, name);
         return 1;
     }
     char why[160];
     if (!sch_value_ok(r, value, why, sizeof why)) {
-        syl_program_error(p, diag, 0, 0, "--set %s: '%s' %s", typed, name, why);
+        program_error_to(p, sink, 0, 0, "--set %s: '%s' %s", typed, name, why);
         return 1;
     }
     *row = r;
     return 0;
+}
+
+int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char *typed, const char *name,
+                  double value, const SchRow **row, int *level) {
+    return sch_set_check_to(p, diag_sink(&(SylSink){0}, diag, NULL), t, typed, name, value, row, level);
 }
 
 void sch_count_read(const SylProgram *p) {

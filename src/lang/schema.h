@@ -95,6 +95,9 @@ bool sch_value_ok(const SchRow *r, double x, char *why, size_t size);
  * returns 1, or returns 0 and sets *row, *level. */
 int sch_set_check(const SylProgram *p, FILE *diag, const SchTable *t, const char *typed, const char *name,
                   double value, const SchRow **row, int *level);
+/* The same, to p's sink, else sink. */
+int sch_set_check_to(const SylProgram *p, const SylSink *sink, const SchTable *t, const char *typed, const char *name,
+                     double value, const SchRow **row, int *level);
 
 /* ---- Reading a keyed table's block (schema_keyed.c) ----
  * A row's value goes to a slot of the kind's parameter struct (or of the repeated line's
@@ -116,25 +119,45 @@ typedef struct SchSlot {
     const int *values; /* an enum: the value stored for each word (NULL: its index) */
 } SchSlot;
 
+/* A repeated line (its head row has repeat): where its elements are kept in base. */
+typedef struct SchGroup {
+    const char *dir;             /* the directive ("organ") */
+    size_t off, size, count_off; /* the elements' array, an element's size, their count (an int) */
+} SchGroup;
+
 typedef struct SchKeyed {
     const SchTable *t;
     const SchSlot *slots; /* slots[i] is t->rows[i]'s; rows past nslots are not stored (texture lines) */
     int nslots;
-    /* the repeated line (a row with repeat): its elements' array, size and count (an int) */
-    size_t group_off, group_size, group_count_off;
+    const SchGroup *groups; /* one per repeated directive of the table */
+    int ngroups;
     /* a mode word was read (index word of row's words, count the whole number after it):
      * what else it sets (whorled 3: three buds a node). NULL: nothing */
     void (*mode_read)(void *base, const SchRow *row, int word, int count);
 } SchKeyed;
 
-/* Every row's default into base (the non-group rows; sch_keyed_group_defaults for an element). */
+/* Every row's default into base (the non-group rows; sch_keyed_group_defaults for an element
+ * of group g). */
 void sch_keyed_defaults(const SchKeyed *k, void *base);
-void sch_keyed_group_defaults(const SchKeyed *k, void *elem);
+void sch_keyed_group_defaults(const SchKeyed *k, const SchGroup *g, void *elem);
 /* Read p's block over base (defaults already there): every line against its rows, with
  * file:line:col errors, then p's --set NAME=VALUE (DIRECTIVE.KEY, a key by its name alone, a
  * bare value by its directive's name, GROUP.N.KEY). Returns the errors, *set_errors of them
  * about --set values. */
 int sch_read_keyed(const SylProgram *p, const SchKeyed *k, void *base, FILE *diag, int *set_errors);
+
+/* What `sylva describe` reads a keyed block by: the same reader, storing nothing, tells it each
+ * value a row takes as it takes it (lines, then --set). */
+typedef struct SchSeen {
+    /* A repeated line's element begins (elem from 0, counted per directive; head: its row). */
+    void (*element)(void *ctx, const SchRow *head, int elem);
+    /* row took n numbers x (1, or 3 for a vector) or a word (an enum's, a name); elem: the
+     * element of its repeated line, -1 for the block's rows. */
+    void (*value)(void *ctx, const SchRow *row, int elem, const double *x, int n, const char *word);
+    void *ctx;
+} SchSeen;
+/* Read p's block (already checked: errors are counted, not reported) for seen. */
+int sch_see_keyed(const SylProgram *p, const SchTable *t, const SchSeen *seen);
 
 /* The markdown of docs/directives.md: every table (describe.c). */
 void lang_directives_reference(FILE *out);

@@ -24,18 +24,28 @@ enum { MAX_DIRS = 32, MAX_NAMES = 256 };
 typedef struct Dir {
     char name[32];
     const SchRow *head;
+    const SchGroup *group; /* a repeated directive's elements in base; NULL: not stored */
 } Dir;
 
 typedef struct Reader {
     const SylProgram *p;
     const SchKeyed *k;
     FILE *diag;
+    const SchSeen *seen; /* describe's: told each value; errors are counted, not reported */
     int errors;
     Dir dirs[MAX_DIRS];
     int ndirs;
+    int count[MAX_DIRS]; /* lines of each repeated directive read so far */
+    int elem;            /* the element of the repeated line being read, -1: none */
 } Reader;
 
-#define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
+#define ERR(r, line, col, ...)                                                                                   \
+    ((r)->seen ? (void)0 : syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
+
+/* row took x (n numbers) or word: describe's, if it asked. */
+static void see(const Reader *r, const SchRow *row, const double *x, int n, const char *word) {
+    if (r->seen && r->seen->value) r->seen->value(r->seen->ctx, row, row->group ? r->elem : -1, x, n, word);
+}
 
 static const SchTable *table(const Reader *r) { return r->k->t; }
 /* "n" before a noun that begins with a vowel ("an organ line"). */
@@ -64,6 +74,9 @@ static void list_dirs(Reader *r) {
         }
         if (!strchr(row->name, '.')) r->dirs[d].head = row;
     }
+    for (int d = 0; d < r->ndirs; d++)
+        for (int g = 0; g < r->k->ngroups; g++)
+            if (!strcmp(r->k->groups[g].dir, r->dirs[d].name)) r->dirs[d].group = &r->k->groups[g];
 }
 
 static const char *key_of(const SchRow *row) {
@@ -112,8 +125,9 @@ static const SchSlot *slot_of(const Reader *r, const SchRow *row) {
 /* An enum's word index as stored (its value), and back. */
 static int word_value(const SchSlot *s, int word) { return s && s->values ? s->values[word] : word; }
 
+/* base NULL: nothing is stored (describe's reading). */
 static void store(const SchSlot *s, void *base, double v) {
-    if (!s || s->store == SCH_AT_NONE) return;
+    if (!s || s->store == SCH_AT_NONE || !base) return;
     char *at = (char *)base + s->off;
     switch (s->store) {
     case SCH_AT_F32: *(float *)at = (float)v; break;
@@ -147,10 +161,13 @@ void sch_keyed_defaults(const SchKeyed *k, void *base) {
         if (!k->t->rows[i].group) row_default(k, i, base);
 }
 
-void sch_keyed_group_defaults(const SchKeyed *k, void *elem) {
-    memset(elem, 0, k->group_size);
-    for (int i = 0; i < k->nslots && i < k->t->n; i++)
-        if (k->t->rows[i].group) row_default(k, i, elem);
+void sch_keyed_group_defaults(const SchKeyed *k, const SchGroup *g, void *elem) {
+    memset(elem, 0, g->size);
+    size_t len = strlen(g->dir);
+    for (int i = 0; i < k->nslots && i < k->t->n; i++) {
+        const SchRow *row = &k->t->rows[i];
+        if (row->group && dir_len(row->name) == len && !strncmp(row->name, g->dir, len)) row_default(k, i, elem);
+    }
 }
 
 /* ---- a line ---- */
@@ -199,6 +216,7 @@ static int take_value(Reader *r, const SylDirective *d, const SchRow *row, const
             return 0;
         }
         store(s, base, v);
+        see(r, row, &v, 1, NULL);
         return 1;
     case SCH_VECTOR:
         if (a->kind != SYL_DARG_TUPLE || a->nvalues != 3) {
@@ -210,8 +228,9 @@ static int take_value(Reader *r, const SylDirective *d, const SchRow *row, const
                 ERR(r, a->line, a->col, "'%s': (x, y, z) must be finite", kname);
                 return 0;
             }
-        if (s && s->store == SCH_AT_F32X3)
+        if (s && s->store == SCH_AT_F32X3 && base)
             for (int j = 0; j < 3; j++) ((float *)((char *)base + s->off))[j] = (float)a->values[j];
+        see(r, row, (const double[3]){a->values[0], a->values[1], a->values[2]}, 3, NULL);
         return 1;
     case SCH_STRING:
         if (a->kind != SYL_DARG_WORD || (s && strlen(a->text) >= s->size)) {
@@ -219,12 +238,14 @@ static int take_value(Reader *r, const SylDirective *d, const SchRow *row, const
                 row->doc);
             return 0;
         }
-        if (s && s->store == SCH_AT_TEXT) snprintf((char *)base + s->off, s->size, "%s", a->text);
+        if (s && s->store == SCH_AT_TEXT && base) snprintf((char *)base + s->off, s->size, "%s", a->text);
+        see(r, row, NULL, 0, a->text);
         return 1;
     case SCH_ENUM: {
         int j = a->kind == SYL_DARG_WORD ? sch_word_index(row->words, a->text) : -1;
         if (j >= 0) {
             store(s, base, word_value(s, j));
+            see(r, row, NULL, 0, a->text);
             return 1;
         }
         const char *names[16];
@@ -240,11 +261,12 @@ static int take_value(Reader *r, const SylDirective *d, const SchRow *row, const
         }
         char why[160];
         if (!sch_value_ok(row, v, why, sizeof why)) {
-            if (!strcmp(row->name, "lod")) r->errors += lang_lod_check(r->p, d, r->diag); /* every kind's words */
+            if (!strcmp(row->name, "lod") && !r->seen) r->errors += lang_lod_check(r->p, d, r->diag); /* every kind's words */
             else ERR(r, a->line, a->col, "%s %s", kname, why);
             return 0;
         }
         store(s, base, v);
+        see(r, row, &v, 1, NULL);
         return 1;
     }
 }
@@ -257,10 +279,11 @@ static bool take_symbol(Reader *r, const Dir *dir, const SylDirArg *a, void *bas
     char tmp[256];
     size_t n = split_words(head->symbols, names, 16, tmp, sizeof tmp);
     int word = -1;
+    const char *wtext = NULL;
     for (size_t i = 0; i < n && word < 0; i++) {
         const char *eq = strchr(names[i], '=');
         if (eq && (size_t)(eq - names[i]) == strlen(s) && !strncmp(names[i], s, strlen(s)))
-            word = sch_word_index(head->words, eq + 1);
+            word = sch_word_index(head->words, wtext = eq + 1);
     }
     if (word < 0) {
         const char *modes[16];
@@ -273,13 +296,14 @@ static bool take_symbol(Reader *r, const Dir *dir, const SylDirArg *a, void *bas
         return false;
     }
     store(slot_of(r, head), base, word_value(slot_of(r, head), word));
+    see(r, head, NULL, 0, wtext);
     if (a->nvalues >= 1) {
         if (!(a->values[0] > 0) || !isfinite(a->values[0])) {
             ERR(r, a->line, a->col, "the size of '%s' must be above 0", a->text);
             return false;
         }
         const SchRow *key = find_key(r, dir->name, NULL, head->symbol_key);
-        if (key) store(slot_of(r, key), base, a->values[0]);
+        if (key) store(slot_of(r, key), base, a->values[0]), see(r, key, &a->values[0], 1, NULL);
     }
     return true;
 }
@@ -316,7 +340,12 @@ static int read_mode(Reader *r, const SchRow *head, const SylDirective *d, void 
         (*i)++;
     }
     store(slot_of(r, head), base, word_value(slot_of(r, head), mode));
-    if (r->k->mode_read) r->k->mode_read(base, head, mode, count);
+    if (r->k->mode_read && base) r->k->mode_read(base, head, mode, count);
+    if (r->seen) {
+        const char *words[32];
+        char tmp[256];
+        if ((size_t)mode < split_words(head->words, words, 32, tmp, sizeof tmp)) see(r, head, NULL, 0, words[mode]);
+    }
     return mode;
 }
 
@@ -385,13 +414,6 @@ static void read_line(Reader *r, const Dir *dir, const SylDirective *d, void *ba
     }
 }
 
-/* The repeated directive's rows: its head row is the one with repeat. */
-static const Dir *repeated(const Reader *r) {
-    for (int d = 0; d < r->ndirs; d++)
-        if (r->dirs[d].head && r->dirs[d].head->repeat) return &r->dirs[d];
-    return NULL;
-}
-
 static void read_lines(Reader *r, void *base) {
     int n = 0;
     const SylDirective *ds = syl_program_directives(r->p, &n);
@@ -428,17 +450,21 @@ static void read_lines(Reader *r, void *base) {
             continue;
         }
         void *at = base;
-        if (repeats) { /* each line its own element of the group */
-            int *count = (int *)((char *)base + r->k->group_count_off);
+        if (repeats) { /* each line its own element of its group */
+            int *count = &r->count[k];
             if (*count == dir->head->repeat) {
                 ERR(r, d->line, d->col, "at most %d %ss", dir->head->repeat,
                     dir->head->group ? dir->head->group : dir->name);
                 continue;
             }
-            at = (char *)base + r->k->group_off + (size_t)(*count)++ * r->k->group_size;
-            sch_keyed_group_defaults(r->k, at);
+            const SchGroup *g = base ? dir->group : NULL;
+            at = g ? (char *)base + g->off + (size_t)*count * g->size : NULL;
+            if (g) sch_keyed_group_defaults(r->k, g, at), *(int *)((char *)base + g->count_off) = *count + 1;
+            r->elem = (*count)++;
+            if (r->seen && r->seen->element) r->seen->element(r->seen->ctx, dir->head, r->elem);
         }
         read_line(r, dir, d, at);
+        r->elem = -1;
     }
 }
 
@@ -463,9 +489,10 @@ static void set_number(Reader *r, const char *typed, const SchRow *row, void *ba
             return;
         }
         store(slot_of(r, row), base, v);
+        see(r, row, &v, 1, NULL);
         return;
     }
-    if (!strcmp(row->name, "lod")) {
+    if (!strcmp(row->name, "lod") && !r->seen) {
         int e = lang_lod_set_check(r->p, v, typed, r->diag); /* as every kind's */
         r->errors += e;
         if (e) return;
@@ -476,6 +503,7 @@ static void set_number(Reader *r, const char *typed, const SchRow *row, void *ba
         return;
     }
     store(slot_of(r, row), base, v);
+    see(r, row, &v, 1, NULL);
 }
 
 /* DIRECTIVE.N.KEY: the N-th repeated line's number (organ.2.size). */
@@ -484,13 +512,13 @@ static void set_group(Reader *r, const Dir *dir, void *base, const char *typed, 
     const char *group = head->group ? head->group : head->name;
     const SchTable *t = table(r);
     const char *first = NULL, *names[32];
-    size_t nn = 0;
+    size_t nn = 0, len = strlen(dir->name) + 1;
     for (int i = 0; i < t->n; i++)
-        if (t->rows[i].group && strchr(t->rows[i].name, '.') && settable(&t->rows[i]) && nn < 32) {
+        if (t->rows[i].group && !strncmp(t->rows[i].name, dir->name, len - 1) && t->rows[i].name[len - 1] == '.' &&
+            settable(&t->rows[i]) && nn < 32) {
             names[nn++] = key_of(&t->rows[i]);
             if (!first) first = key_of(&t->rows[i]);
         }
-    size_t len = strlen(dir->name) + 1;
     char *end = NULL;
     long n = strtol(name + len, &end, 10);
     if (end == name + len || *end != '.') {
@@ -498,7 +526,7 @@ static void set_group(Reader *r, const Dir *dir, void *base, const char *typed, 
             first ? first : "KEY");
         return;
     }
-    int count = *(const int *)((const char *)base + r->k->group_count_off);
+    int count = r->count[dir - r->dirs];
     if (n < 1 || n > count) {
         if (r->p->sibling) return;
         ERR(r, 0, 0, "--set %s: %s block '%s' has %d %s%s", typed, t->kind, syl_program_name(r->p), count, group,
@@ -514,7 +542,10 @@ static void set_group(Reader *r, const Dir *dir, void *base, const char *typed, 
         ERR(r, 0, 0, "--set %s: a%s %s has no number '%s' (%s)", typed, an(group), group, end + 1, list);
         return;
     }
-    set_number(r, typed, key, (char *)base + r->k->group_off + (size_t)(n - 1) * r->k->group_size, v);
+    const SchGroup *g = base ? dir->group : NULL;
+    r->elem = (int)n - 1;
+    set_number(r, typed, key, g ? (char *)base + g->off + (size_t)(n - 1) * g->size : NULL, v);
+    r->elem = -1;
 }
 
 /* The head row of row's directive (its modes), or NULL. */
@@ -527,10 +558,13 @@ static const SchRow *head_of(const Reader *r, const SchRow *row) {
 
 static void set_one(Reader *r, void *base, const char *typed, const char *name, double v) {
     const SchTable *t = table(r);
-    const Dir *rep = repeated(r);
-    if (rep && !strncmp(name, rep->name, strlen(rep->name)) && name[strlen(rep->name)] == '.') {
-        set_group(r, rep, base, typed, name, v);
-        return;
+    for (int d = 0; d < r->ndirs; d++) { /* a repeated line's: DIRECTIVE.N.KEY */
+        const Dir *rep = &r->dirs[d];
+        size_t len = strlen(rep->name);
+        if (rep->head && rep->head->repeat && !strncmp(name, rep->name, len) && name[len] == '.') {
+            set_group(r, rep, base, typed, name, v);
+            return;
+        }
     }
     /* a key as DIRECTIVE.KEY (buds.angle) or a bare value (years); then a key by its name alone */
     const SchRow *hit = NULL;
@@ -572,7 +606,7 @@ static void set_one(Reader *r, void *base, const char *typed, const char *name, 
     }
     const SchRow *head = head_of(r, hit);
     const SchSlot *hs = head ? slot_of(r, head) : NULL;
-    if (hit->when && hs && hs->store != SCH_AT_NONE) {
+    if (hit->when && hs && hs->store != SCH_AT_NONE && base) {
         int now = stored_int(hs, base), want = sch_word_index(head->words, hit->when);
         if (now != word_value(hs, want)) {
             if (r->p->sibling) return; /* meant for a model of that mode */
@@ -590,15 +624,28 @@ static void set_one(Reader *r, void *base, const char *typed, const char *name, 
     set_number(r, typed, hit, base, v);
 }
 
-int sch_read_keyed(const SylProgram *p, const SchKeyed *k, void *base, FILE *diag, int *set_errors) {
-    Reader r = {.p = p, .k = k, .diag = diag};
-    list_dirs(&r);
-    read_lines(&r, base);
-    int before = r.errors;
+static int read_block(Reader *r, void *base, int *set_errors) {
+    r->elem = -1;
+    list_dirs(r);
+    read_lines(r, base);
+    int before = r->errors;
+    const SylProgram *p = r->p;
     for (int i = 0; i < p->noverrides; i++) { /* in the order given: the last one wins */
         const char *name = p->set_local ? p->set_local[i] : NULL;
-        if (name && !is_param(p, name)) set_one(&r, base, p->overrides[i].name, name, p->overrides[i].value);
+        if (name && !is_param(p, name)) set_one(r, base, p->overrides[i].name, name, p->overrides[i].value);
     }
-    *set_errors = r.errors - before;
-    return r.errors;
+    *set_errors = r->errors - before;
+    return r->errors;
+}
+
+int sch_read_keyed(const SylProgram *p, const SchKeyed *k, void *base, FILE *diag, int *set_errors) {
+    Reader r = {.p = p, .k = k, .diag = diag};
+    return read_block(&r, base, set_errors);
+}
+
+int sch_see_keyed(const SylProgram *p, const SchTable *t, const SchSeen *seen) {
+    SchKeyed k = {.t = t};
+    Reader r = {.p = p, .k = &k, .seen = seen};
+    int set_errors;
+    return read_block(&r, NULL, &set_errors);
 }

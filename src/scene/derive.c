@@ -23,7 +23,8 @@ int syl_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylString
     if (opt && opt->queries) q = (LsysQueries){.ops = opt->queries, .user = opt->queries_user};
     else if (lang_kind_is(p->kind, KF_RULES) && p->uses_env) {
         q = (LsysQueries){.ops = syl_env_standalone_ops(), .release = release_standalone,
-                          .user = syl_env_standalone_new(p, opt ? opt->diag : NULL)};
+                          .user = syl_env_standalone_new(p, program_sink(p) ? program_sink(p) /* as the derivation's */
+                                                            : diag_sink(&(SylSink){0}, opt ? opt->diag : NULL, NULL))};
         if (!q.user) {
             *out = NULL;
             if (opt) program_say(p, opt->diag, DIAG_ERROR, NULL, "step 0: out of memory");

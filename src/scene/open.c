@@ -13,7 +13,7 @@ void open_env_init(OpenEnv *e, const OpenEnvParams *p) {
     e->P = *p;
     if (!(e->P.voxel > 0) || !isfinite(e->P.voxel)) e->P.voxel = 1;
     ShadowParams sp = probe_shadow_params(e->P.voxel, e->P.sun);
-    env_init_probes(&e->world, &sp, e->P.ground, diag_sink(&(SylSink){0}, e->P.diag, NULL));
+    env_init_probes(&e->world, &sp, e->P.ground, diag_sink(&(SylSink){0}, e->P.diag, e->P.sink));
 }
 
 void open_env_free(OpenEnv *e) {
@@ -26,7 +26,7 @@ void open_env_free(OpenEnv *e) {
 }
 
 static int too_big(OpenEnv *e) {
-    diag_say(e->P.diag, NULL, DIAG_ERROR, NULL, "the environment of ?E needs too large a shadow grid");
+    diag_say(e->P.diag, e->P.sink, DIAG_ERROR, NULL, "the environment of ?E needs too large a shadow grid");
     return SYL_ELIMIT;
 }
 
@@ -115,12 +115,14 @@ const SylQueryOps open_env_ops = {.fill = ops_fill};
 
 struct SylEnvStandalone {
     OpenEnv e;
+    SylSink sink; /* the caller's, copied */
 };
 
-SylEnvStandalone *syl_env_standalone_new(const SylProgram *p, FILE *diag) {
+SylEnvStandalone *syl_env_standalone_new(const SylProgram *p, const SylSink *sink) {
     SylEnvStandalone *a = malloc(sizeof *a);
     if (!a) return NULL;
-    OpenEnvParams P = {.voxel = (float)p->step, .sun = {0, 1, 0}, .diag = diag};
+    if (sink) a->sink = *sink;
+    OpenEnvParams P = {.voxel = (float)p->step, .sun = {0, 1, 0}, .sink = sink ? &a->sink : NULL};
     open_env_init(&a->e, &P);
     return a;
 }

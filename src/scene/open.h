@@ -34,6 +34,7 @@ typedef struct OpenEnvParams {
     const float *statics;       /* the scene's other plants: 3 floats each, scene coordinates */
     size_t nstatic;
     FILE *diag;
+    const SylSink *sink;        /* or as records to this sink instead; NULL: diag */
 } OpenEnvParams;
 
 typedef struct OpenEnv {

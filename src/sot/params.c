@@ -59,9 +59,8 @@ static const SchKeyed grow_keyed = {
     .t = &sch_grow,
     .slots = grow_slots,
     .nslots = (int)(sizeof grow_slots / sizeof *grow_slots),
-    .group_off = offsetof(GrowParams, organs),
-    .group_size = sizeof(OrganSpec),
-    .group_count_off = offsetof(GrowParams, norgans),
+    .groups = (const SchGroup[]){{"organ", offsetof(GrowParams, organs), sizeof(OrganSpec), offsetof(GrowParams, norgans)}},
+    .ngroups = 1,
     .mode_read = mode_read,
 };
 

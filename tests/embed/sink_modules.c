@@ -5,6 +5,9 @@
  *   sink_modules MODEL.syl ECOSYSTEM.syl BAD_DEM_ECOSYSTEM.syl DIR ERRFILE
  * MODEL: an L-system that draws; ECOSYSTEM: an ecosystem block with a good DEM;
  * BAD_DEM_ECOSYSTEM: one whose DEM is not a DEM; DIR: a folder to write bad inputs into.
+ * Then the calls that work on a program compiled without a sink and take one themselves: an
+ * ecosystem's read, check and DEM check, the stand-alone environment of ?E, and a forest
+ * whose species' look cannot be one. Run from the source tree (examples/ecosystem/meadow.asc).
  * Prints a line per module, "MODULE STATUS RECORDS LINE: MESSAGE" (the records the call made,
  * the first one's line and message), then "done". */
 #include <fcntl.h>
@@ -21,6 +24,7 @@
 #include <sylva/render.h>
 #include <sylva/terrain.h>
 #include <sylva/texture.h>
+#include <sylva/sylva.h>
 #include <sylva/wind.h>
 
 typedef struct Heard {
@@ -113,6 +117,59 @@ int main(int argc, char **argv) {
     if (!p) return 5;
     t = NULL;
     said("ecosystem-dem", syl_ecosystem_load(p, &(SylEcoOptions){0}, &m, &t));
+    syl_terrain_free(t);
+    syl_program_free(p);
+
+    /* The calls that work on a program compiled without a sink take one themselves. */
+    put(dir, "eco.syl", "ecosystem E {\n  latitude 100\n}\n", path, sizeof path);
+    p = syl_compile(path, NULL, 0, NULL, &st);
+    if (!p) return 6;
+    said("ecosystem-read", syl_ecosystem_read(p, &m, &sink));
+    said("ecosystem-validate", syl_ecosystem_validate(p, &sink));
+    syl_program_free(p);
+    p = syl_compile(argv[3], NULL, 0, NULL, &st);
+    if (!p) return 7;
+    said("ecosystem-terrain", syl_ecosystem_check_terrain(p, &sink));
+    syl_program_free(p);
+    put(dir, "grid.syl",
+        "lsystem T {\n  axiom A\n  step 0.000001\n  derive 3\n"
+        "  A -> F(1000000) [+F(1000000) ?E(0, 0) B] ?E(0, 0) B\n  B -> F(1000000) ?E(0, 0) B\n}\n",
+        path, sizeof path);
+    p = syl_compile(path, NULL, 0, NULL, &st);
+    if (!p) return 8;
+    SylEnvStandalone *alone = syl_env_standalone_new(p, &sink);
+    SylString *str = NULL;
+    said("standalone", syl_derive(p, &(SylDeriveOptions){.steps = -1, .queries = syl_env_standalone_ops(),
+                                                        .queries_user = alone}, &str));
+    syl_string_free(str);
+    syl_env_standalone_free(alone);
+    syl_program_free(p);
+    /* a species whose look is another ecosystem: the forest refuses it, to its sink */
+    FILE *f = fopen(argv[2], "r");
+    char text[8192];
+    size_t len = f ? fread(text, 1, sizeof text - 1, f) : 0;
+    if (f) fclose(f);
+    text[len] = 0;
+    char *model = strstr(text, "  model ");
+    if (!model) return 9;
+    char *end = strchr(model, '\n');
+    char eco[9000];
+    snprintf(eco, sizeof eco, "%.*s  model Other%s\necosystem Other {\n}\n", (int)(model - text), text, end);
+    snprintf(path, sizeof path, "%s/meadow.syl", dir);
+    put(dir, "meadow.syl", eco, path, sizeof path);
+    f = fopen("examples/ecosystem/meadow.asc", "r"); /* the DEM beside it */
+    static char dem[1 << 20];
+    len = f ? fread(dem, 1, sizeof dem - 1, f) : 0;
+    if (f) fclose(f);
+    dem[len] = 0;
+    char dempath[4096];
+    put(dir, "meadow.asc", dem, dempath, sizeof dempath);
+    p = syl_compile(path, NULL, 0, &(SylCompileOptions){.model = "Meadow"}, &st);
+    t = NULL;
+    if (!p || syl_ecosystem_load(p, &(SylEcoOptions){.sink = &sink}, &m, &t)) return 11;
+    SylForest *forest = NULL;
+    said("forest", syl_forest_new(p, &m, t, &(SylForestOptions){.threads = 1, .sink = &sink}, &forest));
+    syl_forest_free(forest);
     syl_terrain_free(t);
     syl_program_free(p);
     syl_budget_free(tiny);

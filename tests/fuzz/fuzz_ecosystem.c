@@ -15,7 +15,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     SylProgram *p = syl_compile("fuzz.syl", (const char *)data, size, &opt, &status);
     if (!p) return 0;
     static SylEcoModel m;
-    if (syl_program_kind(p) == SYL_MODEL_ECOSYSTEM && !syl_ecosystem_read(p, &m, diag)) {
+    if (syl_program_kind(p) == SYL_MODEL_ECOSYSTEM && !syl_ecosystem_read(p, &m, diag ? &(SylSink){syl_diagnostic_print, diag} : NULL)) {
         enum { N = 12 };
         static float h[N * N], f[SYL_TERRAIN_FACTORS][N * N];
         static uint8_t valid[N * N];

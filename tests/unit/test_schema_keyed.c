@@ -63,9 +63,8 @@ static const SchKeyed toy_keyed = {
     .t = &toy,
     .slots = toy_slots,
     .nslots = 8,
-    .group_off = offsetof(Toy, leaves),
-    .group_size = sizeof(Leaf),
-    .group_count_off = offsetof(Toy, nleaves),
+    .groups = (const SchGroup[]){{"leaf", offsetof(Toy, leaves), sizeof(Leaf), offsetof(Toy, nleaves)}},
+    .ngroups = 1,
     .mode_read = toy_mode,
 };
 
