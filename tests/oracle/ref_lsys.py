@@ -852,6 +852,8 @@ class LSystem:
     @staticmethod
     def cut(s):
         """Each '%' and the rest of its branch leave the string; the closing ']' stays."""
+        if all(m[0] != "%" for m in s):
+            return s  # nothing to cut (most strings; step's own fresh list)
         out, i = [], 0
         while i < len(s):
             if s[i][0] != "%":
@@ -928,7 +930,7 @@ class LSystem:
                     continue
             if r.cond is not None and r.cond(env, funcs) == 0.0:
                 continue
-            return [(sname, None if sargs is None else tuple(a(env, funcs) for a in sargs))
+            return [(sname, None if sargs is None else tuple([a(env, funcs) for a in sargs]))
                     for sname, sargs in r.succ]
         return None
 
@@ -943,7 +945,7 @@ def to_text(s):
         if vals is None:
             parts.append(name)
         else:
-            parts.append(name + "(" + ",".join(fmt_g(v) for v in vals) + ")")
+            parts.append(name + "(" + ",".join(["%g" % v for v in vals]) + ")")  # fmt_g's, inline
     return "".join(parts)
 
 
