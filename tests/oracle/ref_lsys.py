@@ -935,17 +935,13 @@ class LSystem:
         return None
 
 
-def fmt_g(v):
-    return "%g" % v
-
-
 def to_text(s):
     parts = []
     for name, vals in s:
         if vals is None:
             parts.append(name)
         else:
-            parts.append(name + "(" + ",".join(["%g" % v for v in vals]) + ")")  # fmt_g's, inline
+            parts.append(name + "(" + ",".join(["%g" % v for v in vals]) + ")")
     return "".join(parts)
 
 
