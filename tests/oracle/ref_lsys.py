@@ -852,6 +852,8 @@ class LSystem:
     @staticmethod
     def cut(s):
         """Each '%' and the rest of its branch leave the string; the closing ']' stays."""
+        if all(m[0] != "%" for m in s):
+            return s  # nothing to cut (most strings; step's own fresh list)
         out, i = [], 0
         while i < len(s):
             if s[i][0] != "%":
@@ -928,13 +930,9 @@ class LSystem:
                     continue
             if r.cond is not None and r.cond(env, funcs) == 0.0:
                 continue
-            return [(sname, None if sargs is None else tuple(a(env, funcs) for a in sargs))
+            return [(sname, None if sargs is None else tuple([a(env, funcs) for a in sargs]))
                     for sname, sargs in r.succ]
         return None
-
-
-def fmt_g(v):
-    return "%g" % v
 
 
 def to_text(s):
@@ -943,7 +941,7 @@ def to_text(s):
         if vals is None:
             parts.append(name)
         else:
-            parts.append(name + "(" + ",".join(fmt_g(v) for v in vals) + ")")
+            parts.append(name + "(" + ",".join(["%g" % v for v in vals]) + ")")
     return "".join(parts)
 
 

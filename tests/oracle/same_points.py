@@ -11,7 +11,10 @@ import sys
 
 def rows(path):
     with open(path, newline="") as f:
-        return [(r["kind"], float(r["x"]), float(r["y"]), float(r["z"]), float(r["radius"])) for r in csv.DictReader(f)]
+        r = csv.reader(f)
+        h = next(r, [])
+        k, x, y, z, rad = (h.index(c) for c in ("kind", "x", "y", "z", "radius"))
+        return [(w[k], float(w[x]), float(w[y]), float(w[z]), float(w[rad])) for w in r if w]
 
 
 def main():
@@ -25,16 +28,19 @@ def main():
     for i, p in enumerate(b):
         grid.setdefault(cell(p), []).append(i)
     used, misses = [False] * len(b), []
-    for p in a:
-        k, hit, best = cell(p), None, None
-        for dx in (-1, 0, 1):
-            for dy in (-1, 0, 1):
-                for dz in (-1, 0, 1):
-                    for j in grid.get((k[0], k[1] + dx, k[2] + dy, k[3] + dz), ()):
-                        q = b[j]
-                        d = max(abs(p[c] - q[c]) for c in (1, 2, 3, 4))
-                        if not used[j] and d <= tol and (best is None or d < best):
-                            hit, best = j, d
+    near = [(dx, dy, dz) for dx in (-1, 0, 1) for dy in (-1, 0, 1) for dz in (-1, 0, 1)]
+    get, floor = grid.get, math.floor
+    for p in a:  # the nearest unused row of b within tol, the first of equals in this order
+        kind, px, py, pz, pr = p
+        kx, ky, kz = floor(px / tol), floor(py / tol), floor(pz / tol)
+        hit, best = None, None
+        for dx, dy, dz in near:
+            for j in get((kind, kx + dx, ky + dy, kz + dz), ()):
+                if used[j]: continue
+                q = b[j]
+                d = max(abs(px - q[1]), abs(py - q[2]), abs(pz - q[3]), abs(pr - q[4]))
+                if d <= tol and (best is None or d < best):
+                    hit, best = j, d
         if hit is None: misses.append(p)
         else: used[hit] = True
     if misses:

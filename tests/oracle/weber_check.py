@@ -8,6 +8,8 @@ figures: Arbaro's measured counts and sizes, and the model's own formulas.
   weber_check.py size T.json HEIGHT WIDTH PH PW      Arbaro's height (top of the stem axes)
                                                      and width (farthest corner of their
                                                      bounding box from the axis) within PH, PW %
+  weber_check.py species T.json STEMS LEAVES PCT HEIGHT WIDTH PH PW
+                                                     counts, then size, of one reading of T.json
   weber_check.py fan T.json N                        N leaves on every last-level stem
   weber_check.py quality T.json Q.json Q             leaf sizes of both; Q.json has Q times the leaves
   weber_check.py inside T.json A Y0 Y1               branch nodes inside |x|, |z| <= A, Y0 <= y <= Y1
@@ -38,24 +40,35 @@ def within(what, got, want, pct):
         print(f"{what} {got:g}, {off:.1f}% from {want:g} (more than {pct:g}%)")
 
 
+def check_counts(nodes, organs, stems_want, leaves_want, pct):
+    stems, _ = per_level(nodes)
+    within('stems', stems, float(stems_want), float(pct))
+    within('leaves', len(organs), float(leaves_want), float(pct))
+
+
+def check_size(nodes, height, width, ph, pw):
+    # Sylva is Y up; Arbaro's height is the highest axis point, its width the farthest
+    # corner of the axes' horizontal bounding box
+    xs = [n['x'] for n in nodes]; ys = [n['y'] for n in nodes]; zs = [n['z'] for n in nodes]
+    h = max(ys)
+    w = math.sqrt(max(min(xs) ** 2 + min(zs) ** 2, max(xs) ** 2 + max(zs) ** 2))
+    within('height', h, float(height), float(ph))
+    within('width', w, float(width), float(pw))
+
+
 def main():
     mode, path = sys.argv[1], sys.argv[2]
     nodes, organs = load(path)
     if mode == 'counts':
-        stems, _ = per_level(nodes)
-        within('stems', stems, float(sys.argv[3]), float(sys.argv[5]))
-        within('leaves', len(organs), float(sys.argv[4]), float(sys.argv[5]))
+        check_counts(nodes, organs, *sys.argv[3:6])
+    elif mode == 'species':  # a species file's skeleton: the JSON read once for both checks
+        check_counts(nodes, organs, *sys.argv[3:6])
+        check_size(nodes, *sys.argv[6:10])
     elif mode == 'levels':
         _, per = per_level(nodes)
         print('/'.join(str(x) for x in per))
     elif mode == 'size':
-        # Sylva is Y up; Arbaro's height is the highest axis point, its width the farthest
-        # corner of the axes' horizontal bounding box
-        xs = [n['x'] for n in nodes]; ys = [n['y'] for n in nodes]; zs = [n['z'] for n in nodes]
-        h = max(ys)
-        w = math.sqrt(max(min(xs) ** 2 + min(zs) ** 2, max(xs) ** 2 + max(zs) ** 2))
-        within('height', h, float(sys.argv[3]), float(sys.argv[5]))
-        within('width', w, float(sys.argv[4]), float(sys.argv[6]))
+        check_size(nodes, *sys.argv[3:7])
     elif mode == 'fan':  # every last-level stem has exactly N leaves
         n = int(sys.argv[3])
         axes = {x['axis']: x['order'] for x in nodes}
