@@ -3,6 +3,7 @@
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <stddef.h>
 #include <string.h>
 
 #include "sylva/skeleton.h"
@@ -131,7 +132,11 @@ int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
 int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o) {
     if (s->norgans >= INT32_MAX || !array_reserve(&s->organs, &s->store->organ_cap, s->norgans + 1, sizeof *o))
         return -1;
-    s->organs[s->norgans] = *o;
+    SylOrgan *d = &s->organs[s->norgans];
+    *d = *o;
+    /* the two bytes between material and module are padding the caller's struct leaves unset:
+     * zeroed, so that one seed gives one skeleton to the byte (memcmp, checkpoints) */
+    memset(&d->material + 1, 0, offsetof(SylOrgan, module) - offsetof(SylOrgan, material) - 1);
     note_material(s, o->material);
     return (int32_t)s->norgans++;
 }
