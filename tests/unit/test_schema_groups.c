@@ -4,7 +4,7 @@
  * DIRECTIVE.N.KEY, their limits are their own, and describe's reading (sch_see_keyed, which
  * stores nothing) is told every element and value the same reader takes. The expected values
  * are the text's own numbers. */
-#include "unit.h"
+#include "keyed.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -61,25 +61,11 @@ static const SchGroup groups[] = {
 static const SchKeyed keyed = {.t = &garden, .slots = slots, .nslots = 6, .groups = groups, .ngroups = 2};
 
 static SylProgram *compile(const char *lines, const SylOverride *sets, int nsets) {
-    char text[1024];
-    snprintf(text, sizeof text, "grow G {\n%s}\n", lines);
-    SylCompileOptions o = {.overrides = sets, .noverrides = nsets};
-    int st;
-    SylProgram *p = syl_compile("garden.syl", text, strlen(text), &o, &st);
-    assert_non_null(p);
-    return p;
+    return keyed_compile("garden.syl", lines, sets, nsets);
 }
 
 static int read_garden(const char *lines, const SylOverride *sets, int nsets, Garden *g, char **diag) {
-    SylProgram *p = compile(lines, sets, nsets);
-    size_t len = 0;
-    FILE *f = open_memstream(diag, &len);
-    memset(g, 0, sizeof *g);
-    sch_keyed_defaults(&keyed, g);
-    int set_errors, errors = sch_read_keyed(p, &keyed, g, f, &set_errors);
-    fclose(f);
-    syl_program_free(p);
-    return errors;
+    return keyed_read("garden.syl", &keyed, lines, sets, nsets, g, sizeof *g, diag);
 }
 
 static const char *lines = "  pot square width 2\n  stake oak height 2.5 ties 4\n  pot\n  size 3\n"

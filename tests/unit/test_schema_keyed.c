@@ -3,7 +3,7 @@
  * mode, a mode word with a count, a vector, a repeated line with symbols) is read into a
  * made-up struct by rows and slots alone, with its errors at their places and --set
  * DIRECTIVE.N.KEY. The expected values are the text's own numbers. */
-#include "unit.h"
+#include "keyed.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -71,20 +71,7 @@ static const SchKeyed toy_keyed = {
 /* Read the lines of a block (any kind that keeps its lines: a grow block, without its own
  * check) with the toy table; the errors' text into *diag. */
 static int read_toy(const char *lines, const SylOverride *sets, int nsets, Toy *t, char **diag) {
-    char text[1024];
-    snprintf(text, sizeof text, "grow G {\n%s}\n", lines);
-    SylCompileOptions o = {.overrides = sets, .noverrides = nsets};
-    int st;
-    SylProgram *p = syl_compile("toy.syl", text, strlen(text), &o, &st);
-    assert_non_null(p);
-    size_t len = 0;
-    FILE *f = open_memstream(diag, &len);
-    memset(t, 0, sizeof *t);
-    sch_keyed_defaults(&toy_keyed, t);
-    int set_errors, errors = sch_read_keyed(p, &toy_keyed, t, f, &set_errors);
-    fclose(f);
-    syl_program_free(p);
-    return errors;
+    return keyed_read("toy.syl", &toy_keyed, lines, sets, nsets, t, sizeof *t, diag);
 }
 
 static void every_shape_is_read_by_its_row(void **state) {
