@@ -15,6 +15,7 @@
 #define HAVE_MXCSR 1
 #endif
 
+#include "texture/srgbbytes.h"
 #include "util/pngin.h"
 #include "render/scene.h"
 #include "util/budget.h"
@@ -272,7 +273,7 @@ void render_set_lighting(Scene *s) {
         s->sub[k][0] = a - floorf(a);
         s->sub[k][1] = b - floorf(b);
     }
-    for (int i = 0; i <= 4096; i++) s->lut[i] = (uint8_t)lrintf(255 * linear_to_srgb((float)i / 4096));
+    for (int i = 0; i <= 4096; i++) s->lut[i] = srgb_byte_exact((float)i / 4096);
 }
 
 /* The textures of the kinds in use, and grass when the ground is drawn (not in an impostor's

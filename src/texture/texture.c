@@ -214,7 +214,7 @@ bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
     for (int c = 0; c < 3; c++) lin[c] = srgb_to_linear(rgb[c]);
     if (!p) { /* out of memory: a flat texture, for a picture that can live with it */
         for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
-            out[i] = (uint8_t)lrintf(255 * linear_to_srgb(lin[i % 3]));
+            out[i] = srgb_byte_exact(lin[i % 3]);
         return false;
     }
     texture_pattern(kind, size, p);
