@@ -340,9 +340,7 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         m.eco = NULL;
     } else if (!status && m.lines) { /* a preview of a big plant: its segments */
         double t = cli_now();
-        FILE *out = view_bytes_open(&slot->lines, &slot->lines_len);
-        status = out ? view_preview_lines(m.pl.skeleton, out) : SYL_ELIMIT;
-        if (out) fclose(out);
+        status = view_preview_lines(m.pl.skeleton, &slot->lines, &slot->lines_len);
         m.write_s = cli_now() - t;
         if (!status) slot->stats = stats_json(&m);
     } else if (!status && syl_cancelled(&cancel)) {
