@@ -188,7 +188,7 @@ static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *d
     }
     if (m->lod > 0) { /* with the impostor, its billboards are the last of the levels */
         status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod - rq->impostor, &m->lods);
-        if (status) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
+        if (status && status != SYL_ECANCELED) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
         SylImpostorOptions io = {.grid = -1, .billboards = 3, .threads = v->threads, .diag = diag, .budget = m->budget};
         if (!status && rq->impostor) status = syl_impostor_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
     } else {
@@ -359,6 +359,7 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
     }
     made_free(&m);
     fclose(diag);
+    if (status == SYL_ECANCELED) status = VIEW_SUPERSEDED; /* stopped inside a level's or a leaf's mesh */
     slot->status = status;
     if (status == VIEW_SUPERSEDED) { /* never found again: built anew when asked */
         slot->key[0] = 0;
