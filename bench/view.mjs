@@ -8,7 +8,11 @@
 //       PAGE the best save's page side: build request / .glb fetch / parse / setup / first frame, ms
 //       (the .glb comes in the build's answer since stop 40: its fetch is then 0);
 //       PREVIEW_MS the best save's time to the preview's first frame (the page's "preview first":
-//       a lighter picture drawn before the .glb), PREVIEW its kind (mesh, lines; '-': none drawn)
+//       a lighter picture drawn before the .glb), PREVIEW its kind (mesh, lines; '-': none drawn);
+//       PIXELS_MS the best time from the save to the full frame's pixels read back (its drawing
+//       finished: software WebGL fills them after the draw call returns); PREVIEW_PAGE the best
+//       save's preview: its request (the server's wait included) / the server's build / parse
+//       and setup / its draw call, ms
 //   slider NAME MODULES UPDATES SECONDS FULL       pictures of new values drawn while a slider is
 //       dragged (previews and full builds), FULL of them full builds
 import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
@@ -49,7 +53,7 @@ try {
     await page.goto(url);
     await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
     const text = readFileSync(path, 'utf8');
-    const times = [], phases = [], previews = [];
+    const times = [], phases = [], previews = [], pixels = [], pvPhases = [];
     let kind = '-';
     for (let r = 0; r < runs; r++) {
       const n = await page.evaluate(() => window.sylvaView.loads);
@@ -60,15 +64,27 @@ try {
       await page.waitForFunction((k) => window.sylvaView.loads > k && window.sylvaView.shownAt > 0,
         { timeout: 300000, polling: 20 }, n);
       times.push(await page.evaluate(() => window.sylvaView.shownWall) - t0);
-      const pv = await page.evaluate(() => ({ at: window.sylvaView.previewShownWall || 0, kind: window.sylvaView.lastPreviewKind }));
-      if (pv.at > t0) previews.push(pv.at - t0), kind = pv.kind || kind;
+      // the frame's pixels filled: a pixel read back waits for them (software WebGL may still
+      // be drawing when the draw call returns); the next save then starts from a finished frame,
+      // as it does for a user who looks at the plant before saving again
+      pixels.push(await page.evaluate(() => {
+        const gl = document.querySelector('canvas').getContext('webgl2'), px = new Uint8Array(4);
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+        return Date.now();
+      }) - t0);
+      const pv = await page.evaluate(() => ({ at: window.sylvaView.previewShownWall || 0, kind: window.sylvaView.lastPreviewKind,
+        timing: window.sylvaView.previewTiming, draw: window.sylvaView.previewMs }));
+      if (pv.at > t0) previews.push(pv.at - t0), kind = pv.kind || kind, pvPhases.push(pv);
+      else pvPhases.push(null);
       phases.push(await page.evaluate(() => window.sylvaView.timing || null));
     }
     const s = await page.evaluate(() => window.sylvaView.stats);
     const built = ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (s[k + '_time'] || 0), 0) * 1000;
     const ph = phases[times.indexOf(Math.min(...times))];
     const page_ = ph ? ['build', 'fetch', 'parse', 'setup', 'frame'].map((k) => (ph[k] || 0).toFixed(0)).join('/') : '';
-    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}`);
+    const best = times.indexOf(Math.min(...times)), pp = pvPhases[best];
+    const pvPage = pp && pp.timing ? [pp.timing.fetched, pp.timing.server, pp.timing.parse, pp.draw].map((x) => (x || 0).toFixed(0)).join('/') : '-';
+    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}\t${Math.min(...pixels)}\t${pvPage}`);
     await page.close();
     await stop(server);
   }

@@ -3,7 +3,8 @@
 // parameter a slider. The server is the only source: no request leaves this machine.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { createScene, skeletonFrom, ORDER_COLOURS } from './scene.js';
+import { createScene, skeletonFrom } from './scene.js';
+import { linesFrom } from './preview.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -532,22 +533,6 @@ async function load(frameIt = false) {
     loading = null;
     if (again) { again = false; load(); } else state.idle = true;
   }
-}
-
-// The segments of a preview of a big plant (view_preview.c: 6 floats each, then a byte of
-// branch order each) as lines coloured as the skeleton mode colours them.
-function linesFrom(buf) {
-  const n = buf.byteLength / 25;
-  const pos = new Float32Array(buf, 0, n * 6), order = new Uint8Array(buf, n * 24, n);
-  const col = new Float32Array(n * 6), c = new THREE.Color();
-  for (let i = 0; i < n; i++) {
-    c.setHex(ORDER_COLOURS[Math.min(order[i], ORDER_COLOURS.length - 1)]);
-    col.set([c.r, c.g, c.b, c.r, c.g, c.b], i * 6);
-  }
-  const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
-  g.setAttribute('color', new THREE.BufferAttribute(col, 3));
-  return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
 }
 
 // Put group on screen in place of what is there (freed), with the textures of kind ('full' or

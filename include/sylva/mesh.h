@@ -74,6 +74,7 @@ typedef struct SylMeshOptions {
      * it stops with SYL_ELIMIT and says so. */
     uint64_t max_memory;  /* bytes, when budget is NULL; 0: the default */
     SylBudget *budget;    /* shared memory budget; the mesh counts against it until freed */
+    const SylCancel *cancel; /* asked before planning and before writing the mesh (sylva.h) */
 } SylMeshOptions;
 
 int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out);

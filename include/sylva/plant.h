@@ -56,6 +56,9 @@ typedef struct SylPlantOptions {
     FILE *diag;            /* where problems are reported; NULL: nowhere */
     void (*progress)(void *user, double fraction); /* after each step or year; 1 at the end */
     void *user;
+    /* Given to the derivation, the turtle and the mesher (sylva.h): a build it stops returns
+     * SYL_ECANCELED with nothing in out. NULL: mesh->cancel for the mesh, else never. */
+    const SylCancel *cancel;
 } SylPlantOptions;
 
 /* What was built. Every pointer is owned by the SylPlant: free them all with syl_plant_free

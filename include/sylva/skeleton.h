@@ -200,6 +200,7 @@ typedef struct SylTurtleOptions {
      * is set (the derivation's --seed), else the model's. */
     int use_seed;
     uint64_t seed;
+    const SylCancel *cancel; /* asked every 65,536 modules (sylva.h); NULL: never */
 } SylTurtleOptions;
 
 /* Interpret a derived string (after `interpret` rules, see syl_interpret) with the 3D

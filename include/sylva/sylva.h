@@ -22,6 +22,7 @@ enum {
     SYL_EUSAGE = 2, /* bad command line or option */
     SYL_ELIMIT = 3, /* a resource limit was hit (--max-modules, --max-memory) */
     SYL_EIO = 4,    /* a file could not be read or written */
+    SYL_ECANCELED = 5, /* the caller's SylCancel asked to stop (never the sylva command's) */
 };
 
 typedef struct SylProgram SylProgram;
@@ -87,6 +88,18 @@ SylBudget *syl_budget_new(uint64_t max_bytes); /* 0: the default; NULL when out 
 void syl_budget_free(SylBudget *b);
 uint64_t syl_budget_used(const SylBudget *b);  /* bytes counted now */
 uint64_t syl_budget_limit(const SylBudget *b);
+
+/* A caller's way to stop a long build it no longer wants (a viewer whose file changed under
+ * it): the engines ask stop(user) between their passes — before each derivation step, every
+ * 65,536 modules the turtle reads, between the mesher's planning and its writing — and on a
+ * nonzero answer free what they made and return SYL_ECANCELED, saying nothing. Give the same
+ * one to each engine's options (their `cancel` field; NULL: never). It is asked from the
+ * calling thread only; a build it does not stop is the same as without it. */
+typedef struct SylCancel {
+    int (*stop)(void *user);
+    void *user;
+} SylCancel;
+static inline int syl_cancelled(const SylCancel *c) { return c && c->stop && c->stop(c->user); }
 
 typedef struct SylOverride {
     const char *name;
@@ -324,6 +337,7 @@ typedef struct SylDeriveOptions {
      * in turn (no free core), the rest of the derivation stays on one thread, unless split_ns
      * is given (nonzero: splits measured whatever the machine). */
     uint64_t split_ns;
+    const SylCancel *cancel; /* asked before each step (above); NULL: never */
 } SylDeriveOptions;
 
 int syl_derive(const SylProgram *p, SylDeriveOptions *opt, SylString **out);

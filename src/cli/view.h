@@ -93,6 +93,7 @@ typedef struct View {
     pthread_mutex_t gen_lock;
     pthread_cond_t changed;
     unsigned gen;
+    unsigned builds, stopped; /* builds begun, and stopped before their end (VIEW_SUPERSEDED) */
     bool stopping;
     /* The first build asked for since the files' last change (under gen_lock): built again at
      * the next change before a page asks (view_prebuild.c). */
@@ -125,11 +126,13 @@ int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE 
 
 /* view_preview.c: what a preview build changes in the mesh options (fewer sides, leaves as
  * instanced cards); whether a skeleton of that many nodes is sent as its segments instead of a
- * mesh; those segments (6 floats each, then a byte of branch order each) into out. */
+ * mesh; those segments (6 floats each, then a byte of branch order each) into *buf (malloc'ed,
+ * *len bytes). */
 void view_preview_mesh_options(SylMeshOptions *mo);
 bool view_preview_as_lines(const SylSkeleton *sk);
-int view_preview_lines(const SylSkeleton *sk, FILE *out);
-/* The status of a build stopped because its page moved on (View.tabs): not a SYL_* code */
+int view_preview_lines(const SylSkeleton *sk, char **buf, size_t *len);
+/* The status of a build stopped because the files changed under it or its page moved on
+ * (View.tabs): not a SYL_* code */
 enum { VIEW_SUPERSEDED = 100 };
 /* rq's page asks: its newest request number kept; whether rq is older than its page's newest */
 void view_tab_saw(View *v, const ViewRequest *rq);

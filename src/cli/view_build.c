@@ -109,11 +109,25 @@ static void made_free(Made *m) {
     memset(m, 0, sizeof *m);
 }
 
-/* A full build whose page has moved on (it asked for a newer value) stops. */
-static bool superseded(View *v, const ViewRequest *rq) { return !rq->preview && view_tab_moved_on(v, rq); }
+/* A build stops (the library's SylCancel, asked between its passes) when the files changed
+ * under it — the pages are told and ask again — or, a full build, when its page has moved on
+ * (it asked for a newer value). */
+typedef struct BuildStop {
+    View *v;
+    const ViewRequest *rq;
+    unsigned gen; /* the files' generation it builds */
+} BuildStop;
 
-/* Compile (with every warning of `sylva check`) and build as `sylva mesh` does. */
-static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
+static unsigned current_gen(View *v);
+
+static int build_stop(void *user) {
+    const BuildStop *b = user;
+    return current_gen(b->v) != b->gen || (!b->rq->preview && view_tab_moved_on(b->v, b->rq));
+}
+
+/* Compile (with every warning of `sylva check`) and build as `sylva mesh` does; stopped with
+ * VIEW_SUPERSEDED when cancel says so (NULL: never). */
+static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *diag, Made *m) {
     memset(m, 0, sizeof *m);
     int files = 1; /* syl_validate reads the scene's files, as `sylva check` does */
     SylCompileOptions opt = {.model = rq->model[0] ? rq->model : NULL, .overrides = rq->sets,
@@ -136,7 +150,7 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     if (rq->impostor && !m->lod) m->lod = 1; /* LOD0 and the billboards, as sylva mesh --billboards */
     m->budget = syl_budget_new(v->max_memory);
     m->mo = (SylMeshOptions){.diag = diag, .threads = v->threads, .budget = m->budget, .one_sided = 1,
-                             .vertex_nodes = rq->wind > 0};
+                             .vertex_nodes = rq->wind > 0, .cancel = cancel};
     if (rq->leaves >= 0) m->mo.leaves = rq->leaves;
     if (rq->preview) view_preview_mesh_options(&m->mo), m->lod = 0, m->preview = true;
     int nscene = 0;
@@ -151,15 +165,17 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     if (!scene) po.until = SYL_PLANT_SKELETON;
     status = syl_plant_build(p, &po, &m->pl);
     syl_program_free(p);
+    if (status == SYL_ECANCELED) return VIEW_SUPERSEDED;
     if (status) return status;
-    if (!scene && superseded(v, rq)) return VIEW_SUPERSEDED;
+    if (!scene && syl_cancelled(cancel)) return VIEW_SUPERSEDED;
     if (!scene && rq->preview && view_preview_as_lines(m->pl.skeleton)) return m->lines = true, SYL_OK;
     if (!scene) {
         double tm = cli_now();
         status = syl_mesh_build(m->pl.skeleton, &m->mo, &m->pl.mesh);
         m->pl.mesh_s = cli_now() - tm;
+        if (status == SYL_ECANCELED) return VIEW_SUPERSEDED;
         if (status) return status;
-        if (superseded(v, rq)) return VIEW_SUPERSEDED;
+        if (syl_cancelled(cancel)) return VIEW_SUPERSEDED;
     }
     double t1 = cli_now();
     if (rq->preview) { /* no levels, no wind, no reordering for the vertex cache */
@@ -172,7 +188,7 @@ static int make(View *v, const ViewRequest *rq, FILE *diag, Made *m) {
     }
     if (m->lod > 0) { /* with the impostor, its billboards are the last of the levels */
         status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod - rq->impostor, &m->lods);
-        if (status) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
+        if (status && status != SYL_ECANCELED) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
         SylImpostorOptions io = {.grid = -1, .billboards = 3, .threads = v->threads, .diag = diag, .budget = m->budget};
         if (!status && rq->impostor) status = syl_impostor_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
     } else {
@@ -313,18 +329,21 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         return slot;
     }
     Made m;
-    int status = make(v, rq, diag, &m);
+    pthread_mutex_lock(&v->gen_lock);
+    v->builds++;
+    pthread_mutex_unlock(&v->gen_lock);
+    BuildStop stop = {.v = v, .rq = rq, .gen = gen};
+    SylCancel cancel = {.stop = build_stop, .user = &stop};
+    int status = make(v, rq, &cancel, diag, &m);
     if (!status && m.eco) {
         status = view_eco_build(v, rq, m.eco, gen, diag, slot);
         m.eco = NULL;
     } else if (!status && m.lines) { /* a preview of a big plant: its segments */
         double t = cli_now();
-        FILE *out = view_bytes_open(&slot->lines, &slot->lines_len);
-        status = out ? view_preview_lines(m.pl.skeleton, out) : SYL_ELIMIT;
-        if (out) fclose(out);
+        status = view_preview_lines(m.pl.skeleton, &slot->lines, &slot->lines_len);
         m.write_s = cli_now() - t;
         if (!status) slot->stats = stats_json(&m);
-    } else if (!status && superseded(v, rq)) {
+    } else if (!status && syl_cancelled(&cancel)) {
         status = VIEW_SUPERSEDED;
     } else if (!status) {
         double t = cli_now();
@@ -340,8 +359,14 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
     }
     made_free(&m);
     fclose(diag);
+    if (status == SYL_ECANCELED) status = VIEW_SUPERSEDED; /* stopped inside a level's or a leaf's mesh */
     slot->status = status;
-    if (status == VIEW_SUPERSEDED) slot->key[0] = 0; /* never found again: built anew when asked */
+    if (status == VIEW_SUPERSEDED) { /* never found again: built anew when asked */
+        slot->key[0] = 0;
+        pthread_mutex_lock(&v->gen_lock);
+        v->stopped++;
+        pthread_mutex_unlock(&v->gen_lock);
+    }
     if (status) { /* keep the messages only */
         free(slot->glb), slot->glb = NULL, slot->glb_len = 0;
         free(slot->csv), slot->csv = NULL, slot->csv_len = 0;
@@ -443,7 +468,7 @@ int view_export(View *v, const ViewRequest *rq, const char *format, char **out, 
         return SYL_ELIMIT;
     }
     Made m;
-    int status = make(v, rq, df, &m);
+    int status = make(v, rq, NULL, df, &m); /* asked for: never stopped */
     if (!status && m.eco) { /* an ecosystem: its forest's .glb */
         ViewBuild b = {0};
         if (!strcmp(format, "glb")) status = view_eco_build(v, rq, m.eco, current_gen(v), df, &b);
@@ -478,7 +503,7 @@ char *view_models_json(View *v) {
     fputs("{\"file\":", f);
     json_string_file(f, v->path);
     pthread_mutex_lock(&v->gen_lock);
-    fprintf(f, ",\"gen\":%u,\"models\":[", v->gen);
+    fprintf(f, ",\"gen\":%u,\"builds\":%u,\"stopped\":%u,\"models\":[", v->gen, v->builds, v->stopped);
     pthread_mutex_unlock(&v->gen_lock);
     for (int i = 0; i < n; i++) {
         fputs(i ? "," : "", f);

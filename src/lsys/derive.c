@@ -733,6 +733,7 @@ int lsys_derive_begin(const SylProgram *p, SylDeriveOptions *opt, const SylStrin
 
 int syl_derive_step(SylDeriver *d) {
     if (d->status) return d->status;
+    if (syl_cancelled(d->opt->cancel)) return d->status = SYL_ECANCELED; /* its caller moved on */
     Engine *e = &d->e;
     const SylProgram *p = e->p;
     int step = ++d->step, st = SYL_OK;

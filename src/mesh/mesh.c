@@ -759,6 +759,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     SylMeshOptions o;
     int status = resolve_options(s, opt, &o);
     if (status) return status;
+    if (syl_cancelled(o.cancel)) return SYL_ECANCELED;
     MeshPlan pl = {.skel = s, .sides = o.sides, .min_sides = o.min_sides, .caps = o.caps != -1,
                    .one_sided = o.one_sided != 0, .model_sides = !opt || opt->sides == 0};
     pl.sphere_stacks = o.sides / 2 > 3 ? o.sides / 2 : 3;
@@ -792,6 +793,10 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     if (!plan_tubes(&pl, rad) || !size_tubes(&pl) || !mesh_plan_shapes(&pl)) goto oom_plan;
     budget_release(mem, plan_bytes);
     plan_bytes = 0;
+    if (syl_cancelled(o.cancel)) { /* before the mesh's memory is taken and written */
+        status = SYL_ECANCELED;
+        goto done;
+    }
     if (pl.nverts > UINT32_MAX) {
         diag(&o, "more than 2^32 vertices");
         status = SYL_ELIMIT;

@@ -91,7 +91,7 @@ static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const 
                           .threads = opt->threads, .max_modules = opt->max_modules,
                           .max_work = opt->max_work, .max_memory = opt->max_memory, .budget = budget,
                           .diag = opt->diag,
-                          .on_step = opt->progress ? on_step : NULL, .user = &sp};
+                          .on_step = opt->progress ? on_step : NULL, .user = &sp, .cancel = mo->cancel};
     double t0 = now(), c0 = cpu_now();
     SylString *derived = NULL;
     int st = syl_derive(p, &d, &derived);
@@ -105,7 +105,8 @@ static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const 
     if (!st) out->modules = syl_string_length(out->string);
     if (!st && opt->until != SYL_PLANT_STRING) {
         st = syl_turtle(p, out->string, &(SylTurtleOptions){.diag = opt->diag, .max_memory = opt->max_memory, .budget = budget,
-                                                                .use_seed = opt->use_seed, .seed = opt->seed}, &out->skeleton);
+                                                                .use_seed = opt->use_seed, .seed = opt->seed,
+                                                                .cancel = mo->cancel}, &out->skeleton);
         if (opt->drop_string) {
             syl_string_free(out->string);
             out->string = NULL;
@@ -130,6 +131,7 @@ int syl_plant_build(const SylProgram *p, const SylPlantOptions *opt, SylPlant *o
     if (!mo.budget) mo.budget = budget;
     if (!mo.sink) mo.sink = program_sink(p); /* the mesher's records: the program's sink */
     if (!mo.max_memory) mo.max_memory = opt->max_memory;
+    if (opt->cancel) mo.cancel = opt->cancel; /* every engine of the build asks the same */
     SylModelKind kind = syl_program_kind(p);
     const KindOps *ops = kinds_ops(kind);
     int nscene = 0;

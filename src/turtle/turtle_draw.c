@@ -163,13 +163,15 @@ static void reserve_nodes(SylSkeleton *sk, uint64_t want) {
     (void)skeleton_reserve_nodes(sk, (size_t)want); /* when it fails: grow as needed instead */
 }
 
-/* Read the string and build the skeleton. */
-static int draw_string(Turtle *t, const SylString *s) {
+/* Read the string and build the skeleton (SYL_ECANCELED when cancel says so: asked every
+ * 65,536 modules, a few milliseconds of reading). */
+static int draw_string(Turtle *t, const SylString *s, const SylCancel *cancel) {
     TState *st = &t->st;
     const uint16_t *code = s->code;
     const double *par = s->par;
     size_t off = 0;
     for (size_t i = 0; i < s->n && !t->oom; i++) {
+        if (!(i & 0xffff) && syl_cancelled(cancel)) return SYL_ECANCELED;
         uint16_t c = code[i];
         int sym = CODE_SYM(c), na = CODE_ARITY(c);
         const double *a = na ? par + off : NULL; /* par is NULL in a string without parameters */
@@ -294,7 +296,7 @@ int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *
     }
     if (mem != &own) skeleton_charge(sk, mem, bytes);
     reserve_nodes(sk, want);
-    int status = draw_string(t, s);
+    int status = draw_string(t, s, opt ? opt->cancel : NULL);
     if (status == SYL_OK) status = lang_textures_apply(p, sk, opt && opt->use_seed ? opt->seed : p->seed, diag);
     if (status == SYL_OK && t->bad)
         program_say(p, diag, DIAG_WARNING, NULL, "the turtle skipped %llu module%s with a parameter that is not a finite number",

@@ -1,0 +1,87 @@
+/* SylCancel (sylva.h): a build is asked whether to stop between its passes — before each
+ * derivation step, every 65,536 modules of the turtle, before the mesher plans and before it
+ * writes. Stopped at any of those asks it returns SYL_ECANCELED with nothing left in its
+ * output (ASan's leak check in build-asan); never stopped, it builds the same mesh as
+ * without a cancel. */
+#include "unit.h"
+
+#include <string.h>
+
+#include "sylva/mesh.h"
+#include "sylva/plant.h"
+
+/* Stops at its ask number `at` (counting from 0); counts every ask. */
+typedef struct Asks {
+    int asked, at;
+} Asks;
+
+static int stop_at(void *user) {
+    Asks *a = user;
+    return a->asked++ == a->at;
+}
+
+/* 2^17 modules once derived: the turtle asks twice (modules 0 and 65,536) */
+static const char *const line = "lsystem Line {\n derive 17\n axiom F\n F -> FF\n}\n";
+static const char *const bush = "lsystem Bush {\n derive 4\n angle 25\n axiom F\n F -> F[+F]F[-F]F\n}\n";
+
+static int build(SylProgram *p, SylPlantStage until, Asks *a, SylPlant *pl) {
+    SylCancel cancel = {.stop = stop_at, .user = a};
+    SylMeshOptions mo = {.threads = 1, .sides = 3};
+    SylPlantOptions po = {.threads = 1, .until = until, .mesh = &mo, .cancel = a ? &cancel : NULL};
+    return syl_plant_build(p, &po, pl);
+}
+
+/* derive 17 steps (17 asks), then the turtle's 2 */
+static void every_pass_of_a_derivation_and_the_turtle_is_asked(void **state) {
+    (void)state;
+    SylProgram *p = unit_compile(line, NULL, NULL);
+    assert_non_null(p);
+    SylPlant pl;
+    Asks never = {.at = -1};
+    assert_int_equal(build(p, SYL_PLANT_SKELETON, &never, &pl), SYL_OK);
+    assert_int_equal(never.asked, 17 + 2);
+    assert_int_equal(pl.skeleton->nnodes, 131072 + 1);
+    syl_plant_free(&pl);
+    for (int at = 0; at < never.asked; at++) {
+        Asks a = {.at = at};
+        assert_int_equal(build(p, SYL_PLANT_SKELETON, &a, &pl), SYL_ECANCELED);
+        assert_int_equal(a.asked, at + 1); /* stopped at once */
+        assert_null(pl.skeleton);
+        assert_null(pl.string);
+    }
+    syl_program_free(p);
+}
+
+/* the mesher's two asks come after the derivation's and the turtle's; a build not stopped is
+ * the same mesh as one without a cancel */
+static void a_mesh_stops_before_planning_and_writing_and_is_the_same_when_not_stopped(void **state) {
+    (void)state;
+    SylProgram *p = unit_compile(bush, NULL, NULL);
+    assert_non_null(p);
+    SylPlant plain, pl;
+    assert_int_equal(build(p, SYL_PLANT_MESH, NULL, &plain), SYL_OK);
+    Asks never = {.at = -1};
+    assert_int_equal(build(p, SYL_PLANT_MESH, &never, &pl), SYL_OK);
+    assert_int_equal(never.asked, 4 + 1 + 2);
+    assert_int_equal(pl.mesh->nverts, plain.mesh->nverts);
+    assert_int_equal(pl.mesh->nidx, plain.mesh->nidx);
+    assert_memory_equal(pl.mesh->pos, plain.mesh->pos, plain.mesh->nverts * 3 * sizeof(float));
+    assert_memory_equal(pl.mesh->idx, plain.mesh->idx, plain.mesh->nidx * sizeof(uint32_t));
+    syl_plant_free(&pl);
+    for (int at = 4 + 1; at < never.asked; at++) {
+        Asks a = {.at = at};
+        assert_int_equal(build(p, SYL_PLANT_MESH, &a, &pl), SYL_ECANCELED);
+        assert_null(pl.mesh);
+        assert_null(pl.skeleton);
+    }
+    syl_plant_free(&plain);
+    syl_program_free(p);
+}
+
+int main(void) {
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(every_pass_of_a_derivation_and_the_turtle_is_asked),
+        cmocka_unit_test(a_mesh_stops_before_planning_and_writing_and_is_the_same_when_not_stopped),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
