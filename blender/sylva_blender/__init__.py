@@ -206,8 +206,12 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
     root["sylva_file"] = path
     root["sylva_model"] = m.name
     coll.objects.link(root)
+    instanced = leaves == "instanced"
+    arm = None
     if plant.levels:  # NAME_LOD0 is the tree's mesh
-        obj = realtime.add_levels(context, plant, m.name, root, mesh_object)[0]
+        obj = realtime.add_levels(context, plant, m.name, root, mesh_object, instanced)[0]
+        if instanced:
+            root["sylva_leaf_instances"] = obj["sylva_leaf_instances"]
     else:
         obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh", scene_block)
         coll.objects.link(obj)
@@ -216,9 +220,11 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
             arm = realtime.armature(context, plant.wind, m.name, root, coll)
             realtime.skin(obj, arm, realtime.bone_names(m.name, plant.wind), plant.wind.skin_joints,
                           plant.wind.skin_weights)
+        if instanced:
+            root["sylva_leaf_instances"] = leaf_instances.add(
+                plant.leaf_sets(), m.name, mesh_object, root, coll, arm,
+                realtime.bone_names(m.name, plant.wind) if arm else None)
     obj["sylva_nodes"] = plant.info["nodes"]
-    if leaves == "instanced":
-        root["sylva_leaf_instances"] = leaf_instances.add(plant, m.name, mesh_object, root, coll)
     return root
 
 

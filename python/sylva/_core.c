@@ -1007,14 +1007,56 @@ static void sets_free(PyObject *capsule) {
     free(n);
 }
 
-/* leaf_sets(cards=False): the leaves as instances of one prototype a leaf material, as `sylva
- * mesh --leaves instanced` (or instanced-cards) writes them into a .glb: [{name, proto:
- * mesh_dict, t, r, s, node}] (translations, rotations x y z w, scales, each leaf's node). */
+/* Each instance's joint with wind (the heavier of the two at its place, the one the .glb puts
+ * it under: glb_skin.c), from syl_wind_skin over the instances' translations and nodes; None
+ * without wind. */
+static PyObject *set_joints(PlantObject *o, const SylInstances *x) {
+    if (!o->wind.njoints || !x->node) Py_RETURN_NONE;
+    int32_t *two = malloc(2 * sizeof *two * (x->count + 1)), *one = malloc(sizeof *one * (x->count + 1));
+    uint8_t *weights = malloc(2 * (x->count + 1));
+    if (!two || !one || !weights) {
+        free(two), free(one), free(weights);
+        return PyErr_NoMemory();
+    }
+    SylMesh at = {.pos = x->t, .node = x->node, .nverts = x->count}; /* only pos, node and nverts are read */
+    syl_wind_skin(&at, o->pl.skeleton, &o->wind, two, weights);
+    for (size_t i = 0; i < x->count; i++) one[i] = two[2 * i];
+    free(two), free(weights);
+    return buffer_new(NULL, one, "i", 4, (Py_ssize_t)x->count, -1);
+}
+
+/* A list of set dicts {name, proto: mesh_dict, t, r, s, node, joint}, views kept alive by owner. */
+static PyObject *sets_list(PlantObject *o, PyObject *owner, const SylInstances *sets, int n) {
+    PyObject *l = PyList_New(0);
+    for (int i = 0; l && i < n; i++) {
+        const SylInstances *x = &sets[i];
+        Py_ssize_t c = (Py_ssize_t)x->count;
+        PyObject *t = Py_BuildValue("{s:s,s:N,s:N,s:N,s:N,s:N,s:N}", "name", x->name, "proto",
+                                    mesh_dict(owner, x->proto), "t", buffer_new(owner, x->t, "f", 4, c, 3), "r",
+                                    buffer_new(owner, x->r, "f", 4, c, 4), "s", buffer_new(owner, x->s, "f", 4, c, 3),
+                                    "node", x->node ? buffer_new(owner, x->node, "i", 4, c, -1) : Py_NewRef(Py_None),
+                                    "joint", set_joints(o, x));
+        if (!t || PyList_Append(l, t)) Py_CLEAR(l);
+        Py_XDECREF(t);
+    }
+    return l;
+}
+
+/* leaf_sets(cards=False, level=0): the leaves as instances of one prototype a leaf material, as
+ * `sylva mesh --leaves instanced` (or instanced-cards) writes them into a .glb: [{name, proto:
+ * mesh_dict, t, r, s, node, joint}] (translations, rotations x y z w, scales, each leaf's node
+ * and, with wind, its joint). Level k >= 1: the sets the levels of detail were built with (a
+ * plant built with leaves instanced or instanced-cards; else none), cards not asked. */
 static PyObject *plant_leaf_sets(PlantObject *o, PyObject *args, PyObject *kw) {
-    static char *kwl[] = {"cards", NULL};
-    int cards = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "|p", kwl, &cards)) return NULL;
+    static char *kwl[] = {"cards", "level", NULL};
+    int cards = 0, level = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "|pi", kwl, &cards, &level)) return NULL;
     if (need_skeleton(o)) return NULL;
+    if (level < 0 || (level > 0 && level >= o->lods.n)) return PyErr_Format(PyExc_IndexError, "no level %d", level);
+    if (level > 0) {
+        const SylLodLevel *lv = &o->lods.level[level];
+        return sets_list(o, (PyObject *)o, lv->sets, lv->nsets);
+    }
     Diag d;
     if (diag_open(&d)) return NULL;
     SylMeshOptions mo = o->mo;
@@ -1038,17 +1080,7 @@ static PyObject *plant_leaf_sets(PlantObject *o, PyObject *args, PyObject *kw) {
     }
     *count = n;
     PyCapsule_SetContext(cap, count);
-    PyObject *l = PyList_New(0);
-    for (int i = 0; l && i < n; i++) {
-        const SylInstances *x = &sets[i];
-        Py_ssize_t c = (Py_ssize_t)x->count;
-        PyObject *t = Py_BuildValue("{s:s,s:N,s:N,s:N,s:N,s:N}", "name", x->name, "proto", mesh_dict(cap, x->proto),
-                                    "t", buffer_new(cap, x->t, "f", 4, c, 3), "r", buffer_new(cap, x->r, "f", 4, c, 4),
-                                    "s", buffer_new(cap, x->s, "f", 4, c, 3), "node",
-                                    buffer_new(cap, x->node, "i", 4, c, -1));
-        if (!t || PyList_Append(l, t)) Py_CLEAR(l);
-        Py_XDECREF(t);
-    }
+    PyObject *l = sets_list(o, cap, sets, n);
     Py_DECREF(cap);
     return l;
 }
@@ -1173,7 +1205,7 @@ static PyMethodDef plant_methods[] = {
     {"impostor", (PyCFunction)plant_impostor, METH_NOARGS, "the impostor's atlases (impostor=), or None"},
     {"wind", (PyCFunction)plant_wind, METH_NOARGS, "the wind's joints and keys (wind=), or None"},
     {"leaf_sets", (PyCFunction)(void (*)(void))plant_leaf_sets, METH_VARARGS | METH_KEYWORDS,
-     "leaf_sets(cards=False): the leaves as instance sets, each with its prototype"},
+     "leaf_sets(cards=False, level=0): the leaves as instance sets, each with its prototype"},
     {"skin", (PyCFunction)plant_skin, METH_VARARGS, "skin(level=0): each vertex's joints and weights, or None"},
     {"write", (PyCFunction)plant_write, METH_VARARGS, "write(path): .glb, .obj or .ply by the extension"},
     {"skeleton_csv", (PyCFunction)plant_skeleton_csv, METH_NOARGS, "the skeleton as `sylva skeleton` writes it"},

@@ -157,3 +157,41 @@ def test_leaf_sets_are_the_commands_instances(tmp_path):
     sizes = np.sort(org["size"][org["kind"] == sylva.ORGAN_KINDS.index("leaf")])
     scales = np.sort(np.concatenate([s.scales for s in sets]), axis=0)
     np.testing.assert_array_equal(scales, np.repeat(sizes[:, None], 3, 1))
+
+
+def test_level_leaf_sets_are_the_glbs(tmp_path):
+    # every level's leaves as the .glb of `--lod 2 --leaves instanced --wind` has them: per
+    # LODk node, per joint (the writer splits a set by the joint its leaves follow, _stemN),
+    # at the translations the file stores relative to the joint's stem base
+    bush = os.path.join(ROOT, "examples", "hybrid", "shade_bush.syl")
+    out = tmp_path / "lv.glb"
+    subprocess.run([CLI, "mesh", bush, "--lod", "2", "--leaves", "instanced", "--wind", "6", "--wind-seconds", "2",
+                    "-o", str(out)], check=True, capture_output=True)
+    js, accessor = glb(out)
+    nodes = js["nodes"]
+    want = {}
+
+    def walk(i, level):
+        ext = nodes[i].get("extensions", {}).get("EXT_mesh_gpu_instancing")
+        if ext:
+            stem = int(nodes[i]["name"].rsplit("_stem", 1)[1])
+            want[level, stem] = want.get((level, stem), 0) + len(accessor(ext["attributes"]["TRANSLATION"]))
+        for c in nodes[i].get("children", []):
+            walk(c, level)
+    for i, n in enumerate(nodes):
+        if n.get("name", "").rsplit("_LOD", 1)[-1].isdigit():
+            walk(i, int(n["name"].rsplit("_LOD", 1)[1]))
+    plant = sylva.load(bush).model.build(leaves="instanced", lod=2, wind=6, wind_seconds=2)
+    stem_of = plant.wind.joints["stem"]
+    got = {}
+    for lv in plant.levels:
+        for s in lv.leaf_sets():
+            assert s.joints is not None and len(s.joints) == len(s) and s.nodes is not None
+            for j, c in zip(*np.unique(s.joints, return_counts=True)):
+                got[lv.level, int(stem_of[j])] = got.get((lv.level, int(stem_of[j])), 0) + int(c)
+    assert {k for k, _ in got} == {0, 1, 2} and got == want
+    # without wind: no joints, and a level's leaves have no nodes
+    plain = sylva.load(bush).model.build(leaves="instanced", lod=2)
+    assert [sum(len(s) for s in lv.leaf_sets()) for lv in plain.levels] == \
+        [sum(c for (k, _), c in want.items() if k == lv) for lv in range(3)]
+    assert all(s.joints is None for lv in plain.levels for s in lv.leaf_sets())
