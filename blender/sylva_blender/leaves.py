@@ -52,10 +52,14 @@ def add(sets, name: str, mesh_object, parent, collection, arm=None, bone_names=N
         me.vertices.add(4 * n)
         me.vertices.foreach_set("co", corners.ravel())
         me.loops.add(4 * n)
-        me.loops.foreach_set("vertex_index", np.arange(4 * n, dtype=np.int32))
+        me.loops.foreach_set("vertex_index", np.arange(4 * n, dtype=np.uint32))  # uint32: foreach_set's fast path
+        ring = np.arange(4 * n, dtype=np.uint32)  # each face's four sides, given (no search in update())
+        me.edges.add(4 * n)
+        me.edges.foreach_set("vertices", np.stack([ring, ring - ring % 4 + (ring + 1) % 4], axis=1).ravel())
+        me.loops.foreach_set("edge_index", ring)
         me.polygons.add(n)
-        me.polygons.foreach_set("loop_start", np.arange(0, 4 * n, 4, dtype=np.int32))
-        me.polygons.foreach_set("loop_total", np.full(n, 4, dtype=np.int32))
+        me.polygons.foreach_set("loop_start", np.arange(0, 4 * n, 4, dtype=np.uint32))
+        me.polygons.foreach_set("loop_total", np.full(n, 4, dtype=np.uint32))
         me.update()
         emitter = bpy.data.objects.new(f"{name}{sep}leaves{k}{suffix}", me)
         emitter.instance_type = "FACES"

@@ -195,3 +195,18 @@ def test_level_leaf_sets_are_the_glbs(tmp_path):
     assert [sum(len(s) for s in lv.leaf_sets()) for lv in plain.levels] == \
         [sum(c for (k, _), c in want.items() if k == lv) for lv in range(3)]
     assert all(s.joints is None for lv in plain.levels for s in lv.leaf_sets())
+
+
+def test_mesh_edges_are_the_sides_once():
+    # the add-on's edges (sylva._core.mesh_edges): every triangle side once, as numpy's unique
+    # finds them, and loop 3t + i's edge joins corners i and i + 1 of triangle t
+    from sylva import _core
+    mesh = sylva.load(os.path.join(ROOT, "examples", "abop", "fig1_25_bush3d.syl")).model.mesh()
+    tris = mesh.triangles
+    edges, loop_edge = (np.asarray(a) for a in _core.mesh_edges(tris, len(mesh.vertices)))
+    a, b = tris.ravel().astype(np.int64), tris[:, [1, 2, 0]].ravel().astype(np.int64)
+    pairs = np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
+    assert len(edges) == len(np.unique(pairs, axis=0)) and (edges[:, 0] < edges[:, 1]).all()
+    np.testing.assert_array_equal(edges[loop_edge], pairs)
+    with pytest.raises(ValueError):
+        _core.mesh_edges(tris, int(tris.max()))
