@@ -15,18 +15,7 @@ from __future__ import annotations
 
 import bpy
 import numpy as np
-
-
-def _z_up(v):  # Sylva's y-up to Blender's z-up, as the mesh is turned
-    return np.stack([v[:, 0], -v[:, 2], v[:, 1]], axis=1)
-
-
-def _axes(q):
-    """The images of +x and +y under unit quaternions q (n, 4: x, y, z, w)."""
-    x, y, z, w = q.T.astype(np.float64)
-    ax = np.stack([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)], axis=1)
-    ay = np.stack([2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)], axis=1)
-    return ax, ay
+from sylva import _core
 
 
 def add(sets, name: str, mesh_object, parent, collection, arm=None, bone_names=None, suffix: str = "",
@@ -43,11 +32,10 @@ def add(sets, name: str, mesh_object, parent, collection, arm=None, bone_names=N
     for k, ls in enumerate(sets):
         n = len(ls)
         total += n
-        ax, ay = _axes(ls.rotations)
-        pos, ax, ay = _z_up(ls.translations), _z_up(ax), _z_up(ay)
-        a = (ls.scales[:, :1] / 2).astype(np.float64)
-        corners = np.stack([pos - a * ax - a * ay, pos + a * ax - a * ay, pos + a * ax + a * ay,
-                            pos - a * ax + a * ay], axis=1).astype(np.float32)
+        # the squares in Sylva's y-up frame (the package's C helper), turned to Blender's z-up
+        quads = np.asarray(_core.instance_quads(ls.translations, ls.rotations, ls.scales))
+        corners = np.empty_like(quads)
+        corners[:, 0], corners[:, 1], corners[:, 2] = quads[:, 0], -quads[:, 2], quads[:, 1]
         me = bpy.data.meshes.new(f"{name}{sep}leaves{k}{suffix}")
         me.vertices.add(4 * n)
         me.vertices.foreach_set("co", corners.ravel())

@@ -379,6 +379,38 @@ static PyObject *core_mesh_edges(PyObject *self, PyObject *args) {
                          buffer_new(NULL, loop_edge, "i", 4, (Py_ssize_t)nloops, -1));
 }
 
+/* instance_quads(t, r, s) -> (4n, 3) float32: for instances of translations t (n, 3), unit
+ * quaternions r (n, 4: x, y, z, w) and scales s (n, 3), the corners of a square per instance,
+ * centred on T, sides s_x along R x and R y, corners (-,-) (+,-) (+,+) (-,+): the faces the
+ * Blender add-on instances its leaf on (computed in double, as the add-on's numpy did). */
+static PyObject *core_instance_quads(PyObject *self, PyObject *args) {
+    Py_buffer tb, rb, sb;
+    if (!PyArg_ParseTuple(args, "y*y*y*", &tb, &rb, &sb)) return NULL;
+    size_t n = (size_t)tb.len / 12;
+    PyObject *res = NULL;
+    float *out = NULL;
+    if (tb.len % 12 || (size_t)rb.len != 16 * n || (size_t)sb.len != 12 * n)
+        PyErr_Format(PyExc_ValueError, "instance_quads: %zd, %zd and %zd bytes are not n x 3, 4 and 3 floats", tb.len,
+                     rb.len, sb.len);
+    else if (!(out = malloc(12 * sizeof *out * (n + 1))))
+        PyErr_NoMemory();
+    else {
+        const float *t = tb.buf, *r = rb.buf, *sc = sb.buf;
+        static const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+        for (size_t i = 0; i < n; i++) {
+            double x = r[4 * i], y = r[4 * i + 1], z = r[4 * i + 2], w = r[4 * i + 3], a = sc[3 * i] / 2.0;
+            double ax[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+            double ay[3] = {2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)};
+            for (int c = 0; c < 4; c++)
+                for (int k = 0; k < 3; k++)
+                    out[12 * i + 3 * c + k] = (float)(t[3 * i + k] + a * sx[c] * ax[k] + a * sy[c] * ay[k]);
+        }
+        res = buffer_new(NULL, out, "f", 4, (Py_ssize_t)(4 * n), 3);
+    }
+    PyBuffer_Release(&tb), PyBuffer_Release(&rb), PyBuffer_Release(&sb);
+    return res;
+}
+
 /* PNG bytes of an (H, W, 4) uint8 picture, by the library's encoder (sylva/stream.h). */
 static PyObject *core_png_rgba(PyObject *self, PyObject *args) {
     Py_buffer px;
@@ -1528,6 +1560,8 @@ static PyMethodDef core_methods[] = {
      "compile(path, text=None, model=None, overrides=None, lint=False, validate=True) -> (Program, warnings)"},
     {"models", core_models, METH_VARARGS, "models(path, text=None) -> names"},
     {"png_rgba", core_png_rgba, METH_VARARGS, "png_rgba(bytes, width, height) -> PNG bytes"},
+    {"instance_quads", core_instance_quads, METH_VARARGS,
+     "instance_quads(t, r, s) -> (4n, 3) float32: a square per instance, centred on it, along R x and R y"},
     {"mesh_edges", core_mesh_edges, METH_VARARGS,
      "mesh_edges(triangles, nverts) -> (edges, loop_edge): each side once and every loop's edge"},
     {"_set_errors", core_set_errors, METH_VARARGS, "the package's CompileError and LimitError"},

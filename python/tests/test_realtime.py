@@ -210,3 +210,21 @@ def test_mesh_edges_are_the_sides_once():
     np.testing.assert_array_equal(edges[loop_edge], pairs)
     with pytest.raises(ValueError):
         _core.mesh_edges(tris, int(tris.max()))
+
+
+def test_instance_quads_centre_side_and_heading():
+    # the add-on's leaf faces (sylva._core.instance_quads): each square centred on its leaf,
+    # its side the leaf's size, its first edge along the leaf's R x and its normal along R z
+    from sylva import _core
+    s = sylva.load(os.path.join(ROOT, "examples", "curvetree", "bezier_oak.syl")).model.build(
+        leaves="instanced", until="skeleton").leaf_sets()[0]
+    q = np.asarray(_core.instance_quads(s.translations, s.rotations, s.scales)).reshape(-1, 4, 3).astype(np.float64)
+    np.testing.assert_allclose(q.mean(axis=1), s.translations, atol=1e-5)
+    edge = q[:, 1] - q[:, 0]
+    np.testing.assert_allclose(np.linalg.norm(edge, axis=1), s.scales[:, 0], rtol=1e-4)
+    x, y, z, w = s.rotations.T.astype(np.float64)
+    rx = np.stack([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)], axis=1)
+    rz = np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], axis=1)
+    assert (np.einsum("ij,ij->i", edge / np.linalg.norm(edge, axis=1)[:, None], rx) > 0.9999).all()
+    normal = np.cross(edge, q[:, 2] - q[:, 1])
+    assert (np.einsum("ij,ij->i", normal / np.linalg.norm(normal, axis=1)[:, None], rz) > 0.9999).all()
