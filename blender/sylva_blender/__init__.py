@@ -70,29 +70,22 @@ OBSTACLE_MATERIAL = 250
 
 
 def _edges(me, tris, nv: int) -> None:
-    """The triangles' edges, each once, and every loop's edge, from numpy: Mesh.update() finds
-    them itself when a mesh has none, by a hash of every edge, which took half the add-on's
-    time on a large tree (docs/blender.md, "Speed beside Sapling")."""
+    """The triangles' edges, each once, and every loop's edge, found by the package's C helper
+    (one hash of the sides): Mesh.update() finds them itself when a mesh has none, which took
+    half the add-on's time on a large tree, and a numpy sort a third (docs/blender.md, "Speed
+    beside Sapling")."""
     import numpy as np
-    a = tris.astype(np.int64).ravel()
-    b = tris[:, [1, 2, 0]].astype(np.int64).ravel()  # loop i runs from a[i] to b[i]
-    pair = np.minimum(a, b) * nv + np.maximum(a, b)
-    n, shift = len(pair), max(1, (len(pair) - 1).bit_length())
-    if (nv * nv).bit_length() + shift <= 63:  # one sort of (pair, loop) packed in an int64: no argsort
-        packed = (pair << shift) | np.arange(n, dtype=np.int64)
-        packed.sort()
-        pair = packed >> shift
-        first = np.empty(n, dtype=bool)
-        first[:1] = True
-        np.not_equal(pair[1:], pair[:-1], out=first[1:])
-        edge_of_loop = np.empty(n, dtype=np.int32)
-        edge_of_loop[packed & ((1 << shift) - 1)] = np.cumsum(first, dtype=np.int32) - 1
-        keys = pair[first]
-    else:
-        keys, edge_of_loop = np.unique(pair, return_inverse=True)
-    me.edges.add(len(keys))
-    me.edges.foreach_set("vertices", np.stack([keys // nv, keys % nv], axis=1).astype(np.int32).ravel())
-    me.loops.foreach_set("edge_index", edge_of_loop.astype(np.int32))
+    from sylva import _core
+    edges, loop_edge = (np.asarray(a).view(np.uint32) for a in _core.mesh_edges(tris, nv))
+    me.edges.add(len(edges))
+    me.edges.foreach_set("vertices", edges.ravel())
+    me.loops.foreach_set("edge_index", loop_edge)
+
+
+# Blender 3.4's foreach_set copies an array of uint32 ('I') straight into a mesh's int
+# properties and goes item by item for int32 and others, 15-25 times slower (a 900,000-loop
+# mesh: 2 ms against 30 ms a property): every index array is given as uint32.
+U32 = "uint32"
 
 
 def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = True) -> bpy.types.Object:
@@ -115,6 +108,7 @@ def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = Tru
         at = 0
         for g in groups:  # the kept groups, renumbered from 0
             g["first"], at = at, at + g["count"]
+    tris = np.ascontiguousarray(tris, dtype=U32)
     co = np.empty_like(v)
     co[:, 0], co[:, 1], co[:, 2] = (v[:, 0], -v[:, 2], v[:, 1]) if z_up else (v[:, 0], v[:, 1], v[:, 2])
     nt = len(tris)
@@ -122,13 +116,13 @@ def mesh_object(plant, name: str, drop_obstacles: bool = False, z_up: bool = Tru
     me.vertices.add(len(v))
     me.vertices.foreach_set("co", co.ravel())
     me.loops.add(3 * nt)
-    me.loops.foreach_set("vertex_index", tris.astype(np.int32, copy=False).ravel())
+    me.loops.foreach_set("vertex_index", tris.ravel())
     _edges(me, tris, len(v))
     me.polygons.add(nt)
-    me.polygons.foreach_set("loop_start", np.arange(0, 3 * nt, 3, dtype=np.int32))
-    me.polygons.foreach_set("loop_total", np.full(nt, 3, dtype=np.int32))
+    me.polygons.foreach_set("loop_start", np.arange(0, 3 * nt, 3, dtype=U32))
+    me.polygons.foreach_set("loop_total", np.full(nt, 3, dtype=U32))
     kinds = {0: "Bark", 1: "Leaf", 2: "Flower", 3: "Plain"}
-    index = np.zeros(nt, dtype=np.int32)
+    index = np.zeros(nt, dtype=U32)
     for k, g in enumerate(groups):
         leaf = g["kind"] in (1, 2)
         me.materials.append(_material(f"{name} {kinds.get(g['kind'], 'Plain')} {g['material']}", g["rgb"], leaf))
@@ -206,8 +200,12 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
     root["sylva_file"] = path
     root["sylva_model"] = m.name
     coll.objects.link(root)
+    instanced = leaves == "instanced"
+    arm = None
     if plant.levels:  # NAME_LOD0 is the tree's mesh
-        obj = realtime.add_levels(context, plant, m.name, root, mesh_object)[0]
+        obj = realtime.add_levels(context, plant, m.name, root, mesh_object, instanced)[0]
+        if instanced:
+            root["sylva_leaf_instances"] = obj["sylva_leaf_instances"]
     else:
         obj = curve_object(plant, m.name + " stems") if output == "CURVES" else mesh_object(plant, m.name + " mesh", scene_block)
         coll.objects.link(obj)
@@ -216,9 +214,11 @@ def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -
             arm = realtime.armature(context, plant.wind, m.name, root, coll)
             realtime.skin(obj, arm, realtime.bone_names(m.name, plant.wind), plant.wind.skin_joints,
                           plant.wind.skin_weights)
+        if instanced:
+            root["sylva_leaf_instances"] = leaf_instances.add(
+                plant.leaf_sets(), m.name, mesh_object, root, coll, arm,
+                realtime.bone_names(m.name, plant.wind) if arm else None)
     obj["sylva_nodes"] = plant.info["nodes"]
-    if leaves == "instanced":
-        root["sylva_leaf_instances"] = leaf_instances.add(plant, m.name, mesh_object, root, coll)
     return root
 
 

@@ -15,49 +15,57 @@ from __future__ import annotations
 
 import bpy
 import numpy as np
+from sylva import _core
 
 
-def _z_up(v):  # Sylva's y-up to Blender's z-up, as the mesh is turned
-    return np.stack([v[:, 0], -v[:, 2], v[:, 1]], axis=1)
-
-
-def _axes(q):
-    """The images of +x and +y under unit quaternions q (n, 4: x, y, z, w)."""
-    x, y, z, w = q.T.astype(np.float64)
-    ax = np.stack([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)], axis=1)
-    ay = np.stack([2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)], axis=1)
-    return ax, ay
-
-
-def add(plant, name: str, mesh_object, parent, collection) -> int:
-    """The plant's leaves as face instances under parent; returns how many. mesh_object(mesh,
-    name, z_up=False) makes the prototype object from a sylva.Mesh."""
+def add(sets, name: str, mesh_object, parent, collection, arm=None, bone_names=None, suffix: str = "",
+        hide: bool = False) -> int:
+    """The sets (sylva.LeafSet, a plant's or a level's) as face instances under parent, each
+    set an emitter "NAME leavesK" (+ suffix) with its leaf object "NAME leafK" as child;
+    returns how many leaves. mesh_object(mesh, name, z_up=False) makes the leaf object from
+    the prototype. With arm (the wind's armature) each leaf's face is skinned whole to the
+    bone of its joint (LeafSet.joints, the joint the .glb puts it under): the face moves as
+    the bone, and its leaf with it, turned and carried with the tip. hide: an export level
+    (hidden in the viewport and renders)."""
     total = 0
-    for k, ls in enumerate(plant.leaf_sets()):
+    sep = "_" if suffix else " "
+    for k, ls in enumerate(sets):
         n = len(ls)
         total += n
-        ax, ay = _axes(ls.rotations)
-        pos, ax, ay = _z_up(ls.translations), _z_up(ax), _z_up(ay)
-        a = (ls.scales[:, :1] / 2).astype(np.float64)
-        corners = np.stack([pos - a * ax - a * ay, pos + a * ax - a * ay, pos + a * ax + a * ay,
-                            pos - a * ax + a * ay], axis=1).astype(np.float32)
-        me = bpy.data.meshes.new(f"{name} leaves{k}")
+        # the squares in Sylva's y-up frame (the package's C helper), turned to Blender's z-up
+        quads = np.asarray(_core.instance_quads(ls.translations, ls.rotations, ls.scales))
+        corners = np.empty_like(quads)
+        corners[:, 0], corners[:, 1], corners[:, 2] = quads[:, 0], -quads[:, 2], quads[:, 1]
+        me = bpy.data.meshes.new(f"{name}{sep}leaves{k}{suffix}")
         me.vertices.add(4 * n)
         me.vertices.foreach_set("co", corners.ravel())
         me.loops.add(4 * n)
-        me.loops.foreach_set("vertex_index", np.arange(4 * n, dtype=np.int32))
+        me.loops.foreach_set("vertex_index", np.arange(4 * n, dtype=np.uint32))  # uint32: foreach_set's fast path
+        ring = np.arange(4 * n, dtype=np.uint32)  # each face's four sides, given (no search in update())
+        me.edges.add(4 * n)
+        me.edges.foreach_set("vertices", np.stack([ring, ring - ring % 4 + (ring + 1) % 4], axis=1).ravel())
+        me.loops.foreach_set("edge_index", ring)
         me.polygons.add(n)
-        me.polygons.foreach_set("loop_start", np.arange(0, 4 * n, 4, dtype=np.int32))
-        me.polygons.foreach_set("loop_total", np.full(n, 4, dtype=np.int32))
+        me.polygons.foreach_set("loop_start", np.arange(0, 4 * n, 4, dtype=np.uint32))
+        me.polygons.foreach_set("loop_total", np.full(n, 4, dtype=np.uint32))
         me.update()
-        emitter = bpy.data.objects.new(f"{name} leaves{k}", me)
+        emitter = bpy.data.objects.new(f"{name}{sep}leaves{k}{suffix}", me)
         emitter.instance_type = "FACES"
         emitter.use_instance_faces_scale = True
         emitter.show_instancer_for_render = False
         emitter.show_instancer_for_viewport = False
         collection.objects.link(emitter)
         emitter.parent = parent
-        proto = mesh_object(ls.proto, f"{name} leaf{k}", z_up=False)
+        if arm is not None and ls.joints is not None:
+            for j in np.unique(ls.joints).tolist():
+                face = np.flatnonzero(ls.joints == j)
+                emitter.vertex_groups.new(name=bone_names[j]).add(
+                    (4 * face[:, None] + np.arange(4)).ravel().tolist(), 1.0, "REPLACE")
+            emitter.modifiers.new("Wind", "ARMATURE").object = arm
+        proto = mesh_object(ls.proto, f"{name}{sep}leaf{k}{suffix}", z_up=False)
         collection.objects.link(proto)
         proto.parent = emitter
+        if hide:
+            emitter.hide_set(True)
+            emitter.hide_render = True
     return total

@@ -36,9 +36,15 @@ def sapling_presets() -> str | None:
     return None
 
 
+_species: list[tuple[str, str]] = []  # the list of species, read once a session (free() forgets it)
+
+
 def species() -> list[tuple[str, str]]:
     """(name, path) of every model file of the library, folder by folder, names sorted, then
-    Sapling's presets as sapling/NAME."""
+    Sapling's presets as sapling/NAME. Read once: the library is the installed add-on's folder
+    (a scan took a third of the operator's time on a small tree)."""
+    if _species:
+        return _species
     models, _ = _roots()
     out = []
     for folder in FOLDERS:
@@ -52,7 +58,8 @@ def species() -> list[tuple[str, str]]:
     sap = sapling_presets()
     if sap:
         out += [(f"sapling/{f[:-3]}", os.path.join(sap, f)) for f in sorted(os.listdir(sap)) if f.endswith(".py")]
-    return out
+    _species[:] = out
+    return _species
 
 
 def path(name: str) -> str:
@@ -102,3 +109,4 @@ def free() -> None:
         bpy.utils.previews.remove(_previews)
         _previews = None
     _items.clear()
+    _species.clear()

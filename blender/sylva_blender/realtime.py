@@ -137,10 +137,13 @@ def card_material(name: str, img) -> bpy.types.Material:
     return mat
 
 
-def add_levels(context, plant, name: str, root, mesh_object) -> list[bpy.types.Object]:
+def add_levels(context, plant, name: str, root, mesh_object, instanced: bool = False) -> list[bpy.types.Object]:
     """NAME_LOD0 .. NAME_LODn in the collection NAME_LODs (inside the scene's), parented to
     root; the billboards' level textured with the impostor's atlas; with wind, an armature
-    and every other level skinned to it. Returns the level objects."""
+    and every other level skinned to it. instanced: each geometric level's leaves as face
+    instances (leaves.py) beside it, NAME_leavesK_LODk, following the wind's bones; the count
+    in the level's "sylva_leaf_instances". Returns the level objects."""
+    from . import leaves as leaf_instances
     coll = bpy.data.collections.new(f"{name}_LODs")
     context.collection.children.link(coll)
     levels = plant.levels
@@ -169,8 +172,13 @@ def add_levels(context, plant, name: str, root, mesh_object) -> list[bpy.types.O
                 obj["sylva_impostor_atlas"] = atlas_image(f"{name}_impostor", imp.color).name
                 obj["sylva_impostor_normal"] = atlas_image(f"{name}_impostor_normal", imp.normal).name
                 obj["sylva_impostor_grid"] = imp.grid
-        elif arm is not None:
-            skin(obj, arm, bone_names(name, wind), *lv.skin())
+        else:
+            if arm is not None:
+                skin(obj, arm, bone_names(name, wind), *lv.skin())
+            if instanced:
+                obj["sylva_leaf_instances"] = leaf_instances.add(
+                    lv.leaf_sets(), name, mesh_object, root, coll, arm, bone_names(name, wind) if arm else None,
+                    suffix=f"_LOD{lv.level}", hide=lv.level > 0)
         if lv.level > 0:  # the far levels are for export: hidden in the viewport and renders
             obj.hide_set(True)
             obj.hide_render = True

@@ -238,7 +238,9 @@ class Model:
                           scene=bool(opts.get("scene", False)), leaves=LEAVES[leaves], sides=opts.get("sides", 0),
                           age=float(opts.get("age", 0.0)), one_sided=bool(opts.get("one_sided", False)),
                           optimize=bool(opts.get("optimize", False)), **rt)
-        return Plant(core, self.name)
+        plant = Plant(core, self.name)
+        plant._leaves = leaves
+        return plant
 
     def save(self, path: str | os.PathLike, steps: int | None = None, **kw) -> "Plant":
         """Build and write a mesh file as `sylva mesh -o PATH` does (.glb, .obj or .ply; the
@@ -580,6 +582,13 @@ class Level:
     billboards: bool
     _plant: "Plant" = None
 
+    def leaf_sets(self) -> "list[LeafSet]":
+        """This level's leaves as instance sets, as the .glb places them under LODk (a plant
+        built with leaves='instanced' or 'instanced-cards'; LOD0's are Plant.leaf_sets())."""
+        if self.level == 0:
+            return self._plant.leaf_sets(cards=self._plant._leaves == "instanced-cards")
+        return [LeafSet(self._plant, d) for d in self._plant._core.leaf_sets(level=self.level)]
+
     def skin(self) -> "tuple[np.ndarray, np.ndarray] | None":
         """With wind: each vertex's two joints and weights (bytes summing to 255) of this
         level's mesh, as the .glb skins it to the one set of joints; None for the billboards."""
@@ -655,13 +664,17 @@ class LeafSet:
     instanced`, EXT_mesh_gpu_instancing): .proto the leaf of size 1 the mesher makes (the
     model's own outline; at the origin along +x, across +y, facing +z; one-sided), and per
     leaf .translations (n, 3), .rotations (n, 4) unit quaternions x, y, z, w, .scales (n, 3)
-    and .nodes (its skeleton node): a vertex p of the prototype is at T + R (S p). Y is up."""
+    and .nodes (its skeleton node; None for a level's leaves built without wind), and with
+    wind .joints (the wind joint each leaf follows, the one the .glb puts it under; else None):
+    a vertex p of the prototype is at T + R (S p). Y is up."""
 
     def __init__(self, plant: "Plant", d: dict):
         self.name = d["name"]
         self.proto = Mesh(plant, d["proto"])
         self.translations, self.rotations = np.asarray(d["t"]), np.asarray(d["r"])
-        self.scales, self.nodes = np.asarray(d["s"]), np.asarray(d["node"])
+        self.scales = np.asarray(d["s"])
+        self.nodes = None if d["node"] is None else np.asarray(d["node"])
+        self.joints = None if d.get("joint") is None else np.asarray(d["joint"])
 
     def __len__(self) -> int:
         return len(self.translations)
@@ -691,6 +704,7 @@ class Plant:
         self._core = core
         self.name = name
         self.info = core.info()
+        self._leaves = "copied"  # the build's leaves= (Level.leaf_sets)
 
     @property
     def skeleton(self) -> Skeleton:

@@ -326,6 +326,91 @@ static PyObject *core_models(PyObject *self, PyObject *args) {
     return l;
 }
 
+/* mesh_edges(triangles, nverts) -> (edges (E, 2) int32, loop_edge (3n,) int32): each triangle
+ * side once, in the order they first appear, and the edge of every loop (loop 3t + i runs from
+ * corner i to corner i + 1): what Blender wants of a mesh it is given, found by one hash of
+ * the sides here rather than by Blender's own search or a numpy sort (the add-on's largest
+ * cost on a big tree). */
+static PyObject *core_mesh_edges(PyObject *self, PyObject *args) {
+    Py_buffer tb;
+    Py_ssize_t nverts;
+    if (!PyArg_ParseTuple(args, "y*n", &tb, &nverts)) return NULL;
+    size_t nloops = (size_t)tb.len / 4;
+    if (tb.len % 12 || nverts < 0 || (uint64_t)nverts > UINT32_MAX) {
+        PyBuffer_Release(&tb);
+        return PyErr_Format(PyExc_ValueError, "mesh_edges: %zd bytes are not triangles of 32-bit indices", tb.len);
+    }
+    const uint32_t *idx = tb.buf;
+    size_t cap = 16;
+    while (cap < 2 * nloops) cap <<= 1;
+    uint64_t *key = malloc(cap * sizeof *key);
+    int32_t *slot = malloc(cap * sizeof *slot), *edges = malloc(2 * sizeof *edges * (nloops + 1)),
+            *loop_edge = malloc(sizeof *loop_edge * (nloops + 1));
+    if (!key || !slot || !edges || !loop_edge) {
+        free(key), free(slot), free(edges), free(loop_edge);
+        PyBuffer_Release(&tb);
+        return PyErr_NoMemory();
+    }
+    memset(slot, 0xff, cap * sizeof *slot); /* -1: empty */
+    int shift = 64;
+    for (size_t c = cap; c > 1; c >>= 1) shift--;
+    size_t ne = 0, bad = 0;
+    for (size_t l = 0; l < nloops; l++) {
+        uint32_t a = idx[l], b = idx[l % 3 == 2 ? l - 2 : l + 1];
+        bad |= a >= (uint64_t)nverts || b >= (uint64_t)nverts;
+        uint64_t k = a < b ? (uint64_t)a << 32 | b : (uint64_t)b << 32 | a;
+        size_t h = (size_t)((k * 0x9E3779B97F4A7C15ull) >> shift);
+        while (slot[h] >= 0 && key[h] != k) h = (h + 1) & (cap - 1);
+        if (slot[h] < 0) {
+            key[h] = k, slot[h] = (int32_t)ne;
+            edges[2 * ne] = (int32_t)(k >> 32), edges[2 * ne + 1] = (int32_t)(k & 0xffffffffu);
+            ne++;
+        }
+        loop_edge[l] = slot[h];
+    }
+    free(key), free(slot);
+    PyBuffer_Release(&tb);
+    if (bad) {
+        free(edges), free(loop_edge);
+        return PyErr_Format(PyExc_ValueError, "mesh_edges: an index is not below %zd vertices", nverts);
+    }
+    int32_t *fit = realloc(edges, 2 * sizeof *edges * (ne + 1));
+    return Py_BuildValue("(NN)", buffer_new(NULL, fit ? fit : edges, "i", 4, (Py_ssize_t)ne, 2),
+                         buffer_new(NULL, loop_edge, "i", 4, (Py_ssize_t)nloops, -1));
+}
+
+/* instance_quads(t, r, s) -> (4n, 3) float32: for instances of translations t (n, 3), unit
+ * quaternions r (n, 4: x, y, z, w) and scales s (n, 3), the corners of a square per instance,
+ * centred on T, sides s_x along R x and R y, corners (-,-) (+,-) (+,+) (-,+): the faces the
+ * Blender add-on instances its leaf on (computed in double, as the add-on's numpy did). */
+static PyObject *core_instance_quads(PyObject *self, PyObject *args) {
+    Py_buffer tb, rb, sb;
+    if (!PyArg_ParseTuple(args, "y*y*y*", &tb, &rb, &sb)) return NULL;
+    size_t n = (size_t)tb.len / 12;
+    PyObject *res = NULL;
+    float *out = NULL;
+    if (tb.len % 12 || (size_t)rb.len != 16 * n || (size_t)sb.len != 12 * n)
+        PyErr_Format(PyExc_ValueError, "instance_quads: %zd, %zd and %zd bytes are not n x 3, 4 and 3 floats", tb.len,
+                     rb.len, sb.len);
+    else if (!(out = malloc(12 * sizeof *out * (n + 1))))
+        PyErr_NoMemory();
+    else {
+        const float *t = tb.buf, *r = rb.buf, *sc = sb.buf;
+        static const double sx[4] = {-1, 1, 1, -1}, sy[4] = {-1, -1, 1, 1};
+        for (size_t i = 0; i < n; i++) {
+            double x = r[4 * i], y = r[4 * i + 1], z = r[4 * i + 2], w = r[4 * i + 3], a = sc[3 * i] / 2.0;
+            double ax[3] = {1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)};
+            double ay[3] = {2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)};
+            for (int c = 0; c < 4; c++)
+                for (int k = 0; k < 3; k++)
+                    out[12 * i + 3 * c + k] = (float)(t[3 * i + k] + a * sx[c] * ax[k] + a * sy[c] * ay[k]);
+        }
+        res = buffer_new(NULL, out, "f", 4, (Py_ssize_t)(4 * n), 3);
+    }
+    PyBuffer_Release(&tb), PyBuffer_Release(&rb), PyBuffer_Release(&sb);
+    return res;
+}
+
 /* PNG bytes of an (H, W, 4) uint8 picture, by the library's encoder (sylva/stream.h). */
 static PyObject *core_png_rgba(PyObject *self, PyObject *args) {
     Py_buffer px;
@@ -1007,14 +1092,56 @@ static void sets_free(PyObject *capsule) {
     free(n);
 }
 
-/* leaf_sets(cards=False): the leaves as instances of one prototype a leaf material, as `sylva
- * mesh --leaves instanced` (or instanced-cards) writes them into a .glb: [{name, proto:
- * mesh_dict, t, r, s, node}] (translations, rotations x y z w, scales, each leaf's node). */
+/* Each instance's joint with wind (the heavier of the two at its place, the one the .glb puts
+ * it under: glb_skin.c), from syl_wind_skin over the instances' translations and nodes; None
+ * without wind. */
+static PyObject *set_joints(PlantObject *o, const SylInstances *x) {
+    if (!o->wind.njoints || !x->node) Py_RETURN_NONE;
+    int32_t *two = malloc(2 * sizeof *two * (x->count + 1)), *one = malloc(sizeof *one * (x->count + 1));
+    uint8_t *weights = malloc(2 * (x->count + 1));
+    if (!two || !one || !weights) {
+        free(two), free(one), free(weights);
+        return PyErr_NoMemory();
+    }
+    SylMesh at = {.pos = x->t, .node = x->node, .nverts = x->count}; /* only pos, node and nverts are read */
+    syl_wind_skin(&at, o->pl.skeleton, &o->wind, two, weights);
+    for (size_t i = 0; i < x->count; i++) one[i] = two[2 * i];
+    free(two), free(weights);
+    return buffer_new(NULL, one, "i", 4, (Py_ssize_t)x->count, -1);
+}
+
+/* A list of set dicts {name, proto: mesh_dict, t, r, s, node, joint}, views kept alive by owner. */
+static PyObject *sets_list(PlantObject *o, PyObject *owner, const SylInstances *sets, int n) {
+    PyObject *l = PyList_New(0);
+    for (int i = 0; l && i < n; i++) {
+        const SylInstances *x = &sets[i];
+        Py_ssize_t c = (Py_ssize_t)x->count;
+        PyObject *t = Py_BuildValue("{s:s,s:N,s:N,s:N,s:N,s:N,s:N}", "name", x->name, "proto",
+                                    mesh_dict(owner, x->proto), "t", buffer_new(owner, x->t, "f", 4, c, 3), "r",
+                                    buffer_new(owner, x->r, "f", 4, c, 4), "s", buffer_new(owner, x->s, "f", 4, c, 3),
+                                    "node", x->node ? buffer_new(owner, x->node, "i", 4, c, -1) : Py_NewRef(Py_None),
+                                    "joint", set_joints(o, x));
+        if (!t || PyList_Append(l, t)) Py_CLEAR(l);
+        Py_XDECREF(t);
+    }
+    return l;
+}
+
+/* leaf_sets(cards=False, level=0): the leaves as instances of one prototype a leaf material, as
+ * `sylva mesh --leaves instanced` (or instanced-cards) writes them into a .glb: [{name, proto:
+ * mesh_dict, t, r, s, node, joint}] (translations, rotations x y z w, scales, each leaf's node
+ * and, with wind, its joint). Level k >= 1: the sets the levels of detail were built with (a
+ * plant built with leaves instanced or instanced-cards; else none), cards not asked. */
 static PyObject *plant_leaf_sets(PlantObject *o, PyObject *args, PyObject *kw) {
-    static char *kwl[] = {"cards", NULL};
-    int cards = 0;
-    if (!PyArg_ParseTupleAndKeywords(args, kw, "|p", kwl, &cards)) return NULL;
+    static char *kwl[] = {"cards", "level", NULL};
+    int cards = 0, level = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kw, "|pi", kwl, &cards, &level)) return NULL;
     if (need_skeleton(o)) return NULL;
+    if (level < 0 || (level > 0 && level >= o->lods.n)) return PyErr_Format(PyExc_IndexError, "no level %d", level);
+    if (level > 0) {
+        const SylLodLevel *lv = &o->lods.level[level];
+        return sets_list(o, (PyObject *)o, lv->sets, lv->nsets);
+    }
     Diag d;
     if (diag_open(&d)) return NULL;
     SylMeshOptions mo = o->mo;
@@ -1038,17 +1165,7 @@ static PyObject *plant_leaf_sets(PlantObject *o, PyObject *args, PyObject *kw) {
     }
     *count = n;
     PyCapsule_SetContext(cap, count);
-    PyObject *l = PyList_New(0);
-    for (int i = 0; l && i < n; i++) {
-        const SylInstances *x = &sets[i];
-        Py_ssize_t c = (Py_ssize_t)x->count;
-        PyObject *t = Py_BuildValue("{s:s,s:N,s:N,s:N,s:N,s:N}", "name", x->name, "proto", mesh_dict(cap, x->proto),
-                                    "t", buffer_new(cap, x->t, "f", 4, c, 3), "r", buffer_new(cap, x->r, "f", 4, c, 4),
-                                    "s", buffer_new(cap, x->s, "f", 4, c, 3), "node",
-                                    buffer_new(cap, x->node, "i", 4, c, -1));
-        if (!t || PyList_Append(l, t)) Py_CLEAR(l);
-        Py_XDECREF(t);
-    }
+    PyObject *l = sets_list(o, cap, sets, n);
     Py_DECREF(cap);
     return l;
 }
@@ -1173,7 +1290,7 @@ static PyMethodDef plant_methods[] = {
     {"impostor", (PyCFunction)plant_impostor, METH_NOARGS, "the impostor's atlases (impostor=), or None"},
     {"wind", (PyCFunction)plant_wind, METH_NOARGS, "the wind's joints and keys (wind=), or None"},
     {"leaf_sets", (PyCFunction)(void (*)(void))plant_leaf_sets, METH_VARARGS | METH_KEYWORDS,
-     "leaf_sets(cards=False): the leaves as instance sets, each with its prototype"},
+     "leaf_sets(cards=False, level=0): the leaves as instance sets, each with its prototype"},
     {"skin", (PyCFunction)plant_skin, METH_VARARGS, "skin(level=0): each vertex's joints and weights, or None"},
     {"write", (PyCFunction)plant_write, METH_VARARGS, "write(path): .glb, .obj or .ply by the extension"},
     {"skeleton_csv", (PyCFunction)plant_skeleton_csv, METH_NOARGS, "the skeleton as `sylva skeleton` writes it"},
@@ -1443,6 +1560,10 @@ static PyMethodDef core_methods[] = {
      "compile(path, text=None, model=None, overrides=None, lint=False, validate=True) -> (Program, warnings)"},
     {"models", core_models, METH_VARARGS, "models(path, text=None) -> names"},
     {"png_rgba", core_png_rgba, METH_VARARGS, "png_rgba(bytes, width, height) -> PNG bytes"},
+    {"instance_quads", core_instance_quads, METH_VARARGS,
+     "instance_quads(t, r, s) -> (4n, 3) float32: a square per instance, centred on it, along R x and R y"},
+    {"mesh_edges", core_mesh_edges, METH_VARARGS,
+     "mesh_edges(triangles, nverts) -> (edges, loop_edge): each side once and every loop's edge"},
     {"_set_errors", core_set_errors, METH_VARARGS, "the package's CompileError and LimitError"},
     {NULL, NULL, 0, NULL},
 };

@@ -157,3 +157,74 @@ def test_leaf_sets_are_the_commands_instances(tmp_path):
     sizes = np.sort(org["size"][org["kind"] == sylva.ORGAN_KINDS.index("leaf")])
     scales = np.sort(np.concatenate([s.scales for s in sets]), axis=0)
     np.testing.assert_array_equal(scales, np.repeat(sizes[:, None], 3, 1))
+
+
+def test_level_leaf_sets_are_the_glbs(tmp_path):
+    # every level's leaves as the .glb of `--lod 2 --leaves instanced --wind` has them: per
+    # LODk node, per joint (the writer splits a set by the joint its leaves follow, _stemN),
+    # at the translations the file stores relative to the joint's stem base
+    bush = os.path.join(ROOT, "examples", "hybrid", "shade_bush.syl")
+    out = tmp_path / "lv.glb"
+    subprocess.run([CLI, "mesh", bush, "--lod", "2", "--leaves", "instanced", "--wind", "6", "--wind-seconds", "2",
+                    "-o", str(out)], check=True, capture_output=True)
+    js, accessor = glb(out)
+    nodes = js["nodes"]
+    want = {}
+
+    def walk(i, level):
+        ext = nodes[i].get("extensions", {}).get("EXT_mesh_gpu_instancing")
+        if ext:
+            stem = int(nodes[i]["name"].rsplit("_stem", 1)[1])
+            want[level, stem] = want.get((level, stem), 0) + len(accessor(ext["attributes"]["TRANSLATION"]))
+        for c in nodes[i].get("children", []):
+            walk(c, level)
+    for i, n in enumerate(nodes):
+        if n.get("name", "").rsplit("_LOD", 1)[-1].isdigit():
+            walk(i, int(n["name"].rsplit("_LOD", 1)[1]))
+    plant = sylva.load(bush).model.build(leaves="instanced", lod=2, wind=6, wind_seconds=2)
+    stem_of = plant.wind.joints["stem"]
+    got = {}
+    for lv in plant.levels:
+        for s in lv.leaf_sets():
+            assert s.joints is not None and len(s.joints) == len(s) and s.nodes is not None
+            for j, c in zip(*np.unique(s.joints, return_counts=True)):
+                got[lv.level, int(stem_of[j])] = got.get((lv.level, int(stem_of[j])), 0) + int(c)
+    assert {k for k, _ in got} == {0, 1, 2} and got == want
+    # without wind: no joints, and a level's leaves have no nodes
+    plain = sylva.load(bush).model.build(leaves="instanced", lod=2)
+    assert [sum(len(s) for s in lv.leaf_sets()) for lv in plain.levels] == \
+        [sum(c for (k, _), c in want.items() if k == lv) for lv in range(3)]
+    assert all(s.joints is None for lv in plain.levels for s in lv.leaf_sets())
+
+
+def test_mesh_edges_are_the_sides_once():
+    # the add-on's edges (sylva._core.mesh_edges): every triangle side once, as numpy's unique
+    # finds them, and loop 3t + i's edge joins corners i and i + 1 of triangle t
+    from sylva import _core
+    mesh = sylva.load(os.path.join(ROOT, "examples", "abop", "fig1_25_bush3d.syl")).model.mesh()
+    tris = mesh.triangles
+    edges, loop_edge = (np.asarray(a) for a in _core.mesh_edges(tris, len(mesh.vertices)))
+    a, b = tris.ravel().astype(np.int64), tris[:, [1, 2, 0]].ravel().astype(np.int64)
+    pairs = np.stack([np.minimum(a, b), np.maximum(a, b)], axis=1)
+    assert len(edges) == len(np.unique(pairs, axis=0)) and (edges[:, 0] < edges[:, 1]).all()
+    np.testing.assert_array_equal(edges[loop_edge], pairs)
+    with pytest.raises(ValueError):
+        _core.mesh_edges(tris, int(tris.max()))
+
+
+def test_instance_quads_centre_side_and_heading():
+    # the add-on's leaf faces (sylva._core.instance_quads): each square centred on its leaf,
+    # its side the leaf's size, its first edge along the leaf's R x and its normal along R z
+    from sylva import _core
+    s = sylva.load(os.path.join(ROOT, "examples", "curvetree", "bezier_oak.syl")).model.build(
+        leaves="instanced", until="skeleton").leaf_sets()[0]
+    q = np.asarray(_core.instance_quads(s.translations, s.rotations, s.scales)).reshape(-1, 4, 3).astype(np.float64)
+    np.testing.assert_allclose(q.mean(axis=1), s.translations, atol=1e-5)
+    edge = q[:, 1] - q[:, 0]
+    np.testing.assert_allclose(np.linalg.norm(edge, axis=1), s.scales[:, 0], rtol=1e-4)
+    x, y, z, w = s.rotations.T.astype(np.float64)
+    rx = np.stack([1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)], axis=1)
+    rz = np.stack([2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)], axis=1)
+    assert (np.einsum("ij,ij->i", edge / np.linalg.norm(edge, axis=1)[:, None], rx) > 0.9999).all()
+    normal = np.cross(edge, q[:, 2] - q[:, 1])
+    assert (np.einsum("ij,ij->i", normal / np.linalg.norm(normal, axis=1)[:, None], rz) > 0.9999).all()

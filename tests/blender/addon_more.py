@@ -230,6 +230,12 @@ if rt_model:
     runpy.run_path(os.path.join(os.path.dirname(os.path.abspath(__file__)), "addon_realtime.py"),
                    init_globals={"added": added, "out_dir": out_dir, "rt_model": rt_model})
 
+# 6b. Instanced leaves on every level, following the wind's bones (addon_leaves.py)
+leaves_model = args[4] if len(args) > 4 else None
+if leaves_model:
+    runpy.run_path(os.path.join(os.path.dirname(os.path.abspath(__file__)), "addon_leaves.py"),
+                   init_globals={"added": added, "leaves_model": leaves_model})
+
 # 7. Sapling's own trees in this Blender: the splines of its curve object for four presets, for
 # tests/run-blender to compare with `sylva compare`'s stems of the same files (within 15 %)
 import ast  # noqa: E402
