@@ -8,9 +8,11 @@
 //       PAGE the best save's page side: build request / .glb fetch / parse / setup / first frame, ms
 //       (the .glb comes in the build's answer since stop 40: its fetch is then 0);
 //       PREVIEW_MS the best save's time to the preview's first frame (the page's "preview first":
-//       a lighter picture drawn before the .glb), PREVIEW its kind (mesh, lines; '-': none drawn)
-//   slider NAME MODULES UPDATES SECONDS FULL       pictures of new values drawn while a slider is
-//       dragged (previews and full builds), FULL of them full builds
+//       a lighter picture drawn before the .glb), PREVIEW its kind (mesh, lines; '-': none drawn),
+//       FRAME_MS one whole frame of the model at rest (drawn and its pixels read back, best of 3)
+//   slider NAME MODULES UPDATES SECONDS FULL FRAME_MS   pictures of new values drawn while a slider
+//       is dragged (a new value of the slider every 20 ms; previews and full builds), FULL of them
+//       full builds, FRAME_MS a whole frame of the last preview
 import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -65,10 +67,12 @@ try {
       phases.push(await page.evaluate(() => window.sylvaView.timing || null));
     }
     const s = await page.evaluate(() => window.sylvaView.stats);
+    // one whole frame of the model on screen (drawn and its pixels read back), best of 3
+    const frameMs = await page.evaluate(() => (window.sylvaFrameMs ? window.sylvaFrameMs(3).toFixed(0) : '-'));
     const built = ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (s[k + '_time'] || 0), 0) * 1000;
     const ph = phases[times.indexOf(Math.min(...times))];
     const page_ = ph ? ['build', 'fetch', 'parse', 'setup', 'frame'].map((k) => (ph[k] || 0).toFixed(0)).join('/') : '';
-    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}`);
+    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}\t${frameMs}`);
     await page.close();
     await stop(server);
   }
@@ -82,17 +86,21 @@ try {
     const r = await page.evaluate(async () => {
       const el = document.querySelector('input[type=range][data-param=angle]');
       if (!el) return null;
-      const v = window.sylvaView, n0 = v.loads, p0 = v.previews || 0, t0 = performance.now();
+      // pictures: frames that drew a new build (a page before them: its previews and loads)
+      const v = window.sylvaView, drawn = () => (v.pictures !== undefined ? v.pictures : v.loads + (v.previews || 0));
+      const n0 = v.loads, p0 = drawn(), t0 = performance.now();
       let angle = 20;
       while (performance.now() - t0 < 3000) {
-        angle = angle >= 40 ? 20 : angle + 0.1;
-        el.value = angle.toFixed(1); el.dispatchEvent(new Event('input', { bubbles: true }));
+        angle = angle >= 40 ? 20 : angle + +el.step; // a new value at every move
+        el.value = String(angle); el.dispatchEvent(new Event('input', { bubbles: true }));
         await new Promise((res) => setTimeout(res, 20));
       }
-      const t1 = performance.now(), n1 = v.loads, p1 = v.previews || 0;
-      return { updates: n1 - n0 + p1 - p0, full: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules };
+      const t1 = performance.now(), n1 = v.loads, p1 = drawn();
+      // a whole frame of what the drag left on screen (its last preview)
+      const frame = window.sylvaFrameMs ? window.sylvaFrameMs(3).toFixed(0) : '-';
+      return { updates: p1 - p0, full: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules, frame };
     });
-    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}\t${r.full}`);
+    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}\t${r.full}\t${r.frame}`);
     else console.log('slider\tno angle slider');
     await page.close();
     await stop(server);
