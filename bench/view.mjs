@@ -12,8 +12,10 @@
 //       FRAME_MS one whole frame of the model at rest (drawn and its pixels read back, best of 3)
 //   slider NAME MODULES UPDATES SECONDS FULL FRAME_MS   pictures of new values drawn while a slider
 //       is dragged (a new value of the slider every 20 ms; previews and full builds), FULL of them
-//       full builds, FRAME_MS a whole frame of the last preview
-import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
+//       full builds, FRAME_MS a whole frame of the last preview, CPU_MS the server's and the
+//       browser's CPU time (user + system) over the drag per picture drawn: what an update costs
+//       whatever the machine's load
+import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync, readdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
@@ -41,6 +43,25 @@ const saves = [
 ].filter(([name]) => wanted(name));
 
 const serve = (path) => start(sylva, path);
+// CPU seconds (user + system) used so far by the processes pids and their descendants (Linux /proc)
+function cpuOf(pids) {
+  const kids = new Map(); // parent -> children
+  for (const d of readdirSync('/proc')) {
+    if (!/^\d+$/.test(d)) continue;
+    try {
+      const st = readFileSync(`/proc/${d}/stat`, 'utf8'), f = st.slice(st.lastIndexOf(')') + 2).split(' ');
+      kids.set(+d, { ppid: +f[1], cpu: (+f[11] + +f[12]) / 100 });
+    } catch { /* gone */ }
+  }
+  let total = 0;
+  const todo = [...pids];
+  while (todo.length) {
+    const p = todo.pop();
+    if (kids.has(p)) total += kids.get(p).cpu;
+    for (const [q, k] of kids) if (k.ppid === p) todo.push(q);
+  }
+  return total;
+}
 const browser = await launch(dir);
 const median = (xs) => { const s = [...xs].sort((p, q) => p - q); return s[Math.floor(s.length / 2)]; };
 try {
@@ -83,6 +104,9 @@ try {
     await page.setViewport({ width: 900, height: 700 });
     await page.goto(url);
     await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
+    // a page at rest: its first frame drawn and the metrics asked for after it measured
+    await page.waitForFunction(() => window.sylvaView.metrics, { timeout: 120000, polling: 100 }).catch(() => {});
+    const pids = [server.pid, browser.process().pid], cpu0 = cpuOf(pids);
     const r = await page.evaluate(async () => {
       const el = document.querySelector('input[type=range][data-param=angle]');
       if (!el) return null;
@@ -100,7 +124,8 @@ try {
       const frame = window.sylvaFrameMs ? window.sylvaFrameMs(3).toFixed(0) : '-';
       return { updates: p1 - p0, full: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules, frame };
     });
-    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}\t${r.full}\t${r.frame}`);
+    const cpu = cpuOf(pids) - cpu0; // the server's and the browser's, over the drag
+    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}\t${r.full}\t${r.frame}\t${(cpu * 1000 / Math.max(r.updates, 1)).toFixed(0)}`);
     else console.log('slider\tno angle slider');
     await page.close();
     await stop(server);
