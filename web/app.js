@@ -3,7 +3,7 @@
 // parameter a slider. The server is the only source: no request leaves this machine.
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { createScene, skeletonFrom, ORDER_COLOURS } from './scene.js';
+import { createScene, skeletonFrom, joinStraight, ORDER_COLOURS } from './scene.js';
 
 const $ = (id) => document.getElementById(id);
 
@@ -574,8 +574,8 @@ async function load(frameIt = false) {
 // The segments of a preview of a big plant (view_preview.c: 6 floats each, then a byte of
 // branch order each) as lines coloured as the skeleton mode colours them.
 function linesFrom(buf) {
-  const n = buf.byteLength / 25;
-  const pos = new Float32Array(buf, 0, n * 6), order = new Uint8Array(buf, n * 24, n);
+  const all = buf.byteLength / 25;
+  const { pos, order, n } = joinStraight(new Float32Array(buf, 0, all * 6), new Uint8Array(buf, all * 24, all));
   const col = new Float32Array(n * 6), c = new THREE.Color();
   for (let i = 0; i < n; i++) {
     c.setHex(ORDER_COLOURS[Math.min(order[i], ORDER_COLOURS.length - 1)]);

@@ -96,3 +96,33 @@ export function skeletonFrom(csv) {
   g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
   return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
 }
+
+// Segments (6 floats each: from, to) with their branch orders, each segment that goes on
+// straight from the one kept before it (it starts where that one ends, in the same direction,
+// of the same order) joined to it: the same picture in fewer lines. An L-system's F → FF
+// makes long straight runs (Fig. 1.24(e) at n = 9: 38,342 segments, 9,841 lines), and software
+// WebGL spends a frame's time on each line. Returns {pos, order, n}.
+export function joinStraight(pos, order) {
+  const n = order.length, out = new Float32Array(n * 6), oo = new Uint8Array(n);
+  let kept = 0;
+  for (let i = 0, a = 0; i < n; i++, a += 6) {
+    if (kept > 0 && oo[kept - 1] === order[i]) {
+      const b = (kept - 1) * 6, ex = out[b + 3], ey = out[b + 4], ez = out[b + 5];
+      if (pos[a] === ex && pos[a + 1] === ey && pos[a + 2] === ez) {
+        const ux = ex - out[b], uy = ey - out[b + 1], uz = ez - out[b + 2];
+        const vx = pos[a + 3] - ex, vy = pos[a + 4] - ey, vz = pos[a + 5] - ez;
+        const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+        // parallel within float noise (sin² of the angle below 1e-8), and onward, not back
+        if (ux * vx + uy * vy + uz * vz > 0 &&
+            cx * cx + cy * cy + cz * cz <= 1e-8 * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz)) {
+          out[b + 3] = pos[a + 3]; out[b + 4] = pos[a + 4]; out[b + 5] = pos[a + 5];
+          continue;
+        }
+      }
+    }
+    const k = kept * 6;
+    for (let j = 0; j < 6; j++) out[k + j] = pos[a + j];
+    oo[kept++] = order[i];
+  }
+  return { pos: out.subarray(0, kept * 6), order: oo.subarray(0, kept), n: kept };
+}
