@@ -307,7 +307,7 @@ gallery: all
 
 # The page of `sylva view` and the files of three.js it imports (docs/view.md), installed in
 # PREFIX/share/sylva/web, where the installed sylva looks beside its bin/ (cmd_view.c).
-VIEW_WEB   := web/index.html web/app.js web/style.css
+VIEW_WEB   := web/index.html web/app.js web/scene.js web/style.css
 VIEW_THREE := LICENSE package.json build/three.module.js examples/jsm/loaders/GLTFLoader.js \
               examples/jsm/controls/OrbitControls.js examples/jsm/utils/BufferGeometryUtils.js
 install: all $(BUILD)/installed/sylva
