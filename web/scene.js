@@ -83,17 +83,21 @@ export function skeletonFrom(csv) {
   const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
   const pos = new Map();
   for (const r of rows) if (r[7] === 'internode' || r[7] === 'root') pos.set(r[0], [+r[2], +r[3], +r[4]]);
-  const p = [], c = [];
-  const col = new THREE.Color();
+  const p = [], o = [];
   for (const r of rows) {
     if (r[7] !== 'internode' || !pos.has(r[1])) continue;
-    const a = pos.get(r[1]), b = [+r[2], +r[3], +r[4]];
-    col.setHex(ORDER_COLOURS[Math.min(+r[6], ORDER_COLOURS.length - 1)]);
-    p.push(...a, ...b); c.push(col.r, col.g, col.b, col.r, col.g, col.b);
+    p.push(...pos.get(r[1]), +r[2], +r[3], +r[4]);
+    o.push(Math.min(+r[6], 255));
+  }
+  const j = joinStraight(new Float32Array(p), new Uint8Array(o)); // straight runs: one line each
+  const c = new Float32Array(j.n * 6), col = new THREE.Color();
+  for (let i = 0; i < j.n; i++) {
+    col.setHex(ORDER_COLOURS[Math.min(j.order[i], ORDER_COLOURS.length - 1)]);
+    c.set([col.r, col.g, col.b, col.r, col.g, col.b], i * 6);
   }
   const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
-  g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
+  g.setAttribute('position', new THREE.BufferAttribute(j.pos, 3));
+  g.setAttribute('color', new THREE.BufferAttribute(c, 3));
   return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
 }
 
