@@ -12,10 +12,14 @@
 //       PIXELS_MS the best time from the save to the full frame's pixels read back (its drawing
 //       finished: software WebGL fills them after the draw call returns); PREVIEW_PAGE the best
 //       save's preview: its request (the server's wait included) / the server's build / parse
-//       and setup / its draw call, ms
-//   slider NAME MODULES UPDATES SECONDS FULL       pictures of new values drawn while a slider is
-//       dragged (previews and full builds), FULL of them full builds
-import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync } from 'node:fs';
+//       and setup / its draw call, ms; FRAME_MS one whole frame of the model at rest (drawn and
+//       its pixels read back, best of 3)
+//   slider NAME MODULES UPDATES SECONDS FULL FRAME_MS   pictures of new values drawn while a slider
+//       is dragged (a new value of the slider every 20 ms; previews and full builds), FULL of them
+//       full builds, FRAME_MS a whole frame of the last preview, CPU_MS the server's and the
+//       browser's CPU time (user + system) over the drag per picture drawn: what an update costs
+//       whatever the machine's load
+import { mkdtempSync, writeFileSync, readFileSync, renameSync, rmSync, cpSync, readdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 
@@ -43,6 +47,25 @@ const saves = [
 ].filter(([name]) => wanted(name));
 
 const serve = (path) => start(sylva, path);
+// CPU seconds (user + system) used so far by the processes pids and their descendants (Linux /proc)
+function cpuOf(pids) {
+  const kids = new Map(); // parent -> children
+  for (const d of readdirSync('/proc')) {
+    if (!/^\d+$/.test(d)) continue;
+    try {
+      const st = readFileSync(`/proc/${d}/stat`, 'utf8'), f = st.slice(st.lastIndexOf(')') + 2).split(' ');
+      kids.set(+d, { ppid: +f[1], cpu: (+f[11] + +f[12]) / 100 });
+    } catch { /* gone */ }
+  }
+  let total = 0;
+  const todo = [...pids];
+  while (todo.length) {
+    const p = todo.pop();
+    if (kids.has(p)) total += kids.get(p).cpu;
+    for (const [q, k] of kids) if (k.ppid === p) todo.push(q);
+  }
+  return total;
+}
 const browser = await launch(dir);
 const median = (xs) => { const s = [...xs].sort((p, q) => p - q); return s[Math.floor(s.length / 2)]; };
 try {
@@ -79,12 +102,14 @@ try {
       phases.push(await page.evaluate(() => window.sylvaView.timing || null));
     }
     const s = await page.evaluate(() => window.sylvaView.stats);
+    // one whole frame of the model on screen (drawn and its pixels read back), best of 3
+    const frameMs = await page.evaluate(() => (window.sylvaFrameMs ? window.sylvaFrameMs(3).toFixed(0) : '-'));
     const built = ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (s[k + '_time'] || 0), 0) * 1000;
     const ph = phases[times.indexOf(Math.min(...times))];
     const page_ = ph ? ['build', 'fetch', 'parse', 'setup', 'frame'].map((k) => (ph[k] || 0).toFixed(0)).join('/') : '';
     const best = times.indexOf(Math.min(...times)), pp = pvPhases[best];
     const pvPage = pp && pp.timing ? [pp.timing.fetched, pp.timing.server, pp.timing.parse, pp.draw].map((x) => (x || 0).toFixed(0)).join('/') : '-';
-    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}\t${Math.min(...pixels)}\t${pvPage}`);
+    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}\t${Math.min(...pixels)}\t${pvPage}\t${frameMs}`);
     await page.close();
     await stop(server);
   }
@@ -95,20 +120,28 @@ try {
     await page.setViewport({ width: 900, height: 700 });
     await page.goto(url);
     await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
+    // a page at rest: its first frame drawn and the metrics asked for after it measured
+    await page.waitForFunction(() => window.sylvaView.metrics, { timeout: 120000, polling: 100 }).catch(() => {});
+    const pids = [server.pid, browser.process().pid], cpu0 = cpuOf(pids);
     const r = await page.evaluate(async () => {
       const el = document.querySelector('input[type=range][data-param=angle]');
       if (!el) return null;
-      const v = window.sylvaView, n0 = v.loads, p0 = v.previews || 0, t0 = performance.now();
+      // pictures: frames that drew a new build (a page before them: its previews and loads)
+      const v = window.sylvaView, drawn = () => (v.pictures !== undefined ? v.pictures : v.loads + (v.previews || 0));
+      const n0 = v.loads, p0 = drawn(), t0 = performance.now();
       let angle = 20;
       while (performance.now() - t0 < 3000) {
-        angle = angle >= 40 ? 20 : angle + 0.1;
-        el.value = angle.toFixed(1); el.dispatchEvent(new Event('input', { bubbles: true }));
+        angle = angle >= 40 ? 20 : angle + +el.step; // a new value at every move
+        el.value = String(angle); el.dispatchEvent(new Event('input', { bubbles: true }));
         await new Promise((res) => setTimeout(res, 20));
       }
-      const t1 = performance.now(), n1 = v.loads, p1 = v.previews || 0;
-      return { updates: n1 - n0 + p1 - p0, full: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules };
+      const t1 = performance.now(), n1 = v.loads, p1 = drawn();
+      // a whole frame of what the drag left on screen (its last preview)
+      const frame = window.sylvaFrameMs ? window.sylvaFrameMs(3).toFixed(0) : '-';
+      return { updates: p1 - p0, full: n1 - n0, seconds: (t1 - t0) / 1000, modules: v.stats.modules, frame };
     });
-    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}\t${r.full}`);
+    const cpu = cpuOf(pids) - cpu0; // the server's and the browser's, over the drag
+    if (r) console.log(`slider\t117k modules, angle\t${r.modules}\t${r.updates}\t${r.seconds.toFixed(2)}\t${r.full}\t${r.frame}\t${(cpu * 1000 / Math.max(r.updates, 1)).toFixed(0)}`);
     else console.log('slider\tno angle slider');
     await page.close();
     await stop(server);

@@ -69,17 +69,39 @@ window.sylvaProject = (x, y, z) => {
 
 function resize() { if (view.resize()) redraw(); }
 
+// The time of one whole frame as it is now, in ms (the best of n): drawn, then a pixel read
+// back, which waits for the pixels (make bench: frame time; the draw call alone returns early).
+window.sylvaScene = view; // the renderer, scene, ground and sun (the tests and make bench)
+window.sylvaFrameMs = (n = 3) => {
+  const gl = renderer.getContext(), px = new Uint8Array(4);
+  let best = Infinity;
+  for (let k = 0; k < n; k++) {
+    renderer.shadowMap.needsUpdate = true;
+    const t = performance.now();
+    if (forest) updateForest();
+    renderer.render(scene, camera);
+    gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    best = Math.min(best, performance.now() - t);
+  }
+  return best;
+};
+
 // A frame is drawn when something changed (the camera, a control, a build) or while wind
 // plays, not sixty times a second: an idle page costs nothing (laptops, software WebGL).
 let dirty = true;
 function redraw() { dirty = true; renderer.shadowMap.needsUpdate = true; }
 controls.addEventListener('change', () => { dirty = true; if (forest) renderer.shadowMap.needsUpdate = true; });
-for (const ev of ['input', 'change', 'click', 'keydown']) document.addEventListener(ev, redraw, true);
+// A parameter's slider or field, the seed and the step change the picture only when their build
+// comes: redrawing the old model at each move of a drag would put a frame of it (in software
+// WebGL, of a big plant, a second) before every new picture.
+const builds = (e) => e.target && e.target.closest && e.target.closest('#params, #step, #seed');
+for (const ev of ['input', 'change', 'click', 'keydown']) document.addEventListener(ev, (e) => { if (!builds(e)) redraw(); }, true);
 window.addEventListener('resize', redraw);
 
 // A preview is drawn at half the resolution: software WebGL (and a slow GPU) spends a frame's
 // time on its pixels, the ground's shadow lookups and multisampling above all.
 const fullRatio = renderer.getPixelRatio();
+let drawnRoot = null; // the model the last frame drew
 function animate() {
   const ratio = state.preview ? fullRatio / 2 : fullRatio;
   if (renderer.getPixelRatio() !== ratio) { renderer.setPixelRatio(ratio); redraw(); }
@@ -90,8 +112,11 @@ function animate() {
   if (dirty) {
     dirty = false;
     if (forest) updateForest();
+    const tf = performance.now();
     renderer.render(scene, camera);
+    state.frameMs = performance.now() - tf; // the draw call's time (make bench: frame time)
     state.frames = (state.frames || 0) + 1;
+    if (root !== drawnRoot) { drawnRoot = root; state.pictures = (state.pictures || 0) + 1; } // a new build on screen
     if (state.previewAt && !state.previewShownAt) { // a preview's first frame (make bench: save to preview)
       state.previewShownAt = performance.now(); state.previewShownWall = Date.now();
       state.previewMs = state.previewShownAt - state.previewAt; // its first frame's draw
@@ -190,7 +215,7 @@ function applyLook() {
   });
   sun.visible = $('shadows').checked || lit;
   sun.castShadow = $('shadows').checked;
-  ground.receiveShadow = $('shadows').checked;
+  ground.receiveShadow = $('shadows').checked && !state.preview; // nothing casts on it: no shadow lookups
   if (skeletonLines) skeletonLines.visible = mode === 'skeleton';
   if (boxHelper) boxHelper.visible = mode === 'box';
   if (lodObject) {
@@ -501,8 +526,15 @@ async function requestBuild(q, text) {
   } catch (e) { return { ok: false, diag: String(e) }; }
 }
 
+// A load waiting for a slider to come to rest, woken by the next move (no polling delay).
+let wake = null;
+const restOrMove = () => new Promise((r) => {
+  wake = r;
+  setTimeout(r, Math.max(5, REST_MS - (performance.now() - lastInput)));
+});
+
 async function load(frameIt = false) {
-  if (loading) { again = true; return loading; }
+  if (loading) { again = true; if (wake) wake(); return loading; }
   state.idle = false;
   loading = (async () => {
     const t0 = performance.now();
@@ -516,13 +548,18 @@ async function load(frameIt = false) {
     if ($('preview').checked && state.kind !== 'ecosystem' && !small) {
       const p = await requestBuild(q + '&preview=1' + mine, text);
       const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem' ? p.part : null;
-      if (buf) await showPreview(p, buf, q, frameIt, t0);
+      // a newer value's request goes out while this preview's frame is drawn (the server
+      // builds it meanwhile); otherwise the full build waits for the frame, below
+      // its frame drawn before anything else is asked for: on a machine of few cores a request
+      // sent meanwhile (measured: the next value's preview) slows the frame more than it gains
+      if (buf) await (await showPreview(p, buf, q, frameIt, t0));
       // the full build once the preview is on screen (not while a slider moves): asked for at
       // once, it would share the processor with the preview's frame on a machine of few cores
       if (!again && resting()) full = requestBuild(q + mine, text);
       frameIt = false;
       // while the slider moves, only previews; a newer value is built next (load coalesces)
-      while (!full && !again && !resting()) await sleep(40);
+      while (!full && !again && !resting()) await restOrMove();
+      wake = null;
       if (!full && again) return;
     }
     const b = await (full || requestBuild(q + mine, text));
@@ -546,8 +583,9 @@ function replaceRoot(group, kind) {
   scene.add(root);
 }
 
-// The preview p (its bytes in buf) drawn in place of the model on screen; resolves once its
-// first frame is drawn (before the full .glb's fetch and parse take the page's thread).
+// The preview p (its bytes in buf) put in place of the model on screen; resolves, once set up,
+// to a promise of its first frame (the full .glb's fetch and parse wait for that frame: they
+// would take the page's thread from it; a newer preview's request does not).
 async function showPreview(p, buf, q, frameIt, t0) {
   const tFetched = performance.now();
   const group = new THREE.Group();
@@ -573,7 +611,7 @@ async function showPreview(p, buf, q, frameIt, t0) {
     server: ['compile', 'derive', 'turtle', 'mesh', 'lod', 'write'].reduce((t, k) => t + (p.stats[k + '_time'] || 0), 0) * 1000 };
   redraw();
   $('status').textContent = `preview (${p.stats.preview}) · ${p.stats.modules} modules · ${(performance.now() - t0).toFixed(0)} ms · building the mesh…`;
-  await new Promise((r) => { const drawn = () => (state.previewShownAt ? r() : requestAnimationFrame(drawn)); requestAnimationFrame(drawn); });
+  return new Promise((r) => { const drawn = () => (state.previewShownAt ? r() : requestAnimationFrame(drawn)); requestAnimationFrame(drawn); });
 }
 
 async function showBuild(b, q, frameIt, t0) {
@@ -658,7 +696,9 @@ async function showBuild(b, q, frameIt, t0) {
 // ---- parameters (syl_describe_json) ----
 function paramRange(p) {
   const v = p.default;
-  let lo = p.min, hi = p.max;
+  // the schema's ±1e9 stands for no bound: a slider over it would move in steps of 1e7
+  const open = (x) => x === null || Math.abs(x) >= 1e8;
+  let lo = open(p.min) ? null : p.min, hi = open(p.max) ? null : p.max;
   if (lo === null) lo = v < 0 ? v * 3 : 0;
   if (hi === null) hi = Math.max(Math.abs(v) * 3, lo + 1);
   if (p.name === 'derive' || p.name === 'years') hi = Math.min(hi, Math.max(12, v * 2));
@@ -667,6 +707,7 @@ function paramRange(p) {
 }
 
 function paramChanged(name, value, def) {
+  if ((name in state.sets ? state.sets[name] : def) === value) return; // the slider moved within a step
   if (value === def) delete state.sets[name]; else state.sets[name] = value;
   $('setline').value = setLine();
   load(); // at once; while a build runs, the latest value is built next (load coalesces)
@@ -888,6 +929,7 @@ function wire() {
   });
   $('step').addEventListener('input', () => {
     lastInput = performance.now();
+    if (state.step === $('step').value) return;
     state.step = $('step').value; $('stepval').textContent = state.step;
     load();
   });

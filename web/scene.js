@@ -24,7 +24,10 @@ export function createScene(canvas, opts = {}) {
   sun.castShadow = true;
   sun.shadow.mapSize.set(1024, 1024);
   scene.add(sun, sun.target);
-  const ground = new THREE.Mesh(new THREE.CircleGeometry(1, 64), new THREE.MeshStandardMaterial({ color: 0xa3a39a, roughness: 1 }));
+  // Lambert, not the physically based material: a matt ground looks the same, and its pixels —
+  // a good part of the frame — cost 40 % less to shade in software WebGL (measured: 41 against
+  // 66 ms a frame for the ground alone at 900 × 700 with shadows)
+  const ground = new THREE.Mesh(new THREE.CircleGeometry(1, 64), new THREE.MeshLambertMaterial({ color: 0xa3a39a }));
   ground.rotation.x = -Math.PI / 2;
   ground.receiveShadow = true;
   scene.add(ground);
@@ -80,16 +83,50 @@ export function skeletonFrom(csv) {
   const rows = csv.trim().split('\n').slice(1).map((l) => l.split(','));
   const pos = new Map();
   for (const r of rows) if (r[7] === 'internode' || r[7] === 'root') pos.set(r[0], [+r[2], +r[3], +r[4]]);
-  const p = [], c = [];
-  const col = new THREE.Color();
+  const p = [], o = [];
   for (const r of rows) {
     if (r[7] !== 'internode' || !pos.has(r[1])) continue;
-    const a = pos.get(r[1]), b = [+r[2], +r[3], +r[4]];
-    col.setHex(ORDER_COLOURS[Math.min(+r[6], ORDER_COLOURS.length - 1)]);
-    p.push(...a, ...b); c.push(col.r, col.g, col.b, col.r, col.g, col.b);
+    p.push(...pos.get(r[1]), +r[2], +r[3], +r[4]);
+    o.push(Math.min(+r[6], 255));
+  }
+  const j = joinStraight(new Float32Array(p), new Uint8Array(o)); // straight runs: one line each
+  const c = new Float32Array(j.n * 6), col = new THREE.Color();
+  for (let i = 0; i < j.n; i++) {
+    col.setHex(ORDER_COLOURS[Math.min(j.order[i], ORDER_COLOURS.length - 1)]);
+    c.set([col.r, col.g, col.b, col.r, col.g, col.b], i * 6);
   }
   const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.Float32BufferAttribute(p, 3));
-  g.setAttribute('color', new THREE.Float32BufferAttribute(c, 3));
+  g.setAttribute('position', new THREE.BufferAttribute(j.pos, 3));
+  g.setAttribute('color', new THREE.BufferAttribute(c, 3));
   return new THREE.LineSegments(g, new THREE.LineBasicMaterial({ vertexColors: true }));
+}
+
+// Segments (6 floats each: from, to) with their branch orders, each segment that goes on
+// straight from the one kept before it (it starts where that one ends, in the same direction,
+// of the same order) joined to it: the same picture in fewer lines. An L-system's F → FF
+// makes long straight runs (Fig. 1.24(e) at n = 9: 38,342 segments, 9,841 lines), and software
+// WebGL spends a frame's time on each line. Returns {pos, order, n}.
+export function joinStraight(pos, order) {
+  const n = order.length, out = new Float32Array(n * 6), oo = new Uint8Array(n);
+  let kept = 0;
+  for (let i = 0, a = 0; i < n; i++, a += 6) {
+    if (kept > 0 && oo[kept - 1] === order[i]) {
+      const b = (kept - 1) * 6, ex = out[b + 3], ey = out[b + 4], ez = out[b + 5];
+      if (pos[a] === ex && pos[a + 1] === ey && pos[a + 2] === ez) {
+        const ux = ex - out[b], uy = ey - out[b + 1], uz = ez - out[b + 2];
+        const vx = pos[a + 3] - ex, vy = pos[a + 4] - ey, vz = pos[a + 5] - ez;
+        const cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+        // parallel within float noise (sin² of the angle below 1e-8), and onward, not back
+        if (ux * vx + uy * vy + uz * vz > 0 &&
+            cx * cx + cy * cy + cz * cz <= 1e-8 * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz)) {
+          out[b + 3] = pos[a + 3]; out[b + 4] = pos[a + 4]; out[b + 5] = pos[a + 5];
+          continue;
+        }
+      }
+    }
+    const k = kept * 6;
+    for (let j = 0; j < 6; j++) out[k + j] = pos[a + j];
+    oo[kept++] = order[i];
+  }
+  return { pos: out.subarray(0, kept * 6), order: oo.subarray(0, kept), n: kept };
 }

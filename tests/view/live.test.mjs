@@ -26,10 +26,14 @@ writeFileSync(join(dir, 'flat.asc'), spawnSync('python3', ['tests/oracle/ecosyst
 const bush = join(dir, 'bush.syl');
 writeFileSync(bush, BUSH(4));
 
+const ahead = join(dir, 'ahead.syl'); // a server no page talks to: what a save builds by itself
+writeFileSync(ahead, BUSH(3));
+
 const { server, url } = await serve(sylva, file);
 const s2 = await serve(sylva, bush);
 const s3 = await serve(sylva, eco);
-const servers = [server, s2.server, s3.server];
+const s4 = await serve(sylva, ahead);
+const servers = [server, s2.server, s3.server, s4.server];
 const get = getter(url);
 const browser = await launch(dir);
 const errors = [];
@@ -88,6 +92,45 @@ try {
   const after = await p2.evaluate(() => ({ loads: window.sylvaView.loads, depth: window.sylvaView.sets.depth, key: window.sylvaView.drawnQuery }));
   check(/set=depth%3D6(&|$)/.test(after.key) && after.loads - drag.n0 < drag.moves,
     'a fast drag draws its last value, stale values dropped (fewer builds than moves)', JSON.stringify({ ...after, ...drag }));
+
+  // ---- a burst of moves (faster than any build): only the first and the last value are built ----
+  const asked = [];
+  p2.on('request', (r) => { const m = /\/api\/build\?(.*)/.exec(r.url()); if (m) asked.push(new URLSearchParams(m[1]).getAll('set').join(' ')); });
+  const burst = [7, 8, 2, 5, 8, 2, 7, 5, 8, 3];
+  const moved = await p2.evaluate((values) => { // the values as the slider's steps have them
+    const el = document.querySelector('input[type=range][data-param=depth]'), got = [];
+    for (const x of values) { el.value = x; got.push(el.value); el.dispatchEvent(new Event('input', { bubbles: true })); } // one task: no build ends between
+    return got;
+  }, burst);
+  await p2.waitForFunction(() => window.sylvaView.idle && /set=depth%3D3(&|$)/.test(window.sylvaView.drawnQuery), { timeout: 60000 }).catch(() => {});
+  // (a value's build may be its preview, then its full mesh)
+  check(JSON.stringify([...new Set(asked)]) === JSON.stringify([`depth=${moved[0]}`, `depth=${moved[moved.length - 1]}`]) && asked.length <= 4,
+    'a burst of 10 slider moves builds the first value (started at once) and the last, none between', JSON.stringify({ asked, moved }));
+  const last = await p2.evaluate(() => ({ id: window.sylvaView.build.id, triangles: window.sylvaView.stats.triangles }));
+  const g2 = getter(s2.url);
+  const drawnGlb = (await g2('/api/glb?id=' + last.id)).body;
+  spawnSync(sylva, ['mesh', bush, '--set', 'depth=3', '-o', join(dir, 'depth3.glb'), '-j', '1']);
+  check(drawnGlb.equals(readFileSync(join(dir, 'depth3.glb'))), 'the picture left on screen is the last value\'s: its .glb is sylva mesh --set depth=3\'s, byte for byte',
+    `${drawnGlb.length} bytes drawn`);
+
+  // ---- a save builds ahead once: the build the last request asked for, before anyone asks again ----
+  const g4 = getter(s4.url);
+  const ask = '/api/build?set=depth%3D4';
+  const first = JSON.parse((await g4(ask)).body);
+  edit(ahead, BUSH(5));
+  let built = 0;
+  for (let k = 0; k < 600 && built !== 200; k++) { // until the build ahead is there (60 s at most)
+    built = (await g4(`/api/glb?id=${first.id + 1}`)).status;
+    if (built !== 200) await new Promise((r) => setTimeout(r, 100));
+  }
+  check(built === 200, 'a save builds the last request\'s build ahead, nobody asking', `id ${first.id + 1}: ${built}`);
+  const again = JSON.parse((await g4(ask)).body);
+  const none = (await g4(`/api/glb?id=${first.id + 2}`)).status;
+  spawnSync(sylva, ['mesh', ahead, '--set', 'depth=4', '-o', join(dir, 'ahead.glb'), '-j', '1']);
+  const aheadGlb = (await g4(`/api/glb?id=${again.id}`)).body;
+  check(again.id === first.id + 1 && none === 404 && aheadGlb.equals(readFileSync(join(dir, 'ahead.glb'))),
+    'the request after the save gets that build (one build, no second) and it is sylva mesh\'s of the saved file',
+    JSON.stringify({ first: first.id, again: again.id, next: none, bytes: aheadGlb.length }));
 
   // ---- an ecosystem's far level: each batch's look's impostor (crossed billboards) ----
   const p3 = await browser.newPage();
