@@ -11,6 +11,9 @@ PKGS="$PKGS python3-dev python3-venv python3-numpy python3-pytest python3-nbclie
 # fresh CI machine's apt time).
 PKGS="$PKGS blender"
 PKGS="$PKGS libmicrohttpd-dev"  # sylva view's web server (the CLI only)
+# sylva view's browser tests (tests/run-view) and the notebook view's (tests/run-python, which
+# writes the notebook's HTML with jupyter-nbconvert): Debian's chromium, headless.
+PKGS="$PKGS chromium jupyter-nbconvert"
 PKGS="$PKGS python3-ipywidgets"  # model.interact(): the parameters as sliders in a notebook (docs/python.md)
 PKGS="$PKGS python3-pandas"  # the Python package's tables as DataFrames, against its record arrays (python/tests/test_tables.py)
 # node and npm for the glTF validator, from Debian unless a node is installed already
