@@ -214,7 +214,7 @@ typedef struct SchLines {
     /* The words of a problem (buf left empty: the reader's own). */
     void (*say)(SchProblem *pr, char *buf, size_t size);
     /* A row of slot SCH_AT_KIND: its line, and a --set of it (checked as a number of its row's
-     * range by then); return the errors (reported with sch_lines_error). */
+     * range by then); return the errors reported otherwise (sch_lines_error counts its own). */
     int (*line)(SchLineRead *r, const SchRow *row, const SylDirective *d, void *base);
     int (*set)(SchLineRead *r, const SchRow *row, const char *typed, double v, void *base);
     /* After the lines, before --set (the checks of what must be given); NULL: none. */
@@ -238,6 +238,7 @@ const SylProgram *sch_lines_program(const SchLineRead *r);
 FILE *sch_lines_diag(const SchLineRead *r);
 const SylDirective *sch_lines_given(const SchLineRead *r, int row);
 int sch_lines_errors(const SchLineRead *r);
+bool sch_lines_lenient(const SchLineRead *r);
 void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 

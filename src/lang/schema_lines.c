@@ -37,6 +37,7 @@ const SylDirective *sch_lines_given(const SchLineRead *r, int row) {
 }
 
 int sch_lines_errors(const SchLineRead *r) { return r->errors; }
+bool sch_lines_lenient(const SchLineRead *r) { return r->lenient; }
 
 void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...) {
     char buf[1024];
