@@ -194,7 +194,8 @@ typedef struct SchProblem {
     const SchRow *row;      /* NULL: unknown */
     const SylDirArg *at;    /* the caret's value (NULL: the line's name); say may move it */
     const char *name;       /* as written: a line's name or --set's (1DownAngle) */
-    const char *typed;      /* --set's NAME=VALUE as typed on the command line */
+    const char *typed;      /* --set's NAME as typed on the command line */
+    const char *block;      /* the block's name */
     const char *shown;      /* the value's name with its level (1DownAngle of `DownAngle 0 60`) */
     const char *why;        /* RANGE: sch_value_ok's "must be in [0, 1], not 2" */
     const char *hint;       /* " (did you mean ...?)" or "" */
@@ -219,6 +220,8 @@ typedef struct SchLines {
     int (*set)(SchLineRead *r, const SchRow *row, const char *typed, double v, void *base);
     /* After the lines, before --set (the checks of what must be given); NULL: none. */
     int (*lines_done)(SchLineRead *r, void *base);
+    /* After --set (what follows from what was given, sch_lines_took); NULL: none. */
+    int (*done)(SchLineRead *r, void *base);
     /* row's value was stored (by a line or --set): what else that says (has_seed); NULL: nothing */
     void (*took)(void *base, const SchRow *row);
     /* Whether bad values of p's block are warnings, their defaults kept (a Pafčo file). */
@@ -238,6 +241,8 @@ const SylProgram *sch_lines_program(const SchLineRead *r);
 FILE *sch_lines_diag(const SchLineRead *r);
 const SylDirective *sch_lines_given(const SchLineRead *r, int row);
 int sch_lines_errors(const SchLineRead *r);
+/* Whether row i was given, by a line or by --set. */
+bool sch_lines_took(const SchLineRead *r, int row);
 bool sch_lines_lenient(const SchLineRead *r);
 void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));

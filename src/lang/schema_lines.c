@@ -28,6 +28,7 @@ struct SchLineRead {
     bool lenient;
     int errors;
     const SylDirective *given[MAX_ROWS];
+    bool set[MAX_ROWS]; /* given by --set */
 };
 
 const SylProgram *sch_lines_program(const SchLineRead *r) { return r->p; }
@@ -37,6 +38,9 @@ const SylDirective *sch_lines_given(const SchLineRead *r, int row) {
 }
 
 int sch_lines_errors(const SchLineRead *r) { return r->errors; }
+bool sch_lines_took(const SchLineRead *r, int row) {
+    return row >= 0 && row < MAX_ROWS && (r->given[row] || r->set[row]);
+}
 bool sch_lines_lenient(const SchLineRead *r) { return r->lenient; }
 
 void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...) {
@@ -94,11 +98,12 @@ static void bad(SchLineRead *r, SchProblem pr) {
     char buf[1024] = "";
     if (!pr.hint) pr.hint = "";
     if (!pr.shown) pr.shown = pr.name;
+    pr.block = syl_program_name(r->p);
     pr.lenient = r->lenient && value_problem(pr.what);
     if (r->k->say) r->k->say(&pr, buf, sizeof buf);
     if (!buf[0] && pr.what == SCH_BAD_SET_UNKNOWN)
         snprintf(buf, sizeof buf, "--set %s: %s block '%s' has no parameter '%s'%s", pr.typed, r->k->t->kind,
-                 syl_program_name(r->p), pr.name, pr.hint);
+                 pr.block, pr.name, pr.hint);
     if (!buf[0]) say_default(&pr, buf, sizeof buf);
     if (pr.lenient) { /* the default is kept */
         const SylDirArg *a = pr.at;
@@ -284,10 +289,11 @@ static void set_one(SchLineRead *r, const char *typed, const char *name, double 
         r->errors += lang_lod_set_check(r->p, v, typed, r->diag); /* as every kind's */
         return;
     }
+    char hint[480];
+    sch_suggest(t, name, hint, sizeof hint);
+    pr.hint = hint;
     if (!row) {
-        char hint[480];
-        sch_suggest(t, name, hint, sizeof hint);
-        pr.what = SCH_BAD_SET_UNKNOWN, pr.hint = hint;
+        pr.what = SCH_BAD_SET_UNKNOWN;
         bad(r, pr);
         return;
     }
@@ -310,6 +316,7 @@ static void set_one(SchLineRead *r, const char *typed, const char *name, double 
         bad(r, pr);
         return;
     }
+    if (row_index(r, row) < MAX_ROWS) r->set[row_index(r, row)] = true;
     if (is_kind(s)) r->errors += r->k->set(r, row, typed, v, base);
     else take(r, row, base, row->levels ? level : -1, v);
 }
@@ -326,6 +333,7 @@ static int read_block(SchLineRead *r, void *base, int *set_errors) {
         if (name && !is_param(p, name)) set_one(r, p->overrides[i].name, name, p->overrides[i].value, base);
     }
     *set_errors = r->errors - before;
+    if (!r->seen && r->k->done) r->errors += r->k->done(r, base);
     return r->errors;
 }
 
