@@ -211,7 +211,8 @@ typedef struct SchLines {
     const SchSlot *slots; /* slots[i] is t->rows[i]'s; rows past nslots are not stored (texture lines) */
     int nslots;
     bool textures; /* the table's texture lines are lang/textures.c's: skipped */
-    bool again;    /* a line may be given again (a `from` splice's, then the block's): the last wins */
+    bool again;    /* a line may be given again (a `from` splice's, then the block's): the last wins;
+                    * else a row is given once (a per-level row's lines are one row's) */
     /* The words of a problem (buf left empty: the reader's own). */
     void (*say)(SchProblem *pr, char *buf, size_t size);
     /* A row of slot SCH_AT_KIND: its line, and a --set of it (checked as a number of its row's
