@@ -54,7 +54,7 @@ typedef struct SchRow {
 /* How a block's lines give the rows their values (what `sylva describe` reads them by). */
 typedef enum {
     SCH_SETTINGS, /* an lsystem's settings, kept in the program */
-    SCH_LINES,    /* NAME VALUE... (weber, strands) */
+    SCH_LINES,    /* NAME VALUE... (weber, strands, curvetree, pafco), read by sch_read_lines */
     SCH_GROUPS,   /* NAME VALUE..., a group's rows after its opening line (ecosystem: species NAME) */
     SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow),
                    * read by sch_read_keyed */
