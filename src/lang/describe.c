@@ -142,60 +142,57 @@ static bool is_param(const SylProgram *p, const char *name) {
     return false;
 }
 
-/* --set NAME=VALUE over the values (the reader has checked them). */
-static void apply_sets(const SylProgram *p, const SchTable *t, DModel *m) {
-    for (int i = 0; i < p->noverrides; i++) {
+/* A groups block (ecosystem): the block's lines, then each group's (species) under its name. */
+static void describe_groups(const SylProgram *p, const SchTable *t, DModel *m) {
+    int n = 0;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    for (int i = 0; i < t->n; i++)
+        if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
+    const char *species = NULL;
+    for (int k = 0; k < n; k++) {
+        const SylDirective *d = &ds[k];
+        if (!strcmp(d->name, "species") && d->nargs == 1 && d->args[0].text) {
+            species = d->args[0].text;
+            char prefix[80];
+            snprintf(prefix, sizeof prefix, "%s.", species);
+            for (int i = 0; i < t->n; i++)
+                if (t->rows[i].group) add_row(m, &t->rows[i], prefix);
+            continue;
+        }
+        const SchRow *r = sch_find(t, d->name, NULL);
+        if (!r) continue;
+        char name[160];
+        snprintf(name, sizeof name, "%s%s%s", r->group && species ? species : "", r->group && species ? "." : "",
+                 r->name);
+        Entry *e = find_entry(m, name);
+        if (e) directive_value(d, -1, e);
+    }
+    for (int i = 0; i < p->noverrides; i++) { /* years=3, beech.maturity=30 */
         const char *name = p->set_local ? p->set_local[i] : NULL;
-        if (!name || is_param(p, name)) continue;
-        int level;
-        const SchRow *r = sch_find(t, name, &level);
-        Entry *e = r ? find_entry(m, r->name) : find_entry(m, name);
-        if (!e) continue;
-        if (e->levels && level >= 0 && level < e->levels && e->val.kind == V_LIST) e->val.x[level] = p->overrides[i].value;
-        else if (!e->levels) num(&e->val, p->overrides[i].value);
+        Entry *e = name && !is_param(p, name) ? find_entry(m, name) : NULL;
+        if (e && (e->type == SCH_NUMBER || e->type == SCH_INTEGER)) num(&e->val, p->overrides[i].value);
     }
 }
 
-static void describe_block(const SylProgram *p, const SchTable *t, DModel *m) {
-    int n = 0;
-    const SylDirective *ds = syl_program_directives(p, &n);
-    if (t->shape == SCH_GROUPS) { /* the block's lines, then each group's (species) under its name */
-        for (int i = 0; i < t->n; i++)
-            if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
-        const char *species = NULL;
-        for (int k = 0; k < n; k++) {
-            const SylDirective *d = &ds[k];
-            if (!strcmp(d->name, "species") && d->nargs == 1 && d->args[0].text) {
-                species = d->args[0].text;
-                char prefix[80];
-                snprintf(prefix, sizeof prefix, "%s.", species);
-                for (int i = 0; i < t->n; i++)
-                    if (t->rows[i].group) add_row(m, &t->rows[i], prefix);
-                continue;
-            }
-            const SchRow *r = sch_find(t, d->name, NULL);
-            if (!r) continue;
-            char name[160];
-            snprintf(name, sizeof name, "%s%s%s", r->group && species ? species : "", r->group && species ? "." : "",
-                     r->name);
-            Entry *e = find_entry(m, name);
-            if (e) directive_value(d, -1, e);
-        }
-        for (int i = 0; i < p->noverrides; i++) { /* years=3, beech.maturity=30 */
-            const char *name = p->set_local ? p->set_local[i] : NULL;
-            Entry *e = name && !is_param(p, name) ? find_entry(m, name) : NULL;
-            if (e && (e->type == SCH_NUMBER || e->type == SCH_INTEGER)) num(&e->val, p->overrides[i].value);
-        }
-        return;
-    }
+/* A lines block (weber, strands, curvetree, pafco): read by the schema's one reader of NAME
+ * VALUE lines (schema_lines.c), which tells each line as it takes it (its values as written)
+ * and each --set value (at its level). */
+static void lines_line(void *ctx, const SchRow *row, int level, const SylDirective *d) {
+    Entry *e = find_entry(ctx, row->name);
+    if (e) directive_value(d, level, e);
+}
+
+static void lines_set(void *ctx, const SchRow *row, int level, const double *x, int n, const char *word) {
+    (void)n, (void)word;
+    Entry *e = find_entry(ctx, row->name);
+    if (!e) return;
+    if (e->levels && level >= 0 && level < e->levels && e->val.kind == V_LIST) e->val.x[level] = x[0];
+    else if (!e->levels) num(&e->val, x[0]);
+}
+
+static void describe_lines(const SylProgram *p, const SchTable *t, DModel *m) {
     for (int i = 0; i < t->n; i++) add_row(m, &t->rows[i], NULL);
-    for (int k = 0; k < n; k++) {
-        int level;
-        const SchRow *r = sch_find(t, ds[k].name, &level);
-        Entry *e = r ? find_entry(m, r->name) : NULL;
-        if (e) directive_value(&ds[k], level, e);
-    }
-    apply_sets(p, t, m);
+    sch_see_lines(p, t, &(SchSeen){.value = lines_set, .line = lines_line, .ctx = m});
 }
 
 /* A keyed block (grow): read by the schema's one keyed reader (schema_keyed.c), which tells
@@ -299,8 +296,8 @@ static void describe_model(const SylProgram *p, DModel *m) {
     if (!t) return;
     switch (t->shape) {
     case SCH_SETTINGS: describe_settings(p, m); break;
-    case SCH_LINES:
-    case SCH_GROUPS: describe_block(p, t, m); break;
+    case SCH_LINES: describe_lines(p, t, m); break;
+    case SCH_GROUPS: describe_groups(p, t, m); break;
     case SCH_KEYED: describe_keyed(p, t, m); break;
     }
 }

@@ -54,7 +54,7 @@ typedef struct SchRow {
 /* How a block's lines give the rows their values (what `sylva describe` reads them by). */
 typedef enum {
     SCH_SETTINGS, /* an lsystem's settings, kept in the program */
-    SCH_LINES,    /* NAME VALUE... (weber, strands) */
+    SCH_LINES,    /* NAME VALUE... (weber, strands, curvetree, pafco), read by sch_read_lines */
     SCH_GROUPS,   /* NAME VALUE..., a group's rows after its opening line (ecosystem: species NAME) */
     SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow),
                    * read by sch_read_keyed */
@@ -111,6 +111,10 @@ typedef enum {
     SCH_AT_U8,    /* an enum's value in a byte */
     SCH_AT_F32X3, /* a vector */
     SCH_AT_TEXT,  /* a name, into char[size] */
+    SCH_AT_F64,   /* a double; per level (a row with levels): double[4], level l at [l] */
+    SCH_AT_I64,   /* a whole number into an int64_t */
+    SCH_AT_LINE,  /* a file row: the line naming it (const SylDirective *) */
+    SCH_AT_KIND,  /* read by the kind's own hook (SchLines.line, .set): a curve, a factor */
 } SchStore;
 
 typedef struct SchSlot {
@@ -152,12 +156,97 @@ typedef struct SchSeen {
     /* A repeated line's element begins (elem from 0, counted per directive; head: its row). */
     void (*element)(void *ctx, const SchRow *head, int elem);
     /* row took n numbers x (1, or 3 for a vector) or a word (an enum's, a name); elem: the
-     * element of its repeated line, -1 for the block's rows. */
+     * element of its repeated line, -1 for the block's rows (a LINES table's --set: the level,
+     * -1 none). */
     void (*value)(void *ctx, const SchRow *row, int elem, const double *x, int n, const char *word);
     void *ctx;
+    /* A LINES table's line d gives row (at level, -1: none) its values as written. */
+    void (*line)(void *ctx, const SchRow *row, int level, const SylDirective *d);
 } SchSeen;
 /* Read p's block (already checked: errors are counted, not reported) for seen. */
 int sch_see_keyed(const SylProgram *p, const SchTable *t, const SchSeen *seen);
+
+/* ---- Reading a LINES table's block (schema_lines.c) ----
+ *   NAME VALUE...      (strands, curvetree, pafco, weber; `1DownAngle 60`, `DownAngle 0 60 45 45`)
+ * Each line against its row (a name, an alias, a level digit), its values against the row's
+ * type and range, stored through the row's slot; then --set NAME=VALUE. What is wrong is the
+ * reader's to find and place (file:line:col); how it is worded is the kind's (SchLines.say),
+ * so that each kind keeps its own messages. */
+typedef enum {
+    SCH_BAD_UNKNOWN,  /* no row of that name (hint: did-you-mean) */
+    SCH_BAD_TWICE,    /* given again (line: the first) */
+    SCH_BAD_LEVEL,    /* a level above 3 (5DownAngle) */
+    SCH_BAD_COUNT,    /* not as many values as the row takes (most: how many it takes at most) */
+    SCH_BAD_NUMBER,   /* a value that is no number */
+    SCH_BAD_RANGE,    /* a number out of the row's range (why) */
+    SCH_BAD_WORD,     /* not a word of the enum (hint) or not a word at all */
+    SCH_BAD_FILE,     /* a file name not in quotes */
+    SCH_BAD_SET_UNKNOWN,    /* --set of no row (hint) */
+    SCH_BAD_SET_LEVELS,     /* --set of a per-level row without its level */
+    SCH_BAD_SET_LEVEL,      /* --set of level above 3 */
+    SCH_BAD_SET_NOT_NUMBER, /* --set of a row that is no number */
+    SCH_BAD_SET_RANGE,      /* --set of a number out of range (why) */
+} SchBad;
+
+typedef struct SchProblem {
+    SchBad what;
+    const SylDirective *d;  /* the line (NULL: --set) */
+    const SchRow *row;      /* NULL: unknown */
+    const SylDirArg *at;    /* the caret's value (NULL: the line's name); say may move it */
+    const char *name;       /* as written: a line's name or --set's (1DownAngle) */
+    const char *typed;      /* --set's NAME as typed on the command line */
+    const char *block;      /* the block's name */
+    const char *shown;      /* the value's name with its level (1DownAngle of `DownAngle 0 60`) */
+    const char *why;        /* RANGE: sch_value_ok's "must be in [0, 1], not 2" */
+    const char *hint;       /* " (did you mean ...?)" or "" */
+    double x;               /* the number (RANGE, --set) */
+    int line, most;         /* TWICE: the first line; COUNT: the most values */
+    bool lenient;           /* a value's problem is a warning: the default is kept */
+} SchProblem;
+
+typedef struct SchLineRead SchLineRead;
+
+typedef struct SchLines {
+    const SchTable *t;
+    const SchSlot *slots; /* slots[i] is t->rows[i]'s; rows past nslots are not stored (texture lines) */
+    int nslots;
+    bool textures; /* the table's texture lines are lang/textures.c's: skipped */
+    bool again;    /* a line may be given again (a `from` splice's, then the block's): the last wins;
+                    * else a row is given once (a per-level row's lines are one row's) */
+    /* The words of a problem (buf left empty: the reader's own). */
+    void (*say)(SchProblem *pr, char *buf, size_t size);
+    /* A row of slot SCH_AT_KIND: its line, and a --set of it (checked as a number of its row's
+     * range by then); return the errors reported otherwise (sch_lines_error counts its own). */
+    int (*line)(SchLineRead *r, const SchRow *row, const SylDirective *d, void *base);
+    int (*set)(SchLineRead *r, const SchRow *row, const char *typed, double v, void *base);
+    /* After the lines, before --set (the checks of what must be given); NULL: none. */
+    int (*lines_done)(SchLineRead *r, void *base);
+    /* After --set (what follows from what was given, sch_lines_took); NULL: none. */
+    int (*done)(SchLineRead *r, void *base);
+    /* row's value was stored (by a line or --set): what else that says (has_seed); NULL: nothing */
+    void (*took)(void *base, const SchRow *row);
+    /* Whether bad values of p's block are warnings, their defaults kept (a Pafčo file). */
+    bool (*lenient)(const SylProgram *p);
+} SchLines;
+
+/* Every row's default into base. */
+void sch_lines_defaults(const SchLines *k, void *base);
+/* Read p's block over base (defaults already there). Returns the errors, *set_errors of them
+ * about --set values. */
+int sch_read_lines(const SylProgram *p, const SchLines *k, void *base, FILE *diag, int *set_errors);
+/* The same, storing nothing (describe's): told each line and --set value. */
+int sch_see_lines(const SylProgram *p, const SchTable *t, const SchSeen *seen);
+/* For a kind's hooks: the program, the sink, the line that gave row i (NULL: none yet), and an
+ * error at d (a: the caret's value) counted in the reading. */
+const SylProgram *sch_lines_program(const SchLineRead *r);
+FILE *sch_lines_diag(const SchLineRead *r);
+const SylDirective *sch_lines_given(const SchLineRead *r, int row);
+int sch_lines_errors(const SchLineRead *r);
+/* Whether row i was given, by a line or by --set. */
+bool sch_lines_took(const SchLineRead *r, int row);
+bool sch_lines_lenient(const SchLineRead *r);
+void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
 
 /* The markdown of docs/directives.md: every table (describe.c). */
 void lang_directives_reference(FILE *out);

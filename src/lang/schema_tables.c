@@ -25,7 +25,7 @@ static const SchRow weber_rows[] = {
 #define WP_L(f, nm, ty, l, h, lop, hop, d0, d1, d2, d3, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .lo_open = lop, .hi_open = hop, .levels = 4, \
      .def = {d0, d1, d2, d3}, .unit = u, .doc = mean},
-#define WP_X(nm, ty, l, h, d, dt, w, u, mean) \
+#define WP_X(at, f, nm, ty, l, h, d, dt, w, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
 #include "weber/params.def"
 #define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},
@@ -47,7 +47,7 @@ static const SchRow strands_rows[] = {
 
 static const SchRow curvetree_rows[] = {
 #define CT_N(f, nm, ty, l, h, d, u, mean) {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .unit = u, .doc = mean},
-#define CT_X(nm, ty, l, h, d, dt, u, mean) \
+#define CT_X(at, f, nm, ty, l, h, d, dt, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .unit = u, .doc = mean},
 #include "curvetree/params.def"
 #define TEXTURE_LINE(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean},

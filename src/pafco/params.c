@@ -13,189 +13,130 @@
 #include "lang/program.h"
 #include "lang/schema.h"
 
-/* Where each row's value lives in PafcoParams (params.def's order, the schema's). */
-static const size_t offsets[] = {
-#define PF(f, ...) offsetof(PafcoParams, f),
+/* Where each row's value lives in PafcoParams (params.def's order, the schema's): a number, a
+ * whole number, a switch; the bark file and the leaf files are read here (SCH_AT_KIND). */
+#define PF_AT_SCH_NUMBER SCH_AT_F64
+#define PF_AT_SCH_INTEGER SCH_AT_INT
+#define PF_AT_SCH_BOOLEAN SCH_AT_BOOL
+#define PF_AT_SCH_FILE SCH_AT_KIND
+#define PF_AT_SCH_LIST SCH_AT_KIND
+static const SchSlot slots[] = {
+#define PF(f, nm, al, ty, ...) {.store = PF_AT_##ty, .off = offsetof(PafcoParams, f)},
 #include "pafco/params.def"
 };
-_Static_assert(sizeof offsets / sizeof *offsets == PAFCO_NPARAMS, "Pafčo's appendix lists 42 parameters");
+_Static_assert(sizeof slots / sizeof *slots == PAFCO_NPARAMS, "Pafčo's appendix lists 42 parameters");
 
 static int row_index(const SchRow *r) { return (int)(r - sch_pafco.rows); }
 
-/* A number into its field by the row's type (false: out of range, why says so). */
-static bool store_number(PafcoParams *P, const SchRow *r, double v, char *why, size_t size) {
-    if (r->type == SCH_BOOLEAN) {
-        if (v != 0 && v != 1) {
-            snprintf(why, size, "takes true or false (or 1 or 0), not %g", v);
-            return false;
-        }
-    } else if (!sch_value_ok(r, v, why, size)) {
-        return false;
-    }
-    char *at = (char *)P + offsets[row_index(r)];
-    if (r->type == SCH_BOOLEAN) *(bool *)at = v != 0;
-    else if (r->type == SCH_INTEGER) *(int *)at = (int)v;
-    else *(double *)at = v;
-    return true;
-}
-
-void pafco_defaults(PafcoParams *P) {
-    memset(P, 0, sizeof *P);
-    char why[160];
-    for (int i = 0; i < sch_pafco.n; i++)
-        if (!isnan(sch_pafco.rows[i].def[0])) store_number(P, &sch_pafco.rows[i], sch_pafco.rows[i].def[0], why, sizeof why);
-    P->gen[0] = true;
-}
-
-typedef struct Reader {
-    const SylProgram *p;
-    FILE *diag;
-    bool lenient; /* a Pafčo file: bad values fall back with a warning */
-    int errors, set_errors, warnings;
-} Reader;
-
 static bool is_word(const SylDirArg *a) { return a->kind == SYL_DARG_WORD || a->kind == SYL_DARG_STRING; }
+
+/* A Pafčo file's bad value is a warning, its default kept. */
+static const char *fallback(bool lenient) { return lenient ? "; its default is kept" : ""; }
+
+/* The words of Pafčo's messages (the reader's own where none). */
+static void say(SchProblem *pr, char *buf, size_t size) {
+    const char *name = pr->row ? pr->row->name : pr->name, *fb = fallback(pr->lenient);
+    bool boolean = pr->row && pr->row->type == SCH_BOOLEAN;
+    switch (pr->what) {
+    case SCH_BAD_UNKNOWN: snprintf(buf, size, "Pafčo's generator has no parameter '%s'%s", pr->name, pr->hint); break;
+    case SCH_BAD_TWICE: snprintf(buf, size, "%s is given twice (first on line %d)", name, pr->line); break;
+    case SCH_BAD_COUNT: snprintf(buf, size, "%s takes one value%s", name, fb); break;
+    case SCH_BAD_WORD: snprintf(buf, size, "%s takes true or false, not '%s'%s", name, pr->at->text, fb); break;
+    case SCH_BAD_NUMBER: snprintf(buf, size, "%s takes %s%s", name, boolean ? "true or false" : "a number", fb); break;
+    case SCH_BAD_RANGE: snprintf(buf, size, "%s %s%s", name, pr->why, fb); break;
+    case SCH_BAD_SET_RANGE:
+        if (boolean) snprintf(buf, size, "--set %s: %s %s", pr->typed, name, pr->why);
+        break;
+    default: break;
+    }
+}
 
 /* One value's problem: an error in a block, a warning (default kept) in a Pafčo file. */
 #define BAD(r, d, a, ...)                                                                                  \
     do {                                                                                                   \
-        if ((r)->lenient) {                                                                                \
+        const SylProgram *p_ = sch_lines_program(r);                                                       \
+        if (sch_lines_lenient(r)) {                                                                        \
             const SylDirArg *a_ = (a);                                                                     \
-            program_warning((r)->p, (r)->diag, a_ ? a_->line : (d)->line, a_ ? a_->col : (d)->col, __VA_ARGS__); \
-            (r)->warnings++;                                                                               \
+            program_warning(p_, sch_lines_diag(r), a_ ? a_->line : (d)->line, a_ ? a_->col : (d)->col, __VA_ARGS__); \
         } else {                                                                                           \
-            syl_directive_error((r)->p, (r)->diag, (d), (a), __VA_ARGS__);                                 \
-            (r)->errors++;                                                                                 \
+            sch_lines_error((r), (d), (a), __VA_ARGS__);                                                   \
         }                                                                                                  \
     } while (0)
 
-static const char *fallback(const Reader *r) { return r->lenient ? "; its default is kept" : ""; }
-
-static void read_value(Reader *r, const SylDirective *d, const SchRow *row, PafcoParams *P) {
-    char *at = (char *)P + offsets[row_index(row)];
+/* The bark file and the leaf files (TEX_SUBORY); sch_lines_error counts what it reports. */
+static int read_files(SchLineRead *r, const SchRow *row, const SylDirective *d, void *base) {
+    PafcoParams *P = base;
+    const char *fb = fallback(sch_lines_lenient(r));
     if (row->type == SCH_FILE) {
         if (d->nargs > 1 && d->args[1].kind == SYL_DARG_WORD && !strcmp(d->args[1].text, "tile")) {
             BAD(r, d, &d->args[1], "%s's tiles are H_TEX_MUL and V_TEX_MUL in a pafco block, not `tile U V`%s",
-                d->name, fallback(r));
-            return;
-        }
-        if (d->nargs != 1 || !is_word(&d->args[0]) || strlen(d->args[0].text) >= PAFCO_PATH) {
+                d->name, fb);
+        } else if (d->nargs != 1 || !is_word(&d->args[0]) || strlen(d->args[0].text) >= PAFCO_PATH) {
             BAD(r, d, d->nargs ? &d->args[0] : NULL, "%s takes one file name (shorter than %d characters)%s",
-                row->name, PAFCO_PATH, fallback(r));
-            return;
+                row->name, PAFCO_PATH, fb);
+        } else
+            snprintf((char *)P + slots[row_index(row)].off, PAFCO_PATH, "%s", d->args[0].text);
+        return 0;
+    }
+    if (d->nargs < 1 || d->nargs > PAFCO_MAX_TEX) {
+        BAD(r, d, d->nargs ? &d->args[PAFCO_MAX_TEX] : NULL, "%s takes 1 to %d file names%s", row->name,
+            PAFCO_MAX_TEX, fb);
+        return 0;
+    }
+    for (int i = 0; i < d->nargs; i++)
+        if (!is_word(&d->args[i]) || strlen(d->args[i].text) >= PAFCO_PATH) {
+            BAD(r, d, &d->args[i], "%s takes file names (shorter than %d characters)%s", row->name, PAFCO_PATH, fb);
+            return 0;
         }
-        snprintf(at, PAFCO_PATH, "%s", d->args[0].text);
-        return;
-    }
-    if (row->type == SCH_LIST) { /* TEX_SUBORY: file names */
-        if (d->nargs < 1 || d->nargs > PAFCO_MAX_TEX) {
-            BAD(r, d, d->nargs ? &d->args[PAFCO_MAX_TEX] : NULL, "%s takes 1 to %d file names%s", row->name,
-                PAFCO_MAX_TEX, fallback(r));
-            return;
-        }
-        for (int i = 0; i < d->nargs; i++)
-            if (!is_word(&d->args[i]) || strlen(d->args[i].text) >= PAFCO_PATH) {
-                BAD(r, d, &d->args[i], "%s takes file names (shorter than %d characters)%s", row->name, PAFCO_PATH,
-                    fallback(r));
-                return;
-            }
-        for (int i = 0; i < d->nargs; i++) snprintf(P->tex_files[i], PAFCO_PATH, "%s", d->args[i].text);
-        P->ntex = d->nargs;
-        return;
-    }
-    double v;
-    const SylDirArg *a = d->nargs ? &d->args[0] : NULL;
-    if (d->nargs != 1) {
-        BAD(r, d, d->nargs > 1 ? &d->args[1] : NULL, "%s takes one value%s", row->name, fallback(r));
-        return;
-    }
-    if (row->type == SCH_BOOLEAN && is_word(a)) {
-        if (!strcasecmp(a->text, "true")) v = 1;
-        else if (!strcasecmp(a->text, "false")) v = 0;
-        else {
-            BAD(r, d, a, "%s takes true or false, not '%s'%s", row->name, a->text, fallback(r));
-            return;
-        }
-    } else if (!sch_number(a, &v)) {
-        BAD(r, d, a, "%s takes %s%s", row->name, row->type == SCH_BOOLEAN ? "true or false" : "a number", fallback(r));
-        return;
-    }
-    char why[160];
-    if (!store_number(P, row, v, why, sizeof why)) BAD(r, d, a, "%s %s%s", row->name, why, fallback(r));
+    for (int i = 0; i < d->nargs; i++) snprintf(P->tex_files[i], PAFCO_PATH, "%s", d->args[i].text);
+    P->ntex = d->nargs;
+    return 0;
 }
 
-static bool is_param(const SylProgram *p, const char *name) {
-    for (int i = 0; i < p->nparams; i++)
-        if (!strcmp(p->params[i].name, name)) return true;
-    return false;
+/* A Pafčo file: what is missing takes its predefined value (the thesis), said once. */
+static int missing(SchLineRead *r, void *base) {
+    (void)base;
+    if (!sch_lines_lenient(r) || sch_lines_errors(r)) return 0;
+    char list[1024] = "";
+    int n = 0;
+    for (int k = 0; k < PAFCO_NPARAMS; k++) /* the bark and leaf files are optional: none by default */
+        if (!sch_lines_given(r, k) && sch_pafco.rows[k].type != SCH_FILE && sch_pafco.rows[k].type != SCH_LIST) {
+            size_t at = strlen(list);
+            if (n < 8) snprintf(list + at, sizeof list - at, "%s%s", n ? ", " : "", sch_pafco.rows[k].name);
+            n++;
+        }
+    if (n)
+        program_warning(sch_lines_program(r), sch_lines_diag(r), 0, 0,
+                        "%d parameters are not given, their defaults are used: %s%s", n, list, n > 8 ? ", ..." : "");
+    return 0;
 }
 
-static void apply_set(Reader *r, PafcoParams *P, const char *typed, const char *name, double v) {
-    int level;
-    const SchRow *row = sch_find(&sch_pafco, name, &level);
-    if (!row && r->p->sibling) return; /* meant for another model of the file */
-    int before = r->errors;
-    char why[160];
-    if (row && row->type == SCH_BOOLEAN) {
-        if (!store_number(P, row, v, why, sizeof why))
-            syl_program_error(r->p, r->diag, 0, 0, "--set %s: %s %s", typed, row->name, why), r->errors++;
-    } else if (sch_set_check(r->p, r->diag, &sch_pafco, typed, name, v, &row, &level)) {
-        r->errors++;
-    } else {
-        store_number(P, row, v, why, sizeof why);
-    }
-    r->set_errors += r->errors - before;
+static bool lenient(const SylProgram *p) {
+    size_t len = 0;
+    const char *text = syl_program_source(p, &len);
+    return text && lang_pafco_cfg_detect(text, len);
+}
+
+static const SchLines pafco_lines = {
+    .t = &sch_pafco,
+    .slots = slots,
+    .nslots = PAFCO_NPARAMS,
+    .say = say,
+    .line = read_files,
+    .lines_done = missing,
+    .lenient = lenient,
+};
+
+void pafco_defaults(PafcoParams *P) {
+    memset(P, 0, sizeof *P);
+    sch_lines_defaults(&pafco_lines, P);
+    P->gen[0] = true;
 }
 
 static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_errors) {
-    PafcoParams *P = params;
-    size_t len = 0;
-    const char *text = syl_program_source(p, &len);
-    Reader r = {.p = p, .diag = diag, .lenient = text && lang_pafco_cfg_detect(text, len)};
-    pafco_defaults(P);
+    pafco_defaults(params);
     sch_count_read(p);
-    int n = 0;
-    const SylDirective *dirs = syl_program_directives(p, &n);
-    const SylDirective *seen[PAFCO_NPARAMS] = {0};
-    for (int i = 0; i < n; i++) {
-        const SylDirective *d = &dirs[i];
-        const SchRow *row = sch_find(&sch_pafco, d->name, NULL);
-        if (!row) {
-            char hint[600];
-            sch_suggest(&sch_pafco, d->name, hint, sizeof hint);
-            syl_directive_error(p, diag, d, NULL, "Pafčo's generator has no parameter '%s'%s", d->name, hint);
-            r.errors++;
-            continue;
-        }
-        int k = row_index(row);
-        if (seen[k]) {
-            syl_directive_error(p, diag, d, NULL, "%s is given twice (first on line %d)", row->name, seen[k]->line);
-            r.errors++;
-            continue;
-        }
-        seen[k] = d;
-        read_value(&r, d, row, P);
-    }
-    if (r.lenient && !r.errors) { /* the thesis: what is missing takes its predefined value */
-        char missing[1024] = "";
-        int nmissing = 0;
-        for (int k = 0; k < PAFCO_NPARAMS; k++) /* the bark and leaf files are optional: none by default */
-            if (!seen[k] && sch_pafco.rows[k].type != SCH_FILE && sch_pafco.rows[k].type != SCH_LIST) {
-                size_t at = strlen(missing);
-                if (nmissing < 8) snprintf(missing + at, sizeof missing - at, "%s%s", nmissing ? ", " : "",
-                                           sch_pafco.rows[k].name);
-                nmissing++;
-            }
-        if (nmissing)
-            program_warning(p, diag, 0, 0, "%d parameters are not given, their defaults are used: %s%s",
-                            nmissing, missing, nmissing > 8 ? ", ..." : "");
-    }
-    for (int i = 0; i < p->noverrides; i++) {
-        const char *name = p->set_local ? p->set_local[i] : NULL;
-        if (name && !is_param(p, name)) apply_set(&r, P, p->overrides[i].name, name, p->overrides[i].value);
-    }
-    *set_errors = r.set_errors;
-    return r.errors;
+    return sch_read_lines(p, &pafco_lines, params, diag, set_errors);
 }
 
 int pafco_params_read(const SylProgram *p, PafcoParams *P, FILE *diag) {
@@ -227,7 +168,7 @@ static void exact(double x, char *buf, size_t size) {
 }
 
 static void value_text(const PafcoParams *P, const SchRow *row, char *buf, size_t size, bool cfg) {
-    const char *at = (const char *)P + offsets[row_index(row)];
+    const char *at = (const char *)P + slots[row_index(row)].off;
     if (row->type == SCH_BOOLEAN) snprintf(buf, size, "%s", *(const bool *)at ? "true" : "false");
     else if (row->type == SCH_INTEGER) snprintf(buf, size, "%d", *(const int *)at);
     else if (row->type == SCH_NUMBER) exact(*(const double *)at, buf, size);

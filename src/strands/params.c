@@ -1,274 +1,209 @@
-/* Reading a `strands` block: one directive a parameter, each checked against its range, the
- * per-order ones as `NAME G [weibull W]` or `NAME gravelius G [weibull W]` where G and W are
- * numbers or curve names (docs/strands.md), and --set NAME=VALUE over the numbers. */
+/* Reading a `strands` block: the schema's reader of NAME VALUE lines (lang/schema_lines.c)
+ * with params.def's rows. What is strands' own is here: where each value is kept, the
+ * per-order rows (`NAME G [weibull W]` or `NAME gravelius G [weibull W]`, G and W numbers or
+ * curve names, docs/strands.md), the messages' words, and the lateral's defaults. */
 #include "strands/params.h"
 
-#include <math.h>
 #include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
 #include <string.h>
 
 #include "lang/schema.h"
-#include "lang/textures.h"
 #include "util/closest.h"
 
-typedef struct Reader {
-    const SylProgram *p;
-    FILE *diag;
-    int errors, set_errors;
-    bool lateral_given[3]; /* lateral_length_max, _min, _scale: given, not the main one's */
-} Reader;
-
-/* The global parameters: a number each, in [lo, hi]; whole numbers where integer. */
-typedef struct Global {
-    const char *name, *symbol;
-    double lo, hi, def;
-    bool integer;
-    size_t off; /* into StrandsParams, a double (or the int64/uint64 for integers) */
-} Global;
-
-#define OFF(m) offsetof(StrandsParams, m)
-static const Global globals[] = {
-#define ST_G(f, nm, sym, integer, lo, hi, d, unit, mean) {nm, sym, lo, hi, d, integer, OFF(f)},
+/* Where each row is kept in StrandsParams (params.def's order, the schema's): the globals'
+ * numbers, the leaf type; the per-order rows (a number or a curve each factor) are read here. */
+#define ST_STORE(f) _Generic(((StrandsParams *)0)->f, int64_t: SCH_AT_I64, uint64_t: SCH_AT_U64, default: SCH_AT_F64)
+static const SchSlot slots[] = {
+#define ST_G(f, ...) {.store = ST_STORE(f), .off = offsetof(StrandsParams, f)},
+#define ST_O(i, ...) {.store = SCH_AT_KIND},
+#define ST_X(nm, ty, ...) {.store = (ty) == SCH_ENUM ? SCH_AT_INT : SCH_AT_NONE, .off = offsetof(StrandsParams, leaf_type)},
 #include "params.def"
 };
-enum { NGLOBALS = sizeof globals / sizeof *globals };
+enum { NSLOTS = sizeof slots / sizeof *slots };
 
-/* The per-order parameters: the ranges of the two factors and of their product (Zamuda's
- * eqs. 3.17-3.22), and the default (a constant Gravelius factor; the Weibull one is 1). */
+/* The thesis' symbol of each row (Zamuda's notation), and each per-order row's ranges: of the
+ * two factors and of their product (eqs. 3.17-3.22), and its default (a constant Gravelius
+ * factor; the Weibull one is 1). */
+static const char *const symbols[] = {
+#define ST_G(f, nm, sym, ...) sym,
+#define ST_O(i, nm, sym, ...) sym,
+#include "params.def"
+};
+enum { NSYMBOLS = sizeof symbols / sizeof *symbols };
+static const int first_order = 0
+#define ST_G(...) +1
+#include "params.def"
+    ;
+
 typedef struct OrderDef {
-    const char *name, *symbol;
     double glo, ghi, wlo, whi, lo, hi, def;
 } OrderDef;
 
 static const OrderDef orders[SP_ORDER_COUNT] = {
-#define ST_O(i, nm, sym, glo, ghi, wlo, whi, lo, hi, d, unit, mean) [i] = {nm, sym, glo, ghi, wlo, whi, lo, hi, d},
+#define ST_O(i, nm, sym, glo, ghi, wlo, whi, lo, hi, d, unit, mean) [i] = {glo, ghi, wlo, whi, lo, hi, d},
 #include "params.def"
 };
 
-#define ERR_AT(r, d, a, ...) (syl_directive_error((r)->p, (r)->diag, (d), (a), __VA_ARGS__), (r)->errors++)
+static int row_index(const SchRow *row) { return (int)(row - sch_strands.rows); }
 
-#define number_of sch_number
-
-/* " (did you mean 'x'?)" for a name or word the block does not know. */
-static void suggest(const char *typed, const char *const *names, int n, char *buf, size_t size) {
-    char list[512];
-    if (closest_list(typed, names, n, list, sizeof list) > 0) snprintf(buf, size, " (did you mean %s?)", list);
-    else buf[0] = 0;
+static void range_text(const SchRow *row, char *buf, size_t size) {
+    if (row->type == SCH_INTEGER) snprintf(buf, size, "a whole number from %.17g to %.17g", row->lo, row->hi);
+    else snprintf(buf, size, "a number from %g to %g", row->lo, row->hi);
 }
 
-static bool store_global(const Global *g, StrandsParams *P, double v) {
-    if (!(v >= g->lo && v <= g->hi) || (g->integer && v != floor(v))) return false;
-    char *at = (char *)P + g->off;
-    if (g->off == OFF(strands)) *(int64_t *)at = (int64_t)v;
-    else if (g->off == OFF(seed)) *(uint64_t *)at = (uint64_t)v;
-    else *(double *)at = v;
-    return true;
-}
+#define LEAF_TYPES "none, stacked, staggered, spiral, bunched or coniferous"
 
-static void range_text(const Global *g, char *buf, size_t size) {
-    if (g->integer) snprintf(buf, size, "a whole number from %.17g to %.17g", g->lo, g->hi);
-    else snprintf(buf, size, "a number from %g to %g", g->lo, g->hi);
-}
-
-static void read_global(Reader *r, const SylDirective *d, const Global *g, StrandsParams *P) {
-    double v;
-    char range[96];
-    range_text(g, range, sizeof range);
-    if (d->nargs != 1 || !number_of(&d->args[0], &v)) {
-        ERR_AT(r, d, d->nargs ? &d->args[d->nargs > 1 ? 1 : 0] : NULL, "'%s' (%s) takes one value, %s",
-               d->name, g->symbol, range);
-        return;
+/* The words of strands' messages (the reader's own where none). */
+static void say(SchProblem *pr, char *buf, size_t size) {
+    const SchRow *row = pr->row;
+    int i = row ? row_index(row) : -1;
+    const char *sym = i >= 0 && i < NSYMBOLS ? symbols[i] : "";
+    char range[96] = "";
+    if (row) range_text(row, range, sizeof range);
+    bool leaves = row && row->type == SCH_ENUM;
+    switch (pr->what) {
+    case SCH_BAD_UNKNOWN: snprintf(buf, size, "a strands block has no parameter '%s'%s", pr->name, pr->hint); break;
+    case SCH_BAD_COUNT:
+    case SCH_BAD_NUMBER:
+    case SCH_BAD_WORD:
+        if (leaves && pr->what == SCH_BAD_WORD && pr->at->kind == SYL_DARG_WORD) {
+            snprintf(buf, size, "no leaf type '%s'%s: " LEAF_TYPES, pr->at->text, pr->hint);
+        } else if (leaves) {
+            pr->at = pr->d->nargs ? &pr->d->args[0] : NULL;
+            snprintf(buf, size, "'%s' takes one of " LEAF_TYPES, pr->name);
+        } else
+            snprintf(buf, size, "'%s' (%s) takes one value, %s", pr->name, sym, range);
+        break;
+    case SCH_BAD_RANGE: snprintf(buf, size, "%s (%s) is %g: it must be %s", pr->name, sym, pr->x, range); break;
+    case SCH_BAD_SET_RANGE:
+        if (i >= first_order) snprintf(buf, size, "--set %s: the Gravelius factor %s^g must be from %g to %g", pr->typed, sym, row->lo, row->hi);
+        else snprintf(buf, size, "--set %s: %s (%s) must be %s", pr->typed, pr->name, sym, range);
+        break;
+    case SCH_BAD_SET_NOT_NUMBER: /* only numbers are set */
+        snprintf(buf, size, "--set %s: strands block '%s' has no parameter '%s'%s", pr->typed, pr->block, pr->name, pr->hint);
+        break;
+    default: break;
     }
-    if (!store_global(g, P, v)) ERR_AT(r, d, &d->args[0], "%s (%s) is %g: it must be %s", d->name, g->symbol, v, range);
 }
 
 /* One factor: a number or a curve whose every point lies in [lo, hi]. */
-static bool read_factor(Reader *r, const SylDirective *d, const SylDirArg *a, const OrderDef *o, bool weibull,
+static bool read_factor(SchLineRead *r, const SylDirective *d, const SylDirArg *a, int k, bool weibull,
                         StrandsFactor *f) {
+    const OrderDef *o = &orders[k];
+    const char *sym = symbols[first_order + k];
     double lo = weibull ? o->wlo : o->glo, hi = weibull ? o->whi : o->ghi, v;
     const char *which = weibull ? "w" : "g";
-    if (number_of(a, &v)) {
+    if (sch_number(a, &v)) {
         if (!(v >= lo && v <= hi)) {
-            ERR_AT(r, d, a, "%s: the %s factor %s^%s is %g: it must be from %g to %g", d->name,
-                   weibull ? "Weibull" : "Gravelius", o->symbol, which, v, lo, hi);
+            sch_lines_error(r, d, a, "%s: the %s factor %s^%s is %g: it must be from %g to %g", d->name,
+                            weibull ? "Weibull" : "Gravelius", sym, which, v, lo, hi);
             return false;
         }
         *f = (StrandsFactor){.k = v};
         return true;
     }
     if (a->kind != SYL_DARG_WORD) {
-        ERR_AT(r, d, a, "%s: expected a number or the name of a curve", d->name);
+        sch_lines_error(r, d, a, "%s: expected a number or the name of a curve", d->name);
         return false;
     }
-    const Curve *c = lang_curve_find(r->p, a->text);
+    const SylProgram *p = sch_lines_program(r);
+    const Curve *c = lang_curve_find(p, a->text);
     if (!c) {
         const char *names[256];
         int n = 0;
-        for (int i = 0; i < r->p->ncurves && n < 256; i++) names[n++] = r->p->curves[i].name;
-        char hint[600];
-        suggest(a->text, names, n, hint, sizeof hint);
-        ERR_AT(r, d, a, "%s: no curve '%s'%s", d->name, a->text, hint);
+        for (int i = 0; i < p->ncurves && n < 256; i++) names[n++] = p->curves[i].name;
+        char list[512];
+        if (closest_list(a->text, names, n, list, sizeof list) > 0)
+            sch_lines_error(r, d, a, "%s: no curve '%s' (did you mean %s?)", d->name, a->text, list);
+        else
+            sch_lines_error(r, d, a, "%s: no curve '%s'", d->name, a->text);
         return false;
     }
     for (int i = 0; i < c->n; i++)
         if (!(c->y[i] >= lo && c->y[i] <= hi)) {
-            ERR_AT(r, d, a, "%s: curve '%s' is %g at %g: the %s factor %s^%s must be from %g to %g", d->name, c->name,
-                   c->y[i], c->x[i], weibull ? "Weibull" : "Gravelius", o->symbol, which, lo, hi);
+            sch_lines_error(r, d, a, "%s: curve '%s' is %g at %g: the %s factor %s^%s must be from %g to %g", d->name,
+                            c->name, c->y[i], c->x[i], weibull ? "Weibull" : "Gravelius", sym, which, lo, hi);
             return false;
         }
     *f = (StrandsFactor){.curve = c};
     return true;
 }
 
-static void read_order(Reader *r, const SylDirective *d, const OrderDef *o, StrandsOrderParam *out) {
-    int i = 0;
-    StrandsOrderParam v = *out;
+/* A per-order row: `NAME G [weibull W]` or `NAME gravelius G [weibull W]`. */
+static int read_order(SchLineRead *r, const SchRow *row, const SylDirective *d, void *base) {
+    int k = row_index(row) - first_order, i = 0;
+    StrandsOrderParam *out = &((StrandsParams *)base)->order[k], v = *out;
     bool ok = true, any = false;
     if (i < d->nargs && d->args[i].kind == SYL_DARG_WORD && !strcmp(d->args[i].text, "gravelius")) i++;
     if (i < d->nargs && !(d->args[i].kind == SYL_DARG_WORD && !strcmp(d->args[i].text, "weibull"))) {
-        ok &= read_factor(r, d, &d->args[i], o, false, &v.g);
+        ok &= read_factor(r, d, &d->args[i], k, false, &v.g);
         i++, any = true;
     } else if (i > 0) {
-        ERR_AT(r, d, &d->args[i - 1], "%s: 'gravelius' takes a number or a curve", d->name);
-        return;
+        sch_lines_error(r, d, &d->args[i - 1], "%s: 'gravelius' takes a number or a curve", d->name);
+        return 0;
     }
     if (ok && i < d->nargs && d->args[i].kind == SYL_DARG_WORD && !strcmp(d->args[i].text, "weibull")) {
         if (i + 1 >= d->nargs) {
-            ERR_AT(r, d, &d->args[i], "%s: 'weibull' takes a number or a curve", d->name);
-            return;
+            sch_lines_error(r, d, &d->args[i], "%s: 'weibull' takes a number or a curve", d->name);
+            return 0;
         }
-        ok &= read_factor(r, d, &d->args[i + 1], o, true, &v.w);
+        ok &= read_factor(r, d, &d->args[i + 1], k, true, &v.w);
         i += 2, any = true;
     }
     if (ok && i < d->nargs) {
-        ERR_AT(r, d, &d->args[i], "%s: unexpected value: write %s G [weibull W], G and W numbers or curves", d->name,
-               d->name);
-        return;
+        sch_lines_error(r, d, &d->args[i], "%s: unexpected value: write %s G [weibull W], G and W numbers or curves",
+                        d->name, d->name);
+        return 0;
     }
     if (ok && !any) {
-        ERR_AT(r, d, NULL, "%s (%s) takes a value: %s G [weibull W], G and W numbers or curves", d->name, o->symbol,
-               d->name);
-        return;
+        sch_lines_error(r, d, NULL, "%s (%s) takes a value: %s G [weibull W], G and W numbers or curves", d->name,
+                        symbols[row_index(row)], d->name);
+        return 0;
     }
     if (ok) *out = v;
+    return 0;
 }
 
-static void read_leaves(Reader *r, const SylDirective *d, StrandsParams *P) {
-    if (d->nargs != 1 || d->args[0].kind != SYL_DARG_WORD) {
-        ERR_AT(r, d, d->nargs ? &d->args[0] : NULL, "'leaves' takes one of none, stacked, staggered, spiral, bunched "
-                                                     "or coniferous");
-        return;
-    }
-    const char *words = sch_find(&sch_strands, "leaves", NULL)->words; /* in LeafType's order */
-    int k = sch_word_index(words, d->args[0].text);
-    if (k >= 0) {
-        P->leaf_type = (LeafType)k;
-        return;
-    }
-    char hint[600];
-    sch_suggest_word(words, d->args[0].text, hint, sizeof hint);
-    ERR_AT(r, d, &d->args[0], "no leaf type '%s'%s: none, stacked, staggered, spiral, bunched or coniferous",
-           d->args[0].text, hint);
+/* --set NAME=VALUE of a per-order row: its Gravelius factor (in range by then). */
+static int set_order(SchLineRead *r, const SchRow *row, const char *typed, double v, void *base) {
+    (void)r, (void)typed;
+    ((StrandsParams *)base)->order[row_index(row) - first_order].g = (StrandsFactor){.k = v};
+    return 0;
 }
 
-static bool is_param(const SylProgram *p, const char *name) {
-    for (int i = 0; i < p->nparams; i++)
-        if (!strcmp(p->params[i].name, name)) return true;
-    return false;
+/* The lateral's bounds and scale are the main one's unless given (Zamuda merges them). */
+static int merge_lateral(SchLineRead *r, void *base) {
+    StrandsParams *P = base;
+    for (int k = 0; k < 3; k++)
+        if (!sch_lines_took(r, first_order + SP_LAT_LENGTH_MAX + k)) P->order[SP_LAT_LENGTH_MAX + k] = P->order[SP_LENGTH_MAX + k];
+    return 0;
 }
 
-/* --set NAME=VALUE: a global's number, or a per-order parameter's Gravelius factor. */
-static void apply_set(Reader *r, StrandsParams *P, const char *typed, const char *name, double v) {
-    int before = r->errors;
-    if (!strcmp(name, "lod")) { /* sylva mesh reads it (lang/lod.c) */
-        r->errors += lang_lod_set_check(r->p, v, typed, r->diag);
-        goto done;
-    }
-    for (int i = 0; i < NGLOBALS; i++)
-        if (!strcmp(name, globals[i].name)) {
-            char range[96];
-            range_text(&globals[i], range, sizeof range);
-            if (!store_global(&globals[i], P, v))
-                syl_program_error(r->p, r->diag, 0, 0, "--set %s: %s (%s) must be %s", typed, name, globals[i].symbol,
-                                  range),
-                    r->errors++;
-            goto done;
-        }
-    for (int i = 0; i < SP_ORDER_COUNT; i++)
-        if (!strcmp(name, orders[i].name)) {
-            if (!(v >= orders[i].glo && v <= orders[i].ghi))
-                syl_program_error(r->p, r->diag, 0, 0, "--set %s: the Gravelius factor %s^g must be from %g to %g",
-                                  typed, orders[i].symbol, orders[i].glo, orders[i].ghi),
-                    r->errors++;
-            else P->order[i].g = (StrandsFactor){.k = v};
-            if (i >= SP_LAT_LENGTH_MAX) r->lateral_given[i - SP_LAT_LENGTH_MAX] = true;
-            goto done;
-        }
-    if (r->p->sibling) return; /* meant for another model of the file */
-    char hint[600];
-    sch_suggest(&sch_strands, name, hint, sizeof hint);
-    syl_program_error(r->p, r->diag, 0, 0, "--set %s: strands block '%s' has no parameter '%s'%s", typed,
-                      syl_program_name(r->p), name, hint);
-    r->errors++;
-done:
-    r->set_errors += r->errors - before;
-}
+static const SchLines strands_lines = {
+    .t = &sch_strands,
+    .slots = slots,
+    .nslots = NSLOTS,
+    .textures = true,
+    .say = say,
+    .line = read_order,
+    .set = set_order,
+    .done = merge_lateral,
+};
 
 static void defaults(StrandsParams *P) {
     memset(P, 0, sizeof *P);
-    for (int i = 0; i < NGLOBALS; i++) store_global(&globals[i], P, globals[i].def);
+    sch_lines_defaults(&strands_lines, P);
     for (int i = 0; i < SP_ORDER_COUNT; i++)
         P->order[i] = (StrandsOrderParam){.g = {.k = orders[i].def}, .w = {.k = 1}, .lo = orders[i].lo,
                                           .hi = orders[i].hi};
-    P->leaf_type = LEAVES_SPIRAL;
 }
 
 static int read_all(const SylProgram *p, void *params, FILE *diag, int *set_errors) {
-    StrandsParams *P = params;
-    Reader r = {.p = p, .diag = diag};
-    defaults(P);
+    defaults(params);
     sch_count_read(p);
-    int n = 0;
-    const SylDirective *dirs = syl_program_directives(p, &n);
-    const SylDirective *seen[NGLOBALS + SP_ORDER_COUNT + 2] = {0};
-    for (int i = 0; i < n; i++) {
-        const SylDirective *d = &dirs[i];
-        if (lang_texture_line(d->name)) continue; /* lang/textures.c reads it */
-        int slot = -1;
-        for (int k = 0; k < NGLOBALS && slot < 0; k++)
-            if (!strcmp(d->name, globals[k].name)) slot = k;
-        for (int k = 0; k < SP_ORDER_COUNT && slot < 0; k++)
-            if (!strcmp(d->name, orders[k].name)) slot = NGLOBALS + k;
-        if (slot < 0 && !strcmp(d->name, "leaves")) slot = NGLOBALS + SP_ORDER_COUNT;
-        if (slot < 0 && !strcmp(d->name, "lod")) slot = NGLOBALS + SP_ORDER_COUNT + 1;
-        if (slot < 0) {
-            char hint[600];
-            sch_suggest(&sch_strands, d->name, hint, sizeof hint);
-            ERR_AT(&r, d, NULL, "a strands block has no parameter '%s'%s", d->name, hint);
-            continue;
-        }
-        if (seen[slot]) {
-            ERR_AT(&r, d, NULL, "'%s' is given twice (first on line %d)", d->name, seen[slot]->line);
-            continue;
-        }
-        seen[slot] = d;
-        if (slot < NGLOBALS) read_global(&r, d, &globals[slot], P);
-        else if (slot < NGLOBALS + SP_ORDER_COUNT) {
-            int k = slot - NGLOBALS;
-            read_order(&r, d, &orders[k], &P->order[k]);
-            if (k >= SP_LAT_LENGTH_MAX) r.lateral_given[k - SP_LAT_LENGTH_MAX] = true;
-        } else if (slot == NGLOBALS + SP_ORDER_COUNT) read_leaves(&r, d, P);
-        else r.errors += lang_lod_check(p, d, diag); /* sylva mesh reads it */
-    }
-    for (int i = 0; i < p->noverrides; i++) {
-        const char *name = p->set_local ? p->set_local[i] : NULL;
-        if (name && !is_param(p, name)) apply_set(&r, P, p->overrides[i].name, name, p->overrides[i].value);
-    }
-    /* the lateral's bounds and scale are the main one's unless given (Zamuda merges them) */
-    for (int k = 0; k < 3; k++)
-        if (!r.lateral_given[k]) P->order[SP_LAT_LENGTH_MAX + k] = P->order[SP_LENGTH_MAX + k];
-    *set_errors = r.set_errors;
-    return r.errors;
+    return sch_read_lines(p, &strands_lines, params, diag, set_errors);
 }
 
 int strands_params_read(const SylProgram *p, StrandsParams *P, FILE *diag) {
@@ -281,10 +216,9 @@ int strands_params_check(const SylProgram *p, FILE *diag) {
 }
 
 /* The tables, for the docs' check that every parameter is documented. */
-int strands_param_names(const char **names, const char **symbols, int max) {
+int strands_param_names(const char **names, const char **symbols_out, int max) {
     int n = 0;
-    for (int i = 0; i < NGLOBALS && n < max; i++, n++) names[n] = globals[i].name, symbols[n] = globals[i].symbol;
-    for (int i = 0; i < SP_ORDER_COUNT && n < max; i++, n++) names[n] = orders[i].name, symbols[n] = orders[i].symbol;
-    if (n < max) names[n] = "leaves", symbols[n] = "l_type", n++;
+    for (int i = 0; i < NSYMBOLS && n < max; i++, n++) names[n] = sch_strands.rows[i].name, symbols_out[n] = symbols[i];
+    if (n < max) names[n] = "leaves", symbols_out[n] = "l_type", n++;
     return n;
 }

@@ -142,7 +142,7 @@ static void describe_is_told_by_the_same_reader(void **state) {
     SylOverride sets[] = {{"stake.2.ties", 7}, {"size", 4}};
     SylProgram *p = compile(lines, sets, 2);
     Told t = {0};
-    assert_int_equal(sch_see_keyed(p, &garden, &(SchSeen){told_element, told_value, &t}), 0);
+    assert_int_equal(sch_see_keyed(p, &garden, &(SchSeen){.element = told_element, .value = told_value, .ctx = &t}), 0);
     syl_program_free(p);
     assert_string_equal(t.text, "[pot 0] pot@0=square pot.width@0=2[stake 0] stake@0=oak stake.height@0=2.5"
                                 " stake.ties@0=4[pot 1] size@-1=3[stake 1] stake@1=pine"
