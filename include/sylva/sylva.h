@@ -182,6 +182,9 @@ typedef enum { SYL_MODEL_LSYSTEM = 0, SYL_MODEL_GROW = 1, SYL_MODEL_SCENE = 2, S
 /* "lsystem", "grow block", "scene", "weber block", "strands block", "ecosystem block"
  * (an ecosystem on a terrain: sylva/ecosystem.h) */
 const char *syl_model_kind_name(SylModelKind k);
+/* The keyword that opens its block: "lsystem", "grow", "scene", "weber", ... (NULL outside
+ * the enum); the name bindings give a model's kind by. */
+const char *syl_model_kind_keyword(SylModelKind k);
 SylModelKind syl_program_kind(const SylProgram *p);
 
 /* The lines of a `grow` block (its directives) and of the file's `scene` block, with values

@@ -29,7 +29,6 @@ __version__ = _core.VERSION
 
 _core._set_errors(CompileError, LimitError)
 
-KINDS = ("lsystem", "grow", "scene", "weber", "strands", "ecosystem", "curvetree")  # SylModelKind's order
 VIEWS = {"iso": 0, "front": 1, "side": 2, "top": 3, "auto": 4}
 LEAVES = {"copied": 0, "cards": 1, "instanced": 2, "instanced-cards": 3, "clusters": 4}
 _UNTIL = {"mesh": 0, "skeleton": 1, "string": 2}
@@ -137,7 +136,7 @@ class Model:
         self.name = name
         self._program = file._compile(name, {})
         info = self._program.info()
-        self.kind = KINDS[info["kind"]] if info["kind"] < len(KINDS) else info["kind_name"]
+        self.kind = info["kind"]  # the block's keyword, from the library's table of kinds
         self.symbols = info["symbols"]
         self.steps = info["steps"]
         self.seed = info["seed"]

@@ -369,8 +369,8 @@ static PyObject *program_info(ProgramObject *o, PyObject *unused) {
         }
         PyList_SET_ITEM(syms, i, s);
     }
-    return Py_BuildValue("{s:s,s:i,s:s,s:i,s:K,s:N,s:s}", "name", syl_program_name(p), "kind",
-                         (int)syl_program_kind(p), "kind_name", syl_model_kind_name(syl_program_kind(p)),
+    return Py_BuildValue("{s:s,s:s,s:s,s:i,s:K,s:N,s:s}", "name", syl_program_name(p), "kind",
+                         syl_model_kind_keyword(syl_program_kind(p)), "kind_name", syl_model_kind_name(syl_program_kind(p)),
                          "steps", syl_program_steps(p), "seed", (unsigned long long)syl_program_seed(p),
                          "symbols", syms, "path", syl_program_path(p));
 }

@@ -90,6 +90,32 @@ static void flags_and_functions_agree(void **state) {
     }
 }
 
+/* `sylva convert` asks the converts and convert columns: a kind converts to some files exactly
+ * when it has the function that writes them, each bit names an extension, and a kind that
+ * converts is a named block of directives (what the writers read back). A row that left
+ * either column out, or filled one and not the other, fails here. */
+static void converts_and_convert_agree(void **state) {
+    (void)state;
+    int converting = 0;
+    for (int k = 0; k < LANG_KIND_COUNT; k++) {
+        SylModelKind kind = (SylModelKind)k;
+        const KindOps *ops = kinds_ops(kind);
+        const char *noun = syl_model_kind_name(kind);
+        if ((ops->converts != 0) != (ops->convert != NULL)) fail_msg("the %s: converts and convert disagree", noun);
+        if (ops->converts & ~(unsigned)KC_ALL) fail_msg("the %s converts to an unknown file", noun);
+        if (ops->converts && !lang_kind_is(kind, KF_DIRECTIVES)) fail_msg("the %s converts but has no directives", noun);
+        if (ops->converts && !(ops->converts & KC_SYL)) fail_msg("the %s converts, but not back to a block", noun);
+        converting += ops->converts != 0;
+    }
+    assert_int_equal(converting, 3); /* weber, grow, pafco: docs/cli.md, `sylva convert` */
+    assert_string_equal(lang_convert_ext(KC_XML), ".xml");
+    assert_string_equal(lang_convert_ext(KC_CFG), ".cfg");
+    assert_string_equal(lang_convert_ext(KC_SYL), ".syl");
+    assert_null(lang_convert_ext(0));
+    assert_null(lang_convert_ext(KC_XML | KC_SYL));
+    assert_null(kinds_ops((SylModelKind)LANG_KIND_COUNT)->convert);
+}
+
 /* The refusal is worded from the row: the article follows the noun, and a kind that is not a
  * plant says so whatever it was asked for. */
 static void refusals_are_worded_from_the_row(void **state) {
@@ -131,6 +157,7 @@ int main(void) {
         cmocka_unit_test(keyword_noun_and_id_agree),
         cmocka_unit_test(each_keyword_opens_its_kind),
         cmocka_unit_test(flags_and_functions_agree),
+        cmocka_unit_test(converts_and_convert_agree),
         cmocka_unit_test(refusals_are_worded_from_the_row),
         cmocka_unit_test(validate_covers_every_directive_kind),
     };
