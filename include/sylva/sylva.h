@@ -59,7 +59,7 @@ typedef struct SylSink {
  * middle of a call. soname: the library's file; what: what needs it; why: dlerror's reason.
  * One handler for the process; NULL removes it. */
 typedef void SylMissingLibrary(const char *soname, const char *what, const char *why);
-void syl_set_missing_library(SylMissingLibrary *handler);
+void syl_missing_library_set(SylMissingLibrary *handler);
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
  * line and the caret line under it. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
@@ -168,7 +168,7 @@ extern const char syl_file_refused[]; /* "outside the folders this model may rea
  * so that a model cannot print a file it names (`from "/etc/passwd"`). */
 int syl_text_is_model(const char *text, size_t len);
 /* Names of the models in a file, for listing; returns how many, writes at most max. */
-int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,
+int syl_model_list(const char *path, const char *text, size_t len, const char **names, int max,
                     char *buf, size_t bufsize);
 
 /* What a compiled model is: an L-system, a `grow` block (self-organizing tree), — for a

@@ -474,7 +474,7 @@ char *view_models_json(View *v) {
     char *text = syl_read_file(v->path, &len);
     const char *names[256];
     char buf[8192];
-    int n = text ? syl_list_models(v->path, text, len, names, 256, buf, sizeof buf) : 0;
+    int n = text ? syl_model_list(v->path, text, len, names, 256, buf, sizeof buf) : 0;
     char *s = NULL;
     size_t sl = 0;
     FILE *f = open_memstream(&s, &sl);
