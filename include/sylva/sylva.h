@@ -185,6 +185,13 @@ const char *syl_model_kind_name(SylModelKind k);
 /* The keyword that opens its block: "lsystem", "grow", "scene", "weber", ... (NULL outside
  * the enum); the name bindings give a model's kind by. */
 const char *syl_model_kind_keyword(SylModelKind k);
+/* What a kind of model does, for a program (a binding) that must not keep a list of kinds:
+ * SYL_MODEL_HAS_STRING, it is derived into a string of modules (`sylva derive`);
+ * SYL_MODEL_HAS_STEPS, its steps are derivation steps or years of growth;
+ * SYL_MODEL_IS_PLANT, syl_plant_build makes it (an ecosystem block is run instead).
+ * 1 or 0 (0 outside the enum). */
+typedef enum { SYL_MODEL_HAS_STRING, SYL_MODEL_HAS_STEPS, SYL_MODEL_IS_PLANT } SylModelTrait;
+int syl_model_kind_is(SylModelKind k, SylModelTrait t);
 SylModelKind syl_program_kind(const SylProgram *p);
 
 /* The lines of a `grow` block (its directives) and of the file's `scene` block, with values

@@ -137,6 +137,9 @@ class Model:
         self._program = file._compile(name, {})
         info = self._program.info()
         self.kind = info["kind"]  # the block's keyword, from the library's table of kinds
+        self.kind_name = info["kind_name"]  # "weber block"
+        # what the kind does, asked of the library (no list of kinds here)
+        self.has_string, self.has_steps, self.is_plant = info["has_string"], info["has_steps"], info["is_plant"]
         self.symbols = info["symbols"]
         self.steps = info["steps"]
         self.seed = info["seed"]
@@ -196,7 +199,7 @@ class Model:
         functions: {name: function} for the model's `extern` declarations, called with floats
         for every evaluation (one thread unless threads says more).
         Ctrl-C stops it between steps with KeyboardInterrupt."""
-        if self.kind != "lsystem":
+        if not self.has_string:
             raise ValueError(f"{self.name} is a {self.kind} model: it has no string; use build()")
         if environment is not None and not callable(environment):
             raise TypeError("environment is a function(step, queries)")
@@ -284,8 +287,9 @@ class Model:
         size = _count("size", size)
         if view not in ("picture", "3d"):
             raise ValueError(f"view is 'picture' or '3d', not {view!r}")
-        if self.kind == "ecosystem":
-            raise ValueError(f"{self.name} is an ecosystem block: it has no plant to rebuild")
+        if not self.is_plant:
+            raise ValueError(f"{self.name} is {'an' if self.kind_name[0] in 'aeiou' else 'a'} {self.kind_name}: "
+                             "it has no plant to rebuild")
         try:
             import ipywidgets as widgets
             from IPython.display import clear_output, display

@@ -369,8 +369,12 @@ static PyObject *program_info(ProgramObject *o, PyObject *unused) {
         }
         PyList_SET_ITEM(syms, i, s);
     }
-    return Py_BuildValue("{s:s,s:s,s:s,s:i,s:K,s:N,s:s}", "name", syl_program_name(p), "kind",
-                         syl_model_kind_keyword(syl_program_kind(p)), "kind_name", syl_model_kind_name(syl_program_kind(p)),
+    SylModelKind k = syl_program_kind(p);
+    return Py_BuildValue("{s:s,s:s,s:s,s:O,s:O,s:O,s:i,s:K,s:N,s:s}", "name", syl_program_name(p), "kind",
+                         syl_model_kind_keyword(k), "kind_name", syl_model_kind_name(k), "has_string",
+                         syl_model_kind_is(k, SYL_MODEL_HAS_STRING) ? Py_True : Py_False, "has_steps",
+                         syl_model_kind_is(k, SYL_MODEL_HAS_STEPS) ? Py_True : Py_False, "is_plant",
+                         syl_model_kind_is(k, SYL_MODEL_IS_PLANT) ? Py_True : Py_False,
                          "steps", syl_program_steps(p), "seed", (unsigned long long)syl_program_seed(p),
                          "symbols", syms, "path", syl_program_path(p));
 }

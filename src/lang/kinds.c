@@ -35,6 +35,16 @@ static const KindRow *row(SylModelKind k) { return (unsigned)k < LANG_KIND_COUNT
 unsigned lang_kind_flags(SylModelKind k) { return row(k) ? row(k)->flags : 0; }
 const char *lang_kind_keyword(SylModelKind k) { return row(k) ? row(k)->keyword : NULL; }
 const char *syl_model_kind_keyword(SylModelKind k) { return lang_kind_keyword(k); }
+
+int syl_model_kind_is(SylModelKind k, SylModelTrait t) {
+    if (!row(k)) return 0;
+    switch (t) {
+    case SYL_MODEL_HAS_STRING: return lang_kind_is(k, KF_STRING);
+    case SYL_MODEL_HAS_STEPS: return lang_kind_is(k, KF_RULES | KF_GROWS);
+    case SYL_MODEL_IS_PLANT: return !lang_kind_is(k, KF_NOT_A_PLANT);
+    }
+    return 0;
+}
 const char *syl_model_kind_name(SylModelKind k) { return row(k) ? row(k)->noun : "model"; }
 const struct SchTable *lang_kind_schema(SylModelKind k) { return row(k) ? row(k)->schema : NULL; }
 
