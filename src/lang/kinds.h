@@ -1,6 +1,6 @@
 /* The kinds of model as the language knows them: one row each in lang/kinds.def. Code that
  * must know what a kind does asks its flags here, never compares it with a list of kinds;
- * the functions of each kind (validate, build) are the last columns of its row, which only
+ * the functions of each kind (validate, build, convert) are columns of its row that only
  * src/kinds reads. */
 #ifndef SYL_LANG_KINDS_H
 #define SYL_LANG_KINDS_H
