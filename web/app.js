@@ -262,7 +262,7 @@ function showStats(s) {
     ['write .glb', (s.write_time * 1000).toFixed(1) + ' ms'], ['memory', s.memory_mb + ' MB'],
   ] : [];
   const m = s && s.kind !== 'ecosystem' && state.metrics;
-  if (m) { // what `sylva compare` measures (syl_metrics), once the server has them
+  if (m) { // what `sylva compare` measures (syl_metrics_compute), once the server has them
     m.stems_by_order.forEach((n, k) => rows.push([`stems of order ${k}`, n]));
     rows.push(['leaves', m.leaves]);
     for (const r of m.metrics) rows.push([r.label, r.value === null ? '-' : +r.value.toPrecision(6) + (r.unit ? ' ' + r.unit : '')]);

@@ -309,7 +309,7 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                 text, said = scene.rewrite(context, path, m, io) if self.use_scene else (None, "")
                 if text is not None:  # the scene's objects are in world coordinates: the tree too
                     m, where = sylva.compile(text, path)[m.name], (0.0, 0.0, 0.0)
-                if m.kind == "ecosystem":
+                if not m.is_plant:  # an ecosystem block: its plants, run as `sylva ecosystem`
                     root = add_ecosystem(context, path, m, self.seed, self.steps, kw, where,
                                          scene.inputs(context)[1][0] if text is not None else None)
                 else:

@@ -35,7 +35,7 @@ def look(file, model_name: str, c: int, name: str, mesh_object) -> bpy.types.Col
     for o in list(coll.objects):
         coll.objects.unlink(o)
     m = file[model_name]
-    n = m.steps if m.kind in ("lsystem", "grow") else 0
+    n = m.steps if m.has_steps else 0
     steps = max(1, round(n * (c + 1) / 3)) if n > 0 else None
     obj = mesh_object(m.build(steps, optimize=True), name)
     zs = [v.co.z for v in obj.data.vertices]

@@ -226,15 +226,15 @@ int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTe
  * ends the job with exit code SYL_EIO and a message to diag (NULL: none). exchange: the transport over tiles_x × tiles_z tiles,
  * spread over the ranks, re-balanced every `rebalance` years (0: never). */
 typedef struct SylEcoMpi SylEcoMpi;
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink);
-int syl_eco_mpi_rank(const SylEcoMpi *mpi);
-int syl_eco_mpi_size(const SylEcoMpi *mpi);
-const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance);
+SylEcoMpi *syl_ecosystem_mpi_start(int *argc, char ***argv, const SylSink *sink);
+int syl_ecosystem_mpi_rank(const SylEcoMpi *mpi);
+int syl_ecosystem_mpi_size(const SylEcoMpi *mpi);
+const SylEcoExchange *syl_ecosystem_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance);
 /* Traffic so far, this rank: plants and bytes sent, halo plants received, plants received
  * with a tile that re-balancing gave it, barriers. */
-void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent,
+void syl_ecosystem_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent,
                          uint64_t *halo_received, uint64_t *plants_moved, uint64_t *barriers);
-void syl_eco_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
+void syl_ecosystem_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
 
 /* Pictures of a run (src/eco/pictures.c), in one palette of species' colours. map: a
  * snapshot seen from above, north up, its plants as discs of their crowns (the dominated

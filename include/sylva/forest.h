@@ -68,7 +68,7 @@ int syl_forest_write_glb(const SylForest *f, const SylEcoPlant *plants, size_t n
 /* A saved snapshot (its plant table, plants-YEAR.csv) of p's ecosystem block rendered as
  * `sylva ecosystem` renders view-YEAR.png, and written to png (and glb, when given, as one
  * transaction: both or neither) by rank 0 (src/forest/snapshot.c). Under MPI (mpi, from
- * syl_eco_mpi_start) the picture's rows are cut into bands dealt round the ranks, each rank
+ * syl_ecosystem_mpi_start) the picture's rows are cut into bands dealt round the ranks, each rank
  * renders its own and rank 0 gathers them: the bytes do not depend on the number of ranks.
  * Every rank calls it, with the status it has so far (p NULL when its compile failed: it
  * still takes part, so the job stops together). Rank 0 reports on diag; another rank keeps

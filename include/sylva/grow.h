@@ -64,10 +64,6 @@ enum { SYL_GROW_MAX_YEARS = 10000 };
 int syl_grow_write_preset(const SylProgram *p, FILE *out, FILE *diag);
 int syl_grow_write_syl(const SylProgram *p, const char *note, FILE *out, FILE *diag);
 
-/* The old name of syl_validate (sylva.h), kept for programs written against it: it checks
- * every kind of block now, as syl_validate does. */
-int syl_grow_validate(void *user, const SylProgram *p, FILE *diag);
-
 /* Grow a `grow` model alone, its base at the origin. */
 int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out);
 /* Grow the file's scene (p: any model of the file, or the scene itself): every plant, year

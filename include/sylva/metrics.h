@@ -55,7 +55,7 @@ typedef struct SylMetricsOptions {
 
 /* All the metrics of a skeleton. SYL_EMODEL when a parent does not precede its child,
  * SYL_ELIMIT when out of memory (reported to opt->sink or opt->diag). */
-int syl_metrics(const SylSkeleton *s, const SylMetricsOptions *opt, SylMetrics *out);
+int syl_metrics_compute(const SylSkeleton *s, const SylMetricsOptions *opt, SylMetrics *out);
 
 /* The metrics in the order tools print them, each listed once here for every output. */
 typedef struct SylMetricInfo {
@@ -67,12 +67,12 @@ typedef struct SylMetricInfo {
     int per_order;           /* one value per Strahler order i = 1 .. S - 1: key_i, "label i:i+1" */
 } SylMetricInfo;
 
-extern const SylMetricInfo syl_metric_info[];
-extern const int syl_metric_count;
+extern const SylMetricInfo syl_metrics_info[];
+extern const int syl_metrics_count;
 
-/* The value of metric `metric` (an index into syl_metric_info); order is the Strahler order
+/* The value of metric `metric` (an index into syl_metrics_info); order is the Strahler order
  * i of a per-order metric (R_b = N_i / N_(i+1)), ignored by the others. NaN when undefined. */
-double syl_metric_value(const SylMetrics *m, int metric, int order);
+double syl_metrics_value(const SylMetrics *m, int metric, int order);
 
 #ifdef __cplusplus
 }

@@ -60,7 +60,7 @@ typedef struct SylSink {
  * middle of a call. soname: the library's file; what: what needs it; why: dlerror's reason.
  * One handler for the process; NULL removes it. */
 typedef void SylMissingLibrary(const char *soname, const char *what, const char *why);
-void syl_set_missing_library(SylMissingLibrary *handler);
+void syl_missing_library_set(SylMissingLibrary *handler);
 /* The text form of d, as `sylva` prints it: `path:line:col: error: message`, then the source
  * line and the caret line under it. */
 void syl_diagnostic_write(const SylDiagnostic *d, FILE *out);
@@ -181,7 +181,7 @@ extern const char syl_file_refused[]; /* "outside the folders this model may rea
  * so that a model cannot print a file it names (`from "/etc/passwd"`). */
 int syl_text_is_model(const char *text, size_t len);
 /* Names of the models in a file, for listing; returns how many, writes at most max. */
-int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max,
+int syl_model_list(const char *path, const char *text, size_t len, const char **names, int max,
                     char *buf, size_t bufsize);
 
 /* What a compiled model is: an L-system, a `grow` block (self-organizing tree), — for a
@@ -195,6 +195,16 @@ typedef enum { SYL_MODEL_LSYSTEM = 0, SYL_MODEL_GROW = 1, SYL_MODEL_SCENE = 2, S
 /* "lsystem", "grow block", "scene", "weber block", "strands block", "ecosystem block"
  * (an ecosystem on a terrain: sylva/ecosystem.h) */
 const char *syl_model_kind_name(SylModelKind k);
+/* The keyword that opens its block: "lsystem", "grow", "scene", "weber", ... (NULL outside
+ * the enum); the name bindings give a model's kind by. */
+const char *syl_model_kind_keyword(SylModelKind k);
+/* What a kind of model does, for a program (a binding) that must not keep a list of kinds:
+ * SYL_MODEL_HAS_STRING, it is derived into a string of modules (`sylva derive`);
+ * SYL_MODEL_HAS_STEPS, its steps are derivation steps or years of growth;
+ * SYL_MODEL_IS_PLANT, syl_plant_build makes it (an ecosystem block is run instead).
+ * 1 or 0 (0 outside the enum). */
+typedef enum { SYL_MODEL_HAS_STRING, SYL_MODEL_HAS_STEPS, SYL_MODEL_IS_PLANT } SylModelTrait;
+int syl_model_kind_is(SylModelKind k, SylModelTrait t);
 SylModelKind syl_program_kind(const SylProgram *p);
 
 /* The lines of a `grow` block (its directives) and of the file's `scene` block, with values

@@ -29,7 +29,6 @@ __version__ = _core.VERSION
 
 _core._set_errors(CompileError, LimitError)
 
-KINDS = ("lsystem", "grow", "scene", "weber", "strands", "ecosystem", "curvetree")  # SylModelKind's order
 VIEWS = {"iso": 0, "front": 1, "side": 2, "top": 3, "auto": 4}
 LEAVES = {"copied": 0, "cards": 1, "instanced": 2, "instanced-cards": 3, "clusters": 4}
 _UNTIL = {"mesh": 0, "skeleton": 1, "string": 2}
@@ -137,7 +136,10 @@ class Model:
         self.name = name
         self._program = file._compile(name, {})
         info = self._program.info()
-        self.kind = KINDS[info["kind"]] if info["kind"] < len(KINDS) else info["kind_name"]
+        self.kind = info["kind"]  # the block's keyword, from the library's table of kinds
+        self.kind_name = info["kind_name"]  # "weber block"
+        # what the kind does, asked of the library (no list of kinds here)
+        self.has_string, self.has_steps, self.is_plant = info["has_string"], info["has_steps"], info["is_plant"]
         self.symbols = info["symbols"]
         self.steps = info["steps"]
         self.seed = info["seed"]
@@ -197,7 +199,7 @@ class Model:
         functions: {name: function} for the model's `extern` declarations, called with floats
         for every evaluation (one thread unless threads says more).
         Ctrl-C stops it between steps with KeyboardInterrupt."""
-        if self.kind != "lsystem":
+        if not self.has_string:
             raise ValueError(f"{self.name} is a {self.kind} model: it has no string; use build()")
         if environment is not None and not callable(environment):
             raise TypeError("environment is a function(step, queries)")
@@ -287,8 +289,9 @@ class Model:
         size = _count("size", size)
         if view not in ("picture", "3d"):
             raise ValueError(f"view is 'picture' or '3d', not {view!r}")
-        if self.kind == "ecosystem":
-            raise ValueError(f"{self.name} is an ecosystem block: it has no plant to rebuild")
+        if not self.is_plant:
+            raise ValueError(f"{self.name} is {'an' if self.kind_name[0] in 'aeiou' else 'a'} {self.kind_name}: "
+                             "it has no plant to rebuild")
         try:
             import ipywidgets as widgets
             from IPython.display import clear_output, display

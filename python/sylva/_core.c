@@ -276,7 +276,7 @@ static PyObject *core_compile(PyObject *self, PyObject *args, PyObject *kw) {
     }
     SylCompileOptions o = {.model = model, .overrides = ov, .noverrides = nov, .diag = d.f, .lint = lint,
                            .warn = SYL_WARN_MISTAKES};
-    if (validate) o.validate = syl_grow_validate;
+    if (validate) o.validate = syl_validate;
     int st = 0;
     SylProgram *p;
     Py_BEGIN_ALLOW_THREADS
@@ -310,7 +310,7 @@ static PyObject *core_models(PyObject *self, PyObject *args) {
     if (!buf) return PyErr_NoMemory();
     int n;
     Py_BEGIN_ALLOW_THREADS
-    n = syl_list_models(path, text, (size_t)len, names, MAX, buf, 1 << 16);
+    n = syl_model_list(path, text, (size_t)len, names, MAX, buf, 1 << 16);
     Py_END_ALLOW_THREADS
     if (n < 0) {
         free(buf);
@@ -454,8 +454,12 @@ static PyObject *program_info(ProgramObject *o, PyObject *unused) {
         }
         PyList_SET_ITEM(syms, i, s);
     }
-    return Py_BuildValue("{s:s,s:i,s:s,s:i,s:K,s:N,s:s}", "name", syl_program_name(p), "kind",
-                         (int)syl_program_kind(p), "kind_name", syl_model_kind_name(syl_program_kind(p)),
+    SylModelKind k = syl_program_kind(p);
+    return Py_BuildValue("{s:s,s:s,s:s,s:O,s:O,s:O,s:i,s:K,s:N,s:s}", "name", syl_program_name(p), "kind",
+                         syl_model_kind_keyword(k), "kind_name", syl_model_kind_name(k), "has_string",
+                         syl_model_kind_is(k, SYL_MODEL_HAS_STRING) ? Py_True : Py_False, "has_steps",
+                         syl_model_kind_is(k, SYL_MODEL_HAS_STEPS) ? Py_True : Py_False, "is_plant",
+                         syl_model_kind_is(k, SYL_MODEL_IS_PLANT) ? Py_True : Py_False,
                          "steps", syl_program_steps(p), "seed", (unsigned long long)syl_program_seed(p),
                          "symbols", syms, "path", syl_program_path(p));
 }
@@ -1261,19 +1265,19 @@ static PyObject *plant_metrics(PlantObject *o, PyObject *args, PyObject *kw) {
     SylMetricsOptions mo = {.mesh = o->pl.mesh, .threads = threads, .diag = d.f};
     int st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_metrics(o->pl.skeleton, &mo, &m);
+    st = syl_metrics_compute(o->pl.skeleton, &mo, &m);
     Py_END_ALLOW_THREADS
     if (st) return raise_status(st, &d);
     diag_drop(&d);
     PyObject *out = PyDict_New();
-    for (int i = 0; out && i < syl_metric_count; i++) {
-        const SylMetricInfo *mi = &syl_metric_info[i];
+    for (int i = 0; out && i < syl_metrics_count; i++) {
+        const SylMetricInfo *mi = &syl_metrics_info[i];
         int orders = mi->per_order ? (int)m.strahler - 1 : 1;
         for (int k = 1; out && k <= orders; k++) {
             char key[96];
             if (mi->per_order) snprintf(key, sizeof key, "%s_%d", mi->key, k);
             else snprintf(key, sizeof key, "%s", mi->key);
-            PyObject *v = PyFloat_FromDouble(syl_metric_value(&m, i, k));
+            PyObject *v = PyFloat_FromDouble(syl_metrics_value(&m, i, k));
             if (!v || PyDict_SetItemString(out, key, v)) Py_CLEAR(out);
             Py_XDECREF(v);
         }

@@ -93,6 +93,20 @@ KINDS = [
 ]
 
 
+def test_a_kind_is_its_keyword_from_the_library():
+    # the keyword comes from the library's table of kinds (src/lang/kinds.def): a kind added
+    # there is named here without a list in Python (pafco was "pafco block" when one was kept)
+    pafco = sylva.load(ex("pafco", "birch.cfg")).model
+    assert (pafco.kind, pafco.kind_name) == ("pafco", "pafco block")
+    assert (pafco.has_string, pafco.has_steps, pafco.is_plant) == (False, False, True)
+    eco = next(m for m in sylva.load(ex("ecosystem", "meadow.syl")) if m.kind == "ecosystem")
+    assert not eco.is_plant and not eco.has_string
+    with pytest.raises(ValueError, match="is an ecosystem block: it has no plant to rebuild"):
+        eco.interact()
+    lsys, grow = sylva.load(ex("abop", "fig1_25_bush3d.syl")).model, sylva.load(ex("sot", "birch.syl")).model
+    assert lsys.has_string and lsys.has_steps and grow.has_steps and not grow.has_string
+
+
 @pytest.mark.parametrize("path,kind", KINDS)
 def test_every_kind_writes_the_commands_glb(path, kind, tmp_path):
     m = sylva.load(path).model

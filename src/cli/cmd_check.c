@@ -49,7 +49,7 @@ int cmd_check(int argc, char **argv) {
         }
         const char *names[256];
         char buf[8192];
-        int n = m.model ? 0 : syl_list_models(m.path, text, len, names, 256, buf, sizeof buf);
+        int n = m.model ? 0 : syl_model_list(m.path, text, len, names, 256, buf, sizeof buf);
         if (n == 0) { /* one model named, or a file that does not parse: report as is */
             names[0] = m.model;
             n = 1;

@@ -9,8 +9,8 @@
 #include "util/json.h"
 
 static void print_metrics(FILE *out) {
-    for (int i = 0; i < syl_metric_count; i++) {
-        const SylMetricInfo *mi = &syl_metric_info[i];
+    for (int i = 0; i < syl_metrics_count; i++) {
+        const SylMetricInfo *mi = &syl_metrics_info[i];
         char name[64];
         snprintf(name, sizeof name, "%s%s%s%s", mi->label, mi->per_order ? " i:i+1" : "", *mi->unit ? ", " : "",
                  mi->unit);
@@ -71,7 +71,7 @@ static Stat stat(const Column *c, int nruns, const Row *r) {
     Stat s = {NAN, NAN, 0};
     double sum = 0;
     for (int i = 0; i < nruns; i++) {
-        double v = syl_metric_value(&c->runs[i], r->metric, r->order);
+        double v = syl_metrics_value(&c->runs[i], r->metric, r->order);
         if (!isnan(v)) sum += v, s.n++;
     }
     if (!s.n) return s;
@@ -79,7 +79,7 @@ static Stat stat(const Column *c, int nruns, const Row *r) {
     bool same = true; /* then exactly that value, and 0 */
     double first = NAN;
     for (int i = 0; i < nruns; i++) {
-        double v = syl_metric_value(&c->runs[i], r->metric, r->order);
+        double v = syl_metrics_value(&c->runs[i], r->metric, r->order);
         if (isnan(v)) continue;
         if (isnan(first)) first = v;
         else if (v != first) same = false;
@@ -91,7 +91,7 @@ static Stat stat(const Column *c, int nruns, const Row *r) {
     }
     double ss = 0;
     for (int i = 0; i < nruns; i++) {
-        double v = syl_metric_value(&c->runs[i], r->metric, r->order);
+        double v = syl_metrics_value(&c->runs[i], r->metric, r->order);
         if (!isnan(v)) ss += (v - s.mean) * (v - s.mean);
     }
     s.sd = s.n > 1 ? sqrt(ss / (s.n - 1)) : 0;
@@ -218,7 +218,7 @@ static bool write_text(FILE *out, const Column *cols, int ncols, int nruns, cons
     }
 #define CELLP(r, c) (cells + ((size_t)(r) * (size_t)(ncols + 1) + (size_t)(c)) * CELL)
     for (int r = 0; r < nrows; r++) {
-        const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+        const SylMetricInfo *mi = &syl_metrics_info[rows[r].metric];
         if (*mi->unit) snprintf(CELLP(r + 1, 0), CELL, "%s (%s)", rows[r].label, mi->unit);
         else snprintf(CELLP(r + 1, 0), CELL, "%s", rows[r].label);
         for (int c = 0; c < ncols; c++) {
@@ -266,7 +266,7 @@ static void write_csv(FILE *out, const Column *cols, int ncols, int nruns, const
     }
     fputc('\n', out);
     for (int r = 0; r < nrows; r++) {
-        const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+        const SylMetricInfo *mi = &syl_metrics_info[rows[r].metric];
         fprintf(out, "%s,%s", rows[r].key, mi->unit);
         for (int c = 0; c < ncols; c++) {
             Stat s = stat(&cols[c], nruns, &rows[r]);
@@ -285,7 +285,7 @@ static void write_csv(FILE *out, const Column *cols, int ncols, int nruns, const
 static void write_json(FILE *out, const Column *cols, int ncols, int nruns, const Row *rows, int nrows) {
     fprintf(out, "{\n  \"seeds\": %d,\n  \"metrics\": [\n", nruns);
     for (int r = 0; r < nrows; r++) {
-        const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+        const SylMetricInfo *mi = &syl_metrics_info[rows[r].metric];
         fputs("    {\"key\": ", out);
         json_string_file(out, rows[r].key);
         fputs(", \"label\": ", out);
@@ -307,7 +307,7 @@ static void write_json(FILE *out, const Column *cols, int ncols, int nruns, cons
             fprintf(out, "%s%llu", i ? ", " : "", (unsigned long long)(cols[c].seed0 + (uint64_t)i));
         fputs("],\n      \"values\": {", out);
         for (int r = 0; r < nrows; r++) {
-            const SylMetricInfo *mi = &syl_metric_info[rows[r].metric];
+            const SylMetricInfo *mi = &syl_metrics_info[rows[r].metric];
             Stat s = stat(&cols[c], nruns, &rows[r]);
             fputs(r ? ",\n        " : "\n        ", out);
             json_string_file(out, rows[r].key);
@@ -335,11 +335,11 @@ static Row *make_rows(const Column *cols, int ncols, int nruns, int *nrows) {
     for (int c = 0; c < ncols; c++)
         for (int i = 0; i < nruns; i++)
             if (cols[c].runs[i].strahler > top) top = (int)cols[c].runs[i].strahler;
-    Row *rows = calloc((size_t)syl_metric_count + (size_t)top + 1, sizeof *rows);
+    Row *rows = calloc((size_t)syl_metrics_count + (size_t)top + 1, sizeof *rows);
     int n = 0;
     if (!rows) return NULL;
-    for (int m = 0; m < syl_metric_count; m++) {
-        const SylMetricInfo *mi = &syl_metric_info[m];
+    for (int m = 0; m < syl_metrics_count; m++) {
+        const SylMetricInfo *mi = &syl_metrics_info[m];
         if (!mi->per_order) {
             rows[n] = (Row){.metric = m};
             snprintf(rows[n].key, sizeof rows[n].key, "%s", mi->key);
@@ -373,7 +373,7 @@ static int run_column(Column *col, const SylDeriveOptions *base, bool seeded, in
         status = cli_plant(&col->args, &d, &mo, &pl);
         if (status) return status;
         SylMetricsOptions o = {.mesh = pl.mesh, .threads = d.threads, .diag = stderr};
-        status = syl_metrics(pl.sk, &o, &col->runs[i]);
+        status = syl_metrics_compute(pl.sk, &o, &col->runs[i]);
         if (!status && i == 0 && keep_mesh) {
             col->mesh = pl.mesh;
             col->ground = col->runs[0].ground;

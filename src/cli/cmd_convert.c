@@ -7,12 +7,8 @@
 #include <strings.h>
 
 #include "cli/cli.h"
-#include "lang/program.h"
-#include "lang/textures.h"
-#include "sylva/grow.h"
-#include "pafco/params.h"
-#include "weber/params.h"
-#include "weber/xml.h"
+#include "kinds/kinds.h"
+#include "lang/kinds.h"
 
 const CliCommand cli_convert_command = {
     .name = "convert",
@@ -47,38 +43,18 @@ static bool ends_with(const char *s, const char *ext) {
     return n > e && !strcasecmp(s + n - e, ext);
 }
 
-/* The species' name: a `Species "…"` line (kept by a .syl written from XML), else the model's. */
-static const char *species_name(const SylProgram *p) {
-    int n;
-    const SylDirective *ds = syl_program_directives(p, &n);
-    const char *name = syl_program_name(p);
-    for (int i = 0; i < n; i++)
-        if (!strcmp(ds[i].name, "Species") && ds[i].nargs == 1 &&
-            (ds[i].args[0].kind == SYL_DARG_STRING || ds[i].args[0].kind == SYL_DARG_WORD))
-            name = ds[i].args[0].text;
-    return name;
-}
-
-/* A grow block as a preset (*.xml) or a grow block (*.syl), through a temporary file. */
-static int convert_grow(const SylProgram *p, const char *path, const char *output, bool xml) {
-    OutFile out;
-    if (!out_open(&out, output)) return SYL_EIO;
-    const char *src = strrchr(path, '/');
-    char note[4200];
-    snprintf(note, sizeof note, "%s, converted by `sylva convert`", src ? src + 1 : path);
-    int status = xml ? syl_grow_write_preset(p, out.f, stderr) : syl_grow_write_syl(p, note, out.f, stderr);
-    if (status == SYL_ELIMIT) fprintf(stderr, "sylva convert: error: out of memory\n");
-    return out_close(&out, status);
-}
-
-/* A pafco model as a Pafčo file (*.cfg) or a .syl pafco block. */
-static int convert_pafco(const SylProgram *p, const char *output, bool cfg) {
-    PafcoParams P;
-    if (pafco_params_read(p, &P, stderr)) return SYL_EMODEL;
-    OutFile out;
-    if (!out_open(&out, output)) return SYL_EIO;
-    int status = cfg ? pafco_write_cfg(&P, out.f) : pafco_write_syl(&P, syl_program_name(p), out.f);
-    return out_close(&out, status);
+/* "weber blocks as *.xml or *.syl, ...": what the registry says each kind converts to. */
+static void say_what_converts(FILE *f) {
+    const char *sep = "";
+    for (int k = 0; k < LANG_KIND_COUNT; k++) {
+        unsigned converts = kinds_ops((SylModelKind)k)->converts;
+        if (!converts) continue;
+        fprintf(f, "%s%ss as", sep, syl_model_kind_name((SylModelKind)k));
+        const char *or = " ";
+        for (unsigned fmt = 1; fmt <= KC_ALL; fmt <<= 1)
+            if (converts & fmt) fprintf(f, "%s*%s", or, lang_convert_ext(fmt)), or = " or ";
+        sep = ", ";
+    }
 }
 
 int cmd_convert(int argc, char **argv) {
@@ -87,9 +63,10 @@ int cmd_convert(int argc, char **argv) {
     int done = cli_parse(&cli_convert_command, argc, argv, &a);
     if (done != CLI_RUN) return done;
     const char *output = a.output;
-    bool xml = output && ends_with(output, ".xml"), syl = output && ends_with(output, ".syl"),
-         cfg = output && ends_with(output, ".cfg");
-    if (!xml && !syl && !cfg) {
+    unsigned format = 0;
+    for (unsigned fmt = 1; output && fmt <= KC_ALL; fmt <<= 1)
+        if (ends_with(output, lang_convert_ext(fmt))) format = fmt;
+    if (!format) {
         fprintf(stderr, "sylva convert: error: %s: name the output *.xml (Arbaro XML, a grow preset), *.cfg (a Pafčo "
                         "file) or *.syl (a block) with -o\n", output ? "cannot tell the format" : "no output");
         return SYL_EUSAGE;
@@ -98,46 +75,24 @@ int cmd_convert(int argc, char **argv) {
     int status;
     SylProgram *p = cli_compile(&m, SYL_WARN_MISTAKES, &status);
     if (!p) return status;
-    if (syl_program_kind(p) == SYL_MODEL_WEBER || syl_program_kind(p) == SYL_MODEL_GROW) {
-        SylTextureSpec t; /* the texture lines are written as they stand: checked first, as sylva check does */
-        status = lang_textures(p, &t, stderr);
-        lang_textures_free(&t);
-        if (status) {
-            syl_program_free(p);
-            return status;
-        }
-    }
-    if (syl_program_kind(p) == SYL_MODEL_GROW && !cfg) {
-        status = convert_grow(p, m.path, output, xml);
-        syl_program_free(p);
-        return status;
-    }
-    if (syl_program_kind(p) == SYL_MODEL_PAFCO && !xml) {
-        status = convert_pafco(p, output, cfg);
-        syl_program_free(p);
-        return status;
-    }
-    if (syl_program_kind(p) != SYL_MODEL_WEBER || cfg) {
-        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes weber blocks as *.xml or *.syl, grow "
-                        "blocks as *.xml or *.syl, pafco blocks as *.cfg or *.syl\n",
-                syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
+    const KindOps *ops = kinds_ops(syl_program_kind(p));
+    if (!(ops->converts & format)) {
+        fprintf(stderr, "sylva convert: error: '%s' is a %s: convert writes ", syl_program_name(p),
+                syl_model_kind_name(syl_program_kind(p)));
+        say_what_converts(stderr);
+        fputc('\n', stderr);
         syl_program_free(p);
         return SYL_EUSAGE;
     }
-    WeberParams w;
-    status = weber_params_read(p, &w, stderr) ? SYL_EMODEL : SYL_OK;
-    if (!status) {
-        OutFile out; /* through a temporary file: nothing half-written on an error */
-        if (!out_open(&out, output)) status = SYL_EIO;
-        else {
-            const char *src = strrchr(m.path, '/');
-            char note[4200];
-            snprintf(note, sizeof note, "%s, converted by `sylva convert`", src ? src + 1 : m.path);
-            status = xml ? weber_write_xml(&w, species_name(p), p, out.f)
-                         : weber_write_syl(&w, species_name(p), p, note, out.f);
-            if (status == SYL_ELIMIT) fprintf(stderr, "sylva convert: error: out of memory\n");
-            status = out_close(&out, status);
-        }
+    OutFile out; /* through a temporary file: nothing half-written on an error */
+    if (!out_open(&out, output)) status = SYL_EIO;
+    else {
+        const char *src = strrchr(m.path, '/');
+        char note[4200];
+        snprintf(note, sizeof note, "%s, converted by `sylva convert`", src ? src + 1 : m.path);
+        status = ops->convert(p, format, note, out.f, stderr);
+        if (status == SYL_ELIMIT) fprintf(stderr, "sylva convert: error: out of memory\n");
+        status = out_close(&out, status);
     }
     syl_program_free(p);
     return status;

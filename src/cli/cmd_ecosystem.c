@@ -309,8 +309,8 @@ int cmd_ecosystem(int argc, char **argv) {
         return SYL_EUSAGE;
     }
     static SylEcoModel model; /* 14 kB: off the stack */
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, &cli_sink); /* NULL: one process */
-    int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
+    SylEcoMpi *mpi = syl_ecosystem_mpi_start(NULL, NULL, &cli_sink); /* NULL: one process */
+    int rank = syl_ecosystem_mpi_rank(mpi), nranks = syl_ecosystem_mpi_size(mpi);
     bool writer = rank == 0;
     ro.threads = d.threads;
     ro.diag = stderr;
@@ -373,7 +373,7 @@ int cmd_ecosystem(int argc, char **argv) {
             if (writer) fprintf(stderr, "sylva: error: %d tiles for %d ranks: give --tiles at least one per rank\n", ntiles, nranks);
             st = SYL_EUSAGE;
         }
-        o.exchange = syl_eco_mpi_exchange(mpi, st ? nranks : ntiles, a.rebalance);
+        o.exchange = syl_ecosystem_mpi_exchange(mpi, st ? nranks : ntiles, a.rebalance);
     }
     SylForest *forest = NULL; /* the pictures are the writer's */
     /* the run's: every year's .glb copies the same procedural textures (NULL: made each time) */
@@ -411,7 +411,7 @@ int cmd_ecosystem(int argc, char **argv) {
     }
     if (!st && a.stats && mpi) { /* each rank its own traffic, for bench/run */
         uint64_t sent, bytes, halo, moved, barriers;
-        syl_eco_mpi_traffic(mpi, &sent, &bytes, &halo, &moved, &barriers);
+        syl_ecosystem_mpi_traffic(mpi, &sent, &bytes, &halo, &moved, &barriers);
         fprintf(stderr, "rank %d: plants sent %llu, bytes sent %llu, halo plants received %llu, plants moved in %llu, cpu %.3f s\n",
                 rank, (unsigned long long)sent, (unsigned long long)bytes, (unsigned long long)halo,
                 (unsigned long long)moved, stats.cpu_seconds);
@@ -424,6 +424,6 @@ int cmd_ecosystem(int argc, char **argv) {
     syl_terrain_free(t);
     syl_budget_free(budget);
     syl_program_free(p);
-    syl_eco_mpi_end(mpi);
+    syl_ecosystem_mpi_end(mpi);
     return st;
 }

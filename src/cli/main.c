@@ -93,7 +93,7 @@ static void help(FILE *out) {
 
 int main(int argc, char **argv) {
     install_signals();
-    syl_set_missing_library(missing_library);
+    syl_missing_library_set(missing_library);
     if (argc < 2) {
         help(stderr);
         return SYL_EUSAGE;

@@ -15,8 +15,8 @@ static void before_gather(void *user, int rank) {
 }
 
 int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRenderOptions *ro) {
-    SylEcoMpi *mpi = syl_eco_mpi_start(NULL, NULL, &cli_sink); /* NULL: one process */
-    int rank = syl_eco_mpi_rank(mpi);
+    SylEcoMpi *mpi = syl_ecosystem_mpi_start(NULL, NULL, &cli_sink); /* NULL: one process */
+    int rank = syl_ecosystem_mpi_rank(mpi);
     SylProgram *p = NULL;
     int st = SYL_OK;
     if (ro->view != SYL_VIEW_AUTO) { /* every rank finds it; rank 0 says it */
@@ -51,6 +51,6 @@ int cli_render_snapshot(CliArgs *a, ModelArgs *m, SylDeriveOptions *d, SylRender
     }
     free(out), free(glb);
     syl_program_free(p);
-    syl_eco_mpi_end(mpi);
+    syl_ecosystem_mpi_end(mpi);
     return st;
 }

@@ -153,7 +153,7 @@ int view_eco_impostor(View *v, int look, const char **glb, size_t *len);
  * zeroed) as build id's plant, the previous one freed */
 void view_keep(View *v, unsigned id, SylPlant *pl, SylBudget **budget);
 void view_keep_free(View *v);
-/* The JSON of the metrics of `sylva compare` (syl_metrics) of build id, malloc'ed (kept in
+/* The JSON of the metrics of `sylva compare` (syl_metrics_compute) of build id, malloc'ed (kept in
  * its cache entry too); NULL when its plant is no longer kept or the metrics failed (*diag
  * says why, malloc'ed). Called without v->lock: a build may run beside it. */
 char *view_metrics(View *v, unsigned id, char **diag);

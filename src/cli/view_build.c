@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "cli/view.h"
+#include "lang/kinds.h"
 #include "sylva/describe.h"
 #include "sylva/impostor.h"
 #include "sylva/lod.h"
@@ -138,12 +139,15 @@ static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *d
     SylProgram *p = syl_compile(v->path, rq->text, rq->text_len, &opt, &status);
     m->compile_s = cli_now() - t0;
     if (!p) return status;
-    if (syl_program_kind(p) == SYL_MODEL_ECOSYSTEM && rq->preview) { /* its years are run once, for the full build */
+    SylModelKind kind = syl_program_kind(p);
+    /* What is not a plant is made by a command of its own: the view runs it as `sylva
+     * ecosystem` does (the one such kind, lang/kinds.def), its years once, for the full build. */
+    if (lang_kind_is(kind, KF_NOT_A_PLANT) && rq->preview) {
         fprintf(diag, "sylva: note: an ecosystem has no preview\n");
         syl_program_free(p);
         return SYL_EUSAGE;
     }
-    if (syl_program_kind(p) == SYL_MODEL_ECOSYSTEM) return m->eco = p, SYL_OK;
+    if (lang_kind_is(kind, KF_NOT_A_PLANT)) return m->eco = p, SYL_OK;
     double lod = syl_program_setting(p, "lod");
     m->lod = rq->lod >= 0 ? rq->lod : lod > 0 && lod <= SYL_LOD_MAX ? (int)lod : 0;
     if (rq->wind > 0) m->lod = rq->lod > 0 ? rq->lod : 0; /* as sylva mesh: the setting, without wind */
@@ -154,7 +158,7 @@ static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *d
     if (rq->leaves >= 0) m->mo.leaves = rq->leaves;
     if (rq->preview) view_preview_mesh_options(&m->mo), m->lod = 0, m->preview = true;
     int nscene = 0;
-    bool scene = syl_program_kind(p) == SYL_MODEL_SCENE || (!rq->model[0] && syl_program_scene(p, &nscene));
+    bool scene = lang_kind_is(kind, KF_UNNAMED) || (!rq->model[0] && syl_program_scene(p, &nscene));
     SylPlantOptions po = {.use_steps = rq->steps >= 0, .steps = rq->steps, .use_seed = rq->use_seed,
                           .seed = rq->seed, .threads = v->threads, .max_modules = v->max_modules,
                           .max_memory = v->max_memory, .budget = m->budget, .until = SYL_PLANT_MESH,
@@ -495,7 +499,7 @@ char *view_models_json(View *v) {
     char *text = syl_read_file(v->path, &len);
     const char *names[256];
     char buf[8192];
-    int n = text ? syl_list_models(v->path, text, len, names, 256, buf, sizeof buf) : 0;
+    int n = text ? syl_model_list(v->path, text, len, names, 256, buf, sizeof buf) : 0;
     char *s = NULL;
     size_t sl = 0;
     FILE *f = open_memstream(&s, &sl);

@@ -1,4 +1,4 @@
-/* sylva view: the Numbers panel's form figures — what `sylva compare` measures (syl_metrics:
+/* sylva view: the Numbers panel's form figures — what `sylva compare` measures (syl_metrics_compute:
  * height, crown, Strahler orders, stems by branch order, leaves, light interception, …) — of
  * the last build's plant. They are asked for after the frame is drawn (/api/metrics), so the
  * ray casting of light interception never delays the save → frame path. */
@@ -25,8 +25,8 @@ static char *metrics_json(const SylMetrics *m) {
     if (!f) return NULL;
     fputs("{\"metrics\":[", f);
     int first = 1;
-    for (int k = 0; k < syl_metric_count; k++) {
-        const SylMetricInfo *mi = &syl_metric_info[k];
+    for (int k = 0; k < syl_metrics_count; k++) {
+        const SylMetricInfo *mi = &syl_metrics_info[k];
         int from = mi->per_order ? 1 : 0, to = mi->per_order ? (int)m->strahler : 1;
         for (int o = from; o < to; o++) {
             char key[80], label[80];
@@ -41,7 +41,7 @@ static char *metrics_json(const SylMetrics *m) {
             fputs(",\"unit\":", f);
             json_string_file(f, mi->unit);
             fputs(",\"value\":", f);
-            number(f, syl_metric_value(m, k, o), mi->integer);
+            number(f, syl_metrics_value(m, k, o), mi->integer);
             fputc('}', f);
         }
     }
@@ -113,7 +113,7 @@ char *view_metrics(View *v, unsigned id, char **diag) {
     FILE *df = open_memstream(diag, &dl);
     SylMetrics m;
     SylMetricsOptions o = {.mesh = k->pl.mesh, .threads = v->threads, .diag = df};
-    if (df && !syl_metrics(k->pl.skeleton, &o, &m)) s = metrics_json(&m);
+    if (df && !syl_metrics_compute(k->pl.skeleton, &o, &m)) s = metrics_json(&m);
     if (df) fclose(df);
     pthread_mutex_lock(&v->keep_lock);
     if (!--k->refs && k->dropped) kept_free(k);

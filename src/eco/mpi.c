@@ -272,7 +272,7 @@ static int mpi_rebalance(void *ctx, int year, const int64_t *plants, int ntiles)
     return m->pending;
 }
 
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink) {
+SylEcoMpi *syl_ecosystem_mpi_start(int *argc, char ***argv, const SylSink *sink) {
     /* only under a launcher: a plain run stays one plain process */
     if (!getenv("OMPI_COMM_WORLD_SIZE") && !getenv("PMIX_RANK") && !getenv("PMI_RANK")) return NULL;
     SylEcoMpi *m = calloc(1, sizeof *m);
@@ -304,10 +304,10 @@ SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink) {
     return m;
 }
 
-int syl_eco_mpi_rank(const SylEcoMpi *m) { return m ? m->rank : 0; }
-int syl_eco_mpi_size(const SylEcoMpi *m) { return m ? m->size : 1; }
+int syl_ecosystem_mpi_rank(const SylEcoMpi *m) { return m ? m->rank : 0; }
+int syl_ecosystem_mpi_size(const SylEcoMpi *m) { return m ? m->size : 1; }
 
-const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *m, int ntiles, int rebalance) {
+const SylEcoExchange *syl_ecosystem_mpi_exchange(SylEcoMpi *m, int ntiles, int rebalance) {
     if (!m || ntiles < 1) return NULL;
     m->ntiles = ntiles;
     m->every = rebalance;
@@ -328,7 +328,7 @@ const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *m, int ntiles, int rebalan
     return &m->ops;
 }
 
-void syl_eco_mpi_traffic(const SylEcoMpi *m, uint64_t *plants_sent, uint64_t *bytes_sent, uint64_t *halo_received,
+void syl_ecosystem_mpi_traffic(const SylEcoMpi *m, uint64_t *plants_sent, uint64_t *bytes_sent, uint64_t *halo_received,
                          uint64_t *plants_moved, uint64_t *barriers) {
     *plants_sent = m ? m->plants_sent : 0;
     *plants_moved = m ? m->plants_moved : 0;
@@ -372,7 +372,7 @@ int eco_mpi_gather(SylEcoMpi *m, const void *mine, size_t n, uint8_t **all, size
     return SYL_OK;
 }
 
-void syl_eco_mpi_end(SylEcoMpi *m) {
+void syl_ecosystem_mpi_end(SylEcoMpi *m) {
     if (!m) return;
     for (int r = 0; m->send && r < m->size; r++) free(m->send[r]), free(m->recv[r]);
     free(m->owner), free(m->next), free(m->box), free(m->send), free(m->recv), free(m->send_len), free(m->recv_len),

@@ -4,17 +4,17 @@
 
 #include "eco/eco.h"
 
-SylEcoMpi *syl_eco_mpi_start(int *argc, char ***argv, const SylSink *sink) {
+SylEcoMpi *syl_ecosystem_mpi_start(int *argc, char ***argv, const SylSink *sink) {
     (void)argc, (void)argv, (void)sink;
     return NULL;
 }
-int syl_eco_mpi_rank(const SylEcoMpi *mpi) { return (void)mpi, 0; }
-int syl_eco_mpi_size(const SylEcoMpi *mpi) { return (void)mpi, 1; }
-const SylEcoExchange *syl_eco_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance) {
+int syl_ecosystem_mpi_rank(const SylEcoMpi *mpi) { return (void)mpi, 0; }
+int syl_ecosystem_mpi_size(const SylEcoMpi *mpi) { return (void)mpi, 1; }
+const SylEcoExchange *syl_ecosystem_mpi_exchange(SylEcoMpi *mpi, int ntiles, int rebalance) {
     (void)mpi, (void)ntiles, (void)rebalance;
     return NULL;
 }
-void syl_eco_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent, uint64_t *halo_received,
+void syl_ecosystem_mpi_traffic(const SylEcoMpi *mpi, uint64_t *plants_sent, uint64_t *bytes_sent, uint64_t *halo_received,
                          uint64_t *plants_moved, uint64_t *barriers) {
     (void)mpi;
     *plants_sent = *bytes_sent = *halo_received = *plants_moved = *barriers = 0;
@@ -27,4 +27,4 @@ int eco_mpi_gather(SylEcoMpi *mpi, const void *mine, size_t n, uint8_t **all, si
     memcpy(*all, mine, n);
     return SYL_OK;
 }
-void syl_eco_mpi_end(SylEcoMpi *mpi) { (void)mpi; }
+void syl_ecosystem_mpi_end(SylEcoMpi *mpi) { (void)mpi; }

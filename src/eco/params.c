@@ -114,7 +114,7 @@ static bool model_exists(const SylProgram *p, const char *name) {
     const char *text = syl_program_source(p, &len);
     const char *names[256];
     char buf[8192];
-    int n = syl_list_models(syl_program_path(p), text, len, names, 256, buf, sizeof buf);
+    int n = syl_model_list(syl_program_path(p), text, len, names, 256, buf, sizeof buf);
     for (int i = 0; i < n && i < 256; i++)
         if (!strcmp(names[i], name) && strcmp(name, syl_program_name(p))) return true;
     return false;

@@ -34,7 +34,7 @@ static int band_row(int b, int nbands, int height) {
  * said) unless rank 0 failed too, which has said it once; rank 0 says how many ranks failed
  * when it did not (to out, the caller's sink). After a failure every rank's st is the worst: nothing is said twice. */
 static int agree(SylEcoMpi *mpi, int st, const SylSink *out, FILE *said, char *const *text, const size_t *len) {
-    int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
+    int rank = syl_ecosystem_mpi_rank(mpi), nranks = syl_ecosystem_mpi_size(mpi);
     int64_t v[7] = {0}; /* a flag per status, rank 0 failed, ranks failed */
     if (st > 0 && st < 5) v[st] = 1;
     v[5] = st && rank == 0, v[6] = st != 0;
@@ -55,7 +55,7 @@ static int agree(SylEcoMpi *mpi, int st, const SylSink *out, FILE *said, char *c
 
 int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnapshotOptions *o, SylSnapshotStats *stats) {
     SylEcoMpi *mpi = o->mpi;
-    int rank = syl_eco_mpi_rank(mpi), nranks = syl_eco_mpi_size(mpi);
+    int rank = syl_ecosystem_mpi_rank(mpi), nranks = syl_ecosystem_mpi_size(mpi);
     /* every rank finds the same faults, which rank 0 says; another rank's are kept, to be said
      * when it alone failed (agree) */
     char *said = NULL;

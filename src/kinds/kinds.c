@@ -5,11 +5,15 @@
 
 #include <stddef.h>
 
+#include "lang/kinds.h"
+#include "lang/preset.h"
 #include "lang/schema.h"
+#include "pafco/params.h"
 #include "sot/params.h"
 #include "sylva/ecosystem.h"
 #include "sylva/trees.h"
 #include "util/diag.h"
+#include "weber/xml.h"
 
 /* The ecosystem's check reports to a sink: the hook's stream as one. */
 static int ecosystem_validate(const SylProgram *p, FILE *diag) {
@@ -19,10 +23,11 @@ static int ecosystem_validate(const SylProgram *p, FILE *diag) {
 const KindOps *kinds_ops(SylModelKind k) {
     static const KindOps none = {0};
     switch (k) {
-#define SYL_KIND(id, keyword, noun, flags, instead, validate_, build_, describe_) \
-    case SYL_MODEL_##id: {                                                         \
-        static const KindOps ops = {.validate = validate_, .build = build_, .describe = describe_}; \
-        return &ops;                                                               \
+#define SYL_KIND(id, keyword, noun, flags, instead, validate_, build_, describe_, converts_, convert_) \
+    case SYL_MODEL_##id: {                                                                              \
+        static const KindOps ops = {.validate = validate_, .build = build_, .describe = describe_,     \
+                                    .converts = converts_, .convert = convert_};                       \
+        return &ops;                                                                                    \
     }
 #include "lang/kinds.def"
 #undef SYL_KIND

@@ -22,6 +22,13 @@ typedef struct KindOps {
      * defaults, units and meanings (lang/schema.h; syl_describe_json reads it through
      * lang_kind_schema, the same column). NULL: none (a scene). */
     const struct SchTable *describe;
+    /* The files `sylva convert` writes the block as (KC_* of lang/kinds.h; 0: none), and the
+     * function that writes it as one of them: format is one bit of converts, note (may be
+     * NULL) the comment a .syl block opens with. It reads the block (its parameters, its
+     * texture lines' images) before it writes, so that a bad block writes nothing; SYL_OK,
+     * SYL_EMODEL (reported to diag), SYL_EUSAGE, SYL_ELIMIT or SYL_EIO. */
+    unsigned converts;
+    int (*convert)(const SylProgram *p, unsigned format, const char *note, FILE *out, FILE *diag);
 } KindOps;
 
 /* Every kind has a row (tests/unit/test_kinds.c); a kind the enum does not know gets the

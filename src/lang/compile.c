@@ -413,7 +413,7 @@ SylProgram *lang_compile_sibling(const SylProgram *p, const char *model, FILE *d
     return syl_compile(p->src.path, p->src.text, p->src.len, &opt, status);
 }
 
-int syl_list_models(const char *path, const char *text, size_t len, const char **names, int max, char *buf,
+int syl_model_list(const char *path, const char *text, size_t len, const char **names, int max, char *buf,
                     size_t bufsize) {
     return lang_list_models(path, text, len, names, NULL, max, buf, bufsize);
 }

@@ -420,7 +420,7 @@ static int describe(const SylProgram *p, FILE *out, bool json) {
     const char *src = syl_program_source(p, &len);
     const char *names[256];
     char buf[8192];
-    int n = syl_list_models(syl_program_path(p), src, len, names, 256, buf, sizeof buf);
+    int n = syl_model_list(syl_program_path(p), src, len, names, 256, buf, sizeof buf);
     if (n == 0) names[0] = syl_program_name(p), n = 1;
     if (json) {
         fputs("{\"file\":", out);

@@ -8,11 +8,11 @@
 
 /* kinds.def lists the kinds in the order of the public enum, whose values are explicit */
 enum {
-#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) KIND_ROW_##id,
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe, converts, convert) KIND_ROW_##id,
 #include "lang/kinds.def"
 #undef SYL_KIND
 };
-#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) \
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe, converts, convert) \
     _Static_assert((int)SYL_MODEL_##id == (int)KIND_ROW_##id, "lang/kinds.def is in SylModelKind order");
 #include "lang/kinds.def"
 #undef SYL_KIND
@@ -25,7 +25,7 @@ typedef struct KindRow {
 } KindRow;
 
 static const KindRow rows[LANG_KIND_COUNT] = {
-#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) [SYL_MODEL_##id] = {keyword, noun, flags, instead, describe},
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe, converts, convert) [SYL_MODEL_##id] = {keyword, noun, flags, instead, describe},
 #include "lang/kinds.def"
 #undef SYL_KIND
 };
@@ -34,6 +34,17 @@ static const KindRow *row(SylModelKind k) { return (unsigned)k < LANG_KIND_COUNT
 
 unsigned lang_kind_flags(SylModelKind k) { return row(k) ? row(k)->flags : 0; }
 const char *lang_kind_keyword(SylModelKind k) { return row(k) ? row(k)->keyword : NULL; }
+const char *syl_model_kind_keyword(SylModelKind k) { return lang_kind_keyword(k); }
+
+int syl_model_kind_is(SylModelKind k, SylModelTrait t) {
+    if (!row(k)) return 0;
+    switch (t) {
+    case SYL_MODEL_HAS_STRING: return lang_kind_is(k, KF_STRING);
+    case SYL_MODEL_HAS_STEPS: return lang_kind_is(k, KF_RULES | KF_GROWS);
+    case SYL_MODEL_IS_PLANT: return !lang_kind_is(k, KF_NOT_A_PLANT);
+    }
+    return 0;
+}
 const char *syl_model_kind_name(SylModelKind k) { return row(k) ? row(k)->noun : "model"; }
 const struct SchTable *lang_kind_schema(SylModelKind k) { return row(k) ? row(k)->schema : NULL; }
 
@@ -41,6 +52,10 @@ int lang_kind_of_keyword(const char *word, size_t len) {
     for (int k = 0; k < LANG_KIND_COUNT; k++)
         if (strlen(rows[k].keyword) == len && !memcmp(rows[k].keyword, word, len)) return k;
     return -1;
+}
+
+const char *lang_convert_ext(unsigned format) {
+    return format == KC_XML ? ".xml" : format == KC_CFG ? ".cfg" : format == KC_SYL ? ".syl" : NULL;
 }
 
 const char *lang_kind_article(SylModelKind k) { return strchr("aeiou", syl_model_kind_name(k)[0]) ? "an" : "a"; }

@@ -1,6 +1,6 @@
 /* The kinds of model as the language knows them: one row each in lang/kinds.def. Code that
  * must know what a kind does asks its flags here, never compares it with a list of kinds;
- * the functions of each kind (validate, build) are the last columns of its row, which only
+ * the functions of each kind (validate, build, convert) are columns of its row that only
  * src/kinds reads. */
 #ifndef SYL_LANG_KINDS_H
 #define SYL_LANG_KINDS_H
@@ -21,9 +21,15 @@ enum {
     KF_NOT_A_PLANT = 1 << 8, /* syl_plant_build refuses it: a command of its own makes it */
 };
 
+/* The files `sylva convert` writes a model as, its row's converts column: XML (Arbaro's species
+ * file, a grow preset), a Pafčo file, a .syl block. One bit each, in the order a message lists
+ * them; lang_convert_ext names the bit's extension (NULL: not one bit of these). */
+enum { KC_XML = 1 << 0, KC_CFG = 1 << 1, KC_SYL = 1 << 2, KC_ALL = KC_XML | KC_CFG | KC_SYL };
+const char *lang_convert_ext(unsigned format);
+
 /* How many kinds kinds.def lists (SylModelKind runs 0 .. LANG_KIND_COUNT - 1). */
 enum {
-#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe) +1
+#define SYL_KIND(id, keyword, noun, flags, instead, validate, build, describe, converts, convert) +1
     LANG_KIND_COUNT = 0
 #include "lang/kinds.def"
 #undef SYL_KIND

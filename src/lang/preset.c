@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "lang/arbaro.h"
+#include "lang/kinds.h"
+#include "lang/preset.h"
 #include "lang/textures.h"
 #include "sylva/grow.h"
 #include "util/number.h"
@@ -126,4 +128,10 @@ int syl_grow_write_syl(const SylProgram *p, const char *note, FILE *out, FILE *d
     lang_textures_syl(p, out);
     fprintf(out, "}\n");
     return ferror(out) ? SYL_EIO : SYL_OK;
+}
+
+int lang_grow_convert(const SylProgram *p, unsigned format, const char *note, FILE *out, FILE *diag) {
+    int st = lang_textures_read(p, diag);
+    if (st) return st;
+    return format == KC_XML ? syl_grow_write_preset(p, out, diag) : syl_grow_write_syl(p, note, out, diag);
 }

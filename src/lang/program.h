@@ -296,7 +296,7 @@ void program_say_to(const SylProgram *p, const SylSink *sink, int severity, cons
 /* whether a message for p goes anywhere (its sink or out) */
 static inline bool program_heard(const SylProgram *p, FILE *out);
 
-/* syl_list_models, with each model's kind in kinds[i] (NULL: not wanted). */
+/* syl_model_list, with each model's kind in kinds[i] (NULL: not wanted). */
 int lang_list_models(const char *path, const char *text, size_t len, const char **names, SylModelKind *kinds,
                      int max, char *buf, size_t bufsize);
 

@@ -25,6 +25,15 @@ void lang_textures_free(SylTextureSpec *spec);
  * there were errors (reported), else 0. */
 int lang_textures_check(const SylProgram *p, FILE *diag);
 
+/* Whether p's texture lines read, their images included (lang_textures, its spec freed):
+ * what a writer that copies the lines checks first. */
+static inline int lang_textures_read(const SylProgram *p, FILE *diag) {
+    SylTextureSpec t;
+    int st = lang_textures(p, &t, diag);
+    lang_textures_free(&t);
+    return st;
+}
+
 /* sylva convert's writers (docs/language.md#21-textures-bark-and-leaf-images): p's texture
  * lines as a species file holds them, <bark file='F' tile='U V'/> and one
  * <leaf_texture file='F'/> per image (elements Arbaro's reader skips, lang/arbaro.c reads

@@ -1,4 +1,4 @@
-/* syl_metrics: every figure of a skeleton, and the table that names them for every output
+/* syl_metrics_compute: every figure of a skeleton, and the table that names them for every output
  * (docs/compare.md). The simple sums are here; the others have files of their own. */
 #include <math.h>
 #include <stdlib.h>
@@ -9,7 +9,7 @@
 
 #define FIELD(name) offsetof(SylMetrics, name)
 
-/* Where each metric of syl_metric_info lives in SylMetrics (per-order ones: SIZE_MAX). */
+/* Where each metric of syl_metrics_info lives in SylMetrics (per-order ones: SIZE_MAX). */
 static const size_t offsets[] = {
     FIELD(height),       FIELD(crown_width),     FIELD(crown_depth),   FIELD(crown_volume),
     FIELD(internodes),   FIELD(tips),            FIELD(max_order),     FIELD(strahler),
@@ -17,7 +17,7 @@ static const size_t offsets[] = {
     FIELD(box_dimension), FIELD(light_interception), FIELD(biomass),
 };
 
-const SylMetricInfo syl_metric_info[] = {
+const SylMetricInfo syl_metrics_info[] = {
     {"height", "height", "m", "highest point above the ground (the lowest root)", 0, 0},
     {"crown_width", "crown width", "m", "largest horizontal distance between two crown points", 0, 0},
     {"crown_depth", "crown depth", "m", "highest crown point above the lowest branching node", 0, 0},
@@ -34,13 +34,13 @@ const SylMetricInfo syl_metric_info[] = {
     {"light_interception", "light interception", "", "share of sky rays from under the crown that it stops", 0, 0},
     {"biomass", "biomass proxy", "m^3", "sum of radius^2 x length over the segments", 0, 0},
 };
-const int syl_metric_count = (int)(sizeof syl_metric_info / sizeof *syl_metric_info);
-_Static_assert(sizeof offsets / sizeof *offsets == sizeof syl_metric_info / sizeof *syl_metric_info,
+const int syl_metrics_count = (int)(sizeof syl_metrics_info / sizeof *syl_metrics_info);
+_Static_assert(sizeof offsets / sizeof *offsets == sizeof syl_metrics_info / sizeof *syl_metrics_info,
                "one offset per metric");
 
-double syl_metric_value(const SylMetrics *m, int metric, int order) {
-    if (metric < 0 || metric >= syl_metric_count) return NAN;
-    if (syl_metric_info[metric].per_order) {
+double syl_metrics_value(const SylMetrics *m, int metric, int order) {
+    if (metric < 0 || metric >= syl_metrics_count) return NAN;
+    if (syl_metrics_info[metric].per_order) {
         if (order < 1 || order >= SYL_METRICS_MAX_STRAHLER || !(m->streams[order + 1] > 0)) return NAN;
         return m->streams[order] / m->streams[order + 1];
     }
@@ -76,7 +76,7 @@ static int build_tree(const SylSkeleton *s, const SylMetricsOptions *o, MetricsT
     return SYL_OK;
 }
 
-int syl_metrics(const SylSkeleton *s, const SylMetricsOptions *opt, SylMetrics *out) {
+int syl_metrics_compute(const SylSkeleton *s, const SylMetricsOptions *opt, SylMetrics *out) {
     static const SylMetricsOptions defaults = {0};
     const SylMetricsOptions *o = opt ? opt : &defaults;
     memset(out, 0, sizeof *out);

@@ -1,4 +1,4 @@
-/* Inside the metrics: the pieces syl_metrics puts together, each in a file of its own.
+/* Inside the metrics: the pieces syl_metrics_compute puts together, each in a file of its own.
  * Not part of the public API. */
 #ifndef SYL_METRICS_INTERNAL_H
 #define SYL_METRICS_INTERNAL_H

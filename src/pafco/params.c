@@ -9,6 +9,7 @@
 #include <string.h>
 #include <strings.h>
 
+#include "lang/kinds.h"
 #include "lang/pafco_cfg.h"
 #include "lang/program.h"
 #include "lang/schema.h"
@@ -205,4 +206,11 @@ int pafco_write_syl(const PafcoParams *P, const char *name, FILE *out) {
     }
     fputs("}\n", out);
     return ferror(out) ? SYL_EIO : SYL_OK;
+}
+
+int pafco_convert(const SylProgram *p, unsigned format, const char *note, FILE *out, FILE *diag) {
+    (void)note;
+    PafcoParams P;
+    if (pafco_params_read(p, &P, diag)) return SYL_EMODEL;
+    return format == KC_CFG ? pafco_write_cfg(&P, out) : pafco_write_syl(&P, syl_program_name(p), out);
 }

@@ -42,6 +42,9 @@ int pafco_params_check(const SylProgram *p, FILE *diag);
  * `pafco` block named name; values are written so that they read back exactly. */
 int pafco_write_cfg(const PafcoParams *P, FILE *out);
 int pafco_write_syl(const PafcoParams *P, const char *name, FILE *out);
+/* The pafco kind's convert (kinds/kinds.h, KindOps.convert): the block read, then written as a
+ * Pafčo file (KC_CFG) or a .syl block (KC_SYL; note unused: the block says where it is from). */
+int pafco_convert(const SylProgram *p, unsigned format, const char *note, FILE *out, FILE *diag);
 
 /* Table T.1: points of a ring around the trunk and generations 1..3 at DETAIL d (1..3). */
 int pafco_ring_points(int detail, int generation);

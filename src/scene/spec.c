@@ -414,4 +414,3 @@ int syl_validate(void *user, const SylProgram *p, FILE *diag) {
     return errors;
 }
 
-int syl_grow_validate(void *user, const SylProgram *p, FILE *diag) { return syl_validate(user, p, diag); }

@@ -53,7 +53,7 @@ int scene_spec_path(const SylProgram *p, const char *file, char **model, char **
  * (reported on diag at the plant's line and column). */
 SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, int col, FILE *diag, int *status);
 
-/* Check p's scene block, as syl_grow_validate does with a file's first model. Returns the
+/* Check p's scene block, as syl_validate does with a file's first model. Returns the
  * number of errors reported, negated when all are of --set. */
 int scene_spec_check(const SylProgram *p, FILE *diag, bool files); /* files: warn about unreadable ones */
 

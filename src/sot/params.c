@@ -86,7 +86,7 @@ static void check_rule(Reader *r, const SylDirective *dirs, int n, GrowParams *g
     const char *text = syl_program_source(r->p, &len);
     const char *names[256];
     char buf[8192];
-    int nm = q ? 0 : syl_list_models(syl_program_path(r->p), text, len, names, 256, buf, sizeof buf);
+    int nm = q ? 0 : syl_model_list(syl_program_path(r->p), text, len, names, 256, buf, sizeof buf);
     bool exists = false;
     for (int i = 0; i < nm; i++) exists |= !strcmp(names[i], g->rule);
     if (!q && !exists) ERR(r, line, col, "the shoot rule '%s' is not a model of this file", g->rule);

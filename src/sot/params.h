@@ -78,7 +78,7 @@ void grow_params_default(GrowParams *g);
  * errors, each reported through diag at its place. */
 int grow_params_read(const SylProgram *p, GrowParams *g, FILE *diag);
 
-/* Check a grow block's directives (what syl_grow_validate, scene/spec.c, runs for a grow
+/* Check a grow block's directives (what syl_validate, scene/spec.c, runs for a grow
  * model). Returns the number of errors reported, negated when all are of --set. */
 int sot_check_grow(const SylProgram *p, FILE *diag);
 

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lang/kinds.h"
 #include "lang/program.h"
 #include "lsys/derive.h"
 #include "sylva/skeleton.h"
@@ -41,7 +42,7 @@ static int shoot_arity(const SylProgram *q, int sym) {
 
 const char *shoot_rule_check(const SylProgram *q) {
     if (!q) return "does not compile";
-    if (syl_program_kind(q) != SYL_MODEL_LSYSTEM) return "is not an lsystem";
+    if (!lang_kind_is(syl_program_kind(q), KF_RULES)) return "is not an lsystem";
     int sym = syl_program_symbol_find(q, "shoot");
     int arity = sym >= 0 ? shoot_arity(q, sym) : -1;
     if (arity < 0) return "has no production for shoot(n, vigor, order, year)";

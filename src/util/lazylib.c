@@ -11,7 +11,7 @@
 /* The program's handler: process-wide, as the libraries it is about are. */
 static _Atomic(SylMissingLibrary *) on_missing;
 
-void syl_set_missing_library(SylMissingLibrary *handler) { atomic_store(&on_missing, handler); }
+void syl_missing_library_set(SylMissingLibrary *handler) { atomic_store(&on_missing, handler); }
 
 static _Noreturn void missing(const LazyLib *lib, const char *why) {
     SylMissingLibrary *f = atomic_load(&on_missing);

@@ -21,7 +21,7 @@ typedef struct LazyLib {
 
 /* Fill TABLE (LIB->n function pointers) from the library: from the process when the program
  * was linked against it (an embedder), else from dlopen of LIB->soname. When it cannot be
- * loaded, the handler of syl_set_missing_library (sylva.h) is called, and the process aborts
+ * loaded, the handler of syl_missing_library_set (sylva.h) is called, and the process aborts
  * if it returns. Call it once per library (pthread_once, in the library's lazy_*.c). */
 void lazy_lib_load(const LazyLib *lib, void *table);
 

@@ -6,6 +6,7 @@
 #include <string.h>
 
 
+#include "lang/kinds.h"
 #include "util/number.h"
 #include "util/paramxml.h"
 #include "lang/textures.h"
@@ -145,4 +146,25 @@ int weber_write_syl(const WeberParams *w, const char *species, const SylProgram 
     if (tex) lang_textures_syl(tex, out);
     fputs("}\n", out);
     return ferror(out) ? SYL_EIO : SYL_OK;
+}
+
+/* The species' name: a `Species "…"` line (kept by a .syl written from XML), else the model's. */
+static const char *species_name(const SylProgram *p) {
+    int n;
+    const SylDirective *ds = syl_program_directives(p, &n);
+    const char *name = syl_program_name(p);
+    for (int i = 0; i < n; i++)
+        if (!strcmp(ds[i].name, "Species") && ds[i].nargs == 1 &&
+            (ds[i].args[0].kind == SYL_DARG_STRING || ds[i].args[0].kind == SYL_DARG_WORD))
+            name = ds[i].args[0].text;
+    return name;
+}
+
+int weber_convert(const SylProgram *p, unsigned format, const char *note, FILE *out, FILE *diag) {
+    int st = lang_textures_read(p, diag); /* the texture lines are written as they stand: checked first, as sylva check does */
+    if (st) return st;
+    WeberParams w;
+    if (weber_params_read(p, &w, diag)) return SYL_EMODEL;
+    return format == KC_XML ? weber_write_xml(&w, species_name(p), p, out)
+                            : weber_write_syl(&w, species_name(p), p, note, out);
 }

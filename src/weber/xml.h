@@ -18,5 +18,10 @@ int weber_write_xml(const WeberParams *w, const char *species, const SylProgram 
  * `Species "…"` line when it is not a name the language reads; tex's texture lines (NULL:
  * none) close it. */
 int weber_write_syl(const WeberParams *w, const char *species, const SylProgram *tex, const char *note, FILE *out);
+/* The weber kind's convert (kinds/kinds.h, KindOps.convert): the texture lines and the
+ * parameters read first, then every parameter as Arbaro XML (KC_XML) or a .syl block (KC_SYL),
+ * under the species' name (a `Species "…"` line, which a .syl written from XML keeps, else
+ * the model's). */
+int weber_convert(const SylProgram *p, unsigned format, const char *note, FILE *out, FILE *diag);
 
 #endif

@@ -15,16 +15,16 @@ int main(int argc, char **argv) {
     if (!diag) return 2;
     setvbuf(diag, NULL, _IONBF, 0);
     SylSink sink = {syl_diagnostic_print, diag};
-    SylEcoMpi *mpi = syl_eco_mpi_start(&argc, &argv, &sink);
+    SylEcoMpi *mpi = syl_ecosystem_mpi_start(&argc, &argv, &sink);
     if (!mpi) {
         printf("not under mpirun, or no MPI\n");
         return 0;
     }
-    if (syl_eco_mpi_rank(mpi) == 1) raise(SIGSTOP);
+    if (syl_ecosystem_mpi_rank(mpi) == 1) raise(SIGSTOP);
     SylSnapshotStats stats;
     /* rank 0 waits here for ever, but for the watchdog */
     syl_ecosystem_render_snapshot(NULL, SYL_EMODEL, &(SylSnapshotOptions){.render = &(SylRenderOptions){0}, .mpi = mpi, .diag = diag}, &stats);
-    syl_eco_mpi_end(mpi);
+    syl_ecosystem_mpi_end(mpi);
     fclose(diag);
     return 0;
 }

@@ -89,7 +89,7 @@ int main(int argc, char **argv) {
                                                                                     .png = path, .sink = &sink}, NULL));
     pl.skeleton->nodes[0].parent = 0; /* its own parent: not before itself */
     SylMetrics mx;
-    said("metrics", syl_metrics(pl.skeleton, &(SylMetricsOptions){.mesh = pl.mesh, .sink = &sink}, &mx));
+    said("metrics", syl_metrics_compute(pl.skeleton, &(SylMetricsOptions){.mesh = pl.mesh, .sink = &sink}, &mx));
     syl_plant_free(&pl);
     syl_program_free(p);
 

@@ -56,7 +56,7 @@ static char *fuzz_xml_text(const uint8_t *data, size_t size, const char *head, s
  * validated, warnings too when lint is set, diagnostics to fuzz_diag(). NULL: no program. */
 static SylProgram *fuzz_compile(const char *path, const char *text, size_t size, int lint) {
     int status;
-    SylCompileOptions opt = {.diag = fuzz_diag(), .lint = lint, .validate = syl_grow_validate};
+    SylCompileOptions opt = {.diag = fuzz_diag(), .lint = lint, .validate = syl_validate};
     return syl_compile(path, text, size, &opt, &status);
 }
 

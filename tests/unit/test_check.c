@@ -193,7 +193,7 @@ static SylProgram *compile_with(const char *text, const SylOverride *ov, int n, 
     size_t len = 0;
     FILE *mem = open_memstream(diag, &len);
     SylCompileOptions opt = {.diag = mem, .lint = 1, .overrides = ov, .noverrides = n,
-                             .validate = syl_grow_validate};
+                             .validate = syl_validate};
     SylProgram *p = syl_compile("test.syl", text, strlen(text), &opt, st);
     fclose(mem);
     return p;

@@ -64,7 +64,7 @@ static void test_missing_function(void **state) {
 }
 
 int main(void) {
-    syl_set_missing_library(missing_library);
+    syl_missing_library_set(missing_library);
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_loads_functions),
         cmocka_unit_test(test_missing_library),

@@ -11,7 +11,7 @@
 static SylMetrics metrics_of(const SylSkeleton *s, int threads) {
     SylMetrics m;
     SylMetricsOptions o = {.threads = threads, .grid = 8, .directions = 256};
-    assert_int_equal(syl_metrics(s, &o, &m), SYL_OK);
+    assert_int_equal(syl_metrics_compute(s, &o, &m), SYL_OK);
     return m;
 }
 
@@ -55,8 +55,8 @@ static void binary_trees(void **state) {
             assert_near(m.bifurcation, 2, 1e-12);
             for (int i = 1; i < k; i++) {
                 int metric = 0;
-                while (!syl_metric_info[metric].per_order) metric++;
-                assert_near(syl_metric_value(&m, metric, i), 2, 0);
+                while (!syl_metrics_info[metric].per_order) metric++;
+                assert_near(syl_metrics_value(&m, metric, i), 2, 0);
             }
         } else {
             assert_true(isnan(m.bifurcation));
@@ -163,7 +163,7 @@ static void parents_must_come_first(void **state) {
     s->nodes[0].parent = 1;
     SylMetrics m;
     SylMetricsOptions o = {0};
-    assert_int_equal(syl_metrics(s, &o, &m), SYL_EMODEL);
+    assert_int_equal(syl_metrics_compute(s, &o, &m), SYL_EMODEL);
     syl_skeleton_free(s);
 }
 
@@ -336,8 +336,8 @@ static void light(void **state) {
     /* The same, by the defaults, on 1 and on 3 threads. */
     SylMetricsOptions o1 = {.threads = 1}, o3 = {.threads = 3};
     SylMetrics a, b;
-    assert_int_equal(syl_metrics(s, &o1, &a), SYL_OK);
-    assert_int_equal(syl_metrics(s, &o3, &b), SYL_OK);
+    assert_int_equal(syl_metrics_compute(s, &o1, &a), SYL_OK);
+    assert_int_equal(syl_metrics_compute(s, &o3, &b), SYL_OK);
     assert_true(a.light_interception == b.light_interception);
     assert_true(a.light_interception > 0.97);
     syl_skeleton_free(s);
@@ -347,8 +347,8 @@ static void light(void **state) {
     m = metrics_of(t, 0);
     assert_true(m.light_interception > 0.01 && m.light_interception < 0.97);
     SylMetricsOptions oa = {.threads = 1}, ob = {.threads = 4};
-    assert_int_equal(syl_metrics(t, &oa, &a), SYL_OK);
-    assert_int_equal(syl_metrics(t, &ob, &b), SYL_OK);
+    assert_int_equal(syl_metrics_compute(t, &oa, &a), SYL_OK);
+    assert_int_equal(syl_metrics_compute(t, &ob, &b), SYL_OK);
     assert_memory_equal(&a, &b, sizeof a);
     syl_skeleton_free(t);
 
@@ -356,29 +356,29 @@ static void light(void **state) {
     s = binary_tree(3);
     SylMesh empty = {0};
     SylMetricsOptions oe = {.mesh = &empty};
-    assert_int_equal(syl_metrics(s, &oe, &m), SYL_OK);
+    assert_int_equal(syl_metrics_compute(s, &oe, &m), SYL_OK);
     assert_near(m.light_interception, 0, 0);
     syl_skeleton_free(s);
 }
 
 static void metric_table(void **state) {
     (void)state;
-    assert_true(syl_metric_count >= 15);
+    assert_true(syl_metrics_count >= 15);
     SylMetrics m = {.height = 1, .crown_width = 2, .biomass = 3};
-    assert_near(syl_metric_value(&m, 0, 0), 1, 0);
-    for (int i = 0; i < syl_metric_count; i++) {
-        const SylMetricInfo *a = &syl_metric_info[i];
+    assert_near(syl_metrics_value(&m, 0, 0), 1, 0);
+    for (int i = 0; i < syl_metrics_count; i++) {
+        const SylMetricInfo *a = &syl_metrics_info[i];
         assert_non_null(a->key);
         assert_non_null(a->label);
         assert_non_null(a->unit);
         assert_non_null(a->description);
         for (int j = 0; j < i; j++)
-            if (!a->per_order && !syl_metric_info[j].per_order) assert_string_not_equal(a->key, syl_metric_info[j].key);
-        if (!strcmp(a->key, "crown_width")) assert_near(syl_metric_value(&m, i, 0), 2, 0);
-        if (!strcmp(a->key, "biomass")) assert_near(syl_metric_value(&m, i, 0), 3, 0);
+            if (!a->per_order && !syl_metrics_info[j].per_order) assert_string_not_equal(a->key, syl_metrics_info[j].key);
+        if (!strcmp(a->key, "crown_width")) assert_near(syl_metrics_value(&m, i, 0), 2, 0);
+        if (!strcmp(a->key, "biomass")) assert_near(syl_metrics_value(&m, i, 0), 3, 0);
     }
-    assert_true(isnan(syl_metric_value(&m, -1, 0)));
-    assert_true(isnan(syl_metric_value(&m, syl_metric_count, 0)));
+    assert_true(isnan(syl_metrics_value(&m, -1, 0)));
+    assert_true(isnan(syl_metrics_value(&m, syl_metrics_count, 0)));
 }
 
 int main(void) {

@@ -45,7 +45,7 @@ static void light_under_a_canopy(void **state) {
 
 static char *hedge_csv(SylSkeleton **keep) {
     int st;
-    SylCompileOptions co = {.validate = syl_grow_validate};
+    SylCompileOptions co = {.validate = syl_validate};
     SylProgram *p = syl_compile("examples/hybrid/hedge.syl", NULL, 0, &co, &st);
     assert_non_null(p);
     SylGrowOptions go = {.years = -1, .threads = 1};

@@ -56,7 +56,7 @@ static char *grow_text(const char *path, const char *text, bool scene, int threa
     size_t dlen = 0;
     char *d = NULL;
     FILE *mem = open_memstream(&d, &dlen);
-    SylCompileOptions co = {.diag = mem, .validate = syl_grow_validate};
+    SylCompileOptions co = {.diag = mem, .validate = syl_validate};
     int st;
     SylProgram *p = syl_compile(path, text, strlen(text), &co, &st);
     char *csv = NULL;
@@ -570,7 +570,7 @@ static void directive_errors(void **state) {
     assert_int_equal(P.organs[0].place, ORGAN_TIPS);
     /* --set reaches a directive through a param */
     SylOverride set = {"lam", 0.47};
-    SylCompileOptions co = {.overrides = &set, .noverrides = 1, .validate = syl_grow_validate};
+    SylCompileOptions co = {.overrides = &set, .noverrides = 1, .validate = syl_validate};
     int st;
     p = syl_compile("test.syl", ok, strlen(ok), &co, &st);
     assert_non_null(p);
@@ -597,11 +597,11 @@ static void scene_errors(void **state) {
 
 /* syl_compile checks the language only; a grow block's directives and the scene are the
  * hook's (SylCompileOptions.validate): without it a wrong directive compiles, with
- * syl_grow_validate it is an error, and the scene is checked with the file's first model. */
+ * syl_validate it is an error, and the scene is checked with the file's first model. */
 static SylProgram *compile_hooked(const char *text, const char *model, bool hook, char **diag, int *st) {
     size_t len = 0;
     FILE *mem = open_memstream(diag, &len);
-    SylCompileOptions co = {.model = model, .diag = mem, .validate = hook ? syl_grow_validate : NULL};
+    SylCompileOptions co = {.model = model, .diag = mem, .validate = hook ? syl_validate : NULL};
     SylProgram *p = syl_compile("test.syl", text, strlen(text), &co, st);
     fclose(mem);
     return p;

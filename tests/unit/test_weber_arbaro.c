@@ -34,7 +34,7 @@ static SylProgram *species(const char *name) {
     snprintf(path, sizeof path, "tests/weber/%s.syl", name);
     size_t len;
     char *text = slurp(path, &len);
-    SylCompileOptions opt = {.diag = stderr, .validate = syl_grow_validate};
+    SylCompileOptions opt = {.diag = stderr, .validate = syl_validate};
     int st;
     SylProgram *p = syl_compile(path, text, len, &opt, &st);
     free(text);

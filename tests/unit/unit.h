@@ -20,7 +20,7 @@ static inline SylProgram *unit_compile(const char *text, char **diag, int *statu
     char *buf = NULL;
     FILE *mem = open_memstream(diag ? diag : &buf, &len); /* straight into *diag: gcc's
                                                              dangling-pointer check is happier */
-    SylCompileOptions opt = {.diag = mem, .lint = 1, .validate = syl_grow_validate};
+    SylCompileOptions opt = {.diag = mem, .lint = 1, .validate = syl_validate};
     int st;
     SylProgram *p = syl_compile("test.syl", text, strlen(text), &opt, &st);
     fclose(mem);
@@ -79,7 +79,7 @@ static inline UnitRun unit_run(const char *text, SylDeriveOptions opt) {
     UnitRun r = {0};
     size_t len = 0;
     FILE *mem = open_memstream(&r.diag, &len);
-    SylCompileOptions copt = {.diag = mem, .lint = 1, .validate = syl_grow_validate};
+    SylCompileOptions copt = {.diag = mem, .lint = 1, .validate = syl_validate};
     r.p = syl_compile("test.syl", text, strlen(text), &copt, &r.status);
     if (r.p) {
         opt.diag = mem;
