@@ -167,13 +167,15 @@ void *arena_resize(Arena *a, void *p, size_t old_size, size_t size) {
 
 void *arena_take(Arena *a, size_t size) { return arena_resize(a, NULL, 0, size); }
 
-void arena_pop(Arena *a, void *p, size_t size) {
+void arena_trim(Arena *a, void *p, size_t old_size, size_t size) {
     ArenaBlock *b = a->head;
-    size_t bytes = array_bytes(a, size);
+    size_t bytes = array_bytes(a, old_size), keep = array_bytes(a, size < old_size ? size : old_size);
     if (!p || !b || (uintptr_t)p < (uintptr_t)b->data || (uintptr_t)p - (uintptr_t)b->data + bytes != b->off) return;
-    b->off -= bytes;
-    a->used -= bytes;
+    b->off -= bytes - keep;
+    a->used -= bytes - keep;
 }
+
+void arena_pop(Arena *a, void *p, size_t size) { arena_trim(a, p, size, 0); }
 
 void *arena_vec_grow(Arena *a, void *ptr, int *cap, size_t elem) {
     int c = *cap ? *cap : 2;

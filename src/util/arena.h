@@ -39,8 +39,9 @@ void *arena_take(Arena *a, size_t size);
  * and that has room, else moved (what it leaves is not reused); NULL when there is no
  * room (p unchanged). */
 void *arena_resize(Arena *a, void *p, size_t old_size, size_t size);
-/* Give p back when it is the last thing in its block (else nothing). */
+/* Give p back, or its bytes past size, when it is the last thing in its block (else nothing). */
 void arena_pop(Arena *a, void *p, size_t size);
+void arena_trim(Arena *a, void *p, size_t old_size, size_t size);
 bool arena_holds(const Arena *a, const void *p);
 /* Report out of memory: longjmp to a->oom, or return NULL when it is not set. */
 void *arena_fail(Arena *a);

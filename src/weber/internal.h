@@ -152,6 +152,8 @@ int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs
 /* grow one of the generator's arrays (in the arena, or util/pages.h's: cap * size bytes) */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
 void weber_free(WeberGen *g, void *arr, size_t bytes); /* one of them */
+/* its room past n given back to the arena, when it is the last array there */
+void weber_trim(WeberGen *g, void *arr, size_t *cap, size_t n, size_t size);
 /* scratch for a while: from the arena while it has room, else malloc; weber_drop gives it
  * back (to the arena whole when it was the last taken) */
 void *weber_take(WeberGen *g, size_t bytes);

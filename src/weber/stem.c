@@ -54,6 +54,16 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) 
     return true;
 }
 
+void weber_trim(WeberGen *g, void *arr, size_t *cap, size_t n, size_t size) {
+    if (n >= *cap || !arena_holds(&g->arena, arr)) return;
+    size_t used = g->arena.used;
+    arena_trim(&g->arena, arr, *cap * size, n * size);
+    if (g->arena.used == used) return; /* not the last: kept whole */
+    budget_resize(g->budget, (uint64_t)*cap * size, (uint64_t)n * size);
+    g->charged -= (uint64_t)(*cap - n) * size;
+    *cap = n;
+}
+
 /* The turn at the start of segment seg (none at the first: the down and rotation angles
  * stay as given). */
 static void new_direction(WeberGen *g, WStem *st, Frame *trf, int seg, Rng *r) {

@@ -182,6 +182,9 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     }
     g->scale_tree = w->Scale + w->ScaleV * (2 * u - 1);
     make_trunks(g, java ? &j0 : NULL, &j1);
+    /* the last array presized, whose estimate is the loosest: what it did not use goes to
+     * what weber_write_nodes takes next (the oak's scratch then reaches two 2 MB pages) */
+    weber_trim(g, g->leafy_f, &g->leafy_f_cap, g->nleafy_f, sizeof *g->leafy_f);
     int st = SYL_OK;
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;

@@ -139,6 +139,12 @@ static void fixed_arena_grows_in_place_and_stops_when_full(void **state) {
     arena_pop(&a, x2, 2000 * sizeof *x);
     assert_true(a.used < used);
     assert_ptr_equal(arena_take(&a, 8), x2); /* its room again */
+    char *z = arena_take(&a, 1000);
+    arena_trim(&a, x2, 8, 4); /* not the last: nothing */
+    assert_ptr_equal(arena_take(&a, 1), z + 1024);
+    arena_trim(&a, z + 1024, 1, 0);
+    arena_trim(&a, z, 1000, 100); /* the last: its room past 100 bytes (128 rounded) given back */
+    assert_ptr_equal(arena_take(&a, 1), z + 128);
     assert_null(arena_take(&a, 4 << 20));    /* full: NULL, no other block */
     assert_null(arena_take(&a, SIZE_MAX));
     assert_null(arena_resize(&a, y, 10, SIZE_MAX - 8));
