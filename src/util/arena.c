@@ -122,7 +122,60 @@ void arena_free(Arena *a) {
     }
     a->head = NULL;
     a->used = 0;
+    a->fixed = false;
 }
+
+bool arena_fix(Arena *a, size_t bytes) {
+    if (a->head || bytes > PTRDIFF_MAX / 2) return false;
+    bytes = bytes < PAGES_HUGE ? PAGES_HUGE : (bytes + PAGES_HUGE - 1) & ~(size_t)(PAGES_HUGE - 1);
+    jmp_buf *oom = a->oom;
+    a->oom = NULL; /* a fixed arena is an option: refused, the caller does without */
+    ArenaBlock *b = new_block(a, bytes, false);
+    a->oom = oom;
+    a->fixed = b != NULL;
+    return a->fixed;
+}
+
+bool arena_holds(const Arena *a, const void *p) {
+    for (const ArenaBlock *b = a->head; b; b = b->next)
+        if ((const unsigned char *)p >= b->data && (const unsigned char *)p < b->data + b->size) return true;
+    return false;
+}
+
+static size_t array_bytes(const Arena *a, size_t size) { return a->fixed ? (size + 63) & ~(size_t)63 : (size + 15) & ~(size_t)15; }
+
+void *arena_resize(Arena *a, void *p, size_t old_size, size_t size) {
+    if (size > PTRDIFF_MAX - 64 - sizeof(ArenaBlock)) return a->fixed ? NULL : arena_fail(a);
+    size_t bytes = array_bytes(a, size);
+    ArenaBlock *b = a->head;
+    size_t at = p && b ? (size_t)((uintptr_t)p - (uintptr_t)b->data) : 0; /* (huge when p is not in b) */
+    if (p && b && (uintptr_t)p >= (uintptr_t)b->data && at + array_bytes(a, old_size) == b->off && at + bytes <= b->size) {
+        a->used += at + bytes - b->off; /* in place: the last array of its block (it may shrink) */
+        b->off = at + bytes;
+        return p;
+    }
+    if (!b || b->size - b->off < bytes) {
+        if (a->fixed) return NULL;
+        if (!(b = new_block(a, bytes, false))) return NULL;
+    }
+    unsigned char *q = b->data + b->off;
+    b->off += bytes;
+    a->used += bytes;
+    if (p && old_size) memcpy(q, p, old_size < size ? old_size : size);
+    return q;
+}
+
+void *arena_take(Arena *a, size_t size) { return arena_resize(a, NULL, 0, size); }
+
+void arena_trim(Arena *a, void *p, size_t old_size, size_t size) {
+    ArenaBlock *b = a->head;
+    size_t bytes = array_bytes(a, old_size), keep = array_bytes(a, size < old_size ? size : old_size);
+    if (!p || !b || (uintptr_t)p < (uintptr_t)b->data || (uintptr_t)p - (uintptr_t)b->data + bytes != b->off) return;
+    b->off -= bytes - keep;
+    a->used -= bytes - keep;
+}
+
+void arena_pop(Arena *a, void *p, size_t size) { arena_trim(a, p, size, 0); }
 
 void *arena_vec_grow(Arena *a, void *ptr, int *cap, size_t elem) {
     int c = *cap ? *cap : 2;

@@ -8,6 +8,7 @@
 #ifndef SYL_ARENA_H
 #define SYL_ARENA_H
 #include <setjmp.h>
+#include <stdbool.h>
 #include <stddef.h>
 
 typedef struct ArenaBlock ArenaBlock;
@@ -15,6 +16,7 @@ typedef struct Arena {
     ArenaBlock *head;
     size_t used;  /* bytes handed out, for statistics */
     jmp_buf *oom; /* where out of memory unwinds to; NULL: return NULL */
+    bool fixed;   /* arena_fix's: one block, never another */
 } Arena;
 
 void *arena_alloc(Arena *a, size_t size);            /* zeroed, 16-byte aligned */
@@ -25,6 +27,22 @@ void *arena_grow(Arena *a, void *old, size_t old_size, size_t new_size);
 char *arena_strndup(Arena *a, const char *s, size_t n);
 char *arena_printf(Arena *a, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 void arena_free(Arena *a);
+/* A fixed arena, for a generator's scratch arrays that grow: one block of `bytes` (at least
+ * 2 MB) in whole 2 MB pages that exist once written, so it may be sized from an estimate and
+ * costs the pages its arrays reach; never another block (full: the calls below return NULL
+ * and the caller puts the array elsewhere). False when refused. On an empty arena; then
+ * only arena_take, arena_resize and arena_pop (and arena_free). */
+bool arena_fix(Arena *a, size_t bytes);
+/* Arrays: not zeroed (a fixed arena's fresh pages are), 64-byte aligned in a fixed arena. */
+void *arena_take(Arena *a, size_t size);
+/* p (old_size bytes, or NULL) grown to size: in place when it is the last thing in its block
+ * and that has room, else moved (what it leaves is not reused); NULL when there is no
+ * room (p unchanged). */
+void *arena_resize(Arena *a, void *p, size_t old_size, size_t size);
+/* Give p back, or its bytes past size, when it is the last thing in its block (else nothing). */
+void arena_pop(Arena *a, void *p, size_t size);
+void arena_trim(Arena *a, void *p, size_t old_size, size_t size);
+bool arena_holds(const Arena *a, const void *p);
 /* Report out of memory: longjmp to a->oom, or return NULL when it is not set. */
 void *arena_fail(Arena *a);
 

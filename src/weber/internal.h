@@ -8,6 +8,7 @@
 
 #include "sylva/skeleton.h"
 #include "env/obstacles.h"
+#include "util/arena.h"
 #include "util/budget.h"
 #include "util/rng.h"
 #include "weber/params.h"
@@ -86,11 +87,10 @@ typedef struct WeberGen {
     Frame *leafy_f;
     size_t nleafy_f, leafy_f_cap;
     double sub_err[10], split_err[10], leaf_err; /* error diffusion, per level (Arbaro's) */
-    /* the arrays above (not lvs) start packed in one mapping of WEBER_ARENA bytes on huge
-     * pages (stem.c): a small tree's scratch then costs one 2 MB page fault, not one each */
-    char *arena, *arena_last;
-    size_t arena_used;
-    bool arena_tried;
+    /* the arrays above (not lvs) packed in one fixed arena (util/arena.h) sized from the
+     * tree's estimate, in huge pages: they cost the 2 MB pages they reach, not a page (and
+     * its rounding) each, and are never moved (weber.c sizes them) */
+    Arena arena;
     Budget *budget;
     uint64_t charged;
     bool failed;       /* out of memory or budget */
@@ -149,14 +149,15 @@ double weber_radius(const WeberGen *g, const WStem *s, double h);
 /* stem.c */
 bool weber_make_stem(WeberGen *g, WStem st);
 int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs);
-/* grow one of the generator's arrays (util/pages.h: free with pages_free, cap * size bytes) */
+/* grow one of the generator's arrays (in the arena, or util/pages.h's: cap * size bytes) */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
 void weber_free(WeberGen *g, void *arr, size_t bytes); /* one of them */
+/* its room past n given back to the arena, when it is the last array there */
+void weber_trim(WeberGen *g, void *arr, size_t *cap, size_t n, size_t size);
 /* scratch for a while: from the arena while it has room, else malloc; weber_drop gives it
  * back (to the arena whole when it was the last taken) */
 void *weber_take(WeberGen *g, size_t bytes);
 void weber_drop(WeberGen *g, void *p, size_t bytes);
-enum { WEBER_ARENA = 4 << 20 };
 
 /* splits.c */
 int weber_split_count(WeberGen *g, const WStem *st, int seg);

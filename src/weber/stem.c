@@ -6,47 +6,18 @@
 #include "util/pages.h"
 #include "weber/internal.h"
 
-static bool in_arena(const WeberGen *g, const void *p) {
-    return g->arena && (const char *)p >= g->arena && (const char *)p < g->arena + WEBER_ARENA;
-}
-
-/* Room for an array of `bytes` in the arena, moved from `old` (old_bytes): in place when it is
- * the last one there and fits; NULL when the arena is full. What a moved array leaves behind
- * is not reused (the arrays double, so at most what they hold). */
-static void *arena_grow(WeberGen *g, void *old, size_t old_bytes, size_t bytes) {
-    if (!g->arena_tried) {
-        g->arena_tried = true;
-        g->arena = pages_alloc(WEBER_ARENA); /* (a mapping: pages exist once written) */
-    }
-    if (!g->arena) return NULL;
-    bytes = (bytes + 63) & ~(size_t)63;
-    if (old && old == g->arena_last && (size_t)((char *)old - g->arena) + bytes <= WEBER_ARENA) {
-        g->arena_used = (size_t)((char *)old - g->arena) + bytes;
-        return old;
-    }
-    if (g->arena_used + bytes > WEBER_ARENA) return NULL;
-    char *p = g->arena + g->arena_used;
-    if (old_bytes) memcpy(p, old, old_bytes);
-    g->arena_used += bytes;
-    return g->arena_last = p;
-}
-
 void weber_free(WeberGen *g, void *arr, size_t bytes) {
-    if (!in_arena(g, arr)) pages_free(arr, bytes);
+    if (!arena_holds(&g->arena, arr)) pages_free(arr, bytes);
 }
 
 void *weber_take(WeberGen *g, size_t bytes) {
-    void *p = bytes <= WEBER_ARENA ? arena_grow(g, NULL, 0, bytes) : NULL;
+    void *p = g->arena.fixed ? arena_take(&g->arena, bytes) : NULL;
     return p ? p : malloc(bytes ? bytes : 1);
 }
 
 void weber_drop(WeberGen *g, void *p, size_t bytes) {
-    if (!in_arena(g, p)) {
-        free(p);
-    } else if ((char *)p + ((bytes + 63) & ~(size_t)63) == g->arena + g->arena_used) {
-        g->arena_used = (size_t)((char *)p - g->arena);
-        g->arena_last = NULL;
-    }
+    if (arena_holds(&g->arena, p)) arena_pop(&g->arena, p, bytes);
+    else free(p);
 }
 
 /* The generator's own arrays: first packed in the arena, then, past it, from 64 KB mapped in
@@ -56,12 +27,12 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) 
     if (need <= *cap) return true;
     size_t nc = *cap ? *cap : need > 256 ? need : 256; /* a first size asked for exactly: kept */
     while (nc < need) nc *= 2;
-    bool arena = (!*arr || in_arena(g, *arr)) && nc * size <= WEBER_ARENA;
+    bool arena = g->arena.fixed && (!*arr || arena_holds(&g->arena, *arr));
     /* past the size where huge pages pay (util/pages.h), a whole 2 MB page at once: one fault
      * instead of one per 4 KB, and later growth moves pages instead of copying them */
     if (!arena && nc * size >= PAGES_OWNED_SCRATCH && nc * size < PAGES_HUGE) nc = PAGES_HUGE / size;
     if (!budget_resize(g->budget, (uint64_t)*cap * size, (uint64_t)nc * size)) return g->failed = true, false;
-    void *p = arena ? arena_grow(g, *arr, *cap * size, nc * size) : NULL;
+    void *p = arena ? arena_resize(&g->arena, *arr, *cap * size, nc * size) : NULL;
     if (!p && arena) { /* the arena is full: out of it for good, as above */
         size_t nh = nc * size >= PAGES_OWNED_SCRATCH && nc * size < PAGES_HUGE ? PAGES_HUGE / size : nc;
         if (nh != nc && !budget_resize(g->budget, (uint64_t)nc * size, (uint64_t)nh * size)) {
@@ -81,6 +52,16 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size) 
     *arr = p;
     *cap = nc;
     return true;
+}
+
+void weber_trim(WeberGen *g, void *arr, size_t *cap, size_t n, size_t size) {
+    if (n >= *cap || !arena_holds(&g->arena, arr)) return;
+    size_t used = g->arena.used;
+    arena_trim(&g->arena, arr, *cap * size, n * size);
+    if (g->arena.used == used) return; /* not the last: kept whole */
+    budget_resize(g->budget, (uint64_t)*cap * size, (uint64_t)n * size);
+    g->charged -= (uint64_t)(*cap - n) * size;
+    *cap = n;
 }
 
 /* The turn at the start of segment seg (none at the first: the down and rotation angles

@@ -23,7 +23,7 @@ static void free_gen(WeberGen *g) {
     weber_free(g, g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
     weber_free(g, g->leafy, g->leafy_cap * sizeof *g->leafy);
     weber_free(g, g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
-    pages_free(g->arena, WEBER_ARENA);
+    arena_free(&g->arena);
 }
 
 /* The trunks: 0Branches of them, aimed by 0DownAngle and 0Rotate, spread by 0BranchDist. */
@@ -64,7 +64,7 @@ static void make_trunks(WeberGen *g, JRand *j0, JRand *j1) {
  * points and skeleton nodes) are compared with the budget before any stem is made. Also their
  * segments, and the last level's (whose frames are kept for the leaves). */
 typedef struct Estimate {
-    double stems, bytes, segs, last_segs;
+    double stems, bytes, segs, last_stems, last_segs;
 } Estimate;
 
 static Estimate estimate_stems(const WeberGen *g) {
@@ -79,20 +79,30 @@ static Estimate estimate_stems(const WeberGen *g) {
         if (lv == 0 && w->BaseSplits > 0) pieces *= (1 + w->BaseSplits) / (1 + w->SegSplits[l]);
         e.stems += pieces;
         e.segs += pieces * res;
+        e.last_stems = pieces;
         e.last_segs = pieces * res;
         e.bytes += pieces * (sizeof(WStem) + res * (sizeof(WSeg) + sizeof(WPoint) + sizeof(SylNode)));
     }
     return e;
 }
 
-/* A tree whose arrays fit the arena has them sized from the estimate at once: grown by
- * doubling there, each left a copy behind (the aspen's took two 2 MB pages for 1.2 MB). */
+/* The arena, sized from the estimate (an upper bound, about), and the arrays in it sized so
+ * at once, in the order they fill: none is grown by doubling (which left a copy behind) or
+ * moved out to pages of its own (each rounded up to 2 MB), so the oak's scratch reaches three
+ * 2 MB pages where it reached six. The arena's pages exist once written: what the estimate
+ * has too much costs address space. Past ARENA_MOST, the arrays grow as they come. */
+enum { ARENA_MOST = 256 << 20 };
 static void presize(WeberGen *g, const Estimate *e) {
-    double leafy = g->leaves != 0 ? e->last_segs : 0;
+    double leafy = g->leaves != 0 ? e->last_segs : 0, leafy_stems = g->leaves != 0 ? e->last_stems : 0;
     double pts = e->segs + e->stems; /* a point per segment and one more per stem, about */
-    if (e->stems * sizeof(WStem) + pts * sizeof(WPoint) + leafy * sizeof(Frame) > WEBER_ARENA / 2) return;
+    double sized = e->stems * sizeof(WStem) + pts * sizeof(WPoint) + leafy_stems * sizeof(int) + leafy * sizeof(Frame);
+    /* and what weber_write_nodes takes: a distance per node, four words per stem, sorted */
+    double later = (pts + 2 * e->stems) * sizeof(float) + e->stems * 64 + (4 << 10) + (64 << 10);
+    if (!(sized + later <= ARENA_MOST)) sized = 0; /* (the first arrays still packed in it) */
+    if (!arena_fix(&g->arena, (size_t)(sized + later < (4 << 20) ? 4 << 20 : sized + later)) || !sized) return;
     if (e->stems >= 1) weber_grow(g, (void **)&g->stems, &g->stems_cap, (size_t)e->stems, sizeof *g->stems);
     if (pts >= 1) weber_grow(g, (void **)&g->pts, &g->pts_cap, (size_t)pts, sizeof *g->pts);
+    if (leafy_stems >= 1) weber_grow(g, (void **)&g->leafy, &g->leafy_cap, (size_t)leafy_stems, sizeof *g->leafy);
     if (leafy >= 1) weber_grow(g, (void **)&g->leafy_f, &g->leafy_f_cap, (size_t)leafy, sizeof *g->leafy_f);
 }
 
@@ -172,6 +182,9 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
     }
     g->scale_tree = w->Scale + w->ScaleV * (2 * u - 1);
     make_trunks(g, java ? &j0 : NULL, &j1);
+    /* the last array presized, whose estimate is the loosest: what it did not use goes to
+     * what weber_write_nodes takes next (the oak's scratch then reaches two 2 MB pages) */
+    weber_trim(g, g->leafy_f, &g->leafy_f_cap, g->nleafy_f, sizeof *g->leafy_f);
     int st = SYL_OK;
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;

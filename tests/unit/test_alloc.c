@@ -1,6 +1,7 @@
 /* The allocators under requests that do not fit: util/array.h and util/arena.h must fail
  * cleanly (false or NULL, or a jump to the arena's target), never wrap, loop or abort. */
 #include <limits.h>
+#include <stdint.h>
 
 #include "unit.h"
 
@@ -113,6 +114,44 @@ static void compile_after_the_guards(void **state) {
     }
 }
 
+/* A fixed arena (util/arena.h): one block, the last array grown in place, one that is not
+ * the last moved with its contents, given back only when last, NULL (never another block,
+ * never a jump) when full. */
+static void fixed_arena_grows_in_place_and_stops_when_full(void **state) {
+    (void)state;
+    jmp_buf target;
+    Arena a = {.oom = &target}; /* (a full fixed arena must not jump) */
+    assert_true(arena_fix(&a, 1)); /* rounded up to one 2 MB page */
+    assert_false(arena_fix(&a, 1)); /* only on an empty arena */
+    int *x = arena_take(&a, 100 * sizeof *x);
+    assert_non_null(x);
+    assert_int_equal((uintptr_t)x % 64, 0);
+    for (int i = 0; i < 100; i++) x[i] = i;
+    assert_ptr_equal(arena_resize(&a, x, 100 * sizeof *x, 1000 * sizeof *x), x); /* the last: in place */
+    char *y = arena_take(&a, 10);
+    assert_true(arena_holds(&a, y) && !arena_holds(&a, &a));
+    int *x2 = arena_resize(&a, x, 1000 * sizeof *x, 2000 * sizeof *x); /* no longer last: moved */
+    assert_non_null(x2);
+    assert_true(x2 != x);
+    for (int i = 0; i < 100; i++) assert_int_equal(x2[i], i);
+    arena_pop(&a, y, 10); /* not the last: nothing */
+    size_t used = a.used;
+    arena_pop(&a, x2, 2000 * sizeof *x);
+    assert_true(a.used < used);
+    assert_ptr_equal(arena_take(&a, 8), x2); /* its room again */
+    char *z = arena_take(&a, 1000);
+    arena_trim(&a, x2, 8, 4); /* not the last: nothing */
+    assert_ptr_equal(arena_take(&a, 1), z + 1024);
+    arena_trim(&a, z + 1024, 1, 0);
+    arena_trim(&a, z, 1000, 100); /* the last: its room past 100 bytes (128 rounded) given back */
+    assert_ptr_equal(arena_take(&a, 1), z + 128);
+    assert_null(arena_take(&a, 4 << 20));    /* full: NULL, no other block */
+    assert_null(arena_take(&a, SIZE_MAX));
+    assert_null(arena_resize(&a, y, 10, SIZE_MAX - 8));
+    arena_free(&a);
+    assert_false(a.fixed);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(array_refuses_more_than_half_of_size_max),
@@ -121,6 +160,7 @@ int main(void) {
         cmocka_unit_test(arena_returns_null_without_a_target),
         cmocka_unit_test(arena_vector_stops_at_int_max),
         cmocka_unit_test(arena_jumps_to_its_target),
+        cmocka_unit_test(fixed_arena_grows_in_place_and_stops_when_full),
         cmocka_unit_test(compile_after_the_guards),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
