@@ -119,6 +119,32 @@ float fbm_grid_at(const Fbm *f, const FbmCell *cx, int nx, int kx, const FbmCell
     return norm > 0 ? sum / norm : 0;
 }
 
+void fbm_grid_row(const Fbm *f, const FbmCell *cx, int nx, const FbmCell *cy, int ny, int ky, float *out) {
+    float norm = 0, a = 1;
+    int px = f->fx;
+    for (int x = 0; x < nx; x++) out[x] = 0; /* as sum = 0: 0 + the first octave, to the bit */
+    for (int i = 0; i < f->octaves; i++, px *= 2) {
+        const FbmCell *c = &cx[i * nx], *y = &cy[i * ny + ky];
+        const uint8_t *r0 = f->g[i] + (size_t)y->i0 * (size_t)px, *r1 = f->g[i] + (size_t)y->i1 * (size_t)px;
+        float dy = y->d, dy1 = dy - 1, v = y->w;
+        for (int x0 = 0, x1; x0 < nx; x0 = x1) {
+            int i0 = c[x0].i0, i1 = c[x0].i1; /* a run of columns in one lattice cell: its four gradients */
+            for (x1 = x0 + 1; x1 < nx && c[x1].i0 == i0;) x1++;
+            const float *g00 = grad[r0[i0]], *g10 = grad[r0[i1]], *g01 = grad[r1[i0]], *g11 = grad[r1[i1]];
+            float t00 = g00[1] * dy, t10 = g10[1] * dy, t01 = g01[1] * dy1, t11 = g11[1] * dy1;
+            for (int x = x0; x < x1; x++) { /* fbm_grid_at's steps, in its order */
+                float dx = c[x].d, dx1 = dx - 1, u = c[x].w;
+                float n00 = g00[0] * dx + t00, n10 = g10[0] * dx1 + t10, n01 = g01[0] * dx + t01, n11 = g11[0] * dx1 + t11;
+                float lo = n00 + u * (n10 - n00), hi = n01 + u * (n11 - n01);
+                out[x] += a * (1.41421356f * (lo + v * (hi - lo)));
+            }
+        }
+        norm += a;
+        a *= f->p;
+    }
+    for (int x = 0; x < nx; x++) out[x] = norm > 0 ? out[x] / norm : 0;
+}
+
 void fbm_free(Fbm *f) {
     for (int i = 0; i < FBM_OCTAVES; i++) free(f->g[i]);
 }

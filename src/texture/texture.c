@@ -179,14 +179,17 @@ void texture_pattern(int kind, int size, float *out) {
     int np = probes(kind, p);
     Grid g;
     bool gridded = (kind != SYL_MATERIAL_BARK || stripes) && grid_make(f, p, np, stripes, size, &g);
-    for (int y = 0; y < size; y++)
+    float *rows = gridded && np ? malloc((size_t)np * (size_t)size * sizeof *rows) : NULL; /* a row's noises */
+    for (int y = 0; y < size; y++) {
+        for (int k = 0; rows && k < np; k++) fbm_grid_row(&f[p[k].fi], g.cx[k], size, g.cy[k], size, y, rows + (size_t)k * size);
         for (int x = 0; x < size; x++) {
             float s = ((float)x + 0.5f) / (float)size, t = ((float)y + 0.5f) / (float)size;
             float *o = out + 3 * ((size_t)y * (size_t)size + (size_t)x);
             float stripe = kind != SYL_MATERIAL_BARK ? 0 : stripes ? stripes[x] : fbm_at(&f[0], s, 0), nz[4];
-            for (int k = 0; k < np; k++) /* the same values either way, to the bit */
-                nz[k] = gridded ? fbm_grid_at(&f[p[k].fi], g.cx[k], size, x, g.cy[k], size, y)
-                                : fbm_at(&f[p[k].fi], p[k].striped ? s + 0.06f * stripe : p[k].dx != 0 ? s + p[k].dx : s,
+            for (int k = 0; k < np; k++) /* the same values every way, to the bit */
+                nz[k] = rows      ? rows[(size_t)k * size + x]
+                        : gridded ? fbm_grid_at(&f[p[k].fi], g.cx[k], size, x, g.cy[k], size, y)
+                                  : fbm_at(&f[p[k].fi], p[k].striped ? s + 0.06f * stripe : p[k].dx != 0 ? s + p[k].dx : s,
                                          p[k].dy != 0 ? t + p[k].dy : t);
             switch (kind) {
             case SYL_MATERIAL_BARK: bark(nz, stripe, o); break;
@@ -196,6 +199,8 @@ void texture_pattern(int kind, int size, float *out) {
             default: o[0] = o[1] = o[2] = 1; break;
             }
         }
+    }
+    free(rows);
     if (gridded) grid_free(&g);
     free(stripes);
     for (int k = 0; k < 4; k++) fbm_free(&f[k]);
