@@ -42,6 +42,13 @@ float fbm_grid_at(const Fbm *f, const FbmCell *cx, int nx, int kx, const FbmCell
  * lattice cell's gradients looked up once for the run of columns inside it. */
 void fbm_grid_row(const Fbm *f, const FbmCell *cx, int nx, const FbmCell *cy, int ny, int ky, float *out);
 
+/* ---- leaf cards and clusters (leafshape.c) ---- */
+
+/* syl_leaf_card and syl_leaf_cluster from the leaf pattern already made (rgb: syl_texture of
+ * a leaf at size, RGB): a writer that needs the pattern for several pictures makes it once. */
+void leaf_card_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba);
+bool leaf_cluster_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba);
+
 /* ---- patterns (texture.c) ---- */
 
 /* The linear-light pattern a texture kind multiplies the material colour by, size x size
