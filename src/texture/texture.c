@@ -75,9 +75,11 @@ static void bark(const float *nz, float stripes, float out[3]) {
 static void leaf(const float *nz, float s, float t, float out[3]) {
     float d = fabsf(s - 0.5f) * 2;                 /* 0 on the main vein, 1 at the edge */
     float w = 0.025f + 0.03f * (1 - t);            /* the main vein thins toward the tip */
-    float main_vein = expf(-(d / w) * (d / w));
+    float q = (d / w) * (d / w); /* e^-q is far below half the least float past 110: expf's 0, without the call */
+    float main_vein = q > 110 ? 0 : expf(-q);
     float f = sinf(6.2831853f * 7 * (t - 0.35f * d)); /* side veins slant toward the tip */
-    float side = smoothstep(0.80f, 1.0f, f) * (1 - 0.7f * d) * smoothstep(w, 2 * w, d);
+    float ridge = smoothstep(0.80f, 1.0f, f); /* +0 off the veins, and then so is the product */
+    float side = ridge == 0 ? 0 : ridge * (1 - 0.7f * d) * smoothstep(w, 2 * w, d);
     float edge = smoothstep(0.5f, 1.0f, d);
     float n = nz[0];
     float l = (0.70f + 0.06f * n) * (1 - 0.45f * edge * edge);
