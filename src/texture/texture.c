@@ -228,8 +228,8 @@ bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
     /* the same bytes as the formula (srgbbytes.h); its table costs some 24,000 of them */
     SrgbBytes *t = (size_t)size * (size_t)size * 3 >= 1u << 16 ? malloc(sizeof *t) : NULL;
     if (t) srgb_bytes_init(t);
-    for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
-        out[i] = t ? srgb_byte(t, p[i] * lin[i % 3]) : srgb_byte_exact(p[i] * lin[i % 3]);
+    for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i += 3)
+        for (int c = 0; c < 3; c++) out[i + c] = t ? srgb_byte(t, p[i + c] * lin[c]) : srgb_byte_exact(p[i + c] * lin[c]);
     free(t);
     free(p);
     return true;
