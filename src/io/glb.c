@@ -17,6 +17,7 @@
 #include "sylva/lod.h"
 #include "sylva/stream.h"
 #include "sylva/texture.h"
+#include "texture/texture.h"
 
 enum { KINDS = GLB_SLOTS, CARD = GLB_CARD, ATLAS = GLB_ATLAS, CLUSTER = GLB_CLUSTER }; /* texture slots (glb.h) */
 /* then one slot per image of the model's own (SylMaterial.image), its PNG embedded as read */
@@ -128,10 +129,31 @@ static int slot_of(const Layout *l, const MeshRef *r, int i) {
     return glb_slot(r->m, i);
 }
 
-bool glb_slot_png(IoBuf *b, int k, int shape, uint8_t *img) {
+void glb_pixels_free(GlbPixels *px) {
+    free(px->img), free(px->leaf);
+    *px = (GlbPixels){0};
+}
+
+/* The leaf pattern, syl_texture's bytes as the leaf's slot, syl_leaf_card and
+ * syl_leaf_cluster make them; NULL when out of memory. */
+static const uint8_t *leaf_pattern(GlbPixels *px) {
     enum { N = SYL_TEXTURE_SIZE };
-    return k == CARD      ? syl_leaf_card(shape, N, img) && io_png_rgba(b, img, N, N)
-           : k == CLUSTER ? syl_leaf_cluster(shape, N, img) && io_png_rgba(b, img, N, N)
+    if (!px->leaf) {
+        uint8_t *rgb = malloc((size_t)N * N * 3);
+        if (!rgb || !syl_texture(SYL_MATERIAL_LEAF, NULL, N, rgb)) return free(rgb), NULL;
+        px->leaf = rgb;
+    }
+    return px->leaf;
+}
+
+bool glb_slot_png(IoBuf *b, int k, int shape, GlbPixels *px) {
+    enum { N = SYL_TEXTURE_SIZE };
+    if (!px->img && !(px->img = malloc((size_t)N * N * 4))) return false;
+    uint8_t *img = px->img;
+    const uint8_t *leaf = k == CARD || k == CLUSTER || (k < 3 && kinds[k] == SYL_MATERIAL_LEAF) ? leaf_pattern(px) : NULL;
+    return k == CARD      ? leaf && (leaf_card_of(leaf, shape, N, img), io_png_rgba(b, img, N, N))
+           : k == CLUSTER ? leaf && leaf_cluster_of(leaf, shape, N, img) && io_png_rgba(b, img, N, N)
+           : leaf         ? io_png(b, leaf, N)
            : k < 3        ? syl_texture(kinds[k], NULL, N, img) && io_png(b, img, N)
                           : false;
 }
@@ -289,7 +311,7 @@ static void layout_textures(Layout *l) {
             if (t == CARD) shape = l->mesh[k].m->leaf_shape;
             if (t == CLUSTER) cluster_shape = l->mesh[k].m->leaf_shape;
         }
-    uint8_t *img = NULL;
+    GlbPixels px = {0};
     const GlbScene *sc = l->sc;
     for (int k = 0; k < SLOTS; k++) {
         if (!used[k]) continue;
@@ -303,13 +325,9 @@ static void layout_textures(Layout *l) {
             l->tex_of_kind[k] = l->ntex++;
             continue;
         }
-        if (!img && !(img = malloc((size_t)SYL_TEXTURE_SIZE * SYL_TEXTURE_SIZE * 4))) {
-            l->bin.failed = true;
-            break;
-        }
         size_t at = l->bin.len;
         bool ok = k == ATLAS ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
-                             : glb_slot_png_cached(sc->textures, &l->bin, k, k == CLUSTER ? cluster_shape : shape, img);
+                             : glb_slot_png_cached(sc->textures, &l->bin, k, k == CLUSTER ? cluster_shape : shape, &px);
         if (!ok) {
             l->bin.failed = true;
             break;
@@ -320,7 +338,7 @@ static void layout_textures(Layout *l) {
         glb_pad(&l->bin, 0);
         l->tex_of_kind[k] = l->ntex++;
     }
-    free(img);
+    glb_pixels_free(&px);
 }
 
 /* With levels of detail the joints are the scene's own roots, beside NAME_LOD0: every level

@@ -83,11 +83,18 @@ int glb_write_forest(const SylMesh *ground, const SylInstances *sets, const char
  * card (RGBA), an impostor's atlas, a leaf cluster (RGBA); -1: none. */
 enum { GLB_BARK, GLB_LEAF, GLB_FLOWER, GLB_CARD, GLB_ATLAS, GLB_CLUSTER, GLB_SLOTS };
 int glb_slot(const SylMesh *m, int material); /* never GLB_ATLAS */
-/* Slot k's picture (not the atlas) as PNG bytes into b; img: SYL_TEXTURE_SIZE² RGBA of scratch.
- * shape: the leaf shape of cards and clusters. False when it failed. */
-bool glb_slot_png(IoBuf *b, int k, int shape, uint8_t *img);
+/* A write's pictures' scratch: img, SYL_TEXTURE_SIZE² RGBA; leaf, the leaf pattern (RGB),
+ * made at its first need and shared by the leaf's slot, its cards and its clusters (one
+ * pattern, not one per picture). Start as {0}; glb_pixels_free at the end. */
+typedef struct GlbPixels {
+    uint8_t *img, *leaf;
+} GlbPixels;
+void glb_pixels_free(GlbPixels *px);
+/* Slot k's picture (not the atlas) as PNG bytes into b. shape: the leaf shape of cards and
+ * clusters. False when it failed (also out of memory). */
+bool glb_slot_png(IoBuf *b, int k, int shape, GlbPixels *px);
 /* The same bytes, from c when it has them (made and kept there when not); c NULL: none. */
-bool glb_slot_png_cached(SylTextureCache *c, IoBuf *b, int k, int shape, uint8_t *img);
+bool glb_slot_png_cached(SylTextureCache *c, IoBuf *b, int k, int shape, GlbPixels *px);
 const char *glb_slot_name(int k); /* the image's name: "bark", "leafcard", ... */
 
 /* A primitive (glb_prims.c): count indices of the mesh from first, of group group, using

@@ -66,20 +66,19 @@ static bool textures(Forest *f) {
             if (image_of(f, k, i) >= 0) continue;
             if (slot >= 0) f->tex_of[slot] = 0, shape[slot] = f->mesh[k]->leaf_shape;
         }
-    uint8_t *img = NULL;
+    GlbPixels px = {0};
     for (int k = 0; k < GLB_SLOTS; k++) {
         if (f->tex_of[k] < 0) continue;
-        if (!img && !(img = malloc((size_t)SYL_TEXTURE_SIZE * SYL_TEXTURE_SIZE * 4))) return false;
         glb_pad(&f->bin, 0);
         size_t at = f->bin.len;
-        if (!glb_slot_png_cached(f->tc, &f->bin, k, shape[k], img)) {
-            free(img);
+        if (!glb_slot_png_cached(f->tc, &f->bin, k, shape[k], &px)) {
+            glb_pixels_free(&px);
             return false;
         }
         f->image_view[f->ntex] = f->nviews, f->image_slot[f->ntex] = k, f->tex_of[k] = f->ntex++;
         f->views[f->nviews++] = (View){.offset = at, .length = f->bin.len - at};
     }
-    free(img);
+    glb_pixels_free(&px);
     for (int j = 0; j < f->nimages; j++) { /* the file's bytes as they are */
         glb_pad(&f->bin, 0);
         f->image_view[f->ntex] = f->nviews, f->image_slot[f->ntex++] = GLB_SLOTS + j;

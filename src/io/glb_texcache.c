@@ -24,13 +24,13 @@ void syl_texture_cache_free(SylTextureCache *c) {
     free(c);
 }
 
-bool glb_slot_png_cached(SylTextureCache *c, IoBuf *b, int k, int shape, uint8_t *img) {
+bool glb_slot_png_cached(SylTextureCache *c, IoBuf *b, int k, int shape, GlbPixels *px) {
     bool shaped = k == GLB_CARD || k == GLB_CLUSTER;
     int s = shaped ? shape : 0;
-    if (!c || k < 0 || k >= GLB_SLOTS || s < 0 || s >= SHAPES) return glb_slot_png(b, k, shape, img);
+    if (!c || k < 0 || k >= GLB_SLOTS || s < 0 || s >= SHAPES) return glb_slot_png(b, k, shape, px);
     if (!c->png[k][s]) {
         IoBuf t = {0};
-        if (!glb_slot_png(&t, k, shape, img) || t.nrefs) return io_free(&t), false;
+        if (!glb_slot_png(&t, k, shape, px) || t.nrefs) return io_free(&t), false;
         free(t.refs);
         c->png[k][s] = t.data, c->len[k][s] = t.len; /* taken over */
     }

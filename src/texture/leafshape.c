@@ -51,6 +51,12 @@ bool syl_leaf_card(int shape, int size, uint8_t *rgba) {
     uint8_t *rgb = malloc((size_t)size * (size_t)size * 3);
     if (!rgb) return false;
     bool ok = syl_texture(SYL_MATERIAL_LEAF, NULL, size, rgb);
+    leaf_card_of(rgb, shape, size, rgba);
+    free(rgb);
+    return ok;
+}
+
+void leaf_card_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba) {
     enum { SS = 4 };
     for (int y = 0; y < size; y++)
         for (int x = 0; x < size; x++) {
@@ -65,8 +71,6 @@ bool syl_leaf_card(int shape, int size, uint8_t *rgba) {
             memcpy(rgba + 4 * k, rgb + 3 * k, 3);
             rgba[4 * k + 3] = (uint8_t)((in * 255 + SS * SS / 2) / (SS * SS));
         }
-    free(rgb);
-    return ok;
 }
 
 /* ------------------------------------------------------------------ leaf clusters */
@@ -178,6 +182,11 @@ bool syl_leaf_cluster(int shape, int size, uint8_t *rgba) {
     bool ok = rgb && syl_texture(SYL_MATERIAL_LEAF, NULL, size, rgb) && draw_cluster(shape, size, rgb, rgba, &opaque);
     free(rgb);
     return ok;
+}
+
+bool leaf_cluster_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba) {
+    size_t opaque;
+    return draw_cluster(shape, size, rgb, rgba, &opaque);
 }
 
 float syl_leaf_cluster_fill(int shape) {

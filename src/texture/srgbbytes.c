@@ -11,7 +11,6 @@
 
 #include "texture/texture.h"
 
-enum { NEAR = 64 };
 
 static float of_bits(uint32_t u) {
     float v;
@@ -37,12 +36,3 @@ void srgb_bytes_init(SrgbBytes *t) {
     for (uint32_t k = 0; k <= one >> 16; k++) t->first[k] = srgb_byte_exact(of_bits(k << 16));
 }
 
-uint8_t srgb_byte(const SrgbBytes *t, float v) {
-    if (!(v > 0) || !(v < 1)) return srgb_byte_exact(v); /* also NaN */
-    uint32_t u;
-    memcpy(&u, &v, sizeof u);
-    int b = t->first[u >> 16];
-    while (u >= t->at[b + 1]) b++;
-    if (u < t->at[b] + NEAR || u + NEAR >= t->at[b + 1]) return srgb_byte_exact(v);
-    return (uint8_t)b;
-}

@@ -75,9 +75,11 @@ static void bark(const float *nz, float stripes, float out[3]) {
 static void leaf(const float *nz, float s, float t, float out[3]) {
     float d = fabsf(s - 0.5f) * 2;                 /* 0 on the main vein, 1 at the edge */
     float w = 0.025f + 0.03f * (1 - t);            /* the main vein thins toward the tip */
-    float main_vein = expf(-(d / w) * (d / w));
+    float q = (d / w) * (d / w); /* e^-q is far below half the least float past 110: expf's 0, without the call */
+    float main_vein = q > 110 ? 0 : expf(-q);
     float f = sinf(6.2831853f * 7 * (t - 0.35f * d)); /* side veins slant toward the tip */
-    float side = smoothstep(0.80f, 1.0f, f) * (1 - 0.7f * d) * smoothstep(w, 2 * w, d);
+    float ridge = smoothstep(0.80f, 1.0f, f); /* +0 off the veins, and then so is the product */
+    float side = ridge == 0 ? 0 : ridge * (1 - 0.7f * d) * smoothstep(w, 2 * w, d);
     float edge = smoothstep(0.5f, 1.0f, d);
     float n = nz[0];
     float l = (0.70f + 0.06f * n) * (1 - 0.45f * edge * edge);
@@ -179,14 +181,17 @@ void texture_pattern(int kind, int size, float *out) {
     int np = probes(kind, p);
     Grid g;
     bool gridded = (kind != SYL_MATERIAL_BARK || stripes) && grid_make(f, p, np, stripes, size, &g);
-    for (int y = 0; y < size; y++)
+    float *rows = gridded && np ? malloc((size_t)np * (size_t)size * sizeof *rows) : NULL; /* a row's noises */
+    for (int y = 0; y < size; y++) {
+        for (int k = 0; rows && k < np; k++) fbm_grid_row(&f[p[k].fi], g.cx[k], size, g.cy[k], size, y, rows + (size_t)k * size);
         for (int x = 0; x < size; x++) {
             float s = ((float)x + 0.5f) / (float)size, t = ((float)y + 0.5f) / (float)size;
             float *o = out + 3 * ((size_t)y * (size_t)size + (size_t)x);
             float stripe = kind != SYL_MATERIAL_BARK ? 0 : stripes ? stripes[x] : fbm_at(&f[0], s, 0), nz[4];
-            for (int k = 0; k < np; k++) /* the same values either way, to the bit */
-                nz[k] = gridded ? fbm_grid_at(&f[p[k].fi], g.cx[k], size, x, g.cy[k], size, y)
-                                : fbm_at(&f[p[k].fi], p[k].striped ? s + 0.06f * stripe : p[k].dx != 0 ? s + p[k].dx : s,
+            for (int k = 0; k < np; k++) /* the same values every way, to the bit */
+                nz[k] = rows      ? rows[(size_t)k * size + x]
+                        : gridded ? fbm_grid_at(&f[p[k].fi], g.cx[k], size, x, g.cy[k], size, y)
+                                  : fbm_at(&f[p[k].fi], p[k].striped ? s + 0.06f * stripe : p[k].dx != 0 ? s + p[k].dx : s,
                                          p[k].dy != 0 ? t + p[k].dy : t);
             switch (kind) {
             case SYL_MATERIAL_BARK: bark(nz, stripe, o); break;
@@ -196,6 +201,8 @@ void texture_pattern(int kind, int size, float *out) {
             default: o[0] = o[1] = o[2] = 1; break;
             }
         }
+    }
+    free(rows);
     if (gridded) grid_free(&g);
     free(stripes);
     for (int k = 0; k < 4; k++) fbm_free(&f[k]);
@@ -221,8 +228,8 @@ bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
     /* the same bytes as the formula (srgbbytes.h); its table costs some 24,000 of them */
     SrgbBytes *t = (size_t)size * (size_t)size * 3 >= 1u << 16 ? malloc(sizeof *t) : NULL;
     if (t) srgb_bytes_init(t);
-    for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i++)
-        out[i] = t ? srgb_byte(t, p[i] * lin[i % 3]) : srgb_byte_exact(p[i] * lin[i % 3]);
+    for (size_t i = 0; i < (size_t)size * (size_t)size * 3; i += 3)
+        for (int c = 0; c < 3; c++) out[i + c] = t ? srgb_byte(t, p[i + c] * lin[c]) : srgb_byte_exact(p[i + c] * lin[c]);
     free(t);
     free(p);
     return true;

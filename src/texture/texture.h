@@ -38,6 +38,16 @@ bool fbm_axis(const Fbm *f, int axis, const float *at, int n, FbmCell *cells);
 /* fbm_at(f, xs[kx], ys[ky]) to the bit, cx and cy from fbm_axis of xs (axis 0, nx of them)
  * and ys (axis 1, ny). */
 float fbm_grid_at(const Fbm *f, const FbmCell *cx, int nx, int kx, const FbmCell *cy, int ny, int ky);
+/* fbm_grid_at for every column of row ky at once, into out[0..nx): the same bits, with each
+ * lattice cell's gradients looked up once for the run of columns inside it. */
+void fbm_grid_row(const Fbm *f, const FbmCell *cx, int nx, const FbmCell *cy, int ny, int ky, float *out);
+
+/* ---- leaf cards and clusters (leafshape.c) ---- */
+
+/* syl_leaf_card and syl_leaf_cluster from the leaf pattern already made (rgb: syl_texture of
+ * a leaf at size, RGB): a writer that needs the pattern for several pictures makes it once. */
+void leaf_card_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba);
+bool leaf_cluster_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba);
 
 /* ---- patterns (texture.c) ---- */
 
