@@ -71,7 +71,8 @@ export const BUSH = (depth) => `lsystem Bush {
 
 // A new tab of the viewer at url, 900x700 as the tests draw it; its page errors go to errors.
 // holdEvents: the page's event stream (/api/events) is held back until page.releaseEvents() —
-// a save made meanwhile lands before the stream is connected.
+// a save made meanwhile lands before the stream is connected. The page's requests then pass
+// through puppeteer for its whole life (turning that off while the page asks races with it).
 export async function openPage(browser, url, errors, { holdEvents = false } = {}) {
   const page = await browser.newPage();
   page.on('pageerror', (e) => errors.push(String(e)));
@@ -86,8 +87,6 @@ export async function openPage(browser, url, errors, { holdEvents = false } = {}
     page.releaseEvents = async () => {
       holding = false;
       for (const r of held) await r.continue();
-      await page.setRequestInterception(false);
-      page.off('request', onRequest);
       return held.length;
     };
   }
