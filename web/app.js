@@ -21,6 +21,7 @@ const state = {
   stats: null,
   build: null,        // the last build's answer (ok or not)
   loads: 0,           // models drawn, for the tests
+  builtGen: -1,       // the files' generation of the last build shown (-1: none)
   error: '',          // the overlay's text ('' : none)
   gen: 0,
   placed: [],         // plants placed by clicks: {model, x, y, z, on}; the file is not rewritten
@@ -617,6 +618,7 @@ async function showPreview(p, buf, q, frameIt, t0) {
 async function showBuild(b, q, frameIt, t0) {
   const tBuilt = performance.now();
   state.build = b;
+  state.builtGen = b.gen; // the files' generation on screen (or in the overlay): listen() compares
   const warnings = (b.diag || '').split('\n').filter((l) => / warning: /.test(l));
   $('warnings').textContent = b.ok ? (b.diag || '') : '';
   if (!b.ok) { // the last good model stays
@@ -889,13 +891,21 @@ async function loadModels() {
   if (keep) place.value = keep;
 }
 
+async function changed() {
+  await load();           // the camera stays
+  loadParams();
+  loadModels();
+}
+
+// The stream's first event (hello, at each (re)connection) says the files' generation: a save
+// that came before the stream was connected (or while it reconnected) has no change event of
+// its own, so a build of an older generation than that is built again.
 function listen() {
   const es = new EventSource('/api/events');
-  es.addEventListener('change', async () => {
+  es.addEventListener('hello', (e) => { if (+e.data !== state.builtGen) changed(); });
+  es.addEventListener('change', () => {
     state.changeWall = Date.now(); // make bench: when the save's event came
-    await load();           // the camera stays
-    loadParams();
-    loadModels();
+    changed();
   });
 }
 

@@ -18,16 +18,29 @@ export function launch(dir) {
   });
 }
 
+// The servers still running: killed when this process ends however it ends (a failed check's
+// exception, a timeout, Ctrl-C), not only by a test's own stop() — none is left behind.
+const running = new Set();
+const killAll = () => { for (const s of running) s.kill('SIGKILL'); };
+process.on('exit', killAll);
+for (const [sig, n] of [['SIGINT', 2], ['SIGTERM', 15], ['SIGHUP', 1]])
+  process.on(sig, () => { killAll(); process.exit(128 + n); });
+
 // Resolves to {server, url}; server.err collects its stderr.
 export function serve(sylva, path) {
   const server = spawn(sylva, ['view', path, '--port', '0', '-j', '1'], { stdio: ['ignore', 'pipe', 'pipe'] });
+  running.add(server);
   server.err = '';
   server.stderr.on('data', (d) => { server.err += d; });
   return new Promise((resolve, reject) => {
     let out = '';
-    server.stdout.on('data', (d) => { out += d; const m = out.match(/^(http:\/\/\S+)\n/); if (m) resolve({ server, url: m[1] }); });
-    server.on('exit', (c) => reject(new Error('sylva view exited ' + c + ': ' + server.err)));
-    setTimeout(() => reject(new Error('no address printed')), 20000);
+    const late = setTimeout(() => { server.kill('SIGKILL'); reject(new Error('no address printed')); }, 20000);
+    server.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/^(http:\/\/\S+)\n/);
+      if (m) { clearTimeout(late); resolve({ server, url: m[1] }); }
+    });
+    server.on('exit', (c) => { running.delete(server); clearTimeout(late); reject(new Error('sylva view exited ' + c + ': ' + server.err)); });
   });
 }
 
@@ -57,16 +70,33 @@ export const BUSH = (depth) => `lsystem Bush {
 `;
 
 // A new tab of the viewer at url, 900x700 as the tests draw it; its page errors go to errors.
-export async function openPage(browser, url, errors) {
+// holdEvents: the page's event stream (/api/events) is held back until page.releaseEvents() —
+// a save made meanwhile lands before the stream is connected. The page's requests then pass
+// through puppeteer for its whole life (turning that off while the page asks races with it).
+export async function openPage(browser, url, errors, { holdEvents = false } = {}) {
   const page = await browser.newPage();
   page.on('pageerror', (e) => errors.push(String(e)));
   await page.setViewport({ width: 900, height: 700 });
+  if (holdEvents) {
+    const held = [];
+    let holding = true;
+    const onRequest = (r) => (holding && new URL(r.url()).pathname === '/api/events' ? held.push(r) : r.continue());
+    await page.setRequestInterception(true);
+    page.on('request', onRequest);
+    page.eventsHeld = () => held.length;
+    page.releaseEvents = async () => {
+      holding = false;
+      for (const r of held) await r.continue();
+      return held.length;
+    };
+  }
   await page.goto(url);
   return page;
 }
 
 // SIGTERM, then its exit code (or the signal's name when it died of one)
 export function stop(server) {
+  if (server.exitCode !== null || server.signalCode !== null) return Promise.resolve(server.exitCode ?? server.signalCode);
   const done = new Promise((r) => server.on('exit', (c, s) => r(c === null ? s : c)));
   server.kill('SIGTERM');
   return done;

@@ -31,13 +31,26 @@ const json = async (path) => JSON.parse((await get(path)).body.toString());
 const browser = await launch(dir);
 const errors = [];
 try {
-  const page = await openPage(browser, url, errors);
+  // the page's event stream held back until the first save has landed: a save the page was
+  // never told of (it came before the stream connected) must still be drawn (the stream's
+  // hello says the files' generation, newer than the one drawn)
+  const page = await openPage(browser, url, errors, { holdEvents: true });
   await page.waitForFunction(() => window.sylvaView && window.sylvaView.loads >= 1, { timeout: 60000 });
 
   // ---- a plant whose last full mesh had at most previewAbove triangles: no preview first ----
   const quick = await page.evaluate(() => { const v = window.sylvaView; v.previewAbove = 1e9; return { loads: v.loads, previews: v.previews || 0 }; });
+  const until = async (f) => { for (let t = Date.now(); !(await f()) && Date.now() - t < 30000;) await new Promise((r) => setTimeout(r, 20)); };
+  await until(() => page.eventsHeld() > 0); // the page asked for its stream (after its first build)
+  const gen0 = (await json('/api/models')).gen;
   edit(file, TEXT(3));
-  await page.waitForFunction((c) => window.sylvaView.loads > c && window.sylvaView.shownAt > 0, { timeout: 60000 }, quick.loads);
+  await until(async () => (await json('/api/models')).gen !== gen0); // the server saw the save
+  const gen1 = (await json('/api/models')).gen;
+  const held = await page.releaseEvents();
+  const redrawn = await page.waitForFunction((c) => window.sylvaView.loads > c && window.sylvaView.shownAt > 0, { timeout: 60000 }, quick.loads)
+    .then(() => true, () => false);
+  const drawnGen = await page.evaluate(() => window.sylvaView.builtGen);
+  check(held === 1 && redrawn && drawnGen === gen1, 'a save before the page\'s event stream connected is drawn once it connects',
+    `${held} held, redrawn: ${redrawn}, generation drawn ${drawnGen} of ${gen1}`);
   const quickAfter = await page.evaluate(() => ({ previews: window.sylvaView.previews || 0, preview: window.sylvaView.preview }));
   check(quickAfter.previews === quick.previews && quickAfter.preview === null, 'a plant quick to build: its save draws the full mesh, no preview',
     JSON.stringify({ quick, quickAfter }));
@@ -128,7 +141,7 @@ try {
     'it ends on the full mesh of the last value', JSON.stringify({ key: end.key, last: drag.last, preview: end.preview }));
   check(errors.length === 0, 'no page errors', errors.join('; '));
 } finally {
-  await browser.close();
+  await browser.close().catch(() => {});
   await stop(server);
   rmSync(dir, { recursive: true, force: true });
 }
