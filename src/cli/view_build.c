@@ -121,9 +121,14 @@ typedef struct BuildStop {
 
 static unsigned current_gen(View *v);
 
+/* Stop when the files changed, the server is stopping (Ctrl-C does not wait for a long
+ * derivation), or, for a full build, its tab asked for something newer. */
 static int build_stop(void *user) {
     const BuildStop *b = user;
-    return current_gen(b->v) != b->gen || (!b->rq->preview && view_tab_moved_on(b->v, b->rq));
+    pthread_mutex_lock(&b->v->gen_lock);
+    bool gone = b->v->stopping || b->v->gen != b->gen;
+    pthread_mutex_unlock(&b->v->gen_lock);
+    return gone || (!b->rq->preview && view_tab_moved_on(b->v, b->rq));
 }
 
 /* Compile (with every warning of `sylva check`) and build as `sylva mesh` does; stopped with

@@ -1,6 +1,6 @@
 // A build under way is stopped by the library's SylCancel (sylva.h) when it is no longer
 // wanted: a save during a long derivation stops it (the files changed under it), and so does
-// a newer request of the same tab. No browser: the server's HTTP answers only. The long build
+// a newer request of the same tab, and so does stopping the server. No browser: the server's HTTP answers only. The long build
 // is a derivation of many cheap steps (the cancel is asked before each), which would run for
 // minutes if it were not stopped; stopped, it costs a fraction of a second.
 // Usage: node cancel.test.mjs SYLVA.
@@ -54,6 +54,14 @@ try {
   check(newer.ok && !newer.superseded && newer.stats.modules === 20001, 'and the newer one is built');
   const m3 = await json('/api/models');
   check(m3.stopped === m2.stopped + 1, 'counted as stopped too', JSON.stringify({ m2, m3 }));
+
+  // ---- Ctrl-C (SIGTERM) while a long build derives: the server stops it and exits cleanly ----
+  const m4 = await json('/api/models');
+  const doomed = json(`/api/build?model=Spin&n=${LONG}&tab=3&seq=1`).catch(() => null);
+  await begun(m4.builds);
+  const code = await Promise.race([stop(server), sleep(60000).then(() => 'still running after 60 s')]);
+  await doomed;
+  check(code === 0, 'SIGTERM during a long derivation stops it and the server exits with 0', String(code));
 } finally {
   await stop(server);
   rmSync(dir, { recursive: true, force: true });
