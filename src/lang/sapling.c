@@ -136,8 +136,7 @@ static bool value(Lex *l, Diag *diag, Value *v) {
 /* Sapling's parameter → Sylva's weber directive. PER_LEVEL: a tuple of the 4 levels (Sapling
  * starts at the trunk, as `DownAngle 0 60 45 45` does). SKIP: Sapling's own (its curves'
  * resolution and bevel, armature and wind animation, leaf animation, its second shape and
- * taper of the crown, root flare by another law, its one branchDist that spreads branches by
- * another law than Weber & Penn's per-level BranchDist), read and left out. */
+ * taper of the crown, root flare by another law), read and left out. */
 enum { ONE, PER_LEVEL, SHAPE, LEAFSHAPE, ATTRACT, PRUNE, CUSTOM, SKIP };
 static const struct {
     const char *sapling, *sylva;
@@ -162,7 +161,8 @@ static const struct {
     {"pruneWidthPeak", "PruneWidthPeak", ONE}, {"prunePowerLow", "PrunePowerLow", ONE},
     {"prunePowerHigh", "PrunePowerHigh", ONE}, {"seed", "Seed", ONE},
     {"splitHeight", "SaplingSplitHeight", ONE}, {"baseSize_s", "SaplingBaseSizeS", ONE},
-    {"splitByLen", "SaplingSplitByLen", ONE},
+    {"splitByLen", "SaplingSplitByLen", ONE}, {"branchDist", "SaplingBranchDist", ONE},
+    {"nrings", "SaplingRings", ONE},     {"splitBias", "SaplingSplitBias", ONE},
     {"shapeS", "SaplingShapeS", SHAPE},  {"customShape", "SaplingCustom", CUSTOM},
 };
 

@@ -45,6 +45,7 @@ void weber_tip_child(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids
     c.level = st->level + 1;
     c.parent = id;
     c.offset = st->length - 0.5 * st->seglen; /* its length and radius from just below the tip, where the radius is not 0 */
+    c.u_lcm = -1; /* its children's length drawn, ± LengthV */
     c.key = weber_key(st->key, 1, (uint64_t)1 << 40);
     c.start = segs[st->nseg - 1].f;
     frame_move(&c.start, st->seglen);

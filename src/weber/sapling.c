@@ -2,6 +2,7 @@
  * "Sapling's presets"): how many children a stem gets, when a stem splits, and the stem each
  * stem sprouts at its tip. Facts of Sapling's add-on (GPL) written anew. */
 #include <math.h>
+#include <stdlib.h>
 
 #include "weber/internal.h"
 
@@ -17,11 +18,16 @@ double weber_sapling_most(const WeberGen *g, const WStem *st) {
 /* Splits at the end of segment seg: at most one, by odds of SegSplits × 1.33 after a segment
  * that did not split and SegSplits² after one that did; a branch's odds scale with its length
  * (SaplingSplitByLen). The trunk splits 0BaseSplits times after its first segment, never below
- * SaplingSplitHeight, and always once at the first segment above it. */
+ * SaplingSplitHeight, and always once at the first segment above it; its SegSplits is times
+ * 1 + 2 SaplingSplitBias (h - 1/2) at the split's height h (a share of its segments), not below 0. */
 int weber_sapling_splits(WeberGen *g, const WStem *st, int seg, Rng *r) {
     const WeberParams *w = &g->w;
     int k = seg + 1; /* Sapling counts the segment the split starts */
     double s = w->SegSplits[weber_lv(st->level)];
+    if (st->level == 0 && w->SaplingSplitBias != 0) {
+        double h = st->nseg > 1 ? (double)k / (st->nseg - 1) : 1;
+        s = fmax(0, (2 * w->SaplingSplitBias * (h - 0.5) + 1) * s);
+    }
     double odds = st->split_last ? s * s : s * 1.33;
     if (st->level == 0) {
         if (k == 1) return (int)w->BaseSplits;
@@ -67,6 +73,21 @@ double weber_sapling_length(const WeberGen *g, const WStem *p, const WStem *s) {
     return p->length * p->lcm * weber_sapling_shape(w, s->level == 1 ? (int)w->Shape : (int)w->SaplingShapeS, r);
 }
 
+/* A child of st at `at` segments from its base (place number a), along segment int(at). */
+void weber_sapling_child(WeberGen *g, int id, WStem *st, const WSeg *segs, double at, int a, Rng *kids) {
+    int seg = (int)at;
+    double where = at - seg;
+    WStem c = {0};
+    c.level = st->level + 1;
+    c.parent = id;
+    c.offset = at * st->seglen;
+    c.u_lcm = -1; /* its children's length drawn, ± LengthV */
+    c.key = weber_key(st->key, 1, (uint64_t)seg << 20 | (uint64_t)a);
+    c.start = weber_child_direction(g, st, segs[seg].f, c.offset, c.level, kids);
+    for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * st->seglen;
+    weber_make_stem(g, c);
+}
+
 /* A branch's children by Sapling: sap_main even places along it, t = 1/main … 1; the lowest
  * int(b (main + 1)) dropped (b its level's bare base), and the last, t = 1, left to its tip's
  * stem; each of its clones takes the places at or above where it split off. */
@@ -76,16 +97,39 @@ void weber_sapling_children(WeberGen *g, int id, WStem *st, const WSeg *segs, Rn
     double b = fmin(0.999, g->w.BaseSize * pow(g->w.SaplingBaseSizeS, st->level));
     for (int a = (int)(b * (m + 1)); a < m - 1 && !g->failed; a++) {
         double at = (a + 1.0) / m * st->nseg;
-        int seg = (int)at;
-        if (seg < st->first_seg || seg >= st->nseg) continue;
-        double where = at - seg;
-        WStem c = {0};
-        c.level = st->level + 1;
-        c.parent = id;
-        c.offset = at * st->seglen;
-        c.key = weber_key(st->key, 1, (uint64_t)seg << 20 | (uint64_t)a);
-        c.start = weber_child_direction(g, st, segs[seg].f, c.offset, c.level, kids);
-        for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * st->seglen;
-        weber_make_stem(g, c);
+        if ((int)at < st->first_seg || (int)at >= st->nseg) continue;
+        weber_sapling_child(g, id, st, segs, at, a, kids);
     }
+}
+
+static int by_value(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The trunk's places for children, as shares t of its length, by Sapling: Branches (level 1)
+ * even places t = 1/N … 1, the lowest int(BaseSize (N + 1)) dropped; with SaplingRings k, each
+ * but the last moved down to its whorl, floor(t k) / k, times 1 ± 0.5 %, and those not above
+ * the bare base dropped; then spread above the bare base b by SaplingBranchDist d, the share
+ * u = (t - b) / (1 - b) becoming u^(1/d) below 1 and 1 - (1 - u)^d from 1 on. The last, t = 1,
+ * is left to the tip's stem. out has room for Branches; returns the count, in ascending order. */
+size_t weber_sapling_trunk_places(const WeberParams *w, Rng *r, double *out) {
+    double nb = w->Branches[1], b = w->BaseSize, d = w->SaplingBranchDist;
+    int n = nb < 1 ? 0 : nb > 1e9 ? 1000000000 : (int)nb, rings = (int)fmin(w->SaplingRings, 1e9);
+    size_t k = 0;
+    for (int a = (int)(b * (n + 1.0)); a < n; a++) {
+        double t = (a + 1.0) / n;
+        if (rings > 0 && a < n - 1) {
+            t = floor(t * rings) / rings * (0.995 + 0.01 * rng_unit(r));
+            if (!(t > b)) continue;
+        }
+        if (b < 1) {
+            double u = (t - b) / (1 - b);
+            u = d < 1 ? pow(u, 1 / d) : d > 1 ? 1 - pow(1 - u, d) : u;
+            t = u * (1 - b) + b;
+        }
+        if (t < 1) out[k++] = t;
+    }
+    qsort(out, k, sizeof *out, by_value);
+    return k;
 }

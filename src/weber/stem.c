@@ -99,6 +99,7 @@ static void new_direction(WeberGen *g, WStem *st, Frame *trf, int seg, Rng *r) {
 /* A stem traced: its segments, and its clones, each traced when it splits off (Arbaro's
  * order, which the error diffusion of splits follows); points and children come after. */
 typedef struct Traced Traced;
+typedef struct SapPlaces SapPlaces;
 typedef struct Pending {
     Traced *c;
     size_t n, cap;
@@ -107,6 +108,15 @@ struct Traced {
     WStem st;
     WSeg *segs;
     Pending pend;
+    const SapPlaces *places; /* SaplingLaw, a trunk and its clones: the trunk's children's places */
+    int flat;                /* its number among them (the owner of its places) */
+};
+/* SaplingLaw: the trunk's places for children (shares of its length) and the stem (trunk or
+ * clone, by number) each is on: Sapling puts one child at each, where its forks pass. */
+struct SapPlaces {
+    double *t;
+    int *owner;
+    size_t n;
 };
 
 /* Frees the clones, releasing what they were charged. */
@@ -159,6 +169,7 @@ static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *
             }
             Traced *t = &pend->c[pend->n];
             t->pend = (Pending){0};
+            t->places = NULL;
             if (!budget_charge(g->budget, (uint64_t)c.nseg * sizeof *t->segs)) return g->failed = true, -1;
             t->segs = malloc((size_t)c.nseg * sizeof *t->segs);
             if (!t->segs) {
@@ -242,9 +253,14 @@ static void run_stem(WeberGen *g, int id, Traced *t) {
     }
     if (st->level < g->levels - 1) {
         Rng kids = weber_rng(g, st->key, WRNG_KIDS);
-        if (g->w.SaplingLaw && st->level > 0) weber_sapling_children(g, id, st, t->segs, &kids);
-        else
+        if (g->w.SaplingLaw && st->level > 0) {
+            weber_sapling_children(g, id, st, t->segs, &kids);
+        } else if (g->w.SaplingLaw) {
+            for (size_t i = 0; t->places && i < t->places->n && !g->failed; i++)
+                if (t->places->owner[i] == t->flat) weber_sapling_child(g, id, st, t->segs, t->places->t[i] * st->nseg, (int)i, &kids);
+        } else {
             for (int s = st->first_seg; s < st->nseg && !g->failed; s++) weber_children(g, id, st, s, t->segs, &kids);
+        }
         if (g->w.SaplingLaw && !g->failed) weber_tip_child(g, id, st, t->segs, &kids);
     } else if (g->leaves != 0) {
         weber_defer_leaves(g, id, st, t->segs);
@@ -260,9 +276,8 @@ static void prepare_children(WeberGen *g, WStem *st, Rng *self) {
     if (w->SaplingLaw && st->level > 0) { /* by its length against its level's longest; placed by weber_sapling_children */
         st->sap_n = most * (0.1 + 0.9 * st->length / weber_sapling_most(g, st));
         st->sps = 0;
-    } else if (w->SaplingLaw) { /* the trunk: less its bare base's share, and the last, which falls on its tip */
-        n = most - floor(fmin(1, w->BaseSize) * (most + 1)) - 1;
-        st->sps = (n > 0 ? n : 0) / st->nseg / (1 - w->BaseSize);
+    } else if (w->SaplingLaw) { /* the trunk: at Sapling's places (trunk_places) */
+        st->sps = 0;
     } else if (st->level == 0) {
         st->sps = most / st->nseg / (1 - w->BaseSize);
     } else {
@@ -284,6 +299,56 @@ static int pending_segments(const Pending *p) {
 }
 static void set_main(Pending *p, int main) {
     for (size_t i = 0; i < p->n; i++) p->c[i].st.sap_main = main, set_main(&p->c[i].pend, main);
+}
+static size_t pending_count(const Pending *p) {
+    size_t n = p->n;
+    for (size_t i = 0; i < p->n; i++) n += pending_count(&p->c[i].pend);
+    return n;
+}
+static void flatten(Traced *t, const SapPlaces *sp, Traced **flat, size_t *k) {
+    t->places = sp;
+    t->flat = (int)*k;
+    flat[(*k)++] = t;
+    for (size_t i = 0; i < t->pend.n; i++) flatten(&t->pend.c[i], sp, flat, k);
+}
+
+/* SaplingLaw: the trunk's places (weber_sapling_trunk_places) and the fork each child goes
+ * on: as Sapling turns by Rotate (± RotateV) from one place to the next, the trunk or clone
+ * there whose azimuth is nearest that angle. Returns the bytes charged. */
+static uint64_t trunk_places(WeberGen *g, Traced *root, SapPlaces *sp) {
+    const WeberParams *w = &g->w;
+    size_t most = w->Branches[1] < 1 ? 0 : (size_t)fmin(w->Branches[1], 1e9), nflat = 1 + pending_count(&root->pend);
+    uint64_t bytes = (uint64_t)most * (sizeof *sp->t + sizeof *sp->owner) + nflat * sizeof(Traced *);
+    if (!budget_charge(g->budget, bytes)) return g->failed = true, 0;
+    sp->t = malloc(most * sizeof *sp->t + 1);
+    sp->owner = malloc(most * sizeof *sp->owner + 1);
+    Traced **flat = malloc(nflat * sizeof *flat);
+    if (!sp->t || !sp->owner || !flat) {
+        free(flat);
+        return g->failed = true, bytes;
+    }
+    size_t k = 0;
+    flatten(root, sp, flat, &k);
+    Rng r = weber_rng(g, root->st.key, WRNG_PLACES);
+    sp->n = weber_sapling_trunk_places(w, &r, sp->t);
+    double rot = 0;
+    for (size_t i = 0; i < sp->n; i++) {
+        rot = w->Rotate[1] < 0 ? -copysign(w->Rotate[1], rot) : rot + w->Rotate[1];
+        double want = fmod(rot + weber_var(&r, w->RotateV[1]), 360), at = sp->t[i] * root->st.nseg, best = INFINITY;
+        int seg = (int)at;
+        sp->owner[i] = 0;
+        for (size_t f = 0; f < nflat; f++) {
+            const Traced *c = flat[f];
+            if (c->st.first_seg > seg) continue;
+            const Frame *fr = &c->segs[seg].f;
+            double d = (at - seg) * c->st.seglen, x = fr->t[0] + fr->z[0] * d, y = fr->t[1] + fr->z[1] * d;
+            double off = fmod(want - atan2(x, -y) * (180 / M_PI) + 720, 360);
+            off = fmin(off, 360 - off);
+            if (off < best) best = off, sp->owner[i] = (int)f;
+        }
+    }
+    free(flat);
+    return bytes;
 }
 
 bool weber_make_stem(WeberGen *g, WStem st) {
@@ -309,7 +374,13 @@ bool weber_make_stem(WeberGen *g, WStem st) {
         t.st.sap_main = (int)fmin(round(t.st.sap_n * t.st.nseg / segs), 1e9); /* Branches may be huge: the budget stops it */
         set_main(&t.pend, t.st.sap_main);
     }
+    SapPlaces sp = {0};
+    uint64_t sp_bytes = 0;
+    if (w->SaplingLaw && t.st.level == 0 && g->levels > 1 && !g->failed) sp_bytes = trunk_places(g, &t, &sp);
     if (!g->failed && add_stem(g, &t.st, &id)) run_stem(g, id, &t);
+    free(sp.t);
+    free(sp.owner);
+    budget_release(g->budget, sp_bytes);
     free(t.segs);
     free_pending(g, &t.pend);
     return !g->failed;

@@ -236,16 +236,30 @@ if leaves_model:
     runpy.run_path(os.path.join(os.path.dirname(os.path.abspath(__file__)), "addon_leaves.py"),
                    init_globals={"added": added, "leaves_model": leaves_model})
 
-# 7. Sapling's own trees in this Blender: the splines of its curve object for four presets, for
-# tests/run-blender to compare with `sylva compare`'s stems of the same files (within 15 %)
+# 7. Sapling's own trees in this Blender: the splines of its curve object per level (the
+# splines there when Sapling starts each level: its fabricate_stems, watched, not changed),
+# averaged over seeds 0-3, for tests/run-blender to compare with `sylva compare`'s stems by
+# order of the same files (within 15 %)
 import ast  # noqa: E402
 
 import addon_utils  # noqa: E402
 
 addon_utils.enable("add_curve_sapling", default_set=True)
 sap = library.sapling_presets()
+sap_utils = sys.modules["add_curve_sapling.utils"]
+marks = []
+fabricate = sap_utils.fabricate_stems
+
+
+def watched(*a, **k):
+    marks.append(len(a[5].splines))  # a[5]: the tree's curve, before the level's stems
+    return fabricate(*a, **k)
+
+
+sap_utils.fabricate_stems = watched
 props = {p.identifier: p for p in bpy.ops.curve.tree_add.get_rna_type().properties}
-for name in ("callistemon", "quaking_aspen", "small_maple"):
+for name in ("callistemon", "douglas_fir", "quaking_aspen", "small_maple", "small_pine", "weeping_willow",
+             "white_birch", "willow"):
     with open(os.path.join(sap, name + ".py")) as fh:
         preset = ast.literal_eval(fh.read().split("\n", 1)[1])  # after the licence line
     kw = {}
@@ -253,8 +267,16 @@ for name in ("callistemon", "quaking_aspen", "small_maple"):
         if k in props:
             n = getattr(props[k], "array_length", 0)
             kw[k] = tuple([v] * n) if n and not isinstance(v, (tuple, list)) else v
-    before = set(bpy.data.objects)
-    kw.update(showLeaves=False, do_update=True)  # stems only: the leaves are a mesh of their own
-    bpy.ops.curve.tree_add(**kw)
-    splines = sum(len(o.data.splines) for o in bpy.data.objects if o not in before and o.type == "CURVE")
-    print(f"sapling_stems {name} splines={splines}")
+    sums = []
+    for seed in range(4):
+        before = set(bpy.data.objects)
+        marks.clear()
+        kw.update(showLeaves=False, do_update=True, seed=seed)  # stems only: the leaves are a mesh of their own
+        bpy.ops.curve.tree_add(**kw)
+        new = [o for o in bpy.data.objects if o not in before]
+        bounds = marks + [sum(len(o.data.splines) for o in new if o.type == "CURVE")]
+        levels = [bounds[0]] + [bounds[i] - bounds[i - 1] for i in range(1, len(bounds))]
+        sums = [a + b for a, b in zip(sums, levels)] if sums else levels
+        for o in new:
+            bpy.data.objects.remove(o)
+    print(f"sapling_levels {name} " + " ".join("%g" % (x / 4) for x in sums))
