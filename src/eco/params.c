@@ -1,5 +1,7 @@
 /* Reading an `ecosystem` block's directives: the block's own lines, then after each
- * `species NAME` line the lines of that species (docs/ecosystem.md). */
+ * `species NAME` line the lines of that species (docs/ecosystem.md). The schema's reader of
+ * lines (lang/schema_lines.c) reads them, its groups the species; what is the ecosystem's is
+ * here: where each value is kept, the rows it reads itself, its messages' words, its checks. */
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -120,7 +122,8 @@ static bool model_exists(const SylProgram *p, const char *name) {
     return false;
 }
 
-static int unknown(const SylProgram *p, const SylSink *sink, const SylDirective *d, bool in_species) {
+/* The words for a line of no row (in_species: after a `species NAME` line). */
+static void unknown_text(const char *name, bool in_species, char *buf, size_t size) {
     const char *names[NNUMS + NBLOCK + SYL_TERRAIN_FACTORS + 1];
     int n = 0;
     for (int i = 0; i < NBLOCK; i++) names[n++] = block_words[i];
@@ -129,114 +132,133 @@ static int unknown(const SylProgram *p, const SylSink *sink, const SylDirective 
     for (int f = 0; f < SYL_TERRAIN_FACTORS; f++)
         if (f != SYL_TERRAIN_FLOW) names[n++] = syl_terrain_factor_name((SylTerrainFactor)f);
     char near[200];
-    int k = closest_list(d->name, names, n, near, sizeof near);
-    if (k)
-        directive_error_to(p, sink, d, NULL, "unknown ecosystem directive '%s' (did you mean %s?)", d->name, near);
-    else if (!in_species && (factor_named(d->name) >= 0 || !strcmp(d->name, "model")))
-        directive_error_to(p, sink, d, NULL, "'%s' belongs to a species: write it after a `species NAME` line", d->name);
-    else
-        directive_error_to(p, sink, d, NULL, "unknown ecosystem directive '%s' (docs/ecosystem.md lists them)", d->name);
-    return 1;
+    int k = closest_list(name, names, n, near, sizeof near);
+    if (k) snprintf(buf, size, "unknown ecosystem directive '%s' (did you mean %s?)", name, near);
+    else if (!in_species && (factor_named(name) >= 0 || !strcmp(name, "model")))
+        snprintf(buf, size, "'%s' belongs to a species: write it after a `species NAME` line", name);
+    else snprintf(buf, size, "unknown ecosystem directive '%s' (docs/ecosystem.md lists them)", name);
 }
 
-static int read_species_line(const SylProgram *p, const SylSink *sink, const SylDirective *d, SylEcoSpecies *s) {
-    for (int i = 0; i < NNUMS; i++)
-        if (!strcmp(d->name, species_nums[i].name)) {
-            if (arity(p, sink, d, 1, 1)) return 1;
-            return number(p, sink, d, 0, species_nums[i].lo, species_nums[i].hi, false,
-                          (double *)((char *)s + species_nums[i].offset));
-        }
+/* A species' tolerance curve: OPT RANGE [FALLOFF]. */
+static int read_factor(SchLineRead *r, const SchRow *row, const SylDirective *d, void *elem) {
+    (void)row;
+    const SylProgram *p = sch_lines_program(r);
+    const SylSink *sink = sch_lines_sink(r);
+    SylEcoSpecies *s = elem;
     int f = factor_named(d->name);
-    if (f >= 0) {
-        if (arity(p, sink, d, 2, 3)) return 1;
-        double lo = f == SYL_TERRAIN_ALTITUDE ? -1e5 : -1e4, hi = 1e5;
-        int e = number(p, sink, d, 0, lo, hi, false, &s->optimum[f]);
-        if (!e) e = number(p, sink, d, 1, 0, 1e5, false, &s->range[f]);
-        s->falloff[f] = s->range[f] > 0 ? s->range[f] : 1;
-        if (!e && d->nargs == 3) e = number(p, sink, d, 2, 1e-9, 1e9, false, &s->falloff[f]);
-        s->set[f] = 1;
-        return e;
-    }
-    if (!strcmp(d->name, "model")) {
-        if (arity(p, sink, d, 1, 1)) return 1;
-        const SylDirArg *a = &d->args[0];
-        if (a->kind != SYL_DARG_WORD && a->kind != SYL_DARG_STRING) {
-            directive_error_to(p, sink, d, a, "model takes the name of a model of this file");
-            return 1;
-        }
-        if (!model_exists(p, a->text)) {
-            directive_error_to(p, sink, d, a, "no model called '%s' in this file", a->text);
-            return 1;
-        }
-        snprintf(s->model, sizeof s->model, "%s", a->text);
-        return 0;
-    }
-    return unknown(p, sink, d, true);
+    if (arity(p, sink, d, 2, 3)) return 1;
+    double lo = f == SYL_TERRAIN_ALTITUDE ? -1e5 : -1e4, hi = 1e5;
+    int e = number(p, sink, d, 0, lo, hi, false, &s->optimum[f]);
+    if (!e) e = number(p, sink, d, 1, 0, 1e5, false, &s->range[f]);
+    s->falloff[f] = s->range[f] > 0 ? s->range[f] : 1;
+    if (!e && d->nargs == 3) e = number(p, sink, d, 2, 1e-9, 1e9, false, &s->falloff[f]);
+    s->set[f] = 1;
+    return e;
 }
 
-/* The index of the directive's word in its row (the enum's value), or -1 reported with a guess. */
-static int word_of(const SylProgram *p, const SylSink *sink, const SylDirective *d) {
-    const char *words = sch_find(&sch_ecosystem, d->name, NULL)->words; /* in the enum's order */
-    if (arity(p, sink, d, 1, 1)) return -1;
-    int k = d->args[0].kind == SYL_DARG_WORD ? sch_word_index(words, d->args[0].text) : -1;
-    if (k >= 0) return k;
-    char near[200] = "", list[200] = "";
-    if (d->args[0].kind == SYL_DARG_WORD) sch_suggest_word(words, d->args[0].text, near, sizeof near);
-    for (const char *w = words; *w;) { /* 'a', 'b' or 'c' */
-        size_t len = strcspn(w, "|"), used = strlen(list);
-        snprintf(list + used, sizeof list - used, "%s'%.*s'", !used ? "" : w[len] ? ", " : " or ", (int)len, w);
-        w += len + (w[len] == '|');
+static int read_model(SchLineRead *r, const SylDirective *d, SylEcoSpecies *s) {
+    const SylProgram *p = sch_lines_program(r);
+    const SylSink *sink = sch_lines_sink(r);
+    if (arity(p, sink, d, 1, 1)) return 1;
+    const SylDirArg *a = &d->args[0];
+    if (a->kind != SYL_DARG_WORD && a->kind != SYL_DARG_STRING) {
+        directive_error_to(p, sink, d, a, "model takes the name of a model of this file");
+        return 1;
     }
-    directive_error_to(p, sink, d, &d->args[0], "%s is %s%s", d->name, list, near);
-    return -1;
+    if (!model_exists(p, a->text)) {
+        directive_error_to(p, sink, d, a, "no model called '%s' in this file", a->text);
+        return 1;
+    }
+    snprintf(s->model, sizeof s->model, "%s", a->text);
+    return 0;
 }
 
-static int read_block_line(const SylProgram *p, const SylSink *sink, const SylDirective *d, SylEcoModel *m) {
+static int read_snapshots(SylEcoModel *m, const SylProgram *p, const SylSink *sink, const SylDirective *d) {
     double x;
-    if (!strcmp(d->name, "terrain")) return read_terrain(p, sink, d, m);
-    if (!strcmp(d->name, "years")) {
-        int e = arity(p, sink, d, 1, 1) || number(p, sink, d, 0, 1, SYL_ECO_MAX_YEARS, true, &x);
-        if (!e) m->years = (int)x;
-        return e;
-    }
-    if (!strcmp(d->name, "seed")) {
-        int e = arity(p, sink, d, 1, 1) || number(p, sink, d, 0, 0, 9007199254740991.0, true, &x);
-        if (!e) m->seed = (uint64_t)x;
-        return e;
-    }
-    if (!strcmp(d->name, "latitude")) {
-        int e = arity(p, sink, d, 1, 1) || number(p, sink, d, 0, -90, 90, false, &m->latitude);
-        m->latitude_set = !e;
-        return e;
-    }
-    if (!strcmp(d->name, "wind_from")) {
-        int e = arity(p, sink, d, 1, 1) || number(p, sink, d, 0, 0, 360, false, &m->wind_from);
-        m->wind_set = !e;
-        return e;
-    }
-    bool vigour = !strcmp(d->name, "vigour"), measures = !strcmp(d->name, "measures");
-    if (vigour || measures || !strcmp(d->name, "mortality")) {
-        int k = word_of(p, sink, d);
-        if (k < 0) return 1;
-        if (vigour) m->combine = (SylEcoCombine)k;
-        else if (measures) m->measures = (SylEcoMeasures)k;
-        else m->mortality = (SylEcoMortality)k;
-        return 0;
-    }
-    if (!strcmp(d->name, "snapshots")) {
-        if (arity(p, sink, d, 1, SYL_ECO_MAX_SNAPSHOTS)) return 1;
-        m->nsnapshots = 0;
-        for (int i = 0; i < d->nargs; i++) {
-            if (number(p, sink, d, i, 0, SYL_ECO_MAX_YEARS, true, &x)) return 1;
-            if (m->nsnapshots && x <= m->snapshots[m->nsnapshots - 1]) {
-                directive_error_to(p, sink, d, &d->args[i], "snapshots must be increasing years");
-                return 1;
-            }
-            m->snapshots[m->nsnapshots++] = (int)x;
+    if (arity(p, sink, d, 1, SYL_ECO_MAX_SNAPSHOTS)) return 1;
+    m->nsnapshots = 0;
+    for (int i = 0; i < d->nargs; i++) {
+        if (number(p, sink, d, i, 0, SYL_ECO_MAX_YEARS, true, &x)) return 1;
+        if (m->nsnapshots && x <= m->snapshots[m->nsnapshots - 1]) {
+            directive_error_to(p, sink, d, &d->args[i], "snapshots must be increasing years");
+            return 1;
         }
-        return 0;
+        m->snapshots[m->nsnapshots++] = (int)x;
     }
-    return unknown(p, sink, d, false);
+    return 0;
+}
+
+/* The rows the reader leaves to the ecosystem: terrain, snapshots, a species' model and curves. */
+static int read_own(SchLineRead *r, const SchRow *row, const SylDirective *d, void *base) {
+    const SylProgram *p = sch_lines_program(r);
+    const SylSink *sink = sch_lines_sink(r);
+    if (!strcmp(row->name, "terrain")) return read_terrain(p, sink, d, base);
+    if (!strcmp(row->name, "snapshots")) return read_snapshots(base, p, sink, d);
+    if (!strcmp(row->name, "model")) return read_model(r, d, base);
+    return read_factor(r, row, d, base);
+}
+
+/* `species NAME`: the element its lines go to (NULL: none, reported). */
+static void *open_species(SchLineRead *r, const SylDirective *d, void *base) {
+    SylEcoModel *m = base;
+    if (d->nargs != 1 || (d->args[0].kind != SYL_DARG_WORD && d->args[0].kind != SYL_DARG_STRING)) {
+        sch_lines_error(r, d, d->nargs ? &d->args[0] : NULL, "species takes one name: species beech");
+        return NULL;
+    }
+    if (m->nspecies == SYL_ECO_MAX_SPECIES) {
+        sch_lines_error(r, d, NULL, "at most %d species", SYL_ECO_MAX_SPECIES);
+        sch_lines_stop(r);
+        return NULL;
+    }
+    for (int k = 0; k < m->nspecies; k++)
+        if (!strcmp(m->species[k].name, d->args[0].text))
+            sch_lines_error(r, d, &d->args[0], "species '%s' was already given on line %d", d->args[0].text,
+                            m->species[k].line);
+    SylEcoSpecies *cur = &m->species[m->nspecies++];
+    species_default(cur);
+    snprintf(cur->name, sizeof cur->name, "%s", d->args[0].text);
+    cur->line = d->line;
+    cur->col = d->col;
+    return cur;
+}
+
+static void took(void *base, const SchRow *row) {
+    SylEcoModel *m = base;
+    if (!strcmp(row->name, "latitude")) m->latitude_set = true;
+    else if (!strcmp(row->name, "wind_from")) m->wind_set = true;
+}
+
+/* The ecosystem's words for what the reader finds wrong (its messages as they were). */
+static void say(SchProblem *pr, char *buf, size_t size) {
+    const SchRow *row = pr->row;
+    switch (pr->what) {
+    case SCH_BAD_UNKNOWN: unknown_text(pr->name, pr->in_group, buf, size); break;
+    case SCH_BAD_COUNT: snprintf(buf, size, "%s takes 1 value", pr->name); break;
+    case SCH_BAD_NUMBER: snprintf(buf, size, "%s takes a number", pr->name); break;
+    case SCH_BAD_RANGE:
+        if (isnan(pr->x) || pr->x < row->lo || pr->x > row->hi)
+            snprintf(buf, size, "%s must be in [%g, %g], not %g", pr->name, row->lo, row->hi, pr->x);
+        else snprintf(buf, size, "%s takes a whole number, not %g", pr->name, pr->x);
+        break;
+    case SCH_BAD_WORD: {
+        char list[200] = "";
+        for (const char *w = row->words; *w;) { /* 'a', 'b' or 'c' */
+            size_t len = strcspn(w, "|"), used = strlen(list);
+            snprintf(list + used, sizeof list - used, "%s'%.*s'", !used ? "" : w[len] ? ", " : " or ", (int)len, w);
+            w += len + (w[len] == '|');
+        }
+        snprintf(buf, size, "%s is %s%s", pr->name, list, pr->hint);
+        break;
+    }
+    case SCH_BAD_SET_ELEMENT:
+        snprintf(buf, size, "--set %s: ecosystem '%s' has no species '%s'%s", pr->typed, pr->block, pr->name, pr->hint);
+        break;
+    case SCH_BAD_SET_NOT_GROUP:
+        snprintf(buf, size, "--set %s: '%s' is the block's, not a species': write --set %s=%g", pr->typed, pr->name,
+                 pr->name, pr->x);
+        break;
+    default: break; /* the reader's (lang/schema.c's --set words) */
+    }
 }
 
 static int check_species(const SylProgram *p, const SylSink *sink, const SylEcoSpecies *s) {
@@ -277,73 +299,69 @@ static int check_measures(const SylProgram *p, const SylSink *sink, const SylEco
     return e;
 }
 
-static bool is_param(const SylProgram *p, const char *name) {
-    for (int i = 0; i < p->nparams; i++)
-        if (!strcmp(p->params[i].name, name)) return true;
-    return false;
-}
-
-/* --set NAME=VALUE over the block's lines, in the order given: a number of the block
- * (`years`, `seed`, `latitude`), a species' number for every species (`maturity`) or for
- * one (`beech.maturity`), checked by the schema's reader (lang/schema.c) for name and range.
- * The line numbers of later messages stay the file's. */
-static int apply_sets(const SylProgram *p, SylEcoModel *m, const SylSink *sink) {
-    int errors = 0;
-    for (int i = 0; i < p->noverrides; i++) {
-        const char *name = p->set_local ? p->set_local[i] : NULL, *typed = p->overrides[i].name;
-        if (!name || is_param(p, name)) continue;
-        double v = p->overrides[i].value;
-        const char *dot = strchr(name, '.');
-        int only = -1; /* the species named, -1: every species */
-        if (dot) {
-            for (int k = 0; k < m->nspecies; k++)
-                if (strlen(m->species[k].name) == (size_t)(dot - name) &&
-                    !strncmp(m->species[k].name, name, (size_t)(dot - name)))
-                    only = k;
-            if (only < 0) {
-                const char *names[SYL_ECO_MAX_SPECIES];
-                char prefix[96], near[400];
-                for (int k = 0; k < m->nspecies; k++) names[k] = m->species[k].name;
-                snprintf(prefix, sizeof prefix, "%.*s", (int)(dot - name), name);
-                int n = closest_list(prefix, names, m->nspecies, near, sizeof near);
-                program_error_to(p, sink, 0, 0, "--set %s: ecosystem '%s' has no species '%s'%s%s%s", typed,
-                                  syl_program_name(p), prefix, n ? " (did you mean " : "", n ? near : "", n ? "?)" : "");
-                errors++;
-                continue;
-            }
-            name = dot + 1;
-        }
-        const SchRow *row;
-        int level;
-        if (sch_set_check_to(p, sink, &sch_ecosystem, typed, name, v, &row, &level)) {
-            errors++;
-            continue;
-        }
-        if (dot && !row->group) {
-            program_error_to(p, sink, 0, 0, "--set %s: '%s' is the block's, not a species': write --set %s=%g",
-                              typed, name, name, v);
-            errors++;
-            continue;
-        }
-        if (!strcmp(name, "years")) m->years = (int)v;
-        else if (!strcmp(name, "seed")) m->seed = (uint64_t)v;
-        else if (!strcmp(name, "latitude")) m->latitude = v, m->latitude_set = true;
-        else if (!strcmp(name, "wind_from")) m->wind_from = v, m->wind_set = true;
-        for (int n = 0; n < NNUMS; n++)
-            if (!strcmp(name, species_nums[n].name))
-                for (int k = 0; k < m->nspecies; k++)
-                    if (only < 0 || only == k) *(double *)((char *)&m->species[k] + species_nums[n].offset) = v;
+/* After the lines and --set: what a species and the block must hold. */
+static int check_block(SchLineRead *r, void *base) {
+    const SylProgram *p = sch_lines_program(r);
+    const SylSink *sink = sch_lines_sink(r);
+    SylEcoModel *m = base;
+    int errors = sch_lines_errors(r), e = 0, set_errors = sch_lines_set_errors(r);
+    int line_errors = errors; /* a misspelt `measures` says nothing of the curves */
+    for (int k = 0; k < m->nspecies && !set_errors; k++)
+        e += check_species(p, sink, &m->species[k]) + (line_errors ? 0 : check_measures(p, sink, m, &m->species[k]));
+    if (!errors && !e && !m->terrain[0]) {
+        program_error_to(p, sink, 0, 0, "ecosystem '%s' names no terrain (terrain \"dem.png\" cell 10 heights 0 400)",
+                          syl_program_name(p));
+        e++;
     }
-    return errors;
+    if (!errors && !e && !m->nspecies) {
+        program_error_to(p, sink, 0, 0, "ecosystem '%s' has no species", syl_program_name(p));
+        e++;
+    }
+    return e;
 }
 
-static int read_lines(const SylProgram *p, SylEcoModel *m, const SylSink *sink, int *set_errors);
+/* Where each row is kept (params.def's order, the table's): the block's in SylEcoModel, a
+ * species' in its SylEcoSpecies; terrain, snapshots, model and the curves are read above. */
+#define MO(f) offsetof(SylEcoModel, f)
+static const SchSlot slots[] = {
+    {.store = SCH_AT_KIND},                 /* terrain */
+    {.store = SCH_AT_INT, .off = MO(years)},
+    {.store = SCH_AT_KIND},                 /* snapshots */
+    {.store = SCH_AT_U64, .off = MO(seed)},
+    {.store = SCH_AT_F64, .off = MO(latitude)},
+    {.store = SCH_AT_INT, .off = MO(combine)},
+    {.store = SCH_AT_INT, .off = MO(measures)},
+    {.store = SCH_AT_INT, .off = MO(mortality)},
+    {.store = SCH_AT_F64, .off = MO(wind_from)},
+    {.store = SCH_AT_NONE},                 /* species: the group's head */
+#define ECO_W(nm, ...) {.store = SCH_AT_KIND},
+#define ECO_S(f, ...) {.store = SCH_AT_F64, .off = SP(f)},
+#define ECO_F(...) {.store = SCH_AT_KIND},
+#include "params.def"
+};
+enum {
+    NROWS = 0
+#define ECO_B(...) +1
+#define ECO_W(...) +1
+#define ECO_S(...) +1
+#define ECO_F(...) +1
+#include "params.def"
+};
+_Static_assert(sizeof slots / sizeof *slots == NROWS, "a slot for each row of params.def, in its order");
 
-int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, const SylSink *sink) {
-    if (sch_kept(p, m, sizeof *m)) return 0;
-    int set_errors;
-    return read_lines(p, m, sink, &set_errors);
-}
+static const SchLines eco_lines = {
+    .t = &sch_ecosystem,
+    .slots = slots,
+    .nslots = sizeof slots / sizeof *slots,
+    .again = true,
+    .say = say,
+    .line = read_own,
+    .took = took,
+    .done = check_block,
+    .group = {.dir = "species", .off = MO(species), .size = sizeof(SylEcoSpecies), .count_off = MO(nspecies),
+              .name_off = SP(name), .open = open_species},
+    .set_if_clean = true,
+};
 
 static int read_lines(const SylProgram *p, SylEcoModel *m, const SylSink *sink, int *set_errors) {
     memset(m, 0, sizeof *m);
@@ -352,55 +370,13 @@ static int read_lines(const SylProgram *p, SylEcoModel *m, const SylSink *sink, 
     m->seed = syl_program_seed(p);
     m->combine = SYL_ECO_MEAN;
     m->wind_from = 270;
-    int n = 0, errors = 0;
-    const SylDirective *ds = syl_program_directives(p, &n);
-    SylEcoSpecies *cur = NULL;
-    for (int i = 0; i < n; i++) {
-        const SylDirective *d = &ds[i];
-        if (!strcmp(d->name, "species")) {
-            if (d->nargs != 1 || (d->args[0].kind != SYL_DARG_WORD && d->args[0].kind != SYL_DARG_STRING)) {
-                directive_error_to(p, sink, d, d->nargs ? &d->args[0] : NULL, "species takes one name: species beech");
-                errors++;
-                cur = NULL;
-                continue;
-            }
-            if (m->nspecies == SYL_ECO_MAX_SPECIES) {
-                directive_error_to(p, sink, d, NULL, "at most %d species", SYL_ECO_MAX_SPECIES);
-                return errors + 1;
-            }
-            for (int k = 0; k < m->nspecies; k++)
-                if (!strcmp(m->species[k].name, d->args[0].text)) {
-                    directive_error_to(p, sink, d, &d->args[0], "species '%s' was already given on line %d",
-                                        d->args[0].text, m->species[k].line);
-                    errors++;
-                }
-            cur = &m->species[m->nspecies++];
-            species_default(cur);
-            snprintf(cur->name, sizeof cur->name, "%s", d->args[0].text);
-            cur->line = d->line;
-            cur->col = d->col;
-            continue;
-        }
-        bool block = false;
-        for (int k = 0; k < NBLOCK; k++) block |= !strcmp(d->name, block_words[k]);
-        if (cur && !block) errors += read_species_line(p, sink, d, cur);
-        else errors += read_block_line(p, sink, d, m);
-    }
-    *set_errors = errors ? 0 : apply_sets(p, m, sink);
-    errors += *set_errors;
-    int line_errors = errors; /* a misspelt `measures` says nothing of the curves */
-    for (int k = 0; k < m->nspecies && !*set_errors; k++)
-        errors += check_species(p, sink, &m->species[k]) + (line_errors ? 0 : check_measures(p, sink, m, &m->species[k]));
-    if (!errors && !m->terrain[0]) {
-        program_error_to(p, sink, 0, 0, "ecosystem '%s' names no terrain (terrain \"dem.png\" cell 10 heights 0 400)",
-                          syl_program_name(p));
-        errors++;
-    }
-    if (!errors && !m->nspecies) {
-        program_error_to(p, sink, 0, 0, "ecosystem '%s' has no species", syl_program_name(p));
-        errors++;
-    }
-    return errors;
+    return sch_read_lines_to(p, &eco_lines, m, sink, set_errors);
+}
+
+int syl_ecosystem_read(const SylProgram *p, SylEcoModel *m, const SylSink *sink) {
+    if (sch_kept(p, m, sizeof *m)) return 0;
+    int set_errors;
+    return read_lines(p, m, sink, &set_errors);
 }
 
 int syl_ecosystem_validate(const SylProgram *p, const SylSink *sink) {

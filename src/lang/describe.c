@@ -136,44 +136,6 @@ static Entry *find_entry(DModel *m, const char *name) {
     return NULL;
 }
 
-static bool is_param(const SylProgram *p, const char *name) {
-    for (int i = 0; i < p->nparams; i++)
-        if (!strcmp(p->params[i].name, name)) return true;
-    return false;
-}
-
-/* A groups block (ecosystem): the block's lines, then each group's (species) under its name. */
-static void describe_groups(const SylProgram *p, const SchTable *t, DModel *m) {
-    int n = 0;
-    const SylDirective *ds = syl_program_directives(p, &n);
-    for (int i = 0; i < t->n; i++)
-        if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
-    const char *species = NULL;
-    for (int k = 0; k < n; k++) {
-        const SylDirective *d = &ds[k];
-        if (!strcmp(d->name, "species") && d->nargs == 1 && d->args[0].text) {
-            species = d->args[0].text;
-            char prefix[80];
-            snprintf(prefix, sizeof prefix, "%s.", species);
-            for (int i = 0; i < t->n; i++)
-                if (t->rows[i].group) add_row(m, &t->rows[i], prefix);
-            continue;
-        }
-        const SchRow *r = sch_find(t, d->name, NULL);
-        if (!r) continue;
-        char name[160];
-        snprintf(name, sizeof name, "%s%s%s", r->group && species ? species : "", r->group && species ? "." : "",
-                 r->name);
-        Entry *e = find_entry(m, name);
-        if (e) directive_value(d, -1, e);
-    }
-    for (int i = 0; i < p->noverrides; i++) { /* years=3, beech.maturity=30 */
-        const char *name = p->set_local ? p->set_local[i] : NULL;
-        Entry *e = name && !is_param(p, name) ? find_entry(m, name) : NULL;
-        if (e && (e->type == SCH_NUMBER || e->type == SCH_INTEGER)) num(&e->val, p->overrides[i].value);
-    }
-}
-
 /* A lines block (weber, strands, curvetree, pafco): read by the schema's one reader of NAME
  * VALUE lines (schema_lines.c), which tells each line as it takes it (its values as written)
  * and each --set value (at its level). */
@@ -193,6 +155,56 @@ static void lines_set(void *ctx, const SchRow *row, int level, const double *x, 
 static void describe_lines(const SylProgram *p, const SchTable *t, DModel *m) {
     for (int i = 0; i < t->n; i++) add_row(m, &t->rows[i], NULL);
     sch_see_lines(p, t, &(SchSeen){.value = lines_set, .line = lines_line, .ctx = m});
+}
+
+/* A groups block (ecosystem): the same reader; the block's rows, then at each `species NAME`
+ * its rows as NAME.ROW, as --set names them (NAME.maturity=30). */
+typedef struct Groups {
+    const SchTable *t;
+    DModel *m;
+    const char *names[64]; /* the groups' names, in order */
+    int n;
+} Groups;
+
+static void group_row_name(const Groups *g, const SchRow *row, int elem, char *buf, size_t size) {
+    if (row->group && elem >= 0 && elem < g->n) snprintf(buf, size, "%s.%s", g->names[elem], row->name);
+    else snprintf(buf, size, "%s", row->name);
+}
+
+static void groups_line(void *ctx, const SchRow *row, int level, const SylDirective *d) {
+    Groups *g = ctx;
+    (void)level;
+    bool head = false;
+    for (int i = 0; i < g->t->n && !head; i++) head = g->t->rows[i].group && !strcmp(g->t->rows[i].group, row->name);
+    if (head && d->nargs == 1 && d->args[0].text && g->n < 64) {
+        g->names[g->n++] = d->args[0].text;
+        char prefix[80];
+        snprintf(prefix, sizeof prefix, "%s.", d->args[0].text);
+        for (int i = 0; i < g->t->n; i++)
+            if (g->t->rows[i].group) add_row(g->m, &g->t->rows[i], prefix);
+        return;
+    }
+    char name[160];
+    group_row_name(g, row, g->n - 1, name, sizeof name);
+    Entry *e = find_entry(g->m, name);
+    if (e) directive_value(d, -1, e);
+}
+
+static void groups_set(void *ctx, const SchRow *row, int elem, const double *x, int n, const char *word) {
+    Groups *g = ctx;
+    (void)n, (void)word;
+    char name[160];
+    if (row->group && elem < 0) return; /* every species': describe names none so */
+    group_row_name(g, row, elem, name, sizeof name);
+    Entry *e = find_entry(g->m, name);
+    if (e && (e->type == SCH_NUMBER || e->type == SCH_INTEGER)) num(&e->val, x[0]);
+}
+
+static void describe_groups(const SylProgram *p, const SchTable *t, DModel *m) {
+    for (int i = 0; i < t->n; i++)
+        if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
+    Groups g = {.t = t, .m = m};
+    sch_see_lines(p, t, &(SchSeen){.value = groups_set, .line = groups_line, .ctx = &g});
 }
 
 /* A keyed block (grow): read by the schema's one keyed reader (schema_keyed.c), which tells

@@ -186,6 +186,8 @@ typedef enum {
     SCH_BAD_SET_LEVEL,      /* --set of level above 3 */
     SCH_BAD_SET_NOT_NUMBER, /* --set of a row that is no number */
     SCH_BAD_SET_RANGE,      /* --set of a number out of range (why) */
+    SCH_BAD_SET_ELEMENT,    /* --set ELEM.NAME of no element ELEM (name: ELEM; hint) */
+    SCH_BAD_SET_NOT_GROUP,  /* --set ELEM.NAME of a row of the block's, not the group's */
 } SchBad;
 
 typedef struct SchProblem {
@@ -202,6 +204,7 @@ typedef struct SchProblem {
     double x;               /* the number (RANGE, --set) */
     int line, most;         /* TWICE: the first line; COUNT: the most values */
     bool lenient;           /* a value's problem is a warning: the default is kept */
+    bool in_group;          /* UNKNOWN: the line follows a group's head (a species' line) */
 } SchProblem;
 
 typedef struct SchLineRead SchLineRead;
@@ -227,6 +230,16 @@ typedef struct SchLines {
     void (*took)(void *base, const SchRow *row);
     /* Whether bad values of p's block are warnings, their defaults kept (a Pafčo file). */
     bool (*lenient)(const SylProgram *p);
+    /* GROUPS (ecosystem): a line of group.dir (`species NAME`) opens an element, given by open
+     * (NULL: none, the error reported); the rows of the table's group that follow are stored in
+     * it, the others in base. --set NAME of a group's row sets it in every element, ELEM.NAME in
+     * the element called ELEM (its name a char[] at name_off). */
+    struct {
+        const char *dir;
+        size_t off, size, count_off, name_off; /* the elements in base, their count (an int) */
+        void *(*open)(SchLineRead *r, const SylDirective *d, void *base);
+    } group;
+    bool set_if_clean; /* --set is applied only to lines without errors */
 } SchLines;
 
 /* Every row's default into base. */
@@ -234,6 +247,8 @@ void sch_lines_defaults(const SchLines *k, void *base);
 /* Read p's block over base (defaults already there). Returns the errors, *set_errors of them
  * about --set values. */
 int sch_read_lines(const SylProgram *p, const SchLines *k, void *base, FILE *diag, int *set_errors);
+/* The same with its errors to sink (p's own when it has one), not a stream. */
+int sch_read_lines_to(const SylProgram *p, const SchLines *k, void *base, const SylSink *sink, int *set_errors);
 /* The same, storing nothing (describe's): told each line and --set value. */
 int sch_see_lines(const SylProgram *p, const SchTable *t, const SchSeen *seen);
 /* For a kind's hooks: the program, the sink, the line that gave row i (NULL: none yet), and an
@@ -242,9 +257,15 @@ const SylProgram *sch_lines_program(const SchLineRead *r);
 FILE *sch_lines_diag(const SchLineRead *r);
 const SylDirective *sch_lines_given(const SchLineRead *r, int row);
 int sch_lines_errors(const SchLineRead *r);
+/* In the done hook: how many of the errors were --set's. */
+int sch_lines_set_errors(const SchLineRead *r);
 /* Whether row i was given, by a line or by --set. */
 bool sch_lines_took(const SchLineRead *r, int row);
 bool sch_lines_lenient(const SchLineRead *r);
+/* The sink the errors go to (NULL: the stream's), and the end of the reading (nothing more is
+ * read or checked: a limit passed). */
+const SylSink *sch_lines_sink(const SchLineRead *r);
+void sch_lines_stop(SchLineRead *r);
 void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 

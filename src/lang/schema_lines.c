@@ -1,4 +1,5 @@
-/* The schema's reader of NAME VALUE lines (SCH_LINES: strands, curvetree, pafco, weber):
+/* The schema's reader of NAME VALUE lines (SCH_LINES: strands, curvetree, pafco, weber; SCH_GROUPS:
+ * ecosystem, whose `species NAME` lines open a group of the species' rows):
  *
  *   NAME VALUE          a number, an enum's word, a file in quotes, a name
  *   NNAME VALUE         a per-level row at level N (1DownAngle 60)
@@ -17,6 +18,7 @@
 #include "lang/program.h"
 #include "lang/schema.h"
 #include "lang/textures.h"
+#include "util/closest.h"
 
 enum { MAX_ROWS = 256 };
 
@@ -24,9 +26,13 @@ struct SchLineRead {
     const SylProgram *p;
     const SchLines *k;
     FILE *diag;
+    const SylSink *sink; /* errors go here when set, else to diag */
     const SchSeen *seen; /* describe's: told each line and --set; nothing stored or reported */
-    bool lenient;
-    int errors;
+    bool lenient, stopped;
+    int errors, set_errors;
+    void *elem; /* the open group element's base (NULL: none) */
+    const SylDirective *heads[64]; /* describe's: the group heads seen, for --set ELEM.NAME */
+    int nheads;
     const SylDirective *given[MAX_ROWS];
     bool set[MAX_ROWS]; /* given by --set */
 };
@@ -38,10 +44,20 @@ const SylDirective *sch_lines_given(const SchLineRead *r, int row) {
 }
 
 int sch_lines_errors(const SchLineRead *r) { return r->errors; }
+int sch_lines_set_errors(const SchLineRead *r) { return r->set_errors; }
 bool sch_lines_took(const SchLineRead *r, int row) {
     return row >= 0 && row < MAX_ROWS && (r->given[row] || r->set[row]);
 }
 bool sch_lines_lenient(const SchLineRead *r) { return r->lenient; }
+const SylSink *sch_lines_sink(const SchLineRead *r) { return r->sink; }
+void sch_lines_stop(SchLineRead *r) { r->stopped = true; }
+
+static void error_at(const SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *msg) {
+    if (r->sink && d) directive_error_to(r->p, r->sink, d, a, "%s", msg);
+    else if (r->sink) program_error_to(r->p, r->sink, 0, 0, "%s", msg);
+    else if (d) syl_directive_error(r->p, r->diag, d, a, "%s", msg);
+    else syl_program_error(r->p, r->diag, 0, 0, "%s", msg);
+}
 
 void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...) {
     char buf[1024];
@@ -51,8 +67,7 @@ void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, 
     va_end(ap);
     r->errors++;
     if (r->seen) return;
-    if (d) syl_directive_error(r->p, r->diag, d, a, "%s", buf);
-    else syl_program_error(r->p, r->diag, 0, 0, "%s", buf);
+    error_at(r, d, a, buf);
 }
 
 static int row_index(const SchLineRead *r, const SchRow *row) { return (int)(row - r->k->t->rows); }
@@ -85,6 +100,8 @@ static void say_default(const SchProblem *pr, char *buf, size_t size) {
     case SCH_BAD_SET_LEVEL: snprintf(buf, size, "--set %s: levels above 3 reuse level 3's parameters: write 3%s", pr->typed, name); break;
     case SCH_BAD_SET_NOT_NUMBER: snprintf(buf, size, "--set %s: '%s' is not a number (write it in the block)", pr->typed, pr->name); break;
     case SCH_BAD_SET_RANGE: snprintf(buf, size, "--set %s: '%s' %s", pr->typed, pr->name, pr->why); break;
+    case SCH_BAD_SET_ELEMENT: snprintf(buf, size, "--set %s: no '%s'%s", pr->typed, pr->name, pr->hint); break;
+    case SCH_BAD_SET_NOT_GROUP: snprintf(buf, size, "--set %s: '%s' is the block's", pr->typed, pr->name); break;
     }
 }
 
@@ -111,8 +128,7 @@ static void bad(SchLineRead *r, SchProblem pr) {
         return;
     }
     r->errors++;
-    if (pr.d) syl_directive_error(r->p, r->diag, pr.d, pr.at, "%s", buf);
-    else syl_program_error(r->p, r->diag, 0, 0, "%s", buf);
+    error_at(r, pr.d, pr.at, buf);
 }
 
 /* ---- storing ---- */
@@ -231,8 +247,17 @@ static void read_value(SchLineRead *r, const SylDirective *d, const SchRow *row,
     }
 }
 
+static bool is_head(const SchLineRead *r, const SylDirective *d) {
+    return r->k->group.dir && !strcmp(d->name, r->k->group.dir);
+}
+
 static void read_line(SchLineRead *r, const SylDirective *d, void *base) {
     const SchTable *t = r->k->t;
+    if (is_head(r, d) && !r->seen) { /* a group's element begins: its rows follow */
+        r->elem = r->k->group.open(r, d, base);
+        return;
+    }
+    if (is_head(r, d) && d->nargs == 1 && d->args[0].text && r->nheads < 64) r->heads[r->nheads++] = d;
     if (r->k->textures && lang_texture_line(d->name)) { /* lang/textures.c reads it */
         const SchRow *row = sch_find(t, d->name, NULL);
         if (r->seen && row && r->seen->line) r->seen->line(r->seen->ctx, row, -1, d);
@@ -240,12 +265,14 @@ static void read_line(SchLineRead *r, const SylDirective *d, void *base) {
     }
     int level;
     const SchRow *row = sch_find(t, d->name, &level);
-    if (!row) {
+    bool in_group = row && row->group && r->k->group.dir && !r->seen; /* stored in the open element */
+    if (!row || (in_group && !r->elem)) { /* a group's row outside a group: unknown to the block */
         char hint[480];
         sch_suggest(t, d->name, hint, sizeof hint);
-        bad(r, (SchProblem){.what = SCH_BAD_UNKNOWN, .d = d, .name = d->name, .hint = hint});
+        bad(r, (SchProblem){.what = SCH_BAD_UNKNOWN, .d = d, .name = d->name, .hint = hint, .in_group = r->elem != NULL});
         return;
     }
+    if (in_group) base = r->elem;
     if (row->levels && level > 3) {
         bad(r, (SchProblem){.what = SCH_BAD_LEVEL, .d = d, .row = row, .name = d->name});
         return;
@@ -275,13 +302,43 @@ static bool is_param(const SylProgram *p, const char *name) {
     return false;
 }
 
+static int elem_count(const SchLineRead *r, const void *base) {
+    return base ? *(const int *)((const char *)base + r->k->group.count_off) : r->nheads;
+}
+static void *elem_at(const SchLineRead *r, void *base, int i) {
+    return (char *)base + r->k->group.off + (size_t)i * r->k->group.size;
+}
+static const char *elem_name(const SchLineRead *r, void *base, int i) {
+    return base ? (const char *)elem_at(r, base, i) + r->k->group.name_off : r->heads[i]->args[0].text;
+}
+
 static void set_one(SchLineRead *r, const char *typed, const char *name, double v, void *base) {
     const SchTable *t = r->k->t;
-    int level;
+    int level, only = -1; /* ELEM.NAME: the element's index; -1: every element */
+    const char *dot = r->k->group.dir ? strchr(name, '.') : NULL;
+    if (dot) {
+        int n = elem_count(r, base);
+        for (int i = 0; i < n; i++) {
+            const char *e = elem_name(r, base, i);
+            if (strlen(e) == (size_t)(dot - name) && !strncmp(e, name, (size_t)(dot - name))) only = i;
+        }
+        if (only < 0) {
+            if (r->seen) return;
+            const char *names[64];
+            char prefix[96], near[380], hint[400] = "";
+            for (int i = 0; i < n && i < 64; i++) names[i] = elem_name(r, base, i);
+            snprintf(prefix, sizeof prefix, "%.*s", (int)(dot - name), name);
+            if (closest_list(prefix, names, n < 64 ? n : 64, near, sizeof near))
+                snprintf(hint, sizeof hint, " (did you mean %s?)", near);
+            bad(r, (SchProblem){.what = SCH_BAD_SET_ELEMENT, .name = prefix, .typed = typed, .hint = hint, .x = v});
+            return;
+        }
+        name = dot + 1;
+    }
     const SchRow *row = sch_find(t, name, &level);
     if (!row && r->p->sibling) return; /* meant for another model of the file */
     if (r->seen) {
-        if (row && r->seen->value) r->seen->value(r->seen->ctx, row, level, &v, 1, NULL);
+        if (row && r->seen->value && (!dot || row->group)) r->seen->value(r->seen->ctx, row, row->group ? only : level, &v, 1, NULL);
         return;
     }
     SchProblem pr = {.row = row, .name = name, .typed = typed, .x = v};
@@ -316,7 +373,17 @@ static void set_one(SchLineRead *r, const char *typed, const char *name, double 
         bad(r, pr);
         return;
     }
+    if (dot && !row->group) {
+        pr.what = SCH_BAD_SET_NOT_GROUP;
+        bad(r, pr);
+        return;
+    }
     if (row_index(r, row) < MAX_ROWS) r->set[row_index(r, row)] = true;
+    if (row->group && r->k->group.dir) { /* in every element, or in the one named */
+        for (int i = 0; i < elem_count(r, base); i++)
+            if (only < 0 || only == i) take(r, row, elem_at(r, base, i), -1, v);
+        return;
+    }
     if (is_kind(s)) r->errors += r->k->set(r, row, typed, v, base);
     else take(r, row, base, row->levels ? level : -1, v);
 }
@@ -325,14 +392,16 @@ static int read_block(SchLineRead *r, void *base, int *set_errors) {
     const SylProgram *p = r->p;
     int n = 0;
     const SylDirective *ds = syl_program_directives(p, &n);
-    for (int i = 0; i < n; i++) read_line(r, &ds[i], base);
+    for (int i = 0; i < n && !r->stopped; i++) read_line(r, &ds[i], base);
+    *set_errors = 0;
+    if (r->stopped) return r->errors;
     if (!r->seen && r->k->lines_done) r->errors += r->k->lines_done(r, base);
     int before = r->errors;
-    for (int i = 0; i < p->noverrides; i++) { /* in the order given: the last one wins */
+    for (int i = 0; i < p->noverrides && !(r->k->set_if_clean && before && !r->seen); i++) { /* in the order given: the last one wins */
         const char *name = p->set_local ? p->set_local[i] : NULL;
         if (name && !is_param(p, name)) set_one(r, p->overrides[i].name, name, p->overrides[i].value, base);
     }
-    *set_errors = r->errors - before;
+    *set_errors = r->set_errors = r->errors - before;
     if (!r->seen && r->k->done) r->errors += r->k->done(r, base);
     return r->errors;
 }
@@ -342,8 +411,14 @@ int sch_read_lines(const SylProgram *p, const SchLines *k, void *base, FILE *dia
     return read_block(&r, base, set_errors);
 }
 
+int sch_read_lines_to(const SylProgram *p, const SchLines *k, void *base, const SylSink *sink, int *set_errors) {
+    SchLineRead r = {.p = p, .k = k, .sink = sink, .lenient = k->lenient && k->lenient(p)};
+    return read_block(&r, base, set_errors);
+}
+
 int sch_see_lines(const SylProgram *p, const SchTable *t, const SchSeen *seen) {
     SchLines k = {.t = t, .textures = true, .again = true};
+    for (int i = 0; i < t->n && !k.group.dir; i++) k.group.dir = t->rows[i].group; /* its head's name */
     SchLineRead r = {.p = p, .k = &k, .seen = seen};
     int set_errors;
     return read_block(&r, NULL, &set_errors);
