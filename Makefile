@@ -51,6 +51,8 @@ LDFLAGS := $(if $(shell command -v ld.lld 2>/dev/null),-fuse-ld=lld)
 $(BUILD)/src/cli/%.o build-fuzz/obj/src/cli/%.o: PKG_CFLAGS += $(CLI_CFLAGS)
 # Where `sylva view` finds its page (web/, with three.js from npm ci --prefix web); SYLVA_WEB overrides.
 $(BUILD)/src/cli/cmd_view.o: CFLAGS += -DSYL_WEB_DIR='"$(CURDIR)/web"'
+# the preview's lines joined in the very arithmetic of web/scene.js's joinStraight: no fused multiply-adds
+$(BUILD)/src/cli/view_preview.o: CFLAGS += -ffp-contract=off
 
 # MPI (docs/distributed.md): on when mpicc is found (make MPI=0 builds without it). Only then
 # is src/eco/mpi.c compiled, with mpicc's flags; src/eco/mpi_none.c stands in otherwise.

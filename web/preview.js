@@ -1,14 +1,14 @@
 // The segments of a preview of a big plant (view_preview.c: 6 floats each, then a byte of
-// branch order each) as lines coloured as the skeleton mode colours them. Straight runs are
-// joined first (scene.js's joinStraight: software WebGL spends a frame's time on each line);
-// the colours come from a table of the orders, a byte each (normalized): a million-module
-// plant's 350,000 segments are made in milliseconds.
+// branch order each) as lines coloured as the skeleton mode colours them. The server has
+// joined straight runs into one line each, as scene.js's joinStraight does (software WebGL
+// spends a frame's time on each line; tests/view/join.test.mjs compares the two); the colours
+// come from a table of the orders, a byte each (normalized): a million-module plant's lines
+// are made in milliseconds.
 import * as THREE from 'three';
-import { ORDER_COLOURS, joinStraight } from './scene.js';
+import { ORDER_COLOURS } from './scene.js';
 
 export function linesFrom(buf) {
-  const all = buf.byteLength / 25;
-  const { pos, order, n } = joinStraight(new Float32Array(buf, 0, all * 6), new Uint8Array(buf, all * 24, all));
+  const n = buf.byteLength / 25, pos = new Float32Array(buf, 0, n * 6), order = new Uint8Array(buf, n * 24, n);
   const last = ORDER_COLOURS.length - 1, table = new Uint8Array(3 * (last + 1)), c = new THREE.Color();
   for (let k = 0; k <= last; k++) {
     c.setHex(ORDER_COLOURS[k]);

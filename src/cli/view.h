@@ -130,7 +130,7 @@ int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE 
  * *len bytes). */
 void view_preview_mesh_options(SylMeshOptions *mo);
 bool view_preview_as_lines(const SylSkeleton *sk);
-int view_preview_lines(const SylSkeleton *sk, char **buf, size_t *len);
+int view_preview_lines(const SylSkeleton *sk, bool join, char **buf, size_t *len);
 /* The status of a build stopped because the files changed under it or its page moved on
  * (View.tabs): not a SYL_* code */
 enum { VIEW_SUPERSEDED = 100 };

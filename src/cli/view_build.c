@@ -349,7 +349,7 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key) {
         m.eco = NULL;
     } else if (!status && m.lines) { /* a preview of a big plant: its segments */
         double t = cli_now();
-        status = view_preview_lines(m.pl.skeleton, &slot->lines, &slot->lines_len);
+        status = view_preview_lines(m.pl.skeleton, true, &slot->lines, &slot->lines_len);
         m.write_s = cli_now() - t;
         if (!status) slot->stats = stats_json(&m);
     } else if (!status && syl_cancelled(&cancel)) {
@@ -466,6 +466,16 @@ static int write_obj_file(void *ctx, const char *path, FILE *diag) {
     return syl_mesh_write_obj(((Made *)ctx)->pl.mesh, path, cli_text_sink(diag));
 }
 
+/* The skeleton's segments as a segments preview has them, not joined (tests/view/join.test.mjs
+ * joins them as the page did and compares). */
+static int write_segments(const Made *m, FILE *of) {
+    char *b;
+    size_t n;
+    int status = view_preview_lines(m->pl.skeleton, false, &b, &n);
+    if (!status) fwrite(b, 1, n, of), free(b);
+    return status;
+}
+
 int view_export(View *v, const ViewRequest *rq, const char *format, char **out, size_t *len, char **diag) {
     size_t dlen = 0;
     *out = NULL, *len = 0, *diag = NULL;
@@ -489,6 +499,7 @@ int view_export(View *v, const ViewRequest *rq, const char *format, char **out, 
     } else if (!status) {
         if (!strcmp(format, "glb")) status = write_glb(&m, NULL, of, df); /* the export: sylva mesh's own path */
         else if (!strcmp(format, "csv")) status = syl_skeleton_write_csv(m.pl.skeleton, of);
+        else if (!strcmp(format, "segments")) status = write_segments(&m, of);
         else if (!strcmp(format, "png")) status = write_png(&m, rq, of, df, v->threads);
         else if (!strcmp(format, "obj")) status = view_write_via_file(write_obj_file, &m, "plant.obj", of, df);
         else status = SYL_EUSAGE;

@@ -293,10 +293,11 @@ static enum MHD_Result api_metrics(struct MHD_Connection *c, View *v, unsigned i
 
 static enum MHD_Result api_export(struct MHD_Connection *c, View *v, Query *q) {
     static const char *const formats[][3] = {{"glb", "model/gltf-binary", "glb"}, {"obj", "text/plain", "obj"},
-                                             {"png", "image/png", "png"}, {"csv", "text/csv", "csv"}};
+                                             {"png", "image/png", "png"}, {"csv", "text/csv", "csv"},
+                                             {"segments", "application/octet-stream", "bin"}};
     int k = 0;
-    while (k < 4 && (!q->format || strcmp(q->format, formats[k][0]))) k++;
-    if (k == 4) return send_error_json(c, MHD_HTTP_BAD_REQUEST, "format: glb, obj, png or csv", NULL);
+    while (k < 5 && (!q->format || strcmp(q->format, formats[k][0]))) k++;
+    if (k == 5) return send_error_json(c, MHD_HTTP_BAD_REQUEST, "format: glb, obj, png, csv or segments", NULL);
     char *out, *diag;
     size_t len;
     pthread_mutex_lock(&v->lock);

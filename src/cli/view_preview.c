@@ -22,23 +22,47 @@ void view_preview_mesh_options(SylMeshOptions *mo) {
 
 bool view_preview_as_lines(const SylSkeleton *sk) { return sk->nnodes > PREVIEW_MESH_NODES; }
 
+/* Does segment a (from, to) go on straight from line k (it starts where k ends, onward, in its
+ * direction)? web/scene.js's joinStraight's test, in the same double arithmetic in the same
+ * order (the file is built without contracting to fused multiply-adds): the same lines. */
+static bool goes_on(const float *k, const float *a) {
+    if (a[0] != k[3] || a[1] != k[4] || a[2] != k[5]) return false;
+    double ux = (double)k[3] - k[0], uy = (double)k[4] - k[1], uz = (double)k[5] - k[2];
+    double vx = (double)a[3] - k[3], vy = (double)a[4] - k[4], vz = (double)a[5] - k[5];
+    double cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+    /* parallel within float noise (sin² of the angle below 1e-8), and onward, not back */
+    return ux * vx + uy * vy + uz * vz > 0 &&
+           cx * cx + cy * cy + cz * cz <= 1e-8 * (ux * ux + uy * uy + uz * uz) * (vx * vx + vy * vy + vz * vz);
+}
+
 /* Into one block sized once (a million-module plant has hundreds of thousands of segments:
- * written a few bytes at a time through a FILE, they took a third of a second). */
-int view_preview_lines(const SylSkeleton *sk, char **buf, size_t *len) {
+ * written a few bytes at a time through a FILE, they took a third of a second). Joined, a
+ * straight run is one line: a quarter of the bytes for an L-system's F → FF, and the page
+ * draws them as they come. */
+int view_preview_lines(const SylSkeleton *sk, bool join, char **buf, size_t *len) {
     size_t n = 0;
     for (size_t i = 0; i < sk->nnodes; i++) n += sk->nodes[i].kind == SYL_KIND_INTERNODE && sk->nodes[i].parent >= 0;
     char *b = malloc(n * 25 + 1);
     if (!b) return SYL_ELIMIT;
-    float *seg = (float *)b; /* 6 floats a segment, then a byte of branch order a segment */
+    float *seg = (float *)b; /* 6 floats a line, then a byte of branch order a line */
     uint8_t *order = (uint8_t *)b + n * 24;
-    for (size_t i = 0, k = 0; i < sk->nnodes; i++) {
+    size_t k = 0;
+    for (size_t i = 0; i < sk->nnodes; i++) {
         const SylNode *d = &sk->nodes[i];
         if (d->kind != SYL_KIND_INTERNODE || d->parent < 0) continue;
-        memcpy(seg + 6 * k, sk->nodes[d->parent].pos, 3 * sizeof(float));
-        memcpy(seg + 6 * k + 3, d->pos, 3 * sizeof(float));
-        order[k++] = d->order > 255 ? 255 : (uint8_t)d->order;
+        uint8_t o = d->order > 255 ? 255 : (uint8_t)d->order;
+        float s[6];
+        memcpy(s, sk->nodes[d->parent].pos, 3 * sizeof(float));
+        memcpy(s + 3, d->pos, 3 * sizeof(float));
+        if (join && k > 0 && order[k - 1] == o && goes_on(seg + 6 * (k - 1), s)) {
+            memcpy(seg + 6 * (k - 1) + 3, s + 3, 3 * sizeof(float));
+            continue;
+        }
+        memcpy(seg + 6 * k, s, sizeof s);
+        order[k++] = o;
     }
-    *buf = b, *len = n * 25;
+    memmove(b + k * 24, order, k); /* the orders right after the lines kept */
+    *buf = b, *len = k * 25;
     return SYL_OK;
 }
 

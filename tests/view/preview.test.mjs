@@ -1,7 +1,8 @@
 // Browser tests of `sylva view`'s preview (docs/view.md, "Speed"): a plant quick to build is drawn
 // without one; a build's answer carries its .glb (with=part); after a save the page first
 // draws a lighter preview, then the .glb of `sylva mesh` (byte for byte); a plant too big to
-// mesh quickly is previewed by its segments, those of `sylva skeleton`; a full build a tab's
+// mesh quickly is previewed by its segments, those of `sylva skeleton`, straight runs joined by
+// the server into the very lines web/scene.js's joinStraight makes of them; a full build a tab's
 // newer request has replaced is not built (and another tab's is); a slider dragged draws
 // previews and ends on the full mesh of its last value. Usage: node preview.test.mjs SYLVA.
 import { spawnSync } from 'node:child_process';
@@ -9,6 +10,7 @@ import { mkdtempSync, writeFileSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { launch, serve, stop, tap, getter, edit, openPage, BUSH } from './browser.mjs';
+import { joinStraight } from '../../web/scene.js';
 
 const sylva = process.argv[2];
 const { check, done } = tap();
@@ -16,10 +18,18 @@ const { check, done } = tap();
 const dir = mkdtempSync(join(tmpdir(), 'sylva-view-preview-'));
 const file = join(dir, 'plants.syl');
 // Bush first (the page's model: blades of leaves, so its preview has instanced cards); Line:
-// 2^16 segments in a row, beyond the preview's mesh limit (20,000 nodes)
+// 2^16 segments in a row, beyond the preview's mesh limit (20,000 nodes); Tree: ABOP Fig.
+// 1.24(e) at n = 9, 38,342 segments, branched and turning (bench/models/a.syl)
 const TEXT = (depth) => `${BUSH(depth)}lsystem Line {
   derive 16
   axiom F
+  F -> FF
+}
+lsystem Tree {
+  derive 9
+  angle 25.7
+  axiom X
+  X -> F[+X][-X]FX
   F -> FF
 }
 `;
@@ -90,13 +100,24 @@ try {
   const csv = spawnSync(sylva, ['skeleton', file + ':Line', '-o', '-'], { maxBuffer: 1 << 28 }).stdout.toString().trim().split('\n').slice(1);
   const internodes = csv.filter((l) => l.split(',')[7] === 'internode');
   const top = Math.max(...internodes.map((l) => +l.split(',')[3]));
-  const f = new Float32Array(seg.buffer, seg.byteOffset, (seg.length / 25) * 6);
+  const raw = (await get('/api/export?format=segments&model=Line&preview=1')).body;
+  const f = new Float32Array(seg.buffer.slice(seg.byteOffset, seg.byteOffset + seg.length), 0, (seg.length / 25) * 6);
   let ymax = -Infinity;
   for (let i = 4; i < f.length; i += 6) ymax = Math.max(ymax, f[i]);
-  check(lines.ok && lines.lines && seg.length % 25 === 0 && seg.length / 25 === internodes.length && internodes.length === 65536,
-    'a plant beyond the mesh limit is previewed by its segments: as many as sylva skeleton\'s internodes',
-    `${seg.length / 25} segments, ${internodes.length} internodes`);
+  check(lines.ok && lines.lines && raw.length === 25 * internodes.length && internodes.length === 65536 && seg.length === 25,
+    'a plant beyond the mesh limit is previewed by its segments, as many as sylva skeleton\'s internodes, joined: 65,536 in a row are one line',
+    `${raw.length / 25} segments, ${internodes.length} internodes, ${seg.length / 25} lines`);
   check(Math.abs(ymax - top) <= 1e-4 * Math.abs(top), 'and they reach as high', `${ymax} vs ${top}`);
+  // the server's lines are joinStraight's of the same segments, byte for byte (a branched plant)
+  const tree = await json('/api/build?model=Tree&preview=1');
+  const treeLines = (await get('/api/lines?id=' + tree.id)).body;
+  const tr = (await get('/api/export?format=segments&model=Tree&preview=1')).body, nt = tr.length / 25;
+  const ab = tr.buffer.slice(tr.byteOffset, tr.byteOffset + tr.length);
+  const js = joinStraight(new Float32Array(ab, 0, nt * 6), new Uint8Array(ab, nt * 24, nt));
+  const theirs = Buffer.concat([Buffer.from(js.pos.buffer, js.pos.byteOffset, js.n * 24), Buffer.from(js.order.buffer, js.order.byteOffset, js.n)]);
+  check(tree.lines && nt === 38342 && js.n < nt && treeLines.equals(theirs),
+    'the server joins straight runs into the lines joinStraight makes of the same segments, byte for byte',
+    `${nt} segments, ${treeLines.length / 25} lines from the server, ${js.n} from joinStraight`);
   check((await get('/api/glb?id=' + lines.id)).status === 404, 'a segments preview has no .glb');
   // the page's lines of them (web/preview.js): straight runs joined, coloured as the skeleton mode colours order 0
   const drawn = await page.evaluate(async (id) => {
@@ -109,7 +130,7 @@ try {
     return { segments: p.count / 2, ymax, first: [c.getX(0), c.getY(0), c.getZ(0)].map((x) => Math.round(x * 255)), trunk };
   }, lines.id);
   check(drawn.segments === 1 && Math.abs(drawn.ymax - top) <= 1e-4 * Math.abs(top) && drawn.first.join() === drawn.trunk.join(),
-    'the page draws them joined (65,536 segments in a row: one line), as high, the trunk in the skeleton mode\'s colour', JSON.stringify(drawn));
+    'the page draws the line, as high, the trunk in the skeleton mode\'s colour', JSON.stringify(drawn));
 
   // ---- a full build that a newer request of its tab replaced is not built ----
   await json('/api/build?model=Line&preview=1&tab=7&seq=2');
