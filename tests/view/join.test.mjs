@@ -1,4 +1,5 @@
-// joinStraight (web/scene.js), which draws a segments preview in fewer lines: the lines it keeps
+// joinStraight (web/scene.js), which draws the skeleton mode in fewer lines (the server joins a
+// segments preview the same way: preview.test.mjs compares the two): the lines it keeps
 // cover every segment it was given (both ends on a line of the same branch order), their total
 // length is the segments', and a straight run becomes one line. The segments are made here by
 // a small turtle of this test's own (runs of collinear steps, branches, turns). No browser:
