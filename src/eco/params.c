@@ -26,7 +26,7 @@ static const NumInfo species_nums[] = {
 };
 enum { NNUMS = sizeof species_nums / sizeof species_nums[0] };
 static const char *const block_words[] = {
-#define ECO_B(nm, ...) nm,
+#define ECO_B(at, f, nm, ...) nm,
 #include "params.def"
 };
 enum { NBLOCK = sizeof block_words / sizeof block_words[0] };
@@ -323,17 +323,13 @@ static int check_block(SchLineRead *r, void *base) {
 /* Where each row is kept (params.def's order, the table's): the block's in SylEcoModel, a
  * species' in its SylEcoSpecies; terrain, snapshots, model and the curves are read above. */
 #define MO(f) offsetof(SylEcoModel, f)
+#define ECO_OFF_INT(f) MO(f)
+#define ECO_OFF_U64(f) MO(f)
+#define ECO_OFF_F64(f) MO(f)
+#define ECO_OFF_KIND(f) 0
+#define ECO_OFF_NONE(f) 0
 static const SchSlot slots[] = {
-    {.store = SCH_AT_KIND},                 /* terrain */
-    {.store = SCH_AT_INT, .off = MO(years)},
-    {.store = SCH_AT_KIND},                 /* snapshots */
-    {.store = SCH_AT_U64, .off = MO(seed)},
-    {.store = SCH_AT_F64, .off = MO(latitude)},
-    {.store = SCH_AT_INT, .off = MO(combine)},
-    {.store = SCH_AT_INT, .off = MO(measures)},
-    {.store = SCH_AT_INT, .off = MO(mortality)},
-    {.store = SCH_AT_F64, .off = MO(wind_from)},
-    {.store = SCH_AT_NONE},                 /* species: the group's head */
+#define ECO_B(at, f, ...) {.store = SCH_AT_##at, .off = ECO_OFF_##at(f)},
 #define ECO_W(nm, ...) {.store = SCH_AT_KIND},
 #define ECO_S(f, ...) {.store = SCH_AT_F64, .off = SP(f)},
 #define ECO_F(...) {.store = SCH_AT_KIND},

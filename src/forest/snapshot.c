@@ -67,7 +67,7 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
     SylSink kept_text;
     const SylSink *sink = rank == 0 ? out : diag_sink(&kept_text, diag, NULL);
     const SylSink *sub_sink = rank == 0 ? o->sink : NULL; /* for the options that take diag too */
-    static SylEcoModel model; /* 14 kB: off the stack */
+    SylEcoModel *model = calloc(1, sizeof *model); /* 14 kB: off the stack, and not shared between calls */
     SylTerrain *t = NULL;
     SylForest *forest = NULL;
     SylEcoPlant *plants = NULL;
@@ -75,15 +75,16 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
     size_t *lens = NULL, nplants = 0;
     int st = status;
     if (!st && !p) st = SYL_EUSAGE;
+    if (!st && !model) st = SYL_ELIMIT;
     if (!st && syl_program_kind(p) != SYL_MODEL_ECOSYSTEM) {
         sink_error(sink, "--plants renders an ecosystem block's plants; '%s' is a %s (name one: FILE:Model)",
                    syl_program_name(p), syl_model_kind_name(syl_program_kind(p)));
         st = SYL_EUSAGE;
     }
     SylEcoOptions eo = {.threads = o->threads, .diag = diag, .sink = sub_sink};
-    if (!st) st = syl_ecosystem_load(p, &eo, &model, &t);
-    if (!st) st = syl_ecosystem_table_read(o->plants, &model, t, &plants, &nplants, sink);
-    if (!st) st = syl_forest_new(p, &model, t, &(SylForestOptions){.threads = o->threads, .diag = diag, .sink = sub_sink}, &forest);
+    if (!st) st = syl_ecosystem_load(p, &eo, model, &t);
+    if (!st) st = syl_ecosystem_table_read(o->plants, model, t, &plants, &nplants, sink);
+    if (!st) st = syl_forest_new(p, model, t, &(SylForestOptions){.threads = o->threads, .diag = diag, .sink = sub_sink}, &forest);
     st = agree(mpi, st, out, kept, &said, &said_len); /* before rendering: no work for a failed job */
     SylRenderOptions ro = *o->render;
     int w = ro.width ? ro.width : 1280, h = ro.height ? ro.height : 720;
@@ -145,5 +146,6 @@ int syl_ecosystem_render_snapshot(const SylProgram *p, int status, const SylSnap
     free(rgb), free(all), free(lens), free(mine), free(plants), free(windows);
     syl_forest_free(forest);
     syl_terrain_free(t);
+    free(model);
     return st;
 }

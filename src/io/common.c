@@ -1,4 +1,5 @@
-/* What the mesh writers share: files, buffers, numbers, names, PNG, format by extension. */
+/* What the mesh writers share: files, buffers, numbers, names, PNG in memory (util/pngout.c's
+ * encoder). The format of an extension is io/formats.c's. */
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>

@@ -55,7 +55,7 @@ static const SchRow curvetree_rows[] = {
 };
 
 static const SchRow ecosystem_rows[] = {
-#define ECO_B(nm, ty, l, h, d, dt, w, u, mean) \
+#define ECO_B(at, f, nm, ty, l, h, d, dt, w, u, mean) \
     {.name = nm, .type = ty, .lo = l, .hi = h, .def = {d}, .def_text = dt, .words = w, .unit = u, .doc = mean},
 #define ECO_W(nm, ty, mean) {.name = nm, .type = ty, .def = {NAN}, .unit = "", .doc = mean, .group = "species"},
 #define ECO_S(f, nm, l, h, d, u, mean) \

@@ -3,7 +3,8 @@
  * per level, an enum stored as other values, a file, a switch, a row its kind reads itself) is
  * read into a made-up struct by rows and slots alone: `(expr)` values, levels (`2rings 3`,
  * `rings 0.5 1.5`), errors at their line and column, --set with its level, a kind's own words
- * (say), lenience (warnings, the default kept), and describe's reading, which stores nothing.
+ * (say), lenience (warnings, the default kept), describe's reading, which stores nothing, and
+ * groups (an ecosystem's species: a made-up garden's beds), --set over them and their errors.
  * The expected values are the text's own numbers; the expected places are where the text
  * puts each value. The messages without a kind's words are the reader's own (a snapshot of
  * its wording, marked as such below). */
@@ -230,6 +231,130 @@ static void describe_is_told_by_the_same_reader(void **state) {
     assert_string_equal(t.text, " size@-1:2 rings@2:3 clay@-1:4 set rings@1=0.5 set size@-1=4");
 }
 
+/* Groups (an ecosystem's species): a head line opens an element, the group's rows that follow
+ * are stored in it; --set NAME of a group's row sets every element, ELEM.NAME the one named.
+ * A made-up garden: `area` is the block's, `bed NAME` opens a bed, `depth` and `width` are a
+ * bed's. The expected values are the text's own numbers. */
+typedef struct Bed {
+    char name[16];
+    double depth, width;
+} Bed;
+typedef struct Garden {
+    double area;
+    Bed beds[4];
+    int nbeds;
+} Garden;
+
+static const SchRow garden_rows[] = {
+    {.name = "area", .type = SCH_NUMBER, .lo = 0, .hi = 100, .def = {1}, .unit = "", .doc = "the block's"},
+    {.name = "bed", .type = SCH_STRING, .def = {NAN}, .unit = "", .doc = "opens a bed"},
+    {.name = "depth", .type = SCH_NUMBER, .lo = 0, .hi = 10, .def = {1}, .unit = "", .doc = "a bed's", .group = "bed"},
+    {.name = "width", .type = SCH_NUMBER, .lo = 0, .hi = 10, .def = {1}, .unit = "", .doc = "a bed's", .group = "bed"},
+};
+static const SchTable garden = {"garden", "directive", garden_rows, 4, SCH_GROUPS, ""};
+static const SchSlot garden_slots[] = {
+    {.store = SCH_AT_F64, .off = offsetof(Garden, area)},
+    {.store = SCH_AT_NONE},
+    {.store = SCH_AT_F64, .off = offsetof(Bed, depth)}, /* a group's row: in its element */
+    {.store = SCH_AT_F64, .off = offsetof(Bed, width)},
+};
+
+static void *open_bed(SchLineRead *r, const SylDirective *d, void *base) {
+    Garden *g = base;
+    if (d->nargs != 1 || g->nbeds == 4) {
+        sch_lines_error(r, d, NULL, "bed takes one name");
+        return NULL;
+    }
+    Bed *b = &g->beds[g->nbeds++];
+    snprintf(b->name, sizeof b->name, "%s", d->args[0].text);
+    b->depth = b->width = 1;
+    return b;
+}
+
+static const SchLines garden_lines = {
+    .t = &garden,
+    .slots = garden_slots,
+    .nslots = 4,
+    .again = true,
+    .group = {.dir = "bed", .off = offsetof(Garden, beds), .size = sizeof(Bed), .count_off = offsetof(Garden, nbeds),
+              .name_off = offsetof(Bed, name), .open = open_bed},
+    .set_if_clean = true,
+};
+
+static int read_garden(const char *lines, const SylOverride *sets, int nsets, Garden *out, char **diag) {
+    SylProgram *p = keyed_compile("garden.syl", lines, sets, nsets);
+    size_t len = 0;
+    FILE *f = open_memstream(diag, &len);
+    memset(out, 0, sizeof *out);
+    sch_lines_defaults(&garden_lines, out);
+    int set_errors, e = sch_read_lines(p, &garden_lines, out, f, &set_errors);
+    fclose(f);
+    syl_program_free(p);
+    return e;
+}
+
+static const char garden_text[] = "  area 5\n  bed roses\n  depth 2\n  bed herbs\n  width 3\n";
+
+static void groups_take_their_rows_and_sets(void **state) {
+    (void)state;
+    Garden g;
+    char *diag = NULL;
+    int e = read_garden(garden_text, NULL, 0, &g, &diag);
+    if (e) fail_msg("%s", diag);
+    free(diag);
+    assert_near(g.area, 5, 0);
+    assert_int_equal(g.nbeds, 2);
+    assert_string_equal(g.beds[0].name, "roses");
+    assert_near(g.beds[0].depth, 2, 0); /* the line after `bed roses` */
+    assert_near(g.beds[0].width, 1, 0); /* its default */
+    assert_near(g.beds[1].depth, 1, 0);
+    assert_near(g.beds[1].width, 3, 0);
+    /* NAME: every bed; ELEM.NAME: the one named; the last one wins */
+    SylOverride sets[] = {{"depth", 7}, {"herbs.width", 9}, {"area", 8}};
+    e = read_garden(garden_text, sets, 3, &g, &diag);
+    if (e) fail_msg("%s", diag);
+    free(diag);
+    assert_near(g.beds[0].depth, 7, 0);
+    assert_near(g.beds[1].depth, 7, 0);
+    assert_near(g.beds[0].width, 1, 0); /* roses untouched by herbs.width */
+    assert_near(g.beds[1].width, 9, 0);
+    assert_near(g.area, 8, 0);
+}
+
+/* What is wrong with a group's lines and sets, at its place. The words are the reader's own
+ * (a snapshot of its wording). */
+static void groups_errors(void **state) {
+    (void)state;
+    Garden g;
+    char *diag = NULL;
+    /* an element no head opened, with did-you-mean */
+    SylOverride typo[] = {{"rozes.depth", 4}};
+    int e = read_garden(garden_text, typo, 1, &g, &diag);
+    assert_int_equal(e, 1);
+    assert_non_null(strstr(diag, "--set rozes.depth: no 'rozes' (did you mean 'roses'?)"));
+    free(diag);
+    assert_near(g.beds[0].depth, 2, 0); /* nothing set */
+    /* a row of the block's given an element's prefix */
+    SylOverride block[] = {{"roses.area", 4}};
+    e = read_garden(garden_text, block, 1, &g, &diag);
+    assert_int_equal(e, 1);
+    assert_non_null(strstr(diag, "--set roses.area: 'area' is the block's"));
+    free(diag);
+    assert_near(g.area, 5, 0);
+    /* a group's row before any head is unknown to the block, at its line */
+    e = read_garden("  depth 2\n  bed roses\n", NULL, 0, &g, &diag);
+    assert_int_equal(e, 1);
+    assert_non_null(strstr(diag, "garden.syl:2:3: error: "));
+    free(diag);
+    /* set_if_clean: a line with an error keeps --set from being applied */
+    SylOverride all[] = {{"depth", 7}};
+    e = read_garden("  bed roses\n  depht 2\n", all, 1, &g, &diag);
+    assert_int_equal(e, 1);
+    assert_non_null(strstr(diag, "garden.syl:3:3: error: no parameter 'depht' (did you mean 'depth'?)"));
+    free(diag);
+    assert_near(g.beds[0].depth, 1, 0);
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_type_is_read_by_its_row),
@@ -237,6 +362,8 @@ int main(void) {
         cmocka_unit_test(set_reaches_rows_and_levels),
         cmocka_unit_test(a_kind_words_and_lenience),
         cmocka_unit_test(describe_is_told_by_the_same_reader),
+        cmocka_unit_test(groups_take_their_rows_and_sets),
+        cmocka_unit_test(groups_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
