@@ -86,6 +86,11 @@ extern const OutHooks cli_temp_hooks;        /* main.c: the temporary files a si
 void cli_child_started(int pid);
 void cli_child_gone(void);
 int cli_child_take(void); /* async-signal-safe */
+/* A signal that came while ffmpeg was being started: kept (true), acted on by the function
+ * main.c gives (stop the child, remove the temporary files, die of it) once the pid is
+ * noted; false: none is being started. */
+bool cli_child_defer(int sig); /* async-signal-safe */
+void cli_child_on_signal(void (*stop)(int sig));
 
 bool cli_view(const char *arg, SylView *v);                 /* --view */
 bool cli_view_or(const char *arg, SylView *v, const char *also); /* the same, naming other views */

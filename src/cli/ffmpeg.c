@@ -14,8 +14,24 @@
 
 #include "cli/animate.h"
 #include "cli/cli.h"
+#include "cli/testfaults.h"
 
 extern char **environ;
+
+static atomic_int child_pid;
+/* 0; SPAWNING while ffmpeg starts; or the signal that came then, which spawned() acts on */
+enum { SPAWNING = -1 };
+static atomic_int spawn_state;
+static void (*stop_on_signal)(int sig);
+
+void cli_child_on_signal(void (*stop)(int sig)) { stop_on_signal = stop; }
+
+static void spawned(int pid) {
+    cli_child_started(pid);
+    int sig = atomic_exchange(&spawn_state, 0);
+    if (sig > 0 && stop_on_signal) stop_on_signal(sig);
+    else if (sig > 0) raise(sig);
+}
 
 bool cli_encode_start(Encoder *e, EncodeFormat f, int width, int height, int fps, const char *path, int out_fd) {
     memset(e, 0, sizeof *e);
@@ -58,10 +74,15 @@ bool cli_encode_start(Encoder *e, EncodeFormat f, int width, int height, int fps
     posix_spawn_file_actions_adddup2(&fa, sv[0], 0);
     if (!path) posix_spawn_file_actions_adddup2(&fa, out_fd, 1);
     else posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
+    /* A signal between ffmpeg's start and its pid noted (main.c) would remove the temporary
+     * file while ffmpeg goes on to write it: such a signal waits until the pid is noted. */
+    atomic_store(&spawn_state, SPAWNING);
     int err = posix_spawnp(&e->pid, "ffmpeg", &fa, NULL, (char *const *)argv, environ);
     posix_spawn_file_actions_destroy(&fa);
     close(sv[0]);
+    cli_test_pause_spawn();
     if (err) {
+        spawned(0);
         close(sv[1]);
         if (err == ENOENT)
             fprintf(stderr, "sylva: error: ffmpeg is not on PATH: install it (apt-get install ffmpeg, or make "
@@ -70,12 +91,15 @@ bool cli_encode_start(Encoder *e, EncodeFormat f, int width, int height, int fps
         return false;
     }
     e->in = sv[1];
-    cli_child_started(e->pid); /* a signal now stops it before removing the file it writes */
+    spawned(e->pid); /* a signal now stops it before removing the file it writes */
     return true;
 }
 
-static atomic_int child_pid;
 void cli_child_started(int pid) { atomic_store(&child_pid, pid); }
+bool cli_child_defer(int sig) {
+    int spawning = SPAWNING;
+    return atomic_compare_exchange_strong(&spawn_state, &spawning, sig);
+}
 void cli_child_gone(void) { atomic_store(&child_pid, 0); }
 int cli_child_take(void) { return atomic_exchange(&child_pid, 0); }
 

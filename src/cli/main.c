@@ -45,7 +45,7 @@ static void remove_temps(void) {
         if (atomic_exchange(&temp_live[i], 0)) unlink(temp_path[i]);
 }
 
-static void on_signal(int sig) {
+static void stop_on_signal(int sig) {
     /* ffmpeg, which writes into a temporary file, is stopped and waited for before the
      * temporary files go, or it would write its file after they went */
     int child = cli_child_take(), saved = errno;
@@ -55,6 +55,10 @@ static void on_signal(int sig) {
     errno = saved;
     remove_temps();
     raise(sig); /* SA_RESETHAND: the default action, once this handler returns */
+}
+
+static void on_signal(int sig) {
+    if (!cli_child_defer(sig)) stop_on_signal(sig);
 }
 
 /* A library bound on first use (util/lazylib.h) that cannot be loaded: said once, the
@@ -68,6 +72,7 @@ static void missing_library(const char *soname, const char *what, const char *wh
 }
 
 static void install_signals(void) {
+    cli_child_on_signal(stop_on_signal);
     static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
     for (size_t i = 0; i < sizeof sigs / sizeof *sigs; i++) {
         struct sigaction sa = {0}, old;

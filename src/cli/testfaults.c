@@ -2,6 +2,7 @@
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <time.h>
 
 #include "cli/testfaults.h"
 
@@ -39,8 +40,13 @@ unsigned long long cli_test_split_ns(void) {
     const char *v = getenv("SYLVA_TEST_SPLIT_NS");
     return v ? strtoull(v, NULL, 10) : 0;
 }
+
+void cli_test_pause_spawn(void) {
+    if (getenv("SYLVA_TEST_PAUSE_SPAWN")) nanosleep(&(struct timespec){0, 200000000}, NULL);
+}
 #else
 unsigned long long cli_test_split_ns(void) { return 0; }
+void cli_test_pause_spawn(void) {}
 void cli_test_fault_year(int rank, int year) { (void)rank, (void)year; }
 void cli_test_fault_gather(bool mpi, int rank) { (void)mpi, (void)rank; }
 #endif

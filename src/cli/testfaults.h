@@ -13,5 +13,8 @@ void cli_test_fault_gather(bool mpi, int rank);
 /* SylDeriveOptions.split_ns from SYLVA_TEST_SPLIT_NS (0 without it): tests/cases/threads.test
  * splits passes far cheaper than the default would, to check the chunks' bytes. */
 unsigned long long cli_test_split_ns(void);
+/* SYLVA_TEST_PAUSE_SPAWN: a fifth of a second after ffmpeg started, before its pid is noted,
+ * when a signal must wait for the pid (tests/cases/trust.test sends one then). */
+void cli_test_pause_spawn(void);
 
 #endif
