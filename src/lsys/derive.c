@@ -57,6 +57,54 @@ static void run_chunk(void *arg, int k) {
     if (c->ns) c->ns[k] = thread_ns() - t0;
 }
 
+/* A split pass of a plain table writes one output sized in advance (no join): first each
+ * chunk's size (rewrite_size), then, at the offsets their sums give, each chunk writes its
+ * part itself, so that its pages are first touched by its own thread. A chunk's tail goes to
+ * its own buffer and is copied after, so that no write spills into the next chunk's part. */
+typedef struct Exact {
+    Work *works;
+    SylString *out, *parts;
+    size_t *at, *pat;
+    uint64_t *ns;
+} Exact;
+
+static void size_chunk(void *arg, int k) {
+    Exact *x = arg;
+    uint64_t t0 = thread_ns();
+    rewrite_size(&x->works[k]);
+    x->ns[k] = thread_ns() - t0;
+}
+
+static void write_chunk(void *arg, int k) {
+    Exact *x = arg;
+    Work *w = &x->works[k];
+    uint64_t t0 = thread_ns();
+    size_t hi = w->hi;
+    SylString part = {.code = x->out->code + x->at[k], .par = x->out->par ? x->out->par + x->pat[k] : NULL,
+                      .cap = w->n_out + REWRITE_SPILL_CODES, .pcap = w->np_out + REWRITE_SPILL_PARAMS};
+    SylString *tail = &x->parts[k];
+    Work t = *w; /* the tail's, into tail */
+    w->out = &part;
+    w->exact = true;
+    w->hi = w->cut;
+    rewrite_chunk(w);
+    if (!w->fault.status && w->cut < hi) {
+        t.lo = w->cut, t.plo = (uint32_t)w->pcut, t.out = tail, t.cand = NULL, t.weight = NULL, t.ncap = 0;
+        rewrite_chunk(&t);
+        w->applied |= t.applied;
+        if (t.fault.status) w->fault = t.fault;
+        else {
+            if (tail->n) memcpy(part.code + part.n, tail->code, tail->n * sizeof *tail->code);
+            if (tail->np) memcpy(part.par + part.np, tail->par, tail->np * sizeof *tail->par);
+        }
+        free(t.cand);
+        free(t.weight);
+    }
+    w->hi = hi;
+    w->out = x->out;
+    x->ns[k] = thread_ns() - t0;
+}
+
 /* The second half of a pass of several chunks: chunk k (> 0), written to a buffer of its
  * own, is copied into the output at the offsets the chunks before it sum to, by its own
  * thread, so that the copies run side by side and each thread first-touches its part. */
@@ -308,14 +356,15 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     /* Chunks of PARALLEL_MIN modules at least. A pass of a light table (no VM, no matching
      * beyond one neighbour) stays on one thread: split, it cost 1.4-3.3x the processor time
      * on the bench models (docs/bench.md, "Threads"): it is bound by memory, and one thread
-     * rewrites in place or by classes, which chunks cannot. */
+     * rewrites in place or by classes, which chunks cannot. A plain table's split pass writes
+     * one output sized in advance (write_chunk), no join: it may leave in place for chunks. */
     int nt = e->threads;
     if ((size_t)nt > in->n / PARALLEL_MIN) nt = (int)(in->n / PARALLEL_MIN);
     if (nt < 1) nt = 1;
     bool codes_only = !in->np && !t->emits_params && (t->all_plain || t->all_fast);
     bool by_classes = codes_only && t->all_fast && t->nclass > 0 && t->ctx_right && !t->ctx_index &&
                       !t->ctx_branches && !t->has_newctx;
-    if (nt > 1 && (t->light || by_classes || in_place(e, t, table, in, 1))) nt = 1;
+    if (nt > 1 && (t->light || by_classes || (!t->all_plain && in_place(e, t, table, in, 1)))) nt = 1;
     /* a pass that costs too little per module stays whole (an unmeasured one too: the first
      * passes of a table are short) */
     double g = e->growth[table] > 1 ? e->growth[table] : 1;
@@ -426,7 +475,47 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     }
     uint64_t ns[MAX_THREADS], sum = 0, longest = 0;
     Chunks chunks = {works, t->has_newctx, back, &e->newctx, ns}; /* has_newctx: nt is 1 */
-    if (nt > 1) {
+    /* plain tables: each code's output has one size, so the chunks write one output */
+    bool exact = nt > 1 && t->all_plain && !t->has_newctx && !place.inplace;
+    int status = SYL_OK;
+    bool reported = false;
+    if (exact) {
+        size_t at[MAX_THREADS], pat[MAX_THREADS], n = 0, np = 0;
+        uint64_t sns[MAX_THREADS];
+        Exact x = {works, out, parts, at, pat, sns};
+        struct timespec w0, w1;
+        clock_gettime(CLOCK_MONOTONIC, &w0);
+        pool_run(e->pool, nt, size_chunk, &x);
+        for (int k = 0; k < nt; k++) {
+            at[k] = n, pat[k] = np;
+            n += works[k].n_out, np += works[k].np_out;
+            works[k].out = &parts[k]; /* its tail's buffer, emptied (chunk 0's too) */
+            parts[k].n = parts[k].np = 0;
+            ms_changed(&parts[k]);
+            parts[k].mem = e->mem;
+            parts[k].max_modules = e->max_modules;
+        }
+        works[nt - 1].cut = works[nt - 1].hi; /* the last spills past the end: room is made */
+        add_costs(sns, nt, &e->join_ns, &e->join_max_ns);
+        add_costs(sns, nt, &sum, &longest);
+        if (n > e->max_modules) {
+            Work w = {.fault = {.status = SYL_ELIMIT, .limit = LIMIT_MODULES}};
+            report(e, &w, step, what);
+            status = SYL_ELIMIT;
+            reported = true;
+        } else if (!(status = ms_reserve(out, n + REWRITE_SPILL_CODES, np + REWRITE_SPILL_PARAMS))) {
+            x.ns = ns;
+            pool_run(e->pool, nt, write_chunk, &x);
+            out->n = n;
+            out->np = np;
+            clock_gettime(CLOCK_MONOTONIC, &w1);
+            e->split_passes++;
+            add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
+            add_costs(ns, nt, &sum, &longest);
+            double wall = (double)(w1.tv_sec - w0.tv_sec) * 1e9 + (double)(w1.tv_nsec - w0.tv_nsec);
+            if (wall * 1.25 > (double)sum) e->no_free_cores = true;
+        }
+    } else if (nt > 1) {
         struct timespec w0, w1;
         clock_gettime(CLOCK_MONOTONIC, &w0);
         pool_run(e->pool, nt, run_chunk, &chunks);
@@ -447,8 +536,6 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         free(works[k].cand);
         free(works[k].weight);
     }
-    int status = SYL_OK;
-    bool reported = false;
     for (int k = 0; k < nt && !status; k++) {
         *applied |= works[k].applied;
         if (works[k].fault.status) {
@@ -457,7 +544,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             reported = true;
         }
     }
-    if (nt > 1 && !status) { /* the other chunks after chunk 0, in order, copied side by side */
+    if (nt > 1 && !exact && !status) { /* the other chunks after chunk 0, in order, copied side by side */
         size_t at[MAX_THREADS], pat[MAX_THREADS], n = out->n, np = out->np;
         for (int k = 1; k < nt; k++) {
             at[k] = n, pat[k] = np;

@@ -275,6 +275,7 @@ static bool make_room_slow(Work *w, size_t lo, size_t pi, size_t room, size_t pr
 
 static inline bool make_room(Work *w, size_t lo, size_t pi, size_t room, size_t proom) {
     const SylString *o = w->out;
+    if (w->exact) return false; /* sized by rewrite_size */
     bool fits = w->inplace ? w->at + lo - o->n >= room && w->pat + pi - o->np >= proom
                            : o->n + room <= o->cap && o->np + proom <= o->pcap;
     return !fits && make_room_slow(w, lo, pi, room, proom);
@@ -580,6 +581,35 @@ static void run_chunk_plain(Work *w) {
         pi = (size_t)(args - par);
     }
     w->applied |= applied;
+}
+
+_Static_assert((int)REWRITE_SPILL_CODES >= (int)SUCC_PAD && REWRITE_SPILL_CODES >= 8, "put_codes and runs of 8");
+_Static_assert((int)REWRITE_SPILL_PARAMS >= (int)SLOT_PLAN && REWRITE_SPILL_PARAMS >= 4, "put_slots and runs of 4");
+
+void rewrite_size(Work *w) {
+    const RuleTable *t = w->t;
+    const uint16_t *code = w->in->code;
+    const Dispatch *dispatch = t->dispatch;
+    size_t n = 0, np = 0, pin = 0;
+    for (size_t i = w->lo; i < w->hi; i++) {
+        uint16_t c = code[i];
+        const Rule *r = dispatch[c].plain;
+        n += r ? (size_t)r->nsucc : 1;
+        np += r ? (size_t)r->nslots : (size_t)CODE_ARITY(c);
+        pin += (size_t)CODE_ARITY(c);
+    }
+    w->n_out = n, w->np_out = np;
+    /* the tail: back from hi until its output covers the spill (codes only: no parameters) */
+    size_t tn = 0, tp = 0, i = w->hi, pneed = w->codes_only ? 0 : REWRITE_SPILL_PARAMS;
+    while (i > w->lo && (tn < REWRITE_SPILL_CODES || tp < pneed)) {
+        uint16_t c = code[--i];
+        const Rule *r = dispatch[c].plain;
+        tn += r ? (size_t)r->nsucc : 1;
+        tp += r ? (size_t)r->nslots : (size_t)CODE_ARITY(c);
+        pin -= (size_t)CODE_ARITY(c);
+    }
+    w->cut = i;
+    w->pcut = w->plo + pin;
 }
 
 void rewrite_chunk(Work *w) {

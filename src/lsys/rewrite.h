@@ -44,12 +44,24 @@ typedef struct Work {
     bool inplace;
     size_t at, pat, n_in, np_in;
     size_t np_all;    /* parameters of modules lo..hi (set for a pass of one chunk) */
+    /* a split pass of a plain table (rewrite_size): the output has room for all the chunk
+     * writes (exact: no capacity check); n_out and np_out are its sizes, and the modules from
+     * cut (parameters from pcut) are its tail */
+    bool exact;
+    size_t n_out, np_out, cut, pcut;
     const struct Rule **cand; /* applicable weighted rules of one module, and their weights */
     double *weight;
     int ncap;
     Fault fault;
 } Work;
 
+/* Plain tables (all_plain): what chunk lo..hi writes, n_out codes and np_out parameters (each
+ * code's successor has one size), and its tail, the last modules whose output holds at least
+ * what a write before them may spill past its end (SUCC_PAD codes, SLOT_PLAN parameters;
+ * REWRITE_SPILL): written anywhere else and copied, they keep the chunk's writes out of the
+ * next chunk's part of one shared output. */
+enum { REWRITE_SPILL_CODES = 16, REWRITE_SPILL_PARAMS = 8 };
+void rewrite_size(Work *w);
 /* Rewrite modules lo..hi of w->in into w->out; a fault is left in w->fault. */
 void rewrite_chunk(Work *w);
 /* Write rule r's successor for module pos (its parameters bound in locals) to w->out; the
