@@ -44,11 +44,33 @@ SylSkeleton *syl_skeleton_new(const char *name) {
     return s;
 }
 
+static bool in_block(const SylSkeleton *s, const void *p) {
+    const char *b = s->store->block;
+    return b && p && (const char *)p >= b && (const char *)p < b + s->store->block_bytes;
+}
+
+/* An array in the block, about to grow, moved out to malloc's first (the block is freed whole). */
+static bool own(SylSkeleton *s, void *arrp, size_t n, size_t elem) {
+    void **arr = arrp;
+    if (!in_block(s, *arr)) return true;
+    void *p = malloc(n ? n * elem : 1);
+    if (!p) return false;
+    memcpy(p, *arr, n * elem);
+    *arr = p;
+    return true;
+}
+
+void skeleton_adopt_block(SylSkeleton *s, void *block, size_t bytes) {
+    pages_free(s->store->block, s->store->block_bytes);
+    s->store->block = block, s->store->block_bytes = bytes;
+}
+
 void syl_skeleton_free(SylSkeleton *s) {
     if (!s) return;
     if (s->store) budget_release(s->store->budget, s->store->charged);
-    free(s->nodes);
-    free(s->organs);
+    if (!in_block(s, s->nodes)) free(s->nodes);
+    if (!in_block(s, s->organs)) free(s->organs);
+    pages_free(s->store->block, s->store->block_bytes);
     free(s->polys);
     free(s->poly_verts);
     free(s->parts);
@@ -103,15 +125,17 @@ static bool reserve(void *arrp, size_t *cap, size_t used, size_t n, size_t elem)
 }
 
 bool skeleton_reserve_nodes(SylSkeleton *s, size_t n) {
+    if (n > s->store->node_cap && !own(s, &s->nodes, s->nnodes, sizeof *s->nodes)) return false;
     return reserve(&s->nodes, &s->store->node_cap, s->nnodes, n, sizeof *s->nodes);
 }
 
 bool skeleton_reserve_organs(SylSkeleton *s, size_t n) {
+    if (n > s->store->organ_cap && !own(s, &s->organs, s->norgans, sizeof *s->organs)) return false;
     return reserve(&s->organs, &s->store->organ_cap, s->norgans, n, sizeof *s->organs);
 }
 
 void skeleton_adopt_organs(SylSkeleton *s, SylOrgan *organs, size_t n, size_t cap) {
-    free(s->organs);
+    if (!in_block(s, s->organs)) free(s->organs);
     s->organs = organs, s->norgans = n, s->store->organ_cap = cap;
 }
 
@@ -120,6 +144,7 @@ static void note_material(SylSkeleton *s, uint8_t m) {
 }
 
 int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
+    if (s->nnodes >= s->store->node_cap && !own(s, &s->nodes, s->nnodes, sizeof *n)) return -1;
     if (s->nnodes >= INT32_MAX || !array_reserve(&s->nodes, &s->store->node_cap, s->nnodes + 1, sizeof *n)) return -1;
     s->nodes[s->nnodes] = *n;
     /* round: callers built their nodes before lobes sat in the padding, which they leave unset;
@@ -130,6 +155,7 @@ int32_t syl_skeleton_add_node(SylSkeleton *s, const SylNode *n) {
 }
 
 int32_t syl_skeleton_add_organ(SylSkeleton *s, const SylOrgan *o) {
+    if (s->norgans >= s->store->organ_cap && !own(s, &s->organs, s->norgans, sizeof *o)) return -1;
     if (s->norgans >= INT32_MAX || !array_reserve(&s->organs, &s->store->organ_cap, s->norgans + 1, sizeof *o))
         return -1;
     SylOrgan *d = &s->organs[s->norgans];

@@ -13,6 +13,10 @@ struct SylSkeletonStore {
     size_t node_cap, organ_cap, poly_cap, vert_cap, part_cap;
     SylBudget *budget; /* counted against until the skeleton is freed (NULL: none) */
     uint64_t charged;
+    /* A generator's mapping that holds the nodes and organs (one page fault for both where
+     * each had its own), freed whole (pages_free); an array grown past it moves out. */
+    void *block;
+    size_t block_bytes;
 };
 
 /* bytes of budget b stay charged to s until it is freed. */
@@ -22,5 +26,8 @@ bool skeleton_reserve_nodes(SylSkeleton *s, size_t n);
 bool skeleton_reserve_organs(SylSkeleton *s, size_t n);
 /* s takes over organs (n of them, room for cap), malloc'ed, in place of its own. */
 void skeleton_adopt_organs(SylSkeleton *s, SylOrgan *organs, size_t n, size_t cap);
+/* s takes over block (pages_alloc'ed or arena_detach'ed, bytes long), in which its nodes and
+ * organs may live. */
+void skeleton_adopt_block(SylSkeleton *s, void *block, size_t bytes);
 
 #endif

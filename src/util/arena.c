@@ -142,6 +142,25 @@ bool arena_holds(const Arena *a, const void *p) {
     return false;
 }
 
+void *arena_detach(Arena *a, const void *from, size_t *bytes) {
+    ArenaBlock *b = a->head;
+    *bytes = 0;
+    if (!a->fixed || !b || b->size < PAGES_BIG || (const unsigned char *)from < b->data ||
+        (const unsigned char *)from >= b->data + b->off)
+        return NULL;
+    size_t lo = (size_t)((const unsigned char *)from - b->data) & ~(size_t)(PAGES_HUGE - 1);
+    size_t hi = (b->off + PAGES_HUGE - 1) & ~(size_t)(PAGES_HUGE - 1);
+    if (lo) pages_free(b->data, lo);
+    if (hi < b->size) pages_free(b->data + hi, b->size - hi);
+    void *p = b->data + lo;
+    *bytes = hi - lo;
+    free(b);
+    a->head = NULL;
+    a->used = 0;
+    a->fixed = false;
+    return p;
+}
+
 static size_t array_bytes(const Arena *a, size_t size) { return a->fixed ? (size + 63) & ~(size_t)63 : (size + 15) & ~(size_t)15; }
 
 void *arena_resize(Arena *a, void *p, size_t old_size, size_t size) {

@@ -43,6 +43,11 @@ void *arena_resize(Arena *a, void *p, size_t old_size, size_t size);
 void arena_pop(Arena *a, void *p, size_t size);
 void arena_trim(Arena *a, void *p, size_t old_size, size_t size);
 bool arena_holds(const Arena *a, const void *p);
+/* A fixed arena's block given up to the caller, the bytes from `from` to what was taken: the
+ * whole 2 MB pages outside them unmapped. Returns where the kept pages start (NULL: not a fixed
+ * arena, or nothing taken past from) and their length in *bytes, for pages_free; the arena is
+ * then empty. */
+void *arena_detach(Arena *a, const void *from, size_t *bytes);
 /* Report out of memory: longjmp to a->oom, or return NULL when it is not set. */
 void *arena_fail(Arena *a);
 

@@ -157,6 +157,9 @@ void weber_trim(WeberGen *g, void *arr, size_t *cap, size_t n, size_t size);
 /* scratch for a while: from the arena while it has room, else malloc; weber_drop gives it
  * back (to the arena whole when it was the last taken) */
 void *weber_take(WeberGen *g, size_t bytes);
+/* an array the skeleton keeps (its nodes, its organs): from the arena while it has room,
+ * whose pages then go to the skeleton (free_gen), else pages_owned */
+void *weber_keep(WeberGen *g, size_t bytes);
 void weber_drop(WeberGen *g, void *p, size_t bytes);
 
 /* splits.c */

@@ -216,10 +216,10 @@ void weber_place_leaves(WeberGen *g) {
                 leaves_on(g, id, st, s, s < s0 ? &st->start : &g->leafy_f[fi++], &kids, &b, pass == 0 ? &count : NULL);
         }
         if (b.n && !g->failed) flush(g, &b);
-        if (pass == 0 && count) { /* the organs' array, the skeleton's to free (huge pages from
-                                   * the scratch threshold: see weber_write_nodes) */
+        if (pass == 0 && count) { /* the organs' array, the skeleton's to free (after the nodes
+                                   * in the arena: see weber_write_nodes) */
             if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
-                !(g->lvs = pages_owned(count * sizeof *g->lvs, PAGES_OWNED_SCRATCH))) {
+                !(g->lvs = weber_keep(g, count * sizeof *g->lvs))) {
                 g->failed = true;
                 return;
             }

@@ -15,6 +15,11 @@ void *weber_take(WeberGen *g, size_t bytes) {
     return p ? p : malloc(bytes ? bytes : 1);
 }
 
+void *weber_keep(WeberGen *g, size_t bytes) {
+    void *p = g->arena.fixed ? arena_take(&g->arena, bytes) : NULL;
+    return p ? p : pages_owned(bytes, PAGES_OWNED_SCRATCH);
+}
+
 void weber_drop(WeberGen *g, void *p, size_t bytes) {
     if (arena_holds(&g->arena, p)) arena_pop(&g->arena, p, bytes);
     else free(p);

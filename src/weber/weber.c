@@ -15,14 +15,20 @@
 
 int syl_weber_validate(const SylProgram *p, FILE *diag) { return weber_params_check(p, diag); }
 
-static void free_gen(WeberGen *g) {
+/* The scratch freed; the arena's pages that hold sk's nodes and organs (taken last) go to sk. */
+static void free_gen(WeberGen *g, SylSkeleton *sk) {
     budget_release(g->budget, g->charged);
     weber_free(g, g->stems, g->stems_cap * sizeof *g->stems);
     weber_free(g, g->pts, g->pts_cap * sizeof *g->pts);
-    free(g->lvs);
+    if (!arena_holds(&g->arena, g->lvs)) free(g->lvs);
     weber_free(g, g->node_dist, g->node_dist_cap * sizeof *g->node_dist);
     weber_free(g, g->leafy, g->leafy_cap * sizeof *g->leafy);
     weber_free(g, g->leafy_f, g->leafy_f_cap * sizeof *g->leafy_f);
+    const void *from = !sk ? NULL : arena_holds(&g->arena, sk->nodes) ? (const void *)sk->nodes
+                                  : arena_holds(&g->arena, sk->organs) ? (const void *)sk->organs : NULL;
+    size_t bytes;
+    void *block = from ? arena_detach(&g->arena, from, &bytes) : NULL;
+    if (block) skeleton_adopt_block(sk, block, bytes);
     arena_free(&g->arena);
 }
 
@@ -98,6 +104,10 @@ static void presize(WeberGen *g, const Estimate *e) {
     double sized = e->stems * sizeof(WStem) + pts * sizeof(WPoint) + leafy_stems * sizeof(int) + leafy * sizeof(Frame);
     /* and what weber_write_nodes takes: a distance per node, four words per stem, sorted */
     double later = (pts + 2 * e->stems) * sizeof(float) + e->stems * 64 + (4 << 10) + (64 << 10);
+    /* and the skeleton's nodes and leaves, last (they go to the skeleton with the pages they
+     * reach: the poplar's scratch, nodes and leaves fill one 2 MB page where they filled three) */
+    later += (pts + 2 * e->stems) * sizeof(SylNode) + 64 +
+             leafy_stems * (fabs((double)g->leaves) * g->w.LeafQuality + 1) * sizeof(SylOrgan) + 64;
     if (!(sized + later <= ARENA_MOST)) sized = 0; /* (the first arrays still packed in it) */
     if (!arena_fix(&g->arena, (size_t)(sized + later < (4 << 20) ? 4 << 20 : sized + later)) || !sized) return;
     if (e->stems >= 1) weber_grow(g, (void **)&g->stems, &g->stems_cap, (size_t)e->stems, sizeof *g->stems);
@@ -205,7 +215,7 @@ int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out)
         program_say(p, diag, DIAG_ERROR, NULL, "'%s': the tree needs more memory than --max-memory allows (%llu MB)",
                 syl_program_name(p), (unsigned long long)budget_limit_mb(g->budget));
     if (!st) st = lang_textures_apply(p, sk, g->seed, diag);
-    free_gen(g);
+    free_gen(g, sk);
     free(g);
     obstacles_free(&env.obs);
     if (env.dev) rtcReleaseDevice(env.dev);

@@ -105,13 +105,13 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
         weber_drop(g, att, (ns ? ns : 1) * sizeof *att);
         return SYL_ELIMIT;
     }
-    /* every node at once: at most a root per trunk, the points, and one per attachment; in a
-     * huge page from the scratch threshold, not the kept one (util/pages.h): a tree's skeleton
-     * is short-lived (meshed, or appended to a scene's and freed), and the poplar's 0.3 MB of
-     * nodes cost 1.4 ms of 4 KB page faults */
+    /* every node at once: at most a root per trunk, the points, and one per attachment; in the
+     * arena's huge pages, past the scratch (weber_keep), not the kept threshold's (util/pages.h):
+     * a tree's skeleton is short-lived (meshed, or appended to a scene's and freed), and the
+     * poplar's 0.3 MB of nodes cost 1.4 ms of 4 KB page faults */
     size_t most = g->npts + na + ns;
-    if (!(sk->nodes = pages_owned(most * sizeof *sk->nodes, PAGES_OWNED_SCRATCH)) ||
-        !weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist))
+    if (!weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist) ||
+        !(sk->nodes = weber_keep(g, most * sizeof *sk->nodes)))
         wr.failed = true;
     else
         sk->store->node_cap = most;
