@@ -211,10 +211,10 @@ void syl_ecosystem_checkpoint_free(SylEcoCheckpoint *c);
  * diag; SYL_OK (*plants malloc'ed, in the table's order: by increasing id), SYL_EMODEL (a
  * bad table), SYL_EIO (unreadable), SYL_ELIMIT. */
 extern const char syl_ecosystem_table_header[];
-void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p);
+void syl_ecosystem_table_write_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p);
 /* A text field of a CSV file as RFC 4180 writes it: quoted when it holds a comma, a quote or a
  * line end (a species' name in the plant table and species.csv). */
-void syl_ecosystem_csv_text(FILE *f, const char *s);
+void syl_ecosystem_write_csv_text(FILE *f, const char *s);
 int syl_ecosystem_table_parse(const char *text, size_t len, const char *name, const SylEcoModel *m,
                               const SylTerrain *t, SylEcoPlant **plants, size_t *nplants, const SylSink *sink);
 int syl_ecosystem_table_read(const char *path, const SylEcoModel *m, const SylTerrain *t, SylEcoPlant **plants,
@@ -238,17 +238,17 @@ void syl_ecosystem_mpi_end(SylEcoMpi *mpi); /* MPI_Finalize */
 
 /* Pictures of a run (src/eco/pictures.c), in one palette of species' colours. map: a
  * snapshot seen from above, north up, its plants as discs of their crowns (the dominated
- * ones darker, the tallest on top) over the terrain's hillshade (syl_terrain_hillshade, of the
+ * ones darker, the tallest on top) over the terrain's hillshade (syl_terrain_draw_hillshade, of the
  * same size), the species' names in a legend: `sylva ecosystem`'s map-YEAR.png. SYL_OK or
  * SYL_ELIMIT. chart: an SVG of each species' cover (crown area / terrain area) over the years
  * given (species.svg), into *svg (malloc'ed, NUL-ended, *len bytes). SYL_OK or SYL_ELIMIT. */
-int syl_ecosystem_map(const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *plants, size_t n,
-                      const SylMapOptions *o, SylPicture *out);
+int syl_ecosystem_draw_map(const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *plants, size_t n,
+                           const SylMapOptions *o, SylPicture *out);
 typedef struct SylChartOptions {
     double width, height; /* pixels (0: 640 x 360) */
 } SylChartOptions;
-int syl_ecosystem_chart(const SylEcoModel *m, const SylEcoYear *years, int nyears, const SylChartOptions *o,
-                        char **svg, size_t *len);
+int syl_ecosystem_draw_chart(const SylEcoModel *m, const SylEcoYear *years, int nyears, const SylChartOptions *o,
+                             char **svg, size_t *len);
 
 /* A species' vigour at (x, z): its suitabilities combined as the block says. */
 double syl_ecosystem_vigour(const SylEcoModel *m, int species, const SylTerrain *t, double x, double z);

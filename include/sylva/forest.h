@@ -50,7 +50,7 @@ void syl_forest_camera(const SylForest *f, SylForestView v, int width, int heigh
 /* The plants as instances: at (x, terrain height, z), scaled to their height, turned about
  * y by a hash of their id. inst gets n entries; those without a look get scale 0. */
 void syl_forest_instances(const SylForest *f, const SylEcoPlant *plants, size_t n, SylRenderInstance *inst);
-/* Render the plants over the terrain (syl_render_instances: windows as there). */
+/* Render the plants over the terrain (syl_render_draw_instances: windows as there). */
 int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, const SylRenderCamera *cam,
                       const SylRenderOptions *ro, const int (*windows)[4], int nwindows, uint8_t *rgb,
                       SylRenderCounts *counts);

@@ -65,13 +65,13 @@ int syl_grow_write_preset(const SylProgram *p, FILE *out, FILE *diag);
 int syl_grow_write_syl(const SylProgram *p, const char *note, FILE *out, FILE *diag);
 
 /* Grow a `grow` model alone, its base at the origin. */
-int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out);
+int syl_grow_build(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out);
 /* Grow the file's scene (p: any model of the file, or the scene itself): every plant, year
  * by year in lockstep, in one environment; L-system plants are derived, drawn and take part
  * as shadow casters and occupants. One skeleton holds every plant, each where the scene puts
  * it. *obstacles (if not NULL) receives the obstacles' triangles as a mesh, to draw with the
  * plants (NULL when there are none). */
-int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, SylMesh **obstacles);
+int syl_grow_build_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, SylMesh **obstacles);
 
 #ifdef __cplusplus
 }

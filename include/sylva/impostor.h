@@ -52,8 +52,8 @@ void syl_impostor_free(SylImpostor *imp);
  * cards; sk and mo are what LOD0 was meshed from) with io, and make its crossed billboards
  * the chain's last level (which imp then owns; the chain's atlas is imp's). SYL_OK,
  * SYL_EMODEL (nothing drawn), SYL_ELIMIT, SYL_EUSAGE; reported on diag. */
-int syl_impostor_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
-                       SylImpostor *imp, FILE *diag);
+int syl_impostor_add_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
+                           SylImpostor *imp, FILE *diag);
 
 #ifdef __cplusplus
 }

@@ -65,7 +65,7 @@ int syl_lod_write_glb(const SylLodChain *c, const char *path, const SylSink *sin
  * rendered size x size by LOD0's camera, side by side. */
 typedef struct SylLodCheckOptions {
     int threads;   /* <= 0: all cores; nothing depends on it */
-    int size;      /* syl_lod_picture's side of a level (0: 256) */
+    int size;      /* syl_lod_draw_levels's side of a level (0: 256) */
     FILE *diag;
 } SylLodCheckOptions;
 typedef struct SylLodSilhouette {
@@ -74,8 +74,8 @@ typedef struct SylLodSilhouette {
     double percent;         /* differ / covered, in percent */
     double soft;            /* the sum of coverage differences over LOD0's coverage, percent */
 } SylLodSilhouette;
-int syl_lod_silhouette(const SylLodChain *c, int k, const SylLodCheckOptions *o, SylLodSilhouette *out);
-int syl_lod_picture(const SylLodChain *c, const SylLodCheckOptions *o, SylPicture *out);
+int syl_lod_check_silhouette(const SylLodChain *c, int k, const SylLodCheckOptions *o, SylLodSilhouette *out);
+int syl_lod_draw_levels(const SylLodChain *c, const SylLodCheckOptions *o, SylPicture *out);
 
 #ifdef __cplusplus
 }

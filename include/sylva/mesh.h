@@ -46,7 +46,7 @@ typedef struct SylMesh {
 
 enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };
 /* How leaves are made (docs/mesh.md#leaves): copied blades; one alpha-tested card each; left
- * out of the mesh, to be placed as instances of one leaf (syl_leaf_instances); or leaves and
+ * out of the mesh, to be placed as instances of one leaf (syl_instances_build); or leaves and
  * needles grouped into clusters, one alpha-tested card showing several leaves each. */
 enum { SYL_LEAVES_MESH, SYL_LEAVES_CARDS, SYL_LEAVES_INSTANCED, SYL_LEAVES_INSTANCED_CARDS, SYL_LEAVES_CLUSTERS,
        SYL_LEAVES_MODES };
@@ -86,7 +86,7 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src);
  * obstacles (may be NULL) as a mesh of its own, named after it, *n of them in *out (none when
  * sk has no parts, or a mesh was made without SylMeshOptions.vertex_nodes). SYL_OK or
  * SYL_ELIMIT. */
-int syl_mesh_parts(const SylMesh *plants, const SylMesh *obstacles, const SylSkeleton *sk, SylMesh ***out, int *n);
+int syl_mesh_split(const SylMesh *plants, const SylMesh *obstacles, const SylSkeleton *sk, SylMesh ***out, int *n);
 void syl_mesh_parts_free(SylMesh **parts, int n);
 /* The radius the mesher gives the segment ending at each node (s->nnodes floats): the
  * model's, or the pipe model's. SYL_EMODEL when a parent does not precede its child. */
@@ -120,7 +120,7 @@ typedef struct SylInstances {
  * at the origin along +x, across +y, facing +z (a blade for SYL_LEAVES_INSTANCED, a card for
  * SYL_LEAVES_INSTANCED_CARDS; opt->leaves picks). *n sets in *out, in material order; a leaf
  * the mesher would drop (no size, no frame) is left out too. SYL_OK or SYL_ELIMIT. */
-int syl_leaf_instances(const SylSkeleton *s, const SylMeshOptions *opt, SylInstances **out, int *n);
+int syl_instances_build(const SylSkeleton *s, const SylMeshOptions *opt, SylInstances **out, int *n);
 void syl_instances_free(SylInstances *sets, int n);
 
 /* Files (docs/mesh.md). Each writes to a temporary file and renames it, so a failure leaves
@@ -179,7 +179,7 @@ int syl_mesh_write_output(const SylMeshOutput *o, const char *path, const SylSin
 enum { SYL_TEXTURE_SIZE = 512 };
 /* For exporters: write PREFIX_bark.png, PREFIX_leaf.png and PREFIX_flower.png, each only if
  * a material group of m has that kind (m NULL: all of them and PREFIX_grass.png), as
- * SYL_TEXTURE_SIZE squares (syl_texture, texture.h). They are white-based patterns: the
+ * SYL_TEXTURE_SIZE squares (syl_texture_draw, texture.h). They are white-based patterns: the
  * material's colour goes in the material (glTF baseColorFactor, MTL Kd), which multiplies
  * them — as the renderer does. Each file is written through a temporary file. Returns
  * SYL_OK, SYL_EIO or SYL_ELIMIT. */

@@ -61,12 +61,12 @@ typedef struct SylRenderOptions {
  * m->pos too when vert_cap > nverts (it reads a little past the last vertex; otherwise the
  * positions are copied). The ground is at the mesh's lowest point; the camera is framed
  * from the mesh's vertices. */
-int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
+int syl_render_draw_mesh(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
 /* n pictures of one mesh, one after another in rgb (and alpha, normal), each seen from
  * toward[i] (see toward): Embree's scene is built once. */
-int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb);
+int syl_render_draw_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb);
 /* Render and write a PNG (via a temporary file). */
-int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
+int syl_render_write_png(const SylMesh *m, const SylRenderOptions *opt, const char *path);
 /* Many copies of a few meshes (a forest: sylva ecosystem, docs/ecosystem.md#pictures) as
  * Embree instances over a ground mesh (the terrain: drawn itself, no ground plane). A copy
  * of proto p is at t + Ry(yaw) (scale x), x a vertex of the proto's mesh, or of its coarse
@@ -74,7 +74,7 @@ int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *pa
  * detail by distance). A copy whose bounding sphere, grown by its height for the shadow it
  * casts, is outside the view is left out (frustum culling). A proto mesh (or coarse mesh)
  * with leaf cards or cluster cards (SylMesh.leaves) lets rays through their transparent
- * parts, as syl_render does. */
+ * parts, as syl_render_draw_mesh does. */
 enum { SYL_RENDER_COARSE_PX = 48 };
 typedef struct SylRenderProto {
     const SylMesh *mesh, *coarse; /* coarse: NULL for none */
@@ -100,10 +100,10 @@ enum { SYL_RENDER_BLOCK = 4 };
  * picture. A window whose [0] and [1] are multiples of SYL_RENDER_BLOCK has byte for byte the
  * whole picture's pixels, so such pieces rendered apart (on MPI ranks) tile it. counts (the
  * scene's, once) may be NULL. SYL_OK, SYL_EUSAGE, SYL_ELIMIT. */
-int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,
-                         const SylRenderInstance *inst, size_t n, const SylRenderCamera *cam,
-                         const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint8_t *rgb,
-                         SylRenderCounts *counts);
+int syl_render_draw_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,
+                              const SylRenderInstance *inst, size_t n, const SylRenderCamera *cam,
+                              const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint8_t *rgb,
+                              SylRenderCounts *counts);
 /* Where the camera puts world point p in the whole picture (pixels, y down, the centre of
  * the top-left pixel at (0.5, 0.5)); false behind the eye. */
 bool syl_render_project(const SylRenderCamera *cam, int width, int height, const float p[3], float *x, float *y);

@@ -183,7 +183,7 @@ int32_t syl_skeleton_add_polygon(SylSkeleton *s, const float (*verts)[3], uint32
  * image, copied into a material per further image, and each leaf organ one of those, chosen
  * at random by seed and its index (the same for the same seed, whatever the threads).
  * SYL_OK, or SYL_ELIMIT when the leaves' copies do not fit in 256 materials. */
-int syl_skeleton_textures(SylSkeleton *sk, SylTextureSpec *spec, uint64_t seed);
+int syl_skeleton_apply_textures(SylSkeleton *sk, SylTextureSpec *spec, uint64_t seed);
 /* Axis-aligned bounds of nodes, organs and polygons. */
 void syl_skeleton_bounds(const SylSkeleton *s, float lo[3], float hi[3]);
 /* id,parent,x,y,z,radius,order,kind — nodes, then organs (parent: their node). */
@@ -205,7 +205,7 @@ typedef struct SylTurtleOptions {
 
 /* Interpret a derived string (after `interpret` rules, see syl_interpret) with the 3D
  * turtle of docs/turtle.md and return its skeleton. */
-int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out);
+int syl_turtle_draw(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out);
 
 /* The turtle's query pass, for a query environment of your own (SylQueryOps.fill): fill the
  * query modules ?P(x,y,z), ?H, ?L and ?U of s in place with the turtle's position and frame

@@ -137,7 +137,7 @@ typedef struct SylCompileOptions {
     int nallow_paths;
     /* Where the program's diagnostics with a place go as records (above), instead of diag:
      * the compile's, the validation hook's, and those the engines report later about this
-     * program's lines (syl_program_error, syl_directive_error), for as long as it lives; the
+     * program's lines (syl_program_report_error, syl_directive_report_error), for as long as it lives; the
      * sink is copied. NULL: diag's text. Other models of the file compiled for this one
      * (syl_compile_model) report to their own diag. */
     const SylSink *sink;
@@ -234,13 +234,13 @@ const SylDirective *syl_program_directives(const SylProgram *p, int *n); /* of a
 const SylDirective *syl_program_scene(const SylProgram *p, int *n);      /* NULL: no scene */
 /* Report an error about the program's source at line:col (0: none), with the source line
  * and a caret, in the form of every other diagnostic. */
-void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
+void syl_program_report_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 /* An error about a directive's value a (NULL: about the directive's name), at its place:
  * directives may come from another file than the program's (a `weber` block's
  * `from "species.xml"`), and the message names that file and shows its line. */
-void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
-                         const char *fmt, ...) __attribute__((format(printf, 5, 6)));
+void syl_directive_report_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
+                                const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* The path the program was read from (for files a model names, such as obstacles). */
 const char *syl_program_path(const SylProgram *p);
 /* The source text it was compiled from. */

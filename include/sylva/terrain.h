@@ -112,11 +112,11 @@ typedef struct SylMapOptions {
 } SylMapOptions;
 /* Grey hillshade, lit from the north-west 45 degrees up (the ecosystem map's background).
  * SYL_OK or SYL_ELIMIT. */
-int syl_terrain_hillshade(const SylTerrain *t, const SylMapOptions *o, SylPicture *out);
+int syl_terrain_draw_hillshade(const SylTerrain *t, const SylMapOptions *o, SylPicture *out);
 /* A factor in colour over the hillshade gdaldem computes (the slope and aspect must have been
  * computed), with a legend of its colours, range and unit below: `sylva terrain --maps`'
  * NAME-colour.png. SYL_OK, SYL_EUSAGE (the factor or the slope not computed) or SYL_ELIMIT. */
-int syl_terrain_colour_map(const SylTerrain *t, SylTerrainFactor f, const SylMapOptions *o, SylPicture *out);
+int syl_terrain_draw_colour_map(const SylTerrain *t, SylTerrainFactor f, const SylMapOptions *o, SylPicture *out);
 void syl_terrain_free(SylTerrain *t);
 
 #ifdef __cplusplus

@@ -19,7 +19,7 @@ extern "C" {
  * v (row 0 first, as in glTF): along a branch, from a leaf's base (v = 0) to its tip (1).
  * Every texture tiles. SYL_MATERIAL_PLAIN is flat. False when out of memory: out is then
  * flat, which a writer must not commit as the texture. */
-bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out);
+bool syl_texture_draw(int kind, const float rgb[3], int size, uint8_t *out);
 /* "bark", "leaf", "flower", "grass" (kind -1); NULL for kinds without a texture. */
 const char *syl_texture_name(int kind);
 
@@ -31,14 +31,14 @@ int syl_leaf_shape_named(const char *name);                      /* -1: no such 
 /* shape may also be 128 and above: a skeleton's own outline (Weber–Penn's LeafShape, coded
  * by the mesher as SylMesh.leaf_shape; src/util/leafoutline.h). */
 bool syl_leaf_inside(int shape, float s, float t);
-/* size x size RGBA: the leaf texture (white-based, as syl_texture) with the shape's
+/* size x size RGBA: the leaf texture (white-based, as syl_texture_draw) with the shape's
  * coverage in alpha; x is u (across), y is v (base at row 0). False when out of memory. */
-bool syl_leaf_card(int shape, int size, uint8_t *rgba);
+bool syl_leaf_draw_card(int shape, int size, uint8_t *rgba);
 /* A leaf cluster card (docs/mesh.md#leaf-clusters): size x size RGBA, several leaves of the
  * shape radiating from the centre (SYL_CLUSTER_NEEDLES: a tuft of needles), the leaf texture
  * along each leaf in RGB and their coverage in alpha. False when out of memory. */
 enum { SYL_CLUSTER_NEEDLES = SYL_LEAF_SHAPES };
-bool syl_leaf_cluster(int shape, int size, uint8_t *rgba);
+bool syl_leaf_draw_cluster(int shape, int size, uint8_t *rgba);
 /* The share of a cluster card an alpha cutoff of 1/2 keeps (measured on a 128 x 128 drawing
  * of the same leaves): what a card must be enlarged by to show a given leaf area. 0: out of
  * memory. */

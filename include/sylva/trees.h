@@ -30,13 +30,13 @@ typedef struct SylTreeOptions {
 
 /* The tree of a compiled `weber` or `strands` program. SYL_OK, SYL_EUSAGE for another kind
  * of model, SYL_ELIMIT beyond the memory budget. */
-int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
-int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+int syl_weber_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+int syl_strands_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 /* A `curvetree` block: the Blender plug-in's tree grown from a trunk curve inside a crown
  * envelope (docs/curvetree.md). */
-int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+int syl_curvetree_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 /* Pafčo's generator (docs/pafco.md): opt->age in (0, 1] scales the tree's height. */
-int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
+int syl_pafco_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out);
 
 /* Check a block's parameters as `sylva check` does (syl_validate calls these): returns
  * the number of errors reported to diag, each with file:line:col, the line and a caret

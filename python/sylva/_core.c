@@ -853,7 +853,7 @@ static int realtime_levels(PlantObject *pl, const SylMeshOptions *mo, int lod, i
     if (!st && last_billboard) {
         SylImpostorOptions io = {.grid = impostor ? grid : -1, .view = view, .billboards = billboards ? billboards : 3,
                                  .threads = threads, .diag = diag};
-        st = syl_impostor_level(&pl->lods, pl->pl.skeleton, mo, &io, &pl->imp, diag);
+        st = syl_impostor_add_level(&pl->lods, pl->pl.skeleton, mo, &io, &pl->imp, diag);
     }
     return st;
 }
@@ -1156,7 +1156,7 @@ static PyObject *plant_leaf_sets(PlantObject *o, PyObject *args, PyObject *kw) {
     SylInstances *sets = NULL;
     int n = 0, st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_leaf_instances(o->pl.skeleton, &mo, &sets, &n);
+    st = syl_instances_build(o->pl.skeleton, &mo, &sets, &n);
     Py_END_ALLOW_THREADS
     if (st) return raise_status(st, &d);
     diag_drop(&d);
@@ -1228,7 +1228,7 @@ static PyObject *plant_render(PlantObject *o, PyObject *args, PyObject *kw) {
                            .diag = d.f, .alpha = alpha, .ground = transparent ? -1 : 0};
     int st;
     Py_BEGIN_ALLOW_THREADS
-    st = syl_render(o->pl.mesh, &ro, rgb);
+    st = syl_render_draw_mesh(o->pl.mesh, &ro, rgb);
     if (!st)
         for (size_t i = 0; i < px; i++) {
             memcpy(rgba + 4 * i, rgb + 3 * i, 3);

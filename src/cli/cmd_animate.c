@@ -243,7 +243,7 @@ int cmd_animate(int argc, char **argv) {
         if (!status) {
             cli_frame_box(pl->mesh, last.mesh, n > 1 ? (double)k / (n - 1) : 1, &box);
             ro.frame = &box.mesh;
-            status = syl_render(pl->mesh, &ro, rgb);
+            status = syl_render_draw_mesh(pl->mesh, &ro, rgb);
         }
         render_s += cli_now() - r0;
         if (!status && a.steps) cli_label_draw(rgb, w, h, syl_growth_label(g, k), NULL, NULL);

@@ -401,7 +401,7 @@ static int write_image(const Column *cols, int ncols, const char *path, SylRende
         cli_progress_start(&prog, "rendering");
         ro->progress = cli_progress;
         ro->user = &prog;
-        status = syl_render_png(all, ro, path);
+        status = syl_render_write_png(all, ro, path);
     }
     syl_mesh_free(all);
     free(meshes);

@@ -124,11 +124,11 @@ static int on_checkpoint(void *user, int year, const SylEcoPlant *plants, size_t
     return st;
 }
 
-/* map-YEAR.png (syl_ecosystem_map) */
+/* map-YEAR.png (syl_ecosystem_draw_map) */
 static int write_map(Run *r, int year, const SylEcoPlant *plants, size_t n) {
     SylPicture pic = {0};
     char *path = path_in(r->dir, "map-%d.png", year);
-    int st = path ? syl_ecosystem_map(r->m, r->t, plants, n, NULL, &pic) : SYL_ELIMIT;
+    int st = path ? syl_ecosystem_draw_map(r->m, r->t, plants, n, NULL, &pic) : SYL_ELIMIT;
     if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, &cli_sink);
     if (!st) printf("%s\n", path);
     syl_picture_free(&pic);
@@ -145,7 +145,7 @@ static int write_table(Run *r, int year, const SylEcoPlant *plants, size_t n) {
         return SYL_EIO;
     }
     fprintf(o.f, "%s\n", syl_ecosystem_table_header);
-    for (size_t j = 0; j < n; j++) syl_ecosystem_table_row(o.f, r->m, r->t, &plants[j]);
+    for (size_t j = 0; j < n; j++) syl_ecosystem_table_write_row(o.f, r->m, r->t, &plants[j]);
     int st = out_close(&o, SYL_OK);
     if (!st) printf("%s\n", path);
     free(path);
@@ -239,7 +239,7 @@ static int write_species_csv(Run *r) {
     for (int y = 0; y < r->nyears; y++)
         for (int s = 0; s < r->m->nspecies; s++) {
             fprintf(o.f, "%d,", r->years[y].year);
-            syl_ecosystem_csv_text(o.f, r->m->species[s].name);
+            syl_ecosystem_write_csv_text(o.f, r->m->species[s].name);
             fprintf(o.f, ",%u,%.6f,%.3f", r->years[y].count[s], r->years[y].cover[s], r->years[y].mean_height[s]);
             for (int c = 0; by_cause && c < SYL_ECO_DEATH_CAUSES; c++)
                 if (c != SYL_ECO_DEATH_STRESS) fprintf(o.f, ",%u", r->years[y].deaths[s][c]);
@@ -251,12 +251,12 @@ static int write_species_csv(Run *r) {
     return st;
 }
 
-/* species.svg (syl_ecosystem_chart) */
+/* species.svg (syl_ecosystem_draw_chart) */
 static int write_chart(Run *r) {
     char *svg = NULL, *path = path_in(r->dir, "species.svg", 0);
     size_t len = 0;
     OutFile o;
-    int st = path ? syl_ecosystem_chart(r->m, r->years, r->nyears, NULL, &svg, &len) : SYL_ELIMIT;
+    int st = path ? syl_ecosystem_draw_chart(r->m, r->years, r->nyears, NULL, &svg, &len) : SYL_ELIMIT;
     if (!st && out_open(&o, path)) {
         fwrite(svg, 1, len, o.f);
         st = out_close(&o, SYL_OK);

@@ -79,7 +79,7 @@ static int render(const Plant *pl, SylRenderOptions *ro, const char *path) {
     cli_progress_start(&prog, "rendering");
     ro->progress = cli_progress;
     ro->user = &prog;
-    return syl_render_png(pl->mesh, ro, path);
+    return syl_render_write_png(pl->mesh, ro, path);
 }
 
 int cmd_grow(int argc, char **argv) {

@@ -66,7 +66,7 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
                         size_t n, OutGroup *outs) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
                              .threads = threads, .diag = stderr, .budget = budget};
-    int status = syl_impostor_level(c, sk, mo, &io, imp, stderr);
+    int status = syl_impostor_add_level(c, sk, mo, &io, imp, stderr);
     if (status) return status;
     char color[4096], normal[4096];
     beside(output, "_impostor.png", color, sizeof color);
@@ -184,7 +184,7 @@ int cmd_mesh(int argc, char **argv) {
     int nsets = 0;
     size_t instances = 0;
     if (instanced) {
-        status = syl_leaf_instances(sk, &mo, &sets, &nsets);
+        status = syl_instances_build(sk, &mo, &sets, &nsets);
         if (status) fprintf(stderr, "sylva: error: out of memory placing the leaves\n");
         for (int i = 0; i < nsets; i++) instances += sets[i].count;
         if (levels) lods.level[0].sets = sets, lods.level[0].nsets = nsets; /* still ours to free */
@@ -201,7 +201,7 @@ int cmd_mesh(int argc, char **argv) {
         shown.n -= imp.billboards ? 1 : 0;
         SylPicture pic = {0};
         status = outgroup_add(&outs, a.image, &cli_sink)
-                     ? syl_lod_picture(&shown, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &pic)
+                     ? syl_lod_draw_levels(&shown, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &pic)
                      : SYL_EIO;
         if (!status) status = syl_png_write(a.image, pic.rgb, pic.width, pic.height, &cli_sink);
         syl_picture_free(&pic);
@@ -224,7 +224,7 @@ int cmd_mesh(int argc, char **argv) {
         if (a.wind > 0) fprintf(stderr, "wind joints: %d\nwind keys: %d\nwind time: %.6f s\n", wind.njoints, wind.nkeys, t_wind);
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
             SylLodSilhouette sil;
-            if (syl_lod_silhouette(&lods, k, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &sil)) break;
+            if (syl_lod_check_silhouette(&lods, k, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &sil)) break;
             const SylLodLevel *lv = &lods.level[k];
             char leaves[64];
             if (lv->cluster_leaves > 0) snprintf(leaves, sizeof leaves, "leaves in clusters of %.1f", (double)lv->cluster_leaves);

@@ -63,7 +63,7 @@ int cmd_plant(int argc, char **argv) {
         ro.threads = d.threads;
         ro.progress = cli_progress;
         ro.user = &prog;
-        status = syl_render_png(pl.mesh, &ro, png);
+        status = syl_render_write_png(pl.mesh, &ro, png);
     }
     if (!status) printf("%s\n%s\n", png, glb);
     free(png);

@@ -103,7 +103,7 @@ int cmd_render(int argc, char **argv) {
             status = SYL_ELIMIT;
         } else {
             t4 = cli_now();
-            status = syl_render(mesh, &ro, rgb);
+            status = syl_render_draw_mesh(mesh, &ro, rgb);
             t5 = cli_now();
             if (!status) status = syl_png_write(out_path, rgb, w, h, &cli_sink);
             free(rgb);

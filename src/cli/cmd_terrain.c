@@ -93,7 +93,7 @@ static int write_maps(const SylTerrain *t, const char *dir) {
     return SYL_OK;
 }
 
-/* DIR/NAME-colour.png, every factor computed in colour (syl_terrain_colour_map) */
+/* DIR/NAME-colour.png, every factor computed in colour (syl_terrain_draw_colour_map) */
 static int colour_maps(const SylTerrain *t, const char *dir) {
     int st = SYL_OK;
     for (int f = 0; f < SYL_TERRAIN_FACTORS && !st; f++) {
@@ -102,7 +102,7 @@ static int colour_maps(const SylTerrain *t, const char *dir) {
         char *path = malloc(len);
         SylPicture pic = {0};
         if (path) snprintf(path, len, "%s/%s-colour.png", dir, syl_terrain_factor_name((SylTerrainFactor)f));
-        st = path ? syl_terrain_colour_map(t, (SylTerrainFactor)f, NULL, &pic) : SYL_ELIMIT;
+        st = path ? syl_terrain_draw_colour_map(t, (SylTerrainFactor)f, NULL, &pic) : SYL_ELIMIT;
         if (!st) st = syl_png_write(path, pic.rgb, pic.width, pic.height, &cli_sink);
         if (!st) printf("%s\n", path);
         syl_picture_free(&pic);

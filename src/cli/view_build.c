@@ -189,7 +189,7 @@ static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *d
     double t1 = cli_now();
     if (rq->preview) { /* no levels, no wind, no reordering for the vertex cache */
         if (m->mo.leaves == SYL_LEAVES_INSTANCED || m->mo.leaves == SYL_LEAVES_INSTANCED_CARDS) {
-            status = syl_leaf_instances(m->pl.skeleton, &m->mo, &m->sets, &m->nsets);
+            status = syl_instances_build(m->pl.skeleton, &m->mo, &m->sets, &m->nsets);
             for (int i = 0; i < m->nsets; i++) m->instances += m->sets[i].count;
         }
         m->lod_s = cli_now() - t1;
@@ -199,7 +199,7 @@ static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *d
         status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod - rq->impostor, &m->lods);
         if (status && status != SYL_ECANCELED) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
         SylImpostorOptions io = {.grid = -1, .billboards = 3, .threads = v->threads, .diag = diag, .budget = m->budget};
-        if (!status && rq->impostor) status = syl_impostor_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
+        if (!status && rq->impostor) status = syl_impostor_add_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
     } else {
         status = syl_mesh_optimize(m->pl.mesh);
     }
@@ -218,7 +218,7 @@ static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *d
     }
     bool instanced = m->mo.leaves == SYL_LEAVES_INSTANCED || m->mo.leaves == SYL_LEAVES_INSTANCED_CARDS;
     if (!status && instanced) {
-        status = syl_leaf_instances(m->pl.skeleton, &m->mo, &m->sets, &m->nsets);
+        status = syl_instances_build(m->pl.skeleton, &m->mo, &m->sets, &m->nsets);
         for (int i = 0; i < m->nsets; i++) m->instances += m->sets[i].count;
         if (m->lod > 0) m->lods.level[0].sets = m->sets, m->lods.level[0].nsets = m->nsets;
     }
@@ -391,7 +391,7 @@ static int write_png(Made *m, const ViewRequest *rq, FILE *out, FILE *diag, int 
     uint8_t *rgb = malloc((size_t)w * (size_t)h * 3);
     if (!rgb) return SYL_ELIMIT;
     SylRenderOptions ro = {.width = w, .height = h, .threads = threads, .diag = diag, .budget = m->budget};
-    int status = syl_render(m->pl.mesh, &ro, rgb);
+    int status = syl_render_draw_mesh(m->pl.mesh, &ro, rgb);
     if (!status) status = syl_png_write_stream(out, rgb, w, h, cli_text_sink(diag));
     free(rgb);
     return status;

@@ -93,21 +93,21 @@ int ct_curve_of_directive(const SylProgram *p, const SylDirective *d, bool read_
         int st = syl_program_file(p, d->args[0].text, &path);
         if (st == SYL_ELIMIT) return st;
         if (st) {
-            syl_directive_error(p, diag, d, &d->args[0], "cannot read '%s': %s", d->args[0].text, syl_file_refused);
+            syl_directive_report_error(p, diag, d, &d->args[0], "cannot read '%s': %s", d->args[0].text, syl_file_refused);
             return SYL_EIO;
         }
         size_t len = 0;
         char *text = syl_read_file(path, &len);
         if (!text) {
-            syl_directive_error(p, diag, d, &d->args[0], "cannot read the trunk curve '%s': %s", d->args[0].text,
-                                strerror(errno));
+            syl_directive_report_error(p, diag, d, &d->args[0], "cannot read the trunk curve '%s': %s", d->args[0].text,
+                                       strerror(errno));
             free(path);
             return SYL_EIO;
         }
         st = ct_curve_obj(path, text, len, c, diag);
         if (st == SYL_EMODEL)
-            syl_directive_error(p, diag, d, &d->args[0], "cannot use the trunk curve \"%s\" (an .obj file of `l` lines)",
-                                d->args[0].text);
+            syl_directive_report_error(p, diag, d, &d->args[0], "cannot use the trunk curve \"%s\" (an .obj file of `l` lines)",
+                                       d->args[0].text);
         free(text);
         free(path);
         return st;
@@ -116,7 +116,7 @@ int ct_curve_of_directive(const SylProgram *p, const SylDirective *d, bool read_
                    ? (!strcmp(d->args[0].text, "bezier") ? 'b' : !strcmp(d->args[0].text, "polyline") ? 'p' : 0)
                    : 0;
     if (!kind) {
-        syl_directive_error(p, diag, d, d->nargs ? &d->args[0] : NULL, "%s", usage);
+        syl_directive_report_error(p, diag, d, d->nargs ? &d->args[0] : NULL, "%s", usage);
         return SYL_EMODEL;
     }
     int n = d->nargs - 1;
@@ -126,14 +126,14 @@ int ct_curve_of_directive(const SylProgram *p, const SylDirective *d, bool read_
     for (int i = 0; i < n; i++) {
         const SylDirArg *a = &d->args[i + 1];
         if (a->kind != SYL_DARG_TUPLE || a->nvalues != 3) {
-            syl_directive_error(p, diag, d, a, "a control point is written (x,y,z)");
+            syl_directive_report_error(p, diag, d, a, "a control point is written (x,y,z)");
             free(pts);
             return SYL_EMODEL;
         }
         for (int j = 0; j < 3; j++)
             if (!coord_ok(a->values[j])) {
-                syl_directive_error(p, diag, d, a, "a control point must be finite and within %g of the origin",
-                                    COORD_MAX);
+                syl_directive_report_error(p, diag, d, a, "a control point must be finite and within %g of the origin",
+                                           COORD_MAX);
                 free(pts);
                 return SYL_EMODEL;
             }
@@ -144,15 +144,15 @@ int ct_curve_of_directive(const SylProgram *p, const SylDirective *d, bool read_
     if (!ok) {
         if (kind == 'b' && n >= 4 && n <= MAX_POINTS && (n - 1) % 3 == 0) return SYL_ELIMIT;
         if (kind == 'p' && n >= 2 && n <= MAX_POINTS) return SYL_ELIMIT;
-        syl_directive_error(p, diag, d, d->nargs > 1 ? &d->args[d->nargs - 1] : &d->args[0],
-                            kind == 'b' ? "a bezier trunk takes 4, 7, 10 … control points (each cubic piece 3 more), "
-                                          "at most %d, not %d"
-                                        : "a polyline trunk takes 2 to %d points, not %d",
-                            MAX_POINTS, d->nargs - 1);
+        syl_directive_report_error(p, diag, d, d->nargs > 1 ? &d->args[d->nargs - 1] : &d->args[0],
+                                   kind == 'b' ? "a bezier trunk takes 4, 7, 10 … control points (each cubic piece 3 more), "
+                                                 "at most %d, not %d"
+                                               : "a polyline trunk takes 2 to %d points, not %d",
+                                   MAX_POINTS, d->nargs - 1);
         return SYL_EMODEL;
     }
     if (!(c->length > 0)) {
-        syl_directive_error(p, diag, d, &d->args[0], "the trunk curve has no length: its points are all the same");
+        syl_directive_report_error(p, diag, d, &d->args[0], "the trunk curve has no length: its points are all the same");
         ct_curve_free(c);
         return SYL_EMODEL;
     }

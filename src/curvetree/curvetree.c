@@ -1,4 +1,4 @@
-/* syl_curvetree: the Blender plug-in's tree from a `curvetree` block (docs/curvetree.md): its
+/* syl_curvetree_build: the Blender plug-in's tree from a `curvetree` block (docs/curvetree.md): its
  * trunk curve and envelope read, the budget charged, the tree built; syl_curvetree_validate:
  * the block's check for `sylva check`. */
 #include <errno.h>
@@ -48,12 +48,12 @@ static int load_envelope(const SylProgram *p, const SylDirective *d, Envelope *e
     if (!st && e->obs.nt == 0) st = SYL_EMODEL;
     if (!st && !parity_build(&e->grid, e->obs.v, e->obs.nv, e->obs.tri, e->obs.nt)) st = SYL_ELIMIT;
     if (st && diag)
-        syl_directive_error(p, diag, d, &d->args[0], "cannot use the envelope \"%s\" (a closed mesh in an .obj file)",
-                            name);
+        syl_directive_report_error(p, diag, d, &d->args[0], "cannot use the envelope \"%s\" (a closed mesh in an .obj file)",
+                                   name);
     return st;
 }
 
-int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+int syl_curvetree_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
     static const SylTreeOptions none = {0};
     if (!opt) opt = &none;
     FILE *diag = opt->diag;
@@ -103,7 +103,7 @@ int syl_curvetree(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **
         uint64_t seed = opt->use_seed ? opt->seed : (uint64_t)P.seed;
         seed += opt->seed_offset; /* a scene's n-th plant of a row: a tree of its own */
         st = ct_build(&P, &trunk, inside, &env, aspect, seed, sk);
-        if (!st) st = syl_skeleton_textures(sk, &tex, seed);
+        if (!st) st = syl_skeleton_apply_textures(sk, &tex, seed);
         if (st) program_say(p, diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton", syl_program_name(p));
     }
     lang_textures_free(&tex);

@@ -56,16 +56,16 @@ static int must_give(SchLineRead *r, void *base) {
     int line = p->model_loc.first_line, col = p->model_loc.first_column;
     if (sch_lines_errors(r)) return 0;
     if (!P->trunk_at) {
-        syl_program_error(p, diag, line, col,
-                          "curvetree block '%s' has no trunk: write `trunk bezier (x,y,z) ...`, `trunk polyline ...` "
-                          "or `trunk \"curve.obj\"`",
-                          syl_program_name(p));
+        syl_program_report_error(p, diag, line, col,
+                                 "curvetree block '%s' has no trunk: write `trunk bezier (x,y,z) ...`, `trunk polyline ...` "
+                                 "or `trunk \"curve.obj\"`",
+                                 syl_program_name(p));
         return 1;
     }
     if (!P->envelope_at) {
-        syl_program_error(p, diag, line, col,
-                          "curvetree block '%s' has no envelope: write `envelope \"crown.obj\"`, a closed mesh",
-                          syl_program_name(p));
+        syl_program_report_error(p, diag, line, col,
+                                 "curvetree block '%s' has no envelope: write `envelope \"crown.obj\"`, a closed mesh",
+                                 syl_program_name(p));
         return 1;
     }
     return 0;

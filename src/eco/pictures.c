@@ -36,10 +36,10 @@ static int by_height(const void *a, const void *b, void *plants) {
     return p->id < q->id ? -1 : p->id > q->id;
 }
 
-int syl_ecosystem_map(const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *plants, size_t n,
-                      const SylMapOptions *o, SylPicture *out) {
+int syl_ecosystem_draw_map(const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *plants, size_t n,
+                           const SylMapOptions *o, SylPicture *out) {
     SylPicture pic = {0};
-    int st = syl_terrain_hillshade(t, o, &pic);
+    int st = syl_terrain_draw_hillshade(t, o, &pic);
     uint32_t *order = st ? NULL : malloc((n ? n : 1) * sizeof *order); /* indices: no copy of the plants */
     if (!order) {
         syl_picture_free(&pic);
@@ -80,8 +80,8 @@ int syl_ecosystem_map(const SylEcoModel *m, const SylTerrain *t, const SylEcoPla
 }
 
 /* The chart: each species' cover (crown area / terrain area) over the years. */
-int syl_ecosystem_chart(const SylEcoModel *m, const SylEcoYear *years, int nyears, const SylChartOptions *o,
-                        char **svg, size_t *len) {
+int syl_ecosystem_draw_chart(const SylEcoModel *m, const SylEcoYear *years, int nyears, const SylChartOptions *o,
+                             char **svg, size_t *len) {
     *svg = NULL, *len = 0;
     xmlBufferPtr buf = xmlBufferCreate();
     xmlTextWriterPtr w = buf ? xmlNewTextWriterMemory(buf, 0) : NULL;

@@ -27,7 +27,7 @@ static void put_float(FILE *f, float v) {
     fprintf(f, "%.9g", (double)v);
 }
 
-void syl_ecosystem_csv_text(FILE *f, const char *s) {
+void syl_ecosystem_write_csv_text(FILE *f, const char *s) {
     if (!s[strcspn(s, ",\"\r\n")]) {
         fputs(s, f);
         return;
@@ -40,10 +40,10 @@ void syl_ecosystem_csv_text(FILE *f, const char *s) {
     fputc('"', f);
 }
 
-void syl_ecosystem_table_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p) {
+void syl_ecosystem_table_write_row(FILE *f, const SylEcoModel *m, const SylTerrain *t, const SylEcoPlant *p) {
     const SylEcoSpecies *s = &m->species[p->species];
     fprintf(f, "%016llx,", (unsigned long long)p->id);
-    syl_ecosystem_csv_text(f, s->name);
+    syl_ecosystem_write_csv_text(f, s->name);
     fputc(',', f);
     put_float(f, p->x);
     fprintf(f, ",%.3f,", syl_terrain_factor_at(t, SYL_TERRAIN_ALTITUDE, p->x, p->z));

@@ -215,7 +215,7 @@ int syl_forest_render(const SylForest *f, const SylEcoPlant *plants, size_t n, c
     size_t kept = 0;
     for (size_t i = 0; i < n; i++)
         if (inst[i].scale > 0 && f->nprotos) inst[kept++] = inst[i];
-    int st = syl_render_instances(f->ground, f->protos, f->nprotos, inst, kept, cam, ro, windows, nwindows, rgb, counts);
+    int st = syl_render_draw_instances(f->ground, f->protos, f->nprotos, inst, kept, cam, ro, windows, nwindows, rgb, counts);
     free(inst);
     return st;
 }

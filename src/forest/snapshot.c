@@ -2,7 +2,7 @@
  * (sylva/forest.h, syl_ecosystem_render_snapshot; `sylva render FILE --plants CSV`). Under
  * mpirun the picture's rows are cut into bands dealt round the ranks (band b to rank b mod N,
  * for balance: the sky is cheap, the forest dear); every rank holds the whole instanced scene
- * and renders its bands as windows of the picture on it (syl_render_instances: bands starting
+ * and renders its bands as windows of the picture on it (syl_render_draw_instances: bands starting
  * at multiples of SYL_RENDER_BLOCK rows have the whole picture's bytes), rank 0 gathers them
  * and writes the PNG. */
 #include <stdlib.h>

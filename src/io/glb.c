@@ -134,13 +134,13 @@ void glb_pixels_free(GlbPixels *px) {
     *px = (GlbPixels){0};
 }
 
-/* The leaf pattern, syl_texture's bytes as the leaf's slot, syl_leaf_card and
- * syl_leaf_cluster make them; NULL when out of memory. */
+/* The leaf pattern, syl_texture_draw's bytes as the leaf's slot, syl_leaf_draw_card and
+ * syl_leaf_draw_cluster make them; NULL when out of memory. */
 static const uint8_t *leaf_pattern(GlbPixels *px) {
     enum { N = SYL_TEXTURE_SIZE };
     if (!px->leaf) {
         uint8_t *rgb = malloc((size_t)N * N * 3);
-        if (!rgb || !syl_texture(SYL_MATERIAL_LEAF, NULL, N, rgb)) return free(rgb), NULL;
+        if (!rgb || !syl_texture_draw(SYL_MATERIAL_LEAF, NULL, N, rgb)) return free(rgb), NULL;
         px->leaf = rgb;
     }
     return px->leaf;
@@ -154,7 +154,7 @@ bool glb_slot_png(IoBuf *b, int k, int shape, GlbPixels *px) {
     return k == CARD      ? leaf && (leaf_card_of(leaf, shape, N, img), io_png_rgba(b, img, N, N))
            : k == CLUSTER ? leaf && leaf_cluster_of(leaf, shape, N, img) && io_png_rgba(b, img, N, N)
            : leaf         ? io_png(b, leaf, N)
-           : k < 3        ? syl_texture(kinds[k], NULL, N, img) && io_png(b, img, N)
+           : k < 3        ? syl_texture_draw(kinds[k], NULL, N, img) && io_png(b, img, N)
                           : false;
 }
 

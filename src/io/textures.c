@@ -12,7 +12,7 @@ static int write_card(int shape, bool cluster, const char *prefix, char *path, s
     IoBuf b = {0};
     snprintf(path, n, "%s_%s.png", prefix, cluster ? "leafcluster" : "leafcard");
     int status = SYL_OK;
-    if (!rgba || !(cluster ? syl_leaf_cluster(shape, size, rgba) : syl_leaf_card(shape, size, rgba)) ||
+    if (!rgba || !(cluster ? syl_leaf_draw_cluster(shape, size, rgba) : syl_leaf_draw_card(shape, size, rgba)) ||
         !io_png_rgba(&b, rgba, size, size)) {
         sink_error(sink, "out of memory writing '%s'", path);
         status = SYL_ELIMIT;
@@ -73,7 +73,7 @@ int syl_mesh_write_textures(const SylMesh *m, const char *prefix, const SylSink 
             used = m->materials[m->groups[g].material].kind == kinds[k] && !io_image(m, m->groups[g].material);
         if (!used) continue;
         snprintf(path, n, "%s_%s.png", prefix, syl_texture_name(kinds[k]));
-        if (syl_texture(kinds[k], NULL, size, img)) {
+        if (syl_texture_draw(kinds[k], NULL, size, img)) {
             status = syl_png_write(path, img, size, size, sink);
         } else {
             sink_error(sink, "out of memory writing '%s'", path);

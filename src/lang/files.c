@@ -56,8 +56,8 @@ int lang_check_file(const SylProgram *p, FILE *diag, const char *what, const cha
         const char *base = copy ? basename(copy) : path;
         char *d = copy ? strdup(path) : NULL;
         bool whole = d && realpath(dirname(d), dir);
-        syl_program_error(p, diag, line, col, "the %s file \"%s\" cannot be read (looked for %s%s%s): %s", what, file,
-                          whole ? dir : "", whole ? "/" : "", whole ? base : path, strerror(err));
+        syl_program_report_error(p, diag, line, col, "the %s file \"%s\" cannot be read (looked for %s%s%s): %s", what, file,
+                                 whole ? dir : "", whole ? "/" : "", whole ? base : path, strerror(err));
         free(copy);
         free(d);
     }

@@ -22,15 +22,15 @@ int lang_lod_check(const SylProgram *p, const SylDirective *d, FILE *diag) {
     if (lod_value(d, &v) && lod_ok(v)) return 0;
     const SylDirArg *a = d->nargs ? &d->args[d->nargs > 1 ? 1 : 0] : NULL;
     if (d->nargs == 1 && lod_value(d, &v))
-        syl_directive_error(p, diag, d, a, "'lod' expects a whole number from 0 to %d, not %g", SYL_LOD_MAX, v);
+        syl_directive_report_error(p, diag, d, a, "'lod' expects a whole number from 0 to %d, not %g", SYL_LOD_MAX, v);
     else
-        syl_directive_error(p, diag, d, a, "'lod' takes one value, a whole number from 0 to %d", SYL_LOD_MAX);
+        syl_directive_report_error(p, diag, d, a, "'lod' takes one value, a whole number from 0 to %d", SYL_LOD_MAX);
     return 1;
 }
 
 int lang_lod_set_check(const SylProgram *p, double v, const char *typed, FILE *diag) {
     if (lod_ok(v)) return 0;
-    syl_program_error(p, diag, 0, 0, "--set %s: 'lod' expects a whole number from 0 to %d, not %g", typed, SYL_LOD_MAX, v);
+    syl_program_report_error(p, diag, 0, 0, "--set %s: 'lod' expects a whole number from 0 to %d, not %g", typed, SYL_LOD_MAX, v);
     return 1;
 }
 

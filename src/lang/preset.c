@@ -79,11 +79,11 @@ static int writable(const SylProgram *p, FILE *diag) {
         if (lang_texture_line(d->name)) continue; /* written by lang_textures_xml / _syl */
         for (int j = 0; j < d->nargs; j++)
             if (!strcmp(d->name, "shoot") && d->args[j].kind == SYL_DARG_WORD && !strcmp(d->args[j].text, "rule")) {
-                syl_directive_error(p, diag, d, &d->args[j],
-                                    "a shoot rule names an lsystem of the file: a preset holds the grow block alone");
+                syl_directive_report_error(p, diag, d, &d->args[j],
+                                           "a shoot rule names an lsystem of the file: a preset holds the grow block alone");
                 return SYL_EUSAGE;
             } else if (d->args[j].kind == SYL_DARG_STRING) {
-                syl_directive_error(p, diag, d, &d->args[j], "a preset holds numbers and words, not a string");
+                syl_directive_report_error(p, diag, d, &d->args[j], "a preset holds numbers and words, not a string");
                 return SYL_EUSAGE;
             }
     }

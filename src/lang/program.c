@@ -49,7 +49,7 @@ static void report_at(const SylProgram *p, FILE *out, const SylSink *sink, int s
     diag_report(&d, severity, ((SylLoc){line, col, line, col}), "%s", msg);
 }
 
-void syl_program_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
+void syl_program_report_error(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     report_at(p, out, NULL, DIAG_ERROR, line, col, fmt, ap);
@@ -74,8 +74,8 @@ static void directive_verror(const SylProgram *p, FILE *out, const SylSink *sink
         report_at(p, out, sink, DIAG_ERROR, line, col, fmt, ap);
     }
 }
-void syl_directive_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
-                         const char *fmt, ...) {
+void syl_directive_report_error(const SylProgram *p, FILE *out, const SylDirective *d, const SylDirArg *a,
+                                const char *fmt, ...) {
     va_list ap;
     va_start(ap, fmt);
     directive_verror(p, out, NULL, d, a, fmt, ap);

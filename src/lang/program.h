@@ -275,7 +275,7 @@ struct SylProgram {
     int32_t direction_when;
 };
 
-/* A warning about p's source at line:col, as syl_program_error reports an error. */
+/* A warning about p's source at line:col, as syl_program_report_error reports an error. */
 void program_warning(const SylProgram *p, FILE *out, int line, int col, const char *fmt, ...)
     __attribute__((format(printf, 5, 6)));
 

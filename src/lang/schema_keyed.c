@@ -40,7 +40,7 @@ typedef struct Reader {
 } Reader;
 
 #define ERR(r, line, col, ...)                                                                                   \
-    ((r)->seen ? (void)0 : syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
+    ((r)->seen ? (void)0 : syl_program_report_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
 
 /* row took x (n numbers) or word: describe's, if it asked. */
 static void see(const Reader *r, const SchRow *row, const double *x, int n, const char *word) {

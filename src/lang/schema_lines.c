@@ -55,8 +55,8 @@ void sch_lines_stop(SchLineRead *r) { r->stopped = true; }
 static void error_at(const SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *msg) {
     if (r->sink && d) directive_error_to(r->p, r->sink, d, a, "%s", msg);
     else if (r->sink) program_error_to(r->p, r->sink, 0, 0, "%s", msg);
-    else if (d) syl_directive_error(r->p, r->diag, d, a, "%s", msg);
-    else syl_program_error(r->p, r->diag, 0, 0, "%s", msg);
+    else if (d) syl_directive_report_error(r->p, r->diag, d, a, "%s", msg);
+    else syl_program_report_error(r->p, r->diag, 0, 0, "%s", msg);
 }
 
 void sch_lines_error(SchLineRead *r, const SylDirective *d, const SylDirArg *a, const char *fmt, ...) {

@@ -1,7 +1,7 @@
 /* A weber block's `from "species.xml" [Name]`: the parameters of another file's weber model
  * (an Arbaro species file, usually) go before the block's own lines, which override them.
  * Each spliced line keeps its file, so that an error in its value names that file and shows
- * its line (SylDirective.file, syl_directive_error). */
+ * its line (SylDirective.file, syl_directive_report_error). */
 #include <errno.h>
 #include <setjmp.h>
 #include <stdlib.h>

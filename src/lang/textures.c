@@ -31,7 +31,7 @@ void lang_textures_free(SylTextureSpec *spec) {
 int lang_texture_image(const SylProgram *p, const SylDirective *d, const SylDirArg *a, SylTextureSpec *spec,
                        int *idx, FILE *diag) {
     if (a->kind != SYL_DARG_STRING && a->kind != SYL_DARG_WORD) {
-        syl_directive_error(p, diag, d, a, "'%s' takes file names in quotes (\"bark.png\")", d->name);
+        syl_directive_report_error(p, diag, d, a, "'%s' takes file names in quotes (\"bark.png\")", d->name);
         return SYL_EMODEL;
     }
     if (!spec->images && !(spec->images = calloc(1, sizeof *spec->images))) return SYL_ELIMIT;
@@ -43,19 +43,19 @@ int lang_texture_image(const SylProgram *p, const SylDirective *d, const SylDirA
             return SYL_OK;
         }
     if (im->n >= SYL_IMAGES_MAX) {
-        syl_directive_error(p, diag, d, a, "more than %d texture images in one model", SYL_IMAGES_MAX);
+        syl_directive_report_error(p, diag, d, a, "more than %d texture images in one model", SYL_IMAGES_MAX);
         return SYL_EMODEL;
     }
     if (strlen(a->text) >= sizeof im->img[0].name) {
-        syl_directive_error(p, diag, d, a, "a texture's file name is at most %d bytes",
-                            (int)sizeof im->img[0].name - 1);
+        syl_directive_report_error(p, diag, d, a, "a texture's file name is at most %d bytes",
+                                   (int)sizeof im->img[0].name - 1);
         return SYL_EMODEL;
     }
     char *path = NULL;
     int st = syl_program_file(p, a->text, &path);
     if (st == SYL_ELIMIT) return st;
     if (st) {
-        syl_directive_error(p, diag, d, a, "cannot read the texture \"%s\": %s", a->text, syl_file_refused);
+        syl_directive_report_error(p, diag, d, a, "cannot read the texture \"%s\": %s", a->text, syl_file_refused);
         return SYL_EIO;
     }
     size_t len = 0;
@@ -63,14 +63,14 @@ int lang_texture_image(const SylProgram *p, const SylDirective *d, const SylDirA
     int err = errno;
     free(path);
     if (!bytes) {
-        syl_directive_error(p, diag, d, a, "cannot read the texture \"%s\": %s", a->text, file_strerror(err));
+        syl_directive_report_error(p, diag, d, a, "cannot read the texture \"%s\": %s", a->text, file_strerror(err));
         return err == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     }
     SylImage *g = &im->img[im->n];
     char why[160];
     bool alpha = false;
     if (!pngin_decode((const uint8_t *)bytes, len, &g->width, &g->height, &alpha, NULL, why, sizeof why)) {
-        syl_directive_error(p, diag, d, a, "the texture \"%s\" is %s", a->text, why);
+        syl_directive_report_error(p, diag, d, a, "the texture \"%s\" is %s", a->text, why);
         free(bytes);
         return SYL_EMODEL;
     }
@@ -125,31 +125,31 @@ int lang_textures(const SylProgram *p, SylTextureSpec *spec, FILE *diag) {
         if (!role) continue;
         const SylDirective **seen = is_bark ? &bark : &leaves;
         if (*seen) {
-            syl_directive_error(p, diag, d, NULL, "'%s' is given twice (first at line %d, as '%s')", d->name,
-                                (*seen)->line, (*seen)->name);
+            syl_directive_report_error(p, diag, d, NULL, "'%s' is given twice (first at line %d, as '%s')", d->name,
+                                       (*seen)->line, (*seen)->name);
             worst = worse(worst, SYL_EMODEL);
             continue;
         }
         *seen = d;
         int files = is_bark ? 1 : d->nargs;
         if (d->nargs == 0 || (is_bark && d->nargs != 1 && d->nargs != 4)) {
-            syl_directive_error(p, diag, d, NULL,
-                                is_bark ? "'%s' takes a file name and optionally `tile U V`: bark \"oak.png\" tile 2 3"
-                                        : "'%s' takes one or more file names: leaf_texture \"maple.png\"",
-                                d->name);
+            syl_directive_report_error(p, diag, d, NULL,
+                                       is_bark ? "'%s' takes a file name and optionally `tile U V`: bark \"oak.png\" tile 2 3"
+                                               : "'%s' takes one or more file names: leaf_texture \"maple.png\"",
+                                       d->name);
             worst = worse(worst, SYL_EMODEL);
             continue;
         }
         if (is_bark && d->nargs == 4) {
             if (strcmp(d->args[1].text, "tile") || d->args[1].kind != SYL_DARG_WORD) {
-                syl_directive_error(p, diag, d, &d->args[1], "expected `tile U V` after the bark's file");
+                syl_directive_report_error(p, diag, d, &d->args[1], "expected `tile U V` after the bark's file");
                 worst = worse(worst, SYL_EMODEL);
                 continue;
             }
             bool ok = true;
             for (int k = 0; k < 2 && ok; k++)
                 if (!(ok = tile_value(&d->args[2 + k], &spec->tile[k]))) {
-                    syl_directive_error(p, diag, d, &d->args[2 + k], "a tile count is a number from 0.01 to 1000");
+                    syl_directive_report_error(p, diag, d, &d->args[2 + k], "a tile count is a number from 0.01 to 1000");
                     worst = worse(worst, SYL_EMODEL);
                 }
             if (!ok) continue;

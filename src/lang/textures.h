@@ -42,13 +42,13 @@ void lang_textures_xml(const SylProgram *p, ParamXml *x);
 void lang_textures_syl(const SylProgram *p, FILE *out);
 
 /* A generator's last step: give its skeleton sk the model's textures (lang_textures, then
- * syl_skeleton_textures with the tree's seed). SYL_OK, or lang_textures' status, or
+ * syl_skeleton_apply_textures with the tree's seed). SYL_OK, or lang_textures' status, or
  * SYL_ELIMIT. */
 static inline int lang_textures_apply(const SylProgram *p, SylSkeleton *sk, uint64_t seed, FILE *diag) {
     SylTextureSpec t;
     int st = lang_textures(p, &t, diag);
     if (st) return st;
-    st = syl_skeleton_textures(sk, &t, seed);
+    st = syl_skeleton_apply_textures(sk, &t, seed);
     if (st) program_say_error(p, diag, "'%s': its leaf textures need more than 256 materials", syl_program_name(p));
     lang_textures_free(&t);
     return st;

@@ -212,7 +212,7 @@ int syl_lod_build(const SylSkeleton *s, const SylMeshOptions *mo, SylMesh *lod0,
         if (!status) status = syl_mesh_build(&t, &o, &lv->mesh);
         if (lv->mesh) out->n = k + 1;
         if (!status && (mo->leaves == SYL_LEAVES_INSTANCED || mo->leaves == SYL_LEAVES_INSTANCED_CARDS))
-            status = syl_leaf_instances(&t, &o, &lv->sets, &lv->nsets);
+            status = syl_instances_build(&t, &o, &lv->sets, &lv->nsets);
         size_t kept = t.nnodes;
         free_copy(&t);
         if (status) break;

@@ -1,6 +1,6 @@
 /* Leaf clusters (Pafčo 2007's spherical clusters, docs/mesh.md#leaf-clusters): the leaves and
  * needles that lie close together are drawn as one alpha-tested card whose texture shows
- * several leaves (texture's syl_leaf_cluster). Leaves are grouped by cells of a grid, per
+ * several leaves (texture's syl_leaf_draw_cluster). Leaves are grouped by cells of a grid, per
  * material, the cell size found by bisection so there is about one card per
  * SylMeshOptions.cluster_leaves leaves. Each card lies in its group's best-fitting plane (the
  * least spread of its leaves' bases and tips), square, at the group's centre, and is as large

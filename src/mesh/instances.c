@@ -40,7 +40,7 @@ static int prototype(const SylSkeleton *s, const SylMeshOptions *opt, int materi
     return status;
 }
 
-int syl_leaf_instances(const SylSkeleton *s, const SylMeshOptions *opt, SylInstances **out, int *n) {
+int syl_instances_build(const SylSkeleton *s, const SylMeshOptions *opt, SylInstances **out, int *n) {
     *out = NULL;
     *n = 0;
     size_t count[256] = {0};

@@ -1,4 +1,4 @@
-/* A scene's objects (syl_mesh_parts): each plant's and each obstacle's triangles as a mesh of
+/* A scene's objects (syl_mesh_split): each plant's and each obstacle's triangles as a mesh of
  * its own, for writers that keep them apart (an OBJ's `o`, a glTF node each). */
 #include <stdint.h>
 #include <stdlib.h>
@@ -68,7 +68,7 @@ static int plant_of(const SylMesh *m, const SylSkeleton *sk, size_t t) {
     return k;
 }
 
-int syl_mesh_parts(const SylMesh *plants, const SylMesh *obstacles, const SylSkeleton *sk, SylMesh ***out, int *n) {
+int syl_mesh_split(const SylMesh *plants, const SylMesh *obstacles, const SylSkeleton *sk, SylMesh ***out, int *n) {
     *out = NULL, *n = 0;
     if (!sk->nparts || !plants->node || (obstacles && !obstacles->node)) return SYL_OK;
     SylMesh **parts = calloc((size_t)sk->nparts, sizeof *parts);

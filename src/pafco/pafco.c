@@ -1,4 +1,4 @@
-/* syl_pafco: Pafčo's tree from a `pafco` block or a Pafčo file (docs/pafco.md);
+/* syl_pafco_build: Pafčo's tree from a `pafco` block or a Pafčo file (docs/pafco.md);
  * syl_pafco_validate: the block's check for `sylva check`. */
 #include <stdio.h>
 
@@ -25,12 +25,12 @@ static int textures(const SylProgram *p, const PafcoParams *P, SylSkeleton *sk, 
         for (int k = 0; k < tex.nleaf && 1 + k < sk->nmaterials; k++) sk->materials[1 + k].image = tex.leaf[k];
         tex.nleaf = 0;
     }
-    st = syl_skeleton_textures(sk, &tex, seed);
+    st = syl_skeleton_apply_textures(sk, &tex, seed);
     lang_textures_free(&tex);
     return st;
 }
 
-int syl_pafco(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+int syl_pafco_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
     static const SylTreeOptions none = {0};
     if (!opt) opt = &none;
     *out = NULL;

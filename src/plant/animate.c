@@ -129,7 +129,7 @@ int syl_growth_build(SylGrowth *g, int k, SylPlant *out) {
         out->modules = syl_string_length(g->strings[k]);
         SylTurtleOptions t = {.diag = o->diag, .max_memory = o->max_memory, .budget = o->budget,
                               .use_seed = o->use_seed, .seed = o->seed};
-        int st = syl_turtle(g->p, g->strings[k], &t, &out->skeleton);
+        int st = syl_turtle_draw(g->p, g->strings[k], &t, &out->skeleton);
         if (!st) st = syl_mesh_build(out->skeleton, &g->mesh, &out->mesh);
         if (st) syl_plant_free(out);
         return st;

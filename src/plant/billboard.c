@@ -2,8 +2,8 @@
  * --impostor/--billboards`, sylva view's far level and the Python package's lod= share it. */
 #include "sylva/impostor.h"
 
-int syl_impostor_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
-                    SylImpostor *imp, FILE *diag) {
+int syl_impostor_add_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
+                        SylImpostor *imp, FILE *diag) {
     if (!c->level[0].mesh->nidx) {
         fprintf(diag, "sylva: error: the model draws nothing: there is no impostor to bake\n");
         return SYL_EMODEL;

@@ -29,7 +29,7 @@ static int bake_views(const SylMesh *m, const SylImpostorOptions *o, int n, cons
     SylRenderOptions ro = {.width = size, .height = size, .samples = 4, .ao_samples = -1, .shadows = -1, .unlit = true,
                            .ground = -1,
                            .threads = o->threads, .diag = o->diag, .sink = o->sink, .alpha = alpha, .normal = *nd, .adaptive = true};
-    if (!status) status = syl_render_views(m, &ro, n, dirs, rgb);
+    if (!status) status = syl_render_draw_views(m, &ro, n, dirs, rgb);
     for (size_t i = 0; !status && i < px; i++) {
         bool seen = alpha[i] > 0; /* outside the plant: black, so filtering bleeds no sky */
         for (int c = 0; c < 3; c++) (*rgba)[4 * i + (size_t)c] = seen ? rgb[3 * i + (size_t)c] : 0;

@@ -21,7 +21,7 @@ static SylView lod_view(const SylMesh *m) {
     return hi[2] - lo[2] < 0.05f * size ? SYL_VIEW_FRONT : SYL_VIEW_ISO; /* camera.c's rule for auto */
 }
 
-int syl_lod_silhouette(const SylLodChain *c, int k, const SylLodCheckOptions *o, SylLodSilhouette *out) {
+int syl_lod_check_silhouette(const SylLodChain *c, int k, const SylLodCheckOptions *o, SylLodSilhouette *out) {
     if (k < 1 || k >= c->n) return SYL_EUSAGE;
     /* The renderer frames the plant in 80% of the picture: the picture is 1/0.8 of it. */
     int size = (int)((double)c->level[k - 1].coverage * SCREEN_LINES / 0.8 + 0.5);
@@ -32,9 +32,9 @@ int syl_lod_silhouette(const SylLodChain *c, int k, const SylLodCheckOptions *o,
     SylRenderOptions ro = {.width = size, .height = size, .view = lod_view(c->level[0].mesh), .samples = 4, .ao_samples = -1,
                            .shadows = -1, .threads = o ? o->threads : 0, .diag = o ? o->diag : NULL, .frame = c->level[0].mesh};
     ro.alpha = a0;
-    if (!status) status = syl_render(c->level[0].mesh, &ro, rgb);
+    if (!status) status = syl_render_draw_mesh(c->level[0].mesh, &ro, rgb);
     ro.alpha = ak;
-    if (!status) status = syl_render(c->level[k].mesh, &ro, rgb);
+    if (!status) status = syl_render_draw_mesh(c->level[k].mesh, &ro, rgb);
     if (!status) {
         size_t differ = 0, covered = 0;
         uint64_t soft = 0, total = 0;
@@ -53,7 +53,7 @@ int syl_lod_silhouette(const SylLodChain *c, int k, const SylLodCheckOptions *o,
     return status;
 }
 
-int syl_lod_picture(const SylLodChain *c, const SylLodCheckOptions *o, SylPicture *out) {
+int syl_lod_draw_levels(const SylLodChain *c, const SylLodCheckOptions *o, SylPicture *out) {
     *out = (SylPicture){0};
     int size = o && o->size > 0 ? o->size : 256;
     size_t row = (size_t)size * (size_t)c->n * 3;
@@ -62,7 +62,7 @@ int syl_lod_picture(const SylLodChain *c, const SylLodCheckOptions *o, SylPictur
     SylRenderOptions ro = {.width = size, .height = size, .view = lod_view(c->level[0].mesh),
                            .threads = o ? o->threads : 0, .diag = o ? o->diag : NULL, .frame = c->level[0].mesh};
     for (int k = 0; k < c->n && !status; k++) {
-        status = syl_render(c->level[k].mesh, &ro, one);
+        status = syl_render_draw_mesh(c->level[k].mesh, &ro, one);
         for (int y = 0; y < size && !status; y++)
             memcpy(sheet + (size_t)y * row + (size_t)k * (size_t)size * 3, one + (size_t)y * (size_t)size * 3,
                    (size_t)size * 3);

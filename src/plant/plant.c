@@ -39,7 +39,7 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
                         .budget = budget, .diag = opt->diag, .progress = opt->progress, .user = opt->user};
     SylMesh *obstacles = NULL;
     double t0 = now(), c0 = cpu_now();
-    int st = scene ? syl_grow_scene(p, &g, &out->skeleton, &obstacles) : syl_grow(p, &g, &out->skeleton);
+    int st = scene ? syl_grow_build_scene(p, &g, &out->skeleton, &obstacles) : syl_grow_build(p, &g, &out->skeleton);
     if (opt->progress) opt->progress(opt->user, 1);
     double t1 = now(), c1 = cpu_now();
     out->grow = g.stats;
@@ -50,7 +50,7 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
         SylMeshOptions each = *mo; /* a scene's objects are told apart by their vertices' nodes */
         if (scene) each.vertex_nodes = 1;
         st = syl_mesh_build(out->skeleton, &each, &out->mesh);
-        if (!st && scene) st = syl_mesh_parts(out->mesh, obstacles, out->skeleton, &out->parts, &out->nparts);
+        if (!st && scene) st = syl_mesh_split(out->mesh, obstacles, out->skeleton, &out->parts, &out->nparts);
         if (!st && scene && !mo->vertex_nodes && !obstacles) { /* as it was asked for */
             free(out->mesh->node);
             out->mesh->node = NULL;
@@ -104,9 +104,9 @@ static int build_lsystem(const SylProgram *p, const SylPlantOptions *opt, const 
     out->rewritten = d.rewritten;
     if (!st) out->modules = syl_string_length(out->string);
     if (!st && opt->until != SYL_PLANT_STRING) {
-        st = syl_turtle(p, out->string, &(SylTurtleOptions){.diag = opt->diag, .max_memory = opt->max_memory, .budget = budget,
-                                                                .use_seed = opt->use_seed, .seed = opt->seed,
-                                                                .cancel = mo->cancel}, &out->skeleton);
+        st = syl_turtle_draw(p, out->string, &(SylTurtleOptions){.diag = opt->diag, .max_memory = opt->max_memory, .budget = budget,
+                                                                     .use_seed = opt->use_seed, .seed = opt->seed,
+                                                                     .cancel = mo->cancel}, &out->skeleton);
         if (opt->drop_string) {
             syl_string_free(out->string);
             out->string = NULL;

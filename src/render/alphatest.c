@@ -84,8 +84,8 @@ int render_alpha_attach(const SylMesh *m, const uint8_t *tri_mat, const uint32_t
     if (!((cards || clusters) && any) && !images) return SYL_OK;
     AlphaTest *at = calloc(1, sizeof *at);
     uint8_t *rgba = malloc(4 * MASK_SIZE * MASK_SIZE);
-    bool ok = at && rgba && (!(cards || clusters) || (clusters ? syl_leaf_cluster(m->leaf_shape, MASK_SIZE, rgba)
-                                                                : syl_leaf_card(m->leaf_shape, MASK_SIZE, rgba)));
+    bool ok = at && rgba && (!(cards || clusters) || (clusters ? syl_leaf_draw_cluster(m->leaf_shape, MASK_SIZE, rgba)
+                                                                : syl_leaf_draw_card(m->leaf_shape, MASK_SIZE, rgba)));
     for (int k = 0; k < 256 && ok; k++) {
         int i = image[k];
         if (i < 0 || at->imask[i]) continue;

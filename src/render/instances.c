@@ -1,4 +1,4 @@
-/* syl_render_instances: a forest as Embree instances of a few prototype scenes over a ground
+/* syl_render_draw_instances: a forest as Embree instances of a few prototype scenes over a ground
  * mesh, culled to the view and coarser far away; shaded by shade.c like any render. */
 
 /* Each prototype (and its coarse level) is one Embree scene built once; a copy is an
@@ -314,10 +314,10 @@ static void lighting(Scene *s, const SylMesh *ground, const SylRenderInstance *i
     s->shadow_far = 4 * s->size + 1000;
 }
 
-int syl_render_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,
-                         const SylRenderInstance *inst, size_t n, const SylRenderCamera *cam,
-                         const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint8_t *rgb,
-                         SylRenderCounts *counts) {
+int syl_render_draw_instances(const SylMesh *ground, const SylRenderProto *protos, int nprotos,
+                              const SylRenderInstance *inst, size_t n, const SylRenderCamera *cam,
+                              const SylRenderOptions *opt, const int (*windows)[4], int nwindows, uint8_t *rgb,
+                              SylRenderCounts *counts) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
     SylRenderCounts own_counts;

@@ -1,4 +1,4 @@
-/* syl_render: check the request, set up the scene, build textures and BVH, render tiles. */
+/* syl_render_draw_mesh: check the request, set up the scene, build textures and BVH, render tiles. */
 
 /* One Embree triangle geometry over the mesh's own buffers, a ground square at the mesh's
  * lowest point (intersected analytically: it is a plane and never occludes anything), a sun
@@ -175,7 +175,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
 
 /* Embree's BVH, its copy of the positions, the textures and the picture, counted against
  * the memory budget before any is built: about 150 bytes a triangle. */
-int syl_render(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
+int syl_render_draw_mesh(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
     SylSink text;
@@ -373,7 +373,7 @@ static int render_checked(const SylMesh *m, const SylRenderOptions *opt, int n, 
     return status;
 }
 
-int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb) {
+int syl_render_draw_views(const SylMesh *m, const SylRenderOptions *opt, int n, const float (*toward)[3], uint8_t *rgb) {
     if (n < 1) return SYL_OK;
     SylSink text;
     const SylSink *sink = diag_sink(&text, opt->diag, opt->sink);
@@ -391,7 +391,7 @@ int syl_render_views(const SylMesh *m, const SylRenderOptions *opt, int n, const
     return st;
 }
 
-int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *path) {
+int syl_render_write_png(const SylMesh *m, const SylRenderOptions *opt, const char *path) {
     static const SylRenderOptions defaults = {0};
     if (!opt) opt = &defaults;
     SylSink text;
@@ -402,7 +402,7 @@ int syl_render_png(const SylMesh *m, const SylRenderOptions *opt, const char *pa
         sink_error(sink, "render: out of memory");
         return SYL_ELIMIT;
     }
-    int status = syl_render(m, opt, rgb);
+    int status = syl_render_draw_mesh(m, opt, rgb);
     if (!status) status = syl_png_write(path, rgb, w, h, sink);
     free(rgb);
     return status;

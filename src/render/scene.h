@@ -44,7 +44,7 @@ typedef struct Scene {
     bool ground, unlit, adaptive;
     bool boxed;                 /* box: the framed mesh's bounds, measured for the first view */
     float box[2][3];
-    /* The picture may be a window of a bigger one (syl_render_instances' tile): pixel (x, y)
+    /* The picture may be a window of a bigger one (syl_render_draw_instances' tile): pixel (x, y)
      * of out is (x + ox, y + oy) of a full_w x full_h picture. */
     int ox, oy, full_w, full_h;
     /* Instances (instances.c): Embree instance i draws proto[inst_proto[i]], turned about y

@@ -1,4 +1,4 @@
-/* syl_grow: one `grow` model alone, its base at the origin. */
+/* syl_grow_build: one `grow` model alone, its base at the origin. */
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
@@ -10,7 +10,7 @@
 #include "sylva/grow.h"
 #include "lang/program.h"
 
-int syl_grow(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
+int syl_grow_build(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out) {
     static const SylGrowOptions defaults = {.years = -1};
     SylGrowOptions local;
     if (!opt) {

@@ -53,7 +53,7 @@ int lsys_draw(const SylProgram *q, const SylString *s, const SylDeriveOptions *d
     SylString *ti = NULL;
     int st = syl_interpret(q, s, d, &ti);
     SylTurtleOptions to = {.diag = d->diag, .max_memory = d->max_memory, .budget = d->budget};
-    if (!st) st = syl_turtle(q, ti, &to, out);
+    if (!st) st = syl_turtle_draw(q, ti, &to, out);
     syl_string_free(ti);
     if (st) return st;
     SylSkeleton *sk = *out;
@@ -161,7 +161,7 @@ static int turtle_ends(LsysPlant *pl) {
     SylSkeleton *sk = NULL;
     int st = syl_interpret(pl->q, syl_deriver_string(pl->dv), &d, &ti);
     SylTurtleOptions to = {.diag = d.diag, .max_memory = d.max_memory, .budget = d.budget};
-    if (!st) st = syl_turtle(pl->q, ti, &to, &sk);
+    if (!st) st = syl_turtle_draw(pl->q, ti, &to, &sk);
     syl_string_free(ti);
     size_t n = 0;
     if (!st && sk->nnodes > s->ends_cap) {

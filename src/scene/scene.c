@@ -1,4 +1,4 @@
-/* syl_grow_scene: every plant of a file's scene in one environment. Grow plants become
+/* syl_grow_build_scene: every plant of a file's scene in one environment. Grow plants become
  * trees of one forest. L-system plants beside trees derive in lockstep with them, a step a
  * year (lsys.c), shading and crowding them and shaded by them; in a scene of
  * L-systems only, each is derived and drawn in turn and stands, for the plants after it, as
@@ -211,7 +211,7 @@ static int load_obstacles(Forest *f, const SylProgram *p, const SceneSpec *S, si
         if (!st) st = obstacles_add_obj(&f->env.obstacles, path, o->at, o->scale, diag_sink(&(SylSink){0}, diag, program_sink(p)));
         free(path);
         if (st) {
-            if (diag) syl_program_error(p, diag, o->line, o->col, "cannot use the obstacle \"%s\"", o->file);
+            if (diag) syl_program_report_error(p, diag, o->line, o->col, "cannot use the obstacle \"%s\"", o->file);
             return st;
         }
     }
@@ -268,18 +268,18 @@ static int compile_plants(const SylProgram *p, const SceneSpec *S, Forest *f, Sc
         int st = SYL_OK;
         progs[i] = plant_model(p, pl, m, diag, &st);
         if (!progs[i]) {
-            if (diag && st != SYL_ELIMIT) syl_program_error(p, diag, pl->line, pl->col, "cannot use this plant");
+            if (diag && st != SYL_ELIMIT) syl_program_report_error(p, diag, pl->line, pl->col, "cannot use this plant");
             else program_say(p, diag, DIAG_ERROR, NULL, "out of memory");
             return st ? st : SYL_EMODEL;
         }
         SylModelKind kind = syl_program_kind(progs[i]->q);
         if (lang_kind_is(kind, KF_UNNAMED)) {
-            syl_program_error(p, diag, pl->line, pl->col, "a scene cannot be a plant of a scene");
+            syl_program_report_error(p, diag, pl->line, pl->col, "a scene cannot be a plant of a scene");
             return SYL_EMODEL;
         }
         if (!lang_kind_is(kind, KF_IN_SCENE)) { /* another file's: sylva check said so of this file's */
-            syl_program_error(p, diag, pl->line, pl->col, "the %s '%s' cannot stand in a scene",
-                              syl_model_kind_name(kind), syl_program_name(progs[i]->q));
+            syl_program_report_error(p, diag, pl->line, pl->col, "the %s '%s' cannot stand in a scene",
+                                     syl_model_kind_name(kind), syl_program_name(progs[i]->q));
             return SYL_EMODEL;
         }
     }
@@ -386,7 +386,7 @@ static int grow_scene(const SylProgram *p, SylGrowOptions *opt, const SceneSpec 
     return SYL_OK;
 }
 
-int syl_grow_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, SylMesh **obstacles) {
+int syl_grow_build_scene(const SylProgram *p, SylGrowOptions *opt, SylSkeleton **out, SylMesh **obstacles) {
     SylGrowOptions local = {.years = -1};
     if (!opt) opt = &local;
     *out = NULL;

@@ -319,7 +319,7 @@ SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, in
     *status = scene_spec_path(p, file, &model, &path);
     if (*status) {
         if (*status == SYL_EIO && diag)
-            syl_program_error(p, diag, line, col, "the plant file \"%s\" cannot be read: %s", file, syl_file_refused);
+            syl_program_report_error(p, diag, line, col, "the plant file \"%s\" cannot be read: %s", file, syl_file_refused);
         return NULL;
     }
     /* the --set values reach every plant; its own folder is within p's: it reads no further */
@@ -334,7 +334,7 @@ SylProgram *scene_plant_file(const SylProgram *p, const char *file, int line, in
         *status = errno == ENOMEM ? SYL_ELIMIT : SYL_EIO;
     } else if (!syl_text_is_model(text, len)) { /* its lines are not shown: it may be anything */
         if (diag)
-            syl_program_error(p, diag, line, col, "the plant file \"%s\" is not a model file (no lsystem, grow, weber or strands block)", file);
+            syl_program_report_error(p, diag, line, col, "the plant file \"%s\" is not a model file (no lsystem, grow, weber or strands block)", file);
         *status = SYL_EMODEL;
     } else {
         q = syl_compile(path, text, len, &copt, status);
@@ -351,7 +351,7 @@ static int check_file(const SylProgram *p, FILE *diag, const char *what, const c
     char *path = NULL, *model = NULL;
     int st = scene_spec_path(p, file, plant ? &model : NULL, &path);
     free(model);
-    if (st == SYL_EIO) syl_program_error(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, syl_file_refused);
+    if (st == SYL_EIO) syl_program_report_error(p, diag, line, col, "the %s file \"%s\" cannot be read: %s", what, file, syl_file_refused);
     if (st) return st == SYL_EIO;
     if (lang_check_file(p, diag, what, file, line, col)) {
         free(path);
@@ -366,7 +366,7 @@ static int check_file(const SylProgram *p, FILE *diag, const char *what, const c
         ObjMesh m;
         bad = obj_read(path, &m, diag_sink(&(SylSink){0}, diag, program_sink(p))) != SYL_OK;
         obj_free(&m);
-        if (bad) syl_program_error(p, diag, line, col, "cannot use the %s \"%s\"", what, file);
+        if (bad) syl_program_report_error(p, diag, line, col, "cannot use the %s \"%s\"", what, file);
     }
     free(path);
     return bad;

@@ -1,5 +1,5 @@
 /* A skeleton's texture images, shared with its meshes, and the textures a model's lines give
- * its materials (skeleton.h: syl_skeleton_textures). */
+ * its materials (skeleton.h: syl_skeleton_apply_textures). */
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,7 +35,7 @@ int syl_images_add(SylImages **into, const SylImage *g) {
     return ++im->n;
 }
 
-int syl_skeleton_textures(SylSkeleton *sk, SylTextureSpec *spec, uint64_t seed) {
+int syl_skeleton_apply_textures(SylSkeleton *sk, SylTextureSpec *spec, uint64_t seed) {
     if (!spec->images) return SYL_OK;
     syl_images_release(sk->images);
     sk->images = spec->images;

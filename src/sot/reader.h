@@ -15,7 +15,7 @@ typedef struct Reader {
     int errors;
 } Reader;
 
-#define ERR(r, line, col, ...) (syl_program_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
+#define ERR(r, line, col, ...) (syl_program_report_error((r)->p, (r)->diag, (line), (col), __VA_ARGS__), (r)->errors++)
 
 /* A number, written as such or as a one-value tuple `(expr)`: the schema's reading of one. */
 static inline bool reader_number(const SylDirArg *a, double *out) { return sch_number(a, out); }

@@ -1,4 +1,4 @@
-/* syl_strands: a tree of Holton's strands from a `strands` block, as Zamuda's modeller builds
+/* syl_strands_build: a tree of Holton's strands from a `strands` block, as Zamuda's modeller builds
  * it (docs/strands.md); syl_strands_validate: the block's check for `sylva check`. */
 #include <stdio.h>
 
@@ -14,7 +14,7 @@ int syl_strands_validate(const SylProgram *p, FILE *diag) {
     return syl_program_kind(p) == SYL_MODEL_STRANDS ? strands_params_check(p, diag) : 0;
 }
 
-int syl_strands(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+int syl_strands_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
     static const SylTreeOptions none = {0};
     if (!opt) opt = &none;
     *out = NULL;

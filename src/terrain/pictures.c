@@ -18,7 +18,7 @@ static int cell_pixels(const SylTerrain *t, const SylMapOptions *o) {
     return px > 8 ? 8 : px;
 }
 
-int syl_terrain_hillshade(const SylTerrain *t, const SylMapOptions *o, SylPicture *out) {
+int syl_terrain_draw_hillshade(const SylTerrain *t, const SylMapOptions *o, SylPicture *out) {
     *out = (SylPicture){0};
     int px = cell_pixels(t, o), w = t->nx * px, h = t->nz * px;
     uint8_t *rgb = malloc((size_t)w * h * 3 + 1);
@@ -152,7 +152,7 @@ static int draw(const SylTerrain *t, SylTerrainFactor f, const float *shade, int
     return SYL_OK;
 }
 
-int syl_terrain_colour_map(const SylTerrain *t, SylTerrainFactor f, const SylMapOptions *o, SylPicture *out) {
+int syl_terrain_draw_colour_map(const SylTerrain *t, SylTerrainFactor f, const SylMapOptions *o, SylPicture *out) {
     *out = (SylPicture){0};
     if ((unsigned)f >= SYL_TERRAIN_FACTORS || !t->factor[f] || !t->factor[SYL_TERRAIN_SLOPE] ||
         !t->factor[SYL_TERRAIN_ASPECT])

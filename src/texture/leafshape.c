@@ -47,10 +47,10 @@ bool syl_leaf_inside(int shape, float s, float t) {
     return fabsf(t) < w;
 }
 
-bool syl_leaf_card(int shape, int size, uint8_t *rgba) {
+bool syl_leaf_draw_card(int shape, int size, uint8_t *rgba) {
     uint8_t *rgb = malloc((size_t)size * (size_t)size * 3);
     if (!rgb) return false;
-    bool ok = syl_texture(SYL_MATERIAL_LEAF, NULL, size, rgb);
+    bool ok = syl_texture_draw(SYL_MATERIAL_LEAF, NULL, size, rgb);
     leaf_card_of(rgb, shape, size, rgba);
     free(rgb);
     return ok;
@@ -176,10 +176,10 @@ static bool draw_cluster(int shape, int size, const uint8_t *rgb, uint8_t *rgba,
     return true;
 }
 
-bool syl_leaf_cluster(int shape, int size, uint8_t *rgba) {
+bool syl_leaf_draw_cluster(int shape, int size, uint8_t *rgba) {
     uint8_t *rgb = malloc((size_t)size * (size_t)size * 3);
     size_t opaque;
-    bool ok = rgb && syl_texture(SYL_MATERIAL_LEAF, NULL, size, rgb) && draw_cluster(shape, size, rgb, rgba, &opaque);
+    bool ok = rgb && syl_texture_draw(SYL_MATERIAL_LEAF, NULL, size, rgb) && draw_cluster(shape, size, rgb, rgba, &opaque);
     free(rgb);
     return ok;
 }

@@ -212,7 +212,7 @@ static const float grass_rgb[3] = {0.42f, 0.56f, 0.22f};
 
 const float *texture_grass_rgb(void) { return grass_rgb; }
 
-bool syl_texture(int kind, const float rgb[3], int size, uint8_t *out) {
+bool syl_texture_draw(int kind, const float rgb[3], int size, uint8_t *out) {
     if (size <= 0) return true;
     static const float white[3] = {1, 1, 1};
     if (!rgb) rgb = kind == -1 ? grass_rgb : white;

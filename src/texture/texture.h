@@ -44,7 +44,7 @@ void fbm_grid_row(const Fbm *f, const FbmCell *cx, int nx, const FbmCell *cy, in
 
 /* ---- leaf cards and clusters (leafshape.c) ---- */
 
-/* syl_leaf_card and syl_leaf_cluster from the leaf pattern already made (rgb: syl_texture of
+/* syl_leaf_draw_card and syl_leaf_draw_cluster from the leaf pattern already made (rgb: syl_texture_draw of
  * a leaf at size, RGB): a writer that needs the pattern for several pictures makes it once. */
 void leaf_card_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba);
 bool leaf_cluster_of(const uint8_t *rgb, int shape, int size, uint8_t *rgba);

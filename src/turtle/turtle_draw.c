@@ -260,7 +260,7 @@ static int draw_string(Turtle *t, const SylString *s, const SylCancel *cancel) {
     return t->oom ? SYL_ELIMIT : SYL_OK;
 }
 
-int syl_turtle(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out) {
+int syl_turtle_draw(const SylProgram *p, const SylString *s, const SylTurtleOptions *opt, SylSkeleton **out) {
     *out = NULL;
     FILE *diag = opt ? opt->diag : NULL;
     SylSkeleton *sk = syl_skeleton_new(p->name);

@@ -110,8 +110,8 @@ static int lines_done(SchLineRead *r, void *base) {
     }
     for (int l = 0; l < 4 && l < (int)w->Levels; l++)
         if (w->SegSplits[l] > 0 && w->SplitAngle[l] == 0 && splits_at[l]) {
-            syl_directive_error(p, sch_lines_diag(r), splits_at[l], NULL, "%dSegSplits %g needs a %dSplitAngle above 0",
-                                l, w->SegSplits[l], l);
+            syl_directive_report_error(p, sch_lines_diag(r), splits_at[l], NULL, "%dSegSplits %g needs a %dSplitAngle above 0",
+                                       l, w->SegSplits[l], l);
             errors++;
         }
     return errors;

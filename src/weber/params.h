@@ -52,7 +52,7 @@ static inline int weber_lv(int level) { return level > 3 ? 3 : level < 0 ? 0 : l
 /* Arbaro's defaults. */
 void weber_params_default(WeberParams *w);
 /* Defaults, then the block's directives; every bad name or value is reported to diag
- * (file:line:col, the line and a caret) through syl_directive_error. Returns the error count. */
+ * (file:line:col, the line and a caret) through syl_directive_report_error. Returns the error count. */
 int weber_params_read(const SylProgram *p, WeberParams *out, FILE *diag);
 /* The same for `sylva check`: the error count, negative when every error was of --set. */
 int weber_params_check(const SylProgram *p, FILE *diag);

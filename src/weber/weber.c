@@ -1,4 +1,4 @@
-/* syl_weber: a Weber–Penn tree from a `weber` block. The tree is made depth first on one
+/* syl_weber_build: a Weber–Penn tree from a `weber` block. The tree is made depth first on one
  * thread (Arbaro's order: its error diffusion runs through the whole tree), every stem drawing
  * from random streams keyed by its place in the tree, so the same block and seed give the
  * same skeleton whatever -j says. docs/weberpenn.md describes the model. */
@@ -130,12 +130,12 @@ static int load_envelope(const SylProgram *p, const WeberParams *w, WeberEnvelop
         st = e->dev ? obstacles_commit(&e->obs, e->dev, diag_sink(&(SylSink){0}, diag, program_sink(p))) : SYL_ELIMIT;
     }
     if (st && diag)
-        syl_directive_error(p, diag, w->envelope_at, &w->envelope_at->args[0],
-                            "cannot use the envelope \"%s\" (a closed mesh in an .obj file)", w->envelope);
+        syl_directive_report_error(p, diag, w->envelope_at, &w->envelope_at->args[0],
+                                   "cannot use the envelope \"%s\" (a closed mesh in an .obj file)", w->envelope);
     return st;
 }
 
-int syl_weber(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
+int syl_weber_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton **out) {
     FILE *diag = opt ? opt->diag : NULL;
     *out = NULL;
     if (syl_program_kind(p) != SYL_MODEL_WEBER) return SYL_EUSAGE;

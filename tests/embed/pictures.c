@@ -20,9 +20,9 @@ int main(int argc, char **argv) {
     SylPicture map = {0}, slope = {0};
     if (p) st = syl_ecosystem_load(p, &(SylEcoOptions){.diag = stdout}, &m, &t);
     if (!st) st = syl_ecosystem_table_read(argv[2], &m, t, &plants, &n, &(SylSink){syl_diagnostic_print, stdout});
-    if (!st) st = syl_ecosystem_map(&m, t, plants, n, &(SylMapOptions){0}, &map);
+    if (!st) st = syl_ecosystem_draw_map(&m, t, plants, n, &(SylMapOptions){0}, &map);
     if (!st) st = syl_png_write(argv[3], map.rgb, map.width, map.height, &(SylSink){syl_diagnostic_print, stdout});
-    if (!st) st = syl_terrain_colour_map(t, SYL_TERRAIN_SLOPE, NULL, &slope);
+    if (!st) st = syl_terrain_draw_colour_map(t, SYL_TERRAIN_SLOPE, NULL, &slope);
     if (!st) st = syl_png_write(argv[4], slope.rgb, slope.width, slope.height, &(SylSink){syl_diagnostic_print, stdout});
     printf("map %d %d\nslope %d %d\nstatus %d\n", map.width, map.height, slope.width, slope.height, st);
     syl_picture_free(&map), syl_picture_free(&slope);

@@ -74,7 +74,7 @@ int main(int argc, char **argv) {
     uint8_t px[3 * 4] = {0};
     snprintf(path, sizeof path, "%s/no/such/folder/picture.png", dir);
     said("png", syl_png_write(path, px, 2, 2, &sink));
-    said("render", syl_render(pl.mesh, &(SylRenderOptions){.width = -1, .sink = &sink}, px));
+    said("render", syl_render_draw_mesh(pl.mesh, &(SylRenderOptions){.width = -1, .sink = &sink}, px));
     SylBudget *tiny = syl_budget_new(1);
     SylImpostor imp;
     said("impostor", syl_impostor_bake(pl.mesh, &(SylImpostorOptions){.budget = tiny, .sink = &sink}, &imp));

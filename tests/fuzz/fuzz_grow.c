@@ -15,8 +15,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     SylSkeleton *sk = NULL;
     SylMesh *obstacles = NULL;
     int st = SYL_EMODEL;
-    if (kind == SYL_MODEL_GROW) st = syl_grow(p, &g, &sk);
-    else if (kind == SYL_MODEL_SCENE) st = syl_grow_scene(p, &g, &sk, &obstacles);
+    if (kind == SYL_MODEL_GROW) st = syl_grow_build(p, &g, &sk);
+    else if (kind == SYL_MODEL_SCENE) st = syl_grow_build_scene(p, &g, &sk, &obstacles);
     if (st == SYL_OK && sk) {
         SylMesh *m = NULL;
         SylMeshOptions mo = {.sides = 4, .radius = SYL_RADIUS_PIPE, .threads = 1, .diag = diag};

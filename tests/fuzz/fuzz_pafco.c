@@ -16,7 +16,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         double age = size ? (double)data[size - 1] / 255 : 0; /* growth by height; 0 or 1: full grown */
         SylTreeOptions t = {.threads = 1, .age = age, .max_memory = 2u << 20, .diag = diag};
         SylSkeleton *sk = NULL;
-        int st = syl_pafco(p, &t, &sk);
+        int st = syl_pafco_build(p, &t, &sk);
         fuzz_mesh_tree_and_free(st, sk, diag);
     }
     syl_program_free(p);

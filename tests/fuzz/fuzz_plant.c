@@ -21,7 +21,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     SylSkeleton *sk = NULL;
     if (syl_derive(p, &d, &s) == SYL_OK && syl_interpret(p, s, &d, &t) == SYL_OK &&
         syl_string_length(t) <= 20000 &&
-        syl_turtle(p, t, &(SylTurtleOptions){.diag = diag}, &sk) == SYL_OK) {
+        syl_turtle_draw(p, t, &(SylTurtleOptions){.diag = diag}, &sk) == SYL_OK) {
         for (int radius = SYL_RADIUS_MODEL; radius <= SYL_RADIUS_PIPE; radius++) {
             SylMesh *m = NULL;
             SylMeshOptions mo = {.sides = 5, .radius = radius, .threads = 1, .diag = diag};

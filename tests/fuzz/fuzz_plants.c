@@ -15,7 +15,7 @@ static char *write_table(const SylEcoModel *m, const SylTerrain *t, const SylEco
     FILE *f = open_memstream(&text, len);
     if (!f) abort();
     fprintf(f, "%s\n", syl_ecosystem_table_header);
-    for (size_t j = 0; j < n; j++) syl_ecosystem_table_row(f, m, t, &p[j]);
+    for (size_t j = 0; j < n; j++) syl_ecosystem_table_write_row(f, m, t, &p[j]);
     fclose(f);
     return text;
 }

@@ -15,7 +15,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         int levels = size ? data[size - 1] % 5 : 0; /* 1..4 stem levels, or 0: all the block has */
         SylTreeOptions t = {.threads = 1, .levels = levels, .max_memory = 4u << 20, .diag = diag};
         SylSkeleton *sk = NULL;
-        int st = syl_weber(p, &t, &sk);
+        int st = syl_weber_build(p, &t, &sk);
         fuzz_mesh_tree_and_free(st, sk, diag);
     }
     syl_program_free(p);

@@ -112,7 +112,7 @@ static SylSkeleton *tree(const char *lines, uint64_t seed) {
     assert_non_null(p);
     SylTreeOptions to = {.diag = stderr, .use_seed = seed != 0, .seed = seed};
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_curvetree(p, &to, &sk), SYL_OK);
+    assert_int_equal(syl_curvetree_build(p, &to, &sk), SYL_OK);
     syl_program_free(p);
     return sk;
 }

@@ -185,7 +185,7 @@ static void toward_frames_the_sphere(void **state) {
     float dir[3] = {0.3f, 0.5f, 0.81f};
     SylRenderOptions ro = {.width = N, .height = N, .toward = dir, .ground = -1, .alpha = alpha, .normal = nd,
                            .threads = 1};
-    assert_int_equal(syl_render(m, &ro, rgb), SYL_OK);
+    assert_int_equal(syl_render_draw_mesh(m, &ro, rgb), SYL_OK);
     assert_int_equal(alpha[0] + alpha[N - 1] + alpha[N * (N - 1)] + alpha[N * N - 1], 0);
     assert_int_equal(alpha[N * N / 2 + N / 2], 255);
     const uint8_t *c = nd + 4 * (N * N / 2 + N / 2); /* the middle faces the eye */

@@ -719,7 +719,7 @@ static void cluster_fill(void **state) {
     enum { N = 512 };
     uint8_t *rgba = malloc(4 * N * N);
     for (int shape = 0; shape <= SYL_CLUSTER_NEEDLES; shape++) {
-        assert_true(syl_leaf_cluster(shape, N, rgba));
+        assert_true(syl_leaf_draw_cluster(shape, N, rgba));
         size_t kept = 0;
         for (int i = 0; i < N * N; i++) kept += rgba[4 * i + 3] >= 128;
         assert_near(syl_leaf_cluster_fill(shape), (double)kept / (N * N), 0.01);

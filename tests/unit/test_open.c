@@ -50,7 +50,7 @@ static char *hedge_csv(SylSkeleton **keep) {
     assert_non_null(p);
     SylGrowOptions go = {.years = -1, .threads = 1};
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_grow_scene(p, &go, &sk, NULL), SYL_OK);
+    assert_int_equal(syl_grow_build_scene(p, &go, &sk, NULL), SYL_OK);
     syl_program_free(p);
     char *out = NULL;
     size_t len = 0;

@@ -130,7 +130,7 @@ static void lazy_frame_is_the_turtles(void **state) {
         UnitRun r = unit_run(text, (SylDeriveOptions){.steps = 0, .threads = 1});
         assert_int_equal(r.status, SYL_OK);
         SylSkeleton *sk = NULL;
-        assert_int_equal(syl_turtle(r.p, r.s, NULL, &sk), SYL_OK);
+        assert_int_equal(syl_turtle_draw(r.p, r.s, NULL, &sk), SYL_OK);
         /* the k-th segment's node, and the queries after the k-th F */
         int F = syl_program_symbol_find(r.p, "F");
         const int Q[4] = {syl_program_symbol_find(r.p, "?P"), syl_program_symbol_find(r.p, "?H"),

@@ -19,7 +19,7 @@ static uint8_t *render(const SylMesh *m, SylRenderOptions o) {
     o.height = h;
     uint8_t *rgb = malloc((size_t)w * h * 3);
     assert_non_null(rgb);
-    assert_int_equal(syl_render(m, &o, rgb), SYL_OK);
+    assert_int_equal(syl_render_draw_mesh(m, &o, rgb), SYL_OK);
     return rgb;
 }
 
@@ -95,7 +95,7 @@ static void png_has_the_requested_size(void **state) {
     char path[128];
     snprintf(path, sizeof path, "%s/p.png", dir);
     SylRenderOptions o = {.width = 96, .height = 64, .samples = 1};
-    assert_int_equal(syl_render_png(m, &o, path), SYL_OK);
+    assert_int_equal(syl_render_write_png(m, &o, path), SYL_OK);
     FILE *f = fopen(path, "rb");
     assert_non_null(f);
     uint8_t head[24];
@@ -121,7 +121,7 @@ static void bad_sizes_are_refused(void **state) {
     uint8_t px[3];
     FILE *null = fopen("/dev/null", "w");
     SylRenderOptions o = {.width = -1, .height = 10, .diag = null};
-    assert_int_equal(syl_render(NULL, &o, px), SYL_EUSAGE);
+    assert_int_equal(syl_render_draw_mesh(NULL, &o, px), SYL_EUSAGE);
     assert_int_equal(syl_png_write("/nonexistent-dir/x.png", px, 1, 1, &(SylSink){syl_diagnostic_print, null}), SYL_EIO);
     fclose(null);
 }
@@ -189,7 +189,7 @@ static void alpha_tested_card_shows_its_shape(void **state) {
     assert_true(tri(card, v[0], v[1], v[3], 1) && tri(card, v[0], v[3], v[2], 1));
     enum { T = 256 };
     uint8_t *tex = malloc(4 * T * T);
-    assert_true(syl_leaf_card(SYL_LEAF_MAPLE, T, tex));
+    assert_true(syl_leaf_draw_card(SYL_LEAF_MAPLE, T, tex));
     double texels = 0;
     for (int i = 0; i < T * T; i++) texels += tex[4 * i + 3] >= 128;
     free(tex);
@@ -344,7 +344,7 @@ static void bare_meshes_render(void **state) {
     m->idx[5] = (uint32_t)m->nverts;
     uint8_t px[16 * 16 * 3];
     FILE *null = fopen("/dev/null", "w");
-    assert_int_equal(syl_render(m, &(SylRenderOptions){.width = 16, .height = 16, .diag = null}, px), SYL_EUSAGE);
+    assert_int_equal(syl_render_draw_mesh(m, &(SylRenderOptions){.width = 16, .height = 16, .diag = null}, px), SYL_EUSAGE);
     fclose(null);
     syl_mesh_free(m);
 }
@@ -401,14 +401,14 @@ static void textures_are_reproducible(void **state) {
     static const int kinds[] = {SYL_MATERIAL_BARK, SYL_MATERIAL_LEAF, SYL_MATERIAL_FLOWER, -1};
     uint8_t *a = malloc(TS * TS * 3), *b = malloc(TS * TS * 3), *prev = malloc(TS * TS * 3);
     for (int k = 0; k < 4; k++) {
-        syl_texture(kinds[k], NULL, TS, a);
-        syl_texture(kinds[k], NULL, TS, b);
+        syl_texture_draw(kinds[k], NULL, TS, a);
+        syl_texture_draw(kinds[k], NULL, TS, b);
         assert_memory_equal(a, b, TS * TS * 3);
         if (k) assert_memory_not_equal(a, prev, TS * TS * 3);
         memcpy(prev, a, TS * TS * 3);
     }
     /* a colour multiplies the pattern */
-    syl_texture(SYL_MATERIAL_BARK, (float[3]){1, 0, 0}, TS, a);
+    syl_texture_draw(SYL_MATERIAL_BARK, (float[3]){1, 0, 0}, TS, a);
     for (int i = 0; i < TS * TS; i++) assert_true(a[3 * i + 1] == 0 && a[3 * i + 2] == 0);
     free(a);
     free(b);
@@ -431,7 +431,7 @@ static void gradients(const uint8_t *img, int size, double *across, double *alon
 static void bark_cracks_run_along_the_branch(void **state) {
     (void)state;
     uint8_t *img = malloc(TS * TS * 3);
-    syl_texture(SYL_MATERIAL_BARK, NULL, TS, img);
+    syl_texture_draw(SYL_MATERIAL_BARK, NULL, TS, img);
     double across, along;
     gradients(img, TS, &across, &along);
     if (!(across > 1.8 * along)) fail_msg("bark varies %.2f across, %.2f along", across, along);
@@ -445,7 +445,7 @@ static void bark_cracks_run_along_the_branch(void **state) {
 static void leaf_is_brightest_along_its_vein(void **state) {
     (void)state;
     uint8_t *img = malloc(TS * TS * 3);
-    syl_texture(SYL_MATERIAL_LEAF, NULL, TS, img);
+    syl_texture_draw(SYL_MATERIAL_LEAF, NULL, TS, img);
     double column[TS] = {0}, mean = 0;
     for (int y = 0; y < TS; y++)
         for (int x = 0; x < TS; x++) column[x] += luma(img + 3 * (y * TS + x)) / TS;
@@ -471,7 +471,7 @@ static void textures_tile(void **state) {
     static const int kinds[] = {SYL_MATERIAL_BARK, -1};
     uint8_t *img = malloc(TS * TS * 3);
     for (int k = 0; k < 2; k++) {
-        syl_texture(kinds[k], NULL, TS, img);
+        syl_texture_draw(kinds[k], NULL, TS, img);
         double across, along, seam_x = 0, seam_y = 0;
         gradients(img, TS, &across, &along);
         for (int i = 0; i < TS; i++) {
@@ -488,7 +488,7 @@ static void textures_tile(void **state) {
 static void grass_is_green_and_varied(void **state) {
     (void)state;
     uint8_t *img = malloc(TS * TS * 3);
-    syl_texture(-1, NULL, TS, img);
+    syl_texture_draw(-1, NULL, TS, img);
     double r = 0, g = 0, b = 0, lo = 255, hi = 0;
     for (int i = 0; i < TS * TS; i++) {
         r += img[3 * i], g += img[3 * i + 1], b += img[3 * i + 2];
@@ -546,7 +546,7 @@ static void textures_written_for_exporters(void **state) {
     syl_mesh_free(m);
 }
 
-/* syl_render_instances' windows (what sylva render --plants deals over MPI ranks): windows
+/* syl_render_draw_instances' windows (what sylva render --plants deals over MPI ranks): windows
  * whose corners are at multiples of SYL_RENDER_BLOCK, rendered in one call on one scene, are
  * the whole picture's pixels, crop for crop; the same windows rendered one call each too. */
 static void windows_are_crops_of_the_picture(void **state) {
@@ -563,22 +563,22 @@ static void windows_are_crops_of_the_picture(void **state) {
     enum { W = 44, H = 30 };
     SylRenderOptions o = {.width = W, .height = H, .samples = 2, .ao_samples = 2, .shadows = true, .threads = 2};
     static uint8_t whole[W * H * 3], parts[2 * W * H * 3], one[W * H * 3]; /* the windows overlap */
-    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, NULL, 0, whole, NULL), SYL_OK);
+    assert_int_equal(syl_render_draw_instances(ground, &proto, 1, inst, 5, &cam, &o, NULL, 0, whole, NULL), SYL_OK);
     /* three bands (the last not a whole row of packets), then a block of columns */
     const int win[4][4] = {{0, 0, W, 8}, {0, 8, W, 24}, {0, 24, W, H}, {12, 4, 32, 29}};
-    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, win, 4, parts, NULL), SYL_OK);
+    assert_int_equal(syl_render_draw_instances(ground, &proto, 1, inst, 5, &cam, &o, win, 4, parts, NULL), SYL_OK);
     size_t at = 0;
     for (int k = 0; k < 4; k++) {
         size_t row = (size_t)(win[k][2] - win[k][0]) * 3;
         for (int y = win[k][1]; y < win[k][3]; y++, at += row)
             assert_memory_equal(parts + at, whole + ((size_t)y * W + (size_t)win[k][0]) * 3, row);
-        assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, &win[k], 1, one, NULL), SYL_OK);
+        assert_int_equal(syl_render_draw_instances(ground, &proto, 1, inst, 5, &cam, &o, &win[k], 1, one, NULL), SYL_OK);
         assert_memory_equal(one, parts + at - row * (size_t)(win[k][3] - win[k][1]), row * (size_t)(win[k][3] - win[k][1]));
     }
     /* a window outside the picture, or a negative count, is refused */
     const int out[1][4] = {{0, 0, W + 1, 4}};
-    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, out, 1, one, NULL), SYL_EUSAGE);
-    assert_int_equal(syl_render_instances(ground, &proto, 1, inst, 5, &cam, &o, win, -1, one, NULL), SYL_EUSAGE);
+    assert_int_equal(syl_render_draw_instances(ground, &proto, 1, inst, 5, &cam, &o, out, 1, one, NULL), SYL_EUSAGE);
+    assert_int_equal(syl_render_draw_instances(ground, &proto, 1, inst, 5, &cam, &o, win, -1, one, NULL), SYL_EUSAGE);
     syl_mesh_free(ground);
     syl_mesh_free(tree);
 }
@@ -603,7 +603,7 @@ static double instanced_card_share(const SylMesh *card, int threads, uint8_t *rg
     SylRenderInstance inst = {.t = {0, 0, 0}, .scale = 1};
     SylRenderCamera cam = {.eye = {0, 1, 8}, .target = {0, 1, 0}, .fov = 20};
     SylRenderOptions o = {.width = w, .height = h, .samples = 1, .ao_samples = -1, .unlit = true, .threads = threads};
-    assert_int_equal(syl_render_instances(NULL, &proto, 1, &inst, 1, &cam, &o, NULL, 0, rgb, NULL), SYL_OK);
+    assert_int_equal(syl_render_draw_instances(NULL, &proto, 1, &inst, 1, &cam, &o, NULL, 0, rgb, NULL), SYL_OK);
     float x0, y0, x1, y1;
     assert_true(syl_render_project(&cam, w, h, (float[3]){-1, 2, 0}, &x0, &y0));
     assert_true(syl_render_project(&cam, w, h, (float[3]){1, 0, 0}, &x1, &y1));
@@ -620,14 +620,14 @@ static double instanced_card_share(const SylMesh *card, int threads, uint8_t *rg
 }
 
 /* Alpha-tested leaves in an instanced render (ecosystem views): a card prototype covers the
- * card texture's opaque share of its quad (alpha >= 1/2, syl_leaf_card), as the single-mesh
+ * card texture's opaque share of its quad (alpha >= 1/2, syl_leaf_draw_card), as the single-mesh
  * renderer and a viewer of the .glb draw it, and not the whole quad, which the same quad drawn
  * as a plain leaf mesh covers; the same bytes for 1 and 3 threads. */
 static void instanced_cards_are_alpha_tested(void **state) {
     (void)state;
     enum { CW = 96, CH = 96, TS = 256 };
     static uint8_t rgba[TS * TS * 4], a[CW * CH * 3], b[CW * CH * 3];
-    assert_true(syl_leaf_card(0, TS, rgba));
+    assert_true(syl_leaf_draw_card(0, TS, rgba));
     long opaque = 0;
     for (int i = 0; i < TS * TS; i++) opaque += rgba[4 * i + 3] >= 128;
     double share = (double)opaque / (TS * TS);

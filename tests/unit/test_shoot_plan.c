@@ -49,7 +49,7 @@ static SylSkeleton *skeleton_of(const char *body) {
     UnitRun r = unit_run(text, (SylDeriveOptions){.steps = 0, .threads = 1});
     assert_int_equal(r.status, SYL_OK);
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_turtle(r.p, r.s, NULL, &sk), SYL_OK);
+    assert_int_equal(syl_turtle_draw(r.p, r.s, NULL, &sk), SYL_OK);
     unit_run_free(&r);
     free(text);
     return sk;

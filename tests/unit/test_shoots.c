@@ -97,7 +97,7 @@ static SylSkeleton *grow(const char *text, int threads, SylGrowStats *stats) {
     SylProgram *p = compile(text);
     SylGrowOptions o = {.years = -1, .threads = threads, .diag = stderr};
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_grow(p, &o, &sk), SYL_OK);
+    assert_int_equal(syl_grow_build(p, &o, &sk), SYL_OK);
     if (stats) *stats = o.stats;
     syl_program_free(p);
     return sk;

@@ -63,7 +63,7 @@ static char *grow_text(const char *path, const char *text, bool scene, int threa
     if (p) {
         SylGrowOptions go = {.years = -1, .threads = threads, .diag = mem};
         SylSkeleton *sk = NULL;
-        st = scene ? syl_grow_scene(p, &go, &sk, NULL) : syl_grow(p, &go, &sk);
+        st = scene ? syl_grow_build_scene(p, &go, &sk, NULL) : syl_grow_build(p, &go, &sk);
         if (!st) csv = skeleton_csv(sk);
         syl_skeleton_free(sk);
         syl_program_free(p);
@@ -626,7 +626,7 @@ static void directives_checked_by_the_hook(void **state) {
     diag = NULL;
     SylGrowOptions go = {.years = -1, .threads = 1, .diag = open_memstream(&diag, &(size_t){0})};
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_grow(p, &go, &sk), SYL_EMODEL); /* growing reads the same directives */
+    assert_int_equal(syl_grow_build(p, &go, &sk), SYL_EMODEL); /* growing reads the same directives */
     fclose(go.diag);
     assert_contains(diag, "test.syl:3:3: error: unknown directive 'fog' in a grow block");
     free(diag);

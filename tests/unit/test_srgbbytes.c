@@ -1,4 +1,4 @@
-/* srgb_byte, the table syl_texture converts texels with, is the formula it stands for
+/* srgb_byte, the table syl_texture_draw converts texels with, is the formula it stands for
  * (lrintf(255 * linear_to_srgb(v))) byte for byte: every 61st float of [0, 1], every float
  * within 4096 of each of the 255 steps, the edges (0, -0, 1, past 1, negative, NaN,
  * infinities, denormals); and the steps themselves are where the formula's byte changes. */

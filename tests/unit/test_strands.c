@@ -262,7 +262,7 @@ static char *csv_of(const char *text, int threads) {
     assert_non_null(p);
     SylTreeOptions o = {.threads = threads, .diag = stderr};
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_strands(p, &o, &sk), SYL_OK);
+    assert_int_equal(syl_strands_build(p, &o, &sk), SYL_OK);
     char *out = NULL;
     size_t len = 0;
     FILE *mem = open_memstream(&out, &len);

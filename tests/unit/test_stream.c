@@ -42,7 +42,7 @@ static void glb_instanced_and_lods(void **state) {
     SylPlant pl = build(&mo);
     SylInstances *sets = NULL;
     int nsets = 0;
-    assert_int_equal(syl_leaf_instances(pl.skeleton, &mo, &sets, &nsets), SYL_OK);
+    assert_int_equal(syl_instances_build(pl.skeleton, &mo, &sets, &nsets), SYL_OK);
     char path[] = "/tmp/sylva-test-stream-XXXXXX.glb";
     int fd = mkstemps(path, 4);
     assert_true(fd >= 0);

@@ -36,7 +36,7 @@ static char *write_table(const SylEcoModel *m, const SylTerrain *t, const SylEco
     FILE *f = open_memstream(&text, len);
     assert_non_null(f);
     fprintf(f, "%s\n", syl_ecosystem_table_header);
-    for (size_t j = 0; j < n; j++) syl_ecosystem_table_row(f, m, t, &p[j]);
+    for (size_t j = 0; j < n; j++) syl_ecosystem_table_write_row(f, m, t, &p[j]);
     fclose(f);
     return text;
 }
@@ -94,7 +94,7 @@ static void fewest_decimals(void **state) {
     char *text = NULL;
     size_t len;
     FILE *f = open_memstream(&text, &len);
-    syl_ecosystem_table_row(f, m, &t, &p);
+    syl_ecosystem_table_write_row(f, m, &t, &p);
     fclose(f);
     char x[32], z[32], h[32];
     assert_int_equal(sscanf(text, "0000000000000abc,hazel,%31[^,],%*[^,],%31[^,],7,%31[^,],", x, z, h), 3);

@@ -24,7 +24,7 @@ static Drawn draw_model(const char *text, int n) {
     size_t len = 0;
     FILE *mem = open_memstream(&d.diag, &len);
     SylTurtleOptions topt = {.diag = mem};
-    int st = syl_turtle(r.p, d.s, &topt, &d.sk);
+    int st = syl_turtle_draw(r.p, d.s, &topt, &d.sk);
     fclose(mem);
     if (st != SYL_OK || !d.sk) fail_msg("turtle status %d:\n%s", st, d.diag);
     d.p = r.p;
@@ -502,7 +502,7 @@ static void odd_input_is_harmless(void **state) {
     size_t len = 0;
     FILE *mem = open_memstream(&diag, &len);
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_turtle(p, s, &(SylTurtleOptions){.diag = mem}, &sk), SYL_OK);
+    assert_int_equal(syl_turtle_draw(p, s, &(SylTurtleOptions){.diag = mem}, &sk), SYL_OK);
     fclose(mem);
     assert_non_null(sk);
     assert_contains(diag, "not a finite number");
@@ -539,7 +539,7 @@ static void odd_input_is_harmless(void **state) {
         }
         SylString *r = raw_string(p, nm, ar, pr, m);
         sk = NULL;
-        assert_int_equal(syl_turtle(p, r, NULL, &sk), SYL_OK);
+        assert_int_equal(syl_turtle_draw(p, r, NULL, &sk), SYL_OK);
         syl_skeleton_free(sk);
         syl_string_free(r);
         free(nm);

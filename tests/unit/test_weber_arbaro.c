@@ -47,7 +47,7 @@ static SylProgram *species(const char *name) {
 static Counts count(const SylProgram *p, uint64_t seed) {
     SylTreeOptions opt = {.use_seed = true, .seed = seed, .threads = 1, .diag = stderr};
     SylSkeleton *sk = NULL;
-    assert_int_equal(syl_weber(p, &opt, &sk), SYL_OK);
+    assert_int_equal(syl_weber_build(p, &opt, &sk), SYL_OK);
     Counts c = {0};
     int32_t axes = 0;
     for (size_t i = 0; i < sk->nnodes; i++)
