@@ -169,17 +169,26 @@ def curve_object(plant, name: str) -> bpy.types.Object:
     return bpy.data.objects.new(name, cu)
 
 
-# The models already loaded, by file (path, modification time and size) and model name: a
-# redo or a second tree of the same file neither compiles it again nor asks its schema again
-# (both were a third of the add-on's time on Sapling's smallest presets, docs/blender.md). A
-# model is not changed by building it (--set values compile a program of their own).
+# The models already loaded, by file (path, size, and the newest modification time of its
+# folder's files, which it may read) and model name: a redo or a second tree of the same file
+# neither compiles it again nor asks its schema again (both were a third of the add-on's time
+# on Sapling's smallest presets, docs/blender.md). A model is not changed by building it
+# (--set values compile a program of their own).
 _loaded: dict = {}
+
+
+def _stamp(path: str) -> tuple[int, int]:
+    newest = os.stat(path).st_mtime_ns
+    with os.scandir(os.path.dirname(path) or ".") as it:
+        for e in it:
+            if e.is_file():
+                newest = max(newest, e.stat().st_mtime_ns)
+    return os.path.getsize(path), newest
 
 
 def load_model(path: str, model: str = ""):
     path = bpy.path.abspath(path)
-    st = os.stat(path)
-    key = (path, st.st_mtime_ns, st.st_size, model)
+    key = (path, *_stamp(path), model)
     m = _loaded.get(key)
     if m is None:
         f = sylva.load(path)
