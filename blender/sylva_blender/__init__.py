@@ -51,7 +51,10 @@ def _overrides(text: str) -> dict:
 
 
 def _material(name: str, rgb, leaf: bool) -> bpy.types.Material:
-    mat = bpy.data.materials.get(name) or bpy.data.materials.new(name)
+    mat = bpy.data.materials.get(name)
+    if mat is not None and mat.use_nodes and all(abs(a - b) < 1e-6 for a, b in zip(mat.diffuse_color, (*rgb, 1.0))):
+        return mat  # made by an earlier tree of this model: reused as it is (the user's edits too)
+    mat = mat or bpy.data.materials.new(name)
     mat.diffuse_color = (*rgb, 1.0)
     mat.use_nodes = True
     bsdf = mat.node_tree.nodes.get("Principled BSDF")
@@ -166,9 +169,34 @@ def curve_object(plant, name: str) -> bpy.types.Object:
     return bpy.data.objects.new(name, cu)
 
 
+# The models already loaded, by file (path, size, and the newest modification time of its
+# folder's files, which it may read) and model name: a redo or a second tree of the same file
+# neither compiles it again nor asks its schema again (both were a third of the add-on's time
+# on Sapling's smallest presets, docs/blender.md). A model is not changed by building it
+# (--set values compile a program of their own).
+_loaded: dict = {}
+
+
+def _stamp(path: str) -> tuple[int, int]:
+    newest = os.stat(path).st_mtime_ns
+    with os.scandir(os.path.dirname(path) or ".") as it:
+        for e in it:
+            if e.is_file():
+                newest = max(newest, e.stat().st_mtime_ns)
+    return os.path.getsize(path), newest
+
+
 def load_model(path: str, model: str = ""):
-    f = sylva.load(bpy.path.abspath(path))
-    return f[model] if model else f.model
+    path = bpy.path.abspath(path)
+    key = (path, *_stamp(path), model)
+    m = _loaded.get(key)
+    if m is None:
+        f = sylva.load(path)
+        m = f[model] if model else f.model
+        if len(_loaded) >= 32:  # a session's files; the oldest goes
+            del _loaded[next(iter(_loaded))]
+        _loaded[key] = m
+    return m
 
 
 def add_tree(context, path: str, model: str = "", seed: int = -1, steps: int = -1, output: str = "MESH",
@@ -299,10 +327,11 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                 return {"CANCELLED"}
             m = load_model(path, self.model)
             key = f"{path}|{m.name}"
+            given = True
             if self.params_for != key:  # a new model: its parameters at its values
-                schema.fill(self.params, m, keep=not self.params_for)
+                given = schema.fill(self.params, m, keep=not self.params_for)
                 self.params_for = key
-            kw = schema.overrides(self.params)
+            kw = schema.overrides(self.params) if given else {}  # rows just filled at the model's values
             kw.update(_overrides(self.overrides))
             where = tuple(context.scene.cursor.location)
             with scene.Inputs(path) as io:
@@ -382,3 +411,5 @@ def unregister():
     for c in reversed(CLASSES):
         bpy.utils.unregister_class(c)
     library.free()
+    _loaded.clear()
+    schema.free()

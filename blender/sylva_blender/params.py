@@ -45,14 +45,34 @@ class SylvaParam(bpy.types.PropertyGroup):
     doc: StringProperty()
 
 
-def fill(params, model, keep: bool) -> None:
+# the rows of each model (its schema, asked once: describe and its JSON cost more than the
+# rows), by the sylva.Model object the add-on keeps while its file is unchanged
+_rows: dict = {}
+
+
+def rows(model) -> list:
+    """The model's parameters shown as rows (sylva.Param), asked of its schema once."""
+    got = _rows.get(id(model))
+    if got is None or got[0] is not model:
+        got = (model, [p for p in model.params.values() if p.type in SHOWN and p.name not in HANDLED
+                       and not isinstance(p.value, (list, str)) and p.value is not None])
+        if len(_rows) >= 32:
+            del _rows[next(iter(_rows))]
+        _rows[id(model)] = got
+    return got[1]
+
+
+def free() -> None:
+    _rows.clear()
+
+
+def fill(params, model, keep: bool) -> bool:
     """Fill the collection with the model's parameters at the model's values; keep: values the
-    caller already gave by name (bpy.ops(..., params=[{"name": …, "value": …}])) stay."""
+    caller already gave by name (bpy.ops(..., params=[{"name": …, "value": …}])) stay. Returns
+    whether any was given (else every row is at the model's value, and there is no --set)."""
     given = {it.name: (it.ivalue, it.value) for it in params} if keep else {}
     params.clear()
-    for p in model.params.values():
-        if p.type not in SHOWN or p.name in HANDLED or isinstance(p.value, (list, str)) or p.value is None:
-            continue
+    for p in rows(model):
         it = params.add()
         it.name = p.name
         it.integer = p.type == "integer"
@@ -65,6 +85,7 @@ def fill(params, model, keep: bool) -> None:
         it.model_value = _get(it)
         if p.name in given:
             _put(it, given[p.name][0] if it.integer else given[p.name][1])
+    return bool(given)
 
 
 def overrides(params) -> dict:

@@ -239,7 +239,14 @@ if leaves_model:
 # 7. Sapling's own trees in this Blender: the splines of its curve object per level (the
 # splines there when Sapling starts each level: its fabricate_stems, watched, not changed),
 # averaged over seeds 0-3, for tests/run-blender to compare with `sylva compare`'s stems by
-# order of the same files (within 15 %)
+# order of the same files (within 15 %). The trunk's splines (level 0) are averaged over
+# TRUNK_SEEDS trees of the trunk alone (levels=1, a few ms each): Sapling grows the trunk first,
+# so its draws, and its splines, are those of the whole tree's trunk (checked: seeds 0-3 give the
+# whole trees' level 0, printed as same=), and the splits' mean is known closely enough to test
+# where four trees are too few (small_maple) and where a whole tree costs too much
+# (japanese_maple, 4.5 s: only its trunk). Stems only (the leaves are a mesh of their own) and no
+# bevel at resolution 1: those set only the curve's look (cu.bevel_depth, cu.resolution_u), not
+# a draw, and evaluating the tubes was a tenth of the time.
 import ast  # noqa: E402
 
 import addon_utils  # noqa: E402
@@ -249,6 +256,7 @@ sap = library.sapling_presets()
 sap_utils = sys.modules["add_curve_sapling.utils"]
 marks = []
 fabricate = sap_utils.fabricate_stems
+TRUNK_SEEDS = 48
 
 
 def watched(*a, **k):
@@ -256,10 +264,22 @@ def watched(*a, **k):
     return fabricate(*a, **k)
 
 
+def sapling_tree(kw) -> list[int]:
+    """Sapling's splines per level of one tree (kw: the operator's arguments)."""
+    before = set(bpy.data.objects)
+    marks.clear()
+    bpy.ops.curve.tree_add(**kw)
+    new = [o for o in bpy.data.objects if o not in before]
+    bounds = marks + [sum(len(o.data.splines) for o in new if o.type == "CURVE")]
+    for o in new:
+        bpy.data.objects.remove(o)
+    return [bounds[0]] + [bounds[i] - bounds[i - 1] for i in range(1, len(bounds))]
+
+
 sap_utils.fabricate_stems = watched
 props = {p.identifier: p for p in bpy.ops.curve.tree_add.get_rna_type().properties}
 for name in ("callistemon", "douglas_fir", "quaking_aspen", "small_maple", "small_pine", "weeping_willow",
-             "white_birch", "willow"):
+             "white_birch", "willow", "japanese_maple"):
     with open(os.path.join(sap, name + ".py")) as fh:
         preset = ast.literal_eval(fh.read().split("\n", 1)[1])  # after the licence line
     kw = {}
@@ -267,16 +287,12 @@ for name in ("callistemon", "douglas_fir", "quaking_aspen", "small_maple", "smal
         if k in props:
             n = getattr(props[k], "array_length", 0)
             kw[k] = tuple([v] * n) if n and not isinstance(v, (tuple, list)) else v
-    sums = []
-    for seed in range(4):
-        before = set(bpy.data.objects)
-        marks.clear()
-        kw.update(showLeaves=False, do_update=True, seed=seed)  # stems only: the leaves are a mesh of their own
-        bpy.ops.curve.tree_add(**kw)
-        new = [o for o in bpy.data.objects if o not in before]
-        bounds = marks + [sum(len(o.data.splines) for o in new if o.type == "CURVE")]
-        levels = [bounds[0]] + [bounds[i] - bounds[i - 1] for i in range(1, len(bounds))]
+    kw.update(showLeaves=False, do_update=True, bevel=False, resU=1)
+    trunks = [sapling_tree({**kw, "seed": seed, "levels": 1})[0] for seed in range(TRUNK_SEEDS)]
+    sums, same = [], True
+    for seed in range(0 if name == "japanese_maple" else 4):
+        levels = sapling_tree({**kw, "seed": seed})
+        same = same and levels[0] == trunks[seed]
         sums = [a + b for a, b in zip(sums, levels)] if sums else levels
-        for o in new:
-            bpy.data.objects.remove(o)
-    print(f"sapling_levels {name} " + " ".join("%g" % (x / 4) for x in sums))
+    means = [sum(trunks) / TRUNK_SEEDS] + [x / 4 for x in sums[1:]]
+    print(f"sapling_levels {name} same={'yes' if same else 'no'} " + " ".join("%g" % x for x in means))
