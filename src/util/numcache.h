@@ -14,7 +14,8 @@ typedef struct NumCacheSlot {
     uint32_t bits, len;
 } NumCacheSlot;
 
-/* Direct mapped: a slot holds the last value that hashed to it. */
+/* Direct mapped: a slot holds the last value that hashed to it. One cache per formatter and
+ * precision: the text is keyed by the bits alone. */
 typedef struct NumCache {
     NumCacheSlot slot[1 << NUMCACHE_BITS];
 } NumCache;
