@@ -8,6 +8,7 @@
 
 #include "io/io_internal.h"
 #include "sylva/texture.h"
+#include "util/numcache.h"
 #include "util/numtext.h"
 
 /* "dir/NAME.obj" -> "dir/NAME" (the caller frees). */
@@ -55,9 +56,14 @@ static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
 /* Vertices, UVs, normals and faces of all (m: one object; a scene: its objects parts[0..n),
  * numbered on from the last one's vertices), through a buffer; false when out of memory. */
 static bool write_obj_body(const SylMesh *all, SylMesh *const *parts, int nparts, FILE *f, const char *stem) {
-    enum { CHUNK = 1 << 16 };
+    enum { CHUNK = 1 << 18 };
     char *buf = malloc(CHUNK + 256), *p = buf;
-    if (!buf) return false;
+    NumCache *cache = malloc(3 * sizeof *cache); /* positions, UVs, normals: each its own repeats */
+    if (!buf || !cache) {
+        free(buf), free(cache);
+        return false;
+    }
+    for (int c = 0; c < 3; c++) numcache_init(&cache[c], "0", 1);
     /* mtllib takes the rest of the line (Blender, Assimp, trimesh), so a stem with spaces
      * works; object and material names are single words. */
     char comment[sizeof all->name], object[sizeof all->name];
@@ -79,23 +85,23 @@ static bool write_obj_body(const SylMesh *all, SylMesh *const *parts, int nparts
     for (size_t i = 0; i < m->nverts; i++) {
         const float *v = m->pos + 3 * i;
         *p++ = 'v';
-        for (int k = 0; k < 3; k++) *p++ = ' ', p = io_float(p, v[k], 7);
+        for (int k = 0; k < 3; k++) *p++ = ' ', p = numcache_put(&cache[0], p, v[k], 7, io_float);
         *p++ = '\n';
         FLUSH();
     }
     for (size_t i = 0; i < m->nverts; i++) {
         const float *t = m->uv + 2 * i;
         *p++ = 'v', *p++ = 't', *p++ = ' ';
-        p = io_float(p, t[0], 6);
+        p = numcache_put(&cache[1], p, t[0], 6, io_float);
         *p++ = ' ';
-        p = io_float(p, 1.0f - t[1], 6);
+        p = numcache_put(&cache[1], p, 1.0f - t[1], 6, io_float);
         *p++ = '\n';
         FLUSH();
     }
     for (size_t i = 0; i < m->nverts; i++) {
         const float *n = m->nrm + 3 * i;
         *p++ = 'v', *p++ = 'n';
-        for (int k = 0; k < 3; k++) *p++ = ' ', p = io_float(p, n[k], 6);
+        for (int k = 0; k < 3; k++) *p++ = ' ', p = numcache_put(&cache[2], p, n[k], 6, io_float);
         *p++ = '\n';
         FLUSH();
     }
@@ -109,6 +115,18 @@ static bool write_obj_body(const SylMesh *all, SylMesh *const *parts, int nparts
             for (int k = 0; k < 3; k++) {
                 size_t x = base + ix[t + (uint32_t)k] + 1;
                 *p++ = ' ';
+#ifdef NUMTEXT_WORDS
+                if (x < 100000000) { /* the digits built once in a register, stored three times */
+                    uint64_t w = numtext_word8((uint32_t)x);
+                    int lead = __builtin_ctzll(w ^ 0x3030303030303030ull) / 8, n = 8 - lead; /* x > 0 */
+                    w >>= 8 * lead;
+                    memcpy(p, &w, 8), p[n] = '/';
+                    memcpy(p + n + 1, &w, 8), p[2 * n + 1] = '/';
+                    memcpy(p + 2 * n + 2, &w, 8);
+                    p += 3 * n + 2;
+                    continue;
+                }
+#endif
                 if (x <= UINT32_MAX) { /* the digits in place, without a 64-bit division */
                     int n = numtext_ndigits((uint32_t)x);
                     for (int r = 0; r < 3; r++, p += n + 1) numtext_digits(p + n, (uint32_t)x, n), p[n] = '/';
@@ -133,6 +151,7 @@ static bool write_obj_body(const SylMesh *all, SylMesh *const *parts, int nparts
 #undef FLUSH
     fwrite(buf, 1, (size_t)(p - buf), f);
     free(buf);
+    free(cache);
     return true;
 }
 

@@ -11,6 +11,7 @@
 #include "util/array.h"
 #include "util/budget.h"
 #include "util/json.h"
+#include "util/numcache.h"
 #include "util/numtext.h"
 #include "util/pages.h"
 
@@ -210,7 +211,16 @@ enum { ROWS_SIZE = 1 << 16, ROW_MAX = 1024 };
 typedef struct Rows {
     FILE *out;
     char *p, buf[ROWS_SIZE + ROW_MAX];
+    NumCache sizes; /* radii and sizes repeat (a species' leaves share one); positions do not */
 } Rows;
+
+static Rows *rows_new(FILE *out) {
+    Rows *r = malloc(sizeof *r);
+    if (!r) return NULL;
+    r->out = out, r->p = r->buf;
+    numcache_init(&r->sizes, "0", 1);
+    return r;
+}
 
 static void rows_text(Rows *r, const char *s) {
     size_t n = strlen(s);
@@ -219,6 +229,8 @@ static void rows_text(Rows *r, const char *s) {
 }
 static void rows_int(Rows *r, long long v) { r->p = numtext_int(r->p, v); }
 static void rows_g(Rows *r, float x) { r->p = numtext_g(r->p, x, 6); }
+static char *text_g(char *p, float x, int prec) { return numtext_g(p, x, prec); }
+static void rows_size(Rows *r, float x) { r->p = numcache_put(&r->sizes, r->p, x, 6, text_g); }
 static void rows_end(Rows *r) { /* after each row: at most ROW_MAX bytes were added */
     if (r->p - r->buf >= ROWS_SIZE) fwrite(r->buf, 1, (size_t)(r->p - r->buf), r->out), r->p = r->buf;
 }
@@ -229,7 +241,7 @@ static void csv_row(Rows *r, size_t id, int parent, const float pos[3], float si
     rows_int(r, (long long)id), *r->p++ = ',';
     rows_int(r, parent);
     for (int k = 0; k < 3; k++) *r->p++ = ',', rows_g(r, pos[k]);
-    *r->p++ = ',', rows_g(r, size), *r->p++ = ',';
+    *r->p++ = ',', rows_size(r, size), *r->p++ = ',';
     rows_int(r, order), *r->p++ = ',';
     rows_text(r, syl_kind_names[kind]);
     *r->p++ = '\n';
@@ -237,9 +249,8 @@ static void csv_row(Rows *r, size_t id, int parent, const float pos[3], float si
 }
 
 int syl_skeleton_write_csv(const SylSkeleton *s, FILE *out) {
-    Rows *r = malloc(sizeof *r);
+    Rows *r = rows_new(out);
     if (!r) return SYL_ELIMIT;
-    r->out = out, r->p = r->buf;
     rows_text(r, "id,parent,x,y,z,radius,order,kind\n");
     for (size_t i = 0; i < s->nnodes; i++) {
         const SylNode *n = &s->nodes[i];
@@ -265,13 +276,12 @@ static void json_row_start(Rows *r, size_t i, size_t id, int parent, const float
     static const char *const axis[3] = {",\"x\":", ",\"y\":", ",\"z\":"};
     for (int k = 0; k < 3; k++) rows_text(r, axis[k]), rows_g(r, pos[k]);
     rows_text(r, size_name);
-    rows_g(r, size);
+    rows_size(r, size);
 }
 
 int syl_skeleton_write_json(const SylSkeleton *s, FILE *out) {
-    Rows *r = malloc(sizeof *r);
+    Rows *r = rows_new(out);
     if (!r) return SYL_ELIMIT;
-    r->out = out, r->p = r->buf;
     fputs("{\"name\":", out);
     json_string_file(out, s->name); /* any string: syl_skeleton_new takes one */
     fputs(",\"nodes\":[", out);

@@ -7,6 +7,7 @@
 
 #include "unit.h"
 #include "io/io_internal.h"
+#include "util/numcache.h"
 #include "util/numtext.h"
 #include "util/rng.h"
 
@@ -165,12 +166,40 @@ static void short_reads_back_to_the_rounded_value(void **state) {
     }
 }
 
+static char *g6(char *p, float x, int sig) { return numtext_g(p, x, sig); }
+
+/* The per-write cache (util/numcache) gives each value the formatter's own text: values drawn
+ * from a small pool (hits), edge values, random ones (misses and slots taken over), -0 beside
+ * 0 (another key, another text), in a stream of 200 000. */
+static void cache_gives_the_formatters_text(void **state) {
+    (void)state;
+    float pool[512];
+    size_t n = edge_values(pool);
+    Rng r = rng_stream(14, 0, 0, 0);
+    while (n < 512) pool[n] = random_value(&r, n), n++;
+    static NumCache obj[2], g; /* one cache for each precision */
+    numcache_init(&obj[0], "0", 1), numcache_init(&obj[1], "0", 1), numcache_init(&g, "0", 1);
+    for (int i = 0; i < 200000; i++) {
+        uint64_t u = rng_next(&r);
+        float x = u % 3 ? pool[(u >> 8) % 512] : random_value(&r, (uint64_t)i);
+        int sig = 6 + (int)(u >> 40) % 2;
+        char want[64], got[64];
+        *io_float(want, x, sig) = 0;
+        *numcache_put(&obj[sig - 6], got, x, sig, io_float) = 0;
+        if (strcmp(want, got)) fail_msg("OBJ: %a (%d digits): '%s', cached '%s'", (double)x, sig, want, got);
+        *g6(want, x, 6) = 0;
+        *numcache_put(&g, got, x, 6, g6) = 0;
+        if (strcmp(want, got)) fail_msg("%%.6g: %a: '%s', cached '%s'", (double)x, want, got);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(g_is_printf_byte_for_byte),
         cmocka_unit_test(g9_reads_back_every_float),
         cmocka_unit_test(short_reads_back_to_the_rounded_value),
         cmocka_unit_test(int_is_printf_byte_for_byte),
+        cmocka_unit_test(cache_gives_the_formatters_text),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
