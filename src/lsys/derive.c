@@ -57,26 +57,29 @@ static void run_chunk(void *arg, int k) {
     if (c->ns) c->ns[k] = thread_ns() - t0;
 }
 
+/* The chunks of a split pass and where they go in the one output: at[k], pat[k] are chunk
+ * k's offsets (codes, parameters), parts[k] its own buffer, ns[k] its thread's time. */
+typedef struct Parts {
+    Work *works; /* NULL for a join */
+    SylString *out, *parts;
+    size_t *at, *pat;
+    uint64_t *ns;
+} Parts;
+
 /* A split pass of a plain table writes one output sized in advance (no join): first each
  * chunk's size (rewrite_size), then, at the offsets their sums give, each chunk writes its
  * part itself, so that its pages are first touched by its own thread. A chunk's tail goes to
  * its own buffer and is copied after, so that no write spills into the next chunk's part. */
-typedef struct Exact {
-    Work *works;
-    SylString *out, *parts;
-    size_t *at, *pat;
-    uint64_t *ns;
-} Exact;
 
 static void size_chunk(void *arg, int k) {
-    Exact *x = arg;
+    Parts *x = arg;
     uint64_t t0 = thread_ns();
     rewrite_size(&x->works[k]);
     x->ns[k] = thread_ns() - t0;
 }
 
 static void write_chunk(void *arg, int k) {
-    Exact *x = arg;
+    Parts *x = arg;
     Work *w = &x->works[k];
     uint64_t t0 = thread_ns();
     size_t hi = w->hi;
@@ -108,14 +111,8 @@ static void write_chunk(void *arg, int k) {
 /* The second half of a pass of several chunks: chunk k (> 0), written to a buffer of its
  * own, is copied into the output at the offsets the chunks before it sum to, by its own
  * thread, so that the copies run side by side and each thread first-touches its part. */
-typedef struct Joins {
-    SylString *out, *parts;
-    size_t *at, *pat;
-    uint64_t *ns;
-} Joins;
-
 static void join_chunk(void *arg, int k) {
-    Joins *j = arg;
+    Parts *j = arg;
     const SylString *part = &j->parts[k];
     j->ns[k] = 0;
     if (!k) return;
@@ -482,7 +479,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     if (exact) {
         size_t at[MAX_THREADS], pat[MAX_THREADS], n = 0, np = 0;
         uint64_t sns[MAX_THREADS];
-        Exact x = {works, out, parts, at, pat, sns};
+        Parts x = {works, out, parts, at, pat, sns};
         struct timespec w0, w1;
         clock_gettime(CLOCK_MONOTONIC, &w0);
         pool_run(e->pool, nt, size_chunk, &x);
@@ -551,7 +548,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             n += parts[k].n, np += parts[k].np;
         }
         if (!(status = ms_reserve(out, n - out->n, np - out->np))) {
-            Joins joins = {out, parts, at, pat, ns};
+            Parts joins = {NULL, out, parts, at, pat, ns};
             pool_run(e->pool, nt, join_chunk, &joins);
             add_costs(ns, nt, &e->join_ns, &e->join_max_ns);
             out->n = n;
