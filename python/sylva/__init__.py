@@ -330,7 +330,7 @@ class Model:
     def _repr_mimebundle_(self, include=None, exclude=None):
         """In a notebook: the built plant in the 3D view of `sylva view` (an ecosystem block:
         its last snapshot), with a picture for frontends without HTML."""
-        if self.kind == "ecosystem":
+        if not self.is_plant:  # the one such kind runs (lang/kinds.def: KF_NOT_A_PLANT)
             run = self.run()
             return run.snapshot(max(run._snaps))._repr_mimebundle_() if run._snaps else None
         return self.build()._repr_mimebundle_()

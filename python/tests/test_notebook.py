@@ -90,6 +90,15 @@ def test_a_snapshot_is_its_plants_on_the_terrain():
         run.snapshot(year + 1000)
 
 
+def test_an_ecosystem_model_shows_its_last_snapshot():
+    m = sylva.load(ex("ecosystem", "meadow.syl")).model
+    shown = script(m._repr_mimebundle_()["text/html"], "data")
+    run = m.run()
+    last = run.plants(max(run._snaps))
+    assert len(shown["plants"]) == len(last) > 0
+    np.testing.assert_allclose(sorted(r[3] for r in shown["plants"]), np.sort(last["height"]), atol=1e-3)
+
+
 def test_without_the_assets_the_picture_alone(plant, monkeypatch):
     monkeypatch.setattr(_view, "_WEB_DIRS", ("/nonexistent",))
     _view._sources_json.cache_clear()
