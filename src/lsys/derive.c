@@ -326,6 +326,20 @@ static int move_back(Engine *e, int table, SylString *s, Work *w) {
 
 /* A stack as deep as n modules may nest, in small pages (malloc): only the depth of the
  * branches is used, and a 2 MB page would be zeroed for its first bytes. Not kept. */
+/* A split pass done (begun at w0): its chunks' times counted; when they took as long side by
+ * side as one after the other would, the machine has no core to spare (as this one, shared),
+ * and the next passes are not split. */
+static void split_done(Engine *e, const uint64_t *ns, int nt, const struct timespec *w0, uint64_t *sum,
+                       uint64_t *longest) {
+    struct timespec w1;
+    clock_gettime(CLOCK_MONOTONIC, &w1);
+    e->split_passes++;
+    add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
+    add_costs(ns, nt, sum, longest);
+    double wall = (double)(w1.tv_sec - w0->tv_sec) * 1e9 + (double)(w1.tv_nsec - w0->tv_nsec);
+    if (wall * 1.25 > (double)*sum) e->no_free_cores = true;
+}
+
 static bool stack_reserve(void **arr, size_t *cap, size_t n, size_t elem) {
     if (n <= *cap) return true;
     free(*arr);
@@ -480,7 +494,7 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
         size_t at[MAX_THREADS], pat[MAX_THREADS], n = 0, np = 0;
         uint64_t sns[MAX_THREADS];
         Parts x = {works, out, parts, at, pat, sns};
-        struct timespec w0, w1;
+        struct timespec w0;
         clock_gettime(CLOCK_MONOTONIC, &w0);
         pool_run(e->pool, nt, size_chunk, &x);
         for (int k = 0; k < nt; k++) {
@@ -505,25 +519,13 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
             pool_run(e->pool, nt, write_chunk, &x);
             out->n = n;
             out->np = np;
-            clock_gettime(CLOCK_MONOTONIC, &w1);
-            e->split_passes++;
-            add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
-            add_costs(ns, nt, &sum, &longest);
-            double wall = (double)(w1.tv_sec - w0.tv_sec) * 1e9 + (double)(w1.tv_nsec - w0.tv_nsec);
-            if (wall * 1.25 > (double)sum) e->no_free_cores = true;
+            split_done(e, ns, nt, &w0, &sum, &longest);
         }
     } else if (nt > 1) {
-        struct timespec w0, w1;
+        struct timespec w0;
         clock_gettime(CLOCK_MONOTONIC, &w0);
         pool_run(e->pool, nt, run_chunk, &chunks);
-        clock_gettime(CLOCK_MONOTONIC, &w1);
-        e->split_passes++;
-        add_costs(ns, nt, &e->chunk_ns, &e->chunk_max_ns);
-        add_costs(ns, nt, &sum, &longest);
-        /* the chunks took as long side by side as one after the other would: the machine has
-         * no core to spare (as this one, shared), and the next passes are not split */
-        double wall = (double)(w1.tv_sec - w0.tv_sec) * 1e9 + (double)(w1.tv_nsec - w0.tv_nsec);
-        if (wall * 1.25 > (double)sum) e->no_free_cores = true;
+        split_done(e, ns, nt, &w0, &sum, &longest);
     } else {
         run_chunk(&chunks, 0);
         add_costs(ns, nt, &sum, &longest);
