@@ -212,3 +212,18 @@ int sch_check_once(const SylProgram *p, void *params, size_t size, SchRead read,
     if (!errors) sch_keep(p, params, size); /* the build takes it: read once */
     return errors && errors == set_errors ? -errors : errors;
 }
+
+void sch_slot_store(const SchSlot *s, void *base, int level, double v) {
+    if (!s || !base) return;
+    char *at = (char *)base + s->off;
+    switch (s->store) {
+    case SCH_AT_F32: *(float *)at = (float)v; break;
+    case SCH_AT_F64: ((double *)at)[level > 0 ? level : 0] = v; break;
+    case SCH_AT_INT: *(int *)at = (int)v; break;
+    case SCH_AT_I64: *(int64_t *)at = (int64_t)v; break;
+    case SCH_AT_U64: *(uint64_t *)at = (uint64_t)v; break;
+    case SCH_AT_BOOL: *(bool *)at = v != 0; break;
+    case SCH_AT_U8: *(uint8_t *)at = (uint8_t)v; break;
+    default: break;
+    }
+}

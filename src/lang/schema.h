@@ -122,6 +122,9 @@ typedef struct SchSlot {
     size_t off, size;  /* size: SCH_AT_TEXT's buffer */
     const int *values; /* an enum: the value stored for each word (NULL: its index) */
 } SchSlot;
+/* v into slot s of base, as its store says (a per-level number at level; other stores,
+ * and s or base NULL: nothing). Both readers store through it. */
+void sch_slot_store(const SchSlot *s, void *base, int level, double v);
 
 /* A repeated line (its head row has repeat): where its elements are kept in base. */
 typedef struct SchGroup {

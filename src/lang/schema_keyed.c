@@ -126,18 +126,7 @@ static const SchSlot *slot_of(const Reader *r, const SchRow *row) {
 static int word_value(const SchSlot *s, int word) { return s && s->values ? s->values[word] : word; }
 
 /* base NULL: nothing is stored (describe's reading). */
-static void store(const SchSlot *s, void *base, double v) {
-    if (!s || s->store == SCH_AT_NONE || !base) return;
-    char *at = (char *)base + s->off;
-    switch (s->store) {
-    case SCH_AT_F32: *(float *)at = (float)v; break;
-    case SCH_AT_INT: *(int *)at = (int)v; break;
-    case SCH_AT_U64: *(uint64_t *)at = (uint64_t)v; break;
-    case SCH_AT_BOOL: *(bool *)at = v != 0; break;
-    case SCH_AT_U8: *(uint8_t *)at = (uint8_t)v; break;
-    default: break;
-    }
-}
+static void store(const SchSlot *s, void *base, double v) { sch_slot_store(s, base, -1, v); }
 
 static int stored_int(const SchSlot *s, const void *base) {
     const char *at = (const char *)base + s->off;

@@ -133,24 +133,9 @@ static void bad(SchLineRead *r, SchProblem pr) {
 
 /* ---- storing ---- */
 
-static void store(const SchSlot *s, void *base, int level, double v) {
-    if (!s || !base) return;
-    char *at = (char *)base + s->off;
-    switch (s->store) {
-    case SCH_AT_F32: *(float *)at = (float)v; break;
-    case SCH_AT_F64: ((double *)at)[level > 0 ? level : 0] = v; break;
-    case SCH_AT_INT: *(int *)at = (int)v; break;
-    case SCH_AT_I64: *(int64_t *)at = (int64_t)v; break;
-    case SCH_AT_U64: *(uint64_t *)at = (uint64_t)v; break;
-    case SCH_AT_BOOL: *(bool *)at = v != 0; break;
-    case SCH_AT_U8: *(uint8_t *)at = (uint8_t)v; break;
-    default: return;
-    }
-}
-
 /* A line's or --set's value of row into base. */
 static void take(const SchLineRead *r, const SchRow *row, void *base, int level, double v) {
-    store(slot_of(r, row), base, level, v);
+    sch_slot_store(slot_of(r, row), base, level, v);
     if (base && r->k->took) r->k->took(base, row);
 }
 
@@ -162,11 +147,11 @@ void sch_lines_defaults(const SchLines *k, void *base) {
         const SchSlot *s = &k->slots[i];
         if (row->type == SCH_ENUM) {
             int w = row->def_text ? sch_word_index(row->words, row->def_text) : -1;
-            if (w >= 0) store(s, base, -1, word_value(s, w));
+            if (w >= 0) sch_slot_store(s, base, -1, word_value(s, w));
         } else if (row->levels)
-            for (int l = 0; l < row->levels && l < 4; l++) store(s, base, l, row->def[l]);
+            for (int l = 0; l < row->levels && l < 4; l++) sch_slot_store(s, base, l, row->def[l]);
         else if (!isnan(row->def[0]) && (row->type == SCH_NUMBER || row->type == SCH_INTEGER || row->type == SCH_BOOLEAN))
-            store(s, base, -1, row->def[0]);
+            sch_slot_store(s, base, -1, row->def[0]);
     }
 }
 
