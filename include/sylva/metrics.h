@@ -74,6 +74,18 @@ extern const int syl_metrics_count;
  * i of a per-order metric (R_b = N_i / N_(i+1)), ignored by the others. NaN when undefined. */
 double syl_metrics_value(const SylMetrics *m, int metric, int order);
 
+/* Plants side by side, as one mesh (what `sylva compare --image` renders): each of the n
+ * meshes moved so that its ground (ground[i], a y) is at y = 0 and its middle in z at z = 0,
+ * in a row along +x with gaps between their bounds, and a height ruler left of the first: a
+ * pole from 0 to the next tick above the tallest plant, ticks at round heights (1, 2 or 5
+ * times a power of ten) and their values in seven-segment digits, all as boxes of a material
+ * of its own (the last one). Materials that are the same (colour and kind) are shared.
+ * names: NULL, or each plant's name, written in the ruler's material in a 5 x 7 font,
+ * upright on the ground in front of its plant. NULL when out of memory; free it with
+ * syl_mesh_free. */
+SylMesh *syl_metrics_build_lineup(const SylMesh *const *meshes, const double *ground, const char *const *names,
+                                  int n);
+
 #ifdef __cplusplus
 }
 #endif

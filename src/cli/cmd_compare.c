@@ -4,7 +4,6 @@
 #include <string.h>
 
 #include "cli/cli.h"
-#include "cli/lineup.h"
 #include "sylva/metrics.h"
 #include "util/json.h"
 
@@ -393,7 +392,7 @@ static int write_image(const Column *cols, int ncols, const char *path, SylRende
     const char **names = calloc((size_t)ncols, sizeof *names);
     if (meshes && ground && names) {
         for (int c = 0; c < ncols; c++) meshes[c] = cols[c].mesh, ground[c] = cols[c].ground, names[c] = cols[c].name;
-        all = lineup_build(meshes, ground, names, ncols);
+        all = syl_metrics_build_lineup(meshes, ground, names, ncols);
     }
     if (!all) fprintf(stderr, "sylva: error: out of memory\n");
     else {

@@ -5,7 +5,7 @@
 #include <string.h>
 
 #include "util/font.h"
-#include "cli/lineup.h"
+#include "sylva/metrics.h"
 
 typedef struct Box {
     float lo[3], hi[3];
@@ -135,7 +135,7 @@ static int find_material(SylMaterial *mats, int *n, const SylMaterial *want) {
     return (*n)++;
 }
 
-SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, const char *const *names, int n) {
+SylMesh *syl_metrics_build_lineup(const SylMesh *const *meshes, const double *ground, const char *const *names, int n) {
     SylMesh *m = calloc(1, sizeof *m);
     float(*lo)[3] = calloc((size_t)n + 1, sizeof *lo), (*hi)[3] = calloc((size_t)n + 1, sizeof *hi);
     float(*shift)[3] = calloc((size_t)n + 1, sizeof *shift);
