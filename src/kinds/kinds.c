@@ -6,14 +6,15 @@
 #include <stddef.h>
 
 #include "lang/kinds.h"
-#include "lang/preset.h"
 #include "lang/schema.h"
-#include "pafco/params.h"
-#include "sot/params.h"
 #include "sylva/ecosystem.h"
-#include "sylva/trees.h"
 #include "util/diag.h"
-#include "weber/xml.h"
+/* the headers of the functions the rows name */
+#define SYL_KIND(...)
+#define SYL_KIND_HEADERS
+#include "lang/kinds.def"
+#undef SYL_KIND_HEADERS
+#undef SYL_KIND
 
 /* The ecosystem's check reports to a sink: the hook's stream as one. */
 static int ecosystem_validate(const SylProgram *p, FILE *diag) {

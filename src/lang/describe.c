@@ -503,11 +503,9 @@ static void md_table(FILE *out, const SchTable *t) {
 
 void lang_directives_reference(FILE *out) {
     fputs("# Directives: the reference tables\n\n"
-          "Generated from the tables the readers check lines and `--set` against (src/lang/settings.def,\n"
-          "src/sot/params.def, src/weber/params.def, src/strands/params.def, src/eco/params.def,\n"
-          "src/curvetree/params.def, src/pafco/params.def) by "
-          "`tools/gen-directives`; do not edit by hand (`build/tests/test_schema` fails when this file and\n"
-          "the tables differ).\n"
+          "Generated from the tables the readers check lines and `--set` against (src/lang/settings.def, and\n"
+          "each kind's src/FOLDER/params.def, made a table by src/FOLDER/schema.inc) by `tools/gen-directives`;\n"
+          "do not edit by hand (`build/tests/test_schema` fails when this file and the tables differ).\n"
           "`sylva describe FILE` prints the same rows with a model's values ([cli.md](cli.md#sylva-describe)).\n"
           "A range is written `[lo, hi]`, `(` `)` for an open end; `-` is no default.\n",
           out);

@@ -1,7 +1,6 @@
 /* The directive schema: a block's directives described as data (name, type, range, default,
  * unit, meaning, aliases), one table per kind, each written once as an X-macro .def in its
- * generator's folder (sot/params.def, weber/params.def, strands/params.def, eco/params.def,
- * curvetree/params.def, pafco/params.def) or here
+ * generator's folder (FOLDER/params.def, made into the table by FOLDER/schema.inc) or here
  * (lang/settings.def). This file is the one reader of those tables: a name's row (with a
  * level digit, an alias), did-you-mean, a value as a number or `(expr)`, its range, an enum's
  * word, and `--set NAME=VALUE` checked against the row. `sylva describe` (describe.c) and the
@@ -69,8 +68,17 @@ typedef struct SchTable {
     const char *intro; /* docs/directives.md's paragraph about the table */
 } SchTable;
 
-/* The tables (schema_tables.c). */
-extern const SchTable sch_lsystem, sch_grow, sch_weber, sch_strands, sch_ecosystem, sch_curvetree, sch_pafco;
+/* The tables, defined by schema_tables.c: the lsystem's settings, and one for each kind with
+ * directives (sch_grow, sch_weber, ...), written in its folder (FOLDER/schema.inc) and
+ * declared here from the list of them in lang/kinds.def. */
+extern const SchTable sch_lsystem;
+#define SCH_TABLE(var, kind, noun, rows, shape, intro) extern const SchTable var;
+#define SYL_KIND(...)
+#define SYL_KIND_SCHEMAS
+#include "lang/kinds.def"
+#undef SYL_KIND_SCHEMAS
+#undef SYL_KIND
+#undef SCH_TABLE
 
 /* The row of a directive name: the name, an alias, or a per-level name with its level digit
  * ("1DownAngle": *level 1); *level -1 when none. NULL: no such row. group NULL: any row. */

@@ -17,8 +17,10 @@ static SylProgram *compile_bare(const char *text) {
 
 static void every_enum_value_has_a_row(void **state) {
     (void)state;
-    /* the last value of the public enum is the table's last row */
-    assert_int_equal(LANG_KIND_COUNT, SYL_MODEL_PAFCO + 1);
+    /* No value of the public enum lacks its row: kinds_ops's switch, made from the table, has
+     * no default (a value without its case is an error under -Wall -Werror), and lang/kinds.c
+     * asserts at compile time that the rows are in the enum's order; so no test here names the
+     * last kind, which a new kind would have to change. */
     for (int k = 0; k < LANG_KIND_COUNT; k++) {
         assert_non_null(lang_kind_keyword((SylModelKind)k));
         assert_string_not_equal(syl_model_kind_name((SylModelKind)k), "model");
