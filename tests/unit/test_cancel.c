@@ -84,8 +84,8 @@ static void a_mesh_stops_before_planning_and_writing_and_is_the_same_when_not_st
  * every 4,096 segments. Stopped at any ask, the build says nothing and leaves nothing (ASan's
  * leak check in build-asan); never stopped, its skeleton is the one built without a cancel. */
 static const char *const kinds[] = {
-    "grow Sapling {\n  years 4\n  internode 0.3\n  buds opposite angle 50\n  light shadow a 0.2 b 3 depth 4\n"
-    "  shoot relative max 2\n}\n",
+    ("grow Sapling {\n  years 4\n  internode 0.3\n  buds opposite angle 50\n  light shadow a 0.2 b 3 depth 4\n"
+     "  shoot relative max 2\n}\n"),
     "weber W {\n  Levels 2\n  Branches 1 5\n  Leaves 4\n}\n",
     "strands S {\n  strands 5000\n}\n",
 };
