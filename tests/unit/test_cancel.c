@@ -28,7 +28,7 @@ static const char *const bush = "lsystem Bush {\n derive 4\n angle 25\n axiom F\
 static int build(SylProgram *p, SylPlantStage until, Asks *a, SylPlant *pl) {
     SylCancel cancel = {.stop = stop_at, .user = a};
     SylMeshOptions mo = {.threads = 1, .sides = 3};
-    SylPlantOptions po = {.threads = 1, .until = until, .mesh = &mo, .cancel = a ? &cancel : NULL};
+    SylPlantOptions po = {.threads = 1, .until = until, .mesh = &mo, .cancel = a ? &cancel : NULL, .scene = 1};
     return syl_plant_build(p, &po, pl);
 }
 
@@ -79,7 +79,7 @@ static void a_mesh_stops_before_planning_and_writing_and_is_the_same_when_not_st
     syl_program_free(p);
 }
 
-/* The kinds built without a string ask too: a grown tree before every year, a Weber-Penn tree
+/* The kinds built without a string ask too: a grown tree (a scene's forest) before every year, a Weber-Penn tree
  * before each trunk, each first-level branch, its nodes and its leaves, a strands tree before
  * every 4,096 segments. Stopped at any ask, the build says nothing and leaves nothing (ASan's
  * leak check in build-asan); never stopped, its skeleton is the one built without a cancel. */
@@ -88,6 +88,9 @@ static const char *const kinds[] = {
      "  shoot relative max 2\n}\n"),
     "weber W {\n  Levels 2\n  Branches 1 5\n  Leaves 4\n}\n",
     "strands S {\n  strands 5000\n}\n",
+    /* a scene: its forest's years (two trees growing together) */
+    ("grow G {\n  years 3\n  internode 0.3\n  buds opposite angle 50\n  light shadow a 0.2 b 3 depth 4\n}\n"
+     "scene {\n  plant G at (0, 0, 0)\n  plant G at (2, 0, 0)\n}\n"),
 };
 
 static void assert_same_skeleton(const SylSkeleton *a, const SylSkeleton *b) {
@@ -103,12 +106,13 @@ static void assert_same_skeleton(const SylSkeleton *a, const SylSkeleton *b) {
 static void grown_weber_and_strands_trees_stop_at_every_ask(void **state) {
     (void)state;
     /* at least: the years; a trunk, 5 branches, the nodes and the leaves; 3 batches of segments */
-    const int least[] = {4, 1 + 5 + 2, 3};
+    const int least[] = {4, 1 + 5 + 2, 3, 3};
     for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
         SylProgram *p = unit_compile(kinds[k], NULL, NULL);
         assert_non_null(p);
         SylPlant plain, pl;
         assert_int_equal(build(p, SYL_PLANT_SKELETON, NULL, &plain), SYL_OK);
+        if (strstr(kinds[k], "scene {")) assert_int_equal(plain.kind, SYL_MODEL_SCENE);
         Asks never = {.at = -1};
         assert_int_equal(build(p, SYL_PLANT_SKELETON, &never, &pl), SYL_OK);
         if (never.asked < least[k]) fail_msg("%s: asked %d times, not at least %d", kinds[k], never.asked, least[k]);
