@@ -13,7 +13,9 @@
 //       finished: software WebGL fills them after the draw call returns); PREVIEW_PAGE the best
 //       save's preview: its request (the server's wait included) / the server's build / parse
 //       and setup / its draw call, ms; FRAME_MS one whole frame of the model at rest (drawn and
-//       its pixels read back, best of 3)
+//       its pixels read back, best of 3); PREVIEW_PIXELS_MS the best time from the save to the
+//       preview's pixels read back (the page reads one back right after the preview's first draw
+//       call when sylvaView.measurePixels is set: what is on screen, not what was asked for)
 //   slider NAME MODULES UPDATES SECONDS FULL FRAME_MS   pictures of new values drawn while a slider
 //       is dragged (a new value of the slider every 20 ms; previews and full builds), FULL of them
 //       full builds, FRAME_MS a whole frame of the last preview, CPU_MS the server's and the
@@ -75,8 +77,9 @@ try {
     await page.setViewport({ width: 900, height: 700 });
     await page.goto(url);
     await page.waitForFunction(() => window.sylvaView && window.sylvaView.shownAt > 0, { timeout: 300000, polling: 50 });
+    await page.evaluate(() => { window.sylvaView.measurePixels = true; });
     const text = readFileSync(path, 'utf8');
-    const times = [], phases = [], previews = [], pixels = [], pvPhases = [];
+    const times = [], phases = [], previews = [], pixels = [], pvPhases = [], pvPixels = [];
     let kind = '-';
     for (let r = 0; r < runs; r++) {
       const n = await page.evaluate(() => window.sylvaView.loads);
@@ -91,13 +94,14 @@ try {
       // be drawing when the draw call returns); the next save then starts from a finished frame,
       // as it does for a user who looks at the plant before saving again
       pixels.push(await page.evaluate(() => {
+        if (window.sylvaView.pixelsWall) return window.sylvaView.pixelsWall; // read back by the page at once
         const gl = document.querySelector('canvas').getContext('webgl2'), px = new Uint8Array(4);
         gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
         return Date.now();
       }) - t0);
       const pv = await page.evaluate(() => ({ at: window.sylvaView.previewShownWall || 0, kind: window.sylvaView.lastPreviewKind,
-        timing: window.sylvaView.previewTiming, draw: window.sylvaView.previewMs }));
-      if (pv.at > t0) previews.push(pv.at - t0), kind = pv.kind || kind, pvPhases.push(pv);
+        timing: window.sylvaView.previewTiming, draw: window.sylvaView.previewMs, pixels: window.sylvaView.previewPixelsWall || 0 }));
+      if (pv.at > t0) previews.push(pv.at - t0), kind = pv.kind || kind, pvPhases.push(pv), pv.pixels > t0 && pvPixels.push(pv.pixels - t0);
       else pvPhases.push(null);
       phases.push(await page.evaluate(() => window.sylvaView.timing || null));
     }
@@ -109,7 +113,7 @@ try {
     const page_ = ph ? ['build', 'fetch', 'parse', 'setup', 'frame'].map((k) => (ph[k] || 0).toFixed(0)).join('/') : '';
     const best = times.indexOf(Math.min(...times)), pp = pvPhases[best];
     const pvPage = pp && pp.timing ? [pp.timing.fetched, pp.timing.server, pp.timing.parse, pp.draw].map((x) => (x || 0).toFixed(0)).join('/') : '-';
-    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}\t${Math.min(...pixels)}\t${pvPage}\t${frameMs}`);
+    console.log(`save\t${name}\t${s.modules}\t${s.triangles}\t${Math.min(...times)}\t${median(times)}\t${built.toFixed(0)}\t${(s.write_time * 1000).toFixed(0)}\t${page_}\t${previews.length ? Math.min(...previews) : '-'}\t${kind}\t${Math.min(...pixels)}\t${pvPage}\t${frameMs}\t${pvPixels.length ? Math.min(...pvPixels) : '-'}`);
     await page.close();
     await stop(server);
   }

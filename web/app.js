@@ -99,6 +99,15 @@ const builds = (e) => e.target && e.target.closest && e.target.closest('#params,
 for (const ev of ['input', 'change', 'click', 'keydown']) document.addEventListener(ev, (e) => { if (!builds(e)) redraw(); }, true);
 window.addEventListener('resize', redraw);
 
+// make bench (state.measurePixels): when the frame just drawn has its pixels (Date.now()). The
+// draw call returns before software WebGL has filled them (a second later for a big mesh);
+// reading a pixel back waits for them, and the page's thread with it: off for a user.
+function pixelsDone() {
+  const gl = renderer.getContext(), px = new Uint8Array(4);
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, px);
+  return Date.now();
+}
+
 // A preview is drawn at half the resolution: software WebGL (and a slow GPU) spends a frame's
 // time on its pixels, the ground's shadow lookups and multisampling above all.
 const fullRatio = renderer.getPixelRatio();
@@ -121,10 +130,12 @@ function animate() {
     if (state.previewAt && !state.previewShownAt) { // a preview's first frame (make bench: save to preview)
       state.previewShownAt = performance.now(); state.previewShownWall = Date.now();
       state.previewMs = state.previewShownAt - state.previewAt; // its first frame's draw
+      state.previewPixelsWall = state.measurePixels ? pixelsDone() : 0;
     }
     if (state.drawnAt && !state.shownAt) { // the first frame of the last build (make bench: save to frame)
       state.shownAt = performance.now(); state.shownWall = Date.now();
       if (state.timing) state.timing.frame = state.shownAt - state.drawnAt;
+      state.pixelsWall = state.measurePixels ? pixelsDone() : 0;
       // the metrics once the page rests a second on this build (a save or a drag going on
       // asks for none: their light interception would share the processor with the builds)
       if (state.metricsPending) { const id = state.metricsPending; state.metricsPending = 0; setTimeout(() => { if (!loading) metricsOf(id); }, 1000); }

@@ -50,6 +50,7 @@ typedef struct SylGrowOptions {
     uint64_t max_work;        /* of each L-system derivation (SylDeriveOptions.max_work) */
     uint64_t max_memory;      /* bytes, when budget is NULL; 0: the default */
     SylBudget *budget;        /* shared memory budget: trees, buds, scenes' strings, shoots */
+    const SylCancel *cancel;  /* asked before every year (sylva.h); NULL: never */
 } SylGrowOptions;
 
 /* The most years a tree may grow (`years`, --years, -n). */

@@ -26,6 +26,9 @@ typedef struct SylTreeOptions {
     uint64_t max_memory; /* bytes, when budget is NULL; 0: the default */
     SylBudget *budget;
     FILE *diag;
+    /* asked (sylva.h) by weber before each trunk, each first-level branch, the nodes and the
+     * leaves, by strands before every 4,096 segments; the other kinds never ask. NULL: never */
+    const SylCancel *cancel;
 } SylTreeOptions;
 
 /* The tree of a compiled `weber` or `strands` program. SYL_OK, SYL_EUSAGE for another kind

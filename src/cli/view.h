@@ -125,7 +125,7 @@ typedef int (*ViewPathWriter)(void *ctx, const char *path, FILE *diag);
 int view_write_via_file(ViewPathWriter write, void *ctx, const char *name, FILE *out, FILE *diag);
 
 /* view_preview.c: what a preview build changes in the mesh options (fewer sides, leaves as
- * instanced cards); whether a skeleton of that many nodes is sent as its segments instead of a
+ * instanced cards); whether a skeleton of that many nodes and leaves is sent as its segments instead of a
  * mesh; those segments (6 floats each, then a byte of branch order each) into *buf (malloc'ed,
  * *len bytes). */
 void view_preview_mesh_options(SylMeshOptions *mo);

@@ -36,7 +36,8 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
     SylGrowOptions g = {.years = opt->use_steps ? opt->steps : -1, .use_seed = opt->use_seed, .seed = opt->seed,
                         .threads = opt->threads, .max_metamers = opt->max_metamers, .max_buds = opt->max_buds,
                         .max_modules = opt->max_modules, .max_work = opt->max_work, .max_memory = opt->max_memory,
-                        .budget = budget, .diag = opt->diag, .progress = opt->progress, .user = opt->user};
+                        .budget = budget, .diag = opt->diag, .progress = opt->progress, .user = opt->user,
+                        .cancel = mo->cancel};
     SylMesh *obstacles = NULL;
     double t0 = now(), c0 = cpu_now();
     int st = scene ? syl_grow_build_scene(p, &g, &out->skeleton, &obstacles) : syl_grow_build(p, &g, &out->skeleton);
@@ -70,7 +71,8 @@ static int build_grown(const SylProgram *p, bool scene, const SylPlantOptions *o
 static int build_tree(const KindOps *ops, const SylProgram *p, const SylPlantOptions *opt, const SylMeshOptions *mo,
                       SylBudget *budget, SylPlant *out) {
     SylTreeOptions t = {.use_seed = opt->use_seed, .seed = opt->seed, .threads = opt->threads, .age = opt->age,
-                        .levels = opt->levels, .max_memory = opt->max_memory, .budget = budget, .diag = opt->diag};
+                        .levels = opt->levels, .max_memory = opt->max_memory, .budget = budget, .diag = opt->diag,
+                        .cancel = mo->cancel};
     double t0 = now(), c0 = cpu_now();
     int st = ops->build(p, &t, &out->skeleton);
     if (opt->progress) opt->progress(opt->user, 1);

@@ -35,6 +35,7 @@ void forest_limits(Forest *f, const SylGrowOptions *opt) {
     f->max_modules = opt->max_modules;
     f->max_work = opt->max_work;
     f->mem = budget_use(&f->own, opt->max_memory, opt->budget);
+    f->cancel = opt->cancel;
 }
 
 int forest_said(Forest *f, int st, int year) {
@@ -198,6 +199,10 @@ int forest_run(Forest *f, void (*progress)(void *, double), void *user) {
     size_t *before = malloc((size_t)(f->ntrees ? f->ntrees : 1) * sizeof *before);
     int st = before ? forest_register_statics(f) : SYL_ELIMIT;
     for (int year = 1; year <= f->years && !st; year++) {
+        if (syl_cancelled(f->cancel)) { /* the caller frees the forest, as after any error */
+            st = SYL_ECANCELED;
+            break;
+        }
         double th = forest_now();
         if (f->year_start) st = f->year_start(f->year_user, year);
         double t0 = forest_now();

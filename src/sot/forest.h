@@ -46,6 +46,7 @@ typedef struct Forest {
     Budget own, *mem;      /* the memory budget: own, or the caller's */
     uint64_t charged;      /* the forest's own arrays */
     bool reported;         /* a limit's message was printed */
+    const SylCancel *cancel; /* asked before every year (SylGrowOptions.cancel); NULL: never */
     ForestRule *rules; /* shoot rules, one per model and rule name, shared by trees */
     int nrules, rules_cap;
     int trees_cap;
@@ -75,7 +76,8 @@ typedef struct Forest {
 } Forest;
 
 int forest_init(Forest *f, int threads, FILE *diag, SylGrowStats *stats);
-/* The limits of opt (max_metamers, max_buds, max_modules, max_work, the memory budget). */
+/* The limits of opt (max_metamers, max_buds, max_modules, max_work, the memory budget) and
+ * its cancel. */
 void forest_limits(Forest *f, const SylGrowOptions *opt);
 /* st, having said why when st is SYL_ELIMIT and nothing was said yet: the memory budget or
  * an allocation ran out in `year` (0: before growth). */

@@ -98,7 +98,7 @@ static int32_t add_node(SylSkeleton *sk, const Pending *b, const double tip[3], 
     return syl_skeleton_add_node(sk, &n);
 }
 
-int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *strands_of) {
+int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *strands_of, const SylCancel *cancel) {
     StrandsCounts cnt = strands_counts(P, age);
     const StrandsOrderParam *o = P->order;
     /* a seed other than 0 turns the tree about its trunk: Zamuda's stand-in for Holton's
@@ -117,7 +117,11 @@ int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *
     size_t nstack = 0, cap = 0;
     int32_t next_axis = 1;
     int status = SYL_OK;
-    for (;;) {
+    for (size_t segs = 0;; segs++) {
+        if (segs % STRANDS_CANCEL_EVERY == 0 && syl_cancelled(cancel)) { /* the caller frees sk */
+            status = SYL_ECANCELED;
+            break;
+        }
         /* 1. d = k_d sqrt(S_0) (3.4); the segment along the frame's y */
         above_ground(&b.f, b.l);
         double tip[3], d = P->thickness * sqrt((double)b.S);

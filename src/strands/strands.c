@@ -57,7 +57,11 @@ int syl_strands_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleto
         syl_skeleton_free(sk);
         return SYL_ELIMIT;
     }
-    int st = strands_build(&P, opt->age, sk, NULL);
+    int st = strands_build(&P, opt->age, sk, NULL, opt->cancel);
+    if (st == SYL_ECANCELED) { /* asked to stop: nothing said */
+        syl_skeleton_free(sk);
+        return st;
+    }
     if (!st && (st = lang_textures_apply(p, sk, P.seed, opt->diag)) != SYL_OK) {
         syl_skeleton_free(sk);
         return st;

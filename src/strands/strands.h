@@ -23,10 +23,14 @@ typedef struct StrandsCounts {
  * organ counts the tree will have. */
 StrandsCounts strands_counts(const StrandsParams *P, double age);
 
+/* How many segments are made between two asks of the caller's cancel (a first ask before any) */
+enum { STRANDS_CANCEL_EVERY = 4096 };
+
 /* Append the tree to sk: a root node, then one node per segment (its end), and the leaves.
  * strands_of (NULL: not wanted) receives, per node appended, the strands of the segment it
- * ends (the root: S'). SYL_OK or SYL_ELIMIT when the skeleton cannot grow. */
-int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *strands_of);
+ * ends (the root: S'). SYL_OK, SYL_ELIMIT when the skeleton cannot grow, or SYL_ECANCELED
+ * when cancel (NULL: never) asked to stop (sk then holds part of the tree: free it). */
+int strands_build(const StrandsParams *P, double age, SylSkeleton *sk, int64_t *strands_of, const SylCancel *cancel);
 
 /* The leaves of one terminal branch of length len from frame f, attached to node. Returns
  * how many were added, -1 when the skeleton cannot grow. */

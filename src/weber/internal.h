@@ -93,7 +93,9 @@ typedef struct WeberGen {
     Arena arena;
     Budget *budget;
     uint64_t charged;
-    bool failed;       /* out of memory or budget */
+    bool failed;       /* out of memory or budget, or stopped (cancelled) */
+    bool cancelled;    /* the caller's cancel asked to stop (failed set too, so that every loop ends) */
+    const SylCancel *cancel;
     const WeberEnvelope *envelope;
 } WeberGen;
 
@@ -148,6 +150,8 @@ double weber_radius(const WeberGen *g, const WStem *s, double h);
 
 /* stem.c */
 bool weber_make_stem(WeberGen *g, WStem st);
+/* Asks the caller's cancel (once it said stop, again true without asking): see WeberGen.cancelled */
+bool weber_stop(WeberGen *g);
 int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs);
 /* grow one of the generator's arrays (in the arena, or util/pages.h's: cap * size bytes) */
 bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);

@@ -356,8 +356,15 @@ static uint64_t trunk_places(WeberGen *g, Traced *root, SapPlaces *sp) {
     return bytes;
 }
 
+/* Whether the caller asked to stop; if so every loop ends as after a failure (failed). */
+bool weber_stop(WeberGen *g) {
+    if (!g->failed && syl_cancelled(g->cancel)) g->cancelled = g->failed = true;
+    return g->cancelled;
+}
+
 bool weber_make_stem(WeberGen *g, WStem st) {
     const WeberParams *w = &g->w;
+    if (st.level <= 1 && weber_stop(g)) return false; /* asked before each trunk and main branch */
     Rng self = weber_rng(g, st.key, WRNG_SELF);
     st.nseg = (int)w->CurveRes[weber_lv(st.level)];
     st.first_seg = 0;

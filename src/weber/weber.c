@@ -152,6 +152,7 @@ int syl_weber_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton 
     g->leaves = (int)w->Leaves;
     if (opt && opt->levels > 0 && opt->levels < g->levels) g->levels = opt->levels, g->leaves = 0;
     g->seed = opt && opt->use_seed ? opt->seed : w->seed;
+    g->cancel = opt ? opt->cancel : NULL;
     if (opt) g->seed += opt->seed_offset; /* a scene's n-th plant of a row: a tree of its own */
     g->leaf_len = w->LeafScale / sqrt(w->LeafQuality);
     g->leaf_width = w->LeafScale * w->LeafScaleX / sqrt(w->LeafQuality);
@@ -198,10 +199,13 @@ int syl_weber_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton 
     int st = SYL_OK;
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;
+    if (!st && weber_stop(g)) st = SYL_ECANCELED;
     if (!st && !(sk = syl_skeleton_new(syl_program_name(p)))) st = SYL_ELIMIT;
     if (!st) st = weber_write_nodes(g, sk);
+    if (!st && g->leaves && weber_stop(g)) st = SYL_ECANCELED;
     if (!st) weber_place_leaves(g);
     if (!st && g->failed) st = SYL_ELIMIT;
+    if (g->cancelled) st = SYL_ECANCELED; /* nothing said */
     if (!st) weber_write_leaves(g, sk);
     if (!st) {
         uint64_t bytes = (uint64_t)sk->store->node_cap * sizeof *sk->nodes + (uint64_t)sk->store->organ_cap * sizeof *sk->organs;

@@ -1,6 +1,7 @@
 /* SylCancel (sylva.h): a build is asked whether to stop between its passes — before each
  * derivation step, every 65,536 modules of the turtle, before the mesher plans and before it
- * writes. Stopped at any of those asks it returns SYL_ECANCELED with nothing left in its
+ * writes, before every year of a grown tree, each Weber-Penn trunk and main branch, every
+ * 4,096 strands segments. Stopped at any of those asks it returns SYL_ECANCELED with nothing left in its
  * output (ASan's leak check in build-asan); never stopped, it builds the same mesh as
  * without a cancel. */
 #include "unit.h"
@@ -27,7 +28,7 @@ static const char *const bush = "lsystem Bush {\n derive 4\n angle 25\n axiom F\
 static int build(SylProgram *p, SylPlantStage until, Asks *a, SylPlant *pl) {
     SylCancel cancel = {.stop = stop_at, .user = a};
     SylMeshOptions mo = {.threads = 1, .sides = 3};
-    SylPlantOptions po = {.threads = 1, .until = until, .mesh = &mo, .cancel = a ? &cancel : NULL};
+    SylPlantOptions po = {.threads = 1, .until = until, .mesh = &mo, .cancel = a ? &cancel : NULL, .scene = 1};
     return syl_plant_build(p, &po, pl);
 }
 
@@ -78,10 +79,61 @@ static void a_mesh_stops_before_planning_and_writing_and_is_the_same_when_not_st
     syl_program_free(p);
 }
 
+/* The kinds built without a string ask too: a grown tree (a scene's forest) before every year, a Weber-Penn tree
+ * before each trunk, each first-level branch, its nodes and its leaves, a strands tree before
+ * every 4,096 segments. Stopped at any ask, the build says nothing and leaves nothing (ASan's
+ * leak check in build-asan); never stopped, its skeleton is the one built without a cancel. */
+static const char *const kinds[] = {
+    ("grow Sapling {\n  years 4\n  internode 0.3\n  buds opposite angle 50\n  light shadow a 0.2 b 3 depth 4\n"
+     "  shoot relative max 2\n}\n"),
+    "weber W {\n  Levels 2\n  Branches 1 5\n  Leaves 4\n}\n",
+    "strands S {\n  strands 5000\n}\n",
+    /* a scene: its forest's years (two trees growing together) */
+    ("grow G {\n  years 3\n  internode 0.3\n  buds opposite angle 50\n  light shadow a 0.2 b 3 depth 4\n}\n"
+     "scene {\n  plant G at (0, 0, 0)\n  plant G at (2, 0, 0)\n}\n"),
+};
+
+static void assert_same_skeleton(const SylSkeleton *a, const SylSkeleton *b) {
+    assert_int_equal(a->nnodes, b->nnodes);
+    assert_int_equal(a->norgans, b->norgans);
+    for (size_t i = 0; i < a->nnodes; i++) {
+        assert_memory_equal(a->nodes[i].pos, b->nodes[i].pos, sizeof a->nodes[i].pos);
+        assert_int_equal(a->nodes[i].parent, b->nodes[i].parent);
+    }
+    for (size_t i = 0; i < a->norgans; i++) assert_memory_equal(a->organs[i].pos, b->organs[i].pos, sizeof a->organs[i].pos);
+}
+
+static void grown_weber_and_strands_trees_stop_at_every_ask(void **state) {
+    (void)state;
+    /* at least: the years; a trunk, 5 branches, the nodes and the leaves; 3 batches of segments */
+    const int least[] = {4, 1 + 5 + 2, 3, 3};
+    for (size_t k = 0; k < sizeof kinds / sizeof *kinds; k++) {
+        SylProgram *p = unit_compile(kinds[k], NULL, NULL);
+        assert_non_null(p);
+        SylPlant plain, pl;
+        assert_int_equal(build(p, SYL_PLANT_SKELETON, NULL, &plain), SYL_OK);
+        if (strstr(kinds[k], "scene {")) assert_int_equal(plain.kind, SYL_MODEL_SCENE);
+        Asks never = {.at = -1};
+        assert_int_equal(build(p, SYL_PLANT_SKELETON, &never, &pl), SYL_OK);
+        if (never.asked < least[k]) fail_msg("%s: asked %d times, not at least %d", kinds[k], never.asked, least[k]);
+        assert_same_skeleton(pl.skeleton, plain.skeleton);
+        syl_plant_free(&pl);
+        for (int at = 0; at < never.asked; at++) {
+            Asks a = {.at = at};
+            assert_int_equal(build(p, SYL_PLANT_SKELETON, &a, &pl), SYL_ECANCELED);
+            assert_int_equal(a.asked, at + 1); /* stopped at once */
+            assert_null(pl.skeleton);
+        }
+        syl_plant_free(&plain);
+        syl_program_free(p);
+    }
+}
+
 int main(void) {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(every_pass_of_a_derivation_and_the_turtle_is_asked),
         cmocka_unit_test(a_mesh_stops_before_planning_and_writing_and_is_the_same_when_not_stopped),
+        cmocka_unit_test(grown_weber_and_strands_trees_stop_at_every_ask),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

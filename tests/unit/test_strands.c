@@ -29,7 +29,7 @@ static Tree tree_of(const char *text, double age) {
     StrandsCounts c = strands_counts(&t.P, age);
     t.S = calloc(c.nodes, sizeof *t.S);
     t.sk = syl_skeleton_new("t");
-    assert_int_equal(strands_build(&t.P, age, t.sk, t.S), SYL_OK);
+    assert_int_equal(strands_build(&t.P, age, t.sk, t.S, NULL), SYL_OK);
     assert_int_equal(t.sk->nnodes, c.nodes);
     assert_int_equal(t.sk->norgans, c.organs);
     return t;
