@@ -1,7 +1,7 @@
 /* The directive schema: a block's directives described as data (name, type, range, default,
  * unit, meaning, aliases), one table per kind, each written once as an X-macro .def in its
  * generator's folder (sot/params.def, weber/params.def, strands/params.def, eco/params.def,
- * curvetree/params.def, pafco/params.def) or here
+ * curvetree/params.def, pafco/params.def, scene/params.def) or here
  * (lang/settings.def). This file is the one reader of those tables: a name's row (with a
  * level digit, an alias), did-you-mean, a value as a number or `(expr)`, its range, an enum's
  * word, and `--set NAME=VALUE` checked against the row. `sylva describe` (describe.c) and the
@@ -58,6 +58,8 @@ typedef enum {
     SCH_GROUPS,   /* NAME VALUE..., a group's rows after its opening line (ecosystem: species NAME) */
     SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow),
                    * read by sch_read_keyed */
+    SCH_SCENE,    /* a scene's lines (scene/params.def): plant and obstacle lines, each an element of
+                   * its group, at (x, y, z) its rows .x .y .z; read by scene/spec.c, described here */
 } SchShape;
 
 typedef struct SchTable {
@@ -70,7 +72,7 @@ typedef struct SchTable {
 } SchTable;
 
 /* The tables (schema_tables.c). */
-extern const SchTable sch_lsystem, sch_grow, sch_weber, sch_strands, sch_ecosystem, sch_curvetree, sch_pafco;
+extern const SchTable sch_lsystem, sch_grow, sch_weber, sch_strands, sch_ecosystem, sch_curvetree, sch_pafco, sch_scene;
 
 /* The row of a directive name: the name, an alias, or a per-level name with its level digit
  * ("1DownAngle": *level 1); *level -1 when none. NULL: no such row. group NULL: any row. */

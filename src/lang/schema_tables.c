@@ -111,6 +111,12 @@ static const SchRow pafco_rows[] = {
 /* its K_SUBOR and TEX_SUBORY are the texture lines, bark and leaf_texture their aliases */
 };
 
+static const SchRow scene_rows[] = {
+#define SCENE_ROW(id, nm, ty, l, h, lop, d, u, grp, mean) \
+    {.name = nm, .type = ty, .lo = l, .hi = h, .lo_open = lop, .def = {d}, .unit = u, .doc = mean, .group = grp},
+#include "scene/params.def"
+};
+
 /* noun: what a row is ("setting"; docs/directives.md's title, "`weber` parameters"); intro:
  * the title's paragraph there */
 #define TABLE(var, k, nn, rows, shape, intro) \
@@ -137,3 +143,9 @@ TABLE(sch_curvetree, "curvetree", "parameter", curvetree_rows, SCH_LINES,
 TABLE(sch_pafco, "pafco", "parameter", pafco_rows, SCH_LINES,
       "[pafco.md](pafco.md#parameters) explains them, with their English aliases; a Pafčo file "
       "(`NAME=value`) takes the same names.")
+TABLE(sch_scene, "scene", "line", scene_rows, SCH_SCENE,
+      "[growth.md](growth.md#scenes) explains them. A plant or obstacle line's rows are `plant.N.KEY` and "
+      "`obstacle.N.KEY` for the N-th line from 1 (`--set scene.plant.2.x=3`; a terrain `ground \"file.obj\"` "
+      "line is an obstacle line); `at (x, y, z)` is its rows `x`, `y` and `z`. The scene's reader checks "
+      "more than a row says: each plant's model is in the file and can stand in a scene, and the sun is "
+      "above the horizon.")

@@ -17,7 +17,6 @@ static void every_model_kind_has_a_table(void **state) {
     for (int k = 0; k < LANG_KIND_COUNT; k++) {
         const SchTable *t = lang_kind_schema((SylModelKind)k);
         assert_ptr_equal(kinds_ops((SylModelKind)k)->describe, t); /* one column, read by both */
-        if (lang_kind_is((SylModelKind)k, KF_UNNAMED)) continue;  /* a scene is not a model */
         if (!t) fail_msg("kind '%s' has no directive table", lang_kind_keyword((SylModelKind)k));
         assert_string_equal(t->kind, lang_kind_keyword((SylModelKind)k));
     }
@@ -71,7 +70,9 @@ static void describe_prints_every_row(void **state) {
                                "strands S {\n  strands 10\n}\n"
                                "ecosystem E {\n  terrain \"flat.asc\"\n  species a\n    model L\n}\n"
                                "curvetree C {\n  trunk polyline (0,0,0) (0,3,0)\n}\n"
-                               "pafco P {\n  VYSKA_STROMU 10\n}\n";
+                               "pafco P {\n  VYSKA_STROMU 10\n}\n"
+                               "scene {\n  plant L at (1, 0, 2) seed 3\n  obstacle \"wall.obj\" at (0, 0, 1) scale 2\n"
+                               "  ground 0.5\n}\n";
     char *json = NULL;
     describe(text, "L", &json);
     assert_non_null(json);
@@ -92,11 +93,12 @@ static void describe_prints_every_row(void **state) {
         for (int i = 0; i < t->n; i++) {
             const SchRow *r = &t->rows[i];
             char name[160], key[200];
-            if (!r->group) snprintf(name, sizeof name, "%s", r->name);
+            const char *pre = t->shape == SCH_SCENE ? "scene." : ""; /* named as --set takes them */
+            if (!r->group) snprintf(name, sizeof name, "%s%s", pre, r->name);
             else if (!strcmp(r->group, "species")) snprintf(name, sizeof name, "a.%s", r->name);
             else { /* organ: organ.1, organ.1.size */
                 const char *dot = strchr(r->name, '.');
-                snprintf(name, sizeof name, "%.*s.1%s", dot ? (int)(dot - r->name) : (int)strlen(r->name), r->name,
+                snprintf(name, sizeof name, "%s%.*s.1%s", pre, dot ? (int)(dot - r->name) : (int)strlen(r->name), r->name,
                          dot ? dot : "");
             }
             snprintf(key, sizeof key, "{\"name\":\"%s\",", name);
@@ -104,7 +106,15 @@ static void describe_prints_every_row(void **state) {
             if (!hit || hit > end) fail_msg("describe of the %s model lacks '%s'", t->kind, name);
         }
     }
-    assert_int_equal(models, 7); /* every kind with a table: lsystem grow weber strands ecosystem curvetree pafco */
+    assert_int_equal(models, 8); /* every kind with a table: lsystem grow scene weber strands ecosystem curvetree pafco */
+    /* the scene's lines as written, its plant and obstacle lines' rows by their place (scene/params.def) */
+    const char *scene = strstr(json, "\"kind\":\"scene\"");
+    assert_non_null(scene);
+    assert_non_null(strstr(scene, "{\"name\":\"scene.ground\",\"type\":\"number\",\"min\":-1000000,\"max\":1000000,\"default\":null,\"value\":0.5,"));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.plant.1\",\"type\":\"string\",\"min\":null,\"max\":null,\"default\":null,\"value\":\"L\","));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.plant.1.z\",\"type\":\"number\",\"min\":-1000000,\"max\":1000000,\"default\":null,\"value\":2,"));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.plant.1.seed\",\"type\":\"integer\",\"min\":0,\"max\":9.00719925474099e+15,\"default\":null,\"value\":3,"));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.obstacle.1.scale\",\"type\":\"number\",\"min\":0,\"max\":1000000,\"default\":1,\"value\":2,"));
     free(json);
 }
 
