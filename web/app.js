@@ -26,11 +26,15 @@ const state = {
   gen: 0,
   placed: [],         // plants placed by clicks: {model, x, y, z, on}; the file is not rewritten
   impostor: false,    // the impostor's billboards as the far level
-  kind: '',           // the last build's kind (lsystem, grow, scene, ecosystem, …)
+  caps: null,         // what the last build's kind can do, as the server names it (not_a_plant, ages, …)
   forest: null,       // an ecosystem's forest: its batches and what the last frame drew of them
   far: 1.5,           // the forest's far level beyond this many terrain diagonals from the camera
 };
 window.sylvaView = state;
+
+// Whether a build's kind is not a plant (an ecosystem's run: its forest, panel and chart), asked
+// of the capabilities the server sends from the library's table of kinds, never of a kind's name.
+const notAPlant = (s) => !!(s && s.caps && s.caps.not_a_plant);
 
 // ---- three.js (scene.js, shared with the Python package's notebook view) ----
 const canvas = $('canvas');
@@ -262,7 +266,7 @@ function showError(text) {
 }
 
 function showStats(s) {
-  const rows = s && s.kind === 'ecosystem' ? [
+  const rows = notAPlant(s) ? [
     ['kind', s.kind], ['year', s.year], ['plants', s.plants], ...s.species.map((sp) => [sp.name, sp.plants]),
     ['simulate', (s.simulate_time * 1000).toFixed(1) + ' ms'],
   ] : s ? [
@@ -273,7 +277,7 @@ function showStats(s) {
     ['turtle', (s.turtle_time * 1000).toFixed(1) + ' ms'], ['mesh', (s.mesh_time * 1000).toFixed(1) + ' ms'],
     ['write .glb', (s.write_time * 1000).toFixed(1) + ' ms'], ['memory', s.memory_mb + ' MB'],
   ] : [];
-  const m = s && s.kind !== 'ecosystem' && state.metrics;
+  const m = s && !notAPlant(s) && state.metrics;
   if (m) { // what `sylva compare` measures (syl_metrics_compute), once the server has them
     m.stems_by_order.forEach((n, k) => rows.push([`stems of order ${k}`, n]));
     rows.push(['leaves', m.leaves]);
@@ -556,10 +560,10 @@ async function load(frameIt = false) {
     const mine = `&tab=${tab}&seq=${++seq}`;
     let full = null; // the full build's answer
     const resting = () => performance.now() - lastInput >= REST_MS;
-    const small = state.stats && state.stats.kind !== 'ecosystem' && state.stats.triangles <= state.previewAbove;
-    if ($('preview').checked && state.kind !== 'ecosystem' && !small) {
+    const small = state.stats && !notAPlant(state.stats) && state.stats.triangles <= state.previewAbove;
+    if ($('preview').checked && !notAPlant(state) && !small) {
       const p = await requestBuild(q + '&preview=1' + mine, text);
-      const buf = p.ok && p.stats && p.stats.kind !== 'ecosystem' ? p.part : null;
+      const buf = p.ok && p.stats && !notAPlant(p.stats) ? p.part : null;
       // a newer value's request goes out while this preview's frame is drawn (the server
       // builds it meanwhile); otherwise the full build waits for the frame, below
       // its frame drawn before anything else is asked for: on a machine of few cores a request
@@ -643,7 +647,7 @@ async function showBuild(b, q, frameIt, t0) {
   texturesUsed = new Set();
   const gltf = await buildLoader.parseAsync(glb, '');
   const tParsed = performance.now();
-  const eco = b.stats.kind === 'ecosystem';
+  const eco = notAPlant(b.stats);
   const lod = eco ? null : await gatherLods(gltf);
   const group = new THREE.Group();
   group.add(lod || gltf.scene);
@@ -680,8 +684,8 @@ async function showBuild(b, q, frameIt, t0) {
   if (!eco) $('steplabel').textContent = 'Step';
   ground.visible = !eco; // the terrain is in the forest's .glb
   placeGroundAndSun();
-  if (frameIt || !state.framed || (eco !== (state.kind === 'ecosystem'))) { frame(); state.framed = true; }
-  state.kind = b.stats.kind;
+  if (frameIt || !state.framed || (eco !== notAPlant(state))) { frame(); state.framed = true; }
+  state.caps = b.stats.caps;
   if (eco) showEco(b.stats);
   state.stats = b.stats;
   state.metrics = null;
@@ -933,7 +937,7 @@ function wire() {
   $('mapname').addEventListener('change', () => { $('map').src = `/api/map?factor=${encodeURIComponent($('mapname').value)}&gen=${state.gen}`; });
   $('chart').addEventListener('click', (e) => { // a click on the chart shows that year
     const r = $('chart').getBoundingClientRect(), s = state.stats;
-    if (!s || s.kind !== 'ecosystem') return;
+    if (!notAPlant(s)) return;
     const maxYear = s.chart_years[s.chart_years.length - 1] || 1;
     const year = Math.round((e.clientX - r.left - 34) / (r.width - 38) * maxYear);
     state.step = String(Math.min(Math.max(year, 1), maxYear)); load();

@@ -335,7 +335,7 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
             kw.update(_overrides(self.overrides))
             where = tuple(context.scene.cursor.location)
             with scene.Inputs(path) as io:
-                text, said = scene.rewrite(context, path, m, io) if self.use_scene else (None, "")
+                text, said, planted = scene.rewrite(context, path, m, io) if self.use_scene else (None, "", False)
                 if text is not None:  # the scene's objects are in world coordinates: the tree too
                     m, where = sylva.compile(text, path)[m.name], (0.0, 0.0, 0.0)
                 if not m.is_plant:  # an ecosystem block: its plants, run as `sylva ecosystem`
@@ -343,7 +343,7 @@ class SYLVA_OT_add_tree(bpy.types.Operator):
                                          scene.inputs(context)[1][0] if text is not None else None)
                 else:
                     root = add_tree(context, path, self.model, self.seed, self.steps, self.output, self.leaves,
-                                    kw, where, m=m, scene_block=m.kind == "grow" and text is not None,
+                                    kw, where, m=m, scene_block=planted,
                                     **{p: getattr(self, p) for p in REALTIME})
             if said:
                 root["sylva_scene"] = said

@@ -115,32 +115,37 @@ class Inputs:
                 pass
 
 
-def rewrite(context, path: str, m, io: Inputs) -> tuple[str | None, str]:
-    """The model's source changed so that the scene's objects are its inputs, and what they
-    are ("trunk from Curve, envelope from Sphere"); (None, "") when the scene gives nothing."""
+def rewrite(context, path: str, m, io: Inputs) -> tuple[str | None, str, bool]:
+    """The model's source changed so that the scene's objects are its inputs, what they are
+    ("trunk from Curve, envelope from Sphere") and whether the text now has a scene block that
+    plants the model; (None, "", False) when the scene gives nothing. Which objects a kind takes
+    is asked of the library's table of kinds (m.caps.takes_*), each written as the directive
+    the capability names, so a new kind needs no change here."""
     curve, meshes = inputs(context)
-    if m.kind == "curvetree" and (curve or meshes):
+    caps = m.caps
+    trunk, envelope = caps.takes_trunk and curve, caps.takes_envelope and meshes
+    if trunk or envelope:
         lines = open(path, encoding="utf-8").read().split("\n")
-        first, last = _block(lines, "curvetree", m.name)
+        first, last = _block(lines, m.kind, m.name)
         said = []
-        if curve:
+        if trunk:
             pts = " ".join("(%.6f,%.6f,%.6f)" % to_sylva(p) for p in curve_points(curve))
             _set_line(lines, first, last, "trunk", f"  trunk polyline {pts}")
             said.append(f"trunk from {curve.name}")
-        if meshes:
+        if envelope:
             env = io.file("envelope.obj")
             write_obj(meshes[0], env)
             _set_line(lines, first, last, "envelope", f'  envelope "{os.path.relpath(env, io.model_dir)}"')
             said.append(f"envelope from {meshes[0].name}")
-        return "\n".join(lines), ", ".join(said)
-    if m.kind == "ecosystem" and meshes:
+        return "\n".join(lines), ", ".join(said), False
+    if caps.takes_terrain and meshes:
         lines = open(path, encoding="utf-8").read().split("\n")
-        first, last = _block(lines, "ecosystem", m.name)
+        first, last = _block(lines, m.kind, m.name)
         ter = io.file("terrain.obj")
         write_obj(meshes[0], ter)
         _set_line(lines, first, last, "terrain", f'  terrain "{os.path.relpath(ter, io.model_dir)}"')
-        return "\n".join(lines), f"terrain from {meshes[0].name}"
-    if m.kind == "grow" and meshes:
+        return "\n".join(lines), f"terrain from {meshes[0].name}", False
+    if caps.takes_obstacles and meshes:
         text = open(path, encoding="utf-8").read()
         obst = []
         for k, o in enumerate(meshes):
@@ -148,5 +153,5 @@ def rewrite(context, path: str, m, io: Inputs) -> tuple[str | None, str]:
             write_obj(o, f)
             obst.append(f'  obstacle "{os.path.relpath(f, io.model_dir)}"')
         scene = "\n".join(["", "scene {", *obst, f"  plant {m.name} at (0, 0, 0)", "}", ""])
-        return text + scene, "obstacles " + ", ".join(o.name for o in meshes)
-    return None, ""
+        return text + scene, "obstacles " + ", ".join(o.name for o in meshes), True
+    return None, "", False

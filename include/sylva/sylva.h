@@ -207,6 +207,15 @@ const char *syl_model_kind_keyword(SylModelKind k);
  * 1 or 0 (0 outside the enum). */
 typedef enum { SYL_MODEL_HAS_STRING, SYL_MODEL_HAS_STEPS, SYL_MODEL_IS_PLANT } SylModelTrait;
 int syl_model_kind_is(SylModelKind k, SylModelTrait t);
+/* Everything a kind can do, by name, for a front end that asks a question of its own (the
+ * viewer's page, Python's Model.caps, the Blender add-on): syl_model_cap_name(i) for i from 0
+ * until NULL is "rules", "string", "directives", "unnamed", "grows", "ages", "in_scene",
+ * "look", "not_a_plant", "takes_trunk", "takes_envelope", "takes_terrain", "takes_obstacles"
+ * (src/lang/kind_flags.def, the one list), syl_model_cap_doc(i) its one-line meaning, and
+ * bit i of syl_model_kind_caps(k) whether kind k can (0 outside the enum). */
+const char *syl_model_cap_name(int i);
+const char *syl_model_cap_doc(int i);
+unsigned syl_model_kind_caps(SylModelKind k);
 SylModelKind syl_program_kind(const SylProgram *p);
 
 /* The lines of a `grow` block (its directives) and of the file's `scene` block, with values

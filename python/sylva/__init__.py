@@ -15,6 +15,7 @@ import json
 import os
 import re
 from dataclasses import dataclass
+from types import SimpleNamespace
 from typing import Iterable, Iterator, Mapping
 
 import numpy as np
@@ -140,6 +141,9 @@ class Model:
         self.kind_name = info["kind_name"]  # "weber block"
         # what the kind does, asked of the library (no list of kinds here)
         self.has_string, self.has_steps, self.is_plant = info["has_string"], info["has_steps"], info["is_plant"]
+        # every capability of the kind by the library's name (lang/kind_flags.def): caps.ages,
+        # caps.not_a_plant, caps.takes_terrain, ...
+        self.caps = SimpleNamespace(**info["caps"])
         self.symbols = info["symbols"]
         self.steps = info["steps"]
         self.seed = info["seed"]
@@ -258,7 +262,7 @@ class Model:
         """Run an ecosystem block as `sylva ecosystem` does: its years (None: the block's),
         with snapshots of every plant at the given years (None: the block's). Ctrl-C stops it
         at the end of a year with KeyboardInterrupt."""
-        if self.kind != "ecosystem":
+        if self.is_plant:  # the library refuses any other kind that is not one (syl_ecosystem_load)
             raise ValueError(f"{self.name} is a {self.kind} model, not an ecosystem block")
         tx, tz = tiles
         core = self._prog(overrides).ecosystem(

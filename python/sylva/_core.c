@@ -455,13 +455,21 @@ static PyObject *program_info(ProgramObject *o, PyObject *unused) {
         PyList_SET_ITEM(syms, i, s);
     }
     SylModelKind k = syl_program_kind(p);
-    return Py_BuildValue("{s:s,s:s,s:s,s:O,s:O,s:O,s:i,s:K,s:N,s:s}", "name", syl_program_name(p), "kind",
+    PyObject *caps = PyDict_New(); /* {name: bool} of every capability the library lists */
+    for (int i = 0; caps && syl_model_cap_name(i); i++)
+        if (PyDict_SetItemString(caps, syl_model_cap_name(i), (syl_model_kind_caps(k) >> i & 1) ? Py_True : Py_False))
+            Py_CLEAR(caps);
+    if (!caps) {
+        Py_DECREF(syms);
+        return NULL;
+    }
+    return Py_BuildValue("{s:s,s:s,s:s,s:O,s:O,s:O,s:i,s:K,s:N,s:s,s:N}", "name", syl_program_name(p), "kind",
                          syl_model_kind_keyword(k), "kind_name", syl_model_kind_name(k), "has_string",
                          syl_model_kind_is(k, SYL_MODEL_HAS_STRING) ? Py_True : Py_False, "has_steps",
                          syl_model_kind_is(k, SYL_MODEL_HAS_STEPS) ? Py_True : Py_False, "is_plant",
                          syl_model_kind_is(k, SYL_MODEL_IS_PLANT) ? Py_True : Py_False,
                          "steps", syl_program_steps(p), "seed", (unsigned long long)syl_program_seed(p),
-                         "symbols", syms, "path", syl_program_path(p));
+                         "symbols", syms, "path", syl_program_path(p), "caps", caps);
 }
 
 /* [(name, nparams, has_default)] of the model's extern declarations */

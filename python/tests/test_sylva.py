@@ -2,6 +2,7 @@
 invariants (docs/python.md). SYLVA names the command (default: build/sylva of the checkout)."""
 import gc
 import os
+import re
 import subprocess
 import threading
 import time
@@ -105,6 +106,24 @@ def test_a_kind_is_its_keyword_from_the_library():
         eco.interact()
     lsys, grow = sylva.load(ex("abop", "fig1_25_bush3d.syl")).model, sylva.load(ex("sot", "birch.syl")).model
     assert lsys.has_string and lsys.has_steps and grow.has_steps and not grow.has_string
+
+
+def test_caps_follow_the_row_of_the_kind():
+    # Model.caps names every capability of the library's list, src/lang/kind_flags.def, read
+    # here from the source (so a name added there is here without a list in Python), and a
+    # kind's true ones are the KF_ flags of its row in src/lang/kinds.def
+    src = os.path.join(ROOT, "src", "lang")
+    flags = re.findall(r'^SYL_KIND_FLAG\((\w+),\s*"(\w+)"', open(os.path.join(src, "kind_flags.def")).read(), re.M)
+    rows = re.findall(r'^SYL_KIND\(\w+,\s*"(\w+)",\s*"[^"]*",\s*([^,]*),', open(os.path.join(src, "kinds.def")).read(), re.M)
+    name = dict(flags)
+    row = {kw: {name[f] for f in re.findall(r"KF_(\w+)", fl)} for kw, fl in rows}
+    models = [sylva.load(path).model for path, _ in KINDS] + [sylva.load(ex("pafco", "birch.cfg")).model]
+    models.append(next(m for m in sylva.load(ex("ecosystem", "meadow.syl")) if not m.is_plant))
+    assert {m.kind for m in models} == set(row) - {"scene"}
+    for m in models:
+        assert list(vars(m.caps)) == [n for _, n in flags]
+        assert {n for n, v in vars(m.caps).items() if v} == row[m.kind], m.kind
+        assert m.is_plant == (not m.caps.not_a_plant)
 
 
 @pytest.mark.parametrize("path,kind", KINDS)

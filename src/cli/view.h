@@ -111,6 +111,9 @@ ViewBuild *view_build(View *v, const ViewRequest *rq, const char *key);
 /* An export through the CLI's writers: format "glb", "obj", "png", "csv". *out malloc'ed;
  * SYL_* status with the messages in *diag (malloc'ed). */
 int view_export(View *v, const ViewRequest *rq, const char *format, char **out, size_t *len, char **diag);
+/* `"caps":{"rules":false,...}`, every capability the library names (syl_model_cap_name) and
+ * whether kind k has it: what the page asks of a build's kind instead of its name. */
+void view_caps_json(FILE *f, SylModelKind k);
 /* The models of the file as a JSON array text (malloc'ed). */
 char *view_models_json(View *v);
 /* The parameters of the file's models (syl_describe_json), malloc'ed; NULL with *diag set. */

@@ -234,7 +234,14 @@ static int write_glb(Made *m, SylTextureCache *tc, FILE *out, FILE *diag) {
                       : syl_mesh_write_glb_instanced_cached(m->pl.mesh, m->sets, m->nsets, tc, out, cli_text_sink(diag));
 }
 
-/* What `sylva mesh --stats` prints, as JSON. */
+void view_caps_json(FILE *f, SylModelKind k) {
+    fputs("\"caps\":{", f);
+    for (int i = 0; syl_model_cap_name(i); i++)
+        fprintf(f, "%s\"%s\":%s", i ? "," : "", syl_model_cap_name(i), syl_model_kind_caps(k) >> i & 1 ? "true" : "false");
+    fputc('}', f);
+}
+
+/* What `sylva mesh --stats` prints, as JSON, with the kind's capabilities. */
 static char *stats_json(const Made *m) {
     char *s = NULL;
     size_t n = 0;
@@ -245,9 +252,11 @@ static char *stats_json(const Made *m) {
     const SylMesh *me = m->pl.mesh ? m->pl.mesh : &none; /* a preview's segments: no mesh */
     float lo[3], hi[3];
     syl_skeleton_bounds(sk, lo, hi);
-    fprintf(f, "{\"kind\":\"%s\",\"modules\":%zu,\"nodes\":%zu,\"organs\":%zu,\"polygons\":%zu,"
+    fprintf(f, "{\"kind\":\"%s\",", syl_model_kind_name(m->pl.kind));
+    view_caps_json(f, m->pl.kind);
+    fprintf(f, ",\"modules\":%zu,\"nodes\":%zu,\"organs\":%zu,\"polygons\":%zu,"
                "\"vertices\":%zu,\"triangles\":%zu,\"material_groups\":%d,\"leaf_instances\":%zu,",
-            syl_model_kind_name(m->pl.kind), m->pl.modules, sk->nnodes, sk->norgans, sk->npolys, me->nverts,
+            m->pl.modules, sk->nnodes, sk->norgans, sk->npolys, me->nverts,
             me->nidx / 3, me->ngroups, m->instances);
     fprintf(f, "\"preview\":\"%s\",", m->lines ? "lines" : m->preview ? "mesh" : "");
     fprintf(f, "\"lod_levels\":%d,\"lod_triangles\":[", m->lods.n);

@@ -162,7 +162,9 @@ static char *eco_json(const ViewEco *e, const EcoYear *y, double seconds) {
     const SylEcoModel *m = &e->model;
     size_t shown[SYL_ECO_MAX_SPECIES] = {0};
     for (size_t i = 0; i < y->n; i++) shown[y->plants[i].species]++;
-    fprintf(f, "{\"kind\":\"ecosystem\",\"year\":%d,\"years\":%d,\"stride\":%d,\"plants\":%zu,\"simulate_time\":%.6f,",
+    fprintf(f, "{\"kind\":\"%s\",", syl_model_kind_keyword(syl_program_kind(e->p)));
+    view_caps_json(f, syl_program_kind(e->p));
+    fprintf(f, ",\"year\":%d,\"years\":%d,\"stride\":%d,\"plants\":%zu,\"simulate_time\":%.6f,",
             y->year, e->last, e->stride, y->n, seconds);
     fprintf(f, "\"terrain\":{\"x0\":%g,\"z0\":%g,\"width\":%g,\"depth\":%g,\"cell\":%g},\"species\":[", t->x0, t->z0,
             t->nx * t->cell, t->nz * t->cell, t->cell);

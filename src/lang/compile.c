@@ -339,6 +339,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             p->model_loc = scene->loc;
             compile_model(&c, &ast.top, scene);
             p->has_scene = true;
+            p->scene_loc = scene->loc;
             p->first_model = true;
             directives(&c, scene, &p->scene, &p->nscene);
         } else if (!m) {
@@ -353,6 +354,7 @@ static SylProgram *compile_text(CompileGuard *g, const char *path, const char *t
             directives(&c, m, &p->directives, &p->ndirectives);
             if (scene) {
                 p->has_scene = true;
+                p->scene_loc = scene->loc;
                 directives(&c, scene, &p->scene, &p->nscene);
             }
             p->first_model = m == find_model(&ast, NULL);

@@ -256,6 +256,75 @@ static void describe_keyed(const SylProgram *p, const SchTable *t, DModel *m) {
     sch_see_keyed(p, t, &(SchSeen){.element = keyed_element, .value = keyed_value, .ctx = &k});
 }
 
+/* A scene (scene/params.def): its lines as they are written (scene/spec.c checked them: a
+ * value that is not of its row is shown as none), a plant or obstacle line an element of its
+ * group with at (x, y, z) its rows x, y, z; then its --set values. Each is named as --set
+ * takes it, scene.NAME (scene.plant.2.x). */
+static void scene_element(const SchTable *t, DModel *m, const char *group, int elem, const SylDirective *d) {
+    char name[160];
+    for (int i = 0; i < t->n; i++)
+        if (t->rows[i].group && !strcmp(t->rows[i].group, group)) {
+            Entry *e = add_row(m, &t->rows[i], NULL);
+            if (e) elem_name(&t->rows[i], elem, e->name, sizeof e->name);
+        }
+    snprintf(name, sizeof name, "%s.%d", group, elem + 1);
+    Entry *head = find_entry(m, name);
+    if (head && d->nargs) text(&head->val, d->args[0].text);
+    for (int k = 1; k + 1 < d->nargs; k += 2) {
+        const SylDirArg *key = &d->args[k], *v = &d->args[k + 1];
+        if (key->kind != SYL_DARG_WORD) continue;
+        if (!strcmp(key->text, "at") && v->kind == SYL_DARG_TUPLE && v->nvalues == 3) {
+            for (int a = 0; a < 3; a++) {
+                snprintf(name, sizeof name, "%s.%d.%c", group, elem + 1, "xyz"[a]);
+                Entry *e = find_entry(m, name);
+                if (e) num(&e->val, v->values[a]);
+            }
+            continue;
+        }
+        double x;
+        snprintf(name, sizeof name, "%s.%d.%s", group, elem + 1, key->text);
+        Entry *e = find_entry(m, name);
+        if (e && e->type != SCH_STRING && e->type != SCH_FILE && sch_number(v, &x)) num(&e->val, x);
+    }
+}
+
+static void describe_scene(const SylProgram *p, const SchTable *t, DModel *m) {
+    for (int i = 0; i < t->n; i++)
+        if (!t->rows[i].group) add_row(m, &t->rows[i], NULL);
+    int n = 0, plants = 0, obstacles = 0;
+    const SylDirective *d = syl_program_scene(p, &n);
+    for (int i = 0; d && i < n; i++) {
+        const SylDirArg *a0 = d[i].nargs ? &d[i].args[0] : NULL;
+        bool file = a0 && a0->kind == SYL_DARG_STRING;
+        double x;
+        if (!strcmp(d[i].name, "plant") && a0) scene_element(t, m, "plant", plants++, &d[i]);
+        else if (!strcmp(d[i].name, "obstacle") || (!strcmp(d[i].name, "ground") && file)) {
+            if (file) scene_element(t, m, "obstacle", obstacles++, &d[i]);
+        } else if (!strcmp(d[i].name, "ground") && a0 && sch_number(a0, &x))
+            num(&find_entry(m, "ground")->val, x);
+        else if (!strcmp(d[i].name, "sun") && d[i].nargs) {
+            const SylDirArg *v = &d[i].args[d[i].nargs - 1]; /* sun [direction] (x, y, z) */
+            Entry *e = find_entry(m, "sun");
+            if (v->kind == SYL_DARG_TUPLE && v->nvalues == 3) {
+                e->val.kind = V_TEXT;
+                snprintf(e->val.text, sizeof e->val.text, "(%.15g, %.15g, %.15g)", v->values[0], v->values[1],
+                         v->values[2]);
+            }
+        }
+    }
+    for (int i = 0; i < p->noverrides; i++) {
+        Entry *e = strncmp(p->overrides[i].name, "scene.", 6) ? NULL : find_entry(m, p->overrides[i].name + 6);
+        if (e && e->type != SCH_STRING && e->type != SCH_FILE && e->type != SCH_VECTOR) num(&e->val, p->overrides[i].value);
+    }
+    for (int i = 0; i < m->n; i++) { /* named as --set takes them: a scene's are never a model's own */
+        char *name = m->e[i].name;
+        size_t len = strnlen(name, sizeof m->e[i].name - 7);
+        memmove(name + 6, name, len);
+        memcpy(name, "scene.", 6);
+        name[len + 6] = 0;
+    }
+}
+
 static void describe_settings(const SylProgram *p, DModel *m) {
     for (int i = 0; i < sch_lsystem.n; i++) {
         const SchRow *r = &sch_lsystem.rows[i];
@@ -311,6 +380,7 @@ static void describe_model(const SylProgram *p, DModel *m) {
     case SCH_LINES: describe_lines(p, t, m); break;
     case SCH_GROUPS: describe_groups(p, t, m); break;
     case SCH_KEYED: describe_keyed(p, t, m); break;
+    case SCH_SCENE: describe_scene(p, t, m); break;
     }
 }
 
@@ -426,7 +496,19 @@ static void text_model(FILE *out, const DModel *m) {
     }
 }
 
-/* Every model of the file, p's own first in file order. */
+/* One model's entries (the written-th), then freed. */
+static void emit(FILE *out, DModel *m, bool json, int written) {
+    if (json) {
+        if (written) fputs(",\n", out);
+        json_model(out, m);
+    } else {
+        if (written) fputc('\n', out);
+        text_model(out, m);
+    }
+    free(m->e);
+}
+
+/* Every model of the file, p's own first in file order, then the file's scene. */
 static int describe(const SylProgram *p, FILE *out, bool json) {
     size_t len = 0;
     const char *src = syl_program_source(p, &len);
@@ -448,16 +530,14 @@ static int describe(const SylProgram *p, FILE *out, bool json) {
         if (!q) continue;
         DModel m = {0};
         describe_model(q, &m);
-        if (json) {
-            if (written) fputs(",\n", out);
-            json_model(out, &m);
-        } else {
-            if (written) fputc('\n', out);
-            text_model(out, &m);
-        }
-        written++;
-        free(m.e);
+        emit(out, &m, json, written++);
         syl_program_free(own);
+    }
+    int nscene;
+    if (!lang_kind_is(p->kind, KF_UNNAMED) && syl_program_scene(p, &nscene)) { /* the file's scene, last */
+        DModel m = {.name = "scene", .kind = lang_kind_keyword(SYL_MODEL_SCENE), .line = p->scene_loc.first_line};
+        describe_scene(p, lang_kind_schema(SYL_MODEL_SCENE), &m);
+        emit(out, &m, json, written);
     }
     if (json) fputs("]}\n", out);
     return ferror(out) ? SYL_EIO : SYL_OK;

@@ -45,6 +45,20 @@ int syl_model_kind_is(SylModelKind k, SylModelTrait t) {
     }
     return 0;
 }
+static const char *const cap_names[KF_COUNT] = {
+#define SYL_KIND_FLAG(id, name, meaning) name,
+#include "lang/kind_flags.def"
+#undef SYL_KIND_FLAG
+};
+static const char *const cap_docs[KF_COUNT] = {
+#define SYL_KIND_FLAG(id, name, meaning) meaning,
+#include "lang/kind_flags.def"
+#undef SYL_KIND_FLAG
+};
+const char *syl_model_cap_name(int i) { return i >= 0 && i < KF_COUNT ? cap_names[i] : NULL; }
+const char *syl_model_cap_doc(int i) { return i >= 0 && i < KF_COUNT ? cap_docs[i] : NULL; }
+unsigned syl_model_kind_caps(SylModelKind k) { return lang_kind_flags(k); }
+
 const char *syl_model_kind_name(SylModelKind k) { return row(k) ? row(k)->noun : "model"; }
 const struct SchTable *lang_kind_schema(SylModelKind k) { return row(k) ? row(k)->schema : NULL; }
 

@@ -9,16 +9,17 @@
 
 #include "sylva/sylva.h"
 
+/* KF_ID = 1 << its place in lang/kind_flags.def; KF_COUNT bits in all. */
 enum {
-    KF_RULES = 1 << 0,       /* a body of rules, derived step by step (lsys) */
-    KF_STRING = 1 << 1,      /* its plant is a string of modules before it is a skeleton */
-    KF_DIRECTIVES = 1 << 2,  /* a named block of directive lines, read by the engine that owns it */
-    KF_UNNAMED = 1 << 3,     /* `scene {`: the file's one scene, its lines kept apart; not a model */
-    KF_GROWS = 1 << 4,       /* grows year by year in sot's forest (with a scene's): frames are years */
-    KF_AGES = 1 << 5,        /* built at an age in (0, 1] (SylTreeOptions.age): frames are ages */
-    KF_IN_SCENE = 1 << 6,    /* may stand in a scene: `plant NAME at (x, y, z)` */
-    KF_LOOK = 1 << 7,        /* may be an ecosystem species' look (`model NAME`) */
-    KF_NOT_A_PLANT = 1 << 8, /* syl_plant_build refuses it: a command of its own makes it */
+#define SYL_KIND_FLAG(id, name, meaning) KF_BIT_##id,
+#include "lang/kind_flags.def"
+#undef SYL_KIND_FLAG
+    KF_COUNT
+};
+enum {
+#define SYL_KIND_FLAG(id, name, meaning) KF_##id = 1 << KF_BIT_##id,
+#include "lang/kind_flags.def"
+#undef SYL_KIND_FLAG
 };
 
 /* The files `sylva convert` writes a model as, its row's converts column: XML (Arbaro's species
@@ -39,7 +40,7 @@ enum {
  * syl_model_kind_name). lang_kind_of_keyword: the kind a keyword opens, or -1. */
 unsigned lang_kind_flags(SylModelKind k);
 const char *lang_kind_keyword(SylModelKind k);
-/* The kind's directive table, its row's describe column (lang/schema.h); NULL: none (scene). */
+/* The kind's directive table, its row's describe column (lang/schema.h); NULL: none. */
 const struct SchTable *lang_kind_schema(SylModelKind k);
 int lang_kind_of_keyword(const char *word, size_t len);
 

@@ -237,6 +237,7 @@ struct SylProgram {
     char *text; /* owned copy of the source */
     const char *name;
     SylLoc model_loc; /* where the model (or the file's scene) begins */
+    SylLoc scene_loc; /* where the file's scene begins (has_scene) */
     struct SchCache *read_cache; /* the block's reading, kept at compile time (lang/schema.h) */
 
     Symbol *syms;

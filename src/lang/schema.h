@@ -57,6 +57,8 @@ typedef enum {
     SCH_GROUPS,   /* NAME VALUE..., a group's rows after its opening line (ecosystem: species NAME) */
     SCH_KEYED,    /* DIRECTIVE [MODE [N]] [VALUE] [KEY VALUE]...: rows DIRECTIVE and DIRECTIVE.KEY (grow),
                    * read by sch_read_keyed */
+    SCH_SCENE,    /* a scene's lines (scene/params.def): plant and obstacle lines, each an element of
+                   * its group, at (x, y, z) its rows .x .y .z; read by scene/spec.c, described here */
 } SchShape;
 
 typedef struct SchTable {

@@ -23,13 +23,23 @@
 #include "sylva/grow.h"
 #include "sylva/trees.h"
 
+/* The ranges of the scene's rows (scene/params.def: what `sylva describe` shows of a scene) */
+enum {
+#define SCENE_ROW(id, ...) SR_##id,
+#include "scene/params.def"
+};
+static const struct { double lo, hi; } range[] = {
+#define SCENE_ROW(id, nm, ty, l, h, ...) [SR_##id] = {l, h},
+#include "scene/params.def"
+};
+
 static bool vec3_of(Reader *r, const SylDirArg *a, const char *what, float out[3]) {
     if (a->kind != SYL_DARG_TUPLE || a->nvalues != 3) {
         ERR(r, a->line, a->col, "'%s' expects a point (x, y, z)", what);
         return false;
     }
     for (int k = 0; k < 3; k++) {
-        if (!isfinite(a->values[k]) || fabs(a->values[k]) > 1e6) {
+        if (!isfinite(a->values[k]) || fabs(a->values[k]) > range[SR_PLANT_X].hi) {
             ERR(r, a->line, a->col, "'%s': coordinates must be finite, within a million units", what);
             return false;
         }
@@ -68,21 +78,21 @@ static bool read_keys(Reader *r, const SylDirective *d, int i, int allowed, floa
             ERR(r, v->line, v->col, "'%s' expects a number", a->text);
             return false;
         } else if (key == 1) {
-            if (x < 0 || x > 9007199254740991.0 || x != floor(x)) {
+            if (x < 0 || x > range[SR_PLANT_SEED].hi || x != floor(x)) {
                 ERR(r, v->line, v->col, "'seed' expects a whole number from 0, not %g", x);
                 return false;
             }
             *seed = (uint64_t)x;
             *seed_set = true;
         } else if (key == 2) {
-            if (x < 0 || x > 10000 || x != floor(x)) {
-                ERR(r, v->line, v->col, "'years' expects a whole number from 0 to 10000, not %g", x);
+            if (x < 0 || x > range[SR_PLANT_YEARS].hi || x != floor(x)) {
+                ERR(r, v->line, v->col, "'years' expects a whole number from 0 to %g, not %g", range[SR_PLANT_YEARS].hi, x);
                 return false;
             }
             *years = (int)x;
             *years_set = true;
         } else {
-            if (!(x > 0) || x > 1e6) {
+            if (!(x > 0) || x > range[SR_OBSTACLE_SCALE].hi) {
                 ERR(r, v->line, v->col, "'scale' expects a number above 0, not %g", x);
                 return false;
             }
@@ -134,7 +144,7 @@ static void *push(void *arrp, int *n, int *cap, size_t elem) {
 static void set_one(Reader *r, SceneSpec *s, const char *typed, const char *name, double v) {
     static const char *const axes = "xyz";
     if (!strcmp(name, "ground")) {
-        if (!isfinite(v) || fabs(v) > 1e6) {
+        if (!isfinite(v) || fabs(v) > range[SR_GROUND].hi) {
             ERR(r, 0, 0, "--set %s: the ground's height must be finite, within a million units", typed);
             return;
         }
@@ -160,14 +170,14 @@ static void set_one(Reader *r, SceneSpec *s, const char *typed, const char *name
     const char *key = end + 1;
     float *where = plant ? s->plants[n - 1].at : s->obstacles[n - 1].at;
     if (key[0] && !key[1] && strchr(axes, key[0])) {
-        if (!isfinite(v) || fabs(v) > 1e6) {
+        if (!isfinite(v) || fabs(v) > range[SR_PLANT_X].hi) {
             ERR(r, 0, 0, "--set %s: coordinates must be finite, within a million units", typed);
             return;
         }
         where[strchr(axes, key[0]) - axes] = (float)v;
     } else if (plant && (!strcmp(key, "seed") || !strcmp(key, "years"))) {
         bool seed = key[0] == 's';
-        double hi = seed ? 9007199254740991.0 : 10000;
+        double hi = range[seed ? SR_PLANT_SEED : SR_PLANT_YEARS].hi;
         if (v < 0 || v > hi || v != floor(v)) {
             ERR(r, 0, 0, "--set %s: '%s' expects a whole number from 0 to %.17g, not %g", typed, key, hi, v);
             return;
@@ -176,7 +186,7 @@ static void set_one(Reader *r, SceneSpec *s, const char *typed, const char *name
         if (seed) pl->seed = (uint64_t)v, pl->seed_set = true;
         else pl->years = (int)v, pl->years_set = true;
     } else if (obstacle && !strcmp(key, "scale")) {
-        if (!(v > 0) || v > 1e6) {
+        if (!(v > 0) || v > range[SR_OBSTACLE_SCALE].hi) {
             ERR(r, 0, 0, "--set %s: 'scale' expects a number above 0, not %g", typed, v);
             return;
         }

@@ -3,7 +3,7 @@
 
   describe.py shape FILE.json          check every parameter's fields and types; print the models
   describe.py get FILE.json M.P.FIELD  print one field of parameter P of model M (P may hold dots)
-  describe.py bounds FILE.json MODEL   print "MODEL.NAME VALUE EXIT" for MODEL's numbers: one past each
+  describe.py bounds FILE.json MODEL   print "MODEL.NAME VALUE EXIT" (a scene's: NAME) for MODEL's numbers: one past each
                                        finite bound (exit 2 expected), and the default (exit 0)
 """
 import json
@@ -38,7 +38,8 @@ def main(argv):
         for q in models[argv[3]]["params"]:
             if q["type"] not in ("number", "integer"):
                 continue
-            name = argv[3] + "." + q["name"]
+            # a scene's are named as --set takes them already (scene.plant.1.x)
+            name = q["name"] if q["name"].startswith(argv[3] + ".") else argv[3] + "." + q["name"]
             if q["max"] is not None and q["max"] < 2 ** 52:  # beyond, + 1 is not a double apart
                 print(name, q["max"] + 1, 2)
             if q["min"] is not None:

@@ -17,7 +17,6 @@ static void every_model_kind_has_a_table(void **state) {
     for (int k = 0; k < LANG_KIND_COUNT; k++) {
         const SchTable *t = lang_kind_schema((SylModelKind)k);
         assert_ptr_equal(kinds_ops((SylModelKind)k)->describe, t); /* one column, read by both */
-        if (lang_kind_is((SylModelKind)k, KF_UNNAMED)) continue;  /* a scene is not a model */
         if (!t) fail_msg("kind '%s' has no directive table", lang_kind_keyword((SylModelKind)k));
         assert_string_equal(t->kind, lang_kind_keyword((SylModelKind)k));
     }
@@ -76,7 +75,7 @@ static const char *group_element(const char *group) {
  * axiom. It is not validated (no hook), so no block needs more. */
 static void describe_prints_every_row(void **state) {
     (void)state;
-    char text[2048];
+    char text[4096];
     size_t at_text = 0;
     int tables = 0;
     for (int k = 0; k < LANG_KIND_COUNT; k++) {
@@ -84,6 +83,12 @@ static void describe_prints_every_row(void **state) {
         const SchTable *t = lang_kind_schema(kind);
         if (!t) continue;
         tables++;
+        if (lang_kind_is(kind, KF_UNNAMED)) { /* a scene: plant and obstacle lines are its groups */
+            at_text += (size_t)snprintf(text + at_text, sizeof text - at_text,
+                                        "scene {\n  plant M0 at (1, 0, 2) seed 3\n"
+                                        "  obstacle \"wall.obj\" at (0, 0, 1) scale 2\n  ground 0.5\n}\n");
+            continue;
+        }
         at_text += (size_t)snprintf(text + at_text, sizeof text - at_text, "%s M%d {\n%s", lang_kind_keyword(kind), k,
                                     lang_kind_is(kind, KF_RULES) ? "  axiom F\n" : "");
         for (int i = 0; i < t->n; i++) /* each group once, at its first row */
@@ -112,11 +117,12 @@ static void describe_prints_every_row(void **state) {
         for (int i = 0; i < t->n; i++) {
             const SchRow *r = &t->rows[i];
             char name[160], key[200];
-            if (!r->group) snprintf(name, sizeof name, "%s", r->name);
+            const char *pre = t->shape == SCH_SCENE ? "scene." : ""; /* named as --set takes them */
+            if (!r->group) snprintf(name, sizeof name, "%s%s", pre, r->name);
             else if (!strcmp(r->group, "species")) snprintf(name, sizeof name, "a.%s", r->name);
             else { /* organ: organ.1, organ.1.size */
                 const char *dot = strchr(r->name, '.');
-                snprintf(name, sizeof name, "%.*s.1%s", dot ? (int)(dot - r->name) : (int)strlen(r->name), r->name,
+                snprintf(name, sizeof name, "%s%.*s.1%s", pre, dot ? (int)(dot - r->name) : (int)strlen(r->name), r->name,
                          dot ? dot : "");
             }
             snprintf(key, sizeof key, "{\"name\":\"%s\",", name);
@@ -125,7 +131,15 @@ static void describe_prints_every_row(void **state) {
         }
     }
     assert_int_equal(models, tables);
-    assert_true(tables >= 7); /* lsystem grow weber strands ecosystem curvetree pafco, at least */
+    assert_true(tables >= 8); /* lsystem grow scene weber strands ecosystem curvetree pafco, at least */
+    /* the scene's lines as written, its plant and obstacle lines' rows by their place (scene/params.def) */
+    const char *scene = strstr(json, "\"kind\":\"scene\"");
+    assert_non_null(scene);
+    assert_non_null(strstr(scene, "{\"name\":\"scene.ground\",\"type\":\"number\",\"min\":-1000000,\"max\":1000000,\"default\":null,\"value\":0.5,"));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.plant.1\",\"type\":\"string\",\"min\":null,\"max\":null,\"default\":null,\"value\":\"M0\","));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.plant.1.z\",\"type\":\"number\",\"min\":-1000000,\"max\":1000000,\"default\":null,\"value\":2,"));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.plant.1.seed\",\"type\":\"integer\",\"min\":0,\"max\":9.00719925474099e+15,\"default\":null,\"value\":3,"));
+    assert_non_null(strstr(scene, "{\"name\":\"scene.obstacle.1.scale\",\"type\":\"number\",\"min\":0,\"max\":1000000,\"default\":1,\"value\":2,"));
     free(json);
 }
 

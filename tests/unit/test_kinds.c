@@ -7,6 +7,7 @@
 #include "unit.h"
 #include "kinds/kinds.h"
 #include "lang/kinds.h"
+#include "lang/schema.h"
 
 /* Compile text without the validate hook (the language only); the program or NULL. */
 static SylProgram *compile_bare(const char *text) {
@@ -132,6 +133,43 @@ static void traits_are_the_flags(void **state) {
     assert_null(syl_model_kind_keyword((SylModelKind)-1));
 }
 
+/* The capabilities a front end asks by name are the flags, one name a bit (lang/kind_flags.def):
+ * every bit named, each name once and a word a JSON key or a Python attribute can be, nothing
+ * past the last. A TAKES_ bit is a promise to the Blender add-on, which writes the object into
+ * the block as the directive the bit names: the kind's table has that directive, of that type
+ * (the scene's obstacles: the kind is planted in a scene). */
+static void capabilities_are_the_flags_by_name(void **state) {
+    (void)state;
+    for (int i = 0; i < KF_COUNT; i++) {
+        const char *name = syl_model_cap_name(i);
+        assert_non_null(name);
+        assert_non_null(syl_model_cap_doc(i));
+        assert_int_equal(strspn(name, "abcdefghijklmnopqrstuvwxyz_"), strlen(name));
+        for (int j = 0; j < i; j++) assert_string_not_equal(syl_model_cap_name(j), name);
+    }
+    assert_null(syl_model_cap_name(KF_COUNT));
+    assert_null(syl_model_cap_name(-1));
+    assert_string_equal(syl_model_cap_name(KF_BIT_NOT_A_PLANT), "not_a_plant");
+    static const struct { unsigned flag; const char *dir; SchType type; } takes[] = {
+        {KF_TAKES_TRUNK, "trunk", SCH_CURVE}, {KF_TAKES_ENVELOPE, "envelope", SCH_FILE},
+        {KF_TAKES_TERRAIN, "terrain", SCH_FILE}};
+    for (int k = 0; k < LANG_KIND_COUNT; k++) {
+        SylModelKind kind = (SylModelKind)k;
+        assert_int_equal(syl_model_kind_caps(kind), lang_kind_flags(kind));
+        for (size_t t = 0; t < sizeof takes / sizeof *takes; t++) {
+            if (!lang_kind_is(kind, takes[t].flag)) continue;
+            int level;
+            const SchRow *r = lang_kind_schema(kind) ? sch_find(lang_kind_schema(kind), takes[t].dir, &level) : NULL;
+            if (!r || r->type != takes[t].type)
+                fail_msg("the %s takes a %s but has no %s directive of that type", syl_model_kind_name(kind), takes[t].dir,
+                         takes[t].dir);
+        }
+        if (lang_kind_is(kind, KF_TAKES_OBSTACLES) && !lang_kind_is(kind, KF_IN_SCENE))
+            fail_msg("the %s takes a scene's obstacles but stands in no scene", syl_model_kind_name(kind));
+    }
+    assert_int_equal(syl_model_kind_caps((SylModelKind)LANG_KIND_COUNT), 0);
+}
+
 /* The refusal is worded from the row: the article follows the noun, and a kind that is not a
  * plant says so whatever it was asked for. */
 static void refusals_are_worded_from_the_row(void **state) {
@@ -174,6 +212,7 @@ int main(void) {
         cmocka_unit_test(flags_and_functions_agree),
         cmocka_unit_test(converts_and_convert_agree),
         cmocka_unit_test(traits_are_the_flags),
+        cmocka_unit_test(capabilities_are_the_flags_by_name),
         cmocka_unit_test(refusals_are_worded_from_the_row),
         cmocka_unit_test(validate_covers_every_directive_kind),
     };

@@ -138,6 +138,12 @@ try {
   check(first.plant > first.w * first.h * 0.002, 'the canvas shows the plant (bark-coloured pixels inside the frame)',
     `${first.plant} of ${first.w * first.h}`);
   check(s0.triangles > 0 && s0.kind === 'lsystem', 'the numbers panel has the triangles of the build', JSON.stringify(s0));
+  // the page asks the build's capabilities, not its kind's name: every name of the library's
+  // list (src/lang/kind_flags.def, read here from the source), true where the row says so
+  const capNames = [...readFileSync(new URL('../../src/lang/kind_flags.def', import.meta.url), 'utf8')
+    .matchAll(/^SYL_KIND_FLAG\(\w+,\s*"(\w+)"/gm)].map((m) => m[1]);
+  check(JSON.stringify(Object.keys(s0.caps || {})) === JSON.stringify(capNames) && s0.caps.rules && s0.caps.string &&
+    !s0.caps.not_a_plant, 'a build\'s stats carry its kind\'s capabilities by the library\'s names', JSON.stringify(s0.caps));
   const shown = await page.$eval('#stat-triangles', (e) => e.textContent);
   check(+shown === s0.triangles, 'the triangle count is shown on the page');
 
@@ -343,6 +349,9 @@ try {
   const loads7 = await p2.evaluate(() => window.sylvaView.loads);
   await p2.select('#model', 'Patch');
   await p2.waitForFunction((n) => window.sylvaView.loads > n && window.sylvaView.stats.kind === 'ecosystem', { timeout: 60000 }, loads7);
+  const ecoCaps = await p2.evaluate(() => window.sylvaView.stats.caps);
+  check(ecoCaps && ecoCaps.not_a_plant && ecoCaps.takes_terrain && !ecoCaps.in_scene,
+    'an ecosystem run\'s stats say it is not a plant (the page shows its forest and chart by that)', JSON.stringify(ecoCaps));
   const ecoAt = async (year) => {
     const n = await p2.evaluate(() => window.sylvaView.loads);
     await p2.$eval('#step', (el, y) => { el.value = y; el.dispatchEvent(new Event('input', { bubbles: true })); }, year);
