@@ -36,13 +36,18 @@ void shadow_free(ShadowGrid *g) {
     free(g->s);
     free(g->d);
     free(g->row);
+    free(g->pbox);
     g->s = NULL;
     g->d = g->row = NULL;
+    g->pbox = NULL;
 }
 
 size_t shadow_voxels(const ShadowGrid *g) { return (size_t)g->nx * (size_t)g->ny * (size_t)g->nz; }
 
 static inline int cell(float v, float inv) { return shadow_cell(v, inv); }
+
+/* A plane's box of differences (x lo, x hi, z lo, z hi), empty. */
+static inline void plane_box_clear(int32_t *b) { b[0] = b[2] = INT_MAX, b[1] = b[3] = INT_MIN; }
 
 /* Make the grid hold [lo, hi] (inclusive voxel coordinates), with room to spare. */
 static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
@@ -64,13 +69,14 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
     double total = (double)(nhi[0] - nlo[0] + 1) * (double)(nhi[1] - nlo[1] + 1) * (double)(nhi[2] - nlo[2] + 1);
     if (total > (double)g->max_voxels) return false;
     int nx = (int)(nhi[0] - nlo[0] + 1), ny = (int)(nhi[1] - nlo[1] + 1), nz = (int)(nhi[2] - nlo[2] + 1);
-    uint64_t bytes = ((uint64_t)total * 2 + SHADOW_PAD + (uint64_t)nx) * sizeof(uint32_t);
+    uint64_t bytes = ((uint64_t)total * 2 + SHADOW_PAD + (uint64_t)nx + 4 * (uint64_t)ny) * sizeof(uint32_t);
     g->refused = !budget_resize(g->mem, g->charged, bytes);
     if (g->refused) return false;
     uint32_t *s = calloc((size_t)total + SHADOW_PAD, sizeof *s), *d = calloc((size_t)total, sizeof *d),
              *row = malloc((size_t)nx * sizeof *row);
-    if (!s || !d || !row) {
-        free(s), free(d), free(row);
+    int32_t *pbox = malloc(4 * (size_t)ny * sizeof *pbox);
+    if (!s || !d || !row || !pbox) {
+        free(s), free(d), free(row), free(pbox);
         budget_resize(g->mem, bytes, g->charged);
         return false;
     }
@@ -85,9 +91,12 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
     free(g->s);
     free(g->d);
     free(g->row);
+    free(g->pbox);
+    for (int y = 0; y < ny; y++) plane_box_clear(pbox + 4 * y);
     g->s = (int32_t *)s;
     g->d = d;
     g->row = row;
+    g->pbox = pbox;
     g->x0 = (int)nlo[0], g->y0 = (int)nlo[1], g->z0 = (int)nlo[2];
     g->nx = nx, g->ny = ny, g->nz = nz;
     return true;
@@ -123,8 +132,9 @@ static void cast_direct(ShadowGrid *g, int I, int J, int K, uint32_t weight) {
     }
 }
 
-/* A pyramid's levels as corners of squares in the difference grid; bb grows to hold them. */
-static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int bb[6]) {
+/* A pyramid's levels as corners of squares in the difference grid; the box of each plane
+ * (g->pbox) grows to hold them, and ys, the planes' range. */
+static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int ys[2]) {
     uint32_t *d = g->d;
     const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
     for (int q = 0; q <= g->p.depth; q++) {
@@ -140,12 +150,13 @@ static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int bb
         plane[(size_t)z0 * nx + (size_t)x1] -= v;
         plane[(size_t)z1 * nx + (size_t)x0] -= v;
         plane[(size_t)z1 * nx + (size_t)x1] += v;
+        int32_t *bb = g->pbox + 4 * (size_t)yy;
         if (x0 < bb[0]) bb[0] = x0;
         if (x1 > bb[1]) bb[1] = x1;
-        if (yy < bb[2]) bb[2] = yy;
-        if (yy > bb[3]) bb[3] = yy;
-        if (z0 < bb[4]) bb[4] = z0;
-        if (z1 > bb[5]) bb[5] = z1;
+        if (z0 < bb[2]) bb[2] = z0;
+        if (z1 > bb[3]) bb[3] = z1;
+        if (yy < ys[0]) ys[0] = yy;
+        if (yy > ys[1]) ys[1] = yy;
     }
 }
 
@@ -162,14 +173,18 @@ static void sort_bits(uint64_t *v, uint64_t *tmp, size_t n, int from) {
     }
 }
 
-/* Sum the differences inside bb into the shadow and clear them: down each plane, column
- * sums along z (whole rows at a time), then a running sum along x. */
-static void integrate(ShadowGrid *g, const int bb[6]) {
-    const size_t nx = (size_t)g->nx, nz = (size_t)g->nz, w = (size_t)(bb[1] - bb[0] + 1);
+/* Sum the differences of planes ys[0]..ys[1] into the shadow and clear them, each plane over
+ * its own box (beyond it the sums are zero: a crown's planes are narrower than its box): down
+ * each plane, column sums along z (whole rows at a time), then a running sum along x. */
+static void integrate(ShadowGrid *g, const int ys[2]) {
+    const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
     uint32_t *s = (uint32_t *)g->s, *col = g->row;
-    for (int y = bb[2]; y <= bb[3]; y++) {
+    for (int y = ys[0]; y <= ys[1]; y++) {
+        int32_t *bb = g->pbox + 4 * (size_t)y;
+        if (bb[0] > bb[1]) continue; /* nothing cast here */
+        const size_t w = (size_t)(bb[1] - bb[0] + 1);
         memset(col, 0, w * sizeof *col);
-        for (int z = bb[4]; z <= bb[5]; z++) {
+        for (int z = bb[2]; z <= bb[3]; z++) {
             size_t at = ((size_t)y * nz + (size_t)z) * nx + (size_t)bb[0];
             uint32_t *dr = g->d + at, *sr = s + at, run = 0;
             size_t x = 0;
@@ -187,6 +202,7 @@ static void integrate(ShadowGrid *g, const int bb[6]) {
                 sr[x] += run;
             }
         }
+        plane_box_clear(bb);
     }
 }
 
@@ -258,7 +274,7 @@ bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t
     uint32_t weight = sign < 0 ? 0u - 1u : 1u;
     /* casters in grid order, so that neighbouring pyramids (or corners) share the cache */
     uint64_t *order = malloc(2 * n * sizeof *order);
-    int bb[6] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+    int ys[2] = {INT_MAX, INT_MIN};
     size_t m = 0;
     for (size_t i = 0; i < n; i++) {
         const float *p = base + i * stride;
@@ -268,19 +284,21 @@ bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t
             order[m++] = ((uint64_t)(J - g->y0) * (uint64_t)g->nz + (uint64_t)(K - g->z0)) * (uint64_t)g->nx +
                          (uint64_t)(I - g->x0);
         else if (direct) cast_direct(g, I, J, K, weight);
-        else cast_one(g, I, J, K, weight, bb);
+        else cast_one(g, I, J, K, weight, ys);
     }
     if (order) {
         sort_bits(order, order + n, m, 0);
-        for (size_t i = 0; i < m; i++) {
+        for (size_t i = 0, j; i < m; i = j) { /* casters in one voxel: one pyramid, weighted */
+            for (j = i + 1; j < m && order[j] == order[i]; j++) {}
             int I, J, K;
             voxel_coords(g, order[i], &I, &J, &K);
-            if (direct) cast_direct(g, I, J, K, weight);
-            else cast_one(g, I, J, K, weight, bb);
+            uint32_t w = weight * (uint32_t)(j - i); /* wraps: as j - i casts of weight */
+            if (direct) cast_direct(g, I, J, K, w);
+            else cast_one(g, I, J, K, w, ys);
         }
         free(order);
     }
-    if (bb[0] <= bb[1]) integrate(g, bb);
+    if (ys[0] <= ys[1]) integrate(g, ys);
     return true;
 }
 
@@ -410,15 +428,15 @@ bool shadow_set_replace(ShadowGrid *g, ShadowSet *set, const float (*pos)[3], si
         if (vb[2] < g->ymin) vb[2] = g->ymin;
         bool direct = cheaper_direct(g, nd, vb);
         sort_bits(set->delta, set->delta + nd, nd, 32); /* grid order: pyramids share the cache */
-        int bb[6] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+        int ys[2] = {INT_MAX, INT_MIN};
         for (size_t i = 0; i < nd; i++) {
             int I, J, K;
             voxel_coords(g, set->delta[i] >> 32, &I, &J, &K);
             uint32_t w = (uint32_t)set->delta[i];
             if (direct) cast_direct(g, I, J, K, w);
-            else cast_one(g, I, J, K, w, bb);
+            else cast_one(g, I, J, K, w, ys);
         }
-        if (bb[0] <= bb[1]) integrate(g, bb);
+        if (ys[0] <= ys[1]) integrate(g, ys);
     }
     /* voxels left without casters only lengthen the probes: drop them now and then */
     if (dead && 4 * dead > set->n) (void)set_rebuild(set, g, set->cap); /* kept as it is when out of memory */

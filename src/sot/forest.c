@@ -186,9 +186,8 @@ static int shed_all(Forest *f) {
         size_t marked = shed_mark(t);
         if (marked == (size_t)-1) return SYL_ELIMIT;
         if (!marked) continue;
-        int st = forest_unregister_dead(f, t);
+        int st = forest_drop_dead(f, t, marked);
         if (st) return st;
-        if (!tree_compact(t)) return SYL_ELIMIT;
     }
     return SYL_OK;
 }

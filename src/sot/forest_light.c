@@ -145,16 +145,12 @@ int forest_register(Forest *f, const size_t *before) {
     return SYL_OK;
 }
 
-int forest_unregister_dead(Forest *f, Tree *t) {
+int forest_drop_dead(Forest *f, Tree *t, size_t n) {
     Env *e = &f->env;
-    if (!e->shadow_on) return SYL_OK;
-    size_t n = 0;
-    for (size_t k = 1; k < t->n; k++) n += (t->nodes[k].flags & NODE_DEAD) != 0;
-    if (!gather(f, n)) return SYL_ELIMIT;
-    size_t m = 0;
-    for (size_t k = 1; k < t->n; k++)
-        if (t->nodes[k].flags & NODE_DEAD) memcpy(f->occ + 3 * m++, t->nodes[k].pos, 3 * sizeof(float));
-    if (!shadow_cast_strided(&e->shadow, f->occ, 3, m, -1)) return forest_shadow_too_big(f);
+    if (!e->shadow_on) return tree_compact(t, NULL) ? SYL_OK : SYL_ELIMIT;
+    /* the positions gathered by the compaction's own pass (no pass of its own over the nodes) */
+    if (!gather(f, n) || !tree_compact(t, f->occ)) return SYL_ELIMIT;
+    if (!shadow_cast_strided(&e->shadow, f->occ, 3, n, -1)) return forest_shadow_too_big(f);
     return SYL_OK;
 }
 
@@ -179,7 +175,13 @@ int forest_register_statics(Forest *f) {
 
 void forest_node_light(Forest *f, Tree *t) {
     if (t->P.light == LIGHT_SHADOW) {
-        for (size_t i = 0; i < t->n; i++) t->nodes[i].light = shadow_light(&f->env.shadow, t->nodes[i].pos);
+        /* shadow_light, inlined: this loop looks up every node every year */
+        const ShadowGrid *g = &f->env.shadow;
+        const float full = g->p.full, a = g->p.a;
+        for (size_t i = 0; i < t->n; i++) {
+            float q = full - shadow_value(g, shadow_index(g, t->nodes[i].pos)) + a;
+            t->nodes[i].light = q > 0 ? q : 0;
+        }
         return;
     }
     for (size_t i = 0; i < t->n; i++) t->nodes[i].light = 0;

@@ -83,7 +83,7 @@ bool tree_scratch(Tree *t) {
     return true;
 }
 
-bool tree_compact(Tree *t) {
+bool tree_compact(Tree *t, float *dead) {
     int32_t *map = malloc((t->n ? t->n : 1) * sizeof *map);
     if (!map) return false;
     size_t k = 0;
@@ -91,6 +91,7 @@ bool tree_compact(Tree *t) {
         Node *nd = &t->nodes[i];
         if (nd->flags & NODE_DEAD) {
             map[i] = -1;
+            if (dead) memcpy(dead, nd->pos, sizeof nd->pos), dead += 3;
             continue;
         }
         map[i] = (int32_t)k;

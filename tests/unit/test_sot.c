@@ -356,7 +356,7 @@ static void shedding_by_light_ratio(void **state) {
     assert_int_equal(t.shed_branches, 3);
     /* the pipe model remembers them */
     assert_true(t.nodes[l1].pipe > 0 && t.nodes[c].pipe > 0 && t.nodes[b].pipe > 0);
-    assert_true(tree_compact(&t));
+    assert_true(tree_compact(&t, NULL));
     assert_int_equal(t.n, 11);
     tree_free(&t);
 }
