@@ -182,8 +182,9 @@ static int shed_all(Forest *f) {
     for (int i = 0; i < f->ntrees; i++) {
         Tree *t = &f->trees[i];
         if (!(t->P.shed_threshold > 0) && !(t->P.bare_trunk > 0)) continue;
-        forest_node_light(f, t);
-        size_t marked = shed_mark(t);
+        bool shadow = t->P.light == LIGHT_SHADOW; /* shed_mark looks each node up itself */
+        if (!shadow) forest_node_light(f, t);
+        size_t marked = shed_mark(t, shadow ? &f->env.shadow : NULL);
         if (marked == (size_t)-1) return SYL_ELIMIT;
         if (!marked) continue;
         int st = forest_drop_dead(f, t, marked);

@@ -175,13 +175,7 @@ int forest_register_statics(Forest *f) {
 
 void forest_node_light(Forest *f, Tree *t) {
     if (t->P.light == LIGHT_SHADOW) {
-        /* shadow_light, inlined: this loop looks up every node every year */
-        const ShadowGrid *g = &f->env.shadow;
-        const float full = g->p.full, a = g->p.a;
-        for (size_t i = 0; i < t->n; i++) {
-            float q = full - shadow_value(g, shadow_index(g, t->nodes[i].pos)) + a;
-            t->nodes[i].light = q > 0 ? q : 0;
-        }
+        for (size_t i = 0; i < t->n; i++) t->nodes[i].light = shadow_light(&f->env.shadow, t->nodes[i].pos);
         return;
     }
     for (size_t i = 0; i < t->n; i++) t->nodes[i].light = 0;
