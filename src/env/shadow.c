@@ -326,6 +326,16 @@ void shadow_gradient(const ShadowGrid *g, const float pos[3], float out[3]) {
     out[0] = out[1] = out[2] = 0;
     if (!g->s) return;
     int I = cell(pos[0], g->inv), J = cell(pos[1], g->inv), K = cell(pos[2], g->inv);
+    int i = I - g->x0, j = J - g->y0, k = K - g->z0;
+    if (i > 0 && j > 0 && k > 0 && i < g->nx - 1 && j < g->ny - 1 && k < g->nz - 1) { /* inside: no test per voxel */
+        const size_t nx = (size_t)g->nx, plane = nx * (size_t)g->nz;
+        const int32_t *c = g->s + (size_t)j * plane + (size_t)k * nx + (size_t)i;
+        const float u = 1.0f / SHADOW_ONE;
+        out[0] = 0.5f * ((float)c[-1] * u - (float)c[1] * u);
+        out[1] = 0.5f * ((float)c[-(ptrdiff_t)plane] * u - (float)c[plane] * u);
+        out[2] = 0.5f * ((float)c[-(ptrdiff_t)nx] * u - (float)c[nx] * u);
+        return;
+    }
     out[0] = 0.5f * (voxel_at(g, I - 1, J, K) - voxel_at(g, I + 1, J, K));
     out[1] = 0.5f * (voxel_at(g, I, J - 1, K) - voxel_at(g, I, J + 1, K));
     out[2] = 0.5f * (voxel_at(g, I, J, K - 1) - voxel_at(g, I, J, K + 1));
