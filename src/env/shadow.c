@@ -132,11 +132,18 @@ static void cast_direct(ShadowGrid *g, int I, int J, int K, uint32_t weight) {
     }
 }
 
-/* A pyramid's levels as corners of squares in the difference grid; the box of each plane
- * (g->pbox) grows to hold them, and ys, the planes' range. */
+/* A pyramid's levels as corners of squares in the difference grid; the box of the casters
+ * of its plane (g->pbox, grid coordinates) grows to hold it, and ys, those planes' range. */
 static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int ys[2]) {
     uint32_t *d = g->d;
     const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
+    int32_t *bb = g->pbox + 4 * (size_t)(J - g->y0), i = I - g->x0, k = K - g->z0;
+    if (i < bb[0]) bb[0] = i;
+    if (i > bb[1]) bb[1] = i;
+    if (k < bb[2]) bb[2] = k;
+    if (k > bb[3]) bb[3] = k;
+    if (J - g->y0 < ys[0]) ys[0] = J - g->y0;
+    if (J - g->y0 > ys[1]) ys[1] = J - g->y0;
     for (int q = 0; q <= g->p.depth; q++) {
         int y = J - q;
         if (y < g->y0) break;
@@ -150,13 +157,6 @@ static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int ys
         plane[(size_t)z0 * nx + (size_t)x1] -= v;
         plane[(size_t)z1 * nx + (size_t)x0] -= v;
         plane[(size_t)z1 * nx + (size_t)x1] += v;
-        int32_t *bb = g->pbox + 4 * (size_t)yy;
-        if (x0 < bb[0]) bb[0] = x0;
-        if (x1 > bb[1]) bb[1] = x1;
-        if (z0 < bb[2]) bb[2] = z0;
-        if (z1 > bb[3]) bb[3] = z1;
-        if (yy < ys[0]) ys[0] = yy;
-        if (yy > ys[1]) ys[1] = yy;
     }
 }
 
@@ -173,14 +173,27 @@ static void sort_bits(uint64_t *v, uint64_t *tmp, size_t n, int from) {
     }
 }
 
-/* Sum the differences of planes ys[0]..ys[1] into the shadow and clear them, each plane over
- * its own box (beyond it the sums are zero: a crown's planes are narrower than its box): down
- * each plane, column sums along z (whole rows at a time), then a running sum along x. */
+/* Sum the differences cast by the casters of planes ys[0]..ys[1] into the shadow and clear
+ * them, each plane over its own box (beyond it the sums are zero: a crown's planes are
+ * narrower than its box), made of the boxes of the casters above it that reach it: down each
+ * plane, column sums along z (whole rows at a time), then a running sum along x. */
 static void integrate(ShadowGrid *g, const int ys[2]) {
     const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
     uint32_t *s = (uint32_t *)g->s, *col = g->row;
-    for (int y = ys[0]; y <= ys[1]; y++) {
-        int32_t *bb = g->pbox + 4 * (size_t)y;
+    int reach = 0; /* the levels cast_one writes */
+    while (reach < g->p.depth && g->layer[reach + 1]) reach++;
+    for (int y = ys[0] - reach > 0 ? ys[0] - reach : 0; y <= ys[1]; y++) {
+        int32_t bb[4] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+        for (int q = 0; q <= reach && y + q <= ys[1]; q++) { /* level q of the casters q planes up */
+            const int32_t *c = g->pbox + 4 * (size_t)(y + q);
+            if (c[0] > c[1]) continue;
+            int x0 = c[0] - q + g->shift_x[q], x1 = c[1] - q + g->shift_x[q] + 2 * q + 1;
+            int z0 = c[2] - q + g->shift_z[q], z1 = c[3] - q + g->shift_z[q] + 2 * q + 1;
+            if (x0 < bb[0]) bb[0] = x0;
+            if (x1 > bb[1]) bb[1] = x1;
+            if (z0 < bb[2]) bb[2] = z0;
+            if (z1 > bb[3]) bb[3] = z1;
+        }
         if (bb[0] > bb[1]) continue; /* nothing cast here */
         const size_t w = (size_t)(bb[1] - bb[0] + 1);
         memset(col, 0, w * sizeof *col);
@@ -202,8 +215,8 @@ static void integrate(ShadowGrid *g, const int ys[2]) {
                 sr[x] += run;
             }
         }
-        plane_box_clear(bb);
     }
+    for (int y = ys[0]; y <= ys[1]; y++) plane_box_clear(g->pbox + 4 * (size_t)y);
 }
 
 /* Make the grid hold the pyramids of casters at p(i) = base + i * stride (+ off, when

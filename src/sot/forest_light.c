@@ -27,8 +27,10 @@ static void bud_light(void *arg, size_t lo, size_t hi, int thread) {
         b->q = 0;
         if (!alloc_candidate(b, j->year)) continue;
         const float *pos = t->nodes[b->node].pos;
-        if (P->light == LIGHT_SHADOW) b->q = shadow_light(&e->shadow, pos);
-        else if (P->light == LIGHT_SKY) {
+        if (P->light == LIGHT_SHADOW) { /* shadow_light, inlined: every bud, every year */
+            float q = e->shadow.p.full - shadow_value(&e->shadow, shadow_index(&e->shadow, pos)) + e->shadow.p.a;
+            b->q = q > 0 ? q : 0;
+        } else if (P->light == LIGHT_SKY) {
             Rng r = rng_stream(b->key, (uint64_t)j->year, 1, 0);
             b->q = P->full * sky_exposure(&e->sky, pos, e->sun, P->sky_rays, &r, 1.05f * P->foliage);
         } else b->q = P->full;

@@ -18,7 +18,7 @@ bool pipe_areas(Tree *t) {
 }
 
 /* A node's light: from the shadow grid when there is one, else as forest_node_light left it. */
-static inline double node_light(const Tree *t, size_t i, const ShadowGrid *g) {
+static inline __attribute__((always_inline)) double node_light(const Tree *t, size_t i, const ShadowGrid *g) {
     if (!g) return t->nodes[i].light;
     float q = g->p.full - shadow_value(g, shadow_index(g, t->nodes[i].pos)) + g->p.a; /* shadow_light */
     return q > 0 ? q : 0;
