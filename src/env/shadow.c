@@ -106,6 +106,13 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
  * has SHADOW_PAD spare voxels at its end, so the last row can be read whole). Cheaper than
  * the difference grid for a few casters spread over a large box. */
 typedef uint32_t v8u __attribute__((vector_size(32)));
+typedef uint32_t v4u __attribute__((vector_size(16)));
+/* Lanes of a and b (4.. for b's) by index, in GCC's spelling or Clang's. */
+#if defined(__clang__)
+#define SHUFFLE4(a, b, i, j, k, l) __builtin_shufflevector(a, b, i, j, k, l)
+#else
+#define SHUFFLE4(a, b, i, j, k, l) __builtin_shuffle(a, b, (v4u){i, j, k, l})
+#endif
 
 static void cast_direct(ShadowGrid *g, int I, int J, int K, uint32_t weight) {
     uint32_t *s = (uint32_t *)g->s;
@@ -201,16 +208,24 @@ static void integrate(ShadowGrid *g, const int ys[2]) {
             size_t at = ((size_t)y * nz + (size_t)z) * nx + (size_t)bb[0];
             uint32_t *dr = g->d + at, *sr = s + at, run = 0;
             size_t x = 0;
-            for (; x + 8 <= w; x += 8) { /* 8 at a time */
-                v8u c, d;
+            for (; x + 4 <= w; x += 4) { /* 4 at a time: column sums, then their running sum */
+                v4u c, d, sv, zero = {0, 0, 0, 0};
                 memcpy(&c, col + x, sizeof c);
                 memcpy(&d, dr + x, sizeof d);
                 c += d;
                 memcpy(col + x, &c, sizeof c);
+                memcpy(dr + x, &zero, sizeof zero);
+                v4u p = c + SHUFFLE4(c, zero, 4, 0, 1, 2); /* a prefix sum in two shifted adds */
+                p += SHUFFLE4(p, zero, 4, 5, 0, 1);
+                p += run;
+                memcpy(&sv, sr + x, sizeof sv);
+                sv += p;
+                memcpy(sr + x, &sv, sizeof sv);
+                run = p[3];
             }
-            for (; x < w; x++) col[x] += dr[x];
-            memset(dr, 0, w * sizeof *dr);
-            for (size_t x = 0; x < w; x++) {
+            for (; x < w; x++) {
+                col[x] += dr[x];
+                dr[x] = 0;
                 run += col[x];
                 sr[x] += run;
             }
