@@ -36,13 +36,18 @@ void shadow_free(ShadowGrid *g) {
     free(g->s);
     free(g->d);
     free(g->row);
+    free(g->pbox);
     g->s = NULL;
     g->d = g->row = NULL;
+    g->pbox = NULL;
 }
 
 size_t shadow_voxels(const ShadowGrid *g) { return (size_t)g->nx * (size_t)g->ny * (size_t)g->nz; }
 
 static inline int cell(float v, float inv) { return shadow_cell(v, inv); }
+
+/* A plane's box of differences (x lo, x hi, z lo, z hi), empty. */
+static inline void plane_box_clear(int32_t *b) { b[0] = b[2] = INT_MAX, b[1] = b[3] = INT_MIN; }
 
 /* Make the grid hold [lo, hi] (inclusive voxel coordinates), with room to spare. */
 static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
@@ -64,13 +69,14 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
     double total = (double)(nhi[0] - nlo[0] + 1) * (double)(nhi[1] - nlo[1] + 1) * (double)(nhi[2] - nlo[2] + 1);
     if (total > (double)g->max_voxels) return false;
     int nx = (int)(nhi[0] - nlo[0] + 1), ny = (int)(nhi[1] - nlo[1] + 1), nz = (int)(nhi[2] - nlo[2] + 1);
-    uint64_t bytes = ((uint64_t)total * 2 + SHADOW_PAD + (uint64_t)nx) * sizeof(uint32_t);
+    uint64_t bytes = ((uint64_t)total * 2 + SHADOW_PAD + (uint64_t)nx + 4 * (uint64_t)ny) * sizeof(uint32_t);
     g->refused = !budget_resize(g->mem, g->charged, bytes);
     if (g->refused) return false;
     uint32_t *s = calloc((size_t)total + SHADOW_PAD, sizeof *s), *d = calloc((size_t)total, sizeof *d),
              *row = malloc((size_t)nx * sizeof *row);
-    if (!s || !d || !row) {
-        free(s), free(d), free(row);
+    int32_t *pbox = malloc(4 * (size_t)ny * sizeof *pbox);
+    if (!s || !d || !row || !pbox) {
+        free(s), free(d), free(row), free(pbox);
         budget_resize(g->mem, bytes, g->charged);
         return false;
     }
@@ -85,9 +91,12 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
     free(g->s);
     free(g->d);
     free(g->row);
+    free(g->pbox);
+    for (int y = 0; y < ny; y++) plane_box_clear(pbox + 4 * y);
     g->s = (int32_t *)s;
     g->d = d;
     g->row = row;
+    g->pbox = pbox;
     g->x0 = (int)nlo[0], g->y0 = (int)nlo[1], g->z0 = (int)nlo[2];
     g->nx = nx, g->ny = ny, g->nz = nz;
     return true;
@@ -97,6 +106,13 @@ static bool reserve(ShadowGrid *g, const int lo[3], const int hi[3]) {
  * has SHADOW_PAD spare voxels at its end, so the last row can be read whole). Cheaper than
  * the difference grid for a few casters spread over a large box. */
 typedef uint32_t v8u __attribute__((vector_size(32)));
+typedef uint32_t v4u __attribute__((vector_size(16)));
+/* Lanes of a and b (4.. for b's) by index, in GCC's spelling or Clang's. */
+#if defined(__clang__)
+#define SHUFFLE4(a, b, i, j, k, l) __builtin_shufflevector(a, b, i, j, k, l)
+#else
+#define SHUFFLE4(a, b, i, j, k, l) __builtin_shuffle(a, b, (v4u){i, j, k, l})
+#endif
 
 static void cast_direct(ShadowGrid *g, int I, int J, int K, uint32_t weight) {
     uint32_t *s = (uint32_t *)g->s;
@@ -123,10 +139,18 @@ static void cast_direct(ShadowGrid *g, int I, int J, int K, uint32_t weight) {
     }
 }
 
-/* A pyramid's levels as corners of squares in the difference grid; bb grows to hold them. */
-static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int bb[6]) {
+/* A pyramid's levels as corners of squares in the difference grid; the box of the casters
+ * of its plane (g->pbox, grid coordinates) grows to hold it, and ys, those planes' range. */
+static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int ys[2]) {
     uint32_t *d = g->d;
     const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
+    int32_t *bb = g->pbox + 4 * (size_t)(J - g->y0), i = I - g->x0, k = K - g->z0;
+    if (i < bb[0]) bb[0] = i;
+    if (i > bb[1]) bb[1] = i;
+    if (k < bb[2]) bb[2] = k;
+    if (k > bb[3]) bb[3] = k;
+    if (J - g->y0 < ys[0]) ys[0] = J - g->y0;
+    if (J - g->y0 > ys[1]) ys[1] = J - g->y0;
     for (int q = 0; q <= g->p.depth; q++) {
         int y = J - q;
         if (y < g->y0) break;
@@ -140,12 +164,6 @@ static void cast_one(ShadowGrid *g, int I, int J, int K, uint32_t weight, int bb
         plane[(size_t)z0 * nx + (size_t)x1] -= v;
         plane[(size_t)z1 * nx + (size_t)x0] -= v;
         plane[(size_t)z1 * nx + (size_t)x1] += v;
-        if (x0 < bb[0]) bb[0] = x0;
-        if (x1 > bb[1]) bb[1] = x1;
-        if (yy < bb[2]) bb[2] = yy;
-        if (yy > bb[3]) bb[3] = yy;
-        if (z0 < bb[4]) bb[4] = z0;
-        if (z1 > bb[5]) bb[5] = z1;
     }
 }
 
@@ -162,32 +180,58 @@ static void sort_bits(uint64_t *v, uint64_t *tmp, size_t n, int from) {
     }
 }
 
-/* Sum the differences inside bb into the shadow and clear them: down each plane, column
- * sums along z (whole rows at a time), then a running sum along x. */
-static void integrate(ShadowGrid *g, const int bb[6]) {
-    const size_t nx = (size_t)g->nx, nz = (size_t)g->nz, w = (size_t)(bb[1] - bb[0] + 1);
+/* Sum the differences cast by the casters of planes ys[0]..ys[1] into the shadow and clear
+ * them, each plane over its own box (beyond it the sums are zero: a crown's planes are
+ * narrower than its box), made of the boxes of the casters above it that reach it: down each
+ * plane, column sums along z (whole rows at a time), then a running sum along x. */
+static void integrate(ShadowGrid *g, const int ys[2]) {
+    const size_t nx = (size_t)g->nx, nz = (size_t)g->nz;
     uint32_t *s = (uint32_t *)g->s, *col = g->row;
-    for (int y = bb[2]; y <= bb[3]; y++) {
+    int reach = 0; /* the levels cast_one writes */
+    while (reach < g->p.depth && g->layer[reach + 1]) reach++;
+    for (int y = ys[0] - reach > 0 ? ys[0] - reach : 0; y <= ys[1]; y++) {
+        int32_t bb[4] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+        for (int q = 0; q <= reach && y + q <= ys[1]; q++) { /* level q of the casters q planes up */
+            const int32_t *c = g->pbox + 4 * (size_t)(y + q);
+            if (c[0] > c[1]) continue;
+            int x0 = c[0] - q + g->shift_x[q], x1 = c[1] - q + g->shift_x[q] + 2 * q + 1;
+            int z0 = c[2] - q + g->shift_z[q], z1 = c[3] - q + g->shift_z[q] + 2 * q + 1;
+            if (x0 < bb[0]) bb[0] = x0;
+            if (x1 > bb[1]) bb[1] = x1;
+            if (z0 < bb[2]) bb[2] = z0;
+            if (z1 > bb[3]) bb[3] = z1;
+        }
+        if (bb[0] > bb[1]) continue; /* nothing cast here */
+        const size_t w = (size_t)(bb[1] - bb[0] + 1);
         memset(col, 0, w * sizeof *col);
-        for (int z = bb[4]; z <= bb[5]; z++) {
+        for (int z = bb[2]; z <= bb[3]; z++) {
             size_t at = ((size_t)y * nz + (size_t)z) * nx + (size_t)bb[0];
             uint32_t *dr = g->d + at, *sr = s + at, run = 0;
             size_t x = 0;
-            for (; x + 8 <= w; x += 8) { /* 8 at a time */
-                v8u c, d;
+            for (; x + 4 <= w; x += 4) { /* 4 at a time: column sums, then their running sum */
+                v4u c, d, sv, zero = {0, 0, 0, 0};
                 memcpy(&c, col + x, sizeof c);
                 memcpy(&d, dr + x, sizeof d);
                 c += d;
                 memcpy(col + x, &c, sizeof c);
+                memcpy(dr + x, &zero, sizeof zero);
+                v4u p = c + SHUFFLE4(c, zero, 4, 0, 1, 2); /* a prefix sum in two shifted adds */
+                p += SHUFFLE4(p, zero, 4, 5, 0, 1);
+                p += run;
+                memcpy(&sv, sr + x, sizeof sv);
+                sv += p;
+                memcpy(sr + x, &sv, sizeof sv);
+                run = p[3];
             }
-            for (; x < w; x++) col[x] += dr[x];
-            memset(dr, 0, w * sizeof *dr);
-            for (size_t x = 0; x < w; x++) {
+            for (; x < w; x++) {
+                col[x] += dr[x];
+                dr[x] = 0;
                 run += col[x];
                 sr[x] += run;
             }
         }
     }
+    for (int y = ys[0]; y <= ys[1]; y++) plane_box_clear(g->pbox + 4 * (size_t)y);
 }
 
 /* Make the grid hold the pyramids of casters at p(i) = base + i * stride (+ off, when
@@ -258,7 +302,7 @@ bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t
     uint32_t weight = sign < 0 ? 0u - 1u : 1u;
     /* casters in grid order, so that neighbouring pyramids (or corners) share the cache */
     uint64_t *order = malloc(2 * n * sizeof *order);
-    int bb[6] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+    int ys[2] = {INT_MAX, INT_MIN};
     size_t m = 0;
     for (size_t i = 0; i < n; i++) {
         const float *p = base + i * stride;
@@ -268,19 +312,21 @@ bool shadow_cast_strided(ShadowGrid *g, const float *base, size_t stride, size_t
             order[m++] = ((uint64_t)(J - g->y0) * (uint64_t)g->nz + (uint64_t)(K - g->z0)) * (uint64_t)g->nx +
                          (uint64_t)(I - g->x0);
         else if (direct) cast_direct(g, I, J, K, weight);
-        else cast_one(g, I, J, K, weight, bb);
+        else cast_one(g, I, J, K, weight, ys);
     }
     if (order) {
         sort_bits(order, order + n, m, 0);
-        for (size_t i = 0; i < m; i++) {
+        for (size_t i = 0, j; i < m; i = j) { /* casters in one voxel: one pyramid, weighted */
+            for (j = i + 1; j < m && order[j] == order[i]; j++) {}
             int I, J, K;
             voxel_coords(g, order[i], &I, &J, &K);
-            if (direct) cast_direct(g, I, J, K, weight);
-            else cast_one(g, I, J, K, weight, bb);
+            uint32_t w = weight * (uint32_t)(j - i); /* wraps: as j - i casts of weight */
+            if (direct) cast_direct(g, I, J, K, w);
+            else cast_one(g, I, J, K, w, ys);
         }
         free(order);
     }
-    if (bb[0] <= bb[1]) integrate(g, bb);
+    if (ys[0] <= ys[1]) integrate(g, ys);
     return true;
 }
 
@@ -308,6 +354,16 @@ void shadow_gradient(const ShadowGrid *g, const float pos[3], float out[3]) {
     out[0] = out[1] = out[2] = 0;
     if (!g->s) return;
     int I = cell(pos[0], g->inv), J = cell(pos[1], g->inv), K = cell(pos[2], g->inv);
+    int i = I - g->x0, j = J - g->y0, k = K - g->z0;
+    if (i > 0 && j > 0 && k > 0 && i < g->nx - 1 && j < g->ny - 1 && k < g->nz - 1) { /* inside: no test per voxel */
+        const size_t nx = (size_t)g->nx, plane = nx * (size_t)g->nz;
+        const int32_t *c = g->s + (size_t)j * plane + (size_t)k * nx + (size_t)i;
+        const float u = 1.0f / SHADOW_ONE;
+        out[0] = 0.5f * ((float)c[-1] * u - (float)c[1] * u);
+        out[1] = 0.5f * ((float)c[-(ptrdiff_t)plane] * u - (float)c[plane] * u);
+        out[2] = 0.5f * ((float)c[-(ptrdiff_t)nx] * u - (float)c[nx] * u);
+        return;
+    }
     out[0] = 0.5f * (voxel_at(g, I - 1, J, K) - voxel_at(g, I + 1, J, K));
     out[1] = 0.5f * (voxel_at(g, I, J - 1, K) - voxel_at(g, I, J + 1, K));
     out[2] = 0.5f * (voxel_at(g, I, J, K - 1) - voxel_at(g, I, J, K + 1));
@@ -410,15 +466,15 @@ bool shadow_set_replace(ShadowGrid *g, ShadowSet *set, const float (*pos)[3], si
         if (vb[2] < g->ymin) vb[2] = g->ymin;
         bool direct = cheaper_direct(g, nd, vb);
         sort_bits(set->delta, set->delta + nd, nd, 32); /* grid order: pyramids share the cache */
-        int bb[6] = {INT_MAX, INT_MIN, INT_MAX, INT_MIN, INT_MAX, INT_MIN};
+        int ys[2] = {INT_MAX, INT_MIN};
         for (size_t i = 0; i < nd; i++) {
             int I, J, K;
             voxel_coords(g, set->delta[i] >> 32, &I, &J, &K);
             uint32_t w = (uint32_t)set->delta[i];
             if (direct) cast_direct(g, I, J, K, w);
-            else cast_one(g, I, J, K, w, bb);
+            else cast_one(g, I, J, K, w, ys);
         }
-        if (bb[0] <= bb[1]) integrate(g, bb);
+        if (ys[0] <= ys[1]) integrate(g, ys);
     }
     /* voxels left without casters only lengthen the probes: drop them now and then */
     if (dead && 4 * dead > set->n) (void)set_rebuild(set, g, set->cap); /* kept as it is when out of memory */

@@ -9,8 +9,8 @@
  *
  * Updates are incremental and cost O(depth) per caster, not O(depth^3): a level of a pyramid
  * is a square, written as its four corners into a difference grid; once a batch of casters
- * is in, the differences are summed (prefix sums in x and z) over the batch's bounding box
- * only, added to the shadow, and cleared. */
+ * is in, the differences are summed (prefix sums in x and z) over each plane's box of the
+ * batch only, added to the shadow, and cleared. */
 #ifndef SYL_ENV_SHADOW_H
 #define SYL_ENV_SHADOW_H
 #include <stdbool.h>
@@ -40,6 +40,7 @@ typedef struct ShadowGrid {
     int32_t *s;
     uint32_t *d;                             /* the difference grid: zero between batches */
     uint32_t *row;                           /* a row of running sums */
+    int32_t *pbox;                           /* per plane: the box of its differences (integrate) */
     size_t max_voxels;
     Budget *mem;       /* the memory budget the grids count against (NULL: none); set after init */
     uint64_t charged;

@@ -308,14 +308,15 @@ static bool in_place(const Engine *e, const RuleTable *t, int table, const SylSt
     return !t->has_context || (!t->ctx_index && !t->ctx_branches && !in->np);
 }
 
-/* Move the string read to the back of its arrays, by the room the output should need. */
-static int move_back(Engine *e, int table, SylString *s, Work *w) {
+/* Move the string read to the back of its arrays, by the room the output should need; the
+ * string before it (spare, not needed while strings grow) gives its pages to the front. */
+static int move_back(Engine *e, int table, SylString *s, Work *w, SylString *spare) {
     size_t n = s->n, np = s->np;
     double g = e->growth[table] * 1.02, slack = (double)n / 64 + 4096;
     size_t room = (size_t)((g - 1) * (double)n + slack);
     size_t proom = (size_t)((double)n * g * e->density[table] * 1.02 - (double)np + slack);
     if (e->density[table] * g * (double)n < (double)np) proom = (size_t)slack;
-    int st = ms_move_back(s, n, np, room, proom, &w->at, &w->pat);
+    int st = ms_move_back(s, n, np, room, proom, &w->at, &w->pat, spare);
     if (st) return st;
     w->inplace = true;
     w->n_in = n;
@@ -383,10 +384,9 @@ static int rewrite_pass(Engine *e, const RuleTable *t, int table, uint64_t key, 
     Work place = {0};
     size_t n_in = in->n, np_in = in->np;
     if (in_place(e, t, table, in, nt)) {
-        int st = move_back(e, table, in, &place);
+        int st = move_back(e, table, in, &place, *spare); /* which empties *spare */
         if (st) return st;
         out = in;
-        ms_release(*spare); /* the string before last: not needed while strings grow */
     }
     out->n = out->np = 0;
     ms_changed(out); /* the offset cache describes the old contents */

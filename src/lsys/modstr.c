@@ -62,17 +62,20 @@ int ms_reserve(SylString *s, size_t n, size_t np) {
     return SYL_OK;
 }
 
-/* One array of a string moved: its first `used` elements to `shift`, its capacity to `cap`. */
-static int move_array(SylString *s, void **arr, size_t *cap, size_t elem, size_t used, size_t shift, size_t newcap) {
+/* One array of a string moved: its first `used` elements to `shift`, its capacity to `cap`;
+ * the donor's array of the same kind (*darr of dcap elements) given to it (pages_grow_front). */
+static int move_array(SylString *s, void **arr, size_t *cap, size_t elem, size_t used, size_t shift, size_t newcap,
+                      void **darr, size_t *dcap) {
     if (newcap < *cap) newcap = *cap;
     if (charge(s, (int64_t)((newcap - *cap) * elem))) return SYL_ELIMIT;
-    void *p = pages_grow_front(*arr, *cap * elem, used * elem, shift * elem, newcap * elem);
+    void *p = pages_grow_front(*arr, *cap * elem, used * elem, shift * elem, newcap * elem, *darr, *dcap * elem);
     if (!p) {
         charge(s, -(int64_t)((newcap - *cap) * elem));
         return SYL_ELIMIT;
     }
     *arr = p;
     *cap = newcap;
+    *darr = NULL, *dcap = 0;
     return SYL_OK;
 }
 
@@ -83,12 +86,16 @@ static size_t page_shift(size_t room, size_t elem, size_t bytes) {
     return (b + elem - 1) / elem;
 }
 
-int ms_move_back(SylString *s, size_t n, size_t np, size_t room, size_t proom, size_t *at, size_t *pat) {
-    if (np + proom >= UINT32_MAX) return SYL_ELIMIT; /* offsets are 32-bit */
+int ms_move_back(SylString *s, size_t n, size_t np, size_t room, size_t proom, size_t *at, size_t *pat,
+                 SylString *donor) {
+    SylString none = {0};
+    if (!donor) donor = &none;
+    int st = np + proom >= UINT32_MAX ? SYL_ELIMIT : SYL_OK; /* offsets are 32-bit */
     size_t sh = page_shift(room, sizeof *s->code, (room + n) * sizeof *s->code);
     size_t psh = page_shift(proom, sizeof *s->par, (proom + np) * sizeof *s->par);
-    int st = move_array(s, (void **)&s->code, &s->cap, sizeof *s->code, n, sh, sh + n);
-    if (!st) st = move_array(s, (void **)&s->par, &s->pcap, sizeof *s->par, np, psh, psh + np);
+    if (!st) st = move_array(s, (void **)&s->code, &s->cap, sizeof *s->code, n, sh, sh + n, (void **)&donor->code, &donor->cap);
+    if (!st) st = move_array(s, (void **)&s->par, &s->pcap, sizeof *s->par, np, psh, psh + np, (void **)&donor->par, &donor->pcap);
+    if (donor != &none) ms_release(donor); /* what it has left, and its charge */
     if (st) return st;
     *at = sh;
     *pat = psh;

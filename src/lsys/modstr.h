@@ -31,8 +31,11 @@ int ms_reserve(SylString *s, size_t n, size_t np);
 /* Rewriting in place (derive.c): move the string's modules back by at least `room` slots and
  * its parameters by at least `proom`, growing the arrays; *at and *pat say where they start
  * now (whole pages are moved rather than copied when the arrays are big). The caller then
- * writes the next string from slot 0 while it reads this one. */
-int ms_move_back(SylString *s, size_t n, size_t np, size_t room, size_t proom, size_t *at, size_t *pat);
+ * writes the next string from slot 0 while it reads this one. donor (or NULL), a string no
+ * longer needed, is emptied: its pages go where the next string will be written, when they
+ * fit (pages_grow_front), so that they are not first touched again. */
+int ms_move_back(SylString *s, size_t n, size_t np, size_t room, size_t proom, size_t *at, size_t *pat,
+                 SylString *donor);
 /* Move the code slots [from, from + len) and the parameter slots [pfrom, pfrom + plen) up by
  * extra and pextra, growing the arrays: more room between a writer in place and its reader. */
 int ms_move_tail(SylString *s, size_t from, size_t len, size_t extra, size_t pfrom, size_t plen, size_t pextra);

@@ -183,13 +183,13 @@ static int shed_all(Forest *f) {
     for (int i = 0; i < f->ntrees; i++) {
         Tree *t = &f->trees[i];
         if (!(t->P.shed_threshold > 0) && !(t->P.bare_trunk > 0)) continue;
-        forest_node_light(f, t);
-        size_t marked = shed_mark(t);
+        bool shadow = t->P.light == LIGHT_SHADOW; /* shed_mark looks each node up itself */
+        if (!shadow) forest_node_light(f, t);
+        size_t marked = shed_mark(t, shadow ? &f->env.shadow : NULL);
         if (marked == (size_t)-1) return SYL_ELIMIT;
         if (!marked) continue;
-        int st = forest_unregister_dead(f, t);
+        int st = forest_drop_dead(f, t, marked);
         if (st) return st;
-        if (!tree_compact(t)) return SYL_ELIMIT;
     }
     return SYL_OK;
 }

@@ -19,8 +19,9 @@ int forest_space_light(Forest *f, int year);
 int forest_grow(Forest *f, int year);
 /* The metamers grown this year (nodes from before[i] on) cast shadow and kill markers. */
 int forest_register(Forest *f, const size_t *before);
-/* Dead nodes of t leave the shadow grid. */
-int forest_unregister_dead(Forest *f, Tree *t);
+/* The n dead nodes of t (NODE_DEAD; the root never is) leave the tree (tree_compact) and the
+ * shadow grid. */
+int forest_drop_dead(Forest *f, Tree *t, size_t n);
 /* Rebuild the occupied points (every metamer end). */
 int forest_occupancy(Forest *f);
 /* Room for n buds in the space-colonization arrays; a bud as space colonization sees it. */

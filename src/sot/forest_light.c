@@ -27,8 +27,10 @@ static void bud_light(void *arg, size_t lo, size_t hi, int thread) {
         b->q = 0;
         if (!alloc_candidate(b, j->year)) continue;
         const float *pos = t->nodes[b->node].pos;
-        if (P->light == LIGHT_SHADOW) b->q = shadow_light(&e->shadow, pos);
-        else if (P->light == LIGHT_SKY) {
+        if (P->light == LIGHT_SHADOW) { /* shadow_light, inlined: every bud, every year */
+            float q = e->shadow.p.full - shadow_value(&e->shadow, shadow_index(&e->shadow, pos)) + e->shadow.p.a;
+            b->q = q > 0 ? q : 0;
+        } else if (P->light == LIGHT_SKY) {
             Rng r = rng_stream(b->key, (uint64_t)j->year, 1, 0);
             b->q = P->full * sky_exposure(&e->sky, pos, e->sun, P->sky_rays, &r, 1.05f * P->foliage);
         } else b->q = P->full;
@@ -145,16 +147,12 @@ int forest_register(Forest *f, const size_t *before) {
     return SYL_OK;
 }
 
-int forest_unregister_dead(Forest *f, Tree *t) {
+int forest_drop_dead(Forest *f, Tree *t, size_t n) {
     Env *e = &f->env;
-    if (!e->shadow_on) return SYL_OK;
-    size_t n = 0;
-    for (size_t k = 1; k < t->n; k++) n += (t->nodes[k].flags & NODE_DEAD) != 0;
-    if (!gather(f, n)) return SYL_ELIMIT;
-    size_t m = 0;
-    for (size_t k = 1; k < t->n; k++)
-        if (t->nodes[k].flags & NODE_DEAD) memcpy(f->occ + 3 * m++, t->nodes[k].pos, 3 * sizeof(float));
-    if (!shadow_cast_strided(&e->shadow, f->occ, 3, m, -1)) return forest_shadow_too_big(f);
+    if (!e->shadow_on) return tree_compact(t, NULL) ? SYL_OK : SYL_ELIMIT;
+    /* the positions gathered by the compaction's own pass (no pass of its own over the nodes) */
+    if (!gather(f, n) || !tree_compact(t, f->occ)) return SYL_ELIMIT;
+    if (!shadow_cast_strided(&e->shadow, f->occ, 3, n, -1)) return forest_shadow_too_big(f);
     return SYL_OK;
 }
 

@@ -2,6 +2,7 @@
 #include "sot/shed.h"
 
 #include <math.h>
+#include <string.h>
 
 bool pipe_areas(Tree *t) {
     if (!tree_scratch(t)) return false;
@@ -16,22 +17,38 @@ bool pipe_areas(Tree *t) {
     return true;
 }
 
-size_t shed_mark(Tree *t) {
+/* A node's light: from the shadow grid when there is one, else as forest_node_light left it. */
+static inline __attribute__((always_inline)) double node_light(const Tree *t, size_t i, const ShadowGrid *g) {
+    if (!g) return t->nodes[i].light;
+    float q = g->p.full - shadow_value(g, shadow_index(g, t->nodes[i].pos)) + g->p.a; /* shadow_light */
+    return q > 0 ? q : 0;
+}
+
+size_t shed_mark(Tree *t, const ShadowGrid *shadow) {
     const GrowParams *P = &t->P;
     bool by_light = P->shed_threshold > 0, bare = P->bare_trunk > 0;
     if (!by_light && !bare) return 0;
     if (!tree_scratch(t)) return (size_t)-1;
     double *A = t->acc, *light = t->acc2, *count = t->acc3;
-    /* light, size and pipe area of every branch, toward the base in one pass (a node
-     * whose count is still 1 when it is reached has no children: a tip) */
+    /* light, size and pipe area of every branch, toward the base in one pass. A node's sums
+     * start from its own values when its first child (the last in the array) reaches it,
+     * so the additions run in the same order as from sums set up front; a node no child
+     * reached (count still 0) is a tip. */
     const double tip = pow(P->tip_radius, P->pipe_exponent);
-    for (size_t i = 0; i < t->n; i++) A[i] = t->nodes[i].pipe, light[i] = t->nodes[i].light, count[i] = 1;
+    memset(count, 0, t->n * sizeof *count);
     for (size_t i = t->n; i-- > 1;) {
-        int32_t p = t->nodes[i].parent;
-        if (count[i] == 1) A[i] += tip;
-        A[p] += A[i];
-        light[p] += light[i];
-        count[p] += count[i];
+        const Node *nd = &t->nodes[i];
+        if (count[i] == 0) A[i] = (double)nd->pipe + tip, light[i] = node_light(t, i, shadow), count[i] = 1;
+        int32_t p = nd->parent;
+        if (count[p] == 0) {
+            A[p] = t->nodes[p].pipe + A[i];
+            light[p] = node_light(t, (size_t)p, shadow) + light[i];
+            count[p] = 1 + count[i];
+        } else {
+            A[p] += A[i];
+            light[p] += light[i];
+            count[p] += count[i];
+        }
     }
     /* from the base up: a failing branch goes whole */
     size_t marked = 0;

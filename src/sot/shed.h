@@ -14,6 +14,7 @@
 #define SYL_SOT_SHED_H
 #include <math.h>
 
+#include "env/shadow.h"
 #include "sot/tree.h"
 
 /* A[i] = r^n of the metamer ending at node i (into t->acc). */
@@ -21,8 +22,9 @@ bool pipe_areas(Tree *t);
 static inline float pipe_radius(const GrowParams *P, double area) {
     return area > 0 ? (float)pow(area, 1.0 / P->pipe_exponent) : 0;
 }
-/* Mark the nodes to shed (NODE_DEAD, using each node's light) and remember their pipes in
- * their parents. Returns how many nodes it marked; (size_t)-1 when out of memory. */
-size_t shed_mark(Tree *t);
+/* Mark the nodes to shed (NODE_DEAD, using each node's light: looked up in shadow, else
+ * Node.light) and remember their pipes in their parents. Returns how many nodes it marked;
+ * (size_t)-1 when out of memory. */
+size_t shed_mark(Tree *t, const ShadowGrid *shadow);
 
 #endif

@@ -83,26 +83,30 @@ bool tree_scratch(Tree *t) {
     return true;
 }
 
-bool tree_compact(Tree *t) {
+bool tree_compact(Tree *t, float *dead) {
     int32_t *map = malloc((t->n ? t->n : 1) * sizeof *map);
     if (!map) return false;
+    /* one pass: a node's main child (after it in the array) is remapped in its moved parent
+     * when reached, to -1 when shed; until then the parent holds the old index, which no
+     * later child's can equal once it has become a new one (new indices do not grow past old) */
     size_t k = 0;
     for (size_t i = 0; i < t->n; i++) {
         Node *nd = &t->nodes[i];
+        int32_t p = nd->parent >= 0 ? map[nd->parent] : -1;
+        Node *parent = p >= 0 ? &t->nodes[p] : NULL;
         if (nd->flags & NODE_DEAD) {
             map[i] = -1;
+            if (parent && parent->main == (int32_t)i) parent->main = -1;
+            if (dead) memcpy(dead, nd->pos, sizeof nd->pos), dead += 3;
             continue;
         }
         map[i] = (int32_t)k;
+        if (parent && parent->main == (int32_t)i) parent->main = (int32_t)k;
         Node moved = *nd;
-        if (moved.parent >= 0) moved.parent = map[moved.parent];
+        moved.parent = p;
         t->nodes[k++] = moved;
     }
     t->n = k;
-    for (size_t i = 0; i < t->n; i++) {
-        Node *nd = &t->nodes[i];
-        if (nd->main >= 0) nd->main = map[nd->main]; /* -1 when the main child was shed */
-    }
     size_t j = 0;
     for (size_t i = 0; i < t->nb; i++) {
         Bud b = t->buds[i];

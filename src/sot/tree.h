@@ -112,8 +112,9 @@ int32_t tree_add_bud(Tree *t, const Bud *b);
 bool tree_reserve(Tree *t, void *arrp, size_t *cap, size_t need, size_t elem);
 /* Room for the per-node scratch arrays. */
 bool tree_scratch(Tree *t);
-/* Drop dead nodes (NODE_DEAD) and buds (alive == 0), keeping order; indices are remapped. */
-bool tree_compact(Tree *t);
+/* Drop dead nodes (NODE_DEAD) and buds (alive == 0), keeping order; indices are remapped.
+ * dead (unless NULL) receives the dropped nodes' positions, 3 floats each, in order. */
+bool tree_compact(Tree *t, float *dead);
 /* Drop dead buds only, keeping order. */
 void tree_compact_buds(Tree *t);
 /* The key of a bud's k-th child stream. */

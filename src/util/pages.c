@@ -45,10 +45,12 @@ void *pages_grow(void *old, size_t old_bytes, size_t used, size_t bytes) {
 
 size_t pages_shift_unit(size_t bytes) { return mapped_bytes(bytes) ? HUGE_PAGE : 1; }
 
-void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes) {
+void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes, void *donor,
+                       size_t donor_bytes) {
     if (!mapped_bytes(bytes)) {
         char *p = realloc(old, bytes);
         if (p && used) memmove(p + shift, p, used);
+        if (p) pages_free(donor, donor_bytes);
         return p;
     }
     char *p = map_big(bytes);
@@ -57,12 +59,21 @@ void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, s
 #ifdef MREMAP_FIXED /* Linux: the pages change address, their contents stay where they are */
     if (om && used && shift % HUGE_PAGE == 0 &&
         mremap(old, move, move, MREMAP_MAYMOVE | MREMAP_FIXED, p + shift) != MAP_FAILED) {
-        if (om > move) munmap((char *)old + move, om - move);
+        /* the old pages past the contents go to the front, which is undefined: those already
+         * written (an in-place pass's input, read and done with) need no zeroing again there */
+        size_t rest = om - move, dm = mapped_bytes(donor_bytes);
+        if (rest && (rest > shift || mremap((char *)old + move, rest, rest, MREMAP_MAYMOVE | MREMAP_FIXED, p) == MAP_FAILED))
+            rest = 0, munmap((char *)old + move, om - move);
+        /* and so do the donor's, after them */
+        if (dm && rest + dm <= shift && mremap(donor, dm, dm, MREMAP_MAYMOVE | MREMAP_FIXED, p + rest) != MAP_FAILED)
+            return p;
+        pages_free(donor, donor_bytes);
         return p;
     }
 #endif
     if (used) memcpy(p + shift, old, used);
     pages_free(old, old_bytes);
+    pages_free(donor, donor_bytes);
     return p;
 }
 

@@ -22,8 +22,11 @@ void *pages_grow(void *old, size_t old_bytes, size_t used, size_t bytes);
 /* Grow an array of old_bytes to bytes and move its first `used` bytes to offset `shift`
  * (shift + used <= bytes); NULL if refused, the old array then unchanged. When the array is
  * mapped and shift is a multiple of pages_shift_unit(bytes), whole pages are moved, not
- * copied. The bytes before shift are undefined. */
-void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes);
+ * copied. The bytes before shift are undefined: the old array's pages past its contents, and
+ * then those of donor (an array of donor_bytes, or NULL, freed by a call that succeeds), go
+ * there when they fit, so that pages already written are not zeroed again when written. */
+void *pages_grow_front(void *old, size_t old_bytes, size_t used, size_t shift, size_t bytes, void *donor,
+                       size_t donor_bytes);
 /* Memory that free() releases (and realloc grows), for an array that will mostly be written:
  * from huge_from bytes on, whole 2 MB pages, aligned and marked for transparent huge pages.
  * On a virtual machine a 4 KB page's first write costs about 18 us and a 2 MB page's 0.2 ms

@@ -346,7 +346,7 @@ static void shedding_by_light_ratio(void **state) {
     int32_t l5 = add(&t, c, true, 0.1f), l6 = add(&t, l5, true, 0.9f);
     /* L7 at b: 0.2 with a bright twig (0.5): 0.35 overall: shed whole, twig and all */
     int32_t l7 = add(&t, b, true, 0.2f), l8 = add(&t, l7, true, 0.5f);
-    size_t marked = shed_mark(&t);
+    size_t marked = shed_mark(&t, NULL);
     const int32_t dead[] = {l2, l2b, l4, l7, l8}, alive[] = {0, a, b, c, l1, l1b, l3, l3b, l3c, l5, l6};
     for (size_t i = 0; i < sizeof dead / sizeof *dead; i++)
         if (!(t.nodes[dead[i]].flags & NODE_DEAD)) fail_msg("node %d should be shed", dead[i]);
@@ -356,7 +356,7 @@ static void shedding_by_light_ratio(void **state) {
     assert_int_equal(t.shed_branches, 3);
     /* the pipe model remembers them */
     assert_true(t.nodes[l1].pipe > 0 && t.nodes[c].pipe > 0 && t.nodes[b].pipe > 0);
-    assert_true(tree_compact(&t));
+    assert_true(tree_compact(&t, NULL));
     assert_int_equal(t.n, 11);
     tree_free(&t);
 }
