@@ -7,9 +7,9 @@
 #include "weber/leaf_turn.h"
 
 #ifdef WEBER_AVX2
-void weber_leaf_turn_avx2(Leaves8 *q, bool turned, float bend) { weber_leaf_turn_lanes(q, turned, bend); }
+void weber_leaf_turn_avx2(Leaves8 *q, bool turned, float bend) { v8_leaf_turn(q, turned, bend); }
 bool weber_leaf_avx2(void) { return __builtin_cpu_supports("avx2"); }
 #else
-void weber_leaf_turn_avx2(Leaves8 *q, bool turned, float bend) { weber_leaf_turn_lanes(q, turned, bend); }
+void weber_leaf_turn_avx2(Leaves8 *q, bool turned, float bend) { v4_leaf_turn(q, turned, bend); }
 bool weber_leaf_avx2(void) { return false; }
 #endif

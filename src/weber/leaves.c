@@ -31,7 +31,7 @@ static void axis_to_sylva(float out[3], const v8f v[3], int k) { out[0] = v[0][k
 /* Turn, bend and store the batch's leaves (their base moved out along the petiole, not drawn). */
 static void flush(WeberGen *g, LeafBatch *b) {
     if (b->avx2) weber_leaf_turn_avx2(&b->q, b->turned, (float)g->w.LeafBend);
-    else weber_leaf_turn_lanes(&b->q, b->turned, (float)g->w.LeafBend);
+    else v4_leaf_turn(&b->q, b->turned, (float)g->w.LeafBend);
     if (g->nlvs + (size_t)b->n > g->lvs_cap) { /* (sized by the count: cannot happen) */
         g->failed = true;
         return;
