@@ -136,35 +136,44 @@ bool weber_defer_leaves(WeberGen *g, int id, const WStem *st, const WSeg *segs) 
     return true;
 }
 
-/* Two passes over the last level's stems in the order they were made (the order of the
- * leaves' error diffusion): the count, then the leaves into arrays of that size. A stem's
- * leaves draw from its own stream and turn from its first rotation, as they would have
- * while it was made. */
-void weber_place_leaves(WeberGen *g) {
+/* The leaves' count: a pass over the last level's stems in the order they were made (the
+ * order of the leaves' error diffusion), which it leaves as it found it. */
+size_t weber_count_leaves(WeberGen *g) {
     double err = g->leaf_err;
-    for (int pass = 0; pass < 2 && !g->failed; pass++) {
-        size_t count = 0, fi = 0;
-        LeafBatch b = {.avx2 = weber_leaf_avx2()};
-        g->leaf_err = err;
-        for (size_t i = 0; i < g->nleafy && !g->failed; i++) {
-            int id = g->leafy[i];
-            WStem copy, *st = &g->stems[id]; /* (the count changes nothing) */
-            if (pass == 1) copy = *st, st = &copy; /* its rotation advances here, not in the list */
-            Rng kids = pass == 1 ? weber_rng(g, st->key, WRNG_KIDS) : (Rng){0};
-            int s0 = first_kept(st);
-            for (int s = st->first_seg; s < st->nseg; s++)
-                leaves_on(g, id, st, s, s < s0 ? &st->start : &g->leafy_f[fi++], &kids, &b, pass == 0 ? &count : NULL);
-        }
-        if (b.n && !g->failed) flush(g, &b);
-        if (pass == 0 && count) { /* the organs' array, the skeleton's to free (after the nodes
-                                   * in the arena: see weber_write_nodes) */
-            if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
-                !(g->lvs = weber_keep(g, count * sizeof *g->lvs))) {
-                g->failed = true;
-                return;
-            }
-            g->charged += (uint64_t)count * sizeof *g->lvs;
-            g->lvs_cap = count;
-        }
+    size_t count = 0;
+    LeafBatch b = {0};
+    for (size_t i = 0; i < g->nleafy && !g->failed; i++) {
+        WStem *st = &g->stems[g->leafy[i]];
+        for (int s = st->first_seg; s < st->nseg; s++) leaves_on(g, g->leafy[i], st, s, NULL, NULL, &b, &count);
     }
+    g->leaf_err = err;
+    return count;
+}
+
+/* The leaves (count of them: weber_count_leaves) into an array of that size, in the same
+ * order. A stem's leaves draw from its own stream and turn from its first rotation, as they
+ * would have while it was made. */
+void weber_place_leaves(WeberGen *g, size_t count) {
+    if (g->failed) return;
+    if (count) { /* the organs' array, the skeleton's to free (after the nodes in the arena:
+                  * see weber_write_nodes) */
+        if (!budget_charge(g->budget, (uint64_t)count * sizeof *g->lvs) ||
+            !(g->lvs = weber_keep(g, count * sizeof *g->lvs))) {
+            g->failed = true;
+            return;
+        }
+        g->charged += (uint64_t)count * sizeof *g->lvs;
+        g->lvs_cap = count;
+    }
+    size_t fi = 0;
+    LeafBatch b = {.avx2 = weber_leaf_avx2()};
+    for (size_t i = 0; i < g->nleafy && !g->failed; i++) {
+        int id = g->leafy[i];
+        WStem st = g->stems[id]; /* its rotation advances here, not in the list */
+        Rng kids = weber_rng(g, st.key, WRNG_KIDS);
+        int s0 = first_kept(&st);
+        for (int s = st.first_seg; s < st.nseg; s++)
+            leaves_on(g, id, &st, s, s < s0 ? &st.start : &g->leafy_f[fi++], &kids, &b, NULL);
+    }
+    if (b.n && !g->failed) flush(g, &b);
 }
