@@ -15,6 +15,7 @@
 typedef struct Leaves8 {
     v8f x[3], y[3], z[3];
     v8f rot, down;
+    v8f tx, ty; /* the base's horizontal place, for LeafBend */
     double t[8][3], dist[8];
     int id[8];
 } Leaves8;

@@ -22,11 +22,7 @@ static inline void LANES(leaf_turn)(Leaves8 *q8, bool turned, float b) {
     }
     if (b == 0) return;
     /* bent outward (about the vertical) and up (about their x) toward the light */
-    for (int j = 0; j < NJ; j++) {
-        LANES_F tx, ty;
-        for (int k = 0; k < LANES_N; k++) tx[k] = (float)q8->t[j * LANES_N + k][0], ty[k] = (float)q8->t[j * LANES_N + k][1];
-        a[j] = b * (LANES(atan2)(ty, tx) - LANES(atan2)(AX(j, y, 1), AX(j, y, 0)));
-    }
+    for (int j = 0; j < NJ; j++) a[j] = b * (LANES(atan2)(AX(j, ty, 0), AX(j, tx, 0)) - LANES(atan2)(AX(j, y, 1), AX(j, y, 0)));
     for (int j = 0; j < NJ; j++) LANES(sincos)(a[j], &c[j], &s[j]);
     for (int j = 0; j < NJ; j++)
         for (int i = 0; i < 3; i++) {

@@ -65,6 +65,7 @@ static void push_leaf(WeberGen *g, LeafBatch *b, int id, const Frame *f, const d
     int k = b->n;
     for (int i = 0; i < 3; i++)
         q->x[i][k] = (float)f->x[i], q->y[i][k] = (float)f->y[i], q->z[i][k] = (float)f->z[i], q->t[k][i] = t[i];
+    q->tx[k] = (float)t[0], q->ty[k] = (float)t[1];
     q->dist[k] = dist, q->id[k] = id;
     q->rot[k] = rot, q->down[k] = down;
     if (++b->n == 8) flush(g, b);
