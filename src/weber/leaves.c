@@ -170,11 +170,14 @@ void weber_place_leaves(WeberGen *g, size_t count) {
     LeafBatch b = {.avx2 = weber_leaf_avx2()};
     for (size_t i = 0; i < g->nleafy && !g->failed; i++) {
         int id = g->leafy[i];
-        WStem st = g->stems[id]; /* its rotation advances here, not in the list */
-        Rng kids = weber_rng(g, st.key, WRNG_KIDS);
-        int s0 = first_kept(&st);
-        for (int s = st.first_seg; s < st.nseg; s++)
-            leaves_on(g, id, &st, s, s < s0 ? &st.start : &g->leafy_f[fi++], &kids, &b, NULL);
+        WStem *st = &g->stems[id];
+        double rot = st->rot; /* its rotation advances here (the one field a leaf changes), not
+                               * in the list: put back after (a copy of the stem took longer) */
+        Rng kids = weber_rng(g, st->key, WRNG_KIDS);
+        int s0 = first_kept(st);
+        for (int s = st->first_seg; s < st->nseg; s++)
+            leaves_on(g, id, st, s, s < s0 ? &st->start : &g->leafy_f[fi++], &kids, &b, NULL);
+        st->rot = rot;
     }
     if (b.n && !g->failed) flush(g, &b);
 }
