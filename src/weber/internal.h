@@ -158,6 +158,9 @@ bool weber_grow(WeberGen *g, void **arr, size_t *cap, size_t need, size_t size);
 void weber_free(WeberGen *g, void *arr, size_t bytes); /* one of them */
 /* its room past n given back to the arena, when it is the last array there */
 void weber_trim(WeberGen *g, void *arr, size_t *cap, size_t n, size_t size);
+/* the stems, points and leafy stems' arrays packed against each other (their room unused
+ * given back) when the tree then reaches fewer 2 MB pages; later: the bytes taken after them */
+void weber_pack(WeberGen *g, size_t later);
 /* scratch for a while: from the arena while it has room, else malloc; weber_drop gives it
  * back (to the arena whole when it was the last taken) */
 void *weber_take(WeberGen *g, size_t bytes);
@@ -210,7 +213,8 @@ static inline void weber_child_angles(WeberGen *g, WStem *st, double offset, int
 /* leaves.c */
 double weber_leaves_per_stem(const WeberGen *g, const WStem *st);
 bool weber_defer_leaves(WeberGen *g, int id, const WStem *st, const WSeg *segs); /* a last-level stem */
-void weber_place_leaves(WeberGen *g); /* every deferred stem's leaves */
+size_t weber_count_leaves(WeberGen *g); /* how many leaves weber_place_leaves will make */
+void weber_place_leaves(WeberGen *g, size_t count); /* every deferred stem's leaves */
 
 /* prune.c */
 bool weber_inside(const WeberGen *g, const double p[3]);

@@ -196,6 +196,11 @@ int syl_weber_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton 
     /* the last array presized, whose estimate is the loosest: what it did not use goes to
      * what weber_write_nodes takes next (the oak's scratch then reaches two 2 MB pages) */
     weber_trim(g, g->leafy_f, &g->leafy_f_cap, g->nleafy_f, sizeof *g->leafy_f);
+    size_t leaves = weber_count_leaves(g), most = g->npts + g->nstems, ns = g->nstems;
+    /* what comes after (weber_write_nodes, weber_place_leaves): node distances, the nodes,
+     * then the attachments' scratch or the leaves in its place */
+    size_t scratch = (ns + 64) * 40 /* (write.c: per stem two 16-byte Attach and two words) */, lvs = (leaves + 1) * sizeof(SylOrgan);
+    if (!g->failed) weber_pack(g, (most + 256) * sizeof(float) + (most + 1) * sizeof(SylNode) + 128 + (scratch > lvs ? scratch : lvs));
     int st = SYL_OK;
     SylSkeleton *sk = NULL;
     if (g->failed) st = SYL_ELIMIT;
@@ -203,7 +208,7 @@ int syl_weber_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton 
     if (!st && !(sk = syl_skeleton_new(syl_program_name(p)))) st = SYL_ELIMIT;
     if (!st) st = weber_write_nodes(g, sk);
     if (!st && g->leaves && weber_stop(g)) st = SYL_ECANCELED;
-    if (!st) weber_place_leaves(g);
+    if (!st) weber_place_leaves(g, leaves);
     if (!st && g->failed) st = SYL_ELIMIT;
     if (g->cancelled) st = SYL_ECANCELED; /* nothing said */
     if (!st) weber_write_leaves(g, sk);

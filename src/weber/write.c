@@ -82,6 +82,18 @@ static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], cons
 
 int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
     size_t ns = g->nstems, na = 0;
+    /* every node at once: a root per trunk, the points, and at most one per attachment (a
+     * stem that is not a trunk): npts + ns. In the arena's huge pages, past the scratch
+     * (weber_keep), not the kept threshold's (util/pages.h): a tree's skeleton is short-lived
+     * (meshed, or appended to a scene's and freed), and the poplar's 0.3 MB of nodes cost
+     * 1.4 ms of 4 KB page faults. The attachments' scratch comes after them, and goes before
+     * the leaves are made there (pages already written: the willow's tree reaches 18 2 MB
+     * pages, not 19). */
+    size_t most = g->npts + ns;
+    if (!weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist) ||
+        !(sk->nodes = weber_keep(g, most * sizeof *sk->nodes)))
+        return SYL_ELIMIT;
+    sk->store->node_cap = most;
     Attach *att = weber_take(g, (ns ? ns : 1) * sizeof *att);
     int32_t *attach_node = weber_take(g, (ns ? ns : 1) * sizeof *attach_node);
     Writer wr = {.sk = sk};
@@ -105,16 +117,6 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
         weber_drop(g, att, (ns ? ns : 1) * sizeof *att);
         return SYL_ELIMIT;
     }
-    /* every node at once: at most a root per trunk, the points, and one per attachment; in the
-     * arena's huge pages, past the scratch (weber_keep), not the kept threshold's (util/pages.h):
-     * a tree's skeleton is short-lived (meshed, or appended to a scene's and freed), and the
-     * poplar's 0.3 MB of nodes cost 1.4 ms of 4 KB page faults */
-    size_t most = g->npts + na + ns;
-    if (!weber_grow(g, (void **)&g->node_dist, &g->node_dist_cap, most ? most : 1, sizeof *g->node_dist) ||
-        !(sk->nodes = weber_keep(g, most * sizeof *sk->nodes)))
-        wr.failed = true;
-    else
-        sk->store->node_cap = most;
     wr.dist = g->node_dist;
     size_t a = 0;
     for (size_t i = 0; i < ns && !wr.failed; i++) {
