@@ -30,6 +30,7 @@ typedef struct Entry {
 
 typedef struct DModel {
     const char *name, *kind;
+    SylModelKind id; /* its row in lang/kinds.def: "caps" in JSON */
     int line;
     Entry *e;
     int n, cap;
@@ -371,6 +372,7 @@ static void describe_params(const SylProgram *p, DModel *m) {
 static void describe_model(const SylProgram *p, DModel *m) {
     m->name = syl_program_name(p);
     m->kind = lang_kind_keyword(p->kind);
+    m->id = p->kind;
     m->line = p->model_loc.first_line;
     describe_params(p, m);
     const SchTable *t = lang_kind_schema(p->kind);
@@ -437,7 +439,10 @@ static void json_model(FILE *out, const DModel *m) {
     jstr(out, m->name);
     fputs(",\"kind\":", out);
     jstr(out, m->kind);
-    fprintf(out, ",\"line\":%d,\"params\":[", m->line);
+    fputs(",\"caps\":[", out); /* what its kind can do, by the names front ends ask (kind_flags.def) */
+    for (int i = 0, first = 1; syl_model_cap_name(i); i++)
+        if (lang_kind_flags(m->id) >> i & 1) fprintf(out, "%s\"%s\"", first ? "" : ",", syl_model_cap_name(i)), first = 0;
+    fprintf(out, "],\"line\":%d,\"params\":[", m->line);
     for (int i = 0; i < m->n; i++) {
         const Entry *e = &m->e[i];
         fputs(i ? ",\n  {\"name\":" : "\n  {\"name\":", out);
@@ -535,7 +540,7 @@ static int describe(const SylProgram *p, FILE *out, bool json) {
     }
     int nscene;
     if (!lang_kind_is(p->kind, KF_UNNAMED) && syl_program_scene(p, &nscene)) { /* the file's scene, last */
-        DModel m = {.name = "scene", .kind = lang_kind_keyword(SYL_MODEL_SCENE), .line = p->scene_loc.first_line};
+        DModel m = {.name = "scene", .kind = lang_kind_keyword(SYL_MODEL_SCENE), .id = SYL_MODEL_SCENE, .line = p->scene_loc.first_line};
         describe_scene(p, lang_kind_schema(SYL_MODEL_SCENE), &m);
         emit(out, &m, json, written);
     }
