@@ -51,9 +51,9 @@ void syl_impostor_free(SylImpostor *imp);
 /* Bake the impostor of c's LOD0 as it is drawn (instanced leaves meshed into it, as blades or
  * cards; sk and mo are what LOD0 was meshed from) with io, and make its crossed billboards
  * the chain's last level (which imp then owns; the chain's atlas is imp's). SYL_OK,
- * SYL_EMODEL (nothing drawn), SYL_ELIMIT, SYL_EUSAGE; reported on diag. */
+ * SYL_EMODEL (nothing drawn), SYL_ELIMIT, SYL_EUSAGE; reported to io's sink (else its diag). */
 int syl_impostor_add_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
-                           SylImpostor *imp, FILE *diag);
+                           SylImpostor *imp);
 
 #ifdef __cplusplus
 }
