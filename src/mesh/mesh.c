@@ -373,9 +373,11 @@ static bool size_tubes(MeshPlan *pl) {
         int sides = (int)ceilf((float)pl->sides * sqrtf(tb->rmax / rmax) - 1e-4f);
         if (sides < pl->min_sides) sides = pl->min_sides;
         if (sides > pl->sides) sides = pl->sides;
-        int order = tb->node >= 0 ? pl->skel->nodes[tb->node].order : 0;
-        if (pl->model_sides && pl->skel->ring_sides[order < 3 ? order : 3] >= 3)
-            sides = pl->skel->ring_sides[order < 3 ? order : 3];
+        /* the model's own points of a ring (SylMaterial.ring_sides), each plant of a scene its own */
+        const SylNode *nd = tb->node >= 0 ? &pl->skel->nodes[tb->node] : NULL;
+        const uint8_t *ring = nd ? pl->skel->materials[nd->material].ring_sides : NULL;
+        const int o = nd && nd->order < 3 ? nd->order : 3;
+        if (pl->model_sides && ring && ring[o] >= 3) sides = ring[o];
         int lobes = 0; /* a lobed ring needs four sides a lobe to show its lobes */
         for (uint32_t k = 0; k < tb->count; k++) lobes = p[k].lobes > lobes ? p[k].lobes : lobes;
         if (lobes && sides < 4 * lobes) sides = 4 * lobes < MESH_MAX_SIDES ? 4 * lobes : MESH_MAX_SIDES;
