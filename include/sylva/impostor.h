@@ -34,8 +34,8 @@ typedef struct SylImpostor {
     uint8_t *bb_color;         /* bb_width x view RGBA */
     SylMesh *bb_mesh;          /* the quads (material 0 of m's table is replaced by none:
                                   one group of the material SYL_IMPOSTOR_MATERIAL) */
-    SylBudget *budget;         /* what the atlases are counted against until freed */
-    uint64_t charged;
+    struct SylImpostorStore *store; /* the library's own: the memory budget the atlases count
+                                       against until syl_impostor_free (NULL: none) */
 } SylImpostor;
 
 enum { SYL_IMPOSTOR_MATERIAL = 255 };

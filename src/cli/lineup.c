@@ -6,6 +6,7 @@
 
 #include "util/font.h"
 #include "cli/lineup.h"
+#include "mesh/store.h"
 
 typedef struct Box {
     float lo[3], hi[3];
@@ -199,8 +200,7 @@ SylMesh *lineup_build(const SylMesh *const *meshes, const double *ground, const 
     m->groups = calloc((size_t)m->nmaterials, sizeof *m->groups);
     ok = m->pos && m->nrm && m->uv && m->idx && m->groups && nv <= UINT32_MAX && ni <= UINT32_MAX;
     if (!ok) goto done;
-    m->vert_cap = nv + 2;
-    m->idx_cap = ni + 1;
+    mesh_mark_spare(m);
     for (int i = 0; i < n; i++) {
         const SylMesh *p = meshes[i];
         bases[i] = m->nverts;
