@@ -163,7 +163,8 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
     free(rgba), free(nd), free(dirs);
     if (status) sink_error(opt_sink(o), "out of memory baking the impostor");
     if (status) syl_impostor_free(out);
-    else if (out->store) budget_release(out->store->budget, views), out->store->charged = atlases; /* the views are freed */
+    else if (out->store) /* the views are freed */
+        budget_release(out->store->budget, views), out->store->charged = atlases;
     return status;
 }
 

@@ -103,7 +103,8 @@ static void each_plant_its_own_rings(void **state) {
         assert_int_equal(per[i] % points[i], 0);
         int ring = (int)(per[i] / points[i]) - 1; /* a ring's points and the seam's copy */
         if (ring != rule(part, order))
-            fail_msg("node %zu of plant %d, order %d: %d points a ring, not %d", i, part, order, ring, rule(part, order));
+            fail_msg("node %zu of plant %d, order %d: %d points a ring, not %d", i, part, order, ring,
+                     rule(part, order));
         seen[part][order > 0]++;
     }
     for (int k = 0; k < 2; k++) assert_true(seen[k][0] > 0 && seen[k][1] > 0); /* trunks and branches of both */
