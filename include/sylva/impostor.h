@@ -34,8 +34,8 @@ typedef struct SylImpostor {
     uint8_t *bb_color;         /* bb_width x view RGBA */
     SylMesh *bb_mesh;          /* the quads (material 0 of m's table is replaced by none:
                                   one group of the material SYL_IMPOSTOR_MATERIAL) */
-    SylBudget *budget;         /* what the atlases are counted against until freed */
-    uint64_t charged;
+    struct SylImpostorStore *store; /* the library's own: the memory budget the atlases count
+                                       against until syl_impostor_free (NULL: none) */
 } SylImpostor;
 
 enum { SYL_IMPOSTOR_MATERIAL = 255 };
@@ -51,9 +51,9 @@ void syl_impostor_free(SylImpostor *imp);
 /* Bake the impostor of c's LOD0 as it is drawn (instanced leaves meshed into it, as blades or
  * cards; sk and mo are what LOD0 was meshed from) with io, and make its crossed billboards
  * the chain's last level (which imp then owns; the chain's atlas is imp's). SYL_OK,
- * SYL_EMODEL (nothing drawn), SYL_ELIMIT, SYL_EUSAGE; reported on diag. */
+ * SYL_EMODEL (nothing drawn), SYL_ELIMIT, SYL_EUSAGE; reported to io's sink (else its diag). */
 int syl_impostor_add_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
-                           SylImpostor *imp, FILE *diag);
+                           SylImpostor *imp);
 
 #ifdef __cplusplus
 }

@@ -66,7 +66,8 @@ int syl_lod_write_glb(const SylLodChain *c, const char *path, const SylSink *sin
 typedef struct SylLodCheckOptions {
     int threads;   /* <= 0: all cores; nothing depends on it */
     int size;      /* syl_lod_draw_levels's side of a level (0: 256) */
-    FILE *diag;
+    FILE *diag;    /* where the renderer's problems are reported; NULL: nowhere */
+    const SylSink *sink; /* or as records to this sink instead (sylva.h); NULL: diag */
 } SylLodCheckOptions;
 typedef struct SylLodSilhouette {
     int pixels;             /* the square pictures' side */

@@ -22,9 +22,9 @@ typedef struct SylMeshGroup {
 typedef struct SylMesh {
     float *pos, *nrm, *uv; /* 3, 3 and 2 floats per vertex; uv as in glTF: v = 0 is the
                               top row of a texture */
-    size_t nverts, vert_cap;
+    size_t nverts;
     uint32_t *idx;         /* triangles, counter-clockwise seen from outside */
-    size_t nidx, idx_cap;
+    size_t nidx;
     SylMeshGroup *groups;  /* sorted by material, no two with the same material */
     int ngroups;
     SylMaterial materials[256];
@@ -37,11 +37,10 @@ typedef struct SylMesh {
     char name[64];
     uint8_t leaves, leaf_shape; /* SYL_LEAVES_* it was made with; for cards and clusters, the
                                    shape drawn (clusters: SYL_CLUSTER_NEEDLES for needles) */
-    SylBudget *budget;     /* what its arrays are counted against (NULL: nothing) */
-    uint64_t charged;
     SylImages *images;     /* its materials' images (SylMaterial.image), one reference; NULL: none */
-    void *block;           /* non-NULL: pos, nrm, uv and idx live in this one allocation
-                              (syl_mesh_build's), freed once by syl_mesh_free */
+    struct SylMeshStore *store; /* the library's own record of a mesh it made (how its arrays are
+                                   held, the memory budget they count against); NULL for a mesh
+                                   made by hand, whose arrays syl_mesh_free frees one by one */
 } SylMesh;
 
 enum { SYL_RADIUS_MODEL, SYL_RADIUS_PIPE };

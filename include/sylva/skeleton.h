@@ -98,6 +98,11 @@ typedef struct SylMaterial {
      * branch and tile[1] times as often along it (0: once); a leaf is a card of the image's
      * proportions, its alpha the outline. */
     uint8_t image;
+    /* Points of a ring around a stem drawn with it, of branch order 0, 1, 2, 3 and more, as
+     * its model asks (Pafčo's DETAIL, docs/pafco.md; the curve tree's resolutions): the mesher
+     * uses them when its caller set no sides. 0: the mesher's own rule (sides falling with
+     * the radius). */
+    uint8_t ring_sides[4];
     float tile[2];
 } SylMaterial;
 
@@ -156,10 +161,6 @@ typedef struct SylSkeleton {
     SylMaterial materials[256];
     int nmaterials;  /* indices below this are in use */
     char name[64];
-    /* Points of a ring around an axis of branch order 0, 1, 2, 3 and more, as the model asks
-     * (Pafčo's DETAIL, docs/pafco.md); the mesher uses them when its caller set no sides.
-     * 0: the mesher's own rule (sides falling with the radius). */
-    uint8_t ring_sides[4];
     /* A scene's objects, each written as an object or node of its own (docs/mesh.md#scenes):
      * its plants, in order, each from its first node to the next one's, then its obstacles,
      * whose meshes (SylMesh.node) number them from 0. Unique names. */

@@ -58,8 +58,8 @@ typedef struct SylWind {
     int nkeys;            /* key times k * seconds / (nkeys - 1); the last key is the first */
     float seconds;
     float *rot;           /* njoints x nkeys unit quaternions x, y, z, w (joint-major) */
-    SylBudget *budget;    /* what it is counted against until syl_wind_free */
-    uint64_t charged;
+    struct SylWindStore *store; /* the library's own: the memory budget it counts against
+                                   until syl_wind_free (NULL: none) */
 } SylWind;
 
 /* The sway of s; radius: the mesher's radius of each node (syl_mesh_radii). SYL_OK,

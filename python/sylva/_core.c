@@ -861,7 +861,7 @@ static int realtime_levels(PlantObject *pl, const SylMeshOptions *mo, int lod, i
     if (!st && last_billboard) {
         SylImpostorOptions io = {.grid = impostor ? grid : -1, .view = view, .billboards = billboards ? billboards : 3,
                                  .threads = threads, .diag = diag};
-        st = syl_impostor_add_level(&pl->lods, pl->pl.skeleton, mo, &io, &pl->imp, diag);
+        st = syl_impostor_add_level(&pl->lods, pl->pl.skeleton, mo, &io, &pl->imp);
     }
     return st;
 }

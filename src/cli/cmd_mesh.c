@@ -65,8 +65,8 @@ static int add_impostor(SylLodChain *c, const CliArgs *a, const SylSkeleton *sk,
                         int threads, SylBudget *budget, const char *output, SylImpostor *imp, char *extras,
                         size_t n, OutGroup *outs) {
     SylImpostorOptions io = {.grid = a->impostor ? a->impostor_grid : -1, .view = a->impostor_view, .billboards = a->billboards ? a->billboards : 3,
-                             .threads = threads, .diag = stderr, .budget = budget};
-    int status = syl_impostor_add_level(c, sk, mo, &io, imp, stderr);
+                             .threads = threads, .sink = &cli_sink, .budget = budget};
+    int status = syl_impostor_add_level(c, sk, mo, &io, imp);
     if (status) return status;
     char color[4096], normal[4096];
     beside(output, "_impostor.png", color, sizeof color);
@@ -201,7 +201,7 @@ int cmd_mesh(int argc, char **argv) {
         shown.n -= imp.billboards ? 1 : 0;
         SylPicture pic = {0};
         status = outgroup_add(&outs, a.image, &cli_sink)
-                     ? syl_lod_draw_levels(&shown, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &pic)
+                     ? syl_lod_draw_levels(&shown, &(SylLodCheckOptions){.threads = d.threads, .sink = &cli_sink}, &pic)
                      : SYL_EIO;
         if (!status) status = syl_png_write(a.image, pic.rgb, pic.width, pic.height, &cli_sink);
         syl_picture_free(&pic);
@@ -224,7 +224,7 @@ int cmd_mesh(int argc, char **argv) {
         if (a.wind > 0) fprintf(stderr, "wind joints: %d\nwind keys: %d\nwind time: %.6f s\n", wind.njoints, wind.nkeys, t_wind);
         for (int k = 1; k < lods.n - (imp.billboards ? 1 : 0); k++) {
             SylLodSilhouette sil;
-            if (syl_lod_check_silhouette(&lods, k, &(SylLodCheckOptions){.threads = d.threads, .diag = stderr}, &sil)) break;
+            if (syl_lod_check_silhouette(&lods, k, &(SylLodCheckOptions){.threads = d.threads, .sink = &cli_sink}, &sil)) break;
             const SylLodLevel *lv = &lods.level[k];
             char leaves[64];
             if (lv->cluster_leaves > 0) snprintf(leaves, sizeof leaves, "leaves in clusters of %.1f", (double)lv->cluster_leaves);

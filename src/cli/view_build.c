@@ -199,7 +199,7 @@ static int make(View *v, const ViewRequest *rq, const SylCancel *cancel, FILE *d
         status = syl_lod_build(m->pl.skeleton, &m->mo, m->pl.mesh, m->lod - rq->impostor, &m->lods);
         if (status && status != SYL_ECANCELED) fprintf(diag, "sylva: error: cannot build the levels of detail (out of memory)\n");
         SylImpostorOptions io = {.grid = -1, .billboards = 3, .threads = v->threads, .diag = diag, .budget = m->budget};
-        if (!status && rq->impostor) status = syl_impostor_add_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp, diag);
+        if (!status && rq->impostor) status = syl_impostor_add_level(&m->lods, m->pl.skeleton, &m->mo, &io, &m->imp);
     } else {
         status = syl_mesh_optimize(m->pl.mesh);
     }

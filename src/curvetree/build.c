@@ -452,8 +452,9 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     sk->materials[SYL_MATERIAL_LEAF].leaf_width = (float)(1 / leaf_aspect); /* the leaves' surface */
     /* the plug-in's cross-sections: 4 x trunkRes sides around the trunk, 4 x branchRes around
      * the branches of both levels (the mesher's, when no --sides is asked for) */
-    sk->ring_sides[0] = (uint8_t)(4 * lround(P->trunkRes));
-    for (int o = 1; o < 4; o++) sk->ring_sides[o] = (uint8_t)(4 * lround(P->branchRes));
+    uint8_t *ring = sk->materials[SYL_MATERIAL_BARK].ring_sides; /* every stem's material */
+    ring[0] = (uint8_t)(4 * lround(P->trunkRes));
+    for (int o = 1; o < 4; o++) ring[o] = (uint8_t)(4 * lround(P->branchRes));
     free(rc), free(tr), free(b1), free(b1_node), free(b2), free(b2_node);
     return ct.failed ? SYL_ELIMIT : SYL_OK;
 }

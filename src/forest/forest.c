@@ -11,6 +11,7 @@
 #include "lang/kinds.h"
 #include "lang/program.h"
 #include "lang/schema.h"
+#include "mesh/store.h"
 #include "util/rng.h"
 
 /* The terrain as triangles between its cells' centres, one grass-coloured material. */
@@ -27,7 +28,8 @@ static SylMesh *terrain_mesh(const SylTerrain *t) {
         syl_mesh_free(g);
         return NULL;
     }
-    g->nverts = nv, g->vert_cap = nv + 2;
+    g->nverts = nv;
+    mesh_mark_spare(g);
     const float *h = t->height;
     for (size_t k = 0; k < nz; k++)
         for (size_t i = 0; i < nx; i++) {

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sylva/mesh.h"
+#include "mesh/store.h"
 
 int syl_mesh_append(SylMesh *dst, const SylMesh *src) {
     if (!src || !src->nverts) return SYL_OK;
@@ -42,16 +42,15 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src) {
         if (at > start) groups[ng++] = (SylMeshGroup){(uint32_t)start, (uint32_t)(at - start), (uint8_t)m};
     }
     if (!dst->images) dst->images = syl_images_ref(src->images); /* dst's images, else src's (obstacles have none) */
-    if (dst->block) free(dst->block);
+    if (dst->store && dst->store->block) free(dst->store->block), dst->store->block = NULL;
     else free(dst->pos), free(dst->nrm), free(dst->uv), free(dst->idx);
-    dst->block = NULL;
     free(dst->groups);
     free(dst->node); /* src's vertices have no nodes of dst's skeleton */
     dst->node = NULL;
     dst->pos = pos, dst->nrm = nrm, dst->uv = uv, dst->idx = idx, dst->groups = groups;
     dst->nverts = nv;
-    dst->vert_cap = nv + 1;
-    dst->nidx = dst->idx_cap = at;
+    mesh_mark_spare(dst); /* pos has 4 floats past the last vertex */
+    dst->nidx = at;
     dst->ngroups = ng;
     if (src->nmaterials > dst->nmaterials) dst->nmaterials = src->nmaterials;
     return SYL_OK;

@@ -29,6 +29,7 @@
 #include <cglm/cglm.h>
 
 #include "mesh/mesh_internal.h"
+#include "mesh/store.h"
 #include "util/budget.h"
 #include "util/pages.h"
 #include "util/diag.h"
@@ -99,9 +100,10 @@ static void plan_free(MeshPlan *pl) {
 
 void syl_mesh_free(SylMesh *m) {
     if (!m) return;
-    budget_release(m->budget, m->charged);
-    if (m->block) {
-        free(m->block);
+    struct SylMeshStore *st = m->store;
+    if (st) budget_release(st->budget, st->charged);
+    if (st && st->block) {
+        free(st->block);
     } else {
         free(m->pos);
         free(m->nrm);
@@ -111,6 +113,7 @@ void syl_mesh_free(SylMesh *m) {
     free(m->groups);
     free(m->node);
     syl_images_release(m->images);
+    free(st);
     free(m);
 }
 
@@ -373,9 +376,11 @@ static bool size_tubes(MeshPlan *pl) {
         int sides = (int)ceilf((float)pl->sides * sqrtf(tb->rmax / rmax) - 1e-4f);
         if (sides < pl->min_sides) sides = pl->min_sides;
         if (sides > pl->sides) sides = pl->sides;
-        int order = tb->node >= 0 ? pl->skel->nodes[tb->node].order : 0;
-        if (pl->model_sides && pl->skel->ring_sides[order < 3 ? order : 3] >= 3)
-            sides = pl->skel->ring_sides[order < 3 ? order : 3];
+        /* the model's own points of a ring (SylMaterial.ring_sides), each plant of a scene its own */
+        const SylNode *nd = tb->node >= 0 ? &pl->skel->nodes[tb->node] : NULL;
+        const uint8_t *ring = nd ? pl->skel->materials[nd->material].ring_sides : NULL;
+        const int o = nd && nd->order < 3 ? nd->order : 3;
+        if (pl->model_sides && ring && ring[o] >= 3) sides = ring[o];
         int lobes = 0; /* a lobed ring needs four sides a lobe to show its lobes */
         for (uint32_t k = 0; k < tb->count; k++) lobes = p[k].lobes > lobes ? p[k].lobes : lobes;
         if (lobes && sides < 4 * lobes) sides = 4 * lobes < MESH_MAX_SIDES ? 4 * lobes : MESH_MAX_SIDES;
@@ -774,7 +779,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : SYL_CLUSTER_LEAVES;
     SylMesh *m = calloc(1, sizeof *m);
     float *rad = NULL;
-    if (!m) goto oom;
+    if (!m || !mesh_store(m)) goto oom;
     /* the budget is the caller's, or one of max_memory for this mesh alone */
     Budget own, *mem = budget_use(&own, o.max_memory, o.budget);
     /* planning holds a radius and a few words per node; the mesh itself is counted once
@@ -813,17 +818,16 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
         status = SYL_ELIMIT;
         goto done;
     }
-    if (o.budget) m->budget = o.budget, m->charged = bytes;
+    if (o.budget) m->store->budget = o.budget, m->store->charged = bytes;
     if (!place_runs(&pl, m)) goto oom;
-    m->nverts = m->vert_cap = pl.nverts;
-    m->idx_cap = m->nidx;
+    m->nverts = pl.nverts;
     size_t nv = pl.nverts ? pl.nverts : 1;
     /* the four arrays in one block (each on a 64-byte line): on huge pages, 2 MB zeroed per
      * 2 MB used instead of a page of its own for each (util/pages.h) */
     size_t at3 = (nv * 3 * sizeof(float) + 63) & ~(size_t)63, at2 = (nv * 2 * sizeof(float) + 63) & ~(size_t)63;
     char *block = pages_owned(2 * at3 + at2 + (m->nidx ? m->nidx : 1) * sizeof *m->idx, PAGES_OWNED_KEPT);
     if (!block) goto oom;
-    m->block = block;
+    m->store->block = block;
     m->pos = (float *)block, m->nrm = (float *)(block + at3), m->uv = (float *)(block + 2 * at3);
     m->idx = (uint32_t *)(block + 2 * at3 + at2);
     memcpy(m->materials, s->materials, sizeof m->materials);

@@ -72,7 +72,7 @@ typedef struct MeshTrig {
 typedef struct MeshPlan {
     const SylSkeleton *skel;
     int sides, min_sides, sphere_stacks, leaves;
-    bool model_sides; /* no sides asked for: a skeleton's ring_sides, where it gives them, win */
+    bool model_sides; /* no sides asked for: its materials' ring_sides, where they give them, win */
     int leaf_shape, cluster_shape; /* clusters: the shape the cards show (SYL_CLUSTER_NEEDLES) */
     float cluster_leaves;          /* clusters: leaves per card */
     MeshCluster *clusters;

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "mesh/mesh_internal.h"
+#include "mesh/store.h"
 
 /* The triangles of m whose part[t] is k, their vertices renumbered in order of first use. */
 static SylMesh *subset(const SylMesh *m, const int *part, int k, const char *name) {
@@ -48,7 +49,7 @@ static SylMesh *subset(const SylMesh *m, const int *part, int k, const char *nam
                                                      .material = gr->material};
     }
     memset(s->pos + 3 * s->nverts, 0, 4 * sizeof *s->pos); /* Embree reads 16 bytes */
-    s->vert_cap = s->nverts + 1, s->idx_cap = s->nidx;
+    mesh_mark_spare(s);
     memcpy(s->materials, m->materials, sizeof s->materials);
     s->images = syl_images_ref(m->images);
     memcpy(s->double_sided, m->double_sided, sizeof s->double_sided);

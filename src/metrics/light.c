@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "metrics/metrics_internal.h"
+#include "mesh/store.h"
 #include "util/coord.h"
 #include "util/diag.h"
 #include "util/parallel.h"
@@ -121,7 +122,7 @@ int metrics_light(const SylMesh *m, double base, const SylMetricsOptions *opt, d
     rtcSetSceneFlags(l.scene, RTC_SCENE_FLAG_COMPACT);
     /* Embree reads vertices 16 bytes at a time: it needs room past the last one. */
     const float *pos = m->pos;
-    if (m->vert_cap <= m->nverts) {
+    if (!mesh_has_spare(m)) {
         pos_copy = malloc((m->nverts * 3 + 4) * sizeof *pos_copy);
         if (!pos_copy) goto done;
         memcpy(pos_copy, m->pos, m->nverts * 3 * sizeof *pos_copy);

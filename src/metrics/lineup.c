@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "util/font.h"
+#include "mesh/store.h"
 #include "sylva/metrics.h"
 
 typedef struct Box {
@@ -199,8 +200,7 @@ SylMesh *syl_metrics_build_lineup(const SylMesh *const *meshes, const double *gr
     m->groups = calloc((size_t)m->nmaterials, sizeof *m->groups);
     ok = m->pos && m->nrm && m->uv && m->idx && m->groups && nv <= UINT32_MAX && ni <= UINT32_MAX;
     if (!ok) goto done;
-    m->vert_cap = nv + 2;
-    m->idx_cap = ni + 1;
+    mesh_mark_spare(m);
     for (int i = 0; i < n; i++) {
         const SylMesh *p = meshes[i];
         bases[i] = m->nverts;

@@ -238,7 +238,8 @@ static void materials(Gen *g) {
         mt->leaf_tris = 2;
         mt->leaf_width = width;
     }
-    for (int o = 0; o < 4; o++) sk->ring_sides[o] = (uint8_t)pafco_ring_points(P->detail, o);
+    for (int o = 0; o < 4; o++) /* the stems' (all bark) rings: Table T.1 */
+        sk->materials[SYL_MATERIAL_BARK].ring_sides[o] = (uint8_t)pafco_ring_points(P->detail, o);
 }
 
 int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log) {

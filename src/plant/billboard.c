@@ -1,11 +1,12 @@
 /* The crossed billboards of an impostor as a chain's last level (sylva/impostor.h): `sylva mesh
  * --impostor/--billboards`, sylva view's far level and the Python package's lod= share it. */
 #include "sylva/impostor.h"
+#include "util/diag.h"
 
 int syl_impostor_add_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshOptions *mo, const SylImpostorOptions *io,
-                        SylImpostor *imp, FILE *diag) {
+                           SylImpostor *imp) {
     if (!c->level[0].mesh->nidx) {
-        fprintf(diag, "sylva: error: the model draws nothing: there is no impostor to bake\n");
+        sink_error(opt_sink(io), "the model draws nothing: there is no impostor to bake");
         return SYL_EMODEL;
     }
     /* LOD0's mesh leaves instanced leaves out (they are instances of the file): the picture
@@ -23,7 +24,7 @@ int syl_impostor_add_level(SylLodChain *c, const SylSkeleton *sk, const SylMeshO
     if (!status) status = syl_impostor_bake(drawn, io, imp);
     syl_mesh_free(leafy);
     if (status) { /* the mesher and the bake said why they ran out of memory */
-        if (status != SYL_ELIMIT) fprintf(diag, "sylva: error: cannot bake the impostor (bad request)\n");
+        if (status != SYL_ELIMIT) sink_error(opt_sink(io), "cannot bake the impostor (bad request)");
         return status;
     }
     int k = c->n;

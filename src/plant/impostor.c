@@ -9,6 +9,12 @@
 #include "util/budget.h"
 #include "util/diag.h"
 
+/* SylImpostor.store: what the atlases are counted against until syl_impostor_free */
+struct SylImpostorStore {
+    SylBudget *budget;
+    uint64_t charged;
+};
+
 void syl_impostor_direction(int grid, int col, int row, float d[3]) {
     float ex = 2 * ((float)col + 0.5f) / (float)grid - 1, ey = 2 * ((float)row + 0.5f) / (float)grid - 1;
     float tx = 0.5f * (ex + ey), ty = 0.5f * (ex - ey);
@@ -94,8 +100,8 @@ static SylMesh *billboard_mesh(const SylMesh *m, int k, const float c[3], float 
         uint32_t o = (uint32_t)q * 4, t[6] = {o, o + 2, o + 3, o, o + 3, o + 1};
         memcpy(b->idx + (size_t)q * 6, t, sizeof t);
     }
-    b->nverts = b->vert_cap = nv;
-    b->nidx = b->idx_cap = (size_t)k * 12;
+    b->nverts = nv;
+    b->nidx = (size_t)k * 12;
     b->groups[0] = (SylMeshGroup){0, (uint32_t)b->nidx, SYL_IMPOSTOR_MATERIAL};
     b->ngroups = 1;
     return b;
@@ -120,6 +126,12 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
     size_t side = (size_t)g * (size_t)v;
     uint64_t views = 12ull * (uint64_t)v * (uint64_t)v * (uint64_t)nviews,
              atlases = 8ull * side * side + 8ull * (uint64_t)k * (uint64_t)v * (uint64_t)v;
+    struct SylImpostorStore *store = o->budget ? malloc(sizeof *store) : NULL;
+    if (o->budget && !store) {
+        sink_error(opt_sink(o), "out of memory baking the impostor");
+        free(dirs);
+        return SYL_ELIMIT;
+    }
     if (!budget_charge(o->budget, views + atlases)) {
         sink_error(opt_sink(o),
                    "the impostor would need %llu MB (%d views of %dx%d pixels and a %zux%zu atlas), "
@@ -127,13 +139,13 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
                    "smaller --impostor-grid or --impostor-view",
                     (unsigned long long)((views + atlases) >> 20), nviews, v, v, side, side,
                     (unsigned long long)budget_limit_mb(o->budget));
-        free(dirs);
+        free(dirs), free(store);
         return SYL_ELIMIT;
     }
     uint8_t *rgba = NULL, *nd = NULL;
     int status = bake_views(m, o, nviews, (const float (*)[3])dirs, v, &rgba, &nd);
     *out = (SylImpostor){.grid = g, .view = v, .size = g * v, .billboards = k, .bb_width = 2 * k * v};
-    out->budget = o->budget, out->charged = views + atlases;
+    if (store) *store = (struct SylImpostorStore){o->budget, views + atlases}, out->store = store;
     bounds_sphere(m, out->centre, &out->radius);
     if (!status) {
         out->color = g ? malloc(4 * side * side) : NULL;
@@ -151,13 +163,15 @@ int syl_impostor_bake(const SylMesh *m, const SylImpostorOptions *o, SylImpostor
     free(rgba), free(nd), free(dirs);
     if (status) sink_error(opt_sink(o), "out of memory baking the impostor");
     if (status) syl_impostor_free(out);
-    else budget_release(out->budget, views), out->charged = atlases; /* the views are freed */
+    else if (out->store) /* the views are freed */
+        budget_release(out->store->budget, views), out->store->charged = atlases;
     return status;
 }
 
 void syl_impostor_free(SylImpostor *imp) {
     free(imp->color), free(imp->normal), free(imp->bb_color);
     syl_mesh_free(imp->bb_mesh);
-    budget_release(imp->budget, imp->charged);
+    if (imp->store) budget_release(imp->store->budget, imp->store->charged);
+    free(imp->store);
     memset(imp, 0, sizeof *imp);
 }

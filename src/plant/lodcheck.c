@@ -30,7 +30,8 @@ int syl_lod_check_silhouette(const SylLodChain *c, int k, const SylLodCheckOptio
     uint8_t *rgb = malloc(3 * n), *a0 = malloc(n), *ak = malloc(n);
     int status = rgb && a0 && ak ? SYL_OK : SYL_ELIMIT;
     SylRenderOptions ro = {.width = size, .height = size, .view = lod_view(c->level[0].mesh), .samples = 4, .ao_samples = -1,
-                           .shadows = -1, .threads = o ? o->threads : 0, .diag = o ? o->diag : NULL, .frame = c->level[0].mesh};
+                           .shadows = -1, .threads = o ? o->threads : 0, .diag = o ? o->diag : NULL,
+                           .sink = o ? o->sink : NULL, .frame = c->level[0].mesh};
     ro.alpha = a0;
     if (!status) status = syl_render_draw_mesh(c->level[0].mesh, &ro, rgb);
     ro.alpha = ak;
@@ -60,7 +61,8 @@ int syl_lod_draw_levels(const SylLodChain *c, const SylLodCheckOptions *o, SylPi
     uint8_t *sheet = malloc(row * (size_t)size), *one = malloc((size_t)size * (size_t)size * 3);
     int status = sheet && one ? SYL_OK : SYL_ELIMIT;
     SylRenderOptions ro = {.width = size, .height = size, .view = lod_view(c->level[0].mesh),
-                           .threads = o ? o->threads : 0, .diag = o ? o->diag : NULL, .frame = c->level[0].mesh};
+                           .threads = o ? o->threads : 0, .diag = o ? o->diag : NULL, .sink = o ? o->sink : NULL,
+                           .frame = c->level[0].mesh};
     for (int k = 0; k < c->n && !status; k++) {
         status = syl_render_draw_mesh(c->level[k].mesh, &ro, one);
         for (int y = 0; y < size && !status; y++)

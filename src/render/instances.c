@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "render/scene.h"
+#include "mesh/store.h"
 #include "util/budget.h"
 #include "util/coord.h"
 #include "util/diag.h"
@@ -67,7 +68,7 @@ static RTCScene mesh_scene(Work *w, RTCDevice dev, const SylMesh *m, const uint8
     size_t ntri = m->nidx / 3;
     if (ntri && m->nverts) {
         const float *pos = m->pos;
-        if (m->vert_cap <= m->nverts) { /* Embree reads 16 bytes at a time: room past the end */
+        if (!mesh_has_spare(m)) { /* Embree reads 16 bytes at a time: room past the end */
             float *cp = malloc((m->nverts * 3 + 4) * sizeof(float));
             if (!cp) {
                 rtcReleaseScene(sc);

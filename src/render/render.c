@@ -18,6 +18,7 @@
 #include "texture/srgbbytes.h"
 #include "util/pngin.h"
 #include "render/scene.h"
+#include "mesh/store.h"
 #include "util/budget.h"
 #include "util/parallel.h"
 #include "util/coord.h"
@@ -138,7 +139,7 @@ static int build_scene(Scene *s, int threads, const SylSink *sink) {
         /* Embree reads vertices 16 bytes at a time: the array needs room past the last one,
          * which a vertex array with spare capacity has. */
         const float *pos = m->pos;
-        if (m->vert_cap <= m->nverts) {
+        if (!mesh_has_spare(m)) {
             s->pos_copy = malloc((m->nverts * 3 + 4) * sizeof(float));
             if (!s->pos_copy) return SYL_ELIMIT;
             memcpy(s->pos_copy, m->pos, m->nverts * 3 * sizeof(float));

@@ -12,6 +12,7 @@
 
 #include "kinds/kinds.h"
 #include "lang/program.h"
+#include "mesh/store.h"
 #include "scene/open.h"
 #include "util/arena.h"
 #include "util/namemap.h"
@@ -191,8 +192,8 @@ static SylMesh *obstacle_mesh(const Obstacles *o, const size_t *first_tri, int n
     }
     memset(m->pos + 3 * nv, 0, 4 * sizeof(float));
     m->nverts = nv;
-    m->vert_cap = nv + 1;
-    m->nidx = m->idx_cap = nv;
+    mesh_mark_spare(m); /* pos has 4 floats past the last vertex */
+    m->nidx = nv;
     m->groups[0] = (SylMeshGroup){.first = 0, .count = (uint32_t)nv, .material = OBSTACLE_MATERIAL};
     m->ngroups = 1;
     m->materials[OBSTACLE_MATERIAL] = (SylMaterial){.rgb = {0.72f, 0.70f, 0.66f}, .kind = SYL_MATERIAL_PLAIN};

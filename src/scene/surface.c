@@ -1,11 +1,14 @@
 /* Each plant's materials in the scene's palette (surface.h). */
+#include <string.h>
+
 #include "scene/surface.h"
 
 static bool same_material(const SylMaterial *a, const SylMaterial *b) {
     return a->rgb[0] == b->rgb[0] && a->rgb[1] == b->rgb[1] && a->rgb[2] == b->rgb[2] && a->kind == b->kind &&
            a->leaf_outline == b->leaf_outline && a->leaf_tris == b->leaf_tris && a->leaf_width == b->leaf_width &&
-           a->trunk_jitter == b->trunk_jitter && a->image == b->image && a->tile[0] == b->tile[0] &&
-           a->tile[1] == b->tile[1];
+           a->trunk_jitter == b->trunk_jitter && a->translucency == b->translucency && a->image == b->image &&
+           a->tile[0] == b->tile[0] && a->tile[1] == b->tile[1] &&
+           !memcmp(a->ring_sides, b->ring_sides, sizeof a->ring_sides);
 }
 
 static void take(SceneSurface *S, SylSkeleton *sk, int slot, const SylMaterial *m) {

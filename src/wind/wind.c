@@ -9,6 +9,12 @@
 #include "util/diag.h"
 #include "util/rng.h"
 
+/* SylWind.store: what the wind is counted against until syl_wind_free */
+struct SylWindStore {
+    SylBudget *budget;
+    uint64_t charged;
+};
+
 #define TWO_PI 6.28318530717958647692
 enum { WIND_SEED = 0x5717d };
 /* Bounds that keep a twig of huge L/r from spinning: the undirected sway (a1 + a2) and the
@@ -158,7 +164,10 @@ int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptio
         syl_wind_free(out);
         return SYL_ELIMIT;
     }
-    if (!status) out->budget = o->budget, out->charged = bytes;
+    if (!status && o->budget) {
+        if ((out->store = malloc(sizeof *out->store))) *out->store = (struct SylWindStore){o->budget, bytes};
+        else budget_release(o->budget, bytes), status = SYL_ELIMIT;
+    }
     if (!status && out->njoints &&
         !(out->rot = malloc(4 * sizeof *out->rot * (size_t)out->njoints * (size_t)out->nkeys)))
         status = SYL_ELIMIT;
@@ -172,7 +181,8 @@ int syl_wind_build(const SylSkeleton *s, const float *radius, const SylWindOptio
 }
 
 void syl_wind_free(SylWind *w) {
-    budget_release(w->budget, w->charged);
+    if (w->store) budget_release(w->store->budget, w->store->charged);
+    free(w->store);
     free(w->stems);
     free(w->joints);
     free(w->rot);

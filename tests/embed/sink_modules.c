@@ -1,6 +1,7 @@
 /* The modules that work on no program reach the embedder's sink too: one error of each (an
  * output path that cannot be written, a picture size out of range, a DEM that is not one, an
- * OBJ with a bad number, a checkpoint that does not read, ...), provoked with only a sink
+ * OBJ with a bad number, a checkpoint that does not read, a level of detail the renderer
+ * refuses, ...), provoked with only a sink
  * given and no FILE * anywhere; fd 2 goes to ERRFILE, which must stay empty.
  *   sink_modules MODEL.syl ECOSYSTEM.syl BAD_DEM_ECOSYSTEM.syl DIR ERRFILE
  * MODEL: an L-system that draws; ECOSYSTEM: an ecosystem block with a good DEM;
@@ -83,6 +84,17 @@ int main(int argc, char **argv) {
     said("wind", syl_wind_build(pl.skeleton, radius, &(SylWindOptions){.speed = 1, .budget = tiny, .sink = &sink}, &w));
     said("wind-options", syl_wind_build(pl.skeleton, radius, &(SylWindOptions){.speed = -1, .sink = &sink}, &w));
     free(radius);
+    /* the LOD check's renderer refusing a level (an index past its vertices), and an impostor
+     * level for a chain whose LOD0 draws nothing */
+    float three[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    uint32_t past[3] = {0, 1, 7};
+    SylMesh bad = {.pos = three, .nrm = three, .nverts = 3, .idx = past, .nidx = 3}, none = {0};
+    SylLodChain chain = {.n = 2, .level = {{.mesh = pl.mesh}, {.mesh = &bad, .level = 1}}};
+    SylLodSilhouette sil;
+    said("lod-check", syl_lod_check_silhouette(&chain, 1, &(SylLodCheckOptions){.sink = &sink}, &sil));
+    chain = (SylLodChain){.n = 1, .level = {{.mesh = &none}}};
+    said("impostor-level", syl_impostor_add_level(&chain, pl.skeleton, &(SylMeshOptions){0},
+                                                  &(SylImpostorOptions){.sink = &sink}, &imp));
     SylRenderOptions ro = {.width = 64, .height = 64};
     snprintf(path, sizeof path, "%s/snapshot.png", dir);
     said("snapshot", syl_ecosystem_render_snapshot(p, SYL_OK, &(SylSnapshotOptions){.plants = "plants.csv", .render = &ro,

@@ -11,6 +11,8 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "mesh/store.h"
+
 #include "sylva/mesh.h"
 #include "util/rng.h"
 
@@ -31,10 +33,17 @@ static inline SylMesh *synth_new(void) {
     return m;
 }
 
+/* Room for n vertices (or indices): first, doubled as often as needed. The arrays of a mesh
+ * of n always have at least cap(n + 1, ...): the vertices one past the last, for Embree. */
+static size_t fixture_cap(size_t n, size_t first) {
+    size_t c = first;
+    while (c < n) c *= 2;
+    return c;
+}
+
 static bool reserve(SylMesh *m, size_t verts, size_t idx) {
-    if (m->nverts + verts > m->vert_cap) {
-        size_t cap = m->vert_cap ? m->vert_cap : 256;
-        while (cap < m->nverts + verts) cap *= 2;
+    size_t cap = fixture_cap(m->nverts + verts + 1, 256);
+    if (!m->pos || cap > fixture_cap(m->nverts + 1, 256)) {
         float *p = realloc(m->pos, cap * 3 * sizeof *p);
         if (p) m->pos = p;
         float *n = realloc(m->nrm, cap * 3 * sizeof *n);
@@ -42,15 +51,13 @@ static bool reserve(SylMesh *m, size_t verts, size_t idx) {
         float *u = realloc(m->uv, cap * 2 * sizeof *u);
         if (u) m->uv = u;
         if (!p || !n || !u) return false;
-        m->vert_cap = cap;
     }
-    if (m->nidx + idx > m->idx_cap) {
-        size_t cap = m->idx_cap ? m->idx_cap : 768;
-        while (cap < m->nidx + idx) cap *= 2;
+    if (!mesh_has_spare(m)) mesh_mark_spare(m); /* Embree reads the vertices in place */
+    cap = fixture_cap(m->nidx + idx, 768);
+    if (!m->idx || cap > fixture_cap(m->nidx, 768)) {
         uint32_t *i = realloc(m->idx, cap * sizeof *i);
         if (!i) return false;
         m->idx = i;
-        m->idx_cap = cap;
     }
     return true;
 }

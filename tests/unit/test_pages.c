@@ -7,6 +7,7 @@
 #include "unit.h"
 #include "mesh_fixtures.h"
 
+#include "mesh/store.h"
 #include "skeleton/store.h"
 #include "util/pages.h"
 
@@ -70,9 +71,9 @@ static void append_block(void **state) {
     (void)state;
     for (int order = 0; order < 2; order++) {
         SylMesh *big = tube(6000, 0), *small = tube(4, 10); /* 6000 x 9 vertices: past 512 KB */
-        assert_non_null(big->block);
-        assert_ptr_equal(big->pos, big->block);
-        assert_non_null(small->block); /* a block too, in malloc's small pages */
+        assert_non_null(big->store->block);
+        assert_ptr_equal(big->pos, big->store->block);
+        assert_non_null(small->store->block); /* a block too, in malloc's small pages */
         SylMesh *dst = order ? small : big, *src = order ? big : small;
         size_t nv = dst->nverts, ni = dst->nidx;
         float *want = malloc(3 * (nv + src->nverts) * sizeof *want);
@@ -80,7 +81,7 @@ static void append_block(void **state) {
         memcpy(want + 3 * nv, src->pos, 3 * src->nverts * sizeof *want);
         uint32_t src_first = src->idx[0];
         assert_int_equal(syl_mesh_append(dst, src), SYL_OK);
-        assert_null(dst->block);
+        assert_null(dst->store->block);
         assert_int_equal(dst->nverts, nv + src->nverts);
         assert_int_equal(dst->nidx, ni + src->nidx);
         assert_memory_equal(dst->pos, want, 3 * dst->nverts * sizeof *want);

@@ -323,7 +323,7 @@ static void bare_meshes_render(void **state) {
     free(m->nrm);
     free(m->uv);
     m->nrm = m->uv = NULL;
-    m->vert_cap = m->nverts; /* and no room past the last vertex: Embree gets a padded copy */
+    m->store->spare = false; /* and no room past the last vertex: Embree gets a padded copy */
     uint8_t *rgb = render(m, (SylRenderOptions){.width = 48, .height = 48, .samples = 1});
     int bare = red_pixels(rgb, 48 * 48), with = red_pixels(full, 48 * 48);
     assert_true(bare > 48 * 48 / 8);
