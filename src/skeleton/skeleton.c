@@ -212,6 +212,12 @@ typedef struct Rows {
     FILE *out;
     char *p, buf[ROWS_SIZE + ROW_MAX];
     NumCache sizes; /* radii and sizes repeat (a species' leaves share one); positions do not */
+    /* JSON's `,"kind":"NAME","material":` for each kind, made once a write from syl_kind_names:
+     * one fixed 48-byte copy a row instead of strlen and a call to memcpy */
+    struct {
+        char text[48];
+        size_t len;
+    } kind[SYL_KIND_COUNT];
 } Rows;
 
 static Rows *rows_new(FILE *out) {
@@ -219,6 +225,10 @@ static Rows *rows_new(FILE *out) {
     if (!r) return NULL;
     r->out = out, r->p = r->buf;
     numcache_init(&r->sizes, "0", 1);
+    for (int k = 0; k < SYL_KIND_COUNT; k++) {
+        int n = snprintf(r->kind[k].text, sizeof r->kind[k].text, ",\"kind\":\"%s\",\"material\":", syl_kind_names[k]);
+        r->kind[k].len = n > 0 && (size_t)n < sizeof r->kind[k].text ? (size_t)n : 0;
+    }
     return r;
 }
 
@@ -231,6 +241,10 @@ static void rows_int(Rows *r, long long v) { r->p = numtext_int(r->p, v); }
 static void rows_g(Rows *r, float x) { r->p = numtext_g(r->p, x, 6); }
 static char *text_g(char *p, float x, int prec) { return numtext_g(p, x, prec); }
 static void rows_size(Rows *r, float x) { r->p = numcache_put(&r->sizes, r->p, x, 6, text_g); }
+static void rows_kind(Rows *r, uint8_t kind) {
+    memcpy(r->p, r->kind[kind].text, sizeof r->kind[kind].text);
+    r->p += r->kind[kind].len;
+}
 static void rows_end(Rows *r) { /* after each row: at most ROW_MAX bytes were added */
     if (r->p - r->buf >= ROWS_SIZE) fwrite(r->buf, 1, (size_t)(r->p - r->buf), r->out), r->p = r->buf;
 }
@@ -290,8 +304,7 @@ int syl_skeleton_write_json(const SylSkeleton *s, FILE *out) {
         json_row_start(r, i, i, n->parent, n->pos, ",\"radius\":", n->radius);
         rows_text(r, ",\"order\":"), rows_int(r, n->order);
         rows_text(r, ",\"axis\":"), rows_int(r, n->axis);
-        rows_text(r, ",\"kind\":\""), rows_text(r, syl_kind_names[n->kind]);
-        rows_text(r, "\",\"material\":"), rows_int(r, n->material);
+        rows_kind(r, n->kind), rows_int(r, n->material);
         *r->p++ = '}';
         rows_end(r);
     }
@@ -299,8 +312,7 @@ int syl_skeleton_write_json(const SylSkeleton *s, FILE *out) {
     for (size_t i = 0; i < s->norgans; i++) {
         const SylOrgan *o = &s->organs[i];
         json_row_start(r, i, s->nnodes + i, o->node, o->pos, ",\"size\":", o->size);
-        rows_text(r, ",\"kind\":\""), rows_text(r, syl_kind_names[o->kind]);
-        rows_text(r, "\",\"material\":"), rows_int(r, o->material);
+        rows_kind(r, o->kind), rows_int(r, o->material);
         *r->p++ = '}';
         rows_end(r);
     }

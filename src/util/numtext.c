@@ -86,9 +86,20 @@ static bool round_sig(double x, int prec, uint64_t *n, int *exp) {
 }
 
 #ifdef NUMTEXT_WORDS
+/* n < 1000 as three ASCII digits, the first in the low byte: %.6g's six digits are two of
+ * these, two loads where numtext_word8's three rounds of multiplies are a longer chain. */
+#define NT_E(n) ((uint32_t)('0' + (n) / 100) | (uint32_t)('0' + (n) / 10 % 10) << 8 | (uint32_t)('0' + (n) % 10) << 16)
+#define NT_R10(n) NT_E(n), NT_E(n + 1), NT_E(n + 2), NT_E(n + 3), NT_E(n + 4), NT_E(n + 5), NT_E(n + 6), NT_E(n + 7), \
+                  NT_E(n + 8), NT_E(n + 9)
+#define NT_R100(n) NT_R10(n), NT_R10(n + 10), NT_R10(n + 20), NT_R10(n + 30), NT_R10(n + 40), NT_R10(n + 50), \
+                   NT_R10(n + 60), NT_R10(n + 70), NT_R10(n + 80), NT_R10(n + 90)
+static const uint32_t thousands[1000] = {NT_R100(0),   NT_R100(100), NT_R100(200), NT_R100(300), NT_R100(400),
+                                         NT_R100(500), NT_R100(600), NT_R100(700), NT_R100(800), NT_R100(900)};
+
 /* q has exactly prec <= 8 digits, x = q * 10^(X - prec + 1). */
 static char *g_text(char *p, uint32_t q, int prec, int X) {
-    uint64_t d = numtext_word8(q) >> (8 * (8 - prec)); /* the prec digits */
+    uint64_t d = prec == 6 ? thousands[q / 1000] | (uint64_t)thousands[q % 1000] << 24
+                           : numtext_word8(q) >> (8 * (8 - prec)); /* the prec digits */
     int nd = numtext_significant(d, prec);              /* %g drops trailing zeros */
     if (X < -4 || X >= prec) {                   /* d.ddde+XX */
         uint64_t first = (d & 0xff) | ((uint64_t)'.' << 8), rest = d >> 8;
