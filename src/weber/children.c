@@ -48,7 +48,7 @@ void weber_tip_child(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids
     c.u_lcm = -1; /* its children's length drawn, ± LengthV */
     c.key = weber_key(st->key, 1, (uint64_t)1 << 40);
     c.start = segs[st->nseg - 1].f;
-    frame_move(&c.start, st->seglen);
+    frame_move(&c.start, weber_step(g, st, &c.start));
     double down, rot;
     weber_child_angles(g, st, c.offset, c.level, kids, &down, &rot);
     frame_rotxz(&c.start, 0, rot);
