@@ -32,6 +32,7 @@ void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, R
         c.level = st->level + 1;
         c.parent = id;
         c.offset = (seg + where) * len;
+        c.u_lcm = -1; /* its children's length drawn, ± LengthV (Arbaro's lengthChildMax per stem) */
         c.key = weber_key(st->key, 1, (uint64_t)seg << 20 | (uint64_t)k);
         c.start = weber_child_direction(g, st, segs[seg].f, c.offset, c.level, kids);
         for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
