@@ -135,8 +135,8 @@ static bool value(Lex *l, Diag *diag, Value *v) {
 
 /* Sapling's parameter → Sylva's weber directive. PER_LEVEL: a tuple of the 4 levels (Sapling
  * starts at the trunk, as `DownAngle 0 60 45 45` does). SKIP: Sapling's own (its curves'
- * resolution and bevel, armature and wind animation, leaf animation, its second shape and
- * taper of the crown, root flare by another law), read and left out. */
+ * resolution and bevel, armature and wind animation, leaf animation, root flare by another
+ * law), read and left out. */
 enum { ONE, PER_LEVEL, SHAPE, LEAFSHAPE, ATTRACT, PRUNE, CUSTOM, SKIP };
 static const struct {
     const char *sapling, *sylva;
@@ -164,6 +164,7 @@ static const struct {
     {"splitByLen", "SaplingSplitByLen", ONE}, {"branchDist", "SaplingBranchDist", ONE},
     {"nrings", "SaplingRings", ONE},     {"splitBias", "SaplingSplitBias", ONE},
     {"shapeS", "SaplingShapeS", SHAPE},  {"customShape", "SaplingCustom", CUSTOM},
+    {"taperCrown", "SaplingTaperCrown", ONE},
 };
 
 static Stmt *directive(Arena *a, Model *m, const char *name, SylLoc loc) {

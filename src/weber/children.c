@@ -32,6 +32,7 @@ void weber_children(WeberGen *g, int id, WStem *st, int seg, const WSeg *segs, R
         c.level = st->level + 1;
         c.parent = id;
         c.offset = (seg + where) * len;
+        c.u_lcm = -1; /* its children's length drawn, ± LengthV (Arbaro's lengthChildMax per stem) */
         c.key = weber_key(st->key, 1, (uint64_t)seg << 20 | (uint64_t)k);
         c.start = weber_child_direction(g, st, segs[seg].f, c.offset, c.level, kids);
         for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * len;
@@ -48,7 +49,7 @@ void weber_tip_child(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids
     c.u_lcm = -1; /* its children's length drawn, ± LengthV */
     c.key = weber_key(st->key, 1, (uint64_t)1 << 40);
     c.start = segs[st->nseg - 1].f;
-    frame_move(&c.start, st->seglen);
+    frame_move(&c.start, weber_step(g, st, &c.start));
     double down, rot;
     weber_child_angles(g, st, c.offset, c.level, kids, &down, &rot);
     frame_rotxz(&c.start, 0, rot);

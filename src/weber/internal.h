@@ -99,7 +99,7 @@ typedef struct WeberGen {
     const WeberEnvelope *envelope;
 } WeberGen;
 
-enum { WRNG_SELF, WRNG_SHAPE, WRNG_KIDS, WRNG_SCALE0, WRNG_PLACES };
+enum { WRNG_SELF, WRNG_SHAPE, WRNG_KIDS, WRNG_SCALE0, WRNG_PLACES, WRNG_FORK };
 static inline Rng weber_rng(const WeberGen *g, uint64_t key, int table) { return rng_stream(g->seed, key, (uint64_t)table, 0); }
 /* Arbaro's var(v): uniform in [-v, v]. */
 static inline double weber_var(Rng *r, double v) { return v * (2 * rng_unit(r) - 1); }
@@ -179,6 +179,8 @@ void weber_tip_child(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids
 void weber_sapling_children(WeberGen *g, int id, WStem *st, const WSeg *segs, Rng *kids);
 void weber_sapling_child(WeberGen *g, int id, WStem *st, const WSeg *segs, double at, int a, Rng *kids);
 size_t weber_sapling_trunk_places(const WeberParams *w, Rng *r, double *out);
+double weber_step(const WeberGen *g, const WStem *st, const Frame *f);
+void weber_sapling_fork(const WeberGen *g, const WStem *from, WStem *c, const Frame *f);
 Frame weber_split(WeberGen *g, WStem *st, Rng *r, Frame trf, double s_angle, int seg, int nsplits, bool test);
 
 /* children.c */

@@ -91,7 +91,8 @@ static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, R
             double where = offs + dist / 2 + k * dist + weber_var(kids, dist / 2), d, r, t[3];
             double at = (seg + where) * len;
             weber_child_angles(g, st, at, st->level + 1, kids, &d, &r);
-            for (int i = 0; i < 3; i++) t[i] = f->t[i] + f->z[i] * where * len;
+            double step = weber_step(g, st, f);
+            for (int i = 0; i < 3; i++) t[i] = f->t[i] + f->z[i] * where * step;
             push_leaf(g, b, id, f, t, at, (float)(r * (M_PI / 180)), (float)(d * (M_PI / 180)));
         }
     } else if (seg == st->nseg - 1) { /* a fan at the tip */
@@ -103,7 +104,7 @@ static void leaves_on(WeberGen *g, int id, WStem *st, int seg, const Frame *f, R
             return;
         }
         Frame tip = *f;
-        frame_move(&tip, len);
+        frame_move(&tip, weber_step(g, st, &tip));
         b->turned = true;
         double step = w->Rotate[cl] / n, stepv = w->RotateV[cl] / n, off;
         if (n % 2 == 1) {

@@ -84,7 +84,8 @@ void weber_sapling_child(WeberGen *g, int id, WStem *st, const WSeg *segs, doubl
     c.u_lcm = -1; /* its children's length drawn, ± LengthV */
     c.key = weber_key(st->key, 1, (uint64_t)seg << 20 | (uint64_t)a);
     c.start = weber_child_direction(g, st, segs[seg].f, c.offset, c.level, kids);
-    for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * st->seglen;
+    double step = weber_step(g, st, &segs[seg].f);
+    for (int i = 0; i < 3; i++) c.start.t[i] = segs[seg].f.t[i] + segs[seg].f.z[i] * where * step;
     weber_make_stem(g, c);
 }
 
@@ -132,4 +133,41 @@ size_t weber_sapling_trunk_places(const WeberParams *w, Rng *r, double *out) {
     }
     qsort(out, k, sizeof *out, by_value);
     return k;
+}
+
+/* Sapling's taperCrown: a trunk (or trunk fork) segment heading at declination d degrees is
+ * max(0.1, 1 - 30 SaplingTaperCrown (d / 180)^2) as long; 1 elsewhere. */
+static double crown_taper(const WeberGen *g, const WStem *st, const Frame *f) {
+    if (!g->w.SaplingLaw || st->level != 0 || !(g->w.SaplingTaperCrown > 0)) return 1;
+    double zz = f->z[2] > 1 ? 1 : f->z[2] < -1 ? -1 : f->z[2];
+    double d = acos(zz) / M_PI; /* degrees / 180 */
+    return fmax(0.1, 1 - 30 * g->w.SaplingTaperCrown * d * d);
+}
+
+/* The length of the step a stem's segment with frame f takes: its seglen, shortened by
+ * taperCrown; the segment's share of the stem (radius, children's places) stays its seglen's,
+ * as Sapling's radii and places go by the segment's number. */
+double weber_step(const WeberGen *g, const WStem *st, const Frame *f) {
+    double k = crown_taper(g, st, f);
+    return k == 1 ? st->seglen : st->seglen * k;
+}
+
+/* A fork's own length, as a share of its stem's before any fork's: 1 ± LengthV / Length of its
+ * level, drawn from the fork's own stream (so that a fork of a fork can find its origin's). */
+static double fork_share(const WeberGen *g, const WStem *c) {
+    int lv = weber_lv(c->level);
+    double v = g->w.Length[lv] > 0 ? g->w.LengthV[lv] / g->w.Length[lv] : 0;
+    if (!c->clone || !(v > 0)) return 1;
+    Rng own = weber_rng(g, c->key, WRNG_FORK);
+    return 1 + weber_var(&own, v);
+}
+
+/* SaplingLaw: a fork c split from `from` at frame f, as Sapling's: its segments 1 ± lengthV as
+ * long as the stem's before any fork's (not compounded), its radius times that share times the
+ * crown taper at the split, at most 1 (compounded, as Sapling's radii are). */
+void weber_sapling_fork(const WeberGen *g, const WStem *from, WStem *c, const Frame *f) {
+    double own = fork_share(g, c), k = own / fork_share(g, from);
+    if (k != 1) c->seglen *= k, c->length *= k;
+    double r = fmin(own * crown_taper(g, from, f), 1);
+    if (r != 1) c->base_radius *= r;
 }

@@ -142,7 +142,7 @@ static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *
     for (int s = s0; s < st->nseg; s++) {
         new_direction(g, st, &trf, s, &r);
         if (segs) segs[s].f = trf, segs[s].sps = st->sps;
-        frame_move(&trf, st->seglen);
+        frame_move(&trf, weber_step(g, st, &trf));
         if (test && !weber_inside(g, trf.t)) return s;
         if (s >= st->nseg - 1) continue;
         int n = g->w.SaplingLaw ? weber_sapling_splits(g, st, s, &r) : weber_split_count(g, st, s);
@@ -156,6 +156,7 @@ static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *
             c.first_seg = s + 1;
             c.rot = st->rot + 180;
             c.start = weber_split(g, &c, &r, trf, s_angle * (1 + i), s, n, test);
+            if (g->w.SaplingLaw) weber_sapling_fork(g, st, &c, &trf);
             if (test) {
                 int bad = trace_in(g, &c, s + 1, c.start, true, NULL, NULL);
                 if (bad >= 0) return bad;
@@ -212,7 +213,8 @@ static bool put_segment(WeberGen *g, const WStem *st, int s, const Frame *f) {
     const WeberParams *w = &g->w;
     int lv = weber_lv(st->level);
     double len = st->seglen, base = s * len, taper = w->Taper[lv], p[3];
-#define AT(d) (p[0] = f->t[0] + f->z[0] * (d), p[1] = f->t[1] + f->z[1] * (d), p[2] = f->t[2] + f->z[2] * (d), p)
+    double k = len > 0 ? weber_step(g, st, f) / len : 1; /* taperCrown: a shorter step, the same share */
+#define AT(d) (p[0] = f->t[0] + f->z[0] * (d) * k, p[1] = f->t[1] + f->z[1] * (d) * k, p[2] = f->t[2] + f->z[2] * (d) * k, p)
     if (s == st->first_seg && !put_point(g, st, f, AT(len * 1e-3), base + len * 1e-3)) return false;
     if (w->CurveV[lv] < 0) { /* a helix: one turn per segment */
         double a = fabs(w->CurveV[lv]) * M_PI / 180, c = cos(a);

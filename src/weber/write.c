@@ -110,7 +110,7 @@ int weber_write_nodes(WeberGen *g, SylSkeleton *sk) {
         const WStem *s = &g->stems[j];
         attach_node[j] = -1;
         if (s->from < 0) continue;
-        att[na++] = (Attach){s->from, (int)j, s->clone ? s->first_seg * s->seglen : s->offset};
+        att[na++] = (Attach){s->from, (int)j, s->clone ? s->first_seg * g->stems[s->from].seglen : s->offset};
     }
     if (!sort_by_host(g, att, na, ns)) {
         weber_drop(g, attach_node, (ns ? ns : 1) * sizeof *attach_node);

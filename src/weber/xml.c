@@ -131,6 +131,8 @@ int weber_write_syl(const WeberParams *w, const char *species, const SylProgram 
     for (int i = 0; i < weber_param_count; i++) {
         const WeberParamInfo *pi = &weber_param_table[i];
         if (pi->per_level) continue;
+        /* a tree not by Sapling's law written as before SaplingTaperCrown was read */
+        if (pi->offset == offsetof(WeberParams, SaplingTaperCrown) && !w->SaplingLaw && w->SaplingTaperCrown == 0) continue;
         fprintf(out, "  %-14s %s\n", pi->name, global_text(w, pi, v, sizeof v));
     }
     for (int i = 0; i < weber_param_count; i++) {
