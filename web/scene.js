@@ -6,8 +6,10 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 
 // opts.shadowsOnDemand: the shadow map is drawn when the caller sets
 // renderer.shadowMap.needsUpdate (sylva view draws frames only when something changed).
+// opts.antialias false: a canvas without multisampling (sylva view multisamples its full frames
+// itself and draws a preview's straight onto it).
 export function createScene(canvas, opts = {}) {
-  const renderer = new THREE.WebGLRenderer({ canvas, antialias: true, preserveDrawingBuffer: true });
+  const renderer = new THREE.WebGLRenderer({ canvas, antialias: opts.antialias ?? true, preserveDrawingBuffer: true });
   renderer.setPixelRatio(Math.min(window.devicePixelRatio, 2));
   renderer.shadowMap.enabled = true;
   renderer.shadowMap.type = THREE.PCFSoftShadowMap;

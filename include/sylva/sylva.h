@@ -92,9 +92,10 @@ uint64_t syl_budget_limit(const SylBudget *b);
 /* A caller's way to stop a long build it no longer wants (a viewer whose file changed under
  * it): the engines ask stop(user) between their passes — before each derivation step, every
  * 65,536 modules the turtle reads, before every year a tree grows, before each Weber-Penn trunk
- * and main branch, every 4,096 strands segments, between the mesher's planning and its
- * writing — and on a
- * nonzero answer free what they made and return SYL_ECANCELED, saying nothing. Give the same
+ * and main branch, every 4,096 strands segments, before a Pafco trunk and each whorl of its
+ * crown, before a curvetree's trunk and each first-level branch, between the mesher's
+ * planning and its writing — and on a nonzero answer free what they made and return
+ * SYL_ECANCELED, saying nothing. Give the same
  * one to each engine's options (their `cancel` field; NULL: never). It is asked from the
  * calling thread only; a build it does not stop is the same as without it. */
 typedef struct SylCancel {

@@ -27,7 +27,9 @@ typedef struct SylTreeOptions {
     SylBudget *budget;
     FILE *diag;
     /* asked (sylva.h) by weber before each trunk, each first-level branch, the nodes and the
-     * leaves, by strands before every 4,096 segments; the other kinds never ask. NULL: never */
+     * leaves, by strands before every 4,096 segments, by pafco before its trunk and each whorl
+     * of its crown, by curvetree before its trunk's nodes and each first-level branch's; the
+     * other kinds never ask. NULL: never */
     const SylCancel *cancel;
 } SylTreeOptions;
 

@@ -341,7 +341,7 @@ void ct_bounds(const CtParams *P, const CtCurve *trunk, uint64_t *nodes, uint64_
 }
 
 int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *inside_user, double leaf_aspect,
-             uint64_t seed, SylSkeleton *sk) {
+             uint64_t seed, SylSkeleton *sk, const SylCancel *cancel) {
     Ct ct = {.P = P, .inside = inside, .user = inside_user, .sk = sk, .seed = seed};
     ct.trunk_len = trunk->length;
     ct.seg1 = trunk->length / 16;
@@ -412,6 +412,8 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
         }
     }
     /* the trunk's nodes: a root, each point of the dense polyline, a node at each branch */
+    bool stopped = syl_cancelled(cancel); /* asked before the trunk's nodes, then each branch's */
+    ct.failed = ct.failed || stopped;
     double pos0[3], h0[3];
     ct_curve_at(trunk, 0, pos0, h0);
     int32_t last = put(&ct, trunk->p[0], h0, tr[0], -1, 0, 0, SYL_KIND_ROOT);
@@ -436,6 +438,10 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     for (int i = 0; i < made1; i++) longest = fmax(longest, b1[i].path.len);
     int axis = 1;
     for (int i = 0; i < made1 && !ct.failed; i++) {
+        if (syl_cancelled(cancel)) {
+            stopped = ct.failed = true;
+            break;
+        }
         const Path *pa = &b1[i].path;
         int count = longest > 0 ? round_count(n2max * pa->len / longest) : 0;
         int made2 = children(&ct, pa, count, 2, &b1[i].rng, b2);
@@ -456,5 +462,5 @@ int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *ins
     ring[0] = (uint8_t)(4 * lround(P->trunkRes));
     for (int o = 1; o < 4; o++) ring[o] = (uint8_t)(4 * lround(P->branchRes));
     free(rc), free(tr), free(b1), free(b1_node), free(b2), free(b2_node);
-    return ct.failed ? SYL_ELIMIT : SYL_OK;
+    return stopped ? SYL_ECANCELED : ct.failed ? SYL_ELIMIT : SYL_OK;
 }

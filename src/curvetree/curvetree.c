@@ -102,9 +102,10 @@ int syl_curvetree_build(const SylProgram *p, const SylTreeOptions *opt, SylSkele
         else budget_release(mem, bytes);
         uint64_t seed = opt->use_seed ? opt->seed : (uint64_t)P.seed;
         seed += opt->seed_offset; /* a scene's n-th plant of a row: a tree of its own */
-        st = ct_build(&P, &trunk, inside, &env, aspect, seed, sk);
+        st = ct_build(&P, &trunk, inside, &env, aspect, seed, sk, opt->cancel);
         if (!st) st = syl_skeleton_apply_textures(sk, &tex, seed);
-        if (st) program_say(p, diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton", syl_program_name(p));
+        if (st && st != SYL_ECANCELED) /* stopped: nothing said */
+            program_say(p, diag, DIAG_ERROR, NULL, "'%s': out of memory for the skeleton", syl_program_name(p));
     }
     lang_textures_free(&tex);
     parity_free(&env.grid);

@@ -59,9 +59,11 @@ int ct_curve_at(const CtCurve *c, double s, double pos[3], double dir[3]);
 typedef bool (*CtInside)(void *user, const double p[3]);
 
 /* Build the tree into sk (appended; its first node the trunk's root). SYL_OK, SYL_ELIMIT
- * (out of memory). leaf_aspect: the leaves' length / width. */
+ * (out of memory), SYL_ECANCELED when cancel (NULL: never), asked before the trunk's nodes and
+ * before each first-level branch's, said stop (sk then holds part of the tree: free it).
+ * leaf_aspect: the leaves' length / width. */
 int ct_build(const CtParams *P, const CtCurve *trunk, CtInside inside, void *inside_user, double leaf_aspect,
-             uint64_t seed, SylSkeleton *sk);
+             uint64_t seed, SylSkeleton *sk, const SylCancel *cancel);
 /* Leaves per branch by the plug-in's step rule (the same for every length): the first at one
  * step from the base, step = length / 10 / density, x 19/20 after each leaf, never below
  * length / 30, while inside the branch. */

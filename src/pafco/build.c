@@ -242,7 +242,8 @@ static void materials(Gen *g) {
         sk->materials[SYL_MATERIAL_BARK].ring_sides[o] = (uint8_t)pafco_ring_points(P->detail, o);
 }
 
-int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log) {
+int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log,
+                const SylCancel *cancel) {
     Gen g = {.P = P, .sk = sk, .rng = rng_stream(seed, 0, 0x9afc02007ull, 0),
              .leaf_rng = rng_stream(seed, 1, 0x9afc02007ull, 0), .mem = mem, .log = log};
     /* the most the tree can hold, charged and reserved at once: past the budget, nothing is made */
@@ -252,6 +253,7 @@ int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *s
     if (!skeleton_reserve_nodes(sk, sk->nnodes + (size_t)nodes) ||
         (leaves > 0 && !skeleton_reserve_organs(sk, sk->norgans + (size_t)leaves)))
         return SYL_ELIMIT;
+    if (syl_cancelled(cancel)) return SYL_ECANCELED; /* before the trunk */
     g.last_gen = P->gen[1] ? (P->gen[2] ? 3 : 2) : 1;
     materials(&g);
     const double H = P->height;
@@ -281,8 +283,13 @@ int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *s
     /* the crown: KORUNA_KMEN of the height (above 1: the appendix's height / crown) */
     double crown = P->crown_ratio <= 1 ? P->crown_ratio * H : H / P->crown_ratio, base = H - crown;
     double longest = P->width_ratio * H;
+    bool stopped = false;
     for (long i = 1; i < n && !g.failed; i++) {
         if (tp[i].y < base - 1e-9) continue;
+        if (syl_cancelled(cancel)) { /* before each whorl of first-generation branches */
+            stopped = g.failed = true;
+            break;
+        }
         double f = crown > 0 ? (tp[i].y - base) / crown : 1;
         V3 th = norm(add(tp[i + 1], scale(tp[i - 1], -1)));
         V3 a = perp(th), b = cross(th, a);
@@ -299,5 +306,5 @@ int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *s
     }
     if (P->sph_leaves && !g.failed) cluster(&g, tp[n], tid[n]); /* the trunk's end has its cluster too */
     free(tp), free(tid);
-    return g.failed ? SYL_ELIMIT : SYL_OK;
+    return stopped ? SYL_ECANCELED : g.failed ? SYL_ELIMIT : SYL_OK;
 }

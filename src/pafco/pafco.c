@@ -63,11 +63,12 @@ int syl_pafco_build(const SylProgram *p, const SylTreeOptions *opt, SylSkeleton 
         return SYL_ELIMIT;
     }
     uint64_t before = syl_budget_used(mem);
-    int st = pafco_build(&P, seed, mem, sk, NULL);
+    int st = pafco_build(&P, seed, mem, sk, NULL, opt->cancel);
     uint64_t charged = syl_budget_used(mem) - before;
     if (st) {
-        program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' needs more memory than --max-memory allows (%llu MB%s)",
-                    syl_program_name(p), (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
+        if (st != SYL_ECANCELED) /* stopped: nothing said */
+            program_say(p, opt->diag, DIAG_ERROR, NULL, "'%s' needs more memory than --max-memory allows (%llu MB%s)",
+                        syl_program_name(p), (unsigned long long)budget_limit_mb(mem), mem == &own ? "" : " in all");
         budget_release(mem, charged);
         syl_skeleton_free(sk);
         return st;

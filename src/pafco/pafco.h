@@ -6,6 +6,7 @@
 
 #include "pafco/params.h"
 #include "sylva/skeleton.h"
+#include "sylva/sylva.h"
 #include "util/budget.h"
 
 /* What a build made, for the tests of its invariants: each branch's generation (0 trunk),
@@ -28,8 +29,10 @@ typedef struct PafcoLog {
 /* Build P's tree into sk (empty, from syl_skeleton_new) with seed. The most nodes and leaves
  * it can have (pafco_bounds) are charged to mem and reserved before a node is made. log (may be
  * NULL) receives the branches (free log->branches). SYL_OK, or SYL_ELIMIT beyond the budget
- * (pafco_fits false: nothing made) or out of memory. */
-int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log);
+ * (pafco_fits false: nothing made) or out of memory; SYL_ECANCELED when cancel (NULL: never),
+ * asked before the trunk and before each trunk point's whorl, said stop (sk holds part of it). */
+int pafco_build(const PafcoParams *P, uint64_t seed, Budget *mem, SylSkeleton *sk, PafcoLog *log,
+                const SylCancel *cancel);
 
 /* The most nodes and leaves P's tree can have, whatever the seed (bound.c); once nodes pass
  * cap, the count stops there (the tree is too large anyway). */

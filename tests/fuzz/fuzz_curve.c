@@ -45,7 +45,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     if (c.n <= 4096) {
         SylSkeleton *sk = syl_skeleton_new("fuzz");
         if (!sk) abort();
-        if (ct_build(&P, &c, in_ball, &b, 2, 1, sk) != SYL_OK) abort();
+        if (ct_build(&P, &c, in_ball, &b, 2, 1, sk, NULL) != SYL_OK) abort();
         uint64_t nodes, leaves;
         ct_bounds(&P, &c, &nodes, &leaves);
         if (sk->nnodes > nodes || sk->norgans > leaves) abort(); /* the budget's count is an upper bound */

@@ -31,7 +31,7 @@ static Tree tree_of(const char *cfg) {
     Budget mem;
     budget_init(&mem, 0);
     t.sk = syl_skeleton_new("t");
-    assert_int_equal(pafco_build(&t.P, 7, &mem, t.sk, &t.log), SYL_OK);
+    assert_int_equal(pafco_build(&t.P, 7, &mem, t.sk, &t.log, NULL), SYL_OK);
     return t;
 }
 

@@ -19,7 +19,7 @@ static void check(const PafcoParams *P, uint64_t seed, double *fill) {
     budget_init(&mem, 0);
     SylSkeleton *sk = syl_skeleton_new("t");
     assert_non_null(sk);
-    assert_int_equal(pafco_build(P, seed, &mem, sk, NULL), SYL_OK);
+    assert_int_equal(pafco_build(P, seed, &mem, sk, NULL, NULL), SYL_OK);
     if (!((double)sk->nnodes <= nodes) || !((double)sk->norgans <= leaves))
         fail_msg("seed %llu: %zu nodes, %zu leaves, bound %.0f, %.0f", (unsigned long long)seed, sk->nnodes,
                  sk->norgans, nodes, leaves);
