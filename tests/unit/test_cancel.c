@@ -35,16 +35,27 @@ static int build(SylProgram *p, SylPlantStage until, Asks *a, SylPlant *pl) {
     return syl_plant_build(p, &po, pl);
 }
 
-/* derive 17 steps (17 asks), then the turtle's 2 */
-static void every_pass_of_a_derivation_and_the_turtle_is_asked(void **state) {
-    (void)state;
-    SylProgram *p = unit_compile(line, NULL, NULL);
-    assert_non_null(p);
-    SylPlant pl;
+static void assert_same_skeleton(const SylSkeleton *a, const SylSkeleton *b) {
+    assert_int_equal(a->nnodes, b->nnodes);
+    assert_int_equal(a->norgans, b->norgans);
+    for (size_t i = 0; i < a->nnodes; i++) {
+        assert_memory_equal(a->nodes[i].pos, b->nodes[i].pos, sizeof a->nodes[i].pos);
+        assert_int_equal(a->nodes[i].parent, b->nodes[i].parent);
+    }
+    for (size_t i = 0; i < a->norgans; i++) assert_memory_equal(a->organs[i].pos, b->organs[i].pos, sizeof a->organs[i].pos);
+}
+
+/* p's skeleton built without a cancel, with one never stopping (asked at least `least` times: the
+ * same skeleton), and stopped at each of its asks (SYL_ECANCELED at once, nothing left); the
+ * number of asks */
+static int stops_at_every_ask(SylProgram *p, const char *what, int least) {
+    SylPlant plain, pl;
+    assert_int_equal(build(p, SYL_PLANT_SKELETON, NULL, &plain), SYL_OK);
+    if (strstr(what, "scene {")) assert_int_equal(plain.kind, SYL_MODEL_SCENE);
     Asks never = {.at = -1};
     assert_int_equal(build(p, SYL_PLANT_SKELETON, &never, &pl), SYL_OK);
-    assert_int_equal(never.asked, 17 + 2);
-    assert_int_equal(pl.skeleton->nnodes, 131072 + 1);
+    if (never.asked < least) fail_msg("%s: asked %d times, not at least %d", what, never.asked, least);
+    assert_same_skeleton(pl.skeleton, plain.skeleton);
     syl_plant_free(&pl);
     for (int at = 0; at < never.asked; at++) {
         Asks a = {.at = at};
@@ -53,6 +64,20 @@ static void every_pass_of_a_derivation_and_the_turtle_is_asked(void **state) {
         assert_null(pl.skeleton);
         assert_null(pl.string);
     }
+    syl_plant_free(&plain);
+    return never.asked;
+}
+
+/* derive 17 steps (17 asks), then the turtle's 2 */
+static void every_pass_of_a_derivation_and_the_turtle_is_asked(void **state) {
+    (void)state;
+    SylProgram *p = unit_compile(line, NULL, NULL);
+    assert_non_null(p);
+    assert_int_equal(stops_at_every_ask(p, "line", 17 + 2), 17 + 2);
+    SylPlant pl;
+    assert_int_equal(build(p, SYL_PLANT_SKELETON, NULL, &pl), SYL_OK);
+    assert_int_equal(pl.skeleton->nnodes, 131072 + 1);
+    syl_plant_free(&pl);
     syl_program_free(p);
 }
 
@@ -97,36 +122,6 @@ static const char *const kinds[] = {
     ("grow G {\n  years 3\n  internode 0.3\n  buds opposite angle 50\n  light shadow a 0.2 b 3 depth 4\n}\n"
      "scene {\n  plant G at (0, 0, 0)\n  plant G at (2, 0, 0)\n}\n"),
 };
-
-static void assert_same_skeleton(const SylSkeleton *a, const SylSkeleton *b) {
-    assert_int_equal(a->nnodes, b->nnodes);
-    assert_int_equal(a->norgans, b->norgans);
-    for (size_t i = 0; i < a->nnodes; i++) {
-        assert_memory_equal(a->nodes[i].pos, b->nodes[i].pos, sizeof a->nodes[i].pos);
-        assert_int_equal(a->nodes[i].parent, b->nodes[i].parent);
-    }
-    for (size_t i = 0; i < a->norgans; i++) assert_memory_equal(a->organs[i].pos, b->organs[i].pos, sizeof a->organs[i].pos);
-}
-
-/* p's skeleton built without a cancel, with one never stopping (asked at least `least` times: the
- * same skeleton), and stopped at each of its asks (SYL_ECANCELED at once, nothing left) */
-static void stops_at_every_ask(SylProgram *p, const char *what, int least) {
-    SylPlant plain, pl;
-    assert_int_equal(build(p, SYL_PLANT_SKELETON, NULL, &plain), SYL_OK);
-    if (strstr(what, "scene {")) assert_int_equal(plain.kind, SYL_MODEL_SCENE);
-    Asks never = {.at = -1};
-    assert_int_equal(build(p, SYL_PLANT_SKELETON, &never, &pl), SYL_OK);
-    if (never.asked < least) fail_msg("%s: asked %d times, not at least %d", what, never.asked, least);
-    assert_same_skeleton(pl.skeleton, plain.skeleton);
-    syl_plant_free(&pl);
-    for (int at = 0; at < never.asked; at++) {
-        Asks a = {.at = at};
-        assert_int_equal(build(p, SYL_PLANT_SKELETON, &a, &pl), SYL_ECANCELED);
-        assert_int_equal(a.asked, at + 1); /* stopped at once */
-        assert_null(pl.skeleton);
-    }
-    syl_plant_free(&plain);
-}
 
 static void grown_weber_and_strands_trees_stop_at_every_ask(void **state) {
     (void)state;

@@ -19,14 +19,7 @@
 
 static char dir[64];
 
-static void write_file(const char *name, const char *text) {
-    char path[128];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
+static void write_file(const char *name, const char *text) { unit_write_file(dir, name, text); }
 
 /* A box as an OBJ of 12 triangles. */
 static void write_box(const char *name, double x0, double y0, double z0, double x1, double y1, double z1) {

@@ -14,14 +14,7 @@
 
 static char dir[64];
 
-static void write_file(const char *name, const char *text) {
-    char path[128];
-    snprintf(path, sizeof path, "%s/%s", dir, name);
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    fclose(f);
-}
+static void write_file(const char *name, const char *text) { unit_write_file(dir, name, text); }
 
 static const char *const files[] = {"box.obj", "tree.cfg", "scene.syl"};
 
