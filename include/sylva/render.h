@@ -58,8 +58,8 @@ typedef struct SylRenderOptions {
 } SylRenderOptions;
 
 /* Render into rgb (width * height * 3 bytes, rows top to bottom). Embree shares m->idx, and
- * m->pos too when vert_cap > nverts (it reads a little past the last vertex; otherwise the
- * positions are copied). The ground is at the mesh's lowest point; the camera is framed
+ * m->pos too when the library made it with room past the last vertex (Embree reads a little
+ * past it; a mesh made by hand has its positions copied). The ground is at the mesh's lowest point; the camera is framed
  * from the mesh's vertices. */
 int syl_render_draw_mesh(const SylMesh *m, const SylRenderOptions *opt, uint8_t *rgb);
 /* n pictures of one mesh, one after another in rgb (and alpha, normal), each seen from

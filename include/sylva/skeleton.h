@@ -213,8 +213,11 @@ int syl_turtle_draw(const SylProgram *p, const SylString *s, const SylTurtleOpti
  * where each one stands (docs/language.md, "Query modules"); nothing else changes. With env,
  * also collect every segment end and every ?E module (position, heading, where its parameters
  * are in syl_string_params) into env, emptied first; without, ?E modules are not looked at.
- * SYL_OK, or SYL_ELIMIT when out of memory. Free env's arrays with free(). */
+ * SYL_OK, or SYL_ELIMIT when out of memory. env starts as {0} and may be filled again (its
+ * arrays are reused); free it with syl_env_fill_free. */
 int syl_turtle_query(const SylProgram *p, SylString *s, SylEnvFill *env);
+/* Free env's arrays and record and empty it (env may be NULL). */
+void syl_env_fill_free(SylEnvFill *env);
 
 #ifdef __cplusplus
 }

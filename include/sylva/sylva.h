@@ -295,9 +295,11 @@ typedef struct SylEnvProbe {
 } SylEnvProbe;
 typedef struct SylEnvFill {
     float (*ends)[3]; /* segment ends, in the order drawn */
-    size_t nends, ends_cap;
+    size_t nends;
     SylEnvProbe *probes;
-    size_t nprobes, probes_cap;
+    size_t nprobes;
+    struct SylEnvFillStore *store; /* the library's own (the arrays' room); start with {0},
+                                      reuse across steps, free with syl_env_fill_free */
 } SylEnvFill;
 /* The kind an ?E module with parameters a[0..na) asks, its first parameter (none: light, 0):
  * bit k for kind k = 0 light, 1 crowding, 2 distance, 3 sky exposure; 0 for any other. */

@@ -85,9 +85,8 @@ typedef struct SylTerrain {
                                                 with the slope's; altitude: none) */
     double cpu_seconds[SYL_TERRAIN_FACTORS]; /* the same in processor time, every thread's */
     uint64_t sun_pairs, rays;   /* insolation: (cell, sun) pairs facing the sun, rays traced */
-    SylBudget *budget;
-    uint64_t charged;    /* bytes counted against budget */
-    int own_budget;
+    struct SylTerrainStore *store; /* the library's own record (the memory budget the grids
+                                      count against), as SylSkeleton's and SylMesh's */
 } SylTerrain;
 
 /* Read a DEM: a greyscale PNG (8 or 16 bits), an ESRI ASCII grid (.asc) or an OBJ mesh

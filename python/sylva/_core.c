@@ -725,8 +725,7 @@ static int pyenv_fill(void *user, const SylProgram *p, SylString *s, int step) {
         }
         PyGILState_Release(g);
     }
-    free(f.ends);
-    free(f.probes);
+    syl_env_fill_free(&f);
     return st;
 }
 

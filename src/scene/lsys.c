@@ -90,8 +90,7 @@ void scene_lsys_free(SceneLsys *s) {
         if (pl->dv) syl_derive_end(pl->dv, NULL);
         syl_string_free(pl->final);
         free(pl->ends);
-        free(pl->fill.ends);
-        free(pl->fill.probes);
+        syl_env_fill_free(&pl->fill);
     }
     free(s->plants);
     free(s->ends);

@@ -20,8 +20,7 @@ void open_env_free(OpenEnv *e) {
     env_free(&e->world);
     shadow_set_free(&e->own);
     free(e->probes.light);
-    free(e->fill.ends);
-    free(e->fill.probes);
+    syl_env_fill_free(&e->fill);
     memset(e, 0, sizeof *e);
 }
 

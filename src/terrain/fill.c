@@ -51,7 +51,7 @@ int terrain_fill(Terrain *t, float *filled, uint8_t *parent, const SylSink *sink
     size_t nx = (size_t)t->nx, nz = (size_t)t->nz, n = nx * nz;
     /* Each cell enters the heap or the queue once: n items and n cells at most. */
     uint64_t bytes = (uint64_t)n * (sizeof(Item) + sizeof(uint32_t) + 1);
-    if (!budget_charge(t->budget, bytes)) {
+    if (!budget_charge(terrain_budget(t), bytes)) {
         sink_error(sink, "filling the terrain's depressions needs more than the memory limit "
                                 "(--max-memory)\n");
         return SYL_ELIMIT;
@@ -61,7 +61,7 @@ int terrain_fill(Terrain *t, float *filled, uint8_t *parent, const SylSink *sink
     uint8_t *done = calloc(n, 1);
     if (!heap || !queue || !done) {
         free(heap), free(queue), free(done);
-        budget_release(t->budget, bytes);
+        budget_release(terrain_budget(t), bytes);
         sink_error(sink, "out of memory filling the terrain's depressions");
         return SYL_ELIMIT;
     }
@@ -93,6 +93,6 @@ int terrain_fill(Terrain *t, float *filled, uint8_t *parent, const SylSink *sink
         }
     }
     free(heap), free(queue), free(done);
-    budget_release(t->budget, bytes);
+    budget_release(terrain_budget(t), bytes);
     return SYL_OK;
 }

@@ -51,7 +51,7 @@ static size_t down(const Terrain *t, size_t c, uint8_t d) {
 int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, const SylSink *sink) {
     size_t n = (size_t)t->nx * (size_t)t->nz;
     uint64_t bytes = (uint64_t)n * (sizeof(uint32_t) + 1);
-    if (!budget_charge(t->budget, bytes)) {
+    if (!budget_charge(terrain_budget(t), bytes)) {
         sink_error(sink, "the flow accumulation needs more than the memory limit (--max-memory)");
         return SYL_ELIMIT;
     }
@@ -59,7 +59,7 @@ int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, const SylSink
     uint32_t *queue = malloc(n * sizeof *queue);
     if (!in || !queue) {
         free(in), free(queue);
-        budget_release(t->budget, bytes);
+        budget_release(terrain_budget(t), bytes);
         sink_error(sink, "out of memory for the flow accumulation");
         return SYL_ELIMIT;
     }
@@ -78,6 +78,6 @@ int terrain_accumulate(Terrain *t, const uint8_t *dir, float *acc, const SylSink
         if (!--in[m]) queue[tail++] = (uint32_t)m;
     }
     free(in), free(queue);
-    budget_release(t->budget, bytes);
+    budget_release(terrain_budget(t), bytes);
     return SYL_OK;
 }

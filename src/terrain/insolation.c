@@ -127,7 +127,7 @@ int terrain_insolation(Terrain *t, const TerrainSun *suns, size_t nsuns, float *
     size_t nx = (size_t)t->nx, nz = (size_t)t->nz, n = nx * nz;
     size_t ntri = nx > 1 && nz > 1 ? 2 * (nx - 1) * (nz - 1) : 0;
     uint64_t bytes = (uint64_t)(3 * n + 4) * sizeof(float) + (uint64_t)ntri * 3 * sizeof(uint32_t);
-    if (!budget_charge(t->budget, bytes)) {
+    if (!budget_charge(terrain_budget(t), bytes)) {
         sink_error(sink, "the terrain's triangles for its shadows need more than the memory "
                                 "limit (--max-memory)\n");
         return SYL_ELIMIT;
@@ -210,6 +210,6 @@ done:
     if (dev) rtcReleaseDevice(dev);
     free(v);
     free(tri);
-    budget_release(t->budget, bytes);
+    budget_release(terrain_budget(t), bytes);
     return st;
 }

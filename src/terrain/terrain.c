@@ -27,24 +27,24 @@ int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const ch
         return SYL_ELIMIT;
     }
     Terrain *t = calloc(1, sizeof *t);
-    if (!t) goto nomem;
+    if (!t || !(t->store = calloc(1, sizeof *t->store))) goto nomem;
     t->nx = nx, t->nz = nz, t->cell = 1;
-    if (budget) t->budget = budget;
+    if (budget) t->store->budget = budget;
     else {
-        t->budget = syl_budget_new(max_memory);
-        t->own_budget = 1;
-        if (!t->budget) goto nomem;
+        t->store->budget = syl_budget_new(max_memory);
+        t->store->own_budget = true;
+        if (!t->store->budget) goto nomem;
     }
     size_t n = (size_t)nx * (size_t)nz;
     uint64_t bytes = (uint64_t)n * (sizeof(float) + 1);
-    if (!budget_charge(t->budget, bytes)) {
+    if (!budget_charge(terrain_budget(t), bytes)) {
         diag_say(NULL, sink, DIAG_ERROR, path, "a %d x %d grid needs %llu MB, beyond the memory limit of %llu MB "
                           "(--max-memory)", nx, nz, (unsigned long long)(bytes >> 20),
-                    (unsigned long long)budget_limit_mb(t->budget));
+                    (unsigned long long)budget_limit_mb(terrain_budget(t)));
         syl_terrain_free(t);
         return SYL_ELIMIT;
     }
-    t->charged = bytes;
+    t->store->charged = bytes;
     t->height = calloc(n, sizeof(float));
     t->valid = malloc(n);
     if (!t->height || !t->valid) goto nomem;
@@ -60,15 +60,15 @@ nomem:
 float *terrain_grid(Terrain *t, size_t elem, const SylSink *sink) {
     size_t n = (size_t)t->nx * (size_t)t->nz;
     uint64_t bytes = (uint64_t)n * elem;
-    if (!budget_charge(t->budget, bytes)) {
+    if (!budget_charge(terrain_budget(t), bytes)) {
         if (sink)
             sink_error(sink, "the terrain's maps need more than the memory limit of %llu MB "
-                          "(--max-memory)\n", (unsigned long long)budget_limit_mb(t->budget));
+                          "(--max-memory)\n", (unsigned long long)budget_limit_mb(terrain_budget(t)));
         return NULL;
     }
     void *g = calloc(n, elem);
     if (!g) {
-        budget_release(t->budget, bytes);
+        budget_release(terrain_budget(t), bytes);
         sink_error(sink, "out of memory for the terrain's maps");
         return NULL;
     }
@@ -78,7 +78,7 @@ float *terrain_grid(Terrain *t, size_t elem, const SylSink *sink) {
 void terrain_grid_free(Terrain *t, void *grid, size_t elem) {
     if (!grid) return;
     free(grid);
-    budget_release(t->budget, (uint64_t)t->nx * (uint64_t)t->nz * elem);
+    budget_release(terrain_budget(t), (uint64_t)t->nx * (uint64_t)t->nz * elem);
 }
 
 void syl_terrain_free(SylTerrain *t) {
@@ -87,8 +87,11 @@ void syl_terrain_free(SylTerrain *t) {
         if (t->factor[f] && t->factor[f] != t->height) terrain_grid_free(t, t->factor[f], sizeof(float));
     free(t->height);
     free(t->valid);
-    if (t->budget) budget_release(t->budget, t->charged);
-    if (t->own_budget) syl_budget_free(t->budget);
+    if (t->store) {
+        if (t->store->budget) budget_release(t->store->budget, t->store->charged);
+        if (t->store->own_budget) syl_budget_free(t->store->budget);
+        free(t->store);
+    }
     free(t);
 }
 

@@ -24,6 +24,16 @@ enum { TERRAIN_MAX_SIDE = 65536 };
 
 /* ---- the grid (terrain.c) ---- */
 
+/* What a terrain keeps for the library alone (SylTerrain.store): the budget its grids are
+ * counted against, the bytes of height and valid charged to it, and whether it is the
+ * terrain's own (freed with it). */
+struct SylTerrainStore {
+    SylBudget *budget;
+    uint64_t charged;
+    bool own_budget;
+};
+static inline SylBudget *terrain_budget(const Terrain *t) { return t->store->budget; }
+
 /* A terrain of nx × nz cells, heights 0 and all valid, charged to budget (NULL: its own of
  * max_memory). SYL_OK or SYL_ELIMIT, reported on sink as about path. */
 int terrain_new(int nx, int nz, SylBudget *budget, uint64_t max_memory, const char *path, const SylSink *sink,

@@ -131,18 +131,22 @@ static inline float distance(const TState *st, float len) {
 static inline void detach(Turtle *t) { t->st.gen = ++t->gens; }
 
 /* Filling queries for the environment: a segment's end, and a ?E module where it stands. */
+/* What a fill keeps for the library alone (SylEnvFill.store): its arrays' room. */
+struct SylEnvFillStore {
+    size_t ends_cap, probes_cap;
+};
 /* Room for one more in an array of the fill (grown rarely: out of line). */
 bool turtle_grow_fill(Turtle *t, void *arrp, size_t *cap, size_t n, size_t size);
 
 static inline void env_end(Turtle *t, const float pos[3]) {
     SylEnvFill *f = t->env;
-    if (f->nends == f->ends_cap && !turtle_grow_fill(t, &f->ends, &f->ends_cap, f->nends, sizeof *f->ends)) return;
+    if (f->nends == f->store->ends_cap && !turtle_grow_fill(t, &f->ends, &f->store->ends_cap, f->nends, sizeof *f->ends)) return;
     memcpy(f->ends[f->nends++], pos, 3 * sizeof(float));
 }
 
 static inline void env_probe(Turtle *t, size_t par, int na, bool heading) {
     SylEnvFill *f = t->env;
-    if (f->nprobes == f->probes_cap && !turtle_grow_fill(t, &f->probes, &f->probes_cap, f->nprobes, sizeof *f->probes)) return;
+    if (f->nprobes == f->store->probes_cap && !turtle_grow_fill(t, &f->probes, &f->store->probes_cap, f->nprobes, sizeof *f->probes)) return;
     SylEnvProbe *q = &f->probes[f->nprobes++];
     memcpy(q->pos, t->st.pos, sizeof q->pos);
     if (heading) memcpy(q->h, t->st.h, sizeof q->h);

@@ -310,6 +310,7 @@ static int fill_queries(Turtle *t, const SylString *s, double *out) {
 }
 
 static int fill(const SylProgram *p, SylString *s, SylEnvFill *env, SylOpenFill *open) {
+    if (env && !env->store && !(env->store = calloc(1, sizeof *env->store))) return SYL_ELIMIT;
     Turtle *t = malloc(sizeof *t);
     if (!t) return SYL_ELIMIT;
     turtle_init(t, p, NULL, NULL);
@@ -327,6 +328,14 @@ static int fill(const SylProgram *p, SylString *s, SylEnvFill *env, SylOpenFill 
 }
 
 int syl_turtle_query(const SylProgram *p, SylString *s, SylEnvFill *env) { return fill(p, s, env, NULL); }
+
+void syl_env_fill_free(SylEnvFill *env) {
+    if (!env) return;
+    free(env->ends);
+    free(env->probes);
+    free(env->store);
+    *env = (SylEnvFill){0};
+}
 
 int syl_turtle_fill(const SylProgram *p, SylString *s, SylEnvFill *env, SylOpenFill *open) {
     return fill(p, s, env, open);

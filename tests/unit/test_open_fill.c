@@ -201,7 +201,7 @@ static void compact_probes_are_the_probes(void **state) {
     assert_int_equal(light, open.nlight);
     assert_int_equal(other, fast.nprobes);
     assert_true(light > 10 && other > 10);
-    free(plain.ends), free(plain.probes), free(fast.ends), free(fast.probes), free(open.light);
+    syl_env_fill_free(&plain), syl_env_fill_free(&fast), free(open.light);
     unit_run_free(&r);
 }
 

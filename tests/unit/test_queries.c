@@ -90,8 +90,7 @@ static int heights(void *user, const SylProgram *p, SylString *s, int step) {
     double *par = syl_string_params(s, NULL);
     for (size_t i = 0; !st && i < f.nprobes; i++) par[f.probes[i].par + 1] = f.probes[i].pos[1];
     *(size_t *)user = f.nends;
-    free(f.ends);
-    free(f.probes);
+    syl_env_fill_free(&f);
     return st;
 }
 
