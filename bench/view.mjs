@@ -106,9 +106,11 @@ try {
       }) - t0);
       // the full-quality frame that follows the first one (the page draws a save's first frame
       // quick, without multisampling: web/app.js), its pixels read back by the page
-      await page.waitForFunction(() => window.sylvaView.settledAt > window.sylvaView.shownAt,
+      // (a page before it draws the full frame first: its settled frame is that one)
+      await page.waitForFunction(() => !('settled' in window.sylvaView) || window.sylvaView.settledAt > window.sylvaView.shownAt,
         { timeout: 300000, polling: 20 });
-      settled.push(await page.evaluate(() => window.sylvaView.settledPixelsWall || window.sylvaView.settledWall) - t0);
+      settled.push(await page.evaluate(() => ('settled' in window.sylvaView ? window.sylvaView.settledPixelsWall || window.sylvaView.settledWall
+        : window.sylvaView.pixelsWall)) - t0);
       const pv = await page.evaluate(() => ({ at: window.sylvaView.previewShownWall || 0, kind: window.sylvaView.lastPreviewKind,
         timing: window.sylvaView.previewTiming, draw: window.sylvaView.previewMs, pixels: window.sylvaView.previewPixelsWall || 0 }));
       if (pv.at > t0) previews.push(pv.at - t0), kind = pv.kind || kind, pvPhases.push(pv), pv.pixels > t0 && pvPixels.push(pv.pixels - t0);
