@@ -112,6 +112,7 @@ try {
   // margin), the sky pale blue, the ground grey: the plant is what is neither.
   async function picture(name) {
     await new Promise((r) => setTimeout(r, 150)); // two frames
+    await page.waitForFunction(() => window.sylvaView.settled, { timeout: 60000 }); // the full frame, not a quick one
     const el = await page.$('#canvas');
     const png = await el.screenshot({ encoding: 'binary' });
     if (shots && name) writeFileSync(join(shots, name + '.png'), png);
