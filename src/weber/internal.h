@@ -221,7 +221,8 @@ void weber_place_leaves(WeberGen *g, size_t count); /* every deferred stem's lea
 
 /* prune.c */
 bool weber_inside(const WeberGen *g, const double p[3]);
-void weber_prune(WeberGen *g, WStem *st);
+/* bad: the segment where the stem as it is leaves the envelope, when known (else -1: traced) */
+void weber_prune(WeberGen *g, WStem *st, int bad);
 
 /* write.c: the stems' nodes, then (after weber_place_leaves) the leaves as organs */
 int weber_write_nodes(WeberGen *g, SylSkeleton *sk);

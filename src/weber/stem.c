@@ -381,6 +381,7 @@ bool weber_make_stem(WeberGen *g, WStem st) {
     st.base_radius = weber_base_radius(g, &st);
     bool prune = st.level > 0 && (w->PruneRatio > 0 || g->envelope);
     Traced t = {0};
+    int bad = -1;
     if (prune && !w->SaplingLaw && st.length > WEBER_MIN_LEN && st.base_radius > WEBER_MIN_RADIUS) {
         /* made at once, the envelope checked as it is: when it stays inside, pruning's first
          * test would have found so and left it as it is (the trace reads none of what
@@ -392,7 +393,7 @@ bool weber_make_stem(WeberGen *g, WStem st) {
         prepare_children(g, &st, &self);
         t = (Traced){.st = st, .segs = malloc((size_t)st.nseg * sizeof *t.segs)};
         if (!t.segs) return g->failed = true, false;
-        int bad = trace_in(g, &t.st, 0, t.st.start, false, true, t.segs, &t.pend);
+        bad = trace_in(g, &t.st, 0, t.st.start, false, true, t.segs, &t.pend);
         if (bad >= 0 || g->failed) {
             free(t.segs);
             free_pending(g, &t.pend);
@@ -404,7 +405,7 @@ bool weber_make_stem(WeberGen *g, WStem st) {
     }
     int id;
     if (!t.segs) {
-        if (prune) weber_prune(g, &st);
+        if (prune) weber_prune(g, &st, bad); /* (where it left: the same as a test trace finds) */
         if (!(st.length > WEBER_MIN_LEN && st.base_radius > WEBER_MIN_RADIUS)) return false;
         prepare_children(g, &st, &self);
         t = (Traced){.st = st, .segs = malloc((size_t)st.nseg * sizeof *t.segs)};
