@@ -22,28 +22,29 @@ typedef struct Frame {
 #define WEBER_MIN_LEN 1e-5
 #define WEBER_MIN_RADIUS (WEBER_MIN_LEN / 10)
 
-typedef struct WStem {
+typedef struct WStem { /* (fields ordered so that it has no padding: 240 bytes, not 256) */
     Frame start;       /* the base of its first segment */
     uint64_t key;      /* names its random streams: (parent's key, child or clone number) */
-    int level;
     int from;          /* the stem it grows out of: its parent, or for a clone the stem it split from */
     int parent;        /* the stem whose child it is (a clone's is its origin's); -1 for a trunk */
     int nseg, first_seg; /* CurveRes; a clone starts at first_seg */
+    int sap_main;      /* SaplingLaw: the even places along it (and its clones) children take */
+    int16_t level;
     bool clone;
+    bool split_last;   /* SaplingLaw: its last segment split (Sapling's odds depend on it) */
     double offset;     /* from the parent's base (a clone: its origin's offset) */
     double length, seglen, base_radius;
     double lcm;        /* most length of a child, relative (drawn once per stem) */
     double split_corr; /* turn per segment that straightens a split out again */
     double sps, lps;   /* children and leaves per segment */
     double rot;        /* the last child's rotation angle */
-    bool split_last;   /* SaplingLaw: its last segment split (Sapling's odds depend on it) */
     double sap_n;      /* SaplingLaw: its children before the bare base's share */
-    int sap_main;      /* SaplingLaw: the even places along it (and its clones) children take */
-    uint32_t pt_first, pt_count;
-    uint32_t node_first, node_count; /* its own nodes in the skeleton (write.c) */
     double u_length, u_lcm; /* the first trunk's draws for its length and its children's, when
                              * they come from Arbaro's streams (else negative) */
+    uint32_t pt_first, pt_count;
+    uint32_t node_first, node_count; /* its own nodes in the skeleton (write.c) */
 } WStem;
+_Static_assert(sizeof(WStem) == 240, "WStem: padding crept in (it is copied and stored per stem)");
 
 /* A point of a stem's axis: segment ends and the sub-sections of flare, rounded ends, beads
  * and helices. */
@@ -220,7 +221,8 @@ void weber_place_leaves(WeberGen *g, size_t count); /* every deferred stem's lea
 
 /* prune.c */
 bool weber_inside(const WeberGen *g, const double p[3]);
-void weber_prune(WeberGen *g, WStem *st);
+/* bad: the segment where the stem as it is leaves the envelope, when known (else -1: traced) */
+void weber_prune(WeberGen *g, WStem *st, int bad);
 
 /* write.c: the stems' nodes, then (after weber_place_leaves) the leaves as organs */
 int weber_write_nodes(WeberGen *g, SylSkeleton *sk);

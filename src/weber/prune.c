@@ -16,10 +16,10 @@ bool weber_inside(const WeberGen *g, const double p[3]) {
     return r / g->scale_tree < w->PruneWidth * weber_shape_ratio(w, 8, ratio);
 }
 
-void weber_prune(WeberGen *g, WStem *st) {
+void weber_prune(WeberGen *g, WStem *st, int bad) {
     double split_err[10], orig = st->length, corr = st->split_corr;
     memcpy(split_err, g->split_err, sizeof split_err); /* test growth leaves the counts alone */
-    int bad = weber_trace(g, st, 0, st->start, true, NULL);
+    if (bad < 0) bad = weber_trace(g, st, 0, st->start, true, NULL);
     while (bad >= 0 && st->length > 0.001 * g->scale_tree) {
         st->split_corr = corr;
         memcpy(g->split_err, split_err, sizeof split_err);

@@ -136,14 +136,16 @@ static void free_pending(WeberGen *g, Pending *p) {
     *p = (Pending){0};
 }
 
-static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs, Pending *pend) {
+/* test: traced only to find the first segment that leaves the envelope (check: found as
+ * well while the stem and its clones are made: weber_make_stem's first try) */
+static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, bool check, WSeg *segs, Pending *pend) {
     Rng r = weber_rng(g, st->key, WRNG_SHAPE); /* the same stream for a test and the real stem */
     if (s0 == 0) st->split_last = false;
     for (int s = s0; s < st->nseg; s++) {
         new_direction(g, st, &trf, s, &r);
         if (segs) segs[s].f = trf, segs[s].sps = st->sps;
         frame_move(&trf, weber_step(g, st, &trf));
-        if (test && !weber_inside(g, trf.t)) return s;
+        if (check && !weber_inside(g, trf.t)) return s;
         if (s >= st->nseg - 1) continue;
         int n = g->w.SaplingLaw ? weber_sapling_splits(g, st, s, &r) : weber_split_count(g, st, s);
         st->split_last = n > 0;
@@ -158,7 +160,7 @@ static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *
             c.start = weber_split(g, &c, &r, trf, s_angle * (1 + i), s, n, test);
             if (g->w.SaplingLaw) weber_sapling_fork(g, st, &c, &trf);
             if (test) {
-                int bad = trace_in(g, &c, s + 1, c.start, true, NULL, NULL);
+                int bad = trace_in(g, &c, s + 1, c.start, true, true, NULL, NULL);
                 if (bad >= 0) return bad;
                 continue;
             }
@@ -184,9 +186,10 @@ static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *
             }
             t->st = c; /* nseg: what free_pending releases */
             pend->n++;
-            trace_in(g, &c, s + 1, c.start, false, t->segs, &t->pend);
+            int bad = trace_in(g, &c, s + 1, c.start, false, check, t->segs, &t->pend);
             if (g->failed) return -1;
             t->st = c;
+            if (bad >= 0) return bad;
         }
         Frame t2 = weber_split(g, st, &r, trf, 0, s, n, test);
         if (g->w.convention == WEBER_PAPER) trf = t2; /* Arbaro's original stem keeps its heading */
@@ -195,7 +198,7 @@ static int trace_in(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *
 }
 
 int weber_trace(WeberGen *g, WStem *st, int s0, Frame trf, bool test, WSeg *segs) {
-    return trace_in(g, st, s0, trf, test, segs, NULL);
+    return trace_in(g, st, s0, trf, test, test, segs, NULL);
 }
 
 static bool put_point(WeberGen *g, const WStem *st, const Frame *f, const double p[3], double dist) {
@@ -376,13 +379,39 @@ bool weber_make_stem(WeberGen *g, WStem st) {
     st.length = weber_stem_length(g, &st, &self);
     st.seglen = st.length / st.nseg;
     st.base_radius = weber_base_radius(g, &st);
-    if (st.level > 0 && (w->PruneRatio > 0 || g->envelope)) weber_prune(g, &st);
-    if (!(st.length > WEBER_MIN_LEN && st.base_radius > WEBER_MIN_RADIUS)) return false;
-    prepare_children(g, &st, &self);
-    Traced t = {.st = st, .segs = malloc((size_t)st.nseg * sizeof *t.segs)};
+    bool prune = st.level > 0 && (w->PruneRatio > 0 || g->envelope);
+    Traced t = {0};
+    int bad = -1;
+    if (prune && !w->SaplingLaw && st.length > WEBER_MIN_LEN && st.base_radius > WEBER_MIN_RADIUS) {
+        /* made at once, the envelope checked as it is: when it stays inside, pruning's first
+         * test would have found so and left it as it is (the trace reads none of what
+         * prepare_children sets but what it stores); else all undone and pruned as ever */
+        WStem whole = st;
+        Rng self0 = self;
+        double split_err[10];
+        memcpy(split_err, g->split_err, sizeof split_err);
+        prepare_children(g, &st, &self);
+        t = (Traced){.st = st, .segs = malloc((size_t)st.nseg * sizeof *t.segs)};
+        if (!t.segs) return g->failed = true, false;
+        bad = trace_in(g, &t.st, 0, t.st.start, false, true, t.segs, &t.pend);
+        if (bad >= 0 || g->failed) {
+            free(t.segs);
+            free_pending(g, &t.pend);
+            t = (Traced){0};
+            if (g->failed) return false;
+            st = whole, self = self0;
+            memcpy(g->split_err, split_err, sizeof split_err);
+        }
+    }
     int id;
-    if (!t.segs) return g->failed = true, false;
-    trace_in(g, &t.st, 0, t.st.start, false, t.segs, &t.pend);
+    if (!t.segs) {
+        if (prune) weber_prune(g, &st, bad); /* (where it left: the same as a test trace finds) */
+        if (!(st.length > WEBER_MIN_LEN && st.base_radius > WEBER_MIN_RADIUS)) return false;
+        prepare_children(g, &st, &self);
+        t = (Traced){.st = st, .segs = malloc((size_t)st.nseg * sizeof *t.segs)};
+        if (!t.segs) return g->failed = true, false;
+        trace_in(g, &t.st, 0, t.st.start, false, false, t.segs, &t.pend);
+    }
     if (w->SaplingLaw && t.st.level > 0 && !g->failed) {
         int segs = t.st.nseg + pending_segments(&t.pend);
         t.st.sap_main = (int)fmin(round(t.st.sap_n * t.st.nseg / segs), 1e9); /* Branches may be huge: the budget stops it */

@@ -68,7 +68,7 @@ static int32_t put(Writer *wr, const WStem *st, int id, const float pos[3], cons
     nd.radius = r;
     nd.parent = parent;
     nd.axis = id;
-    nd.order = (uint16_t)(st->level < 65535 ? st->level : 65535);
+    nd.order = (uint16_t)st->level; /* (a level: 0 to 3) */
     nd.kind = kind;
     nd.material = SYL_MATERIAL_BARK;
     nd.module = (uint32_t)id;
