@@ -272,7 +272,7 @@ static void rows_text(Rows *r, const char *s) {
     r->p += n;
 }
 static void rows_int(Rows *r, long long v) { r->p = numtext_int(r->p, v); }
-static void rows_g(Rows *r, float x) { r->p = numtext_g(r->p, x, 6); }
+static void rows_g(Rows *r, float x) { r->p = numtext_g6(r->p, x); }
 static char *text_g(char *p, float x, int prec) { return numtext_g(p, x, prec); }
 static void rows_size(Rows *r, float x) { r->p = numcache_put(&r->sizes, r->p, x, 6, text_g); }
 static void rows_kind(Rows *r, uint8_t kind) {
