@@ -207,7 +207,7 @@ void syl_skeleton_bounds(const SylSkeleton *s, float lo[3], float hi[3]) {
 
 /* Rows written without printf, through a buffer: numtext writes "%.6g" and "%d"'s very text
  * (docs/mesh.md#number-text), five times as fast. */
-enum { ROWS_SIZE = 1 << 16, ROW_MAX = 1024, TAIL_MAX = 96 };
+enum { ROWS_SIZE = 1 << 18, ROW_MAX = 1024, TAIL_MAX = 96 };
 
 /* The end of a JSON row as text, kept while the values it is made of repeat (a leaf's size,
  * kind and material; a node's order, axis, kind and material along its stem). */
