@@ -207,7 +207,17 @@ void syl_skeleton_bounds(const SylSkeleton *s, float lo[3], float hi[3]) {
 
 /* Rows written without printf, through a buffer: numtext writes "%.6g" and "%d"'s very text
  * (docs/mesh.md#number-text), five times as fast. */
-enum { ROWS_SIZE = 1 << 16, ROW_MAX = 1024 };
+enum { ROWS_SIZE = 1 << 18, ROW_MAX = 1024, TAIL_MAX = 96 };
+
+/* The end of a JSON row as text, kept while the values it is made of repeat (a leaf's size,
+ * kind and material; a node's order, axis, kind and material along its stem). */
+typedef struct Tail {
+    uint64_t key;
+    bool ok;
+    size_t len;
+    char text[TAIL_MAX];
+} Tail;
+
 typedef struct Rows {
     FILE *out;
     char *p, buf[ROWS_SIZE + ROW_MAX];
@@ -218,6 +228,14 @@ typedef struct Rows {
         char text[48];
         size_t len;
     } kind[SYL_KIND_COUNT];
+    /* the row's id as text, counted up in place: ids go 0, 1, 2, ... */
+    char id[32];
+    size_t id_len;
+    /* `,"parent":P,"x":` of the last organ row: a node's organs follow each other */
+    int parent;
+    size_t parent_len;
+    char parent_text[48];
+    Tail tail;
 } Rows;
 
 static Rows *rows_new(FILE *out) {
@@ -229,7 +247,23 @@ static Rows *rows_new(FILE *out) {
         int n = snprintf(r->kind[k].text, sizeof r->kind[k].text, ",\"kind\":\"%s\",\"material\":", syl_kind_names[k]);
         r->kind[k].len = n > 0 && (size_t)n < sizeof r->kind[k].text ? (size_t)n : 0;
     }
+    memset(r->id, 0, sizeof r->id);
+    r->parent_len = 0;
+    r->tail.ok = false;
     return r;
+}
+
+/* The id counter set to v. */
+static void rows_id_set(Rows *r, size_t v) { r->id_len = (size_t)(numtext_int(r->id, (long long)v) - r->id); }
+
+/* The id written, then counted up by one for the next row. */
+static void rows_id(Rows *r) {
+    memcpy(r->p, r->id, 24); /* at most 20 digits */
+    r->p += r->id_len;
+    size_t i = r->id_len;
+    while (i > 0 && r->id[i - 1] == '9') r->id[--i] = '0';
+    if (i > 0) r->id[i - 1]++;
+    else memmove(r->id + 1, r->id, r->id_len++), r->id[0] = '1'; /* 99 -> 100 */
 }
 
 static void rows_text(Rows *r, const char *s) {
@@ -238,15 +272,35 @@ static void rows_text(Rows *r, const char *s) {
     r->p += n;
 }
 static void rows_int(Rows *r, long long v) { r->p = numtext_int(r->p, v); }
-static void rows_g(Rows *r, float x) { r->p = numtext_g(r->p, x, 6); }
+static void rows_g(Rows *r, float x) { r->p = numtext_g6(r->p, x); }
 static char *text_g(char *p, float x, int prec) { return numtext_g(p, x, prec); }
 static void rows_size(Rows *r, float x) { r->p = numcache_put(&r->sizes, r->p, x, 6, text_g); }
 static void rows_kind(Rows *r, uint8_t kind) {
     memcpy(r->p, r->kind[kind].text, sizeof r->kind[kind].text);
     r->p += r->kind[kind].len;
 }
+/* The tail for key: its kept text when key is the last one's; otherwise the text just written
+ * from start (the row so far) to r->p is kept for the next row. */
+static bool rows_tail_hit(Rows *r, uint64_t key) {
+    if (!r->tail.ok || r->tail.key != key) return false;
+    memcpy(r->p, r->tail.text, TAIL_MAX);
+    r->p += r->tail.len;
+    return true;
+}
+static void rows_tail_keep(Rows *r, uint64_t key, const char *start) {
+    size_t n = (size_t)(r->p - start);
+    r->tail.ok = n <= TAIL_MAX;
+    if (r->tail.ok) memcpy(r->tail.text, start, n), r->tail.len = n, r->tail.key = key;
+}
 static void rows_end(Rows *r) { /* after each row: at most ROW_MAX bytes were added */
-    if (r->p - r->buf >= ROWS_SIZE) fwrite(r->buf, 1, (size_t)(r->p - r->buf), r->out), r->p = r->buf;
+    if (r->p - r->buf >= ROWS_SIZE) {
+        /* a whole ROWS_SIZE: a stream whose buffer is empty and divides it writes it straight
+         * through, where a longer piece is first copied into the stream's buffer */
+        fwrite(r->buf, 1, ROWS_SIZE, r->out);
+        size_t rest = (size_t)(r->p - r->buf) - ROWS_SIZE;
+        memcpy(r->buf, r->buf + ROWS_SIZE, rest);
+        r->p = r->buf + rest;
+    }
 }
 static void rows_flush(Rows *r) { fwrite(r->buf, 1, (size_t)(r->p - r->buf), r->out), r->p = r->buf; }
 
@@ -280,44 +334,89 @@ int syl_skeleton_write_csv(const SylSkeleton *s, FILE *out) {
     return ferror(out) ? SYL_EIO : SYL_OK;
 }
 
-/* ,\n{"id":ID,"parent":P,"x":X,"y":Y,"z":Z,"SIZE_NAME":S, */
-static void json_row_start(Rows *r, size_t i, size_t id, int parent, const float pos[3], const char *size_name,
-                           float size) {
-    rows_text(r, i ? ",\n{\"id\":" : "\n{\"id\":");
-    rows_int(r, (long long)id);
-    rows_text(r, ",\"parent\":");
-    rows_int(r, parent);
-    static const char *const axis[3] = {",\"x\":", ",\"y\":", ",\"z\":"};
-    for (int k = 0; k < 3; k++) rows_text(r, axis[k]), rows_g(r, pos[k]);
-    rows_text(r, size_name);
-    rows_size(r, size);
+static void put_rows(void *ctx, const void *p, size_t n) {
+    Rows *r = ctx;
+    memcpy(r->p, p, n);
+    r->p += n;
+}
+
+/* a row's start: `\n{"id":ID` after a comma but for the first */
+static void rows_row(Rows *r, size_t i) {
+    if (i) memcpy(r->p, ",\n{\"id\":", 8), r->p += 8;
+    else memcpy(r->p, "\n{\"id\":", 7), r->p += 7;
+    rows_id(r);
+}
+
+/* X,"y":Y,"z":Z */
+static void json_xyz(Rows *r, const float pos[3]) {
+    rows_g(r, pos[0]);
+    memcpy(r->p, ",\"y\":", 5), r->p += 5;
+    rows_g(r, pos[1]);
+    memcpy(r->p, ",\"z\":", 5), r->p += 5;
+    rows_g(r, pos[2]);
 }
 
 int syl_skeleton_write_json(const SylSkeleton *s, FILE *out) {
     Rows *r = rows_new(out);
     if (!r) return SYL_ELIMIT;
-    fputs("{\"name\":", out);
-    json_string_file(out, s->name); /* any string: syl_skeleton_new takes one */
-    fputs(",\"nodes\":[", out);
+    /* the head in the rows' buffer: the stream's own stays empty (see rows_end) */
+    rows_text(r, "{\"name\":");
+    json_string(s->name, put_rows, r); /* any string: syl_skeleton_new takes one; 64 bytes < ROW_MAX / 6 */
+    rows_text(r, ",\"nodes\":[");
+    rows_id_set(r, 0);
     for (size_t i = 0; i < s->nnodes; i++) {
         const SylNode *n = &s->nodes[i];
-        json_row_start(r, i, i, n->parent, n->pos, ",\"radius\":", n->radius);
-        rows_text(r, ",\"order\":"), rows_int(r, n->order);
-        rows_text(r, ",\"axis\":"), rows_int(r, n->axis);
-        rows_kind(r, n->kind), rows_int(r, n->material);
-        *r->p++ = '}';
+        rows_row(r, i);
+        memcpy(r->p, ",\"parent\":", 10), r->p += 10;
+        rows_int(r, n->parent);
+        memcpy(r->p, ",\"x\":", 5), r->p += 5;
+        json_xyz(r, n->pos);
+        memcpy(r->p, ",\"radius\":", 10), r->p += 10;
+        rows_size(r, n->radius);
+        uint64_t key = (uint64_t)(uint32_t)n->axis | (uint64_t)n->order << 32 | (uint64_t)n->kind << 48 |
+                       (uint64_t)n->material << 56;
+        if (!rows_tail_hit(r, key)) {
+            char *start = r->p;
+            rows_text(r, ",\"order\":"), rows_int(r, n->order);
+            rows_text(r, ",\"axis\":"), rows_int(r, n->axis);
+            rows_kind(r, n->kind), rows_int(r, n->material);
+            *r->p++ = '}';
+            rows_tail_keep(r, key, start);
+        }
         rows_end(r);
     }
     rows_text(r, "\n],\"organs\":[");
+    r->tail.ok = false;
+    rows_id_set(r, s->nnodes);
     for (size_t i = 0; i < s->norgans; i++) {
         const SylOrgan *o = &s->organs[i];
-        json_row_start(r, i, s->nnodes + i, o->node, o->pos, ",\"size\":", o->size);
-        rows_kind(r, o->kind), rows_int(r, o->material);
-        *r->p++ = '}';
+        rows_row(r, i);
+        if (!r->parent_len || o->node != r->parent) {
+            char *e = r->parent_text;
+            memcpy(e, ",\"parent\":", 10), e += 10;
+            e = numtext_int(e, o->node);
+            memcpy(e, ",\"x\":", 5), e += 5;
+            r->parent = o->node, r->parent_len = (size_t)(e - r->parent_text);
+        }
+        memcpy(r->p, r->parent_text, 32);
+        r->p += r->parent_len;
+        json_xyz(r, o->pos);
+        uint32_t bits;
+        memcpy(&bits, &o->size, 4);
+        uint64_t key = bits | (uint64_t)o->kind << 32 | (uint64_t)o->material << 40;
+        if (!rows_tail_hit(r, key)) {
+            char *start = r->p;
+            rows_text(r, ",\"size\":"), rows_size(r, o->size);
+            rows_kind(r, o->kind), rows_int(r, o->material);
+            *r->p++ = '}';
+            rows_tail_keep(r, key, start);
+        }
         rows_end(r);
     }
+    rows_text(r, "\n],\"polygons\":");
+    rows_int(r, (long long)s->npolys);
+    rows_text(r, "}\n");
     rows_flush(r);
     free(r);
-    fprintf(out, "\n],\"polygons\":%zu}\n", s->npolys);
     return ferror(out) ? SYL_EIO : SYL_OK;
 }

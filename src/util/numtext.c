@@ -30,7 +30,7 @@ static int decimal_exponent_guess(double x) {
 
 /* x (positive, a float's value) rounded to prec significant digits, ties to even: *n has
  * exactly prec digits and x ~ n * 10^(*exp - prec + 1). False when x is out of the exact range. */
-static bool round_sig(double x, int prec, uint64_t *n, int *exp) {
+static inline __attribute__((always_inline)) bool round_sig(double x, int prec, uint64_t *n, int *exp) {
     int E = decimal_exponent_guess(x);
     int k = prec - 1 - E;
     if (k >= 1 && k <= 12) { /* the writers' case, without a branch on the digits: */
@@ -97,7 +97,7 @@ static const uint32_t thousands[1000] = {NT_R100(0),   NT_R100(100), NT_R100(200
                                          NT_R100(500), NT_R100(600), NT_R100(700), NT_R100(800), NT_R100(900)};
 
 /* q has exactly prec <= 8 digits, x = q * 10^(X - prec + 1). */
-static char *g_text(char *p, uint32_t q, int prec, int X) {
+static inline __attribute__((always_inline)) char *g_text(char *p, uint32_t q, int prec, int X) {
     uint64_t d = prec == 6 ? thousands[q / 1000] | (uint64_t)thousands[q % 1000] << 24
                            : numtext_word8(q) >> (8 * (8 - prec)); /* the prec digits */
     int nd = numtext_significant(d, prec);              /* %g drops trailing zeros */
@@ -178,6 +178,20 @@ char *numtext_g(char *p, double x, int prec) {
     for (int i = 0; i < whole; i++) p[i] = p[i + 1];
     p[whole] = '.';
     return trim_zeros(p + 1 + prec);
+}
+
+char *numtext_g6(char *p, float f) {
+#ifdef NUMTEXT_WORDS
+    double x = fabs((double)f);
+    uint64_t n;
+    int X;
+    /* round_sig and g_text inlined with prec a constant: the fast case's branches fold */
+    if (x != 0 && isfinite(x) && round_sig(x, 6, &n, &X)) {
+        *p = '-';
+        return g_text(p + (signbit(f) != 0), (uint32_t)n, 6, X);
+    }
+#endif
+    return numtext_g(p, f, 6);
 }
 
 char *numtext_int(char *p, long long v) {
