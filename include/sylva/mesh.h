@@ -29,6 +29,9 @@ typedef struct SylMesh {
     int ngroups;
     SylMaterial materials[256];
     int nmaterials;
+    uint8_t card_shape[256];   /* per material, with SYL_LEAVES_CARDS: 1 + the shape its leaves'
+                                  cards draw (their own outline, or SylMeshOptions.leaf_shape:
+                                  a scene's plants each keep theirs); 0: leaf_shape */
     uint8_t double_sided[256]; /* per material, with SylMeshOptions.one_sided: 1 when it has
                                   leaves or petals made once, to be drawn from both sides */
     int32_t *node;         /* with SylMeshOptions.vertex_nodes: the skeleton node each vertex
@@ -37,6 +40,7 @@ typedef struct SylMesh {
     char name[64];
     uint8_t leaves, leaf_shape; /* SYL_LEAVES_* it was made with; for cards and clusters, the
                                    shape drawn (clusters: SYL_CLUSTER_NEEDLES for needles) */
+
     SylImages *images;     /* its materials' images (SylMaterial.image), one reference; NULL: none */
     struct SylMeshStore *store; /* the library's own record of a mesh it made (how its arrays are
                                    held, the memory budget they count against); NULL for a mesh
@@ -78,6 +82,9 @@ typedef struct SylMeshOptions {
 
 int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out);
 void syl_mesh_free(SylMesh *m);
+/* The shape drawn in the alpha of material's cards (--leaves cards): its own leaf outline when
+ * it has one (a scene's plants each keep theirs), else leaf_shape. */
+int syl_mesh_card_shape(const SylMesh *m, int material);
 /* Add src's vertices and triangles to dst (groups stay one per material, sorted; src's
  * materials replace dst's of the same index). SYL_OK or SYL_ELIMIT. */
 int syl_mesh_append(SylMesh *dst, const SylMesh *src);

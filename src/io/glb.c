@@ -22,6 +22,9 @@
 enum { KINDS = GLB_SLOTS, CARD = GLB_CARD, ATLAS = GLB_ATLAS, CLUSTER = GLB_CLUSTER }; /* texture slots (glb.h) */
 /* then one slot per image of the model's own (SylMaterial.image), its PNG embedded as read */
 enum { IMAGE0 = KINDS, SLOTS = KINDS + SYL_IMAGES_MAX };
+/* and the cards' further shapes (a scene's plants each draw their own outline): textures after
+ * all the slots', so a file with one card shape is as before */
+enum { SHAPES = 256, TEXTURES = SLOTS + SHAPES };
 
 /* A mesh written: the part it belongs to and which of its sets (-1: the part's own). */
 typedef struct MeshRef {
@@ -47,7 +50,9 @@ typedef struct Layout {
     int nmeshes;
     int *set_view, *set_accessor, *part_mesh, *part_node, *set_node; /* -1: none */
     int nsets, nnodes;
-    int tex_of_kind[SLOTS], ntex, image_view[SLOTS], image_kind[SLOTS];
+    int tex_of_kind[SLOTS], ntex, image_view[TEXTURES], image_kind[TEXTURES];
+    int card_tex[SHAPES], card_shape; /* the texture of cards of each shape (-1: none); the shape
+                                         of the cards that draw their mesh's leaf_shape */
     const SylImages *images;      /* the first mesh's images (the others share them: levels, parts) */
     bool image_leaf[SYL_IMAGES_MAX]; /* an image some leaf wears: clamped, not repeated */
     float (*quant)[4];            /* each part's dequantization: translation, scale (0: none) */
@@ -301,19 +306,43 @@ static int set_accessors(const Layout *l, int i) { return l->mesh[l->set_mesh[i]
 /* One PNG texture per slot used, each in a view of its own. */
 static void layout_textures(Layout *l) {
     bool used[SLOTS] = {false};
-    int shape = 0, cluster_shape = 0;
+    /* the cards' shapes: first the one of those that draw their mesh's leaf_shape (the levels
+     * of detail share the last level's), then the others in order of first use */
+    int cluster_shape = 0, card[SHAPES] = {0}, ncards = 1;
     for (int k = 0; k < l->nmeshes && !l->images; k++) l->images = l->mesh[k].m->images;
     for (int k = 0; k < l->nmeshes; k++)
         for (int g = 0; g < l->mesh[k].m->ngroups; g++) {
             int i = l->mesh[k].m->groups[g].material, t = slot_of(l, &l->mesh[k], i);
             if (t >= 0) used[t] = true;
             if (t >= IMAGE0 && l->mesh[k].m->materials[i].kind != SYL_MATERIAL_BARK) l->image_leaf[t - IMAGE0] = true;
-            if (t == CARD) shape = l->mesh[k].m->leaf_shape;
+            if (t == CARD) card[0] = l->mesh[k].m->leaf_shape;
             if (t == CLUSTER) cluster_shape = l->mesh[k].m->leaf_shape;
+        }
+    for (int k = 0; k < l->nmeshes; k++)
+        for (int g = 0; g < l->mesh[k].m->ngroups; g++) {
+            const SylMesh *m = l->mesh[k].m;
+            int i = m->groups[g].material, c = syl_mesh_card_shape(m, i), j = 0;
+            if (slot_of(l, &l->mesh[k], i) != CARD || c == m->leaf_shape) continue;
+            while (j < ncards && card[j] != c) j++;
+            if (j == ncards) card[ncards++] = c;
         }
     GlbPixels px = {0};
     const GlbScene *sc = l->sc;
-    for (int k = 0; k < SLOTS; k++) {
+    l->card_shape = card[0];
+    for (int k = 0, c = 1; k < SLOTS || (c < ncards && !l->bin.failed); k++) {
+        if (k >= SLOTS) { /* a further card shape */
+            size_t at = l->bin.len;
+            if (!glb_slot_png_cached(sc->textures, &l->bin, CARD, card[c], &px)) {
+                l->bin.failed = true;
+                break;
+            }
+            l->image_view[l->ntex] = l->nviews;
+            l->image_kind[l->ntex] = CARD;
+            l->views[l->nviews++] = (View){at, l->bin.len - at, 0, 0};
+            glb_pad(&l->bin, 0);
+            l->card_tex[card[c++]] = l->ntex++;
+            continue;
+        }
         if (!used[k]) continue;
         if (k >= IMAGE0) { /* the file's bytes as they are */
             const SylImage *g = &l->images->img[k - IMAGE0];
@@ -327,7 +356,7 @@ static void layout_textures(Layout *l) {
         }
         size_t at = l->bin.len;
         bool ok = k == ATLAS ? io_png_rgba(&l->bin, sc->atlas, sc->atlas_w, sc->atlas_h)
-                             : glb_slot_png_cached(sc->textures, &l->bin, k, k == CLUSTER ? cluster_shape : shape, &px);
+                             : glb_slot_png_cached(sc->textures, &l->bin, k, k == CLUSTER ? cluster_shape : card[0], &px);
         if (!ok) {
             l->bin.failed = true;
             break;
@@ -336,6 +365,7 @@ static void layout_textures(Layout *l) {
         l->image_kind[l->ntex] = k;
         l->views[l->nviews++] = (View){at, l->bin.len - at, 0, 0};
         glb_pad(&l->bin, 0);
+        if (k == CARD) l->card_tex[card[0]] = l->ntex;
         l->tex_of_kind[k] = l->ntex++;
     }
     glb_pixels_free(&px);
@@ -375,7 +405,8 @@ static void json_materials(IoBuf *js, const Layout *l) {
         const SylMesh *m = l->mesh[k].m;
         for (int g = 0; g < m->ngroups; g++) {
             int i = m->groups[g].material, slot = slot_of(l, &l->mesh[k], i);
-            int t = slot >= 0 ? l->tex_of_kind[slot] : -1;
+            int c = syl_mesh_card_shape(m, i);
+            int t = slot == CARD ? l->card_tex[c == m->leaf_shape ? l->card_shape : c] : slot >= 0 ? l->tex_of_kind[slot] : -1;
             if (slot == ATLAS) {
                 io_printf(js, "%s{\"name\":\"impostor\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":%d},"
                               "\"metallicFactor\":0,\"roughnessFactor\":0.9},\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5}",
@@ -486,10 +517,11 @@ static void json_textures(IoBuf *js, const Layout *l) {
     if (tiled) io_printf(js, "{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}");
     if (clamped) io_printf(js, "%s{\"magFilter\":9729,\"minFilter\":9987,\"wrapS\":33071,\"wrapT\":33071}", tiled ? "," : "");
     io_printf(js, "],\"images\":[");
-    for (int t = 0; t < l->ntex; t++) {
+    for (int t = 0, cards = 0; t < l->ntex; t++) {
         int k = l->image_kind[t];
         io_printf(js, "%s{\"name\":", t ? "," : "");
-        io_json_string(js, k >= IMAGE0 ? l->images->img[k - IMAGE0].name : glb_slot_name(k));
+        if (k == CARD && cards++) io_printf(js, "\"leafcard%d\"", cards); /* a further shape */
+        else io_json_string(js, k >= IMAGE0 ? l->images->img[k - IMAGE0].name : glb_slot_name(k));
         io_printf(js, ",\"bufferView\":%d,\"mimeType\":\"image/png\"}", l->image_view[t]);
     }
     io_printf(js, "],\"textures\":[");
@@ -689,7 +721,7 @@ static bool plan(Layout *l) {
     for (int p = 0; p < sc->nparts; p++) sets += sc->part[p].nsets;
     size_t n = (size_t)(sc->nparts + sets) + 1;
     l->mesh = calloc(n, sizeof *l->mesh);
-    l->views = malloc(sizeof *l->views * (9 * n + 3 * (size_t)sets + SLOTS + 3));
+    l->views = malloc(sizeof *l->views * (9 * n + 3 * (size_t)sets + TEXTURES + 3));
     int *ints = malloc(sizeof(int) * (4 * (size_t)sets + 3 * (size_t)sc->nparts + 1));
     if (!l->mesh || !l->views || !ints) {
         free(ints);
@@ -747,6 +779,7 @@ static bool plan(Layout *l) {
 static int write_scene(const GlbScene *sc, const int *set_joint, const char *path, const SylSink *sink) {
     Layout l = {.sc = sc, .set_joint = set_joint};
     for (int k = 0; k < SLOTS; k++) l.tex_of_kind[k] = -1;
+    for (int k = 0; k < SHAPES; k++) l.card_tex[k] = -1;
     IoBuf js = {0};
     bool ok = plan(&l);
     if (!ok) l.bin.failed = true;

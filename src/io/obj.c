@@ -48,6 +48,9 @@ static void write_mtl(const SylMesh *m, FILE *f, const char *stem) {
         bool card = m->materials[k].kind == SYL_MATERIAL_LEAF &&
                     (m->leaves == SYL_LEAVES_CARDS || m->leaves == SYL_LEAVES_CLUSTERS);
         if (card) tex = m->leaves == SYL_LEAVES_CARDS ? "leafcard" : "leafcluster"; /* RGBA: silhouettes in alpha, read again by map_d */
+        char own[24]; /* a card of a scene's plant whose outline is not the first's: its own */
+        if (card && syl_mesh_card_shape(m, k) != m->leaf_shape)
+            snprintf(own, sizeof own, "leafcard%d", syl_mesh_card_shape(m, k)), tex = own;
         if (tex) fprintf(f, "map_Kd %s_%s.png\n", stem, tex); /* the rest of the line: spaces work */
         if (card) fprintf(f, "map_d %s_%s.png\n", stem, tex);
     }

@@ -5,12 +5,15 @@
 #include "io/io_internal.h"
 #include "sylva/texture.h"
 
-/* PREFIX_leafcard.png or PREFIX_leafcluster.png: the card or cluster texture, RGBA. */
-static int write_card(int shape, bool cluster, const char *prefix, char *path, size_t n, const SylSink *sink) {
+/* PREFIX_leafcard.png or PREFIX_leafcluster.png: the card or cluster texture, RGBA; own: a
+ * further card shape's, PREFIX_leafcardSHAPE.png (a scene's plant with an outline of its own). */
+static int write_card(int shape, bool cluster, bool own, const char *prefix, char *path, size_t n,
+                      const SylSink *sink) {
     const int size = SYL_TEXTURE_SIZE;
     uint8_t *rgba = malloc((size_t)size * size * 4);
     IoBuf b = {0};
-    snprintf(path, n, "%s_%s.png", prefix, cluster ? "leafcluster" : "leafcard");
+    if (own) snprintf(path, n, "%s_leafcard%d.png", prefix, shape);
+    else snprintf(path, n, "%s_%s.png", prefix, cluster ? "leafcluster" : "leafcard");
     int status = SYL_OK;
     if (!rgba || !(cluster ? syl_leaf_draw_cluster(shape, size, rgba) : syl_leaf_draw_card(shape, size, rgba)) ||
         !io_png_rgba(&b, rgba, size, size)) {
@@ -83,7 +86,16 @@ int syl_mesh_write_textures(const SylMesh *m, const char *prefix, const SylSink 
     bool leaf = false, cluster = m && m->leaves == SYL_LEAVES_CLUSTERS;
     for (int g = 0; m && g < m->ngroups; g++) leaf |= m->materials[m->groups[g].material].kind == SYL_MATERIAL_LEAF;
     if (leaf && (m->leaves == SYL_LEAVES_CARDS || cluster) && !status)
-        status = write_card(m->leaf_shape, cluster, prefix, path, n, sink);
+        status = write_card(m->leaf_shape, cluster, false, prefix, path, n, sink);
+    bool done[256] = {false}; /* the further shapes, once each */
+    for (int g = 0; m && g < m->ngroups && !status; g++) {
+        int k = m->groups[g].material, shape = syl_mesh_card_shape(m, k);
+        if (m->materials[k].kind != SYL_MATERIAL_LEAF || m->leaves != SYL_LEAVES_CARDS || shape == m->leaf_shape ||
+            done[shape] || io_image(m, k))
+            continue;
+        done[shape] = true;
+        status = write_card(shape, false, true, prefix, path, n, sink);
+    }
     if (!status && m) status = write_images(m, prefix, sink);
     free(img);
     free(path);

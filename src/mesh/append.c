@@ -38,6 +38,7 @@ int syl_mesh_append(SylMesh *dst, const SylMesh *src) {
                     idx[at++] = src->idx[src->groups[g].first + k] + (uint32_t)dst->nverts;
                 dst->materials[m] = src->materials[m];
                 dst->double_sided[m] |= src->double_sided[m];
+                if (src->card_shape[m]) dst->card_shape[m] = src->card_shape[m];
             }
         if (at > start) groups[ng++] = (SylMeshGroup){(uint32_t)start, (uint32_t)(at - start), (uint8_t)m};
     }

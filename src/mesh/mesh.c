@@ -759,6 +759,17 @@ static const SylMaterial *own_leaf_material(const SylSkeleton *s) {
     return NULL;
 }
 
+/* The card shape of a material with an outline of its own. */
+static int own_card(const SylMaterial *m) {
+    return LEAF_OUTLINE_CARD(m->leaf_outline, m->leaf_tris < LEAF_OUTLINE_CARD_MAX_TRIS ? m->leaf_tris
+                                                                                       : LEAF_OUTLINE_CARD_MAX_TRIS);
+}
+
+int syl_mesh_card_shape(const SylMesh *m, int material) {
+    int c = m->leaves == SYL_LEAVES_CARDS ? m->card_shape[(uint8_t)material] : 0;
+    return c ? c - 1 : m->leaf_shape;
+}
+
 int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **out) {
     *out = NULL;
     SylMeshOptions o;
@@ -771,10 +782,7 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     pl.leaves = o.leaves;
     pl.leaf_shape = o.leaf_shape;
     const SylMaterial *leafm = own_leaf_material(s);
-    if (leafm) /* cards and clusters draw the leaves' own outline */
-        pl.leaf_shape = LEAF_OUTLINE_CARD(leafm->leaf_outline, leafm->leaf_tris < LEAF_OUTLINE_CARD_MAX_TRIS
-                                                                 ? leafm->leaf_tris
-                                                                 : LEAF_OUTLINE_CARD_MAX_TRIS);
+    if (leafm) pl.leaf_shape = own_card(leafm); /* cards and clusters draw the leaves' own outline */
     pl.cluster_shape = pl.leaf_shape;
     pl.cluster_leaves = o.cluster_leaves > 0 ? o.cluster_leaves : SYL_CLUSTER_LEAVES;
     SylMesh *m = calloc(1, sizeof *m);
@@ -837,6 +845,11 @@ int syl_mesh_build(const SylSkeleton *s, const SylMeshOptions *opt, SylMesh **ou
     snprintf(m->name, sizeof m->name, "%s", s->name);
     m->leaves = (uint8_t)o.leaves;
     m->leaf_shape = (uint8_t)pl.cluster_shape;
+    for (size_t i = 0; i < s->norgans && o.leaves == SYL_LEAVES_CARDS; i++) { /* each leaf material's cards */
+        const SylMaterial *k = &s->materials[s->organs[i].material];
+        if (s->organs[i].kind == SYL_KIND_LEAF)
+            m->card_shape[s->organs[i].material] = (uint8_t)(1 + (mesh_own_leaf(k) ? own_card(k) : o.leaf_shape));
+    }
     emit_all(&pl, m, o.threads > 0 ? o.threads : ncpu());
     if (o.vertex_nodes && !fill_nodes(&pl, m)) goto oom;
     goto done;

@@ -54,6 +54,7 @@ static SylMesh *subset(const SylMesh *m, const int *part, int k, const char *nam
     s->images = syl_images_ref(m->images);
     memcpy(s->double_sided, m->double_sided, sizeof s->double_sided);
     s->nmaterials = m->nmaterials, s->leaves = m->leaves, s->leaf_shape = m->leaf_shape;
+    memcpy(s->card_shape, m->card_shape, sizeof s->card_shape);
     snprintf(s->name, sizeof s->name, "%s", name);
     free(map);
     return s;

@@ -4,6 +4,8 @@
   textures.py glb FILE   each image: its name, MIME type and whether its bytes equal the file
                          of that name in the working folder; each material: its texture's
                          image, alpha mode, sampler wrap and base colour factor
+  textures.py cards FILE each node's alpha-tested (MASK) materials: the node's name and the
+                         share of its texture's texels with alpha 128 or more (a card's outline)
   textures.py vt FILE    an OBJ's largest u, and its v range (OBJ writes 1 - v)
   textures.py solid FILE R G B A   writes a 16 x 16 RGBA PNG of one colour (zlib, no filter)
   textures.py tint PLAIN.png TEXTURED.png R G B LEAST
@@ -17,6 +19,7 @@ import json
 import os
 import struct
 import sys
+import tempfile
 import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -39,6 +42,29 @@ def glb(path):
         wrap = j["samplers"][tex["sampler"]]["wrapS"] if tex else None
         print(m["name"], j["images"][tex["source"]]["name"] if tex else "-", m.get("alphaMode", "OPAQUE"),
               "repeat" if wrap == 10497 else "clamp", m["pbrMetallicRoughness"]["baseColorFactor"][:3])
+
+
+def cards(path):
+    d = open(path, "rb").read()
+    n = struct.unpack("<I", d[12:16])[0]
+    j = json.loads(d[20:20 + n])
+    b = d[20 + n + 8:]
+    for node in j["nodes"]:
+        if "mesh" not in node:
+            continue
+        for p in j["meshes"][node["mesh"]]["primitives"]:
+            m = j["materials"][p["material"]]
+            if m.get("alphaMode") != "MASK":
+                continue
+            im = j["images"][j["textures"][m["pbrMetallicRoughness"]["baseColorTexture"]["index"]]["source"]]
+            v = j["bufferViews"][im["bufferView"]]
+            at = v.get("byteOffset", 0)
+            with tempfile.NamedTemporaryFile(suffix=".png") as f:
+                f.write(b[at:at + v["byteLength"]])
+                f.flush()
+                w, h, bpp, rows = png(f.name)
+            inside = sum(1 for r in rows for x in range(w) if r[x * bpp + 3] >= 128)
+            print(node.get("name", "-"), "%.4f" % (inside / (w * h)))
 
 
 def vt(path):
@@ -78,4 +104,4 @@ if __name__ == "__main__":
     elif cmd == "tint":
         tint(sys.argv[2], sys.argv[3], *sys.argv[4:8])
     else:
-        {"glb": glb, "vt": vt}[cmd](sys.argv[2])
+        {"glb": glb, "cards": cards, "vt": vt}[cmd](sys.argv[2])
