@@ -301,6 +301,15 @@ static void layout_instances(Layout *l, const SylInstances *set, int i, const fl
 }
 
 /* Set i's accessors: TRANSLATION, ROTATION and SCALE, unless its prototype has the scale. */
+/* The image whose PNG was written from `at` to the binary's end: its view, padded; its texture's number. */
+static int add_image(Layout *l, size_t at, int kind) {
+    l->image_view[l->ntex] = l->nviews;
+    l->image_kind[l->ntex] = kind;
+    l->views[l->nviews++] = (View){at, l->bin.len - at, 0, 0};
+    glb_pad(&l->bin, 0);
+    return l->ntex++;
+}
+
 static int set_accessors(const Layout *l, int i) { return l->mesh[l->set_mesh[i]].fold > 0 ? 2 : 3; }
 
 /* One PNG texture per slot used, each in a view of its own. */
@@ -336,11 +345,7 @@ static void layout_textures(Layout *l) {
                 l->bin.failed = true;
                 break;
             }
-            l->image_view[l->ntex] = l->nviews;
-            l->image_kind[l->ntex] = CARD;
-            l->views[l->nviews++] = (View){at, l->bin.len - at, 0, 0};
-            glb_pad(&l->bin, 0);
-            l->card_tex[card[c++]] = l->ntex++;
+            l->card_tex[card[c++]] = add_image(l, at, CARD);
             continue;
         }
         if (!used[k]) continue;
@@ -361,12 +366,9 @@ static void layout_textures(Layout *l) {
             l->bin.failed = true;
             break;
         }
-        l->image_view[l->ntex] = l->nviews;
-        l->image_kind[l->ntex] = k;
-        l->views[l->nviews++] = (View){at, l->bin.len - at, 0, 0};
-        glb_pad(&l->bin, 0);
-        if (k == CARD) l->card_tex[card[0]] = l->ntex;
-        l->tex_of_kind[k] = l->ntex++;
+        int t = add_image(l, at, k);
+        if (k == CARD) l->card_tex[card[0]] = t;
+        l->tex_of_kind[k] = t;
     }
     glb_pixels_free(&px);
 }

@@ -26,11 +26,15 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from inspect import png, pixel  # noqa: E402  (tests/oracle/inspect.py)
 
 
-def glb(path):
+def read_glb(path):
+    """The JSON chunk of a .glb, parsed, and its binary chunk's bytes."""
     d = open(path, "rb").read()
     n = struct.unpack("<I", d[12:16])[0]
-    j = json.loads(d[20:20 + n])
-    b = d[20 + n + 8:]
+    return json.loads(d[20:20 + n]), d[20 + n + 8:]
+
+
+def glb(path):
+    j, b = read_glb(path)
     for im in j["images"]:
         v = j["bufferViews"][im["bufferView"]]
         at = v.get("byteOffset", 0)
@@ -45,10 +49,7 @@ def glb(path):
 
 
 def cards(path):
-    d = open(path, "rb").read()
-    n = struct.unpack("<I", d[12:16])[0]
-    j = json.loads(d[20:20 + n])
-    b = d[20 + n + 8:]
+    j, b = read_glb(path)
     for node in j["nodes"]:
         if "mesh" not in node:
             continue
