@@ -84,13 +84,8 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
     (void)state;
-    const char *names[] = {"box.obj", "u.obj", "trunk.obj", "t.syl"};
-    char path[128];
-    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
-        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
-        unlink(path);
-    }
-    rmdir(dir);
+    const char *const names[] = {"box.obj", "u.obj", "trunk.obj", "t.syl"};
+    unit_remove_files(dir, names, sizeof names / sizeof *names);
     return 0;
 }
 

@@ -103,13 +103,8 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
     (void)state;
-    const char *names[] = {"w.syl", "w.glb", "e.syl", "flat.asc"};
-    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
-        char path[256];
-        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
-        unlink(path);
-    }
-    return rmdir(dir);
+    const char *const names[] = {"w.syl", "w.glb", "e.syl", "flat.asc"};
+    return unit_remove_files(dir, names, sizeof names / sizeof *names);
 }
 
 int main(void) {

@@ -35,12 +35,7 @@ static int setup(void **state) {
 
 static int teardown(void **state) {
     (void)state;
-    char path[128];
-    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-        snprintf(path, sizeof path, "%s/%s", dir, files[i]);
-        unlink(path);
-    }
-    rmdir(dir);
+    unit_remove_files(dir, files, sizeof files / sizeof *files);
     return 0;
 }
 

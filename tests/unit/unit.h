@@ -39,6 +39,17 @@ static inline void unit_write_file(const char *dir, const char *name, const char
     fclose(f);
 }
 
+/* Remove the files names[0..n) of dir (a test's own folder), then the folder (remove(3) takes
+ * both): the folder's result, 0 when it is gone. */
+static inline int unit_remove_files(const char *dir, const char *const *names, size_t n) {
+    for (size_t i = 0; i < n; i++) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        remove(path);
+    }
+    return remove(dir);
+}
+
 /* Derive with n steps (n < 0: the model's) and return the canonical string (free it). */
 static inline char *unit_derive(const char *text, int n, int threads) {
     SylProgram *p = unit_compile(text, NULL, NULL);
